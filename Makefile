@@ -1,0 +1,56 @@
+# One command each on a fresh machine: `make demo`, `make test`.
+SHELL := /bin/bash
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.deps-stamp
+CPP_BUILD := build/cpp
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+DEMO_OUT ?= demo-out
+
+.PHONY: all venv install demo test test-python test-cpp gtest bench lint clean
+
+all: install
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet "scikit-build-core>=0.10" "nanobind>=2.0"
+	touch $(STAMP)
+
+venv: $(STAMP)
+
+# No build isolation: the build tools live in the venv and the CMake build
+# directory (build/) is kept, so a rebuild only recompiles what changed.
+install: $(STAMP)
+	$(PY) -m pip install --quiet --no-build-isolation ".[test]"
+
+demo: install
+	$(VENV)/bin/tendonsheath demo --out $(DEMO_OUT)
+
+gtest:
+	@if [ ! -f /usr/include/gtest/gtest.h ] && [ ! -f /usr/local/include/gtest/gtest.h ]; then \
+	  echo "GoogleTest not found: installing libgtest-dev with apt-get"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libgtest-dev googletest; \
+	fi
+
+test-cpp: gtest
+	cmake -S . -B $(CPP_BUILD) -DCMAKE_BUILD_TYPE=Release -DTENDONSHEATH_BUILD_TESTS=ON \
+	  -DTENDONSHEATH_BUILD_EXAMPLES=ON > /dev/null
+	cmake --build $(CPP_BUILD) -j $(JOBS)
+	ctest --test-dir $(CPP_BUILD) --output-on-failure
+
+test-python: install
+	$(PY) -m pytest -q
+
+test: test-cpp test-python lint
+
+bench: install
+	@for f in benchmarks/*.py; do echo "== $$f"; $(PY) $$f || exit 1; done
+
+lint: install
+	$(VENV)/bin/ruff check python tests benchmarks examples
+	$(VENV)/bin/ruff format --check python tests benchmarks examples
+
+clean:
+	rm -rf build $(VENV) $(DEMO_OUT) .pytest_cache .ruff_cache

@@ -1,0 +1,74 @@
+// Classic backlash (Tao & Kokotovic): two straight branches with slopes c_r,
+// c_l and dead-band offsets B_r, B_l; between them the output holds.
+//
+//   y = c_r (x - B_r)   while x increases and y would fall below that line
+//   y = c_l (x + B_l)   while x decreases and y would rise above that line
+//   y unchanged          otherwise (inside the dead band)
+#pragma once
+
+#include <cmath>
+
+#include "../validate.hpp"
+
+namespace tendonsheath {
+
+struct BacklashParams {
+  double c_r = 1.0;  // slope of the right (rising) branch
+  double c_l = 1.0;  // slope of the left (falling) branch
+  double B_r = 0.1;  // dead-band offset of the right branch, input units
+  double B_l = 0.1;  // dead-band offset of the left branch, input units
+};
+
+class Backlash {
+ public:
+  using Params = BacklashParams;
+  static constexpr bool rate_independent = true;
+
+  explicit Backlash(const Params& p) : p_(p) {
+    const char* w = "Backlash";
+    require_positive(p.c_r, w, "c_r");
+    require_positive(p.c_l, w, "c_l");
+    require_non_negative(p.B_r, w, "B_r");
+    require_non_negative(p.B_l, w, "B_l");
+  }
+
+  const Params& params() const noexcept { return p_; }
+
+  void reset() noexcept { initialised_ = false; }
+
+  // The first call after reset() starts in the middle of the band at x.
+  double step(double x, double /*dt*/ = 0.0) noexcept {
+    if (!std::isfinite(x)) return initialised_ ? y_ : 0.0;
+    const double right = p_.c_r * (x - p_.B_r);
+    const double left = p_.c_l * (x + p_.B_l);
+    if (!initialised_) {
+      y_ = 0.5 * (right + left);
+      x_ = x;
+      initialised_ = true;
+      return y_;
+    }
+    if (x > x_ && right > y_) y_ = right;
+    else if (x < x_ && left < y_) y_ = left;
+    x_ = x;
+    return y_;
+  }
+
+  double output() const noexcept { return y_; }
+
+  // Put the model in a given state (for inverses and identification).
+  void set_state(double x, double y) noexcept {
+    x_ = x;
+    y_ = y;
+    initialised_ = true;
+  }
+  double last_input() const noexcept { return x_; }
+  bool initialised() const noexcept { return initialised_; }
+
+ private:
+  Params p_;
+  double x_ = 0.0;
+  double y_ = 0.0;
+  bool initialised_ = false;
+};
+
+}  // namespace tendonsheath

@@ -1,0 +1,106 @@
+// Classic Bouc-Wen hysteresis as a rate-independent input-output model:
+//
+//   dz = A dx - beta |dx| |z|^(n-1) z - gamma dx |z|^n
+//   y  = a x + (1 - a) k z
+//
+// Bounded-input bounded-state requires beta > 0 and |gamma| <= beta, so that
+// |z| <= z_u = (A / (beta + gamma))^(1/n). z is integrated in x with RK4.
+#pragma once
+
+#include <cmath>
+
+#include "../validate.hpp"
+#include "bouc_wen_backlash.hpp"
+#include "power.hpp"
+
+namespace tendonsheath {
+
+struct BoucWenParams {
+  double A = 1.0;
+  double beta = 0.5;
+  double gamma = 0.5;
+  double n = 1.0;
+  double a = 0.5;  // share of the linear (elastic) path, in [0, 1]
+  double k = 1.0;  // gain of the hysteretic path
+  double max_step = 0.05;  // largest change of z / z_u per RK4 sub-step
+  int max_substeps = 256;
+};
+
+class BoucWen {
+ public:
+  using Params = BoucWenParams;
+  static constexpr bool rate_independent = true;
+
+  explicit BoucWen(const Params& p) : p_(p) {
+    const char* w = "BoucWen";
+    require_positive(p.A, w, "A");
+    require_positive(p.beta, w, "beta");
+    require_finite(p.gamma, w, "gamma");
+    require(std::fabs(p.gamma) <= p.beta, w,
+            "|gamma| must be <= beta for a bounded hysteretic state (got beta=" +
+                detail::format_value(p.beta) + ", gamma=" + detail::format_value(p.gamma) + ")");
+    require(p.beta + p.gamma > 0.0, w, "beta + gamma must be > 0");
+    require_at_least(p.n, 1.0, w, "n");
+    require_in_range(p.a, 0.0, 1.0, w, "a");
+    require_finite(p.k, w, "k");
+    require_positive(p.max_step, w, "max_step");
+    require(p.max_substeps >= 1, w, "max_substeps must be >= 1");
+    pow_nm1_ = detail::AbsPower(p.n - 1.0);
+    z_u_ = std::pow(p.A / (p.beta + p.gamma), 1.0 / p.n);
+  }
+
+  const Params& params() const noexcept { return p_; }
+  double z_ultimate() const noexcept { return z_u_; }
+
+  void reset() noexcept {
+    initialised_ = false;
+    z_ = 0.0;
+  }
+
+  double step(double x, double /*dt*/ = 0.0) noexcept {
+    if (!std::isfinite(x)) return initialised_ ? y_ : 0.0;
+    if (!initialised_) {
+      x_ = x;
+      initialised_ = true;
+    } else {
+      const double dx = x - x_;
+      if (dx != 0.0) integrate(std::fabs(dx), dx > 0.0 ? 1.0 : -1.0);
+      x_ = x;
+    }
+    y_ = p_.a * x_ + (1.0 - p_.a) * p_.k * z_;
+    return y_;
+  }
+
+  double output() const noexcept { return y_; }
+  double state() const noexcept { return z_; }
+
+ private:
+  double rate(double z, double s) const noexcept {
+    const double az = std::fabs(z);
+    const double q = pow_nm1_(az);
+    return p_.A * s - p_.beta * q * z - p_.gamma * s * q * az;
+  }
+  double clamp_z(double z) const noexcept { return z > z_u_ ? z_u_ : (z < -z_u_ ? -z_u_ : z); }
+
+  void integrate(double travel, double s) noexcept {
+    const int m = detail::substeps_for(p_.A * travel / z_u_, p_.max_step, p_.max_substeps);
+    const double h = travel / m;
+    double z = z_;
+    for (int i = 0; i < m; ++i) {
+      const double k1 = rate(z, s);
+      const double k2 = rate(clamp_z(z + 0.5 * h * k1), s);
+      const double k3 = rate(clamp_z(z + 0.5 * h * k2), s);
+      const double k4 = rate(clamp_z(z + h * k3), s);
+      z = clamp_z(z + h * (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0);
+    }
+    z_ = z;
+  }
+
+  Params p_;
+  detail::AbsPower pow_nm1_{};
+  double z_u_ = 1.0;
+  double x_ = 0.0, z_ = 0.0, y_ = 0.0;
+  bool initialised_ = false;
+};
+
+}  // namespace tendonsheath

@@ -1,0 +1,176 @@
+// Prandtl-Ishlinskii hysteresis: a weighted sum of play operators
+//
+//   y = sum_i p_i F_{r_i}[x],   F_r: z <- max(x - r, min(x + r, z))
+//
+// with thresholds 0 <= r_0 < r_1 < ... and weights p_i whose partial sums
+// P_j = p_0 + ... + p_j are all > 0, so the loading curve is strictly
+// increasing and the operator is invertible. The plays start on the virgin
+// curve from 0: z_i = clamp(0, x_0 - r_i, x_0 + r_i).
+//
+// PrandtlIshlinskiiInverse solves, every step, the piecewise-linear equation
+// y(x) = y_desired exactly along the breakpoints of the plays, and updates the
+// same play states, so model(inverse(y)) == y and inverse(model(x)) == x up to
+// rounding.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "../validate.hpp"
+
+namespace tendonsheath {
+
+struct PrandtlIshlinskiiParams {
+  std::vector<double> thresholds{0.0, 0.05, 0.1, 0.15, 0.2};
+  std::vector<double> weights{0.5, 0.2, 0.15, 0.1, 0.05};
+};
+
+namespace detail {
+
+inline void validate_pi(const PrandtlIshlinskiiParams& p, const char* w) {
+  require(!p.thresholds.empty(), w, "thresholds must not be empty");
+  require(p.thresholds.size() == p.weights.size(), w,
+          "thresholds and weights must have the same length (got " +
+              std::to_string(p.thresholds.size()) + " and " + std::to_string(p.weights.size()) +
+              ")");
+  double partial = 0.0;
+  for (std::size_t i = 0; i < p.thresholds.size(); ++i) {
+    const std::string ri = "thresholds[" + std::to_string(i) + "]";
+    const std::string pi = "weights[" + std::to_string(i) + "]";
+    require_non_negative(p.thresholds[i], w, ri.c_str());
+    require_finite(p.weights[i], w, pi.c_str());
+    if (i > 0)
+      require(p.thresholds[i] > p.thresholds[i - 1], w, "thresholds must be strictly increasing");
+    partial += p.weights[i];
+    require(partial > 0.0, w,
+            "partial sums of weights must be > 0 for an invertible operator (weights[0..." +
+                std::to_string(i) + "] sum to " + format_value(partial) + ")");
+  }
+}
+
+inline double clamp_play(double z, double x, double r) noexcept {
+  const double lo = x - r, hi = x + r;
+  return z < lo ? lo : (z > hi ? hi : z);
+}
+
+}  // namespace detail
+
+class PrandtlIshlinskii {
+ public:
+  using Params = PrandtlIshlinskiiParams;
+  static constexpr bool rate_independent = true;
+
+  explicit PrandtlIshlinskii(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
+    detail::validate_pi(p, "PrandtlIshlinskii");
+  }
+
+  const Params& params() const noexcept { return p_; }
+  void reset() noexcept { initialised_ = false; }
+
+  double step(double x, double /*dt*/ = 0.0) noexcept {
+    if (!std::isfinite(x)) return initialised_ ? y_ : 0.0;
+    const std::size_t n = z_.size();
+    double y = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double prev = initialised_ ? z_[i] : 0.0;
+      z_[i] = detail::clamp_play(prev, x, p_.thresholds[i]);
+      y += p_.weights[i] * z_[i];
+    }
+    initialised_ = true;
+    x_ = x;
+    y_ = y;
+    return y;
+  }
+
+  double output() const noexcept { return y_; }
+  double last_input() const noexcept { return x_; }
+  const std::vector<double>& play_states() const noexcept { return z_; }
+
+ private:
+  Params p_;
+  std::vector<double> z_;
+  double x_ = 0.0, y_ = 0.0;
+  bool initialised_ = false;
+};
+
+class PrandtlIshlinskiiInverse {
+ public:
+  using Params = PrandtlIshlinskiiParams;
+  static constexpr bool rate_independent = true;
+
+  explicit PrandtlIshlinskiiInverse(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
+    detail::validate_pi(p, "PrandtlIshlinskiiInverse");
+  }
+
+  const Params& params() const noexcept { return p_; }
+  void reset() noexcept { initialised_ = false; }
+
+  // Returns the input x that drives the forward operator to y_desired.
+  double step(double y_desired, double /*dt*/ = 0.0) noexcept {
+    if (!std::isfinite(y_desired)) return initialised_ ? x_ : 0.0;
+    if (!initialised_) {
+      // Virgin curve from the demagnetised state at x = 0.
+      for (double& z : z_) z = 0.0;
+      x_ = 0.0;
+      initialised_ = true;
+    }
+    double y_now = 0.0;
+    for (std::size_t i = 0; i < z_.size(); ++i) y_now += p_.weights[i] * z_[i];
+    const double x = (y_desired >= y_now) ? solve_up(y_desired, y_now)
+                                          : solve_down(y_desired, y_now);
+    for (std::size_t i = 0; i < z_.size(); ++i) z_[i] = detail::clamp_play(z_[i], x, p_.thresholds[i]);
+    x_ = x;
+    return x;
+  }
+
+  double output() const noexcept { return x_; }
+
+ private:
+  // Rising input: play i follows max(z_i, x - r_i); it engages at b_i = z_i + r_i,
+  // which is non-decreasing in i for play states reached by any input history.
+  double solve_up(double y_target, double y_now) const noexcept {
+    double x = x_, y = y_now, slope = 0.0;
+    const std::size_t n = z_.size();
+    std::size_t i = 0;
+    for (; i < n; ++i) {
+      const double b = z_[i] + p_.thresholds[i];
+      if (b > x) {
+        if (slope > 0.0) {
+          const double y_b = y + slope * (b - x);
+          if (y_target <= y_b) return x + (y_target - y) / slope;
+          y = y_b;
+        }
+        x = b;
+      }
+      slope += p_.weights[i];
+    }
+    return slope > 0.0 ? x + (y_target - y) / slope : x;
+  }
+
+  double solve_down(double y_target, double y_now) const noexcept {
+    double x = x_, y = y_now, slope = 0.0;
+    const std::size_t n = z_.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double b = z_[i] - p_.thresholds[i];
+      if (b < x) {
+        if (slope > 0.0) {
+          const double y_b = y - slope * (x - b);
+          if (y_target >= y_b) return x - (y - y_target) / slope;
+          y = y_b;
+        }
+        x = b;
+      }
+      slope += p_.weights[i];
+    }
+    return slope > 0.0 ? x - (y - y_target) / slope : x;
+  }
+
+  Params p_;
+  std::vector<double> z_;
+  double x_ = 0.0;
+  bool initialised_ = false;
+};
+
+}  // namespace tendonsheath

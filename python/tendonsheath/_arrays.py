@@ -1,0 +1,31 @@
+"""Conversion of user arrays to the contiguous float64 vectors the core expects."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def as_signal(values, name: str) -> np.ndarray:
+    """Return `values` as a 1-D contiguous float64 array, or raise ValueError naming it."""
+    try:
+        arr = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be a 1-D array of numbers ({exc})") from None
+    if arr.ndim == 0:
+        arr = arr.reshape(1)
+    if arr.ndim != 1:
+        raise ValueError(f"{name} must be 1-D (got shape {arr.shape})")
+    if arr.size == 0:
+        raise ValueError(f"{name} is empty")
+    return np.ascontiguousarray(arr)
+
+
+def as_time_and_signal(t, x, name: str = "x") -> tuple[np.ndarray | None, np.ndarray]:
+    """Check a (t, x) pair: same length, 1-D. NaN and ordering are checked in the core."""
+    xs = as_signal(x, name)
+    if t is None:
+        return None, xs
+    ts = as_signal(t, "t")
+    if ts.shape != xs.shape:
+        raise ValueError(f"t and {name} have different lengths ({ts.size} and {xs.size})")
+    return ts, xs

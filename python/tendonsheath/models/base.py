@@ -1,0 +1,171 @@
+"""Common behaviour of the hysteresis models: parameters, simulate, streaming, JSON."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any, ClassVar
+
+import numpy as np
+
+from .._arrays import as_time_and_signal
+
+FORMAT_NAME = "tendonsheath.model"
+FORMAT_VERSION = 1
+
+_REGISTRY: dict[str, type[HysteresisModel]] = {}
+
+
+class HysteresisModel:
+    """A single-input single-output model backed by a real-time C++ core object.
+
+    Subclasses declare ``_core`` (the C++ class), ``_core_params`` (its parameter
+    struct) and ``param_names`` (the identifiable parameters, in order), and may
+    list ``option_names`` (numerical settings that are not identified).
+    """
+
+    _core: ClassVar[Any]
+    _core_params: ClassVar[Any]
+    param_names: ClassVar[tuple[str, ...]] = ()
+    option_names: ClassVar[tuple[str, ...]] = ()
+    rate_independent: ClassVar[bool] = True
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        _REGISTRY[cls.__name__] = cls
+
+    def __init__(self, **values):
+        unknown = set(values) - set(self.param_names) - set(self.option_names)
+        if unknown:
+            raise ValueError(
+                f"{type(self).__name__}: unknown parameter(s) {sorted(unknown)}; "
+                f"expected {list(self.param_names + self.option_names)}"
+            )
+        struct = self._core_params()
+        for key, value in self._core_values(values).items():
+            if value is None:
+                continue
+            try:
+                setattr(struct, key, value)
+            except TypeError:
+                raise ValueError(
+                    f"{type(self).__name__}: parameter {key} has the wrong type ({value!r})"
+                ) from None
+        self._engine = self._core(struct)  # validates; raises ValueError naming the parameter
+
+    @classmethod
+    def _core_values(cls, values: dict[str, Any]) -> dict[str, Any]:
+        """Map user-facing values to fields of the C++ parameter struct."""
+        return values
+
+    # -- parameters ------------------------------------------------------------------
+    @property
+    def params(self) -> dict[str, Any]:
+        """The identifiable parameters, as a dict (a copy)."""
+        s = self._engine.params
+        return {k: _plain(getattr(s, k)) for k in self.param_names}
+
+    @property
+    def options(self) -> dict[str, Any]:
+        s = self._engine.params
+        return {k: _plain(getattr(s, k)) for k in self.option_names}
+
+    def with_params(self, **changes) -> HysteresisModel:
+        """A new model with some parameters changed (options kept)."""
+        values = {**self.params, **self.options, **changes}
+        return type(self)(**values)
+
+    # -- simulation ------------------------------------------------------------------
+    def simulate(self, t, x) -> np.ndarray:
+        """Output for the input samples x at times t (t may be None when rate-independent).
+
+        Starts from the model's initial state; does not disturb the streaming state.
+        """
+        if t is None and not self.rate_independent:
+            raise ValueError(f"{type(self).__name__} is rate-dependent: t is required")
+        ts, xs = as_time_and_signal(t, x)
+        return self._engine.simulate(ts, xs)
+
+    def reset(self) -> None:
+        """Forget the streaming state; the next step() starts afresh."""
+        self._engine.reset()
+
+    def step(self, x: float, dt: float = 0.0) -> float:
+        """Advance one sample (streaming); dt is the time since the previous sample."""
+        return self._engine.step(float(x), float(dt))
+
+    # -- persistence -----------------------------------------------------------------
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "format": FORMAT_NAME,
+            "version": FORMAT_VERSION,
+            "model": type(self).__name__,
+            "params": self.params,
+            "options": self.options,
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> HysteresisModel:
+        model_cls = model_class_from_dict(data)
+        if cls is not HysteresisModel and not issubclass(model_cls, cls):
+            raise ValueError(f"file holds a {model_cls.__name__}, not a {cls.__name__}")
+        return model_cls(**data.get("params", {}), **data.get("options", {}))
+
+    def to_json(self, path: str | Path | None = None) -> str:
+        """The model as JSON text; also written to `path` when one is given."""
+        text = json.dumps(self.to_dict(), indent=2)
+        if path is not None:
+            Path(path).write_text(text + "\n")
+        return text
+
+    def __eq__(self, other) -> bool:
+        return type(self) is type(other) and self.to_dict() == other.to_dict()
+
+    def __repr__(self) -> str:
+        inner = ", ".join(f"{k}={_short(v)}" for k, v in self.params.items())
+        return f"{type(self).__name__}({inner})"
+
+
+def model_class_from_dict(data: dict[str, Any]) -> type[HysteresisModel]:
+    if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
+        raise ValueError(f"not a tendonsheath model file (missing format '{FORMAT_NAME}')")
+    version = data.get("version")
+    if version != FORMAT_VERSION:
+        raise ValueError(f"unsupported model file version {version!r} (expected {FORMAT_VERSION})")
+    name = data.get("model")
+    if name not in _REGISTRY:
+        raise ValueError(f"unknown model {name!r}; known: {sorted(_REGISTRY)}")
+    return _REGISTRY[name]
+
+
+def load_model(source: str | Path | dict) -> HysteresisModel:
+    """Load a model saved with ``to_json``: a path, a JSON string or a dict."""
+    if isinstance(source, dict):
+        data = source
+    else:
+        text = str(source)
+        if not text.lstrip().startswith("{"):
+            path = Path(source)
+            if not path.is_file():
+                raise ValueError(f"model file not found: {path}")
+            text = path.read_text()
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise ValueError(f"model file is not valid JSON: {exc}") from None
+    return HysteresisModel.from_dict(data)
+
+
+def _plain(value):
+    if isinstance(value, list | tuple):
+        return [float(v) for v in value]
+    return value
+
+
+def _short(value):
+    if isinstance(value, list):
+        return "[" + ", ".join(f"{v:.4g}" for v in value[:4]) + (", ...]" if len(value) > 4 else "]")
+    if isinstance(value, float) and math.isfinite(value):
+        return f"{value:.6g}"
+    return repr(value)

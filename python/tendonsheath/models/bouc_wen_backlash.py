@@ -1,0 +1,49 @@
+"""Backlash-like hysteresis of Do et al. on a normalised Bouc-Wen state (spec D.1)."""
+
+from __future__ import annotations
+
+from .. import _core as core
+from .base import HysteresisModel
+
+
+class BoucWenBacklash(HysteresisModel):
+    """y = phi c_r (x - B_r) + (1 - phi) c_l (x + B_l), phi = (1 + w)/2, w in [-1, 1].
+
+    dw = rho [dx - sigma |dx| |w|^(n-1) w + (sigma - 1) dx |w|^n]. ``rho`` defaults to
+    2 / (B_r + B_l). Larger n makes the dead zone flatter (n -> inf tends to Backlash).
+    ``max_step`` and ``max_substeps`` set the RK4 sub-stepping in x (numerical options).
+    """
+
+    _core = core.BoucWenBacklash
+    _core_params = core.BoucWenBacklashParams
+    param_names = ("c_r", "c_l", "B_r", "B_l", "rho", "sigma", "n")
+    option_names = ("max_step", "max_substeps")
+
+    def __init__(
+        self,
+        c_r: float = 1.0,
+        c_l: float = 1.0,
+        B_r: float = 0.1,
+        B_l: float = 0.1,
+        rho: float | None = None,
+        sigma: float = 1.0,
+        n: float = 4.0,
+        max_step: float = 0.05,
+        max_substeps: int = 256,
+    ):
+        if rho is None:
+            width = B_r + B_l
+            if not width > 0:
+                raise ValueError("BoucWenBacklash: give rho when B_r + B_l is not > 0")
+            rho = 2.0 / width
+        super().__init__(
+            c_r=c_r,
+            c_l=c_l,
+            B_r=B_r,
+            B_l=B_l,
+            rho=rho,
+            sigma=sigma,
+            n=n,
+            max_step=max_step,
+            max_substeps=max_substeps,
+        )

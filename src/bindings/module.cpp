@@ -1,0 +1,6 @@
+#include "bindings.hpp"
+
+NB_MODULE(_core, m) {
+  m.doc() = "tendonsheath real-time core (C++17), exposed through nanobind";
+  tsbind::bind_models(m);
+}
