@@ -39,6 +39,10 @@ test-cpp: gtest
 	  -DTENDONSHEATH_BUILD_EXAMPLES=ON > /dev/null
 	cmake --build $(CPP_BUILD) -j $(JOBS)
 	ctest --test-dir $(CPP_BUILD) --output-on-failure
+	@# the core as a CMake package: install it, then build the examples against it
+	cmake --install $(CPP_BUILD) --prefix build/cpp-install > /dev/null
+	cmake -S examples/cpp -B build/cpp-consumer -DCMAKE_PREFIX_PATH=$(CURDIR)/build/cpp-install > /dev/null
+	cmake --build build/cpp-consumer -j $(JOBS)
 
 test-python: install
 	$(PY) -m pytest -q

@@ -55,12 +55,19 @@ inline void require_in_range(double v, double lo, double hi, const char* where, 
 // time vector is given it must be finite and strictly increasing.
 inline void check_series(const double* t, const double* x, std::size_t n, const char* where) {
   require(n >= 1, where, "the input is empty");
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!std::isfinite(x[k]))
-      throw std::invalid_argument(std::string(where) + ": input sample x[" + std::to_string(k) +
-                                  "] is not finite (" + detail::format_value(x[k]) + ")");
+  // Branch-free scans first (they vectorise); locate the culprit only on failure.
+  bool finite = true;
+  for (std::size_t k = 0; k < n; ++k) finite &= std::isfinite(x[k]);
+  if (!finite) {
+    for (std::size_t k = 0; k < n; ++k)
+      if (!std::isfinite(x[k]))
+        throw std::invalid_argument(std::string(where) + ": input sample x[" + std::to_string(k) +
+                                    "] is not finite (" + detail::format_value(x[k]) + ")");
   }
   if (t == nullptr) return;
+  bool ordered = std::isfinite(t[0]);
+  for (std::size_t k = 1; k < n; ++k) ordered &= (t[k] > t[k - 1]) & std::isfinite(t[k]);
+  if (ordered) return;
   for (std::size_t k = 0; k < n; ++k) {
     if (!std::isfinite(t[k]))
       throw std::invalid_argument(std::string(where) + ": time t[" + std::to_string(k) +

@@ -93,7 +93,7 @@ class BoucWen {
       const double k4 = rate(clamp_z(z + h * k3), s);
       z = clamp_z(z + h * (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0);
     }
-    z_ = z;
+    if (std::isfinite(z)) z_ = z;  // an overflowing jump keeps the old state
   }
 
   Params p_;

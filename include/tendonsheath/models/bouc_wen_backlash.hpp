@@ -93,10 +93,13 @@ class BoucWenBacklash {
       initialised_ = true;
     } else {
       const double dx = x - x_;
-      if (dx != 0.0) {
+      // w = +-1 moving the same way is a fixed point (dw = 0 exactly): skip the work.
+      const bool saturated = (dx > 0.0 && w_ >= 1.0) || (dx < 0.0 && w_ <= -1.0);
+      if (dx != 0.0 && !saturated) {
         const double travel = std::fabs(dx);
         const int m = detail::substeps_for(p_.rho * travel, p_.max_step, p_.max_substeps);
-        w_ = detail::rk4_in_x(f_, w_, dx > 0.0 ? 1.0 : -1.0, travel / m, m);
+        const double w = detail::rk4_in_x(f_, w_, dx > 0.0 ? 1.0 : -1.0, travel / m, m);
+        if (std::isfinite(w)) w_ = w;  // an overflowing jump keeps the old state
       }
       x_ = x;
     }

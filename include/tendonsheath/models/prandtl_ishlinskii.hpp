@@ -3,8 +3,8 @@
 //   y = sum_i p_i F_{r_i}[x],   F_r: z <- max(x - r, min(x + r, z))
 //
 // with thresholds 0 <= r_0 < r_1 < ... and weights p_i whose partial sums
-// P_j = p_0 + ... + p_j are all > 0, so the loading curve is strictly
-// increasing and the operator is invertible. The plays start on the virgin
+// P_j = p_0 + ... + p_j are all > 0. With r_0 = 0 as well the loading curve
+// is strictly increasing and the operator is invertible. The plays start on the virgin
 // curve from 0: z_i = clamp(0, x_0 - r_i, x_0 + r_i).
 //
 // PrandtlIshlinskiiInverse solves, every step, the piecewise-linear equation
@@ -29,12 +29,16 @@ struct PrandtlIshlinskiiParams {
 
 namespace detail {
 
-inline void validate_pi(const PrandtlIshlinskiiParams& p, const char* w) {
+inline void validate_pi(const PrandtlIshlinskiiParams& p, const char* w, bool invertible) {
   require(!p.thresholds.empty(), w, "thresholds must not be empty");
   require(p.thresholds.size() == p.weights.size(), w,
           "thresholds and weights must have the same length (got " +
               std::to_string(p.thresholds.size()) + " and " + std::to_string(p.weights.size()) +
               ")");
+  if (invertible)
+    require(p.thresholds.front() == 0.0, w,
+            "thresholds[0] must be 0 for an invertible operator (a play with threshold 0 makes the "
+            "loading curve strictly increasing; got " + format_value(p.thresholds.front()) + ")");
   double partial = 0.0;
   for (std::size_t i = 0; i < p.thresholds.size(); ++i) {
     const std::string ri = "thresholds[" + std::to_string(i) + "]";
@@ -63,7 +67,7 @@ class PrandtlIshlinskii {
   static constexpr bool rate_independent = true;
 
   explicit PrandtlIshlinskii(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
-    detail::validate_pi(p, "PrandtlIshlinskii");
+    detail::validate_pi(p, "PrandtlIshlinskii", false);
   }
 
   const Params& params() const noexcept { return p_; }
@@ -101,7 +105,7 @@ class PrandtlIshlinskiiInverse {
   static constexpr bool rate_independent = true;
 
   explicit PrandtlIshlinskiiInverse(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
-    detail::validate_pi(p, "PrandtlIshlinskiiInverse");
+    detail::validate_pi(p, "PrandtlIshlinskiiInverse", true);
   }
 
   const Params& params() const noexcept { return p_; }

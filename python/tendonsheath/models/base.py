@@ -110,7 +110,14 @@ class HysteresisModel:
         model_cls = model_class_from_dict(data)
         if cls is not HysteresisModel and not issubclass(model_cls, cls):
             raise ValueError(f"file holds a {model_cls.__name__}, not a {cls.__name__}")
-        return model_cls(**data.get("params", {}), **data.get("options", {}))
+        values = {**data.get("params", {}), **data.get("options", {})}
+        known = set(model_cls.param_names) | set(model_cls.option_names)
+        unknown = sorted(set(values) - known)
+        if unknown:
+            raise ValueError(
+                f"{model_cls.__name__}: unknown parameter(s) {unknown}; expected {sorted(known)}"
+            )
+        return model_cls(**values)
 
     def to_json(self, path: str | Path | None = None) -> str:
         """The model as JSON text; also written to `path` when one is given."""
@@ -165,7 +172,9 @@ def _plain(value):
 
 def _short(value):
     if isinstance(value, list):
-        return "[" + ", ".join(f"{v:.4g}" for v in value[:4]) + (", ...]" if len(value) > 4 else "]")
+        return (
+            "[" + ", ".join(f"{v:.4g}" for v in value[:4]) + (", ...]" if len(value) > 4 else "]")
+        )
     if isinstance(value, float) and math.isfinite(value):
         return f"{value:.6g}"
     return repr(value)

@@ -11,9 +11,9 @@ from .base import HysteresisModel
 class PrandtlIshlinskii(HysteresisModel):
     """y = sum_i weights[i] * play_{thresholds[i]}[x].
 
-    Thresholds: 0 <= r_0 < r_1 < ...; the partial sums of the weights must be > 0
-    (strictly increasing loading curve), which makes the operator exactly invertible:
-    see :meth:`inverse`. Plays start on the virgin curve from x = 0.
+    Thresholds: 0 <= r_0 < r_1 < ...; the partial sums of the weights must be > 0.
+    With r_0 = 0 too, the loading curve is strictly increasing and the operator is
+    exactly invertible: see :meth:`inverse`. Plays start on the virgin curve from x = 0.
     """
 
     _core = core.PrandtlIshlinskii

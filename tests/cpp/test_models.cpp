@@ -1,0 +1,146 @@
+// Hysteresis models of the real-time core: closed-form behaviour and the
+// real-time contract (noexcept, no NaN for finite input).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <tendonsheath/tendonsheath.hpp>
+#include <type_traits>
+#include <vector>
+
+namespace ts = tendonsheath;
+
+static_assert(noexcept(std::declval<ts::Backlash&>().step(0.0, 0.0)));
+static_assert(noexcept(std::declval<ts::BoucWenBacklash&>().step(0.0, 0.0)));
+static_assert(noexcept(std::declval<ts::BoucWen&>().step(0.0, 0.0)));
+static_assert(noexcept(std::declval<ts::HystereticOscillator&>().step(0.0, 0.0)));
+static_assert(noexcept(std::declval<ts::PrandtlIshlinskii&>().step(0.0, 0.0)));
+static_assert(noexcept(std::declval<ts::PrandtlIshlinskiiInverse&>().step(0.0, 0.0)));
+
+TEST(Backlash, BranchesAndDeadZoneAreExact) {
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> slope(0.5, 1.5), width(0.0, 0.5);
+  for (int trial = 0; trial < 50; ++trial) {
+    ts::BacklashParams p{slope(rng), slope(rng), width(rng), width(rng)};
+    ts::Backlash b(p);
+    b.step(0.0);
+    // Peak below the point where unequal branches would cross.
+    double peak = 3.0;
+    if (p.c_r > p.c_l) peak = std::fmin(peak, 0.5 * (p.c_l * p.B_l + p.c_r * p.B_r) / (p.c_r - p.c_l));
+    // Rising far past the band: on the right branch.
+    for (double x = 0.0; x < peak; x += 0.01) b.step(x);
+    b.step(peak);
+    EXPECT_NEAR(b.output(), p.c_r * (peak - p.B_r), 1e-12);
+    const double held = b.output();
+    // Falling inside the band: output holds.
+    const double x_switch = held / p.c_l - p.B_l;  // where the left branch is met
+    for (double x = peak; x > x_switch + 1e-9; x -= 0.001) ASSERT_EQ(b.step(x), held);
+    // Past the band: on the left branch.
+    b.step(x_switch - 0.5);
+    EXPECT_NEAR(b.output(), p.c_l * (x_switch - 0.5 + p.B_l), 1e-12);
+  }
+}
+
+TEST(BoucWenBacklash, StateStaysInUnitIntervalForAnyInput) {
+  std::mt19937 rng(2);
+  std::normal_distribution<double> jump(0.0, 1.0);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 30; ++trial) {
+    ts::BoucWenBacklashParams p;
+    p.B_r = 0.01 + 0.3 * u(rng);
+    p.B_l = 0.01 + 0.3 * u(rng);
+    p.rho = 1.0 + 200.0 * u(rng);
+    p.sigma = 0.5 + 3.0 * u(rng);
+    p.n = 1.0 + 9.0 * u(rng);
+    p.max_substeps = 4;  // coarse on purpose
+    ts::BoucWenBacklash m(p);
+    double x = 0.0;
+    for (int k = 0; k < 2000; ++k) {
+      x += jump(rng) * (k % 50 == 0 ? 100.0 : 0.05);
+      const double y = m.step(x);
+      ASSERT_TRUE(std::isfinite(y));
+      ASSERT_LE(std::fabs(m.state()), 1.0);
+    }
+  }
+}
+
+TEST(Models, NoNanForFiniteInputAndHoldOnNan) {
+  ts::Backlash b({});
+  ts::BoucWenBacklash bwb({});
+  ts::BoucWen bw({});
+  ts::HystereticOscillator ho({});
+  ts::PrandtlIshlinskii pi({});
+  ts::PrandtlIshlinskiiInverse inv({});
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1e6, 1e6);
+  for (int k = 0; k < 10000; ++k) {
+    const double x = (k % 7 == 0) ? u(rng) : u(rng) * 1e-6;
+    ASSERT_FALSE(std::isnan(b.step(x, 1e-3)));
+    ASSERT_FALSE(std::isnan(bwb.step(x, 1e-3)));
+    ASSERT_FALSE(std::isnan(bw.step(x, 1e-3)));
+    ASSERT_FALSE(std::isnan(ho.step(x * 1e-6, 1e-3)));
+    ASSERT_FALSE(std::isnan(pi.step(x, 1e-3)));
+    ASSERT_FALSE(std::isnan(inv.step(x, 1e-3)));
+  }
+  const double held = bwb.output();
+  EXPECT_EQ(bwb.step(std::nan(""), 1e-3), held);
+}
+
+TEST(PrandtlIshlinskii, InverseIsExact) {
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> g(0.0, 0.3);
+  for (int trial = 0; trial < 40; ++trial) {
+    ts::PrandtlIshlinskiiParams p;
+    const int n = 1 + trial % 12;
+    p.thresholds.clear();
+    p.weights.clear();
+    double r = 0.0;
+    double partial = 0.0;
+    for (int i = 0; i < n; ++i) {
+      p.thresholds.push_back(r);
+      r += 0.01 + 0.2 * u(rng);
+      double w = (i == 0) ? 0.2 + u(rng) : g(rng);
+      if (partial + w <= 0.05) w = 0.05 - partial + 0.1 * u(rng);
+      partial += w;
+      p.weights.push_back(w);
+    }
+    ts::PrandtlIshlinskii fwd(p);
+    ts::PrandtlIshlinskiiInverse inv(p);
+    double x = 0.0;
+    for (int k = 0; k < 3000; ++k) {
+      x += g(rng);
+      const double back = inv.step(fwd.step(x));
+      ASSERT_NEAR(back, x, 1e-9) << "trial " << trial << " step " << k;
+    }
+  }
+}
+
+TEST(Validation, MessagesNameTheParameter) {
+  ts::BoucWenBacklashParams p;
+  p.sigma = 0.2;
+  try {
+    ts::BoucWenBacklash m(p);
+    FAIL() << "expected an exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("sigma"), std::string::npos);
+  }
+  ts::PrandtlIshlinskiiParams q;
+  q.weights = {-1.0, 0.5, 0.1, 0.1, 0.1};
+  EXPECT_THROW(ts::PrandtlIshlinskii{q}, std::invalid_argument);
+  ts::PrandtlIshlinskiiParams flat_start;
+  flat_start.thresholds = {0.1, 0.2};
+  flat_start.weights = {1.0, 0.5};
+  EXPECT_NO_THROW(ts::PrandtlIshlinskii{flat_start});
+  EXPECT_THROW(ts::PrandtlIshlinskiiInverse{flat_start}, std::invalid_argument);
+  ts::HystereticOscillatorParams h;
+  h.m = 0.0;
+  EXPECT_THROW(ts::HystereticOscillator{h}, std::invalid_argument);
+}
+
+TEST(Simulate, RejectsNonIncreasingTime) {
+  ts::Backlash b({});
+  std::vector<double> t{0.0, 1.0, 1.0}, x{0.0, 1.0, 2.0}, y(3);
+  EXPECT_THROW(ts::simulate(b, t.data(), x.data(), y.data(), 3, "Backlash"), std::invalid_argument);
+}
