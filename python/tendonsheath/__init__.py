@@ -1,8 +1,8 @@
 """tendonsheath: model, identify and compensate tendon-sheath mechanisms."""
 
-from . import models
+from . import compensate, models
 from .models import load_model
 
 __version__ = "0.1.0"
 
-__all__ = ["load_model", "models", "__version__"]
+__all__ = ["compensate", "load_model", "models", "__version__"]

@@ -1,0 +1,196 @@
+// Adaptive output-feedback controller of Do et al. (seed 002, spec D.3): the
+// tendon-sheath output y = c x + d(t) seen through a torque-driven motor
+// J x'' + b x' + tau_d = u is treated as y'' = -a y' + beta u + delta(t), and
+// the unknown (J/c, -b/c) and the bound of delta are estimated online:
+//
+//   e = y - y_d,  s = e' + lambda e,  nu_r = lambda e' - y_d''
+//   u = -k_s s - psi y' - phi nu_r - D tanh(s / eps)
+//   psi' = g_psi (y' s - s_psi psi)
+//   phi' = Proj_[phi_min, phi_max] g_phi (nu_r s - s_phi (phi - phi_0))
+//   D'   = Proj_[0, D_max]       g_D (s tanh(s/eps) - s_D D)
+//
+// y' is a second-order filtered derivative of the measured output. A non-
+// finite measurement (sensor dropout) freezes the estimates and hands the
+// motor to a fallback: a PD loop on the motor position toward the direct
+// inverse feedforward of the backlash model (spec D.2), when one is given.
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "../validate.hpp"
+#include "command_shaping.hpp"
+#include "inverse_feedforward.hpp"
+
+namespace tendonsheath {
+
+struct AdaptiveControllerParams {
+  double lambda = 20.0;   // 1/s
+  double k_s = 1.0;       // feedback gain on s, torque per (rad/s)
+  double epsilon = 0.05;  // boundary layer of the robust term, rad/s
+  double gamma_psi = 0.5, gamma_phi = 1e-3, gamma_D = 5.0;
+  double sigma_psi = 0.0, sigma_phi = 0.0, sigma_D = 0.0;  // leakage
+  double psi_0 = 0.0, phi_0 = 0.005, D_0 = 0.0;              // initial estimates / prior of phi
+  double phi_min = 1e-5;
+  // Projection bounds. D_max matters most: D/epsilon is a feedback gain on s, and s
+  // contains the filtered derivative, so D_max/(epsilon phi) must stay well below the
+  // derivative filter's bandwidth or the loop goes unstable.
+  double psi_max = 10.0, phi_max = 1.0, D_max = 0.2;
+  double adaptation_deadzone = 0.0;  // no adaptation while |s| is below this (noise floor)
+  double derivative_cutoff_hz = 40.0;
+  double derivative_damping = 0.7071067811865476;
+  double max_torque = std::numeric_limits<double>::infinity();
+  // Fallback on sensor dropout.
+  bool has_feedforward = false;
+  BacklashInverseParams feedforward{};
+  double fallback_kp = 1.0;   // torque per rad of motor position error
+  double fallback_kd = 0.05;  // torque per rad/s of motor velocity error
+};
+
+struct AdaptiveEstimates {
+  double psi = 0.0, phi = 0.0, D = 0.0;
+};
+
+class AdaptiveController {
+ public:
+  using Params = AdaptiveControllerParams;
+
+  explicit AdaptiveController(const Params& p) : p_(p), ff_(checked_feedforward(p)) {
+    const char* w = "AdaptiveController";
+    require_positive(p.lambda, w, "lambda");
+    require_non_negative(p.k_s, w, "k_s");
+    require_positive(p.epsilon, w, "epsilon");
+    require_non_negative(p.gamma_psi, w, "gamma_psi");
+    require_non_negative(p.gamma_phi, w, "gamma_phi");
+    require_non_negative(p.gamma_D, w, "gamma_D");
+    require_non_negative(p.sigma_psi, w, "sigma_psi");
+    require_non_negative(p.sigma_phi, w, "sigma_phi");
+    require_non_negative(p.sigma_D, w, "sigma_D");
+    require_positive(p.phi_min, w, "phi_min");
+    require(p.phi_max > p.phi_min, w, "phi_max must be > phi_min");
+    require_in_range(p.phi_0, p.phi_min, p.phi_max, w, "phi_0");
+    require_positive(p.psi_max, w, "psi_max");
+    require_in_range(p.psi_0, -p.psi_max, p.psi_max, w, "psi_0");
+    require_positive(p.D_max, w, "D_max");
+    require_in_range(p.D_0, 0.0, p.D_max, w, "D_0");
+    require_non_negative(p.adaptation_deadzone, w, "adaptation_deadzone");
+    require_positive(p.derivative_cutoff_hz, w, "derivative_cutoff_hz");
+    require_positive(p.derivative_damping, w, "derivative_damping");
+    require(p.max_torque > 0.0, w, "max_torque must be > 0");
+    require_non_negative(p.fallback_kp, w, "fallback_kp");
+    require_non_negative(p.fallback_kd, w, "fallback_kd");
+    reset();
+  }
+
+  const Params& params() const noexcept { return p_; }
+  const AdaptiveEstimates& estimates() const noexcept { return est_; }
+  bool in_fallback() const noexcept { return fallback_; }
+
+  void reset() noexcept {
+    est_ = {p_.psi_0, p_.phi_0, p_.D_0};
+    yd_rate_.reset();
+    yd_acc_.reset();
+    motor_rate_.reset();
+    ff_.reset();
+    filter_primed_ = false;
+    filtered_ = filtered_rate_ = 0.0;
+    fallback_ = false;
+    torque_ = 0.0;
+  }
+
+  // One control cycle: desired output y_d, measured output y (NaN on dropout),
+  // motor position (used by the fallback only), dt since the previous cycle.
+  // Returns the motor torque command.
+  double step(double y_d, double y_measured, double motor_position, double dt) noexcept {
+    if (!std::isfinite(y_d)) return torque_;
+    // The rate is known from the second sample on, the acceleration from the third.
+    const bool rate_known = yd_rate_.primed();
+    const double yd_rate = yd_rate_.update(y_d, dt);
+    const double yd_acc = rate_known ? yd_acc_.update(yd_rate, dt) : 0.0;
+    return step_with_derivatives(y_d, yd_rate, yd_acc, y_measured, motor_position, dt);
+  }
+
+  double step_with_derivatives(double y_d, double yd_rate, double yd_acc, double y_measured,
+                               double motor_position, double dt) noexcept {
+    if (!(dt > 0.0) || !std::isfinite(dt)) dt = 0.0;
+    if (!std::isfinite(yd_rate)) yd_rate = 0.0;
+    if (!std::isfinite(yd_acc)) yd_acc = 0.0;
+    const double motor_rate = motor_rate_.update(motor_position, dt);
+    const double x_ff = ff_.step_with_rate(y_d, yd_rate, dt);
+    if (!std::isfinite(y_measured)) {
+      fallback_ = true;
+      filter_primed_ = false;  // restart the derivative filter when the sensor returns
+      double u = 0.0;
+      if (std::isfinite(motor_position)) {
+        const double target = p_.has_feedforward ? x_ff : y_d;
+        u = p_.fallback_kp * (target - motor_position) -
+            p_.fallback_kd * (std::isfinite(motor_rate) ? motor_rate : 0.0);
+      }
+      return torque_ = saturate(u);
+    }
+    fallback_ = false;
+    const double y_rate = filter(y_measured, dt);
+    const double e = y_measured - y_d;
+    const double e_rate = y_rate - yd_rate;
+    const double s = e_rate + p_.lambda * e;
+    const double nu_r = p_.lambda * e_rate - yd_acc;
+    const double th = std::tanh(s / p_.epsilon);
+    const double u = -p_.k_s * s - est_.psi * y_rate - est_.phi * nu_r - est_.D * th;
+    if (dt > 0.0 && std::fabs(s) > p_.adaptation_deadzone) adapt(s, th, y_rate, nu_r, dt);
+    return torque_ = saturate(u);
+  }
+
+  double filtered_rate() const noexcept { return filtered_rate_; }
+
+ private:
+  static BacklashInverseParams checked_feedforward(const Params& p) {
+    BacklashInverseParams f = p.feedforward;
+    f.limits = CommandLimits{};
+    return f;
+  }
+
+  double saturate(double u) const noexcept {
+    if (!std::isfinite(u)) return 0.0;
+    return u > p_.max_torque ? p_.max_torque : (u < -p_.max_torque ? -p_.max_torque : u);
+  }
+
+  // Second-order low-pass differentiator: p'' = w^2 (y - p) - 2 zeta w p'.
+  double filter(double y, double dt) noexcept {
+    if (!filter_primed_) {
+      filtered_ = y;
+      filtered_rate_ = 0.0;
+      filter_primed_ = true;
+      return 0.0;
+    }
+    const double w = 2.0 * 3.141592653589793 * p_.derivative_cutoff_hz;
+    const double need = std::ceil(w * dt / 0.05);
+    const int m = need < 1.0 ? 1 : (need > 256.0 ? 256 : static_cast<int>(need));
+    const double h = dt / m;
+    for (int i = 0; i < m; ++i) {  // semi-implicit Euler
+      filtered_rate_ += h * (w * w * (y - filtered_) - 2.0 * p_.derivative_damping * w * filtered_rate_);
+      filtered_ += h * filtered_rate_;
+    }
+    return filtered_rate_;
+  }
+
+  void adapt(double s, double th, double y_rate, double nu_r, double dt) noexcept {
+    double psi = est_.psi + dt * p_.gamma_psi * (y_rate * s - p_.sigma_psi * est_.psi);
+    double phi = est_.phi + dt * p_.gamma_phi * (nu_r * s - p_.sigma_phi * (est_.phi - p_.phi_0));
+    double D = est_.D + dt * p_.gamma_D * (s * th - p_.sigma_D * est_.D);
+    if (!std::isfinite(psi) || !std::isfinite(phi) || !std::isfinite(D)) return;
+    est_.psi = psi > p_.psi_max ? p_.psi_max : (psi < -p_.psi_max ? -p_.psi_max : psi);
+    est_.phi = phi > p_.phi_max ? p_.phi_max : (phi < p_.phi_min ? p_.phi_min : phi);
+    est_.D = D > p_.D_max ? p_.D_max : (D < 0.0 ? 0.0 : D);
+  }
+
+  Params p_;
+  AdaptiveEstimates est_{};
+  RateEstimator yd_rate_{}, yd_acc_{}, motor_rate_{};
+  BacklashInverseFeedforward ff_;
+  bool filter_primed_ = false;
+  double filtered_ = 0.0, filtered_rate_ = 0.0;
+  bool fallback_ = false;
+  double torque_ = 0.0;
+};
+
+}  // namespace tendonsheath

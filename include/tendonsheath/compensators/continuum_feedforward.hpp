@@ -1,0 +1,115 @@
+// Feedforward of Lau et al. (seed 001, spec C) for a tendon-sheath-driven
+// continuum segment: bending angle in, motor angle out.
+//
+// mode Published, the paper's equations as printed (eqs. 11-38):
+//   X_d = r_t theta_d,  F = (theta_d / l) EI / r_t
+//   [A1, -A2; e^{-xi Theta}, -e^{xi Theta}] [T1; T3] = [2 T0 L; F]
+//   delta_pull = (T1 A1 - T0 L)/EA,  delta_0 = 2 T0 L (1 - e^{-xi Theta})/EA
+//   X_in = X_d + S (delta_pull + delta_0) + F L / EA,  S = tanh(theta_d' / v_eps)
+// mode Exact, capstan-consistent and without double counting (spec A.4, C.6):
+//   X_in = X_d + phi Delta_fwd(F) + (1 - phi) Delta_bwd(F),  phi = (1 + S)/2
+// and q_motor = X_in / r_p in both.
+#pragma once
+
+#include <cmath>
+
+#include "../physics/pull_pull_statics.hpp"
+#include "../validate.hpp"
+#include "command_shaping.hpp"
+
+namespace tendonsheath {
+
+enum class ContinuumMode { Exact = 0, Published = 1 };
+
+struct ContinuumFeedforwardParams {
+  double friction = 0.1;            // mu (xi = gap_factor * mu)
+  double gap_factor = 1.0;          // gamma * delta_r of Kesner & Howe; 1 = plain capstan
+  double sheath_length = 1.0;       // L, m
+  double stiffness = 2.4e4;         // EA, N
+  double pretension = 10.0;         // T0, N
+  double total_angle = 3.141592653589793;  // Theta of a constant-radius route, rad
+  double bending_stiffness = 4e-4;  // EI of the backbone, N m^2
+  double tendon_offset = 2e-3;      // r_t, m
+  double backbone_length = 0.03;    // l, m
+  double proximal_radius = 5e-3;    // r_p, m
+  double v_eps = 0.1;               // smoothing speed of the direction switch, rad/s
+  ContinuumMode mode = ContinuumMode::Exact;
+  CommandLimits limits{};           // on the motor angle, rad
+};
+
+class ContinuumFeedforward {
+ public:
+  using Params = ContinuumFeedforwardParams;
+
+  explicit ContinuumFeedforward(const Params& p) : p_(p), shaper_(p.limits) {
+    const char* w = "ContinuumFeedforward";
+    require_non_negative(p.friction, w, "friction");
+    require_positive(p.gap_factor, w, "gap_factor");
+    require_positive(p.sheath_length, w, "sheath_length");
+    require_positive(p.stiffness, w, "stiffness");
+    require_non_negative(p.pretension, w, "pretension");
+    require_non_negative(p.total_angle, w, "total_angle");
+    require_positive(p.bending_stiffness, w, "bending_stiffness");
+    require_positive(p.tendon_offset, w, "tendon_offset");
+    require_positive(p.backbone_length, w, "backbone_length");
+    require_positive(p.proximal_radius, w, "proximal_radius");
+    require_positive(p.v_eps, w, "v_eps");
+    require(p.mode == ContinuumMode::Exact || p.mode == ContinuumMode::Published, w,
+            "mode must be exact or published");
+    require(p.mode == ContinuumMode::Exact || p.friction * p.total_angle > 0.0, w,
+            "published mode needs friction * total_angle > 0 (its equations divide by xi)");
+    p.limits.validate(w);
+    const double xi = p.gap_factor * p.friction;
+    statics_ = {xi, p.sheath_length / p.stiffness, p.pretension};
+    shape_ = uniform_shape(xi, p.total_angle);
+  }
+
+  const Params& params() const noexcept { return p_; }
+  void reset() noexcept {
+    rate_.reset();
+    shaper_.reset();
+  }
+
+  // Desired bending angle (rad) -> motor angle (rad).
+  double step(double theta_d, double dt) noexcept {
+    if (!std::isfinite(theta_d)) return shaper_.apply(NAN, dt);
+    const double rate = rate_.update(theta_d, dt);
+    return shaper_.apply(tendon_input(theta_d, std::tanh(rate / p_.v_eps)) / p_.proximal_radius, dt);
+  }
+
+  // Pulling force of the bent segment (Li & Rahn): F = kappa EI / r_t.
+  double bending_force(double theta_d) const noexcept {
+    return theta_d / p_.backbone_length * p_.bending_stiffness / p_.tendon_offset;
+  }
+
+  // X_in for the desired bending angle and a direction S in [-1, 1].
+  double tendon_input(double theta_d, double s) const noexcept {
+    const double x_d = p_.tendon_offset * theta_d;
+    const double F = bending_force(theta_d);
+    if (p_.mode == ContinuumMode::Exact) {
+      const double phi = 0.5 * (1.0 + s);
+      return x_d + phi * statics_.forward_elongation(shape_, F) +
+             (1.0 - phi) * statics_.backward_elongation(shape_, F);
+    }
+    const double L = p_.sheath_length, EA = p_.stiffness, T0 = p_.pretension;
+    const double xi = statics_.friction, Theta = p_.total_angle;
+    const double R = L / Theta;
+    const double em = std::exp(-xi * Theta), ep = std::exp(xi * Theta);
+    const double A1 = (R / xi) * (1.0 - em), A2 = (R / xi) * (1.0 - ep);
+    // Cramer's rule on [A1, -A2; em, -ep] [T1; T3] = [2 T0 L; F]
+    const double det = -A1 * ep + A2 * em;
+    const double T1 = (-(2.0 * T0 * L) * ep + A2 * F) / det;
+    const double delta_pull = (T1 * A1 - T0 * L) / EA;
+    const double delta_0 = 2.0 * T0 * L * (1.0 - em) / EA;
+    return x_d + s * (delta_pull + delta_0) + F * L / EA;
+  }
+
+ private:
+  Params p_;
+  PullPullStatics statics_{};
+  ShapeIntegrals shape_{};
+  RateEstimator rate_{};
+  CommandShaper shaper_{};
+};
+
+}  // namespace tendonsheath

@@ -1,0 +1,116 @@
+// Curve-angle feedforward of Sun, Wang & Phee (spec B2): modify the motor
+// input by the pull-pull elongation predicted for the route's current shape,
+// with no distal sensor.
+//
+//   x_in = r_d y_d + phi Delta_fwd(shape, F_L) + (1 - phi) Delta_bwd(shape, F_L)
+//   q_in = x_in / r_p,   phi = (1 + tanh(y_d' / v_eps)) / 2,   F_L = F_0 + k_e r_d y_d
+//
+// Delta_fwd/bwd are the full-slip elongations (A5)/(A6) with the g/G shape
+// integrals, so non-uniform routes are handled; the shape (or the curve angle,
+// for uniform curvature) is updated every control cycle. The correction's rate
+// of change is limited (spec B: limit how fast a change of Theta is followed).
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "../physics/pull_pull_statics.hpp"
+#include "../validate.hpp"
+#include "command_shaping.hpp"
+
+namespace tendonsheath {
+
+struct CurveAngleFeedforwardParams {
+  double friction = 0.1;           // mu
+  double compliance = 5e-5;        // L / EA, m/N
+  double pretension = 10.0;        // T0, N
+  double load_force = 0.0;         // F_0 at the distal tendon level, N
+  double load_stiffness = 0.0;     // k_e of a spring environment at the tendon level, N/m
+  double proximal_radius = 5e-3;   // r_p, m
+  double distal_radius = 5e-3;     // r_d, m
+  double total_angle = 3.141592653589793;  // initial Theta (uniform curvature), rad
+  double v_eps = 0.05;             // smoothing speed of the direction switch, rad/s of output
+  double max_correction_rate = std::numeric_limits<double>::infinity();  // m/s at the tendon
+  CommandLimits limits{};          // on the motor angle, rad
+};
+
+class CurveAngleFeedforward {
+ public:
+  using Params = CurveAngleFeedforwardParams;
+
+  explicit CurveAngleFeedforward(const Params& p) : p_(p), shaper_(p.limits) {
+    const char* w = "CurveAngleFeedforward";
+    require_non_negative(p.friction, w, "friction");
+    require_positive(p.compliance, w, "compliance");
+    require_non_negative(p.pretension, w, "pretension");
+    require_finite(p.load_force, w, "load_force");
+    require_non_negative(p.load_stiffness, w, "load_stiffness");
+    require_positive(p.proximal_radius, w, "proximal_radius");
+    require_positive(p.distal_radius, w, "distal_radius");
+    require_non_negative(p.total_angle, w, "total_angle");
+    require_positive(p.v_eps, w, "v_eps");
+    require(p.max_correction_rate > 0.0, w, "max_correction_rate must be > 0");
+    p.limits.validate(w);
+    statics_ = {p.friction, p.compliance, p.pretension};
+    shape_ = uniform_shape(p.friction, p.total_angle);
+  }
+
+  const Params& params() const noexcept { return p_; }
+  const ShapeIntegrals& shape() const noexcept { return shape_; }
+
+  void reset() noexcept {
+    rate_.reset();
+    shaper_.reset();
+    correction_primed_ = false;
+  }
+
+  // Uniform curvature with total angle theta (rad); non-finite or negative is ignored.
+  void set_curve_angle(double theta) noexcept {
+    if (std::isfinite(theta) && theta >= 0.0) shape_ = uniform_shape(p_.friction, theta);
+  }
+  // Any route: its shape integrals g, G (see shape_integrals) and total angle.
+  void set_shape(const ShapeIntegrals& shape) noexcept {
+    if (std::isfinite(shape.g) && std::isfinite(shape.G) && shape.g > 0.0 && shape.G > 0.0 &&
+        std::isfinite(shape.total_angle) && shape.total_angle >= 0.0)
+      shape_ = shape;
+  }
+
+  double step(double y_d, double dt) noexcept {
+    if (!std::isfinite(y_d)) return shaper_.apply(NAN, dt);
+    return step_with_rate(y_d, rate_.update(y_d, dt), dt);
+  }
+
+  double step_with_rate(double y_d, double y_d_rate, double dt) noexcept {
+    if (!std::isfinite(y_d_rate)) y_d_rate = 0.0;
+    const double x_d = p_.distal_radius * y_d;
+    double c = correction(x_d, smooth_direction(y_d_rate, p_.v_eps));
+    if (correction_primed_ && std::isfinite(p_.max_correction_rate) && dt > 0.0) {
+      const double step = p_.max_correction_rate * dt;
+      if (c > correction_ + step) c = correction_ + step;
+      if (c < correction_ - step) c = correction_ - step;
+    }
+    correction_ = c;
+    correction_primed_ = true;
+    return shaper_.apply((x_d + c) / p_.proximal_radius, dt);
+  }
+
+  // Tendon-level correction for a desired distal displacement x_d and direction blend phi.
+  double correction(double x_d, double phi) const noexcept {
+    const double load = p_.load_force + p_.load_stiffness * x_d;
+    return phi * statics_.forward_elongation(shape_, load) +
+           (1.0 - phi) * statics_.backward_elongation(shape_, load);
+  }
+
+  double last_correction() const noexcept { return correction_; }
+
+ private:
+  Params p_;
+  PullPullStatics statics_{};
+  ShapeIntegrals shape_{};
+  RateEstimator rate_{};
+  CommandShaper shaper_{};
+  double correction_ = 0.0;
+  bool correction_primed_ = false;
+};
+
+}  // namespace tendonsheath

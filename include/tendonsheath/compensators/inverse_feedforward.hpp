@@ -1,0 +1,89 @@
+// Direct inverse feedforward of backlash-like hysteresis (spec D.2), and the
+// exact inverse of a Prandtl-Ishlinskii operator, as streaming compensators.
+//
+// Backlash / BoucWenBacklash with branches c_r (x - B_r) and c_l (x + B_l):
+//   phi_d = (1 + tanh(y_d' / v_eps)) / 2
+//   x_ff  = [y_d + phi_d c_r B_r - (1 - phi_d) c_l B_l] / [phi_d c_r + (1 - phi_d) c_l]
+// No iteration; the denominator is >= min(c_r, c_l) > 0. v_eps -> 0 gives the
+// exact backlash inverse (a jump of B_r + B_l at each reversal).
+#pragma once
+
+#include <cmath>
+
+#include "../models/prandtl_ishlinskii.hpp"
+#include "../validate.hpp"
+#include "command_shaping.hpp"
+
+namespace tendonsheath {
+
+struct BacklashInverseParams {
+  double c_r = 1.0;
+  double c_l = 1.0;
+  double B_r = 0.1;
+  double B_l = 0.1;
+  double v_eps = 0.05;  // smoothing speed of the direction switch, output units per s
+  CommandLimits limits{};
+};
+
+class BacklashInverseFeedforward {
+ public:
+  using Params = BacklashInverseParams;
+
+  explicit BacklashInverseFeedforward(const Params& p) : p_(p), shaper_(p.limits) {
+    const char* w = "InverseFeedforward";
+    require_positive(p.c_r, w, "c_r");
+    require_positive(p.c_l, w, "c_l");
+    require_non_negative(p.B_r, w, "B_r");
+    require_non_negative(p.B_l, w, "B_l");
+    require_positive(p.v_eps, w, "v_eps");
+    p.limits.validate(w);
+  }
+
+  const Params& params() const noexcept { return p_; }
+
+  void reset() noexcept {
+    rate_.reset();
+    shaper_.reset();
+  }
+
+  // Desired output y_d at this cycle, dt since the previous one; returns the motor command.
+  double step(double y_d, double dt) noexcept {
+    if (!std::isfinite(y_d)) return shaper_.apply(NAN, dt);
+    return step_with_rate(y_d, rate_.update(y_d, dt), dt);
+  }
+
+  // Same, with the desired output rate given (e.g. from a trajectory generator).
+  double step_with_rate(double y_d, double y_d_rate, double dt) noexcept {
+    if (!std::isfinite(y_d_rate)) y_d_rate = 0.0;
+    return shaper_.apply(inverse(y_d, smooth_direction(y_d_rate, p_.v_eps)), dt);
+  }
+
+  double inverse(double y_d, double phi) const noexcept {
+    return (y_d + phi * p_.c_r * p_.B_r - (1.0 - phi) * p_.c_l * p_.B_l) /
+           (phi * p_.c_r + (1.0 - phi) * p_.c_l);
+  }
+
+ private:
+  Params p_;
+  RateEstimator rate_{};
+  CommandShaper shaper_{};
+};
+
+class PrandtlIshlinskiiFeedforward {
+ public:
+  PrandtlIshlinskiiFeedforward(const PrandtlIshlinskiiParams& p, const CommandLimits& limits)
+      : inverse_(p), shaper_(limits) {
+    limits.validate("InverseFeedforward");
+  }
+  void reset() noexcept {
+    inverse_.reset();
+    shaper_.reset();
+  }
+  double step(double y_d, double dt) noexcept { return shaper_.apply(inverse_.step(y_d), dt); }
+
+ private:
+  PrandtlIshlinskiiInverse inverse_;
+  CommandShaper shaper_;
+};
+
+}  // namespace tendonsheath

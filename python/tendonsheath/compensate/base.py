@@ -1,0 +1,31 @@
+"""Common behaviour of the feedforward compensators: streaming and whole trajectories."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._arrays import as_time_and_signal
+
+
+class Feedforward:
+    """A compensator that maps a desired distal trajectory to motor commands.
+
+    ``step(y_d, dt)`` runs one control cycle (real-time core, no allocation);
+    ``command(t, y_d)`` runs a whole trajectory in C++ from the initial state and
+    leaves the streaming state untouched.
+    """
+
+    _engine: object
+
+    def reset(self) -> None:
+        """Forget the streaming state (the desired-rate history and the last command)."""
+        self._engine.reset()
+
+    def step(self, y_d: float, dt: float) -> float:
+        return self._engine.step(float(y_d), float(dt))
+
+    def command(self, t, y_desired) -> np.ndarray:
+        ts, ys = as_time_and_signal(t, y_desired, "y_desired")
+        if ts is None:
+            raise ValueError(f"{type(self).__name__}.command needs the time vector t")
+        return self._engine.command(ts, ys)

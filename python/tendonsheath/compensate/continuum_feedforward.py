@@ -1,0 +1,55 @@
+"""Feedforward of a tendon-sheath-driven continuum segment (seed 001, spec C)."""
+
+from __future__ import annotations
+
+import math
+
+from .. import _core as core
+from .base import Feedforward
+from .limits import as_limits
+
+_MODES = {"exact": core.ContinuumMode.exact, "published": core.ContinuumMode.published}
+
+
+class ContinuumFeedforward(Feedforward):
+    """Desired bending angle (rad) in, motor angle (rad) out: X_in = X_d + delta_ts + delta_F.
+
+    ``mode="published"`` implements Lau et al.'s equations as printed (effective backlash
+    delta_0 = 2 T0 L (1 - e^{-xi Theta})/EA and a separate delta_F, which partly double
+    count); ``mode="exact"`` uses the capstan-consistent full-slip elongations (spec A5/A6)
+    under the bending force F = kappa EI / r_t, without double counting.
+    """
+
+    def __init__(
+        self,
+        friction: float = 0.1,
+        sheath_length: float = 1.0,
+        stiffness: float = 2.4e4,
+        pretension: float = 10.0,
+        total_angle: float = math.pi,
+        bending_stiffness: float = 4e-4,
+        tendon_offset: float = 2e-3,
+        backbone_length: float = 0.03,
+        proximal_radius: float = 5e-3,
+        gap_factor: float = 1.0,
+        smoothing: float = 0.1,
+        mode: str = "exact",
+        limits=None,
+    ):
+        if mode not in _MODES:
+            raise ValueError(
+                f"ContinuumFeedforward: mode must be one of {list(_MODES)} (got {mode!r})"
+            )
+        p = core.ContinuumFeedforwardParams()
+        p.friction, p.sheath_length, p.stiffness = friction, sheath_length, stiffness
+        p.pretension, p.total_angle = pretension, total_angle
+        p.bending_stiffness, p.tendon_offset = bending_stiffness, tendon_offset
+        p.backbone_length, p.proximal_radius = backbone_length, proximal_radius
+        p.gap_factor, p.v_eps, p.mode = gap_factor, smoothing, _MODES[mode]
+        p.limits = as_limits(limits).to_core()
+        self.mode = mode
+        self._engine = core.ContinuumFeedforward(p)
+
+    def bending_force(self, theta_d: float) -> float:
+        """Tendon pulling force of the bent segment, F = kappa EI / r_t (N)."""
+        return self._engine.bending_force(float(theta_d))

@@ -1,0 +1,96 @@
+"""Curve-angle feedforward (seed 000, spec B2): compensation that follows the route's shape."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from .. import _core as core
+from .._arrays import as_signal, as_time_and_signal
+from .base import Feedforward
+from .limits import as_limits
+
+
+def shape_of(route, friction: float) -> core.ShapeIntegrals:
+    """g, G and Theta of a route (anything with `s` and `theta` samples) for friction mu."""
+    s = np.ascontiguousarray(route.s, dtype=np.float64)
+    theta = np.ascontiguousarray(route.theta, dtype=np.float64)
+    return core.shape_integrals(s, theta, float(friction))
+
+
+class CurveAngleFeedforward(Feedforward):
+    """x_in = r_d y_d + phi Delta_fwd + (1 - phi) Delta_bwd, re-evaluated every cycle.
+
+    Delta_fwd/bwd are the full-slip elongations of the pulled tendon (spec A5/A6) for the
+    route's current shape (its g/G integrals; or uniform curvature with the given curve
+    angle) and the distal load F_L = load_force + load_stiffness * r_d * y_d. No distal
+    sensor is needed: the route (or its curve angle) is the only extra input, from shape
+    sensing or bending-knob readings. ``smoothing`` is the direction-switch speed (rad/s of
+    the distal angle); ``max_correction_rate`` (m/s at the tendon) limits how fast the
+    correction may change, e.g. after a sudden change of the route. Angles in rad.
+    """
+
+    def __init__(
+        self,
+        friction: float,
+        compliance: float,
+        pretension: float,
+        load_force: float = 0.0,
+        load_stiffness: float = 0.0,
+        proximal_radius: float = 5e-3,
+        distal_radius: float = 5e-3,
+        curve_angle: float = math.pi,
+        smoothing: float = 0.05,
+        max_correction_rate: float = math.inf,
+        limits=None,
+    ):
+        p = core.CurveAngleFeedforwardParams()
+        p.friction, p.compliance, p.pretension = friction, compliance, pretension
+        p.load_force, p.load_stiffness = load_force, load_stiffness
+        p.proximal_radius, p.distal_radius = proximal_radius, distal_radius
+        p.total_angle, p.v_eps, p.max_correction_rate = curve_angle, smoothing, max_correction_rate
+        p.limits = as_limits(limits).to_core()
+        self._engine = core.CurveAngleFeedforward(p)
+
+    @property
+    def friction(self) -> float:
+        return self._engine.params.friction
+
+    def set_curve_angle(self, total_angle: float) -> None:
+        """Uniform curvature with this total curve angle (rad)."""
+        self._engine.set_curve_angle(float(total_angle))
+
+    def set_route(self, route) -> None:
+        """Any route: its exact g/G shape integrals are used (spec A.2 warning on Theta-only)."""
+        self._engine.set_shape(shape_of(route, self.friction))
+
+    def step(self, y_d: float, dt: float, curve_angle=None, route=None) -> float:
+        if route is not None:
+            self.set_route(route)
+        elif curve_angle is not None:
+            self.set_curve_angle(curve_angle)
+        return self._engine.step(float(y_d), float(dt))
+
+    def command(
+        self, t, y_desired, curve_angle=None, routes: Callable[[float], object] | None = None
+    ) -> np.ndarray:
+        """Motor angles for a whole trajectory; the shape from `curve_angle` (scalar or one
+        per sample) or `routes` (a callable t -> route), else the constructor's curve angle."""
+        ts, ys = as_time_and_signal(t, y_desired, "y_desired")
+        if ts is None:
+            raise ValueError("CurveAngleFeedforward.command needs the time vector t")
+        if routes is not None:
+            shapes = [shape_of(routes(tk), self.friction) for tk in ts]
+            g = np.array([s.g for s in shapes])
+            G = np.array([s.G for s in shapes])
+            theta = np.array([s.total_angle for s in shapes])
+            return self._engine.command(ts, ys, g, G, theta)
+        if curve_angle is not None:
+            theta = np.broadcast_to(np.asarray(curve_angle, dtype=np.float64), ys.shape)
+            theta = as_signal(theta, "curve_angle")
+            if np.any(theta < 0):
+                raise ValueError("curve_angle must be >= 0")
+            return self._engine.command(ts, ys, None, None, theta)
+        return self._engine.command(ts, ys, None, None, None)

@@ -1,0 +1,240 @@
+// Compensators: parameter structs, streaming step() and batch command().
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include <optional>
+#include <string>
+#include <tendonsheath/tendonsheath.hpp>
+
+#include "bindings.hpp"
+
+namespace tsbind {
+namespace ts = tendonsheath;
+using namespace nb::literals;
+
+namespace {
+
+void check_lengths(std::size_t a, std::size_t b, const char* what, const char* where) {
+  if (a != b)
+    throw std::invalid_argument(std::string(where) + ": " + what + " has " + std::to_string(b) +
+                                " samples, the trajectory has " + std::to_string(a));
+}
+
+// Runs a copy of the compensator over a whole trajectory: y_d[k] at t[k].
+template <class Comp, class PerStep>
+OutArray command_copy(const Comp& self, InArray t, InArray y_d, const char* where, PerStep per_step) {
+  const std::size_t n = y_d.shape(0);
+  check_lengths(n, t.shape(0), "t", where);
+  ts::check_series(t.data(), y_d.data(), n, where);
+  auto [out, u] = new_array(n);
+  Comp comp = self;
+  comp.reset();
+  const double* tp = t.data();
+  const double* yp = y_d.data();
+  {
+    nb::gil_scoped_release release;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double dt = k == 0 ? 0.0 : tp[k] - tp[k - 1];
+      per_step(comp, k);
+      u[k] = comp.step(yp[k], dt);
+    }
+  }
+  return out;
+}
+
+void bind_limits(nb::module_& m) {
+  nb::class_<ts::CommandLimits>(m, "CommandLimits")
+      .def(nb::init<>())
+      .def_rw("min", &ts::CommandLimits::min)
+      .def_rw("max", &ts::CommandLimits::max)
+      .def_rw("max_rate", &ts::CommandLimits::max_rate);
+  nb::class_<ts::ShapeIntegrals>(m, "ShapeIntegrals")
+      .def(nb::init<>())
+      .def_rw("g", &ts::ShapeIntegrals::g)
+      .def_rw("G", &ts::ShapeIntegrals::G)
+      .def_rw("total_angle", &ts::ShapeIntegrals::total_angle);
+  m.def("uniform_shape", &ts::uniform_shape, "friction"_a, "total_angle"_a);
+  m.def(
+      "shape_integrals",
+      [](InArray s, InArray theta, double mu) {
+        check_lengths(s.shape(0), theta.shape(0), "theta", "shape_integrals");
+        return ts::shape_integrals(s.data(), theta.data(), s.shape(0), mu);
+      },
+      "s"_a, "theta"_a, "friction"_a);
+  nb::class_<ts::PullPullStatics>(m, "PullPullStatics")
+      .def(nb::init<>())
+      .def_rw("friction", &ts::PullPullStatics::friction)
+      .def_rw("compliance", &ts::PullPullStatics::compliance)
+      .def_rw("pretension", &ts::PullPullStatics::pretension)
+      .def("forward_elongation", &ts::PullPullStatics::forward_elongation, "shape"_a, "load"_a)
+      .def("backward_elongation", &ts::PullPullStatics::backward_elongation, "shape"_a, "load"_a)
+      .def("backlash_half_width", &ts::PullPullStatics::backlash_half_width, "shape"_a,
+           "load"_a = 0.0);
+}
+
+void bind_inverse(nb::module_& m) {
+  using P = ts::BacklashInverseParams;
+  nb::class_<P>(m, "BacklashInverseParams")
+      .def(nb::init<>())
+      .def_rw("c_r", &P::c_r)
+      .def_rw("c_l", &P::c_l)
+      .def_rw("B_r", &P::B_r)
+      .def_rw("B_l", &P::B_l)
+      .def_rw("v_eps", &P::v_eps)
+      .def_rw("limits", &P::limits);
+  using B = ts::BacklashInverseFeedforward;
+  nb::class_<B>(m, "BacklashInverseFeedforward")
+      .def(nb::init<const P&>(), "params"_a)
+      .def_prop_ro("params", &B::params)
+      .def("reset", &B::reset)
+      .def("step", &B::step, "y_d"_a, "dt"_a)
+      .def("step_with_rate", &B::step_with_rate, "y_d"_a, "y_d_rate"_a, "dt"_a)
+      .def("command", [](const B& self, InArray t, InArray y) {
+        return command_copy(self, t, y, "InverseFeedforward", [](B&, std::size_t) {});
+      });
+  using PI = ts::PrandtlIshlinskiiFeedforward;
+  nb::class_<PI>(m, "PrandtlIshlinskiiFeedforward")
+      .def(nb::init<const ts::PrandtlIshlinskiiParams&, const ts::CommandLimits&>(), "params"_a,
+           "limits"_a)
+      .def("reset", &PI::reset)
+      .def("step", &PI::step, "y_d"_a, "dt"_a)
+      .def("command", [](const PI& self, InArray t, InArray y) {
+        return command_copy(self, t, y, "InverseFeedforward", [](PI&, std::size_t) {});
+      });
+}
+
+void bind_curve_angle(nb::module_& m) {
+  using P = ts::CurveAngleFeedforwardParams;
+  nb::class_<P>(m, "CurveAngleFeedforwardParams")
+      .def(nb::init<>())
+      .def_rw("friction", &P::friction)
+      .def_rw("compliance", &P::compliance)
+      .def_rw("pretension", &P::pretension)
+      .def_rw("load_force", &P::load_force)
+      .def_rw("load_stiffness", &P::load_stiffness)
+      .def_rw("proximal_radius", &P::proximal_radius)
+      .def_rw("distal_radius", &P::distal_radius)
+      .def_rw("total_angle", &P::total_angle)
+      .def_rw("v_eps", &P::v_eps)
+      .def_rw("max_correction_rate", &P::max_correction_rate)
+      .def_rw("limits", &P::limits);
+  using C = ts::CurveAngleFeedforward;
+  nb::class_<C>(m, "CurveAngleFeedforward")
+      .def(nb::init<const P&>(), "params"_a)
+      .def_prop_ro("params", &C::params)
+      .def_prop_ro("shape", &C::shape)
+      .def("reset", &C::reset)
+      .def("set_curve_angle", &C::set_curve_angle, "total_angle"_a)
+      .def("set_shape", &C::set_shape, "shape"_a)
+      .def("step", &C::step, "y_d"_a, "dt"_a)
+      .def("last_correction", &C::last_correction)
+      .def("correction", &C::correction, "x_d"_a, "phi"_a)
+      .def(
+          "command",
+          [](const C& self, InArray t, InArray y, std::optional<InArray> g, std::optional<InArray> G,
+             std::optional<InArray> theta) {
+            const std::size_t n = y.shape(0);
+            const char* where = "CurveAngleFeedforward";
+            if (theta) check_lengths(n, theta->shape(0), "curve_angle", where);
+            if (g) check_lengths(n, g->shape(0), "g", where);
+            if (G) check_lengths(n, G->shape(0), "G", where);
+            if (theta) ts::check_series(nullptr, theta->data(), n, where);
+            const double* gp = g ? g->data() : nullptr;
+            const double* Gp = G ? G->data() : nullptr;
+            const double* tp = theta ? theta->data() : nullptr;
+            return command_copy(self, t, y, where, [=](C& c, std::size_t k) {
+              if (gp && Gp && tp) c.set_shape({gp[k], Gp[k], tp[k]});
+              else if (tp) c.set_curve_angle(tp[k]);
+            });
+          },
+          "t"_a, "y_d"_a, "g"_a.none(), "G"_a.none(), "curve_angle"_a.none());
+}
+
+void bind_continuum(nb::module_& m) {
+  nb::enum_<ts::ContinuumMode>(m, "ContinuumMode")
+      .value("exact", ts::ContinuumMode::Exact)
+      .value("published", ts::ContinuumMode::Published);
+  using P = ts::ContinuumFeedforwardParams;
+  nb::class_<P>(m, "ContinuumFeedforwardParams")
+      .def(nb::init<>())
+      .def_rw("friction", &P::friction)
+      .def_rw("gap_factor", &P::gap_factor)
+      .def_rw("sheath_length", &P::sheath_length)
+      .def_rw("stiffness", &P::stiffness)
+      .def_rw("pretension", &P::pretension)
+      .def_rw("total_angle", &P::total_angle)
+      .def_rw("bending_stiffness", &P::bending_stiffness)
+      .def_rw("tendon_offset", &P::tendon_offset)
+      .def_rw("backbone_length", &P::backbone_length)
+      .def_rw("proximal_radius", &P::proximal_radius)
+      .def_rw("v_eps", &P::v_eps)
+      .def_rw("mode", &P::mode)
+      .def_rw("limits", &P::limits);
+  using C = ts::ContinuumFeedforward;
+  nb::class_<C>(m, "ContinuumFeedforward")
+      .def(nb::init<const P&>(), "params"_a)
+      .def_prop_ro("params", &C::params)
+      .def("reset", &C::reset)
+      .def("step", &C::step, "theta_d"_a, "dt"_a)
+      .def("bending_force", &C::bending_force, "theta_d"_a)
+      .def("tendon_input", &C::tendon_input, "theta_d"_a, "direction"_a)
+      .def("command", [](const C& self, InArray t, InArray y) {
+        return command_copy(self, t, y, "ContinuumFeedforward", [](C&, std::size_t) {});
+      });
+}
+
+void bind_adaptive(nb::module_& m) {
+  using P = ts::AdaptiveControllerParams;
+  nb::class_<P>(m, "AdaptiveControllerParams")
+      .def(nb::init<>())
+      .def_rw("lambda_", &P::lambda)
+      .def_rw("k_s", &P::k_s)
+      .def_rw("epsilon", &P::epsilon)
+      .def_rw("gamma_psi", &P::gamma_psi)
+      .def_rw("gamma_phi", &P::gamma_phi)
+      .def_rw("gamma_D", &P::gamma_D)
+      .def_rw("sigma_psi", &P::sigma_psi)
+      .def_rw("sigma_phi", &P::sigma_phi)
+      .def_rw("sigma_D", &P::sigma_D)
+      .def_rw("psi_0", &P::psi_0)
+      .def_rw("phi_0", &P::phi_0)
+      .def_rw("D_0", &P::D_0)
+      .def_rw("phi_min", &P::phi_min)
+      .def_rw("psi_max", &P::psi_max)
+      .def_rw("phi_max", &P::phi_max)
+      .def_rw("D_max", &P::D_max)
+      .def_rw("adaptation_deadzone", &P::adaptation_deadzone)
+      .def_rw("derivative_cutoff_hz", &P::derivative_cutoff_hz)
+      .def_rw("derivative_damping", &P::derivative_damping)
+      .def_rw("max_torque", &P::max_torque)
+      .def_rw("has_feedforward", &P::has_feedforward)
+      .def_rw("feedforward", &P::feedforward)
+      .def_rw("fallback_kp", &P::fallback_kp)
+      .def_rw("fallback_kd", &P::fallback_kd);
+  nb::class_<ts::AdaptiveEstimates>(m, "AdaptiveEstimates")
+      .def_ro("psi", &ts::AdaptiveEstimates::psi)
+      .def_ro("phi", &ts::AdaptiveEstimates::phi)
+      .def_ro("D", &ts::AdaptiveEstimates::D);
+  using C = ts::AdaptiveController;
+  nb::class_<C>(m, "AdaptiveController")
+      .def(nb::init<const P&>(), "params"_a)
+      .def_prop_ro("params", &C::params)
+      .def_prop_ro("estimates", &C::estimates)
+      .def("in_fallback", &C::in_fallback)
+      .def("filtered_rate", &C::filtered_rate)
+      .def("reset", &C::reset)
+      .def("step", &C::step, "y_d"_a, "y_measured"_a, "motor_position"_a, "dt"_a);
+}
+
+}  // namespace
+
+void bind_compensators(nb::module_& m) {
+  bind_limits(m);
+  bind_inverse(m);
+  bind_curve_angle(m);
+  bind_continuum(m);
+  bind_adaptive(m);
+}
+
+}  // namespace tsbind
