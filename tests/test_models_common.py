@@ -15,6 +15,12 @@ ALL_MODELS = [
     models.PrandtlIshlinskii([0.0, 0.1, 0.3], [0.6, 0.3, -0.1]),
     models.PrandtlIshlinskiiInverse([0.0, 0.1, 0.3], [0.6, 0.3, 0.2]),
     models.HystereticOscillator(m=0.5, c=0.3, k=2.0, alpha=1.5, beta=2.0, gamma=0.7, delta=0.2),
+    models.Polynomial(coefficients=[0.1, 0.9, -0.2, 0.05]),
+    models.Chain(models.BoucWenBacklash(n=5), models.Polynomial(3, odd=True)),
+    models.GeneralizedPrandtlIshlinskii(
+        rising=(1.2, 1.5, 0.1, -0.1), falling=(1.0, 2.0, -0.1, 0.0)
+    ),
+    models.GeneralizedPrandtlIshlinskiiInverse(rising=(1.2, 1.5, 0.0, 0.0)),
 ]
 RATE_INDEPENDENT = [m for m in ALL_MODELS if m.rate_independent]
 

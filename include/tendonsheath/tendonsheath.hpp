@@ -14,3 +14,5 @@
 #include "compensators/curve_angle_feedforward.hpp"
 #include "compensators/continuum_feedforward.hpp"
 #include "compensators/adaptive_controller.hpp"
+#include "models/polynomial.hpp"
+#include "models/generalized_prandtl_ishlinskii.hpp"

@@ -110,6 +110,8 @@ class HysteresisModel:
         model_cls = model_class_from_dict(data)
         if cls is not HysteresisModel and not issubclass(model_cls, cls):
             raise ValueError(f"file holds a {model_cls.__name__}, not a {cls.__name__}")
+        if hasattr(model_cls, "_from_parts"):  # composite models (Chain, ...)
+            return model_cls._from_parts(data)
         values = {**data.get("params", {}), **data.get("options", {})}
         known = set(model_cls.param_names) | set(model_cls.option_names)
         unknown = sorted(set(values) - known)

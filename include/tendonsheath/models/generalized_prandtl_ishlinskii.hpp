@@ -1,0 +1,195 @@
+// Generalized Prandtl-Ishlinskii model (Al Janaideh, Rakheja & Su): play
+// operators whose rising and falling boundaries follow saturating envelope
+// functions instead of straight lines, for asymmetric and saturated loops.
+//
+//   gamma_r(x) = a_r tanh(b_r (x - c_r)) + d_r        (rising envelope)
+//   gamma_l(x) = a_l tanh(b_l (x - c_l)) + d_l        (falling envelope)
+//   z_i <- max(gamma_r(x) - r_i, min(gamma_l(x) + r_i, z_i)),   y = sum_i p_i z_i
+//   z_0  = (gamma_r(x) + gamma_l(x)) / 2   (threshold 0: the centre line)
+//
+// with 0 = r_0 < r_1 < ..., p_0 > 0 and p_i >= 0, so that y grows with x along
+// any monotone input and the inverse exists inside the envelopes' range.
+// The inverse solves that monotone equation each step by safeguarded
+// bisection on a bracket (at most 200 iterations, bounded work).
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "../validate.hpp"
+
+namespace tendonsheath {
+
+struct Envelope {
+  double a = 1.0;  // amplitude (> 0): the envelope saturates at d +- a
+  double b = 1.0;  // input gain (> 0): initial slope a*b
+  double c = 0.0;  // input shift
+  double d = 0.0;  // output shift
+  double operator()(double x) const noexcept { return a * std::tanh(b * (x - c)) + d; }
+  // Inverse, clipped to the open range (d - a, d + a).
+  double inverse(double g) const noexcept {
+    double u = (g - d) / a;
+    const double lim = 1.0 - 1e-15;
+    u = u > lim ? lim : (u < -lim ? -lim : u);
+    return c + std::atanh(u) / b;
+  }
+};
+
+struct GeneralizedPrandtlIshlinskiiParams {
+  Envelope rising{};
+  Envelope falling{};
+  std::vector<double> thresholds{0.0, 0.05, 0.1, 0.2};
+  std::vector<double> weights{0.6, 0.2, 0.1, 0.1};
+};
+
+namespace detail {
+inline void validate_gpi(const GeneralizedPrandtlIshlinskiiParams& p, const char* w) {
+  const Envelope* env[2] = {&p.rising, &p.falling};
+  const char* names[2] = {"rising", "falling"};
+  for (int e = 0; e < 2; ++e) {
+    const std::string n = names[e];
+    require_positive(env[e]->a, w, (n + ".a").c_str());
+    require_positive(env[e]->b, w, (n + ".b").c_str());
+    require_finite(env[e]->c, w, (n + ".c").c_str());
+    require_finite(env[e]->d, w, (n + ".d").c_str());
+  }
+  require(!p.thresholds.empty(), w, "thresholds must not be empty");
+  require(p.thresholds.size() == p.weights.size(), w,
+          "thresholds and weights must have the same length");
+  require(p.thresholds[0] == 0.0, w, "thresholds[0] must be 0");
+  require_positive(p.weights[0], w, "weights[0]");
+  for (std::size_t i = 1; i < p.thresholds.size(); ++i) {
+    require(std::isfinite(p.thresholds[i]) && p.thresholds[i] > p.thresholds[i - 1], w,
+            "thresholds must be finite and strictly increasing");
+    const std::string pi = "weights[" + std::to_string(i) + "]";
+    require_non_negative(p.weights[i], w, pi.c_str());
+  }
+}
+
+// The threshold-0 play is the centre line (gamma_r + gamma_l)/2, a strictly
+// increasing static map: it keeps the whole operator invertible.
+inline double gpi_play(double z, double x, double r, const Envelope& up, const Envelope& down) noexcept {
+  if (r == 0.0) return 0.5 * (up(x) + down(x));
+  const double hi = down(x) + r;
+  const double lo = up(x) - r;
+  const double zz = z > hi ? hi : z;
+  return zz < lo ? lo : zz;
+}
+}  // namespace detail
+
+class GeneralizedPrandtlIshlinskii {
+ public:
+  using Params = GeneralizedPrandtlIshlinskiiParams;
+  static constexpr bool rate_independent = true;
+
+  explicit GeneralizedPrandtlIshlinskii(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
+    detail::validate_gpi(p, "GeneralizedPrandtlIshlinskii");
+  }
+
+  const Params& params() const noexcept { return p_; }
+  void reset() noexcept { initialised_ = false; }
+
+  double step(double x, double /*dt*/ = 0.0) noexcept {
+    if (!std::isfinite(x)) return initialised_ ? y_ : 0.0;
+    if (!initialised_) {  // every play starts on the centre line (clamped into its band)
+      for (std::size_t i = 0; i < z_.size(); ++i) z_[i] = centre(x);
+      initialised_ = true;
+    }
+    y_ = advance(x, z_.data());
+    x_ = x;
+    return y_;
+  }
+
+  // Output if the input moved to x from the current state (the state is kept).
+  double output_if(double x) const noexcept {
+    double y = 0.0;
+    for (std::size_t i = 0; i < z_.size(); ++i)
+      y += p_.weights[i] * detail::gpi_play(z_[i], x, p_.thresholds[i], p_.rising, p_.falling);
+    return y;
+  }
+
+  // Output of the first sample when it is x: increasing in x.
+  double initial_output(double x) const noexcept {
+    double y = 0.0;
+    for (std::size_t i = 0; i < z_.size(); ++i)
+      y += p_.weights[i] * detail::gpi_play(centre(x), x, p_.thresholds[i], p_.rising, p_.falling);
+    return y;
+  }
+
+  double output() const noexcept { return y_; }
+  double last_input() const noexcept { return x_; }
+  bool initialised() const noexcept { return initialised_; }
+
+ protected:
+  double advance(double x, double* z) noexcept {
+    double y = 0.0;
+    for (std::size_t i = 0; i < z_.size(); ++i) {
+      z[i] = detail::gpi_play(z[i], x, p_.thresholds[i], p_.rising, p_.falling);
+      y += p_.weights[i] * z[i];
+    }
+    return y;
+  }
+
+  double centre(double x) const noexcept { return 0.5 * (p_.rising(x) + p_.falling(x)); }
+
+  Params p_;
+  std::vector<double> z_;
+  double x_ = 0.0, y_ = 0.0;
+  bool initialised_ = false;
+};
+
+class GeneralizedPrandtlIshlinskiiInverse {
+ public:
+  using Params = GeneralizedPrandtlIshlinskiiParams;
+  static constexpr bool rate_independent = true;
+
+  explicit GeneralizedPrandtlIshlinskiiInverse(const Params& p) : model_(p) {}
+  const Params& params() const noexcept { return model_.params(); }
+  void reset() noexcept { model_.reset(); }
+
+  // The input x for which the forward model reaches y_desired (clipped to the
+  // reachable range: the envelopes saturate).
+  double step(double y_desired, double /*dt*/ = 0.0) noexcept {
+    if (!std::isfinite(y_desired)) return model_.initialised() ? model_.last_input() : 0.0;
+    if (!model_.initialised()) model_.step(initial_guess(y_desired));
+    double lo = model_.last_input(), hi = lo;
+    const double y_now = model_.output_if(lo);
+    const double span = 1.0 / std::fmin(params().rising.b, params().falling.b);
+    if (y_desired > y_now) {
+      for (int k = 0; k < 60 && model_.output_if(hi) < y_desired; ++k) hi += span * (1 << (k < 20 ? k : 20));
+    } else {
+      for (int k = 0; k < 60 && model_.output_if(lo) > y_desired; ++k) lo -= span * (1 << (k < 20 ? k : 20));
+    }
+    for (int k = 0; k < 200 && hi - lo > 1e-14 * (1.0 + std::fabs(lo) + std::fabs(hi)); ++k) {
+      const double mid = 0.5 * (lo + hi);
+      if (model_.output_if(mid) < y_desired) lo = mid;
+      else hi = mid;
+    }
+    const double x = (std::fabs(model_.output_if(lo) - y_desired) <=
+                      std::fabs(model_.output_if(hi) - y_desired)) ? lo : hi;
+    model_.step(x);
+    return x;
+  }
+
+  double output() const noexcept { return model_.last_input(); }
+
+ private:
+  // The first input x_0 solves initial_output(x_0) = y_0 (increasing in x), so the
+  // inverse starts from the same play states as the forward model would.
+  double initial_guess(double y) const noexcept {
+    const double span = 1.0 / std::fmin(params().rising.b, params().falling.b);
+    double lo = -span, hi = span;
+    for (int k = 0; k < 60 && model_.initial_output(lo) > y; ++k) lo -= span * (1 << (k < 20 ? k : 20));
+    for (int k = 0; k < 60 && model_.initial_output(hi) < y; ++k) hi += span * (1 << (k < 20 ? k : 20));
+    for (int k = 0; k < 200 && hi - lo > 1e-15 * (1.0 + std::fabs(lo) + std::fabs(hi)); ++k) {
+      const double mid = 0.5 * (lo + hi);
+      if (model_.initial_output(mid) < y) lo = mid;
+      else hi = mid;
+    }
+    return 0.5 * (lo + hi);
+  }
+  GeneralizedPrandtlIshlinskii model_;
+};
+
+}  // namespace tendonsheath

@@ -1,0 +1,83 @@
+// Static output map y = sum_k a_k u^k (k = 0..degree, or odd powers only):
+// composed after a hysteresis model it bends straight branches into the
+// asymmetric, saturating loops that real tendon drives show.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "../validate.hpp"
+
+namespace tendonsheath {
+
+struct PolynomialParams {
+  std::vector<double> coefficients{0.0, 1.0};  // a_0, a_1, ... (all powers) or a_1, a_3, ... (odd)
+  bool odd = false;
+};
+
+class Polynomial {
+ public:
+  using Params = PolynomialParams;
+  static constexpr bool rate_independent = true;
+
+  explicit Polynomial(const Params& p) : p_(p) {
+    const char* w = "Polynomial";
+    require(!p.coefficients.empty(), w, "coefficients must not be empty");
+    for (std::size_t i = 0; i < p.coefficients.size(); ++i) {
+      const std::string name = "coefficients[" + std::to_string(i) + "]";
+      require_finite(p.coefficients[i], w, name.c_str());
+    }
+  }
+
+  const Params& params() const noexcept { return p_; }
+  std::size_t degree() const noexcept {
+    const std::size_t n = p_.coefficients.size();
+    return p_.odd ? 2 * n - 1 : n - 1;
+  }
+
+  double evaluate(double u) const noexcept {
+    const auto& a = p_.coefficients;
+    double acc = 0.0;
+    if (p_.odd) {  // u * (a_1 + a_3 u^2 + a_5 u^4 + ...), Horner in u^2
+      const double u2 = u * u;
+      for (std::size_t i = a.size(); i-- > 0;) acc = acc * u2 + a[i];
+      return acc * u;
+    }
+    for (std::size_t i = a.size(); i-- > 0;) acc = acc * u + a[i];
+    return acc;
+  }
+
+  void reset() noexcept {}
+  double step(double u, double /*dt*/ = 0.0) noexcept {
+    if (std::isfinite(u)) y_ = evaluate(u);
+    return y_;
+  }
+  double output() const noexcept { return y_; }
+
+ private:
+  Params p_;
+  double y_ = 0.0;
+};
+
+// A hysteresis model followed by a static map: y = Second(First(x)).
+template <class First, class Second>
+class Chain {
+ public:
+  static constexpr bool rate_independent = First::rate_independent && Second::rate_independent;
+  Chain(const First& first, const Second& second) : first_(first), second_(second) {}
+  void reset() noexcept {
+    first_.reset();
+    second_.reset();
+  }
+  double step(double x, double dt) noexcept { return second_.step(first_.step(x, dt), dt); }
+  double output() const noexcept { return second_.output(); }
+  const First& first() const noexcept { return first_; }
+  const Second& second() const noexcept { return second_; }
+
+ private:
+  First first_;
+  Second second_;
+};
+
+}  // namespace tendonsheath

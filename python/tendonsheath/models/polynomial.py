@@ -1,0 +1,43 @@
+"""Static polynomial output map, to compose after a hysteresis model."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .. import _core as core
+from .base import HysteresisModel
+
+
+class Polynomial(HysteresisModel):
+    """y = sum_k a_k u^k: ``Polynomial(3)`` is the identity cubic (a = [0, 1, 0, 0]);
+    ``odd=True`` keeps odd powers only (coefficients a_1, a_3, ...).
+
+    Static and rate-independent; use it after a hysteresis model with :class:`Chain`.
+    """
+
+    _core = core.Polynomial
+    _core_params = core.PolynomialParams
+    param_names = ("coefficients",)
+    option_names = ("odd",)
+
+    def __init__(self, degree: int | None = None, coefficients=None, odd: bool = False):
+        if coefficients is None:
+            if degree is None or int(degree) < 1:
+                raise ValueError("Polynomial: give a degree >= 1 or the coefficients")
+            degree = int(degree)
+            count = (degree + 1) // 2 if odd else degree + 1
+            coefficients = np.zeros(count)
+            coefficients[0 if odd else 1] = 1.0
+        coefficients = [float(c) for c in np.atleast_1d(np.asarray(coefficients, dtype=float))]
+        super().__init__(coefficients=coefficients, odd=bool(odd))
+
+    @property
+    def degree(self) -> int:
+        n = len(self.params["coefficients"])
+        return 2 * n - 1 if self.options["odd"] else n - 1
+
+    def basis(self, u) -> np.ndarray:
+        """Columns u^k of the powers in use: y = basis(u) @ coefficients."""
+        u = np.asarray(u, dtype=float)
+        powers = range(1, self.degree + 1, 2) if self.options["odd"] else range(self.degree + 1)
+        return np.stack([u**k for k in powers], axis=-1)
