@@ -61,7 +61,16 @@ class ContinuumFeedforward {
     p.limits.validate(w);
     const double xi = p.gap_factor * p.friction;
     statics_ = {xi, p.sheath_length / p.stiffness, p.pretension};
-    shape_ = uniform_shape(xi, p.total_angle);
+    affine_ = statics_.affine(uniform_shape(xi, p.total_angle));
+    if (p.mode == ContinuumMode::Published) {  // the route is fixed: constants of eqs. 11-28
+      const double L = p.sheath_length, Theta = p.total_angle;
+      const double R = L / Theta;
+      em_ = std::exp(-xi * Theta);
+      ep_ = 1.0 / em_;
+      A1_ = (R / xi) * (1.0 - em_);
+      A2_ = (R / xi) * (1.0 - ep_);
+      det_ = -A1_ * ep_ + A2_ * em_;
+    }
   }
 
   const Params& params() const noexcept { return p_; }
@@ -88,26 +97,22 @@ class ContinuumFeedforward {
     const double F = bending_force(theta_d);
     if (p_.mode == ContinuumMode::Exact) {
       const double phi = 0.5 * (1.0 + s);
-      return x_d + phi * statics_.forward_elongation(shape_, F) +
-             (1.0 - phi) * statics_.backward_elongation(shape_, F);
+      return x_d + phi * (affine_.forward_offset + affine_.forward_slope * F) +
+             (1.0 - phi) * (affine_.backward_offset + affine_.backward_slope * F);
     }
     const double L = p_.sheath_length, EA = p_.stiffness, T0 = p_.pretension;
-    const double xi = statics_.friction, Theta = p_.total_angle;
-    const double R = L / Theta;
-    const double em = std::exp(-xi * Theta), ep = std::exp(xi * Theta);
-    const double A1 = (R / xi) * (1.0 - em), A2 = (R / xi) * (1.0 - ep);
-    // Cramer's rule on [A1, -A2; em, -ep] [T1; T3] = [2 T0 L; F]
-    const double det = -A1 * ep + A2 * em;
-    const double T1 = (-(2.0 * T0 * L) * ep + A2 * F) / det;
-    const double delta_pull = (T1 * A1 - T0 * L) / EA;
-    const double delta_0 = 2.0 * T0 * L * (1.0 - em) / EA;
+    // Cramer's rule on [A1, -A2; e^{-xi Theta}, -e^{xi Theta}] [T1; T3] = [2 T0 L; F]
+    const double T1 = (-(2.0 * T0 * L) * ep_ + A2_ * F) / det_;
+    const double delta_pull = (T1 * A1_ - T0 * L) / EA;
+    const double delta_0 = 2.0 * T0 * L * (1.0 - em_) / EA;
     return x_d + s * (delta_pull + delta_0) + F * L / EA;
   }
 
  private:
   Params p_;
   PullPullStatics statics_{};
-  ShapeIntegrals shape_{};
+  PullPullStatics::Affine affine_{};
+  double em_ = 1.0, ep_ = 1.0, A1_ = 0.0, A2_ = 0.0, det_ = 1.0;
   RateEstimator rate_{};
   CommandShaper shaper_{};
 };

@@ -52,7 +52,7 @@ class CurveAngleFeedforward {
     require(p.max_correction_rate > 0.0, w, "max_correction_rate must be > 0");
     p.limits.validate(w);
     statics_ = {p.friction, p.compliance, p.pretension};
-    shape_ = uniform_shape(p.friction, p.total_angle);
+    update_shape(uniform_shape(p.friction, p.total_angle));
   }
 
   const Params& params() const noexcept { return p_; }
@@ -66,13 +66,18 @@ class CurveAngleFeedforward {
 
   // Uniform curvature with total angle theta (rad); non-finite or negative is ignored.
   void set_curve_angle(double theta) noexcept {
-    if (std::isfinite(theta) && theta >= 0.0) shape_ = uniform_shape(p_.friction, theta);
+    if (std::isfinite(theta) && theta >= 0.0 && !(uniform_ && theta == shape_.total_angle)) {
+      update_shape(uniform_shape(p_.friction, theta));
+      uniform_ = true;
+    }
   }
   // Any route: its shape integrals g, G (see shape_integrals) and total angle.
   void set_shape(const ShapeIntegrals& shape) noexcept {
     if (std::isfinite(shape.g) && std::isfinite(shape.G) && shape.g > 0.0 && shape.G > 0.0 &&
-        std::isfinite(shape.total_angle) && shape.total_angle >= 0.0)
-      shape_ = shape;
+        std::isfinite(shape.total_angle) && shape.total_angle >= 0.0) {
+      update_shape(shape);
+      uniform_ = false;
+    }
   }
 
   double step(double y_d, double dt) noexcept {
@@ -97,16 +102,23 @@ class CurveAngleFeedforward {
   // Tendon-level correction for a desired distal displacement x_d and direction blend phi.
   double correction(double x_d, double phi) const noexcept {
     const double load = p_.load_force + p_.load_stiffness * x_d;
-    return phi * statics_.forward_elongation(shape_, load) +
-           (1.0 - phi) * statics_.backward_elongation(shape_, load);
+    return phi * (affine_.forward_offset + affine_.forward_slope * load) +
+           (1.0 - phi) * (affine_.backward_offset + affine_.backward_slope * load);
   }
 
   double last_correction() const noexcept { return correction_; }
 
  private:
+  void update_shape(const ShapeIntegrals& shape) noexcept {
+    shape_ = shape;
+    affine_ = statics_.affine(shape);
+  }
+
   Params p_;
   PullPullStatics statics_{};
   ShapeIntegrals shape_{};
+  PullPullStatics::Affine affine_{};
+  bool uniform_ = true;
   RateEstimator rate_{};
   CommandShaper shaper_{};
   double correction_ = 0.0;

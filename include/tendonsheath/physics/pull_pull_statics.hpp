@@ -26,10 +26,13 @@ struct ShapeIntegrals {
   double total_angle = 0.0;  // Theta
 };
 
-// Uniform curvature: g = (1 - e^{-a})/a, G = (e^a - 1)/a.
+// Uniform curvature: g = (1 - e^{-a})/a, G = (e^a - 1)/a (one exponential).
 inline ShapeIntegrals uniform_shape(double mu, double total_angle) noexcept {
   const double a = mu * total_angle;
-  return {expm1_over(-a), expm1_over(a), total_angle};
+  if (std::fabs(a) < 1e-4) return {expm1_over(-a), expm1_over(a), total_angle};
+  const double em1 = std::expm1(-a);        // e^{-a} - 1
+  const double G = -em1 / ((em1 + 1.0) * a);  // (e^a - 1)/a = (1 - e^{-a}) / (e^{-a} a)
+  return {-em1 / a, G, total_angle};
 }
 
 // Exact for a piecewise-linear theta(s) given at samples (s_i, theta_i), s
@@ -68,6 +71,19 @@ struct PullPullStatics {
     const double t1p = (2.0 * pretension + load * sh.g * ea) / (sh.G + sh.g * ea * ea);
     return compliance * (t1p * sh.G - pretension);
   }
+  // Both elongations are affine in the load: Delta = offset + slope * F_L.
+  struct Affine {
+    double forward_offset, forward_slope, backward_offset, backward_slope;
+  };
+  Affine affine(const ShapeIntegrals& sh) const noexcept {
+    const double ema = std::exp(-friction * sh.total_angle), ea = 1.0 / ema;
+    const double df = sh.g + sh.G * ema * ema, db = sh.G + sh.g * ea * ea;
+    return {compliance * (2.0 * pretension * sh.g / df - pretension),
+            compliance * sh.G * ema * sh.g / df,
+            compliance * (2.0 * pretension * sh.G / db - pretension),
+            compliance * sh.g * ea * sh.G / db};
+  }
+
   // Half-width of the dead zone: (forward - backward)/2 at the same load.
   double backlash_half_width(const ShapeIntegrals& sh, double load = 0.0) const noexcept {
     return 0.5 * (forward_elongation(sh, load) - backward_elongation(sh, load));
