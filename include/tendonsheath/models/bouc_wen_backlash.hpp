@@ -97,8 +97,14 @@ class BoucWenBacklash {
       const bool saturated = (dx > 0.0 && w_ >= 1.0) || (dx < 0.0 && w_ <= -1.0);
       if (dx != 0.0 && !saturated) {
         const double travel = std::fabs(dx);
-        const int m = detail::substeps_for(p_.rho * travel, p_.max_step, p_.max_substeps);
-        const double w = detail::rk4_in_x(f_, w_, dx > 0.0 ? 1.0 : -1.0, travel / m, m);
+        const double sgn = dx > 0.0 ? 1.0 : -1.0;
+        double w;
+        if (p_.rho * travel <= p_.max_step) {  // the usual case: one RK4 step
+          w = detail::rk4_in_x(f_, w_, sgn, travel, 1);
+        } else {
+          const int m = detail::substeps_for(p_.rho * travel, p_.max_step, p_.max_substeps);
+          w = detail::rk4_in_x(f_, w_, sgn, travel / m, m);
+        }
         if (std::isfinite(w)) w_ = w;  // an overflowing jump keeps the old state
       }
       x_ = x;
