@@ -1,8 +1,32 @@
 """tendonsheath: model, identify and compensate tendon-sheath mechanisms."""
 
-from . import models
+from . import loads, models, physics
 from .models import load_model
+from .motor import Motor
+from .plant import (
+    ContinuumPlant,
+    PullPullPlant,
+    SimulationResult,
+    SingleTendonPlant,
+    SlackWarning,
+)
+from .route import Route
+from .sensor import Sensor
 
 __version__ = "0.1.0"
 
-__all__ = ["load_model", "models", "__version__"]
+__all__ = [
+    "ContinuumPlant",
+    "Motor",
+    "PullPullPlant",
+    "Route",
+    "Sensor",
+    "SimulationResult",
+    "SingleTendonPlant",
+    "SlackWarning",
+    "load_model",
+    "loads",
+    "models",
+    "physics",
+    "__version__",
+]

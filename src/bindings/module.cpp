@@ -3,4 +3,5 @@
 NB_MODULE(_core, m) {
   m.doc() = "tendonsheath real-time core (C++17), exposed through nanobind";
   tsbind::bind_models(m);
+  tsbind::bind_plant(m);
 }

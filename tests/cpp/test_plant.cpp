@@ -150,7 +150,9 @@ TEST(PullPull, StepIsNoexceptAndNeverNaN) {
     const double q = k % 97 == 0 ? std::numeric_limits<double>::quiet_NaN() : 3.0 * G(rng);
     const double y = plant.step(q, 1e-3);
     ASSERT_TRUE(std::isfinite(y));
-    if (!std::isfinite(q)) EXPECT_EQ(y, last);
+    if (!std::isfinite(q)) {
+      EXPECT_EQ(y, last);
+    }
     last = y;
   }
 }
