@@ -4,7 +4,6 @@ import warnings
 
 import numpy as np
 import pytest
-
 import tendonsheath as ts
 
 ROUTE = ts.Route.uniform(1.2, 2 * np.pi)
@@ -190,7 +189,11 @@ def test_route_schedule_equals_streaming_set_route():
 
 def test_closed_form_helpers_on_the_plant():
     plant = ts.PullPullPlant(
-        route=ROUTE, friction=0.1, stiffness=2.4e4, pretension=10.0, distal_radius=3e-3,
+        route=ROUTE,
+        friction=0.1,
+        stiffness=2.4e4,
+        pretension=10.0,
+        distal_radius=3e-3,
         load=ts.loads.ConstantTorque(5.0 * 3e-3),
     )
     cf = plant.closed_form()

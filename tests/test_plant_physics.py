@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-
 import tendonsheath as ts
 from tendonsheath import physics
 from tendonsheath._reference_plant import ReferencePullPull
@@ -58,8 +57,13 @@ def test_pull_pull_offsets_match_A7_uniform(seed):
     a = mu * theta
     FL = rng.uniform(-0.8, 0.8) * physics.no_slack_limit(T0, mu, theta)
     plant = ts.PullPullPlant(
-        route=ts.Route.uniform(L, theta), friction=mu, stiffness=EA, pretension=T0,
-        proximal_radius=rp, distal_radius=rd, elements=200,
+        route=ts.Route.uniform(L, theta),
+        friction=mu,
+        stiffness=EA,
+        pretension=T0,
+        proximal_radius=rp,
+        distal_radius=rd,
+        elements=200,
         load=ts.loads.ConstantTorque(FL * rd),
     )
     eb = T0 * L * np.tanh(a / 2) / EA
@@ -89,7 +93,12 @@ def test_pull_pull_offsets_match_g_G_nonuniform(seed):
     theta = max(route1.total_angle, route2.total_angle)
     FL = rng.uniform(-0.5, 0.5) * physics.no_slack_limit(T0, mu, theta)
     plant = ts.PullPullPlant(
-        route=route1, route2=route2, friction=mu, stiffness=EA, pretension=T0, elements=200,
+        route=route1,
+        route2=route2,
+        friction=mu,
+        stiffness=EA,
+        pretension=T0,
+        elements=200,
         load=ts.loads.ConstantTorque(FL * 5e-3),
     )
     f, b = plant.steady_offsets()
@@ -149,8 +158,13 @@ def test_spring_load_branch_slope(seed):
     # limit up to an input of 10 e_b
     ke = rng.uniform(0.1, 0.5) * physics.no_slack_limit(T0, mu, theta) / (10 * eb_m)
     plant = ts.PullPullPlant(
-        route=ts.Route.uniform(L, theta), friction=mu, stiffness=EA, pretension=T0,
-        proximal_radius=rp, distal_radius=rd, elements=100,
+        route=ts.Route.uniform(L, theta),
+        friction=mu,
+        stiffness=EA,
+        pretension=T0,
+        proximal_radius=rp,
+        distal_radius=rd,
+        elements=100,
         load=ts.loads.TorsionalSpring(ke * rd**2),
     )
     c = physics.spring_slope(L, EA, mu, theta, ke)
@@ -168,7 +182,9 @@ def test_no_hysteresis_without_friction(case):
     mu, theta = (0.0, 2 * np.pi) if case == "mu0" else (0.15, 0.0)
     L, EA, FL, rd = 1.2, 2.4e4, 3.0, 5e-3
     plant = ts.PullPullPlant(
-        route=ts.Route.uniform(L, theta), friction=mu, elements=50,
+        route=ts.Route.uniform(L, theta),
+        friction=mu,
+        elements=50,
         load=ts.loads.ConstantTorque(FL * rd),
     )
     q = np.r_[np.linspace(0, 0.2, 101), np.linspace(0.2, -0.2, 201), np.linspace(-0.2, 0.2, 201)]

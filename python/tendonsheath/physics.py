@@ -54,9 +54,12 @@ def shape_integrals(route: Route, mu: float) -> tuple[float, float]:
 
 def backlash_half_width(length, EA, pretension, mu, total_angle):
     """e_b = T0 L tanh(mu Theta/2) / EA: half the pull-pull dead zone, uniform curvature (A7)."""
-    return np.asarray(pretension) * np.asarray(length) * np.tanh(
-        np.asarray(mu) * np.asarray(total_angle) / 2
-    ) / np.asarray(EA)
+    return (
+        np.asarray(pretension)
+        * np.asarray(length)
+        * np.tanh(np.asarray(mu) * np.asarray(total_angle) / 2)
+        / np.asarray(EA)
+    )
 
 
 def load_offset(length, EA, load_force, mu, total_angle):
@@ -142,7 +145,8 @@ def single_tendon_dead_zone(route: Route, EA, distal_tension, mu) -> float:
 
 
 def single_tendon_elongation(route: Route, EA, proximal_tension, mu, reference_tension, sign=1):
-    """(A3) in full slip: Delta = (L/EA)(T_p g - T_ref) pulled (sign +1), (T_p G - T_ref) released."""
+    """(A3) in full slip: Delta = (L/EA)(T_p g - T_ref) when pulled (sign +1),
+    (L/EA)(T_p G - T_ref) when released (sign -1)."""
     g, G = shape_integrals(route, mu)
     shape = g if sign > 0 else G
     return float(route.length / EA * (proximal_tension * shape - reference_tension))

@@ -340,7 +340,9 @@ class PullPullPlant(_Plant):
         cls = type(self).__name__
         self.route = _check_route(route, "route", cls)
         self.route2 = _check_route(route if route2 is None else route2, "route2", cls)
-        if load is not None and not isinstance(load, ConstantTorque | TorsionalSpring | SpringDamper):
+        if load is not None and not isinstance(
+            load, ConstantTorque | TorsionalSpring | SpringDamper
+        ):
             raise ValueError(
                 f"{cls}: load must be None, ConstantTorque, TorsionalSpring or SpringDamper "
                 f"(got {type(load).__name__})"

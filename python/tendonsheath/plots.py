@@ -27,7 +27,12 @@ def plot_tension_profile(plant, ax=None):
             mask = S[row] == state
             if mask.any():
                 ax.plot(
-                    nodes[mask], tn[mask], marker, ms=3, color=colours[row], alpha=0.6,
+                    nodes[mask],
+                    tn[mask],
+                    marker,
+                    ms=3,
+                    color=colours[row],
+                    alpha=0.6,
                     label=f"{label}: {name}",
                 )
         stuck = S[row] == 0

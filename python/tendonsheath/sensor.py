@@ -47,4 +47,7 @@ class Sensor:
         return self._engine.measure_many(np.ascontiguousarray(arr.ravel())).reshape(arr.shape)
 
     def __repr__(self) -> str:
-        return f"Sensor(resolution={self.resolution:g}, noise_std={self.noise_std:g}, seed={self.seed})"
+        return (
+            f"Sensor(resolution={self.resolution:g}, noise_std={self.noise_std:g}, "
+            f"seed={self.seed})"
+        )
