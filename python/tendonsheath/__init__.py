@@ -1,8 +1,33 @@
 """tendonsheath: model, identify and compensate tendon-sheath mechanisms."""
 
-from . import compensate, models
+from . import compensate, loads, models, physics
 from .models import load_model
+from .motor import Motor
+from .plant import (
+    ContinuumPlant,
+    PullPullPlant,
+    SimulationResult,
+    SingleTendonPlant,
+    SlackWarning,
+)
+from .route import Route
+from .sensor import Sensor
 
 __version__ = "0.1.0"
 
-__all__ = ["compensate", "load_model", "models", "__version__"]
+__all__ = [
+    "ContinuumPlant",
+    "Motor",
+    "PullPullPlant",
+    "Route",
+    "Sensor",
+    "SimulationResult",
+    "SingleTendonPlant",
+    "SlackWarning",
+    "compensate",
+    "load_model",
+    "loads",
+    "models",
+    "physics",
+    "__version__",
+]

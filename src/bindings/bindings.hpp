@@ -32,5 +32,6 @@ inline std::pair<OutMatrix, double*> new_matrix(std::size_t rows, std::size_t co
 void bind_models(nb::module_& m);
 void bind_compensators(nb::module_& m);
 void bind_models_extended(nb::module_& m);
+void bind_plant(nb::module_& m);
 
 }  // namespace tsbind

@@ -5,4 +5,5 @@ NB_MODULE(_core, m) {
   tsbind::bind_models(m);
   tsbind::bind_compensators(m);
   tsbind::bind_models_extended(m);
+  tsbind::bind_plant(m);
 }

@@ -1,0 +1,459 @@
+// The quasi-static N-element friction chain of spec A.5, shared by all plants.
+//
+// Nodes j = 0..M carry displacements u_j (positive toward node M). Element e
+// (e = 1..M) joins nodes e-1 and e, has stiffness k_e = EA/ds and tension
+//   T_e = T0_e + k_e (u_e - u_{e-1}).
+// Each node is one of
+//   Driven  u_j = x (the input; every driven node gets the same x),
+//   Sheath  a point of the sheath with friction: stuck (u_j = u_j^prev,
+//           allowed while |T_{j+1} - T_j| <= C_j) or slipping in direction
+//           s = +-1: (1 - s h_j) T_{j+1} - (1 + s h_j) T_j = 0,
+//   Load    a load law T_{j+1} - T_j = F0 + k u_j + c (u_j - u_j^prev)/dt
+//           (missing elements at the chain ends count as zero tension).
+// For a sheath node with lumped angle dtheta_j we use h_j = tanh(mu dtheta_j/2)
+// instead of mu dtheta_j/2: then the slipping ratio (1 - h)/(1 + h) equals
+// exp(-mu dtheta_j) exactly, so the discrete capstan ratio is exact for any
+// N (the two differ by O(dtheta^3)). The capacity is C_j = h_j (T_j + T_{j+1}),
+// the same h, so a slipping node sits exactly on its capacity.
+//
+// Per input increment the active-set loop of spec A.5 runs: assemble the
+// tridiagonal system for the current stick/slip map, solve it (Thomas, O(M)),
+// flip stuck nodes that exceed their capacity and slipping nodes that move
+// backwards, until nothing flips (<= max_iterations). On failure the increment
+// is halved (<= max_halvings times); at the last level the loop continues from
+// its last iterate for extra_iterations more and the result is accepted (and
+// counted in nonconverged()). Inputs are split into sub-increments of at most
+// max_increment (at most max_substeps of them). step() is noexcept, allocates
+// nothing and does bounded work; a non-finite input or a non-finite solution
+// leaves the state unchanged.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "../validate.hpp"
+
+namespace tendonsheath {
+
+enum class NodeKind : unsigned char { Driven = 0, Sheath = 1, Load = 2 };
+
+struct ChainOptions {
+  int max_iterations = 50;     // active-set iterations per attempt
+  int max_halvings = 4;        // halvings of a failed increment
+  int max_substeps = 64;       // sub-increments per step at most
+  double max_increment = 0.0;  // largest input sub-increment (m); 0: the plant chooses
+  int extra_iterations = -1;   // iterations of the last-resort attempt; -1: 2 M + 50
+  bool fast_path = true;       // exact shortcuts (lazy update while the map stays valid)
+};
+
+inline void validate_chain_options(const ChainOptions& o, const char* where) {
+  require(o.max_iterations >= 1, where,
+          "max_iterations must be >= 1 (got " + std::to_string(o.max_iterations) + ")");
+  require(o.max_halvings >= 0 && o.max_halvings <= 30, where,
+          "max_halvings must be in [0, 30] (got " + std::to_string(o.max_halvings) + ")");
+  require(o.max_substeps >= 1, where,
+          "max_substeps must be >= 1 (got " + std::to_string(o.max_substeps) + ")");
+  require_non_negative(o.max_increment, where, "max_increment");
+  require(o.extra_iterations == -1 || o.extra_iterations >= 1, where,
+          "extra_iterations must be -1 (automatic) or >= 1 (got " + std::to_string(o.extra_iterations) + ")");
+}
+
+class FrictionChain {
+ public:
+  FrictionChain() = default;
+
+  // M + 1 nodes (all Sheath, no angle) and M elements (to be set).
+  explicit FrictionChain(std::size_t M)
+      : M_(M),
+        kind_(M + 1, NodeKind::Sheath),
+        h_(M + 1, 0.0),
+        dtheta_(M + 1, 0.0),
+        k_(M + 2, 0.0),
+        T0_(M + 2, 0.0),
+        F0_(M + 1, 0.0),
+        kl_(M + 1, 0.0),
+        cl_(M + 1, 0.0),
+        u_(M + 1, 0.0),
+        w_(M + 1, 0.0),
+        sig_(M + 1, 0),
+        sw_(M + 1, 0),
+        cp_(M + 1, 0.0),
+        dp_(M + 1, 0.0),
+        zp_(M + 1, 0.0),
+        z_(M + 1, 0.0),
+        T_(M + 2, 0.0) {}
+
+  // ---- set-up (not real-time) ----------------------------------------------------
+  void set_element(std::size_t e, double k, double T0) {
+    k_.at(e) = k;
+    T0_.at(e) = T0;
+  }
+  void set_driven(std::size_t j) { kind_.at(j) = NodeKind::Driven; }
+  void set_load(std::size_t j, double F0, double k, double c) {
+    kind_.at(j) = NodeKind::Load;
+    F0_.at(j) = F0;
+    kl_.at(j) = k;
+    cl_.at(j) = c;
+    has_damper_ = has_damper_ || c > 0.0;
+  }
+  void set_options(const ChainOptions& o) noexcept { opt_ = o; }
+  void set_friction(double mu) noexcept {
+    mu_ = mu;
+    for (std::size_t j = 0; j <= M_; ++j) h_[j] = std::tanh(0.5 * mu_ * dtheta_[j]);
+    dirty_ = true;
+    fact_valid_ = false;
+  }
+
+  // ---- real-time ---------------------------------------------------------------
+  // Lumped angle of a sheath node (ignored for other nodes). A change takes
+  // effect at the next step; over-capacity nodes then start to slip.
+  void set_node_angle(std::size_t j, double dtheta) noexcept {
+    if (j > M_ || kind_[j] != NodeKind::Sheath || !(dtheta >= 0.0) || !std::isfinite(dtheta))
+      return;
+    if (dtheta_[j] == dtheta) return;
+    dtheta_[j] = dtheta;
+    h_[j] = std::tanh(0.5 * mu_ * dtheta);
+    dirty_ = true;
+    fact_valid_ = false;
+  }
+
+  // At rest, uniform reference tensions, everything stuck; the next step()
+  // starts by moving the whole chain rigidly to its input.
+  void reset() noexcept {
+    std::fill(u_.begin(), u_.end(), 0.0);
+    std::fill(sig_.begin(), sig_.end(), 0);
+    x_ = 0.0;
+    initialised_ = false;
+    dirty_ = true;
+    slack_ = false;
+    nonconverged_ = 0;
+    last_solves_ = 0;
+    fact_valid_ = false;
+    consistent_ = false;
+    fast_ok_ = false;
+    lazy_ = 0.0;
+    xref_ = 0.0;
+    compute_tensions(u_.data());
+  }
+
+  // Advance to the driven input x (dt: time since the previous step, used by
+  // dampers only). Returns true when the state was updated.
+  bool step(double x, double dt) noexcept {
+    if (!std::isfinite(x)) return false;
+    if (!(dt >= 0.0) || !std::isfinite(dt)) dt = 0.0;
+    last_solves_ = 0;
+    if (!initialised_) {
+      for (std::size_t j = 0; j <= M_; ++j) u_[j] += x - x_;
+      x_ = x;
+      initialised_ = true;
+      dirty_ = true;
+    }
+    if (x == x_ && !dirty_ && !(has_damper_ && dt > 0.0)) return true;
+    // Fast path: the committed map stays valid for every input in
+    // [xlo_, xhi_] moved in an allowed direction (see compute_interval), so
+    // the solution is u_ + (x - xref_) z_, kept lazily (O(1) per step).
+    if (fast_ok_ && !dirty_ && x >= xlo_ && x <= xhi_ && (x > x_ ? up_ : down_)) {
+      x_ = x;
+      lazy_ = x - xref_;
+      return true;
+    }
+    materialize();
+    const double dx = x - x_;
+    int n = 1;
+    if (opt_.max_increment > 0.0) {
+      const double m = std::ceil(std::fabs(dx) / opt_.max_increment);
+      n = m >= static_cast<double>(opt_.max_substeps) ? opt_.max_substeps
+                                                        : (m >= 1.0 ? static_cast<int>(m) : 1);
+    }
+    const double x0 = x_;
+    for (int i = 1; i <= n; ++i) {
+      const double xi = (i == n) ? x : x0 + dx * static_cast<double>(i) / static_cast<double>(n);
+      sub_increment(xi, dt / n, 0);
+    }
+    dirty_ = false;
+    return true;
+  }
+
+  // ---- read-out ----------------------------------------------------------------
+  std::size_t nodes() const noexcept { return M_ + 1; }
+  std::size_t elements() const noexcept { return M_; }
+  double u(std::size_t j) const noexcept {
+    return lazy_ != 0.0 ? u_[j] + lazy_ * z_[j] : u_[j];
+  }
+  // Tension of element e (1..M) after the last step.
+  double tension(std::size_t e) const noexcept { return T0_[e] + k_[e] * (u(e) - u(e - 1)); }
+  // Stick/slip state of node j: 0 stuck, +1/-1 slipping toward node M / node 0
+  // (driven and load nodes report 0; frictionless sheath nodes report 0 too).
+  int state(std::size_t j) const noexcept { return h_[j] > 0.0 ? sig_[j] : 0; }
+  NodeKind kind(std::size_t j) const noexcept { return kind_[j]; }
+  double node_angle(std::size_t j) const noexcept { return dtheta_[j]; }
+  double input() const noexcept { return x_; }
+  // Smallest element tension (O(M)).
+  double min_tension() const noexcept {
+    double mn = std::numeric_limits<double>::infinity();
+    for (std::size_t e = 1; e <= M_; ++e) mn = std::min(mn, tension(e));
+    return mn;
+  }
+  bool slack() const noexcept { return slack_; }
+  // Slack test used by slack(): min tension <= 0 (strict = false) or < 0.
+  void set_slack_strict(bool strict) noexcept { slack_strict_ = strict; }
+  long nonconverged() const noexcept { return nonconverged_; }
+  int last_solves() const noexcept { return last_solves_; }
+  double friction() const noexcept { return mu_; }
+  const ChainOptions& options() const noexcept { return opt_; }
+
+ private:
+  // One increment to xt with halving on failure.
+  void sub_increment(double xt, double dt, int depth) noexcept {
+    const bool can_halve =
+        depth < opt_.max_halvings && xt != x_ && last_solves_ < solve_budget();
+    if (try_increment(xt, dt, opt_.max_iterations, false)) {
+      commit(xt);
+      return;
+    }
+    if (can_halve) {
+      const double xm = 0.5 * (x_ + xt);
+      sub_increment(xm, 0.5 * dt, depth + 1);
+      sub_increment(xt, 0.5 * dt, depth + 1);
+      return;
+    }
+    const int extra = opt_.extra_iterations >= 0 ? opt_.extra_iterations
+                                                 : static_cast<int>(2 * M_ + 50);
+    const bool ok = try_increment(xt, dt, extra, true);
+    if (!ok) ++nonconverged_;
+    fact_valid_ = fact_valid_ && ok;
+    for (std::size_t j = 0; j <= M_; ++j)
+      if (!std::isfinite(w_[j])) {
+        fact_valid_ = false;
+        consistent_ = false;
+        fast_ok_ = false;
+        return;  // keep the previous state
+      }
+    commit(xt, ok);
+  }
+
+  long solve_budget() const noexcept {
+    return 64L * opt_.max_iterations * opt_.max_substeps;
+  }
+
+  void commit(double xt, bool converged = true) noexcept {
+    consistent_ = converged && fact_valid_;
+    u_.swap(w_);
+    sig_.swap(sw_);
+    x_ = xt;
+    xref_ = xt;
+    lazy_ = 0.0;
+    // T_ already holds the tensions of the accepted solution (now in u_).
+    double mn = std::numeric_limits<double>::infinity();
+    for (std::size_t e = 1; e <= M_; ++e) mn = std::min(mn, T_[e]);
+    slack_ = slack_strict_ ? (mn < 0.0) : (mn <= 0.0);
+    fast_ok_ = false;
+    if (consistent_ && !has_damper_ && mn > 0.0 && opt_.fast_path) compute_interval();
+  }
+
+  // Fold the lazy offset into u_ (before anything that needs u_ itself).
+  void materialize() noexcept {
+    if (lazy_ != 0.0) {
+      for (std::size_t j = 0; j <= M_; ++j)
+        u_[j] = kind_[j] == NodeKind::Driven ? x_ : u_[j] + lazy_ * z_[j];
+      lazy_ = 0.0;
+    }
+    xref_ = x_;
+    fast_ok_ = false;
+  }
+
+  // With the map fixed, u = u_ + X z (X = x - xref_) and every tension is
+  // linear in X. The map stays valid (the plain active-set loop would accept
+  // it on its first iteration) while every stuck node keeps |net| <= C,
+  // every tension stays > 0 and no slipping node moves backwards; the first
+  // two give an interval of X, the last the allowed directions of motion.
+  // Conservative (no tolerances), so leaving the fast path early is harmless.
+  void compute_interval() noexcept {
+    double lo = -std::numeric_limits<double>::infinity();
+    double hi = std::numeric_limits<double>::infinity();
+    bool ok = true, up = true, down = true;
+    auto add = [&](double f0, double f1) {  // f0 + X f1 <= 0
+      if (f0 > 0.0) ok = false;
+      if (f1 > 0.0) hi = std::min(hi, -f0 / f1);
+      else if (f1 < 0.0) lo = std::max(lo, -f0 / f1);
+    };
+    for (std::size_t e = 1; e <= M_; ++e) add(-T_[e], -k_[e] * (z_[e] - z_[e - 1]));
+    for (std::size_t j = 0; j <= M_; ++j) {
+      const double hj = h_[j];
+      if (!(hj > 0.0)) continue;
+      if (sig_[j] != 0) {
+        const double zs = z_[j] * static_cast<double>(sig_[j]);
+        if (zs > 0.0) down = false;
+        if (zs < 0.0) up = false;
+        continue;
+      }
+      const double dTl = j >= 1 ? k_[j] * (z_[j] - z_[j - 1]) : 0.0;
+      const double dTr = j < M_ ? k_[j + 1] * (z_[j + 1] - z_[j]) : 0.0;
+      const double net0 = T_[j + 1] - T_[j], dnet = dTr - dTl;
+      const double sum0 = T_[j + 1] + T_[j], dsum = dTr + dTl;
+      add(net0 - hj * sum0, dnet - hj * dsum);
+      add(-net0 - hj * sum0, -dnet - hj * dsum);
+    }
+    fast_ok_ = ok && lo <= 0.0 && hi >= 0.0;
+    xlo_ = xref_ + lo;
+    xhi_ = xref_ + hi;
+    up_ = up;
+    down_ = down;
+  }
+
+  void compute_tensions(const double* u) noexcept {
+    T_[0] = 0.0;
+    T_[M_ + 1] = 0.0;
+    for (std::size_t e = 1; e <= M_; ++e) T_[e] = T0_[e] + k_[e] * (u[e] - u[e - 1]);
+  }
+
+  // Active-set loop from the committed state toward input xt. Leaves the
+  // solution in w_, its map in sw_ and its tensions in T_.
+  //
+  // Shortcut (exact up to rounding): when the committed state u_ was solved
+  // with the current matrix (same stick/slip map and angles, no damper), the
+  // right-hand side changes only in the driven rows, by dx, so the new solution
+  // is u_ + dx z with z = A^{-1} e_driven, cached by the last full solve.
+  bool try_increment(double xt, double dt, int max_it, bool from_work) noexcept {
+    if (!from_work) std::copy(sig_.begin(), sig_.end(), sw_.begin());
+    const double inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;
+    const bool damped = has_damper_;  // the matrix then depends on dt
+    for (int it = 0; it < max_it; ++it) {
+      if (it == 0 && !from_work && fact_valid_ && consistent_ && !damped && opt_.fast_path) {
+        const double dx = xt - x_;
+        for (std::size_t j = 0; j <= M_; ++j) w_[j] = u_[j] + dx * z_[j];
+        for (std::size_t j = 0; j <= M_; ++j)
+          if (kind_[j] == NodeKind::Driven) w_[j] = xt;
+      } else {
+        solve(xt, inv_dt);
+      }
+      ++last_solves_;
+      compute_tensions(w_.data());
+      if (check() == 0) return true;
+      fact_valid_ = false;
+    }
+    return false;
+  }
+
+  // Assemble and solve the tridiagonal system (Thomas algorithm) into w_, and
+  // the same matrix against the driven-row indicator into z_.
+  void solve(double xt, double inv_dt) noexcept {
+    double cprev = 0.0, dprev = 0.0, zprev = 0.0;
+    for (std::size_t j = 0; j <= M_; ++j) {
+      double l, b, c, d;
+      const NodeKind kd = kind_[j];
+      if (kd == NodeKind::Driven) {
+        cp_[j] = 0.0;
+        dp_[j] = xt;
+        zp_[j] = 1.0;
+        cprev = 0.0;
+        dprev = xt;
+        zprev = 1.0;
+        continue;
+      }
+      if (kd == NodeKind::Sheath) {
+        const double hj = h_[j];
+        if (hj > 0.0 && sw_[j] == 0) {
+          cp_[j] = 0.0;
+          dp_[j] = u_[j];
+          zp_[j] = 0.0;
+          cprev = 0.0;
+          dprev = u_[j];
+          zprev = 0.0;
+          continue;
+        }
+        const double hs = hj * static_cast<double>(sw_[j]);
+        const double p = 1.0 - hs, q = 1.0 + hs;
+        l = q * k_[j];
+        c = p * k_[j + 1];
+        b = -(c + l);
+        d = -(p * T0_[j + 1] - q * T0_[j]);
+      } else {  // Load
+        const double cd = cl_[j] * inv_dt;
+        l = k_[j];
+        c = k_[j + 1];
+        b = -(c + l + kl_[j] + cd);
+        d = -(T0_[j + 1] - T0_[j]) + F0_[j] - cd * u_[j];
+      }
+      const double inv = 1.0 / (b - l * cprev);
+      cprev = c * inv;
+      dprev = (d - l * dprev) * inv;
+      zprev = -l * zprev * inv;
+      cp_[j] = cprev;
+      dp_[j] = dprev;
+      zp_[j] = zprev;
+    }
+    double next = dp_[M_], znext = zp_[M_];
+    w_[M_] = next;
+    z_[M_] = znext;
+    for (std::size_t j = M_; j-- > 0;) {
+      next = dp_[j] - cp_[j] * next;
+      znext = zp_[j] - cp_[j] * znext;
+      w_[j] = next;
+      z_[j] = znext;
+    }
+    fact_valid_ = true;
+  }
+
+  // Flip the stick/slip map where the solution violates it; returns flips.
+  // A branch-free counting pass first (the common case: nothing flips), then
+  // the flipping pass only when needed. Only sheath nodes have h_ > 0.
+  int check() noexcept {
+    int viol = 0;
+    for (std::size_t j = 0; j <= M_; ++j) viol += violates(j) ? 1 : 0;
+    if (viol == 0) return 0;
+    int flips = 0;
+    for (std::size_t j = 0; j <= M_; ++j) {
+      if (!violates(j)) continue;
+      if (sw_[j] == 0) sw_[j] = T_[j + 1] > T_[j] ? 1 : -1;
+      else sw_[j] = 0;
+      ++flips;
+    }
+    return flips;
+  }
+
+  bool violates(std::size_t j) const noexcept {
+    const double hj = h_[j];
+    const double Tl = T_[j], Tr = T_[j + 1];
+    const double s = static_cast<double>(sw_[j]);
+    const double net = Tr - Tl;
+    const double sum = Tl + Tr;
+    const double cap = hj * (sum > 0.0 ? sum : 0.0);
+    const double tol = 1e-9 * (std::fabs(Tl) + std::fabs(Tr)) + 1e-12;
+    const double du = w_[j] - u_[j];
+    const double eps = 1e-13 * (std::fabs(u_[j]) + std::fabs(w_[j])) + 1e-18;
+    const bool stuck_v = (s == 0.0) & (std::fabs(net) > cap + tol);
+    const bool slip_v = (s != 0.0) & (du * s < -eps);
+    return (hj > 0.0) & (stuck_v | slip_v);
+  }
+
+  std::size_t M_ = 0;
+  std::vector<NodeKind> kind_;
+  std::vector<double> h_, dtheta_;
+  std::vector<double> k_, T0_;
+  std::vector<double> F0_, kl_, cl_;
+  std::vector<double> u_, w_;
+  std::vector<signed char> sig_, sw_;
+  std::vector<double> cp_, dp_, zp_, z_, T_;
+  ChainOptions opt_;
+  double mu_ = 0.0;
+  double x_ = 0.0;
+  long nonconverged_ = 0;
+  int last_solves_ = 0;
+  bool has_damper_ = false;
+  bool initialised_ = false;
+  bool dirty_ = true;
+  bool slack_ = false;
+  bool slack_strict_ = false;
+  bool fast_ok_ = false;     // [xlo_, xhi_] and up_/down_ describe the committed map
+  bool up_ = false, down_ = false;
+  double xlo_ = 0.0, xhi_ = 0.0, xref_ = 0.0, lazy_ = 0.0;
+  bool fact_valid_ = false;  // cp_/z_ belong to the matrix of the current map sw_
+  bool consistent_ = false;  // u_ solves that matrix (committed from a converged solve)
+};
+
+}  // namespace tendonsheath

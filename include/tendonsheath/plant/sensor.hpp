@@ -1,0 +1,78 @@
+// An encoder-like sensor: y = quantise(x + noise), with Gaussian noise of
+// standard deviation noise_std and quantisation to multiples of resolution
+// (0: none). The noise comes from a seeded splitmix64 generator and a
+// Box-Muller transform, so a seed gives the same sequence on every platform.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "../validate.hpp"
+
+namespace tendonsheath {
+
+struct SensorParams {
+  double resolution = 0.0;  // quantisation step (same unit as x), 0 = none
+  double noise_std = 0.0;   // Gaussian noise standard deviation
+  std::uint64_t seed = 0;
+};
+
+class Sensor {
+  static constexpr double kPi = 3.14159265358979323846;
+
+ public:
+  using Params = SensorParams;
+
+  explicit Sensor(const Params& p) : p_(p) {
+    require_non_negative(p.resolution, "Sensor", "resolution");
+    require_non_negative(p.noise_std, "Sensor", "noise_std");
+    reset();
+  }
+  const Params& params() const noexcept { return p_; }
+
+  void reset() noexcept {
+    state_ = p_.seed;
+    have_spare_ = false;
+    last_ = 0.0;
+  }
+
+  // One reading of x; a non-finite x repeats the last reading.
+  double measure(double x) noexcept {
+    if (!std::isfinite(x)) return last_;
+    double y = x;
+    if (p_.noise_std > 0.0) y += p_.noise_std * gaussian();
+    if (p_.resolution > 0.0) y = p_.resolution * std::round(y / p_.resolution);
+    last_ = y;
+    return y;
+  }
+
+ private:
+  std::uint64_t next() noexcept {
+    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+  }
+  double uniform01() noexcept {  // in (0, 1)
+    return (static_cast<double>(next() >> 11) + 0.5) * (1.0 / 9007199254740992.0);
+  }
+  double gaussian() noexcept {
+    if (have_spare_) {
+      have_spare_ = false;
+      return spare_;
+    }
+    const double u1 = uniform01(), u2 = uniform01();
+    const double r = std::sqrt(-2.0 * std::log(u1));
+    spare_ = r * std::sin(2.0 * kPi * u2);
+    have_spare_ = true;
+    return r * std::cos(2.0 * kPi * u2);
+  }
+
+  Params p_;
+  std::uint64_t state_ = 0;
+  double spare_ = 0.0;
+  double last_ = 0.0;
+  bool have_spare_ = false;
+};
+
+}  // namespace tendonsheath

@@ -1,0 +1,81 @@
+// Batch simulation of a plant (optionally behind a motor and with a sensor),
+// with route changes given as a compact schedule: the whole loop in C++.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <string>
+
+#include "../validate.hpp"
+#include "motor.hpp"
+#include "sensor.hpp"
+
+namespace tendonsheath {
+
+// Route changes: before sample index[i] the plant's node angles become row i
+// of `angles` (count rows of `width` values, row-major).
+struct RouteSchedule {
+  const std::size_t* index = nullptr;
+  const double* angles = nullptr;
+  std::size_t count = 0;
+  std::size_t width = 0;
+};
+
+struct PlantTrace {
+  double* q_out = nullptr;           // plant output per sample (required)
+  double* q_in = nullptr;            // plant input (motor position) per sample, optional
+  unsigned char* slack = nullptr;    // slack flag per sample, optional
+  double* min_tension = nullptr;     // smallest tension per sample, optional
+  double* measured = nullptr;        // sensor reading of q_out per sample, optional
+};
+
+template <class Plant>
+void check_schedule(const Plant& plant, const RouteSchedule& s, std::size_t n, const char* where) {
+  if (s.count == 0) return;
+  require(s.width == plant.n_node_angles(), where,
+          "route schedule rows hold " + std::to_string(s.width) + " node angles, the plant needs " +
+              std::to_string(plant.n_node_angles()));
+  for (std::size_t i = 0; i < s.count; ++i) {
+    require(s.index[i] < n, where,
+            "route schedule index " + std::to_string(s.index[i]) + " is beyond the input");
+    require(i == 0 || s.index[i] > s.index[i - 1], where,
+            "route schedule indices must be strictly increasing");
+    for (std::size_t j = 0; j < s.width; ++j) {
+      const double a = s.angles[i * s.width + j];
+      require(std::isfinite(a) && a >= 0.0, where,
+              "route schedule angle [" + std::to_string(i) + ", " + std::to_string(j) +
+                  "] must be finite and >= 0 (got " + detail::format_value(a) + ")");
+    }
+  }
+}
+
+// Starts from plant.reset() (at rest, current route); t may be nullptr when
+// there is no motor and the load has no damper (dt = 0).
+template <class Plant>
+void simulate_plant(Plant& plant, Motor* motor, Sensor* sensor, const double* t, const double* u,
+                    std::size_t n, const RouteSchedule& sched, const PlantTrace& out,
+                    const char* where) {
+  check_series(t, u, n, where);
+  require(motor == nullptr || t != nullptr, where, "a motor needs the time vector t");
+  check_schedule(plant, sched, n, where);
+  plant.reset();
+  if (motor) motor->reset();
+  if (sensor) sensor->reset();
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    while (next < sched.count && sched.index[next] == k) {
+      plant.set_node_angles(sched.angles + next * sched.width);
+      ++next;
+    }
+    const double dt = (k == 0 || t == nullptr) ? 0.0 : t[k] - t[k - 1];
+    const double qin = motor ? motor->step(u[k], dt, plant.drive_reaction()) : u[k];
+    const double q = plant.step(qin, dt);
+    out.q_out[k] = q;
+    if (out.q_in) out.q_in[k] = qin;
+    if (out.slack) out.slack[k] = plant.slack() ? 1 : 0;
+    if (out.min_tension) out.min_tension[k] = plant.min_tension();
+    if (out.measured) out.measured[k] = sensor ? sensor->measure(q) : q;
+  }
+}
+
+}  // namespace tendonsheath

@@ -1,0 +1,151 @@
+// One tendon in one sheath (spec A.1-A.3): proximal displacement in, distal
+// displacement out (metres), with a distal load law F = F0 + k x_out that
+// resists pulling. The tendon is at rest with uniform tension F0 (the load
+// at x_out = 0), so F0 > 0 unless the load is a plain spring.
+//
+// Chain (spec A.5): node 0 is the distal end (load node), nodes 1..N-1 are
+// sheath nodes, node N is the driven proximal end; positive displacement
+// points toward the proximal end (pulling).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "../route.hpp"
+#include "../validate.hpp"
+#include "friction_chain.hpp"
+
+namespace tendonsheath {
+
+struct SingleTendonParams {
+  double friction = 0.1;        // mu
+  double stiffness = 2.4e4;     // EA, N
+  int elements = 100;           // N >= 2
+  double load_force = 10.0;     // F0, N: distal load (and tendon tension) at x_out = 0
+  double load_stiffness = 0.0;  // k, N/m
+  ChainOptions options;
+};
+
+namespace detail {
+inline void validate_tendon(double mu, double EA, int N, const char* w) {
+  require_non_negative(mu, w, "friction");
+  require_positive(EA, w, "stiffness");
+  require(N >= 2, w, "elements must be >= 2 (got " + std::to_string(N) + ")");
+  require(N <= 1000000, w, "elements must be <= 1000000 (got " + std::to_string(N) + ")");
+}
+
+// Default sub-increment: 1/20 of the backlash half-width T L tanh(a/2)/EA;
+// 0 (no limit) without friction.
+inline double default_increment(double T, double L, double EA, double a) noexcept {
+  const double e = T * L * std::tanh(0.5 * a) / EA;
+  return e > 0.0 ? e / 20.0 : 0.0;
+}
+
+inline void check_route_length(const Route& r, double L, const char* w) {
+  require(std::fabs(r.length() - L) <= 1e-9 * L, w,
+          "the new route is " + format_value(r.length()) + " m long but the sheath is " +
+              format_value(L) + " m (a route may bend, not change length)");
+}
+}  // namespace detail
+
+class SingleTendonPlant {
+ public:
+  using Params = SingleTendonParams;
+
+  SingleTendonPlant(const Params& p, const Route& route)
+      : p_(p), N_(static_cast<std::size_t>(p.elements > 0 ? p.elements : 0)), L_(route.length()) {
+    const char* w = "SingleTendonPlant";
+    detail::validate_tendon(p.friction, p.stiffness, p.elements, w);
+    require_finite(p.load_force, w, "load_force");
+    require_non_negative(p.load_stiffness, w, "load_stiffness");
+    require(p.load_force > 0.0 || p.load_stiffness > 0.0, w,
+            "the load must pull the tendon: load_force > 0 or load_stiffness > 0");
+    validate_chain_options(p.options, w);
+    chain_ = FrictionChain(N_);
+    const double k = p.stiffness * static_cast<double>(N_) / L_;
+    for (std::size_t e = 1; e <= N_; ++e) chain_.set_element(e, k, p.load_force);
+    chain_.set_load(0, p.load_force, p.load_stiffness, 0.0);
+    chain_.set_driven(N_);
+    chain_.set_options(p.options);
+    chain_.set_friction(p.friction);
+    chain_.set_slack_strict(true);  // a plain spring load starts at exactly zero tension
+    angles_.assign(N_ - 1, 0.0);
+    work_.assign(N_, 0.0);
+    set_route(route);
+    reset();
+  }
+
+  const Params& params() const noexcept { return p_; }
+  std::size_t elements() const noexcept { return N_; }
+  double length() const noexcept { return L_; }
+  double total_angle() const noexcept { return total_angle_; }
+
+  void reset() noexcept { chain_.reset(); }
+
+  // Proximal displacement in (m), distal displacement out (m).
+  double step(double x_in, double dt = 0.0) noexcept {
+    chain_.step(x_in, dt);
+    return output();
+  }
+  double output() const noexcept { return chain_.u(0); }
+  double input() const noexcept { return chain_.input(); }
+
+  // Route changes (length must stay the same).
+  void set_route(const Route& r) {
+    detail::check_route_length(r, L_, "SingleTendonPlant.set_route");
+    r.node_angles(N_, angles_.data(), work_.data());
+    set_node_angles(angles_.data());
+  }
+  // N-1 lumped angles of the interior sheath nodes, proximal to distal.
+  void set_node_angles(const double* a) noexcept {
+    double sum = 0.0;
+    for (std::size_t i = 1; i < N_; ++i) {
+      chain_.set_node_angle(N_ - i, a[i - 1]);
+      sum += a[i - 1];
+    }
+    total_angle_ = sum;
+    update_increment();
+  }
+  std::size_t n_node_angles() const noexcept { return N_ - 1; }
+  void node_angles(const Route& r, double* out) {
+    detail::check_route_length(r, L_, "SingleTendonPlant");
+    std::vector<double> work(N_);
+    r.node_angles(N_, out, work.data());
+  }
+
+  // Tensions of the N elements, proximal to distal.
+  void tensions(double* out) const noexcept {
+    for (std::size_t i = 1; i <= N_; ++i) out[i - 1] = chain_.tension(N_ - i + 1);
+  }
+  // Stick/slip state of the N-1 interior nodes, proximal to distal:
+  // +1 slipping toward the proximal end (pulled), -1 toward the distal end, 0 stuck.
+  void slip_state(int* out) const noexcept {
+    for (std::size_t i = 1; i < N_; ++i) out[i - 1] = chain_.state(N_ - i);
+  }
+  // Force the tendon exerts on the actuator, in the direction of positive input.
+  double drive_reaction() const noexcept { return -chain_.tension(N_); }
+  bool slack() const noexcept { return chain_.slack(); }
+  double min_tension() const noexcept { return chain_.min_tension(); }
+  long nonconverged() const noexcept { return chain_.nonconverged(); }
+  const FrictionChain& chain() const noexcept { return chain_; }
+
+ private:
+  void update_increment() noexcept {
+    if (p_.options.max_increment > 0.0) return;
+    ChainOptions o = chain_.options();
+    const double T = p_.load_force > 1.0 ? p_.load_force : 1.0;
+    o.max_increment = detail::default_increment(T, L_, p_.stiffness, p_.friction * total_angle_);
+    chain_.set_options(o);
+  }
+
+  Params p_;
+  std::size_t N_;
+  double L_;
+  double total_angle_ = 0.0;
+  FrictionChain chain_;
+  std::vector<double> angles_, work_;
+};
+
+}  // namespace tendonsheath

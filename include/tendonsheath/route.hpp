@@ -1,0 +1,217 @@
+// Route of a sheath: its centreline described by the accumulated curve angle
+// theta(s) = int_0^s |kappa| ds along the arc length s in [0, L] (spec A.1, A.5).
+//
+// A route is stored as samples (s_i, theta_i), s non-decreasing from 0 to L,
+// theta non-decreasing from 0; theta is linear between samples. Two samples
+// with the same s describe a jump (a discrete turning angle of a polyline);
+// theta is right-continuous there. Only differences theta(b) - theta(a) are
+// used by the plants, so every jump lands in exactly one element and the
+// element angles always add up to the total angle.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "validate.hpp"
+
+namespace tendonsheath {
+
+class Route {
+ public:
+  // Samples of the accumulated angle; validated (finite, s non-decreasing from
+  // 0 to L > 0, theta non-decreasing from 0).
+  Route(std::vector<double> s, std::vector<double> theta) : s_(std::move(s)), th_(std::move(theta)) {
+    const char* w = "Route";
+    require(s_.size() == th_.size(), w,
+            "s and theta have different lengths (" + std::to_string(s_.size()) + " and " +
+                std::to_string(th_.size()) + ")");
+    require(s_.size() >= 2, w, "at least two samples are needed");
+    for (std::size_t i = 0; i < s_.size(); ++i) {
+      require(std::isfinite(s_[i]), w,
+              "s[" + std::to_string(i) + "] is not finite (" + detail::format_value(s_[i]) + ")");
+      require(std::isfinite(th_[i]), w,
+              "theta[" + std::to_string(i) + "] is not finite (" + detail::format_value(th_[i]) +
+                  ")");
+    }
+    require(s_[0] == 0.0, w, "s must start at 0 (got " + detail::format_value(s_[0]) + ")");
+    require(th_[0] == 0.0, w, "theta must start at 0 (got " + detail::format_value(th_[0]) + ")");
+    for (std::size_t i = 1; i < s_.size(); ++i) {
+      require(s_[i] >= s_[i - 1], w,
+              "s must be non-decreasing (s[" + std::to_string(i) + "] = " +
+                  detail::format_value(s_[i]) + " < " + detail::format_value(s_[i - 1]) + ")");
+      require(th_[i] >= th_[i - 1], w,
+              "theta must be non-decreasing (theta[" + std::to_string(i) +
+                  "] = " + detail::format_value(th_[i]) + " < " + detail::format_value(th_[i - 1]) +
+                  ")");
+    }
+    require(s_.back() > 0.0, w, "length must be > 0 (got " + detail::format_value(s_.back()) + ")");
+  }
+
+  // Constant curvature: theta(s) = total_angle * s / length.
+  static Route uniform(double length, double total_angle) {
+    require_positive(length, "Route.uniform", "length");
+    require_non_negative(total_angle, "Route.uniform", "total_angle");
+    return Route({0.0, length}, {0.0, total_angle});
+  }
+
+  // Consecutive arcs of constant curvature: (length > 0, bend angle). A bend
+  // to the other side (negative angle) accumulates |angle|.
+  static Route arcs(const std::vector<std::pair<double, double>>& pieces) {
+    const char* w = "Route.arcs";
+    require(!pieces.empty(), w, "at least one (length, angle) piece is needed");
+    std::vector<double> s{0.0}, th{0.0};
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const double len = pieces[i].first, ang = pieces[i].second;
+      require(std::isfinite(len) && len > 0.0, w,
+              "length of piece " + std::to_string(i) + " must be > 0 (got " +
+                  detail::format_value(len) + ")");
+      require(std::isfinite(ang), w,
+              "angle of piece " + std::to_string(i) + " is not finite (" +
+                  detail::format_value(ang) + ")");
+      s.push_back(s.back() + len);
+      th.push_back(th.back() + std::fabs(ang));
+    }
+    return Route(std::move(s), std::move(th));
+  }
+
+  // A 3-D polyline of K >= 2 points (xyz row-major, K x 3, metres). Each
+  // interior vertex adds its turning angle as a jump of theta at that vertex.
+  static Route from_points(const double* xyz, std::size_t k) {
+    const char* w = "Route.from_points";
+    require(k >= 2, w, "at least two points are needed (got " + std::to_string(k) + ")");
+    for (std::size_t i = 0; i < 3 * k; ++i)
+      require(std::isfinite(xyz[i]), w,
+              "point " + std::to_string(i / 3) + " is not finite (coordinate " +
+                  std::to_string(i % 3) + " = " + detail::format_value(xyz[i]) + ")");
+    std::vector<double> s{0.0}, th{0.0};
+    double prev[3] = {0, 0, 0};
+    for (std::size_t i = 0; i + 1 < k; ++i) {
+      const double d[3] = {xyz[3 * (i + 1)] - xyz[3 * i], xyz[3 * (i + 1) + 1] - xyz[3 * i + 1],
+                           xyz[3 * (i + 1) + 2] - xyz[3 * i + 2]};
+      const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      require(len > 0.0, w,
+              "points " + std::to_string(i) + " and " + std::to_string(i + 1) + " coincide");
+      if (i > 0) {
+        const double cx = prev[1] * d[2] - prev[2] * d[1];
+        const double cy = prev[2] * d[0] - prev[0] * d[2];
+        const double cz = prev[0] * d[1] - prev[1] * d[0];
+        const double turn = std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz),
+                                       prev[0] * d[0] + prev[1] * d[1] + prev[2] * d[2]);
+        if (turn > 0.0) {
+          s.push_back(s.back());
+          th.push_back(th.back() + turn);
+        }
+      }
+      s.push_back(s.back() + len);
+      th.push_back(th.back());
+      for (int c = 0; c < 3; ++c) prev[c] = d[c];
+    }
+    return Route(std::move(s), std::move(th));
+  }
+
+  // A sampled curvature profile kappa(s) (s strictly increasing, shifted to
+  // start at 0); theta is the trapezoidal integral of |kappa|.
+  static Route from_curvature(const double* s, const double* kappa, std::size_t n) {
+    const char* w = "Route.from_curvature";
+    require(n >= 2, w, "at least two samples are needed (got " + std::to_string(n) + ")");
+    for (std::size_t i = 0; i < n; ++i) {
+      require(std::isfinite(s[i]), w,
+              "s[" + std::to_string(i) + "] is not finite (" + detail::format_value(s[i]) + ")");
+      require(std::isfinite(kappa[i]), w,
+              "kappa[" + std::to_string(i) + "] is not finite (" + detail::format_value(kappa[i]) +
+                  ")");
+      if (i > 0)
+        require(s[i] > s[i - 1], w,
+                "s must be strictly increasing (s[" + std::to_string(i) +
+                    "] = " + detail::format_value(s[i]) + ")");
+    }
+    std::vector<double> ss(n), th(n);
+    ss[0] = 0.0;
+    th[0] = 0.0;
+    for (std::size_t i = 1; i < n; ++i) {
+      ss[i] = s[i] - s[0];
+      th[i] = th[i - 1] + 0.5 * (std::fabs(kappa[i]) + std::fabs(kappa[i - 1])) * (s[i] - s[i - 1]);
+    }
+    return Route(std::move(ss), std::move(th));
+  }
+
+  double length() const noexcept { return s_.back(); }
+  double total_angle() const noexcept { return th_.back(); }
+  const std::vector<double>& s() const noexcept { return s_; }
+  const std::vector<double>& theta() const noexcept { return th_; }
+
+  // theta(s), right-continuous at jumps; clamped outside [0, L].
+  double angle_at(double s) const noexcept {
+    if (!(s > 0.0)) return (s == 0.0 && s_[1] == 0.0) ? theta_right_of_zero() : 0.0;
+    if (s >= s_.back()) return th_.back();
+    // last i with s_i <= s (binary search)
+    std::size_t lo = 0, hi = s_.size() - 1;
+    while (hi - lo > 1) {
+      const std::size_t mid = (lo + hi) / 2;
+      if (s_[mid] <= s) lo = mid;
+      else hi = mid;
+    }
+    const double ds = s_[hi] - s_[lo];
+    if (ds <= 0.0) return th_[lo];
+    return th_[lo] + (th_[hi] - th_[lo]) * (s - s_[lo]) / ds;
+  }
+
+  // Angles of n equal elements (out[0..n-1], proximal to distal): the
+  // increments of theta over [e L/n, (e+1) L/n]. Allocation-free, O(n + K).
+  // A jump exactly at an element boundary goes to the element ending there;
+  // a jump at s = 0 goes to the first element. The sum is exactly theta(L)
+  // up to rounding.
+  void element_angles(std::size_t n, double* out) const noexcept {
+    const double L = s_.back();
+    double prev = 0.0;
+    std::size_t i = 0;  // samples [0, i) have s_ < current grid point
+    const std::size_t K = s_.size();
+    for (std::size_t e = 1; e <= n; ++e) {
+      double th;
+      if (e == n) {
+        th = th_.back();
+      } else {
+        const double x = L * static_cast<double>(e) / static_cast<double>(n);
+        // theta right-continuous at x: jumps located exactly at x are included
+        while (i < K && s_[i] <= x) ++i;  // now s_[i-1] <= x < s_[i]
+        const std::size_t lo = i - 1;
+        if (i >= K) {
+          th = th_.back();
+        } else {
+          const double ds = s_[i] - s_[lo];
+          th = ds > 0.0 ? th_[lo] + (th_[i] - th_[lo]) * (x - s_[lo]) / ds : th_[lo];
+        }
+      }
+      out[e - 1] = th - prev;
+      if (out[e - 1] < 0.0) out[e - 1] = 0.0;
+      prev = th;
+    }
+  }
+
+  // Lumped angles of the n-1 interior nodes of an n-element sheath
+  // (out[0..n-2], node 1 to node n-1, proximal to distal): half of each
+  // adjacent element, plus the outer halves of the two end elements (whose
+  // outer nodes are driven ends or the distal pulley). Their sum equals the
+  // total angle. Needs n >= 2; `work` holds n doubles (scratch).
+  void node_angles(std::size_t n, double* out, double* work) const noexcept {
+    element_angles(n, work);
+    for (std::size_t j = 1; j < n; ++j) out[j - 1] = 0.5 * (work[j - 1] + work[j]);
+    out[0] += 0.5 * work[0];
+    out[n - 2] += 0.5 * work[n - 1];
+  }
+
+ private:
+  double theta_right_of_zero() const noexcept {
+    std::size_t i = 0;
+    while (i + 1 < s_.size() && s_[i + 1] == 0.0) ++i;
+    return th_[i];
+  }
+
+  std::vector<double> s_;
+  std::vector<double> th_;
+};
+
+}  // namespace tendonsheath

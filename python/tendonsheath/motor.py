@@ -1,0 +1,93 @@
+"""Motor models between a command and the plant input (C++ core: plant/motor.hpp)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import _core as core
+from ._arrays import as_time_and_signal
+
+
+class Motor:
+    """A drive between the controller and the proximal pulley.
+
+    ``Motor.position(...)``: a position-controlled motor seen as a second-order lag
+    q'' = w^2 (q_cmd - q) - 2 zeta w q' (w = 2 pi bandwidth_hz) with speed and acceleration
+    limits; it starts at rest at the first command.
+    ``Motor.torque(...)``: J q'' + b q' = sat(tau_cmd, max_torque) + tau_tendons, for
+    controllers that command torque; the plant supplies the tendon torque on the pulley. It
+    starts at rest at q = 0.
+    """
+
+    def __init__(self, params):
+        self._params = params
+        self._engine = core.Motor(params)  # validates; ValueError names the parameter
+
+    @classmethod
+    def position(
+        cls,
+        bandwidth_hz: float = 1.5,
+        damping: float = 0.7,
+        max_speed: float = math.inf,
+        max_accel: float = math.inf,
+    ) -> Motor:
+        p = core.MotorParams()
+        p.kind = core.MotorKind.Position
+        p.bandwidth_hz = float(bandwidth_hz)
+        p.damping = float(damping)
+        p.max_speed = float(max_speed)
+        p.max_accel = float(max_accel)
+        return cls(p)
+
+    @classmethod
+    def torque(
+        cls,
+        inertia: float = 1e-2,
+        viscous: float = 0.2,
+        max_torque: float = math.inf,
+        max_speed: float = math.inf,
+    ) -> Motor:
+        p = core.MotorParams()
+        p.kind = core.MotorKind.Torque
+        p.inertia = float(inertia)
+        p.viscous = float(viscous)
+        p.max_torque = float(max_torque)
+        p.max_speed = float(max_speed)
+        return cls(p)
+
+    @property
+    def kind(self) -> str:
+        return "position" if self._params.kind == core.MotorKind.Position else "torque"
+
+    @property
+    def params(self) -> dict:
+        p = self._params
+        if self.kind == "position":
+            keys = ("bandwidth_hz", "damping", "max_speed", "max_accel")
+        else:
+            keys = ("inertia", "viscous", "max_torque", "max_speed")
+        return {k: getattr(p, k) for k in keys}
+
+    def reset(self) -> None:
+        self._engine.reset()
+
+    def step(self, command: float, dt: float, tau_ext: float = 0.0) -> float:
+        """Advance by dt; returns the motor position (rad)."""
+        return self._engine.step(float(command), float(dt), float(tau_ext))
+
+    def simulate(self, t, command) -> np.ndarray:
+        """Motor position for a command sequence, unloaded (starts from rest)."""
+        ts, us = as_time_and_signal(t, command, "command")
+        if ts is None:
+            raise ValueError("Motor.simulate: t is required")
+        m = core.Motor(self._params)
+        out = np.empty_like(us)
+        for k in range(us.size):
+            out[k] = m.step(us[k], 0.0 if k == 0 else ts[k] - ts[k - 1], 0.0)
+        return out
+
+    def __repr__(self) -> str:
+        inner = ", ".join(f"{k}={v:.6g}" for k, v in self.params.items())
+        return f"Motor.{self.kind}({inner})"

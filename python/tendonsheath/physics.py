@@ -1,0 +1,169 @@
+"""Closed forms of the capstan/Coulomb model (spec A.1-A.4, B), at the tendon level (metres, N).
+
+All functions take the friction coefficient ``mu``, lengths in m, the tendon stiffness ``EA``
+in N and angles in rad, and are safe at mu*Theta -> 0 (series, spec pitfall 7). Rotary
+quantities: divide a tendon displacement by the pulley radius to get an angle.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .route import Route
+
+_SMALL = 1e-6
+
+
+def _phi_minus(x):
+    """(1 - e^-x)/x, -> 1 - x/2 as x -> 0."""
+    x = np.asarray(x, dtype=np.float64)
+    safe = np.where(np.abs(x) < _SMALL, 1.0, x)
+    return np.where(np.abs(x) < _SMALL, 1.0 - x / 2 + x * x / 6, -np.expm1(-safe) / safe)
+
+
+def _phi_plus(x):
+    """(e^x - 1)/x, -> 1 + x/2 as x -> 0."""
+    x = np.asarray(x, dtype=np.float64)
+    safe = np.where(np.abs(x) < _SMALL, 1.0, x)
+    return np.where(np.abs(x) < _SMALL, 1.0 + x / 2 + x * x / 6, np.expm1(safe) / safe)
+
+
+def tanh_half_over(a):
+    """tanh(a/2)/a, -> 1/2 - a^2/24 as a -> 0."""
+    a = np.asarray(a, dtype=np.float64)
+    safe = np.where(np.abs(a) < 1e-4, 1.0, a)
+    return np.where(np.abs(a) < 1e-4, 0.5 - a * a / 24, np.tanh(safe / 2) / safe)
+
+
+def capstan_ratio(mu, total_angle, direction=1.0):
+    """Full-slip distal/proximal tension ratio T_d/T_p = exp(-direction mu Theta) (A1)."""
+    return np.exp(-np.asarray(direction) * np.asarray(mu) * np.asarray(total_angle))
+
+
+def shape_integrals(route: Route, mu: float) -> tuple[float, float]:
+    """g = (1/L) int e^{-mu theta} ds and G = (1/L) int e^{+mu theta} ds (spec A.2), exact for
+    the piecewise-linear theta(s) of a route."""
+    s, th = route.s, route.theta
+    ds = np.diff(s)
+    dth = np.diff(th) * mu
+    th0 = th[:-1] * mu
+    g = np.sum(ds * np.exp(-th0) * _phi_minus(dth)) / route.length
+    G = np.sum(ds * np.exp(th0) * _phi_plus(dth)) / route.length
+    return float(g), float(G)
+
+
+def backlash_half_width(length, EA, pretension, mu, total_angle):
+    """e_b = T0 L tanh(mu Theta/2) / EA: half the pull-pull dead zone, uniform curvature (A7)."""
+    return (
+        np.asarray(pretension)
+        * np.asarray(length)
+        * np.tanh(np.asarray(mu) * np.asarray(total_angle) / 2)
+        / np.asarray(EA)
+    )
+
+
+def load_offset(length, EA, load_force, mu, total_angle):
+    """e_L = F_L L tanh(a/2) / (EA a), a = mu Theta: the load shift of both branches (A7)."""
+    return (
+        np.asarray(load_force)
+        * np.asarray(length)
+        * tanh_half_over(np.asarray(mu) * np.asarray(total_angle))
+        / np.asarray(EA)
+    )
+
+
+def load_compliance(length, EA, mu, total_angle):
+    """C_L = L tanh(a/2) / (EA a) (m/N): output shift per newton of distal load."""
+    return np.asarray(length) * tanh_half_over(np.asarray(mu) * np.asarray(total_angle)) / EA
+
+
+def spring_slope(length, EA, mu, total_angle, k):
+    """Branch slope dx_out/dx_in = 1/(1 + k C_L) with a spring load F_L = k x_out (spec A.4)."""
+    return 1.0 / (1.0 + np.asarray(k) * load_compliance(length, EA, mu, total_angle))
+
+
+def dead_zone_width(length, EA, pretension, mu, total_angle):
+    """2 e_b: the input dead zone of a pull-pull pair, uniform curvature (A7)."""
+    return 2.0 * backlash_half_width(length, EA, pretension, mu, total_angle)
+
+
+def no_slack_limit(pretension, mu, total_angle):
+    """Largest distal load F_L before the released tendon goes slack: T0 (a/sinh a)(1 + e^-a)."""
+    a = np.asarray(mu) * np.asarray(total_angle)
+    safe = np.where(np.abs(a) < 1e-8, 1.0, a)
+    ratio = np.where(np.abs(a) < 1e-8, 1.0, safe / np.sinh(safe))
+    return np.asarray(pretension) * ratio * (1.0 + np.exp(-a))
+
+
+def pull_pull_offsets(
+    route1: Route,
+    EA: float,
+    pretension: float,
+    mu: float,
+    load_force: float = 0.0,
+    route2: Route | None = None,
+) -> tuple[float, float]:
+    """Steady full-slip offsets x_in - x_out = Delta_1 (m) on the forward and backward branch.
+
+    General (A5)/(A6) with the shape integrals g, G of each sheath (they may differ in shape
+    and length); with equal uniform sheaths this is (A7):
+    x_out = x_in - (L/EA) tanh(a/2) [T0 sigma + F_L/a].
+    """
+    route2 = route1 if route2 is None else route2
+    L1, L2 = route1.length, route2.length
+    a1, a2 = mu * route1.total_angle, mu * route2.total_angle
+    g1, G1 = shape_integrals(route1, mu)
+    g2, G2 = shape_integrals(route2, mu)
+    T0, F = pretension, load_force
+    rhs = T0 * (L1 + L2)
+    # forward: tendon 1 pulled (T1p e^{-mu theta1}), tendon 2 released (T2p e^{+mu theta2})
+    A = np.array([[L1 * g1, L2 * G2], [np.exp(-a1), -np.exp(a2)]])
+    t1f, _ = np.linalg.solve(A, [rhs, F])
+    fwd = L1 / EA * (t1f * g1 - T0)
+    # backward: tendon 1 released, tendon 2 pulled
+    B = np.array([[L1 * G1, L2 * g2], [np.exp(a1), -np.exp(-a2)]])
+    t1b, _ = np.linalg.solve(B, [rhs, F])
+    bwd = L1 / EA * (t1b * G1 - T0)
+    return float(fwd), float(bwd)
+
+
+def pull_pull_dead_zone(route1: Route, EA, pretension, mu, load_force=0.0, route2=None) -> float:
+    """Input dead-zone width (m) of a pull-pull pair: forward minus backward steady offset."""
+    f, b = pull_pull_offsets(route1, EA, pretension, mu, load_force, route2)
+    return f - b
+
+
+def single_tendon_dead_zone(route: Route, EA, distal_tension, mu) -> float:
+    """(A4): input travel to reverse a single tendon pulled at distal tension T_d (m).
+
+    b = (L/EA) T_p0 [g - e^{-2a} G] with T_p0 = T_d e^{a}; uniform: 4 T_d L sinh^2(a/2)/(EA a).
+    """
+    a = mu * route.total_angle
+    g, G = shape_integrals(route, mu)
+    Tp0 = distal_tension * np.exp(a)
+    return float(route.length / EA * Tp0 * (g - np.exp(-2 * a) * G))
+
+
+def single_tendon_elongation(route: Route, EA, proximal_tension, mu, reference_tension, sign=1):
+    """(A3) in full slip: Delta = (L/EA)(T_p g - T_ref) when pulled (sign +1),
+    (L/EA)(T_p G - T_ref) when released (sign -1)."""
+    g, G = shape_integrals(route, mu)
+    shape = g if sign > 0 else G
+    return float(route.length / EA * (proximal_tension * shape - reference_tension))
+
+
+__all__ = [
+    "backlash_half_width",
+    "capstan_ratio",
+    "dead_zone_width",
+    "load_compliance",
+    "load_offset",
+    "no_slack_limit",
+    "pull_pull_dead_zone",
+    "pull_pull_offsets",
+    "shape_integrals",
+    "single_tendon_dead_zone",
+    "single_tendon_elongation",
+    "spring_slope",
+    "tanh_half_over",
+]

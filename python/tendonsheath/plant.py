@@ -1,0 +1,528 @@
+"""Physics plants of spec A.5: quasi-static N-element tendon-sheath simulators (C++ core).
+
+* :class:`PullPullPlant`: the bidirectional pair of seeds 000/002; pulley angle in, pulley
+  angle out (rad).
+* :class:`ContinuumPlant`: the pair bending a continuum segment (seed 001); output the bending
+  angle (rad).
+* :class:`SingleTendonPlant`: one tendon, proximal displacement in, distal displacement out (m).
+
+Every plant simulates in C++ (``simulate``) or streams (``reset``/``step``); its route may change
+at any step (``set_route``, or ``routes=`` a callable of time in ``simulate``). Tensions and the
+stick/slip map are readable after any step. Slack (a tendon tension <= 0) invalidates the model:
+it is flagged per sample in the full result and raises a :class:`SlackWarning`.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _core as core
+from . import physics
+from ._arrays import as_time_and_signal
+from .loads import (
+    ConstantForce,
+    ConstantTorque,
+    LinearSpring,
+    SpringDamper,
+    SpringPreload,
+    TorsionalSpring,
+)
+from .motor import Motor
+from .route import Route
+from .sensor import Sensor
+
+
+class SlackWarning(RuntimeWarning):
+    """A tendon went slack (tension <= 0): the quasi-static model is not valid there."""
+
+
+@dataclass
+class SimulationResult:
+    """Everything a plant simulation produced (``plant.simulate(..., full=True)``).
+
+    ``command`` is what was given, ``q_in`` the plant input after the motor (equal to the
+    command without a motor), ``q_out`` the output, ``measured`` the sensor reading of q_out (or
+    q_out without a sensor), ``slack`` a per-sample flag, ``tensions`` the final tensions
+    (rows: tendons, proximal to distal), ``nonconverged`` the count of accepted but
+    unconverged active-set increments (0 in normal use).
+    """
+
+    t: np.ndarray | None
+    command: np.ndarray
+    q_in: np.ndarray
+    q_out: np.ndarray
+    measured: np.ndarray
+    slack: np.ndarray
+    tensions: np.ndarray
+    nonconverged: int
+
+    @property
+    def any_slack(self) -> bool:
+        return bool(self.slack.any())
+
+    @property
+    def first_slack_index(self) -> int | None:
+        idx = np.flatnonzero(self.slack)
+        return int(idx[0]) if idx.size else None
+
+
+def _options(elements, max_increment, fast_path):
+    o = core.ChainOptions()
+    if max_increment is not None:
+        o.max_increment = float(max_increment)
+    o.fast_path = bool(fast_path)
+    return o
+
+
+def _check_elements(elements, cls):
+    if isinstance(elements, bool) or not isinstance(elements, int | np.integer):
+        raise ValueError(f"{cls}: elements must be an integer >= 2 (got {elements!r})")
+    if elements < 2:
+        raise ValueError(f"{cls}: elements must be >= 2 (got {elements})")
+    return int(elements)
+
+
+def _check_route(route, name, cls):
+    if not isinstance(route, Route):
+        raise ValueError(f"{cls}: {name} must be a tendonsheath.Route (got {type(route).__name__})")
+    return route
+
+
+class _Plant:
+    """Shared streaming/batch behaviour; subclasses build ``_engine`` and describe their routes."""
+
+    _rows = 1
+    _engine = None
+    motor: Motor | None = None
+    sensor: Sensor | None = None
+
+    def _setup_io(self, motor, sensor):
+        if motor is not None and not isinstance(motor, Motor):
+            raise ValueError(f"{type(self).__name__}: motor must be a tendonsheath.Motor or None")
+        if sensor is not None and not isinstance(sensor, Sensor):
+            raise ValueError(f"{type(self).__name__}: sensor must be a tendonsheath.Sensor or None")
+        self.motor = motor
+        self.sensor = sensor
+        self._motor_engine = core.Motor(motor._params) if motor is not None else None
+
+    # -- streaming -------------------------------------------------------------------
+    def reset(self) -> None:
+        """Back to rest: uniform pretension, everything stuck; the next step starts there."""
+        self._engine.reset()
+        if self._motor_engine is not None:
+            self._motor_engine.reset()
+
+    def step(self, command: float, dt: float = 0.0) -> float:
+        """One sample: the command goes through the motor (if any), then the plant.
+
+        dt (s) is needed by a motor and by a damper load. A non-finite command holds the output.
+        """
+        u = float(command)
+        if self._motor_engine is not None:
+            u = self._motor_engine.step(u, float(dt), self._engine.drive_reaction())
+        return self._engine.step(u, float(dt))
+
+    def output(self) -> float:
+        return self._engine.output()
+
+    def input(self) -> float:
+        """The plant input after the motor (rad or m)."""
+        return self._engine.input()
+
+    def tensions(self) -> np.ndarray:
+        """Element tensions (N) after the last step, proximal to distal."""
+        t = self._engine.tensions()
+        return t[0] if self._rows == 1 else t
+
+    def slip_state(self) -> np.ndarray:
+        """Stick/slip map of the interior sheath nodes, proximal to distal: +1 slipping toward
+        the proximal end (the tendon is pulled), -1 toward the distal end, 0 stuck."""
+        s = self._engine.slip_state()
+        return s[0] if self._rows == 1 else s
+
+    def slack(self) -> bool:
+        """True when a tendon tension is <= 0 after the last step."""
+        return self._engine.slack()
+
+    def min_tension(self) -> float:
+        return self._engine.min_tension()
+
+    @property
+    def elements(self) -> int:
+        return self._engine.elements
+
+    def element_positions(self, sheath: int = 1) -> np.ndarray:
+        """Arc length (m) of each element's midpoint along its sheath, proximal to distal."""
+        L = self._lengths()[sheath - 1]
+        n = self.elements
+        return (np.arange(n) + 0.5) * L / n
+
+    # -- batch -----------------------------------------------------------------------
+    def simulate(self, t, command, routes: Callable | None = None, full: bool = False):
+        """Simulate from rest (on the current route) without touching the streaming state.
+
+        ``t`` (s) may be None only without a motor, a damper and a route schedule. ``routes``
+        is None or a callable t -> Route (or a (route1, route2) pair for a pull-pull plant); it
+        is evaluated once per sample in Python and only the changes are passed to C++.
+        Returns q_out, or a :class:`SimulationResult` with ``full=True``. Warns
+        (:class:`SlackWarning`) with the time of the first slack sample.
+        """
+        name = f"{type(self).__name__}.simulate"
+        ts, us = as_time_and_signal(t, command, "command")
+        if ts is None and (self.motor is not None or routes is not None or self._needs_time()):
+            raise ValueError(f"{name}: t is required with a motor, a damper or routes=")
+        idx = angles = None
+        if routes is not None:
+            if not callable(routes):
+                raise ValueError(f"{name}: routes must be None or a callable t -> Route")
+            idx, angles = self._schedule(ts, routes)
+        motor = self._motor_engine
+        motor_arg = core.Motor(self.motor._params) if motor is not None else None
+        sensor_arg = core.Sensor(self.sensor._params) if self.sensor is not None else None
+        q_out, q_in, slack, meas, tens, noncon = self._engine.simulate(
+            ts, us, motor_arg, sensor_arg, idx, angles
+        )
+        if slack.any():
+            k = int(np.flatnonzero(slack)[0])
+            when = f"t = {ts[k]:.6g} s" if ts is not None else "the start"
+            warnings.warn(
+                f"{type(self).__name__}: a tendon went slack (tension <= 0) first at {when} "
+                f"(sample {k}, {int(slack.sum())} samples in all); the quasi-static model is not "
+                f"valid there: raise the pretension or lower the load",
+                SlackWarning,
+                stacklevel=2,
+            )
+        if not full:
+            return q_out
+        return SimulationResult(
+            t=ts,
+            command=us,
+            q_in=q_in,
+            q_out=q_out,
+            measured=meas,
+            slack=slack,
+            tensions=tens[0] if self._rows == 1 else tens,
+            nonconverged=int(noncon),
+        )
+
+    def _schedule(self, ts, routes):
+        idx, rows = [], []
+        prev_obj = object()
+        prev = None
+        for k, tk in enumerate(ts):
+            r = routes(float(tk))
+            if r is prev_obj:
+                continue
+            prev_obj = r
+            a = self._angles_for(r)
+            if prev is not None and np.array_equal(a, prev):
+                continue
+            prev = a
+            idx.append(k)
+            rows.append(a)
+        return (
+            np.asarray(idx, dtype=np.uint64),
+            np.ascontiguousarray(np.vstack(rows)),
+        )
+
+    def _needs_time(self) -> bool:
+        return False
+
+    def plot_tensions(self, ax=None):
+        """Draw the tension profile along the route(s) (see :func:`tendonsheath.plots`)."""
+        from .plots import plot_tension_profile
+
+        return plot_tension_profile(self, ax=ax)
+
+
+class SingleTendonPlant(_Plant):
+    """One tendon in one sheath: proximal displacement in (m), distal displacement out (m).
+
+    ``load`` is a :class:`~tendonsheath.loads.ConstantForce`, ``LinearSpring`` or
+    ``SpringPreload`` pulling the distal end (default ConstantForce(10 N)).
+    """
+
+    _rows = 1
+
+    def __init__(
+        self,
+        route: Route,
+        friction: float = 0.1,
+        stiffness: float = 2.4e4,
+        elements: int = 100,
+        load=None,
+        motor: Motor | None = None,
+        sensor: Sensor | None = None,
+        max_increment: float | None = None,
+        fast_path: bool = True,
+    ):
+        cls = type(self).__name__
+        self.route = _check_route(route, "route", cls)
+        load = ConstantForce(10.0) if load is None else load
+        if not isinstance(load, ConstantForce | LinearSpring | SpringPreload):
+            raise ValueError(
+                f"{cls}: load must be ConstantForce, LinearSpring or SpringPreload "
+                f"(got {type(load).__name__})"
+            )
+        self.load = load
+        p = core.SingleTendonParams()
+        p.friction = float(friction)
+        p.stiffness = float(stiffness)
+        p.elements = _check_elements(elements, cls)
+        p.load_force, p.load_stiffness = load.linear()
+        p.options = _options(elements, max_increment, fast_path)
+        self._engine = core.SingleTendonPlant(p, route._core)
+        self._setup_io(motor, sensor)
+
+    @property
+    def friction(self) -> float:
+        return self._engine.params.friction
+
+    @property
+    def stiffness(self) -> float:
+        return self._engine.params.stiffness
+
+    def _lengths(self):
+        return (self.route.length,)
+
+    def set_route(self, route: Route) -> None:
+        """Bend the sheath to a new route (same length); over-capacity nodes slip next step."""
+        self._engine.set_route(_check_route(route, "route", type(self).__name__)._core)
+        self.route = route
+
+    def _angles_for(self, r):
+        return self._engine.node_angles(_check_route(r, "routes(t)", type(self).__name__)._core)
+
+    def closed_form(self) -> dict:
+        """Capstan ratio and (A4) dead zone for the current route and load at rest (m)."""
+        F0, _ = self.load.linear()
+        return {
+            "capstan_ratio": float(physics.capstan_ratio(self.friction, self.route.total_angle)),
+            "dead_zone": physics.single_tendon_dead_zone(
+                self.route, self.stiffness, F0, self.friction
+            ),
+        }
+
+
+class PullPullPlant(_Plant):
+    """The bidirectional pull-pull pair (seeds 000, 002): pulley angle in, pulley angle out (rad).
+
+    Two tendons with pretension T0 (N) and axial stiffness EA (``stiffness``, N) run in two
+    sheaths (``route`` for tendon 1, the one a positive input pulls; ``route2`` for tendon 2,
+    default the same) between a proximal pulley of radius r_p and a distal one of radius r_d
+    (m). ``load`` (None, ConstantTorque, TorsionalSpring or SpringDamper) acts on the distal
+    pulley. ``elements`` N per sheath; ``friction`` mu.
+    """
+
+    _rows = 2
+
+    def __init__(
+        self,
+        route: Route,
+        friction: float = 0.1,
+        stiffness: float = 2.4e4,
+        pretension: float = 10.0,
+        proximal_radius: float = 5e-3,
+        distal_radius: float = 5e-3,
+        elements: int = 100,
+        load=None,
+        motor: Motor | None = None,
+        route2: Route | None = None,
+        sensor: Sensor | None = None,
+        max_increment: float | None = None,
+        fast_path: bool = True,
+    ):
+        cls = type(self).__name__
+        self.route = _check_route(route, "route", cls)
+        self.route2 = _check_route(route if route2 is None else route2, "route2", cls)
+        if load is not None and not isinstance(
+            load, ConstantTorque | TorsionalSpring | SpringDamper
+        ):
+            raise ValueError(
+                f"{cls}: load must be None, ConstantTorque, TorsionalSpring or SpringDamper "
+                f"(got {type(load).__name__})"
+            )
+        self.load = load
+        p = core.PullPullParams()
+        p.friction = float(friction)
+        p.stiffness = float(stiffness)
+        p.pretension = float(pretension)
+        p.proximal_radius = float(proximal_radius)
+        p.distal_radius = float(distal_radius)
+        p.elements = _check_elements(elements, cls)
+        if load is not None:
+            p.load_torque, p.load_stiffness, p.load_damping = load.rotary()
+        p.options = _options(elements, max_increment, fast_path)
+        self._engine = self._make_engine(p)
+        self._setup_io(motor, sensor)
+
+    def _make_engine(self, p):
+        return core.PullPullPlant(p, self.route._core, self.route2._core)
+
+    def _needs_time(self) -> bool:
+        return isinstance(self.load, SpringDamper) and self.load.c > 0
+
+    # parameters
+    @property
+    def friction(self) -> float:
+        return self._engine.params.friction
+
+    @property
+    def stiffness(self) -> float:
+        return self._engine.params.stiffness
+
+    @property
+    def pretension(self) -> float:
+        return self._engine.params.pretension
+
+    @property
+    def proximal_radius(self) -> float:
+        return self._engine.params.proximal_radius
+
+    @property
+    def distal_radius(self) -> float:
+        return self._engine.params.distal_radius
+
+    def _lengths(self):
+        return (self.route.length, self.route2.length)
+
+    def set_route(self, route: Route, route2: Route | None = None) -> None:
+        """Bend the sheaths (route2 defaults to route); lengths must not change. Nodes whose
+        stored tension gradient exceeds the new friction capacity start to slip at the next
+        step (spec A.5)."""
+        cls = type(self).__name__
+        r1 = _check_route(route, "route", cls)
+        r2 = r1 if route2 is None else _check_route(route2, "route2", cls)
+        self._engine.set_route(r1._core, r2._core)
+        self.route, self.route2 = r1, r2
+
+    def _angles_for(self, r):
+        cls = type(self).__name__
+        if isinstance(r, tuple | list):
+            if len(r) != 2:
+                raise ValueError(f"{cls}: routes(t) must give a Route or a (route1, route2) pair")
+            r1, r2 = (_check_route(x, "routes(t)", cls) for x in r)
+        else:
+            r1 = r2 = _check_route(r, "routes(t)", cls)
+        return self._engine.node_angles(r1._core, r2._core)
+
+    # closed forms ------------------------------------------------------------------
+    def load_force(self) -> float:
+        """Distal load at rest at the tendon level F_L = tau_L / r_d (N) (springs: preload)."""
+        if self.load is None:
+            return 0.0
+        return self.load.rotary()[0] / self.distal_radius
+
+    def steady_offsets(self, load_force: float | None = None) -> tuple[float, float]:
+        """Full-slip x_in - x_out (m) on the forward and backward branch: (A5)/(A6) with g, G."""
+        F = self.load_force() if load_force is None else float(load_force)
+        return physics.pull_pull_offsets(
+            self.route, self.stiffness, self.pretension, self.friction, F, self.route2
+        )
+
+    def dead_zone_width(self, load_force: float | None = None) -> float:
+        """Input dead-zone width (m at the tendon level; divide by r_p for rad): A7 / g, G."""
+        f, b = self.steady_offsets(load_force)
+        return f - b
+
+    def backlash_half_width(self) -> float:
+        """e_b (m): half the dead zone without load (uniform routes: T0 L tanh(a/2)/EA)."""
+        return 0.5 * self.dead_zone_width(0.0)
+
+    def closed_form(self) -> dict:
+        """Closed-form figures for the current routes and load (m at the tendon level)."""
+        f, b = self.steady_offsets()
+        return {
+            "offset_forward": f,
+            "offset_backward": b,
+            "dead_zone": f - b,
+            "backlash_half_width": self.backlash_half_width(),
+            "load_offset": 0.5 * (f + b),
+            "no_slack_limit": float(
+                physics.no_slack_limit(
+                    self.pretension,
+                    self.friction,
+                    max(self.route.total_angle, self.route2.total_angle),
+                )
+            ),
+        }
+
+
+class ContinuumPlant(PullPullPlant):
+    """A pull-pull pair bending one continuum segment (seed 001, spec C.5); output theta_b (rad).
+
+    Li and Rahn: the tendon force that holds a bending angle theta_b is F = kappa EI/r_t with
+    kappa = theta_b / l, and the stroke is x_out = r_t theta_b, so the segment is a spring
+    k = EI/(r_t^2 l) on the stroke. Defaults: EI = 4e-4 N m^2, r_t = 2 mm, l = 30 mm and a 1 m
+    sheath on a 0.6 m-diameter semicircle (Theta = pi).
+    """
+
+    def __init__(
+        self,
+        route: Route | None = None,
+        friction: float = 0.1,
+        stiffness: float = 2.4e4,
+        pretension: float = 10.0,
+        proximal_radius: float = 5e-3,
+        bending_stiffness: float = 4e-4,
+        tendon_offset: float = 2e-3,
+        backbone_length: float = 0.03,
+        elements: int = 100,
+        motor: Motor | None = None,
+        route2: Route | None = None,
+        sensor: Sensor | None = None,
+        max_increment: float | None = None,
+        fast_path: bool = True,
+    ):
+        cls = type(self).__name__
+        route = Route.uniform(1.0, math.pi) if route is None else route
+        self.route = _check_route(route, "route", cls)
+        self.route2 = _check_route(route if route2 is None else route2, "route2", cls)
+        c = core.ContinuumParams()
+        c.friction = float(friction)
+        c.stiffness = float(stiffness)
+        c.pretension = float(pretension)
+        c.proximal_radius = float(proximal_radius)
+        c.bending_stiffness = float(bending_stiffness)
+        c.tendon_offset = float(tendon_offset)
+        c.backbone_length = float(backbone_length)
+        c.elements = _check_elements(elements, cls)
+        c.options = _options(elements, max_increment, fast_path)
+        self._engine = core.ContinuumPlant(c, self.route._core, self.route2._core)
+        self.load = TorsionalSpring(c.bending_stiffness / c.backbone_length)
+        self._setup_io(motor, sensor)
+
+    @property
+    def bending_stiffness(self) -> float:
+        return self._engine.continuum_params.bending_stiffness
+
+    @property
+    def tendon_offset(self) -> float:
+        return self._engine.continuum_params.tendon_offset
+
+    @property
+    def backbone_length(self) -> float:
+        return self._engine.continuum_params.backbone_length
+
+    @property
+    def spring_stiffness(self) -> float:
+        """k = EI/(r_t^2 l) (N/m): the segment as a spring on the tendon stroke."""
+        return self.bending_stiffness / (self.tendon_offset**2 * self.backbone_length)
+
+    def tendon_force(self) -> float:
+        """Li and Rahn tendon force F = kappa EI / r_t (N) at the current bending angle."""
+        return self._engine.tendon_force()
+
+
+__all__ = [
+    "ContinuumPlant",
+    "PullPullPlant",
+    "SimulationResult",
+    "SingleTendonPlant",
+    "SlackWarning",
+]

@@ -1,0 +1,118 @@
+"""Sheath routes: the accumulated curve angle theta(s) along the arc length (spec A.1, A.5)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _core as core
+from ._arrays import as_signal
+
+
+class Route:
+    """The centreline of a sheath as its accumulated curve angle theta(s) = int_0^s |kappa| ds.
+
+    Stored as samples (s_i, theta_i) with s from 0 to the length L and theta non-decreasing,
+    linear in between; two samples at the same s are a jump (a polyline corner). Only the
+    distribution of theta along s matters to the friction physics, not the 3-D shape.
+    Build one with :meth:`uniform`, :meth:`arcs`, :meth:`from_points` or :meth:`from_curvature`.
+    """
+
+    __slots__ = ("_core",)
+
+    def __init__(self, s, theta):
+        s_arr = as_signal(s, "s")
+        th_arr = as_signal(theta, "theta")
+        self._core = core.Route(s_arr.tolist(), th_arr.tolist())
+
+    @classmethod
+    def _wrap(cls, engine) -> Route:
+        obj = cls.__new__(cls)
+        obj._core = engine
+        return obj
+
+    @classmethod
+    def uniform(cls, length: float, total_angle: float) -> Route:
+        """Constant curvature: theta(s) = total_angle * s / length."""
+        return cls._wrap(core.Route.uniform(float(length), float(total_angle)))
+
+    @classmethod
+    def arcs(cls, pieces) -> Route:
+        """Consecutive constant-curvature pieces [(length m, bend angle rad), ...].
+
+        A bend to the other side (negative angle) accumulates |angle|.
+        """
+        try:
+            items = [(float(a), float(b)) for a, b in pieces]
+        except (TypeError, ValueError):
+            raise ValueError("Route.arcs: pieces must be (length, angle) pairs") from None
+        return cls._wrap(core.Route.arcs(items))
+
+    @classmethod
+    def from_points(cls, xyz) -> Route:
+        """A 3-D polyline (K x 3, metres); each corner adds its turning angle."""
+        pts = np.ascontiguousarray(np.asarray(xyz, dtype=np.float64))
+        if pts.ndim != 2 or pts.shape[1] != 3:
+            raise ValueError(f"Route.from_points: points must be K x 3 (got shape {pts.shape})")
+        return cls._wrap(core.Route.from_points(pts))
+
+    @classmethod
+    def from_curvature(cls, s, kappa) -> Route:
+        """A sampled curvature profile |kappa(s)| (1/m); theta is its trapezoidal integral."""
+        s_arr = as_signal(s, "s")
+        k_arr = as_signal(kappa, "kappa")
+        if s_arr.shape != k_arr.shape:
+            raise ValueError(
+                f"Route.from_curvature: s and kappa have different lengths "
+                f"({s_arr.size} and {k_arr.size})"
+            )
+        return cls._wrap(core.Route.from_curvature(s_arr, k_arr))
+
+    # -- properties ------------------------------------------------------------------
+    @property
+    def length(self) -> float:
+        return self._core.length
+
+    @property
+    def total_angle(self) -> float:
+        return self._core.total_angle
+
+    @property
+    def s(self) -> np.ndarray:
+        return self._core.s_samples()
+
+    @property
+    def theta(self) -> np.ndarray:
+        return self._core.theta_samples()
+
+    def angle_at(self, s):
+        """theta(s) (rad), vectorised; right-continuous at corners, clamped outside [0, L]."""
+        arr = np.asarray(s, dtype=np.float64)
+        if arr.ndim == 0:
+            return self._core.angle_at(float(arr))
+        flat = np.ascontiguousarray(arr.ravel())
+        return self._core.angles_at(flat).reshape(arr.shape)
+
+    def element_angles(self, n: int) -> np.ndarray:
+        """Angles of n equal elements, proximal to distal (they sum to total_angle)."""
+        return self._core.element_angles(int(n))
+
+    def node_angles(self, n: int) -> np.ndarray:
+        """Lumped angles of the n-1 interior nodes of an n-element sheath (sum: total_angle)."""
+        return self._core.node_angles(int(n))
+
+    def scaled(self, factor: float) -> Route:
+        """The same shape with every bend scaled by factor >= 0 (same length)."""
+        return Route(self.s, self.theta * float(factor))
+
+    def __eq__(self, other) -> bool:
+        return (
+            isinstance(other, Route)
+            and np.array_equal(self.s, other.s)
+            and np.array_equal(self.theta, other.theta)
+        )
+
+    def __hash__(self):
+        return hash((self.s.tobytes(), self.theta.tobytes()))
+
+    def __repr__(self) -> str:
+        return f"Route(length={self.length:.6g} m, total_angle={self.total_angle:.6g} rad)"

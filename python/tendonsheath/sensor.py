@@ -1,0 +1,53 @@
+"""An encoder-like sensor: quantisation and seeded Gaussian noise (C++: plant/sensor.hpp)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _core as core
+
+
+class Sensor:
+    """Reading y = quantise(x + noise): noise ~ N(0, noise_std^2), steps of ``resolution``.
+
+    ``resolution`` 0 means no quantisation. The noise sequence is fixed by ``seed`` (the same
+    on every platform); :meth:`reset` restarts it.
+    """
+
+    def __init__(self, resolution: float = 0.0, noise_std: float = 0.0, seed: int = 0):
+        p = core.SensorParams()
+        p.resolution = float(resolution)
+        p.noise_std = float(noise_std)
+        if int(seed) < 0:
+            raise ValueError(f"Sensor: seed must be >= 0 (got {seed})")
+        p.seed = int(seed)
+        self._params = p
+        self._engine = core.Sensor(p)  # validates
+
+    @property
+    def resolution(self) -> float:
+        return self._params.resolution
+
+    @property
+    def noise_std(self) -> float:
+        return self._params.noise_std
+
+    @property
+    def seed(self) -> int:
+        return self._params.seed
+
+    def reset(self) -> None:
+        self._engine.reset()
+
+    def measure(self, x):
+        """One reading per value of x (scalar or array), continuing the noise sequence."""
+        arr = np.asarray(x, dtype=np.float64)
+        if arr.ndim == 0:
+            return self._engine.measure(float(arr))
+        return self._engine.measure_many(np.ascontiguousarray(arr.ravel())).reshape(arr.shape)
+
+    def __repr__(self) -> str:
+        return (
+            f"Sensor(resolution={self.resolution:g}, noise_std={self.noise_std:g}, "
+            f"seed={self.seed})"
+        )
