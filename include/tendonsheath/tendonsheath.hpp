@@ -24,3 +24,4 @@
 #include "plant/motor.hpp"
 #include "plant/sensor.hpp"
 #include "plant/simulate_plant.hpp"
+#include "bench/closed_loop.hpp"

@@ -1,6 +1,6 @@
 """tendonsheath: model, identify and compensate tendon-sheath mechanisms."""
 
-from . import compensate, loads, models, physics
+from . import bench, compensate, loads, models, physics
 from .models import load_model
 from .motor import Motor
 from .plant import (
@@ -24,6 +24,7 @@ __all__ = [
     "SimulationResult",
     "SingleTendonPlant",
     "SlackWarning",
+    "bench",
     "compensate",
     "load_model",
     "loads",

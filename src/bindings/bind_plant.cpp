@@ -18,8 +18,6 @@ using namespace nb::literals;
 
 namespace {
 
-using InMatrix = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
-using InIndex = nb::ndarray<const std::uint64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
 using IntMatrix = nb::ndarray<nb::numpy, std::int8_t, nb::ndim<2>>;
 using BoolArray = nb::ndarray<nb::numpy, bool, nb::ndim<1>>;
 
@@ -76,18 +74,8 @@ nb::tuple simulate_plant(const Plant& self, std::optional<InArray> t, InArray u,
   if (t && t->shape(0) != n)
     throw std::invalid_argument(std::string(name) + ": t and the input have different lengths (" +
                                 std::to_string(t->shape(0)) + " and " + std::to_string(n) + ")");
-  ts::RouteSchedule sched;
   std::vector<std::size_t> idx;
-  if (sidx && sang) {
-    if (sang->shape(0) != sidx->shape(0))
-      throw std::invalid_argument(std::string(name) + ": route schedule sizes differ");
-    idx.resize(sidx->shape(0));
-    for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<std::size_t>(sidx->data()[i]);
-    sched.index = idx.data();
-    sched.angles = sang->data();
-    sched.count = idx.size();
-    sched.width = sang->shape(1);
-  }
+  const ts::RouteSchedule sched = to_schedule(sidx, sang, idx, name);
   Plant plant = self;
   auto [q_out, po] = new_array(n);
   auto [q_in, pi] = new_array(n);

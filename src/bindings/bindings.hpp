@@ -6,7 +6,14 @@
 #include <nanobind/ndarray.h>
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
 #include <utility>
+#include <vector>
+
+#include <tendonsheath/plant/simulate_plant.hpp>
 
 namespace tsbind {
 
@@ -15,6 +22,8 @@ namespace nb = nanobind;
 using InArray = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
 using OutArray = nb::ndarray<nb::numpy, double, nb::ndim<1>>;
 using OutMatrix = nb::ndarray<nb::numpy, double, nb::ndim<2>>;
+using InMatrix = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+using InIndex = nb::ndarray<const std::uint64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
 
 // A fresh NumPy array of n doubles that owns its buffer.
 inline std::pair<OutArray, double*> new_array(std::size_t n) {
@@ -29,9 +38,28 @@ inline std::pair<OutMatrix, double*> new_matrix(std::size_t rows, std::size_t co
   return {OutMatrix(data, {rows, cols}, owner), data};
 }
 
+// A route-change schedule from (sample indices, node-angle rows); `storage` keeps the indices.
+inline tendonsheath::RouteSchedule to_schedule(const std::optional<InIndex>& sidx,
+                                               const std::optional<InMatrix>& sang,
+                                               std::vector<std::size_t>& storage, const char* name) {
+  tendonsheath::RouteSchedule sched;
+  if (!sidx || !sang) return sched;
+  if (sang->shape(0) != sidx->shape(0))
+    throw std::invalid_argument(std::string(name) + ": route schedule sizes differ");
+  storage.resize(sidx->shape(0));
+  for (std::size_t i = 0; i < storage.size(); ++i)
+    storage[i] = static_cast<std::size_t>(sidx->data()[i]);
+  sched.index = storage.data();
+  sched.angles = sang->data();
+  sched.count = storage.size();
+  sched.width = sang->shape(1);
+  return sched;
+}
+
 void bind_models(nb::module_& m);
 void bind_compensators(nb::module_& m);
 void bind_models_extended(nb::module_& m);
 void bind_plant(nb::module_& m);
+void bind_bench(nb::module_& m);
 
 }  // namespace tsbind

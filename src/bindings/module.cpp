@@ -6,4 +6,5 @@ NB_MODULE(_core, m) {
   tsbind::bind_compensators(m);
   tsbind::bind_models_extended(m);
   tsbind::bind_plant(m);
+  tsbind::bind_bench(m);
 }

@@ -1,0 +1,6 @@
+"""The virtual bench: closed-loop runs on the physics plant, metrics, frequency response."""
+
+from .metrics import loop_width, tracking_metrics
+from .run import Result, run
+
+__all__ = ["Result", "loop_width", "run", "tracking_metrics"]

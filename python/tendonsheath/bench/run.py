@@ -1,0 +1,182 @@
+"""`ts.bench.run`: close the loop controller -> motor -> plant -> sensor at a fixed rate."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .. import _core as core
+from .._arrays import as_time_and_signal
+from ..compensate import (
+    AdaptiveController,
+    ContinuumFeedforward,
+    CurveAngleFeedforward,
+    InverseFeedforward,
+)
+from ..compensate.curve_angle_feedforward import shape_of
+from ..plant import PullPullPlant
+from ..sensor import Sensor
+from .metrics import dominant_period, tracking_metrics
+
+
+@dataclass
+class Result:
+    """Every signal of a bench run and its metrics (computed after ``warmup`` seconds)."""
+
+    controller: str
+    t: np.ndarray
+    reference: np.ndarray
+    output: np.ndarray
+    measured: np.ndarray
+    command: np.ndarray
+    motor: np.ndarray
+    slack: np.ndarray
+    fallback: np.ndarray
+    warmup: float
+    metrics: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def error(self) -> np.ndarray:
+        return self.output - self.reference
+
+    @property
+    def scored(self) -> np.ndarray:
+        """Mask of the samples the metrics cover (after the warm-up)."""
+        return self.t >= self.t[0] + self.warmup
+
+
+def controller_name(controller) -> str:
+    if controller is None:
+        return "none"
+    return type(controller).__name__
+
+
+def _sensor_engine(noise, plant):
+    if noise is None:
+        noise = plant.sensor
+    if noise is None:
+        return None
+    if isinstance(noise, int | float):
+        noise = Sensor(noise_std=float(noise))
+    if not isinstance(noise, Sensor):
+        raise ValueError("noise must be None, a standard deviation (rad) or a tendonsheath.Sensor")
+    return core.Sensor(noise._params)
+
+
+def _dropout_mask(dropout, t):
+    if dropout is None:
+        return None
+    mask = np.zeros(t.size, dtype=np.uint8)
+    for start, stop in dropout:
+        if not stop > start:
+            raise ValueError(f"dropout windows need start < stop (got {start}, {stop})")
+        mask[(t >= start) & (t < stop)] = 1
+    return mask
+
+
+def run(
+    plant: PullPullPlant,
+    controller,
+    t,
+    reference,
+    routes: Callable | None = None,
+    noise=None,
+    dropout=None,
+    warmup: float | None = None,
+) -> Result:
+    """Track ``reference`` (distal angle, rad, at times ``t``) with ``controller`` on ``plant``.
+
+    ``controller``: None (uncompensated: the kinematic motor angle r_d/r_p * y_d), an
+    :class:`InverseFeedforward`, :class:`CurveAngleFeedforward` (it is given the route's shape
+    every time the route changes, as from shape sensing), :class:`ContinuumFeedforward` or
+    :class:`AdaptiveController` (needs a torque motor on the plant). The plant's own motor
+    (``plant.motor``) sits between controller and plant. ``routes``: None or a callable
+    t -> Route. ``noise``: a Sensor, a noise standard deviation (rad), or None (then
+    ``plant.sensor``). ``dropout``: [(start, stop), ...] seconds when the sensor reads NaN.
+    ``warmup`` (s): excluded from the metrics; default one period of the reference.
+    """
+    if not isinstance(plant, PullPullPlant):
+        raise ValueError(
+            f"bench.run needs a PullPullPlant or ContinuumPlant (got {type(plant).__name__})"
+        )
+    ts, ys = as_time_and_signal(t, reference, "reference")
+    if ts is None:
+        raise ValueError("bench.run needs the time vector t")
+    idx = angles = shapes = None
+    if routes is not None:
+        if not callable(routes):
+            raise ValueError("routes must be None or a callable t -> Route")
+        idx, angles = plant._schedule(ts, routes)
+    motor = core.Motor(plant.motor._params) if plant.motor is not None else None
+    sensor = _sensor_engine(noise, plant)
+    mask = _dropout_mask(dropout, ts)
+    args = (ts, ys)
+
+    if controller is None:
+        gain = plant.distal_radius / plant.proximal_radius
+        fn, engine = core.bench_open_loop, gain
+    elif isinstance(controller, CurveAngleFeedforward):
+        # the controller sees the plant's route from the start and at every change
+        if idx is None:
+            idx = np.array([0], dtype=np.uint64)
+            angles = np.ascontiguousarray(plant._angles_for(plant.route)[None, :])
+        elif idx[0] != 0:
+            idx = np.r_[np.uint64(0), idx].astype(np.uint64)
+            angles = np.ascontiguousarray(np.vstack([plant._angles_for(plant.route), angles]))
+        route_at = [plant.route if routes is None else routes(float(ts[int(k)])) for k in idx]
+        route_at[0] = plant.route if (routes is None or idx[0] != 0) else route_at[0]
+        shapes = np.ascontiguousarray(
+            [
+                [s.g, s.G, s.total_angle]
+                for s in (shape_of(_first(r), controller.friction) for r in route_at)
+            ]
+        )
+        fn, engine = core.bench_curve_angle, controller._engine
+    elif isinstance(controller, InverseFeedforward):
+        engine = controller._engine
+        fn = (
+            core.bench_inverse
+            if isinstance(engine, core.BacklashInverseFeedforward)
+            else core.bench_pi_inverse
+        )
+    elif isinstance(controller, ContinuumFeedforward):
+        fn, engine = core.bench_continuum, controller._engine
+    elif isinstance(controller, AdaptiveController):
+        if plant.motor is None or plant.motor.kind != "torque":
+            raise ValueError(
+                "the AdaptiveController commands torque: give the plant a Motor.torque(...)"
+            )
+        fn, engine = core.bench_adaptive, controller._engine
+    else:
+        raise ValueError(f"bench.run does not know the controller {type(controller).__name__}")
+
+    output, measured, command, motor_pos, slack, fallback = fn(
+        plant._engine, motor, sensor, engine, *args, idx, angles, shapes, mask
+    )
+    if warmup is None:
+        warmup = min(dominant_period(ts, ys), 0.5 * float(ts[-1] - ts[0]))
+    result = Result(
+        controller=controller_name(controller),
+        t=ts,
+        reference=ys,
+        output=output,
+        measured=measured,
+        command=command,
+        motor=motor_pos,
+        slack=slack.astype(bool),
+        fallback=fallback.astype(bool),
+        warmup=float(warmup),
+    )
+    keep = result.scored
+    result.metrics = tracking_metrics(ys[keep], output[keep])
+    result.metrics["slack_samples"] = int(result.slack.sum())
+    if not math.isfinite(result.metrics["mse"]):
+        raise RuntimeError("bench.run: the closed loop produced a non-finite output")
+    return result
+
+
+def _first(route):
+    return route[0] if isinstance(route, tuple | list) else route
