@@ -119,21 +119,16 @@ def run(
         gain = plant.distal_radius / plant.proximal_radius
         fn, engine = core.bench_open_loop, gain
     elif isinstance(controller, CurveAngleFeedforward):
-        # the controller sees the plant's route from the start and at every change
+        # the controller is told the route's shape from the start and at every change
+        # (a route schedule always starts at sample 0)
         if idx is None:
             idx = np.array([0], dtype=np.uint64)
             angles = np.ascontiguousarray(plant._angles_for(plant.route)[None, :])
-        elif idx[0] != 0:
-            idx = np.r_[np.uint64(0), idx].astype(np.uint64)
-            angles = np.ascontiguousarray(np.vstack([plant._angles_for(plant.route), angles]))
-        route_at = [plant.route if routes is None else routes(float(ts[int(k)])) for k in idx]
-        route_at[0] = plant.route if (routes is None or idx[0] != 0) else route_at[0]
-        shapes = np.ascontiguousarray(
-            [
-                [s.g, s.G, s.total_angle]
-                for s in (shape_of(_first(r), controller.friction) for r in route_at)
-            ]
-        )
+            route_at = [plant.route]
+        else:
+            route_at = [_first(routes(float(ts[int(k)]))) for k in idx]
+        shape_rows = [shape_of(r, controller.friction) for r in route_at]
+        shapes = np.ascontiguousarray([[s.g, s.G, s.total_angle] for s in shape_rows])
         fn, engine = core.bench_curve_angle, controller._engine
     elif isinstance(controller, InverseFeedforward):
         engine = controller._engine
