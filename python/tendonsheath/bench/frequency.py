@@ -1,0 +1,100 @@
+"""Frequency response of a closed loop from sine sweeps (seed 001's bandwidth measure)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .run import run
+
+
+@dataclass
+class FrequencyResponse:
+    """Per frequency (Hz): gain |Y/Y_d| in dB, phase (deg) and error magnitude |E|/|Y_d| of the
+    fundamental; the bandwidths where the gain reaches -3 dB and where the error magnitude
+    rises past twice its low-frequency level (NaN when not reached in the sweep)."""
+
+    frequencies: np.ndarray
+    gain_db: np.ndarray
+    phase_deg: np.ndarray
+    error_magnitude: np.ndarray
+    bandwidth_3db: float
+    bandwidth_error: float
+
+    def as_dict(self) -> dict:
+        return {
+            "frequencies_hz": self.frequencies.tolist(),
+            "gain_db": self.gain_db.tolist(),
+            "phase_deg": self.phase_deg.tolist(),
+            "error_magnitude": self.error_magnitude.tolist(),
+            "bandwidth_3db_hz": self.bandwidth_3db,
+            "bandwidth_error_hz": self.bandwidth_error,
+        }
+
+
+def _fundamental(t: np.ndarray, signal: np.ndarray, f: float) -> complex:
+    """Complex amplitude of the component at f (lock-in over whole cycles)."""
+    return 2.0 * np.mean(signal * np.exp(-2j * np.pi * f * t))
+
+
+def _first_crossing(f: np.ndarray, values: np.ndarray, level: float, above: bool) -> float:
+    """Log-interpolated first frequency where values crosses level (NaN if never)."""
+    hit = values >= level if above else values <= level
+    if not hit.any():
+        return float("nan")
+    k = int(np.argmax(hit))
+    if k == 0:
+        return float(f[0])
+    v0, v1 = values[k - 1], values[k]
+    w = (level - v0) / (v1 - v0) if v1 != v0 else 1.0
+    return float(np.exp(np.log(f[k - 1]) + w * (np.log(f[k]) - np.log(f[k - 1]))))
+
+
+def frequency_response(
+    plant,
+    controller,
+    frequencies=None,
+    amplitude: float = 0.5,
+    cycles: int = 3,
+    rate: float = 1000.0,
+    min_duration: float = 2.0,
+    noise=None,
+) -> FrequencyResponse:
+    """Sine sweep: at each frequency run the bench for ``cycles`` whole periods (at least
+    ``min_duration`` s), discard the first period, and fit the fundamentals of the output and
+    of the error. Default frequencies: 12 log-spaced from 0.05 to 2 Hz."""
+    f = (
+        np.logspace(np.log10(0.05), np.log10(2.0), 12)
+        if frequencies is None
+        else np.asarray(frequencies, dtype=float)
+    )
+    if f.ndim != 1 or f.size == 0 or np.any(~np.isfinite(f)) or np.any(f <= 0):
+        raise ValueError("frequencies must be a non-empty 1-D array of positive numbers (Hz)")
+    if cycles < 2:
+        raise ValueError("cycles must be >= 2 (the first is discarded)")
+    gains, phases, errors = [], [], []
+    for fk in f:
+        period = 1.0 / fk
+        n_cycles = max(cycles, int(np.ceil(min_duration / period)))
+        t = np.arange(0.0, n_cycles * period, 1.0 / rate)
+        y_d = amplitude * np.sin(2 * np.pi * fk * t)
+        result = run(plant, controller, t, y_d, noise=noise, warmup=period)
+        keep = t >= period
+        keep &= t < period * n_cycles - 0.5 / rate  # whole cycles only
+        Yd = _fundamental(t[keep], y_d[keep], fk)
+        Y = _fundamental(t[keep], result.output[keep], fk)
+        E = _fundamental(t[keep], result.output[keep] - y_d[keep], fk)
+        gains.append(20 * np.log10(abs(Y) / abs(Yd)))
+        phases.append(np.degrees(np.angle(Y / Yd)))
+        errors.append(abs(E) / abs(Yd))
+    gain_db, phase_deg, err = np.array(gains), np.unwrap(np.radians(phases)), np.array(errors)
+    low = float(np.median(err[: min(3, err.size)]))
+    return FrequencyResponse(
+        frequencies=f,
+        gain_db=gain_db,
+        phase_deg=np.degrees(phase_deg),
+        error_magnitude=err,
+        bandwidth_3db=_first_crossing(f, gain_db, -3.0, above=False),
+        bandwidth_error=_first_crossing(f, err, max(2.0 * low, low + 0.05), above=True),
+    )
