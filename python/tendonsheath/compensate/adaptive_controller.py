@@ -71,42 +71,57 @@ class AdaptiveController:
         inertia: float,
         viscous: float = 0.0,
         bandwidth_hz: float = 5.0,
+        derivative_cutoff_hz: float | None = None,
         max_torque: float = math.inf,
         noise_std: float = 0.0,
         **overrides,
     ) -> AdaptiveController:
-        """Gains scaled to a torque-driven motor (inertia J, viscous b) and an identified
-        backlash model (its mean slope c): phi_0 = J/c, psi_0 = -b/c, lambda and the
-        feedback k_s = phi_0 * 2 pi * 4 * bandwidth set the closed-loop speed; the
-        adaptation rates are scaled so that each estimate moves by its own size within
-        about a second of 0.1 rad tracking error."""
+        """Gains scaled to a torque-driven motor (inertia J, viscous b, at the motor shaft)
+        and an identified backlash model (its mean slope c).
+
+        phi_0 = J/c and psi_0 = -b/c start the estimates at the true values of the rigid
+        part; lambda = 2 pi bandwidth_hz and k_s = 2 phi_0 lambda set how fast the error
+        decays. The robust term D tanh(s/eps) is a feedback gain D/eps on s, and s contains
+        the filtered derivative of the output, so D is projected below
+        eps phi_min w_f / 3 (w_f the derivative filter's corner, default 8 x bandwidth):
+        eps = 0.05 lambda leaves an error of a few thousandths of a radian for a lumped
+        disturbance (friction torque, dead-zone crossings) up to that bound.
+        """
         if not inertia > 0:
             raise ValueError("AdaptiveController.from_model: inertia must be > 0")
+        if not bandwidth_hz > 0:
+            raise ValueError("AdaptiveController.from_model: bandwidth_hz must be > 0")
         p = model.params
         c = 0.5 * (p.get("c_r", 1.0) + p.get("c_l", 1.0))
         phi0 = inertia / c
         psi0 = -viscous / c
-        w = 2 * math.pi * bandwidth_hz
+        lam = 2 * math.pi * bandwidth_hz
+        fc = 8.0 * bandwidth_hz if derivative_cutoff_hz is None else float(derivative_cutoff_hz)
+        w_f = 2 * math.pi * fc
+        eps = 0.05 * lam
+        phi_min = 0.5 * phi0
+        d_max = eps * phi_min * w_f / 3.0
         gains = dict(
-            lambda_=w,
-            k_s=phi0 * 4 * w,
-            epsilon=0.05,
+            lambda_=lam,
+            k_s=2.0 * phi0 * lam,
+            epsilon=eps,
             phi_0=phi0,
             psi_0=psi0,
-            phi_min=0.1 * phi0,
-            phi_max=10 * phi0,
-            psi_max=10 * abs(psi0) + 10 * phi0 * w,
-            gamma_phi=phi0 / (0.1 * w) ** 2,
-            gamma_psi=(abs(psi0) + phi0) / 0.1**2,
-            gamma_D=phi0 * w / 0.1,
-            D_max=phi0 * w * w,
-            sigma_phi=0.01,
-            sigma_psi=0.01,
-            sigma_D=0.01,
-            adaptation_deadzone=3 * noise_std * w,
+            phi_min=phi_min,
+            phi_max=4.0 * phi0,
+            psi_max=10.0 * abs(psi0) + phi0 * lam,
+            D_max=d_max,
+            gamma_phi=phi0 / lam**2,
+            gamma_psi=(abs(psi0) + phi0 * lam) / lam**2,
+            gamma_D=d_max * 10.0 / (eps * eps),
+            sigma_phi=0.05,
+            sigma_psi=0.05,
+            sigma_D=0.05,
+            adaptation_deadzone=3.0 * noise_std * lam,
+            derivative_cutoff_hz=fc,
             max_torque=max_torque,
-            fallback_kp=phi0 * w * w,
-            fallback_kd=2 * phi0 * w,
+            fallback_kp=phi0 * lam * lam,
+            fallback_kd=2.0 * phi0 * lam,
         )
         gains.update(overrides)
         return cls(feedforward_model=model, **gains)
