@@ -1,13 +1,12 @@
 """The main job: `tendonsheath demo --out DIR`.
 
-At this stage it simulates each hysteresis model of the library on a standard
-input (a sine whose amplitude decays, so that nested minor loops appear) and
-writes DIR/metrics.json and one PNG of each model's input-output loop.
+Runs the built-in virtual bench (the three seed experiments on the physics plant:
+do2015, sun2015, lau2015), and a tour of the hysteresis models on a standard input, and
+writes DIR/report.html (self-contained), DIR/metrics.json and the figures as PNG files.
 """
 
 from __future__ import annotations
 
-import json
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -15,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from . import models
+from .bench.metrics import loop_width
 
 DEMO_SCHEMA_VERSION = 1
 
@@ -32,43 +32,35 @@ def demo_models() -> dict[str, models.HysteresisModel]:
         "BoucWenBacklash": models.BoucWenBacklash(c_r=1.0, c_l=0.9, B_r=0.12, B_l=0.10, n=8),
         "BoucWen": models.BoucWen(A=1.0, beta=2.0, gamma=1.0, n=1.5, a=0.3, k=1.0),
         "PrandtlIshlinskii": models.PrandtlIshlinskii.uniform(0.4, 8),
+        "GeneralizedPrandtlIshlinskii": models.GeneralizedPrandtlIshlinskii(
+            rising=(1.1, 1.6, 0.15, 0.0),
+            falling=(0.9, 1.6, -0.15, 0.0),
+            thresholds=[0.0, 0.1, 0.2],
+            weights=[0.8, 0.3, 0.2],
+        ),
         "HystereticOscillator": models.HystereticOscillator(
             m=1.0, c=0.5, k=2.0, alpha=3.0, beta=2.0, gamma=0.6, delta=0.4, nu=1.0
         ),
     }
 
 
-def loop_width(x: np.ndarray, y: np.ndarray) -> float:
-    """Largest vertical gap between the rising and falling branches at the same input."""
-    dx = np.gradient(x)
-    up, down = dx > 0, dx < 0
-    if up.sum() < 2 or down.sum() < 2:
-        return 0.0
-    grid = np.linspace(max(x[up].min(), x[down].min()), min(x[up].max(), x[down].max()), 200)
-    order_u, order_d = np.argsort(x[up]), np.argsort(x[down])
-    yu = np.interp(grid, x[up][order_u], y[up][order_u])
-    yd = np.interp(grid, x[down][order_d], y[down][order_d])
-    return float(np.max(np.abs(yd - yu)))
-
-
-def run_demo(out: Path, progress: Callable[[str], None] | None = None) -> dict:
+def model_section(out: Path) -> tuple[str, dict, list[Path]]:
+    """Each hysteresis model on the standard input: a loop figure and a few numbers."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    out.mkdir(parents=True, exist_ok=True)
+    from .report import figures, html
+
     t, x = standard_input()
-    metrics: dict = {"schema_version": DEMO_SCHEMA_VERSION, "models": {}}
-    written = []
+    metrics, parts, written = {}, [], []
     for name, model in demo_models().items():
-        if progress:
-            progress(name)
         start = time.perf_counter()
         y = model.simulate(t, x)
         elapsed = time.perf_counter() - start
         last = t >= t[-1] - 4.0  # the last input period
-        metrics["models"][name] = {
+        metrics[name] = {
             "params": model.params,
             "samples": int(x.size),
             "output_min": float(y.min()),
@@ -76,20 +68,47 @@ def run_demo(out: Path, progress: Callable[[str], None] | None = None) -> dict:
             "loop_width_last_cycle": loop_width(x[last], y[last]),
             "simulate_seconds": elapsed,
         }
-        fig, ax = plt.subplots(figsize=(5, 4), dpi=110)
+        fig, ax = plt.subplots(figsize=(4.2, 3.5))
         ax.plot(x, y, lw=1.0)
-        xlabel = "input force u" if name == "HystereticOscillator" else "input x"
-        ax.set_xlabel(xlabel)
-        ax.set_ylabel("output y")
-        ax.set_title(f"{name}: input-output loop")
+        ax.set_xlabel("input force u [N]" if name == "HystereticOscillator" else "input x [rad]")
+        ax.set_ylabel("output y [m]" if name == "HystereticOscillator" else "output y [rad]")
+        ax.set_title(name)
         ax.grid(alpha=0.3)
         fig.tight_layout()
-        png = out / f"loop_{name}.png"
-        fig.savefig(png)
-        plt.close(fig)
-        written.append(png)
-    metrics_path = out / "metrics.json"
-    metrics_path.write_text(json.dumps(metrics, indent=2) + "\n")
-    written.append(metrics_path)
-    metrics["written"] = [str(p) for p in written]
-    return metrics
+        data = figures.png(fig)
+        path = out / f"loop_{name}.png"
+        path.write_bytes(data)
+        written.append(path)
+        parts.append(html.figure(data, f"{name}: input-output loop on a decaying 0.25 Hz sine"))
+    return "".join(parts), metrics, written
+
+
+def run_demo(
+    out: Path,
+    scale: float = 1.0,
+    scenarios: list[str] | None = None,
+    progress: Callable[[str], None] | None = None,
+    seed: int = 0,
+) -> dict:
+    """Run the scenarios (all by default) and write the report; returns what was written."""
+    from .bench.scenarios import SCENARIOS
+    from .report.build import write
+
+    names = list(SCENARIOS) if scenarios is None else scenarios
+    unknown = [n for n in names if n not in SCENARIOS]
+    if unknown:
+        raise ValueError(f"unknown scenario(s) {unknown}; known: {list(SCENARIOS)}")
+    out.mkdir(parents=True, exist_ok=True)
+    results, timings = [], {}
+    for name in names:
+        start = time.perf_counter()
+        results.append(SCENARIOS[name](scale=scale, seed=seed, progress=progress))
+        timings[name] = time.perf_counter() - start
+    if progress:
+        progress("hysteresis models")
+    body, model_metrics, model_files = model_section(out)
+    written = write(out, results, (body, model_metrics))
+    written["figures"] += model_files
+    written["timings"] = timings
+    written["results"] = results
+    return written

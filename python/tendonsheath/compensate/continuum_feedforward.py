@@ -50,6 +50,43 @@ class ContinuumFeedforward(Feedforward):
         self.mode = mode
         self._engine = core.ContinuumFeedforward(p)
 
+    @classmethod
+    def from_model(
+        cls,
+        model,
+        tendon_offset: float,
+        backbone_length: float,
+        total_angle: float,
+        mode: str = "exact",
+        **options,
+    ) -> ContinuumFeedforward:
+        """Built from a ``CurveAngleModel`` identified on the continuum drive (motor angle in,
+        bending angle out, its ``distal_radius`` = r_t): friction, EA, T0 and L carry over,
+        and the identified environment spring k_e (N/m on the stroke) is the backbone,
+        EI = k_e r_t^2 l (Li and Rahn)."""
+        p = model.params
+        missing = {"friction", "stiffness", "pretension", "length", "spring"} - set(p)
+        if missing:
+            raise ValueError(
+                f"ContinuumFeedforward.from_model needs a CurveAngleModel (missing {sorted(missing)})"
+            )
+        k_e = p["spring"]
+        if not k_e > 0:
+            raise ValueError("ContinuumFeedforward.from_model: the model has no spring (k_e <= 0)")
+        return cls(
+            friction=p["friction"],
+            sheath_length=p["length"],
+            stiffness=p["stiffness"],
+            pretension=p["pretension"],
+            total_angle=total_angle,
+            bending_stiffness=k_e * tendon_offset**2 * backbone_length,
+            tendon_offset=tendon_offset,
+            backbone_length=backbone_length,
+            proximal_radius=p.get("proximal_radius", 5e-3),
+            mode=mode,
+            **options,
+        )
+
     def bending_force(self, theta_d: float) -> float:
         """Tendon pulling force of the bent segment, F = kappa EI / r_t (N)."""
         return self._engine.bending_force(float(theta_d))

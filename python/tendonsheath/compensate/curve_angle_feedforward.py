@@ -54,6 +54,28 @@ class CurveAngleFeedforward(Feedforward):
         p.limits = as_limits(limits).to_core()
         self._engine = core.CurveAngleFeedforward(p)
 
+    @classmethod
+    def from_model(cls, model, load_force=None, load_stiffness=None, **options):
+        """Built from an identified ``CurveAngleModel``: its friction, compliance L/EA,
+        pretension and radii; the distal load defaults to the model's own (``load``,
+        ``spring``) and can be replaced by the load expected in use (N, N/m at the tendon)."""
+        p = model.params
+        missing = {"friction", "stiffness", "pretension", "length"} - set(p)
+        if missing:
+            raise ValueError(
+                f"CurveAngleFeedforward.from_model needs a CurveAngleModel (missing {sorted(missing)})"
+            )
+        return cls(
+            friction=p["friction"],
+            compliance=p["length"] / p["stiffness"],
+            pretension=p["pretension"],
+            load_force=p.get("load", 0.0) if load_force is None else load_force,
+            load_stiffness=p.get("spring", 0.0) if load_stiffness is None else load_stiffness,
+            proximal_radius=p.get("proximal_radius", 5e-3),
+            distal_radius=p.get("distal_radius", 5e-3),
+            **options,
+        )
+
     @property
     def friction(self) -> float:
         return self._engine.params.friction

@@ -1,0 +1,170 @@
+"""Turn scenario results into report.html, metrics.json and figure files.
+
+metrics.json (schema "tendonsheath.metrics", version 1):
+
+    {"schema": "tendonsheath.metrics", "version": 1, "generated": ISO time,
+     "scenarios": {scenario: {compensator: {metric: value}}},      # the headline runs
+     "paper": {scenario: {...the paper's numbers...}},
+     "details": {scenario: {...per-condition metrics, frequency responses, calibration...}},
+     "models": {model: {...}}}                                       # hysteresis model demo
+
+Metrics per compensator: mse (rad^2), rmse, max_abs (rad), percent_error and
+max_percent_error (% of the reference's range), loop_width (rad), slack_samples; all after
+the warm-up (the reference's first period).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from . import figures, html
+
+SCHEMA = "tendonsheath.metrics"
+SCHEMA_VERSION = 1
+
+
+def _jsonable(value: Any):
+    if isinstance(value, dict):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_jsonable(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return _jsonable(value.tolist())
+    if isinstance(value, np.generic):
+        return _jsonable(value.item())
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def scenario_section(result, out: Path) -> tuple[str, list[Path]]:
+    """HTML for one scenario, and the PNG files written beside the report."""
+    parts, written = [], []
+
+    def add(fig, name, caption):
+        data = figures.png(fig)
+        path = out / f"{result.name}_{name}.png"
+        path.write_bytes(data)
+        written.append(path)
+        parts.append(html.figure(data, caption))
+
+    parts.append(f"<p>{html.fmt(result.summary)}</p>")
+    parts.append("<h3>What was simulated</h3>" + html.conditions(result.conditions))
+    parts.append("<h3>Results beside the paper</h3>" + html.table(result.table))
+    if result.paper.get("note"):
+        parts.append(f'<p class="note">{html.fmt(result.paper["note"])}</p>')
+    if result.name == "do2015":
+        add(
+            figures.bars(
+                {k: r.metrics["mse"] for k, r in result.runs.items()},
+                "MSE: this simulation and the paper",
+                "MSE [rad^2]",
+                result.paper["mse_rad2"],
+            ),
+            "mse",
+            "Mean squared error (log scale).",
+        )
+    add(
+        figures.tracking(result.runs, f"{result.name}: tracking"),
+        "tracking",
+        "Reference (dashed) and distal output of each compensator, last 12 s.",
+    )
+    add(
+        figures.errors(result.runs, f"{result.name}: tracking error"),
+        "error",
+        "Tracking error over the whole run; metrics exclude the warm-up.",
+    )
+    add(
+        figures.loops(result.runs, f"{result.name}: output vs reference"),
+        "loops",
+        "Hysteresis left by each compensator (output against reference).",
+    )
+    if result.routes:
+        add(
+            figures.routes(result.routes, f"{result.name}: route shapes"),
+            "routes",
+            "Accumulated curve angle along the sheath, and the same route drawn flat.",
+        )
+    if result.frequency:
+        add(
+            figures.bode(
+                result.frequency,
+                f"{result.name}: frequency response",
+                result.paper.get("bandwidth_hz"),
+            ),
+            "bode",
+            "Gain, phase and error magnitude of the fundamental, with the paper's bandwidth.",
+        )
+        rows = [
+            {
+                "compensator": k,
+                "bandwidth_3db_hz": fr.bandwidth_3db,
+                "bandwidth_error_rise_hz": fr.bandwidth_error,
+                "paper_bandwidth_hz": result.paper.get("bandwidth_hz"),
+            }
+            for k, fr in result.frequency.items()
+        ]
+        parts.append("<h3>Bandwidth</h3>" + html.table(rows))
+    if result.calibration:
+        cal = {k: v for k, v in result.calibration.items() if not isinstance(v, dict)}
+        if cal:
+            parts.append("<h3>Calibration (identified on the plant)</h3>" + html.table([cal]))
+    return "".join(parts), written
+
+
+def details(result) -> dict:
+    d = {"calibration": result.calibration, "table": result.table}
+    if result.route_schedule:
+        d["route_schedule"] = [{"t": t, "total_angle": a} for t, a in result.route_schedule]
+    if result.frequency:
+        d["frequency"] = {k: fr.as_dict() for k, fr in result.frequency.items()}
+    d.update(result.extra)
+    return d
+
+
+def write(
+    out: Path,
+    scenario_results: list,
+    model_section: tuple[str, dict] | None,
+    title: str = "tendonsheath virtual bench",
+) -> dict:
+    out.mkdir(parents=True, exist_ok=True)
+    sections, written = [], []
+    for result in scenario_results:
+        body, files = scenario_section(result, out)
+        sections.append((result.name, result.title, body))
+        written += files
+    metrics = {
+        "schema": SCHEMA,
+        "version": SCHEMA_VERSION,
+        "generated": datetime.now(UTC).isoformat(timespec="seconds"),
+        "scenarios": {r.name: r.metrics() for r in scenario_results},
+        "paper": {r.name: r.paper for r in scenario_results},
+        "details": {r.name: details(r) for r in scenario_results},
+    }
+    if model_section is not None:
+        body, model_metrics = model_section
+        sections.append(("models", "Hysteresis models on a standard input", body))
+        metrics["models"] = model_metrics
+    intro = (
+        "<p>Each seed paper's experiment, simulated on the N-element physics plant "
+        "(spec A.5) with models identified from calibration runs on that plant, never on "
+        "the model a compensator inverts. Metrics exclude the first period of the "
+        "reference.</p>"
+    )
+    report = out / "report.html"
+    report.write_text(html.page(title, intro, sections))
+    metrics_path = out / "metrics.json"
+    metrics_path.write_text(json.dumps(_jsonable(metrics), indent=2) + "\n")
+    return {
+        "report": report,
+        "metrics": metrics_path,
+        "figures": written,
+        "data": _jsonable(metrics),
+    }
