@@ -68,7 +68,8 @@ class ContinuumFeedforward(Feedforward):
         missing = {"friction", "stiffness", "pretension", "length", "spring"} - set(p)
         if missing:
             raise ValueError(
-                f"ContinuumFeedforward.from_model needs a CurveAngleModel (missing {sorted(missing)})"
+                "ContinuumFeedforward.from_model needs a CurveAngleModel "
+                f"(missing {sorted(missing)})"
             )
         k_e = p["spring"]
         if not k_e > 0:

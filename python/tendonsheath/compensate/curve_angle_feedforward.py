@@ -63,7 +63,8 @@ class CurveAngleFeedforward(Feedforward):
         missing = {"friction", "stiffness", "pretension", "length"} - set(p)
         if missing:
             raise ValueError(
-                f"CurveAngleFeedforward.from_model needs a CurveAngleModel (missing {sorted(missing)})"
+                "CurveAngleFeedforward.from_model needs a CurveAngleModel "
+                f"(missing {sorted(missing)})"
             )
         return cls(
             friction=p["friction"],
