@@ -8,3 +8,4 @@
 #include "models/hysteretic_oscillator.hpp"
 #include "models/prandtl_ishlinskii.hpp"
 #include "models/simulate.hpp"
+#include "models/curve_angle.hpp"

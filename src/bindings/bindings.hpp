@@ -30,5 +30,7 @@ inline std::pair<OutMatrix, double*> new_matrix(std::size_t rows, std::size_t co
 }
 
 void bind_models(nb::module_& m);
+void bind_curve_angle(nb::module_& m);
+void bind_batch(nb::module_& m);
 
 }  // namespace tsbind

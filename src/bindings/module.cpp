@@ -3,4 +3,6 @@
 NB_MODULE(_core, m) {
   m.doc() = "tendonsheath real-time core (C++17), exposed through nanobind";
   tsbind::bind_models(m);
+  tsbind::bind_curve_angle(m);
+  tsbind::bind_batch(m);
 }
