@@ -293,6 +293,28 @@ inline bool solve_spd(std::vector<double> G, std::vector<double> b, int K, doubl
 
 // Residual sum of squares of the least-squares linear coefficients (shared by
 // all recordings) for one nonlinear vector v; theta (K values) may be nullptr.
+namespace detail {
+// Accumulate G (lower triangle), b and y'y; K known at compile time when KC > 0.
+template <int KC, class F>
+void accumulate(const typename F::Params& p, const std::vector<Recording>& recs, int K,
+                double* G, double* b, double& yy) {
+  for (const Recording& rec : recs) {
+    F::run(p, rec, [&](std::size_t k, const double* row) {
+      if (k < rec.warmup) return;
+      const double y = rec.y[k];
+      const int n = KC > 0 ? KC : K;
+      for (int i = 0; i < n; ++i) {
+        b[i] += row[i] * y;
+        for (int j = 0; j <= i; ++j) G[i * n + j] += row[i] * row[j];
+      }
+      yy += y * y;
+    });
+  }
+}
+}  // namespace detail
+
+// Residual sum of squares of the least-squares linear coefficients (shared by
+// all recordings) for one nonlinear vector v; theta (K values) may be nullptr.
 template <class F>
 double separable_cost_one(const typename F::Params& base, const double* v,
                           const std::vector<Recording>& recs, double* theta) noexcept {
@@ -302,17 +324,12 @@ double separable_cost_one(const typename F::Params& base, const double* v,
     const int K = F::size(p);
     std::vector<double> G(K * K, 0.0), b(K, 0.0), th(K, 0.0);
     double yy = 0.0;
-    for (const Recording& rec : recs) {
-      F::run(p, rec, [&](std::size_t k, const double* row) {
-        if (k < rec.warmup) return;
-        const double y = rec.y[k];
-        for (int i = 0; i < K; ++i) {
-          b[i] += row[i] * y;
-          for (int j = 0; j <= i; ++j) G[i * K + j] += row[i] * row[j];
-        }
-        yy += y * y;
-      });
-    }
+    if (K == 4)
+      detail::accumulate<4, F>(p, recs, K, G.data(), b.data(), yy);
+    else if (K == 2)
+      detail::accumulate<2, F>(p, recs, K, G.data(), b.data(), yy);
+    else
+      detail::accumulate<0, F>(p, recs, K, G.data(), b.data(), yy);
     for (int i = 0; i < K; ++i)
       for (int j = 0; j < i; ++j) G[j * K + i] = G[i * K + j];
     if (!detail::solve_spd(G, b, K, th.data())) return detail::kInf;
