@@ -30,6 +30,7 @@ def _model_class(model_class) -> type[HysteresisModel]:
 
 
 SPECS_BY_NAME = {cls.__name__: cls for cls in SPECS}
+_PENALTY = 1e100  # cost of invalid candidates (finite: DE squares energies)
 
 
 class _Progress:
@@ -83,7 +84,7 @@ def identify(
     initial: HysteresisModel | None = None,
     depends_on_angle: dict[str, str] | None = None,
     seed: int | None = 0,
-    maxiter: int = 200,
+    maxiter: int = 100,
     popsize: int = 15,
     tol: float = 0.01,
     workers: int | None = None,
@@ -182,24 +183,40 @@ def identify(
         sb = spec.search_bounds(scale, held)
         sb.update({k: v for k, v in all_bounds.items() if k in sb and k in (bounds or {})})
         problem = SeparableProblem(
-            spec, recs, warmup, {k: held[k] for k in held}, sb, scale, options, n_workers
+            spec, recs, warmup, dict(held), sb, scale, options, n_workers, initial.params
         )
         method = "differential evolution + least squares (separable: linear part solved)"
     else:
         problem = DirectProblem(
             cls, recs, warmup, values, free_names, all_bounds, spec.log_names, options, depends,
-            n_workers,
+            n_workers, spec.search_options,
         )
         method = "differential evolution + least squares"
     space = problem.space
 
     counter = {"evaluations": 0}
+    x0 = None
+    if depends:
+        # Start from per-recording fits (fast, separable where possible) and the angle laws
+        # fitted to them; the joint search then starts with that candidate in its population.
+        per_rec = [
+            identify(
+                cls, recordings=[(r.t, r.x, r.y)], warmup=warmup, fixed=fixed, free=free,
+                initial=initial, seed=seed, maxiter=maxiter, popsize=popsize, tol=tol,
+                workers=workers, polish=True, separable=separable, progress=False,
+            )
+            for r in recs
+        ]
+        counter["evaluations"] += sum(f.evaluations for f in per_rec)
+        c0 = _laws_from_points(problem, [f.model.params for f in per_rec])
+        x0 = np.clip(space.search(c0), space.lower, space.upper)
+        maxiter = max(5, maxiter // 5)  # the search starts from a good candidate
 
     def population(U: np.ndarray) -> np.ndarray:  # U: (D, S) in search coordinates
         C = space.natural(np.asarray(U).T)
         counter["evaluations"] += C.shape[0]
         costs = problem.cost(C)
-        return np.where(np.isfinite(costs), costs, 1e300)
+        return np.where(np.isfinite(costs), costs, _PENALTY)
 
     bar = _Progress(progress, f"identify {cls.__name__}", maxiter)
     generation = {"n": 0}
@@ -221,11 +238,12 @@ def identify(
             seed=seed,
             polish=False,
             init="latinhypercube",
+            x0=x0,
             callback=callback,
         )
     finally:
         bar.close()
-    if not np.isfinite(res.fun) or res.fun >= 1e300:
+    if not np.isfinite(res.fun) or res.fun >= _PENALTY:
         raise ValueError(
             f"identification failed: no parameters within the bounds give a finite simulation "
             f"of {cls.__name__} (bounds: {dict(zip(space.names, zip(space.lower, space.upper)))})"
@@ -364,3 +382,37 @@ def _pi_standard_errors(model, problem, sse, n_fit) -> dict:
     J = np.column_stack([d_scale, F])
     se = _covariance_se(J, sse, n_fit)
     return {"thresholds": (pattern * se[0]).tolist(), "weights": se[1:].tolist()}
+
+
+def _laws_from_points(problem: DirectProblem, points: list[dict]) -> np.ndarray:
+    """Coefficients of the angle laws fitted (least squares) to per-recording parameters; the
+    shared friction of the tanh laws by a 1-D grid search."""
+    theta = np.asarray(problem._angles(), dtype=float)
+    values = {p: np.array([pt[p] for pt in points], dtype=float) for p, _, _ in problem.layout}
+    tanh_params = [p for p, law, _ in problem.layout if law == "tanh"]
+    mu = None
+    if tanh_params:
+        lo = problem.space.natural(problem.space.lower)[-1]
+        hi = problem.space.natural(problem.space.upper)[-1]
+        best = np.inf
+        for m in np.geomspace(max(lo, 1e-3), hi, 60):
+            A = np.column_stack([np.ones_like(theta), np.tanh(0.5 * m * np.abs(theta))])
+            err = 0.0
+            for p in tanh_params:
+                v = values[p]
+                coef = np.linalg.lstsq(A, v, rcond=None)[0]
+                err += float(np.sum((A @ coef - v) ** 2)) / (float(np.var(v)) + 1e-300)
+            if err < best:
+                best, mu = err, m
+    c = np.empty(problem.space.names.__len__())
+    for p, law, i in problem.layout:
+        v = values[p]
+        if law == "constant":
+            c[i] = float(np.mean(v))
+            continue
+        basis = theta if law == "linear" else np.tanh(0.5 * mu * np.abs(theta))
+        A = np.column_stack([np.ones_like(theta), basis])
+        c[i : i + 2] = np.linalg.lstsq(A, v, rcond=None)[0]
+    if problem.tanh:
+        c[-1] = mu
+    return c

@@ -41,9 +41,9 @@ class Space:
         return np.where(self.log, np.log(np.maximum(v, 1e-300)), v)
 
 
-def _base_struct(model_class, options: dict):
+def _base_struct(model_class, options: dict, values: dict | None = None):
     """The C++ parameter struct holding the model's numerical options."""
-    return model_class(**options)._engine.params
+    return model_class(**(values or {}), **options)._engine.params
 
 
 class DirectProblem:
@@ -61,6 +61,7 @@ class DirectProblem:
         options: dict,
         depends: dict[str, str] | None = None,
         workers: int = 0,
+        search_options: dict | None = None,
     ):
         self.model_class = model_class
         self.recs = recs
@@ -74,6 +75,14 @@ class DirectProblem:
         self.with_angle = model_class is CurveAngleModel
         self.rs = recording_set(recs, warmup, self.with_angle)
         self.base = _base_struct(model_class, options)
+        self.search_base = self.base
+        if search_options:
+            merged = dict(options)
+            for k, v in search_options.items():
+                merged[k] = min(merged.get(k, v), v)
+            if "substeps" in merged and "max_substeps" in merged:
+                merged["max_substeps"] = max(merged["max_substeps"], merged["substeps"])
+            self.search_base = _base_struct(model_class, merged)
         self.population_cost = getattr(core, f"population_cost_{model_class.__name__}")
         self.population_simulate = getattr(core, f"population_simulate_{model_class.__name__}")
         self.y = np.concatenate([r.y for r in recs])
@@ -144,7 +153,7 @@ class DirectProblem:
         return np.ascontiguousarray(full.reshape(P, R * len(self.names)))
 
     def cost(self, C: np.ndarray) -> np.ndarray:
-        return self.population_cost(self.base, self.rows(C), self.rs, self.workers)
+        return self.population_cost(self.search_base, self.rows(C), self.rs, self.workers)
 
     def simulate(self, C: np.ndarray) -> np.ndarray:
         return self.population_simulate(self.base, self.rows(C), self.rs, self.workers)
@@ -212,7 +221,9 @@ def _covariance_se(J: np.ndarray, sse: float, n_fit: int) -> np.ndarray:
 class SeparableProblem:
     """Search the nonlinear parameters; the linear ones are solved for every candidate."""
 
-    def __init__(self, spec, recs, warmup, values, search_bounds, scale, options, workers=0):
+    def __init__(
+        self, spec, recs, warmup, values, search_bounds, scale, options, workers=0, initial=None
+    ):
         self.spec = spec
         self.model_class = spec.model_class
         self.recs = recs
@@ -224,7 +235,7 @@ class SeparableProblem:
         names = [n for n in spec.search_names if n not in self.values]
         self.space = Space(names, search_bounds, spec.log_names)
         self.rs = recording_set(recs, warmup, False)
-        self.base = _base_struct(self.model_class, options)
+        self.base = _base_struct(self.model_class, options, initial)
         kind = spec.kind
         self.separable_cost = getattr(core, f"separable_cost_{kind}")
         self.features = getattr(core, f"features_{kind}")

@@ -58,6 +58,8 @@ class ModelSpec:
     default_fixed: tuple[str, ...] = ()
     log_names: frozenset[str] = frozenset()
     separable = False
+    # numerical options used during the global search only (see HystereticOscillatorSpec)
+    search_options: dict = {}
 
     def bounds(self, s: Scale, fixed: dict[str, float]) -> dict[str, tuple[float, float]]:
         raise NotImplementedError
@@ -171,18 +173,24 @@ class BoucWenSpec(ModelSpec):
 
 
 class HystereticOscillatorSpec(ModelSpec):
-    """beta is held at its value (1 by default): beta enters only as beta*gamma and beta*delta."""
+    """beta is held at its value (1 by default): beta enters only as beta*gamma and beta*delta.
+
+    During the global search the RK4 sub-steps per sample are capped at 64: candidates that
+    need more (a resonance or a damping time constant far beyond the sampling) are unstable
+    there and rejected; the refinement and the fitted model use the model's own options.
+    """
 
     model_class = HystereticOscillator
     kind = "HystereticOscillator"
     default_fixed = ("beta",)
     log_names = frozenset({"m", "c"})
+    search_options = {"max_substeps": 64}
 
     def bounds(self, s, fixed):
         # x is the force, y the displacement: the static stiffness k + alpha ~ force/displacement.
         k_tot = s.x_range / max(s.y_range, 1e-300)
-        w_lo = 2 * np.pi / (s.duration or 1.0)
-        w_hi = 2 * np.pi / (4.0 * (s.sample_time or 1e-3))
+        w_lo = 2 * np.pi * 2.0 / (s.duration or 1.0)
+        w_hi = 2 * np.pi / (10.0 * (s.sample_time or 1e-3))
         m_lo, m_hi = k_tot / w_hi**2, k_tot / w_lo**2
         c_ref = np.sqrt(k_tot * np.sqrt(m_lo * m_hi))
         beta = fixed.get("beta", 1.0)
