@@ -328,6 +328,8 @@ def _refine(problem, space, u0, counter, use_separable):
         res = least_squares(
             fun, u0, jac=jac, bounds=(space.lower, space.upper), method="trf", x_scale="jac",
             max_nfev=100 if not use_separable else 200,
+            ftol=1e-12,
+            xtol=1e-10,
         )
     except (ValueError, np.linalg.LinAlgError) as exc:  # pragma: no cover - defensive
         return u0, f"skipped ({exc})"

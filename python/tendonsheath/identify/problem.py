@@ -199,13 +199,22 @@ class DirectProblem:
         (central differences, one batched call): s^2 (J'J)^-1 with s^2 = SSE / (N - p)."""
         c = np.asarray(c, dtype=float)
         k = c.size
-        h = 1e-6 * np.maximum(np.abs(c), 1e-3 * (self.space.upper - self.space.lower + 1e-300))
-        h = np.where(self.space.log, 1e-6 * np.maximum(np.abs(c), 1e-300), h)
+        h = 1e-4 * np.maximum(np.abs(c), 1e-3 * (self.space.upper - self.space.lower + 1e-300))
+        h = np.where(self.space.log, 1e-4 * np.maximum(np.abs(c), 1e-300), h)
         plus = c[None, :] + np.diag(h)
         minus = c[None, :] - np.diag(h)
-        out = self.simulate(np.vstack([plus, minus]))[:, self.mask]
-        J = ((out[:k] - out[k:]) / (2 * h[:, None])).T
-        return _covariance_se(J, sse, n_fit)
+        out = self.simulate(np.vstack([plus, minus, c[None, :]]))[:, self.mask]
+        up, down, mid = out[:k], out[k : 2 * k], out[2 * k]
+        J = np.empty((k, mid.size))
+        for i in range(k):  # one-sided at a validity limit (e.g. n = 1)
+            ok_up, ok_down = np.all(np.isfinite(up[i])), np.all(np.isfinite(down[i]))
+            if ok_up and ok_down:
+                J[i] = (up[i] - down[i]) / (2 * h[i])
+            elif ok_up:
+                J[i] = (up[i] - mid) / h[i]
+            else:
+                J[i] = (mid - down[i]) / h[i]
+        return _covariance_se(J.T, sse, n_fit)
 
 
 def _covariance_se(J: np.ndarray, sse: float, n_fit: int) -> np.ndarray:
