@@ -3,10 +3,9 @@
 import json
 
 import numpy as np
-from typer.testing import CliRunner
-
 import tendonsheath as ts
 from tendonsheath.cli import app
+from typer.testing import CliRunner
 
 runner = CliRunner()
 
@@ -26,9 +25,24 @@ def test_identify_then_predict(tmp_path):
     model_path = tmp_path / "model.json"
     result = runner.invoke(
         app,
-        ["identify", str(tmp_path / "train.csv"), "--model", "BoucWenBacklash", "--input",
-         "motor", "--output", "tip", "--time", "time", "--validate", str(tmp_path / "val.csv"),
-         "-o", str(model_path), "--report", str(tmp_path / "fit.png")],
+        [
+            "identify",
+            str(tmp_path / "train.csv"),
+            "--model",
+            "BoucWenBacklash",
+            "--input",
+            "motor",
+            "--output",
+            "tip",
+            "--time",
+            "time",
+            "--validate",
+            str(tmp_path / "val.csv"),
+            "-o",
+            str(model_path),
+            "--report",
+            str(tmp_path / "fit.png"),
+        ],
     )
     assert result.exit_code == 0, result.output
     assert "B_r" in result.output and "validation" in result.output
@@ -54,15 +68,33 @@ def test_identify_curve_angle_model_with_constant_angle_value(tmp_path):
     _write(tmp_path / "a.csv", t, x, truth.simulate(t, x, curve_angle=np.pi))
     result = runner.invoke(
         app,
-        ["identify", str(tmp_path / "a.csv"), "--model", "CurveAngleModel", "--input", "motor",
-         "--output", "tip", "--curve-angle", "3.14159", "-o", str(tmp_path / "m.json")],
+        [
+            "identify",
+            str(tmp_path / "a.csv"),
+            "--model",
+            "CurveAngleModel",
+            "--input",
+            "motor",
+            "--output",
+            "tip",
+            "--curve-angle",
+            "3.14159",
+            "-o",
+            str(tmp_path / "m.json"),
+        ],
     )
     assert result.exit_code == 0, result.output
     # predict without an output column: no rmse, still writes predictions
     ts.io.write_csv(tmp_path / "only_input.csv", {"time": t, "motor": x})
     result = runner.invoke(
-        app, ["predict", str(tmp_path / "m.json"), str(tmp_path / "only_input.csv"),
-              "-o", str(tmp_path / "p.csv")]
+        app,
+        [
+            "predict",
+            str(tmp_path / "m.json"),
+            str(tmp_path / "only_input.csv"),
+            "-o",
+            str(tmp_path / "p.csv"),
+        ],
     )
     assert result.exit_code == 0, result.output
     assert "rmse" not in result.output
@@ -72,18 +104,45 @@ def test_bad_input_exits_nonzero_with_a_reason(tmp_path):
     t = np.arange(0.0, 1.0, 0.01)
     _write(tmp_path / "c.csv", t, np.ones_like(t), np.sin(t))
     result = runner.invoke(
-        app, ["identify", str(tmp_path / "c.csv"), "--model", "Backlash", "--input", "motor",
-              "--output", "tip"]
+        app,
+        [
+            "identify",
+            str(tmp_path / "c.csv"),
+            "--model",
+            "Backlash",
+            "--input",
+            "motor",
+            "--output",
+            "tip",
+        ],
     )
     assert result.exit_code == 1
     assert "constant" in result.output
     result = runner.invoke(
-        app, ["identify", str(tmp_path / "c.csv"), "--model", "Backlash", "--input", "nope",
-              "--output", "tip"]
+        app,
+        [
+            "identify",
+            str(tmp_path / "c.csv"),
+            "--model",
+            "Backlash",
+            "--input",
+            "nope",
+            "--output",
+            "tip",
+        ],
     )
     assert result.exit_code == 1 and "unknown input column 'nope'" in result.output
     result = runner.invoke(
-        app, ["identify", str(tmp_path / "c.csv"), "--model", "Nonsense", "--input", "motor",
-              "--output", "tip"]
+        app,
+        [
+            "identify",
+            str(tmp_path / "c.csv"),
+            "--model",
+            "Nonsense",
+            "--input",
+            "motor",
+            "--output",
+            "tip",
+        ],
     )
     assert result.exit_code == 1 and "unknown model" in result.output

@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-
 import tendonsheath as ts
 from tendonsheath.models import CurveAngleModel
 from tendonsheath.physics import backlash_half_width, load_offset, spring_slope
@@ -22,7 +21,9 @@ def _random_params(rng):
 
 def test_worked_example_of_the_spec():
     # L=1.2 m, EA=2.4e4 N, T0=10 N, mu=0.1, Theta=2 pi: e_b = 0.152 mm, e_L(5 N) = 0.121 mm.
-    assert backlash_half_width(0.1, 2 * np.pi, 10.0, 1.2, 2.4e4) == pytest.approx(1.5211e-4, rel=1e-4)
+    assert backlash_half_width(0.1, 2 * np.pi, 10.0, 1.2, 2.4e4) == pytest.approx(
+        1.5211e-4, rel=1e-4
+    )
     assert load_offset(0.1, 2 * np.pi, 5.0, 1.2, 2.4e4) == pytest.approx(1.2104e-4, rel=1e-4)
     m = CurveAngleModel(distal_radius=3e-3)
     assert 2 * m.backlash_half_width(2 * np.pi) * 5e-3 / 3e-3 == pytest.approx(0.1014, rel=1e-3)
@@ -138,8 +139,15 @@ def test_identified_at_three_angles_predicts_unseen_angles():
 def test_angle_dependent_parameters_predict_unseen_angles():
     truth = ts.models.AngleDependent(
         "BoucWenBacklash",
-        {"c_r": [1.0], "c_l": [0.95], "B_r": [0.0, 0.3], "B_l": [0.01, 0.25], "rho": [12.0],
-         "sigma": [1.0], "n": [3.0]},
+        {
+            "c_r": [1.0],
+            "c_l": [0.95],
+            "B_r": [0.0, 0.3],
+            "B_l": [0.01, 0.25],
+            "rho": [12.0],
+            "sigma": [1.0],
+            "n": [3.0],
+        },
         {"B_r": "tanh", "B_l": "tanh"},
         angle_friction=0.2,
     )
@@ -150,8 +158,12 @@ def test_angle_dependent_parameters_predict_unseen_angles():
     for th in (np.pi / 2, np.pi, 2 * np.pi):
         y = truth.simulate(t, x, curve_angle=th)
         recs.append((t, x, y + 0.003 * rng.standard_normal(t.size), th))
-    fit = ts.identify(ts.models.BoucWenBacklash, recordings=recs, progress=False,
-                      depends_on_angle={"B_r": "tanh", "B_l": "tanh"})
+    fit = ts.identify(
+        ts.models.BoucWenBacklash,
+        recordings=recs,
+        progress=False,
+        depends_on_angle={"B_r": "tanh", "B_l": "tanh"},
+    )
     assert isinstance(fit.model, ts.models.AngleDependent)
     assert fit.model.params["angle_friction"] == pytest.approx(0.2, rel=0.1)
     for th in (1.5 * np.pi, 3 * np.pi):

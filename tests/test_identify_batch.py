@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-
 import tendonsheath as ts
 from tendonsheath import _core as core
 from tendonsheath.models import Backlash, BoucWenBacklash, HystereticOscillator

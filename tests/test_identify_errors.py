@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-
 import tendonsheath as ts
 from tendonsheath.models import BoucWenBacklash, CurveAngleModel, HystereticOscillator
 

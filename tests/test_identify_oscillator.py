@@ -1,9 +1,8 @@
 """HystereticOscillator identified from data of an independent integrator (SciPy's DOP853)."""
 
 import numpy as np
-from scipy.integrate import solve_ivp
-
 import tendonsheath as ts
+from scipy.integrate import solve_ivp
 
 TRUE = dict(m=1.0, c=0.5, k=2.0, alpha=3.0, beta=1.0, gamma=0.6, delta=0.4, nu=1.0)
 
@@ -19,18 +18,32 @@ def _simulate_reference(t, force):
             v,
             (u - p["c"] * v - p["k"] * y - z) / p["m"],
             p["alpha"] * v
-            - p["beta"] * (p["gamma"] * abs(v) * az ** (p["nu"] - 1) * z + p["delta"] * v * az ** p["nu"]),
+            - p["beta"]
+            * (p["gamma"] * abs(v) * az ** (p["nu"] - 1) * z + p["delta"] * v * az ** p["nu"]),
         ]
 
-    sol = solve_ivp(rhs, (t[0], t[-1]), [0.0, 0.0, 0.0], t_eval=t, method="DOP853",
-                    rtol=1e-10, atol=1e-12, max_step=0.02)
+    sol = solve_ivp(
+        rhs,
+        (t[0], t[-1]),
+        [0.0, 0.0, 0.0],
+        t_eval=t,
+        method="DOP853",
+        rtol=1e-10,
+        atol=1e-12,
+        max_step=0.02,
+    )
     assert sol.success
     return sol.y[0]
 
 
 def _force(f1, f2, amp):
-    return lambda s: amp * (np.sin(2 * np.pi * f1 * s) * (0.6 + 0.4 * np.sin(2 * np.pi * 0.07 * s))
-                            + 0.4 * np.sin(2 * np.pi * f2 * s))
+    return lambda s: (
+        amp
+        * (
+            np.sin(2 * np.pi * f1 * s) * (0.6 + 0.4 * np.sin(2 * np.pi * 0.07 * s))
+            + 0.4 * np.sin(2 * np.pi * f2 * s)
+        )
+    )
 
 
 def test_oscillator_recovers_parameters_and_predicts_a_new_input():
@@ -40,8 +53,7 @@ def test_oscillator_recovers_parameters_and_predicts_a_new_input():
     rng = np.random.default_rng(0)
     y_noisy = y + 0.002 * np.ptp(y) * rng.standard_normal(t.size)
 
-    fit = ts.identify(ts.models.HystereticOscillator, t, u(t), y_noisy, maxiter=25,
-                      progress=False)
+    fit = ts.identify(ts.models.HystereticOscillator, t, u(t), y_noisy, maxiter=25, progress=False)
     assert fit.fixed == {"beta": 1.0}
     for name, se in fit.standard_errors.items():
         got = fit.model.params[name]

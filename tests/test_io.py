@@ -3,7 +3,6 @@
 import h5py
 import numpy as np
 import pytest
-
 from tendonsheath import io
 
 
@@ -15,16 +14,18 @@ def _columns(n=10):
 def test_csv_and_tsv(tmp_path):
     t, x, y, th = _columns()
     io.write_csv(tmp_path / "a.csv", {"time": t, "motor": x, "tip": y, "angle": th})
-    log = io.read_log(tmp_path / "a.csv", time="time", input="motor", output="tip",
-                      curve_angle="angle")
+    log = io.read_log(
+        tmp_path / "a.csv", time="time", input="motor", output="tip", curve_angle="angle"
+    )
     assert np.allclose(log.t, t) and np.allclose(log.x, x) and np.allclose(log.y, y)
     assert np.allclose(log.curve_angle, th)
     lines = ["time\tmotor\ttip\tnote"] + [
         f"{a}\t{b}\t{c}\tok" for a, b, c in zip(t, x, y, strict=True)
     ]
     (tmp_path / "b.tsv").write_text("\n".join(lines) + "\n")
-    log = io.read_log(tmp_path / "b.tsv", time="time", input="motor", output="tip",
-                      curve_angle="3.0")
+    log = io.read_log(
+        tmp_path / "b.tsv", time="time", input="motor", output="tip", curve_angle="3.0"
+    )
     assert np.allclose(log.x, x) and np.all(log.curve_angle == 3.0)
     assert "note" not in log.extra  # text column kept out of the numeric extras
 

@@ -55,7 +55,9 @@ def _fail(exc: Exception) -> None:
 
 @app.command()
 def identify(
-    data: list[Path] = typer.Argument(..., help="Data file(s): CSV/TSV with header, NPY, NPZ, HDF5."),
+    data: list[Path] = typer.Argument(
+        ..., help="Data file(s): CSV/TSV with header, NPY, NPZ, HDF5."
+    ),
     model: str = typer.Option(..., "--model", "-m", help="Model class, e.g. BoucWenBacklash."),
     input_col: str = typer.Option(..., "--input", help="Input column (motor position)."),
     output_col: str = typer.Option(..., "--output", help="Output column (tip position)."),
@@ -77,8 +79,9 @@ def identify(
     columns = {"time": time_col, "input": input_col, "output": output_col}
     try:
         logs = [
-            io.read_log(path, time=time_col, input=input_col, output=output_col,
-                        curve_angle=curve_angle)
+            io.read_log(
+                path, time=time_col, input=input_col, output=output_col, curve_angle=curve_angle
+            )
             for path in data
         ]
         fit = run_identify(
@@ -86,8 +89,9 @@ def identify(
         )
         val = None
         if validate is not None:
-            vlog = io.read_log(validate, time=time_col, input=input_col, output=output_col,
-                               curve_angle=curve_angle)
+            vlog = io.read_log(
+                validate, time=time_col, input=input_col, output=output_col, curve_angle=curve_angle
+            )
             val = fit.validate(vlog.t, vlog.x, vlog.y, vlog.curve_angle)
     except ValueError as exc:
         _fail(exc)
@@ -126,7 +130,9 @@ def predict(
     model_file: Path = typer.Argument(..., help="Model JSON written by `identify`."),
     data: Path = typer.Argument(..., help="Data file with the input column."),
     out: Path = typer.Option(Path("pred.csv"), "--out", "-o", help="CSV of predictions."),
-    input_col: str | None = typer.Option(None, "--input", help="Input column (default: as fitted)."),
+    input_col: str | None = typer.Option(
+        None, "--input", help="Input column (default: as fitted)."
+    ),
     output_col: str | None = typer.Option(
         None, "--output", help="Measured output column, if any (default: as fitted)."
     ),
@@ -160,8 +166,13 @@ def predict(
         has_output = wanted_output is not None and (
             wanted_output in table_columns or output_col is not None
         )
-        log = io.read_log(data, time=time_col, input=input_col,
-                          output=wanted_output if has_output else None, curve_angle=curve_angle)
+        log = io.read_log(
+            data,
+            time=time_col,
+            input=input_col,
+            output=wanted_output if has_output else None,
+            curve_angle=curve_angle,
+        )
         y_hat = simulate_model(model, log.t, log.x, log.curve_angle)
     except ValueError as exc:
         _fail(exc)

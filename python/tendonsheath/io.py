@@ -230,9 +230,7 @@ def read_log(
             theta = np.full(n, value)
     for name, arr in (("time", t), ("output", y), ("curve angle", theta)):
         if arr is not None and arr.size != n:
-            raise ValueError(
-                f"{path}: the {name} column has {arr.size} rows, the input has {n}"
-            )
+            raise ValueError(f"{path}: the {name} column has {arr.size} rows, the input has {n}")
     used = {table.key(c) for c in (time, input, output, curve_angle) if c is not None}
     extra = {}
     for name in table.names():

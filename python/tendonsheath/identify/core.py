@@ -188,8 +188,17 @@ def identify(
         method = "differential evolution + least squares (separable: linear part solved)"
     else:
         problem = DirectProblem(
-            cls, recs, warmup, values, free_names, all_bounds, spec.log_names, options, depends,
-            n_workers, spec.search_options,
+            cls,
+            recs,
+            warmup,
+            values,
+            free_names,
+            all_bounds,
+            spec.log_names,
+            options,
+            depends,
+            n_workers,
+            spec.search_options,
         )
         method = "differential evolution + least squares"
     space = problem.space
@@ -201,9 +210,20 @@ def identify(
         # fitted to them; the joint search then starts with that candidate in its population.
         per_rec = [
             identify(
-                cls, recordings=[(r.t, r.x, r.y)], warmup=warmup, fixed=fixed, free=free,
-                initial=initial, seed=seed, maxiter=maxiter, popsize=popsize, tol=tol,
-                workers=workers, polish=True, separable=separable, progress=False,
+                cls,
+                recordings=[(r.t, r.x, r.y)],
+                warmup=warmup,
+                fixed=fixed,
+                free=free,
+                initial=initial,
+                seed=seed,
+                maxiter=maxiter,
+                popsize=popsize,
+                tol=tol,
+                workers=workers,
+                polish=True,
+                separable=separable,
+                progress=False,
             )
             for r in recs
         ]
@@ -246,7 +266,8 @@ def identify(
     if not np.isfinite(res.fun) or res.fun >= _PENALTY:
         raise ValueError(
             f"identification failed: no parameters within the bounds give a finite simulation "
-            f"of {cls.__name__} (bounds: {dict(zip(space.names, zip(space.lower, space.upper)))})"
+            f"of {cls.__name__} (search bounds: "
+            f"{dict(zip(space.names, zip(space.lower, space.upper, strict=True), strict=True))})"
         )
     u_best = res.x
     message = f"differential evolution: {res.message}"
@@ -268,8 +289,20 @@ def identify(
     sse = float(np.sum((y_fit - y_hat) ** 2))
 
     ses = _standard_errors(
-        cls, model, problem, recs, warmup, values, free_names, all_bounds, spec, options,
-        depends, n_workers, sse, y_fit.size,
+        cls,
+        model,
+        problem,
+        recs,
+        warmup,
+        values,
+        free_names,
+        all_bounds,
+        spec,
+        options,
+        depends,
+        n_workers,
+        sse,
+        y_fit.size,
     )
     return Fit(
         model=model,
@@ -326,7 +359,12 @@ def _refine(problem, space, u0, counter, use_separable):
     cost0 = float(r0 @ r0) if np.all(np.isfinite(r0)) else np.inf
     try:
         res = least_squares(
-            fun, u0, jac=jac, bounds=(space.lower, space.upper), method="trf", x_scale="jac",
+            fun,
+            u0,
+            jac=jac,
+            bounds=(space.lower, space.upper),
+            method="trf",
+            x_scale="jac",
             max_nfev=100 if not use_separable else 200,
             ftol=1e-12,
             xtol=1e-10,
@@ -340,8 +378,20 @@ def _refine(problem, space, u0, counter, use_separable):
 
 
 def _standard_errors(
-    cls, model, problem, recs, warmup, values, free_names, bounds, spec, options, depends,
-    workers, sse, n_fit,
+    cls,
+    model,
+    problem,
+    recs,
+    warmup,
+    values,
+    free_names,
+    bounds,
+    spec,
+    options,
+    depends,
+    workers,
+    sse,
+    n_fit,
 ) -> dict:
     try:
         if cls is PrandtlIshlinskii:
@@ -350,8 +400,16 @@ def _standard_errors(
             se_problem = problem
         else:
             se_problem = DirectProblem(
-                cls, recs, warmup, {**values, **model.params}, free_names, bounds,
-                spec.log_names, options, None, workers,
+                cls,
+                recs,
+                warmup,
+                {**values, **model.params},
+                free_names,
+                bounds,
+                spec.log_names,
+                options,
+                None,
+                workers,
             )
         c = se_problem.coefficients_of(model)
         se = se_problem.standard_errors(c, sse, n_fit)

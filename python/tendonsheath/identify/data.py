@@ -54,7 +54,8 @@ def _unpack(item, index: int):
         return item.t, item.x, item.y, getattr(item, "curve_angle", None)
     if not isinstance(item, tuple | list) or len(item) not in (3, 4):
         raise ValueError(
-            f"recording {index} must be (t, x, y) or (t, x, y, curve_angle), got {type(item).__name__}"
+            f"recording {index} must be (t, x, y) or (t, x, y, curve_angle), "
+            f"got {type(item).__name__}"
         )
     return (*item, None) if len(item) == 3 else tuple(item)
 
@@ -112,7 +113,8 @@ def make_recordings(
                 theta = _vector(ai, f"{who}curve angle")
                 if theta.size != xs.size:
                     raise ValueError(
-                        f"{who}curve angle and x have different lengths ({theta.size} and {xs.size})"
+                        f"{who}curve angle and x have different lengths "
+                        f"({theta.size} and {xs.size})"
                     )
         out.append(Recording(ts, xs, ys, theta))
     return out

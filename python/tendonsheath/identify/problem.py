@@ -278,9 +278,7 @@ class SeparableProblem:
             return np.full(F.shape[1], np.nan), np.full(y.size, 1e6 * (np.ptp(y) + 1.0))
         col = np.linalg.norm(F, axis=0)
         col[col == 0] = 1.0
-        res = lsq_linear(
-            F / col, y, bounds=(self.lin_lo * col, self.lin_hi * col), lsmr_tol="auto"
-        )
+        res = lsq_linear(F / col, y, bounds=(self.lin_lo * col, self.lin_hi * col), lsmr_tol="auto")
         theta = res.x / col
         return theta, y - F @ theta
 
@@ -299,7 +297,9 @@ def law_check(depends: dict[str, str], names) -> dict[str, str]:
     out = {}
     for name, law in (depends or {}).items():
         if name not in names:
-            raise ValueError(f"depends_on_angle: unknown parameter {name!r}; expected {list(names)}")
+            raise ValueError(
+                f"depends_on_angle: unknown parameter {name!r}; expected {list(names)}"
+            )
         if law not in ("constant", "linear", "tanh"):
             raise ValueError(
                 f"depends_on_angle[{name!r}] must be 'constant', 'linear' or 'tanh' (got {law!r})"

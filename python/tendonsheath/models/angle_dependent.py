@@ -152,7 +152,9 @@ class AngleDependent(HysteresisModel):
             self._stream = self.at(curve_angle)
             self._stream_angle = float(curve_angle)
         elif curve_angle is not None and float(curve_angle) != self._stream_angle:
-            raise ValueError("AngleDependent: the curve angle changed while streaming; reset() first")
+            raise ValueError(
+                "AngleDependent: the curve angle changed while streaming; reset() first"
+            )
         return self._stream.step(x, dt)
 
     def __repr__(self) -> str:

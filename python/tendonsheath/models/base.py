@@ -165,7 +165,9 @@ def _plain(value):
 
 def _short(value):
     if isinstance(value, list):
-        return "[" + ", ".join(f"{v:.4g}" for v in value[:4]) + (", ...]" if len(value) > 4 else "]")
+        return (
+            "[" + ", ".join(f"{v:.4g}" for v in value[:4]) + (", ...]" if len(value) > 4 else "]")
+        )
     if isinstance(value, float) and math.isfinite(value):
         return f"{value:.6g}"
     return repr(value)

@@ -29,6 +29,12 @@ class BoucWen(HysteresisModel):
         max_substeps: int = 256,
     ):
         super().__init__(
-            A=A, beta=beta, gamma=gamma, n=n, a=a, k=k, max_step=max_step,
+            A=A,
+            beta=beta,
+            gamma=gamma,
+            n=n,
+            a=a,
+            k=k,
+            max_step=max_step,
             max_substeps=max_substeps,
         )

@@ -11,7 +11,8 @@ _INTERPOLATIONS = ("linear", "hold")
 
 
 class HystereticOscillator(HysteresisModel):
-    """m y'' + c y' + k y + z = u,  z' = alpha y' - beta (gamma |y'| |z|^(nu-1) z + delta y' |z|^nu).
+    """m y'' + c y' + k y + z = u,
+    z' = alpha y' - beta (gamma |y'| |z|^(nu-1) z + delta y' |z|^nu).
 
     Force u in, displacement y out, starting at rest. RK4 with at least ``substeps``
     sub-steps per sample (raised automatically for stability, at most ``max_substeps``).
