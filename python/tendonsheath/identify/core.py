@@ -160,11 +160,7 @@ def identify(
     n_params = len(free_names) + sum(1 for v in depends.values() if v != "constant")
     needs_angle = bool(depends) or getattr(cls, "uses_curve_angle", False)
     check_for_fit(recs, warmup, n_params, not cls.rate_independent, needs_angle)
-    if not cls.rate_independent:
-        recs_t = recs
-    else:
-        recs_t = recs
-    scale = Scale.of(recs_t)
+    scale = Scale.of(recs)
     all_bounds = spec.bounds(scale, held)
     for name, b in (bounds or {}).items():
         if len(tuple(b)) != 2:
@@ -464,7 +460,7 @@ def _laws_from_points(problem: DirectProblem, points: list[dict]) -> np.ndarray:
                 err += float(np.sum((A @ coef - v) ** 2)) / (float(np.var(v)) + 1e-300)
             if err < best:
                 best, mu = err, m
-    c = np.empty(problem.space.names.__len__())
+    c = np.empty(len(problem.space.names))
     for p, law, i in problem.layout:
         v = values[p]
         if law == "constant":

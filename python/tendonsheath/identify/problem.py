@@ -35,10 +35,14 @@ class Space:
         self.upper = np.where(self.log, np.log(hi), hi)
 
     def natural(self, u: np.ndarray) -> np.ndarray:
-        return np.where(self.log, np.exp(u), u)
+        v = np.array(u, dtype=float)
+        v[..., self.log] = np.exp(v[..., self.log])
+        return v
 
     def search(self, v: np.ndarray) -> np.ndarray:
-        return np.where(self.log, np.log(np.maximum(v, 1e-300)), v)
+        u = np.array(v, dtype=float)
+        u[..., self.log] = np.log(np.maximum(u[..., self.log], 1e-300))
+        return u
 
 
 def _base_struct(model_class, options: dict, values: dict | None = None):
