@@ -8,7 +8,7 @@ CPP_BUILD := build/cpp
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 DEMO_OUT ?= demo-out
 
-.PHONY: all venv install demo test test-python test-cpp gtest bench lint clean
+.PHONY: all venv install demo test test-python test-cpp gtest chromium bench lint clean
 
 all: install
 
@@ -34,6 +34,13 @@ gtest:
 	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libgtest-dev googletest; \
 	fi
 
+# The report test renders report.html in headless Chromium (Debian's package).
+chromium:
+	@if ! command -v chromium > /dev/null && ! command -v chromium-browser > /dev/null; then \
+	  echo "Chromium not found: installing Debian's chromium package with apt-get"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium > /dev/null; \
+	fi
+
 test-cpp: gtest
 	cmake -S . -B $(CPP_BUILD) -DCMAKE_BUILD_TYPE=Release -DTENDONSHEATH_BUILD_TESTS=ON \
 	  -DTENDONSHEATH_BUILD_EXAMPLES=ON > /dev/null
@@ -44,7 +51,7 @@ test-cpp: gtest
 	cmake -S examples/cpp -B build/cpp-consumer -DCMAKE_PREFIX_PATH=$(CURDIR)/build/cpp-install > /dev/null
 	cmake --build build/cpp-consumer -j $(JOBS)
 
-test-python: install
+test-python: install chromium
 	$(PY) -m pytest -q
 
 test: test-cpp test-python lint

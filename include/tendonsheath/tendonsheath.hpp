@@ -25,3 +25,4 @@
 #include "plant/sensor.hpp"
 #include "plant/simulate_plant.hpp"
 #include "bench/closed_loop.hpp"
+#include "models/curve_angle.hpp"

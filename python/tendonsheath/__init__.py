@@ -1,6 +1,7 @@
 """tendonsheath: model, identify and compensate tendon-sheath mechanisms."""
 
-from . import bench, compensate, loads, models, physics
+from . import bench, compensate, io, loads, models, physics
+from .identify import Fit, identify
 from .models import load_model
 from .motor import Motor
 from .plant import (
@@ -17,6 +18,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "ContinuumPlant",
+    "Fit",
     "Motor",
     "PullPullPlant",
     "Route",
@@ -26,6 +28,8 @@ __all__ = [
     "SlackWarning",
     "bench",
     "compensate",
+    "identify",
+    "io",
     "load_model",
     "loads",
     "models",

@@ -82,6 +82,150 @@ def _fail(message: str) -> None:
     raise typer.Exit(code=2)
 
 
+def _fail(exc: Exception) -> None:
+    console.print(f"[red]error:[/red] {exc}", soft_wrap=True)
+    raise typer.Exit(1)
+
+
+@app.command()
+def identify(
+    data: list[Path] = typer.Argument(
+        ..., help="Data file(s): CSV/TSV with header, NPY, NPZ, HDF5."
+    ),
+    model: str = typer.Option(..., "--model", "-m", help="Model class, e.g. BoucWenBacklash."),
+    input_col: str = typer.Option(..., "--input", help="Input column (motor position)."),
+    output_col: str = typer.Option(..., "--output", help="Output column (tip position)."),
+    time_col: str | None = typer.Option(None, "--time", help="Time column (s)."),
+    curve_angle: str | None = typer.Option(
+        None, "--curve-angle", help="Curve-angle column, or a number (rad)."
+    ),
+    validate: Path | None = typer.Option(None, "--validate", help="Data file to validate on."),
+    out: Path = typer.Option(Path("model.json"), "--out", "-o", help="Where to save the model."),
+    warmup: int = typer.Option(0, "--warmup", help="Samples per recording not fitted."),
+    seed: int = typer.Option(0, "--seed", help="Seed of the global search."),
+    maxiter: int = typer.Option(100, "--maxiter", help="Generations of the global search."),
+    report: Path | None = typer.Option(None, "--report", help="Write a figure of the fit here."),
+) -> None:
+    """Fit MODEL to DATA and save it as JSON; print the fit table and the validation error."""
+    from . import io
+    from .identify import identify as run_identify
+
+    columns = {"time": time_col, "input": input_col, "output": output_col}
+    try:
+        logs = [
+            io.read_log(
+                path, time=time_col, input=input_col, output=output_col, curve_angle=curve_angle
+            )
+            for path in data
+        ]
+        fit = run_identify(
+            model, recordings=logs, warmup=warmup, seed=seed, maxiter=maxiter, progress=True
+        )
+        val = None
+        if validate is not None:
+            vlog = io.read_log(
+                validate, time=time_col, input=input_col, output=output_col, curve_angle=curve_angle
+            )
+            val = fit.validate(vlog.t, vlog.x, vlog.y, vlog.curve_angle)
+    except ValueError as exc:
+        _fail(exc)
+    record = fit.model.to_dict()
+    record["data"] = {**columns, "curve_angle": curve_angle}
+    record["fit"] = {k: v for k, v in fit.to_dict().items() if k != "model"}
+    if val is not None:
+        record["validation"] = val
+    import json
+
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json.dumps(record, indent=2) + "\n")
+    table = Table(title=f"{type(fit.model).__name__} fitted to {len(logs)} recording(s)")
+    table.add_column("parameter")
+    table.add_column("value", justify="right")
+    table.add_column("std. error", justify="right")
+    for row in fit.table():
+        table.add_row(*row)
+    console.print(table)
+    console.print(
+        f"rmse {fit.rmse:.4g}   nrmse {100 * fit.nrmse:.3f} %   fit {fit.fit_percent:.2f} %   "
+        f"({fit.evaluations} evaluations, {fit.seconds:.2f} s)"
+    )
+    if val is not None:
+        console.print(
+            f"validation on {validate}: rmse {val['rmse']:.4g}   nrmse {100 * val['nrmse']:.3f} %"
+            f"   fit {val['fit_percent']:.2f} %"
+        )
+    if report is not None:
+        console.print(f"report: {fit.report(report)}")
+    console.print(f"model saved to {out}")
+
+
+@app.command()
+def predict(
+    model_file: Path = typer.Argument(..., help="Model JSON written by `identify`."),
+    data: Path = typer.Argument(..., help="Data file with the input column."),
+    out: Path = typer.Option(Path("pred.csv"), "--out", "-o", help="CSV of predictions."),
+    input_col: str | None = typer.Option(
+        None, "--input", help="Input column (default: as fitted)."
+    ),
+    output_col: str | None = typer.Option(
+        None, "--output", help="Measured output column, if any (default: as fitted)."
+    ),
+    time_col: str | None = typer.Option(None, "--time", help="Time column (default: as fitted)."),
+    curve_angle: str | None = typer.Option(
+        None, "--curve-angle", help="Curve-angle column or number (default: as fitted)."
+    ),
+    warmup: int = typer.Option(0, "--warmup", help="Samples left out of the rmse."),
+) -> None:
+    """Predict the output of a saved model for DATA; print the rmse if the output is there."""
+    import json
+
+    from . import io
+    from .identify.fit import metrics, simulate_model
+    from .models import load_model
+
+    try:
+        model = load_model(model_file)
+        saved = {}
+        try:
+            saved = json.loads(model_file.read_text()).get("data", {}) or {}
+        except (OSError, json.JSONDecodeError):
+            saved = {}
+        input_col = input_col or saved.get("input")
+        time_col = time_col or saved.get("time")
+        curve_angle = curve_angle or saved.get("curve_angle")
+        wanted_output = output_col or saved.get("output")
+        if input_col is None:
+            raise ValueError("name the input column with --input")
+        table_columns = io.columns(data)
+        has_output = wanted_output is not None and (
+            wanted_output in table_columns or output_col is not None
+        )
+        log = io.read_log(
+            data,
+            time=time_col,
+            input=input_col,
+            output=wanted_output if has_output else None,
+            curve_angle=curve_angle,
+        )
+        y_hat = simulate_model(model, log.t, log.x, log.curve_angle)
+    except ValueError as exc:
+        _fail(exc)
+    cols = {}
+    if log.t is not None:
+        cols[time_col] = log.t
+    cols[input_col] = log.x
+    if log.y is not None:
+        cols[wanted_output] = log.y
+    cols["predicted"] = y_hat
+    io.write_csv(out, cols)
+    console.print(f"wrote {len(y_hat)} predictions to {out}")
+    if log.y is not None:
+        m = metrics(log.y[warmup:], y_hat[warmup:])
+        console.print(
+            f"rmse {m['rmse']:.4g}   nrmse {100 * m['nrmse']:.3f} %   fit {m['fit_percent']:.2f} %"
+        )
+
+
 def main() -> None:
     app()
 

@@ -104,7 +104,7 @@ void bind_inverse(nb::module_& m) {
       });
 }
 
-void bind_curve_angle(nb::module_& m) {
+void bind_curve_angle_feedforward(nb::module_& m) {
   using P = ts::CurveAngleFeedforwardParams;
   nb::class_<P>(m, "CurveAngleFeedforwardParams")
       .def(nb::init<>())
@@ -232,7 +232,7 @@ void bind_adaptive(nb::module_& m) {
 void bind_compensators(nb::module_& m) {
   bind_limits(m);
   bind_inverse(m);
-  bind_curve_angle(m);
+  bind_curve_angle_feedforward(m);
   bind_continuum(m);
   bind_adaptive(m);
 }

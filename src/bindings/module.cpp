@@ -7,4 +7,6 @@ NB_MODULE(_core, m) {
   tsbind::bind_models_extended(m);
   tsbind::bind_plant(m);
   tsbind::bind_bench(m);
+  tsbind::bind_curve_angle(m);
+  tsbind::bind_batch(m);
 }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 
 #include "../validate.hpp"
 
@@ -17,6 +18,13 @@ struct BacklashParams {
   double c_l = 1.0;  // slope of the left (falling) branch
   double B_r = 0.1;  // dead-band offset of the right branch, input units
   double B_l = 0.1;  // dead-band offset of the left branch, input units
+
+  // The identifiable parameters as a flat vector, in the order of the Python
+  // param_names (numerical options are left as they are).
+  static constexpr std::size_t vector_size = 4;
+  void assign(const double* v) noexcept {
+    c_r = v[0]; c_l = v[1]; B_r = v[2]; B_l = v[3];
+  }
 };
 
 class Backlash {

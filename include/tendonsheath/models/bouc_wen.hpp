@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 
 #include "../validate.hpp"
 #include "bouc_wen_backlash.hpp"
@@ -24,6 +25,13 @@ struct BoucWenParams {
   double k = 1.0;  // gain of the hysteretic path
   double max_step = 0.05;  // largest change of z / z_u per RK4 sub-step
   int max_substeps = 256;
+
+  // The identifiable parameters as a flat vector, in the order of the Python
+  // param_names (numerical options are left as they are).
+  static constexpr std::size_t vector_size = 6;
+  void assign(const double* v) noexcept {
+    A = v[0]; beta = v[1]; gamma = v[2]; n = v[3]; a = v[4]; k = v[5];
+  }
 };
 
 class BoucWen {

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 
 #include "../validate.hpp"
 #include "power.hpp"
@@ -27,6 +28,13 @@ struct BoucWenBacklashParams {
   double n = 4.0;      // sharpness, >= 1
   double max_step = 0.05;  // largest rho*|dx| per RK4 sub-step
   int max_substeps = 256;
+
+  // The identifiable parameters as a flat vector, in the order of the Python
+  // param_names (numerical options are left as they are).
+  static constexpr std::size_t vector_size = 7;
+  void assign(const double* v) noexcept {
+    c_r = v[0]; c_l = v[1]; B_r = v[2]; B_l = v[3]; rho = v[4]; sigma = v[5]; n = v[6];
+  }
 };
 
 namespace detail {

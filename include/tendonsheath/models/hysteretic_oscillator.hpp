@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 
 #include "../validate.hpp"
 #include "power.hpp"
@@ -28,6 +29,13 @@ struct HystereticOscillatorParams {
   int substeps = 4;
   int max_substeps = 4096;
   bool hold_input = false;  // false: linear interpolation between samples
+
+  // The identifiable parameters as a flat vector, in the order of the Python
+  // param_names (numerical options are left as they are).
+  static constexpr std::size_t vector_size = 8;
+  void assign(const double* v) noexcept {
+    m = v[0]; c = v[1]; k = v[2]; alpha = v[3]; beta = v[4]; gamma = v[5]; delta = v[6]; nu = v[7];
+  }
 };
 
 class HystereticOscillator {

@@ -1,10 +1,12 @@
 """Phenomenological hysteresis models of tendon-sheath transmissions."""
 
+from .angle_dependent import AngleDependent
 from .backlash import Backlash
 from .base import HysteresisModel, load_model
 from .bouc_wen import BoucWen
 from .bouc_wen_backlash import BoucWenBacklash
 from .chain import Chain
+from .curve_angle import CurveAngleModel
 from .generalized_prandtl_ishlinskii import (
     GeneralizedPrandtlIshlinskii,
     GeneralizedPrandtlIshlinskiiInverse,
@@ -14,12 +16,14 @@ from .polynomial import Polynomial
 from .prandtl_ishlinskii import PrandtlIshlinskii, PrandtlIshlinskiiInverse
 
 __all__ = [
+    "AngleDependent",
     "Backlash",
     "BoucWen",
     "BoucWenBacklash",
     "Chain",
     "GeneralizedPrandtlIshlinskii",
     "GeneralizedPrandtlIshlinskiiInverse",
+    "CurveAngleModel",
     "HysteresisModel",
     "HystereticOscillator",
     "Polynomial",

@@ -63,3 +63,9 @@ def piecewise_routes(times: list[float], routes: list[Route]) -> Callable[[float
 
 def ratio(a: float, b: float) -> float:
     return float(a / b) if b > 0 else float("inf")
+
+
+def identification_budget(scale: float) -> dict[str, int]:
+    """Differential-evolution budget of the calibrations: the default for full runs, a
+    smaller search for shortened ones (tests)."""
+    return {} if scale >= 1.0 else {"maxiter": 40, "popsize": 10}

@@ -12,7 +12,14 @@ from ...motor import Motor
 from ...plant import PullPullPlant
 from ...route import Route
 from ..run import run
-from .common import ScenarioResult, calibration_input, encoder, piecewise_routes, ratio
+from .common import (
+    ScenarioResult,
+    calibration_input,
+    encoder,
+    identification_budget,
+    piecewise_routes,
+    ratio,
+)
 
 PAPER_MSE = {"none": 0.0158, "InverseFeedforward": 0.0012, "AdaptiveController": 8.2815e-5}
 
@@ -76,7 +83,7 @@ def plants():
     return servo, torque
 
 
-def calibrate(seed: int = 0):
+def calibrate(seed: int = 0, budget: dict | None = None):
     """Identify a BoucWenBacklash from a calibration run on the nominal route: the motor's
     position (its encoder) in, the noisy distal encoder out."""
     from ...identify import identify
@@ -87,7 +94,14 @@ def calibrate(seed: int = 0):
     )
     sim = plant.simulate(t, command, full=True)
     return identify(
-        models.BoucWenBacklash, t, sim.q_in, sim.measured, warmup=2000, seed=seed, progress=False
+        models.BoucWenBacklash,
+        t,
+        sim.q_in,
+        sim.measured,
+        warmup=2000,
+        seed=seed,
+        progress=False,
+        **(budget or {}),
     )
 
 
@@ -106,7 +120,7 @@ def do2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     servo, torque = plants()
     if progress:
         progress("do2015: calibration")
-    fit = calibrate(seed)
+    fit = calibrate(seed, identification_budget(scale))
     sensor = encoder(seed=seed + 3)
     runs = {}
     if progress:

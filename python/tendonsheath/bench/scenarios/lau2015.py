@@ -14,7 +14,7 @@ from ...plant import ContinuumPlant
 from ...route import Route
 from ..frequency import frequency_response
 from ..run import run
-from .common import ScenarioResult, calibration_input, encoder
+from .common import ScenarioResult, calibration_input, encoder, identification_budget
 
 PAPER = {"percent_error": 5.0, "max_percent_error": 8.0, "bandwidth_hz": 0.8}
 TENDON_OFFSET, BACKBONE = 2e-3, 0.03
@@ -46,7 +46,8 @@ def _plant(motor: Motor, sensor=None) -> ContinuumPlant:
     )
 
 
-def calibrate(seed: int = 0):
+def calibrate(seed: int = 0, budget: dict | None = None):
+    budget = budget or {}
     from ...identify import identify
 
     t, command = calibration_input(15.0, 0.75)
@@ -59,6 +60,7 @@ def calibrate(seed: int = 0):
         sim.q_in,
         sim.measured,
         curve_angle=math.pi,
+        free=["spring"],
         fixed={
             "pretension": 10.0,
             "length": 1.0,
@@ -68,6 +70,7 @@ def calibrate(seed: int = 0):
         warmup=1500,
         seed=seed,
         progress=False,
+        **budget,
     )
 
 
@@ -83,7 +86,7 @@ def lau2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     y_d = math.pi / 2 * np.sin(2 * np.pi * 0.4 * t)
     if progress:
         progress("lau2015: calibration")
-    fit = calibrate(seed)
+    fit = calibrate(seed, identification_budget(scale))
     ffs = {
         mode: ContinuumFeedforward.from_model(
             fit.model, TENDON_OFFSET, BACKBONE, ROUTE.total_angle, mode=mode, smoothing=0.1

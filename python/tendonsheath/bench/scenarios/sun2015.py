@@ -14,7 +14,13 @@ from ...motor import Motor
 from ...plant import PullPullPlant
 from ...route import Route
 from ..run import run
-from .common import ScenarioResult, calibration_input, encoder, piecewise_routes
+from .common import (
+    ScenarioResult,
+    calibration_input,
+    encoder,
+    identification_budget,
+    piecewise_routes,
+)
 
 ANGLES = (0.0, math.pi / 2, math.pi, 3 * math.pi / 2, 2 * math.pi)
 CALIBRATION_ANGLES = (math.pi / 2, math.pi, 2 * math.pi)
@@ -57,7 +63,8 @@ def _plant(theta: float, load=None, sensor=None) -> PullPullPlant:
     )
 
 
-def calibrate(seed: int = 0):
+def calibrate(seed: int = 0, budget: dict | None = None):
+    budget = budget or {}
     """CurveAngleModel from three curve angles, and a BoucWenBacklash at pi only."""
     from ...identify import identify
 
@@ -78,9 +85,12 @@ def calibrate(seed: int = 0):
         warmup=1500,
         seed=seed,
         progress=False,
+        **budget,
     )
     t, x, y, _ = recordings[1]
-    fixed = identify(models.BoucWenBacklash, t, x, y, warmup=1500, seed=seed, progress=False)
+    fixed = identify(
+        models.BoucWenBacklash, t, x, y, warmup=1500, seed=seed, progress=False, **budget
+    )
     return curve, fixed
 
 
@@ -104,7 +114,7 @@ def sun2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     y_d = 0.8 * np.sin(2 * np.pi * 0.2 * t)
     if progress:
         progress("sun2015: calibration")
-    curve_fit, fixed_fit = calibrate(seed)
+    curve_fit, fixed_fit = calibrate(seed, identification_budget(scale))
     fixed = InverseFeedforward(fixed_fit.model, smoothing=0.02)
     rows, per_condition = [], {}
     if progress:

@@ -1,0 +1,158 @@
+// Closed-form pull-pull tendon-sheath model with the curve angle as a second
+// input (spec B, from the uniform-curvature closed form A.7 and the spring
+// slope of A.4).
+//
+// Linear displacements (m) at the tendon level, a = mu * Theta:
+//
+//   e_b(Theta) = (T0 L / EA) tanh(a/2)                 backlash half-width
+//   e_L(Theta) = (F_L L / EA) tanh(a/2) / a            load offset
+//   c(Theta)   = 1 / (1 + k_e (L / EA) tanh(a/2) / a)  branch slope (spring environment)
+//
+//   forward branch   x_out = c (x_in - e_b - e_L)
+//   backward branch  x_out = c (x_in + e_b - e_L)
+//   in between        x_out holds (dead zone of input width 2 e_b)
+//
+// The rule x_out <- clamp(x_out, forward, backward) covers both a moving input
+// and a changing curve angle at rest (spec B memory effect): raising Theta
+// widens the band and the output stays; lowering it narrows the band and the
+// held output creeps onto the new branch. Rotary form: x_in = r_p q_in and
+// q_out = x_out / r_d, so the input and the output are angles in rad. The
+// model starts in the middle of the band, x_out = c (x_in - e_L).
+//
+// Only the products T0 L / EA, F_L L / EA and k_e L / EA enter the output, so
+// an identification holds T0 and L known and identifies EA, F_L and k_e.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+
+#include "../validate.hpp"
+
+namespace tendonsheath {
+
+// tanh(a/2) and tanh(a/2)/a, with series for small |a| (spec pitfall 7).
+inline double curve_tanh_half(double a) noexcept {
+  if (std::fabs(a) < 1e-4) return 0.5 * a - a * a * a / 24.0;
+  return std::tanh(0.5 * a);
+}
+inline double curve_tanh_half_over(double a) noexcept {
+  if (std::fabs(a) < 1e-4) return 0.5 - a * a / 24.0;
+  return std::tanh(0.5 * a) / a;
+}
+
+struct CurveAngleParams {
+  double friction = 0.1;          // mu, Coulomb friction coefficient
+  double stiffness = 2.4e4;       // EA, tendon axial stiffness, N
+  double pretension = 10.0;       // T0, N
+  double length = 1.2;            // L, sheath length, m
+  double load = 0.0;              // F_L, constant distal load at tendon level, N (resists forward)
+  double spring = 0.0;            // k_e, environment spring at tendon level, N/m
+  double proximal_radius = 5e-3;  // r_p, m
+  double distal_radius = 5e-3;    // r_d, m
+
+  static constexpr std::size_t vector_size = 8;
+  void assign(const double* v) noexcept {
+    friction = v[0]; stiffness = v[1]; pretension = v[2]; length = v[3];
+    load = v[4]; spring = v[5]; proximal_radius = v[6]; distal_radius = v[7];
+  }
+};
+
+class CurveAngleModel {
+ public:
+  using Params = CurveAngleParams;
+  static constexpr bool rate_independent = true;
+
+  explicit CurveAngleModel(const Params& p) : p_(p) {
+    const char* w = "CurveAngleModel";
+    require_non_negative(p.friction, w, "friction");
+    require_positive(p.stiffness, w, "stiffness");
+    require_non_negative(p.pretension, w, "pretension");
+    require_positive(p.length, w, "length");
+    require_finite(p.load, w, "load");
+    require_non_negative(p.spring, w, "spring");
+    require_positive(p.proximal_radius, w, "proximal_radius");
+    require_positive(p.distal_radius, w, "distal_radius");
+  }
+
+  const Params& params() const noexcept { return p_; }
+
+  void reset() noexcept {
+    initialised_ = false;
+    slack_ = false;
+  }
+
+  // Closed-form terms at a curve angle (linear units, m).
+  double backlash_half_width(double theta) const noexcept {
+    return p_.pretension * p_.length / p_.stiffness *
+           curve_tanh_half(p_.friction * std::fabs(theta));
+  }
+  double load_offset(double theta) const noexcept {
+    return p_.load * p_.length / p_.stiffness *
+           curve_tanh_half_over(p_.friction * std::fabs(theta));
+  }
+  double slope(double theta) const noexcept {
+    return 1.0 / (1.0 + p_.spring * p_.length / p_.stiffness *
+                            curve_tanh_half_over(p_.friction * std::fabs(theta)));
+  }
+
+  // Streaming: proximal angle q_in (rad), curve angle theta (rad) -> distal angle (rad).
+  double step(double q_in, double /*dt*/, double theta) noexcept {
+    if (std::isfinite(theta)) theta_ = std::fabs(theta);
+    return step(q_in);
+  }
+  // Keeps the last curve angle (0, a straight sheath, before any was given).
+  double step(double q_in, double /*dt*/ = 0.0) noexcept {
+    if (!std::isfinite(q_in)) return initialised_ ? y_ : 0.0;
+    const double x_in = p_.proximal_radius * q_in;
+    const double eb = backlash_half_width(theta_);
+    const double eL = load_offset(theta_);
+    const double c = slope(theta_);
+    const double fwd = c * (x_in - eb - eL);
+    const double bwd = c * (x_in + eb - eL);
+    if (!initialised_) {
+      x_out_ = c * (x_in - eL);
+      initialised_ = true;
+    } else {
+      x_out_ = x_out_ < fwd ? fwd : (x_out_ > bwd ? bwd : x_out_);
+    }
+    // No-slack condition of spec A.4 on the total distal load.
+    const double a = p_.friction * theta_;
+    const double force = p_.load + p_.spring * x_out_;
+    const double ratio = a < 1e-4 ? 1.0 - a * a / 6.0 : a / std::sinh(a);
+    if (std::fabs(force) >= p_.pretension * ratio * (1.0 + std::exp(-a))) slack_ = true;
+    y_ = x_out_ / p_.distal_radius;
+    return y_;
+  }
+
+  double output() const noexcept { return y_; }
+  double curve_angle() const noexcept { return theta_; }
+  void set_curve_angle(double theta) noexcept {
+    if (std::isfinite(theta)) theta_ = std::fabs(theta);
+  }
+  // True once the distal load exceeded the no-slack limit since reset().
+  bool slack() const noexcept { return slack_; }
+
+ private:
+  Params p_;
+  double theta_ = 0.0, x_out_ = 0.0, y_ = 0.0;
+  bool initialised_ = false, slack_ = false;
+};
+
+// Batch simulation with a per-sample curve angle (theta may be nullptr: keep the last).
+inline void simulate(CurveAngleModel& model, const double* t, const double* x,
+                     const double* theta, double* y, std::size_t n, const char* where) {
+  check_series(t, x, n, where);
+  if (theta != nullptr) {
+    for (std::size_t k = 0; k < n; ++k)
+      if (!std::isfinite(theta[k]))
+        throw std::invalid_argument(std::string(where) + ": curve angle sample [" +
+                                    std::to_string(k) + "] is not finite (" +
+                                    detail::format_value(theta[k]) + ")");
+  }
+  model.reset();
+  for (std::size_t k = 0; k < n; ++k) {
+    y[k] = theta ? model.step(x[k], 0.0, theta[k]) : model.step(x[k], 0.0);
+  }
+}
+
+}  // namespace tendonsheath

@@ -1,0 +1,474 @@
+"""identify(): global search (differential evolution, batched in C++) then local refinement."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterable, Sequence
+
+import numpy as np
+from scipy.optimize import differential_evolution, least_squares
+
+from ..models import HysteresisModel, PrandtlIshlinskii
+from ..models.base import _REGISTRY
+from .data import check_for_fit, make_recordings
+from .fit import Fit, metrics, simulate_model
+from .problem import DirectProblem, SeparableProblem, _covariance_se, law_check
+from .specs import SPECS, PrandtlIshlinskiiSpec, Scale
+
+
+def _model_class(model_class) -> type[HysteresisModel]:
+    if isinstance(model_class, str):
+        if model_class not in _REGISTRY:
+            raise ValueError(f"unknown model {model_class!r}; known: {sorted(SPECS_BY_NAME)}")
+        model_class = _REGISTRY[model_class]
+    if model_class not in SPECS:
+        raise ValueError(
+            f"cannot identify {getattr(model_class, '__name__', model_class)}; "
+            f"identifiable models: {sorted(SPECS_BY_NAME)}"
+        )
+    return model_class
+
+
+SPECS_BY_NAME = {cls.__name__: cls for cls in SPECS}
+_PENALTY = 1e100  # cost of invalid candidates (finite: DE squares energies)
+
+
+class _Progress:
+    """A rich progress bar that appears only when the search lasts more than a second."""
+
+    def __init__(self, enabled: bool, title: str, total: int):
+        self.enabled = enabled
+        self.title = title
+        self.total = total
+        self.start = time.perf_counter()
+        self.bar = None
+        self.task = None
+
+    def update(self, generation: int, best: float) -> None:
+        if not self.enabled:
+            return
+        if self.bar is None:
+            if time.perf_counter() - self.start < 1.0:
+                return
+            from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+            self.bar = Progress(
+                TextColumn("{task.description}"),
+                BarColumn(),
+                TextColumn("{task.completed}/{task.total} generations"),
+                TextColumn("best cost {task.fields[best]:.4g}"),
+                TimeElapsedColumn(),
+                transient=True,
+            )
+            self.bar.start()
+            self.task = self.bar.add_task(self.title, total=self.total, best=best)
+        self.bar.update(self.task, completed=generation, best=best)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.stop()
+
+
+def identify(
+    model_class,
+    t=None,
+    x=None,
+    y=None,
+    *,
+    recordings: Sequence | None = None,
+    curve_angle=None,
+    warmup: int = 0,
+    bounds: dict[str, tuple[float, float]] | None = None,
+    fixed: dict[str, float] | None = None,
+    free: Iterable[str] | None = None,
+    initial: HysteresisModel | None = None,
+    depends_on_angle: dict[str, str] | None = None,
+    seed: int | None = 0,
+    maxiter: int = 100,
+    popsize: int = 15,
+    tol: float = 0.01,
+    workers: int | None = None,
+    polish: bool = True,
+    separable: bool = True,
+    progress: bool = True,
+) -> Fit:
+    """Identify a model from input/output recordings by simulation-error minimisation.
+
+    Data: ``identify(cls, t, x, y)`` (``curve_angle=`` a number or per-sample array for models
+    that use it) or ``identify(cls, recordings=[(t, x, y), (t, x, y, curve_angle), ...])``; the
+    recordings share the parameters. ``t`` may be None for rate-independent models.
+
+    The cost is the sum of squared simulation errors (the model runs free from its initial
+    state; the first ``warmup`` samples of every recording are not counted). A global search
+    by SciPy's differential evolution (``popsize``, ``maxiter``, ``tol``, ``seed``: seeded and
+    reproducible) evaluates each generation in one batched C++ call spread over ``workers``
+    threads (default: all cores), then ``scipy.optimize.least_squares`` refines the best
+    candidate (``polish=False`` skips it). Bounds are derived from the data's scale unless
+    given in ``bounds`` ({name: (low, high)}); some are searched on a log scale.
+
+    Linear-in-parameter parts are solved by least squares instead of searched (``separable``):
+    BoucWenBacklash (c_r, c_l, c_r B_r, c_l B_l given rho, sigma, n), BoucWen (a, (1-a) k
+    given the state z) and PrandtlIshlinskii (the weights, given the threshold scale).
+
+    ``fixed`` holds parameters at given values; some are held by default because they are
+    not identifiable from input/output data (BoucWen: A; HystereticOscillator: beta;
+    CurveAngleModel: pretension, length, radii and spring); ``free`` releases those.
+    ``initial`` supplies the values of held parameters and the numerical options (for
+    PrandtlIshlinskii: the threshold pattern, whose scale is identified).
+
+    ``depends_on_angle`` ({name: "constant" | "linear" | "tanh"}) makes parameters functions
+    of the curve angle (one constant angle per recording); the result is then an
+    :class:`~tendonsheath.models.AngleDependent` model that predicts at any angle.
+    """
+    cls = _model_class(model_class)
+    depends = law_check(depends_on_angle or {}, cls.param_names)
+    if depends and getattr(cls, "uses_curve_angle", False):
+        raise ValueError(f"{cls.__name__} already takes the curve angle: depends_on_angle is moot")
+    if depends and cls is PrandtlIshlinskii:
+        raise ValueError("PrandtlIshlinskii parameters cannot depend on the curve angle")
+    recs = make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle)
+    warmup = int(warmup)
+
+    if initial is None:
+        initial = cls()
+    elif type(initial) is not cls:
+        raise ValueError(f"initial must be a {cls.__name__} (got {type(initial).__name__})")
+    values = initial.params
+    options = initial.options
+    if cls is PrandtlIshlinskii:
+        thr = np.asarray(values["thresholds"], dtype=float)
+        spec = PrandtlIshlinskiiSpec(thr / thr[-1] if thr[-1] > 0 else np.linspace(0, 1, thr.size))
+    else:
+        spec = SPECS[cls]()
+
+    free_set = set(free or ())
+    unknown = (free_set | set(fixed or {})) - set(cls.param_names)
+    if unknown:
+        raise ValueError(
+            f"unknown parameter(s) {sorted(unknown)} of {cls.__name__}; "
+            f"expected {list(cls.param_names)}"
+        )
+    held = {n: values[n] for n in spec.default_fixed if n not in free_set}
+    held.update({k: float(v) for k, v in (fixed or {}).items()})
+    if cls is PrandtlIshlinskii and held:
+        raise ValueError("PrandtlIshlinskii: fixed parameters are not supported")
+    free_names = [n for n in cls.param_names if n not in held]
+    values.update(held)
+    if set(depends) & set(held):
+        raise ValueError(f"fixed parameters cannot depend on the curve angle: {sorted(depends)}")
+
+    n_params = len(free_names) + sum(1 for v in depends.values() if v != "constant")
+    needs_angle = bool(depends) or getattr(cls, "uses_curve_angle", False)
+    check_for_fit(recs, warmup, n_params, not cls.rate_independent, needs_angle)
+    scale = Scale.of(recs)
+    all_bounds = spec.bounds(scale, held)
+    for name, b in (bounds or {}).items():
+        if len(tuple(b)) != 2:
+            raise ValueError(f"bounds[{name!r}] must be (low, high)")
+        all_bounds[name] = (float(b[0]), float(b[1]))
+    n_workers = 0 if workers is None else int(workers)
+
+    user_fixed = set(fixed or {})
+    use_separable = (
+        spec.separable
+        and not depends
+        and (separable or cls is PrandtlIshlinskii)
+        and user_fixed <= set(getattr(spec, "search_names", ())) | set(spec.default_fixed)
+    )
+    if use_separable:
+        sb = spec.search_bounds(scale, held)
+        sb.update({k: v for k, v in all_bounds.items() if k in sb and k in (bounds or {})})
+        problem = SeparableProblem(
+            spec, recs, warmup, dict(held), sb, scale, options, n_workers, initial.params
+        )
+        method = "differential evolution + least squares (separable: linear part solved)"
+    else:
+        problem = DirectProblem(
+            cls,
+            recs,
+            warmup,
+            values,
+            free_names,
+            all_bounds,
+            spec.log_names,
+            options,
+            depends,
+            n_workers,
+            spec.search_options,
+        )
+        method = "differential evolution + least squares"
+    space = problem.space
+
+    counter = {"evaluations": 0}
+    x0 = None
+    if depends:
+        # Start from per-recording fits (fast, separable where possible) and the angle laws
+        # fitted to them; the joint search then starts with that candidate in its population.
+        per_rec = [
+            identify(
+                cls,
+                recordings=[(r.t, r.x, r.y)],
+                warmup=warmup,
+                fixed=fixed,
+                free=free,
+                initial=initial,
+                seed=seed,
+                maxiter=maxiter,
+                popsize=popsize,
+                tol=tol,
+                workers=workers,
+                polish=True,
+                separable=separable,
+                progress=False,
+            )
+            for r in recs
+        ]
+        counter["evaluations"] += sum(f.evaluations for f in per_rec)
+        c0 = _laws_from_points(problem, [f.model.params for f in per_rec])
+        x0 = np.clip(space.search(c0), space.lower, space.upper)
+        maxiter = max(5, maxiter // 5)  # the search starts from a good candidate
+
+    def population(U: np.ndarray) -> np.ndarray:  # U: (D, S) in search coordinates
+        C = space.natural(np.asarray(U).T)
+        counter["evaluations"] += C.shape[0]
+        costs = problem.cost(C)
+        return np.where(np.isfinite(costs), costs, _PENALTY)
+
+    bar = _Progress(progress, f"identify {cls.__name__}", maxiter)
+    generation = {"n": 0}
+
+    def callback(intermediate_result):
+        generation["n"] += 1
+        bar.update(generation["n"], float(intermediate_result.fun))
+
+    start = time.perf_counter()
+    try:
+        res = differential_evolution(
+            population,
+            list(zip(space.lower, space.upper, strict=True)),
+            vectorized=True,
+            updating="deferred",
+            popsize=popsize,
+            maxiter=maxiter,
+            tol=tol,
+            seed=seed,
+            polish=False,
+            init="latinhypercube",
+            x0=x0,
+            callback=callback,
+        )
+    finally:
+        bar.close()
+    if not np.isfinite(res.fun) or res.fun >= _PENALTY:
+        raise ValueError(
+            f"identification failed: no parameters within the bounds give a finite simulation "
+            f"of {cls.__name__} (search bounds: "
+            f"{dict(zip(space.names, zip(space.lower, space.upper, strict=True), strict=True))})"
+        )
+    u_best = res.x
+    message = f"differential evolution: {res.message}"
+
+    if polish and space.lower.size:
+        u_best, msg = _refine(problem, space, u_best, counter, use_separable)
+        message += f"; least squares: {msg}"
+    best = space.natural(u_best)
+    model = problem.model(best)
+    seconds = time.perf_counter() - start
+
+    predictions = [simulate_model(model, r.t, r.x, r.curve_angle) for r in recs]
+    y_fit = np.concatenate([r.y[warmup:] for r in recs])
+    y_hat = np.concatenate([p[warmup:] for p in predictions])
+    overall = metrics(y_fit, y_hat)
+    per_recording = [
+        metrics(r.y[warmup:], p[warmup:]) for r, p in zip(recs, predictions, strict=True)
+    ]
+    sse = float(np.sum((y_fit - y_hat) ** 2))
+
+    ses = _standard_errors(
+        cls,
+        model,
+        problem,
+        recs,
+        warmup,
+        values,
+        free_names,
+        all_bounds,
+        spec,
+        options,
+        depends,
+        n_workers,
+        sse,
+        y_fit.size,
+    )
+    return Fit(
+        model=model,
+        rmse=overall["rmse"],
+        nrmse=overall["nrmse"],
+        fit_percent=overall["fit_percent"],
+        standard_errors=ses,
+        identified=list(free_names),
+        fixed=held,
+        per_recording=per_recording,
+        evaluations=counter["evaluations"],
+        seconds=seconds,
+        generations=int(res.nit),
+        method=method,
+        message=message,
+        warmup=warmup,
+        n_samples=int(y_fit.size),
+        bounds={n: (float(a), float(b)) for n, (a, b) in all_bounds.items() if n in free_names},
+        recordings=recs,
+        predictions=predictions,
+    )
+
+
+def _refine(problem, space, u0, counter, use_separable):
+    """least_squares on the simulation error, from the best candidate of the global search."""
+    span = space.upper - space.lower
+    u0 = np.clip(u0, space.lower + 1e-9 * span, space.upper - 1e-9 * span)
+
+    if use_separable:
+
+        def fun(u):
+            counter["evaluations"] += 1
+            return problem.residual(space.natural(u))
+
+        jac = "2-point"
+    else:
+
+        def fun(u):
+            counter["evaluations"] += 1
+            return problem.residuals(space.natural(u)[None, :])[0]
+
+        def jac(u):
+            h = 1e-6 * span
+            U = np.vstack([u, u[None, :] + np.diag(h)])
+            flip = U[1:] > space.upper
+            U[1:][flip] -= 2 * np.diag(h)[flip]
+            counter["evaluations"] += U.shape[0]
+            R = problem.residuals(space.natural(U))
+            step = np.diag(U[1:] - u[None, :])
+            J = (R[1:] - R[0][None, :]) / step[:, None]
+            return J.T
+
+    r0 = fun(u0)
+    cost0 = float(r0 @ r0) if np.all(np.isfinite(r0)) else np.inf
+    try:
+        res = least_squares(
+            fun,
+            u0,
+            jac=jac,
+            bounds=(space.lower, space.upper),
+            method="trf",
+            x_scale="jac",
+            max_nfev=100 if not use_separable else 200,
+            ftol=1e-12,
+            xtol=1e-10,
+        )
+    except (ValueError, np.linalg.LinAlgError) as exc:  # pragma: no cover - defensive
+        return u0, f"skipped ({exc})"
+    cost1 = 2.0 * res.cost
+    if np.isfinite(cost1) and cost1 <= cost0:
+        return res.x, res.message
+    return u0, "kept the global optimum (no improvement)"
+
+
+def _standard_errors(
+    cls,
+    model,
+    problem,
+    recs,
+    warmup,
+    values,
+    free_names,
+    bounds,
+    spec,
+    options,
+    depends,
+    workers,
+    sse,
+    n_fit,
+) -> dict:
+    try:
+        if cls is PrandtlIshlinskii:
+            return _pi_standard_errors(model, problem, sse, n_fit)
+        if isinstance(problem, DirectProblem):
+            se_problem = problem
+        else:
+            se_problem = DirectProblem(
+                cls,
+                recs,
+                warmup,
+                {**values, **model.params},
+                free_names,
+                bounds,
+                spec.log_names,
+                options,
+                None,
+                workers,
+            )
+        c = se_problem.coefficients_of(model)
+        se = se_problem.standard_errors(c, sse, n_fit)
+    except ValueError:
+        return {n: float("nan") for n in free_names}
+    if not depends:
+        return {n: float(s) for n, s in zip(free_names, se, strict=True)}
+    out: dict = {}
+    for p, law, i in se_problem.layout:
+        k = 1 if law == "constant" else 2
+        out[p] = [float(s) for s in se[i : i + k]]
+    if se_problem.tanh:
+        out["angle_friction"] = float(se[-1])
+    return out
+
+
+def _pi_standard_errors(model, problem, sse, n_fit) -> dict:
+    params = model.params
+    weights = np.asarray(params["weights"])
+    pattern = problem.spec.pattern
+    scale = float(params["thresholds"][-1]) / pattern[-1]
+
+    def features(s):
+        nl = np.ascontiguousarray(pattern * s)
+        return problem.features(problem.base, nl, problem.rs)[problem.mask]
+
+    F = features(scale)
+    h = 1e-6 * scale
+    d_scale = (features(scale + h) @ weights - features(scale - h) @ weights) / (2 * h)
+    J = np.column_stack([d_scale, F])
+    se = _covariance_se(J, sse, n_fit)
+    return {"thresholds": (pattern * se[0]).tolist(), "weights": se[1:].tolist()}
+
+
+def _laws_from_points(problem: DirectProblem, points: list[dict]) -> np.ndarray:
+    """Coefficients of the angle laws fitted (least squares) to per-recording parameters; the
+    shared friction of the tanh laws by a 1-D grid search."""
+    theta = np.asarray(problem._angles(), dtype=float)
+    values = {p: np.array([pt[p] for pt in points], dtype=float) for p, _, _ in problem.layout}
+    tanh_params = [p for p, law, _ in problem.layout if law == "tanh"]
+    mu = None
+    if tanh_params:
+        lo = problem.space.natural(problem.space.lower)[-1]
+        hi = problem.space.natural(problem.space.upper)[-1]
+        best = np.inf
+        for m in np.geomspace(max(lo, 1e-3), hi, 60):
+            A = np.column_stack([np.ones_like(theta), np.tanh(0.5 * m * np.abs(theta))])
+            err = 0.0
+            for p in tanh_params:
+                v = values[p]
+                coef = np.linalg.lstsq(A, v, rcond=None)[0]
+                err += float(np.sum((A @ coef - v) ** 2)) / (float(np.var(v)) + 1e-300)
+            if err < best:
+                best, mu = err, m
+    c = np.empty(len(problem.space.names))
+    for p, law, i in problem.layout:
+        v = values[p]
+        if law == "constant":
+            c[i] = float(np.mean(v))
+            continue
+        basis = theta if law == "linear" else np.tanh(0.5 * mu * np.abs(theta))
+        A = np.column_stack([np.ones_like(theta), basis])
+        c[i : i + 2] = np.linalg.lstsq(A, v, rcond=None)[0]
+    if problem.tanh:
+        c[-1] = mu
+    return c

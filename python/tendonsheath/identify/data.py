@@ -1,0 +1,169 @@
+"""Recordings for identification: normalisation and checks of the user's arrays."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import _core as core
+
+MIN_SAMPLES = 20  # fitted samples per fit (after warm-up), at the very least
+
+
+@dataclass
+class Recording:
+    """One experiment: times (or None), input, measured output, curve angle per sample (or None)."""
+
+    t: np.ndarray | None
+    x: np.ndarray
+    y: np.ndarray
+    curve_angle: np.ndarray | None = None
+
+    @property
+    def n(self) -> int:
+        return int(self.x.size)
+
+    def angle(self) -> float | None:
+        """The recording's curve angle when it is constant, else None."""
+        if self.curve_angle is None:
+            return None
+        first = float(self.curve_angle[0])
+        return first if np.all(self.curve_angle == first) else None
+
+
+def _vector(values, what: str) -> np.ndarray:
+    try:
+        arr = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{what} must be an array of numbers ({exc})") from None
+    if arr.ndim == 0:
+        arr = arr.reshape(1)
+    if arr.ndim != 1:
+        raise ValueError(f"{what} must be 1-D (got shape {arr.shape})")
+    bad = np.flatnonzero(~np.isfinite(arr))
+    if bad.size:
+        raise ValueError(f"{what} has a non-finite value ({arr[bad[0]]}) at sample {bad[0]}")
+    return np.ascontiguousarray(arr)
+
+
+def _unpack(item, index: int):
+    """(t, x, y[, curve_angle]) or an object with t, x, y[, curve_angle] attributes."""
+    if hasattr(item, "x") and hasattr(item, "y"):
+        return item.t, item.x, item.y, getattr(item, "curve_angle", None)
+    if not isinstance(item, tuple | list) or len(item) not in (3, 4):
+        raise ValueError(
+            f"recording {index} must be (t, x, y) or (t, x, y, curve_angle), "
+            f"got {type(item).__name__}"
+        )
+    return (*item, None) if len(item) == 3 else tuple(item)
+
+
+def make_recordings(
+    t=None,
+    x=None,
+    y=None,
+    *,
+    recordings: Sequence | None = None,
+    curve_angle=None,
+) -> list[Recording]:
+    """Normalise the two calling forms of identify() into checked Recordings."""
+    if recordings is None:
+        if x is None or y is None:
+            raise ValueError("give x and y (and t), or recordings=[(t, x, y), ...]")
+        items = [(t, x, y, curve_angle)]
+    else:
+        if x is not None or y is not None:
+            raise ValueError("give either x and y or recordings, not both")
+        if isinstance(recordings, tuple) and len(recordings) in (3, 4):
+            recordings = [recordings]
+        items = [_unpack(item, i) for i, item in enumerate(recordings)]
+        if curve_angle is not None:
+            items = [(a, b, c, curve_angle if d is None else d) for a, b, c, d in items]
+    if not items:
+        raise ValueError("no recordings given")
+    out = []
+    for i, (ti, xi, yi, ai) in enumerate(items):
+        who = "" if len(items) == 1 else f"recording {i}: "
+        xs = _vector(xi, f"{who}input x")
+        ys = _vector(yi, f"{who}output y")
+        if ys.size != xs.size:
+            raise ValueError(f"{who}x and y have different lengths ({xs.size} and {ys.size})")
+        ts = None
+        if ti is not None:
+            ts = _vector(ti, f"{who}time t")
+            if ts.size != xs.size:
+                raise ValueError(f"{who}t and x have different lengths ({ts.size} and {xs.size})")
+            steps = np.diff(ts)
+            bad = np.flatnonzero(~(steps > 0))
+            if bad.size:
+                k = bad[0] + 1
+                raise ValueError(
+                    f"{who}time is not strictly increasing at sample {k} "
+                    f"(t[{k}] = {ts[k]} after t[{k - 1}] = {ts[k - 1]})"
+                )
+        theta = None
+        if ai is not None:
+            if np.ndim(ai) == 0:
+                theta = np.full(xs.size, float(ai))
+                if not np.isfinite(theta[0]):
+                    raise ValueError(f"{who}curve angle is not finite ({ai})")
+            else:
+                theta = _vector(ai, f"{who}curve angle")
+                if theta.size != xs.size:
+                    raise ValueError(
+                        f"{who}curve angle and x have different lengths "
+                        f"({theta.size} and {xs.size})"
+                    )
+        out.append(Recording(ts, xs, ys, theta))
+    return out
+
+
+def check_for_fit(
+    recs: list[Recording], warmup: int, n_params: int, needs_time: bool, needs_angle: bool
+) -> None:
+    """Reject data from which nothing can be identified, with a reason."""
+    if int(warmup) != warmup or warmup < 0:
+        raise ValueError(f"warmup must be a number of samples >= 0 (got {warmup})")
+    fitted = 0
+    for i, r in enumerate(recs):
+        who = "" if len(recs) == 1 else f"recording {i}: "
+        if needs_time and r.t is None:
+            raise ValueError(f"{who}this model is rate-dependent: the time t is required")
+        if needs_angle and r.curve_angle is None:
+            raise ValueError(f"{who}this model needs the curve angle of every recording")
+        if r.n <= warmup:
+            raise ValueError(f"{who}warm-up ({warmup} samples) leaves none of its {r.n} samples")
+        fitted += r.n - warmup
+    if fitted < max(MIN_SAMPLES, 3 * n_params):
+        raise ValueError(
+            f"too few samples to identify {n_params} parameters: {fitted} after warm-up "
+            f"(at least {max(MIN_SAMPLES, 3 * n_params)} are needed)"
+        )
+    x_all = np.concatenate([r.x for r in recs])
+    y_all = np.concatenate([r.y[warmup:] for r in recs])
+    if np.ptp(x_all) == 0.0:
+        raise ValueError(f"the input is constant ({x_all[0]}): it excites nothing to identify")
+    if np.ptp(y_all) == 0.0:
+        raise ValueError(f"the output is constant ({y_all[0]}): there is nothing to identify")
+
+
+def recording_set(recs: list[Recording], warmup: int, with_angle: bool) -> core.RecordingSet:
+    """Pack recordings for the batched C++ evaluation."""
+    has_t = all(r.t is not None for r in recs)
+    t = np.concatenate([r.t for r in recs]) if has_t else None
+    theta = np.concatenate([r.curve_angle for r in recs]) if with_angle else None
+    return core.RecordingSet(
+        t,
+        np.concatenate([r.x for r in recs]),
+        np.concatenate([r.y for r in recs]),
+        theta,
+        [r.n for r in recs],
+        [int(warmup)] * len(recs),
+    )
+
+
+def fitted_mask(recs: list[Recording], warmup: int) -> np.ndarray:
+    """True for the concatenated samples that enter the cost."""
+    return np.concatenate([np.arange(r.n) >= warmup for r in recs])

@@ -1,0 +1,164 @@
+"""The result of an identification: fitted model, errors, standard errors, the optimiser's story."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..models import HysteresisModel
+from .data import Recording
+
+
+def metrics(y, y_hat) -> dict[str, float]:
+    """rmse; nrmse = rmse / (max(y) - min(y)); fit % = 100 (1 - ||y - y_hat|| / ||y - mean(y)||)."""
+    y = np.asarray(y, dtype=float)
+    y_hat = np.asarray(y_hat, dtype=float)
+    e = y - y_hat
+    rmse = float(np.sqrt(np.mean(e**2)))
+    span = float(np.ptp(y))
+    spread = float(np.linalg.norm(y - y.mean()))
+    return {
+        "rmse": rmse,
+        "nrmse": rmse / span if span > 0 else float("nan"),
+        "fit_percent": 100.0 * (1.0 - float(np.linalg.norm(e)) / spread)
+        if spread > 0
+        else float("nan"),
+        "max_abs": float(np.max(np.abs(e))),
+    }
+
+
+def simulate_model(model: HysteresisModel, t, x, curve_angle=None) -> np.ndarray:
+    """Simulate any model; the curve angle is passed to the models that take one."""
+    if getattr(model, "uses_curve_angle", False):
+        return model.simulate(t, x, curve_angle=curve_angle)
+    return model.simulate(t, x)
+
+
+@dataclass
+class Fit:
+    """An identified model and how well it fits.
+
+    ``rmse``, ``nrmse`` (rmse over the output's range) and ``fit_percent`` are over all fitted
+    samples (after warm-up) of all recordings; ``per_recording`` has the same for each.
+    ``standard_errors`` has one entry per identified parameter (or angle-law coefficient),
+    from the Jacobian of the simulation output at the optimum; fixed parameters are absent.
+    """
+
+    model: HysteresisModel
+    rmse: float
+    nrmse: float
+    fit_percent: float
+    standard_errors: dict[str, Any]
+    identified: list[str]
+    fixed: dict[str, Any]
+    per_recording: list[dict[str, float]]
+    evaluations: int
+    seconds: float
+    generations: int
+    method: str
+    message: str
+    warmup: int
+    n_samples: int
+    bounds: dict[str, tuple[float, float]] = field(default_factory=dict)
+    recordings: list[Recording] = field(default_factory=list, repr=False)
+    predictions: list[np.ndarray] = field(default_factory=list, repr=False)
+
+    @property
+    def params(self) -> dict[str, Any]:
+        return self.model.params
+
+    def predict(self, t, x, curve_angle=None) -> np.ndarray:
+        """The fitted model's output for a new input."""
+        return simulate_model(self.model, t, x, curve_angle)
+
+    def validate(self, t, x, y, curve_angle=None, warmup: int | None = None) -> dict[str, float]:
+        """Metrics of the fitted model on another recording (after the same warm-up)."""
+        w = self.warmup if warmup is None else int(warmup)
+        y_hat = self.predict(t, x, curve_angle)
+        return metrics(np.asarray(y, dtype=float)[w:], y_hat[w:])
+
+    def table(self) -> list[tuple[str, str, str]]:
+        """Rows (parameter, value, standard error) with fixed parameters marked."""
+        rows = []
+        params = self.model.params
+        if "coefficients" in params:  # AngleDependent
+            for name, coefs in params["coefficients"].items():
+                law = params["laws"][name]
+                se = self.standard_errors.get(name)
+                for i, c in enumerate(coefs):
+                    label = name if law == "constant" else f"{name}[{i}] ({law})"
+                    rows.append((label, _fmt(c), _fmt(se[i]) if se is not None else "fixed"))
+            if params.get("angle_friction") is not None:
+                rows.append(
+                    (
+                        "angle_friction",
+                        _fmt(params["angle_friction"]),
+                        _fmt(self.standard_errors.get("angle_friction")),
+                    )
+                )
+            return rows
+        for name, value in params.items():
+            se = self.standard_errors.get(name)
+            if isinstance(value, list):
+                for i, v in enumerate(value):
+                    rows.append(
+                        (f"{name}[{i}]", _fmt(v), _fmt(se[i]) if se is not None else "fixed")
+                    )
+            else:
+                rows.append((name, _fmt(value), _fmt(se) if se is not None else "fixed"))
+        return rows
+
+    def summary(self) -> str:
+        lines = [
+            f"{type(self.model).__name__} identified from {len(self.recordings)} recording(s), "
+            f"{self.n_samples} fitted samples",
+            f"rmse {self.rmse:.4g}  nrmse {100 * self.nrmse:.3f} %  fit {self.fit_percent:.2f} %",
+            f"{self.method}: {self.evaluations} evaluations, {self.generations} generations, "
+            f"{self.seconds:.2f} s",
+        ]
+        width = max(len(r[0]) for r in self.table())
+        for name, value, se in self.table():
+            lines.append(f"  {name:<{width}}  {value:>12}  +- {se}")
+        return "\n".join(lines)
+
+    def __str__(self) -> str:
+        return self.summary()
+
+    def to_dict(self) -> dict[str, Any]:
+        """Figures of the fit (JSON-friendly), with the model itself."""
+        return {
+            "model": self.model.to_dict(),
+            "rmse": self.rmse,
+            "nrmse": self.nrmse,
+            "fit_percent": self.fit_percent,
+            "standard_errors": self.standard_errors,
+            "identified": self.identified,
+            "fixed": self.fixed,
+            "per_recording": self.per_recording,
+            "evaluations": self.evaluations,
+            "generations": self.generations,
+            "seconds": self.seconds,
+            "method": self.method,
+            "message": self.message,
+            "warmup": self.warmup,
+            "n_samples": self.n_samples,
+        }
+
+    def report(self, path: str | Path) -> Path:
+        """Draw measured vs predicted over time, the input-output loop and the residual."""
+        from .report import draw_report
+
+        return draw_report(self, Path(path))
+
+
+def _fmt(v) -> str:
+    if v is None:
+        return "fixed"
+    try:
+        v = float(v)
+    except (TypeError, ValueError):
+        return str(v)
+    return f"{v:.6g}"

@@ -1,0 +1,315 @@
+"""Objective functions: batched simulation error of a population of parameter vectors.
+
+A *direct* problem searches (a subset of) the model's parameters, or the coefficients of
+their curve-angle laws; every candidate is simulated on every recording in one C++ call.
+A *separable* problem searches only the nonlinear parameters; the linear ones are solved by
+least squares for each candidate inside the C++ call (variable projection).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.optimize import lsq_linear
+
+from .. import _core as core
+from ..models import CurveAngleModel, HysteresisModel
+from ..models.angle_dependent import AngleDependent, law_value
+from .data import Recording, fitted_mask, recording_set
+
+
+class Space:
+    """Search coordinates u (log for log-scaled names) <-> natural values v."""
+
+    def __init__(self, names, bounds: dict, log_names):
+        self.names = tuple(names)
+        self.log = np.array([n in log_names for n in self.names])
+        lo = np.array([bounds[n][0] for n in self.names], dtype=float)
+        hi = np.array([bounds[n][1] for n in self.names], dtype=float)
+        for n, a, b in zip(self.names, lo, hi, strict=True):
+            if not (np.isfinite(a) and np.isfinite(b) and b > a):
+                raise ValueError(f"bounds of {n} must be finite with lower < upper (got {a}, {b})")
+        bad = self.log & ~(lo > 0)
+        if bad.any():
+            lo[bad] = hi[bad] * 1e-6
+        self.lower = np.where(self.log, np.log(np.maximum(lo, 1e-300)), lo)
+        self.upper = np.where(self.log, np.log(hi), hi)
+
+    def natural(self, u: np.ndarray) -> np.ndarray:
+        v = np.array(u, dtype=float)
+        v[..., self.log] = np.exp(v[..., self.log])
+        return v
+
+    def search(self, v: np.ndarray) -> np.ndarray:
+        u = np.array(v, dtype=float)
+        u[..., self.log] = np.log(np.maximum(u[..., self.log], 1e-300))
+        return u
+
+
+def _base_struct(model_class, options: dict, values: dict | None = None):
+    """The C++ parameter struct holding the model's numerical options."""
+    return model_class(**(values or {}), **options)._engine.params
+
+
+class DirectProblem:
+    """Search the free parameters (or angle-law coefficients) of a model directly."""
+
+    def __init__(
+        self,
+        model_class,
+        recs: list[Recording],
+        warmup: int,
+        values: dict[str, float],
+        free: list[str],
+        bounds: dict[str, tuple[float, float]],
+        log_names,
+        options: dict,
+        depends: dict[str, str] | None = None,
+        workers: int = 0,
+        search_options: dict | None = None,
+    ):
+        self.model_class = model_class
+        self.recs = recs
+        self.warmup = warmup
+        self.values = dict(values)
+        self.free = list(free)
+        self.options = dict(options)
+        self.depends = dict(depends or {})
+        self.workers = workers
+        self.names = list(model_class.param_names)
+        self.with_angle = model_class is CurveAngleModel
+        self.rs = recording_set(recs, warmup, self.with_angle)
+        self.base = _base_struct(model_class, options)
+        self.search_base = self.base
+        if search_options:
+            merged = dict(options)
+            for k, v in search_options.items():
+                merged[k] = min(merged.get(k, v), v)
+            if "substeps" in merged and "max_substeps" in merged:
+                merged["max_substeps"] = max(merged["max_substeps"], merged["substeps"])
+            self.search_base = _base_struct(model_class, merged)
+        self.population_cost = getattr(core, f"population_cost_{model_class.__name__}")
+        self.population_simulate = getattr(core, f"population_simulate_{model_class.__name__}")
+        self.y = np.concatenate([r.y for r in recs])
+        self.mask = fitted_mask(recs, warmup)
+        self.angles = None
+        # coefficient layout
+        coef_names, coef_bounds = [], {}
+        self.layout = []  # (param, law, index of first coefficient)
+        for p in self.free:
+            law = self.depends.get(p, "constant")
+            lo, hi = bounds[p]
+            self.layout.append((p, law, len(coef_names)))
+            if law == "constant":
+                coef_names.append(p)
+                coef_bounds[p] = (lo, hi)
+            else:
+                span = hi - lo
+                coef_names += [f"{p}[0]", f"{p}[1]"]
+                if law == "linear":
+                    tmax = max(abs(a) for a in self._angles()) or 1.0
+                    coef_bounds[f"{p}[0]"] = (lo - span, hi + span)
+                    coef_bounds[f"{p}[1]"] = (-span / tmax, span / tmax)
+                else:
+                    coef_bounds[f"{p}[0]"] = (lo - 0.5 * span, hi)
+                    coef_bounds[f"{p}[1]"] = (-span, span)
+        self.tanh = any(law == "tanh" for _, law, _ in self.layout)
+        if self.tanh:
+            coef_names.append("angle_friction")
+            coef_bounds["angle_friction"] = bounds.get("angle_friction", (0.01, 1.0))
+        log = {n for n in coef_names if n in log_names and n in self.free}
+        self.space = Space(coef_names, coef_bounds, log)
+
+    def _angles(self) -> list[float]:
+        if self.angles is None:
+            angles = []
+            for i, r in enumerate(self.recs):
+                a = r.angle()
+                if a is None:
+                    raise ValueError(
+                        f"recording {i}: parameters that depend on the curve angle need one "
+                        "constant curve angle per recording"
+                    )
+                angles.append(a)
+            self.angles = angles
+        return self.angles
+
+    # -- coefficients -> per-recording parameter rows ------------------------------------
+    def rows(self, C: np.ndarray) -> np.ndarray:
+        C = np.atleast_2d(C)
+        P, R = C.shape[0], len(self.recs)
+        full = np.empty((P, R, len(self.names)))
+        for j, name in enumerate(self.names):
+            if name in self.values and name not in self.free:
+                full[:, :, j] = self.values[name]
+        mu = C[:, -1] if self.tanh else None
+        for p, law, i in self.layout:
+            j = self.names.index(p)
+            if law == "constant":
+                full[:, :, j] = C[:, i : i + 1]
+            else:
+                theta = np.asarray(self._angles())[None, :]
+                if law == "linear":
+                    full[:, :, j] = C[:, i : i + 1] + C[:, i + 1 : i + 2] * theta
+                else:
+                    full[:, :, j] = C[:, i : i + 1] + C[:, i + 1 : i + 2] * np.tanh(
+                        0.5 * mu[:, None] * np.abs(theta)
+                    )
+        return np.ascontiguousarray(full.reshape(P, R * len(self.names)))
+
+    def cost(self, C: np.ndarray) -> np.ndarray:
+        return self.population_cost(self.search_base, self.rows(C), self.rs, self.workers)
+
+    def simulate(self, C: np.ndarray) -> np.ndarray:
+        return self.population_simulate(self.base, self.rows(C), self.rs, self.workers)
+
+    def residuals(self, C: np.ndarray) -> np.ndarray:
+        """(P, n_fitted) residuals y - y_hat after warm-up."""
+        return self.y[self.mask][None, :] - self.simulate(C)[:, self.mask]
+
+    def coefficients_of(self, model: HysteresisModel) -> np.ndarray:
+        """The coefficient vector of a fitted model (inverse of model())."""
+        if isinstance(model, AngleDependent):
+            p = model.params
+            c = []
+            for name, _law, _ in self.layout:
+                c += p["coefficients"][name]
+            if self.tanh:
+                c.append(p["angle_friction"])
+            return np.array(c, dtype=float)
+        params = model.params
+        return np.array([params[n] for n in self.free], dtype=float)
+
+    def model(self, c: np.ndarray) -> HysteresisModel:
+        c = np.asarray(c, dtype=float)
+        if not self.depends:
+            values = {**self.values, **{n: float(v) for n, v in zip(self.free, c, strict=True)}}
+            return self.model_class(**values, **self.options)
+        coefficients = {n: [float(self.values[n])] for n in self.names if n not in self.free}
+        laws = {}
+        for p, law, i in self.layout:
+            laws[p] = law
+            k = 1 if law == "constant" else 2
+            coefficients[p] = [float(v) for v in c[i : i + k]]
+        return AngleDependent(
+            self.model_class.__name__,
+            coefficients,
+            laws,
+            angle_friction=float(c[-1]) if self.tanh else None,
+            base_options=self.options,
+        )
+
+    def standard_errors(self, c: np.ndarray, sse: float, n_fit: int):
+        """Standard errors of the coefficients from the Jacobian of the simulation output
+        (central differences, one batched call): s^2 (J'J)^-1 with s^2 = SSE / (N - p)."""
+        c = np.asarray(c, dtype=float)
+        k = c.size
+        h = 1e-4 * np.maximum(np.abs(c), 1e-3 * (self.space.upper - self.space.lower + 1e-300))
+        h = np.where(self.space.log, 1e-4 * np.maximum(np.abs(c), 1e-300), h)
+        plus = c[None, :] + np.diag(h)
+        minus = c[None, :] - np.diag(h)
+        out = self.simulate(np.vstack([plus, minus, c[None, :]]))[:, self.mask]
+        up, down, mid = out[:k], out[k : 2 * k], out[2 * k]
+        J = np.empty((k, mid.size))
+        for i in range(k):  # one-sided at a validity limit (e.g. n = 1)
+            ok_up, ok_down = np.all(np.isfinite(up[i])), np.all(np.isfinite(down[i]))
+            if ok_up and ok_down:
+                J[i] = (up[i] - down[i]) / (2 * h[i])
+            elif ok_up:
+                J[i] = (up[i] - mid) / h[i]
+            else:
+                J[i] = (mid - down[i]) / h[i]
+        return _covariance_se(J.T, sse, n_fit)
+
+
+def _covariance_se(J: np.ndarray, sse: float, n_fit: int) -> np.ndarray:
+    k = J.shape[1]
+    if not np.all(np.isfinite(J)):
+        return np.full(k, np.nan)
+    dof = max(n_fit - k, 1)
+    s2 = sse / dof
+    cov = s2 * np.linalg.pinv(J.T @ J)
+    return np.sqrt(np.clip(np.diag(cov), 0.0, None))
+
+
+class SeparableProblem:
+    """Search the nonlinear parameters; the linear ones are solved for every candidate."""
+
+    def __init__(
+        self, spec, recs, warmup, values, search_bounds, scale, options, workers=0, initial=None
+    ):
+        self.spec = spec
+        self.model_class = spec.model_class
+        self.recs = recs
+        self.warmup = warmup
+        self.values = dict(values)  # fixed nonlinear values (by public or search name)
+        self.options = dict(options)
+        self.workers = workers
+        self.scale = scale
+        names = [n for n in spec.search_names if n not in self.values]
+        self.space = Space(names, search_bounds, spec.log_names)
+        self.rs = recording_set(recs, warmup, False)
+        self.base = _base_struct(self.model_class, options, initial)
+        kind = spec.kind
+        self.separable_cost = getattr(core, f"separable_cost_{kind}")
+        self.features = getattr(core, f"features_{kind}")
+        self.y = np.concatenate([r.y for r in recs])
+        self.mask = fitted_mask(recs, warmup)
+        self.lin_lo, self.lin_hi = spec.linear_bounds(scale)
+
+    def _values(self, S: np.ndarray) -> dict[str, np.ndarray]:
+        S = np.atleast_2d(S)
+        v = {n: S[:, i] for i, n in enumerate(self.space.names)}
+        for n, val in self.values.items():
+            v[n] = np.full(S.shape[0], float(val))
+        return v
+
+    def cost(self, S: np.ndarray) -> np.ndarray:
+        nl = np.ascontiguousarray(self.spec.nonlinear(self._values(S)), dtype=float)
+        return self.separable_cost(self.base, nl, self.rs, self.workers)
+
+    def _regressors(self, s: np.ndarray) -> np.ndarray:
+        nl = np.ascontiguousarray(self.spec.nonlinear(self._values(s))[0], dtype=float)
+        F = self.features(self.base, nl, self.rs)[self.mask]
+        if hasattr(self.spec, "to_partial_sums"):
+            F = self.spec.to_partial_sums(F)
+        return F
+
+    def linear(self, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Bounded least-squares linear coefficients and the residual at nonlinear s."""
+        F = self._regressors(s)
+        y = self.y[self.mask]
+        if not np.all(np.isfinite(F)):
+            return np.full(F.shape[1], np.nan), np.full(y.size, 1e6 * (np.ptp(y) + 1.0))
+        col = np.linalg.norm(F, axis=0)
+        col[col == 0] = 1.0
+        res = lsq_linear(F / col, y, bounds=(self.lin_lo * col, self.lin_hi * col), lsmr_tol="auto")
+        theta = res.x / col
+        return theta, y - F @ theta
+
+    def residual(self, s: np.ndarray) -> np.ndarray:
+        return self.linear(s)[1]
+
+    def model(self, s: np.ndarray) -> HysteresisModel:
+        theta, _ = self.linear(s)
+        values = {k: float(v[0]) for k, v in self._values(s).items()}
+        public = self.spec.public(values, theta)
+        return self.model_class(**public, **self.options)
+
+
+def law_check(depends: dict[str, str], names) -> dict[str, str]:
+    """Validate a depends_on_angle mapping."""
+    out = {}
+    for name, law in (depends or {}).items():
+        if name not in names:
+            raise ValueError(
+                f"depends_on_angle: unknown parameter {name!r}; expected {list(names)}"
+            )
+        if law not in ("constant", "linear", "tanh"):
+            raise ValueError(
+                f"depends_on_angle[{name!r}] must be 'constant', 'linear' or 'tanh' (got {law!r})"
+            )
+        out[name] = law
+    return out
+
+
+__all__ = ["DirectProblem", "SeparableProblem", "Space", "law_check", "law_value"]

@@ -1,0 +1,162 @@
+"""A model whose parameters are functions of the route's curve angle Theta."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .base import _REGISTRY, HysteresisModel
+from .curve_angle import curve_angle_samples
+
+LAWS = ("constant", "linear", "tanh")
+
+
+def law_value(law: str, coefficients, theta, angle_friction: float | None):
+    """p(Theta) for one law: constant p0; linear p0 + p1 Theta; tanh p0 + p1 tanh(mu Theta/2)."""
+    c = coefficients
+    if law == "constant":
+        return c[0] + 0.0 * np.asarray(theta, dtype=float)
+    if law == "linear":
+        return c[0] + c[1] * np.asarray(theta, dtype=float)
+    if law == "tanh":
+        return c[0] + c[1] * np.tanh(0.5 * angle_friction * np.abs(np.asarray(theta, dtype=float)))
+    raise ValueError(f"unknown angle law {law!r}; expected one of {LAWS}")
+
+
+class AngleDependent(HysteresisModel):
+    """A base model (e.g. BoucWenBacklash) whose parameters depend on the curve angle Theta.
+
+    Each parameter of the base model follows a law of Theta (rad):
+
+    - ``"constant"``: p = p0
+    - ``"linear"``: p = p0 + p1 Theta
+    - ``"tanh"``: p = p0 + p1 tanh(angle_friction |Theta| / 2), the shape of the backlash
+      half-width of spec B (e_b = T0 L/EA tanh(mu Theta/2)); all tanh laws share one
+      ``angle_friction`` (the physical friction coefficient mu).
+
+    ``coefficients`` maps every base parameter to its list of coefficients ([p0] or [p0, p1]).
+    ``simulate(t, x, curve_angle=...)`` takes one curve angle per call (a number, or an array
+    that is constant); :meth:`at` gives the plain base model at an angle. Streaming ``step``
+    works at one angle until ``reset()``.
+    """
+
+    param_names = ("base", "laws", "coefficients", "angle_friction")
+    option_names = ("base_options",)
+    uses_curve_angle = True
+
+    def __init__(
+        self,
+        base: str,
+        coefficients: dict[str, Any],
+        laws: dict[str, str] | None = None,
+        angle_friction: float | None = None,
+        base_options: dict[str, Any] | None = None,
+    ):
+        if isinstance(base, type):
+            base = base.__name__
+        if base not in _REGISTRY or base == "AngleDependent":
+            raise ValueError(f"AngleDependent: unknown base model {base!r}")
+        self._base_cls = _REGISTRY[base]
+        if getattr(self._base_cls, "uses_curve_angle", False):
+            raise ValueError(f"AngleDependent: {base} already takes the curve angle as an input")
+        laws = dict(laws or {})
+        names = self._base_cls.param_names
+        unknown = (set(laws) | set(coefficients)) - set(names)
+        if unknown:
+            raise ValueError(
+                f"AngleDependent: unknown parameter(s) {sorted(unknown)} of {base}; "
+                f"expected {list(names)}"
+            )
+        coefs: dict[str, list[float]] = {}
+        for name in names:
+            law = laws.setdefault(name, "constant")
+            if law not in LAWS:
+                raise ValueError(
+                    f"AngleDependent: law of {name} must be one of {LAWS} (got {law!r})"
+                )
+            if name not in coefficients:
+                raise ValueError(f"AngleDependent: no coefficients for parameter {name}")
+            c = np.atleast_1d(np.asarray(coefficients[name], dtype=float)).tolist()
+            want = 1 if law == "constant" else 2
+            if len(c) != want:
+                raise ValueError(
+                    f"AngleDependent: parameter {name} ({law}) needs {want} coefficient(s), "
+                    f"got {len(c)}"
+                )
+            if not np.all(np.isfinite(c)):
+                raise ValueError(f"AngleDependent: coefficients of {name} must be finite")
+            coefs[name] = c
+        if any(law == "tanh" for law in laws.values()):
+            if angle_friction is None or not (float(angle_friction) > 0):
+                raise ValueError("AngleDependent: angle_friction must be > 0 with a tanh law")
+            angle_friction = float(angle_friction)
+        else:
+            angle_friction = None
+        self._laws = laws
+        self._coefs = coefs
+        self._mu = angle_friction
+        self._base_options = dict(base_options or {})
+        self._stream: HysteresisModel | None = None
+        self._stream_angle: float | None = None
+        self.at(0.0 if angle_friction is None else np.pi)  # validates the base parameters
+
+    # -- parameters ------------------------------------------------------------------
+    @property
+    def base(self) -> type[HysteresisModel]:
+        return self._base_cls
+
+    @property
+    def params(self) -> dict[str, Any]:
+        return {
+            "base": self._base_cls.__name__,
+            "laws": dict(self._laws),
+            "coefficients": {k: list(v) for k, v in self._coefs.items()},
+            "angle_friction": self._mu,
+        }
+
+    @property
+    def options(self) -> dict[str, Any]:
+        return {"base_options": dict(self._base_options)}
+
+    def params_at(self, curve_angle: float) -> dict[str, float]:
+        """The base model's parameters at one curve angle."""
+        theta = float(curve_angle)
+        return {
+            k: float(law_value(self._laws[k], self._coefs[k], theta, self._mu))
+            for k in self._base_cls.param_names
+        }
+
+    def at(self, curve_angle: float) -> HysteresisModel:
+        """The base model at one curve angle (ValueError if its parameters are invalid there)."""
+        return self._base_cls(**self.params_at(curve_angle), **self._base_options)
+
+    # -- simulation ------------------------------------------------------------------
+    def simulate(self, t, x, curve_angle=None) -> np.ndarray:
+        theta = curve_angle_samples(curve_angle, np.size(x), "AngleDependent")
+        if np.any(theta != theta[0]):
+            raise ValueError(
+                "AngleDependent: simulate takes one curve angle per call (the array varies); "
+                "CurveAngleModel handles a curve angle that changes during a run"
+            )
+        return self.at(theta[0]).simulate(t, x)
+
+    def reset(self) -> None:
+        self._stream = None
+        self._stream_angle = None
+
+    def step(self, x: float, dt: float = 0.0, curve_angle: float | None = None) -> float:
+        if self._stream is None:
+            if curve_angle is None:
+                raise ValueError("AngleDependent: the first step() needs curve_angle")
+            self._stream = self.at(curve_angle)
+            self._stream_angle = float(curve_angle)
+        elif curve_angle is not None and float(curve_angle) != self._stream_angle:
+            raise ValueError(
+                "AngleDependent: the curve angle changed while streaming; reset() first"
+            )
+        return self._stream.step(x, dt)
+
+    def __repr__(self) -> str:
+        laws = {k: v for k, v in self._laws.items() if v != "constant"}
+        return f"AngleDependent({self._base_cls.__name__}, laws={laws})"

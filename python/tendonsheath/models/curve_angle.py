@@ -1,0 +1,114 @@
+"""Closed-form pull-pull tendon-sheath model with the curve angle as a second input (spec B)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .. import _core as core
+from .._arrays import as_signal, as_time_and_signal
+from .base import HysteresisModel
+
+
+class CurveAngleModel(HysteresisModel):
+    """Distal angle of a pull-pull TSM from the motor angle and the route's curve angle.
+
+    Inputs: ``x`` the proximal (motor) angle in rad and ``curve_angle`` Theta in rad (a
+    scalar or one value per sample). Output: the distal angle in rad. With a = mu Theta,
+    linear displacements at the tendon level (spec A.7, B1, A.4):
+
+    - backlash half-width ``e_b = (T0 L/EA) tanh(a/2)`` (dead zone of input width 2 e_b),
+    - load offset ``e_L = (F_L L/EA) tanh(a/2)/a``,
+    - branch slope ``c = 1/(1 + k_e L tanh(a/2)/(EA a))`` (spring environment),
+    - slip: ``x_out = c (x_in - sigma_v e_b - e_L)``; inside the dead zone x_out holds;
+      ``x_in = r_p q_in`` and ``q_out = x_out / r_d``.
+
+    A change of Theta at rest obeys spec B's memory effect: raising it does not move the
+    output, lowering it moves the held output onto the new, narrower branch.
+
+    Parameters: ``friction`` mu, ``stiffness`` EA (N), ``pretension`` T0 (N), ``length`` L (m),
+    ``load`` F_L (N, constant distal load at the tendon, positive resisting forward motion),
+    ``spring`` k_e (N/m, environment stiffness at the tendon), ``proximal_radius`` r_p and
+    ``distal_radius`` r_d (m).
+
+    Identifiability: T0, F_L and k_e enter only through the products T0 L/EA, F_L L/EA and
+    k_e L/EA. :func:`tendonsheath.identify` therefore holds the pretension, the length and the
+    two radii at their given values and identifies friction, stiffness (EA), load and spring:
+    a wrong pretension scales the identified EA, F_L and k_e by the same factor and leaves the
+    predictions unchanged.
+    """
+
+    _core = core.CurveAngleModel
+    _core_params = core.CurveAngleParams
+    param_names = (
+        "friction",
+        "stiffness",
+        "pretension",
+        "length",
+        "load",
+        "spring",
+        "proximal_radius",
+        "distal_radius",
+    )
+    uses_curve_angle = True
+
+    def __init__(
+        self,
+        friction: float = 0.1,
+        stiffness: float = 2.4e4,
+        pretension: float = 10.0,
+        length: float = 1.2,
+        load: float = 0.0,
+        spring: float = 0.0,
+        proximal_radius: float = 5e-3,
+        distal_radius: float = 5e-3,
+    ):
+        super().__init__(
+            friction=friction,
+            stiffness=stiffness,
+            pretension=pretension,
+            length=length,
+            load=load,
+            spring=spring,
+            proximal_radius=proximal_radius,
+            distal_radius=distal_radius,
+        )
+
+    def simulate(self, t, x, curve_angle=None) -> np.ndarray:
+        """Distal angle for motor angles x and curve angle(s) (scalar or per sample)."""
+        ts, xs = as_time_and_signal(t, x)
+        theta = curve_angle_samples(curve_angle, xs.size, type(self).__name__)
+        return self._engine.simulate(ts, xs, theta)
+
+    def step(self, x: float, dt: float = 0.0, curve_angle: float | None = None) -> float:
+        """One sample; ``curve_angle`` may be omitted after the first call (the last is kept)."""
+        if curve_angle is None:
+            return self._engine.step(float(x), float(dt))
+        return self._engine.step(float(x), float(dt), float(curve_angle))
+
+    # closed-form terms, in the rotary units of the model (rad at the motor / at the joint)
+    def backlash_half_width(self, curve_angle: float) -> float:
+        """Half the dead-zone width at the motor, rad: e_b / r_p."""
+        return self._engine.backlash_half_width(float(curve_angle)) / self.params["proximal_radius"]
+
+    def load_offset(self, curve_angle: float) -> float:
+        """Load offset at the motor, rad: e_L / r_p."""
+        return self._engine.load_offset(float(curve_angle)) / self.params["proximal_radius"]
+
+    def slope(self, curve_angle: float) -> float:
+        """Branch slope c of the linear displacements (dimensionless)."""
+        return self._engine.slope(float(curve_angle))
+
+
+def curve_angle_samples(curve_angle, n: int, who: str) -> np.ndarray:
+    """A per-sample curve-angle array of length n from a scalar or an array; ValueError if bad."""
+    if curve_angle is None:
+        raise ValueError(f"{who} needs curve_angle (rad): a number or one value per sample")
+    if np.ndim(curve_angle) == 0:
+        value = float(curve_angle)
+        if not np.isfinite(value):
+            raise ValueError(f"{who}: curve_angle must be finite (got {value})")
+        return np.full(n, value)
+    theta = as_signal(curve_angle, "curve_angle")
+    if theta.size != n:
+        raise ValueError(f"{who}: curve_angle and x have different lengths ({theta.size} and {n})")
+    return theta

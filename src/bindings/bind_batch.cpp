@@ -1,0 +1,181 @@
+// Batched population evaluation for identification: one call per generation,
+// spread over the machine's cores in C++ with the GIL released.
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <tendonsheath/batch.hpp>
+#include <tendonsheath/tendonsheath.hpp>
+#include <vector>
+
+#include "bindings.hpp"
+
+namespace tsbind {
+namespace ts = tendonsheath;
+namespace tb = tendonsheath::batch;
+using namespace nb::literals;
+
+using InMatrix = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+
+// Owns copies of the recordings (concatenated) so that repeated calls pass nothing.
+class RecordingSet {
+ public:
+  RecordingSet(std::optional<InArray> t, InArray x, std::optional<InArray> y,
+               std::optional<InArray> theta, const std::vector<std::size_t>& lengths,
+               const std::vector<std::size_t>& warmups) {
+    const std::size_t n = x.shape(0);
+    std::size_t total = 0;
+    for (std::size_t len : lengths) total += len;
+    if (lengths.empty()) throw std::invalid_argument("RecordingSet: no recordings");
+    if (total != n)
+      throw std::invalid_argument("RecordingSet: lengths add up to " + std::to_string(total) +
+                                  " but x has " + std::to_string(n) + " samples");
+    if (warmups.size() != lengths.size())
+      throw std::invalid_argument("RecordingSet: one warm-up per recording is needed");
+    auto copy = [n](const std::optional<InArray>& a, std::vector<double>& dst, const char* name) {
+      if (!a) return;
+      if (a->shape(0) != n)
+        throw std::invalid_argument(std::string("RecordingSet: ") + name + " has " +
+                                    std::to_string(a->shape(0)) + " samples, x has " +
+                                    std::to_string(n));
+      dst.assign(a->data(), a->data() + n);
+    };
+    x_.assign(x.data(), x.data() + n);
+    copy(t, t_, "t");
+    copy(y, y_, "y");
+    copy(theta, theta_, "curve_angle");
+    std::size_t off = 0;
+    for (std::size_t r = 0; r < lengths.size(); ++r) {
+      tb::Recording rec;
+      rec.n = lengths[r];
+      rec.warmup = warmups[r];
+      rec.x = x_.data() + off;
+      rec.t = t_.empty() ? nullptr : t_.data() + off;
+      rec.y = y_.empty() ? nullptr : y_.data() + off;
+      rec.theta = theta_.empty() ? nullptr : theta_.data() + off;
+      recs_.push_back(rec);
+      off += lengths[r];
+    }
+    tb::check_recordings(recs_, false, "RecordingSet");
+  }
+  const std::vector<tb::Recording>& recordings() const { return recs_; }
+  std::size_t total() const { return x_.size(); }
+  std::size_t count() const { return recs_.size(); }
+  bool has_output() const { return !y_.empty(); }
+
+ private:
+  std::vector<double> t_, x_, y_, theta_;
+  std::vector<tb::Recording> recs_;
+};
+
+template <class Model>
+void def_population(nb::module_& m, const std::string& name) {
+  using Params = typename Model::Params;
+  constexpr std::size_t np = Params::vector_size;
+  auto check = [name](const InMatrix& params, const RecordingSet& rs) {
+    const std::size_t want = rs.count() * np;
+    if (params.shape(1) != want)
+      throw std::invalid_argument(name + ": params must have " + std::to_string(want) +
+                                  " columns (recordings x parameters), got " +
+                                  std::to_string(params.shape(1)));
+  };
+  m.def(
+      ("population_cost_" + name).c_str(),
+      [check](const Params& base, InMatrix params, const RecordingSet& rs, unsigned workers) {
+        check(params, rs);
+        if (!rs.has_output()) throw std::invalid_argument("population_cost: no measured output");
+        const std::size_t P = params.shape(0);
+        auto [out, costs] = new_array(P);
+        {
+          nb::gil_scoped_release release;
+          tb::population_cost<Model>(base, params.data(), P, rs.recordings(), costs, workers);
+        }
+        return out;
+      },
+      "base"_a, "params"_a, "recordings"_a, "workers"_a = 0,
+      "Sum of squared simulation errors after warm-up for each row of params.");
+  m.def(
+      ("population_simulate_" + name).c_str(),
+      [check](const Params& base, InMatrix params, const RecordingSet& rs, unsigned workers) {
+        check(params, rs);
+        const std::size_t P = params.shape(0);
+        auto [out, y] = new_matrix(P, rs.total());
+        {
+          nb::gil_scoped_release release;
+          tb::population_simulate<Model>(base, params.data(), P, rs.recordings(), y, workers);
+        }
+        return out;
+      },
+      "base"_a, "params"_a, "recordings"_a, "workers"_a = 0,
+      "Simulated outputs (rows: members; columns: concatenated samples; NaN if invalid).");
+}
+
+template <class F>
+void def_separable(nb::module_& m, const std::string& name) {
+  using Params = typename F::Params;
+  m.def(
+      ("separable_cost_" + name).c_str(),
+      [name](const Params& base, InMatrix v, const RecordingSet& rs, unsigned workers) {
+        const std::size_t nv = tb::features_vector_size<F>(base);
+        if (v.shape(1) != nv)
+          throw std::invalid_argument(name + ": nonlinear parameters must have " +
+                                      std::to_string(nv) + " columns, got " +
+                                      std::to_string(v.shape(1)));
+        if (!rs.has_output()) throw std::invalid_argument("separable_cost: no measured output");
+        const std::size_t P = v.shape(0);
+        auto [out, costs] = new_array(P);
+        {
+          nb::gil_scoped_release release;
+          tb::separable_population_cost<F>(base, v.data(), P, rs.recordings(), costs, workers);
+        }
+        return out;
+      },
+      "base"_a, "nonlinear"_a, "recordings"_a, "workers"_a = 0,
+      "Residual sum of squares after solving the linear coefficients, per row.");
+  m.def(
+      ("features_" + name).c_str(),
+      [name](const Params& base, InArray v, const RecordingSet& rs) {
+        const std::size_t nv = tb::features_vector_size<F>(base);
+        if (v.shape(0) != nv)
+          throw std::invalid_argument(name + ": nonlinear parameters must have " +
+                                      std::to_string(nv) + " values, got " +
+                                      std::to_string(v.shape(0)));
+        Params p = base;
+        F::assign(p, v.data());
+        const std::size_t K = static_cast<std::size_t>(F::size(p));
+        auto [out, data] = new_matrix(rs.total(), K);
+        {
+          nb::gil_scoped_release release;
+          tb::features_matrix<F>(base, v.data(), rs.recordings(), data);
+        }
+        return out;
+      },
+      "base"_a, "nonlinear"_a, "recordings"_a,
+      "Regressor matrix (samples x K) of the linear coefficients.");
+}
+
+void bind_batch(nb::module_& m) {
+  nb::class_<RecordingSet>(m, "RecordingSet")
+      .def(nb::init<std::optional<InArray>, InArray, std::optional<InArray>,
+                    std::optional<InArray>, const std::vector<std::size_t>&,
+                    const std::vector<std::size_t>&>(),
+           "t"_a.none(), "x"_a, "y"_a.none(), "curve_angle"_a.none(), "lengths"_a, "warmups"_a)
+      .def_prop_ro("total", &RecordingSet::total)
+      .def_prop_ro("count", &RecordingSet::count);
+  m.def("default_workers", &tb::default_workers);
+
+  def_population<ts::Backlash>(m, "Backlash");
+  def_population<ts::BoucWenBacklash>(m, "BoucWenBacklash");
+  def_population<ts::BoucWen>(m, "BoucWen");
+  def_population<ts::HystereticOscillator>(m, "HystereticOscillator");
+  def_population<ts::CurveAngleModel>(m, "CurveAngleModel");
+
+  def_separable<tb::BoucWenBacklashFeatures>(m, "BoucWenBacklash");
+  def_separable<tb::BoucWenFeatures>(m, "BoucWen");
+  def_separable<tb::PrandtlIshlinskiiFeatures>(m, "PrandtlIshlinskii");
+}
+
+}  // namespace tsbind

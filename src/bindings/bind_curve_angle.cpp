@@ -1,0 +1,67 @@
+// The closed-form curve-angle model (spec B): two inputs, motor angle and curve angle.
+#include <nanobind/stl/optional.h>
+
+#include <optional>
+#include <string>
+#include <tendonsheath/models/curve_angle.hpp>
+
+#include "bindings.hpp"
+
+namespace tsbind {
+namespace ts = tendonsheath;
+using namespace nb::literals;
+
+void bind_curve_angle(nb::module_& m) {
+  using P = ts::CurveAngleParams;
+  nb::class_<P>(m, "CurveAngleParams")
+      .def(nb::init<>())
+      .def_rw("friction", &P::friction)
+      .def_rw("stiffness", &P::stiffness)
+      .def_rw("pretension", &P::pretension)
+      .def_rw("length", &P::length)
+      .def_rw("load", &P::load)
+      .def_rw("spring", &P::spring)
+      .def_rw("proximal_radius", &P::proximal_radius)
+      .def_rw("distal_radius", &P::distal_radius);
+
+  using M = ts::CurveAngleModel;
+  nb::class_<M>(m, "CurveAngleModel")
+      .def(nb::init<const P&>(), "params"_a)
+      .def_prop_ro("params", &M::params)
+      .def("reset", &M::reset)
+      .def("step", nb::overload_cast<double, double, double>(&M::step), "x"_a, "dt"_a,
+           "curve_angle"_a)
+      .def("step", nb::overload_cast<double, double>(&M::step), "x"_a, "dt"_a = 0.0)
+      .def("output", &M::output)
+      .def("curve_angle", &M::curve_angle)
+      .def("set_curve_angle", &M::set_curve_angle, "curve_angle"_a)
+      .def("slack", &M::slack)
+      .def("backlash_half_width", &M::backlash_half_width, "curve_angle"_a)
+      .def("load_offset", &M::load_offset, "curve_angle"_a)
+      .def("slope", &M::slope, "curve_angle"_a)
+      .def(
+          "simulate",
+          [](const M& self, std::optional<InArray> t, InArray x, InArray theta) {
+            const std::size_t n = x.shape(0);
+            if (t && t->shape(0) != n)
+              throw std::invalid_argument("CurveAngleModel: t and x have different lengths (" +
+                                          std::to_string(t->shape(0)) + " and " +
+                                          std::to_string(n) + ")");
+            if (theta.shape(0) != n)
+              throw std::invalid_argument(
+                  "CurveAngleModel: curve_angle and x have different lengths (" +
+                  std::to_string(theta.shape(0)) + " and " + std::to_string(n) + ")");
+            auto [out, y] = new_array(n);
+            M model = self;
+            const double* tp = t ? t->data() : nullptr;
+            {
+              nb::gil_scoped_release release;
+              ts::simulate(model, tp, x.data(), theta.data(), y, n, "CurveAngleModel");
+            }
+            return out;
+          },
+          "t"_a.none(), "x"_a, "curve_angle"_a)
+      .def_ro_static("rate_independent", &M::rate_independent);
+}
+
+}  // namespace tsbind

@@ -1,0 +1,75 @@
+"""The report: self-contained, and rendered by a real browser (headless Chromium)."""
+
+import json
+import re
+import shutil
+import subprocess
+import tempfile
+
+import matplotlib.image as mpimg
+import numpy as np
+
+from tendonsheath.report.build import SCHEMA, SCHEMA_VERSION, write
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--no-first-run",
+    "--enable-logging=stderr",
+    "--v=0",
+    "--virtual-time-budget=5000",
+]
+
+
+def _chromium(*args):
+    assert CHROMIUM, "Chromium is needed: `make test` installs Debian's chromium package"
+    with tempfile.TemporaryDirectory() as profile:
+        return subprocess.run(
+            [CHROMIUM, *FLAGS, f"--user-data-dir={profile}", *args],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
+
+
+def test_report_is_self_contained_and_renders(scenario_results, tmp_path):
+    written = write(tmp_path, list(scenario_results.values()), None)
+    report = written["report"]
+    text = report.read_text()
+    assert "http://" not in text and "https://" not in text  # no network
+    assert text.count("<img") == len(written["figures"])
+    for name in ("do2015", "sun2015", "lau2015"):
+        assert f'id="{name}"' in text
+
+    dom = _chromium("--dump-dom", report.as_uri())
+    assert dom.returncode == 0, dom.stderr[-2000:]
+    figures = int(re.search(r'data-figures="(\d+)"', dom.stdout).group(1))
+    loaded = int(re.search(r'data-figures-loaded="(\d+)"', dom.stdout).group(1))
+    assert figures == len(written["figures"]) and loaded == figures
+    console = [line for line in dom.stderr.splitlines() if ":CONSOLE" in line]
+    assert not console, console
+
+    shot = tmp_path / "shot.png"
+    result = _chromium(f"--screenshot={shot}", "--window-size=1280,1600", report.as_uri())
+    assert result.returncode == 0 and shot.exists(), result.stderr[-2000:]
+    pixels = mpimg.imread(shot)
+    assert pixels.shape[0] >= 1000 and pixels.shape[1] >= 1200
+    assert np.std(pixels[..., :3]) > 0.05  # not a blank page
+
+
+def test_metrics_json_follows_its_schema(scenario_results, tmp_path):
+    written = write(tmp_path, list(scenario_results.values()), None)
+    data = json.loads(written["metrics"].read_text())
+    assert data["schema"] == SCHEMA and data["version"] == SCHEMA_VERSION
+    for scenario, comps in data["scenarios"].items():
+        assert scenario in ("do2015", "sun2015", "lau2015")
+        for comp, metrics in comps.items():
+            for key in ("mse", "rmse", "max_abs", "percent_error", "loop_width"):
+                assert isinstance(metrics[key], float), (scenario, comp, key)
+    assert data["paper"]["do2015"]["mse_rad2"]["none"] == 0.0158
+    assert "frequency" in data["details"]["lau2015"]
