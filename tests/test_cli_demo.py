@@ -20,15 +20,27 @@ def test_every_command_has_help():
         assert "Usage" in sub.output
 
 
-def test_demo_writes_metrics_and_one_loop_per_model(tmp_path):
-    result = runner.invoke(app, ["demo", "--out", str(tmp_path)])
+def test_demo_writes_report_metrics_and_figures(tmp_path):
+    result = runner.invoke(
+        app, ["demo", "--out", str(tmp_path), "--scenario", "lau2015", "--scale", "0.2"]
+    )
     assert result.exit_code == 0, result.output
     metrics = json.loads((tmp_path / "metrics.json").read_text())
-    assert metrics["schema_version"] >= 1
+    assert metrics["schema"] == "tendonsheath.metrics" and metrics["version"] == 1
+    assert set(metrics["scenarios"]) == {"lau2015"}
+    assert "ContinuumFeedforward (exact)" in metrics["scenarios"]["lau2015"]
     names = set(metrics["models"])
     assert {"Backlash", "BoucWenBacklash", "BoucWen", "PrandtlIshlinskii"} <= names
     for name, m in metrics["models"].items():
         png = tmp_path / f"loop_{name}.png"
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
         assert m["loop_width_last_cycle"] > 0
-    assert "metrics.json" in result.output
+    assert (tmp_path / "report.html").stat().st_size > 10_000
+    assert "report.html" in result.output and "metrics.json" in result.output
+
+
+def test_demo_rejects_unknown_scenario_and_bad_scale(tmp_path):
+    result = runner.invoke(app, ["demo", "--out", str(tmp_path), "--scenario", "nope"])
+    assert result.exit_code == 2 and "unknown scenario" in result.output
+    result = runner.invoke(app, ["demo", "--out", str(tmp_path), "--scale", "0"])
+    assert result.exit_code == 2 and "--scale" in result.output

@@ -117,7 +117,7 @@ def test_bad_input_exits_nonzero_with_a_reason(tmp_path):
             "tip",
         ],
     )
-    assert result.exit_code == 1
+    assert result.exit_code == 2
     assert "constant" in result.output
     result = runner.invoke(
         app,
@@ -132,7 +132,7 @@ def test_bad_input_exits_nonzero_with_a_reason(tmp_path):
             "tip",
         ],
     )
-    assert result.exit_code == 1 and "unknown input column 'nope'" in result.output
+    assert result.exit_code == 2 and "unknown input column 'nope'" in result.output
     result = runner.invoke(
         app,
         [
@@ -146,4 +146,4 @@ def test_bad_input_exits_nonzero_with_a_reason(tmp_path):
             "tip",
         ],
     )
-    assert result.exit_code == 1 and "unknown model" in result.output
+    assert result.exit_code == 2 and "unknown model" in result.output

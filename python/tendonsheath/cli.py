@@ -77,14 +77,10 @@ def demo(
     console.print(f"wrote {len(written['figures'])} figures to {out}")
 
 
-def _fail(message: str) -> None:
-    console.print(f"[red]error:[/red] {message}")
+def _fail(reason) -> None:
+    """One-line reason on bad input, and a non-zero exit (2)."""
+    console.print(f"[red]error:[/red] {reason}", soft_wrap=True)
     raise typer.Exit(code=2)
-
-
-def _fail(exc: Exception) -> None:
-    console.print(f"[red]error:[/red] {exc}", soft_wrap=True)
-    raise typer.Exit(1)
 
 
 @app.command()
