@@ -211,7 +211,8 @@ void bind_adaptive(nb::module_& m) {
       .def_rw("has_feedforward", &P::has_feedforward)
       .def_rw("feedforward", &P::feedforward)
       .def_rw("fallback_kp", &P::fallback_kp)
-      .def_rw("fallback_kd", &P::fallback_kd);
+      .def_rw("fallback_kd", &P::fallback_kd)
+      .def_rw("model_acceleration", &P::model_acceleration);
   nb::class_<ts::AdaptiveEstimates>(m, "AdaptiveEstimates")
       .def_ro("psi", &ts::AdaptiveEstimates::psi)
       .def_ro("phi", &ts::AdaptiveEstimates::phi)

@@ -45,6 +45,11 @@ struct AdaptiveControllerParams {
   BacklashInverseParams feedforward{};
   double fallback_kp = 1.0;   // torque per rad of motor position error
   double fallback_kd = 0.05;  // torque per rad/s of motor velocity error
+  // With a feedforward model: take the acceleration the model asks of the output,
+  // c * x_ff'' (which includes the quick crossing of the dead band at a reversal), in
+  // place of y_d'' in nu_r, so the inertial term pushes the motor across the band
+  // before the output error shows it. The difference is part of the bounded delta.
+  bool model_acceleration = false;
 };
 
 struct AdaptiveEstimates {
@@ -55,7 +60,8 @@ class AdaptiveController {
  public:
   using Params = AdaptiveControllerParams;
 
-  explicit AdaptiveController(const Params& p) : p_(p), ff_(checked_feedforward(p)) {
+  explicit AdaptiveController(const Params& p)
+      : p_(p), ff_(checked_feedforward(p)), slope_(0.5 * (p.feedforward.c_r + p.feedforward.c_l)) {
     const char* w = "AdaptiveController";
     require_positive(p.lambda, w, "lambda");
     require_non_negative(p.k_s, w, "k_s");
@@ -91,6 +97,8 @@ class AdaptiveController {
     yd_rate_.reset();
     yd_acc_.reset();
     motor_rate_.reset();
+    ff_rate_.reset();
+    ff_acc_.reset();
     ff_.reset();
     filter_primed_ = false;
     filtered_ = filtered_rate_ = 0.0;
@@ -117,6 +125,11 @@ class AdaptiveController {
     if (!std::isfinite(yd_acc)) yd_acc = 0.0;
     const double motor_rate = motor_rate_.update(motor_position, dt);
     const double x_ff = ff_.step_with_rate(y_d, yd_rate, dt);
+    // acceleration of the feedforward motor path, known from its third sample on
+    const bool ff_rate_known = ff_rate_.primed();
+    const double ff_rate = ff_rate_.update(x_ff, dt);
+    const double ff_acc = ff_rate_known ? ff_acc_.update(ff_rate, dt) : 0.0;
+    if (p_.has_feedforward && p_.model_acceleration) yd_acc = slope_ * ff_acc;
     if (!std::isfinite(y_measured)) {
       fallback_ = true;
       filter_primed_ = false;  // restart the derivative filter when the sensor returns
@@ -185,8 +198,9 @@ class AdaptiveController {
 
   Params p_;
   AdaptiveEstimates est_{};
-  RateEstimator yd_rate_{}, yd_acc_{}, motor_rate_{};
+  RateEstimator yd_rate_{}, yd_acc_{}, motor_rate_{}, ff_rate_{}, ff_acc_{};
   BacklashInverseFeedforward ff_;
+  double slope_ = 1.0;
   bool filter_primed_ = false;
   double filtered_ = 0.0, filtered_rate_ = 0.0;
   bool fallback_ = false;

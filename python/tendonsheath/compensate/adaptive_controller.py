@@ -30,6 +30,7 @@ _GAINS = (
     "max_torque",
     "fallback_kp",
     "fallback_kd",
+    "model_acceleration",
 )
 
 
@@ -51,7 +52,7 @@ class AdaptiveController:
             raise ValueError(f"AdaptiveController: unknown gain(s) {sorted(unknown)}")
         p = core.AdaptiveControllerParams()
         for key, value in gains.items():
-            setattr(p, key, float(value))
+            setattr(p, key, bool(value) if key == "model_acceleration" else float(value))
         if feedforward_model is not None:
             if not isinstance(feedforward_model, Backlash | BoucWenBacklash):
                 raise ValueError("feedforward_model must be a Backlash or BoucWenBacklash")

@@ -30,7 +30,7 @@ CONDITIONS = {
     "route changes": "at random times (mean 4 s apart) the sheaths take random 2-4 arc "
     "shapes with Theta between pi/2 and 2 pi",
     "reference": "1 rad sine at 0.25 Hz plus 0.3 rad at 0.6 Hz (distal angle)",
-    "motors": "position servo (30 Hz, damping 0.8) for none and the feedforward; torque "
+    "motors": "position servo (60 Hz, damping 0.8) for none and the feedforward; torque "
     "motor J = 0.01 kg m^2, b = 0.2 N m s, |tau| <= 5 N m for the adaptive controller",
     "sensor": "distal encoder, 1e-4 rad resolution, 2e-4 rad noise",
     "calibration": "BoucWenBacklash identified (20 s, nominal route) from the motor position "
@@ -76,7 +76,7 @@ def reference(duration: float, rate: float = 1000.0):
 
 
 def plants():
-    servo = PullPullPlant(route=NOMINAL, motor=Motor.position(30.0, 0.8), **_COMMON)
+    servo = PullPullPlant(route=NOMINAL, motor=Motor.position(60.0, 0.8), **_COMMON)
     torque = PullPullPlant(
         route=NOMINAL, motor=Motor.torque(INERTIA, VISCOUS, max_torque=5.0), **_COMMON
     )
@@ -90,7 +90,7 @@ def calibrate(seed: int = 0, budget: dict | None = None):
 
     t, command = calibration_input(20.0, 1.3)
     plant = PullPullPlant(
-        route=NOMINAL, motor=Motor.position(30.0, 0.8), sensor=encoder(seed=seed + 11), **_COMMON
+        route=NOMINAL, motor=Motor.position(60.0, 0.8), sensor=encoder(seed=seed + 11), **_COMMON
     )
     sim = plant.simulate(t, command, full=True)
     return identify(
