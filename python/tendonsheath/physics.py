@@ -9,23 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import _core as core
 from .route import Route
-
-_SMALL = 1e-6
-
-
-def _phi_minus(x):
-    """(1 - e^-x)/x, -> 1 - x/2 as x -> 0."""
-    x = np.asarray(x, dtype=np.float64)
-    safe = np.where(np.abs(x) < _SMALL, 1.0, x)
-    return np.where(np.abs(x) < _SMALL, 1.0 - x / 2 + x * x / 6, -np.expm1(-safe) / safe)
-
-
-def _phi_plus(x):
-    """(e^x - 1)/x, -> 1 + x/2 as x -> 0."""
-    x = np.asarray(x, dtype=np.float64)
-    safe = np.where(np.abs(x) < _SMALL, 1.0, x)
-    return np.where(np.abs(x) < _SMALL, 1.0 + x / 2 + x * x / 6, np.expm1(safe) / safe)
 
 
 def tanh_half_over(a):
@@ -42,14 +27,13 @@ def capstan_ratio(mu, total_angle, direction=1.0):
 
 def shape_integrals(route: Route, mu: float) -> tuple[float, float]:
     """g = (1/L) int e^{-mu theta} ds and G = (1/L) int e^{+mu theta} ds (spec A.2), exact for
-    the piecewise-linear theta(s) of a route."""
-    s, th = route.s, route.theta
-    ds = np.diff(s)
-    dth = np.diff(th) * mu
-    th0 = th[:-1] * mu
-    g = np.sum(ds * np.exp(-th0) * _phi_minus(dth)) / route.length
-    G = np.sum(ds * np.exp(th0) * _phi_plus(dth)) / route.length
-    return float(g), float(G)
+    the piecewise-linear theta(s) of a route (the C++ core's computation)."""
+    shape = core.shape_integrals(
+        np.ascontiguousarray(route.s, dtype=np.float64),
+        np.ascontiguousarray(route.theta, dtype=np.float64),
+        float(mu),
+    )
+    return float(shape.g), float(shape.G)
 
 
 def backlash_half_width(length, EA, pretension, mu, total_angle):
