@@ -77,6 +77,45 @@ def demo(
     console.print(f"wrote {len(written['figures'])} figures to {out}")
 
 
+@app.command()
+def bench(
+    scenario: Path = typer.Argument(
+        ...,
+        help="Scenario file (TOML): plant, route schedule, "
+        "load, motor, sensor, reference, compensators.",
+    ),
+    out: Path = typer.Option(Path("bench-out"), "--out", "-o", help="Folder for the results."),
+) -> None:
+    """Run a user scenario on the virtual bench: calibrate, compare the compensators, and
+    write report.html, metrics.json and the figures to OUT."""
+    from .bench.user_scenario import ScenarioError, load, run_user_scenario
+    from .report.build import write
+
+    try:
+        sc = load(scenario)
+    except ScenarioError as exc:
+        _fail(exc)
+    with console.status("running") as status:
+        try:
+            result = run_user_scenario(sc, progress=lambda m: status.update(f"running: {m}"))
+        except ScenarioError as exc:
+            _fail(exc)
+    written = write(out, [result], None, title=sc.title)
+    table = Table(title=sc.title)
+    for col in ("compensator", "mse [rad^2]", "rmse [deg]", "percent error", "vs none"):
+        table.add_column(col, justify="left" if col == "compensator" else "right")
+    for row in result.table:
+        table.add_row(
+            row["compensator"],
+            f"{row['mse']:.3e}",
+            f"{np.degrees(row['rmse']):.3f}",
+            f"{row['percent_error']:.2f} %",
+            f"{row['improvement']:.1f}x",
+        )
+    console.print(table)
+    console.print(f"wrote {written['report']} and {written['metrics']}")
+
+
 def _fail(reason) -> None:
     """One-line reason on bad input, and a non-zero exit (2)."""
     console.print(f"[red]error:[/red] {reason}", soft_wrap=True)

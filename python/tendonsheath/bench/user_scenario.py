@@ -1,0 +1,407 @@
+"""User scenarios in TOML for ``tendonsheath bench scenario.toml``.
+
+    title = "my bench"                  # optional
+    seed = 0                            # optional: route-free runs are deterministic anyway
+
+    [plant]                             # all keys optional
+    type = "pull_pull"                  # or "continuum"
+    friction = 0.1                      # mu
+    stiffness = 5000.0                  # EA, N
+    pretension = 20.0                   # T0, N
+    proximal_radius = 0.01              # m
+    distal_radius = 0.01                # m (pull_pull only)
+    elements = 40                       # per sheath
+    # continuum only: bending_stiffness, tendon_offset, backbone_length
+
+    [route]                             # the initial route: one of
+    length = 1.2                        #   length + total_angle (uniform curvature)
+    total_angle = 3.1416
+    # arcs = [[0.5, 0.0], [0.7, 1.57]]  #   or (length m, bend angle rad) pieces
+
+    [[route.changes]]                   # optional: the route changes at time t
+    t = 5.0
+    total_angle = 6.2832                # (same length) or arcs = [...]
+
+    [load]                              # optional (pull_pull)
+    type = "constant_torque"            # torque = N m
+    # type = "torsional_spring"         # stiffness = N m/rad, preload = N m
+    # type = "spring_damper"            # stiffness = N m/rad, damping = N m s/rad
+
+    [motor]                             # position servo for none and the feedforwards
+    bandwidth_hz = 60.0
+    damping = 0.8
+    [torque_motor]                      # for the adaptive controller
+    inertia = 0.01
+    viscous = 0.2
+    max_torque = 5.0
+
+    [sensor]
+    noise_std = 2e-4
+    resolution = 1e-4
+
+    [reference]                         # sum of sines (amplitude rad, frequency Hz, phase rad)
+    duration = 20.0
+    rate = 1000.0
+    sines = [[1.0, 0.25, 0.0], [0.3, 0.6, 0.0]]
+
+    [calibration]                       # the run the models are identified from
+    duration = 20.0
+    amplitude = 1.2
+
+    [compare]
+    compensators = ["none", "inverse_feedforward", "curve_angle_feedforward", "adaptive"]
+
+Every table and key is checked; an unknown or ill-typed one is named in the error.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .. import loads, models
+from ..compensate import AdaptiveController, CurveAngleFeedforward, InverseFeedforward
+from ..motor import Motor
+from ..plant import ContinuumPlant, PullPullPlant
+from ..route import Route
+from ..sensor import Sensor
+from .run import run
+from .scenarios.common import ScenarioResult, calibration_input, piecewise_routes, ratio
+
+COMPENSATORS = ("none", "inverse_feedforward", "curve_angle_feedforward", "adaptive")
+
+_KEYS: dict[str, dict[str, type | tuple]] = {
+    "plant": {
+        "type": str,
+        "friction": float,
+        "stiffness": float,
+        "pretension": float,
+        "proximal_radius": float,
+        "distal_radius": float,
+        "elements": int,
+        "bending_stiffness": float,
+        "tendon_offset": float,
+        "backbone_length": float,
+    },
+    "route": {"length": float, "total_angle": float, "arcs": list, "changes": list},
+    "load": {"type": str, "torque": float, "stiffness": float, "preload": float, "damping": float},
+    "motor": {"bandwidth_hz": float, "damping": float, "max_speed": float, "max_accel": float},
+    "torque_motor": {"inertia": float, "viscous": float, "max_torque": float},
+    "sensor": {"noise_std": float, "resolution": float, "seed": int},
+    "reference": {"duration": float, "rate": float, "sines": list},
+    "calibration": {"duration": float, "amplitude": float},
+    "compare": {"compensators": list},
+}
+_TOP = {"title": str, "seed": int, **{k: dict for k in _KEYS}}
+
+
+class ScenarioError(ValueError):
+    """A scenario file that cannot be run; the message names the file and the bad key."""
+
+
+@dataclass
+class UserScenario:
+    title: str
+    plant: dict[str, Any]
+    route: dict[str, Any]
+    load: dict[str, Any] | None
+    motor: dict[str, Any]
+    torque_motor: dict[str, Any]
+    sensor: dict[str, Any]
+    reference: dict[str, Any]
+    calibration: dict[str, Any]
+    compensators: list[str]
+    seed: int = 0
+    source: str = "<scenario>"
+    route_changes: list[tuple[float, Route]] = field(default_factory=list)
+
+
+def _check_type(where: str, key: str, value, kind):
+    if kind is float and isinstance(value, int | float) and not isinstance(value, bool):
+        if not math.isfinite(float(value)):
+            raise ScenarioError(f"{where}: '{key}' must be a finite number (got {value!r})")
+        return float(value)
+    if kind is int and isinstance(value, int) and not isinstance(value, bool):
+        return value
+    if kind not in (float, int) and isinstance(value, kind):
+        return value
+    name = {
+        float: "a number",
+        int: "an integer",
+        str: "a string",
+        list: "an array",
+        dict: "a table",
+    }[kind]
+    raise ScenarioError(f"{where}: '{key}' must be {name} (got {value!r})")
+
+
+def _section(data: dict, name: str, source: str) -> dict[str, Any]:
+    table = data.get(name, {})
+    where = f"{source} [{name}]"
+    out = {}
+    for key, value in table.items():
+        if key not in _KEYS[name]:
+            raise ScenarioError(f"{where}: unknown key '{key}' (known: {sorted(_KEYS[name])})")
+        out[key] = _check_type(where, key, value, _KEYS[name][key])
+    return out
+
+
+def _route(spec: dict[str, Any], where: str, length: float | None = None) -> Route:
+    try:
+        if "arcs" in spec:
+            return Route.arcs([tuple(map(float, piece)) for piece in spec["arcs"]])
+        total = float(spec.get("total_angle", math.pi))
+        return Route.uniform(float(spec.get("length", length or 1.2)), total)
+    except (TypeError, ValueError) as exc:
+        raise ScenarioError(f"{where}: {exc}") from None
+
+
+def parse(text: str, source: str = "<scenario>") -> UserScenario:
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ScenarioError(f"{source}: not valid TOML ({exc})") from None
+    for key, value in data.items():
+        if key not in _TOP:
+            raise ScenarioError(f"{source}: unknown table or key '{key}' (known: {sorted(_TOP)})")
+        _check_type(source, key, value, _TOP[key])
+    s = {name: _section(data, name, source) for name in _KEYS}
+    plant_type = s["plant"].get("type", "pull_pull")
+    if plant_type not in ("pull_pull", "continuum"):
+        raise ScenarioError(f"{source} [plant]: 'type' must be 'pull_pull' or 'continuum'")
+    route = _route(s["route"], f"{source} [route]")
+    changes = []
+    for i, change in enumerate(s["route"].get("changes", [])):
+        where = f"{source} [[route.changes]] #{i + 1}"
+        if not isinstance(change, dict) or "t" not in change:
+            raise ScenarioError(f"{where}: each change needs a time 't'")
+        unknown = set(change) - {"t", "total_angle", "arcs"}
+        if unknown:
+            raise ScenarioError(f"{where}: unknown key '{sorted(unknown)[0]}'")
+        t = _check_type(where, "t", change["t"], float)
+        changes.append((t, _route(change, where, route.length)))
+    if any(b[0] <= a[0] for a, b in zip(changes, changes[1:], strict=False)):
+        raise ScenarioError(f"{source} [[route.changes]]: times must increase")
+    compensators = s["compare"].get("compensators", list(COMPENSATORS))
+    for name in compensators:
+        if name not in COMPENSATORS:
+            raise ScenarioError(
+                f"{source} [compare]: unknown compensator '{name}' (known: {list(COMPENSATORS)})"
+            )
+    if plant_type == "continuum" and "curve_angle_feedforward" in compensators:
+        pass  # allowed: the curve-angle model then includes the backbone spring
+    reference = {"duration": 20.0, "rate": 1000.0, "sines": [[1.0, 0.25, 0.0]], **s["reference"]}
+    for i, sine in enumerate(reference["sines"]):
+        if (
+            not isinstance(sine, list)
+            or len(sine) not in (2, 3)
+            or not all(isinstance(v, int | float) for v in sine)
+        ):
+            raise ScenarioError(
+                f"{source} [reference]: sines[{i}] must be [amplitude, frequency, phase?]"
+            )
+    if not reference["duration"] > 0 or not reference["rate"] > 0:
+        raise ScenarioError(f"{source} [reference]: duration and rate must be > 0")
+    load = s["load"] or None
+    if load is not None and load.get("type") not in (
+        "constant_torque",
+        "torsional_spring",
+        "spring_damper",
+    ):
+        raise ScenarioError(
+            f"{source} [load]: 'type' must be constant_torque, torsional_spring or spring_damper"
+        )
+    return UserScenario(
+        title=data.get("title", "user scenario"),
+        plant={"type": plant_type, **s["plant"]},
+        route={"initial": route},
+        load=load,
+        motor={"bandwidth_hz": 60.0, "damping": 0.8, **s["motor"]},
+        torque_motor={"inertia": 0.01, "viscous": 0.2, "max_torque": 5.0, **s["torque_motor"]},
+        sensor={"noise_std": 2e-4, "resolution": 1e-4, "seed": 1, **s["sensor"]},
+        reference=reference,
+        calibration={"duration": 20.0, "amplitude": 1.2, **s["calibration"]},
+        compensators=list(compensators),
+        seed=int(data.get("seed", 0)),
+        source=source,
+        route_changes=changes,
+    )
+
+
+def load(path: str | Path) -> UserScenario:
+    path = Path(path)
+    if not path.is_file():
+        raise ScenarioError(f"scenario file not found: {path}")
+    return parse(path.read_text(), str(path))
+
+
+def _load_object(spec):
+    if spec is None:
+        return None
+    kind = spec["type"]
+    if kind == "constant_torque":
+        return loads.ConstantTorque(spec.get("torque", 0.0))
+    if kind == "torsional_spring":
+        return loads.TorsionalSpring(spec.get("stiffness", 0.0), spec.get("preload", 0.0))
+    return loads.SpringDamper(spec.get("stiffness", 0.0), spec.get("damping", 0.0))
+
+
+def _plant(sc: UserScenario, motor: Motor | None, sensor: Sensor | None = None):
+    p = {k: v for k, v in sc.plant.items() if k != "type"}
+    route = sc.route["initial"]
+    try:
+        if sc.plant["type"] == "continuum":
+            return ContinuumPlant(route=route, motor=motor, sensor=sensor, **p)
+        return PullPullPlant(
+            route=route, load=_load_object(sc.load), motor=motor, sensor=sensor, **p
+        )
+    except (TypeError, ValueError) as exc:
+        raise ScenarioError(f"{sc.source} [plant]: {exc}") from None
+
+
+def tension_bench_friction(plant) -> float:
+    """Friction from a tension bench (spec B, identification): pull tendon 1 until it slips
+    over its whole length, then mu = -ln(T_distal / T_proximal) / Theta between its first and
+    last element (capstan, A1; the plant lumps the whole route's angle between them)."""
+    plant.reset()
+    travel = 20 * plant.pretension * plant.route.length / plant.stiffness / plant.proximal_radius
+    for q in np.linspace(0.0, travel, 400):
+        plant.step(float(q))
+    tension = plant.tensions()[0]  # row 0: tendon 1, proximal to distal
+    span = float(plant.route.total_angle)
+    plant.reset()
+    if not span > 0:
+        return 0.0
+    return float(-math.log(tension[-1] / tension[0]) / span)
+
+
+def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
+    """Calibrate (identify) on the initial route, then run every compensator of [compare]."""
+    from ..identify import identify
+
+    servo_motor = Motor.position(**sc.motor)
+    sensor = Sensor(**sc.sensor)
+    # calibration: identified models, never the plant's own parameters
+    if progress:
+        progress("calibration")
+    t_cal, command = calibration_input(sc.calibration["duration"], sc.calibration["amplitude"])
+    cal = _plant(sc, Motor.position(**sc.motor), Sensor(**{**sc.sensor, "seed": sc.seed + 11}))
+    sim = cal.simulate(t_cal, command, full=True)
+    warm = int(0.1 * t_cal.size)
+    fitted: dict[str, Any] = {}
+    if {"inverse_feedforward", "adaptive"} & set(sc.compensators):
+        fitted["bwb"] = identify(
+            models.BoucWenBacklash,
+            t_cal,
+            sim.q_in,
+            sim.measured,
+            warmup=warm,
+            seed=sc.seed,
+            progress=False,
+        )
+    if "curve_angle_feedforward" in sc.compensators:
+        # one recording per distinct curve angle of the schedule (friction and stiffness
+        # cannot be told apart at a single angle)
+        routes_seen = [sc.route["initial"]] + [r for _, r in sc.route_changes]
+        recordings, angles = [], set()
+        for i, route in enumerate(routes_seen):
+            if round(route.total_angle, 6) in angles or len(recordings) >= 3:
+                continue
+            angles.add(round(route.total_angle, 6))
+            rec = _plant(
+                sc, Motor.position(**sc.motor), Sensor(**{**sc.sensor, "seed": sc.seed + 20 + i})
+            )
+            rec.set_route(route)
+            out = sim if i == 0 else rec.simulate(t_cal, command, full=True)
+            recordings.append((t_cal, out.q_in, out.measured, route.total_angle))
+        fixed = {
+            "pretension": cal.pretension,
+            "length": sc.route["initial"].length,
+            "proximal_radius": cal.proximal_radius,
+            "distal_radius": cal.distal_radius,
+        }
+        if len(recordings) == 1:  # one angle: friction from a tension bench
+            fixed["friction"] = tension_bench_friction(_plant(sc, None))
+        fitted["curve"] = identify(
+            models.CurveAngleModel,
+            recordings=recordings,
+            fixed=fixed,
+            free=[] if sc.plant["type"] == "pull_pull" else ["spring"],
+            warmup=warm,
+            seed=sc.seed,
+            progress=False,
+        )
+    ref = sc.reference
+    t = np.arange(0.0, ref["duration"], 1.0 / ref["rate"])
+    y_d = sum(
+        float(s[0]) * np.sin(2 * np.pi * float(s[1]) * t + (float(s[2]) if len(s) > 2 else 0.0))
+        for s in ref["sines"]
+    )
+    routes = None
+    if sc.route_changes:
+        times = [0.0] + [c[0] for c in sc.route_changes]
+        shapes = [sc.route["initial"]] + [c[1] for c in sc.route_changes]
+        routes = piecewise_routes(times, shapes)
+    runs = {}
+    servo = _plant(sc, servo_motor)
+    for name in sc.compensators:
+        if progress:
+            progress(name)
+        if name == "none":
+            runs[name] = run(servo, None, t, y_d, routes=routes, noise=sensor)
+        elif name == "inverse_feedforward":
+            ff = InverseFeedforward(fitted["bwb"].model, smoothing=0.03)
+            runs["InverseFeedforward"] = run(servo, ff, t, y_d, routes=routes, noise=sensor)
+        elif name == "curve_angle_feedforward":
+            ff = CurveAngleFeedforward.from_model(fitted["curve"].model, smoothing=0.03)
+            runs["CurveAngleFeedforward"] = run(servo, ff, t, y_d, routes=routes, noise=sensor)
+        else:
+            torque = _plant(sc, Motor.torque(**sc.torque_motor))
+            ctrl = AdaptiveController.from_model(
+                fitted["bwb"].model,
+                inertia=sc.torque_motor["inertia"],
+                viscous=sc.torque_motor["viscous"],
+                max_torque=sc.torque_motor["max_torque"],
+                noise_std=sc.sensor["noise_std"],
+            )
+            runs["AdaptiveController"] = run(torque, ctrl, t, y_d, routes=routes, noise=sensor)
+    base = runs["none"].metrics["mse"] if "none" in runs else float("nan")
+    table = [
+        {
+            "compensator": k,
+            "mse": r.metrics["mse"],
+            "rmse": r.metrics["rmse"],
+            "percent_error": r.metrics["percent_error"],
+            "improvement": ratio(base, r.metrics["mse"]),
+        }
+        for k, r in runs.items()
+    ]
+    shapes = {"initial": sc.route["initial"]}
+    shapes.update({f"t = {tc:g} s": r for tc, r in sc.route_changes})
+    return ScenarioResult(
+        name="user",
+        title=sc.title,
+        summary=f"User scenario from {sc.source}.",
+        conditions={
+            "plant": ", ".join(f"{k} = {v}" for k, v in sc.plant.items()),
+            "load": str(sc.load or "none"),
+            "motor": ", ".join(f"{k} = {v}" for k, v in sc.motor.items()),
+            "sensor": ", ".join(f"{k} = {v}" for k, v in sc.sensor.items()),
+            "reference": f"{ref['sines']} (amplitude rad, Hz, phase) for {ref['duration']} s "
+            f"at {ref['rate']} Hz",
+            "calibration": f"{sc.calibration['duration']} s, amplitude "
+            f"{sc.calibration['amplitude']} rad, on the initial route",
+        },
+        runs=runs,
+        table=table,
+        paper={},
+        routes=shapes,
+        route_schedule=[(0.0, sc.route["initial"].total_angle)]
+        + [(tc, r.total_angle) for tc, r in sc.route_changes],
+        calibration={f"{k} rmse": f.rmse for k, f in fitted.items()},
+    )
