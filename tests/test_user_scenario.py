@@ -66,3 +66,16 @@ def test_bench_command_fails_cleanly(tmp_path):
     assert result.exit_code == 2 and "unknown key 'frction'" in result.output
     result = CliRunner().invoke(app, ["bench", str(tmp_path / "missing.toml")])
     assert result.exit_code == 2 and "not found" in result.output
+
+
+def test_tension_bench_recovers_friction(rng):
+    import tendonsheath as ts
+    from tendonsheath.bench.user_scenario import tension_bench_friction
+
+    for _ in range(5):
+        mu = rng.uniform(0.03, 0.25)
+        route = ts.Route.arcs([(rng.uniform(0.2, 0.8), rng.uniform(0, 3)) for _ in range(3)])
+        plant = ts.PullPullPlant(
+            route=route, friction=mu, stiffness=5e3, pretension=20.0, elements=30
+        )
+        assert tension_bench_friction(plant) == pytest.approx(mu, rel=1e-6)
