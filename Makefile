@@ -54,7 +54,7 @@ test-cpp: gtest
 test-python: install chromium
 	$(PY) -m pytest -q
 
-test: test-cpp test-python lint
+test: test-cpp lint test-python
 
 bench: install
 	@for f in benchmarks/[a-z]*.py; do echo "== $$f"; $(PY) $$f || exit 1; done
