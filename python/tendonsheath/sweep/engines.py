@@ -1,0 +1,256 @@
+"""Where the runs execute: in this process, on a local process pool, or on a Dask cluster.
+
+Every engine runs *batches* of (run index, parameters) and returns, per run, the index with
+the run's output or its error text; results are keyed by run index, so a batch that is run
+twice (a retry after a worker died) never counts twice, and the table does not depend on
+the order in which batches finish.
+"""
+
+from __future__ import annotations
+
+import math
+import multiprocessing
+import os
+import sys
+import time
+import traceback
+import uuid
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from typing import Any
+
+Item = tuple[int, dict[str, Any]]
+Outcome = tuple[int, Any, str | None]
+
+
+class SweepError(RuntimeError):
+    """A sweep could not finish (a run failed with on_error='raise', or batches were lost)."""
+
+
+def run_batch(run: Callable, items: Sequence[Item]) -> list[Outcome]:
+    """Run each item; an exception becomes error text (the batch itself never fails)."""
+    out: list[Outcome] = []
+    for index, params in items:
+        try:
+            out.append((index, run(dict(params)), None))
+        except Exception as exc:  # noqa: BLE001 - reported per run
+            tb = traceback.format_exception_only(type(exc), exc)[-1].strip()
+            out.append((index, None, tb))
+    return out
+
+
+def auto_batch_size(n_runs: int, workers: int) -> int:
+    """About 4 batches per worker (load balance) and at most 64 runs per batch."""
+    return max(1, min(64, math.ceil(n_runs / (4 * max(1, workers)))))
+
+
+def make_batches(items: Sequence[Item], size: int) -> list[list[Item]]:
+    return [list(items[k : k + size]) for k in range(0, len(items), size)]
+
+
+@dataclass
+class EngineStats:
+    engine: str
+    workers: int
+    batches: int
+    batch_size: int
+    resubmitted: int = 0
+    duplicates_dropped: int = 0
+    seconds: float = 0.0
+    extra: dict = field(default_factory=dict)
+
+
+class _Collector:
+    """Keeps the first outcome of every run index; counts duplicates."""
+
+    def __init__(self, n: int, progress):
+        self.results: dict[int, tuple[Any, str | None]] = {}
+        self.duplicates = 0
+        self.progress = progress
+
+    def add(self, outcomes: list[Outcome]) -> None:
+        new = 0
+        for index, value, error in outcomes:
+            if index in self.results:
+                self.duplicates += 1
+                continue
+            self.results[index] = (value, error)
+            new += 1
+        self.progress(new)
+
+
+@contextmanager
+def progress_bar(enabled: bool | None, total: int, label: str):
+    """A rich progress bar on stderr (enabled=None: only on a terminal); yields advance(k)."""
+    if enabled is None:
+        enabled = sys.stderr.isatty()
+    if not enabled:
+        yield lambda k: None
+        return
+    from rich.console import Console
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    with Progress(
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+        console=Console(stderr=True),
+        transient=False,
+    ) as bar:
+        task = bar.add_task(label, total=total)
+        yield lambda k: bar.advance(task, k)
+
+
+# -- serial and local ------------------------------------------------------------------------
+
+
+def run_serial(run, items, progress=None) -> tuple[dict, EngineStats]:
+    start = time.perf_counter()
+    with progress_bar(progress, len(items), "sweep (this process)") as advance:
+        col = _Collector(len(items), advance)
+        for item in items:
+            col.add(run_batch(run, [item]))
+    stats = EngineStats("serial", 1, len(items), 1, seconds=time.perf_counter() - start)
+    return col.results, stats
+
+
+def _default_context() -> str:
+    # forkserver: no fork of a process that may hold threads (a Dask client, rich), cheaper
+    # start-up than spawn; spawn where forkserver does not exist.
+    return "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
+
+
+def run_local(
+    run, items, workers=None, batch_size=None, progress=None, mp_context=None
+) -> tuple[dict, EngineStats]:
+    """A process pool over this machine's cores (workers=None: os.cpu_count())."""
+    workers = int(workers or os.cpu_count() or 1)
+    if workers < 1:
+        raise ValueError(f"sweep: workers must be >= 1 (got {workers})")
+    size = int(batch_size or auto_batch_size(len(items), workers))
+    batches = make_batches(items, size)
+    ctx = multiprocessing.get_context(mp_context or _default_context())
+    start = time.perf_counter()
+    label = f"sweep (local, {workers} worker{'s' if workers > 1 else ''})"
+    with progress_bar(progress, len(items), label) as advance:
+        col = _Collector(len(items), advance)
+        with ProcessPoolExecutor(max_workers=min(workers, len(batches)), mp_context=ctx) as pool:
+            futures = [pool.submit(run_batch, run, b) for b in batches]
+            try:
+                for fut in as_completed(futures):
+                    col.add(fut.result())
+            except BaseException:
+                for f in futures:
+                    f.cancel()
+                raise
+    stats = EngineStats(
+        "local", workers, len(batches), size, seconds=time.perf_counter() - start
+    )
+    return col.results, stats
+
+
+# -- Dask --------------------------------------------------------------------------------------
+
+
+def connect(address: str, timeout: float):
+    """A Client for the scheduler at ``address``, or a clear ConnectionError within timeout."""
+    try:
+        from distributed import Client
+    except ImportError:  # pragma: no cover - depends on the install
+        raise ValueError(
+            "sweep: the Dask engine needs dask.distributed: pip install 'tendonsheath[sweep]'"
+        ) from None
+    try:
+        return Client(address, timeout=f"{timeout}s", set_as_default=False)
+    except (OSError, TimeoutError) as exc:
+        raise ConnectionError(
+            f"cannot reach the Dask scheduler at {address} within {timeout:g} s "
+            f"({type(exc).__name__}); is it running and is the address right?"
+        ) from None
+
+
+def is_dask_client(engine) -> bool:
+    mod = type(engine).__module__ or ""
+    return mod.startswith("distributed") and type(engine).__name__ == "Client"
+
+
+def run_dask(
+    run,
+    items,
+    client,
+    batch_size=None,
+    retries: int = 3,
+    progress=None,
+) -> tuple[dict, EngineStats]:
+    """Batches as Dask tasks; a batch lost with its worker is rescheduled (by the scheduler,
+    then by us, up to ``retries`` times); outcomes are deduplicated by run index."""
+    from distributed import as_completed as dask_as_completed
+
+    workers = max(1, len(client.scheduler_info().get("workers", {})))
+    size = int(batch_size or auto_batch_size(len(items), workers))
+    batches = make_batches(items, size)
+    token = uuid.uuid4().hex[:12]
+    start = time.perf_counter()
+    attempts = [0] * len(batches)
+    batch_of: dict[str, int] = {}
+    submitted = []
+
+    def submit(b: int):
+        key = f"tendonsheath-sweep-{token}-{b}-{attempts[b]}"
+        fut = client.submit(run_batch, run, batches[b], key=key, pure=False, retries=retries)
+        batch_of[fut.key] = b
+        submitted.append(fut)
+        return fut
+
+    resubmitted = 0
+    label = f"sweep (dask, {workers} worker{'s' if workers > 1 else ''})"
+    with progress_bar(progress, len(items), label) as advance:
+        col = _Collector(len(items), advance)
+        futures = [submit(b) for b in range(len(batches))]
+        ac = dask_as_completed(futures)
+        try:
+            for fut in ac:
+                b = batch_of[fut.key]
+                try:
+                    outcomes = fut.result()
+                except Exception as exc:  # noqa: BLE001 - KilledWorker, lost connection, ...
+                    if attempts[b] >= retries:
+                        raise SweepError(
+                            f"batch {b} (runs {batches[b][0][0]}..{batches[b][-1][0]}) failed "
+                            f"{attempts[b] + 1} times, last with {type(exc).__name__}: {exc}"
+                        ) from exc
+                    attempts[b] += 1
+                    resubmitted += 1
+                    ac.add(submit(b))
+                    continue
+                finally:
+                    fut.release()
+                col.add(outcomes)
+        except BaseException:
+            client.cancel(submitted)
+            raise
+    missing = [i for i, _ in items if i not in col.results]
+    if missing:  # pragma: no cover - would be a scheduler bug
+        raise SweepError(f"sweep: {len(missing)} runs came back from no batch: {missing[:10]}")
+    stats = EngineStats(
+        "dask",
+        workers,
+        len(batches),
+        size,
+        resubmitted=resubmitted,
+        duplicates_dropped=col.duplicates,
+        seconds=time.perf_counter() - start,
+        extra={"scheduler": client.scheduler.address},
+    )
+    return col.results, stats
