@@ -32,6 +32,7 @@ from .distributions import (
     Normal,
     Relative,
     Saltelli,
+    Seed,
     Uniform,
     as_design,
 )
@@ -52,6 +53,7 @@ __all__ = [
     "Plan",
     "Relative",
     "Saltelli",
+    "Seed",
     "SweepError",
     "SweepResult",
     "Uniform",
@@ -167,7 +169,9 @@ def sweep(
     table, metrics, compensators = build_table(plan, results)
     info = engine_info(stats)
     info["wall_seconds"] = time.perf_counter() - start
-    info["runs_per_second"] = len(items) / info["wall_seconds"] if info["wall_seconds"] else math.inf
+    info["runs_per_second"] = (
+        len(items) / info["wall_seconds"] if info["wall_seconds"] else math.inf
+    )
     info["failed_runs"] = len(failed)
     return SweepResult(
         table=table,
@@ -179,6 +183,7 @@ def sweep(
         seed=plan.seed,
         engine=info,
         salib_problem=plan.salib_problem,
+        unranked=plan.unranked,
     )
 
 
@@ -194,6 +199,7 @@ for _name in (
     "Normal",
     "Relative",
     "Saltelli",
+    "Seed",
     "Uniform",
     "SweepResult",
     "SweepError",

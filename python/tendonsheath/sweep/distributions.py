@@ -41,6 +41,8 @@ class Distribution:
     """One parameter's distribution: ``ppf(u)`` maps uniform numbers in (0, 1) to values."""
 
     numeric = True
+    #: False for labels such as seeds, which a sensitivity ranking must not regress on
+    ranked = True
 
     def ppf(self, u: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
         raise NotImplementedError
@@ -160,6 +162,19 @@ class Integers(Distribution):
         return f"Integers({self.lo}, {self.hi})"
 
 
+class Seed(Integers):
+    """A random integer seed per run (e.g. for a random route): drawn like Integers(0, 2**31 - 1)
+    but left out of sensitivity rankings, since its value has no order that means anything."""
+
+    ranked = False
+
+    def __init__(self):
+        super().__init__(0, 2**31 - 1)
+
+    def __repr__(self) -> str:
+        return "Seed()"
+
+
 class Choice(Distribution):
     """One of ``values``, each equally likely (values may be numbers or strings)."""
 
@@ -173,6 +188,7 @@ class Choice(Distribution):
             isinstance(v, int | float | np.integer | np.floating) and not isinstance(v, bool)
             for v in self.values
         )
+        self.ranked = self.numeric
 
     def ppf(self, u):
         k = np.floor(np.asarray(u, dtype=np.float64) * len(self.values)).astype(np.int64)
@@ -270,7 +286,9 @@ class Grid(Design):
             if isinstance(value, str | bytes) or not isinstance(value, Iterable):
                 self.fixed[name] = value
                 continue
-            values = list(np.asarray(value).tolist()) if isinstance(value, np.ndarray) else list(value)
+            values = (
+                list(np.asarray(value).tolist()) if isinstance(value, np.ndarray) else list(value)
+            )
             if not values:
                 raise ValueError(f"Grid: {name!r} has an empty list of values")
             self.axes[name] = values

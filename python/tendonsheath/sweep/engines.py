@@ -141,6 +141,10 @@ def run_local(
     size = int(batch_size or auto_batch_size(len(items), workers))
     batches = make_batches(items, size)
     ctx = multiprocessing.get_context(mp_context or _default_context())
+    if ctx.get_start_method() == "forkserver":
+        # workers fork from a server that has already imported the package and the run's
+        # module (effective when this process starts its fork server, i.e. the first time)
+        ctx.set_forkserver_preload(["tendonsheath", getattr(run, "__module__", "tendonsheath")])
     start = time.perf_counter()
     label = f"sweep (local, {workers} worker{'s' if workers > 1 else ''})"
     with progress_bar(progress, len(items), label) as advance:
@@ -154,9 +158,7 @@ def run_local(
                 for f in futures:
                     f.cancel()
                 raise
-    stats = EngineStats(
-        "local", workers, len(batches), size, seconds=time.perf_counter() - start
-    )
+    stats = EngineStats("local", workers, len(batches), size, seconds=time.perf_counter() - start)
     return col.results, stats
 
 

@@ -35,6 +35,12 @@ class Plan:
     fixed: dict[str, Any] = field(default_factory=dict)
     salib_problem: dict | None = None
 
+    @property
+    def unranked(self) -> list[str]:
+        """Drawn parameters a sensitivity ranking leaves out (seeds, text choices)."""
+        dists = getattr(self.design, "distributions", {})
+        return [name for name, d in dists.items() if not d.ranked]
+
     def __len__(self) -> int:
         return len(self.runs)
 
@@ -111,8 +117,14 @@ def make_plan(design: Design, n: int | None, seed: int | None) -> Plan:
         u = np.clip(u, 1e-12, 1 - 1e-12)
         runs = _unit_to_runs(design, names, u)
         problem = {"num_vars": len(names), "names": names, "bounds": [[0.0, 1.0]] * len(names)}
-        return Plan(design, seed, runs, drawn=list(design.distributions),
-                    fixed=dict(design.fixed), salib_problem=problem)
+        return Plan(
+            design,
+            seed,
+            runs,
+            drawn=list(design.distributions),
+            fixed=dict(design.fixed),
+            salib_problem=problem,
+        )
     elif isinstance(design, MonteCarlo):
         n = _check_n(n, "random")
         u = np.empty((n, len(names)))

@@ -57,14 +57,20 @@ def plot_all(result, out: Path, sensitivity=None) -> list[Path]:
             log = _log_scale(result.table[m].to_numpy(dtype=np.float64))
             for ax, p in zip(axes.flat, params, strict=False):
                 for comp, g in groups:
-                    ax.plot(g[p].astype(str) if g[p].dtype == object else g[p], g[m], ".",
-                            ms=3, alpha=0.6, label=comp)
+                    ax.plot(
+                        g[p].astype(str) if g[p].dtype == object else g[p],
+                        g[m],
+                        ".",
+                        ms=3,
+                        alpha=0.6,
+                        label=comp,
+                    )
                 if log:
                     ax.set_yscale("log")
                 ax.set_xlabel(p)
                 ax.set_ylabel(m)
                 ax.grid(True, alpha=0.3)
-            for ax in list(axes.flat)[len(params):]:
+            for ax in list(axes.flat)[len(params) :]:
                 ax.set_visible(False)
             if len(groups) > 1:
                 axes.flat[0].legend(fontsize="small")

@@ -8,9 +8,12 @@ import numbers
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:  # pandas is imported when a table is built (an optional dependency)
+    import pandas as pd
 
 QUANTILES = {"q05": 0.05, "q25": 0.25, "median": 0.5, "q75": 0.75, "q95": 0.95}
 
@@ -20,8 +23,7 @@ def _pandas():
         import pandas
     except ImportError:  # pragma: no cover - depends on the install
         raise ImportError(
-            "sweep tables need pandas (and pyarrow for Parquet): "
-            "pip install 'tendonsheath[sweep]'"
+            "sweep tables need pandas (and pyarrow for Parquet): pip install 'tendonsheath[sweep]'"
         ) from None
     return pandas
 
@@ -115,6 +117,7 @@ class SweepResult:
     seed: int
     engine: dict = field(default_factory=dict)
     salib_problem: dict | None = None
+    unranked: list[str] = field(default_factory=list)
 
     # -- basic views ---------------------------------------------------------------------
     def __len__(self) -> int:
@@ -163,11 +166,18 @@ class SweepResult:
             for m in self.metrics:
                 x = g[m].to_numpy(dtype=np.float64)
                 ok = x[np.isfinite(x)]
-                row = {"compensator": comp, "metric": m, "n": int(x.size),
-                       "failed": int(x.size - ok.size)}
+                row = {
+                    "compensator": comp,
+                    "metric": m,
+                    "n": int(x.size),
+                    "failed": int(x.size - ok.size),
+                }
                 if ok.size:
-                    row.update(mean=float(ok.mean()), std=float(ok.std(ddof=1)) if ok.size > 1
-                               else 0.0, min=float(ok.min()))
+                    row.update(
+                        mean=float(ok.mean()),
+                        std=float(ok.std(ddof=1)) if ok.size > 1 else 0.0,
+                        min=float(ok.min()),
+                    )
                     row.update({k: float(np.quantile(ok, q)) for k, q in QUANTILES.items()})
                     row["max"] = float(ok.max())
                 if m in bounds:
@@ -181,6 +191,8 @@ class SweepResult:
         pd = _pandas()
         out = []
         for p in self.parameters:
+            if p in self.unranked:
+                continue
             col = self.table[p]
             if pd.api.types.is_numeric_dtype(col) and not pd.api.types.is_bool_dtype(col):
                 if col.nunique() > 1:
@@ -216,15 +228,27 @@ class SweepResult:
                     y = g[m].to_numpy(dtype=np.float64)
                     if not np.all(np.isfinite(y)):
                         raise ValueError(f"sensitivity: {comp}/{m} has failed runs (NaN)")
-                    res = sobol.analyze(self.salib_problem, y, calc_second_order=False,
-                                        print_to_console=False, seed=self.seed)
+                    res = sobol.analyze(
+                        self.salib_problem,
+                        y,
+                        calc_second_order=False,
+                        print_to_console=False,
+                        seed=self.seed,
+                    )
                     block = []
                     for j, name in enumerate(self.salib_problem["names"]):
-                        block.append({"compensator": comp, "metric": m, "parameter": name,
-                                      "method": "sobol", "S1": float(res["S1"][j]),
-                                      "S1_conf": float(res["S1_conf"][j]),
-                                      "ST": float(res["ST"][j]),
-                                      "ST_conf": float(res["ST_conf"][j])})
+                        block.append(
+                            {
+                                "compensator": comp,
+                                "metric": m,
+                                "parameter": name,
+                                "method": "sobol",
+                                "S1": float(res["S1"][j]),
+                                "S1_conf": float(res["S1_conf"][j]),
+                                "ST": float(res["ST"][j]),
+                                "ST_conf": float(res["ST_conf"][j]),
+                            }
+                        )
                     block.sort(key=lambda r: -np.nan_to_num(r["ST"], nan=-np.inf))
                     for k, r in enumerate(block, 1):
                         r["rank"] = k
@@ -252,9 +276,17 @@ class SweepResult:
                     coef, *_ = np.linalg.lstsq(Xs, ys, rcond=None)
                     resid = ys - Xs @ coef
                     r2 = float(1.0 - resid @ resid / (ys @ ys))
-                block = [{"compensator": comp, "metric": m, "parameter": p, "method": method,
-                          "coefficient": float(c), "r2": r2} for p, c in zip(names, coef,
-                                                                            strict=True)]
+                block = [
+                    {
+                        "compensator": comp,
+                        "metric": m,
+                        "parameter": p,
+                        "method": method,
+                        "coefficient": float(c),
+                        "r2": r2,
+                    }
+                    for p, c in zip(names, coef, strict=True)
+                ]
                 block.sort(key=lambda r: -abs(r["coefficient"]))
                 for k, r in enumerate(block, 1):
                     r["rank"] = k
@@ -294,8 +326,9 @@ class SweepResult:
             "fixed": {k: plain(v) for k, v in self.fixed.items()},
             "metrics": self.metrics,
             "compensators": self.compensators,
-            "engine": {k: plain(v) if not isinstance(v, dict) else v
-                       for k, v in self.engine.items()},
+            "engine": {
+                k: plain(v) if not isinstance(v, dict) else v for k, v in self.engine.items()
+            },
         }
 
     def save(self, out_dir, bound=None, figures: bool = True) -> list[Path]:
