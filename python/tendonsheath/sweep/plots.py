@@ -48,7 +48,12 @@ def plot_all(result, out: Path, sensitivity=None) -> list[Path]:
         plt.close(fig)
         written.append(path)
 
-    params = result.parameters
+    # seeds have no meaningful order: no scatter against them (text choices are kept)
+    params = [
+        p
+        for p in result.parameters
+        if not (p in result.unranked and result.table[p].dtype != object)
+    ]
     if params:
         for m in result.metrics:
             cols = min(3, len(params))
