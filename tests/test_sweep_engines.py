@@ -176,3 +176,21 @@ def test_grid_and_flat_metrics_and_summary():
     s = res.summary(bound={"y": 4.0})
     assert s.loc[0, "within_bound"] == pytest.approx(2 / 3)
     assert s.loc[0, "median"] == 4.0
+
+
+def die(params):
+    os._exit(3)
+
+
+def test_local_pool_is_kept_and_a_dead_worker_is_a_clear_error():
+    res = ts.sweep(tracking_mse, {"friction": Relative(0.1, 0.3), "elements": 12}, n=4, seed=1,
+                   workers=2)  # fmt: skip
+    assert res.engine["compute_seconds"] > 0 and res.engine["overhead_per_run"] > -1
+    from tendonsheath.sweep import engines
+
+    assert len(engines._POOLS) >= 1
+    with pytest.raises(SweepError, match="local worker process died"):
+        ts.sweep(die, {"a": Uniform(0, 1)}, n=2, seed=1, workers=2)
+    again = ts.sweep(tracking_mse, {"friction": Relative(0.1, 0.3), "elements": 12}, n=4, seed=1,
+                     workers=2)  # fmt: skip
+    pd.testing.assert_frame_equal(again.table, res.table)

@@ -173,6 +173,10 @@ def sweep(
         len(items) / info["wall_seconds"] if info["wall_seconds"] else math.inf
     )
     info["failed_runs"] = len(failed)
+    # worker-time each run cost beyond its own compute (start-up, transfer, scheduling, idle)
+    if stats.compute_seconds > 0:
+        used = stats.seconds * stats.workers
+        info["overhead_per_run"] = (used - stats.compute_seconds) / stats.compute_seconds
     return SweepResult(
         table=table,
         parameters=list(plan.drawn),

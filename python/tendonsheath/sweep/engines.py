@@ -17,12 +17,13 @@ import traceback
 import uuid
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures.process import BrokenProcessPool
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
 Item = tuple[int, dict[str, Any]]
-Outcome = tuple[int, Any, str | None]
+Outcome = tuple[int, Any, str | None, float]  # index, output, error text, seconds
 
 
 class SweepError(RuntimeError):
@@ -33,11 +34,12 @@ def run_batch(run: Callable, items: Sequence[Item]) -> list[Outcome]:
     """Run each item; an exception becomes error text (the batch itself never fails)."""
     out: list[Outcome] = []
     for index, params in items:
+        start = time.perf_counter()
         try:
-            out.append((index, run(dict(params)), None))
+            value, error = run(dict(params)), None
         except Exception as exc:  # noqa: BLE001 - reported per run
-            tb = traceback.format_exception_only(type(exc), exc)[-1].strip()
-            out.append((index, None, tb))
+            value, error = None, traceback.format_exception_only(type(exc), exc)[-1].strip()
+        out.append((index, value, error, time.perf_counter() - start))
     return out
 
 
@@ -59,6 +61,8 @@ class EngineStats:
     resubmitted: int = 0
     duplicates_dropped: int = 0
     seconds: float = 0.0
+    #: the runs' own time, summed (measured around each call, on the worker)
+    compute_seconds: float = 0.0
     extra: dict = field(default_factory=dict)
 
 
@@ -68,15 +72,17 @@ class _Collector:
     def __init__(self, n: int, progress):
         self.results: dict[int, tuple[Any, str | None]] = {}
         self.duplicates = 0
+        self.compute = 0.0
         self.progress = progress
 
     def add(self, outcomes: list[Outcome]) -> None:
         new = 0
-        for index, value, error in outcomes:
+        for index, value, error, seconds in outcomes:
             if index in self.results:
                 self.duplicates += 1
                 continue
             self.results[index] = (value, error)
+            self.compute += seconds
             new += 1
         self.progress(new)
 
@@ -121,7 +127,9 @@ def run_serial(run, items, progress=None) -> tuple[dict, EngineStats]:
         col = _Collector(len(items), advance)
         for item in items:
             col.add(run_batch(run, [item]))
-    stats = EngineStats("serial", 1, len(items), 1, seconds=time.perf_counter() - start)
+    stats = EngineStats(
+        "serial", 1, len(items), 1, seconds=time.perf_counter() - start, compute_seconds=col.compute
+    )
     return col.results, stats
 
 
@@ -129,6 +137,33 @@ def _default_context() -> str:
     # forkserver: no fork of a process that may hold threads (a Dask client, rich), cheaper
     # start-up than spawn; spawn where forkserver does not exist.
     return "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
+
+
+_POOLS: dict[tuple[int, str], ProcessPoolExecutor] = {}
+
+
+def local_pool(workers: int, method: str, preload: str | None = None) -> ProcessPoolExecutor:
+    """A process pool kept between sweeps (start-up is paid once per session, as on a
+    Dask cluster); a pool broken by a crashed worker is replaced."""
+    key = (workers, method)
+    pool = _POOLS.get(key)
+    if pool is not None and not getattr(pool, "_broken", False):
+        return pool
+    ctx = multiprocessing.get_context(method)
+    if method == "forkserver":
+        # workers fork from a server that has already imported the package and the run's
+        # module (effective when this process starts its fork server, i.e. the first time)
+        ctx.set_forkserver_preload(["tendonsheath", *([preload] if preload else [])])
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx)
+    _POOLS[key] = pool
+    return pool
+
+
+def shutdown_local_pools() -> None:
+    """Stop the kept process pools (they also stop when Python exits)."""
+    while _POOLS:
+        _, pool = _POOLS.popitem()
+        pool.shutdown(wait=True, cancel_futures=True)
 
 
 def run_local(
@@ -140,25 +175,33 @@ def run_local(
         raise ValueError(f"sweep: workers must be >= 1 (got {workers})")
     size = int(batch_size or auto_batch_size(len(items), workers))
     batches = make_batches(items, size)
-    ctx = multiprocessing.get_context(mp_context or _default_context())
-    if ctx.get_start_method() == "forkserver":
-        # workers fork from a server that has already imported the package and the run's
-        # module (effective when this process starts its fork server, i.e. the first time)
-        ctx.set_forkserver_preload(["tendonsheath", getattr(run, "__module__", "tendonsheath")])
     start = time.perf_counter()
+    pool = local_pool(workers, mp_context or _default_context(), getattr(run, "__module__", None))
     label = f"sweep (local, {workers} worker{'s' if workers > 1 else ''})"
     with progress_bar(progress, len(items), label) as advance:
         col = _Collector(len(items), advance)
-        with ProcessPoolExecutor(max_workers=min(workers, len(batches)), mp_context=ctx) as pool:
-            futures = [pool.submit(run_batch, run, b) for b in batches]
-            try:
-                for fut in as_completed(futures):
-                    col.add(fut.result())
-            except BaseException:
-                for f in futures:
-                    f.cancel()
-                raise
-    stats = EngineStats("local", workers, len(batches), size, seconds=time.perf_counter() - start)
+        futures = [pool.submit(run_batch, run, b) for b in batches]
+        try:
+            for fut in as_completed(futures):
+                col.add(fut.result())
+        except BrokenProcessPool as exc:
+            _POOLS.pop((workers, mp_context or _default_context()), None)
+            raise SweepError(
+                f"a local worker process died ({exc}); the local engine does not retry: "
+                "use the Dask engine for fault tolerance"
+            ) from exc
+        except BaseException:
+            for f in futures:
+                f.cancel()
+            raise
+    stats = EngineStats(
+        "local",
+        workers,
+        len(batches),
+        size,
+        seconds=time.perf_counter() - start,
+        compute_seconds=col.compute,
+    )
     return col.results, stats
 
 
@@ -253,6 +296,7 @@ def run_dask(
         resubmitted=resubmitted,
         duplicates_dropped=col.duplicates,
         seconds=time.perf_counter() - start,
+        compute_seconds=col.compute,
         extra={"scheduler": client.scheduler.address},
     )
     return col.results, stats
