@@ -74,3 +74,21 @@ def test_save_writes_tables_summary_and_figures(tmp_path):
     assert rows["A", "y"]["median"] == pytest.approx(float(y.median()))
     with pytest.raises(ValueError, match="unknown metric"):
         res.summary(bound={"nope": 1.0})
+
+
+def test_robustness_study_for_the_report(tmp_path):
+    from tendonsheath.sweep import robustness_section, robustness_study
+    from tendonsheath.sweep.studies import robustness_design
+
+    design = robustness_design(elements=12, samples=150)
+    res = robustness_study(n=10, seed=1, engine="serial", design=design)
+    assert res.n_runs == 10 and res.compensators == ["none", "curve_angle", "inverse_backlash"]
+    f = res.table["friction"]
+    assert f.between(0.07, 0.13).all() and res.table["route_pieces"].between(1, 4).all()
+    section = robustness_section(res, tmp_path, bound=1e-4)
+    assert set(section["compensators"]) == set(res.compensators)
+    for numbers in section["compensators"].values():
+        assert numbers["q05"] <= numbers["median"] <= numbers["q95"]
+        assert 0 <= numbers["within_bound"] <= 1
+    assert (tmp_path / "robustness_mse.png").read_bytes()[:4] == b"\x89PNG"
+    json.dumps(section)

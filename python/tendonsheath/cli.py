@@ -118,7 +118,14 @@ def sweep_command(
         value = "ST" if "ST" in sens else "coefficient"
         for comp, g in sens.groupby("compensator", sort=False):
             ranking = ", ".join(f"{r['parameter']} ({r[value]:+.2f})" for _, r in g.iterrows())
-            console.print(f"most influential on {metric} ({comp}): {ranking}")
+            note = ""
+            if "r2" in g and g["r2"].iloc[0] < 0.5:
+                note = (
+                    f" [dim](linear R2 = {g['r2'].iloc[0]:.2f}: effects are non-linear, "
+                    "e.g. error growing both ways from nominal; design = 'saltelli' gives "
+                    "Sobol indices)[/dim]"
+                )
+            console.print(f"most influential on {metric} ({comp}): {ranking}{note}")
     e = res.engine
     console.print(
         f"{res.n_runs} runs on {e['engine']} ({e['workers']} workers) in "

@@ -39,6 +39,7 @@ from .distributions import (
 from .engines import SweepError, connect, is_dask_client, run_dask, run_local, run_serial
 from .plan import Plan, make_plan
 from .result import SweepResult, build_table, engine_info
+from .studies import robustness_section, robustness_study
 
 __all__ = [
     "Choice",
@@ -58,6 +59,8 @@ __all__ = [
     "SweepResult",
     "Uniform",
     "make_plan",
+    "robustness_section",
+    "robustness_study",
     "sweep",
 ]
 
