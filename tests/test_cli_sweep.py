@@ -75,6 +75,18 @@ def test_figures(tmp_path):
         assert (tmp_path / "o" / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_saltelli_file_gives_sobol_indices(tmp_path):
+    text = TOML.replace('design = "lhs"', 'design = "saltelli"').replace("n = 6", "n = 4")
+    text = text.replace("route_seed = { seed = true }\n", "").replace("workers = 2", "workers = 1")
+    cfg = write(tmp_path, text)
+    result = runner.invoke(app, ["sweep", str(cfg), "--out", str(tmp_path / "o"), "--no-figures"])
+    assert result.exit_code == 0, result.output
+    meta = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert meta["runs"] == 4 * (3 + 2)
+    assert {r["method"] for r in meta["sensitivity"]} == {"sobol"}
+    assert {"S1", "ST", "ST_conf"} <= set(meta["sensitivity"][0])
+
+
 def test_file_format_maps_to_distributions(tmp_path):
     spec = read_sweep_file(write(tmp_path, TOML))
     assert isinstance(spec.design, LatinHypercube)

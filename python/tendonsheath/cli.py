@@ -128,7 +128,8 @@ def sweep_command(
             console.print(f"most influential on {metric} ({comp}): {ranking}{note}")
     e = res.engine
     console.print(
-        f"{res.n_runs} runs on {e['engine']} ({e['workers']} workers) in "
+        f"{res.n_runs} runs on {e['engine']} ({e['workers']} worker"
+        f"{'s' if e['workers'] != 1 else ''}) in "
         f"{e['wall_seconds']:.1f} s, {e['runs_per_second']:.1f} runs/s"
     )
     console.print(f"wrote {len(written)} files to {out}:")
