@@ -242,7 +242,7 @@ def run_dask(
     then by us, up to ``retries`` times); outcomes are deduplicated by run index."""
     from distributed import as_completed as dask_as_completed
 
-    workers = max(1, len(client.scheduler_info().get("workers", {})))
+    workers = max(1, sum(client.nthreads().values()))  # worker threads: the parallelism
     size = int(batch_size or auto_batch_size(len(items), workers))
     batches = make_batches(items, size)
     token = uuid.uuid4().hex[:12]
