@@ -78,6 +78,8 @@ def main() -> None:
     print(f"{args.runs} runs, elements={args.elements}, samples={args.samples}, {cores} cores, "
           f"load average before: {load:.2f}")  # fmt: skip
 
+    import pandas  # noqa: F401 - imported once up front, not inside the first timed sweep
+
     # a run, timed directly in this process (no engine at all)
     params = make_plan(MonteCarlo(spec), 20, seed=1).runs
     RUN(params[0])

@@ -111,7 +111,7 @@ def sweep(
     ``"serial"`` (this process, for debugging), a ``dask.distributed.Client``, or a
     scheduler address such as ``"tcp://scheduler:8786"`` (connected within
     ``connect_timeout`` seconds, else ConnectionError before any run). On Dask, runs go in
-    batches of ``batch_size`` (default: about 4 batches per worker, at most 64 runs); a
+    batches of ``batch_size`` (default: about 10 batches per worker, at most 32 runs); a
     batch lost with its worker is run again elsewhere (``retries``), each run counted once.
 
     ``parameters``: the names the run accepts (default: the run's ``parameters`` attribute);
