@@ -194,3 +194,12 @@ def test_local_pool_is_kept_and_a_dead_worker_is_a_clear_error():
     again = ts.sweep(tracking_mse, {"friction": Relative(0.1, 0.3), "elements": 12}, n=4, seed=1,
                      workers=2)  # fmt: skip
     pd.testing.assert_frame_equal(again.table, res.table)
+
+
+def test_lambdas_and_closures_travel_by_value(reference):
+    scale = 3.0
+    res = ts.sweep(lambda p: {"y": scale * p["a"]}, {"a": Uniform(0, 1)}, n=6, seed=2, workers=2)
+    assert np.allclose(res.table["y"], 3 * res.table["a"])
+    serial = ts.sweep(lambda p: {"y": scale * p["a"]}, {"a": Uniform(0, 1)}, n=6, seed=2,
+                      engine="serial")  # fmt: skip
+    pd.testing.assert_frame_equal(res.table, serial.table)

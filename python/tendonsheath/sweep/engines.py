@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import multiprocessing
 import os
+import pickle
 import sys
 import time
 import traceback
@@ -41,6 +42,50 @@ def run_batch(run: Callable, items: Sequence[Item]) -> list[Outcome]:
             value, error = None, traceback.format_exception_only(type(exc), exc)[-1].strip()
         out.append((index, value, error, time.perf_counter() - start))
     return out
+
+
+class ByValue:
+    """A run shipped by value (cloudpickle): lambdas, closures and functions of a notebook or
+    script (``__main__``), which a worker process could not import by name."""
+
+    def __init__(self, run):
+        import cloudpickle
+
+        self.payload = cloudpickle.dumps(run)
+        self.name = getattr(run, "__name__", type(run).__name__)
+        self._run = None
+
+    def __call__(self, params):
+        if self._run is None:
+            self._run = pickle.loads(self.payload)
+        return self._run(params)
+
+    def __getstate__(self):
+        return {"payload": self.payload, "name": self.name, "_run": None}
+
+
+def portable(run):
+    """``run`` as it can travel to another process: by name when it can, else by value;
+    a clear ValueError, before any work, when it cannot travel at all."""
+    module = getattr(run, "__module__", None) or getattr(type(run), "__module__", None)
+    try:
+        pickle.dumps(run)
+        by_name = module != "__main__"
+    except Exception:  # noqa: BLE001 - lambdas, closures, local classes
+        by_name = False
+    if by_name:
+        return run
+    try:
+        return ByValue(run)
+    except ImportError:
+        if module == "__main__":
+            return run  # the workers re-import __main__ (a script with a __main__ guard)
+        raise ValueError(
+            "sweep: the run function cannot be pickled (a lambda or a local function?): "
+            "define it at the top level of a module, or install cloudpickle"
+        ) from None
+    except Exception as exc:  # noqa: BLE001
+        raise ValueError(f"sweep: the run function cannot be pickled ({exc})") from None
 
 
 def auto_batch_size(n_runs: int, workers: int) -> int:
@@ -177,6 +222,7 @@ def run_local(
         raise ValueError(f"sweep: workers must be >= 1 (got {workers})")
     size = int(batch_size or auto_batch_size(len(items), workers))
     batches = make_batches(items, size)
+    run = portable(run)
     start = time.perf_counter()
     pool = local_pool(workers, mp_context or _default_context(), getattr(run, "__module__", None))
     label = f"sweep (local, {workers} worker{'s' if workers > 1 else ''})"
@@ -245,6 +291,7 @@ def run_dask(
     from distributed import as_completed as dask_as_completed
 
     workers = max(1, sum(client.nthreads().values()))  # worker threads: the parallelism
+    run = portable(run)
     size = int(batch_size or auto_batch_size(len(items), workers))
     batches = make_batches(items, size)
     token = uuid.uuid4().hex[:12]
