@@ -127,6 +127,10 @@ def sweep(
         raise ValueError(f"sweep: batch_size must be a positive integer (got {batch_size!r})")
     if workers is not None and (int(workers) != workers or workers < 1):
         raise ValueError(f"sweep: workers must be a positive integer (got {workers!r})")
+    if isinstance(retries, bool) or int(retries) != retries or retries < 0:
+        raise ValueError(f"sweep: retries must be an integer >= 0 (got {retries!r})")
+    if not connect_timeout > 0:
+        raise ValueError(f"sweep: connect_timeout must be > 0 s (got {connect_timeout!r})")
     design = as_design(design)
     _check_names(design, declared_parameters(run, parameters))
     plan = make_plan(design, n, seed)
