@@ -13,6 +13,7 @@ from .plant import (
 )
 from .route import Route
 from .sensor import Sensor
+from .sweep import sweep
 
 __version__ = "0.1.0"
 
@@ -34,5 +35,6 @@ __all__ = [
     "loads",
     "models",
     "physics",
+    "sweep",
     "__version__",
 ]

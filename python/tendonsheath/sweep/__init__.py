@@ -1,0 +1,219 @@
+"""Robustness sweeps: Monte Carlo, Latin hypercube, grids and Sobol studies of any run.
+
+    import tendonsheath as ts
+    from tendonsheath.sweep import Relative, Integers, LatinHypercube
+
+    res = ts.sweep(run, {"friction": Relative(0.1, 0.3), "pretension": Relative(10, 0.3)},
+                   n=200, seed=1)                      # engine="local": all cores
+    res = ts.sweep(run, LatinHypercube({...}), n=200, seed=1, engine="tcp://host:8786")
+    res.table; res.summary(bound=1e-4); res.sensitivity(); res.save("out/")
+
+``run(params: dict) -> dict[metric, float]`` or ``-> dict[compensator, dict[metric, float]]``
+(the table then has a ``compensator`` column); it must be picklable (a top-level function) to
+run on a process pool or a Dask cluster, and deterministic given its parameters, so that
+the table is reproducible from the seed on any engine and any number of workers.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Iterable, Mapping
+
+from .distributions import (
+    Choice,
+    Design,
+    Distribution,
+    Grid,
+    Integers,
+    LatinHypercube,
+    LogNormal,
+    MonteCarlo,
+    Normal,
+    Relative,
+    Saltelli,
+    Seed,
+    Uniform,
+    as_design,
+)
+from .engines import SweepError, connect, is_dask_client, run_dask, run_local, run_serial
+from .plan import Plan, make_plan
+from .result import SweepResult, build_table, engine_info
+from .studies import robustness_section, robustness_study
+
+__all__ = [
+    "Choice",
+    "Design",
+    "Distribution",
+    "Grid",
+    "Integers",
+    "LatinHypercube",
+    "LogNormal",
+    "MonteCarlo",
+    "Normal",
+    "Plan",
+    "Relative",
+    "Saltelli",
+    "Seed",
+    "SweepError",
+    "SweepResult",
+    "Uniform",
+    "make_plan",
+    "robustness_section",
+    "robustness_study",
+    "sweep",
+]
+
+
+def declared_parameters(run, parameters=None) -> list[str] | None:
+    """The names ``run`` accepts: ``parameters=`` or the run's ``parameters`` attribute."""
+    names = parameters if parameters is not None else getattr(run, "parameters", None)
+    if names is None:
+        return None
+    if isinstance(names, str) or not isinstance(names, Iterable):
+        raise ValueError(f"sweep: parameters must be a list of names (got {names!r})")
+    return list(names)
+
+
+def _check_names(design: Design, accepted: list[str] | None) -> None:
+    if accepted is None:
+        return
+    unknown = [n for n in design.names if n not in accepted]
+    if unknown:
+        raise ValueError(
+            f"sweep: unknown parameter name(s) {unknown}; the run accepts {sorted(accepted)}"
+        )
+
+
+def sweep(
+    run: Callable[[dict], Mapping],
+    design: Design | Mapping,
+    n: int | None = None,
+    seed: int | None = None,
+    engine="local",
+    *,
+    workers: int | None = None,
+    batch_size: int | None = None,
+    parameters: Iterable[str] | None = None,
+    on_error: str = "raise",
+    retries: int = 3,
+    progress: bool | None = None,
+    connect_timeout: float = 5.0,
+) -> SweepResult:
+    """Evaluate ``run`` over a design and return a :class:`SweepResult` (a tidy table).
+
+    ``design``: a dict parameter -> :class:`Distribution` (or constant) for ``n`` random
+    draws, or a :class:`LatinHypercube`, :class:`Grid` or :class:`Saltelli`. ``seed`` fixes
+    every draw (None: a fresh seed, kept in the result); the table does not depend on the
+    engine, ``workers`` or ``batch_size``.
+
+    ``engine``: ``"local"`` (a process pool, ``workers`` processes, default all cores),
+    ``"serial"`` (this process, for debugging), a ``dask.distributed.Client``, or a
+    scheduler address such as ``"tcp://scheduler:8786"`` (connected within
+    ``connect_timeout`` seconds, else ConnectionError before any run). On Dask, runs go in
+    batches of ``batch_size`` (default: about 10 batches per worker, at most 32 runs); a
+    batch lost with its worker is run again elsewhere (``retries``), each run counted once.
+
+    ``parameters``: the names the run accepts (default: the run's ``parameters`` attribute);
+    any other name is an error before work starts. ``on_error``: ``"raise"`` (a failed run
+    stops the sweep with its index and parameters) or ``"record"`` (NaN metrics and an
+    ``error`` column). ``progress``: a progress bar on stderr (None: on a terminal only).
+    """
+    if not callable(run):
+        raise ValueError(f"sweep: run must be callable (got {type(run).__name__})")
+    if on_error not in ("raise", "record"):
+        raise ValueError(f"sweep: on_error must be 'raise' or 'record' (got {on_error!r})")
+    if batch_size is not None and (int(batch_size) != batch_size or batch_size < 1):
+        raise ValueError(f"sweep: batch_size must be a positive integer (got {batch_size!r})")
+    if workers is not None and (int(workers) != workers or workers < 1):
+        raise ValueError(f"sweep: workers must be a positive integer (got {workers!r})")
+    if isinstance(retries, bool) or int(retries) != retries or retries < 0:
+        raise ValueError(f"sweep: retries must be an integer >= 0 (got {retries!r})")
+    if not connect_timeout > 0:
+        raise ValueError(f"sweep: connect_timeout must be > 0 s (got {connect_timeout!r})")
+    design = as_design(design)
+    _check_names(design, declared_parameters(run, parameters))
+    plan = make_plan(design, n, seed)
+    items = list(enumerate(plan.runs))
+
+    client, own_client = None, False
+    if isinstance(engine, str) and engine not in ("local", "serial"):
+        if "://" not in engine and ":" not in engine:
+            raise ValueError(
+                f"sweep: engine must be 'local', 'serial', a dask Client or a scheduler "
+                f"address like tcp://host:8786 (got {engine!r})"
+            )
+        client, own_client = connect(engine, connect_timeout), True
+    elif is_dask_client(engine):
+        client = engine
+    elif engine not in ("local", "serial"):
+        raise ValueError(
+            "sweep: engine must be 'local', 'serial', a dask.distributed.Client or a scheduler "
+            f"address (got {type(engine).__name__})"
+        )
+
+    start = time.perf_counter()
+    try:
+        if client is not None:
+            results, stats = run_dask(run, items, client, batch_size, retries, progress)
+        elif engine == "serial":
+            results, stats = run_serial(run, items, progress)
+        else:
+            results, stats = run_local(run, items, workers, batch_size, progress)
+    finally:
+        if own_client:
+            client.close()
+    failed = [(i, results[i][1]) for i in range(len(items)) if results[i][1] is not None]
+    if failed and on_error == "raise":
+        i, err = failed[0]
+        raise SweepError(
+            f"run {i} with {plan.runs[i]} failed: {err}"
+            + (f" ({len(failed) - 1} more runs failed)" if len(failed) > 1 else "")
+            + "; pass on_error='record' to keep going"
+        )
+    if len(failed) == len(items):
+        raise SweepError(f"sweep: every run failed; the first: run 0: {failed[0][1]}")
+    table, metrics, compensators = build_table(plan, results)
+    info = engine_info(stats)
+    info["wall_seconds"] = time.perf_counter() - start
+    info["runs_per_second"] = (
+        len(items) / info["wall_seconds"] if info["wall_seconds"] else math.inf
+    )
+    info["failed_runs"] = len(failed)
+    # worker-time each run cost beyond its own compute (start-up, transfer, scheduling, idle)
+    if stats.compute_seconds > 0:
+        used = stats.seconds * stats.workers
+        info["overhead_per_run"] = (used - stats.compute_seconds) / stats.compute_seconds
+    return SweepResult(
+        table=table,
+        parameters=list(plan.drawn),
+        metrics=metrics,
+        compensators=compensators,
+        fixed=dict(plan.fixed),
+        design=plan.kind,
+        seed=plan.seed,
+        engine=info,
+        salib_problem=plan.salib_problem,
+        unranked=plan.unranked,
+    )
+
+
+# ``tendonsheath.sweep`` (the attribute) is this function, which shadows the subpackage:
+# give it the design classes so ``ts.sweep.Relative(0.1, 0.3)`` works as well.
+for _name in (
+    "Choice",
+    "Grid",
+    "Integers",
+    "LatinHypercube",
+    "LogNormal",
+    "MonteCarlo",
+    "Normal",
+    "Relative",
+    "Saltelli",
+    "Seed",
+    "Uniform",
+    "SweepResult",
+    "SweepError",
+):
+    setattr(sweep, _name, globals()[_name])
+del _name

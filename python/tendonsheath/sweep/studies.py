@@ -1,0 +1,115 @@
+"""Built-in studies for the demo's report: robustness of each compensator, not one lucky run.
+
+:func:`robustness_study` runs each compensator over 200 draws of friction (+/-30 %),
+pretension (+/-30 %) and route (random arcs: 1 to 4 pieces, a random split of a total
+curve angle drawn within +/-50 % of nominal); :func:`robustness_section` turns the result
+into the report's figure and numbers. The run defaults to the stand-in
+:func:`~tendonsheath.sweep.example_runs.compensator_study`; the bench's do2015 scenario
+plugs in as ``run=`` once it accepts the same parameter names (``friction``,
+``pretension``, ``route_angle``, ``route_pieces``, ``route_seed``).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .distributions import Integers, MonteCarlo, Relative, Seed
+from .example_runs import NOMINAL, compensator_study
+
+ROBUSTNESS_RUNS = 200
+ROBUSTNESS_SEED = 2015
+
+
+def robustness_design(
+    friction: float = NOMINAL["friction"],
+    pretension: float = NOMINAL["pretension"],
+    route_angle: float = NOMINAL["route_angle"],
+    spread: float = 0.3,
+    **fixed,
+) -> MonteCarlo:
+    """Friction and pretension within +/- ``spread`` of nominal; a random-arc route whose
+    total angle is within +/-50 % of nominal; ``fixed`` are constants passed to every run."""
+    return MonteCarlo(
+        {
+            "friction": Relative(friction, spread),
+            "pretension": Relative(pretension, spread),
+            "route_angle": Relative(route_angle, 0.5),
+            "route_pieces": Integers(1, 4),
+            "route_seed": Seed(),
+            **fixed,
+        }
+    )
+
+
+def robustness_study(
+    run=compensator_study,
+    n: int = ROBUSTNESS_RUNS,
+    seed: int = ROBUSTNESS_SEED,
+    engine="local",
+    design: MonteCarlo | None = None,
+    **sweep_options,
+):
+    """Each compensator's metrics over ``n`` perturbed plants (a :class:`SweepResult`)."""
+    from . import sweep
+
+    return sweep(run, design or robustness_design(), n=n, seed=seed, engine=engine,
+                 **sweep_options)  # fmt: skip
+
+
+def robustness_section(result, out_dir, metric: str = "mse", bound: float | None = None) -> dict:
+    """The report's robustness figure (robustness_<metric>.png: the spread of ``metric`` per
+    compensator, log scale) and numbers: quantiles per compensator and, with ``bound``, the
+    fraction of runs within it."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    summary = result.summary({metric: bound} if bound is not None else None)
+    summary = summary[summary["metric"] == metric]
+    groups = list(result._groups())
+    fig, ax = plt.subplots(figsize=(6.5, 3.8))
+    data = [g[metric].dropna().to_numpy() for _, g in groups]
+    ax.boxplot(data, whis=(5, 95), showfliers=True, flierprops={"markersize": 2})
+    ax.set_xticks(range(1, len(groups) + 1), [c for c, _ in groups])
+    positive = all(d.size and np.all(d > 0) for d in data)
+    if positive:
+        ax.set_yscale("log")
+    if bound is not None:
+        ax.axhline(bound, color="r", ls="--", lw=1, label=f"bound {bound:g}")
+        ax.legend(fontsize="small")
+    ax.set_ylabel(metric)
+    ax.set_title(
+        f"{metric} over {result.n_runs} perturbed plants (box: quartiles, whiskers: 5-95 %)",
+        fontsize="medium",
+    )
+    ax.grid(True, axis="y", alpha=0.3)
+    fig.tight_layout()
+    path = out / f"robustness_{metric}.png"
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+    def clean(v):
+        return None if isinstance(v, float) and not math.isfinite(v) else v
+
+    return {
+        "runs": result.n_runs,
+        "seed": result.seed,
+        "design": {name: repr(d) for name, d in robustness_design().distributions.items()},
+        "metric": metric,
+        "bound": bound,
+        "compensators": {
+            row["compensator"]: {
+                k: clean(float(row[k]))
+                for k in ("median", "q05", "q95", "max", "within_bound")
+                if k in row
+            }
+            for _, row in summary.iterrows()
+        },
+        "figure": str(path),
+    }
