@@ -57,6 +57,7 @@ from .distributions import (
 
 #: Named runs for ``[run] scenario = NAME``; the bench scenarios (do2015, ...) belong here.
 SCENARIOS: dict[str, str] = {
+    "do2015": "tendonsheath.bench.scenarios.do:robustness_run",
     "example": "tendonsheath.sweep.example_runs:compensator_study",
     "example-uncompensated": "tendonsheath.sweep.example_runs:tracking_mse",
 }

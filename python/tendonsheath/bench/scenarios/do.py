@@ -168,3 +168,48 @@ def do2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
             "seconds": fit.seconds,
         },
     )
+
+
+# -- robustness: the do2015 comparison over perturbed plants (ts.sweep run function) --------
+
+_NOMINAL_FIT: dict[int, object] = {}
+
+
+def _nominal_model(seed: int = 0):
+    """The BoucWenBacklash calibrated once per process on the nominal plant."""
+    if seed not in _NOMINAL_FIT:
+        _NOMINAL_FIT[seed] = calibrate(seed, {"maxiter": 40, "popsize": 10}).model
+    return _NOMINAL_FIT[seed]
+
+
+def robustness_run(params: dict) -> dict[str, dict[str, float]]:
+    """One draw of the robustness study: the plant's friction, pretension and route differ
+    from the nominal plant the compensators were calibrated on; 10 s of the do2015 reference
+    on a fixed (random-arc) route. Returns compensator -> metrics (a ``ts.sweep`` run)."""
+    from ...sweep.example_runs import random_arcs
+
+    physics = {**_COMMON, "friction": float(params.get("friction", _COMMON["friction"])),
+               "pretension": float(params.get("pretension", _COMMON["pretension"]))}
+    route = random_arcs(NOMINAL.length, float(params.get("route_angle", NOMINAL.total_angle)),
+                        int(params.get("route_pieces", 3)), int(params.get("route_seed", 0)))
+    model = _nominal_model()
+    t, y_d = reference(10.0)
+    servo = PullPullPlant(route=route, motor=Motor.position(60.0, 0.8), **physics)
+    torque = PullPullPlant(route=route, motor=Motor.torque(INERTIA, VISCOUS, max_torque=5.0),
+                           **physics)
+    sensor = encoder(seed=int(params.get("route_seed", 0)) % 100_000)
+    ctrl = AdaptiveController.from_model(model, inertia=INERTIA, viscous=VISCOUS,
+                                         bandwidth_hz=8.0, max_torque=5.0,
+                                         noise_std=sensor.noise_std)
+    runs = {
+        "none": run(servo, None, t, y_d, noise=sensor),
+        "InverseFeedforward": run(servo, InverseFeedforward(model, smoothing=0.03), t, y_d,
+                                  noise=sensor),
+        "AdaptiveController": run(torque, ctrl, t, y_d, noise=sensor),
+    }
+    return {name: {k: r.metrics[k] for k in ("mse", "rmse", "max_abs", "percent_error")}
+            for name, r in runs.items()}
+
+
+robustness_run.parameters = ("friction", "pretension", "route_angle", "route_pieces",
+                             "route_seed")

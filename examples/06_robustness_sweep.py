@@ -1,6 +1,6 @@
 """How robust is a compensator? A Monte Carlo sweep over friction, pretension and route.
 
-.venv/bin/python examples/03_robustness_sweep.py --out out/ [--scheduler tcp://HOST:8786]
+.venv/bin/python examples/06_robustness_sweep.py --out out/ [--scheduler tcp://HOST:8786]
 """
 
 from __future__ import annotations
