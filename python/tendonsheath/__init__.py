@@ -1,6 +1,7 @@
 """tendonsheath: model, identify and compensate tendon-sheath mechanisms."""
 
 from . import bench, compensate, io, loads, models, physics
+from .compare import Comparison, compare_models
 from .identify import Fit, identify
 from .models import load_model
 from .motor import Motor
@@ -17,6 +18,7 @@ from .sensor import Sensor
 __version__ = "0.1.0"
 
 __all__ = [
+    "Comparison",
     "ContinuumPlant",
     "Fit",
     "Motor",
@@ -27,6 +29,7 @@ __all__ = [
     "SingleTendonPlant",
     "SlackWarning",
     "bench",
+    "compare_models",
     "compensate",
     "identify",
     "io",

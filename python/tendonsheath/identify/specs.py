@@ -288,24 +288,36 @@ class GeneralizedPrandtlIshlinskiiSpec(ModelSpec):
     1; a common shift of both envelopes' d is an output offset (times the weights' sum), so
     the rising d is held at 0 and a constant column, solved with the weights, is folded back
     into both d's. Searched: rising b, c; falling a, b, c, d (relative to the rising
-    envelope) and the largest threshold ``r_max``; the thresholds are the grid
-    ``r_max * pattern`` (default ``pattern = k/K``, K = 10 plays). Weights >= 0, with
-    ``weights[0] > 0`` (invertible operator), solved by Lawson-Hanson inside the C++ batch.
+    envelope) and ``r_frac``; the thresholds are the grid ``r_max * pattern`` (default
+    ``pattern = k/(K-1)``, K = 10 plays) scaled to the data: ``r_max = r_frac * (gamma_r(x_max)
+    - gamma_l(x_min)) / 2``, so that with r_frac < 1 every play moves over a full input cycle
+    (a play that only moves in the initial transient would get an unidentifiable weight).
+    Weights >= 0, with ``weights[0] > 0`` (invertible operator), solved by Lawson-Hanson
+    inside the C++ batch.
     """
 
     model_class = GeneralizedPrandtlIshlinskii
     kind = "GeneralizedPrandtlIshlinskii"
     separable = True
     search_names = ("rising_b", "rising_c", "falling_a", "falling_b", "falling_c", "falling_d")
-    log_names = frozenset({"rising_b", "falling_b", "falling_a", "r_max"})
+    log_names = frozenset({"rising_b", "falling_b", "falling_a", "r_frac"})
 
     def __init__(self, pattern: np.ndarray):
         self.pattern = np.asarray(pattern, dtype=float)
-        self.search_names = (*type(self).search_names, "r_max")
+        self.search_names = (*type(self).search_names, "r_frac")
+        self.x_lims = (-1.0, 1.0)
+
+    def r_max(self, values) -> np.ndarray:
+        lo, hi = self.x_lims
+        up = np.tanh(values["rising_b"] * (hi - values["rising_c"]))
+        down = values["falling_a"] * np.tanh(values["falling_b"] * (lo - values["falling_c"]))
+        down = down + values["falling_d"]
+        return values["r_frac"] * np.maximum(0.5 * (up - down), 1e-9)
 
     def bounds(self, s, fixed):
         mid = getattr(s, "x_mid", 0.0)
         half = 0.5 * s.x_range
+        self.x_lims = (mid - half, mid + half)
         return {
             "rising_b": (0.1 / half, 5.0 / half),
             "rising_c": (mid - half, mid + half),
@@ -313,7 +325,7 @@ class GeneralizedPrandtlIshlinskiiSpec(ModelSpec):
             "falling_b": (0.1 / half, 5.0 / half),
             "falling_c": (mid - half, mid + half),
             "falling_d": (-1.0, 1.0),
-            "r_max": (0.01, 2.0),
+            "r_frac": (0.02, 0.95),
         }
 
     def search_bounds(self, s, fixed):
@@ -332,7 +344,7 @@ class GeneralizedPrandtlIshlinskiiSpec(ModelSpec):
             values["falling_c"],
             values["falling_d"],
         ]
-        return np.column_stack([*cols, np.outer(values["r_max"], self.pattern)])
+        return np.column_stack([*cols, np.outer(self.r_max(values), self.pattern)])
 
     def linear_bounds(self, s):
         k = self.pattern.size
@@ -348,7 +360,7 @@ class GeneralizedPrandtlIshlinskiiSpec(ModelSpec):
         return {
             "rising": (1.0, v["rising_b"], v["rising_c"], shift),
             "falling": (v["falling_a"], v["falling_b"], v["falling_c"], v["falling_d"] + shift),
-            "thresholds": (v["r_max"] * self.pattern).tolist(),
+            "thresholds": (float(self.r_max(v)) * self.pattern).tolist(),
             "weights": weights.tolist(),
         }
 
