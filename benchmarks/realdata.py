@@ -43,9 +43,8 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import RESULTS, write_results  # noqa: E402
-
 import tendonsheath as ts  # noqa: E402
+from _common import RESULTS, write_results  # noqa: E402
 from tendonsheath.identify.fit import metrics  # noqa: E402
 
 CONFIGS = [0, 30, 60, 90, 120, 150, 180, 210, 240, 270]
