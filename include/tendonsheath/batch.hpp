@@ -28,6 +28,7 @@
 #include "models/bouc_wen.hpp"
 #include "models/bouc_wen_backlash.hpp"
 #include "models/curve_angle.hpp"
+#include "models/generalized_prandtl_ishlinskii.hpp"
 #include "models/prandtl_ishlinskii.hpp"
 #include "validate.hpp"
 
@@ -246,10 +247,48 @@ struct PrandtlIshlinskiiFeatures {
   }
 };
 
+// Generalized Prandtl-Ishlinskii: the play outputs for given envelopes and
+// thresholds, plus a constant column (an output offset, folded into the
+// envelopes' d by the caller). The weights are >= 0 (bounded least squares);
+// the constant is free. Nonlinear vector: rising a, b, c, d, falling a, b, c,
+// d, then the K thresholds (their count is fixed by Params).
+struct GeneralizedPrandtlIshlinskiiFeatures {
+  using Params = GeneralizedPrandtlIshlinskiiParams;
+  static constexpr bool nonnegative = true;  // all but the last coefficient
+  static int size(const Params& p) noexcept { return static_cast<int>(p.thresholds.size()) + 1; }
+  static void assign(Params& p, const double* v) noexcept {
+    p.rising = Envelope{v[0], v[1], v[2], v[3]};
+    p.falling = Envelope{v[4], v[5], v[6], v[7]};
+    for (std::size_t i = 0; i < p.thresholds.size(); ++i) p.thresholds[i] = v[8 + i];
+  }
+  template <class Sink>
+  static void run(const Params& p, const Recording& rec, Sink&& sink) {
+    Params q = p;
+    q.weights.assign(q.thresholds.size(), 1.0);
+    GeneralizedPrandtlIshlinskii model(q);
+    const std::size_t K = q.thresholds.size();
+    std::vector<double> row(K + 1, 1.0);
+    for (std::size_t k = 0; k < rec.n; ++k) {
+      model.step(rec.x[k]);
+      const auto& z = model.play_states();
+      for (std::size_t i = 0; i < K; ++i) row[i] = z[i];
+      sink(k, row.data());
+    }
+  }
+};
+
+template <class F, class = void>
+struct is_nonnegative : std::false_type {};
+template <class F>
+struct is_nonnegative<F, std::void_t<decltype(F::nonnegative)>>
+    : std::integral_constant<bool, F::nonnegative> {};
+
 template <class F>
 std::size_t features_vector_size(const typename F::Params& base) {
   if constexpr (std::is_same_v<F, PrandtlIshlinskiiFeatures>) {
     return base.thresholds.size();
+  } else if constexpr (std::is_same_v<F, GeneralizedPrandtlIshlinskiiFeatures>) {
+    return 8 + base.thresholds.size();
   } else {
     (void)base;
     return F::vector_size;
@@ -287,6 +326,77 @@ inline bool solve_spd(std::vector<double> G, std::vector<double> b, int K, doubl
     b[i] = s / G[i * K + i];
   }
   for (int i = 0; i < K; ++i) theta[i] = b[i];
+  return true;
+}
+
+// min 0.5 t'Gt - b't with t_i >= 0 for i < n_bounded (the rest free): the
+// Lawson-Hanson active-set method on the normal equations. Returns false if a
+// sub-system cannot be solved.
+inline bool solve_nonneg(const std::vector<double>& G, const std::vector<double>& b, int K,
+                         int n_bounded, double* theta) {
+  std::vector<char> passive(K, 0);
+  std::vector<double> t(K, 0.0), s(K, 0.0);
+  for (int i = n_bounded; i < K; ++i) passive[i] = 1;
+  double scale = 0.0;
+  for (int i = 0; i < K; ++i) scale = std::max(scale, std::abs(b[i]));
+  const double tol = 1e-12 * (scale > 0.0 ? scale : 1.0);
+  auto solve_passive = [&](std::vector<double>& out) {
+    std::vector<int> idx;
+    for (int i = 0; i < K; ++i)
+      if (passive[i]) idx.push_back(i);
+    const int m = static_cast<int>(idx.size());
+    std::fill(out.begin(), out.end(), 0.0);
+    if (m == 0) return true;
+    std::vector<double> Gs(m * m), bs(m), ts(m);
+    for (int i = 0; i < m; ++i) {
+      bs[i] = b[idx[i]];
+      for (int j = 0; j < m; ++j) Gs[i * m + j] = G[idx[i] * K + idx[j]];
+    }
+    if (!solve_spd(Gs, bs, m, ts.data())) return false;
+    for (int i = 0; i < m; ++i) out[idx[i]] = ts[i];
+    return true;
+  };
+  if (!solve_passive(t)) return false;
+  for (int outer = 0; outer < 3 * K + 10; ++outer) {
+    // gradient of the objective's negative: w = b - G t
+    int best = -1;
+    double wbest = tol;
+    for (int i = 0; i < n_bounded; ++i) {
+      if (passive[i]) continue;
+      double w = b[i];
+      for (int j = 0; j < K; ++j) w -= G[i * K + j] * t[j];
+      if (w > wbest) {
+        wbest = w;
+        best = i;
+      }
+    }
+    if (best < 0) break;
+    passive[best] = 1;
+    for (int inner = 0; inner < 3 * K + 10; ++inner) {
+      if (!solve_passive(s)) return false;
+      double alpha = 1.0;
+      bool feasible = true;
+      for (int i = 0; i < n_bounded; ++i) {
+        if (passive[i] && s[i] <= 0.0) {
+          feasible = false;
+          const double d = t[i] - s[i];
+          const double a = d > 0.0 ? t[i] / d : 0.0;
+          if (a < alpha) alpha = a;
+        }
+      }
+      if (feasible) {
+        t = s;
+        break;
+      }
+      for (int i = 0; i < K; ++i) t[i] += alpha * (s[i] - t[i]);
+      for (int i = 0; i < n_bounded; ++i)
+        if (passive[i] && t[i] <= tol * 1e-3) {
+          passive[i] = 0;
+          t[i] = 0.0;
+        }
+    }
+  }
+  for (int i = 0; i < K; ++i) theta[i] = t[i];
   return true;
 }
 }  // namespace detail
@@ -332,7 +442,11 @@ double separable_cost_one(const typename F::Params& base, const double* v,
       detail::accumulate<0, F>(p, recs, K, G.data(), b.data(), yy);
     for (int i = 0; i < K; ++i)
       for (int j = 0; j < i; ++j) G[j * K + i] = G[i * K + j];
-    if (!detail::solve_spd(G, b, K, th.data())) return detail::kInf;
+    if constexpr (is_nonnegative<F>::value) {
+      if (!detail::solve_nonneg(G, b, K, K - 1, th.data())) return detail::kInf;
+    } else {
+      if (!detail::solve_spd(G, b, K, th.data())) return detail::kInf;
+    }
     // SSE = y'y - 2 theta'b + theta'G theta
     double quad = 0.0, lin = 0.0;
     for (int i = 0; i < K; ++i) {

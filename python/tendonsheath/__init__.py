@@ -1,6 +1,7 @@
 """tendonsheath: model, identify and compensate tendon-sheath mechanisms."""
 
 from . import bench, compensate, io, loads, models, physics
+from .compare import Comparison, compare_models
 from .identify import Fit, identify
 from .models import load_model
 from .motor import Motor
@@ -18,6 +19,7 @@ from .sweep import sweep
 __version__ = "0.1.0"
 
 __all__ = [
+    "Comparison",
     "ContinuumPlant",
     "Fit",
     "Motor",
@@ -28,6 +30,7 @@ __all__ = [
     "SingleTendonPlant",
     "SlackWarning",
     "bench",
+    "compare_models",
     "compensate",
     "identify",
     "io",

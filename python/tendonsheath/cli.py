@@ -350,6 +350,94 @@ def sweep_command(
         console.print(f"  {path}", soft_wrap=True, highlight=False)
 
 
+@app.command()
+def compare(
+    data: list[Path] = typer.Argument(
+        ..., help="Training data file(s): CSV/TSV with header, NPY, NPZ, HDF5, Excel."
+    ),
+    input_col: str = typer.Option(..., "--input", help="Input column."),
+    output_col: str = typer.Option(..., "--output", help="Output column."),
+    time_col: str | None = typer.Option(None, "--time", help="Time column (s)."),
+    curve_angle: str | None = typer.Option(
+        None, "--curve-angle", help="Curve-angle column, or a number."
+    ),
+    validate: list[Path] = typer.Option(
+        None, "--validate", help="Held-out data file(s) (default: --holdout of each file)."
+    ),
+    holdout: float = typer.Option(
+        0.3, "--holdout", help="Fraction at the end of each recording held out."
+    ),
+    models: str | None = typer.Option(
+        None,
+        "--models",
+        help="Comma-separated candidates, e.g. backlash,bwb,pi,gpi,bwb+poly3 "
+        "(default: all of these, and CurveAngleModel with a curve angle).",
+    ),
+    resample: float | None = typer.Option(
+        None, "--resample", help="Resample every file to this rate (Hz) first."
+    ),
+    seed: int = typer.Option(0, "--seed", help="Seed of the global searches."),
+    maxiter: int = typer.Option(100, "--maxiter", help="Generations of each global search."),
+    report: Path | None = typer.Option(
+        None, "--report", help="Folder for report.html, loops, residuals and JSON."
+    ),
+) -> None:
+    """Fit candidate models on DATA, rank them on held-out data against y = a x + b."""
+    from . import io
+    from .compare import compare_models
+
+    if not 0.0 < holdout < 1.0:
+        _fail(f"--holdout must be in (0, 1) (got {holdout})")
+    try:
+
+        def read(path):
+            return io.read_log(
+                path,
+                time=time_col,
+                input=input_col,
+                output=output_col,
+                curve_angle=curve_angle,
+                resample=resample,
+            )
+
+        logs = [read(p) for p in data]
+        vlogs = [read(p) for p in validate] if validate else None
+        candidates = [m for m in models.split(",") if m.strip()] if models else None
+        with console.status("fitting the candidate models"):
+            result = compare_models(
+                logs,
+                models=candidates,
+                validate=vlogs if vlogs else holdout,
+                seed=seed,
+                maxiter=maxiter,
+            )
+    except ValueError as exc:
+        _fail(exc)
+    for log in logs + (vlogs or []):
+        for note in log.notes:
+            console.print(f"[yellow]{log.path}:[/yellow] {note}", soft_wrap=True)
+    table = Table(title=f"model comparison ({result.mode})")
+    table.add_column("model")
+    for col in ("params", "train rmse", "val rmse", "val nrmse", "vs affine"):
+        table.add_column(col, justify="right")
+    for r in result.table:
+        if r.get("error"):
+            table.add_row(r["model"], "", "", "failed", r["error"][:40], "")
+            continue
+        table.add_row(
+            r["model"],
+            str(r["n_params"]),
+            f"{r['train_rmse']:.4g}",
+            f"{r['val_rmse']:.4g}",
+            f"{100 * r['val_nrmse']:.3f} %",
+            f"{r['ratio_to_affine']:.3f}",
+        )
+    console.print(table)
+    console.print(f"winner: {result.winner_name} (refitted on all the training data)")
+    if report is not None:
+        console.print(f"report: {result.report(report)}")
+
+
 def main() -> None:
     app()
 

@@ -1,16 +1,28 @@
-"""Reading logged data: CSV/TSV with a header, NPY (structured or 2-D), NPZ, HDF5.
+"""Reading logged data: CSV/TSV with a header, NPY (structured or 2-D), NPZ, HDF5, Excel.
 
 ``read_log(path, time=..., input=..., output=..., curve_angle=...)`` returns a :class:`Log`
 with the named columns as float arrays. Every problem raises ValueError naming the file,
 and where it applies the column and the row: unknown column, text in a number column,
 NaN or empty cells, too few rows, time that goes backwards. Rows with a duplicate
-timestamp are dropped, keeping the first.
+timestamp are dropped, keeping the first (their row numbers are in ``Log.notes``).
+
+Missing values (NaN or empty cells) are an error by default; ``missing="drop"`` drops those
+rows and ``missing="interpolate"`` fills them linearly, and either way ``Log.notes`` lists
+their row numbers. Gaps in time (steps above 3x the median step) and irregular sampling are
+detected and reported in ``Log.notes``; ``resample=RATE`` (Hz) or ``resample="auto"``
+(the median rate) puts the recording on a uniform grid by linear interpolation (for signals
+logged as a zero-order hold, ``resample`` keeps their step shape only at rates below the
+sensor's). Without a time column ``Log.t`` is None: rate-independent models then run on the
+sample index (``Log.index``). ``degrees=True`` converts the input, the output and the curve
+angle from degrees to radians; :func:`deg2rad` and :func:`rad2deg` convert arrays.
+
+Row numbers are those of the file: for text and Excel files row 1 is the header.
 """
 
 from __future__ import annotations
 
 import csv
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -30,9 +42,113 @@ class Log:
     extra: dict[str, np.ndarray] = field(default_factory=dict)
     path: str = ""
     columns: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    rows: np.ndarray | None = None  # the file row of every sample (None after resampling)
 
     def __len__(self) -> int:
         return int(self.x.size)
+
+    @property
+    def index(self) -> np.ndarray:
+        """The sample index 0, 1, 2, ... (the time base of rate-independent models)."""
+        return np.arange(self.x.size, dtype=float)
+
+    @property
+    def sample_time(self) -> float | None:
+        """The median time step (None without a time column)."""
+        if self.t is None or self.t.size < 2:
+            return None
+        return float(np.median(np.diff(self.t)))
+
+    @property
+    def irregular(self) -> bool:
+        """True when the time steps vary by more than 1 % of the median step."""
+        return _irregular(self.t)
+
+    def split(self, fraction: float) -> tuple[int, float | None]:
+        """Sample index where the last ``fraction`` of the recording (in time, else in
+        samples) begins, and its time."""
+        if not 0.0 < fraction < 1.0:
+            raise ValueError(f"the held-out fraction must be in (0, 1) (got {fraction})")
+        if self.t is None:
+            k = int(round((1.0 - fraction) * self.x.size))
+            return k, None
+        t_cut = self.t[0] + (1.0 - fraction) * (self.t[-1] - self.t[0])
+        k = int(np.searchsorted(self.t, t_cut))
+        return k, float(t_cut)
+
+    def to_radians(self) -> Log:
+        """A copy with x, y and the curve angle converted from degrees to radians."""
+        return replace(
+            self,
+            x=deg2rad(self.x),
+            y=None if self.y is None else deg2rad(self.y),
+            curve_angle=None if self.curve_angle is None else deg2rad(self.curve_angle),
+            notes=[*self.notes, "converted from degrees to radians"],
+        )
+
+    def resampled(self, rate: float) -> Log:
+        """A copy on a uniform time grid at ``rate`` Hz (linear interpolation)."""
+        if self.t is None:
+            raise ValueError(f"{self.path}: resampling needs a time column")
+        if not (np.isfinite(rate) and rate > 0):
+            raise ValueError(f"{self.path}: the resampling rate must be > 0 Hz (got {rate})")
+        n = int(np.floor((self.t[-1] - self.t[0]) * rate + 1e-9)) + 1
+        if n < MIN_ROWS:
+            raise ValueError(
+                f"{self.path}: resampling at {rate:g} Hz leaves {n} samples (< {MIN_ROWS})"
+            )
+        t = self.t[0] + np.arange(n) / rate
+
+        def f(v):
+            return None if v is None else np.interp(t, self.t, v)
+
+        return replace(
+            self,
+            t=t,
+            x=f(self.x),
+            y=f(self.y),
+            curve_angle=f(self.curve_angle),
+            extra={k: f(v) for k, v in self.extra.items()},
+            notes=[*self.notes, f"resampled to {rate:g} Hz ({self.x.size} -> {n} samples)"],
+            rows=None,
+        )
+
+
+def deg2rad(values):
+    """Degrees to radians (arrays or numbers)."""
+    return np.deg2rad(np.asarray(values, dtype=float))
+
+
+def rad2deg(values):
+    """Radians to degrees (arrays or numbers)."""
+    return np.rad2deg(np.asarray(values, dtype=float))
+
+
+def _irregular(t) -> bool:
+    if t is None or t.size < 3:
+        return False
+    dt = np.diff(t)
+    med = float(np.median(dt))
+    return bool(med > 0 and np.max(np.abs(dt - med)) > 0.01 * med)
+
+
+def _ranges(rows) -> str:
+    """Compact row list: 3, 5-9, 12 (at most 10 ranges, then a count)."""
+    rows = [int(r) for r in rows]
+    out, start, prev = [], None, None
+    for r in rows:
+        if start is None:
+            start = prev = r
+        elif r == prev + 1:
+            prev = r
+        else:
+            out.append(f"{start}" if start == prev else f"{start}-{prev}")
+            start = prev = r
+    if start is not None:
+        out.append(f"{start}" if start == prev else f"{start}-{prev}")
+    more = f" (+{len(out) - 10} more ranges)" if len(out) > 10 else ""
+    return ", ".join(out[:10]) + more
 
 
 class _Table:
@@ -59,7 +175,7 @@ class _Table:
             return s
         return None
 
-    def numbers(self, name, role: str) -> np.ndarray:
+    def numbers(self, name, role: str, allow_missing: bool = False) -> np.ndarray:
         key = self.key(name)
         if key is None:
             raise ValueError(
@@ -70,6 +186,9 @@ class _Table:
             out = np.empty(len(raw))
             for i, cell in enumerate(raw):
                 cell = cell.strip()
+                if cell == "" and allow_missing:
+                    out[i] = np.nan
+                    continue
                 try:
                     out[i] = float(cell)
                 except ValueError:
@@ -84,6 +203,8 @@ class _Table:
             except (TypeError, ValueError):
                 raise ValueError(f"{self.path}: column {key!r} is not numeric") from None
         bad = np.flatnonzero(~np.isfinite(out))
+        if allow_missing:
+            bad = np.flatnonzero(np.isinf(out))
         if bad.size:
             i = int(bad[0])
             raise ValueError(
@@ -175,10 +296,62 @@ def _read_hdf5(path: Path) -> _Table:
     return _Table(path, cols, 0, text=False)
 
 
-def _open(path: Path) -> _Table:
+def _read_excel(path: Path, sheet=None) -> _Table:
+    try:
+        import openpyxl
+    except ImportError:  # pragma: no cover - a declared dependency
+        raise ValueError(
+            f"{path}: reading Excel files needs openpyxl (pip install openpyxl)"
+        ) from None
+    try:
+        book = openpyxl.load_workbook(path, read_only=True, data_only=True)
+    except Exception as exc:  # openpyxl raises many types for a broken file
+        raise ValueError(f"{path}: not a readable Excel file ({exc})") from None
+    try:
+        if sheet is None:
+            ws = book.worksheets[0]
+        elif isinstance(sheet, int):
+            ws = book.worksheets[sheet]
+        elif sheet in book.sheetnames:
+            ws = book[sheet]
+        else:
+            raise ValueError(f"{path}: no sheet {sheet!r}; sheets: {book.sheetnames}")
+        rows = [list(r) for r in ws.iter_rows(values_only=True)]
+    finally:
+        book.close()
+    while rows and all(c is None for c in rows[-1]):
+        rows.pop()
+    if not rows:
+        raise ValueError(f"{path}: the sheet is empty")
+    width = max(len(r) for r in rows)
+    while width > 0 and all(len(r) < width or r[width - 1] is None for r in rows):
+        width -= 1
+    header = rows[0][:width]
+    if any(h is None or str(h).strip() == "" for h in header) or not header:
+        raise ValueError(f"{path}: row 1 must be a header with a name for every column")
+    if all(isinstance(h, int | float) for h in header):
+        raise ValueError(f"{path}: row 1 must be a header of column names (got numbers)")
+    names = [str(h).strip() for h in header]
+    if len(set(names)) != len(names):
+        raise ValueError(f"{path}: duplicate column names in the header")
+    columns: dict[str, list[str]] = {h: [] for h in names}
+    for r in rows[1:]:
+        r = list(r[:width]) + [None] * (width - len(r))
+        if all(c is None for c in r):
+            continue
+        for h, c in zip(names, r, strict=True):
+            columns[h].append("" if c is None else str(c))
+    return _Table(path, columns, 2, text=True)
+
+
+def _open(path: Path, sheet=None) -> _Table:
     if not path.is_file():
         raise ValueError(f"data file not found: {path}")
     suffix = path.suffix.lower()
+    if suffix in (".xlsx", ".xlsm"):
+        return _read_excel(path, sheet)
+    if suffix == ".xls":
+        raise ValueError(f"{path}: old .xls workbooks are not supported; save it as .xlsx")
     if suffix == ".npy":
         return _read_npy(path)
     if suffix == ".npz":
@@ -188,9 +361,9 @@ def _open(path: Path) -> _Table:
     return _read_text(path)
 
 
-def columns(path: str | Path) -> list[str]:
+def columns(path: str | Path, sheet=None) -> list[str]:
     """The column names of a data file."""
-    return _open(Path(path)).names()
+    return _open(Path(path), sheet).names()
 
 
 def read_log(
@@ -199,24 +372,41 @@ def read_log(
     input=None,  # noqa: A002 - the natural name of the column role
     output=None,
     curve_angle=None,
+    *,
+    resample: float | str | None = None,
+    missing: str = "error",
+    degrees: bool = False,
+    sheet=None,
+    gap_factor: float = 3.0,
 ) -> Log:
     """Read one recording. Columns are names (or indices for a 2-D NPY array).
 
-    ``curve_angle`` is a column name or a number (a constant curve angle, rad).
-    ``output`` may be None (prediction only).
+    ``curve_angle`` is a column name or a number (a constant curve angle, in the unit of the
+    data: rad, or degrees with ``degrees=True``). ``output`` may be None (prediction only).
+    ``time=None``: no time column, the models run on the sample index.
+
+    ``missing``: "error" (default: a NaN or empty cell raises, naming column and row),
+    "drop" (drop those rows) or "interpolate" (fill linearly in time or index).
+    ``resample``: None, a rate in Hz or "auto" (the median rate; only if the sampling is
+    irregular). ``degrees``: convert input, output and curve angle from degrees to radians.
+    ``sheet``: the Excel sheet (name or index; default the first). Findings (duplicate
+    timestamps, missing values, gaps, irregular sampling) are listed in ``Log.notes``.
     """
+    if missing not in ("error", "drop", "interpolate"):
+        raise ValueError(f"missing must be 'error', 'drop' or 'interpolate' (got {missing!r})")
     path = Path(path)
-    table = _open(path)
+    table = _open(path, sheet)
     if input is None:
         raise ValueError(f"{path}: name the input column; columns: {table.names()}")
-    x = table.numbers(input, "input")
+    allow = missing != "error"
+    x = table.numbers(input, "input", allow)
     n = x.size
     t = table.numbers(time, "time") if time is not None else None
-    y = table.numbers(output, "output") if output is not None else None
+    y = table.numbers(output, "output", allow) if output is not None else None
     theta = None
     if curve_angle is not None:
         if table.has(curve_angle):
-            theta = table.numbers(curve_angle, "curve angle")
+            theta = table.numbers(curve_angle, "curve angle", allow)
         else:
             try:
                 value = float(curve_angle)
@@ -245,8 +435,19 @@ def read_log(
             continue
         if values.shape == (n,):
             extra[name] = values
+    rows = table.first_row + np.arange(n)
+    notes: list[str] = []
+
+    def keep_rows(keep):
+        nonlocal t, x, y, theta, extra, rows
+        t = t[keep] if t is not None else None
+        x = x[keep]
+        y = y[keep] if y is not None else None
+        theta = theta[keep] if theta is not None else None
+        extra = {k: v[keep] for k, v in extra.items()}
+        rows = rows[keep]
+
     if t is not None:
-        keep = np.r_[True, np.diff(t) != 0]
         back = np.flatnonzero(np.diff(t) < 0)
         if back.size:
             i = int(back[0]) + 1
@@ -254,14 +455,74 @@ def read_log(
                 f"{path}: column {table.key(time)!r}, row {table.first_row + i}: time goes "
                 f"backwards ({t[i]} after {t[i - 1]})"
             )
+        keep = np.r_[True, np.diff(t) != 0]
         if not keep.all():
-            t, x = t[keep], x[keep]
-            y = y[keep] if y is not None else None
-            theta = theta[keep] if theta is not None else None
-            extra = {k: v[keep] for k, v in extra.items()}
+            notes.append(
+                f"{int((~keep).sum())} row(s) with a duplicate timestamp dropped (first kept): "
+                f"rows {_ranges(rows[~keep])}"
+            )
+            keep_rows(keep)
+    if allow:
+        bad = ~np.isfinite(x)
+        for arr in (y, theta):
+            if arr is not None:
+                bad |= ~np.isfinite(arr)
+        if bad.any():
+            if missing == "drop":
+                notes.append(
+                    f"{int(bad.sum())} row(s) with a missing value dropped: "
+                    f"rows {_ranges(rows[bad])}"
+                )
+                keep_rows(~bad)
+            else:
+                base = t if t is not None else np.arange(x.size, dtype=float)
+                if bad.all():
+                    raise ValueError(f"{path}: every row has a missing value")
+                for arr in (x, y, theta):
+                    if arr is None:
+                        continue
+                    m = ~np.isfinite(arr)
+                    if m.any():
+                        arr[m] = np.interp(base[m], base[~m], arr[~m])
+                notes.append(
+                    f"{int(bad.sum())} row(s) with a missing value interpolated: "
+                    f"rows {_ranges(rows[bad])}"
+                )
     if x.size < MIN_ROWS:
         raise ValueError(f"{path}: too few rows ({x.size}); at least {MIN_ROWS} are needed")
-    return Log(t, x, y, theta, extra, str(path), table.names())
+    if t is not None:
+        dt = np.diff(t)
+        med = float(np.median(dt))
+        gaps = np.flatnonzero(dt > gap_factor * med)
+        if gaps.size:
+            notes.append(
+                f"{gaps.size} gap(s) in time longer than {gap_factor:g}x the median step "
+                f"({med:.4g}): before rows {_ranges(rows[gaps + 1])} "
+                f"(longest {float(dt.max()):.4g})"
+            )
+        if _irregular(t):
+            notes.append(
+                f"irregular sampling: steps from {float(dt.min()):.4g} to {float(dt.max()):.4g} "
+                f"(median {med:.4g}); consider resample="
+            )
+    log = Log(t, x, y, theta, extra, str(path), table.names(), notes, rows)
+    if resample is not None:
+        if t is None:
+            raise ValueError(f"{path}: resampling needs a time column")
+        if resample == "auto":
+            if log.irregular:
+                log = log.resampled(1.0 / log.sample_time)
+        else:
+            try:
+                rate = float(resample)
+            except (TypeError, ValueError):
+                raise ValueError(
+                    f"{path}: resample must be a rate in Hz or 'auto' (got {resample!r})"
+                ) from None
+            log = log.resampled(rate)
+    if degrees:
+        log = log.to_radians()
+    return log
 
 
 def write_csv(path: str | Path, columns: dict[str, np.ndarray]) -> Path:

@@ -176,6 +176,7 @@ void bind_batch(nb::module_& m) {
   def_separable<tb::BoucWenBacklashFeatures>(m, "BoucWenBacklash");
   def_separable<tb::BoucWenFeatures>(m, "BoucWen");
   def_separable<tb::PrandtlIshlinskiiFeatures>(m, "PrandtlIshlinskii");
+  def_separable<tb::GeneralizedPrandtlIshlinskiiFeatures>(m, "GeneralizedPrandtlIshlinskii");
 }
 
 }  // namespace tsbind

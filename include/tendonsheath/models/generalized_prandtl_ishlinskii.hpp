@@ -120,6 +120,8 @@ class GeneralizedPrandtlIshlinskii {
   double output() const noexcept { return y_; }
   double last_input() const noexcept { return x_; }
   bool initialised() const noexcept { return initialised_; }
+  // The play outputs z_i after the last step (y = sum_i weights[i] z_i).
+  const std::vector<double>& play_states() const noexcept { return z_; }
 
  protected:
   double advance(double x, double* z) noexcept {

@@ -8,12 +8,14 @@ from collections.abc import Iterable, Sequence
 import numpy as np
 from scipy.optimize import differential_evolution, least_squares
 
-from ..models import HysteresisModel, PrandtlIshlinskii
+from ..models import Chain, GeneralizedPrandtlIshlinskii, HysteresisModel, PrandtlIshlinskii
 from ..models.base import _REGISTRY
 from .data import check_for_fit, make_recordings
 from .fit import Fit, metrics, simulate_model
 from .problem import DirectProblem, SeparableProblem, _covariance_se, law_check
-from .specs import SPECS, PrandtlIshlinskiiSpec, Scale
+from .specs import SPECS, GeneralizedPrandtlIshlinskiiSpec, PrandtlIshlinskiiSpec, Scale
+
+GPI_PLAYS = 10  # default number of plays of an identified GeneralizedPrandtlIshlinskii
 
 
 def _model_class(model_class) -> type[HysteresisModel]:
@@ -119,16 +121,48 @@ def identify(
     ``depends_on_angle`` ({name: "constant" | "linear" | "tanh"}) makes parameters functions
     of the curve angle (one constant angle per recording); the result is then an
     :class:`~tendonsheath.models.AngleDependent` model that predicts at any angle.
+
+    ``model_class`` may also be a :class:`~tendonsheath.models.Chain` instance, e.g.
+    ``Chain(BoucWenBacklash(), Polynomial(3))``: the first model's nonlinear parameters are
+    searched (its output scale held, the polynomial carries it) and the polynomial
+    coefficients are solved by least squares for every candidate (see
+    :func:`~tendonsheath.identify.chain.identify_chain`).
+
+    GeneralizedPrandtlIshlinskii: the envelopes and the threshold scale are searched, the
+    weights (>= 0) and an output offset are solved by bounded least squares; ``initial``
+    gives the number of plays and the threshold pattern (default 10 evenly spaced plays).
     """
+    if isinstance(model_class, Chain):
+        from .chain import identify_chain
+
+        if depends_on_angle:
+            raise ValueError("a Chain's parameters cannot depend on the curve angle")
+        recs = make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle)
+        return identify_chain(
+            model_class,
+            recs,
+            warmup=int(warmup),
+            bounds=bounds,
+            fixed=fixed,
+            seed=seed,
+            maxiter=maxiter,
+            popsize=popsize,
+            tol=tol,
+            workers=workers,
+            polish=polish,
+            progress=progress,
+        )
     cls = _model_class(model_class)
     depends = law_check(depends_on_angle or {}, cls.param_names)
     if depends and getattr(cls, "uses_curve_angle", False):
         raise ValueError(f"{cls.__name__} already takes the curve angle: depends_on_angle is moot")
-    if depends and cls is PrandtlIshlinskii:
-        raise ValueError("PrandtlIshlinskii parameters cannot depend on the curve angle")
+    if depends and cls in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii):
+        raise ValueError(f"{cls.__name__} parameters cannot depend on the curve angle")
     recs = make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle)
     warmup = int(warmup)
 
+    if initial is None and cls is GeneralizedPrandtlIshlinskii:
+        initial = cls(thresholds=np.arange(GPI_PLAYS) / GPI_PLAYS, weights=np.full(GPI_PLAYS, 1.0))
     if initial is None:
         initial = cls()
     elif type(initial) is not cls:
@@ -138,6 +172,9 @@ def identify(
     if cls is PrandtlIshlinskii:
         thr = np.asarray(values["thresholds"], dtype=float)
         spec = PrandtlIshlinskiiSpec(thr / thr[-1] if thr[-1] > 0 else np.linspace(0, 1, thr.size))
+    elif cls is GeneralizedPrandtlIshlinskii:
+        thr = np.asarray(values["thresholds"], dtype=float)
+        spec = GeneralizedPrandtlIshlinskiiSpec(thr / thr[-1] if thr[-1] > 0 else thr)
     else:
         spec = SPECS[cls]()
 
@@ -150,8 +187,8 @@ def identify(
         )
     held = {n: values[n] for n in spec.default_fixed if n not in free_set}
     held.update({k: float(v) for k, v in (fixed or {}).items()})
-    if cls is PrandtlIshlinskii and held:
-        raise ValueError("PrandtlIshlinskii: fixed parameters are not supported")
+    if cls in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii) and held:
+        raise ValueError(f"{cls.__name__}: fixed parameters are not supported")
     free_names = [n for n in cls.param_names if n not in held]
     values.update(held)
     if set(depends) & set(held):
@@ -172,7 +209,7 @@ def identify(
     use_separable = (
         spec.separable
         and not depends
-        and (separable or cls is PrandtlIshlinskii)
+        and (separable or cls in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii))
         and user_fixed <= set(getattr(spec, "search_names", ())) | set(spec.default_fixed)
     )
     if use_separable:
@@ -392,6 +429,8 @@ def _standard_errors(
     try:
         if cls is PrandtlIshlinskii:
             return _pi_standard_errors(model, problem, sse, n_fit)
+        if cls is GeneralizedPrandtlIshlinskii:  # not computed (envelopes x grid)
+            return nan_errors(model.params)
         if isinstance(problem, DirectProblem):
             se_problem = problem
         else:
@@ -420,6 +459,14 @@ def _standard_errors(
     if se_problem.tanh:
         out["angle_friction"] = float(se[-1])
     return out
+
+
+def nan_errors(params: dict) -> dict:
+    """Standard errors not computed: NaN in the shape of the parameters."""
+    return {
+        k: [float("nan")] * len(v) if isinstance(v, list) else float("nan")
+        for k, v in params.items()
+    }
 
 
 def _pi_standard_errors(model, problem, sse, n_fit) -> dict:

@@ -17,6 +17,7 @@ from ..models import (
     BoucWen,
     BoucWenBacklash,
     CurveAngleModel,
+    GeneralizedPrandtlIshlinskii,
     HystereticOscillator,
     PrandtlIshlinskii,
 )
@@ -32,6 +33,7 @@ class Scale:
     slope: float  # least-squares slope of y on x (absolute value, > 0)
     duration: float | None
     sample_time: float | None
+    x_mid: float = 0.0
 
     @classmethod
     def of(cls, recs: list[Recording]) -> Scale:
@@ -47,7 +49,7 @@ class Scale:
         if all(r.t is not None for r in recs):
             duration = float(max(r.t[-1] - r.t[0] for r in recs))
             sample_time = float(np.median(np.concatenate([np.diff(r.t) for r in recs])))
-        return cls(xr, yr, slope, duration, sample_time)
+        return cls(xr, yr, slope, duration, sample_time, float(0.5 * (x.max() + x.min())))
 
 
 class ModelSpec:
@@ -279,6 +281,90 @@ class PrandtlIshlinskiiSpec(ModelSpec):
         }
 
 
+class GeneralizedPrandtlIshlinskiiSpec(ModelSpec):
+    """Envelopes searched, weights by bounded least squares.
+
+    The output scale is carried by the weights, so the rising envelope's amplitude is held at
+    1; a common shift of both envelopes' d is an output offset (times the weights' sum), so
+    the rising d is held at 0 and a constant column, solved with the weights, is folded back
+    into both d's. Searched: rising b, c; falling a, b, c, d (relative to the rising
+    envelope) and ``r_frac``; the thresholds are the grid ``r_max * pattern`` (default
+    ``pattern = k/(K-1)``, K = 10 plays) scaled to the data: ``r_max = r_frac * (gamma_r(x_max)
+    - gamma_l(x_min)) / 2``, so that with r_frac < 1 every play moves over a full input cycle
+    (a play that only moves in the initial transient would get an unidentifiable weight).
+    Weights >= 0, with ``weights[0] > 0`` (invertible operator), solved by Lawson-Hanson
+    inside the C++ batch.
+    """
+
+    model_class = GeneralizedPrandtlIshlinskii
+    kind = "GeneralizedPrandtlIshlinskii"
+    separable = True
+    search_names = ("rising_b", "rising_c", "falling_a", "falling_b", "falling_c", "falling_d")
+    log_names = frozenset({"rising_b", "falling_b", "falling_a", "r_frac"})
+
+    def __init__(self, pattern: np.ndarray):
+        self.pattern = np.asarray(pattern, dtype=float)
+        self.search_names = (*type(self).search_names, "r_frac")
+        self.x_lims = (-1.0, 1.0)
+
+    def r_max(self, values) -> np.ndarray:
+        lo, hi = self.x_lims
+        up = np.tanh(values["rising_b"] * (hi - values["rising_c"]))
+        down = values["falling_a"] * np.tanh(values["falling_b"] * (lo - values["falling_c"]))
+        down = down + values["falling_d"]
+        return values["r_frac"] * np.maximum(0.5 * (up - down), 1e-9)
+
+    def bounds(self, s, fixed):
+        mid = getattr(s, "x_mid", 0.0)
+        half = 0.5 * s.x_range
+        self.x_lims = (mid - half, mid + half)
+        return {
+            "rising_b": (0.1 / half, 5.0 / half),
+            "rising_c": (mid - half, mid + half),
+            "falling_a": (0.33, 3.0),
+            "falling_b": (0.1 / half, 5.0 / half),
+            "falling_c": (mid - half, mid + half),
+            "falling_d": (-1.0, 1.0),
+            "r_frac": (0.02, 0.95),
+        }
+
+    def search_bounds(self, s, fixed):
+        return self.bounds(s, fixed)
+
+    def nonlinear(self, values):
+        n = np.size(values["rising_b"])
+        one = np.ones(n)
+        cols = [
+            one,
+            values["rising_b"],
+            values["rising_c"],
+            0.0 * one,
+            values["falling_a"],
+            values["falling_b"],
+            values["falling_c"],
+            values["falling_d"],
+        ]
+        return np.column_stack([*cols, np.outer(self.r_max(values), self.pattern)])
+
+    def linear_bounds(self, s):
+        k = self.pattern.size
+        lo = np.r_[1e-9 * s.slope, np.zeros(k - 1), -np.inf]
+        return lo, np.full(k + 1, np.inf)
+
+    def public(self, values, theta):
+        theta = np.asarray(theta, dtype=float)
+        weights = np.maximum(theta[:-1], 0.0)
+        weights[0] = max(weights[0], 1e-300)
+        shift = float(theta[-1]) / float(weights.sum())
+        v = {k: float(values[k]) for k in values}
+        return {
+            "rising": (1.0, v["rising_b"], v["rising_c"], shift),
+            "falling": (v["falling_a"], v["falling_b"], v["falling_c"], v["falling_d"] + shift),
+            "thresholds": (float(self.r_max(v)) * self.pattern).tolist(),
+            "weights": weights.tolist(),
+        }
+
+
 SPECS: dict[type, type[ModelSpec]] = {
     Backlash: BacklashSpec,
     BoucWenBacklash: BoucWenBacklashSpec,
@@ -286,4 +372,5 @@ SPECS: dict[type, type[ModelSpec]] = {
     HystereticOscillator: HystereticOscillatorSpec,
     CurveAngleModel: CurveAngleModelSpec,
     PrandtlIshlinskii: PrandtlIshlinskiiSpec,
+    GeneralizedPrandtlIshlinskii: GeneralizedPrandtlIshlinskiiSpec,
 }

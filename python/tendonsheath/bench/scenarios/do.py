@@ -188,28 +188,43 @@ def robustness_run(params: dict) -> dict[str, dict[str, float]]:
     on a fixed (random-arc) route. Returns compensator -> metrics (a ``ts.sweep`` run)."""
     from ...sweep.example_runs import random_arcs
 
-    physics = {**_COMMON, "friction": float(params.get("friction", _COMMON["friction"])),
-               "pretension": float(params.get("pretension", _COMMON["pretension"]))}
-    route = random_arcs(NOMINAL.length, float(params.get("route_angle", NOMINAL.total_angle)),
-                        int(params.get("route_pieces", 3)), int(params.get("route_seed", 0)))
+    physics = {
+        **_COMMON,
+        "friction": float(params.get("friction", _COMMON["friction"])),
+        "pretension": float(params.get("pretension", _COMMON["pretension"])),
+    }
+    route = random_arcs(
+        NOMINAL.length,
+        float(params.get("route_angle", NOMINAL.total_angle)),
+        int(params.get("route_pieces", 3)),
+        int(params.get("route_seed", 0)),
+    )
     model = _nominal_model()
     t, y_d = reference(10.0)
     servo = PullPullPlant(route=route, motor=Motor.position(60.0, 0.8), **physics)
-    torque = PullPullPlant(route=route, motor=Motor.torque(INERTIA, VISCOUS, max_torque=5.0),
-                           **physics)
+    torque = PullPullPlant(
+        route=route, motor=Motor.torque(INERTIA, VISCOUS, max_torque=5.0), **physics
+    )
     sensor = encoder(seed=int(params.get("route_seed", 0)) % 100_000)
-    ctrl = AdaptiveController.from_model(model, inertia=INERTIA, viscous=VISCOUS,
-                                         bandwidth_hz=8.0, max_torque=5.0,
-                                         noise_std=sensor.noise_std)
+    ctrl = AdaptiveController.from_model(
+        model,
+        inertia=INERTIA,
+        viscous=VISCOUS,
+        bandwidth_hz=8.0,
+        max_torque=5.0,
+        noise_std=sensor.noise_std,
+    )
     runs = {
         "none": run(servo, None, t, y_d, noise=sensor),
-        "InverseFeedforward": run(servo, InverseFeedforward(model, smoothing=0.03), t, y_d,
-                                  noise=sensor),
+        "InverseFeedforward": run(
+            servo, InverseFeedforward(model, smoothing=0.03), t, y_d, noise=sensor
+        ),
         "AdaptiveController": run(torque, ctrl, t, y_d, noise=sensor),
     }
-    return {name: {k: r.metrics[k] for k in ("mse", "rmse", "max_abs", "percent_error")}
-            for name, r in runs.items()}
+    return {
+        name: {k: r.metrics[k] for k in ("mse", "rmse", "max_abs", "percent_error")}
+        for name, r in runs.items()
+    }
 
 
-robustness_run.parameters = ("friction", "pretension", "route_angle", "route_pieces",
-                             "route_seed")
+robustness_run.parameters = ("friction", "pretension", "route_angle", "route_pieces", "route_seed")

@@ -1,0 +1,396 @@
+"""Choosing a model: fit candidates on training data, score them on held-out data.
+
+``compare_models(logs, models=[...], validate=...)`` fits every candidate on the training part
+and scores it on the held-out part against the affine baseline y = a x + b:
+
+- ``validate`` a number in (0, 1): the last fraction of every recording (in time, or in
+  samples without a time column) is held out. Models are fitted on the first part; to score
+  them, each model runs over the *whole* input of the recording (its state carries over from
+  the training part, as it would on the robot) and only the held-out samples are counted.
+- ``validate`` a list of logs (or one): held-out recordings, simulated from their start.
+
+The result is a :class:`Comparison`: ``.table`` (rows sorted by validation nrmse, the affine
+baseline included), ``.winner`` (the winning model refitted on all the training data: whole
+recordings in fraction mode, all the training logs otherwise; the affine baseline is a
+``Polynomial(1)``), ``.fits`` and ``.report(dir)`` (loops and residuals).
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .identify import identify
+from .identify.data import make_recordings
+from .identify.fit import metrics, simulate_model
+from .models import (
+    Backlash,
+    BoucWenBacklash,
+    Chain,
+    CurveAngleModel,
+    GeneralizedPrandtlIshlinskii,
+    HysteresisModel,
+    Polynomial,
+    PrandtlIshlinskii,
+)
+from .models.base import _REGISTRY
+
+AFFINE = "affine"
+
+
+def default_models(curve_angle: bool = False) -> list:
+    """The default candidates (CurveAngleModel too when the logs have a curve angle)."""
+    models: list = [
+        Backlash,
+        BoucWenBacklash,
+        PrandtlIshlinskii,
+        GeneralizedPrandtlIshlinskii,
+        Chain(BoucWenBacklash(), Polynomial(3)),
+    ]
+    if curve_angle:
+        models.append(CurveAngleModel)
+    return models
+
+
+_ALIASES = {
+    "bwb": "BoucWenBacklash",
+    "pi": "PrandtlIshlinskii",
+    "gpi": "GeneralizedPrandtlIshlinskii",
+    "bw": "BoucWen",
+    "curve": "CurveAngleModel",
+}
+
+
+def parse_model(spec) -> Any:
+    """A candidate from a class, a Chain instance or a name: ``BoucWenBacklash``, ``gpi``,
+    ``bwb+poly3`` (Chain with a cubic), ``bwb+odd3`` (odd cubic)."""
+    if isinstance(spec, Chain) or (isinstance(spec, type) and issubclass(spec, HysteresisModel)):
+        return spec
+    if not isinstance(spec, str):
+        raise ValueError(f"a model is a class, a Chain or a name (got {spec!r})")
+    text = spec.strip()
+    base, _, tail = text.partition("+")
+
+    def cls_of(name):
+        name = _ALIASES.get(name.lower(), name)
+        lookup = {k.lower(): v for k, v in _REGISTRY.items()}
+        if name.lower() not in lookup:
+            raise ValueError(
+                f"unknown model {name!r}; known: {sorted(_REGISTRY)} or aliases "
+                f"{sorted(_ALIASES)}, with +polyN / +oddN for a polynomial output map"
+            )
+        return lookup[name.lower()]
+
+    cls = cls_of(base)
+    if not tail:
+        return cls
+    m = re.fullmatch(r"(poly|odd)(\d+)", tail.strip().lower())
+    if not m:
+        raise ValueError(f"model {text!r}: the part after '+' must be polyN or oddN")
+    degree = int(m.group(2))
+    if degree < 1:
+        raise ValueError(f"model {text!r}: the degree must be >= 1")
+    return Chain(cls(), Polynomial(degree, odd=m.group(1) == "odd"))
+
+
+def model_name(candidate) -> str:
+    if isinstance(candidate, Chain):
+        p = candidate.second
+        kind = "odd" if getattr(p, "options", {}).get("odd") else "poly"
+        return f"{type(candidate.first).__name__}+{kind}{p.degree}"
+    return candidate.__name__
+
+
+@dataclass
+class Comparison:
+    """Result of :func:`compare_models`. ``table`` rows: model, n_params, train_rmse,
+    train_nrmse, val_rmse, val_nrmse, val_fit_percent, val_max_abs, ratio_to_affine, seconds,
+    error (if the fit failed); sorted by val_nrmse (failures last)."""
+
+    table: list[dict[str, Any]]
+    winner: HysteresisModel
+    winner_name: str
+    fits: dict[str, Any] = field(default_factory=dict, repr=False)
+    validation: list[dict[str, Any]] = field(default_factory=list, repr=False)
+    mode: str = ""
+
+    def row(self, name: str) -> dict[str, Any]:
+        for r in self.table:
+            if r["model"] == name:
+                return r
+        raise KeyError(name)
+
+    def text(self) -> str:
+        lines = [
+            f"{'model':<34} {'train rmse':>11} {'val rmse':>11} {'val nrmse':>10} {'/affine':>8}"
+        ]
+        for r in self.table:
+            if r.get("error"):
+                lines.append(f"{r['model']:<34} failed: {r['error']}")
+                continue
+            lines.append(
+                f"{r['model']:<34} {r['train_rmse']:>11.4g} {r['val_rmse']:>11.4g} "
+                f"{100 * r['val_nrmse']:>9.3f}% {r['ratio_to_affine']:>8.3f}"
+            )
+        lines.append(f"winner: {self.winner_name} ({self.mode})")
+        return "\n".join(lines)
+
+    def __str__(self) -> str:
+        return self.text()
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "mode": self.mode,
+            "table": self.table,
+            "winner": self.winner_name,
+            "winner_model": self.winner.to_dict(),
+        }
+
+    def report(self, path: str | Path) -> Path:
+        """Write DIR/comparison.json, DIR/loops.png, DIR/residuals.png and DIR/report.html
+        (validation loops and residuals of every model); returns the HTML path."""
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        out = Path(path)
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "comparison.json").write_text(json.dumps(self.to_dict(), indent=2) + "\n")
+        names = [r["model"] for r in self.table if not r.get("error")]
+        cols = min(3, len(names))
+        rows = int(np.ceil(len(names) / cols))
+        figs = {}
+        for kind in ("loops", "residuals"):
+            fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.4 * rows), squeeze=False)
+            for ax, name in zip(axes.flat, names, strict=False):
+                for v in self.validation:
+                    pred = v["predictions"].get(name)
+                    if pred is None:
+                        continue
+                    if kind == "loops":
+                        ax.plot(v["x"], v["y"], color="0.6", lw=1.0, label="measured")
+                        ax.plot(v["x"], pred, lw=1.0, label="model")
+                        ax.set_xlabel("input")
+                        ax.set_ylabel("output")
+                    else:
+                        ax.plot(v["s"], v["y"] - pred, lw=0.8)
+                        ax.set_xlabel("time" if v["has_t"] else "sample")
+                        ax.set_ylabel("measured - model")
+                r = self.row(name)
+                ax.set_title(f"{name}\nval rmse {r['val_rmse']:.3g}", fontsize=9)
+            for ax in list(axes.flat)[len(names) :]:
+                ax.axis("off")
+            fig.tight_layout()
+            figs[kind] = out / f"{kind}.png"
+            fig.savefig(figs[kind], dpi=110)
+            plt.close(fig)
+        head = "".join(
+            f"<th>{h}</th>"
+            for h in ("model", "train rmse", "val rmse", "val nrmse %", "ratio to affine")
+        )
+        body = "".join(
+            f"<tr><td>{r['model']}</td><td>{r['train_rmse']:.4g}</td><td>{r['val_rmse']:.4g}"
+            f"</td><td>{100 * r['val_nrmse']:.3f}</td><td>{r['ratio_to_affine']:.3f}</td></tr>"
+            for r in self.table
+            if not r.get("error")
+        )
+        html = (
+            "<!doctype html><html><head><meta charset='utf-8'><title>model comparison</title>"
+            "</head><body><h1>Model comparison</h1>"
+            f"<p>{self.mode}; winner: <b>{self.winner_name}</b></p>"
+            f"<table border='1' cellpadding='4'><tr>{head}</tr>{body}</table>"
+            "<h2>Validation loops</h2><img src='loops.png'>"
+            "<h2>Validation residuals</h2><img src='residuals.png'></body></html>"
+        )
+        page = out / "report.html"
+        page.write_text(html)
+        return page
+
+
+def _as_recs(logs) -> list:
+    if logs is None:
+        return []
+    if isinstance(logs, tuple) and len(logs) in (3, 4) and not hasattr(logs[0], "x"):
+        logs = [logs]
+    if hasattr(logs, "x") and hasattr(logs, "y"):
+        logs = [logs]
+    return make_recordings(recordings=list(logs))
+
+
+def _affine(recs) -> np.ndarray:
+    x = np.concatenate([r.x for r in recs])
+    y = np.concatenate([r.y for r in recs])
+    A = np.column_stack([np.ones_like(x), x])
+    return np.linalg.lstsq(A, y, rcond=None)[0]  # [b, a]
+
+
+def _fit(candidate, recs, options: dict):
+    return identify(candidate, recordings=recs, **options)
+
+
+def compare_models(
+    logs,
+    models: Sequence | None = None,
+    validate: float | Sequence | Any = 0.3,
+    *,
+    curve_angle=None,
+    seed: int | None = 0,
+    maxiter: int = 100,
+    popsize: int = 15,
+    workers: int | None = None,
+    progress: bool = False,
+    refit: bool = True,
+) -> Comparison:
+    """Fit each candidate on the training data and rank them on held-out data.
+
+    ``logs``: :class:`~tendonsheath.io.Log` objects or (t, x, y[, curve_angle]) tuples.
+    ``models``: classes, Chain instances or names (see :func:`parse_model`); default
+    :func:`default_models`. ``validate``: a fraction (the last part of every recording is
+    held out) or held-out logs. ``curve_angle`` (a number) applies to recordings without one.
+    """
+    recs = make_recordings(recordings=list(_as_recs(logs)), curve_angle=curve_angle)
+    has_angle = all(r.curve_angle is not None for r in recs)
+    candidates = [parse_model(m) for m in (models or default_models(has_angle))]
+    names = [model_name(c) for c in candidates]
+    if len(set(names)) != len(names):
+        raise ValueError(f"the candidate models must differ (got {names})")
+    options = dict(seed=seed, maxiter=maxiter, popsize=popsize, workers=workers)
+    options["progress"] = progress
+
+    # training / validation split
+    if isinstance(validate, int | float) and not isinstance(validate, bool):
+        frac = float(validate)
+        if not 0.0 < frac < 1.0:
+            raise ValueError(f"validate: the held-out fraction must be in (0, 1) (got {frac})")
+        train, evals = [], []
+        for i, r in enumerate(recs):
+            if r.t is not None:
+                cut = r.t[0] + (1.0 - frac) * (r.t[-1] - r.t[0])
+                k = int(np.searchsorted(r.t, cut))
+            else:
+                k = int(round((1.0 - frac) * r.n))
+            if k < 20 or r.n - k < 3:
+                raise ValueError(
+                    f"recording {i}: {r.n} samples are too few to hold out {frac:g} of them"
+                )
+            sub = type(r)(
+                None if r.t is None else r.t[:k],
+                r.x[:k],
+                r.y[:k],
+                None if r.curve_angle is None else r.curve_angle[:k],
+            )
+            train.append(sub)
+            evals.append((r, k))
+        mode = f"held out: the last {100 * frac:g} % of each recording"
+    else:
+        vrecs = make_recordings(recordings=list(_as_recs(validate)), curve_angle=curve_angle)
+        if not vrecs:
+            raise ValueError("validate: give a held-out fraction or held-out logs")
+        train = recs
+        evals = [(r, 0) for r in vrecs]
+        mode = f"held out: {len(vrecs)} validation recording(s)"
+
+    def score(predict) -> tuple[dict, list]:
+        ys, yh, preds = [], [], []
+        for r, k in evals:
+            p = predict(r)
+            preds.append(p)
+            ys.append(r.y[k:])
+            yh.append(p[k:])
+        return metrics(np.concatenate(ys), np.concatenate(yh)), preds
+
+    def train_score(predict) -> dict:
+        y = np.concatenate([r.y for r in train])
+        return metrics(y, np.concatenate([predict(r) for r in train]))
+
+    validation = [
+        {
+            "x": r.x[k:],
+            "y": r.y[k:],
+            "s": (r.t[k:] if r.t is not None else np.arange(k, r.n)),
+            "has_t": r.t is not None,
+            "predictions": {},
+        }
+        for r, k in evals
+    ]
+    rows, fits = [], {}
+    # affine baseline
+    b, a = _affine(train)
+    affine_model = Polynomial(coefficients=[b, a])
+    t0 = time.perf_counter()
+    vm, preds = score(lambda r: a * r.x + b)
+    tm = train_score(lambda r: a * r.x + b)
+    for v, p, (_, k) in zip(validation, preds, evals, strict=True):
+        v["predictions"][AFFINE] = p[k:]
+    rows.append(_row(AFFINE, 2, tm, vm, time.perf_counter() - t0))
+    fits[AFFINE] = affine_model
+    for cand, name in zip(candidates, names, strict=True):
+        if getattr(cand, "uses_curve_angle", False) and not has_angle:
+            rows.append({"model": name, "error": "needs a curve angle"})
+            continue
+        t0 = time.perf_counter()
+        try:
+            fit = _fit(cand, train, options)
+        except ValueError as exc:
+            rows.append({"model": name, "error": str(exc)})
+            continue
+        fits[name] = fit
+
+        def predict(r, fit=fit):
+            return simulate_model(fit.model, r.t, r.x, r.curve_angle)
+
+        vm, preds = score(predict)
+        tm = train_score(predict)
+        for v, p, (_, k) in zip(validation, preds, evals, strict=True):
+            v["predictions"][name] = p[k:]
+        rows.append(_row(name, _count(fit.model), tm, vm, time.perf_counter() - t0))
+    base = rows[0]["val_rmse"]
+    for r in rows:
+        if not r.get("error"):
+            r["ratio_to_affine"] = r["val_rmse"] / base if base > 0 else float("nan")
+    rows.sort(key=lambda r: (bool(r.get("error")), r.get("val_nrmse", np.inf)))
+    best = rows[0]["model"]
+    if best == AFFINE:
+        winner = affine_model
+        if refit:
+            b, a = _affine(recs if isinstance(validate, int | float) else train)
+            winner = Polynomial(coefficients=[b, a])
+    else:
+        cand = candidates[names.index(best)]
+        winner = fits[best].model
+        if refit:
+            full = recs  # whole recordings (fraction mode) or all training logs
+            winner = _fit(cand, full, options).model
+    return Comparison(rows, winner, best, fits, validation, mode)
+
+
+def _row(name, n_params, tm, vm, seconds) -> dict:
+    return {
+        "model": name,
+        "n_params": int(n_params),
+        "train_rmse": tm["rmse"],
+        "train_nrmse": tm["nrmse"],
+        "val_rmse": vm["rmse"],
+        "val_nrmse": vm["nrmse"],
+        "val_fit_percent": vm["fit_percent"],
+        "val_max_abs": vm["max_abs"],
+        "seconds": float(seconds),
+    }
+
+
+def _count(model: HysteresisModel) -> int:
+    n = 0
+    for v in model.params.values():
+        if isinstance(v, list):
+            n += len(v)
+        elif isinstance(v, int | float):
+            n += 1
+    return n

@@ -1,0 +1,225 @@
+"""Joint identification of ``Chain(first, Polynomial(...))``: a hysteresis model followed by a
+static polynomial output map.
+
+Given the first model's output u, the output y = sum_k a_k u^k is linear in the polynomial
+coefficients, so they are solved by least squares for every candidate (variable projection):
+the global search covers only the first model's parameters. The polynomial carries the output
+scale (and, at full degree, the offset), so the first model's scale is held (``c_r = 1`` for
+Backlash and BoucWenBacklash, ``k = 1`` for BoucWen); its other parameters are searched. The
+first model's population is simulated in one batched C++ call per generation; the
+least-squares stage is vectorised NumPy.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+from scipy.optimize import differential_evolution
+
+from ..models import Backlash, BoucWen, BoucWenBacklash, Chain, HystereticOscillator, Polynomial
+from .data import check_for_fit
+from .fit import Fit, metrics, simulate_model
+from .problem import DirectProblem
+from .specs import SPECS, Scale
+
+# parameters of the first model that the polynomial makes redundant, and their held values
+CHAIN_HELD = {
+    Backlash: {"c_r": 1.0},
+    BoucWenBacklash: {"c_r": 1.0},
+    BoucWen: {"k": 1.0},
+    HystereticOscillator: {},
+}
+# bounds of the first model's relative slopes (the scale is in the polynomial)
+_RELATIVE = {"c_l": (0.2, 5.0)}
+_PENALTY = 1e100
+
+
+class ChainProblem:
+    """Search the first model's free parameters; solve the polynomial for each candidate."""
+
+    def __init__(self, chain: Chain, recs, warmup, bounds, fixed, workers):
+        first, second = chain.first, chain.second
+        cls = type(first)
+        if cls not in CHAIN_HELD:
+            raise ValueError(
+                f"Chain: cannot identify a chain whose first model is {cls.__name__}; "
+                f"supported: {sorted(c.__name__ for c in CHAIN_HELD)}"
+            )
+        if not isinstance(second, Polynomial):
+            raise ValueError(
+                f"Chain: the second model must be a Polynomial to identify the chain "
+                f"(got {type(second).__name__})"
+            )
+        self.first_cls = cls
+        self.second = second
+        spec = SPECS[cls]()
+        values = first.params
+        options = first.options
+        held = {n: values[n] for n in spec.default_fixed}
+        held.update(CHAIN_HELD[cls])
+        for k, v in (fixed or {}).items():
+            name = k.removeprefix("first.")
+            if name not in cls.param_names:
+                raise ValueError(f"Chain: unknown parameter {k!r} of {cls.__name__}")
+            held[name] = float(v)
+        self.free = [n for n in cls.param_names if n not in held]
+        scale = Scale.of(recs)
+        b = spec.bounds(scale, held)
+        b.update({k: v for k, v in _RELATIVE.items() if k in b})
+        for k, v in (bounds or {}).items():
+            b[k.removeprefix("first.")] = (float(v[0]), float(v[1]))
+        values.update(held)
+        self.held = held
+        self.inner = DirectProblem(
+            cls,
+            recs,
+            warmup,
+            values,
+            self.free,
+            b,
+            spec.log_names,
+            options,
+            None,
+            workers,
+            spec.search_options,
+        )
+        self.space = self.inner.space
+        self.bounds = {n: b[n] for n in self.free}
+        self.options = options
+        self.values = values
+        self.y = self.inner.y[self.inner.mask]
+        self.odd = bool(second.options["odd"])
+        self.degree = second.degree
+        self.powers = np.arange(1, self.degree + 1, 2) if self.odd else np.arange(self.degree + 1)
+        self.n_params = len(self.free) + self.powers.size
+
+    def _solve(self, U: np.ndarray):
+        """Polynomial coefficients (P, K) and sums of squared residuals (P,) for outputs U."""
+        U = U[:, self.inner.mask]
+        ok = np.all(np.isfinite(U), axis=1)
+        U = np.where(ok[:, None], U, 0.0)
+        m = np.max(np.abs(U), axis=1)
+        m = np.where(m > 0, m, 1.0)
+        Us = U / m[:, None]
+        B = Us[:, :, None] ** self.powers[None, None, :]  # (P, M, K), entries in [-1, 1]
+        G = np.einsum("pmk,pml->pkl", B, B)
+        rhs = np.einsum("pmk,m->pk", B, self.y)
+        ridge = 1e-12 * np.trace(G, axis1=1, axis2=2)[:, None, None] + 1e-300
+        G = G + ridge * np.eye(self.powers.size)[None]
+        try:
+            coef = np.linalg.solve(G, rhs[:, :, None])[:, :, 0]
+        except np.linalg.LinAlgError:
+            coef = np.stack(
+                [np.linalg.lstsq(g, r, rcond=None)[0] for g, r in zip(G, rhs, strict=True)]
+            )
+        resid = self.y[None, :] - np.einsum("pmk,pk->pm", B, coef)
+        sse = np.sum(resid**2, axis=1)
+        sse = np.where(ok & np.isfinite(sse), sse, np.inf)
+        a = coef / m[:, None] ** self.powers[None, :]
+        return a, sse, resid
+
+    def cost(self, C: np.ndarray) -> np.ndarray:
+        return self._solve(self.inner.simulate(C))[1]
+
+    def residual(self, c: np.ndarray) -> np.ndarray:
+        _, sse, resid = self._solve(self.inner.simulate(np.atleast_2d(c)))
+        if not np.isfinite(sse[0]):
+            return np.full(self.y.size, 1e6 * (np.ptp(self.y) + 1.0))
+        return resid[0]
+
+    def model(self, c: np.ndarray) -> Chain:
+        a, _, _ = self._solve(self.inner.simulate(np.atleast_2d(c)))
+        first = self.inner.model(c)
+        return Chain(first, Polynomial(coefficients=a[0], odd=self.odd))
+
+
+def identify_chain(
+    chain: Chain,
+    recs,
+    *,
+    warmup: int = 0,
+    bounds=None,
+    fixed=None,
+    seed=0,
+    maxiter=100,
+    popsize=15,
+    tol=0.01,
+    workers=None,
+    polish=True,
+    progress=True,
+) -> Fit:
+    """Identify a Chain (see the module docstring); returns a :class:`Fit`."""
+    from .core import _Progress, _refine, nan_errors
+
+    n_workers = 0 if workers is None else int(workers)
+    problem = ChainProblem(chain, recs, warmup, bounds, fixed, n_workers)
+    check_for_fit(recs, warmup, problem.n_params, not problem.first_cls.rate_independent, False)
+    space = problem.space
+    counter = {"evaluations": 0}
+
+    def population(U):
+        C = space.natural(np.asarray(U).T)
+        counter["evaluations"] += C.shape[0]
+        costs = problem.cost(C)
+        return np.where(np.isfinite(costs), costs, _PENALTY)
+
+    bar = _Progress(progress, f"identify Chain({problem.first_cls.__name__}, Polynomial)", maxiter)
+    gen = {"n": 0}
+
+    def callback(intermediate_result):
+        gen["n"] += 1
+        bar.update(gen["n"], float(intermediate_result.fun))
+
+    start = time.perf_counter()
+    try:
+        res = differential_evolution(
+            population,
+            list(zip(space.lower, space.upper, strict=True)),
+            vectorized=True,
+            updating="deferred",
+            popsize=popsize,
+            maxiter=maxiter,
+            tol=tol,
+            seed=seed,
+            polish=False,
+            init="latinhypercube",
+            callback=callback,
+        )
+    finally:
+        bar.close()
+    if not np.isfinite(res.fun) or res.fun >= _PENALTY:
+        raise ValueError("identification failed: no candidate gives a finite simulation")
+    u_best = res.x
+    message = f"differential evolution: {res.message}"
+    if polish and space.lower.size:
+        u_best, msg = _refine(problem, space, u_best, counter, True)
+        message += f"; least squares: {msg}"
+    model = problem.model(space.natural(u_best))
+    seconds = time.perf_counter() - start
+    predictions = [simulate_model(model, r.t, r.x) for r in recs]
+    y_fit = np.concatenate([r.y[warmup:] for r in recs])
+    y_hat = np.concatenate([p[warmup:] for p in predictions])
+    overall = metrics(y_fit, y_hat)
+    return Fit(
+        model=model,
+        rmse=overall["rmse"],
+        nrmse=overall["nrmse"],
+        fit_percent=overall["fit_percent"],
+        standard_errors=nan_errors(model.params),
+        identified=[f"first.{n}" for n in problem.free] + ["second.coefficients"],
+        fixed={f"first.{k}": v for k, v in problem.held.items()},
+        per_recording=[
+            metrics(r.y[warmup:], p[warmup:]) for r, p in zip(recs, predictions, strict=True)
+        ],
+        evaluations=counter["evaluations"],
+        seconds=seconds,
+        generations=int(res.nit),
+        method="differential evolution + least squares (chain: polynomial solved)",
+        message=message,
+        warmup=warmup,
+        n_samples=int(y_fit.size),
+        bounds={f"first.{k}": v for k, v in problem.bounds.items()},
+        recordings=recs,
+        predictions=predictions,
+    )
