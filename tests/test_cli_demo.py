@@ -29,6 +29,13 @@ def test_demo_writes_report_metrics_and_figures(tmp_path):
     assert metrics["schema"] == "tendonsheath.metrics" and metrics["version"] == 1
     assert set(metrics["scenarios"]) == {"lau2015"}
     assert "ContinuumFeedforward (exact)" in metrics["scenarios"]["lau2015"]
+    robust = metrics["robustness"]
+    assert robust["runs"] == 40 and robust["metric"] == "mse"
+    assert set(robust["compensators"]) == {"none", "InverseFeedforward", "AdaptiveController"}
+    # over perturbed plants both compensators still beat no compensation (median MSE)
+    med = {k: v["median"] for k, v in robust["compensators"].items()}
+    assert med["AdaptiveController"] < med["none"] and med["InverseFeedforward"] < med["none"]
+    assert (tmp_path / "robustness_mse.png").exists()
     names = set(metrics["models"])
     assert {"Backlash", "BoucWenBacklash", "BoucWen", "PrandtlIshlinskii"} <= names
     for name, m in metrics["models"].items():

@@ -30,6 +30,11 @@ def demo(
         None, "--scenario", "-s", help="Only these scenarios (do2015, sun2015, lau2015)."
     ),
     seed: int = typer.Option(0, help="Seed of the random route changes and sensor noise."),
+    robustness: bool = typer.Option(
+        True,
+        "--robustness/--no-robustness",
+        help="Also run the Monte Carlo robustness study (200 draws x scale, at least 20).",
+    ),
 ) -> None:
     """Run the virtual bench (the three seed experiments) and write report.html,
     metrics.json and the figures to OUT."""
@@ -39,7 +44,7 @@ def demo(
 
     if not scale > 0:
         _fail("--scale must be > 0")
-    steps = 1 + 3 * len(scenario or ["do2015", "sun2015", "lau2015"]) + 1
+    steps = 1 + 3 * len(scenario or ["do2015", "sun2015", "lau2015"]) + 1 + int(robustness)
     with Progress(
         TextColumn("{task.description}"),
         BarColumn(),
@@ -70,6 +75,18 @@ def demo(
                 f"{m['mse']:.3e}",
                 f"{np.degrees(m['rmse']):.3f}",
                 f"{m['percent_error']:.2f} %",
+            )
+        console.print(table)
+    if "robustness" in data:
+        table = Table(title=f"robustness: MSE over {data['robustness']['runs']} perturbed plants")
+        for col in ("compensator", "median", "95 %", "share <= 1e-4"):
+            table.add_column(col, justify="left" if col == "compensator" else "right")
+        for comp, q in data["robustness"]["compensators"].items():
+            table.add_row(
+                comp,
+                f"{q['median']:.3e}",
+                f"{q['q95']:.3e}",
+                f"{100 * q.get('within_bound', float('nan')):.0f} %",
             )
         console.print(table)
     console.print(f"wrote {written['report']}")

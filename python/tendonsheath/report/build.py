@@ -6,6 +6,7 @@ metrics.json (schema "tendonsheath.metrics", version 1):
      "scenarios": {scenario: {compensator: {metric: value}}},      # the headline runs
      "paper": {scenario: {...the paper's numbers...}},
      "details": {scenario: {...per-condition metrics, frequency responses, calibration...}},
+     "robustness": {...},     # the demo's Monte Carlo study: per compensator, quantiles
      "models": {model: {...}}}                                       # hysteresis model demo
 
 Metrics per compensator: mse (rad^2), rmse, max_abs (rad), percent_error and
@@ -131,9 +132,11 @@ def details(result) -> dict:
 def write(
     out: Path,
     scenario_results: list,
-    model_section: tuple[str, dict] | None,
+    extra_sections: list[tuple[str, str, str, dict]] | None = None,
     title: str = "tendonsheath virtual bench",
 ) -> dict:
+    """Write report.html and metrics.json. ``extra_sections`` are (anchor, heading, html,
+    data) after the scenarios; each one's data goes to metrics.json under its anchor."""
     out.mkdir(parents=True, exist_ok=True)
     sections, written = [], []
     for result in scenario_results:
@@ -148,10 +151,9 @@ def write(
         "paper": {r.name: r.paper for r in scenario_results},
         "details": {r.name: details(r) for r in scenario_results},
     }
-    if model_section is not None:
-        body, model_metrics = model_section
-        sections.append(("models", "Hysteresis models on a standard input", body))
-        metrics["models"] = model_metrics
+    for anchor, heading, body, data in extra_sections or []:
+        sections.append((anchor, heading, body))
+        metrics[anchor] = data
     intro = (
         "<p>Each seed paper's experiment, simulated on the N-element physics plant "
         "(spec A.5) with models identified from calibration runs on that plant, never on "
