@@ -47,7 +47,8 @@ def py_bouc_wen_backlash(x, c_r, c_l, B_r, B_l, rho, sigma, n, max_step=0.05):
     w, xp = 0.0, x[0]
     for k in range(len(x)):
         dx = x[k] - xp
-        if dx != 0.0:
+        saturated = (dx > 0 and w >= 1.0) or (dx < 0 and w <= -1.0)  # fixed point: skip
+        if dx != 0.0 and not saturated:
             s, travel = (1.0 if dx > 0 else -1.0), abs(dx)
             m = max(1, math.ceil(rho * travel / max_step))
             h = travel / m
@@ -57,6 +58,8 @@ def py_bouc_wen_backlash(x, c_r, c_l, B_r, B_l, rho, sigma, n, max_step=0.05):
                 k3 = f(clamp(w + 0.5 * h * k2), s)
                 k4 = f(clamp(w + h * k3), s)
                 w = clamp(w + h * (k1 + 2 * k2 + 2 * k3 + k4) / 6)
+            if 1.0 - abs(w) < 1e-12:  # snap onto the fixed point, as the core does
+                w = 1.0 if w > 0 else -1.0
         xp = x[k]
         phi = 0.5 * (1 + w)
         y[k] = phi * c_r * (xp - B_r) + (1 - phi) * c_l * (xp + B_l)

@@ -38,24 +38,41 @@ struct BoucWenBacklashParams {
 };
 
 namespace detail {
-// dw/d|x| of the normalised Bouc-Wen state, s = direction of motion.
-struct NormalisedBoucWen {
-  double rho, sigma;
-  AbsPower pow_nm1;
-  double operator()(double w, double s) const noexcept {
-    const double a = std::fabs(w);
-    const double p = pow_nm1(a);  // |w|^(n-1)
-    return rho * (s - sigma * p * w + (sigma - 1.0) * s * p * a);
+// |w|^P for a compile-time integer P (the usual sharpness exponents).
+template <int P>
+struct FixedPower {
+  double operator()(double a) const noexcept {
+    if constexpr (P == 0) return 1.0;
+    else if constexpr (P == 1) return a;
+    else {
+      const double h = FixedPower<P / 2>{}(a);
+      return (P % 2) ? h * h * a : h * h;
+    }
   }
 };
+
+// dw/d|x| of the normalised Bouc-Wen state, s = direction of motion:
+//   rho [s - |w|^(n-1) (sigma w - (sigma - 1) s |w|)]
+template <class Power>
+struct NormalisedBoucWen {
+  double rho, sigma;
+  Power pow_nm1;
+  double operator()(double w, double s) const noexcept {
+    const double a = std::fabs(w);
+    return rho * (s - pow_nm1(a) * (sigma * w - (sigma - 1.0) * s * a));
+  }
+};
+
+// Intermediate RK4 stages are kept inside [-1, 1] without branches.
+inline double clamp_stage(double w) noexcept { return std::fmin(1.0, std::fmax(-1.0, w)); }
 
 template <class F>
 double rk4_in_x(const F& f, double w, double s, double h, int m) noexcept {
   for (int i = 0; i < m; ++i) {
     const double k1 = f(w, s);
-    const double k2 = f(clamp_unit(w + 0.5 * h * k1), s);
-    const double k3 = f(clamp_unit(w + 0.5 * h * k2), s);
-    const double k4 = f(clamp_unit(w + h * k3), s);
+    const double k2 = f(clamp_stage(w + 0.5 * h * k1), s);
+    const double k3 = f(clamp_stage(w + 0.5 * h * k2), s);
+    const double k4 = f(clamp_stage(w + h * k3), s);
     w = clamp_unit(w + h * (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0);
   }
   return w;
@@ -84,7 +101,9 @@ class BoucWenBacklash {
     require_at_least(p.n, 1.0, w, "n");
     require_positive(p.max_step, w, "max_step");
     require(p.max_substeps >= 1, w, "max_substeps must be >= 1");
-    f_ = detail::NormalisedBoucWen{p.rho, p.sigma, detail::AbsPower(p.n - 1.0)};
+    f_ = detail::NormalisedBoucWen<detail::AbsPower>{p.rho, p.sigma, detail::AbsPower(p.n - 1.0)};
+    const double e = p.n - 1.0;
+    int_exponent_ = (e == std::round(e) && e >= 0.0 && e <= 11.0) ? static_cast<int>(e) : -1;
   }
 
   const Params& params() const noexcept { return p_; }
@@ -106,13 +125,13 @@ class BoucWenBacklash {
       if (dx != 0.0 && !saturated) {
         const double travel = std::fabs(dx);
         const double sgn = dx > 0.0 ? 1.0 : -1.0;
-        double w;
-        if (p_.rho * travel <= p_.max_step) {  // the usual case: one RK4 step
-          w = detail::rk4_in_x(f_, w_, sgn, travel, 1);
-        } else {
-          const int m = detail::substeps_for(p_.rho * travel, p_.max_step, p_.max_substeps);
-          w = detail::rk4_in_x(f_, w_, sgn, travel / m, m);
-        }
+        const int m = p_.rho * travel <= p_.max_step  // the usual case: one RK4 step
+                          ? 1
+                          : detail::substeps_for(p_.rho * travel, p_.max_step, p_.max_substeps);
+        double w = integrate(sgn, travel / m, m);
+        // w approaches +-1 geometrically and would stall one ulp short of it; within 1e-12
+        // of the fixed point it is the fixed point (the output moves by < 1e-12 B).
+        if (1.0 - std::fabs(w) < 1e-12) w = w > 0.0 ? 1.0 : -1.0;
         if (std::isfinite(w)) w_ = w;  // an overflowing jump keeps the old state
       }
       x_ = x;
@@ -136,8 +155,29 @@ class BoucWenBacklash {
   }
 
  private:
+  // The exponent n - 1 is dispatched once per sample, not once per evaluation.
+  double integrate(double sgn, double h, int m) const noexcept {
+    const double r = p_.rho, sg = p_.sigma;
+    switch (int_exponent_) {
+      case 0: return detail::rk4_in_x(detail::NormalisedBoucWen<detail::FixedPower<0>>{r, sg, {}}, w_, sgn, h, m);
+      case 1: return detail::rk4_in_x(detail::NormalisedBoucWen<detail::FixedPower<1>>{r, sg, {}}, w_, sgn, h, m);
+      case 2: return detail::rk4_in_x(detail::NormalisedBoucWen<detail::FixedPower<2>>{r, sg, {}}, w_, sgn, h, m);
+      case 3: return detail::rk4_in_x(detail::NormalisedBoucWen<detail::FixedPower<3>>{r, sg, {}}, w_, sgn, h, m);
+      case 4: return detail::rk4_in_x(detail::NormalisedBoucWen<detail::FixedPower<4>>{r, sg, {}}, w_, sgn, h, m);
+      case 5: return detail::rk4_in_x(detail::NormalisedBoucWen<detail::FixedPower<5>>{r, sg, {}}, w_, sgn, h, m);
+      case 6: return detail::rk4_in_x(detail::NormalisedBoucWen<detail::FixedPower<6>>{r, sg, {}}, w_, sgn, h, m);
+      case 7: return detail::rk4_in_x(detail::NormalisedBoucWen<detail::FixedPower<7>>{r, sg, {}}, w_, sgn, h, m);
+      case 8: return detail::rk4_in_x(detail::NormalisedBoucWen<detail::FixedPower<8>>{r, sg, {}}, w_, sgn, h, m);
+      case 9: return detail::rk4_in_x(detail::NormalisedBoucWen<detail::FixedPower<9>>{r, sg, {}}, w_, sgn, h, m);
+      case 10: return detail::rk4_in_x(detail::NormalisedBoucWen<detail::FixedPower<10>>{r, sg, {}}, w_, sgn, h, m);
+      case 11: return detail::rk4_in_x(detail::NormalisedBoucWen<detail::FixedPower<11>>{r, sg, {}}, w_, sgn, h, m);
+      default: return detail::rk4_in_x(f_, w_, sgn, h, m);
+    }
+  }
+
   Params p_;
-  detail::NormalisedBoucWen f_{};
+  detail::NormalisedBoucWen<detail::AbsPower> f_{};
+  int int_exponent_ = -1;  // n - 1 when it is an integer in 0..11, else -1
   double x_ = 0.0, w_ = 0.0, y_ = 0.0;
   bool initialised_ = false;
 };
