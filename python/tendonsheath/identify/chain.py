@@ -15,7 +15,6 @@ from __future__ import annotations
 import time
 
 import numpy as np
-from scipy.optimize import differential_evolution
 
 from ..models import Backlash, BoucWen, BoucWenBacklash, Chain, HystereticOscillator, Polynomial
 from .data import check_for_fit
@@ -150,7 +149,7 @@ def identify_chain(
     progress=True,
 ) -> Fit:
     """Identify a Chain (see the module docstring); returns a :class:`Fit`."""
-    from .core import _Progress, _refine, nan_errors
+    from .core import _refine, global_search, nan_errors
 
     n_workers = 0 if workers is None else int(workers)
     problem = ChainProblem(chain, recs, warmup, bounds, fixed, n_workers)
@@ -158,36 +157,18 @@ def identify_chain(
     space = problem.space
     counter = {"evaluations": 0}
 
-    def population(U):
-        C = space.natural(np.asarray(U).T)
-        counter["evaluations"] += C.shape[0]
-        costs = problem.cost(C)
-        return np.where(np.isfinite(costs), costs, _PENALTY)
-
-    bar = _Progress(progress, f"identify Chain({problem.first_cls.__name__}, Polynomial)", maxiter)
-    gen = {"n": 0}
-
-    def callback(intermediate_result):
-        gen["n"] += 1
-        bar.update(gen["n"], float(intermediate_result.fun))
-
     start = time.perf_counter()
-    try:
-        res = differential_evolution(
-            population,
-            list(zip(space.lower, space.upper, strict=True)),
-            vectorized=True,
-            updating="deferred",
-            popsize=popsize,
-            maxiter=maxiter,
-            tol=tol,
-            seed=seed,
-            polish=False,
-            init="latinhypercube",
-            callback=callback,
-        )
-    finally:
-        bar.close()
+    res = global_search(
+        problem,
+        space,
+        counter,
+        f"identify Chain({problem.first_cls.__name__}, Polynomial)",
+        progress,
+        maxiter=maxiter,
+        popsize=popsize,
+        tol=tol,
+        seed=seed,
+    )
     if not np.isfinite(res.fun) or res.fun >= _PENALTY:
         raise ValueError("identification failed: no candidate gives a finite simulation")
     u_best = res.x

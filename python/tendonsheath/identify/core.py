@@ -71,6 +71,44 @@ class _Progress:
             self.bar.stop()
 
 
+def global_search(
+    problem, space, counter, label, progress, *, maxiter, popsize, tol, seed, x0=None
+):
+    """SciPy's differential evolution over ``space`` (search coordinates), each generation
+    evaluated in one batched call of ``problem.cost``; invalid candidates cost _PENALTY."""
+
+    def population(U: np.ndarray) -> np.ndarray:  # U: (D, S) in search coordinates
+        C = space.natural(np.asarray(U).T)
+        counter["evaluations"] += C.shape[0]
+        costs = problem.cost(C)
+        return np.where(np.isfinite(costs), costs, _PENALTY)
+
+    bar = _Progress(progress, label, maxiter)
+    generation = {"n": 0}
+
+    def callback(intermediate_result):
+        generation["n"] += 1
+        bar.update(generation["n"], float(intermediate_result.fun))
+
+    try:
+        return differential_evolution(
+            population,
+            list(zip(space.lower, space.upper, strict=True)),
+            vectorized=True,
+            updating="deferred",
+            popsize=popsize,
+            maxiter=maxiter,
+            tol=tol,
+            seed=seed,
+            polish=False,
+            init="latinhypercube",
+            x0=x0,
+            callback=callback,
+        )
+    finally:
+        bar.close()
+
+
 def identify(
     model_class,
     t=None,
@@ -265,37 +303,19 @@ def identify(
         x0 = np.clip(space.search(c0), space.lower, space.upper)
         maxiter = max(5, maxiter // 5)  # the search starts from a good candidate
 
-    def population(U: np.ndarray) -> np.ndarray:  # U: (D, S) in search coordinates
-        C = space.natural(np.asarray(U).T)
-        counter["evaluations"] += C.shape[0]
-        costs = problem.cost(C)
-        return np.where(np.isfinite(costs), costs, _PENALTY)
-
-    bar = _Progress(progress, f"identify {cls.__name__}", maxiter)
-    generation = {"n": 0}
-
-    def callback(intermediate_result):
-        generation["n"] += 1
-        bar.update(generation["n"], float(intermediate_result.fun))
-
     start = time.perf_counter()
-    try:
-        res = differential_evolution(
-            population,
-            list(zip(space.lower, space.upper, strict=True)),
-            vectorized=True,
-            updating="deferred",
-            popsize=popsize,
-            maxiter=maxiter,
-            tol=tol,
-            seed=seed,
-            polish=False,
-            init="latinhypercube",
-            x0=x0,
-            callback=callback,
-        )
-    finally:
-        bar.close()
+    res = global_search(
+        problem,
+        space,
+        counter,
+        f"identify {cls.__name__}",
+        progress,
+        maxiter=maxiter,
+        popsize=popsize,
+        tol=tol,
+        seed=seed,
+        x0=x0,
+    )
     if not np.isfinite(res.fun) or res.fun >= _PENALTY:
         raise ValueError(
             f"identification failed: no parameters within the bounds give a finite simulation "
