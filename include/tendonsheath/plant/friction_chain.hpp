@@ -323,6 +323,7 @@ class FrictionChain {
     const double inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;
     const bool damped = has_damper_;  // the matrix then depends on dt
     for (int it = 0; it < max_it; ++it) {
+      bool solved = false;  // the elimination factors belong to this iterate
       if (it == 0 && !from_work && fact_valid_ && consistent_ && !damped && opt_.fast_path) {
         const double dx = xt - x_;
         for (std::size_t j = 0; j <= M_; ++j) w_[j] = u_[j] + dx * z_[j];
@@ -330,13 +331,53 @@ class FrictionChain {
           if (kind_[j] == NodeKind::Driven) w_[j] = xt;
       } else {
         solve(xt, inv_dt);
+        solved = true;
       }
       ++last_solves_;
       compute_tensions(w_.data());
-      if (check() == 0) return true;
+      if (violations() == 0) return true;
+      // after one plain flip the front is known to be moving: march it
+      if (it > 0 && solved && opt_.fast_path && !damped && march(xt, inv_dt) > 0) {
+        solve(xt, inv_dt);  // one full solve for all the front flips
+        ++last_solves_;
+        compute_tensions(w_.data());
+        if (violations() == 0) return true;
+      }
+      flip_violations();
       fact_valid_ = false;
     }
     return false;
+  }
+
+  // Row j of the tridiagonal system for the map sw_: l w_{j-1} + b w_j + c w_{j+1} = d.
+  // Returns false for an identity row (driven or stuck node: w_j = d).
+  bool row(std::size_t j, double xt, double inv_dt, double& l, double& b, double& c,
+           double& d) const noexcept {
+    const NodeKind kd = kind_[j];
+    if (kd == NodeKind::Driven) {
+      d = xt;
+      return false;
+    }
+    if (kd == NodeKind::Sheath) {
+      const double hj = h_[j];
+      if (hj > 0.0 && sw_[j] == 0) {
+        d = u_[j];
+        return false;
+      }
+      const double hs = hj * static_cast<double>(sw_[j]);
+      const double p = 1.0 - hs, q = 1.0 + hs;
+      l = q * k_[j];
+      c = p * k_[j + 1];
+      b = -(c + l);
+      d = -(p * T0_[j + 1] - q * T0_[j]);
+      return true;
+    }
+    const double cd = cl_[j] * inv_dt;  // Load
+    l = k_[j];
+    c = k_[j + 1];
+    b = -(c + l + kl_[j] + cd);
+    d = -(T0_[j + 1] - T0_[j]) + F0_[j] - cd * u_[j];
+    return true;
   }
 
   // Assemble and solve the tridiagonal system (Thomas algorithm) into w_, and
@@ -344,40 +385,16 @@ class FrictionChain {
   void solve(double xt, double inv_dt) noexcept {
     double cprev = 0.0, dprev = 0.0, zprev = 0.0;
     for (std::size_t j = 0; j <= M_; ++j) {
-      double l, b, c, d;
-      const NodeKind kd = kind_[j];
-      if (kd == NodeKind::Driven) {
+      double l = 0.0, b = 0.0, c = 0.0, d = 0.0;
+      if (!row(j, xt, inv_dt, l, b, c, d)) {
+        const double zj = kind_[j] == NodeKind::Driven ? 1.0 : 0.0;
         cp_[j] = 0.0;
-        dp_[j] = xt;
-        zp_[j] = 1.0;
+        dp_[j] = d;
+        zp_[j] = zj;
         cprev = 0.0;
-        dprev = xt;
-        zprev = 1.0;
+        dprev = d;
+        zprev = zj;
         continue;
-      }
-      if (kd == NodeKind::Sheath) {
-        const double hj = h_[j];
-        if (hj > 0.0 && sw_[j] == 0) {
-          cp_[j] = 0.0;
-          dp_[j] = u_[j];
-          zp_[j] = 0.0;
-          cprev = 0.0;
-          dprev = u_[j];
-          zprev = 0.0;
-          continue;
-        }
-        const double hs = hj * static_cast<double>(sw_[j]);
-        const double p = 1.0 - hs, q = 1.0 + hs;
-        l = q * k_[j];
-        c = p * k_[j + 1];
-        b = -(c + l);
-        d = -(p * T0_[j + 1] - q * T0_[j]);
-      } else {  // Load
-        const double cd = cl_[j] * inv_dt;
-        l = k_[j];
-        c = k_[j + 1];
-        b = -(c + l + kl_[j] + cd);
-        d = -(T0_[j + 1] - T0_[j]) + F0_[j] - cd * u_[j];
       }
       const double inv = 1.0 / (b - l * cprev);
       cprev = c * inv;
@@ -399,13 +416,93 @@ class FrictionChain {
     fact_valid_ = true;
   }
 
-  // Flip the stick/slip map where the solution violates it; returns flips.
-  // A branch-free counting pass first (the common case: nothing flips), then
-  // the flipping pass only when needed. Only sheath nodes have h_ > 0.
-  int check() noexcept {
+  bool stuck_violates(std::size_t j, double Tl, double Tr) const noexcept {
+    const double hj = h_[j];
+    const double sum = Tl + Tr;
+    const double cap = hj * (sum > 0.0 ? sum : 0.0);
+    const double tol = 1e-9 * (std::fabs(Tl) + std::fabs(Tr)) + 1e-12;
+    return kind_[j] == NodeKind::Sheath && hj > 0.0 && sw_[j] == 0 &&
+           std::fabs(Tr - Tl) > cap + tol;
+  }
+
+  // Slip fronts. After a reversal (or a route change) the slip zone grows from a driven end
+  // one node per active-set iteration, each a full O(M) solve: O(M^2) per reversal. A front
+  // node is a stuck node that violates its capacity while the zone beside it slips; flipping
+  // it changes only its own row, so with the elimination factors of that side the next
+  // node's test costs O(1). march() makes those flips (what the plain loop would do, one
+  // front node per iteration) and leaves the rest to the normal loop: the final solve and
+  // check decide, so the answer is the plain algorithm's. Returns the number of flips.
+  int march(double xt, double inv_dt) noexcept {
+    int flips = 0;
+    for (std::size_t g = 1; g < M_; ++g) {  // fronts moving toward node M
+      if (!stuck_violates(g, T_[g], T_[g + 1])) continue;
+      double l, b, c, d;
+      if (!row(g - 1, xt, inv_dt, l, b, c, d)) continue;  // the zone on the left must slip
+      double cprev = cp_[g - 1], dprev = dp_[g - 1];
+      std::size_t j = g;
+      while (j < M_ && stuck_violates(j, T_[j], T_[j + 1])) {
+        double lj, bj, cj, dj;
+        if (row(j + 1, xt, inv_dt, lj, bj, cj, dj)) break;  // next node not stuck: stop
+        sw_[j] = T_[j + 1] > T_[j] ? 1 : -1;
+        ++flips;
+        row(j, xt, inv_dt, l, b, c, d);
+        const double inv = 1.0 / (b - l * cprev);
+        cprev = c * inv;
+        dprev = (d - l * dprev) * inv;
+        const double wn = u_[j + 1];  // stuck neighbour
+        const double wj = dprev - cprev * wn;
+        T_[j + 1] = T0_[j + 1] + k_[j + 1] * (wn - wj);
+        ++j;
+      }
+      g = j;
+    }
+    for (std::size_t g = M_ - 1; g >= 1; --g) {  // fronts moving toward node 0
+      if (!stuck_violates(g, T_[g], T_[g + 1])) continue;
+      double l, b, c, d;
+      if (!row(g + 1, xt, inv_dt, l, b, c, d)) continue;  // the zone on the right must slip
+      // right-to-left factors of that zone: w_j = dq - cq w_{j-1}
+      std::size_t end = g + 1;
+      while (end < M_ && row(end + 1, xt, inv_dt, l, b, c, d)) ++end;
+      double cq = 0.0, dq = 0.0;
+      row(end + 1 <= M_ ? end + 1 : end, xt, inv_dt, l, b, c, d);
+      dq = end + 1 <= M_ ? d : 0.0;  // identity row beyond the zone (or none)
+      for (std::size_t i = end; i > g; --i) {
+        row(i, xt, inv_dt, l, b, c, d);
+        const double inv = 1.0 / (b - c * cq);
+        const double dn = (d - c * dq) * inv;
+        cq = l * inv;
+        dq = dn;
+      }
+      std::size_t j = g;
+      while (j >= 1 && stuck_violates(j, T_[j], T_[j + 1])) {
+        double lj, bj, cj, dj;
+        if (row(j - 1, xt, inv_dt, lj, bj, cj, dj)) break;  // next node not stuck: stop
+        sw_[j] = T_[j + 1] > T_[j] ? 1 : -1;
+        ++flips;
+        row(j, xt, inv_dt, l, b, c, d);
+        const double inv = 1.0 / (b - c * cq);
+        dq = (d - c * dq) * inv;
+        cq = l * inv;
+        const double wn = u_[j - 1];  // stuck neighbour
+        const double wj = dq - cq * wn;
+        T_[j] = T0_[j] + k_[j] * (wj - wn);
+        --j;
+      }
+      g = j + 1 < g ? j + 1 : g;
+      if (j == 0) break;
+    }
+    return flips;
+  }
+
+  // Nodes whose solution violates the stick/slip map: a branch-free counting pass (the
+  // common case: none); flip_violations() flips them. Only sheath nodes have h_ > 0.
+  int violations() const noexcept {
     int viol = 0;
     for (std::size_t j = 0; j <= M_; ++j) viol += violates(j) ? 1 : 0;
-    if (viol == 0) return 0;
+    return viol;
+  }
+
+  int flip_violations() noexcept {
     int flips = 0;
     for (std::size_t j = 0; j <= M_; ++j) {
       if (!violates(j)) continue;
