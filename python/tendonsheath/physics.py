@@ -25,14 +25,20 @@ def capstan_ratio(mu, total_angle, direction=1.0):
     return np.exp(-np.asarray(direction) * np.asarray(mu) * np.asarray(total_angle))
 
 
-def shape_integrals(route: Route, mu: float) -> tuple[float, float]:
-    """g = (1/L) int e^{-mu theta} ds and G = (1/L) int e^{+mu theta} ds (spec A.2), exact for
-    the piecewise-linear theta(s) of a route (the C++ core's computation)."""
-    shape = core.shape_integrals(
+def route_shape(route, mu: float) -> core.ShapeIntegrals:
+    """g, G and Theta of a route (anything with ``s`` and ``theta`` samples) for friction mu,
+    as the C++ core's compensators take them."""
+    return core.shape_integrals(
         np.ascontiguousarray(route.s, dtype=np.float64),
         np.ascontiguousarray(route.theta, dtype=np.float64),
         float(mu),
     )
+
+
+def shape_integrals(route: Route, mu: float) -> tuple[float, float]:
+    """g = (1/L) int e^{-mu theta} ds and G = (1/L) int e^{+mu theta} ds (spec A.2), exact for
+    the piecewise-linear theta(s) of a route (the C++ core's computation)."""
+    shape = route_shape(route, mu)
     return float(shape.g), float(shape.G)
 
 
@@ -145,6 +151,7 @@ __all__ = [
     "no_slack_limit",
     "pull_pull_dead_zone",
     "pull_pull_offsets",
+    "route_shape",
     "shape_integrals",
     "single_tendon_dead_zone",
     "single_tendon_elongation",

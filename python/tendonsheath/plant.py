@@ -156,6 +156,14 @@ class _Plant:
     def elements(self) -> int:
         return self._engine.elements
 
+    @property
+    def friction(self) -> float:
+        return self._engine.params.friction
+
+    @property
+    def stiffness(self) -> float:
+        return self._engine.params.stiffness
+
     def element_positions(self, sheath: int = 1) -> np.ndarray:
         """Arc length (m) of each element's midpoint along its sheath, proximal to distal."""
         L = self._lengths()[sheath - 1]
@@ -279,14 +287,6 @@ class SingleTendonPlant(_Plant):
         self._engine = core.SingleTendonPlant(p, route._core)
         self._setup_io(motor, sensor)
 
-    @property
-    def friction(self) -> float:
-        return self._engine.params.friction
-
-    @property
-    def stiffness(self) -> float:
-        return self._engine.params.stiffness
-
     def _lengths(self):
         return (self.route.length,)
 
@@ -368,14 +368,6 @@ class PullPullPlant(_Plant):
         return isinstance(self.load, SpringDamper) and self.load.c > 0
 
     # parameters
-    @property
-    def friction(self) -> float:
-        return self._engine.params.friction
-
-    @property
-    def stiffness(self) -> float:
-        return self._engine.params.stiffness
-
     @property
     def pretension(self) -> float:
         return self._engine.params.pretension

@@ -9,15 +9,9 @@ import numpy as np
 
 from .. import _core as core
 from .._arrays import as_signal, as_time_and_signal
+from ..physics import route_shape as shape_of
 from .base import Feedforward
 from .limits import as_limits
-
-
-def shape_of(route, friction: float) -> core.ShapeIntegrals:
-    """g, G and Theta of a route (anything with `s` and `theta` samples) for friction mu."""
-    s = np.ascontiguousarray(route.s, dtype=np.float64)
-    theta = np.ascontiguousarray(route.theta, dtype=np.float64)
-    return core.shape_integrals(s, theta, float(friction))
 
 
 class CurveAngleFeedforward(Feedforward):
