@@ -183,6 +183,7 @@ class FrictionChain {
     std::fill(sigma_.begin(), sigma_.end(), 0.0);
     std::copy(kb_.begin(), kb_.end(), k_.begin());
     std::copy(T0b_.begin(), T0b_.end(), T0_.begin());
+    elements_dt_ = 0.0;  // at rest the base elements are the effective ones of dt = 0
     x_ = 0.0;
     initialised_ = false;
     dirty_ = true;
@@ -305,41 +306,64 @@ class FrictionChain {
 
   void commit(double xt, bool converged, double dt) noexcept {
     consistent_ = converged && fact_valid_;
-    if (has_damper_) commit_rates(dt);
+    // T_ already holds the tensions of the accepted solution (w_, soon u_).
+    const double mn = has_damper_ ? commit_rates(dt) : min_of_tensions();
     u_.swap(w_);
     sig_.swap(sw_);
     x_ = xt;
     xref_ = xt;
     lazy_ = 0.0;
-    // T_ already holds the tensions of the accepted solution (now in u_).
-    double mn = std::numeric_limits<double>::infinity();
-    for (std::size_t e = 1; e <= M_; ++e) mn = std::min(mn, T_[e]);
     slack_ = slack_strict_ ? (mn < 0.0) : (mn <= 0.0);
     fast_ok_ = false;
     if (consistent_ && !has_damper_ && mn > 0.0 && opt_.fast_path) compute_interval();
   }
 
+  double min_of_tensions() const noexcept {
+    double mn = std::numeric_limits<double>::infinity();
+    for (std::size_t e = 1; e <= M_; ++e) mn = std::min(mn, T_[e]);
+    return mn;
+  }
+
   // Velocities of massive load nodes and the Maxwell forces of the accepted
-  // solution w_ (tensions in T_), before it becomes the committed state.
-  void commit_rates(double dt) noexcept {
+  // solution w_ (tensions in T_), before it becomes the committed state; in
+  // the same pass, the effective elements of a next step as long as this one
+  // (a fixed-rate loop then skips refresh_elements). Returns the least tension.
+  double commit_rates(double dt) noexcept {
     const double inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;
     if (has_mass_)
       for (std::size_t j = 0; j <= M_; ++j)
         if (ml_[j] > 0.0) vel_[j] = (w_[j] - u_[j]) * inv_dt;
-    if (relax_ > 0.0)
-      for (std::size_t e = 1; e <= M_; ++e)
-        sigma_[e] = T_[e] - T0b_[e] - (1.0 - relax_) * kb_[e] * (w_[e] - w_[e - 1]);
+    if (!(relax_ > 0.0)) return min_of_tensions();
+    const double beta = beta_of(dt);
+    const double keep = 1.0 - relax_ + relax_ * beta;
+    double mn = std::numeric_limits<double>::infinity();
+    for (std::size_t e = 1; e <= M_; ++e) {
+      const double eps = w_[e] - w_[e - 1];
+      const double s = T_[e] - T0b_[e] - (1.0 - relax_) * kb_[e] * eps;
+      sigma_[e] = s;
+      k_[e] = kb_[e] * keep;
+      T0_[e] = T0b_[e] + beta * (s - relax_ * kb_[e] * eps);
+      mn = std::min(mn, T_[e]);
+    }
+    elements_dt_ = dt;
+    return mn;
   }
 
-  // Effective element stiffness and reference tension of a step h (SLS).
+  double beta_of(double dt) const noexcept {
+    return 1.0 / (1.0 + (dt > 0.0 ? dt / tau_ : 0.0));
+  }
+
+  // Effective element stiffness and reference tension of a step dt (SLS), from
+  // the committed state; skipped when commit_rates already made them for dt.
   void refresh_elements(double dt) noexcept {
-    if (!(relax_ > 0.0)) return;
-    const double beta = 1.0 / (1.0 + (dt > 0.0 ? dt / tau_ : 0.0));
+    if (!(relax_ > 0.0) || dt == elements_dt_) return;
+    const double beta = beta_of(dt);
     const double keep = 1.0 - relax_ + relax_ * beta;
     for (std::size_t e = 1; e <= M_; ++e) {
       k_[e] = kb_[e] * keep;
       T0_[e] = T0b_[e] + beta * (sigma_[e] - relax_ * kb_[e] * (u_[e] - u_[e - 1]));
     }
+    elements_dt_ = dt;
   }
 
   // Fold the lazy offset into u_ (before anything that needs u_ itself).
@@ -422,8 +446,7 @@ class FrictionChain {
         solved = true;
       }
       ++last_solves_;
-      compute_tensions(w_.data());
-      if (violations() == 0) return true;
+      if (tensions_and_violations() == 0) return true;
       // after one plain flip the front is known to be moving: march it (the rows
       // include dampers and viscosity, and the final solve and check decide)
       if (it > 0 && solved && opt_.fast_path && march(xt, inv_dt) > 0) {
@@ -647,6 +670,18 @@ class FrictionChain {
     return viol;
   }
 
+  // compute_tensions(w_) and violations() in one pass.
+  int tensions_and_violations() noexcept {
+    T_[0] = 0.0;
+    T_[M_ + 1] = 0.0;
+    int viol = 0;
+    for (std::size_t e = 1; e <= M_; ++e) {
+      T_[e] = T0_[e] + k_[e] * (w_[e] - w_[e - 1]);
+      viol += violates(e - 1) ? 1 : 0;
+    }
+    return viol + (violates(M_) ? 1 : 0);
+  }
+
   int flip_violations() noexcept {
     int flips = 0;
     for (std::size_t j = 0; j <= M_; ++j) {
@@ -689,6 +724,7 @@ class FrictionChain {
   double tfact_inv_dt_ = 0.0;
   ChainOptions opt_;
   double relax_ = 0.0, tau_ = 1.0;
+  double elements_dt_ = 0.0;  // the step k_/T0_ were made for (SLS)
   double x_ = 0.0;
   long nonconverged_ = 0;
   int last_solves_ = 0;
