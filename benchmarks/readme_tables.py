@@ -420,8 +420,8 @@ def _cross(r: Source, split: str, title: str) -> str:
         row = ("cross_configuration", split, "rows", i)
         rows.append(
             [
-                fmt(r.num(*row, "config")),
-                fmt(r.num(*row, "distance_deg")),
+                f"{r.num(*row, 'config'):g}",  # labels (deg), not measurements
+                f"{r.num(*row, 'distance_deg'):g}",
                 *(fmt(r.num(*row, key)) for key in columns),
             ]
         )
