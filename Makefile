@@ -7,8 +7,10 @@ STAMP := $(VENV)/.deps-stamp
 CPP_BUILD := build/cpp
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 DEMO_OUT ?= demo-out
+# the real robot's recordings for benchmarks/realdata.py (not in this repository)
+REALDATA ?= ../shared/data/nhoyh_vio_com
 
-.PHONY: all venv install demo test test-python test-cpp gtest chromium bench lint clean
+.PHONY: all venv install demo test test-python test-cpp gtest chromium bench results readme lint clean
 
 all: install
 
@@ -57,7 +59,27 @@ test-python: install chromium
 test: test-cpp lint test-python
 
 bench: install
-	@for f in benchmarks/[a-z]*.py; do echo "== $$f"; $(PY) $$f || exit 1; done
+	@for f in benchmarks/[a-z]*.py; do \
+	  [ "$$f" = benchmarks/readme_tables.py ] && continue; \
+	  echo "== $$f"; $(PY) $$f || exit 1; \
+	done
+
+# Refresh the committed result files (benchmarks/results/*.json) that README.md's tables are
+# generated from, then regenerate the tables: the demo's metrics.json, the benchmark scripts'
+# JSON, and realdata.json when $(REALDATA) is there (~6 min; else the committed one is kept).
+results: demo
+	cp $(DEMO_OUT)/metrics.json benchmarks/results/demo-metrics.json
+	@for f in models plant identify compensators sweep; do \
+	  echo "== benchmarks/$$f.py"; $(PY) benchmarks/$$f.py || exit 1; \
+	done
+	@if [ -f $(REALDATA)/config_000deg.csv ]; then \
+	  echo "== benchmarks/realdata.py"; $(PY) benchmarks/realdata.py --data $(REALDATA) || exit 1; \
+	else echo "no data in $(REALDATA): benchmarks/results/realdata.json kept"; fi
+	$(MAKE) readme
+
+# README.md's tables from the committed result files (no build needed)
+readme:
+	$(PYTHON) benchmarks/readme_tables.py
 
 lint: install
 	$(VENV)/bin/ruff check python tests benchmarks examples

@@ -1,0 +1,540 @@
+"""README.md's result tables, generated from the committed result files in benchmarks/results/.
+
+    python benchmarks/readme_tables.py           # rewrite README.md in place
+    python benchmarks/readme_tables.py --check   # exit 1 with a unified diff if README.md drifts
+
+Each generated table sits between two marker comments in README.md:
+
+    <!-- table:NAME:begin -->
+    ... (generated: do not edit by hand)
+    <!-- table:NAME:end -->
+
+The tables are defined in TABLES at the end of this file (a name, the result files it reads
+and a function that renders it). The result files are refreshed by `make results` (the demo's
+metrics.json copied to benchmarks/results/demo-metrics.json, the benchmark scripts' JSON),
+which then runs this script. A missing file or key is a one-line error naming the file and key
+(exit 2). Standard library only: no build needed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import difflib
+import json
+import math
+import re
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+RESULTS = ROOT / "benchmarks" / "results"
+README = ROOT / "README.md"
+SCRIPT = "python benchmarks/readme_tables.py"
+
+
+class ResultError(Exception):
+    """A result file or a key in it is missing or unusable (one line: file and key)."""
+
+
+# -- reading result files -----------------------------------------------------------------
+
+
+def _display(path: Path) -> str:
+    try:
+        return str(path.resolve().relative_to(ROOT))
+    except ValueError:
+        return str(path)
+
+
+class Source:
+    """One JSON result file; ``get``/``num`` read a key path and fail naming file and key."""
+
+    def __init__(self, path: Path):
+        self.path = path
+        self.name = _display(path)
+        if not path.is_file():
+            raise ResultError(f"{self.name}: file not found (refresh with `make results`)")
+        try:
+            self.data = json.loads(path.read_text())
+        except (OSError, ValueError) as exc:
+            raise ResultError(f"{self.name}: not readable JSON ({exc})") from None
+
+    def get(self, *parts: str | int):
+        node = self.data
+        for depth, part in enumerate(parts):
+            here = ".".join(str(p) for p in parts[: depth + 1])
+            if isinstance(node, dict) and part in node:
+                node = node[part]
+            elif (
+                isinstance(node, list) and isinstance(part, int) and -len(node) <= part < len(node)
+            ):
+                node = node[part]
+            else:
+                if isinstance(node, dict):
+                    has = ", ".join(map(str, node)) or "nothing"
+                elif isinstance(node, list):
+                    has = f"a list of {len(node)}"
+                else:
+                    has = f"a {type(node).__name__}"
+                raise ResultError(f"{self.name}: missing key '{here}' (the parent holds {has})")
+        return node
+
+    def num(self, *parts: str | int) -> float:
+        value = self.get(*parts)
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            key = ".".join(str(p) for p in parts)
+            raise ResultError(f"{self.name}: key '{key}' is {value!r}, not a number")
+        return float(value)
+
+    def keys(self, *parts: str | int) -> list[str]:
+        node = self.get(*parts)
+        if not isinstance(node, dict) or not node:
+            key = ".".join(str(p) for p in parts)
+            raise ResultError(f"{self.name}: key '{key}' is not a non-empty mapping")
+        return list(node)
+
+    def items(self, *parts: str | int) -> list:
+        node = self.get(*parts)
+        if not isinstance(node, list) or not node:
+            key = ".".join(str(p) for p in parts)
+            raise ResultError(f"{self.name}: key '{key}' is not a non-empty list")
+        return node
+
+
+# -- formatting ---------------------------------------------------------------------------
+
+
+def fmt(x: float, sig: int = 3, trim: bool = False) -> str:
+    """``sig`` significant digits: fixed point for 1e-3 <= |x| < 1e5, else 8.28e-5.
+    ``trim`` drops trailing zeros (for published figures and settings: 0.0012, not 0.00120)."""
+    if x is None or not math.isfinite(x):
+        return "n/a"
+    if x == 0:
+        return "0"
+    r = float(f"{x:.{sig - 1}e}")  # rounded first, so 9.996 -> 10.0, not 10.00
+    e = math.floor(math.log10(abs(r)))
+    if -3 <= e < 5:
+        text = f"{r:.{max(sig - 1 - e, 0)}f}"
+        return text.rstrip("0").rstrip(".") if trim and "." in text else text
+    mantissa, exponent = f"{r:.{sig - 1}e}".split("e")
+    if trim and "." in mantissa:
+        mantissa = mantissa.rstrip("0").rstrip(".")
+    return f"{mantissa}e{int(exponent)}"
+
+
+def times(x: float) -> str:
+    return f"{fmt(x)}x"
+
+
+def slash(values, trim: bool = False) -> str:
+    return " / ".join(fmt(v, trim=trim) for v in values)
+
+
+def md_table(header: list[str], rows: list[list[str]], align: str | None = None) -> str:
+    """Markdown table; ``align`` is one letter per column, l or r (default: all l)."""
+    align = align or "l" * len(header)
+    rule = ["---:" if a == "r" else "---" for a in align]
+    lines = [header, rule, *rows]
+    return "\n".join("| " + " | ".join(cells) + " |" for cells in lines)
+
+
+def generated_from(*sources: Source) -> str:
+    files = ", ".join(f"`{s.name}`" for s in sources)
+    return f"_Generated by `{SCRIPT}` from {files} (refresh: `make results`)._"
+
+
+# -- the tables ---------------------------------------------------------------------------
+
+
+def scenarios(m: Source) -> str:
+    """The demo's three seed experiments and the robustness study beside the papers."""
+    rows = []
+
+    # do2015: MSE on the calibration route (details) and under random route changes (headline)
+    comps = m.keys("scenarios", "do2015")
+    fixed = [m.num("details", "do2015", "fixed_route", c, "mse") for c in comps]
+    moving = [m.num("scenarios", "do2015", c, "mse") for c in comps]
+    paper_comps = m.keys("paper", "do2015", "mse_rad2")
+    paper = [m.num("paper", "do2015", "mse_rad2", c) for c in paper_comps]
+
+    def gains(values):
+        return ", ".join(times(values[0] / v) for v in values[1:])
+
+    rows.append(
+        [
+            "`do2015`",
+            "pull-pull pair driving a distal joint; calibration route, and random route changes",
+            " / ".join(comps),
+            f"MSE, calibration route: {slash(fixed)} rad^2 ({gains(fixed)}); "
+            f"random routes: {slash(moving)} ({gains(moving)})",
+            f"{slash(paper, trim=True)} ({gains(paper)})",
+        ]
+    )
+
+    # sun2015: RMSE with a mid-run route change (headline) and the mean over the conditions
+    comps = m.keys("scenarios", "sun2015")
+    change = [math.degrees(m.num("scenarios", "sun2015", c, "rmse")) for c in comps]
+    mean = [
+        math.degrees(m.num("details", "sun2015", "mean_rmse_over_conditions", c)) for c in comps
+    ]
+    conditions = len(m.keys("details", "sun2015", "per_condition"))
+    rows.append(
+        [
+            "`sun2015`",
+            "curve angles 0-2 pi x no, constant and spring loads, and a mid-run route change",
+            " / ".join(comps),
+            f"route change: RMSE {slash(change)} deg; "
+            f"mean over {conditions} conditions {slash(mean)} deg",
+            "published values not recoverable; ranking",
+        ]
+    )
+
+    # lau2015: percent error of the range, and the -3 dB bandwidth of the frequency responses
+    comps = m.keys("scenarios", "lau2015")
+    mean = [m.num("scenarios", "lau2015", c, "percent_error") for c in comps]
+    worst = [m.num("scenarios", "lau2015", c, "max_percent_error") for c in comps]
+    responses = m.keys("details", "lau2015", "frequency")
+    bandwidth = [m.num("details", "lau2015", "frequency", c, "bandwidth_3db_hz") for c in responses]
+
+    def short(name: str) -> str:  # "ContinuumFeedforward (exact)" -> "exact"
+        found = re.fullmatch(r".*\((.+)\)", name)
+        return found.group(1) if found else name
+
+    rows.append(
+        [
+            "`lau2015`",
+            "continuum segment, +/-90 deg at 0.4 Hz, 1 m sheath on a 0.6 m semicircle",
+            " / ".join(short(c) for c in comps),
+            f"mean error {slash(mean)} % of the range (max {slash(worst)} %); "
+            f"-3 dB bandwidth {slash(bandwidth)} Hz ({' / '.join(short(c) for c in responses)}) "
+            "behind a 1.2 Hz motor lag",
+            f"< {fmt(m.num('paper', 'lau2015', 'percent_error'), trim=True)} % "
+            f"({fmt(m.num('paper', 'lau2015', 'max_percent_error'), trim=True)} % at the "
+            f"extremes); {fmt(m.num('paper', 'lau2015', 'bandwidth_hz'), trim=True)} Hz",
+        ]
+    )
+
+    # robustness: do2015's compensators over perturbed plants
+    comps = m.keys("robustness", "compensators")
+    median = [m.num("robustness", "compensators", c, "median") for c in comps]
+    share = [100 * m.num("robustness", "compensators", c, "within_bound") for c in comps]
+    runs = m.num("robustness", "runs")
+    rows.append(
+        [
+            "robustness",
+            f"do2015 over {runs:.0f} draws of friction and pretension (+/-30 %) "
+            "and random-arc routes",
+            " / ".join(comps),
+            f"median MSE {slash(median)} rad^2; "
+            f"share <= {fmt(m.num('robustness', 'bound'), trim=True)}: {slash(share)} %",
+            "",
+        ]
+    )
+    header = ["scenario", "conditions", "compensators", "this simulation", "paper"]
+    return md_table(header, rows) + "\n\n" + generated_from(m)
+
+
+def performance(
+    models: Source, plant: Source, identify: Source, compensators: Source, sweep: Source
+) -> str:
+    """Speed figures of the benchmark scripts, one row each."""
+    rows = []
+
+    # models.py: C++ samples/s and the speed-up over a Python loop where one exists
+    rates, speedups = [], []
+    for i, _ in enumerate(models.items("rows")):
+        name = models.get("rows", i, "model")
+        name = name.replace("PrandtlIshlinskii", "PI")
+        rates.append(f"{name} {fmt(models.num('rows', i, 'cpp_samples_per_s'))}")
+        speedup = models.get("rows", i, "speedup")
+        if isinstance(speedup, int | float) and math.isfinite(speedup):
+            speedups.append((name, speedup))
+    rows.append(
+        [
+            "`simulate`, samples/s",
+            ", ".join(rates)
+            + "; "
+            + " / ".join(times(s) for _, s in speedups)
+            + " a Python loop of the same algorithm ("
+            + " / ".join(n for n, _ in speedups)
+            + ")",
+            "`benchmarks/models.py`",
+        ]
+    )
+
+    # plant.py: 60 s at 1 kHz for N elements per sheath
+    prow = plant.items("rows")
+    by_n = {int(plant.num("rows", i, "elements")): i for i in range(len(prow))}
+    if 100 not in by_n:
+        raise ResultError(f"{plant.name}: no row with elements = 100 in 'rows'")
+    i100, first, last = by_n[100], min(by_n), max(by_n)
+    rows.append(
+        [
+            f"physics plant, {plant.num('rows', i100, 'steps') / 1000:g} s at 1 kHz",
+            f"N = 100: {fmt(plant.num('rows', i100, 'cpp_seconds'))} s "
+            f"({fmt(plant.num('rows', i100, 'cpp_us_per_step'))} us/step); "
+            f"N = {first} ... {last}: {fmt(plant.num('rows', by_n[first], 'cpp_seconds'))} ... "
+            f"{fmt(plant.num('rows', by_n[last], 'cpp_seconds'))} s "
+            f"(about N^{fmt(plant.num('growth_exponent_cpp'), 2)}: slip fronts are marched "
+            "node by node, but each event still costs O(N) solves)",
+            "`benchmarks/plant.py`",
+        ]
+    )
+
+    # identify.py: tendonsheath vs SciPy DE over a pure-Python simulation
+    rows.append(
+        [
+            "identify BoucWenBacklash, 20 s at 1 kHz",
+            f"{fmt(identify.num('tendonsheath', 'seconds'))} s, validation rmse "
+            f"{fmt(identify.num('tendonsheath', 'validation_rmse'))} (SciPy DE on pure Python: "
+            f"{fmt(identify.num('baseline', 'validation_rmse'))}), "
+            f"{times(identify.num('speedup'))} faster",
+            "`benchmarks/identify.py`",
+        ]
+    )
+
+    # compensators.py: per-step latency, feedforwards (ranges) and the adaptive controller
+    ff_median, ff_p999, ad_median, ad_p999 = [], [], [], []
+    for i, _ in enumerate(compensators.items("rows")):
+        adaptive = str(compensators.get("rows", i, "name")).startswith("Adaptive")
+        (ad_median if adaptive else ff_median).append(compensators.num("rows", i, "median_ns"))
+        (ad_p999 if adaptive else ff_p999).append(compensators.num("rows", i, "p999_ns"))
+    if not ff_median or not ad_median:
+        raise ResultError(f"{compensators.name}: 'rows' lacks a feedforward or an Adaptive row")
+
+    def span(values):
+        lo, hi = min(values), max(values)
+        return fmt(lo) if fmt(lo) == fmt(hi) else f"{fmt(lo)}-{fmt(hi)}"
+
+    rows.append(
+        [
+            "compensator step (C++, median / p99.9)",
+            f"feedforwards {span(ff_median)} ns / {span(ff_p999)} ns, "
+            f"adaptive controller {span(ad_median)} ns / {span(ad_p999)} ns",
+            "`benchmarks/compensators.py`",
+        ]
+    )
+
+    # sweep.py: runs/s of the local pool on 1 and 2 workers, Dask overhead
+    local, dask = {}, None
+    for i, _ in enumerate(sweep.items("rows")):
+        engine = str(sweep.get("rows", i, "engine"))
+        if engine.startswith("local"):
+            local[int(sweep.num("rows", i, "workers"))] = sweep.num("rows", i, "runs_per_second")
+        elif engine.startswith("dask"):
+            dask = sweep.num("rows", i, "overhead_per_run")
+    if 1 not in local or 2 not in local or dask is None:
+        raise ResultError(
+            f"{sweep.name}: 'rows' needs local pool rows for 1 and 2 workers and a dask row"
+        )
+    rows.append(
+        [
+            "sweep, do2015 at reduced length",
+            f"{fmt(local[1])} runs/s on 1 worker, {fmt(local[2])} on 2 "
+            f"({times(local[2] / local[1])}); Dask LocalCluster overhead "
+            f"{fmt(100 * dask)} % of a run",
+            "`benchmarks/sweep.py`",
+        ]
+    )
+    return (
+        md_table(["what", "figure", "script"], rows)
+        + "\n\n"
+        + generated_from(models, plant, identify, compensators, sweep)
+    )
+
+
+# models compared on the real data, in column order, with their short names
+REAL_MODELS = {
+    "affine": "affine",
+    "Backlash": "BL",
+    "BoucWenBacklash": "BWB",
+    "PrandtlIshlinskii": "PI",
+    "GeneralizedPrandtlIshlinskii": "GPI",
+    "BoucWenBacklash+poly3": "BWB+poly3",
+}
+
+
+def _by_model(src: Source, *parts) -> dict:
+    table = src.items(*parts)
+    by = {}
+    for i, _ in enumerate(table):
+        by[src.get(*parts, i, "model")] = i
+    missing = [m for m in REAL_MODELS if m not in by]
+    if missing:
+        key = ".".join(str(p) for p in parts)
+        raise ResultError(f"{src.name}: '{key}' has no row for model(s) {', '.join(missing)}")
+    return by
+
+
+def _failed(src: Source, *parts) -> bool:
+    """A model row that records a failed fit (shown as 'failed', as realdata.py does)."""
+    row = src.get(*parts)
+    return isinstance(row, dict) and bool(row.get("error"))
+
+
+def realdata_files(r: Source) -> str:
+    """Held-out (in-sample) rmse per file and model, the best model and best/affine."""
+    rows, met, worst = [], 0, None
+    for i, _ in enumerate(r.items("per_file")):
+        by = _by_model(r, "per_file", i, "table")
+        cells = [str(r.get("per_file", i, "file"))]
+        for model in REAL_MODELS:
+            j = by[model]
+            if _failed(r, "per_file", i, "table", j):
+                cells.append("failed")
+                continue
+            val = r.num("per_file", i, "table", j, "val_rmse")
+            train = r.num("per_file", i, "table", j, "train_rmse")
+            cells.append(f"{fmt(val)} ({fmt(train)})")
+        best = str(r.get("per_file", i, "best"))
+        ratio = r.num("per_file", i, "ratio")
+        met += ratio <= 1 / 3
+        if worst is None or ratio > worst[1]:
+            worst = (cells[0], ratio)
+        rows.append([*cells, REAL_MODELS.get(best, best), fmt(ratio)])
+    header = ["file", *REAL_MODELS.values(), "best", "best/affine"]
+    target = (
+        f"The target (the best model's held-out rmse at most a third of the affine "
+        f"baseline's) is met on {met} of {len(rows)} files; the largest best/affine is "
+        f"{fmt(worst[1])} ({worst[0]})."
+    )
+    return md_table(header, rows, "lrrrrrrlr") + "\n\n" + target + "\n\n" + generated_from(r)
+
+
+def _cross(r: Source, split: str, title: str) -> str:
+    train = r.items("cross_configuration", split, "train")
+    caption = (
+        f"Cross-configuration {title} ({split}): train on "
+        f"{', '.join(str(a) for a in train)} deg, predict the others (whole files), "
+        "rmse in degrees:"
+    )
+    columns = {
+        "affine_rmse_deg": "affine(angle)",
+        "BoucWenBacklash(angle-linear)_rmse_deg": "BWB(angle-linear)",
+        "CurveAngleModel_rmse_deg": "CurveAngleModel",
+    }
+    rows = []
+    for i, _ in enumerate(r.items("cross_configuration", split, "rows")):
+        row = ("cross_configuration", split, "rows", i)
+        rows.append(
+            [
+                f"{r.num(*row, 'config'):g}",  # labels (deg), not measurements
+                f"{r.num(*row, 'distance_deg'):g}",
+                *(fmt(r.num(*row, key)) for key in columns),
+            ]
+        )
+    header = ["config", "distance", *columns.values()]
+    return caption + "\n\n" + md_table(header, rows, "rrrrr")
+
+
+def realdata_interpolation(r: Source) -> str:
+    return _cross(r, "interpolation", "A")
+
+
+def realdata_extrapolation(r: Source) -> str:
+    return _cross(r, "extrapolation", "B")
+
+
+def realdata_amplitude(r: Source) -> str:
+    rows = []
+    for name in r.keys("amplitude"):
+        by = _by_model(r, "amplitude", name)
+        cells = [name]
+        for model in REAL_MODELS:
+            if _failed(r, "amplitude", name, by[model]):
+                cells.append("failed")
+            else:
+                cells.append(fmt(r.num("amplitude", name, by[model], "val_rmse")))
+        rows.append(cells)
+    return md_table(["predicted file", *REAL_MODELS.values()], rows, "lrrrrrr")
+
+
+# -- the table specs: marker name, result files (in benchmarks/results/), renderer ----------
+
+
+@dataclass(frozen=True)
+class Table:
+    name: str  # README markers: <!-- table:NAME:begin --> ... <!-- table:NAME:end -->
+    files: tuple[str, ...]  # in benchmarks/results/, passed to render in this order
+    render: Callable[..., str]
+
+
+TABLES = [
+    Table("scenarios", ("demo-metrics.json",), scenarios),
+    Table(
+        "performance",
+        ("models.json", "plant.json", "identify.json", "compensators.json", "sweep.json"),
+        performance,
+    ),
+    Table("realdata-files", ("realdata.json",), realdata_files),
+    Table("realdata-interpolation", ("realdata.json",), realdata_interpolation),
+    Table("realdata-extrapolation", ("realdata.json",), realdata_extrapolation),
+    Table("realdata-amplitude", ("realdata.json",), realdata_amplitude),
+]
+
+
+# -- rewriting README.md ------------------------------------------------------------------
+
+
+def _markers(name: str) -> tuple[str, str]:
+    return f"<!-- table:{name}:begin -->", f"<!-- table:{name}:end -->"
+
+
+def render(text: str, results: Path = RESULTS, tables: list[Table] = TABLES) -> str:
+    """``text`` (README.md's) with every table's marker block regenerated."""
+    cache: dict[str, Source] = {}
+    for table in tables:
+        begin, end = _markers(table.name)
+        if text.count(begin) != 1 or text.count(end) != 1:
+            raise ResultError(
+                f"README.md: expected one '{begin}' and one '{end}' "
+                f"(found {text.count(begin)} and {text.count(end)})"
+            )
+        head, rest = text.split(begin)
+        _, tail = rest.split(end)
+        for f in table.files:
+            if f not in cache:
+                cache[f] = Source(results / f)
+        sources = [cache[f] for f in table.files]
+        body = table.render(*sources).strip("\n")
+        text = f"{head}{begin}\n{body}\n{end}{tail}"
+    return text
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--check", action="store_true", help="do not write; exit 1 on a diff")
+    ap.add_argument("--readme", type=Path, default=README)
+    ap.add_argument("--results", type=Path, default=RESULTS)
+    args = ap.parse_args(argv)
+    try:
+        current = args.readme.read_text()
+        new = render(current, args.results)
+    except (ResultError, OSError) as exc:
+        print(f"readme_tables: error: {exc}", file=sys.stderr)
+        return 2
+    if args.check:
+        if new == current:
+            print(f"{_display(args.readme)}: tables up to date")
+            return 0
+        diff = difflib.unified_diff(
+            current.splitlines(keepends=True),
+            new.splitlines(keepends=True),
+            f"{_display(args.readme)} (committed)",
+            f"{_display(args.readme)} (generated)",
+        )
+        sys.stdout.writelines(diff)
+        print(f"\n{_display(args.readme)} differs from its result files: run `{SCRIPT}`")
+        return 1
+    if new != current:
+        args.readme.write_text(new)
+        print(f"rewrote {_display(args.readme)}")
+    else:
+        print(f"{_display(args.readme)}: tables up to date")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
