@@ -350,6 +350,21 @@ class PullPullPlant(_Plant):
     default the same) between a proximal pulley of radius r_p and a distal one of radius r_d
     (m). ``load`` (None, ConstantTorque, TorsionalSpring or SpringDamper) acts on the distal
     pulley. ``elements`` N per sheath; ``friction`` mu.
+
+    Effects beyond the quasi-static capstan pair (all off by default; with none of them and
+    no load the pair *is* a classic backlash, see :mod:`tendonsheath.presets` for realistic
+    values):
+
+    - ``distal_inertia`` J_d (kg m^2) and ``distal_damping`` c_d (N m s/rad): a dynamic distal
+      joint;
+    - ``sheath_viscosity`` (N s/m per metre of sheath): viscous drag on the sliding tendon
+      besides Coulomb friction, so the hysteresis widens with rate;
+    - ``relaxation_fraction`` r in [0, 1) and ``relaxation_time`` tau (s): each tendon element a
+      standard linear solid (r EA relaxes with time constant tau), so a held input creeps;
+    - ``friction2`` and ``stiffness2``: sheath 2's friction and tendon 2's EA when the pair is
+      unequal (None: the same as tendon 1).
+
+    Any of these (or a damped load) makes a step depend on dt, so ``t`` is then required.
     """
 
     _rows = 2
