@@ -55,7 +55,13 @@ def test_held_out_logs_and_report(tmp_path):
         [(t, x, y)], models=["backlash"], validate=[(t2, x2, y2)], refit=False, **FAST
     )
     assert cmp.mode.startswith("held out: 1 validation")
-    assert cmp.winner is cmp.fits[cmp.winner_name].model or cmp.winner_name == "affine"
+    # measured: Backlash 0.0458 against affine 0.0541 validation rmse (1.18x); with
+    # refit=False the winner is the fitted model itself
+    assert cmp.winner_name == "Backlash"
+    assert cmp.winner is cmp.fits["Backlash"].model
+    # the table's validation rmse, computed here: the held-out log simulated from its start
+    val = np.sqrt(np.mean((cmp.winner.simulate(t2, x2) - y2) ** 2))
+    assert cmp.row("Backlash")["val_rmse"] == pytest.approx(val, rel=1e-9)
     page = cmp.report(tmp_path / "rep")
     assert page.is_file() and (tmp_path / "rep" / "loops.png").stat().st_size > 1000
     data = json.loads((tmp_path / "rep" / "comparison.json").read_text())
@@ -67,11 +73,19 @@ def test_affine_wins_on_a_linear_system():
     x = np.sin(t)
     y = 2.0 * x + 0.3 + 1e-3 * np.cos(17 * t)
     cmp = ts.compare_models([(t, x, y)], models=["backlash"], validate=0.3, **FAST)
-    if cmp.winner_name == "affine":
-        assert isinstance(cmp.winner, Polynomial)
-        assert np.allclose(cmp.winner.params["coefficients"], [0.3, 2.0], atol=1e-2)
-    else:  # a backlash with no gap is the same line: it may tie
-        assert cmp.row("Backlash")["val_rmse"] <= cmp.row("affine")["val_rmse"] * 1.01
+    # measured validation rmse: affine 6.9e-4 (the 1e-3 ripple), Backlash 0.149
+    assert cmp.winner_name == "affine"
+    assert isinstance(cmp.winner, Polynomial)
+    # the baseline computed here: least squares on the first 70 % in time, scored on the rest
+    k = int(np.searchsorted(t, 0.7 * t[-1]))
+    b, a = np.linalg.lstsq(np.column_stack([np.ones(k), x[:k]]), y[:k], rcond=None)[0]
+    val = np.sqrt(np.mean((a * x[k:] + b - y[k:]) ** 2))
+    assert cmp.row("affine")["val_rmse"] == pytest.approx(val, rel=1e-9)
+    # the winner is refitted on the whole recording
+    whole = np.linalg.lstsq(np.column_stack([np.ones_like(x), x]), y, rcond=None)[0]
+    np.testing.assert_allclose(cmp.winner.params["coefficients"], whole, rtol=1e-9)
+    # and recovers the line: measured errors 2.7e-5 (offset), 4.4e-5 (slope)
+    np.testing.assert_allclose(cmp.winner.params["coefficients"], [0.3, 2.0], rtol=0, atol=2e-4)
 
 
 def test_model_names_and_bad_arguments():
@@ -125,8 +139,19 @@ def test_cli_compare(tmp_path):
         ],
     )
     assert res.exit_code == 0, res.output
-    assert "affine" in res.output and "winner:" in res.output
     assert (tmp_path / "rep" / "report.html").is_file()
+    data = json.loads((tmp_path / "rep" / "comparison.json").read_text())
+    assert f"winner: {data['winner']}" in res.output
+    assert data["winner"] == data["table"][0]["model"]
+    assert {r["model"] for r in data["table"]} == {"affine", "Backlash", "BoucWenBacklash"}
+    # the affine baseline computed here from the file: least squares on the first 60 % in
+    # time, scored on the last 40 %
+    log = np.genfromtxt(tmp_path / "run.csv", delimiter=",", names=True)
+    tt, xx, yy = log["time"], log["motor"], log["tip"]
+    k = int(np.searchsorted(tt, tt[0] + 0.6 * (tt[-1] - tt[0])))
+    b, a = np.linalg.lstsq(np.column_stack([np.ones(k), xx[:k]]), yy[:k], rcond=None)[0]
+    affine = next(r for r in data["table"] if r["model"] == "affine")
+    assert affine["val_rmse"] == pytest.approx(np.sqrt(np.mean((a * xx[k:] + b - yy[k:]) ** 2)))
     bad = runner.invoke(
         app, ["compare", str(tmp_path / "run.csv"), "--input", "motor", "--output", "nope"]
     )

@@ -45,10 +45,14 @@ def test_inverse_feedforward_and_adaptive_beat_the_papers_factors(do_setup, name
     )
     adaptive = ts.bench.run(torque, ctrl, T, y_d, noise=encoder())
     base = none.metrics["mse"]
-    assert base / with_ff.metrics["mse"] >= 13  # Do et al.: 0.0158 -> 0.0012
-    # Do et al.: -> 8.28e-5 (190x). At 1 Hz the 1 kHz loop's delay and derivative filter
-    # cost the adaptive controller that margin (about 110x here): the bound is lower there.
-    needed = 100 if name == "sine 1 Hz" else 190
+    # Do et al.: 0.0158 -> 0.0012 (13x). Measured (seed 0): 1265x, 154x, 43.5x, 417x for
+    # 0.1 Hz, 0.5 Hz, 1 Hz, multi-sine; the paper's 13x holds with a margin of 3.3x or more.
+    assert base / with_ff.metrics["mse"] >= 13
+    # Do et al.: -> 8.28e-5 (190x). Measured: 709x, 581x, 521x at 0.1 Hz, 0.5 Hz, multi-sine
+    # (the paper's 190x with a margin of 2.7x or more). At 1 Hz the paper's 190x is NOT met:
+    # measured 101x (the 1 kHz loop's delay and derivative filter); the bound there is 50x,
+    # 2x below the measured figure, a guard against regression, not the paper's claim.
+    needed = 50 if name == "sine 1 Hz" else 190
     assert base / adaptive.metrics["mse"] >= needed
 
 
@@ -134,6 +138,8 @@ def test_curve_angle_feedforward_holds_its_accuracy_away_from_its_calibration_an
         return ts.bench.run(plant, ctrl, t, y_d, routes=routes, noise=encoder()).metrics["rmse"]
 
     calibrated = rmse(math.pi)
+    # measured rmse / calibrated: 1.00, 1.00, 1.00 at pi/2, 2 pi, 3 pi and 0.98 on the
+    # changing route; the bound 2x leaves a 2x margin
     for theta in (math.pi / 2, 2 * math.pi, 3 * math.pi):
         assert rmse(theta) <= 2 * calibrated, theta
 
@@ -147,4 +153,5 @@ def test_curve_angle_feedforward_holds_its_accuracy_away_from_its_calibration_an
 
     assert rmse(routes=changing) <= 2 * calibrated
     fixed_at_pi = rmse(math.pi, compensator="fixed")
+    # measured 48.6x; the bound 3x is 16x below
     assert rmse(3 * math.pi, compensator="fixed") > 3 * fixed_at_pi

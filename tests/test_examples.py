@@ -1,5 +1,6 @@
 """Every numbered Python example runs and writes what it says."""
 
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -7,6 +8,16 @@ from pathlib import Path
 import pytest
 
 EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "examples").glob("[0-9]*.py"))
+
+
+def announced_files(stdout: str, cwd: Path) -> list[Path]:
+    """The files an example says it wrote: 'wrote A [and B]' and 'figure: A' lines."""
+    paths = []
+    for line in stdout.splitlines():
+        m = re.match(r"\s*(?:wrote|figure:)\s+(.+)$", line)
+        if m:
+            paths += [Path(p.strip()) for p in m.group(1).split(" and ")]
+    return [p if p.is_absolute() else cwd / p for p in paths]
 
 
 @pytest.mark.parametrize("script", EXAMPLES, ids=lambda p: p.name)
@@ -19,4 +30,11 @@ def test_example_runs(script, tmp_path):
         args += ["--scale", "0.2"]
     result = subprocess.run(args, capture_output=True, text=True, timeout=300, cwd=tmp_path)
     assert result.returncode == 0, result.stderr[-3000:]
-    assert result.stdout.strip()
+    # every file it announces exists, is not empty, and lies in its output folder; an
+    # example that takes --out announces at least one
+    written = announced_files(result.stdout, tmp_path)
+    if "--out" in text:
+        assert written, result.stdout[-2000:]
+    for path in written:
+        assert path.is_file() and path.stat().st_size > 0, (path, result.stdout[-2000:])
+        assert path.resolve().is_relative_to(tmp_path.resolve()), path

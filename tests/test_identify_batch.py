@@ -77,6 +77,8 @@ def test_separable_cost_is_the_least_squares_residual():
 
 
 def test_fit_report_summary_and_json(tmp_path):
+    """Fit's extras; the data come from the fitted class (self-class: not evidence of fit
+    quality on a mechanism)."""
     truth = BoucWenBacklash(B_r=0.1, B_l=0.08)
     recs = _recordings(truth, n=600)
     fit = ts.identify(BoucWenBacklash, recordings=recs, warmup=30, progress=False)

@@ -185,7 +185,7 @@ def die(params):
 def test_local_pool_is_kept_and_a_dead_worker_is_a_clear_error():
     res = ts.sweep(tracking_mse, {"friction": Relative(0.1, 0.3), "elements": 12}, n=4, seed=1,
                    workers=2)  # fmt: skip
-    assert res.engine["compute_seconds"] > 0 and res.engine["overhead_per_run"] > -1
+    assert res.engine["compute_seconds"] > 0
     from tendonsheath.sweep import engines
 
     assert len(engines._POOLS) >= 1
