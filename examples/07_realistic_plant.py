@@ -42,6 +42,7 @@ def main(argv=None):
         print(f"{name:>13}: loop width {widths}")
         path = args.out / f"loops_{name.replace(' ', '_')}.png"
         loops_figure(loops, title=name).savefig(path, dpi=100)
+        print(f"wrote {path}")
 
     # creep: against a spring load, ramp the motor to 1 rad, hold it, and watch the output move
     # (sheath friction locks most of the tendons' relaxation in place)
@@ -56,7 +57,6 @@ def main(argv=None):
     y = sprung.simulate(t, np.minimum(t, 1.0))
     creep = math.degrees(y[-1] - y[1500])
     print(f"creep while the motor holds 1 rad against a spring: {creep:+.4f} deg in 6.5 s")
-    print(f"wrote {args.out}")
 
 
 if __name__ == "__main__":
