@@ -160,10 +160,14 @@ class Calibration:
     def curve_model(self):
         return self.fits["CurveAngleModel"].model
 
-    def curve_model_with_load(self, load: str | None):
-        """The CurveAngleModel with the load of load run ``load`` (None: no load told)."""
+    def curve_model_with_load(self, load: str | None = "calibrated"):
+        """The CurveAngleModel with a load: "calibrated" the load groups identified from the
+        calibration runs themselves (what the robot carried then), a name the load of that
+        load run (:func:`calibrate_load`), None no load (not told)."""
         p = dict(self.curve_model.params)
-        if load is None:
+        if load == "calibrated":
+            pass
+        elif load is None:
             p["load"], p["spring"] = 0.0, 0.0
         else:
             p["load"], p["spring"] = self.loads[load]["load"], self.loads[load]["spring"]
@@ -174,7 +178,7 @@ class Calibration:
 
         return InverseFeedforward(self.backlash_model, **options)
 
-    def curve_angle_feedforward(self, load: str | None = None, **options):
+    def curve_angle_feedforward(self, load: str | None = "calibrated", **options):
         from ..compensate import CurveAngleFeedforward
 
         return CurveAngleFeedforward.from_model(self.curve_model_with_load(load), **options)
@@ -195,7 +199,7 @@ class Calibration:
         g = self.groups[name]
         return Told(name, g["value"], g["source"])
 
-    def told(self, compensator: str, load: str | None = None, **declared) -> list[dict]:
+    def told(self, compensator: str, load: str | None = "calibrated", **declared) -> list[dict]:
         """What compensator ``compensator`` is told and where each value came from.
         ``declared``: other values given by the user (name -> (value, source))."""
         rows: list[Told] = []
@@ -213,6 +217,10 @@ class Calibration:
             else:
                 if load is None:
                     rows.append(Told("distal load", 0.0, "not told (ignored)"))
+                elif load == "calibrated":
+                    rows.append(self._group("F_L L/(EA r_p)"))
+                    if "k_e L/EA" in self.groups:
+                        rows.append(self._group("k_e L/EA"))
                 else:
                     info = self.loads[load]
                     rows.append(Told("F_L L/(EA r_p)", info["F_L L/(EA r_p)"], info["source"]))
@@ -259,20 +267,40 @@ class Calibration:
     def identified_rows(self) -> list[dict[str, Any]]:
         """Rows for the report: each identified group or parameter and its source."""
         rows = [
-            {"quantity": k, "value": g["value"], "source": g["source"]}
+            {
+                "quantity": k,
+                "value": g["value"],
+                "relative s.e.": g.get("relative_se"),
+                "source": g["source"],
+            }
             for k, g in self.groups.items()
         ]
-        if "BoucWenBacklash" in self.fits:
-            fit = self.fits["BoucWenBacklash"]
+        for name, fit in self.fits.items():
+            if name != "BoucWenBacklash":
+                continue
             for k, v in fit.model.params.items():
+                se = fit.standard_errors.get(k)
                 rows.append(
-                    {"quantity": f"BoucWenBacklash {k}", "value": v, "source": fit_source(self, fit)}
+                    {
+                        "quantity": f"BoucWenBacklash {k}",
+                        "value": v,
+                        "relative s.e.": abs(se / v) if se is not None and v else None,
+                        "source": fit_source(self, fit),
+                    }
                 )
         for name, info in self.loads.items():
             for k in ("F_L L/(EA r_p)", "k_e L/EA"):
-                rows.append({"quantity": f"{name}: {k}", "value": info[k], "source": info["source"]})
+                rows.append(
+                    {
+                        "quantity": f"{name}: {k}",
+                        "value": info[k],
+                        "relative s.e.": None,
+                        "source": info["source"],
+                    }
+                )
         for d in self.declared.values():
-            rows.append(d.as_dict())
+            rows.append({**d.as_dict(), "relative s.e.": None})
+            rows[-1] = {k: rows[-1][k] for k in ("quantity", "value", "relative s.e.", "source")}
         return rows
 
 
@@ -292,6 +320,10 @@ def _near_bounds(fit, tol: float = 0.01) -> list[str]:
         lo, hi = (float(b) for b in fit.bounds[name])
         v = float(params[name])
         if not (math.isfinite(lo) and math.isfinite(hi)) or hi <= lo:
+            continue
+        if lo == 0.0 and v >= 0:  # a physical floor: at it only when v is ~0
+            if v <= 1e-6 * hi or hi - v <= 0.01 * hi:
+                out.append(name)
             continue
         if lo > 0 and hi / lo > 10 and v > 0:
             lo, hi, v = math.log(lo), math.log(hi), math.log(v)
@@ -421,6 +453,14 @@ def calibrate(
         fits["CurveAngleModel"] = fit
         at_bounds["CurveAngleModel"] = _near_bounds(fit)
         p = fit.model.params
+        se = fit.standard_errors
+
+        def rel(*names):  # relative standard error of a product of parameters
+            terms = [
+                (se.get(n) or 0.0) / abs(p[n]) for n in names if n in se and p[n] != 0
+            ]
+            return float(math.sqrt(sum(x * x for x in terms))) if terms else None
+
         src = fit_source(None, fit) + " (sensed curve angles " + ", ".join(
             f"{r.sensed_angle:.3f}" for r in runs
         ) + " rad)"
@@ -430,22 +470,26 @@ def calibrate(
             "source": src
             if friction_identified
             else f"UNIDENTIFIED (one curve angle): declared value {p['friction']:g}",
+            "relative_se": rel("friction"),
             "identified": friction_identified,
         }
         groups["T0 L/(EA r_p)"] = {
             "value": p["pretension"] * scale,
             "source": src,
+            "relative_se": rel("stiffness"),
             "identified": True,
             "unit": "rad at the motor",
         }
         groups["gain r_p/r_d"] = {
             "value": p["proximal_radius"] / p["distal_radius"],
             "source": src,
+            "relative_se": rel("distal_radius"),
             "identified": True,
         }
         groups["F_L L/(EA r_p)"] = {
             "value": p["load"] * scale,
             "source": src,
+            "relative_se": rel("stiffness", "load"),
             "identified": True,
             "unit": "rad at the motor",
         }
@@ -453,7 +497,8 @@ def calibrate(
             groups["k_e L/EA"] = {
                 "value": p["spring"] * p["length"] / p["stiffness"],
                 "source": src,
-                "identified": True,
+                "relative_se": rel("stiffness", "spring"),
+            "identified": True,
             }
     return Calibration(
         fits=fits,
