@@ -456,14 +456,15 @@ def calibrate(
         se = fit.standard_errors
 
         def rel(*names):  # relative standard error of a product of parameters
-            terms = [
-                (se.get(n) or 0.0) / abs(p[n]) for n in names if n in se and p[n] != 0
-            ]
+            terms = [(se.get(n) or 0.0) / abs(p[n]) for n in names if n in se and p[n] != 0]
             return float(math.sqrt(sum(x * x for x in terms))) if terms else None
 
-        src = fit_source(None, fit) + " (sensed curve angles " + ", ".join(
-            f"{r.sensed_angle:.3f}" for r in runs
-        ) + " rad)"
+        src = (
+            fit_source(None, fit)
+            + " (sensed curve angles "
+            + ", ".join(f"{r.sensed_angle:.3f}" for r in runs)
+            + " rad)"
+        )
         scale = p["length"] / (p["stiffness"] * p["proximal_radius"])
         groups["mu"] = {
             "value": p["friction"],
@@ -498,7 +499,7 @@ def calibrate(
                 "value": p["spring"] * p["length"] / p["stiffness"],
                 "source": src,
                 "relative_se": rel("stiffness", "spring"),
-            "identified": True,
+                "identified": True,
             }
     return Calibration(
         fits=fits,

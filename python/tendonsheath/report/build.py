@@ -122,7 +122,7 @@ def scenario_section(result, out: Path) -> tuple[str, list[Path]]:
             parts.append("<h3>Calibration (identified on the plant)</h3>" + html.table([cal]))
     if result.identified:
         parts.append(
-            "<h3>Identified parameters</h3><p class=\"note\">From the calibration logs alone "
+            '<h3>Identified parameters</h3><p class="note">From the calibration logs alone '
             "(motor encoder, noisy distal sensor, sensed curve angle). Groups that cannot be "
             "separated are reported as groups; the rest is held at declared values.</p>"
             + html.table(result.identified)
@@ -150,14 +150,16 @@ def honesty_section(panel: dict) -> str:
         {
             "compensator": name,
             "told": row["quantity"],
-            "value": row["value"] if isinstance(row["value"], float | int | str) else str(row["value"]),
+            "value": row["value"]
+            if isinstance(row["value"], float | int | str)
+            else str(row["value"]),
             "where it came from": row["source"],
         }
         for name, e in panel.items()
         for row in e.get("told", [])
     ]
     return (
-        "<h3>Honesty panel</h3><p class=\"note\">How far the plant lies from each "
+        '<h3>Honesty panel</h3><p class="note">How far the plant lies from each '
         "compensator's model class: that class identified on the test run's own log (motor "
         "encoder in, distal sensor out), next to the output range.</p>"
         + html.table(summary)
@@ -169,8 +171,9 @@ def honesty_section(panel: dict) -> str:
 def intro_for(results: list) -> str:
     """The report's introduction, from what each scenario actually did."""
     lines = [
-        f"<li>{html.fmt(r.protocol)}</li>" if r.protocol else
-        f"<li>{html.fmt(r.name)}: no calibration protocol recorded.</li>"
+        f"<li>{html.fmt(r.protocol)}</li>"
+        if r.protocol
+        else f"<li>{html.fmt(r.name)}: no calibration protocol recorded.</li>"
         for r in results
     ]
     return (

@@ -10,8 +10,8 @@ import numpy as np
 
 from ...route import Route
 from ...sensor import Sensor
-from ..frequency import FrequencyResponse
 from ..calibration import calibration_input  # noqa: F401 (re-exported)
+from ..frequency import FrequencyResponse
 from ..run import Result
 
 
@@ -64,9 +64,7 @@ def honesty_panel(
     for name, result in runs.items():
         declared = dict((told or {}).get(name, {}))
         if name == "none":
-            rows = [
-                {"quantity": k, "value": v, "source": src} for k, (v, src) in declared.items()
-            ]
+            rows = [{"quantity": k, "value": v, "source": src} for k, (v, src) in declared.items()]
             bounds = []
         else:
             rows = cal.told(name, load=load, **declared)

@@ -10,9 +10,9 @@ import numpy as np
 from ...motor import Motor
 from ...plant import ContinuumPlant
 from ...route import Route
+from ..calibration import calibrate as bench_calibrate
 from ..frequency import frequency_response
 from ..run import run
-from ..calibration import calibrate as bench_calibrate
 from .common import (
     ScenarioResult,
     encoder,
