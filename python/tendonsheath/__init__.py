@@ -1,6 +1,6 @@
 """tendonsheath: model, identify and compensate tendon-sheath mechanisms."""
 
-from . import bench, compensate, io, loads, models, physics
+from . import bench, compensate, io, loads, models, physics, presets
 from .compare import Comparison, compare_models
 from .identify import Fit, identify
 from .models import load_model
@@ -38,6 +38,7 @@ __all__ = [
     "loads",
     "models",
     "physics",
+    "presets",
     "sweep",
     "__version__",
 ]

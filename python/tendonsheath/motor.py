@@ -19,6 +19,14 @@ class Motor:
     ``Motor.torque(...)``: J q'' + b q' = sat(tau_cmd, max_torque) + tau_tendons, for
     controllers that command torque; the plant supplies the tendon torque on the pulley. It
     starts at rest at q = 0.
+
+    Drive-train effects (off by default): ``coulomb_friction`` (N m) and ``viscous_friction``
+    (N m s/rad) on the motor shaft, and ``gear_backlash`` (rad, total play) between the shaft
+    and the proximal pulley. A position motor feels torques (the tendons' and its friction)
+    only through its reflected ``inertia`` (kg m^2; 0, the default, is the ideal lag): then
+    q'' = w^2 (q_cmd - q) - 2 zeta w q' + (tau_tendons - b_m q' - tau_c sgn q') / J.
+    The plant is driven by the pulley angle; a motor encoder reads the shaft
+    (``SimulationResult.q_motor``).
     """
 
     def __init__(self, params):
@@ -32,6 +40,10 @@ class Motor:
         damping: float = 0.7,
         max_speed: float = math.inf,
         max_accel: float = math.inf,
+        inertia: float = 0.0,
+        coulomb_friction: float = 0.0,
+        viscous_friction: float = 0.0,
+        gear_backlash: float = 0.0,
     ) -> Motor:
         p = core.MotorParams()
         p.kind = core.MotorKind.Position
@@ -39,6 +51,10 @@ class Motor:
         p.damping = float(damping)
         p.max_speed = float(max_speed)
         p.max_accel = float(max_accel)
+        p.reflected_inertia = float(inertia)
+        p.coulomb_friction = float(coulomb_friction)
+        p.viscous_friction = float(viscous_friction)
+        p.gear_backlash = float(gear_backlash)
         return cls(p)
 
     @classmethod
@@ -48,6 +64,8 @@ class Motor:
         viscous: float = 0.2,
         max_torque: float = math.inf,
         max_speed: float = math.inf,
+        coulomb_friction: float = 0.0,
+        gear_backlash: float = 0.0,
     ) -> Motor:
         p = core.MotorParams()
         p.kind = core.MotorKind.Torque
@@ -55,6 +73,8 @@ class Motor:
         p.viscous = float(viscous)
         p.max_torque = float(max_torque)
         p.max_speed = float(max_speed)
+        p.coulomb_friction = float(coulomb_friction)
+        p.gear_backlash = float(gear_backlash)
         return cls(p)
 
     @property
@@ -66,9 +86,12 @@ class Motor:
         p = self._params
         if self.kind == "position":
             keys = ("bandwidth_hz", "damping", "max_speed", "max_accel")
+            extra = {"inertia": p.reflected_inertia, "viscous_friction": p.viscous_friction}
         else:
             keys = ("inertia", "viscous", "max_torque", "max_speed")
-        return {k: getattr(p, k) for k in keys}
+            extra = {}
+        extra.update(coulomb_friction=p.coulomb_friction, gear_backlash=p.gear_backlash)
+        return {**{k: getattr(p, k) for k in keys}, **extra}
 
     def reset(self) -> None:
         self._engine.reset()

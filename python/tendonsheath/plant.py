@@ -45,8 +45,10 @@ class SlackWarning(RuntimeWarning):
 class SimulationResult:
     """Everything a plant simulation produced (``plant.simulate(..., full=True)``).
 
-    ``command`` is what was given, ``q_in`` the plant input after the motor (equal to the
-    command without a motor), ``q_out`` the output, ``measured`` the sensor reading of q_out (or
+    ``command`` is what was given, ``q_in`` the plant input after the motor (the proximal
+    pulley angle; equal to the command without a motor), ``q_motor`` the motor shaft angle a
+    motor encoder reads (``q_in`` plus the gear play, when the motor has gear backlash),
+    ``q_out`` the output, ``measured`` the sensor reading of q_out (or
     q_out without a sensor), ``slack`` a per-sample flag, ``tensions`` the final tensions
     (rows: tendons, proximal to distal), ``nonconverged`` the count of accepted but
     unconverged active-set increments (0 in normal use).
@@ -60,6 +62,7 @@ class SimulationResult:
     slack: np.ndarray
     tensions: np.ndarray
     nonconverged: int
+    q_motor: np.ndarray | None = None
 
     @property
     def any_slack(self) -> bool:
@@ -77,6 +80,26 @@ def _options(elements, max_increment, fast_path):
         o.max_increment = float(max_increment)
     o.fast_path = bool(fast_path)
     return o
+
+
+# Effects beyond the quasi-static capstan chain (C++ parameter names); None leaves the default.
+_RATE_EFFECTS = ("sheath_viscosity", "relaxation_fraction", "relaxation_time")
+_PAIR_EFFECTS = ("distal_inertia", "distal_damping", *_RATE_EFFECTS, "friction2", "stiffness2")
+
+
+def _set_effects(p, cls, names, values):
+    """Copy the effect keywords onto the C++ parameters (which validate them at construction)."""
+    for name in names:
+        value = values[name]
+        if value is None:
+            continue
+        if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+            raise TypeError(f"{cls}: {name} must be a number (got {type(value).__name__})")
+        setattr(p, name, float(value))
+
+
+def _effects_of(p, names) -> dict:
+    return {name: getattr(p, name) for name in names}
 
 
 def _check_elements(elements, cls):
@@ -192,7 +215,7 @@ class _Plant:
         motor = self._motor_engine
         motor_arg = core.Motor(self.motor._params) if motor is not None else None
         sensor_arg = core.Sensor(self.sensor._params) if self.sensor is not None else None
-        q_out, q_in, slack, meas, tens, noncon = self._engine.simulate(
+        q_out, q_in, slack, meas, tens, noncon, q_motor = self._engine.simulate(
             ts, us, motor_arg, sensor_arg, idx, angles
         )
         if slack.any():
@@ -216,6 +239,7 @@ class _Plant:
             slack=slack,
             tensions=tens[0] if self._rows == 1 else tens,
             nonconverged=int(noncon),
+            q_motor=q_motor,
         )
 
     def _schedule(self, ts, routes):
@@ -239,7 +263,7 @@ class _Plant:
         )
 
     def _needs_time(self) -> bool:
-        return False
+        return self._engine.time_dependent()
 
     def plot_tensions(self, ax=None):
         """Draw the tension profile along the route(s) (see :func:`tendonsheath.plots`)."""
@@ -268,8 +292,16 @@ class SingleTendonPlant(_Plant):
         sensor: Sensor | None = None,
         max_increment: float | None = None,
         fast_path: bool = True,
+        sheath_viscosity: float | None = None,
+        relaxation_fraction: float | None = None,
+        relaxation_time: float | None = None,
     ):
         cls = type(self).__name__
+        effects = {
+            "sheath_viscosity": sheath_viscosity,
+            "relaxation_fraction": relaxation_fraction,
+            "relaxation_time": relaxation_time,
+        }
         self.route = _check_route(route, "route", cls)
         load = ConstantForce(10.0) if load is None else load
         if not isinstance(load, ConstantForce | LinearSpring | SpringPreload):
@@ -284,6 +316,7 @@ class SingleTendonPlant(_Plant):
         p.elements = _check_elements(elements, cls)
         p.load_force, p.load_stiffness = load.linear()
         p.options = _options(elements, max_increment, fast_path)
+        _set_effects(p, cls, _RATE_EFFECTS, effects)
         self._engine = core.SingleTendonPlant(p, route._core)
         self._setup_io(motor, sensor)
 
@@ -336,8 +369,16 @@ class PullPullPlant(_Plant):
         sensor: Sensor | None = None,
         max_increment: float | None = None,
         fast_path: bool = True,
+        distal_inertia: float | None = None,
+        distal_damping: float | None = None,
+        sheath_viscosity: float | None = None,
+        relaxation_fraction: float | None = None,
+        relaxation_time: float | None = None,
+        friction2: float | None = None,
+        stiffness2: float | None = None,
     ):
         cls = type(self).__name__
+        effects = {k: v for k, v in locals().items() if k in _PAIR_EFFECTS}
         self.route = _check_route(route, "route", cls)
         self.route2 = _check_route(route if route2 is None else route2, "route2", cls)
         if load is not None and not isinstance(
@@ -358,14 +399,17 @@ class PullPullPlant(_Plant):
         if load is not None:
             p.load_torque, p.load_stiffness, p.load_damping = load.rotary()
         p.options = _options(elements, max_increment, fast_path)
+        _set_effects(p, cls, _PAIR_EFFECTS, effects)
         self._engine = self._make_engine(p)
         self._setup_io(motor, sensor)
 
     def _make_engine(self, p):
         return core.PullPullPlant(p, self.route._core, self.route2._core)
 
-    def _needs_time(self) -> bool:
-        return isinstance(self.load, SpringDamper) and self.load.c > 0
+    @property
+    def effects(self) -> dict:
+        """The effects beyond the quasi-static pair (C++ names; 0 or -1 = off / as tendon 1)."""
+        return _effects_of(self._engine.params, _PAIR_EFFECTS)
 
     # parameters
     @property
@@ -470,8 +514,16 @@ class ContinuumPlant(PullPullPlant):
         sensor: Sensor | None = None,
         max_increment: float | None = None,
         fast_path: bool = True,
+        distal_inertia: float | None = None,
+        distal_damping: float | None = None,
+        sheath_viscosity: float | None = None,
+        relaxation_fraction: float | None = None,
+        relaxation_time: float | None = None,
+        friction2: float | None = None,
+        stiffness2: float | None = None,
     ):
         cls = type(self).__name__
+        effects = {k: v for k, v in locals().items() if k in _PAIR_EFFECTS}
         route = Route.uniform(1.0, math.pi) if route is None else route
         self.route = _check_route(route, "route", cls)
         self.route2 = _check_route(route if route2 is None else route2, "route2", cls)
@@ -485,6 +537,7 @@ class ContinuumPlant(PullPullPlant):
         c.backbone_length = float(backbone_length)
         c.elements = _check_elements(elements, cls)
         c.options = _options(elements, max_increment, fast_path)
+        _set_effects(c, cls, _PAIR_EFFECTS, effects)
         self._engine = core.ContinuumPlant(c, self.route._core, self.route2._core)
         self.load = TorsionalSpring(c.bending_stiffness / c.backbone_length)
         self._setup_io(motor, sensor)

@@ -81,12 +81,14 @@ nb::tuple simulate_plant(const Plant& self, std::optional<InArray> t, InArray u,
   auto [q_in, pi] = new_array(n);
   auto [slack, ps] = new_typed<bool>({n});
   auto [meas, pm] = new_array(n);
+  auto [q_motor, pq] = new_array(n);
   std::vector<unsigned char> sl(n);
   ts::PlantTrace tr;
   tr.q_out = po;
   tr.q_in = pi;
   tr.slack = sl.data();
   tr.measured = pm;
+  tr.q_motor = pq;
   ts::Motor* mp = motor ? &*motor : nullptr;
   ts::Sensor* sp = sensor ? &*sensor : nullptr;
   const double* tp = t ? t->data() : nullptr;
@@ -97,7 +99,7 @@ nb::tuple simulate_plant(const Plant& self, std::optional<InArray> t, InArray u,
   }
   for (std::size_t k = 0; k < n; ++k) ps[k] = sl[k] != 0;
   return nb::make_tuple(q_out, q_in, slack, meas, tensions_of(plant, rows),
-                        plant.nonconverged());
+                        plant.nonconverged(), q_motor);
 }
 
 template <class Plant, class Cls>
@@ -112,6 +114,7 @@ void bind_common(Cls& cls, std::size_t rows, const char* name) {
       .def("slack", &Plant::slack)
       .def("min_tension", &Plant::min_tension)
       .def("nonconverged", &Plant::nonconverged)
+      .def("time_dependent", &Plant::time_dependent)
       .def("drive_reaction", &Plant::drive_reaction)
       .def_prop_ro("n_node_angles", &Plant::n_node_angles)
       .def("set_node_angles", [](Plant& p, InArray a) { set_angles(p, a); }, "angles"_a)
@@ -201,6 +204,9 @@ void bind_plant(nb::module_& m) {
       .def_rw("elements", &SP::elements)
       .def_rw("load_force", &SP::load_force)
       .def_rw("load_stiffness", &SP::load_stiffness)
+      .def_rw("sheath_viscosity", &SP::sheath_viscosity)
+      .def_rw("relaxation_fraction", &SP::relaxation_fraction)
+      .def_rw("relaxation_time", &SP::relaxation_time)
       .def_rw("options", &SP::options);
 
   using PP = ts::PullPullParams;
@@ -215,6 +221,13 @@ void bind_plant(nb::module_& m) {
       .def_rw("load_torque", &PP::load_torque)
       .def_rw("load_stiffness", &PP::load_stiffness)
       .def_rw("load_damping", &PP::load_damping)
+      .def_rw("distal_inertia", &PP::distal_inertia)
+      .def_rw("distal_damping", &PP::distal_damping)
+      .def_rw("sheath_viscosity", &PP::sheath_viscosity)
+      .def_rw("relaxation_fraction", &PP::relaxation_fraction)
+      .def_rw("relaxation_time", &PP::relaxation_time)
+      .def_rw("friction2", &PP::friction2)
+      .def_rw("stiffness2", &PP::stiffness2)
       .def_rw("options", &PP::options);
 
   using CP = ts::ContinuumParams;
@@ -228,6 +241,13 @@ void bind_plant(nb::module_& m) {
       .def_rw("tendon_offset", &CP::tendon_offset)
       .def_rw("backbone_length", &CP::backbone_length)
       .def_rw("elements", &CP::elements)
+      .def_rw("distal_inertia", &CP::distal_inertia)
+      .def_rw("distal_damping", &CP::distal_damping)
+      .def_rw("sheath_viscosity", &CP::sheath_viscosity)
+      .def_rw("relaxation_fraction", &CP::relaxation_fraction)
+      .def_rw("relaxation_time", &CP::relaxation_time)
+      .def_rw("friction2", &CP::friction2)
+      .def_rw("stiffness2", &CP::stiffness2)
       .def_rw("options", &CP::options);
 
   nb::enum_<ts::MotorKind>(m, "MotorKind")
@@ -244,13 +264,18 @@ void bind_plant(nb::module_& m) {
       .def_rw("inertia", &MP::inertia)
       .def_rw("viscous", &MP::viscous)
       .def_rw("max_torque", &MP::max_torque)
-      .def_rw("max_substeps", &MP::max_substeps);
+      .def_rw("max_substeps", &MP::max_substeps)
+      .def_rw("reflected_inertia", &MP::reflected_inertia)
+      .def_rw("coulomb_friction", &MP::coulomb_friction)
+      .def_rw("viscous_friction", &MP::viscous_friction)
+      .def_rw("gear_backlash", &MP::gear_backlash);
   nb::class_<ts::Motor>(m, "Motor")
       .def(nb::init<const MP&>(), "params"_a)
       .def_prop_ro("params", &ts::Motor::params)
       .def("reset", &ts::Motor::reset)
       .def("step", &ts::Motor::step, "u"_a, "dt"_a, "tau_ext"_a = 0.0)
       .def("position", &ts::Motor::position)
+      .def("output", &ts::Motor::output)
       .def("velocity", &ts::Motor::velocity)
       .def("set_state", &ts::Motor::set_state, "q"_a, "v"_a);
 

@@ -30,7 +30,8 @@ struct ClosedLoopTrace {
   double* output = nullptr;         // true distal output per sample (required)
   double* measured = nullptr;       // what the sensor reported (NaN in dropouts)
   double* command = nullptr;        // controller output (motor angle or torque)
-  double* motor = nullptr;          // plant input: motor position
+  double* motor = nullptr;          // motor shaft position (its encoder; the pulley lags it by
+                                    // the gear play when the motor has gear backlash)
   unsigned char* slack = nullptr;   // slack flag
   unsigned char* fallback = nullptr;  // controller in its fallback mode
 };
@@ -94,8 +95,9 @@ void run_closed_loop(Plant& plant, Motor* motor, Sensor* sensor, Controller& con
     }
     const double dt = k == 0 ? 0.0 : t[k] - t[k - 1];
     const double u = controller.command(y_d[k], measured, motor_position, dt);
-    motor_position = motor ? motor->step(u, dt, plant.drive_reaction()) : u;
-    const double y = plant.step(motor_position, dt);
+    const double pulley = motor ? motor->step(u, dt, plant.drive_reaction()) : u;
+    motor_position = motor ? motor->position() : u;  // what the controller's encoder reads
+    const double y = plant.step(pulley, dt);
     const bool lost = dropout && dropout[k];
     const double reading = sensor ? sensor->measure(y) : y;
     measured = lost ? NAN : reading;

@@ -21,6 +21,14 @@ struct ContinuumParams {
   double tendon_offset = 2e-3;      // r_t, m
   double backbone_length = 0.03;    // l, m
   int elements = 100;
+  // effects beyond the quasi-static pair (see PullPullParams)
+  double distal_inertia = 0.0;     // kg m^2 of the segment about its bending (at theta_b)
+  double distal_damping = 0.0;     // N m s/rad
+  double sheath_viscosity = 0.0;   // N s/m^2
+  double relaxation_fraction = 0.0;
+  double relaxation_time = 1.0;
+  double friction2 = -1.0;
+  double stiffness2 = -1.0;
   ChainOptions options;
 };
 
@@ -37,6 +45,13 @@ inline PullPullParams continuum_to_pull_pull(const ContinuumParams& c) {
   p.distal_radius = c.tendon_offset;
   p.elements = c.elements;
   p.load_stiffness = c.bending_stiffness / c.backbone_length;
+  p.distal_inertia = c.distal_inertia;
+  p.distal_damping = c.distal_damping;
+  p.sheath_viscosity = c.sheath_viscosity;
+  p.relaxation_fraction = c.relaxation_fraction;
+  p.relaxation_time = c.relaxation_time;
+  p.friction2 = c.friction2;
+  p.stiffness2 = c.stiffness2;
   p.options = c.options;
   return p;
 }

@@ -8,8 +8,25 @@
 //   Sheath  a point of the sheath with friction: stuck (u_j = u_j^prev,
 //           allowed while |T_{j+1} - T_j| <= C_j) or slipping in direction
 //           s = +-1: (1 - s h_j) T_{j+1} - (1 + s h_j) T_j = 0,
-//   Load    a load law T_{j+1} - T_j = F0 + k u_j + c (u_j - u_j^prev)/dt
+//   Load    a load law T_{j+1} - T_j = F0 + k u_j + c v_j + m a_j with
+//           v_j = (u_j - u_j^prev)/dt and a_j = (v_j - v_j^prev)/dt (implicit
+//           Euler: a distal joint with inertia, damping and stiffness)
 //           (missing elements at the chain ends count as zero tension).
+//
+// Rate-dependent effects (all linear in u for a fixed stick/slip map, so the
+// same tridiagonal solve carries them):
+// - viscous sheath friction: a slipping sheath node also feels -c_j v_j
+//   (c_j = viscosity x the node's length of sheath), so a fast-moving tendon
+//   carries more friction than the Coulomb capacity: rate-dependent hysteresis.
+//   A stuck node has v_j = 0, so the capacity test is unchanged.
+// - tendon viscoelasticity: each element is a standard linear solid, a spring
+//   (1 - r) k in parallel with a Maxwell arm (spring r k, time constant tau):
+//   T_e = T0_e + (1 - r) k eps_e + s_e, s_e' = r k eps_e' - s_e/tau. Implicit
+//   Euler over a step h (beta = 1/(1 + h/tau)) gives T_e linear in eps_e with
+//   k_eff = k (1 - r + r beta) and T0_eff = T0 + beta (s_e^prev - r k eps_e^prev),
+//   refreshed before each solve: a held input creeps as the arm relaxes.
+// With any of these (or a load damper or mass) the step depends on dt and the
+// lazy fast path is off; the solution then costs at least one O(M) solve a step.
 // For a sheath node with lumped angle dtheta_j we use h_j = tanh(mu dtheta_j/2)
 // instead of mu dtheta_j/2: then the slipping ratio (1 - h)/(1 + h) equals
 // exp(-mu dtheta_j) exactly, so the discrete capstan ratio is exact for any
@@ -72,11 +89,18 @@ class FrictionChain {
         kind_(M + 1, NodeKind::Sheath),
         h_(M + 1, 0.0),
         dtheta_(M + 1, 0.0),
+        mu_(M + 1, 0.0),
+        cv_(M + 1, 0.0),
         k_(M + 2, 0.0),
         T0_(M + 2, 0.0),
+        kb_(M + 2, 0.0),
+        T0b_(M + 2, 0.0),
+        sigma_(M + 2, 0.0),
         F0_(M + 1, 0.0),
         kl_(M + 1, 0.0),
         cl_(M + 1, 0.0),
+        ml_(M + 1, 0.0),
+        vel_(M + 1, 0.0),
         u_(M + 1, 0.0),
         w_(M + 1, 0.0),
         sig_(M + 1, 0),
@@ -85,27 +109,55 @@ class FrictionChain {
         dp_(M + 1, 0.0),
         zp_(M + 1, 0.0),
         z_(M + 1, 0.0),
-        T_(M + 2, 0.0) {}
+        T_(M + 2, 0.0),
+        lv_(M + 1, 0.0),
+        iv_(M + 1, 1.0),
+        fmap_(M + 1, 0) {}
 
   // ---- set-up (not real-time) ----------------------------------------------------
   void set_element(std::size_t e, double k, double T0) {
     k_.at(e) = k;
     T0_.at(e) = T0;
+    kb_.at(e) = k;
+    T0b_.at(e) = T0;
   }
   void set_driven(std::size_t j) { kind_.at(j) = NodeKind::Driven; }
-  void set_load(std::size_t j, double F0, double k, double c) {
+  void set_load(std::size_t j, double F0, double k, double c, double mass = 0.0) {
     kind_.at(j) = NodeKind::Load;
     F0_.at(j) = F0;
     kl_.at(j) = k;
     cl_.at(j) = c;
+    ml_.at(j) = mass;
+    has_mass_ = has_mass_ || mass > 0.0;
+    has_damper_ = has_damper_ || c > 0.0 || mass > 0.0;
+  }
+  // Viscous friction coefficient c_j (N s/m) of sheath node j.
+  void set_node_viscosity(std::size_t j, double c) {
+    cv_.at(j) = c;
     has_damper_ = has_damper_ || c > 0.0;
+  }
+  // Standard-linear-solid elements: fraction r in [0, 1) of each element's
+  // stiffness in a Maxwell arm with time constant tau (s); r = 0: elastic.
+  void set_relaxation(double fraction, double tau) {
+    relax_ = fraction;
+    tau_ = tau;
+    has_damper_ = has_damper_ || fraction > 0.0;
   }
   void set_options(const ChainOptions& o) noexcept { opt_ = o; }
   void set_friction(double mu) noexcept {
-    mu_ = mu;
-    for (std::size_t j = 0; j <= M_; ++j) h_[j] = std::tanh(0.5 * mu_ * dtheta_[j]);
+    for (std::size_t j = 0; j <= M_; ++j) mu_[j] = mu;
+    for (std::size_t j = 0; j <= M_; ++j) h_[j] = std::tanh(0.5 * mu_[j] * dtheta_[j]);
     dirty_ = true;
     fact_valid_ = false;
+    tfact_valid_ = false;
+  }
+  // Friction coefficient of one node (e.g. a second sheath of another material).
+  void set_node_friction(std::size_t j, double mu) {
+    mu_.at(j) = mu;
+    h_[j] = std::tanh(0.5 * mu * dtheta_[j]);
+    dirty_ = true;
+    fact_valid_ = false;
+    tfact_valid_ = false;
   }
 
   // ---- real-time ---------------------------------------------------------------
@@ -116,9 +168,10 @@ class FrictionChain {
       return;
     if (dtheta_[j] == dtheta) return;
     dtheta_[j] = dtheta;
-    h_[j] = std::tanh(0.5 * mu_ * dtheta);
+    h_[j] = std::tanh(0.5 * mu_[j] * dtheta);
     dirty_ = true;
     fact_valid_ = false;
+    tfact_valid_ = false;
   }
 
   // At rest, uniform reference tensions, everything stuck; the next step()
@@ -126,6 +179,10 @@ class FrictionChain {
   void reset() noexcept {
     std::fill(u_.begin(), u_.end(), 0.0);
     std::fill(sig_.begin(), sig_.end(), 0);
+    std::fill(vel_.begin(), vel_.end(), 0.0);
+    std::fill(sigma_.begin(), sigma_.end(), 0.0);
+    std::copy(kb_.begin(), kb_.end(), k_.begin());
+    std::copy(T0b_.begin(), T0b_.end(), T0_.begin());
     x_ = 0.0;
     initialised_ = false;
     dirty_ = true;
@@ -133,6 +190,7 @@ class FrictionChain {
     nonconverged_ = 0;
     last_solves_ = 0;
     fact_valid_ = false;
+    tfact_valid_ = false;
     consistent_ = false;
     fast_ok_ = false;
     lazy_ = 0.0;
@@ -185,7 +243,9 @@ class FrictionChain {
     return lazy_ != 0.0 ? u_[j] + lazy_ * z_[j] : u_[j];
   }
   // Tension of element e (1..M) after the last step.
-  double tension(std::size_t e) const noexcept { return T0_[e] + k_[e] * (u(e) - u(e - 1)); }
+  double tension(std::size_t e) const noexcept {
+    return T0b_[e] + (1.0 - relax_) * kb_[e] * (u(e) - u(e - 1)) + sigma_[e];
+  }
   // Stick/slip state of node j: 0 stuck, +1/-1 slipping toward node M / node 0
   // (driven and load nodes report 0; frictionless sheath nodes report 0 too).
   int state(std::size_t j) const noexcept { return h_[j] > 0.0 ? sig_[j] : 0; }
@@ -203,7 +263,10 @@ class FrictionChain {
   void set_slack_strict(bool strict) noexcept { slack_strict_ = strict; }
   long nonconverged() const noexcept { return nonconverged_; }
   int last_solves() const noexcept { return last_solves_; }
-  double friction() const noexcept { return mu_; }
+  double friction() const noexcept { return M_ >= 1 ? mu_[1] : 0.0; }
+  double node_friction(std::size_t j) const noexcept { return mu_[j]; }
+  // True when a step depends on dt (dampers, masses, viscosity, relaxation).
+  bool time_dependent() const noexcept { return has_damper_; }
   const ChainOptions& options() const noexcept { return opt_; }
 
  private:
@@ -212,7 +275,7 @@ class FrictionChain {
     const bool can_halve =
         depth < opt_.max_halvings && xt != x_ && last_solves_ < solve_budget();
     if (try_increment(xt, dt, opt_.max_iterations, false)) {
-      commit(xt);
+      commit(xt, true, dt);
       return;
     }
     if (can_halve) {
@@ -233,15 +296,16 @@ class FrictionChain {
         fast_ok_ = false;
         return;  // keep the previous state
       }
-    commit(xt, ok);
+    commit(xt, ok, dt);
   }
 
   long solve_budget() const noexcept {
     return 64L * opt_.max_iterations * opt_.max_substeps;
   }
 
-  void commit(double xt, bool converged = true) noexcept {
+  void commit(double xt, bool converged, double dt) noexcept {
     consistent_ = converged && fact_valid_;
+    if (has_damper_) commit_rates(dt);
     u_.swap(w_);
     sig_.swap(sw_);
     x_ = xt;
@@ -253,6 +317,29 @@ class FrictionChain {
     slack_ = slack_strict_ ? (mn < 0.0) : (mn <= 0.0);
     fast_ok_ = false;
     if (consistent_ && !has_damper_ && mn > 0.0 && opt_.fast_path) compute_interval();
+  }
+
+  // Velocities of massive load nodes and the Maxwell forces of the accepted
+  // solution w_ (tensions in T_), before it becomes the committed state.
+  void commit_rates(double dt) noexcept {
+    const double inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;
+    if (has_mass_)
+      for (std::size_t j = 0; j <= M_; ++j)
+        if (ml_[j] > 0.0) vel_[j] = (w_[j] - u_[j]) * inv_dt;
+    if (relax_ > 0.0)
+      for (std::size_t e = 1; e <= M_; ++e)
+        sigma_[e] = T_[e] - T0b_[e] - (1.0 - relax_) * kb_[e] * (w_[e] - w_[e - 1]);
+  }
+
+  // Effective element stiffness and reference tension of a step h (SLS).
+  void refresh_elements(double dt) noexcept {
+    if (!(relax_ > 0.0)) return;
+    const double beta = 1.0 / (1.0 + (dt > 0.0 ? dt / tau_ : 0.0));
+    const double keep = 1.0 - relax_ + relax_ * beta;
+    for (std::size_t e = 1; e <= M_; ++e) {
+      k_[e] = kb_[e] * keep;
+      T0_[e] = T0b_[e] + beta * (sigma_[e] - relax_ * kb_[e] * (u_[e] - u_[e - 1]));
+    }
   }
 
   // Fold the lazy offset into u_ (before anything that needs u_ itself).
@@ -322,6 +409,7 @@ class FrictionChain {
     if (!from_work) std::copy(sig_.begin(), sig_.end(), sw_.begin());
     const double inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;
     const bool damped = has_damper_;  // the matrix then depends on dt
+    refresh_elements(dt);
     for (int it = 0; it < max_it; ++it) {
       bool solved = false;  // the elimination factors belong to this iterate
       if (it == 0 && !from_work && fact_valid_ && consistent_ && !damped && opt_.fast_path) {
@@ -336,8 +424,9 @@ class FrictionChain {
       ++last_solves_;
       compute_tensions(w_.data());
       if (violations() == 0) return true;
-      // after one plain flip the front is known to be moving: march it
-      if (it > 0 && solved && opt_.fast_path && !damped && march(xt, inv_dt) > 0) {
+      // after one plain flip the front is known to be moving: march it (the rows
+      // include dampers and viscosity, and the final solve and check decide)
+      if (it > 0 && solved && opt_.fast_path && march(xt, inv_dt) > 0) {
         solve(xt, inv_dt);  // one full solve for all the front flips
         ++last_solves_;
         compute_tensions(w_.data());
@@ -351,6 +440,9 @@ class FrictionChain {
 
   // Row j of the tridiagonal system for the map sw_: l w_{j-1} + b w_j + c w_{j+1} = d.
   // Returns false for an identity row (driven or stuck node: w_j = d).
+#if defined(__GNUC__)
+  __attribute__((always_inline))
+#endif
   bool row(std::size_t j, double xt, double inv_dt, double& l, double& b, double& c,
            double& d) const noexcept {
     const NodeKind kd = kind_[j];
@@ -366,23 +458,29 @@ class FrictionChain {
       }
       const double hs = hj * static_cast<double>(sw_[j]);
       const double p = 1.0 - hs, q = 1.0 + hs;
+      const double cv = cv_[j] * inv_dt;  // viscous sheath friction of a moving node
       l = q * k_[j];
       c = p * k_[j + 1];
-      b = -(c + l);
-      d = -(p * T0_[j + 1] - q * T0_[j]);
+      b = -(c + l) - cv;
+      d = -(p * T0_[j + 1] - q * T0_[j]) - cv * u_[j];
       return true;
     }
     const double cd = cl_[j] * inv_dt;  // Load
+    const double mi = ml_[j] * inv_dt * inv_dt;
     l = k_[j];
     c = k_[j + 1];
-    b = -(c + l + kl_[j] + cd);
-    d = -(T0_[j + 1] - T0_[j]) + F0_[j] - cd * u_[j];
+    b = -(c + l + kl_[j] + cd + mi);
+    d = -(T0_[j + 1] - T0_[j]) + F0_[j] - (cd + mi) * u_[j] - ml_[j] * inv_dt * vel_[j];
     return true;
   }
 
   // Assemble and solve the tridiagonal system (Thomas algorithm) into w_, and
   // the same matrix against the driven-row indicator into z_.
   void solve(double xt, double inv_dt) noexcept {
+    if (has_damper_) {
+      solve_w(xt, inv_dt);
+      return;
+    }
     double cprev = 0.0, dprev = 0.0, zprev = 0.0;
     for (std::size_t j = 0; j <= M_; ++j) {
       double l = 0.0, b = 0.0, c = 0.0, d = 0.0;
@@ -414,6 +512,53 @@ class FrictionChain {
       z_[j] = znext;
     }
     fact_valid_ = true;
+  }
+
+  // solve() without z_, for time-dependent chains (their shortcuts never use z_).
+  // Their matrix changes only with the stick/slip map, the angles or dt, while
+  // the right-hand side changes every step; so the pivots are kept (lv_, iv_)
+  // and, while the map and dt stay, a step needs no division (a serial chain of
+  // divisions is most of a factorisation's time).
+  void solve_w(double xt, double inv_dt) noexcept {
+    double cprev = 0.0, dprev = 0.0;
+    if (tfact_valid_ && inv_dt == tfact_inv_dt_ && std::equal(sw_.begin(), sw_.end(), fmap_.begin())) {
+      for (std::size_t j = 0; j <= M_; ++j) {
+        double l = 0.0, b = 0.0, c = 0.0, d = 0.0;
+        row(j, xt, inv_dt, l, b, c, d);
+        dprev = (d - lv_[j] * dprev) * iv_[j];
+        dp_[j] = dprev;
+      }
+    } else {
+      for (std::size_t j = 0; j <= M_; ++j) {
+        double l = 0.0, b = 0.0, c = 0.0, d = 0.0;
+        if (!row(j, xt, inv_dt, l, b, c, d)) {
+          cp_[j] = 0.0;
+          dp_[j] = d;
+          lv_[j] = 0.0;
+          iv_[j] = 1.0;
+          cprev = 0.0;
+          dprev = d;
+          continue;
+        }
+        const double inv = 1.0 / (b - l * cprev);
+        cprev = c * inv;
+        dprev = (d - l * dprev) * inv;
+        cp_[j] = cprev;
+        dp_[j] = dprev;
+        lv_[j] = l;
+        iv_[j] = inv;
+      }
+      std::copy(sw_.begin(), sw_.end(), fmap_.begin());
+      tfact_valid_ = true;
+      tfact_inv_dt_ = inv_dt;
+    }
+    double next = dp_[M_];
+    w_[M_] = next;
+    for (std::size_t j = M_; j-- > 0;) {
+      next = dp_[j] - cp_[j] * next;
+      w_[j] = next;
+    }
+    fact_valid_ = false;  // z_ was not computed
   }
 
   bool stuck_violates(std::size_t j, double Tl, double Tr) const noexcept {
@@ -530,18 +675,25 @@ class FrictionChain {
 
   std::size_t M_ = 0;
   std::vector<NodeKind> kind_;
-  std::vector<double> h_, dtheta_;
-  std::vector<double> k_, T0_;
-  std::vector<double> F0_, kl_, cl_;
+  std::vector<double> h_, dtheta_, mu_, cv_;
+  std::vector<double> k_, T0_;     // effective element stiffness/reference tension (solver)
+  std::vector<double> kb_, T0b_;   // the elements' own (instantaneous) values
+  std::vector<double> sigma_;      // Maxwell-arm forces of the SLS elements
+  std::vector<double> F0_, kl_, cl_, ml_, vel_;
   std::vector<double> u_, w_;
   std::vector<signed char> sig_, sw_;
   std::vector<double> cp_, dp_, zp_, z_, T_;
+  std::vector<double> lv_, iv_;        // kept pivots of a time-dependent chain (solve_w)
+  std::vector<signed char> fmap_;      // the map they belong to
+  bool tfact_valid_ = false;
+  double tfact_inv_dt_ = 0.0;
   ChainOptions opt_;
-  double mu_ = 0.0;
+  double relax_ = 0.0, tau_ = 1.0;
   double x_ = 0.0;
   long nonconverged_ = 0;
   int last_solves_ = 0;
-  bool has_damper_ = false;
+  bool has_damper_ = false;  // any time-dependent effect (damper, mass, viscosity, SLS)
+  bool has_mass_ = false;
   bool initialised_ = false;
   bool dirty_ = true;
   bool slack_ = false;

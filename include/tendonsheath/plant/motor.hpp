@@ -10,6 +10,22 @@
 // is the torque the tendons exert on the pulley (supplied by the caller);
 // semi-implicit Euler on the same sub-steps (h <= J/b/10 when b > 0). It
 // starts at rest at q = 0.
+//
+// Drive-train effects (both kinds, all off by default):
+// - Coulomb friction tau_c and viscous friction b_m on the motor shaft. The
+//   position servo then feels torques through its reflected inertia J_r
+//   (reflected_inertia > 0): q'' = w^2 (q_cmd - q) - 2 zeta w q'
+//   + (tau_ext - b_m q' - tau_c sgn q') / J_r, so the tendons' torque deflects
+//   it and friction leaves a steady error up to tau_c / (J_r w^2). With
+//   J_r = 0 (default) it is the ideal lag above and ignores torques.
+//   Coulomb friction is implicit at the velocity level: the shaft sticks when
+//   the friction impulse h tau_c / J can stop it within a sub-step, so it
+//   sticks exactly, never chatters.
+// - Gear backlash: a play of total width g between the motor shaft (q, what a
+//   motor encoder reads: position()) and the proximal pulley (output()): the
+//   pulley keeps its angle while the shaft crosses the gap (bearing friction
+//   holds it) and is carried at q -+ g/2 otherwise. step() returns the pulley
+//   angle, which drives the plant.
 #pragma once
 
 #include <cmath>
@@ -31,6 +47,10 @@ struct MotorParams {
   double viscous = 0.2;       // b (torque)
   double max_torque = std::numeric_limits<double>::infinity();  // (torque)
   int max_substeps = 256;
+  double reflected_inertia = 0.0;  // J_r, kg m^2 (position): 0 = ideal lag, ignores torques
+  double coulomb_friction = 0.0;   // tau_c, N m (both; position needs reflected_inertia > 0)
+  double viscous_friction = 0.0;   // b_m, N m s/rad (position; torque kind: use viscous)
+  double gear_backlash = 0.0;      // g, rad: total play between shaft and pulley (both)
 };
 
 class Motor {
@@ -50,71 +70,102 @@ class Motor {
       require_positive(p.damping, w, "damping");
       require(p.max_accel > 0.0 && !std::isnan(p.max_accel), w,
               "max_accel must be > 0 (got " + detail::format_value(p.max_accel) + ")");
+      require_non_negative(p.reflected_inertia, w, "reflected_inertia");
+      require_non_negative(p.viscous_friction, w, "viscous_friction");
+      require((p.coulomb_friction == 0.0 && p.viscous_friction == 0.0) ||
+                  p.reflected_inertia > 0.0,
+              w, "coulomb_friction and viscous_friction of a position motor act through its "
+                 "reflected_inertia, which must then be > 0");
     } else {
       require_positive(p.inertia, w, "inertia");
       require_non_negative(p.viscous, w, "viscous");
       require(p.max_torque > 0.0 && !std::isnan(p.max_torque), w,
               "max_torque must be > 0 (got " + detail::format_value(p.max_torque) + ")");
     }
+    require_non_negative(p.coulomb_friction, w, "coulomb_friction");
+    require_non_negative(p.gear_backlash, w, "gear_backlash");
+    require(std::isfinite(p.gear_backlash), w, "gear_backlash must be finite");
   }
 
   const Params& params() const noexcept { return p_; }
   void reset() noexcept {
     q_ = 0.0;
     v_ = 0.0;
+    pulley_ = 0.0;
     initialised_ = false;
   }
 
-  // Advance by dt under command u (angle or torque); returns the position.
-  // A non-finite command holds the last position.
+  // Advance by dt under command u (angle or torque); returns the proximal
+  // pulley angle (the shaft angle without gear backlash). A non-finite command
+  // holds the last position.
   double step(double u, double dt, double tau_ext = 0.0) noexcept {
-    if (!std::isfinite(u)) return q_;
+    if (!std::isfinite(u)) return pulley_;
     if (!std::isfinite(tau_ext)) tau_ext = 0.0;
     if (!initialised_) {
       initialised_ = true;
       if (p_.kind == MotorKind::Position) q_ = u;
       v_ = 0.0;
+      pulley_ = q_;
     }
-    if (!(dt > 0.0) || !std::isfinite(dt)) return q_;
-    const double rate = p_.kind == MotorKind::Position
-                            ? 2.0 * kPi * p_.bandwidth_hz
-                            : (p_.viscous > 0.0 ? p_.viscous / p_.inertia : 0.0);
+    if (!(dt > 0.0) || !std::isfinite(dt)) return pulley_;
+    const bool position = p_.kind == MotorKind::Position;
+    const double w = 2.0 * kPi * p_.bandwidth_hz;
+    // torques act through J (torque kind) or J_r (position kind, 0: ignored)
+    const double J = position ? p_.reflected_inertia : p_.inertia;
+    const double inv_J = J > 0.0 ? 1.0 / J : 0.0;
+    const double b = position ? p_.viscous_friction : p_.viscous;
+    const double rate = position ? w : (b > 0.0 ? b * inv_J : 0.0);
     double m = std::ceil(dt * rate / 0.1);
     const int n = m >= p_.max_substeps ? p_.max_substeps : (m >= 1.0 ? static_cast<int>(m) : 1);
     const double h = dt / n;
+    double tau = u;
+    if (!position) {
+      if (tau > p_.max_torque) tau = p_.max_torque;
+      if (tau < -p_.max_torque) tau = -p_.max_torque;
+    }
+    const double stick = h * p_.coulomb_friction * inv_J;  // friction impulse per sub-step
     for (int i = 0; i < n; ++i) {
-      double v_new;
-      if (p_.kind == MotorKind::Position) {
-        const double w = 2.0 * kPi * p_.bandwidth_hz;
-        v_new = (v_ + h * w * w * (u - q_)) / (1.0 + 2.0 * p_.damping * w * h + w * w * h * h);
+      double num, den;
+      if (position) {
+        num = v_ + h * (w * w * (u - q_) + tau_ext * inv_J);
+        den = 1.0 + 2.0 * p_.damping * w * h + w * w * h * h + h * b * inv_J;
+      } else {
+        num = v_ + h * (tau + tau_ext) * inv_J;
+        den = 1.0 + h * b * inv_J;
+      }
+      double v_new = std::fabs(num) <= stick ? 0.0 : (num - std::copysign(stick, num)) / den;
+      if (position) {
         const double amax = p_.max_accel * h;
         if (v_new - v_ > amax) v_new = v_ + amax;
         if (v_new - v_ < -amax) v_new = v_ - amax;
-      } else {
-        double tau = u;
-        if (tau > p_.max_torque) tau = p_.max_torque;
-        if (tau < -p_.max_torque) tau = -p_.max_torque;
-        v_new = (v_ + h * (tau + tau_ext) / p_.inertia) / (1.0 + h * p_.viscous / p_.inertia);
       }
       if (v_new > p_.max_speed) v_new = p_.max_speed;
       if (v_new < -p_.max_speed) v_new = -p_.max_speed;
+      if (!std::isfinite(v_new)) v_new = 0.0;
       v_ = v_new;
       q_ += h * v_;
     }
-    return q_;
+    const double half = 0.5 * p_.gear_backlash;
+    if (pulley_ < q_ - half) pulley_ = q_ - half;
+    if (pulley_ > q_ + half) pulley_ = q_ + half;
+    return pulley_;
   }
 
+  // Motor shaft angle (what a motor encoder reads).
   double position() const noexcept { return q_; }
   double velocity() const noexcept { return v_; }
+  // Proximal pulley angle (after the gear play), the plant's input.
+  double output() const noexcept { return pulley_; }
   void set_state(double q, double v) noexcept {
     q_ = q;
     v_ = v;
+    pulley_ = q;
     initialised_ = true;
   }
 
  private:
   Params p_;
-  double q_ = 0.0, v_ = 0.0;
+  double q_ = 0.0, v_ = 0.0, pulley_ = 0.0;
   bool initialised_ = false;
 };
 

@@ -10,6 +10,16 @@
 // q_out = u_N / r_d. The load at the distal pulley is a linear law in the
 // output angle, tau_L = tau_0 + k_theta q_out + c_theta dq_out/dt (resisting
 // positive motion), i.e. F_L = tau_L / r_d at the tendon level.
+//
+// Effects beyond the quasi-static capstan pair, all off by default (see
+// friction_chain.hpp for how each enters the solve):
+// - a dynamic distal joint: inertia J_d (and damping c_d) on the distal
+//   pulley, i.e. a mass J_d / r_d^2 at the tendon level;
+// - viscous sheath friction (N s/m per metre of sheath) on the sliding tendon;
+// - tendon viscoelasticity: a standard linear solid in every element
+//   (relaxation_fraction of EA relaxing with relaxation_time), which creeps;
+// - an unequal pair: tendon 2 may have its own EA (stiffness2) and sheath 2
+//   its own friction (friction2), besides its own route and length.
 #pragma once
 
 #include <cmath>
@@ -33,8 +43,24 @@ struct PullPullParams {
   double load_torque = 0.0;        // tau_0, N m
   double load_stiffness = 0.0;     // k_theta, N m/rad
   double load_damping = 0.0;       // c_theta, N m s/rad
+  double distal_inertia = 0.0;     // J_d, kg m^2: the distal joint's inertia
+  double distal_damping = 0.0;     // c_d, N m s/rad: the distal joint's viscous damping
+  double sheath_viscosity = 0.0;   // N s/m^2: viscous drag per metre of sheath
+  double relaxation_fraction = 0.0;  // r in [0, 1): share of EA in the Maxwell arm
+  double relaxation_time = 1.0;      // tau, s
+  double friction2 = -1.0;         // mu of sheath 2; -1: the same as friction
+  double stiffness2 = -1.0;        // EA of tendon 2, N; -1: the same as stiffness
   ChainOptions options;
 };
+
+namespace detail {
+inline double friction2_of(const PullPullParams& p) noexcept {
+  return p.friction2 == -1.0 ? p.friction : p.friction2;
+}
+inline double stiffness2_of(const PullPullParams& p) noexcept {
+  return p.stiffness2 == -1.0 ? p.stiffness : p.stiffness2;
+}
+}  // namespace detail
 
 class PullPullPlant {
  public:
@@ -54,10 +80,19 @@ class PullPullPlant {
     require_finite(p.load_torque, w, "load_torque");
     require_non_negative(p.load_stiffness, w, "load_stiffness");
     require_non_negative(p.load_damping, w, "load_damping");
+    require_non_negative(p.distal_inertia, w, "distal_inertia");
+    require_non_negative(p.distal_damping, w, "distal_damping");
+    detail::validate_rate_effects(p.sheath_viscosity, p.relaxation_fraction, p.relaxation_time, w);
+    require(p.friction2 == -1.0 || (p.friction2 >= 0.0 && std::isfinite(p.friction2)), w,
+            "friction2 must be finite and >= 0, or -1 for the same as friction (got " +
+                detail::format_value(p.friction2) + ")");
+    require(p.stiffness2 == -1.0 || (p.stiffness2 > 0.0 && std::isfinite(p.stiffness2)), w,
+            "stiffness2 must be finite and > 0, or -1 for the same as stiffness (got " +
+                detail::format_value(p.stiffness2) + ")");
     validate_chain_options(p.options, w);
     const std::size_t M = 2 * N_;
     chain_ = FrictionChain(M);
-    const double k2 = p.stiffness * static_cast<double>(N_) / L2_;
+    const double k2 = detail::stiffness2_of(p) * static_cast<double>(N_) / L2_;
     const double k1 = p.stiffness * static_cast<double>(N_) / L1_;
     for (std::size_t e = 1; e <= N_; ++e) chain_.set_element(e, k2, p.pretension);
     for (std::size_t e = N_ + 1; e <= M; ++e) chain_.set_element(e, k1, p.pretension);
@@ -65,9 +100,18 @@ class PullPullPlant {
     chain_.set_driven(M);
     const double rd = p.distal_radius;
     chain_.set_load(N_, p.load_torque / rd, p.load_stiffness / (rd * rd),
-                    p.load_damping / (rd * rd));
+                    (p.load_damping + p.distal_damping) / (rd * rd), p.distal_inertia / (rd * rd));
     chain_.set_options(p.options);
     chain_.set_friction(p.friction);
+    const double mu2 = detail::friction2_of(p);
+    for (std::size_t i = 1; i < N_; ++i) {
+      chain_.set_node_friction(i, mu2);  // sheath 2 node i
+      if (p.sheath_viscosity > 0.0) {
+        chain_.set_node_viscosity(i, p.sheath_viscosity * L2_ / static_cast<double>(N_));
+        chain_.set_node_viscosity(2 * N_ - i, p.sheath_viscosity * L1_ / static_cast<double>(N_));
+      }
+    }
+    if (p.relaxation_fraction > 0.0) chain_.set_relaxation(p.relaxation_fraction, p.relaxation_time);
     angles_.assign(2 * (N_ - 1), 0.0);
     work_.assign(N_, 0.0);
     set_route(route1, route2);
@@ -147,6 +191,8 @@ class PullPullPlant {
   bool slack() const noexcept { return chain_.slack(); }
   double min_tension() const noexcept { return chain_.min_tension(); }
   long nonconverged() const noexcept { return chain_.nonconverged(); }
+  // True when a step depends on dt (distal dynamics, damping, viscosity, creep).
+  bool time_dependent() const noexcept { return chain_.time_dependent(); }
   const FrictionChain& chain() const noexcept { return chain_; }
 
  private:
@@ -154,8 +200,10 @@ class PullPullPlant {
     if (p_.options.max_increment > 0.0) return;
     ChainOptions o = chain_.options();
     const double L = L1_ > L2_ ? L1_ : L2_;
-    const double th = theta1_ > theta2_ ? theta1_ : theta2_;
-    o.max_increment = detail::default_increment(p_.pretension, L, p_.stiffness, p_.friction * th);
+    const double a1 = p_.friction * theta1_, a2 = detail::friction2_of(p_) * theta2_;
+    const double EA1 = p_.stiffness, EA2 = detail::stiffness2_of(p_);
+    o.max_increment = detail::default_increment(p_.pretension, L, EA1 > EA2 ? EA1 : EA2,
+                                                a1 > a2 ? a1 : a2);
     chain_.set_options(o);
   }
 

@@ -27,6 +27,7 @@ struct PlantTrace {
   unsigned char* slack = nullptr;    // slack flag per sample, optional
   double* min_tension = nullptr;     // smallest tension per sample, optional
   double* measured = nullptr;        // sensor reading of q_out per sample, optional
+  double* q_motor = nullptr;         // motor shaft angle (its encoder) per sample, optional
 };
 
 template <class Plant>
@@ -72,6 +73,7 @@ void simulate_plant(Plant& plant, Motor* motor, Sensor* sensor, const double* t,
     const double q = plant.step(qin, dt);
     out.q_out[k] = q;
     if (out.q_in) out.q_in[k] = qin;
+    if (out.q_motor) out.q_motor[k] = motor ? motor->position() : qin;
     if (out.slack) out.slack[k] = plant.slack() ? 1 : 0;
     if (out.min_tension) out.min_tension[k] = plant.min_tension();
     if (out.measured) out.measured[k] = sensor ? sensor->measure(q) : q;

@@ -25,6 +25,9 @@ struct SingleTendonParams {
   int elements = 100;           // N >= 2
   double load_force = 10.0;     // F0, N: distal load (and tendon tension) at x_out = 0
   double load_stiffness = 0.0;  // k, N/m
+  double sheath_viscosity = 0.0;     // N s/m^2: viscous drag per metre of sheath
+  double relaxation_fraction = 0.0;  // SLS tendon: share of EA in the Maxwell arm, [0, 1)
+  double relaxation_time = 1.0;      // s
   ChainOptions options;
 };
 
@@ -41,6 +44,14 @@ inline void validate_tendon(double mu, double EA, int N, const char* w) {
 inline double default_increment(double T, double L, double EA, double a) noexcept {
   const double e = T * L * std::tanh(0.5 * a) / EA;
   return e > 0.0 ? e / 20.0 : 0.0;
+}
+
+// Validation of the rate effects every plant shares.
+inline void validate_rate_effects(double viscosity, double fraction, double tau, const char* w) {
+  require_non_negative(viscosity, w, "sheath_viscosity");
+  require(fraction >= 0.0 && fraction < 1.0, w,
+          "relaxation_fraction must be in [0, 1) (got " + format_value(fraction) + ")");
+  require_positive(tau, w, "relaxation_time");
 }
 
 inline void check_route_length(const Route& r, double L, const char* w) {
@@ -62,6 +73,7 @@ class SingleTendonPlant {
     require_non_negative(p.load_stiffness, w, "load_stiffness");
     require(p.load_force > 0.0 || p.load_stiffness > 0.0, w,
             "the load must pull the tendon: load_force > 0 or load_stiffness > 0");
+    detail::validate_rate_effects(p.sheath_viscosity, p.relaxation_fraction, p.relaxation_time, w);
     validate_chain_options(p.options, w);
     chain_ = FrictionChain(N_);
     const double k = p.stiffness * static_cast<double>(N_) / L_;
@@ -70,6 +82,10 @@ class SingleTendonPlant {
     chain_.set_driven(N_);
     chain_.set_options(p.options);
     chain_.set_friction(p.friction);
+    if (p.sheath_viscosity > 0.0)
+      for (std::size_t i = 1; i < N_; ++i)
+        chain_.set_node_viscosity(i, p.sheath_viscosity * L_ / static_cast<double>(N_));
+    if (p.relaxation_fraction > 0.0) chain_.set_relaxation(p.relaxation_fraction, p.relaxation_time);
     chain_.set_slack_strict(true);  // a plain spring load starts at exactly zero tension
     angles_.assign(N_ - 1, 0.0);
     work_.assign(N_, 0.0);
@@ -129,6 +145,7 @@ class SingleTendonPlant {
   bool slack() const noexcept { return chain_.slack(); }
   double min_tension() const noexcept { return chain_.min_tension(); }
   long nonconverged() const noexcept { return chain_.nonconverged(); }
+  bool time_dependent() const noexcept { return chain_.time_dependent(); }
   const FrictionChain& chain() const noexcept { return chain_; }
 
  private:

@@ -1,0 +1,107 @@
+"""Plant presets: the physical effects a real drive has beyond the quasi-static capstan pair.
+
+A quasi-static pull-pull pair with no load *is* a classic backlash, so a compensator built on a
+backlash model would be judged inside its own model class. The ``realistic`` preset turns on
+what the seed papers' rigs have and no compensator models:
+
+=====================  =====================  ==================================================
+effect                 value                  reason (rig of the seed papers)
+=====================  =====================  ==================================================
+distal joint           J_d = 2e-5 kg m^2,     a 15 mm aluminium pulley with an encoder disk (Do
+                       c_d = 2e-3 N m s/rad   et al.): rings at about 40 Hz after a reversal
+sheath viscosity       8 N s/m^2              viscous drag of the lubricated coil: about 20 % of
+                                              the Coulomb friction at 1 Hz, as much at 5 Hz
+                                              (measured drives widen their loops with rate)
+tendon creep           8 % of EA relaxing,    polymer-coated steel rope: a standard linear solid
+                       tau = 1.5 s            that creeps under a held load
+unequal pair           sheath 2 friction      two sheaths and two tendons are never identical:
+                       +15 %, tendon 2 EA     manufacturing tolerances
+                       -10 %
+motor friction         0.01 N m Coulomb,      geared DC motor (Faulhaber 3863 with a 14:1
+                       1e-3 N m s/rad         gearhead, Lau et al.)
+gear backlash          0.5 deg                the gearhead's output play
+servo compliance       reflected inertia      the position loop yields to the tendons' torque
+                       1e-4 kg m^2            (stiffness J w^2, 14 N m/rad at 60 Hz)
+=====================  =====================  ==================================================
+
+These values are choices within the ranges of such rigs, not measurements; each is an argument
+so a study can vary it. Example::
+
+    plant = ts.PullPullPlant(route, pretension=20.0, **presets.realistic_plant(friction=0.1,
+                             stiffness=5e3), motor=presets.realistic_motor(bandwidth_hz=60))
+"""
+
+from __future__ import annotations
+
+import math
+
+from .motor import Motor
+
+#: The realistic effects, relative where a plant's own value sets the scale.
+REALISTIC = {
+    "distal_inertia": 2e-5,
+    "distal_damping": 2e-3,
+    "sheath_viscosity": 8.0,
+    "relaxation_fraction": 0.08,
+    "relaxation_time": 1.5,
+    "friction2_ratio": 1.15,
+    "stiffness2_ratio": 0.9,
+    "motor_inertia": 1e-4,
+    "motor_coulomb_friction": 0.01,
+    "motor_viscous_friction": 1e-3,
+    "gear_backlash": math.radians(0.5),
+}
+
+
+def realistic_plant(friction: float = 0.1, stiffness: float = 2.4e4, **overrides) -> dict:
+    """Keyword arguments for :class:`~tendonsheath.PullPullPlant` (or ``ContinuumPlant``) that
+    turn the realistic effects on: ``friction`` and ``stiffness`` (tendon 1) with sheath 2 and
+    tendon 2 off by the preset ratios, distal joint inertia and damping, sheath viscosity and
+    tendon creep. ``overrides`` replace any of the returned values (e.g. ``distal_inertia=0``).
+    """
+    kwargs = {
+        "friction": float(friction),
+        "stiffness": float(stiffness),
+        "friction2": REALISTIC["friction2_ratio"] * float(friction),
+        "stiffness2": REALISTIC["stiffness2_ratio"] * float(stiffness),
+        "distal_inertia": REALISTIC["distal_inertia"],
+        "distal_damping": REALISTIC["distal_damping"],
+        "sheath_viscosity": REALISTIC["sheath_viscosity"],
+        "relaxation_fraction": REALISTIC["relaxation_fraction"],
+        "relaxation_time": REALISTIC["relaxation_time"],
+    }
+    unknown = set(overrides) - set(kwargs)
+    if unknown:
+        raise TypeError(
+            f"realistic_plant: unknown override(s) {sorted(unknown)}; known: {sorted(kwargs)}"
+        )
+    kwargs.update(overrides)
+    return kwargs
+
+
+def realistic_motor(kind: str = "position", **kwargs) -> Motor:
+    """A :class:`~tendonsheath.Motor` with the realistic drive train: Coulomb and viscous
+    friction, gear backlash and (position kind) a servo that yields to the tendons' torque.
+
+    ``kind="position"``: the other keywords go to :meth:`Motor.position` (e.g. ``bandwidth_hz``,
+    ``damping``); ``kind="torque"``: to :meth:`Motor.torque` (``inertia``, ``viscous``,
+    ``max_torque``). Keywords given override the preset's.
+    """
+    if kind == "position":
+        base = {
+            "inertia": REALISTIC["motor_inertia"],
+            "coulomb_friction": REALISTIC["motor_coulomb_friction"],
+            "viscous_friction": REALISTIC["motor_viscous_friction"],
+            "gear_backlash": REALISTIC["gear_backlash"],
+        }
+        return Motor.position(**{**base, **kwargs})
+    if kind == "torque":
+        base = {
+            "coulomb_friction": REALISTIC["motor_coulomb_friction"],
+            "gear_backlash": REALISTIC["gear_backlash"],
+        }
+        return Motor.torque(**{**base, **kwargs})
+    raise ValueError(f"realistic_motor: kind must be 'position' or 'torque' (got {kind!r})")
+
+
+__all__ = ["REALISTIC", "realistic_motor", "realistic_plant"]
