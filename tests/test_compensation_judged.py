@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import tendonsheath as ts
+from tendonsheath import presets
 from tendonsheath.bench.scenarios import do as do_scenario
 from tendonsheath.bench.scenarios.common import encoder
 
@@ -53,21 +54,22 @@ def test_inverse_feedforward_and_adaptive_beat_the_papers_factors(do_setup, name
     assert base / adaptive.metrics["mse"] >= adaptive_factor
 
 
-# Improvement factors (MSE none / MSE compensated) measured with bench.calibrate's model
-# (calibration route, not the nominal test route), seed 0, budget 40 x 10; thresholds sit
-# about 15 % below. Do et al.: feedforward 13x (0.0158 -> 0.0012), adaptive 190x (-> 8.28e-5).
+# Improvement factors (MSE none / MSE compensated) on the realistic plant (do_scenario
+# .plants(): tendonsheath.presets) with bench.calibrate's model (calibration route, not the
+# nominal test route), seed 0, budget 40 x 10; thresholds sit about 15 % below.
 # measured:            feedforward  adaptive
-#   sine 0.1 Hz           19.9        710
-#   sine 0.5 Hz           13.9        581
-#   sine 1 Hz              9.5        101   <- neither paper factor is reached at 1 Hz: the
-#                                              60 Hz servo's lag (feedforward) and the 1 kHz
-#                                              loop's delay and derivative filter (adaptive)
-#   multi-sine            15.7        522
+#   sine 0.1 Hz            9.8        2.3
+#   sine 0.5 Hz            7.9       10.3
+#   sine 1 Hz              5.6       21.7
+#   multi-sine             8.7        2.7
+# Do et al.'s 13x (feedforward, 0.0158 -> 0.0012) and 190x (adaptive, -> 8.28e-5) are NOT
+# reached on any reference: slow references suffer most from the motor's Coulomb friction
+# and gear play under the torque-driven adaptive loop.
 FACTORS = {
-    "sine 0.1 Hz": (17, 600),
-    "sine 0.5 Hz": (12, 500),
-    "sine 1 Hz": (8, 85),
-    "multi-sine": (13, 450),
+    "sine 0.1 Hz": (8.3, 2.0),
+    "sine 0.5 Hz": (6.7, 8.8),
+    "sine 1 Hz": (4.7, 18),
+    "multi-sine": (7.4, 2.3),
 }
 
 
@@ -83,8 +85,13 @@ PHYSICS = dict(  # the robot; the calibration never reads these
 
 
 def _robot(theta):
+    """The pull-pull robot with the realistic preset (outside every compensator's class)."""
+    physics = {k: v for k, v in PHYSICS.items() if k not in ("friction", "stiffness")}
     return ts.PullPullPlant(
-        route=ts.Route.uniform(1.2, theta), **PHYSICS, motor=ts.Motor.position(60.0, 0.8)
+        route=ts.Route.uniform(1.2, theta),
+        **physics,
+        **presets.realistic_plant(friction=PHYSICS["friction"], stiffness=PHYSICS["stiffness"]),
+        motor=presets.realistic_motor(bandwidth_hz=60.0, damping=0.8),
     )
 
 
@@ -103,10 +110,11 @@ def _calibrate(seed=0):
 
 def test_curve_angle_feedforward_holds_its_accuracy_away_from_its_calibration_angles():
     cal = _calibrate()
-    # friction is identified from the three angles (true 0.1), and the groups of spec B
-    assert cal.groups["mu"]["value"] == pytest.approx(0.1, rel=0.05)
-    assert cal.groups["T0 L/(EA r_p)"]["value"] == pytest.approx(20 * 1.2 / 5e3 / 10e-3, rel=0.05)
-    assert cal.groups["gain r_p/r_d"]["value"] == pytest.approx(1.0, rel=0.01)
+    # on the realistic robot the groups are effective values (measured mu 0.17 for a sheath
+    # mu of 0.1 and 0.115, with viscosity and motor friction; T0 L/(EA r_p) 0.35 for 0.48):
+    # only the gain is checked against the design (tests/test_identify_on_plant.py checks
+    # the groups on the ideal plant)
+    assert cal.groups["gain r_p/r_d"]["value"] == pytest.approx(1.0, rel=0.02)
     t = np.arange(0.0, 10.0, 1e-3)
     y_d = 0.8 * np.sin(2 * np.pi * 0.2 * t)
     shape = cal.shape  # the feedforward is told the sensed curve angle (noise, delay)
@@ -123,11 +131,14 @@ def test_curve_angle_feedforward_holds_its_accuracy_away_from_its_calibration_an
             plant, ctrl, t, y_d, routes=routes, noise=encoder(), shape_sensing=sensing
         ).metrics["rmse"]
 
-    # measured: rmse 3.2e-3 rad at pi, and 1.00x of it at pi/2, 2 pi and 3 pi, 0.95x with
-    # the route changing; the claim is "within 2x away from the calibration angles"
+    # measured on the realistic robot: rmse 1.37e-2 rad at pi; 0.86x of it at pi/2, 1.75x at
+    # 2 pi, 1.23x with the route changing; the claim is "within 2x away from the calibration
+    # angles (0.7-1.7 pi)". At 3 pi, far outside them, it is 3.2x: the 2x claim does NOT hold
+    # there (the groups identified on this plant are effective values, e.g. mu 0.17).
     at_pi = rmse(math.pi)  # pi is not a calibration angle
-    for theta in (math.pi / 2, 2 * math.pi, 3 * math.pi):
+    for theta in (math.pi / 2, 2 * math.pi):
         assert rmse(theta) <= 2 * at_pi, theta
+    assert rmse(3 * math.pi) <= 3.7 * at_pi
 
     def changing(tk):  # the endoscope bends over 2 s: pi/2 -> 2 pi, later 2 pi -> pi
         theta = np.interp(
@@ -138,5 +149,5 @@ def test_curve_angle_feedforward_holds_its_accuracy_away_from_its_calibration_an
         return ts.Route.uniform(1.2, float(theta))
 
     assert rmse(routes=changing) <= 2 * at_pi
-    fixed_at_pi = rmse(math.pi, compensator="fixed")  # measured: 5.6x worse at 3 pi
+    fixed_at_pi = rmse(math.pi, compensator="fixed")  # measured: 11.7x worse at 3 pi
     assert rmse(3 * math.pi, compensator="fixed") > 3 * fixed_at_pi

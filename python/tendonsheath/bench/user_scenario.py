@@ -11,6 +11,9 @@
     proximal_radius = 0.01              # m
     distal_radius = 0.01                # m (pull_pull only)
     elements = 40                       # per sheath
+    realistic = true                    # the realistic preset (tendonsheath.presets): distal
+                                        #   dynamics, sheath viscosity, creep, unequal pair,
+                                        #   motor friction and gear backlash; false: ideal
     # continuum only: bending_stiffness, tendon_offset, backbone_length
 
     [route]                             # the initial route: one of
@@ -68,7 +71,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import loads
+from .. import loads, presets
 from ..compensate import AdaptiveController
 from ..motor import Motor
 from ..plant import ContinuumPlant, PullPullPlant
@@ -88,6 +91,7 @@ _KEYS: dict[str, dict[str, type | tuple]] = {
         "proximal_radius": float,
         "distal_radius": float,
         "elements": int,
+        "realistic": bool,
         "bending_stiffness": float,
         "tendon_offset": float,
         "backbone_length": float,
@@ -144,6 +148,7 @@ def _check_type(where: str, key: str, value, kind):
         float: "a number",
         int: "an integer",
         str: "a string",
+        bool: "true or false",
         list: "an array",
         dict: "a table",
     }[kind]
@@ -261,8 +266,35 @@ def _load_object(spec):
     return loads.SpringDamper(spec.get("stiffness", 0.0), spec.get("damping", 0.0))
 
 
+def _realistic(sc: UserScenario) -> bool:
+    return bool(sc.plant.get("realistic", True))
+
+
+def _servo(sc: UserScenario) -> Motor:
+    if _realistic(sc):
+        return presets.realistic_motor(**sc.motor)
+    return Motor.position(**sc.motor)
+
+
+def _torque(sc: UserScenario) -> Motor:
+    if _realistic(sc):
+        return presets.realistic_motor("torque", **sc.torque_motor)
+    return Motor.torque(**sc.torque_motor)
+
+
 def _plant(sc: UserScenario, motor: Motor | None, sensor: Sensor | None = None):
-    p = {k: v for k, v in sc.plant.items() if k != "type"}
+    p = {k: v for k, v in sc.plant.items() if k not in ("type", "realistic")}
+    if _realistic(sc):
+        kind = ContinuumPlant if sc.plant["type"] == "continuum" else PullPullPlant
+        import inspect
+
+        defaults = inspect.signature(kind.__init__).parameters
+        p.update(
+            presets.realistic_plant(
+                friction=p.pop("friction", defaults["friction"].default),
+                stiffness=p.pop("stiffness", defaults["stiffness"].default),
+            )
+        )
     route = sc.route["initial"]
     try:
         if sc.plant["type"] == "continuum":
@@ -318,7 +350,7 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
     from .calibration import ShapeSensing, calibrate
     from .scenarios.common import honesty_panel, kinematic_told
 
-    servo_motor = Motor.position(**sc.motor)
+    servo_motor = _servo(sc)
     sensor = Sensor(**sc.sensor)
     if progress:
         progress("calibration")
@@ -344,7 +376,7 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
     cal = None
     if model_names:
         cal = calibrate(
-            _plant(sc, Motor.position(**sc.motor)),
+            _plant(sc, _servo(sc)),
             cal_routes,
             models_=model_names,
             backlash_route=nearest,
@@ -384,7 +416,7 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
                 servo, ff, t, y_d, routes=routes, noise=sensor, shape_sensing=shape
             )
         else:
-            torque = _plant(sc, Motor.torque(**sc.torque_motor))
+            torque = _plant(sc, _torque(sc))
             ctrl = AdaptiveController.from_model(
                 cal.backlash_model,
                 inertia=sc.torque_motor["inertia"],

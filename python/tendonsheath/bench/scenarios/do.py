@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from ... import presets
 from ...compensate import AdaptiveController, InverseFeedforward
 from ...motor import Motor
 from ...plant import PullPullPlant
@@ -26,13 +27,17 @@ PAPER_MSE = {"none": 0.0158, "InverseFeedforward": 0.0012, "AdaptiveController":
 
 CONDITIONS = {
     "plant": "pull-pull pair, two 1.5 m sheaths, EA = 5000 N, T0 = 20 N, mu = 0.1, "
-    "pulleys r_p = r_d = 15 mm, 40 elements per sheath, no distal load",
+    "pulleys r_p = r_d = 15 mm, 40 elements per sheath, no distal load; realistic preset "
+    "(tendonsheath.presets): distal inertia and damping, sheath viscosity, tendon creep, "
+    "sheath 2 friction +15 %, tendon 2 EA -10 %",
     "nominal route": "straight 0.5 m, then two 0.5 m arcs of pi/2 each (Theta = pi)",
     "route changes": "at random times (mean 4 s apart) the sheaths take random 2-4 arc "
     "shapes with Theta between pi/2 and 2 pi",
     "reference": "1 rad sine at 0.25 Hz plus 0.3 rad at 0.6 Hz (distal angle)",
     "motors": "position servo (60 Hz, damping 0.8) for none and the feedforward; torque "
-    "motor J = 0.01 kg m^2, b = 0.2 N m s, |tau| <= 5 N m for the adaptive controller",
+    "motor J = 0.01 kg m^2, b = 0.2 N m s, |tau| <= 5 N m for the adaptive controller; both "
+    "with the realistic preset's Coulomb friction and 0.5 deg gear backlash (the encoder "
+    "reads the motor shaft)",
     "sensor": "distal encoder, 1e-4 rad resolution, 2e-4 rad noise",
     "calibration": "bench.calibrate: BoucWenBacklash identified from a 20 s run on a "
     "calibration route (0.3 m straight, arcs of 0.55 pi and 0.35 pi) that no test run uses, "
@@ -82,11 +87,27 @@ def reference(duration: float, rate: float = 1000.0):
     return t, 1.0 * np.sin(2 * np.pi * 0.25 * t) + 0.3 * np.sin(2 * np.pi * 0.6 * t)
 
 
+def physics(**changes) -> dict:
+    """The plant's keyword arguments: _COMMON with the realistic preset's effects (distal
+    dynamics, sheath viscosity, creep, an unequal pair); ``changes`` replace _COMMON values."""
+    base = {**_COMMON, **changes}
+    return {
+        **{k: v for k, v in base.items() if k not in ("friction", "stiffness")},
+        **presets.realistic_plant(friction=base["friction"], stiffness=base["stiffness"]),
+    }
+
+
+def servo_motor() -> Motor:
+    return presets.realistic_motor(bandwidth_hz=60.0, damping=0.8)
+
+
+def torque_motor() -> Motor:
+    return presets.realistic_motor("torque", inertia=INERTIA, viscous=VISCOUS, max_torque=5.0)
+
+
 def plants():
-    servo = PullPullPlant(route=NOMINAL, motor=Motor.position(60.0, 0.8), **_COMMON)
-    torque = PullPullPlant(
-        route=NOMINAL, motor=Motor.torque(INERTIA, VISCOUS, max_torque=5.0), **_COMMON
-    )
+    servo = PullPullPlant(route=NOMINAL, motor=servo_motor(), **physics())
+    torque = PullPullPlant(route=NOMINAL, motor=torque_motor(), **physics())
     return servo, torque
 
 
@@ -230,11 +251,10 @@ def robustness_run(params: dict) -> dict[str, dict[str, float]]:
     on a fixed (random-arc) route. Returns compensator -> metrics (a ``ts.sweep`` run)."""
     from ...sweep.example_runs import random_arcs
 
-    physics = {
-        **_COMMON,
-        "friction": float(params.get("friction", _COMMON["friction"])),
-        "pretension": float(params.get("pretension", _COMMON["pretension"])),
-    }
+    kwargs = physics(
+        friction=float(params.get("friction", _COMMON["friction"])),
+        pretension=float(params.get("pretension", _COMMON["pretension"])),
+    )
     route = random_arcs(
         NOMINAL.length,
         float(params.get("route_angle", NOMINAL.total_angle)),
@@ -243,10 +263,8 @@ def robustness_run(params: dict) -> dict[str, dict[str, float]]:
     )
     model = _nominal_model()
     t, y_d = reference(10.0)
-    servo = PullPullPlant(route=route, motor=Motor.position(60.0, 0.8), **physics)
-    torque = PullPullPlant(
-        route=route, motor=Motor.torque(INERTIA, VISCOUS, max_torque=5.0), **physics
-    )
+    servo = PullPullPlant(route=route, motor=servo_motor(), **kwargs)
+    torque = PullPullPlant(route=route, motor=torque_motor(), **kwargs)
     sensor = encoder(seed=int(params.get("route_seed", 0)) % 100_000)
     ctrl = AdaptiveController.from_model(
         model,

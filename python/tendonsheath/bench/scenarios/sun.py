@@ -7,8 +7,8 @@ import math
 
 import numpy as np
 
+from ... import presets
 from ...loads import ConstantTorque, TorsionalSpring
-from ...motor import Motor
 from ...plant import PullPullPlant
 from ...route import Route
 from ..calibration import ShapeSensing, calibrate_load
@@ -32,13 +32,15 @@ LOAD_FORCE, SPRING = 5.0, 500.0  # N and N/m at the tendon: 5 N at 1 rad for the
 
 CONDITIONS = {
     "plant": "pull-pull pair, two 1.2 m sheaths of uniform curvature, EA = 5000 N, "
-    "T0 = 20 N, mu = 0.1, pulleys r_p = r_d = 10 mm, 40 elements per sheath",
+    "T0 = 20 N, mu = 0.1, pulleys r_p = r_d = 10 mm, 40 elements per sheath; realistic "
+    "preset (tendonsheath.presets): distal dynamics, sheath viscosity, creep, unequal pair",
     "curve angles": "0, pi/2, pi, 3 pi/2, 2 pi",
     "loads": "none; constant 0.05 N m (5 N at the tendon); torsional spring 0.05 N m/rad "
     "(5 N at 1 rad)",
     "route change run": "Theta = pi/2, then 2 pi, then pi (thirds of the run), no load",
     "reference": "0.8 rad sine at 0.2 Hz (distal angle)",
-    "motor": "position servo, 30 Hz, damping 0.8",
+    "motor": "position servo, 30 Hz, damping 0.8, with the realistic preset's friction and "
+    "gear backlash",
     "calibration": "bench.calibrate on the robot's logs alone (motor encoder, noisy distal "
     "encoder, sensed curve angle): CurveAngleModel groups from runs at 0.35 pi, 1.15 pi and "
     "1.85 pi (no load; none is a test angle); each load's groups from one more run at "
@@ -60,12 +62,14 @@ _COMMON = dict(
 
 
 def _plant(theta: float, load=None, sensor=None) -> PullPullPlant:
+    common = {k: v for k, v in _COMMON.items() if k not in ("friction", "stiffness")}
     return PullPullPlant(
         route=Route.uniform(LENGTH, theta),
         load=load,
-        motor=Motor.position(30.0, 0.8),
+        motor=presets.realistic_motor(bandwidth_hz=30.0, damping=0.8),
         sensor=sensor,
-        **_COMMON,
+        **common,
+        **presets.realistic_plant(friction=_COMMON["friction"], stiffness=_COMMON["stiffness"]),
     )
 
 
