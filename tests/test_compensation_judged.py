@@ -1,5 +1,7 @@
-"""Compensators judged on the physics plant with models identified from calibration runs
-(no inverse crime): motor models, sensor noise, references unlike the calibration input."""
+"""Compensators judged on the physics plant with models identified by bench.calibrate from
+the plant's logs alone (no inverse crime, nothing copied from the plant): calibration
+routes differ from the test routes, sensed shapes have noise and delay, motor models,
+sensor noise, references unlike the calibration input."""
 
 import math
 
@@ -7,8 +9,9 @@ import numpy as np
 import pytest
 
 import tendonsheath as ts
+from tendonsheath import presets
 from tendonsheath.bench.scenarios import do as do_scenario
-from tendonsheath.bench.scenarios.common import calibration_input, encoder
+from tendonsheath.bench.scenarios.common import encoder
 
 T = np.arange(0.0, 12.0, 1e-3)
 REFERENCES = {
@@ -23,20 +26,21 @@ REFERENCES = {
 
 @pytest.fixture(scope="module")
 def do_setup():
-    fit = do_scenario.calibrate(seed=0, budget={"maxiter": 40, "popsize": 10})
+    # bench.calibrate on do_scenario.CALIBRATION_ROUTE; judged on the nominal route
+    cal = do_scenario.calibrate(seed=0, budget={"maxiter": 40, "popsize": 10})
     servo, torque = do_scenario.plants()
-    return fit, servo, torque
+    return cal, servo, torque
 
 
 @pytest.mark.parametrize("name", list(REFERENCES))
 def test_inverse_feedforward_and_adaptive_beat_the_papers_factors(do_setup, name):
-    fit, servo, torque = do_setup
+    cal, servo, torque = do_setup
     y_d = REFERENCES[name]
     none = ts.bench.run(servo, None, T, y_d, noise=encoder())
-    ff = ts.compensate.InverseFeedforward(fit.model, smoothing=0.03)
+    ff = cal.inverse_feedforward(smoothing=0.03)
     with_ff = ts.bench.run(servo, ff, T, y_d, noise=encoder())
     ctrl = ts.compensate.AdaptiveController.from_model(
-        fit.model,
+        cal.backlash_model,
         inertia=do_scenario.INERTIA,
         viscous=do_scenario.VISCOUS,
         bandwidth_hz=8.0,
@@ -45,103 +49,96 @@ def test_inverse_feedforward_and_adaptive_beat_the_papers_factors(do_setup, name
     )
     adaptive = ts.bench.run(torque, ctrl, T, y_d, noise=encoder())
     base = none.metrics["mse"]
-    # Do et al.: 0.0158 -> 0.0012 (13x). Measured (seed 0): 1265x, 154x, 43.5x, 417x for
-    # 0.1 Hz, 0.5 Hz, 1 Hz, multi-sine; the paper's 13x holds with a margin of 3.3x or more.
-    assert base / with_ff.metrics["mse"] >= 13
-    # Do et al.: -> 8.28e-5 (190x). Measured: 709x, 581x, 521x at 0.1 Hz, 0.5 Hz, multi-sine
-    # (the paper's 190x with a margin of 2.7x or more). At 1 Hz the paper's 190x is NOT met:
-    # measured 101x (the 1 kHz loop's delay and derivative filter); the bound there is 50x,
-    # 2x below the measured figure, a guard against regression, not the paper's claim.
-    needed = 50 if name == "sine 1 Hz" else 190
-    assert base / adaptive.metrics["mse"] >= needed
+    ff_factor, adaptive_factor = FACTORS[name]
+    assert base / with_ff.metrics["mse"] >= ff_factor
+    assert base / adaptive.metrics["mse"] >= adaptive_factor
 
 
-def _calibrate_at_pi(seed=0):
-    """Sun et al.'s calibration at one curve angle: friction from the capstan ratio of a
-    tension bench (T_d/T_p = exp(-mu Theta) in full slip), EA from a tracking record at pi."""
-    route = ts.Route.uniform(1.2, math.pi)
-    bench = ts.SingleTendonPlant(
-        route=route, friction=0.1, stiffness=5e3, elements=60, load=ts.loads.ConstantForce(20.0)
+# Improvement factors (MSE none / MSE compensated) on the realistic plant (do_scenario
+# .plants(): tendonsheath.presets) with bench.calibrate's model (calibration route, not the
+# nominal test route), seed 0, budget 40 x 10; thresholds sit about 15 % below.
+# measured:            feedforward  adaptive
+#   sine 0.1 Hz            9.8        2.3
+#   sine 0.5 Hz            7.9       10.3
+#   sine 1 Hz              5.6       21.7
+#   multi-sine             8.7        2.7
+# Do et al.'s 13x (feedforward, 0.0158 -> 0.0012) and 190x (adaptive, -> 8.28e-5) are NOT
+# reached on any reference: slow references suffer most from the motor's Coulomb friction
+# and gear play under the torque-driven adaptive loop.
+FACTORS = {
+    "sine 0.1 Hz": (8.3, 2.0),
+    "sine 0.5 Hz": (6.7, 8.8),
+    "sine 1 Hz": (4.7, 18),
+    "multi-sine": (7.4, 2.3),
+}
+
+
+CAL_ANGLES = (0.7 * math.pi, 1.3 * math.pi, 1.7 * math.pi)  # no test angle among them
+PHYSICS = dict(  # the robot; the calibration never reads these
+    friction=0.1,
+    stiffness=5e3,
+    pretension=20.0,
+    proximal_radius=10e-3,
+    distal_radius=10e-3,
+    elements=40,
+)
+
+
+def _robot(theta):
+    """The pull-pull robot with the realistic preset (outside every compensator's class)."""
+    physics = {k: v for k, v in PHYSICS.items() if k not in ("friction", "stiffness")}
+    return ts.PullPullPlant(
+        route=ts.Route.uniform(1.2, theta),
+        **physics,
+        **presets.realistic_plant(friction=PHYSICS["friction"], stiffness=PHYSICS["stiffness"]),
+        motor=presets.realistic_motor(bandwidth_hz=60.0, damping=0.8),
     )
-    bench.reset()
-    for x in np.linspace(0.0, 3e-3, 300):  # pull until the whole tendon slips
-        bench.step(x)
-    tension = bench.tensions()
-    mu = -math.log(tension[-1] / tension[0]) / route.total_angle
-    plant = ts.PullPullPlant(
-        route=route,
-        friction=0.1,
-        stiffness=5e3,
-        pretension=20.0,
-        proximal_radius=10e-3,
-        distal_radius=10e-3,
-        elements=40,
-        motor=ts.Motor.position(60.0, 0.8),
+
+
+def _calibrate(seed=0):
+    """bench.calibrate on the robot's logs at three calibration angles; the fixed
+    feedforward's BoucWenBacklash comes from the run at 1.3 pi only."""
+    return ts.bench.calibrate(
+        _robot(CAL_ANGLES[0]),
+        [ts.Route.uniform(1.2, a) for a in CAL_ANGLES],
+        backlash_route=1,
         sensor=encoder(seed=seed),
-    )
-    t, command = calibration_input(15.0, 1.0)
-    sim = plant.simulate(t, command, full=True)
-    fit = ts.identify(
-        ts.models.CurveAngleModel,
-        t,
-        sim.q_in,
-        sim.measured,
-        curve_angle=math.pi,
-        fixed={
-            "friction": mu,
-            "pretension": 20.0,
-            "length": 1.2,
-            "proximal_radius": 10e-3,
-            "distal_radius": 10e-3,
-        },
-        warmup=1500,
         seed=seed,
-        progress=False,
-        maxiter=40,
-        popsize=10,
+        budget={"maxiter": 40, "popsize": 10},
     )
-    fixed = ts.identify(
-        ts.models.BoucWenBacklash,
-        t,
-        sim.q_in,
-        sim.measured,
-        warmup=1500,
-        seed=seed,
-        progress=False,
-        maxiter=40,
-        popsize=10,
-    )
-    return mu, fit.model, fixed.model
 
 
-def test_curve_angle_feedforward_holds_its_accuracy_away_from_its_calibration_angle():
-    mu, curve_model, fixed_model = _calibrate_at_pi()
-    assert mu == pytest.approx(0.1, rel=0.02)
+def test_curve_angle_feedforward_holds_its_accuracy_away_from_its_calibration_angles():
+    cal = _calibrate()
+    # on the realistic robot the groups are effective values (measured mu 0.17 for a sheath
+    # mu of 0.1 and 0.115, with viscosity and motor friction; T0 L/(EA r_p) 0.35 for 0.48):
+    # only the gain is checked against the design (tests/test_identify_on_plant.py checks
+    # the groups on the ideal plant)
+    assert cal.groups["gain r_p/r_d"]["value"] == pytest.approx(1.0, rel=0.02)
     t = np.arange(0.0, 10.0, 1e-3)
     y_d = 0.8 * np.sin(2 * np.pi * 0.2 * t)
+    shape = cal.shape  # the feedforward is told the sensed curve angle (noise, delay)
 
     def rmse(theta=None, routes=None, compensator="curve"):
-        plant = ts.PullPullPlant(
-            route=ts.Route.uniform(1.2, theta if theta is not None else math.pi),
-            friction=0.1,
-            stiffness=5e3,
-            pretension=20.0,
-            proximal_radius=10e-3,
-            distal_radius=10e-3,
-            elements=40,
-            motor=ts.Motor.position(60.0, 0.8),
-        )
+        plant = _robot(theta if theta is not None else math.pi)
         if compensator == "curve":
-            ctrl = ts.compensate.CurveAngleFeedforward.from_model(curve_model, smoothing=0.02)
+            ctrl = cal.curve_angle_feedforward(smoothing=0.02)
+            sensing = shape
         else:
-            ctrl = ts.compensate.InverseFeedforward(fixed_model, smoothing=0.02)
-        return ts.bench.run(plant, ctrl, t, y_d, routes=routes, noise=encoder()).metrics["rmse"]
+            ctrl = cal.inverse_feedforward(smoothing=0.02)
+            sensing = None
+        return ts.bench.run(
+            plant, ctrl, t, y_d, routes=routes, noise=encoder(), shape_sensing=sensing
+        ).metrics["rmse"]
 
-    calibrated = rmse(math.pi)
-    # measured rmse / calibrated: 1.00, 1.00, 1.00 at pi/2, 2 pi, 3 pi and 0.98 on the
-    # changing route; the bound 2x leaves a 2x margin
-    for theta in (math.pi / 2, 2 * math.pi, 3 * math.pi):
-        assert rmse(theta) <= 2 * calibrated, theta
+    # measured on the realistic robot: rmse 1.37e-2 rad at pi; 0.86x of it at pi/2, 1.75x at
+    # 2 pi, 1.23x with the route changing; the claim is "within 2x away from the calibration
+    # angles (0.7-1.7 pi)". At 3 pi, far outside them, it is 3.2x: the 2x claim does NOT hold
+    # there (the groups identified on this plant are effective values, e.g. mu 0.17).
+    at_pi = rmse(math.pi)  # pi is not a calibration angle
+    for theta in (math.pi / 2, 2 * math.pi):
+        assert rmse(theta) <= 2 * at_pi, theta
+    assert rmse(3 * math.pi) <= 3.7 * at_pi
 
     def changing(tk):  # the endoscope bends over 2 s: pi/2 -> 2 pi, later 2 pi -> pi
         theta = np.interp(
@@ -151,7 +148,6 @@ def test_curve_angle_feedforward_holds_its_accuracy_away_from_its_calibration_an
         )
         return ts.Route.uniform(1.2, float(theta))
 
-    assert rmse(routes=changing) <= 2 * calibrated
-    fixed_at_pi = rmse(math.pi, compensator="fixed")
-    # measured 48.6x; the bound 3x is 16x below
+    assert rmse(routes=changing) <= 2 * at_pi
+    fixed_at_pi = rmse(math.pi, compensator="fixed")  # measured: 11.7x worse at 3 pi
     assert rmse(3 * math.pi, compensator="fixed") > 3 * fixed_at_pi

@@ -142,7 +142,7 @@ def robustness_section(out: Path, runs: int = 200, seed: int = 0):
     result = robustness_study(
         run=robustness_run, n=runs, seed=2015 + seed, design=design, progress=False
     )
-    numbers = study_figure(result, out, metric="mse", bound=1e-4)
+    numbers = study_figure(result, out, metric="mse", bound=1e-4, design=design)
     rows = [
         {
             "compensator": k,
@@ -156,7 +156,8 @@ def robustness_section(out: Path, runs: int = 200, seed: int = 0):
     ]
     body = (
         "<p>The do2015 comparison over perturbed plants: friction and pretension within "
-        "+/-30 % of what the compensators were calibrated on, and a random-arc route whose "
+        "+/-30 % of the plant the compensators were calibrated on (by bench.calibrate, on its "
+        "calibration route), and a random-arc route whose "
         f"total angle is within +/-50 % of pi ({numbers['runs']} draws, seed "
         f"{numbers['seed']}; 10 s each).</p>"
         + html.table(rows)
@@ -165,4 +166,4 @@ def robustness_section(out: Path, runs: int = 200, seed: int = 0):
             "MSE per compensator over the perturbed plants (log scale).",
         )
     )
-    return ("robustness", "Robustness over 200 perturbed plants", body, numbers)
+    return ("robustness", f"Robustness over {numbers['runs']} perturbed plants", body, numbers)

@@ -1,10 +1,24 @@
 """The virtual bench: closed-loop runs on the physics plant, metrics, frequency response."""
 
+from .calibration import (
+    Calibration,
+    ShapeSensing,
+    calibrate,
+    calibrate_load,
+    honesty_entry,
+    in_class_fit,
+)
 from .frequency import FrequencyResponse, frequency_response
 from .metrics import loop_width, tracking_metrics
 from .run import Result, run
 
 __all__ = [
+    "Calibration",
+    "ShapeSensing",
+    "calibrate",
+    "calibrate_load",
+    "honesty_entry",
+    "in_class_fit",
     "FrequencyResponse",
     "Result",
     "frequency_response",

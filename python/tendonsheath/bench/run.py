@@ -86,6 +86,7 @@ def run(
     noise=None,
     dropout=None,
     warmup: float | None = None,
+    shape_sensing=None,
 ) -> Result:
     """Track ``reference`` (distal angle, rad, at times ``t``) with ``controller`` on ``plant``.
 
@@ -97,6 +98,9 @@ def run(
     t -> Route. ``noise``: a Sensor, a noise standard deviation (rad), or None (then
     ``plant.sensor``). ``dropout``: [(start, stop), ...] seconds when the sensor reads NaN.
     ``warmup`` (s): excluded from the metrics; default one period of the reference.
+    ``shape_sensing`` (a :class:`~tendonsheath.bench.calibration.ShapeSensing`): the
+    CurveAngleFeedforward is told the sensed curve angle (noise, delay, reading rate)
+    instead of the route's exact shape.
     """
     if not isinstance(plant, PullPullPlant):
         raise ValueError(
@@ -129,6 +133,8 @@ def run(
             route_at = [_first(routes(float(ts[int(k)]))) for k in idx]
         shape_rows = [shape_of(r, controller.friction) for r in route_at]
         shapes = np.ascontiguousarray([[s.g, s.G, s.total_angle] for s in shape_rows])
+        if shape_sensing is not None:
+            idx, angles, shapes = _sensed(plant, ts, routes, shape_sensing, controller, idx)
         fn, engine = core.bench_curve_angle, controller._engine
     elif isinstance(controller, InverseFeedforward):
         engine = controller._engine
@@ -171,6 +177,31 @@ def run(
     if not math.isfinite(result.metrics["mse"]):
         raise RuntimeError("bench.run: the closed loop produced a non-finite output")
     return result
+
+
+def _sensed(plant, ts, routes, shape_sensing, controller, idx):
+    """Merge the plant's route changes with the shape sensor's readings: at every index
+    the plant gets its true route and the controller the last sensed (uniform) shape."""
+    from .calibration import sensed_schedule
+
+    if routes is None:
+        route = plant.route
+
+        def routes(_t):
+            return route
+
+    r_idx, sensed_rows = sensed_schedule(shape_sensing, ts, routes, controller.friction)[::2]
+    merged = np.union1d(np.asarray(idx, dtype=np.int64), r_idx.astype(np.int64))
+    angle_rows, shape_rows = [], []
+    for k in merged:
+        angle_rows.append(plant._angles_for(routes(float(ts[k]))))
+        j = int(np.searchsorted(r_idx, k, side="right")) - 1
+        shape_rows.append(sensed_rows[max(j, 0)])
+    return (
+        merged.astype(np.uint64),
+        np.ascontiguousarray(np.vstack(angle_rows)),
+        np.ascontiguousarray(np.vstack(shape_rows)),
+    )
 
 
 def _first(route):

@@ -11,6 +11,9 @@
     proximal_radius = 0.01              # m
     distal_radius = 0.01                # m (pull_pull only)
     elements = 40                       # per sheath
+    realistic = true                    # the realistic preset (tendonsheath.presets): distal
+                                        #   dynamics, sheath viscosity, creep, unequal pair,
+                                        #   motor friction and gear backlash; false: ideal
     # continuum only: bending_stiffness, tendon_offset, backbone_length
 
     [route]                             # the initial route: one of
@@ -44,9 +47,13 @@
     rate = 1000.0
     sines = [[1.0, 0.25, 0.0], [0.3, 0.6, 0.0]]
 
-    [calibration]                       # the run the models are identified from
-    duration = 20.0
+    [calibration]                       # bench.calibrate: runs on calibration shapes
+    duration = 20.0                     #   that differ from every test route
     amplitude = 1.2
+    # angles = [1.26, 3.46, 5.34]       # calibration curve angles, rad (default: 0.4, 1.1
+                                        #   and 1.7 pi, moved off any test route's angle)
+    shape_noise = 0.05                  # shape sensing: noise std of the sensed curve angle
+    shape_delay = 0.1                   #   (rad) and its delay (s)
 
     [compare]
     compensators = ["none", "inverse_feedforward", "curve_angle_feedforward", "adaptive"]
@@ -64,14 +71,14 @@ from typing import Any
 
 import numpy as np
 
-from .. import loads, models
-from ..compensate import AdaptiveController, CurveAngleFeedforward, InverseFeedforward
+from .. import loads, presets
+from ..compensate import AdaptiveController
 from ..motor import Motor
 from ..plant import ContinuumPlant, PullPullPlant
 from ..route import Route
 from ..sensor import Sensor
 from .run import run
-from .scenarios.common import ScenarioResult, calibration_input, piecewise_routes, ratio
+from .scenarios.common import ScenarioResult, piecewise_routes, ratio
 
 COMPENSATORS = ("none", "inverse_feedforward", "curve_angle_feedforward", "adaptive")
 
@@ -84,6 +91,7 @@ _KEYS: dict[str, dict[str, type | tuple]] = {
         "proximal_radius": float,
         "distal_radius": float,
         "elements": int,
+        "realistic": bool,
         "bending_stiffness": float,
         "tendon_offset": float,
         "backbone_length": float,
@@ -94,7 +102,13 @@ _KEYS: dict[str, dict[str, type | tuple]] = {
     "torque_motor": {"inertia": float, "viscous": float, "max_torque": float},
     "sensor": {"noise_std": float, "resolution": float, "seed": int},
     "reference": {"duration": float, "rate": float, "sines": list},
-    "calibration": {"duration": float, "amplitude": float},
+    "calibration": {
+        "duration": float,
+        "amplitude": float,
+        "angles": list,
+        "shape_noise": float,
+        "shape_delay": float,
+    },
     "compare": {"compensators": list},
 }
 _TOP = {"title": str, "seed": int, **{k: dict for k in _KEYS}}
@@ -134,6 +148,7 @@ def _check_type(where: str, key: str, value, kind):
         float: "a number",
         int: "an integer",
         str: "a string",
+        bool: "true or false",
         list: "an array",
         dict: "a table",
     }[kind]
@@ -251,8 +266,35 @@ def _load_object(spec):
     return loads.SpringDamper(spec.get("stiffness", 0.0), spec.get("damping", 0.0))
 
 
+def _realistic(sc: UserScenario) -> bool:
+    return bool(sc.plant.get("realistic", True))
+
+
+def _servo(sc: UserScenario) -> Motor:
+    if _realistic(sc):
+        return presets.realistic_motor(**sc.motor)
+    return Motor.position(**sc.motor)
+
+
+def _torque(sc: UserScenario) -> Motor:
+    if _realistic(sc):
+        return presets.realistic_motor("torque", **sc.torque_motor)
+    return Motor.torque(**sc.torque_motor)
+
+
 def _plant(sc: UserScenario, motor: Motor | None, sensor: Sensor | None = None):
-    p = {k: v for k, v in sc.plant.items() if k != "type"}
+    p = {k: v for k, v in sc.plant.items() if k not in ("type", "realistic")}
+    if _realistic(sc):
+        kind = ContinuumPlant if sc.plant["type"] == "continuum" else PullPullPlant
+        import inspect
+
+        defaults = inspect.signature(kind.__init__).parameters
+        p.update(
+            presets.realistic_plant(
+                friction=p.pop("friction", defaults["friction"].default),
+                stiffness=p.pop("stiffness", defaults["stiffness"].default),
+            )
+        )
     route = sc.route["initial"]
     try:
         if sc.plant["type"] == "continuum":
@@ -280,61 +322,71 @@ def tension_bench_friction(plant) -> float:
     return float(-math.log(tension[-1] / tension[0]) / span)
 
 
-def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
-    """Calibrate (identify) on the initial route, then run every compensator of [compare]."""
-    from ..identify import identify
+def calibration_angles(sc: UserScenario) -> list[float]:
+    """The calibration curve angles: [calibration] angles, or 0.4, 1.1 and 1.7 pi, each
+    moved off any test route's angle (by at least 0.1 rad)."""
+    tests = [sc.route["initial"].total_angle] + [r.total_angle for _, r in sc.route_changes]
+    given = sc.calibration.get("angles")
+    if given is not None:
+        angles = [float(a) for a in given]
+        clash = [a for a in angles if any(abs(a - b) < 0.05 for b in tests)]
+        if clash:
+            raise ScenarioError(
+                f"{sc.source} [calibration]: angles {clash} are test route angles; calibration "
+                "and test routes must differ"
+            )
+        return angles
+    angles = []
+    for a in (0.4 * math.pi, 1.1 * math.pi, 1.7 * math.pi):
+        while any(abs(a - b) < 0.1 for b in tests):
+            a += 0.1
+        angles.append(a)
+    return angles
 
-    servo_motor = Motor.position(**sc.motor)
+
+def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
+    """Calibrate with :func:`bench.calibrate` on calibration shapes that differ from every
+    test route (the plant's logs alone), then run every compensator of [compare]."""
+    from .calibration import ShapeSensing, calibrate
+    from .scenarios.common import honesty_panel, kinematic_told
+
+    servo_motor = _servo(sc)
     sensor = Sensor(**sc.sensor)
-    # calibration: identified models, never the plant's own parameters
     if progress:
         progress("calibration")
-    t_cal, command = calibration_input(sc.calibration["duration"], sc.calibration["amplitude"])
-    cal = _plant(sc, Motor.position(**sc.motor), Sensor(**{**sc.sensor, "seed": sc.seed + 11}))
-    sim = cal.simulate(t_cal, command, full=True)
-    warm = int(0.1 * t_cal.size)
-    fitted: dict[str, Any] = {}
-    if {"inverse_feedforward", "adaptive"} & set(sc.compensators):
-        fitted["bwb"] = identify(
-            models.BoucWenBacklash,
-            t_cal,
-            sim.q_in,
-            sim.measured,
-            warmup=warm,
+    shape = ShapeSensing(
+        noise_std=sc.calibration.get("shape_noise", 0.05),
+        delay=sc.calibration.get("shape_delay", 0.1),
+        seed=sc.seed,
+    )
+    angles = calibration_angles(sc)
+    length = sc.route["initial"].length
+    cal_routes = [Route.uniform(length, a) for a in angles]
+    wants = set(sc.compensators)
+    model_names = []
+    if {"inverse_feedforward", "adaptive"} & wants:
+        model_names.append("BoucWenBacklash")
+    if "curve_angle_feedforward" in wants:
+        model_names.append("CurveAngleModel")
+    sensed_initial = shape.static_reading(sc.route["initial"].total_angle, 1.0, seed_offset=77)
+    nearest = int(np.argmin([abs(a - sensed_initial) for a in angles]))
+    spring = sc.plant["type"] == "continuum" or bool(
+        sc.load and sc.load.get("type") != "constant_torque"
+    )
+    cal = None
+    if model_names:
+        cal = calibrate(
+            _plant(sc, _servo(sc)),
+            cal_routes,
+            models_=model_names,
+            backlash_route=nearest,
+            spring=spring,
+            duration=sc.calibration["duration"],
+            amplitude=sc.calibration["amplitude"],
+            sensor=Sensor(**{**sc.sensor, "seed": sc.seed + 11}),
+            shape=shape,
             seed=sc.seed,
-            progress=False,
-        )
-    if "curve_angle_feedforward" in sc.compensators:
-        # one recording per distinct curve angle of the schedule (friction and stiffness
-        # cannot be told apart at a single angle)
-        routes_seen = [sc.route["initial"]] + [r for _, r in sc.route_changes]
-        recordings, angles = [], set()
-        for i, route in enumerate(routes_seen):
-            if round(route.total_angle, 6) in angles or len(recordings) >= 3:
-                continue
-            angles.add(round(route.total_angle, 6))
-            rec = _plant(
-                sc, Motor.position(**sc.motor), Sensor(**{**sc.sensor, "seed": sc.seed + 20 + i})
-            )
-            rec.set_route(route)
-            out = sim if i == 0 else rec.simulate(t_cal, command, full=True)
-            recordings.append((t_cal, out.q_in, out.measured, route.total_angle))
-        fixed = {
-            "pretension": cal.pretension,
-            "length": sc.route["initial"].length,
-            "proximal_radius": cal.proximal_radius,
-            "distal_radius": cal.distal_radius,
-        }
-        if len(recordings) == 1:  # one angle: friction from a tension bench
-            fixed["friction"] = tension_bench_friction(_plant(sc, None))
-        fitted["curve"] = identify(
-            models.CurveAngleModel,
-            recordings=recordings,
-            fixed=fixed,
-            free=[] if sc.plant["type"] == "pull_pull" else ["spring"],
-            warmup=warm,
-            seed=sc.seed,
-            progress=False,
+            names=[f"curve angle {a:.3f} rad" for a in angles],
         )
     ref = sc.reference
     t = np.arange(0.0, ref["duration"], 1.0 / ref["rate"])
@@ -349,27 +401,46 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
         routes = piecewise_routes(times, shapes)
     runs = {}
     servo = _plant(sc, servo_motor)
+    told: dict[str, dict] = {"none": kinematic_told(servo)}
     for name in sc.compensators:
         if progress:
             progress(name)
         if name == "none":
             runs[name] = run(servo, None, t, y_d, routes=routes, noise=sensor)
         elif name == "inverse_feedforward":
-            ff = InverseFeedforward(fitted["bwb"].model, smoothing=0.03)
+            ff = cal.inverse_feedforward(smoothing=0.03)
             runs["InverseFeedforward"] = run(servo, ff, t, y_d, routes=routes, noise=sensor)
         elif name == "curve_angle_feedforward":
-            ff = CurveAngleFeedforward.from_model(fitted["curve"].model, smoothing=0.03)
-            runs["CurveAngleFeedforward"] = run(servo, ff, t, y_d, routes=routes, noise=sensor)
+            ff = cal.curve_angle_feedforward(smoothing=0.03)
+            runs["CurveAngleFeedforward"] = run(
+                servo, ff, t, y_d, routes=routes, noise=sensor, shape_sensing=shape
+            )
         else:
-            torque = _plant(sc, Motor.torque(**sc.torque_motor))
+            torque = _plant(sc, _torque(sc))
             ctrl = AdaptiveController.from_model(
-                fitted["bwb"].model,
+                cal.backlash_model,
                 inertia=sc.torque_motor["inertia"],
                 viscous=sc.torque_motor["viscous"],
                 max_torque=sc.torque_motor["max_torque"],
                 noise_std=sc.sensor["noise_std"],
             )
+            told["AdaptiveController"] = {
+                f"torque motor {k}": (v, "declared by the user ([torque_motor])")
+                for k, v in sc.torque_motor.items()
+            }
+            told["AdaptiveController"]["sensor noise std"] = (
+                sc.sensor["noise_std"],
+                "declared by the user ([sensor])",
+            )
             runs["AdaptiveController"] = run(torque, ctrl, t, y_d, routes=routes, noise=sensor)
+    if progress:
+        progress("honesty panel")
+    theta = (
+        np.array([routes(tk).total_angle for tk in t])
+        if routes is not None
+        else sc.route["initial"].total_angle
+    )
+    honesty = honesty_panel(cal, runs, curve_angle=theta, told=told, seed=sc.seed)
     base = runs["none"].metrics["mse"] if "none" in runs else float("nan")
     table = [
         {
@@ -394,8 +465,11 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
             "sensor": ", ".join(f"{k} = {v}" for k, v in sc.sensor.items()),
             "reference": f"{ref['sines']} (amplitude rad, Hz, phase) for {ref['duration']} s "
             f"at {ref['rate']} Hz",
-            "calibration": f"{sc.calibration['duration']} s, amplitude "
-            f"{sc.calibration['amplitude']} rad, on the initial route",
+            "calibration": f"bench.calibrate: {sc.calibration['duration']} s runs, amplitude "
+            f"{sc.calibration['amplitude']} rad, at curve angles "
+            + ", ".join(f"{a:.3f}" for a in angles)
+            + " rad (no test route takes them), from the motor encoder, the noisy distal "
+            f"sensor and a {shape.describe()}",
         },
         runs=runs,
         table=table,
@@ -403,5 +477,12 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
         routes=shapes,
         route_schedule=[(0.0, sc.route["initial"].total_angle)]
         + [(tc, r.total_angle) for tc, r in sc.route_changes],
-        calibration={f"{k} rmse": f.rmse for k, f in fitted.items()},
+        calibration=cal.to_dict() if cal is not None else {},
+        protocol=f"{sc.title}: compensators calibrated by bench.calibrate from the plant's "
+        "logs at curve angles "
+        + ", ".join(f"{a:.3f}" for a in angles)
+        + " rad and judged on the scenario's own routes and reference; the plant's parameters "
+        "are never copied (what each compensator was told is listed below).",
+        honesty=honesty,
+        identified=cal.identified_rows() if cal is not None else [],
     )

@@ -6,6 +6,8 @@ metrics.json (schema "tendonsheath.metrics", version 1):
      "scenarios": {scenario: {compensator: {metric: value}}},      # the headline runs
      "paper": {scenario: {...the paper's numbers...}},
      "details": {scenario: {...per-condition metrics, frequency responses, calibration...}},
+     "honesty": {scenario: {compensator: {told, at_bounds, model_class, in_class_rmse,
+                                          in_class_nrmse, output_range}}},
      "robustness": {...},     # the demo's Monte Carlo study: per compensator, quantiles
      "models": {model: {...}}}                                       # hysteresis model demo
 
@@ -113,14 +115,79 @@ def scenario_section(result, out: Path) -> tuple[str, list[Path]]:
         ]
         parts.append("<h3>Bandwidth</h3>" + html.table(rows))
     if result.calibration:
-        cal = {k: v for k, v in result.calibration.items() if not isinstance(v, dict)}
+        cal = {
+            k: v for k, v in result.calibration.items() if not isinstance(v, dict | list | tuple)
+        }
         if cal:
             parts.append("<h3>Calibration (identified on the plant)</h3>" + html.table([cal]))
+    if result.identified:
+        parts.append(
+            '<h3>Identified parameters</h3><p class="note">From the calibration logs alone '
+            "(motor encoder, noisy distal sensor, sensed curve angle). Groups that cannot be "
+            "separated are reported as groups; the rest is held at declared values.</p>"
+            + html.table(result.identified)
+        )
+    if result.honesty:
+        parts.append(honesty_section(result.honesty))
     return "".join(parts), written
+
+
+def honesty_section(panel: dict) -> str:
+    """The honesty panel: what each compensator was told and where it came from, parameters
+    at their search bounds, and the best in-class fit on its own test run."""
+    summary = [
+        {
+            "compensator": name,
+            "model class": e.get("model_class"),
+            "best in-class fit rmse [rad]": e.get("in_class_rmse"),
+            "output range [rad]": e.get("output_range"),
+            "rmse / range": e.get("in_class_nrmse"),
+            "parameters at search bounds": ", ".join(e.get("at_bounds") or []) or "none",
+        }
+        for name, e in panel.items()
+    ]
+    told = [
+        {
+            "compensator": name,
+            "told": row["quantity"],
+            "value": row["value"]
+            if isinstance(row["value"], float | int | str)
+            else str(row["value"]),
+            "where it came from": row["source"],
+        }
+        for name, e in panel.items()
+        for row in e.get("told", [])
+    ]
+    return (
+        '<h3>Honesty panel</h3><p class="note">How far the plant lies from each '
+        "compensator's model class: that class identified on the test run's own log (motor "
+        "encoder in, distal sensor out), next to the output range.</p>"
+        + html.table(summary)
+        + "<h3>What each compensator was told</h3>"
+        + html.table(told)
+    )
+
+
+def intro_for(results: list) -> str:
+    """The report's introduction, from what each scenario actually did."""
+    lines = [
+        f"<li>{html.fmt(r.protocol)}</li>"
+        if r.protocol
+        else f"<li>{html.fmt(r.name)}: no calibration protocol recorded.</li>"
+        for r in results
+    ]
+    return (
+        "<p>Each scenario ran on the N-element physics plant (spec A.5). How its compensators "
+        "were calibrated and judged:</p><ul>" + "".join(lines) + "</ul><p>Metrics exclude the "
+        "first period of the reference. Each section lists what every compensator was told "
+        "and where it came from.</p>"
+    )
 
 
 def details(result) -> dict:
     d = {"calibration": result.calibration, "table": result.table}
+    if result.identified:
+        d["identified"] = result.identified
     if result.route_schedule:
         d["route_schedule"] = [{"t": t, "total_angle": a} for t, a in result.route_schedule]
     if result.frequency:
@@ -150,16 +217,12 @@ def write(
         "scenarios": {r.name: r.metrics() for r in scenario_results},
         "paper": {r.name: r.paper for r in scenario_results},
         "details": {r.name: details(r) for r in scenario_results},
+        "honesty": {r.name: r.honesty for r in scenario_results if r.honesty},
     }
     for anchor, heading, body, data in extra_sections or []:
         sections.append((anchor, heading, body))
         metrics[anchor] = data
-    intro = (
-        "<p>Each seed paper's experiment, simulated on the N-element physics plant "
-        "(spec A.5) with models identified from calibration runs on that plant, never on "
-        "the model a compensator inverts. Metrics exclude the first period of the "
-        "reference.</p>"
-    )
+    intro = intro_for(scenario_results)
     report = out / "report.html"
     report.write_text(html.page(title, intro, sections))
     metrics_path = out / "metrics.json"

@@ -59,10 +59,17 @@ def robustness_study(
                  **sweep_options)  # fmt: skip
 
 
-def robustness_section(result, out_dir, metric: str = "mse", bound: float | None = None) -> dict:
+def robustness_section(
+    result,
+    out_dir,
+    metric: str = "mse",
+    bound: float | None = None,
+    design: MonteCarlo | None = None,
+) -> dict:
     """The report's robustness figure (robustness_<metric>.png: the spread of ``metric`` per
     compensator, log scale) and numbers: quantiles per compensator and, with ``bound``, the
-    fraction of runs within it."""
+    fraction of runs within it. ``design``: the design that ran (written to the numbers;
+    without it only the result's design name is known)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -100,7 +107,11 @@ def robustness_section(result, out_dir, metric: str = "mse", bound: float | None
     return {
         "runs": result.n_runs,
         "seed": result.seed,
-        "design": {name: repr(d) for name, d in robustness_design().distributions.items()},
+        "design": (
+            {name: repr(d) for name, d in design.distributions.items()}
+            if design is not None
+            else {"name": str(result.design)}
+        ),
         "metric": metric,
         "bound": bound,
         "compensators": {

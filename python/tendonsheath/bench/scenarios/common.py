@@ -10,6 +10,7 @@ import numpy as np
 
 from ...route import Route
 from ...sensor import Sensor
+from ..calibration import calibration_input  # noqa: F401 (re-exported)
 from ..frequency import FrequencyResponse
 from ..run import Result
 
@@ -31,6 +32,9 @@ class ScenarioResult:
     calibration: dict[str, Any] = field(default_factory=dict)
     frequency: dict[str, FrequencyResponse] = field(default_factory=dict)
     extra: dict[str, Any] = field(default_factory=dict)
+    protocol: str = ""  # how the compensators were calibrated and judged (the report's intro)
+    honesty: dict[str, Any] = field(default_factory=dict)  # compensator -> honesty panel row
+    identified: list[dict[str, Any]] = field(default_factory=list)  # identified groups, report
 
     def metrics(self) -> dict[str, dict[str, float]]:
         """compensator -> metric -> value, for metrics.json."""
@@ -42,13 +46,43 @@ def encoder(noise_std: float = 2e-4, resolution: float = 1e-4, seed: int = 1) ->
     return Sensor(resolution=resolution, noise_std=noise_std, seed=seed)
 
 
-def calibration_input(duration: float, amplitude: float, rate: float = 1000.0):
-    """A calibration excitation unlike the test references: a 0.15 Hz sine whose amplitude
-    sweeps from full to a third and back, plus a 0.9 Hz ripple (nested minor loops)."""
-    t = np.arange(0.0, duration, 1.0 / rate)
-    envelope = amplitude * (1.0 - (2.0 / 3.0) * np.sin(np.pi * t / duration))
-    x = envelope * np.sin(2 * np.pi * 0.15 * t) + 0.08 * amplitude * np.sin(2 * np.pi * 0.9 * t)
-    return t, x
+def honesty_panel(
+    cal,
+    runs: dict[str, Result],
+    *,
+    curve_angle=None,
+    load: str | None = "calibrated",
+    told: dict[str, dict[str, tuple[Any, str]]] | None = None,
+    seed: int = 0,
+    budget: dict | None = None,
+) -> dict[str, Any]:
+    """compensator -> what it was told (and where from), parameters at their bounds, and the
+    best in-class fit on its own test run next to the output range."""
+    from ..calibration import honesty_entry
+
+    panel = {}
+    for name, result in runs.items():
+        declared = dict((told or {}).get(name, {}))
+        if name == "none":
+            rows = [{"quantity": k, "value": v, "source": src} for k, (v, src) in declared.items()]
+            bounds = []
+        else:
+            rows = cal.told(name, load=load, **declared)
+            bounds = cal.bounds_of(name)
+        panel[name] = honesty_entry(
+            name, result, rows, bounds, curve_angle=curve_angle, seed=seed, budget=budget
+        )
+    return panel
+
+
+def kinematic_told(plant) -> dict[str, tuple[Any, str]]:
+    """The uncompensated drive's only input: the kinematic ratio of its pulleys."""
+    return {
+        "kinematic gain r_d/r_p": (
+            plant.distal_radius / plant.proximal_radius,
+            "design ratio of the pulleys (the uncompensated command)",
+        )
+    }
 
 
 def piecewise_routes(times: list[float], routes: list[Route]) -> Callable[[float], Route]:

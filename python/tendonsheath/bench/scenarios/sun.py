@@ -7,39 +7,47 @@ import math
 
 import numpy as np
 
-from ... import models
-from ...compensate import CurveAngleFeedforward, InverseFeedforward
+from ... import presets
 from ...loads import ConstantTorque, TorsionalSpring
-from ...motor import Motor
 from ...plant import PullPullPlant
 from ...route import Route
+from ..calibration import ShapeSensing, calibrate_load
+from ..calibration import calibrate as bench_calibrate
 from ..run import run
 from .common import (
     ScenarioResult,
-    calibration_input,
     encoder,
+    honesty_panel,
     identification_budget,
+    kinematic_told,
     piecewise_routes,
 )
 
 ANGLES = (0.0, math.pi / 2, math.pi, 3 * math.pi / 2, 2 * math.pi)
-CALIBRATION_ANGLES = (math.pi / 2, math.pi, 2 * math.pi)
+# calibration shapes: none of them is a test shape (ANGLES and the route-change run)
+CALIBRATION_ANGLES = (0.35 * math.pi, 1.15 * math.pi, 1.85 * math.pi)
+BACKLASH_ROUTE = 1  # the fixed feedforward is calibrated at 1.15 pi only
 LENGTH, RADIUS = 1.2, 10e-3
 LOAD_FORCE, SPRING = 5.0, 500.0  # N and N/m at the tendon: 5 N at 1 rad for the spring
 
 CONDITIONS = {
     "plant": "pull-pull pair, two 1.2 m sheaths of uniform curvature, EA = 5000 N, "
-    "T0 = 20 N, mu = 0.1, pulleys r_p = r_d = 10 mm, 40 elements per sheath",
+    "T0 = 20 N, mu = 0.1, pulleys r_p = r_d = 10 mm, 40 elements per sheath; realistic "
+    "preset (tendonsheath.presets): distal dynamics, sheath viscosity, creep, unequal pair",
     "curve angles": "0, pi/2, pi, 3 pi/2, 2 pi",
     "loads": "none; constant 0.05 N m (5 N at the tendon); torsional spring 0.05 N m/rad "
     "(5 N at 1 rad)",
     "route change run": "Theta = pi/2, then 2 pi, then pi (thirds of the run), no load",
     "reference": "0.8 rad sine at 0.2 Hz (distal angle)",
-    "motor": "position servo, 30 Hz, damping 0.8",
-    "calibration": "CurveAngleModel identified from runs at pi/2, pi and 2 pi (no load); the "
-    "fixed feedforward is an InverseFeedforward of a BoucWenBacklash identified at pi only",
-    "compensators": "none; fixed feedforward; CurveAngleFeedforward told the current curve "
-    "angle and the expected load",
+    "motor": "position servo, 30 Hz, damping 0.8, with the realistic preset's friction and "
+    "gear backlash",
+    "calibration": "bench.calibrate on the robot's logs alone (motor encoder, noisy distal "
+    "encoder, sensed curve angle): CurveAngleModel groups from runs at 0.35 pi, 1.15 pi and "
+    "1.85 pi (no load; none is a test angle); each load's groups from one more run at "
+    "1.15 pi carrying it; the fixed feedforward is an InverseFeedforward of a "
+    "BoucWenBacklash identified at 1.15 pi only",
+    "compensators": "none; fixed feedforward; CurveAngleFeedforward told the sensed curve "
+    "angle (noise and delay) and the load groups identified from its load run",
     "rate": "1 kHz; first period excluded",
 }
 
@@ -54,44 +62,44 @@ _COMMON = dict(
 
 
 def _plant(theta: float, load=None, sensor=None) -> PullPullPlant:
+    common = {k: v for k, v in _COMMON.items() if k not in ("friction", "stiffness")}
     return PullPullPlant(
         route=Route.uniform(LENGTH, theta),
         load=load,
-        motor=Motor.position(30.0, 0.8),
+        motor=presets.realistic_motor(bandwidth_hz=30.0, damping=0.8),
         sensor=sensor,
-        **_COMMON,
+        **common,
+        **presets.realistic_plant(friction=_COMMON["friction"], stiffness=_COMMON["stiffness"]),
     )
 
 
 def calibrate(seed: int = 0, budget: dict | None = None):
-    budget = budget or {}
-    """CurveAngleModel from three curve angles, and a BoucWenBacklash at pi only."""
-    from ...identify import identify
-
-    recordings = []
-    for i, theta in enumerate(CALIBRATION_ANGLES):
-        t, command = calibration_input(15.0, 1.0)
-        sim = _plant(theta, sensor=encoder(seed=seed + 20 + i)).simulate(t, command, full=True)
-        recordings.append((t, sim.q_in, sim.measured, theta))
-    curve = identify(
-        models.CurveAngleModel,
-        recordings=recordings,
-        fixed={
-            "pretension": 20.0,
-            "length": LENGTH,
-            "proximal_radius": RADIUS,
-            "distal_radius": RADIUS,
-        },
-        warmup=1500,
+    """The calibration protocol (bench.calibrate) on the robot: CurveAngleModel groups from
+    three calibration angles, a BoucWenBacklash at 1.15 pi, and one run per load."""
+    routes = [Route.uniform(LENGTH, a) for a in CALIBRATION_ANGLES]
+    cal = bench_calibrate(
+        _plant(CALIBRATION_ANGLES[0]),
+        routes,
+        backlash_route=BACKLASH_ROUTE,
+        duration=15.0,
+        amplitude=1.0,
+        sensor=encoder(seed=seed + 20),
+        shape=ShapeSensing(seed=seed),
         seed=seed,
-        progress=False,
-        **budget,
+        budget=budget,
+        names=[f"no load, sensed {a / math.pi:.2f} pi" for a in CALIBRATION_ANGLES],
     )
-    t, x, y, _ = recordings[1]
-    fixed = identify(
-        models.BoucWenBacklash, t, x, y, warmup=1500, seed=seed, progress=False, **budget
-    )
-    return curve, fixed
+    for kind in ("constant", "spring"):
+        calibrate_load(
+            cal,
+            kind,
+            _plant(CALIBRATION_ANGLES[BACKLASH_ROUTE], load=_load(kind)[0]),
+            routes[BACKLASH_ROUTE],
+            sensor=encoder(seed=seed + 40),
+            seed=seed,
+            budget=budget,
+        )
+    return cal
 
 
 def _load(kind: str):
@@ -106,23 +114,25 @@ def sun2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     """Curve angles 0 to 2 pi, constant and spring loads, and a mid-run route change.
 
     Compares no compensation, a feedforward fixed at its calibration angle and the
-    curve-angle feedforward of spec B2 (identified CurveAngleModel, told the current curve
-    angle every cycle) by RMSE (rad).
+    curve-angle feedforward of spec B2 (CurveAngleModel groups from bench.calibrate, told the
+    sensed curve angle with noise and delay) by RMSE (rad).
     """
     duration = max(6.0, 15.0 * scale)
     t = np.arange(0.0, duration, 1e-3)
     y_d = 0.8 * np.sin(2 * np.pi * 0.2 * t)
     if progress:
         progress("sun2015: calibration")
-    curve_fit, fixed_fit = calibrate(seed, identification_budget(scale))
-    fixed = InverseFeedforward(fixed_fit.model, smoothing=0.02)
+    budget = identification_budget(scale)
+    cal = calibrate(seed, budget)
+    fixed = cal.inverse_feedforward(smoothing=0.02)
+    shape = cal.shape
     rows, per_condition = [], {}
     if progress:
         progress("sun2015: curve angles x loads")
     for load_kind in ("none", "constant", "spring"):
-        load, force, spring = _load(load_kind)
-        follow = CurveAngleFeedforward.from_model(
-            curve_fit.model, load_force=force, load_stiffness=spring, smoothing=0.02
+        load = _load(load_kind)[0]
+        follow = cal.curve_angle_feedforward(
+            load=None if load_kind == "none" else load_kind, smoothing=0.02
         )
         for theta in ANGLES:
             plant = _plant(theta, load=load)
@@ -130,7 +140,9 @@ def sun2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
             results = {
                 "none": run(plant, None, t, y_d, noise=encoder(seed=seed)),
                 "fixed feedforward": run(plant, fixed, t, y_d, noise=encoder(seed=seed)),
-                "CurveAngleFeedforward": run(plant, follow, t, y_d, noise=encoder(seed=seed)),
+                "CurveAngleFeedforward": run(
+                    plant, follow, t, y_d, noise=encoder(seed=seed), shape_sensing=shape
+                ),
             }
             per_condition[key] = {k: r.metrics for k, r in results.items()}
             rows.append({"condition": key, **{k: r.metrics["rmse"] for k, r in results.items()}})
@@ -141,16 +153,26 @@ def sun2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     shapes = [Route.uniform(LENGTH, a) for a in (math.pi / 2, 2 * math.pi, math.pi)]
     routes = piecewise_routes(thirds, shapes)
     plant = _plant(math.pi / 2)
-    follow = CurveAngleFeedforward.from_model(
-        curve_fit.model, smoothing=0.02, max_correction_rate=0.02
-    )
+    # the correction-rate limit in the calibration's units (r_p nominal 1): rad/s at the motor
+    follow = cal.curve_angle_feedforward(load=None, smoothing=0.02, max_correction_rate=2.0)
     runs = {
         "none": run(plant, None, t, y_d, routes=routes, noise=encoder(seed=seed)),
         "fixed feedforward": run(plant, fixed, t, y_d, routes=routes, noise=encoder(seed=seed)),
         "CurveAngleFeedforward": run(
-            plant, follow, t, y_d, routes=routes, noise=encoder(seed=seed)
+            plant, follow, t, y_d, routes=routes, noise=encoder(seed=seed), shape_sensing=shape
         ),
     }
+    if progress:
+        progress("sun2015: honesty panel")
+    honesty = honesty_panel(
+        cal,
+        runs,
+        curve_angle=np.array([routes(tk).total_angle for tk in t]),
+        load=None,  # the route-change run carries no load and the feedforward is told none
+        told={"none": kinematic_told(plant)},
+        seed=seed,
+        budget=budget,
+    )
     rows.append(
         {
             "condition": "route change pi/2 -> 2 pi -> pi",
@@ -175,10 +197,15 @@ def sun2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
         routes={f"Theta = {a / math.pi:.1f} pi": Route.uniform(LENGTH, a) for a in ANGLES},
         route_schedule=[(tk, r.total_angle) for tk, r in zip(thirds, shapes, strict=True)],
         calibration={
-            "curve_angle_model": curve_fit.model.to_dict(),
-            "curve_angle_rmse": curve_fit.rmse,
-            "fixed_model": fixed_fit.model.to_dict(),
-            "fixed_rmse": fixed_fit.rmse,
+            **cal.to_dict(),
+            "curve_angle_rmse": cal.fits["CurveAngleModel"].rmse,
+            "fixed_rmse": cal.fits["BoucWenBacklash"].rmse,
         },
         extra={"per_condition": per_condition, "mean_rmse_over_conditions": mean_rmse},
+        protocol="sun2015: compensators calibrated by bench.calibrate from the robot's logs at "
+        "curve angles 0.35, 1.15 and 1.85 pi (plus one run per load at 1.15 pi) and judged "
+        "at 0, 0.5, 1, 1.5 and 2 pi and in a route-change run; the curve-angle feedforward "
+        f"is told a {shape.describe()}.",
+        honesty=honesty,
+        identified=cal.identified_rows(),
     )

@@ -1,0 +1,672 @@
+"""A calibration protocol that cannot cheat: every compensator input from a plant's logs alone.
+
+:func:`calibrate` runs calibration experiments on a plant (the robot) and keeps only what a
+real rig logs: the motor encoder (the motor shaft angle), the noisy distal sensor, and the
+sensed curve angle of each calibration shape (shape sensing with noise and delay). Every
+parameter a compensator is told is then identified from those logs. Nothing is read from
+the plant object: no pretension, length, radii, friction, stiffness or load.
+
+Identifiability (spec B, :class:`~tendonsheath.models.CurveAngleModel`): T0, F_L and k_e
+enter only through T0 L/EA, F_L L/EA and k_e L/EA, and the radii only through the gain
+r_p/r_d. The pretension, the length and the proximal radius are therefore held at declared
+NOMINAL values (1, 1 and 1 unless the user declares design values) and the identified
+GROUPS are reported: ``mu``, ``T0 L/(EA r_p)`` (rad at the motor), ``gain r_p/r_d``,
+``F_L L/(EA r_p)`` and ``k_e L/EA``. Friction is told apart from the other groups only by
+calibration shapes of different curve angles; with one angle it is reported unidentified
+and held at a declared value.
+
+The returned :class:`Calibration` builds the compensators and carries a provenance record:
+for each quantity a compensator is told, its value and where it came from, and which
+identified parameters sit at (within 1 % of) their search bounds.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .. import models
+from ..physics import route_shape
+from ..route import Route
+from ..sensor import Sensor
+
+NOMINAL = {"pretension": 1.0, "length": 1.0, "proximal_radius": 1.0}
+NOMINAL_FRICTION = 0.1  # held when a single curve angle cannot identify it
+
+
+# -- shape sensing ------------------------------------------------------------------------
+
+
+@dataclass
+class ShapeSensing:
+    """Shape sensing of the route (e.g. an FBG fibre or bending-knob readings): the sensed
+    total curve angle is the true one ``delay`` seconds ago plus Gaussian noise of
+    ``noise_std`` rad, a new reading every 1/``rate_hz`` s. Only the curve angle is sensed:
+    a compensator that takes a route shape gets a uniform-curvature route of that angle."""
+
+    noise_std: float = 0.05
+    delay: float = 0.1
+    rate_hz: float = 10.0
+    seed: int = 0
+
+    def describe(self) -> str:
+        return (
+            f"sensed curve angle (noise {self.noise_std:g} rad, delay {self.delay:g} s, "
+            f"{self.rate_hz:g} Hz readings)"
+        )
+
+    def readings(
+        self, t: np.ndarray, angle_at: Callable[[float], float], seed_offset: int = 0
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """(sample index of each reading, sensed angle of each reading) over times t."""
+        t = np.asarray(t, dtype=float)
+        period = 1.0 / self.rate_hz
+        times = np.arange(t[0], t[-1] + 0.5 * period, period)
+        idx = np.unique(np.searchsorted(t, times, side="left").clip(0, t.size - 1))
+        rng = np.random.default_rng(10_000 + self.seed + seed_offset)
+        sensed = np.array(
+            [angle_at(max(float(t[k]) - self.delay, float(t[0]))) for k in idx], dtype=float
+        )
+        sensed = sensed + rng.normal(0.0, self.noise_std, sensed.size)
+        return idx, np.maximum(sensed, 0.0)
+
+    def static_reading(self, angle: float, duration: float, seed_offset: int = 0) -> float:
+        """The median of the readings over a run on a route held still: the angle a user
+        records for a calibration shape."""
+        t = np.arange(0.0, duration, 1.0 / self.rate_hz)
+        _, sensed = self.readings(t, lambda _t: float(angle), seed_offset)
+        return float(np.median(sensed))
+
+
+def sensed_schedule(shape: ShapeSensing, t, routes: Callable, friction: float, seed_offset=0):
+    """What a curve-angle compensator is told during a test run: sample indices and one
+    (g, G, Theta) row per reading, for a uniform route of the sensed angle."""
+
+    def angle_at(tk: float) -> float:
+        r = routes(tk)
+        r = r[0] if isinstance(r, tuple | list) else r
+        return float(r.total_angle)
+
+    idx, sensed = shape.readings(t, angle_at, seed_offset)
+    rows = []
+    for a in sensed:
+        s = route_shape(Route.uniform(1.0, float(a)), friction)
+        rows.append([s.g, s.G, s.total_angle])
+    return idx, sensed, np.ascontiguousarray(rows, dtype=float)
+
+
+# -- calibration ----------------------------------------------------------------------------
+
+
+def calibration_input(duration: float, amplitude: float, rate: float = 1000.0):
+    """A calibration excitation unlike the test references: a 0.15 Hz sine whose amplitude
+    sweeps from full to a third and back, plus a 0.9 Hz ripple (nested minor loops)."""
+    t = np.arange(0.0, duration, 1.0 / rate)
+    envelope = amplitude * (1.0 - (2.0 / 3.0) * np.sin(np.pi * t / duration))
+    x = envelope * np.sin(2 * np.pi * 0.15 * t) + 0.08 * amplitude * np.sin(2 * np.pi * 0.9 * t)
+    return t, x
+
+
+@dataclass
+class Told:
+    """One quantity a compensator is told: its value and where it came from."""
+
+    quantity: str
+    value: Any
+    source: str
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"quantity": self.quantity, "value": self.value, "source": self.source}
+
+
+@dataclass
+class CalibrationRun:
+    name: str
+    sensed_angle: float
+    duration: float
+    samples: int
+
+
+@dataclass
+class Calibration:
+    """Models identified from calibration logs, and where every number came from.
+
+    ``fits``: name -> :class:`~tendonsheath.identify.Fit` ("BoucWenBacklash",
+    "CurveAngleModel", and "load: NAME" for load runs); ``groups``: the identified groups
+    (name -> {"value", "source", "identified"}); ``runs``: the calibration experiments;
+    ``declared``: nominal or user-declared values (never read from the plant);
+    ``at_bounds``: identified parameters within 1 % of their search bounds.
+    """
+
+    fits: dict[str, Any]
+    runs: list[CalibrationRun]
+    declared: dict[str, Told]
+    groups: dict[str, dict[str, Any]]
+    shape: ShapeSensing
+    at_bounds: dict[str, list[str]] = field(default_factory=dict)
+    loads: dict[str, dict[str, Any]] = field(default_factory=dict)
+    friction_identified: bool = True
+
+    # -- the compensators ------------------------------------------------------------
+    @property
+    def backlash_model(self):
+        return self.fits["BoucWenBacklash"].model
+
+    @property
+    def curve_model(self):
+        return self.fits["CurveAngleModel"].model
+
+    def curve_model_with_load(self, load: str | None = "calibrated"):
+        """The CurveAngleModel with a load: "calibrated" the load groups identified from the
+        calibration runs themselves (what the robot carried then), a name the load of that
+        load run (:func:`calibrate_load`), None no load (not told)."""
+        p = dict(self.curve_model.params)
+        if load == "calibrated":
+            pass
+        elif load is None:
+            p["load"], p["spring"] = 0.0, 0.0
+        else:
+            p["load"], p["spring"] = self.loads[load]["load"], self.loads[load]["spring"]
+        return models.CurveAngleModel(**p)
+
+    def inverse_feedforward(self, **options):
+        from ..compensate import InverseFeedforward
+
+        return InverseFeedforward(self.backlash_model, **options)
+
+    def curve_angle_feedforward(self, load: str | None = "calibrated", **options):
+        from ..compensate import CurveAngleFeedforward
+
+        return CurveAngleFeedforward.from_model(self.curve_model_with_load(load), **options)
+
+    def continuum_feedforward(self, sensed_angle: float, mode: str = "exact", **options):
+        """Lau et al.'s feedforward from the identified groups: tendon offset r_t = the
+        identified r_d at the nominal r_p; the backbone length cancels (EI = k_e r_t^2 l
+        enters only as EI/(r_t l)), so it is held at 1."""
+        from ..compensate import ContinuumFeedforward
+
+        p = self.curve_model.params
+        return ContinuumFeedforward.from_model(
+            self.curve_model, p["distal_radius"], 1.0, sensed_angle, mode=mode, **options
+        )
+
+    # -- provenance ------------------------------------------------------------------
+    def _group(self, name: str) -> Told:
+        g = self.groups[name]
+        return Told(name, g["value"], g["source"])
+
+    def told(self, compensator: str, load: str | None = "calibrated", **declared) -> list[dict]:
+        """What compensator ``compensator`` is told and where each value came from.
+        ``declared``: other values given by the user (name -> (value, source))."""
+        rows: list[Told] = []
+        if compensator in ("InverseFeedforward", "AdaptiveController", "fixed feedforward"):
+            fit = self.fits["BoucWenBacklash"]
+            for k, v in fit.model.params.items():
+                rows.append(Told(f"BoucWenBacklash {k}", v, fit_source(self, fit)))
+        elif compensator in ("CurveAngleFeedforward",) or compensator.startswith(
+            "ContinuumFeedforward"
+        ):
+            for name in ("mu", "T0 L/(EA r_p)", "gain r_p/r_d"):
+                rows.append(self._group(name))
+            if compensator.startswith("ContinuumFeedforward"):
+                rows.append(self._group("k_e L/EA"))
+            else:
+                if load is None:
+                    rows.append(Told("distal load", 0.0, "not told (ignored)"))
+                elif load == "calibrated":
+                    rows.append(self._group("F_L L/(EA r_p)"))
+                    if "k_e L/EA" in self.groups:
+                        rows.append(self._group("k_e L/EA"))
+                else:
+                    info = self.loads[load]
+                    rows.append(Told("F_L L/(EA r_p)", info["F_L L/(EA r_p)"], info["source"]))
+                    rows.append(Told("k_e L/EA", info["k_e L/EA"], info["source"]))
+            for d in self.declared.values():
+                rows.append(d)
+            rows.append(Told("route shape", "curve angle only", self.shape.describe()))
+        for name, (value, source) in declared.items():
+            rows.append(Told(name, value, source))
+        return [r.as_dict() for r in rows]
+
+    def bounds_of(self, compensator: str) -> list[str]:
+        if compensator in ("InverseFeedforward", "AdaptiveController", "fixed feedforward"):
+            return list(self.at_bounds.get("BoucWenBacklash", []))
+        if compensator == "CurveAngleFeedforward" or compensator.startswith("Continuum"):
+            out = list(self.at_bounds.get("CurveAngleModel", []))
+            for name, fits in self.at_bounds.items():
+                if name.startswith("load:"):
+                    out += [f"{name} {p}" for p in fits]
+            return out
+        return []
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "runs": [vars(r) for r in self.runs],
+            "declared": {k: v.as_dict() for k, v in self.declared.items()},
+            "groups": self.groups,
+            "loads": self.loads,
+            "friction_identified": self.friction_identified,
+            "shape_sensing": vars(self.shape),
+            "at_bounds": self.at_bounds,
+            "fits": {
+                name: {
+                    "model": fit.model.to_dict(),
+                    "rmse": fit.rmse,
+                    "nrmse": fit.nrmse,
+                    "identified": list(fit.identified),
+                    "seconds": fit.seconds,
+                }
+                for name, fit in self.fits.items()
+            },
+        }
+
+    def identified_rows(self) -> list[dict[str, Any]]:
+        """Rows for the report: each identified group or parameter and its source."""
+        rows = [
+            {
+                "quantity": k,
+                "value": g["value"],
+                "relative s.e.": g.get("relative_se"),
+                "source": g["source"],
+            }
+            for k, g in self.groups.items()
+        ]
+        for name, fit in self.fits.items():
+            if name != "BoucWenBacklash":
+                continue
+            for k, v in fit.model.params.items():
+                se = fit.standard_errors.get(k)
+                rows.append(
+                    {
+                        "quantity": f"BoucWenBacklash {k}",
+                        "value": v,
+                        "relative s.e.": abs(se / v) if se is not None and v else None,
+                        "source": fit_source(self, fit),
+                    }
+                )
+        for name, info in self.loads.items():
+            for k in ("F_L L/(EA r_p)", "k_e L/EA"):
+                rows.append(
+                    {
+                        "quantity": f"{name}: {k}",
+                        "value": info[k],
+                        "relative s.e.": None,
+                        "source": info["source"],
+                    }
+                )
+        for d in self.declared.values():
+            rows.append({**d.as_dict(), "relative s.e.": None})
+            rows[-1] = {k: rows[-1][k] for k in ("quantity", "value", "relative s.e.", "source")}
+        return rows
+
+
+def fit_source(cal: Calibration, fit) -> str:
+    names = getattr(fit, "_calibration_runs", None) or []
+    return "identified from calibration run(s) " + ", ".join(names)
+
+
+def _near_bounds(fit, tol: float = 0.01) -> list[str]:
+    """Identified parameters within ``tol`` of their search range from either bound (log
+    scale for positive ranges spanning more than a decade)."""
+    out = []
+    params = fit.model.params
+    for name in fit.identified:
+        if name not in fit.bounds or name not in params:
+            continue
+        lo, hi = (float(b) for b in fit.bounds[name])
+        v = float(params[name])
+        if not (math.isfinite(lo) and math.isfinite(hi)) or hi <= lo:
+            continue
+        if lo == 0.0 and v >= 0:  # a physical floor: at it only when v is ~0
+            if v <= 1e-6 * hi or hi - v <= 0.01 * hi:
+                out.append(name)
+            continue
+        if lo > 0 and hi / lo > 10 and v > 0:
+            lo, hi, v = math.log(lo), math.log(hi), math.log(v)
+        span = hi - lo
+        if v - lo <= tol * span or hi - v <= tol * span:
+            out.append(name)
+    return out
+
+
+def _encoder(sim) -> np.ndarray:
+    """The motor encoder: the motor shaft angle (q_motor on plants that model gear play)."""
+    return np.asarray(getattr(sim, "q_motor", sim.q_in), dtype=float)
+
+
+def _run_experiment(plant, route, t, command, sensor: Sensor | None, seed: int):
+    """One calibration experiment on the robot bent into ``route``; returns (encoder,
+    distal reading). The distal reading is the rig's sensor (a fresh copy of ``sensor``
+    with its own seed, or the plant's own sensor)."""
+    previous = plant.route
+    plant.set_route(route)
+    try:
+        sim = plant.simulate(t, command, full=True)
+    finally:
+        plant.set_route(previous)
+    if sensor is not None:
+        reading = Sensor(sensor.resolution, sensor.noise_std, seed).measure(sim.q_out)
+    else:
+        reading = sim.measured
+    return _encoder(sim), np.asarray(reading, dtype=float)
+
+
+def calibrate(
+    plant,
+    routes: Sequence[Route],
+    *,
+    models_: Sequence[str] = ("BoucWenBacklash", "CurveAngleModel"),
+    backlash_route: int = 0,
+    spring: bool = False,
+    duration: float = 15.0,
+    amplitude: float = 1.0,
+    sensor: Sensor | None = None,
+    shape: ShapeSensing | None = None,
+    declared: dict[str, float] | None = None,
+    declared_friction: float | None = None,
+    warmup: float = 1.5,
+    seed: int = 0,
+    budget: dict | None = None,
+    names: Sequence[str] | None = None,
+) -> Calibration:
+    """Calibrate compensators from experiments on ``plant`` (the robot) alone.
+
+    For each route of ``routes`` (the calibration shapes; they must differ from every test
+    route) the robot is bent into that shape and driven through its own motor by
+    :func:`calibration_input` (``duration`` s, ``amplitude`` rad); the motor encoder, the
+    distal ``sensor`` (noisy; default the plant's own sensor) and the sensed curve angle
+    (``shape``, with noise) are logged. From those logs:
+
+    * ``"BoucWenBacklash"`` (for InverseFeedforward and the AdaptiveController) is
+      identified on the run at ``routes[backlash_route]``;
+    * ``"CurveAngleModel"`` (for CurveAngleFeedforward; with ``spring=True`` the
+      environment spring too, for ContinuumFeedforward) on all runs, with their sensed
+      angles: mu, T0 L/(EA r_p), gain r_p/r_d (and k_e L/EA) are identified; pretension,
+      length and proximal radius are held at NOMINAL (or ``declared`` design values,
+      labelled as declared by the user). With a single curve angle friction cannot be told
+      apart from the other groups: it is held at ``declared_friction`` (default 0.1) and
+      reported unidentified.
+
+    ``budget``: options of :func:`tendonsheath.identify` (maxiter, popsize).
+    """
+    from ..identify import identify
+
+    shape = shape or ShapeSensing(seed=seed)
+    budget = dict(budget or {})
+    t, command = calibration_input(duration, amplitude)
+    warm = int(round(warmup / (t[1] - t[0])))
+    names = list(names) if names is not None else [f"cal{i + 1}" for i in range(len(routes))]
+    runs, recordings = [], []
+    for i, route in enumerate(routes):
+        x, y = _run_experiment(plant, route, t, command, sensor, seed + 101 + i)
+        sensed = shape.static_reading(route.total_angle, duration, seed_offset=i)
+        runs.append(CalibrationRun(names[i], sensed, duration, int(t.size)))
+        recordings.append((t, x, y, sensed))
+    user = dict(declared or {})
+    decl: dict[str, Told] = {}
+    for key, value in NOMINAL.items():
+        if key in user:
+            decl[key] = Told(key, float(user[key]), "declared by the user (design value)")
+        else:
+            decl[key] = Told(key, value, "declared nominal (not identifiable)")
+    fits: dict[str, Any] = {}
+    at_bounds: dict[str, list[str]] = {}
+    groups: dict[str, dict[str, Any]] = {}
+    friction_identified = True
+    if "BoucWenBacklash" in models_:
+        tb, xb, yb, _ = recordings[backlash_route]
+        fit = identify(
+            models.BoucWenBacklash, tb, xb, yb, warmup=warm, seed=seed, progress=False, **budget
+        )
+        fit._calibration_runs = [names[backlash_route]]
+        fits["BoucWenBacklash"] = fit
+        at_bounds["BoucWenBacklash"] = _near_bounds(fit)
+    if "CurveAngleModel" in models_:
+        fixed = {k: d.value for k, d in decl.items()}
+        angles = {round(r[3], 3) for r in recordings}
+        if len(angles) < 2:
+            friction_identified = False
+            fixed["friction"] = (
+                NOMINAL_FRICTION if declared_friction is None else float(declared_friction)
+            )
+        x_all = np.concatenate([r[1] for r in recordings])
+        y_all = np.concatenate([r[2] for r in recordings])
+        xc = x_all - x_all.mean()
+        slope = abs(float(np.dot(xc, y_all - y_all.mean()) / max(np.dot(xc, xc), 1e-300)))
+        r_d0 = fixed["proximal_radius"] / max(slope, 1e-6)  # from the data's mean slope
+        fit = identify(
+            models.CurveAngleModel,
+            recordings=recordings,
+            fixed=fixed,
+            free=["distal_radius"] + (["spring"] if spring else []),
+            bounds={"distal_radius": (0.3 * r_d0, 3.0 * r_d0)},
+            warmup=warm,
+            seed=seed,
+            progress=False,
+            **budget,
+        )
+        fit._calibration_runs = list(names)
+        fits["CurveAngleModel"] = fit
+        at_bounds["CurveAngleModel"] = _near_bounds(fit)
+        p = fit.model.params
+        se = fit.standard_errors
+
+        def rel(*names):  # relative standard error of a product of parameters
+            terms = [(se.get(n) or 0.0) / abs(p[n]) for n in names if n in se and p[n] != 0]
+            return float(math.sqrt(sum(x * x for x in terms))) if terms else None
+
+        src = (
+            fit_source(None, fit)
+            + " (sensed curve angles "
+            + ", ".join(f"{r.sensed_angle:.3f}" for r in runs)
+            + " rad)"
+        )
+        scale = p["length"] / (p["stiffness"] * p["proximal_radius"])
+        groups["mu"] = {
+            "value": p["friction"],
+            "source": src
+            if friction_identified
+            else f"UNIDENTIFIED (one curve angle): declared value {p['friction']:g}",
+            "relative_se": rel("friction"),
+            "identified": friction_identified,
+        }
+        groups["T0 L/(EA r_p)"] = {
+            "value": p["pretension"] * scale,
+            "source": src,
+            "relative_se": rel("stiffness"),
+            "identified": True,
+            "unit": "rad at the motor",
+        }
+        groups["gain r_p/r_d"] = {
+            "value": p["proximal_radius"] / p["distal_radius"],
+            "source": src,
+            "relative_se": rel("distal_radius"),
+            "identified": True,
+        }
+        groups["F_L L/(EA r_p)"] = {
+            "value": p["load"] * scale,
+            "source": src,
+            "relative_se": rel("stiffness", "load"),
+            "identified": True,
+            "unit": "rad at the motor",
+        }
+        if spring:
+            groups["k_e L/EA"] = {
+                "value": p["spring"] * p["length"] / p["stiffness"],
+                "source": src,
+                "relative_se": rel("stiffness", "spring"),
+                "identified": True,
+            }
+    return Calibration(
+        fits=fits,
+        runs=runs,
+        declared=decl,
+        groups=groups,
+        shape=shape,
+        at_bounds=at_bounds,
+        friction_identified=friction_identified,
+    )
+
+
+def calibrate_load(
+    cal: Calibration,
+    name: str,
+    plant,
+    route: Route,
+    *,
+    duration: float = 10.0,
+    amplitude: float = 1.0,
+    sensor: Sensor | None = None,
+    warmup: float = 1.5,
+    seed: int = 0,
+    budget: dict | None = None,
+) -> None:
+    """A load calibration run: the robot carrying load ``name`` (``plant``) is driven on a
+    calibration ``route``; the load groups F_L L/EA and k_e L/EA of the CurveAngleModel are
+    identified with the other groups held at their identified values. Adds
+    ``cal.loads[name]``."""
+    from ..identify import identify
+
+    t, command = calibration_input(duration, amplitude)
+    warm = int(round(warmup / (t[1] - t[0])))
+    i = len(cal.runs)
+    x, y = _run_experiment(plant, route, t, command, sensor, seed + 301 + i)
+    sensed = cal.shape.static_reading(route.total_angle, duration, seed_offset=50 + i)
+    run_name = f"load '{name}'"
+    cal.runs.append(CalibrationRun(run_name, sensed, duration, int(t.size)))
+    p = dict(cal.curve_model.params)
+    fixed = {k: v for k, v in p.items() if k not in ("load", "spring")}
+    fit = identify(
+        models.CurveAngleModel,
+        t,
+        x,
+        y,
+        curve_angle=sensed,
+        fixed=fixed,
+        free=["spring", "distal_radius"],
+        warmup=warm,
+        seed=seed,
+        progress=False,
+        **dict(budget or {}),
+    )
+    q = fit.model.params
+    fit._calibration_runs = [run_name]
+    cal.fits[f"load: {name}"] = fit
+    cal.at_bounds[f"load: {name}"] = _near_bounds(fit)
+    scale = q["length"] / (q["stiffness"] * q["proximal_radius"])
+    cal.loads[name] = {
+        "load": q["load"],
+        "spring": q["spring"],
+        "F_L L/(EA r_p)": q["load"] * scale,
+        "k_e L/EA": q["spring"] * q["length"] / q["stiffness"],
+        "source": f"identified from calibration run {run_name} (sensed angle {sensed:.3f} rad)",
+    }
+
+
+# -- how far the plant is from a compensator's model class ---------------------------------
+
+MODEL_CLASS = {
+    "none": "linear gain",
+    "InverseFeedforward": "BoucWenBacklash",
+    "AdaptiveController": "BoucWenBacklash",
+    "fixed feedforward": "BoucWenBacklash",
+    "CurveAngleFeedforward": "CurveAngleModel",
+}
+
+
+def model_class_of(compensator: str) -> str:
+    if compensator.startswith("ContinuumFeedforward"):
+        return "CurveAngleModel (with spring)"
+    return MODEL_CLASS.get(compensator, "BoucWenBacklash")
+
+
+def in_class_fit(
+    compensator: str,
+    result,
+    curve_angle=None,
+    rate_hz: float = 200.0,
+    seed: int = 0,
+    budget: dict | None = None,
+) -> dict[str, Any]:
+    """The best fit of ``compensator``'s model class to the test run's own log (motor
+    encoder in, distal sensor out, decimated to ``rate_hz``; the first period excluded):
+    how far the plant lies from what the compensator can represent, next to the output's
+    range. ``curve_angle``: per-sample curve angle of the run (CurveAngleModel)."""
+    from ..identify import identify
+
+    t = np.asarray(result.t)
+    step = max(1, int(round(1.0 / (rate_hz * (t[1] - t[0])))))
+    sl = slice(None, None, step)
+    ts, x, y = t[sl], np.asarray(result.motor)[sl], np.asarray(result.measured)[sl]
+    keep = ts >= ts[0] + result.warmup
+    warm = int(np.argmax(keep)) if keep.any() else 0
+    ok = np.isfinite(y)
+    name = model_class_of(compensator)
+    out: dict[str, Any] = {"model_class": name, "output_range": float(np.ptp(y[ok]))}
+    budget = {"maxiter": 30, "popsize": 8, **(budget or {})}
+    if not ok.all():
+        ts, x, y = ts[ok], x[ok], y[ok]
+    if name == "linear gain":
+        A = np.column_stack([x[warm:], np.ones(x.size - warm)])
+        coef, *_ = np.linalg.lstsq(A, y[warm:], rcond=None)
+        rmse = float(np.sqrt(np.mean((A @ coef - y[warm:]) ** 2)))
+    elif name == "BoucWenBacklash":
+        fit = identify(
+            models.BoucWenBacklash, ts, x, y, warmup=warm, seed=seed, progress=False, **budget
+        )
+        rmse = fit.rmse
+    else:
+        theta = np.asarray(curve_angle, dtype=float)
+        theta = theta[sl][ok] if theta.ndim else np.full(x.size, float(theta))
+        slope = abs(np.polyfit(x, y, 1)[0]) or 1.0
+        fit = identify(
+            models.CurveAngleModel,
+            ts,
+            x,
+            y,
+            curve_angle=theta,
+            fixed=dict(NOMINAL),
+            free=["distal_radius"] + (["spring"] if "spring" in name else []),
+            bounds={"distal_radius": (0.3 / slope, 3.0 / slope)},
+            warmup=warm,
+            seed=seed,
+            progress=False,
+            **budget,
+        )
+        rmse = fit.rmse
+    out["in_class_rmse"] = rmse
+    out["in_class_nrmse"] = rmse / out["output_range"] if out["output_range"] > 0 else None
+    return out
+
+
+def honesty_entry(
+    compensator: str,
+    result,
+    told: list[dict],
+    at_bounds: list[str],
+    curve_angle=None,
+    seed: int = 0,
+    budget: dict | None = None,
+) -> dict[str, Any]:
+    """One row of a scenario's honesty panel (see docs/metrics-json.md, "honesty")."""
+    entry = {"told": told, "at_bounds": at_bounds}
+    entry.update(in_class_fit(compensator, result, curve_angle, seed=seed, budget=budget))
+    return entry
+
+
+__all__ = [
+    "NOMINAL",
+    "Calibration",
+    "ShapeSensing",
+    "Told",
+    "calibrate",
+    "calibrate_load",
+    "calibration_input",
+    "honesty_entry",
+    "in_class_fit",
+    "sensed_schedule",
+]
