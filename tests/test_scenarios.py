@@ -38,6 +38,19 @@ def test_sun2015_curve_angle_feedforward_follows_the_route(scenario_results):
     assert mean["CurveAngleFeedforward"] < 0.8 * mean["fixed feedforward"]
 
 
+def test_sun2015_curve_angle_feedforward_within_2x_of_a_local_calibration(scenario_results):
+    """Sun et al.'s claim: at curve angles it was not calibrated at, the curve-angle
+    feedforward (told the sensed angle, with noise and delay) does about as well as a
+    feedforward calibrated at that very angle. Target: within 2x at every test angle."""
+    local = scenario_results["sun2015"].extra["local_reference"]
+    ratios = {k: v["ratio"] for k, v in local["angles"].items()}
+    assert len(ratios) == 5
+    # measured (scale 0.25, seed 0): 1.47 at 0 pi (no friction to follow there, the residual
+    # is the drive's own), 0.99-1.07 elsewhere; the 2x target holds with a 1.36x margin
+    assert max(ratios.values()) <= 2.0, ratios
+    assert local["met"]
+
+
 def test_lau2015_exact_feedforward_meets_the_papers_claim(scenario_results):
     r = scenario_results["lau2015"]
     exact = r.runs["ContinuumFeedforward (exact)"].metrics
@@ -53,3 +66,20 @@ def test_lau2015_exact_feedforward_meets_the_papers_claim(scenario_results):
     # feedforward's -3 dB bandwidth is 0.38 Hz: the paper's 0.8 Hz is NOT reached
     assert fr.gain_db[-1] < fr.gain_db[0] - 6.0  # the 1.2 Hz motor lag sets the roll-off
     assert 0.3 < r.frequency["ContinuumFeedforward (exact)"].bandwidth_3db < 2.0
+
+
+def test_paper_target_verdicts_follow_the_measured_figures(scenario_results):
+    """Each scenario's targets are computed from its own runs, and the verdict from the figure."""
+    do = scenario_results["do2015"]
+    mse = {k: v.metrics["mse"] for k, v in do.runs.items()}
+    factors = {t["claim"].split()[0]: t for t in do.targets}
+    for name, bound in (("InverseFeedforward", 13), ("AdaptiveController", 190)):
+        assert factors[name]["measured"] == mse["none"] / mse[name]
+        assert factors[name]["met"] == (factors[name]["measured"] >= bound)
+    (sun,) = scenario_results["sun2015"].targets
+    assert sun["measured"] == scenario_results["sun2015"].extra["local_reference"]["worst_ratio"]
+    lau = scenario_results["lau2015"]
+    for t in lau.targets:
+        name = t["claim"].split(" mean error")[0]
+        assert t["measured"] == lau.runs[name].metrics["percent_error"]
+        assert t["met"] == (t["measured"] < 5.0)

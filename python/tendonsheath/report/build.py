@@ -59,6 +59,21 @@ def scenario_section(result, out: Path) -> tuple[str, list[Path]]:
 
     parts.append(f"<p>{html.fmt(result.summary)}</p>")
     parts.append("<h3>What was simulated</h3>" + html.conditions(result.conditions))
+    if result.targets:
+        rows = [
+            {
+                "paper's claim": x["claim"],
+                "target": x["target"],
+                "measured": f"{x['measured']:.3g} {x['unit']}".strip(),
+                "verdict": "met" if x["met"] else "NOT met",
+            }
+            for x in result.targets
+        ]
+        parts.append(
+            '<h3>Paper targets</h3><p class="note">Each paper\'s headline, measured here on the '
+            "realistic plant with compensators calibrated from logs alone. A miss is a "
+            "measured figure, not a failure to hide.</p>" + html.table(rows)
+        )
     parts.append("<h3>Results beside the paper</h3>" + html.table(result.table))
     if result.paper.get("note"):
         parts.append(f'<p class="note">{html.fmt(result.paper["note"])}</p>')
@@ -218,6 +233,7 @@ def write(
         "paper": {r.name: r.paper for r in scenario_results},
         "details": {r.name: details(r) for r in scenario_results},
         "honesty": {r.name: r.honesty for r in scenario_results if r.honesty},
+        "targets": {r.name: r.targets for r in scenario_results if r.targets},
     }
     for anchor, heading, body, data in extra_sections or []:
         sections.append((anchor, heading, body))

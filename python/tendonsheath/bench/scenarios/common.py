@@ -35,6 +35,8 @@ class ScenarioResult:
     protocol: str = ""  # how the compensators were calibrated and judged (the report's intro)
     honesty: dict[str, Any] = field(default_factory=dict)  # compensator -> honesty panel row
     identified: list[dict[str, Any]] = field(default_factory=list)  # identified groups, report
+    # the paper's headline claims checked: {claim, target, measured, met}; a miss is reported
+    targets: list[dict[str, Any]] = field(default_factory=list)
 
     def metrics(self) -> dict[str, dict[str, float]]:
         """compensator -> metric -> value, for metrics.json."""
@@ -44,6 +46,17 @@ class ScenarioResult:
 def encoder(noise_std: float = 2e-4, resolution: float = 1e-4, seed: int = 1) -> Sensor:
     """The distal sensor of the scenarios: an encoder with Gaussian noise."""
     return Sensor(resolution=resolution, noise_std=noise_std, seed=seed)
+
+
+def target(claim: str, target: str, measured: float, met: bool, unit: str = "") -> dict:
+    """One paper claim checked on this run (a row of the report's "Paper targets" table)."""
+    return {
+        "claim": claim,
+        "target": target,
+        "measured": float(measured),
+        "unit": unit,
+        "met": bool(met),
+    }
 
 
 def honesty_panel(

@@ -21,6 +21,7 @@ from .common import (
     kinematic_told,
     piecewise_routes,
     ratio,
+    target,
 )
 
 PAPER_MSE = {"none": 0.0158, "InverseFeedforward": 0.0012, "AdaptiveController": 8.2815e-5}
@@ -207,7 +208,25 @@ def do2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
                 "paper_improvement": ratio(PAPER_MSE["none"], PAPER_MSE[name]),
             }
         )
+    factor = {k: ratio(base, r.metrics["mse"]) for k, r in runs.items()}
+    targets = [
+        target(
+            "InverseFeedforward MSE reduction, random route changes",
+            ">= 13x",
+            factor["InverseFeedforward"],
+            factor["InverseFeedforward"] >= 13,
+            "x",
+        ),
+        target(
+            "AdaptiveController MSE reduction, random route changes",
+            ">= 190x",
+            factor["AdaptiveController"],
+            factor["AdaptiveController"] >= 190,
+            "x",
+        ),
+    ]
     return ScenarioResult(
+        targets=targets,
         name="do2015",
         title="Do et al. 2015: feedforward and adaptive control under changing routes",
         summary=do2015.__doc__.strip().splitlines()[0],

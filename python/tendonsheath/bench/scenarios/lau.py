@@ -20,6 +20,7 @@ from .common import (
     honesty_panel,
     identification_budget,
     kinematic_told,
+    target,
 )
 
 PAPER = {"percent_error": 5.0, "max_percent_error": 8.0, "bandwidth_hz": 0.8}
@@ -148,7 +149,19 @@ def lau2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
         }
         for name, r in runs.items()
     ]
+    targets = [
+        target(
+            f"{name} mean error, +/-90 deg at 0.4 Hz (identified groups)",
+            "< 5 %",
+            runs[name].metrics["percent_error"],
+            runs[name].metrics["percent_error"] < 5.0,
+            "%",
+        )
+        for name in runs
+        if name != "none"
+    ]
     return ScenarioResult(
+        targets=targets,
         name="lau2015",
         title="Lau et al. 2015: continuum manipulator through a tendon-sheath drive",
         summary=lau2015.__doc__.strip().splitlines()[0],
