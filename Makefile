@@ -69,7 +69,7 @@ bench: install
 # JSON, and realdata.json when $(REALDATA) is there (~6 min; else the committed one is kept).
 results: demo
 	cp $(DEMO_OUT)/metrics.json benchmarks/results/demo-metrics.json
-	@for f in models plant identify compensators sweep; do \
+	@for f in models plant identify identify_long compensators sweep; do \
 	  echo "== benchmarks/$$f.py"; $(PY) benchmarks/$$f.py || exit 1; \
 	done
 	@if [ -f $(REALDATA)/config_000deg.csv ]; then \

@@ -257,7 +257,12 @@ def targets(m: Source) -> str:
 
 
 def performance(
-    models: Source, plant: Source, identify: Source, compensators: Source, sweep: Source
+    models: Source,
+    plant: Source,
+    identify: Source,
+    compensators: Source,
+    sweep: Source,
+    identify_long: Source,
 ) -> str:
     """Speed figures of the benchmark scripts, one row each."""
     rows = []
@@ -315,6 +320,18 @@ def performance(
             f"({fmt(plant.num('realistic_rows', real[100], 'cpp_us_per_step'))} us/step; "
             "target 0.2 s)",
             "`benchmarks/plant.py`",
+        ]
+    )
+
+    rows.append(
+        [
+            f"identify BoucWenBacklash, {identify_long.num('samples'):.0f} samples",
+            f"{fmt(identify_long.num('wall_seconds'))} s wall, "
+            f"{fmt(identify_long.num('cpu_seconds'))} s CPU (target 60 s), peak memory "
+            f"{fmt(identify_long.num('peak_memory_mib'))} MiB, "
+            f"{fmt(identify_long.num('evaluations_per_second'))} evaluations/s; rmse "
+            f"{fmt(identify_long.num('rmse'))} at noise {fmt(identify_long.num('noise_std'))}",
+            "`benchmarks/identify_long.py`",
         ]
     )
 
@@ -376,7 +393,7 @@ def performance(
     return (
         md_table(["what", "figure", "script"], rows)
         + "\n\n"
-        + generated_from(models, plant, identify, compensators, sweep)
+        + generated_from(models, plant, identify, compensators, sweep, identify_long)
     )
 
 
@@ -501,7 +518,14 @@ TABLES = [
     Table("targets", ("demo-metrics.json",), targets),
     Table(
         "performance",
-        ("models.json", "plant.json", "identify.json", "compensators.json", "sweep.json"),
+        (
+            "models.json",
+            "plant.json",
+            "identify.json",
+            "compensators.json",
+            "sweep.json",
+            "identify_long.json",
+        ),
         performance,
     ),
     Table("realdata-files", ("realdata.json",), realdata_files),

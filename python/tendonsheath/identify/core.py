@@ -10,7 +10,7 @@ from scipy.optimize import differential_evolution, least_squares
 
 from ..models import Chain, GeneralizedPrandtlIshlinskii, HysteresisModel, PrandtlIshlinskii
 from ..models.base import _REGISTRY
-from .data import check_for_fit, make_recordings
+from .data import check_for_fit, make_recordings, search_windows
 from .fit import Fit, metrics, simulate_model
 from .problem import DirectProblem, SeparableProblem, _covariance_se, law_check
 from .specs import SPECS, GeneralizedPrandtlIshlinskiiSpec, PrandtlIshlinskiiSpec, Scale
@@ -131,6 +131,7 @@ def identify(
     polish: bool = True,
     separable: bool = True,
     progress: bool = True,
+    search_samples: int | None = 200_000,
 ) -> Fit:
     """Identify a model from input/output recordings by simulation-error minimisation.
 
@@ -145,6 +146,13 @@ def identify(
     threads (default: all cores), then ``scipy.optimize.least_squares`` refines the best
     candidate (``polish=False`` skips it). Bounds are derived from the data's scale unless
     given in ``bounds`` ({name: (low, high)}); some are searched on a log scale.
+
+    Long records: the global search only has to find the basin, so when the recordings hold
+    more than ``search_samples`` samples (default 200 000; None: no limit) it runs on 8 evenly
+    spaced windows per recording counting that many samples (each window starts from the
+    model's rest state, with a warm-up of a fifth of its length); the refinement and
+    everything after it use every sample. The cost per evaluation is linear in the samples and
+    memory grows linearly with them (no candidate's output is kept during the search).
 
     Linear-in-parameter parts are solved by least squares instead of searched (``separable``):
     BoucWenBacklash (c_r, c_l, c_r B_r, c_l B_l given rho, sigma, n), BoucWen (a, (1-a) k
@@ -253,26 +261,39 @@ def identify(
     if use_separable:
         sb = spec.search_bounds(scale, held)
         sb.update({k: v for k, v in all_bounds.items() if k in sb and k in (bounds or {})})
-        problem = SeparableProblem(
-            spec, recs, warmup, dict(held), sb, scale, options, n_workers, initial.params
-        )
+
+        def make_problem(recs_, warmup_):
+            return SeparableProblem(
+                spec, recs_, warmup_, dict(held), sb, scale, options, n_workers, initial.params
+            )
+
         method = "differential evolution + least squares (separable: linear part solved)"
     else:
-        problem = DirectProblem(
-            cls,
-            recs,
-            warmup,
-            values,
-            free_names,
-            all_bounds,
-            spec.log_names,
-            options,
-            depends,
-            n_workers,
-            spec.search_options,
-        )
+
+        def make_problem(recs_, warmup_):
+            return DirectProblem(
+                cls,
+                recs_,
+                warmup_,
+                values,
+                free_names,
+                all_bounds,
+                spec.log_names,
+                options,
+                depends,
+                n_workers,
+                spec.search_options,
+            )
+
         method = "differential evolution + least squares"
+    problem = make_problem(recs, warmup)
     space = problem.space
+    search_problem = problem
+    if search_samples is not None and not depends:
+        windows, win_warmup = search_windows(recs, warmup, int(search_samples))
+        if windows is not recs:
+            search_problem = make_problem(windows, win_warmup)
+            method += f" (global search on {sum(r.n for r in windows)} samples in windows)"
 
     counter = {"evaluations": 0}
     x0 = None
@@ -305,7 +326,7 @@ def identify(
 
     start = time.perf_counter()
     res = global_search(
-        problem,
+        search_problem,
         space,
         counter,
         f"identify {cls.__name__}",

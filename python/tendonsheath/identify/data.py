@@ -164,6 +164,36 @@ def recording_set(recs: list[Recording], warmup: int, with_angle: bool) -> core.
     )
 
 
+def search_windows(
+    recs: list[Recording], warmup: int, budget: int, windows: int = 8
+) -> tuple[list[Recording], int]:
+    """Recordings for the global search of a long record: ``windows`` evenly spaced windows per
+    recording, ``budget`` samples in all (in proportion to each recording's length), each
+    starting from the model's rest state with a warm-up of max(warmup, a fifth of the window)
+    not counted. Returns the windows and their warm-up; recordings already within the budget
+    come back whole."""
+    total = sum(r.n for r in recs)
+    if budget <= 0 or total <= budget:
+        return recs, warmup
+    out = []
+    length = max(1, budget // (windows * len(recs)))
+    win_warmup = max(warmup, length // 5)
+    for r in recs:
+        size = min(r.n, length + win_warmup)
+        starts = np.linspace(0, r.n - size, windows).astype(int)
+        for s in np.unique(starts):
+            sl = slice(int(s), int(s) + size)
+            out.append(
+                Recording(
+                    None if r.t is None else r.t[sl],
+                    r.x[sl],
+                    r.y[sl],
+                    None if r.curve_angle is None else r.curve_angle[sl],
+                )
+            )
+    return out, win_warmup
+
+
 def fitted_mask(recs: list[Recording], warmup: int) -> np.ndarray:
     """True for the concatenated samples that enter the cost."""
     return np.concatenate([np.arange(r.n) >= warmup for r in recs])
