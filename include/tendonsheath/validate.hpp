@@ -2,20 +2,20 @@
 // (non-real-time) entry points; step() never throws.
 #pragma once
 
+#include <charconv>
 #include <cmath>
 #include <cstddef>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
 namespace tendonsheath {
 
 namespace detail {
+// Shortest text that reads back as v (std::to_chars: no locale, no iostreams).
 inline std::string format_value(double v) {
-  std::ostringstream os;
-  os.precision(17);
-  os << v;
-  return os.str();
+  char buf[64];
+  const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
+  return std::string(buf, end);
 }
 }  // namespace detail
 

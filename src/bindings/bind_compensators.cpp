@@ -126,6 +126,7 @@ void bind_curve_angle_feedforward(nb::module_& m) {
       .def_prop_ro("shape", &C::shape)
       .def("reset", &C::reset)
       .def("set_curve_angle", &C::set_curve_angle, "total_angle"_a)
+      .def("angle_clamped", &C::angle_clamped)
       .def("set_shape", &C::set_shape, "shape"_a)
       .def("step", &C::step, "y_d"_a, "dt"_a)
       .def("last_correction", &C::last_correction)

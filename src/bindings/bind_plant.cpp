@@ -115,6 +115,8 @@ void bind_common(Cls& cls, std::size_t rows, const char* name) {
       .def("min_tension", &Plant::min_tension)
       .def("nonconverged", &Plant::nonconverged)
       .def("time_dependent", &Plant::time_dependent)
+      .def("input_clamped", [](const Plant& p) { return p.chain().input_clamped(); })
+      .def("last_converged", [](const Plant& p) { return p.chain().last_converged(); })
       .def("drive_reaction", &Plant::drive_reaction)
       .def_prop_ro("n_node_angles", &Plant::n_node_angles)
       .def("set_node_angles", [](Plant& p, InArray a) { set_angles(p, a); }, "angles"_a)
@@ -276,6 +278,7 @@ void bind_plant(nb::module_& m) {
       .def("step", &ts::Motor::step, "u"_a, "dt"_a, "tau_ext"_a = 0.0)
       .def("position", &ts::Motor::position)
       .def("output", &ts::Motor::output)
+      .def("clamped", &ts::Motor::clamped)
       .def("velocity", &ts::Motor::velocity)
       .def("set_state", &ts::Motor::set_state, "q"_a, "v"_a);
 

@@ -167,7 +167,10 @@ class AdaptiveController {
     return u > p_.max_torque ? p_.max_torque : (u < -p_.max_torque ? -p_.max_torque : u);
   }
 
-  // Second-order low-pass differentiator: p'' = w^2 (y - p) - 2 zeta w p'.
+  // Second-order low-pass differentiator: p'' = w^2 (y - p) - 2 zeta w p', by the
+  // trapezoidal rule on at most 256 sub-steps: A-stable, so any dt is safe (semi-implicit
+  // Euler diverged once w h > 2, e.g. one 4 s cycle, and its NaN then froze the torque at 0),
+  // and second-order accurate without the numerical damping of backward Euler.
   double filter(double y, double dt) noexcept {
     if (!filter_primed_) {
       filtered_ = y;
@@ -179,9 +182,19 @@ class AdaptiveController {
     const double need = std::ceil(w * dt / 0.05);
     const int m = need < 1.0 ? 1 : (need > 256.0 ? 256 : static_cast<int>(need));
     const double h = dt / m;
-    for (int i = 0; i < m; ++i) {  // semi-implicit Euler
-      filtered_rate_ += h * (w * w * (y - filtered_) - 2.0 * p_.derivative_damping * w * filtered_rate_);
-      filtered_ += h * filtered_rate_;
+    const double zw = p_.derivative_damping * w, hh = 0.5 * h;
+    const double det = 1.0 + h * zw + hh * hh * w * w;
+    for (int i = 0; i < m; ++i) {
+      // (I - h/2 A) s_new = (I + h/2 A) s + h B y with s = (p, p'), A = [0 1; -w^2 -2 zeta w]
+      const double r0 = filtered_ + hh * filtered_rate_;
+      const double r1 = filtered_rate_ + hh * (-w * w * filtered_ - 2.0 * zw * filtered_rate_) +
+                        h * w * w * y;
+      filtered_rate_ = (r1 - hh * w * w * r0) / det;
+      filtered_ = r0 + hh * filtered_rate_;
+    }
+    if (!std::isfinite(filtered_) || !std::isfinite(filtered_rate_)) {  // re-prime, stay finite
+      filtered_ = y;
+      filtered_rate_ = 0.0;
     }
     return filtered_rate_;
   }

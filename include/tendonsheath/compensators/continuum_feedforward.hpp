@@ -49,6 +49,12 @@ class ContinuumFeedforward {
     require_positive(p.stiffness, w, "stiffness");
     require_non_negative(p.pretension, w, "pretension");
     require_non_negative(p.total_angle, w, "total_angle");
+    require(p.total_angle <= max_total_angle(p.gap_factor * p.friction), w,
+            "total_angle must be <= " +
+                detail::format_value(max_total_angle(p.gap_factor * p.friction)) +
+                " rad for gap_factor * friction = " +
+                detail::format_value(p.gap_factor * p.friction) +
+                " (xi * total_angle <= 50; got " + detail::format_value(p.total_angle) + ")");
     require_positive(p.bending_stiffness, w, "bending_stiffness");
     require_positive(p.tendon_offset, w, "tendon_offset");
     require_positive(p.backbone_length, w, "backbone_length");

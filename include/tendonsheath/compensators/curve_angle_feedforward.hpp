@@ -48,6 +48,10 @@ class CurveAngleFeedforward {
     require_positive(p.proximal_radius, w, "proximal_radius");
     require_positive(p.distal_radius, w, "distal_radius");
     require_non_negative(p.total_angle, w, "total_angle");
+    require(p.total_angle <= max_total_angle(p.friction), w,
+            "total_angle must be <= " + detail::format_value(max_total_angle(p.friction)) +
+                " rad for friction " + detail::format_value(p.friction) +
+                " (friction * total_angle <= 50; got " + detail::format_value(p.total_angle) + ")");
     require_positive(p.v_eps, w, "v_eps");
     require(p.max_correction_rate > 0.0, w, "max_correction_rate must be > 0");
     p.limits.validate(w);
@@ -57,6 +61,8 @@ class CurveAngleFeedforward {
 
   const Params& params() const noexcept { return p_; }
   const ShapeIntegrals& shape() const noexcept { return shape_; }
+  // True when the last set_curve_angle() was beyond max_total_angle(friction) and clamped.
+  bool angle_clamped() const noexcept { return angle_clamped_; }
 
   void reset() noexcept {
     rate_.reset();
@@ -64,8 +70,11 @@ class CurveAngleFeedforward {
     correction_primed_ = false;
   }
 
-  // Uniform curvature with total angle theta (rad); non-finite or negative is ignored.
+  // Uniform curvature with total angle theta (rad); non-finite or negative is ignored, and an
+  // angle beyond max_total_angle(friction) is clamped to it (angle_clamped() tells).
   void set_curve_angle(double theta) noexcept {
+    angle_clamped_ = theta > max_total_angle(p_.friction);
+    if (angle_clamped_) theta = max_total_angle(p_.friction);
     if (std::isfinite(theta) && theta >= 0.0 && !(uniform_ && theta == shape_.total_angle)) {
       update_shape(uniform_shape(p_.friction, theta));
       uniform_ = true;
@@ -118,6 +127,7 @@ class CurveAngleFeedforward {
   PullPullStatics statics_{};
   ShapeIntegrals shape_{};
   PullPullStatics::Affine affine_{};
+  bool angle_clamped_ = false;
   bool uniform_ = true;
   RateEstimator rate_{};
   CommandShaper shaper_{};

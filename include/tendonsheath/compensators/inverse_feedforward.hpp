@@ -30,7 +30,7 @@ class BacklashInverseFeedforward {
   using Params = BacklashInverseParams;
 
   explicit BacklashInverseFeedforward(const Params& p) : p_(p), shaper_(p.limits) {
-    const char* w = "InverseFeedforward";
+    const char* w = "BacklashInverseFeedforward";
     require_positive(p.c_r, w, "c_r");
     require_positive(p.c_l, w, "c_l");
     require_non_negative(p.B_r, w, "B_r");
@@ -73,7 +73,7 @@ class PrandtlIshlinskiiFeedforward {
  public:
   PrandtlIshlinskiiFeedforward(const PrandtlIshlinskiiParams& p, const CommandLimits& limits)
       : inverse_(p), shaper_(limits) {
-    limits.validate("InverseFeedforward");
+    limits.validate("BacklashInverseFeedforward");
   }
   void reset() noexcept {
     inverse_.reset();

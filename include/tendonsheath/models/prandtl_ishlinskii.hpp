@@ -54,6 +54,13 @@ inline void validate_pi(const PrandtlIshlinskiiParams& p, const char* w, bool in
   }
 }
 
+// The largest input magnitude the operator accepts, 1e9 (1 + the largest threshold):
+// inputs are clamped to it. Far beyond any use, it keeps the plays' sums finite and the
+// round-off left after a return from it below 1e-6 (1 + r_max).
+inline double pi_input_limit(const PrandtlIshlinskiiParams& p) noexcept {
+  return 1e9 * (1.0 + p.thresholds.back());
+}
+
 inline double clamp_play(double z, double x, double r) noexcept {
   const double lo = x - r, hi = x + r;
   return z < lo ? lo : (z > hi ? hi : z);
@@ -68,13 +75,19 @@ class PrandtlIshlinskii {
 
   explicit PrandtlIshlinskii(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
     detail::validate_pi(p, "PrandtlIshlinskii", false);
+    x_limit_ = detail::pi_input_limit(p_);
   }
+  // The last step's input was beyond +-input_limit() and was clamped to it.
+  bool input_clamped() const noexcept { return clamped_; }
+  double input_limit() const noexcept { return x_limit_; }
 
   const Params& params() const noexcept { return p_; }
   void reset() noexcept { initialised_ = false; }
 
   double step(double x, double /*dt*/ = 0.0) noexcept {
     if (!std::isfinite(x)) return initialised_ ? y_ : 0.0;
+    clamped_ = std::fabs(x) > x_limit_;
+    if (clamped_) x = std::copysign(x_limit_, x);
     const std::size_t n = z_.size();
     double y = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -96,6 +109,8 @@ class PrandtlIshlinskii {
   Params p_;
   std::vector<double> z_;
   double x_ = 0.0, y_ = 0.0;
+  double x_limit_ = 1e300;
+  bool clamped_ = false;
   bool initialised_ = false;
 };
 
@@ -106,7 +121,11 @@ class PrandtlIshlinskiiInverse {
 
   explicit PrandtlIshlinskiiInverse(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
     detail::validate_pi(p, "PrandtlIshlinskiiInverse", true);
+    x_limit_ = detail::pi_input_limit(p_);
   }
+  // The last command was beyond +-input_limit() (or its target unreachable) and was clamped.
+  bool input_clamped() const noexcept { return clamped_; }
+  double input_limit() const noexcept { return x_limit_; }
 
   const Params& params() const noexcept { return p_; }
   void reset() noexcept { initialised_ = false; }
@@ -122,8 +141,12 @@ class PrandtlIshlinskiiInverse {
     }
     double y_now = 0.0;
     for (std::size_t i = 0; i < z_.size(); ++i) y_now += p_.weights[i] * z_[i];
-    const double x = (y_desired >= y_now) ? solve_up(y_desired, y_now)
-                                          : solve_down(y_desired, y_now);
+    // targets are kept within +-1e300 so that y_desired - y_now cannot overflow
+    if (std::fabs(y_desired) > 1e300) y_desired = std::copysign(1e300, y_desired);
+    double x = (y_desired >= y_now) ? solve_up(y_desired, y_now)
+                                    : solve_down(y_desired, y_now);
+    clamped_ = !(std::fabs(x) <= x_limit_);
+    if (clamped_) x = std::isnan(x) ? x_ : std::copysign(x_limit_, x);
     for (std::size_t i = 0; i < z_.size(); ++i) z_[i] = detail::clamp_play(z_[i], x, p_.thresholds[i]);
     x_ = x;
     return x;
@@ -174,6 +197,8 @@ class PrandtlIshlinskiiInverse {
   Params p_;
   std::vector<double> z_;
   double x_ = 0.0;
+  double x_limit_ = 1e300;
+  bool clamped_ = false;
   bool initialised_ = false;
 };
 

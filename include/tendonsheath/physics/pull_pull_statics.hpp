@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <cstddef>
 
 namespace tendonsheath {
@@ -26,13 +27,21 @@ struct ShapeIntegrals {
   double total_angle = 0.0;  // Theta
 };
 
-// Uniform curvature: g = (1 - e^{-a})/a, G = (e^a - 1)/a (one exponential).
+// The largest friction angle mu Theta the closed forms accept: the capstan ratio e^{-50}
+// (2e-22) already transmits nothing, and e^{mu Theta} must stay far from overflow.
+constexpr double kMaxFrictionAngle = 50.0;
+
+// Uniform curvature: g = (1 - e^{-a})/a, G = (e^a - 1)/a. (G through e^{-a} divided by
+// zero once e^{-a} - 1 rounded to -1, at a of about 37.4.)
 inline ShapeIntegrals uniform_shape(double mu, double total_angle) noexcept {
   const double a = mu * total_angle;
   if (std::fabs(a) < 1e-4) return {expm1_over(-a), expm1_over(a), total_angle};
-  const double em1 = std::expm1(-a);        // e^{-a} - 1
-  const double G = -em1 / ((em1 + 1.0) * a);  // (e^a - 1)/a = (1 - e^{-a}) / (e^{-a} a)
-  return {-em1 / a, G, total_angle};
+  return {-std::expm1(-a) / a, std::expm1(a) / a, total_angle};
+}
+
+// The largest total angle (rad) a friction mu admits: kMaxFrictionAngle / mu (inf for mu = 0).
+inline double max_total_angle(double mu) noexcept {
+  return mu > 0.0 ? kMaxFrictionAngle / mu : std::numeric_limits<double>::infinity();
 }
 
 // Exact for a piecewise-linear theta(s) given at samples (s_i, theta_i), s

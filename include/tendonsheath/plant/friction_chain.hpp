@@ -42,7 +42,12 @@
 // counted in nonconverged()). Inputs are split into sub-increments of at most
 // max_increment (at most max_substeps of them). step() is noexcept, allocates
 // nothing and does bounded work; a non-finite input or a non-finite solution
-// leaves the state unchanged.
+// leaves the state unchanged (a non-finite solution never counts as converged).
+// Inputs beyond +-kMaxInput (m) are clamped to it (input_clamped() tells): past
+// that the elastic forces k x of a chain no longer fit a double. A node's
+// friction angle mu dtheta is capped at kMaxNodeFrictionAngle (capstan ratio
+// e^-30 = 1e-13): tanh(mu dtheta/2) would round to exactly 1 near 38 and leave an
+// exact zero pivot in the solve.
 #pragma once
 
 #include <algorithm>
@@ -58,6 +63,11 @@ namespace tendonsheath {
 
 enum class NodeKind : unsigned char { Driven = 0, Sheath = 1, Load = 2 };
 
+constexpr double kMaxInput = 1e6;  // m: round-off after a return from it stays below 1e-9 m
+constexpr double kMaxNodeFrictionAngle = 30.0;  // mu dtheta of one node
+constexpr int kMaxIterationsCap = 100000;       // the largest accepted max_iterations
+constexpr int kMaxSubstepsCap = 100000;         // ... max_substeps and extra_iterations
+
 struct ChainOptions {
   int max_iterations = 50;     // active-set iterations per attempt
   int max_halvings = 4;        // halvings of a failed increment
@@ -68,16 +78,28 @@ struct ChainOptions {
 };
 
 inline void validate_chain_options(const ChainOptions& o, const char* where) {
-  require(o.max_iterations >= 1, where,
-          "max_iterations must be >= 1 (got " + std::to_string(o.max_iterations) + ")");
+  require(o.max_iterations >= 1 && o.max_iterations <= kMaxIterationsCap, where,
+          "max_iterations must be in [1, " + std::to_string(kMaxIterationsCap) + "] (got " +
+              std::to_string(o.max_iterations) + ")");
   require(o.max_halvings >= 0 && o.max_halvings <= 30, where,
           "max_halvings must be in [0, 30] (got " + std::to_string(o.max_halvings) + ")");
-  require(o.max_substeps >= 1, where,
-          "max_substeps must be >= 1 (got " + std::to_string(o.max_substeps) + ")");
+  require(o.max_substeps >= 1 && o.max_substeps <= kMaxSubstepsCap, where,
+          "max_substeps must be in [1, " + std::to_string(kMaxSubstepsCap) + "] (got " +
+              std::to_string(o.max_substeps) + ")");
   require_non_negative(o.max_increment, where, "max_increment");
-  require(o.extra_iterations == -1 || o.extra_iterations >= 1, where,
-          "extra_iterations must be -1 (automatic) or >= 1 (got " + std::to_string(o.extra_iterations) + ")");
+  require(o.extra_iterations == -1 ||
+              (o.extra_iterations >= 1 && o.extra_iterations <= kMaxSubstepsCap),
+          where,
+          "extra_iterations must be -1 (automatic) or in [1, " + std::to_string(kMaxSubstepsCap) +
+              "] (got " + std::to_string(o.extra_iterations) + ")");
 }
+
+namespace detail {
+inline double node_h(double mu, double dtheta) noexcept {
+  const double a = mu * dtheta;
+  return std::tanh(0.5 * (a < kMaxNodeFrictionAngle ? a : kMaxNodeFrictionAngle));
+}
+}  // namespace detail
 
 class FrictionChain {
  public:
@@ -146,7 +168,7 @@ class FrictionChain {
   void set_options(const ChainOptions& o) noexcept { opt_ = o; }
   void set_friction(double mu) noexcept {
     for (std::size_t j = 0; j <= M_; ++j) mu_[j] = mu;
-    for (std::size_t j = 0; j <= M_; ++j) h_[j] = std::tanh(0.5 * mu_[j] * dtheta_[j]);
+    for (std::size_t j = 0; j <= M_; ++j) h_[j] = detail::node_h(mu_[j], dtheta_[j]);
     dirty_ = true;
     fact_valid_ = false;
     tfact_valid_ = false;
@@ -154,7 +176,7 @@ class FrictionChain {
   // Friction coefficient of one node (e.g. a second sheath of another material).
   void set_node_friction(std::size_t j, double mu) {
     mu_.at(j) = mu;
-    h_[j] = std::tanh(0.5 * mu * dtheta_[j]);
+    h_[j] = detail::node_h(mu, dtheta_[j]);
     dirty_ = true;
     fact_valid_ = false;
     tfact_valid_ = false;
@@ -168,7 +190,7 @@ class FrictionChain {
       return;
     if (dtheta_[j] == dtheta) return;
     dtheta_[j] = dtheta;
-    h_[j] = std::tanh(0.5 * mu_[j] * dtheta);
+    h_[j] = detail::node_h(mu_[j], dtheta);
     dirty_ = true;
     fact_valid_ = false;
     tfact_valid_ = false;
@@ -190,6 +212,8 @@ class FrictionChain {
     slack_ = false;
     nonconverged_ = 0;
     last_solves_ = 0;
+    input_clamped_ = false;
+    last_converged_ = true;
     fact_valid_ = false;
     tfact_valid_ = false;
     consistent_ = false;
@@ -202,9 +226,15 @@ class FrictionChain {
   // Advance to the driven input x (dt: time since the previous step, used by
   // dampers only). Returns true when the state was updated.
   bool step(double x, double dt) noexcept {
+    input_clamped_ = false;
     if (!std::isfinite(x)) return false;
+    if (std::fabs(x) > kMaxInput) {
+      x = std::copysign(kMaxInput, x);
+      input_clamped_ = true;
+    }
     if (!(dt >= 0.0) || !std::isfinite(dt)) dt = 0.0;
     last_solves_ = 0;
+    const long noncon_before = nonconverged_;
     if (!initialised_) {
       for (std::size_t j = 0; j <= M_; ++j) u_[j] += x - x_;
       x_ = x;
@@ -234,6 +264,7 @@ class FrictionChain {
       sub_increment(xi, dt / n, 0);
     }
     dirty_ = false;
+    last_converged_ = nonconverged_ == noncon_before;
     return true;
   }
 
@@ -263,6 +294,10 @@ class FrictionChain {
   // Slack test used by slack(): min tension <= 0 (strict = false) or < 0.
   void set_slack_strict(bool strict) noexcept { slack_strict_ = strict; }
   long nonconverged() const noexcept { return nonconverged_; }
+  // The last step's input was beyond +-kMaxInput and was clamped to it.
+  bool input_clamped() const noexcept { return input_clamped_; }
+  // Every increment of the last step converged (false: the best bounded iterate was kept).
+  bool last_converged() const noexcept { return last_converged_; }
   int last_solves() const noexcept { return last_solves_; }
   double friction() const noexcept { return M_ >= 1 ? mu_[1] : 0.0; }
   double node_friction(std::size_t j) const noexcept { return mu_[j]; }
@@ -300,8 +335,11 @@ class FrictionChain {
     commit(xt, ok, dt);
   }
 
-  long solve_budget() const noexcept {
-    return 64L * opt_.max_iterations * opt_.max_substeps;
+  // Solves one step may spend on halvings (64 x the iterations x the substeps, both capped by
+  // validation, so the product fits in a long long).
+  long long solve_budget() const noexcept {
+    const long long budget = 64LL * opt_.max_iterations * opt_.max_substeps;
+    return budget < (1LL << 30) ? budget : (1LL << 30);
   }
 
   void commit(double xt, bool converged, double dt) noexcept {
@@ -446,14 +484,14 @@ class FrictionChain {
         solved = true;
       }
       ++last_solves_;
-      if (tensions_and_violations() == 0) return true;
+      if (tensions_and_violations() == 0) return solution_finite();
       // after one plain flip the front is known to be moving: march it (the rows
       // include dampers and viscosity, and the final solve and check decide)
       if (it > 0 && solved && opt_.fast_path && march(xt, inv_dt) > 0) {
         solve(xt, inv_dt);  // one full solve for all the front flips
         ++last_solves_;
         compute_tensions(w_.data());
-        if (violations() == 0) return true;
+        if (violations() == 0) return solution_finite();
       }
       flip_violations();
       fact_valid_ = false;
@@ -670,6 +708,14 @@ class FrictionChain {
     return viol;
   }
 
+  // Comparisons with NaN are false, so a NaN solution has no violations: it must not
+  // count as converged (nor be committed).
+  bool solution_finite() const noexcept {
+    double sum = 0.0;
+    for (std::size_t j = 0; j <= M_; ++j) sum += w_[j] * 0.0;  // NaN for any inf or NaN
+    return sum == 0.0;
+  }
+
   // compute_tensions(w_) and violations() in one pass.
   int tensions_and_violations() noexcept {
     T_[0] = 0.0;
@@ -728,6 +774,8 @@ class FrictionChain {
   double x_ = 0.0;
   long nonconverged_ = 0;
   int last_solves_ = 0;
+  bool input_clamped_ = false;
+  bool last_converged_ = true;
   bool has_damper_ = false;  // any time-dependent effect (damper, mass, viscosity, SLS)
   bool has_mass_ = false;
   bool initialised_ = false;

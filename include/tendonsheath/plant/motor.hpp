@@ -107,6 +107,7 @@ class Motor {
       v_ = 0.0;
       pulley_ = q_;
     }
+    clamped_ = false;
     if (!(dt > 0.0) || !std::isfinite(dt)) return pulley_;
     const bool position = p_.kind == MotorKind::Position;
     const double w = 2.0 * kPi * p_.bandwidth_hz;
@@ -117,7 +118,14 @@ class Motor {
     const double rate = position ? w : (b > 0.0 ? b * inv_J : 0.0);
     double m = std::ceil(dt * rate / 0.1);
     const int n = m >= p_.max_substeps ? p_.max_substeps : (m >= 1.0 ? static_cast<int>(m) : 1);
-    const double h = dt / n;
+    // A sub-step spans at most 10 time constants (1 s without one): a longer step covers
+    // only n such sub-steps, by when the drive has settled, and is flagged (clamped()).
+    const double h_max = rate > 0.0 ? 10.0 / rate : 1.0;
+    double h = dt / n;
+    if (h > h_max) {
+      h = h_max;
+      clamped_ = true;
+    }
     double tau = u;
     if (!position) {
       if (tau > p_.max_torque) tau = p_.max_torque;
@@ -141,9 +149,14 @@ class Motor {
       }
       if (v_new > p_.max_speed) v_new = p_.max_speed;
       if (v_new < -p_.max_speed) v_new = -p_.max_speed;
-      if (!std::isfinite(v_new)) v_new = 0.0;
+      const double q_new = q_ + h * v_new;
+      if (!std::isfinite(v_new) || !std::isfinite(q_new)) {  // hold a finite state
+        v_ = 0.0;
+        clamped_ = true;
+        break;
+      }
       v_ = v_new;
-      q_ += h * v_;
+      q_ = q_new;
     }
     const double half = 0.5 * p_.gear_backlash;
     if (pulley_ < q_ - half) pulley_ = q_ - half;
@@ -154,6 +167,9 @@ class Motor {
   // Motor shaft angle (what a motor encoder reads).
   double position() const noexcept { return q_; }
   double velocity() const noexcept { return v_; }
+  // The last step was longer than the sub-steps can span, or its command would have driven
+  // the state beyond a double: the motor then covered less (or held), and stayed finite.
+  bool clamped() const noexcept { return clamped_; }
   // Proximal pulley angle (after the gear play), the plant's input.
   double output() const noexcept { return pulley_; }
   void set_state(double q, double v) noexcept {
@@ -166,6 +182,7 @@ class Motor {
  private:
   Params p_;
   double q_ = 0.0, v_ = 0.0, pulley_ = 0.0;
+  bool clamped_ = false;
   bool initialised_ = false;
 };
 

@@ -1,0 +1,127 @@
+"""Regression tests for the real-time audit's minimal cases (Step 10 reproducers): each failed
+before its fix. The fixes are in the mechanisms (bounds validated or clamped and flagged, a
+non-finite solution never committed, stable integrators), not in special cases."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import tendonsheath as ts
+from tendonsheath import _core as core
+
+
+def test_pi_inverse_stays_finite_and_exact_after_extreme_targets():
+    """Item 1: step(1e308), step(-1e308) overflowed the play sums (-inf, then NaN forever)."""
+    model = ts.models.PrandtlIshlinskii.uniform(0.4, 8)
+    inv = model.inverse()._engine
+    for target in (1e308, -1e308, 1.7e308, -math.inf, math.nan, -1e308):
+        assert math.isfinite(inv.step(target))
+    # after the extremes the plays come back exactly: a sweep beyond every threshold wipes
+    # the memory of both operators, and from there forward(inverse(y)) == y
+    wipe = np.concatenate([np.linspace(0.0, 3.0, 60), np.linspace(3.0, -3.0, 120)])
+    targets = np.concatenate([wipe, 0.3 * np.sin(np.linspace(0, 6 * np.pi, 300))])
+    xs = [inv.step(float(y)) for y in targets]
+    fwd = model._engine
+    fwd.reset()
+    ys = np.array([fwd.step(x) for x in xs])
+    assert np.all(np.isfinite(ys))
+    np.testing.assert_allclose(ys[wipe.size :], targets[wipe.size :], atol=1e-9)
+
+
+@pytest.mark.parametrize("first", [0.0, None])
+def test_friction_chain_never_commits_a_non_finite_solution(first):
+    """Item 2: SingleTendonPlant step(0); step(1e307) and PullPullPlant step(1e307) returned
+    NaN / inf and stayed non-finite: a NaN solution had no 'violations' and was committed."""
+    single = ts.SingleTendonPlant(ts.Route.uniform(1.0, 1.0))
+    pair = ts.PullPullPlant(ts.Route.uniform(1.0, 1.0))
+    for plant in (single, pair):
+        plant.reset()
+        if first is not None:
+            plant.step(first)
+        y = plant.step(1e307)
+        assert math.isfinite(y)
+        assert plant._engine.input_clamped()
+        ys = [plant.step(v) for v in np.linspace(0.0, 0.01, 50)]
+        assert np.all(np.isfinite(ys)) and np.all(np.isfinite(plant.tensions()))
+        assert not plant._engine.input_clamped()
+
+
+@pytest.mark.filterwarnings("ignore::tendonsheath.SlackWarning")
+def test_huge_node_friction_angles_leave_no_zero_pivot():
+    """Item 3: per-node angles >= 381 rad (or a huge friction) made tanh(mu dtheta / 2) round to
+    exactly 1 and the tridiagonal solve hit an exact zero pivot (NaN outputs). Such a sheath
+    locks and one tendon goes slack (warned): the point is that the numbers stay finite."""
+    # the audit's cases: per-node angles of 381 rad (N - 1 nodes), sines of 0.5 and 2 rad
+    for friction, elements, amplitude in ((0.1, 100, 0.5), (1.0, 40, 2.0), (10.0, 100, 2.0)):
+        total = 381.0 * (elements - 1)
+        plant = ts.ContinuumPlant(
+            ts.Route.uniform(1.0, total), friction=friction, elements=elements
+        )
+        y = plant.simulate(None, amplitude * np.sin(np.linspace(0, 4 * np.pi, 400)))
+        assert np.all(np.isfinite(y)), (friction, elements, amplitude)
+
+
+def test_motor_stays_finite_and_settles_after_a_huge_step():
+    """Item 4: step(0); step(1e6, dt=1e300) poisoned the position motor (NaN for ever after)."""
+    for motor in (
+        ts.Motor.position(10.0, 0.7),
+        ts.Motor.torque(0.01, 0.2),
+        ts.Motor.torque(0.01, 0.0),
+    ):
+        engine = core.Motor(motor._params)
+        engine.step(0.0, 0.0)
+        q = engine.step(1e6, 1e300)
+        assert math.isfinite(q) and engine.clamped()
+        later = [engine.step(0.1, 1e-3) for _ in range(100)]
+        assert np.all(np.isfinite(later))
+    servo = core.Motor(ts.Motor.position(10.0, 0.7)._params)
+    servo.step(0.0, 0.0)
+    assert servo.step(1.0, 1e300) == pytest.approx(1.0, abs=1e-9)  # a lag settles at its command
+
+
+def test_curve_angle_feedforwards_do_not_freeze_at_large_friction_angles():
+    """Item 5: mu Theta >= 37.43 divided by zero in uniform_shape and froze the command. Up to
+    the accepted limit (mu Theta <= 50) the command follows the reference; beyond it the
+    constructor names the parameter and its largest value, and a streamed angle is clamped."""
+    y_d = np.linspace(0.0, 0.5, 20)
+    ff = ts.compensate.CurveAngleFeedforward(0.1, 5e-5, 10.0, curve_angle=450.0)  # mu Theta = 45
+    u = [ff.step(float(y), 1e-3) for y in y_d]
+    assert np.all(np.isfinite(u)) and np.all(np.diff(u) > 0)
+    with pytest.raises(ValueError, match=r"total_angle must be <= 500 rad"):
+        ts.compensate.CurveAngleFeedforward(0.1, 5e-5, 10.0, curve_angle=600.0)
+    ff = ts.compensate.CurveAngleFeedforward(0.1, 5e-5, 10.0)
+    ff.set_curve_angle(1e4)
+    assert ff._engine.angle_clamped()
+    u = [ff.step(float(y), 1e-3) for y in y_d]
+    assert np.all(np.isfinite(u)) and np.all(np.diff(u) > 0)
+    with pytest.raises(ValueError, match=r"total_angle must be <= 500 rad"):
+        ts.compensate.ContinuumFeedforward(friction=0.1, total_angle=1e3)
+
+
+def test_adaptive_controller_recovers_from_a_long_cycle():
+    """Item 6: one cycle with dt >= 4 s and a measurement change made the derivative filter NaN,
+    and the controller then returned exactly 0 torque for ever."""
+    bwb = ts.models.BoucWenBacklash(c_r=1.0, c_l=1.0, B_r=0.1, B_l=0.1, n=6)
+    ctrl = ts.compensate.AdaptiveController.from_model(bwb, inertia=0.01, viscous=0.2)
+    ctrl.reset()
+    ctrl.step(0.0, 0.0, 0.0, 1e-3)
+    ctrl.step(0.1, 0.01, 0.0, 5.0)
+    torques = [ctrl.step(0.2, 0.02 + 1e-4 * k, 0.0, 1e-3) for k in range(200)]
+    assert np.all(np.isfinite(torques))
+    assert np.ptp(torques) > 0.0 and abs(torques[-1]) > 0.0
+
+
+def test_chain_options_have_upper_bounds():
+    """Item 8: max_iterations = max_substeps = INT_MAX passed validation and overflowed the solve
+    budget (signed overflow); the message names the parameter and the largest value."""
+    for name in ("max_iterations", "max_substeps", "extra_iterations"):
+        options = core.ChainOptions()
+        setattr(options, name, 2**31 - 1)
+        params = core.PullPullParams()
+        params.options = options
+        with pytest.raises(ValueError, match=rf"{name} must be .*100000\]"):
+            route = ts.Route.uniform(1.0, 1.0)._core
+            core.PullPullPlant(params, route, route)
