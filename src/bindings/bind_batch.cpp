@@ -178,6 +178,25 @@ void bind_batch(nb::module_& m) {
       .def_prop_ro("total", &RecordingSet::total)
       .def_prop_ro("count", &RecordingSet::count);
   m.def("default_workers", &tb::default_workers);
+  m.def(
+      "bouc_wen_paths",
+      [](InArray y, InMatrix params, unsigned workers) {
+        if (params.shape(1) != 3)
+          throw std::invalid_argument("bouc_wen_paths: params must have 3 columns (G, D, nu)");
+        const std::size_t n = y.shape(0), P = params.shape(0);
+        auto [out, w] = new_matrix(P, n);
+        const double* yp = y.data();
+        const double* pp = params.data();
+        {
+          nb::gil_scoped_release release;
+          tb::parallel_for(P, workers, [&](std::size_t p) {
+            ts::bouc_wen_path(yp, n, pp[3 * p], pp[3 * p + 1], pp[3 * p + 2], w + p * n);
+          });
+        }
+        return out;
+      },
+      "y"_a, "params"_a, "workers"_a = 0,
+      "Bouc-Wen state w (z / alpha) along the displacement path y for each row (G, D, nu).");
 
   def_population<ts::Backlash>(m, "Backlash");
   def_population<ts::BoucWenBacklash>(m, "BoucWenBacklash");

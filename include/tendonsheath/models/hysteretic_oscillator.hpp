@@ -368,4 +368,47 @@ class HystereticOscillator {
   int cached_m_ = 0;
 };
 
+// The Bouc-Wen state along a sampled displacement path y[0..n-1], scaled by alpha
+// (z = alpha w), starting at w = 0:
+//
+//   dw/dy = 1 - |w|^(nu-1) (G s w + D |w|),  s = sign(dy),  G = alpha^(nu-1) beta gamma,
+//   D = alpha^(nu-1) beta delta,
+//
+// rate-independent, integrated by RK4 in y (a few sub-steps per sample). Used by the
+// equation-error stage of the identification, where y is the measured displacement (on a
+// fine grid). Returns false if w overflows (the rest of w is then NaN).
+inline bool bouc_wen_path(const double* y, std::size_t n, double G, double D, double nu,
+                          double* w) noexcept {
+  const detail::AbsPower pw(nu - 1.0);
+  double wk = 0.0;
+  if (n == 0) return true;
+  w[0] = 0.0;
+  const double gd = std::fabs(G) + std::fabs(D);
+  for (std::size_t k = 1; k < n; ++k) {
+    const double dy = y[k] - y[k - 1];
+    const double s = dy > 0.0 ? 1.0 : -1.0;
+    const auto f = [&](double v) {
+      const double a = std::fabs(v);
+      return 1.0 - pw(a) * (G * s * v + D * a);
+    };
+    const double rate = gd * pw(std::fabs(wk) + std::fabs(dy));
+    double mm = std::ceil(20.0 * std::fabs(dy) * rate);
+    const int m = mm < 1.0 ? 1 : (mm > 256.0 ? 256 : static_cast<int>(mm));
+    const double h = dy / m;
+    for (int i = 0; i < m; ++i) {
+      const double k1 = f(wk);
+      const double k2 = f(wk + 0.5 * h * k1);
+      const double k3 = f(wk + 0.5 * h * k2);
+      const double k4 = f(wk + h * k3);
+      wk += h * (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0;
+    }
+    if (!std::isfinite(wk) || std::fabs(wk) > 1e150) {
+      for (std::size_t j = k; j < n; ++j) w[j] = std::numeric_limits<double>::quiet_NaN();
+      return false;
+    }
+    w[k] = wk;
+  }
+  return true;
+}
+
 }  // namespace tendonsheath
