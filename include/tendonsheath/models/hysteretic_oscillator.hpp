@@ -337,6 +337,10 @@ class HystereticOscillator {
       double h = range / 32.0;
       const double lim = 0.02 * (std::fabs(z) + zscale) / (f > 0.0 ? f : 1e-300);
       if (lim < h) h = lim;
+      // and keep RK4 stable where z relaxes fast: h |d f / d z| <= 0.5
+      const double stiff = p_.beta * p_.nu * pow_num1_(std::fabs(z) + zscale) *
+                           (std::fabs(p_.gamma) + std::fabs(p_.delta));
+      if (stiff * h > 0.5) h = 0.5 / stiff;
       if (h > range - y) h = range - y;
       const double k1 = dz_dy(z);
       const double k2 = dz_dy(z + 0.5 * h * k1);
