@@ -66,7 +66,9 @@ class _Stages:
     def stage(self, text: str) -> None:
         if self.status is not None:
             left = "" if self.budget is None else f" (budget {self.budget:.0f} s)"
-            self.status.update(f"identify HystereticOscillator: {text}, {self.elapsed():.1f} s{left}")
+            self.status.update(
+                f"identify HystereticOscillator: {text}, {self.elapsed():.1f} s{left}"
+            )
 
     def close(self) -> None:
         if self.status is not None:
@@ -148,7 +150,6 @@ def _bla(segments) -> tuple[float, float, float, float]:
             lines = np.nonzero(Puu > 1e-3 * Puu.max())[0]
             lines = lines[lines > 0]
             G, w = Puy[lines] / Puu[lines], 2 * np.pi * fw[lines]
-            G = np.conj(G) if False else G
         if lines.size == 0:
             continue
         f_top = max(f_top, float(w.max() / (2 * np.pi)))
@@ -174,7 +175,7 @@ class _EquationError:
         u, A, paths, masks = [], [], [], []
         for s in segments:
             f_max = min(0.45 / s.dt, max(2.0 * f_top, 1.0 / (20 * s.dt)))
-            y0, y1, y2, yf = _derivatives(s.y, s.dt, f_max, s.periodic and s.periods >= 1, self.PATH_FINE)
+            y0, y1, y2, yf = _derivatives(s.y, s.dt, f_max, s.periodic, self.PATH_FINE)
             if s.periodic:  # start the path one period early so that w is in steady state
                 yf = np.concatenate([yf, yf])
             u.append(s.x[s.mask])
@@ -475,9 +476,7 @@ def identify_oscillator(
             ses = {n: float(s) for n, s in zip(free_names, se, strict=True)}
         except ValueError:
             ses = {n: float("nan") for n in free_names}
-    model.check_bounded(
-        max(float(np.ptp(r.y)) for r in recs), "the measured displacement"
-    )
+    model.check_bounded(max(float(np.ptp(r.y)) for r in recs), "the measured displacement")
     return Fit(
         model=model,
         rmse=overall["rmse"],
@@ -508,8 +507,8 @@ def _refine(problem, space, u0, stages, polish):
     best = {"u": np.array(u0, dtype=float), "cost": np.inf}
     span = space.upper - space.lower
 
-    def fun(u):
-        if stages.over():
+    def fun(u, check=True):
+        if check and stages.over():
             raise _Budget
         count["n"] += 1
         r = problem.residuals(space.natural(u)[None, :])[0]
@@ -535,7 +534,9 @@ def _refine(problem, space, u0, stages, polish):
         return J.T
 
     u0 = np.clip(u0, space.lower + 1e-9 * span, space.upper - 1e-9 * span)
-    fun(u0)
+    fun(u0, check=False)  # the start is always evaluated
+    if stages.over():
+        return best["u"], "skipped (time budget spent)", count["n"]
     if not polish:
         return best["u"], "skipped (polish=False)", count["n"]
     try:
