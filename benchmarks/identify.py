@@ -297,8 +297,15 @@ def oscillator_main(draws: int) -> None:
         console.print(f"draw {i}: {params}")
         rows.append(oscillator_case(params, seed))
     table = Table(title="identify HystereticOscillator: DOP853 reference, bandlimited input")
-    for col in ("draw", "gamma+delta", "validation", "generating rmse", "identified rmse",
-                "ratio", "CPU s"):
+    for col in (
+        "draw",
+        "gamma+delta",
+        "validation",
+        "generating rmse",
+        "identified rmse",
+        "ratio",
+        "CPU s",
+    ):
         table.add_column(col, justify="right")
     for i, r in enumerate(rows):
         gd = r["params"]["gamma"] + r["params"]["delta"]
@@ -325,7 +332,10 @@ def oscillator_main(draws: int) -> None:
         "sweep against the noise-free reference",
         "cores": os.cpu_count(),
         "draws": rows,
-        "worst_ratio": worst,
+        "worst_ratio": worst,  # against the noise-free reference
+        "worst_noisy_ratio": max(
+            max(r["multisine"]["noisy_ratio"], r["sweep"]["noisy_ratio"]) for r in rows
+        ),
         "max_cpu_seconds": cpu,
         "targets": {"within_2x": worst <= 2.0, "under_120_s_cpu": cpu < 120.0},
     }
