@@ -23,13 +23,16 @@
 #include <string>
 #include <thread>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "models/bouc_wen.hpp"
 #include "models/bouc_wen_backlash.hpp"
 #include "models/curve_angle.hpp"
 #include "models/generalized_prandtl_ishlinskii.hpp"
+#include "models/hysteretic_oscillator.hpp"
 #include "models/prandtl_ishlinskii.hpp"
+#include "models/simulate.hpp"
 #include "validate.hpp"
 
 namespace tendonsheath::batch {
@@ -43,6 +46,10 @@ struct Recording {
   const double* theta = nullptr;
   std::size_t n = 0;
   std::size_t warmup = 0;  // samples excluded from the cost
+  // Optional input reconstructed on a grid `fine` times finer (n * fine values, see
+  // HystereticOscillator::step_dense); used by models that have step_dense().
+  const double* x_fine = nullptr;
+  int fine = 0;
 };
 
 inline unsigned default_workers() noexcept {
@@ -102,19 +109,51 @@ inline void check_recordings(const std::vector<Recording>& recs, bool need_y, co
 // Simulate one parameter set on one recording: writes yhat (may be nullptr) and
 // returns the sum of squared errors after warm-up (0 when rec.y is nullptr).
 // Invalid parameters or a non-finite output give +inf.
+namespace detail {
+template <class M, class = void>
+struct has_step_dense : std::false_type {};
+template <class M>
+struct has_step_dense<M, std::void_t<decltype(std::declval<M&>().step_dense(
+                             static_cast<const double*>(nullptr), 1, 1.0))>> : std::true_type {};
+}  // namespace detail
+
+// A model with a look-ahead delay (delay() > 0) is fed delay() more samples, the last one
+// held, and its output realigned; a diverged state (diverged()) counts as invalid (+inf).
 template <class Model>
 double simulate_one(const typename Model::Params& p, const Recording& rec, double* yhat) noexcept {
   try {
     Model model(p);
     double sse = 0.0;
-    for (std::size_t k = 0; k < rec.n; ++k) {
-      const double th = rec.theta ? rec.theta[k] : std::numeric_limits<double>::quiet_NaN();
-      const double yk = detail::step_model(model, rec.x[k], detail::dt_at(rec, k), th);
-      if (yhat) yhat[k] = yk;
-      if (rec.y && k >= rec.warmup) {
-        const double e = rec.y[k] - yk;
+    bool dense = false;
+    if constexpr (detail::has_step_dense<Model>::value) dense = rec.x_fine != nullptr;
+    const std::size_t D = dense ? 0 : static_cast<std::size_t>(tendonsheath::detail::delay_of(model));
+    double dt = 0.0;
+    for (std::size_t k = 0; k < rec.n + D; ++k) {
+      const std::size_t kk = k < rec.n ? k : rec.n - 1;
+      if (k < rec.n) dt = detail::dt_at(rec, k);
+      double yk;
+      if constexpr (detail::has_step_dense<Model>::value) {
+        if (dense) {
+          yk = model.step_dense(rec.x_fine + (k > 0 ? (k - 1) * rec.fine : 0), rec.fine, dt);
+        } else {
+          yk = model.step(rec.x[kk], dt);
+        }
+      } else {
+        const double th = rec.theta ? rec.theta[kk] : std::numeric_limits<double>::quiet_NaN();
+        yk = detail::step_model(model, rec.x[kk], dt, th);
+      }
+      if (k < D) continue;
+      const std::size_t i = k - D;
+      if (yhat) yhat[i] = yk;
+      if (rec.y && i >= rec.warmup) {
+        const double e = rec.y[i] - yk;
         sse += e * e;
       }
+    }
+    if (tendonsheath::detail::diverged(model)) {
+      if (yhat)
+        for (std::size_t k = 0; k < rec.n; ++k) yhat[k] = std::numeric_limits<double>::quiet_NaN();
+      return detail::kInf;
     }
     return std::isfinite(sse) ? sse : detail::kInf;
   } catch (...) {

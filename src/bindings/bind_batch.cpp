@@ -25,7 +25,8 @@ class RecordingSet {
  public:
   RecordingSet(std::optional<InArray> t, InArray x, std::optional<InArray> y,
                std::optional<InArray> theta, const std::vector<std::size_t>& lengths,
-               const std::vector<std::size_t>& warmups) {
+               const std::vector<std::size_t>& warmups, std::optional<InArray> x_fine = {},
+               int fine = 0) {
     const std::size_t n = x.shape(0);
     std::size_t total = 0;
     for (std::size_t len : lengths) total += len;
@@ -47,6 +48,12 @@ class RecordingSet {
     copy(t, t_, "t");
     copy(y, y_, "y");
     copy(theta, theta_, "curve_angle");
+    if (x_fine) {
+      if (fine < 1 || x_fine->shape(0) != n * static_cast<std::size_t>(fine))
+        throw std::invalid_argument("RecordingSet: x_fine must have fine * " + std::to_string(n) +
+                                    " values (fine >= 1)");
+      x_fine_.assign(x_fine->data(), x_fine->data() + x_fine->shape(0));
+    }
     std::size_t off = 0;
     for (std::size_t r = 0; r < lengths.size(); ++r) {
       tb::Recording rec;
@@ -56,6 +63,10 @@ class RecordingSet {
       rec.t = t_.empty() ? nullptr : t_.data() + off;
       rec.y = y_.empty() ? nullptr : y_.data() + off;
       rec.theta = theta_.empty() ? nullptr : theta_.data() + off;
+      if (!x_fine_.empty()) {
+        rec.x_fine = x_fine_.data() + off * static_cast<std::size_t>(fine);
+        rec.fine = fine;
+      }
       recs_.push_back(rec);
       off += lengths[r];
     }
@@ -67,7 +78,7 @@ class RecordingSet {
   bool has_output() const { return !y_.empty(); }
 
  private:
-  std::vector<double> t_, x_, y_, theta_;
+  std::vector<double> t_, x_, y_, theta_, x_fine_;
   std::vector<tb::Recording> recs_;
 };
 
@@ -161,11 +172,31 @@ void bind_batch(nb::module_& m) {
   nb::class_<RecordingSet>(m, "RecordingSet")
       .def(nb::init<std::optional<InArray>, InArray, std::optional<InArray>,
                     std::optional<InArray>, const std::vector<std::size_t>&,
-                    const std::vector<std::size_t>&>(),
-           "t"_a.none(), "x"_a, "y"_a.none(), "curve_angle"_a.none(), "lengths"_a, "warmups"_a)
+                    const std::vector<std::size_t>&, std::optional<InArray>, int>(),
+           "t"_a.none(), "x"_a, "y"_a.none(), "curve_angle"_a.none(), "lengths"_a, "warmups"_a,
+           "x_fine"_a.none() = nb::none(), "fine"_a = 0)
       .def_prop_ro("total", &RecordingSet::total)
       .def_prop_ro("count", &RecordingSet::count);
   m.def("default_workers", &tb::default_workers);
+  m.def(
+      "bouc_wen_paths",
+      [](InArray y, InMatrix params, unsigned workers) {
+        if (params.shape(1) != 3)
+          throw std::invalid_argument("bouc_wen_paths: params must have 3 columns (G, D, nu)");
+        const std::size_t n = y.shape(0), P = params.shape(0);
+        auto [out, w] = new_matrix(P, n);
+        const double* yp = y.data();
+        const double* pp = params.data();
+        {
+          nb::gil_scoped_release release;
+          tb::parallel_for(P, workers, [&](std::size_t p) {
+            ts::bouc_wen_path(yp, n, pp[3 * p], pp[3 * p + 1], pp[3 * p + 2], w + p * n);
+          });
+        }
+        return out;
+      },
+      "y"_a, "params"_a, "workers"_a = 0,
+      "Bouc-Wen state w (z / alpha) along the displacement path y for each row (G, D, nu).");
 
   def_population<ts::Backlash>(m, "Backlash");
   def_population<ts::BoucWenBacklash>(m, "BoucWenBacklash");

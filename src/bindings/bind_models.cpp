@@ -66,10 +66,55 @@ void bind_models(nb::module_& m) {
       .def_rw("nu", &HO::nu)
       .def_rw("substeps", &HO::substeps)
       .def_rw("max_substeps", &HO::max_substeps)
-      .def_rw("hold_input", &HO::hold_input);
-  bind_model<ts::HystereticOscillator>(m, "HystereticOscillator")
-      .def("velocity", &ts::HystereticOscillator::velocity)
-      .def("hysteretic_force", &ts::HystereticOscillator::hysteretic_force);
+      .def_rw("input_reconstruction", &HO::input_reconstruction)
+      .def_rw("lookahead", &HO::lookahead);
+  using Osc = ts::HystereticOscillator;
+  bind_model<Osc>(m, "HystereticOscillator")
+      .def("velocity", &Osc::velocity)
+      .def("hysteretic_force", &Osc::hysteretic_force)
+      .def("delay", &Osc::delay)
+      .def("diverged", &Osc::diverged)
+      .def("diverged_at", &Osc::diverged_at)
+      .def("substeps", &Osc::substeps, "dt"_a)
+      .def("z_bound", &Osc::z_bound, "range"_a)
+      .def(
+          "simulate_dense",
+          [](const Osc& self, double dt, std::size_t n, InArray x_fine, int fine) {
+            if (fine < 1 || x_fine.shape(0) != n * static_cast<std::size_t>(fine))
+              throw std::invalid_argument(
+                  "HystereticOscillator: x_fine must have n * fine values (fine >= 1)");
+            if (!(dt > 0.0) || !std::isfinite(dt))
+              throw std::invalid_argument("HystereticOscillator: dt must be > 0");
+            auto [out, y] = new_array(n);
+            Osc model = self;
+            const double* u = x_fine.data();
+            {
+              nb::gil_scoped_release release;
+              model.reset();
+              for (std::size_t k = 0; k < n; ++k)
+                y[k] = model.step_dense(u + (k > 0 ? (k - 1) * fine : 0), fine, dt);
+            }
+            if (model.diverged())
+              throw std::invalid_argument(
+                  "HystereticOscillator: the state diverged (overflowed) at sample " +
+                  std::to_string(model.diverged_at()) + " of " + std::to_string(n));
+            return out;
+          },
+          "dt"_a, "n"_a, "x_fine"_a, "fine"_a,
+          "Simulate from an input given on a grid `fine` times finer than the samples.");
+  m.def(
+      "reconstruct_bandlimited",
+      [](InArray x, int fine, int lookahead) {
+        const std::size_t n = x.shape(0);
+        ts::SincKernel kernel(lookahead);
+        if (fine < 1) throw std::invalid_argument("reconstruct_bandlimited: fine must be >= 1");
+        auto [out, y] = new_array(n * static_cast<std::size_t>(fine));
+        ts::reconstruct_bandlimited(kernel, x.data(), n, fine, y);
+        return out;
+      },
+      "x"_a, "fine"_a, "lookahead"_a,
+      "The windowed-sinc reconstruction of x on a grid `fine` times finer (input held at the "
+      "ends): the values HystereticOscillator's band-limited step() uses.");
 
   using PI = ts::PrandtlIshlinskiiParams;
   nb::class_<PI>(m, "PrandtlIshlinskiiParams")

@@ -144,3 +144,26 @@ TEST(Simulate, RejectsNonIncreasingTime) {
   std::vector<double> t{0.0, 1.0, 1.0}, x{0.0, 1.0, 2.0}, y(3);
   EXPECT_THROW(ts::simulate(b, t.data(), x.data(), y.data(), 3, "Backlash"), std::invalid_argument);
 }
+
+TEST(HystereticOscillator, SofteningAcceptedDivergenceFlaggedNeverNan) {
+  static_assert(noexcept(std::declval<ts::HystereticOscillator&>().step_dense(nullptr, 2, 0.0)));
+  ts::HystereticOscillatorParams p;
+  p.m = 2.0; p.c = 10.0; p.k = 5e4; p.alpha = 5e4; p.beta = 1e3; p.gamma = 0.8; p.delta = -1.1;
+  EXPECT_NO_THROW(ts::HystereticOscillator{p});  // softening: gamma + delta < 0
+  // nu = 2, gamma = 0, delta < 0: z escapes in finite displacement under a large force
+  ts::HystereticOscillatorParams q;
+  q.gamma = 0.0; q.delta = -0.5; q.nu = 2.0;
+  for (int mode = 0; mode <= 2; ++mode) {
+    q.input_reconstruction = mode;
+    ts::HystereticOscillator osc(q);
+    EXPECT_EQ(osc.delay(), mode == 2 ? q.lookahead - 1 : 0);
+    for (int k = 0; k < 5000; ++k) {
+      const double y = osc.step(20.0 * std::sin(0.01 * k), 0.01);
+      ASSERT_TRUE(std::isfinite(y));
+    }
+    EXPECT_TRUE(osc.diverged());
+    EXPECT_GT(osc.diverged_at(), 0);
+    osc.reset();
+    EXPECT_FALSE(osc.diverged());
+  }
+}

@@ -8,7 +8,13 @@ from collections.abc import Iterable, Sequence
 import numpy as np
 from scipy.optimize import differential_evolution, least_squares
 
-from ..models import Chain, GeneralizedPrandtlIshlinskii, HysteresisModel, PrandtlIshlinskii
+from ..models import (
+    Chain,
+    GeneralizedPrandtlIshlinskii,
+    HysteresisModel,
+    HystereticOscillator,
+    PrandtlIshlinskii,
+)
 from ..models.base import _REGISTRY
 from .data import check_for_fit, make_recordings, search_windows
 from .fit import Fit, metrics, simulate_model
@@ -132,6 +138,10 @@ def identify(
     separable: bool = True,
     progress: bool = True,
     search_samples: int | None = 200_000,
+    time_budget: float | None = None,
+    input_interpolation: str | None = None,
+    periodic: bool | None = None,
+    strategy: str = "auto",
 ) -> Fit:
     """Identify a model from input/output recordings by simulation-error minimisation.
 
@@ -174,6 +184,15 @@ def identify(
     coefficients are solved by least squares for every candidate (see
     :func:`~tendonsheath.identify.chain.identify_chain`).
 
+    HystereticOscillator (``strategy="auto"``): best linear approximation, then an
+    equation-error stage, then simulation-error least squares (see
+    :mod:`tendonsheath.identify.oscillator`); ``strategy="search"`` runs the plain
+    differential evolution instead. ``input_interpolation`` ("hold", "linear",
+    "bandlimited"; default: ``initial``'s) is the input reconstruction between samples,
+    recorded in the fitted model's options and the Fit's method; ``periodic`` says whether
+    the records are whole periods (None: detected) for the band-limited reconstruction;
+    ``time_budget`` (seconds of wall clock) stops the stages and keeps the best so far.
+
     GeneralizedPrandtlIshlinskii: the envelopes and the threshold scale are searched, the
     weights (>= 0) and an output offset are solved by bounded least squares; ``initial``
     gives the number of plays and the threshold pattern (default 10 evenly spaced plays).
@@ -206,6 +225,33 @@ def identify(
         raise ValueError(f"{cls.__name__} parameters cannot depend on the curve angle")
     recs = make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle)
     warmup = int(warmup)
+    if strategy not in ("auto", "search"):
+        raise ValueError(f"strategy must be 'auto' or 'search' (got {strategy!r})")
+    if cls is HystereticOscillator and strategy == "auto" and not depends:
+        from .oscillator import identify_oscillator
+
+        return identify_oscillator(
+            recs,
+            warmup=warmup,
+            bounds=bounds,
+            fixed=fixed,
+            free=free,
+            initial=initial,
+            seed=seed,
+            maxiter=maxiter,
+            popsize=popsize,
+            tol=tol,
+            workers=workers,
+            polish=polish,
+            progress=progress,
+            time_budget=time_budget,
+            input_interpolation=input_interpolation,
+            periodic=periodic,
+        )
+    if input_interpolation is not None:
+        if cls is not HystereticOscillator:
+            raise ValueError(f"{cls.__name__} has no input_interpolation option")
+        initial = (initial or cls()).with_params(input_interpolation=input_interpolation)
 
     if initial is None and cls is GeneralizedPrandtlIshlinskii:
         initial = cls(thresholds=np.arange(GPI_PLAYS) / GPI_PLAYS, weights=np.full(GPI_PLAYS, 1.0))

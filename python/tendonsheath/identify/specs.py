@@ -203,7 +203,7 @@ class HystereticOscillatorSpec(ModelSpec):
             "k": (0.0, 2.0 * k_tot),
             "alpha": (0.0, 2.0 * k_tot),
             "beta": (0.1 * beta, 10.0 * beta),
-            "gamma": (0.0, g),
+            "gamma": (-g, g),  # any sign: softening loops (gamma + delta < 0) included
             "delta": (-g, g),
             "nu": (1.0, 3.0),
         }

@@ -2,12 +2,23 @@
 
 from __future__ import annotations
 
+import math
+import warnings
 from typing import Any
 
+import numpy as np
+
 from .. import _core as core
+from .._arrays import as_time_and_signal
 from .base import HysteresisModel
 
-_INTERPOLATIONS = ("linear", "hold")
+_INTERPOLATIONS = ("linear", "hold", "bandlimited")
+_CODES = {"hold": 0, "linear": 1, "bandlimited": 2}
+
+
+class UnboundedStateWarning(UserWarning):
+    """The displacement range of a simulation or data set exceeds the range over which the
+    hysteretic force z of a HystereticOscillator stays bounded."""
 
 
 class HystereticOscillator(HysteresisModel):
@@ -17,13 +28,29 @@ class HystereticOscillator(HysteresisModel):
 
     Force u in, displacement y out, starting at rest. RK4 with at least ``substeps``
     sub-steps per sample (raised automatically for stability, at most ``max_substeps``).
-    ``input_interpolation`` is "linear" (default) or "hold" between samples.
+
+    Any sign of ``gamma + delta`` is accepted: ``beta (gamma + delta) < 0`` is a softening
+    loop (z grows with the displacement, as in the Bouc-Wen benchmark system), bounded over
+    a bounded excitation when unloading contracts it. :meth:`z_bound` bounds |z| over a
+    displacement range; :meth:`simulate` warns (:class:`UnboundedStateWarning`) when the
+    simulated displacement leaves the range where that bound is finite, and raises a
+    ValueError when z actually diverges.
+
+    ``input_interpolation`` (the input reconstruction between samples):
+
+    - ``"linear"`` (default) or ``"hold"``;
+    - ``"bandlimited"``: the input is treated as band-limited. :meth:`simulate` upsamples a
+      periodic record exactly by FFT zero padding (``periodic=True``, or detected: the
+      record's periodic extension has no energy above 0.4 of the sampling rate) and
+      otherwise uses a Kaiser-windowed sinc of half-width ``lookahead`` samples. The
+      streaming :meth:`step` uses the same windowed sinc, so its output lags the input by
+      :attr:`delay` = ``lookahead - 1`` samples. Needs uniform sampling.
     """
 
     _core = core.HystereticOscillator
     _core_params = core.HystereticOscillatorParams
     param_names = ("m", "c", "k", "alpha", "beta", "gamma", "delta", "nu")
-    option_names = ("substeps", "max_substeps", "input_interpolation")
+    option_names = ("substeps", "max_substeps", "input_interpolation", "lookahead")
     rate_independent = False
 
     def __init__(
@@ -39,6 +66,7 @@ class HystereticOscillator(HysteresisModel):
         substeps: int = 4,
         max_substeps: int = 4096,
         input_interpolation: str = "linear",
+        lookahead: int = 16,
     ):
         super().__init__(
             m=m,
@@ -52,6 +80,7 @@ class HystereticOscillator(HysteresisModel):
             substeps=substeps,
             max_substeps=max_substeps,
             input_interpolation=input_interpolation,
+            lookahead=lookahead,
         )
 
     @classmethod
@@ -63,14 +92,137 @@ class HystereticOscillator(HysteresisModel):
                 f"HystereticOscillator: input_interpolation must be one of {_INTERPOLATIONS} "
                 f"(got {mode!r})"
             )
-        values["hold_input"] = mode == "hold"
+        values["input_reconstruction"] = _CODES[mode]
         return values
 
     @property
     def options(self) -> dict[str, Any]:
         s = self._engine.params
+        mode = {v: k for k, v in _CODES.items()}[s.input_reconstruction]
         return {
             "substeps": s.substeps,
             "max_substeps": s.max_substeps,
-            "input_interpolation": "hold" if s.hold_input else "linear",
+            "input_interpolation": mode,
+            "lookahead": s.lookahead,
         }
+
+    @property
+    def input_interpolation(self) -> str:
+        return self.options["input_interpolation"]
+
+    @property
+    def delay(self) -> int:
+        """Samples by which :meth:`step`'s output lags its input (``lookahead - 1`` when
+        band-limited, else 0). :meth:`simulate` compensates it."""
+        return int(self._engine.delay())
+
+    def z_bound(self, displacement_range: float) -> float:
+        """A bound on |z| while the displacement stays within an interval of that width: the
+        largest |z| on the outer loop of repeated full-range excursions (and on the first
+        loading from rest); ``inf`` when z is not bounded over that range (the loop ratchets
+        from cycle to cycle, escapes, or would exceed 1e12 alpha * range)."""
+        return float(self._engine.z_bound(float(displacement_range)))
+
+    def simulate(self, t, x, periodic: bool | None = None) -> np.ndarray:
+        """Output for the input samples x at times t, from rest.
+
+        ``periodic`` matters only for ``input_interpolation="bandlimited"``: True upsamples
+        the record exactly by FFT (it must be a whole number of periods), False uses the
+        windowed sinc, None (default) detects it (see :func:`is_periodic`).
+
+        Raises ValueError when the hysteretic force diverges during the simulation; warns
+        (:class:`UnboundedStateWarning`) when the simulated displacement range leaves the
+        range over which z is bounded (:meth:`z_bound`).
+        """
+        if t is None:
+            raise ValueError("HystereticOscillator is rate-dependent: t is required")
+        ts, xs = as_time_and_signal(t, x)
+        try:
+            if self.input_interpolation == "bandlimited" and xs.size > 1:
+                dt = uniform_step(ts, "HystereticOscillator (bandlimited input)")
+                if periodic is None:
+                    periodic = is_periodic(xs)
+                if periodic:
+                    fine = 2 * int(self._engine.substeps(dt))
+                    y = self._engine.simulate_dense(dt, xs.size, fft_upsample(xs, fine), fine)
+                else:
+                    y = self._engine.simulate(ts, xs)
+            else:
+                y = self._engine.simulate(ts, xs)
+        except ValueError as exc:
+            if "diverged" not in str(exc):
+                raise
+            p = self.params
+            raise ValueError(
+                f"{exc}: the hysteretic force z grew without bound (beta (gamma + delta) = "
+                f"{p['beta'] * (p['gamma'] + p['delta']):.4g}, beta (gamma - delta) = "
+                f"{p['beta'] * (p['gamma'] - p['delta']):.4g}, nu = {p['nu']:.4g}); this "
+                "excitation drives the displacement beyond the range where this softening "
+                "Bouc-Wen loop is bounded"
+            ) from None
+        self.check_bounded(float(np.ptp(y)), "the simulated displacement")
+        return y
+
+    def check_bounded(self, displacement_range: float, what: str = "the displacement") -> bool:
+        """Warn (:class:`UnboundedStateWarning`) and return False when z has no finite bound
+        over ``displacement_range``."""
+        p = self.params
+        if p["beta"] == 0.0 or not displacement_range > 0:
+            return True
+        if math.isfinite(self.z_bound(displacement_range)):
+            return True
+        warnings.warn(
+            f"HystereticOscillator: {what} spans {displacement_range:.4g}, beyond the range "
+            f"over which the hysteretic force z stays bounded (beta (gamma + delta) = "
+            f"{p['beta'] * (p['gamma'] + p['delta']):.4g}): under repeated excursions of this "
+            "range z ratchets up or escapes, so simulations may diverge",
+            UnboundedStateWarning,
+            stacklevel=3,
+        )
+        return False
+
+
+def uniform_step(t: np.ndarray, who: str, rtol: float = 1e-6) -> float:
+    """The sample time of uniformly sampled times t; ValueError otherwise."""
+    d = np.diff(np.asarray(t, dtype=float))
+    if d.size == 0:
+        raise ValueError(f"{who}: at least two samples are needed")
+    dt = float(np.median(d))
+    if not dt > 0 or np.max(np.abs(d - dt)) > rtol * dt:
+        raise ValueError(
+            f"{who}: band-limited reconstruction needs uniform sampling (steps from "
+            f"{d.min():.6g} to {d.max():.6g}); resample the record or use "
+            "input_interpolation='linear'"
+        )
+    return dt
+
+
+def is_periodic(x: np.ndarray, band: float = 0.4, tol: float = 1e-10) -> bool:
+    """True when the periodic extension of x is band-limited: its energy above ``band`` times
+    the sampling rate is below ``tol`` of the total (a whole number of periods of a
+    band-limited signal, e.g. a multisine, and no measurement noise)."""
+    x = np.asarray(x, dtype=float)
+    if x.size < 8:
+        return False
+    X = np.abs(np.fft.rfft(x - x.mean())) ** 2
+    total = float(X.sum())
+    if not total > 0:
+        return True
+    high = float(X[int(np.ceil(band * x.size)) :].sum())
+    return high <= tol * total
+
+
+def fft_upsample(x: np.ndarray, fine: int) -> np.ndarray:
+    """Exact trigonometric interpolation of a periodic record on a grid ``fine`` times finer:
+    out[k fine + i] = u(t_k + i dt / fine) (zero padding of the spectrum; the Nyquist bin of
+    an even-length record is split between the positive and negative frequency)."""
+    x = np.asarray(x, dtype=float)
+    n = x.size
+    if fine == 1:
+        return x.copy()
+    X = np.fft.rfft(x)
+    Y = np.zeros(n * fine // 2 + 1, dtype=complex)
+    Y[: X.size] = X
+    if n % 2 == 0:
+        Y[n // 2] *= 0.5
+    return np.ascontiguousarray(np.fft.irfft(Y, n * fine) * fine)
