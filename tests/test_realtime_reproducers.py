@@ -44,6 +44,9 @@ def test_friction_chain_never_commits_a_non_finite_solution(first):
         y = plant.step(1e307)
         assert math.isfinite(y)
         assert plant._engine.input_clamped()
+        assert ts.Status.INPUT_CLAMPED in ts.Status(plant._engine.status())  # in-band
+        plant.step(math.nan)
+        assert ts.Status(plant._engine.status()) & ts.Status.HELD_NONFINITE_INPUT
         ys = [plant.step(v) for v in np.linspace(0.0, 0.01, 50)]
         assert np.all(np.isfinite(ys)) and np.all(np.isfinite(plant.tensions()))
         assert not plant._engine.input_clamped()
@@ -95,8 +98,14 @@ def test_curve_angle_feedforwards_do_not_freeze_at_large_friction_angles():
     ff = ts.compensate.CurveAngleFeedforward(0.1, 5e-5, 10.0)
     ff.set_curve_angle(1e4)
     assert ff._engine.angle_clamped()
-    u = [ff.step(float(y), 1e-3) for y in y_d]
+    u = []
+    for y in y_d:
+        u.append(ff.step(float(y), 1e-3))
+        assert ts.Status(ff._engine.status()) == ts.Status.INPUT_CLAMPED  # in-band, each cycle
     assert np.all(np.isfinite(u)) and np.all(np.diff(u) > 0)
+    ff.set_curve_angle(math.pi)
+    ff.step(0.6, 1e-3)
+    assert ts.Status(ff._engine.status()) == ts.Status.OK
     with pytest.raises(ValueError, match=r"total_angle must be <= 500 rad"):
         ts.compensate.ContinuumFeedforward(friction=0.1, total_angle=1e3)
 
@@ -112,6 +121,18 @@ def test_adaptive_controller_recovers_from_a_long_cycle():
     torques = [ctrl.step(0.2, 0.02 + 1e-4 * k, 0.0, 1e-3) for k in range(200)]
     assert np.all(np.isfinite(torques))
     assert np.ptp(torques) > 0.0 and abs(torques[-1]) > 0.0
+    # in-band: a lost measurement is the fallback, a torque at its limit is saturated
+    engine = ctrl._engine
+    engine.step(0.2, math.nan, 0.0, 1e-3)
+    assert ts.Status.FALLBACK in ts.Status(engine.status())
+    engine.step(math.nan, 0.02, 0.0, 1e-3)
+    assert ts.Status.HELD_NONFINITE_INPUT in ts.Status(engine.status())
+    limited = ts.compensate.AdaptiveController.from_model(
+        bwb, inertia=0.01, viscous=0.2, max_torque=1e-3
+    )._engine
+    limited.step(0.0, 0.0, 0.0, 1e-3)
+    limited.step(1.0, 0.0, 0.0, 1e-3)
+    assert ts.Status(limited.status()) == ts.Status.SATURATED
 
 
 def test_chain_options_have_upper_bounds():

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "validate.hpp"
+#include "status.hpp"
 #include "models/backlash.hpp"
 #include "models/bouc_wen.hpp"
 #include "models/bouc_wen_backlash.hpp"

@@ -14,6 +14,7 @@ from .plant import (
 )
 from .route import Route
 from .sensor import Sensor
+from .status import Status
 from .sweep import sweep
 
 __version__ = "0.1.0"
@@ -29,6 +30,7 @@ __all__ = [
     "SimulationResult",
     "SingleTendonPlant",
     "SlackWarning",
+    "Status",
     "bench",
     "compare_models",
     "compensate",

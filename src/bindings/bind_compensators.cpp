@@ -127,6 +127,7 @@ void bind_curve_angle_feedforward(nb::module_& m) {
       .def("reset", &C::reset)
       .def("set_curve_angle", &C::set_curve_angle, "total_angle"_a)
       .def("angle_clamped", &C::angle_clamped)
+      .def("status", [](const C& c) { return static_cast<unsigned>(c.status()); })
       .def("set_shape", &C::set_shape, "shape"_a)
       .def("step", &C::step, "y_d"_a, "dt"_a)
       .def("last_correction", &C::last_correction)
@@ -225,6 +226,7 @@ void bind_adaptive(nb::module_& m) {
       .def_prop_ro("estimates", &C::estimates)
       .def("in_fallback", &C::in_fallback)
       .def("filtered_rate", &C::filtered_rate)
+      .def("status", [](const C& c) { return static_cast<unsigned>(c.status()); })
       .def("reset", &C::reset)
       .def("step", &C::step, "y_d"_a, "y_measured"_a, "motor_position"_a, "dt"_a);
 }

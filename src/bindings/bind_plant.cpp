@@ -116,6 +116,7 @@ void bind_common(Cls& cls, std::size_t rows, const char* name) {
       .def("nonconverged", &Plant::nonconverged)
       .def("time_dependent", &Plant::time_dependent)
       .def("input_clamped", [](const Plant& p) { return p.chain().input_clamped(); })
+      .def("status", [](const Plant& p) { return static_cast<unsigned>(p.status()); })
       .def("last_converged", [](const Plant& p) { return p.chain().last_converged(); })
       .def("drive_reaction", &Plant::drive_reaction)
       .def_prop_ro("n_node_angles", &Plant::n_node_angles)
@@ -279,6 +280,7 @@ void bind_plant(nb::module_& m) {
       .def("position", &ts::Motor::position)
       .def("output", &ts::Motor::output)
       .def("clamped", &ts::Motor::clamped)
+      .def("status", [](const ts::Motor& m) { return static_cast<unsigned>(m.status()); })
       .def("velocity", &ts::Motor::velocity)
       .def("set_state", &ts::Motor::set_state, "q"_a, "v"_a);
 

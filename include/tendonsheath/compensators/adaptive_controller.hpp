@@ -18,6 +18,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 #include "command_shaping.hpp"
 #include "inverse_feedforward.hpp"
@@ -110,7 +111,8 @@ class AdaptiveController {
   // motor position (used by the fallback only), dt since the previous cycle.
   // Returns the motor torque command.
   double step(double y_d, double y_measured, double motor_position, double dt) noexcept {
-    if (!std::isfinite(y_d)) return torque_;
+    held_ = !std::isfinite(y_d);
+    if (held_) return torque_;
     // The rate is known from the second sample on, the acceleration from the third.
     const bool rate_known = yd_rate_.primed();
     const double yd_rate = yd_rate_.update(y_d, dt);
@@ -154,6 +156,16 @@ class AdaptiveController {
   }
 
   double filtered_rate() const noexcept { return filtered_rate_; }
+
+  // The last step's status: held (non-finite y_d), fallback (no measurement), saturated
+  // (|torque| at max_torque).
+  Status status() const noexcept {
+    Status s = Status::ok;
+    if (held_) s |= Status::held_nonfinite_input;
+    if (fallback_) s |= Status::fallback;
+    if (std::fabs(torque_) >= p_.max_torque) s |= Status::saturated;
+    return s;
+  }
 
  private:
   static BacklashInverseParams checked_feedforward(const Params& p) {
@@ -217,6 +229,7 @@ class AdaptiveController {
   bool filter_primed_ = false;
   double filtered_ = 0.0, filtered_rate_ = 0.0;
   bool fallback_ = false;
+  bool held_ = false;
   double torque_ = 0.0;
 };
 

@@ -15,6 +15,7 @@
 #include <limits>
 
 #include "../physics/pull_pull_statics.hpp"
+#include "../status.hpp"
 #include "../validate.hpp"
 #include "command_shaping.hpp"
 
@@ -90,8 +91,18 @@ class CurveAngleFeedforward {
   }
 
   double step(double y_d, double dt) noexcept {
-    if (!std::isfinite(y_d)) return shaper_.apply(NAN, dt);
+    held_ = !std::isfinite(y_d);
+    if (held_) return shaper_.apply(NAN, dt);
     return step_with_rate(y_d, rate_.update(y_d, dt), dt);
+  }
+
+  // The last step's status: held (non-finite y_d), input_clamped (the curve angle in force
+  // was clamped to max_total_angle).
+  Status status() const noexcept {
+    Status s = Status::ok;
+    if (held_) s |= Status::held_nonfinite_input;
+    if (angle_clamped_) s |= Status::input_clamped;
+    return s;
   }
 
   double step_with_rate(double y_d, double y_d_rate, double dt) noexcept {
@@ -128,6 +139,7 @@ class CurveAngleFeedforward {
   ShapeIntegrals shape_{};
   PullPullStatics::Affine affine_{};
   bool angle_clamped_ = false;
+  bool held_ = false;
   bool uniform_ = true;
   RateEstimator rate_{};
   CommandShaper shaper_{};

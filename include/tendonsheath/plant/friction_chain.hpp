@@ -57,6 +57,7 @@
 #include <string>
 #include <vector>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 
 namespace tendonsheath {
@@ -213,6 +214,7 @@ class FrictionChain {
     nonconverged_ = 0;
     last_solves_ = 0;
     input_clamped_ = false;
+    input_held_ = false;
     last_converged_ = true;
     fact_valid_ = false;
     tfact_valid_ = false;
@@ -227,7 +229,8 @@ class FrictionChain {
   // dampers only). Returns true when the state was updated.
   bool step(double x, double dt) noexcept {
     input_clamped_ = false;
-    if (!std::isfinite(x)) return false;
+    input_held_ = !std::isfinite(x);
+    if (input_held_) return false;
     if (std::fabs(x) > kMaxInput) {
       x = std::copysign(kMaxInput, x);
       input_clamped_ = true;
@@ -294,6 +297,15 @@ class FrictionChain {
   // Slack test used by slack(): min tension <= 0 (strict = false) or < 0.
   void set_slack_strict(bool strict) noexcept { slack_strict_ = strict; }
   long nonconverged() const noexcept { return nonconverged_; }
+  // The last step: its input held (non-finite), clamped, not converged, slack.
+  Status status() const noexcept {
+    Status s = Status::ok;
+    if (input_held_) s |= Status::held_nonfinite_input;
+    if (input_clamped_) s |= Status::input_clamped;
+    if (!last_converged_) s |= Status::not_converged;
+    if (slack_) s |= Status::slack;
+    return s;
+  }
   // The last step's input was beyond +-kMaxInput and was clamped to it.
   bool input_clamped() const noexcept { return input_clamped_; }
   // Every increment of the last step converged (false: the best bounded iterate was kept).
@@ -775,6 +787,7 @@ class FrictionChain {
   long nonconverged_ = 0;
   int last_solves_ = 0;
   bool input_clamped_ = false;
+  bool input_held_ = false;
   bool last_converged_ = true;
   bool has_damper_ = false;  // any time-dependent effect (damper, mass, viscosity, SLS)
   bool has_mass_ = false;

@@ -31,6 +31,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 
 namespace tendonsheath {
@@ -99,7 +100,11 @@ class Motor {
   // pulley angle (the shaft angle without gear backlash). A non-finite command
   // holds the last position.
   double step(double u, double dt, double tau_ext = 0.0) noexcept {
-    if (!std::isfinite(u)) return pulley_;
+    held_ = !std::isfinite(u);
+    if (held_) {
+      clamped_ = false;
+      return pulley_;
+    }
     if (!std::isfinite(tau_ext)) tau_ext = 0.0;
     if (!initialised_) {
       initialised_ = true;
@@ -170,6 +175,13 @@ class Motor {
   // The last step was longer than the sub-steps can span, or its command would have driven
   // the state beyond a double: the motor then covered less (or held), and stayed finite.
   bool clamped() const noexcept { return clamped_; }
+  // The last step's status: held (non-finite command), input_clamped (see clamped()).
+  Status status() const noexcept {
+    Status s = Status::ok;
+    if (held_) s |= Status::held_nonfinite_input;
+    if (clamped_) s |= Status::input_clamped;
+    return s;
+  }
   // Proximal pulley angle (after the gear play), the plant's input.
   double output() const noexcept { return pulley_; }
   void set_state(double q, double v) noexcept {
@@ -183,6 +195,7 @@ class Motor {
   Params p_;
   double q_ = 0.0, v_ = 0.0, pulley_ = 0.0;
   bool clamped_ = false;
+  bool held_ = false;
   bool initialised_ = false;
 };
 

@@ -192,6 +192,8 @@ class PullPullPlant {
   double min_tension() const noexcept { return chain_.min_tension(); }
   long nonconverged() const noexcept { return chain_.nonconverged(); }
   // True when a step depends on dt (distal dynamics, damping, viscosity, creep).
+  // The last step's status (see status.hpp): read right after step().
+  Status status() const noexcept { return chain_.status(); }
   bool time_dependent() const noexcept { return chain_.time_dependent(); }
   const FrictionChain& chain() const noexcept { return chain_; }
 

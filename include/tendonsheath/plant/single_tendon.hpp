@@ -145,6 +145,8 @@ class SingleTendonPlant {
   bool slack() const noexcept { return chain_.slack(); }
   double min_tension() const noexcept { return chain_.min_tension(); }
   long nonconverged() const noexcept { return chain_.nonconverged(); }
+  // The last step's status (see status.hpp): read right after step().
+  Status status() const noexcept { return chain_.status(); }
   bool time_dependent() const noexcept { return chain_.time_dependent(); }
   const FrictionChain& chain() const noexcept { return chain_; }
 
