@@ -146,3 +146,29 @@ def test_chain_options_have_upper_bounds():
         with pytest.raises(ValueError, match=rf"{name} must be .*100000\]"):
             route = ts.Route.uniform(1.0, 1.0)._core
             core.PullPullPlant(params, route, route)
+
+
+def test_gpi_inverse_commands_stay_in_the_envelopes_range():
+    """Item 7: an unreachable target commanded about 1e8 rad, and an envelope gain b = 1e-300
+    (accepted) about 4e307. The command now stops where the envelopes saturate (flagged), and
+    validation names b and the smallest gain it accepts."""
+    model = ts.models.GeneralizedPrandtlIshlinskii(
+        rising=(1.0, 1.0, 0.0, 0.0),
+        falling=(1.0, 1.0, 0.0, 0.0),
+        thresholds=[0.0, 0.2],
+        weights=[1.0, 0.5],
+    )
+    inv = model.inverse()._engine
+    for target in (0.3, 100.0, -100.0, 1e300):
+        x = inv.step(target)
+        assert abs(x) <= 40.0 + 1e-9, (target, x)  # c +- 40/b with c = 0, b = 1
+    assert inv.input_clamped()
+    inv.step(0.1)
+    assert not inv.input_clamped()
+    with pytest.raises(ValueError, match=r"rising.b must be >= 1e-09"):
+        ts.models.GeneralizedPrandtlIshlinskii(
+            rising=(1.0, 1e-300, 0.0, 0.0),
+            falling=(1.0, 1.0, 0.0, 0.0),
+            thresholds=[0.0],
+            weights=[1.0],
+        )

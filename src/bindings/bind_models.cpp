@@ -123,7 +123,8 @@ void bind_models(nb::module_& m) {
       .def_rw("weights", &PI::weights);
   bind_model<ts::PrandtlIshlinskii>(m, "PrandtlIshlinskii")
       .def("play_states", &ts::PrandtlIshlinskii::play_states);
-  bind_model<ts::PrandtlIshlinskiiInverse>(m, "PrandtlIshlinskiiInverse");
+  bind_model<ts::PrandtlIshlinskiiInverse>(m, "PrandtlIshlinskiiInverse")
+      .def("input_clamped", &ts::PrandtlIshlinskiiInverse::input_clamped);
 }
 
 }  // namespace tsbind

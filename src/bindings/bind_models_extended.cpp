@@ -35,8 +35,8 @@ void bind_models_extended(nb::module_& m) {
       .def_rw("thresholds", &G::thresholds)
       .def_rw("weights", &G::weights);
   bind_model<ts::GeneralizedPrandtlIshlinskii>(m, "GeneralizedPrandtlIshlinskii");
-  bind_model<ts::GeneralizedPrandtlIshlinskiiInverse>(m,
-                                                               "GeneralizedPrandtlIshlinskiiInverse");
+  bind_model<ts::GeneralizedPrandtlIshlinskiiInverse>(m, "GeneralizedPrandtlIshlinskiiInverse")
+      .def("input_clamped", &ts::GeneralizedPrandtlIshlinskiiInverse::input_clamped);
 }
 
 }  // namespace tsbind

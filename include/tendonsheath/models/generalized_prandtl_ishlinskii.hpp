@@ -43,6 +43,12 @@ struct GeneralizedPrandtlIshlinskiiParams {
   std::vector<double> weights{0.6, 0.2, 0.1, 0.1};
 };
 
+// Bounds on an envelope's input gain and shift: its input range c +- kEnvelopeSpan / b (past
+// which tanh is 1 to double precision) must stay a representable, finite interval.
+constexpr double kEnvelopeSpan = 20.0;
+constexpr double kMinEnvelopeGain = 1e-9;
+constexpr double kMaxEnvelopeShift = 1e12;
+
 namespace detail {
 inline void validate_gpi(const GeneralizedPrandtlIshlinskiiParams& p, const char* w) {
   const Envelope* env[2] = {&p.rising, &p.falling};
@@ -51,7 +57,13 @@ inline void validate_gpi(const GeneralizedPrandtlIshlinskiiParams& p, const char
     const std::string n = names[e];
     require_positive(env[e]->a, w, (n + ".a").c_str());
     require_positive(env[e]->b, w, (n + ".b").c_str());
+    require(env[e]->b >= kMinEnvelopeGain, w,
+            n + ".b must be >= " + format_value(kMinEnvelopeGain) +
+                " (the envelope spans 20/b of input; got " + format_value(env[e]->b) + ")");
     require_finite(env[e]->c, w, (n + ".c").c_str());
+    require(std::fabs(env[e]->c) <= kMaxEnvelopeShift, w,
+            n + ".c must be within +-" + format_value(kMaxEnvelopeShift) + " (got " +
+                format_value(env[e]->c) + ")");
     require_finite(env[e]->d, w, (n + ".d").c_str());
   }
   require(!p.thresholds.empty(), w, "thresholds must not be empty");
@@ -146,7 +158,14 @@ class GeneralizedPrandtlIshlinskiiInverse {
   using Params = GeneralizedPrandtlIshlinskiiParams;
   static constexpr bool rate_independent = true;
 
-  explicit GeneralizedPrandtlIshlinskiiInverse(const Params& p) : model_(p) {}
+  explicit GeneralizedPrandtlIshlinskiiInverse(const Params& p) : model_(p) {
+    const double gain = std::fmin(p.rising.b, p.falling.b);
+    x_min_ = std::fmin(p.rising.c, p.falling.c) - 2.0 * kEnvelopeSpan / gain;
+    x_max_ = std::fmax(p.rising.c, p.falling.c) + 2.0 * kEnvelopeSpan / gain;
+  }
+  // The last target was out of reach: the command sits at the end of the envelopes' input
+  // range, [c_min - 40/b, c_max + 40/b], past which the output no longer changes.
+  bool input_clamped() const noexcept { return clamped_; }
   const Params& params() const noexcept { return model_.params(); }
   void reset() noexcept { model_.reset(); }
 
@@ -159,17 +178,22 @@ class GeneralizedPrandtlIshlinskiiInverse {
     const double y_now = model_.output_if(lo);
     const double span = 1.0 / std::fmin(params().rising.b, params().falling.b);
     if (y_desired > y_now) {
-      for (int k = 0; k < 60 && model_.output_if(hi) < y_desired; ++k) hi += span * (1 << (k < 20 ? k : 20));
+      for (int k = 0; k < 60 && hi < x_max_ && model_.output_if(hi) < y_desired; ++k)
+        hi = std::fmin(x_max_, hi + span * (1 << (k < 20 ? k : 20)));
     } else {
-      for (int k = 0; k < 60 && model_.output_if(lo) > y_desired; ++k) lo -= span * (1 << (k < 20 ? k : 20));
+      for (int k = 0; k < 60 && lo > x_min_ && model_.output_if(lo) > y_desired; ++k)
+        lo = std::fmax(x_min_, lo - span * (1 << (k < 20 ? k : 20)));
     }
+    clamped_ = y_desired > y_now ? (hi >= x_max_ && model_.output_if(x_max_) < y_desired)
+                                 : (lo <= x_min_ && model_.output_if(x_min_) > y_desired);
     for (int k = 0; k < 200 && hi - lo > 1e-14 * (1.0 + std::fabs(lo) + std::fabs(hi)); ++k) {
       const double mid = 0.5 * (lo + hi);
       if (model_.output_if(mid) < y_desired) lo = mid;
       else hi = mid;
     }
-    const double x = (std::fabs(model_.output_if(lo) - y_desired) <=
-                      std::fabs(model_.output_if(hi) - y_desired)) ? lo : hi;
+    double x = (std::fabs(model_.output_if(lo) - y_desired) <=
+                std::fabs(model_.output_if(hi) - y_desired)) ? lo : hi;
+    if (clamped_) x = y_desired > y_now ? x_max_ : x_min_;  // out of reach: the range's end
     model_.step(x);
     return x;
   }
@@ -181,9 +205,11 @@ class GeneralizedPrandtlIshlinskiiInverse {
   // inverse starts from the same play states as the forward model would.
   double initial_guess(double y) const noexcept {
     const double span = 1.0 / std::fmin(params().rising.b, params().falling.b);
-    double lo = -span, hi = span;
-    for (int k = 0; k < 60 && model_.initial_output(lo) > y; ++k) lo -= span * (1 << (k < 20 ? k : 20));
-    for (int k = 0; k < 60 && model_.initial_output(hi) < y; ++k) hi += span * (1 << (k < 20 ? k : 20));
+    double lo = std::fmax(x_min_, -span), hi = std::fmin(x_max_, span);
+    for (int k = 0; k < 60 && lo > x_min_ && model_.initial_output(lo) > y; ++k)
+      lo = std::fmax(x_min_, lo - span * (1 << (k < 20 ? k : 20)));
+    for (int k = 0; k < 60 && hi < x_max_ && model_.initial_output(hi) < y; ++k)
+      hi = std::fmin(x_max_, hi + span * (1 << (k < 20 ? k : 20)));
     for (int k = 0; k < 200 && hi - lo > 1e-15 * (1.0 + std::fabs(lo) + std::fabs(hi)); ++k) {
       const double mid = 0.5 * (lo + hi);
       if (model_.initial_output(mid) < y) lo = mid;
@@ -192,6 +218,8 @@ class GeneralizedPrandtlIshlinskiiInverse {
     return 0.5 * (lo + hi);
   }
   GeneralizedPrandtlIshlinskii model_;
+  double x_min_ = -1.0, x_max_ = 1.0;
+  bool clamped_ = false;
 };
 
 }  // namespace tendonsheath
