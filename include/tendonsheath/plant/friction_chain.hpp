@@ -326,7 +326,9 @@ class FrictionChain {
       commit(xt, true, dt);
       return;
     }
-    if (can_halve) {
+    // A slack iterate (a tension <= 0) lies outside the model: no smaller increment makes it
+    // valid (with a damper, halving only stiffens it), so go straight to the last resort.
+    if (can_halve && !(min_of_tensions() <= 0.0)) {
       const double xm = 0.5 * (x_ + xt);
       sub_increment(xm, 0.5 * dt, depth + 1);
       sub_increment(xt, 0.5 * dt, depth + 1);
