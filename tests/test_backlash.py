@@ -11,8 +11,8 @@ def test_dead_band_is_flat_and_branches_have_their_slopes(rng):
         B_r, B_l = rng.uniform(0.0, 0.3, 2)
         m = models.Backlash(c_r=c_r, c_l=c_l, B_r=B_r, B_l=B_l)
         peak = 1.0
-        if c_r > c_l:  # stay below where unequal branches cross
-            peak = min(peak, 0.5 * (c_l * B_l + c_r * B_r) / (c_r - c_l))
+        if c_r != c_l:  # stay inside where unequal branches cross (x* on either side)
+            peak = min(peak, 0.5 * abs((c_l * B_l + c_r * B_r) / (c_r - c_l)))
         up = np.linspace(-peak, peak, 2001)
         down = np.linspace(peak, -peak, 2001)
         x = np.r_[up, down[1:]]

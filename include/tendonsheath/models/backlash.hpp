@@ -4,6 +4,12 @@
 //   y = c_r (x - B_r)   while x increases and y would fall below that line
 //   y = c_l (x + B_l)   while x decreases and y would rise above that line
 //   y unchanged          otherwise (inside the dead band)
+//
+// i.e. y <- clamp(y, c_r (x - B_r), c_l (x + B_l)). With c_r != c_l the lines cross at
+// x* = (c_r B_r + c_l B_l)/(c_r - c_l); past it the band would be inverted and a tiny
+// reversal would jump from one line to the other. There the band is clamped to zero
+// width: y follows the lines' mean, which meets both at x*. So y is continuous, with
+// |dy| <= max(c_r, c_l) |dx| for any input, and unchanged wherever the lines do not cross.
 #pragma once
 
 #include <cmath>
@@ -55,8 +61,9 @@ class Backlash {
       initialised_ = true;
       return y_;
     }
-    if (x > x_ && right > y_) y_ = right;
-    else if (x < x_ && left < y_) y_ = left;
+    double lo = right, hi = left;
+    if (lo > hi) lo = hi = 0.5 * (right + left);  // past the crossing: a zero-width band
+    y_ = y_ < lo ? lo : (y_ > hi ? hi : y_);
     x_ = x;
     return y_;
   }
