@@ -14,6 +14,7 @@ from .generalized_prandtl_ishlinskii import (
 from .hysteretic_oscillator import HystereticOscillator
 from .polynomial import Polynomial
 from .prandtl_ishlinskii import PrandtlIshlinskii, PrandtlIshlinskiiInverse
+from .scaled import Scaled
 
 __all__ = [
     "AngleDependent",
@@ -29,5 +30,6 @@ __all__ = [
     "Polynomial",
     "PrandtlIshlinskii",
     "PrandtlIshlinskiiInverse",
+    "Scaled",
     "load_model",
 ]
