@@ -101,9 +101,10 @@ class ChainProblem:
         m = np.max(np.abs(U), axis=1)
         m = np.where(m > 0, m, 1.0)
         Us = U / m[:, None]
-        B = Us[:, :, None] ** self.powers[None, None, :]  # (P, M, K), entries in [-1, 1]
-        G = np.einsum("pmk,pml->pkl", B, B)
-        rhs = np.einsum("pmk,m->pk", B, self.y)
+        B = _powers(Us, self.powers)  # (P, M, K), entries in [-1, 1]
+        Bt = B.transpose(0, 2, 1)
+        G = Bt @ B
+        rhs = Bt @ self.y
         ridge = 1e-12 * np.trace(G, axis1=1, axis2=2)[:, None, None] + 1e-300
         G = G + ridge * np.eye(self.powers.size)[None]
         try:
@@ -112,7 +113,7 @@ class ChainProblem:
             coef = np.stack(
                 [np.linalg.lstsq(g, r, rcond=None)[0] for g, r in zip(G, rhs, strict=True)]
             )
-        resid = self.y[None, :] - np.einsum("pmk,pk->pm", B, coef)
+        resid = self.y[None, :] - (B @ coef[:, :, None])[:, :, 0]
         sse = np.sum(resid**2, axis=1)
         sse = np.where(ok & np.isfinite(sse), sse, np.inf)
         a = coef / m[:, None] ** self.powers[None, :]
@@ -131,6 +132,18 @@ class ChainProblem:
         a, _, _ = self._solve(self.inner.simulate(np.atleast_2d(c)))
         first = self.inner.model(c)
         return Chain(first, Polynomial(coefficients=a[0], odd=self.odd))
+
+
+def _powers(U: np.ndarray, powers: np.ndarray) -> np.ndarray:
+    """U**k for the (evenly spaced) powers k, by repeated products (pow() is ~10x slower)."""
+    B = np.empty((*U.shape, powers.size))
+    step = U * U if powers.size > 1 and powers[1] - powers[0] == 2 else U
+    cur = U.copy() if powers[0] == 1 else np.ones_like(U)
+    for j in range(powers.size):
+        B[..., j] = cur
+        if j + 1 < powers.size:
+            cur = cur * step
+    return B
 
 
 def identify_chain(
