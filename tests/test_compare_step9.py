@@ -9,6 +9,7 @@ from typer.testing import CliRunner
 import tendonsheath as ts
 from tendonsheath import compare, io
 from tendonsheath.cli import app
+from tendonsheath.identify.data import make_recordings
 
 FAST = {"maxiter": 10, "popsize": 8}
 
@@ -99,3 +100,21 @@ def test_cli_prints_data_notes_before_fitting_with_the_flag(tmp_path):
     assert "irregular sampling" in out and "--resample RATE (Hz)" in out
     assert "resample=" not in out
     assert out.index("irregular sampling") < out.index("fitted Backlash")
+
+
+def test_blocked_folds_fit_after_the_block_from_its_start():
+    """The part after a held-out block is simulated from the block's start (its input is
+    known) and counted only after it: no held-out output enters a fit."""
+    t, x, y = plant_log(n=300)
+    rec = make_recordings(t, x, y)
+    splits, _ = compare._folds(rec, 3)
+    train, [(_, a, b)] = splits[1]
+    assert [(r.n, r.skip) for r in train] == [(a, 0), (300 - a, b - a)]
+    y_bad = y.copy()
+    y_bad[a:b] = 1e3  # a wild held-out block changes nothing in the fit
+    bad = make_recordings(t, x, y_bad)
+    train_bad, _ = compare._folds(bad, 3)[0][1]
+    opts = {"maxiter": 10, "popsize": 8, "progress": False}
+    m1 = ts.identify(ts.models.Backlash, recordings=train, **opts).model
+    m2 = ts.identify(ts.models.Backlash, recordings=train_bad, **opts).model
+    assert m1 == m2

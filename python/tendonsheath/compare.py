@@ -33,30 +33,40 @@ import numpy as np
 
 from .identify import identify
 from .identify.data import make_recordings
+from .identify.dynamic import is_dynamic_chain
 from .identify.fit import metrics, simulate_model
 from .models import (
     Backlash,
     BoucWenBacklash,
     Chain,
     CurveAngleModel,
+    FirstOrderLag,
     GeneralizedPrandtlIshlinskii,
     HysteresisModel,
+    LinearBlock,
     Polynomial,
     PrandtlIshlinskii,
+    SecondOrderLag,
 )
 from .models.base import _REGISTRY
+from .models.linear_block import sample_time
 
 AFFINE = "affine"
 
 
 def default_models(curve_angle: bool = False) -> list:
-    """The default candidates (CurveAngleModel too when the logs have a curve angle)."""
+    """The default candidates: the rate-independent operators, a BoucWenBacklash with a cubic
+    output map, and a rate-dependent Hammerstein chain (BoucWenBacklash followed by a
+    second-order lag; ``"lag1+bwb"`` names the Wiener one, ``"pi+lag1"`` a PI one); also
+    CurveAngleModel when the logs have a curve angle. Chains with a linear block need a
+    time column with a uniform step; they are left out of the defaults without one."""
     models: list = [
         Backlash,
         BoucWenBacklash,
         PrandtlIshlinskii,
         GeneralizedPrandtlIshlinskii,
         Chain(BoucWenBacklash(), Polynomial(3)),
+        Chain(BoucWenBacklash(), SecondOrderLag()),
     ]
     if curve_angle:
         models.append(CurveAngleModel)
@@ -81,11 +91,13 @@ _ALIASES = {
     "bw": "BoucWen",
     "curve": "CurveAngleModel",
 }
+_BLOCKS = {"lag1": FirstOrderLag, "lag2": SecondOrderLag}
 
 
 def parse_model(spec) -> Any:
     """A candidate from a class, a Chain instance or a name: ``BoucWenBacklash``, ``gpi``,
-    ``bwb+poly3`` (Chain with a cubic), ``bwb+odd3`` (odd cubic)."""
+    ``bwb+poly3`` (Chain with a cubic), ``bwb+odd3`` (odd cubic), ``bwb+lag2`` / ``pi+lag1``
+    (Hammerstein: then a second- / first-order lag), ``lag1+bwb`` (Wiener)."""
     if isinstance(spec, Chain) or (isinstance(spec, type) and issubclass(spec, HysteresisModel)):
         return spec
     if not isinstance(spec, str):
@@ -104,12 +116,17 @@ def parse_model(spec) -> Any:
             )
         return lookup[name.lower()]
 
+    if base.strip().lower() in _BLOCKS:  # Wiener: lagN+model
+        block = _BLOCKS[base.strip().lower()]
+        return Chain(block(), cls_of(tail.strip())())
     cls = cls_of(base)
     if not tail:
         return cls
+    if tail.strip().lower() in _BLOCKS:  # Hammerstein: model+lagN
+        return Chain(cls(), _BLOCKS[tail.strip().lower()]())
     m = re.fullmatch(r"(poly|odd)(\d+)", tail.strip().lower())
     if not m:
-        raise ValueError(f"model {text!r}: the part after '+' must be polyN or oddN")
+        raise ValueError(f"model {text!r}: the part after '+' must be polyN, oddN, lag1 or lag2")
     degree = int(m.group(2))
     if degree < 1:
         raise ValueError(f"model {text!r}: the degree must be >= 1")
@@ -117,7 +134,14 @@ def parse_model(spec) -> Any:
 
 
 def model_name(candidate) -> str:
+    """BoucWenBacklash, BoucWenBacklash+poly3, BoucWenBacklash+lag2 (Hammerstein),
+    lag1+BoucWenBacklash (Wiener)."""
     if isinstance(candidate, Chain):
+        short = {FirstOrderLag: "lag1", SecondOrderLag: "lag2"}
+        if isinstance(candidate.second, LinearBlock):
+            return f"{type(candidate.first).__name__}+{short[type(candidate.second)]}"
+        if isinstance(candidate.first, LinearBlock):
+            return f"{short[type(candidate.first)]}+{type(candidate.second).__name__}"
         p = candidate.second
         kind = "odd" if getattr(p, "options", {}).get("odd") else "poly"
         return f"{type(candidate.first).__name__}+{kind}{p.degree}"
@@ -244,6 +268,16 @@ def _as_recs(logs) -> list:
     return make_recordings(recordings=list(logs))
 
 
+def _uniform(recs) -> bool:
+    """Every recording has a time column with a uniform step (linear blocks need one)."""
+    try:
+        for r in recs:
+            sample_time(r.t)
+    except ValueError:
+        return False
+    return True
+
+
 def _affine(recs) -> np.ndarray:
     x = np.concatenate([r.x for r in recs])
     y = np.concatenate([r.y for r in recs])
@@ -273,7 +307,9 @@ def _folds(recs, folds: int | None) -> tuple[list[tuple[list, list]], str]:
     Several recordings: leave one recording out (at most 10 folds; more recordings are
     grouped round-robin into ``folds`` or 5 groups). One recording: ``folds`` (default 3)
     contiguous blocks; each block is scored with the model run over the whole recording
-    (its state carries over, as on the robot) and the model is fitted on the other blocks.
+    (its state carries over, as on the robot) and the model is fitted on the other blocks:
+    the part before the block, and the part after it simulated from the block's start
+    (its input is known) but counted only after the block's end.
     """
     if len(recs) >= 2:
         k = len(recs) if len(recs) <= 10 and folds is None else min(folds or 5, len(recs))
@@ -298,7 +334,21 @@ def _folds(recs, folds: int | None) -> tuple[list[tuple[list, list]], str]:
     out = []
     for j in range(k):
         a, b = int(edges[j]), int(edges[j + 1])
-        train = [_piece(r, lo, hi) for lo, hi in ((0, a), (b, r.n)) if hi - lo >= MIN_PIECE]
+        train = [_piece(r, 0, a)] if a >= MIN_PIECE else []
+        if r.n - b >= MIN_PIECE:
+            # after the held-out block: run from its start (the input is known), count
+            # only from its end, so the state there is the one the data built up. The
+            # block's outputs are not passed on at all: they are replaced by the affine
+            # map of the training samples (never counted; only data scales see them).
+            after = _piece(r, a, r.n)
+            after.skip = b - a
+            mask = np.ones(r.n, dtype=bool)
+            mask[a:b] = False
+            A = np.column_stack([np.ones(int(mask.sum())), r.x[mask]])
+            c0, c1 = np.linalg.lstsq(A, r.y[mask], rcond=None)[0]
+            after.y = after.y.copy()
+            after.y[: b - a] = c0 + c1 * after.x[: b - a]
+            train.append(after)
         out.append((train, [(r, a, b)]))
     return out, f"cross-validation: {k} contiguous blocks of the recording"
 
@@ -336,7 +386,12 @@ def compare_models(
     """
     recs = make_recordings(recordings=list(_as_recs(logs)), curve_angle=curve_angle)
     has_angle = all(r.curve_angle is not None for r in recs)
-    candidates = [parse_model(m) for m in (models or default_models(has_angle))]
+    if models:
+        candidates = [parse_model(m) for m in models]
+    else:
+        candidates = default_models(has_angle)
+        if not _uniform(recs):
+            candidates = [c for c in candidates if not is_dynamic_chain(c)]
     names = [model_name(c) for c in candidates]
     if len(set(names)) != len(names):
         raise ValueError(f"the candidate models must differ (got {names})")
@@ -391,7 +446,7 @@ def compare_models(
 
     def evaluate(name, fit_split) -> tuple[dict, dict, float, Any]:
         """Fit on every split's training part (fit_split(train) -> predict(rec)) and score."""
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), time.process_time()
         ys, yh, ts_, th = [], [], [], []
         slot = 0
         last = None
@@ -399,8 +454,8 @@ def compare_models(
             predict = fit_split(train)
             last = predict
             for r in train:
-                ts_.append(r.y)
-                th.append(predict(r))
+                ts_.append(r.y[r.skip :])
+                th.append(predict(r)[r.skip :])
             for r, a, b in evals:
                 p = predict(r)
                 ys.append(r.y[a:b])
@@ -409,9 +464,10 @@ def compare_models(
                 slot += 1
         vm = metrics(np.concatenate(ys), np.concatenate(yh))
         tm = metrics(np.concatenate(ts_), np.concatenate(th))
+        cpu_seconds[name] = time.process_time() - cpu
         return tm, vm, time.perf_counter() - start, last
 
-    rows, fits = [], {}
+    rows, fits, cpu_seconds = [], {}, {}
 
     def affine_split(train):
         b, a = _affine(train)
@@ -447,6 +503,7 @@ def compare_models(
     for r in rows:
         if not r.get("error"):
             r["ratio_to_affine"] = r["val_rmse"] / base if base > 0 else float("nan")
+            r["cpu_seconds"] = cpu_seconds[r["model"]]
     rows.sort(key=lambda r: (bool(r.get("error")), r.get("val_nrmse", np.inf)))
     best = rows[0]["model"]
     winner_fit = None

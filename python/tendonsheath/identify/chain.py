@@ -163,7 +163,23 @@ def identify_chain(
 ) -> Fit:
     """Identify a Chain (see the module docstring); returns a :class:`Fit`."""
     from .core import _refine, global_search, nan_errors
+    from .dynamic import identify_dynamic, is_dynamic_chain
 
+    if is_dynamic_chain(chain):
+        if bounds or fixed:
+            raise ValueError("Chain with a linear block: bounds and fixed are not supported")
+        return identify_dynamic(
+            chain,
+            recs,
+            warmup=warmup,
+            seed=seed,
+            maxiter=maxiter,
+            popsize=popsize,
+            tol=tol,
+            workers=workers,
+            polish=polish,
+            progress=progress,
+        )
     n_workers = 0 if workers is None else int(workers)
     problem = ChainProblem(chain, recs, warmup, bounds, fixed, n_workers)
     check_for_fit(recs, warmup, problem.n_params, not problem.first_cls.rate_independent, False)

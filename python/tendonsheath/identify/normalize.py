@@ -35,6 +35,7 @@ from ..models import (
     Chain,
     GeneralizedPrandtlIshlinskii,
     HysteresisModel,
+    LinearBlock,
     Polynomial,
     PrandtlIshlinskii,
     Scaled,
@@ -60,9 +61,10 @@ class IOMap:
 
     @classmethod
     def of(cls, recs: list[Recording]) -> IOMap:
-        x = np.concatenate([r.x for r in recs])
-        y = np.concatenate([r.y for r in recs])
-        lo, hi = float(x.min()), float(x.max())
+        x_all = np.concatenate([r.x for r in recs])
+        x = np.concatenate([r.x[r.skip :] for r in recs])  # the samples counted
+        y = np.concatenate([r.y[r.skip :] for r in recs])
+        lo, hi = float(x_all.min()), float(x_all.max())
         x_c, x_s = 0.5 * (lo + hi), 0.5 * (hi - lo)
         if not x_s > 0:
             x_s = max(abs(x_c), 1.0)
@@ -74,11 +76,11 @@ class IOMap:
             y_s = max(abs(y_c), 1.0)
         return cls(x_c, x_s, y_c, y_s if slope >= 0 else -y_s)
 
-    def recordings(self, recs: list[Recording]) -> list[tuple]:
+    def recordings(self, recs: list[Recording]) -> list[Recording]:
         return [
-            (r.t, (r.x - self.x_c) / self.x_s, (r.y - self.y_c) / self.g, r.curve_angle)
-            if r.curve_angle is not None
-            else (r.t, (r.x - self.x_c) / self.x_s, (r.y - self.y_c) / self.g)
+            Recording(
+                r.t, (r.x - self.x_c) / self.x_s, (r.y - self.y_c) / self.g, r.curve_angle, r.skip
+            )
             for r in recs
         ]
 
@@ -91,8 +93,10 @@ def applies(model_class, *, depends, bounds, fixed, initial) -> bool:
     if depends or bounds or fixed:
         return False
     if isinstance(model_class, Chain):
-        return type(model_class.first) in _CHAIN_FIRST and isinstance(
-            model_class.second, Polynomial
+        from .dynamic import is_dynamic_chain
+
+        return is_dynamic_chain(model_class) or (
+            type(model_class.first) in _CHAIN_FIRST and isinstance(model_class.second, Polynomial)
         )
     if model_class in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii):
         return True  # ``initial`` gives the threshold pattern only (scale-free)
@@ -119,6 +123,12 @@ def _first_to_raw(first: HysteresisModel, m: IOMap, gain: float, offset: float):
 def to_raw(model: HysteresisModel, m: IOMap) -> HysteresisModel | None:
     """The normalised model in raw units within its own class, or None if not possible."""
     try:
+        if isinstance(model, Chain) and isinstance(model.first, LinearBlock):  # Wiener
+            static = to_raw(model.second, m)  # L[x_n] = (L[x] - x_c) / x_s (unit gain)
+            return None if static is None else Chain(model.first, static)
+        if isinstance(model, Chain) and isinstance(model.second, LinearBlock):  # Hammerstein
+            static = to_raw(model.first, m)  # L commutes with the affine output map
+            return None if static is None else Chain(static, model.second)
         if isinstance(model, Chain):
             # the first model keeps its held slope (c_r = 1): its raw output is x_s times the
             # normalised one, so the polynomial's a_k become g a_k / x_s^k (+ y_c on a_0)
@@ -184,27 +194,27 @@ def _scaled_errors(model_n: HysteresisModel, raw, se: dict, m: IOMap) -> dict:
 def identify_normalized(identify, model_class, recs: list[Recording], **options) -> Fit:
     """``identify`` on normalised recordings, the model mapped back (see the module)."""
     m = IOMap.of(recs)
-    odd_chain = isinstance(model_class, Chain) and bool(model_class.second.options["odd"])
+    odd_chain = isinstance(model_class, Chain) and isinstance(model_class.second, Polynomial)
+    odd_chain = odd_chain and bool(model_class.second.options["odd"])
     if odd_chain:  # an odd polynomial holds no offset: scale and sign only
         m = dataclasses.replace(m, x_c=0.0, y_c=0.0)
     fit_n = identify(model_class, recordings=m.recordings(recs), normalize=False, **options)
     scaled = m.scaled(fit_n.model)
     y = np.concatenate([r.y for r in recs])
     warm = fit_n.warmup
+    y_fit = np.concatenate([r.y[warm + r.skip :] for r in recs])  # the samples counted
 
     def score(model):
         preds = [simulate_model(model, r.t, r.x, r.curve_angle) for r in recs]
-        yh = np.concatenate([p[warm:] for p in preds])
-        return float(np.sqrt(np.mean((np.concatenate([r.y[warm:] for r in recs]) - yh) ** 2))), (
-            preds
-        )
+        yh = np.concatenate([p[warm + r.skip :] for r, p in zip(recs, preds, strict=True)])
+        return float(np.sqrt(np.mean((y_fit - yh) ** 2))), (preds)
 
     model, (rmse, preds) = scaled, score(scaled)
     # The inner model may lack an output offset (PrandtlIshlinskii, Backlash): re-solve the
     # output map's offset and gain by least squares on its prediction; kept if it helps.
-    u = np.concatenate([p[warm:] for p in fit_n.predictions])
+    u = np.concatenate([p[warm + r.skip :] for r, p in zip(recs, fit_n.predictions, strict=True)])
     A = np.column_stack([np.ones_like(u), u])
-    b0, b1 = np.linalg.lstsq(A, np.concatenate([r.y[warm:] for r in recs]), rcond=None)[0]
+    b0, b1 = np.linalg.lstsq(A, y_fit, rcond=None)[0]
     if not odd_chain and np.isfinite(b0) and np.isfinite(b1) and b1 != 0:
         alt = Scaled(fit_n.model, m.x_c, m.x_s, float(b0), float(b1))
         a_rmse, a_preds = score(alt)
@@ -216,8 +226,9 @@ def identify_normalized(identify, model_class, recs: list[Recording], **options)
         r_rmse, r_preds = score(raw)
         if np.isfinite(r_rmse) and r_rmse <= rmse * (1 + PLAIN_TOLERANCE) + 1e-12 * np.ptp(y):
             model, rmse, preds = raw, r_rmse, r_preds
-    y_fit = np.concatenate([r.y[warm:] for r in recs])
-    overall = metrics(y_fit, np.concatenate([p[warm:] for p in preds]))
+    overall = metrics(
+        y_fit, np.concatenate([p[warm + r.skip :] for r, p in zip(recs, preds, strict=True)])
+    )
     how = (
         f"normalised: x -> (x - {m.x_c:.6g}) / {m.x_s:.6g}, y -> (y - {m.y_c:.6g}) / {m.g:.6g}; "
         + ("mapped back into the model's parameters" if model is not scaled else "as Scaled")
@@ -232,7 +243,10 @@ def identify_normalized(identify, model_class, recs: list[Recording], **options)
         standard_errors=_scaled_errors(fit_n.model, model, fit_n.standard_errors, m),
         identified=[prefix(k) for k in fit_n.identified],
         fixed={prefix(k): v for k, v in fit_n.fixed.items()},
-        per_recording=[metrics(r.y[warm:], p[warm:]) for r, p in zip(recs, preds, strict=True)],
+        per_recording=[
+            metrics(r.y[warm + r.skip :], p[warm + r.skip :])
+            for r, p in zip(recs, preds, strict=True)
+        ],
         method=f"{fit_n.method}; {how}",
         bounds={prefix(k): v for k, v in fit_n.bounds.items()},
         recordings=recs,

@@ -12,6 +12,7 @@ from .generalized_prandtl_ishlinskii import (
     GeneralizedPrandtlIshlinskiiInverse,
 )
 from .hysteretic_oscillator import HystereticOscillator
+from .linear_block import FirstOrderLag, LinearBlock, SecondOrderLag
 from .polynomial import Polynomial
 from .prandtl_ishlinskii import PrandtlIshlinskii, PrandtlIshlinskiiInverse
 from .scaled import Scaled
@@ -25,6 +26,9 @@ __all__ = [
     "GeneralizedPrandtlIshlinskii",
     "GeneralizedPrandtlIshlinskiiInverse",
     "CurveAngleModel",
+    "FirstOrderLag",
+    "LinearBlock",
+    "SecondOrderLag",
     "HysteresisModel",
     "HystereticOscillator",
     "Polynomial",
