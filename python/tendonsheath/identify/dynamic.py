@@ -15,7 +15,9 @@ candidate is linear in the number of samples.
 
 from __future__ import annotations
 
+import os
 import time
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -89,6 +91,8 @@ class DynamicProblem:
         self.n_params = len(names) + self.lo.size
         self.edges = np.cumsum([0] + [r.n for r in recs])
         self.dts = [float(np.median(np.diff(r.t))) for r in recs]
+        n_threads = workers if workers > 0 else (os.cpu_count() or 1)
+        self.pool = ThreadPoolExecutor(n_threads) if n_threads > 1 else None
 
     def _split(self, c: np.ndarray):
         c = np.asarray(c, dtype=float)
@@ -140,12 +144,16 @@ class DynamicProblem:
         theta = bounded_lsq(F, y, self.lo, self.hi)
         return theta, y - F @ theta
 
+    def _one_cost(self, c: np.ndarray) -> float:
+        theta, r = self.linear(c)
+        return float(r @ r) if np.all(np.isfinite(theta)) else _PENALTY
+
     def cost(self, C: np.ndarray) -> np.ndarray:
-        out = np.empty(len(C))
-        for i, c in enumerate(C):
-            theta, r = self.linear(c)
-            out[i] = float(r @ r) if np.all(np.isfinite(theta)) else _PENALTY
-        return out
+        """Costs of a population; candidates spread over ``workers`` threads (the C++
+        feature computation releases the GIL)."""
+        if self.pool is None:
+            return np.array([self._one_cost(c) for c in C])
+        return np.array(list(self.pool.map(self._one_cost, C)))
 
     def residual(self, c: np.ndarray) -> np.ndarray:
         return self.linear(c)[1]
@@ -204,6 +212,8 @@ def identify_dynamic(
         u_best, msg = _refine(problem, space, u_best, counter, True)
         message += f"; least squares: {msg}"
     model = problem.model(space.natural(u_best))
+    if problem.pool is not None:
+        problem.pool.shutdown()
     seconds = time.perf_counter() - start
     predictions = [simulate_model(model, r.t, r.x) for r in recs]
     y_fit = np.concatenate([r.y[warmup:] for r in recs])
