@@ -99,7 +99,7 @@ def test_model_names_and_bad_arguments():
     assert model_name(Chain(BoucWenBacklash(), Polynomial(2))) == "BoucWenBacklash+poly2"
     with pytest.raises(ValueError, match="unknown model 'nope'"):
         parse_model("nope")
-    with pytest.raises(ValueError, match="polyN or oddN"):
+    with pytest.raises(ValueError, match="polyN, oddN, lag1 or lag2"):
         parse_model("bwb+cubic")
     t, x, y = plant_log(n=100)
     with pytest.raises(ValueError, match="fraction must be in"):

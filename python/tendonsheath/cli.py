@@ -8,6 +8,7 @@ import numpy as np
 import typer
 from rich.console import Console
 from rich.table import Table
+from typer.core import TyperCommand
 
 app = typer.Typer(
     help="Model, identify and compensate tendon-sheath mechanisms.",
@@ -367,7 +368,41 @@ def sweep_command(
         console.print(f"  {path}", soft_wrap=True, highlight=False)
 
 
-@app.command()
+class _FilesAfterValidate(TyperCommand):
+    """``--validate A B C``: every file after one --validate is held out (click would make B
+    and C training files, silently)."""
+
+    def parse_args(self, ctx, args):
+        out, i, held = [], 0, False
+        while i < len(args):
+            a = args[i]
+            if a == "--":
+                out += args[i:]
+                break
+            if a == "--validate":
+                out += args[i : i + 2]
+                i += 2
+                held = True
+                continue
+            if a.startswith("--validate="):
+                held = True
+            elif held and not a.startswith("-"):
+                out += ["--validate", a]
+                i += 1
+                continue
+            elif a.startswith("-"):
+                held = False
+            out.append(a)
+            i += 1
+        return super().parse_args(ctx, out)
+
+
+def _cli_note(note: str) -> str:
+    """A data-quality note in the command line's words (the Python keyword -> the flag)."""
+    return note.replace("consider resample=", "consider --resample RATE (Hz)")
+
+
+@app.command(cls=_FilesAfterValidate)
 def compare(
     data: list[Path] = typer.Argument(
         ..., help="Training data file(s): CSV/TSV with header, NPY, NPZ, HDF5, Excel."
@@ -379,10 +414,18 @@ def compare(
         None, "--curve-angle", help="Curve-angle column, or a number."
     ),
     validate: list[Path] = typer.Option(
-        None, "--validate", help="Held-out data file(s) (default: --holdout of each file)."
+        None,
+        "--validate",
+        help="Held-out data file(s): every file after --validate (put the training files "
+        "first). Default: cross-validation.",
     ),
-    holdout: float = typer.Option(
-        0.3, "--holdout", help="Fraction at the end of each recording held out."
+    holdout: float | None = typer.Option(
+        None, "--holdout", help="One split: this fraction at the end of each recording held out."
+    ),
+    folds: int | None = typer.Option(
+        None,
+        "--folds",
+        help="Cross-validation folds (default: leave one file out; 3 blocks for one file).",
     ),
     models: str | None = typer.Option(
         None,
@@ -403,8 +446,12 @@ def compare(
     from . import io
     from .compare import compare_models
 
-    if not 0.0 < holdout < 1.0:
+    if holdout is not None and not 0.0 < holdout < 1.0:
         _fail(f"--holdout must be in (0, 1) (got {holdout})")
+    if holdout is not None and validate:
+        _fail("--holdout and --validate exclude each other")
+    if folds is not None and (holdout is not None or validate):
+        _fail("--folds is for cross-validation: not with --holdout or --validate")
     try:
 
         def read(path):
@@ -419,27 +466,34 @@ def compare(
 
         logs = [read(p) for p in data]
         vlogs = [read(p) for p in validate] if validate else None
+        for log in logs + (vlogs or []):  # before the (long) fitting
+            for note in log.notes:
+                console.print(f"[yellow]{log.path}:[/yellow] {_cli_note(note)}", soft_wrap=True)
         candidates = [m for m in models.split(",") if m.strip()] if models else None
-        with console.status("fitting the candidate models"):
+        with console.status("fitting the candidate models") as status:
+
+            def done(name, seconds):
+                console.print(f"  fitted {name} ({seconds:.1f} s)", highlight=False)
+                status.update("fitting the candidate models")
+
             result = compare_models(
                 logs,
                 models=candidates,
-                validate=vlogs if vlogs else holdout,
+                validate=vlogs if vlogs else (holdout if holdout is not None else "cv"),
+                folds=folds,
                 seed=seed,
                 maxiter=maxiter,
+                on_fit=done,
             )
     except ValueError as exc:
         _fail(exc)
-    for log in logs + (vlogs or []):
-        for note in log.notes:
-            console.print(f"[yellow]{log.path}:[/yellow] {note}", soft_wrap=True)
     table = Table(title=f"model comparison ({result.mode})")
     table.add_column("model")
-    for col in ("params", "train rmse", "val rmse", "val nrmse", "vs affine"):
+    for col in ("params", "train rmse", "val rmse", "val nrmse", "vs affine", "seconds"):
         table.add_column(col, justify="right")
     for r in result.table:
         if r.get("error"):
-            table.add_row(r["model"], "", "", "failed", r["error"][:40], "")
+            table.add_row(r["model"], "", "", "failed", r["error"][:40], "", "")
             continue
         table.add_row(
             r["model"],
@@ -448,9 +502,14 @@ def compare(
             f"{r['val_rmse']:.4g}",
             f"{100 * r['val_nrmse']:.3f} %",
             f"{r['ratio_to_affine']:.3f}",
+            f"{r['seconds']:.1f}",
         )
     console.print(table)
-    console.print(f"winner: {result.winner_name} (refitted on all the training data)")
+    how = {
+        True: "fitted on all the data",
+        False: "fitted on the training files" if vlogs else "refitted on the whole files",
+    }[holdout is None and not vlogs]
+    console.print(f"winner: {result.winner_name} ({how})")
     if report is not None:
         console.print(f"report: {result.report(report)}")
 

@@ -1,17 +1,21 @@
 """Choosing a model: fit candidates on training data, score them on held-out data.
 
-``compare_models(logs, models=[...], validate=...)`` fits every candidate on the training part
-and scores it on the held-out part against the affine baseline y = a x + b:
+``compare_models(logs, models=[...], validate=...)`` fits every candidate and scores it on
+held-out data against the affine baseline y = a x + b:
 
-- ``validate`` a number in (0, 1): the last fraction of every recording (in time, or in
-  samples without a time column) is held out. Models are fitted on the first part; to score
-  them, each model runs over the *whole* input of the recording (its state carries over from
-  the training part, as it would on the robot) and only the held-out samples are counted.
-- ``validate`` a list of logs (or one): held-out recordings, simulated from their start.
+- ``validate="cv"`` (default): cross-validation. With several recordings each is held out in
+  turn (the models are fitted on the others and simulated over it from its start); with one
+  recording, ``folds`` contiguous blocks are held out in turn (the model is fitted on the
+  other blocks, then runs over the *whole* input, its state carrying over as on the robot,
+  and only the block's samples are counted). Every sample is scored once; the ranking is by
+  the pooled held-out error, and the winner is then fitted on all the data.
+- ``validate`` a number in (0, 1): one split; the last fraction of every recording is held
+  out (scored as a block above); the winner is refitted on the whole recordings.
+- ``validate`` a list of logs (or one): held-out recordings, simulated from their start; the
+  winner is the fit on the training logs (not refitted: it already saw all of them).
 
 The result is a :class:`Comparison`: ``.table`` (rows sorted by validation nrmse, the affine
-baseline included), ``.winner`` (the winning model refitted on all the training data: whole
-recordings in fraction mode, all the training logs otherwise; the affine baseline is a
+baseline included, with each candidate's seconds), ``.winner`` (the affine baseline is a
 ``Polynomial(1)``), ``.fits`` and ``.report(dir)`` (loops and residuals).
 """
 
@@ -29,35 +33,56 @@ import numpy as np
 
 from .identify import identify
 from .identify.data import make_recordings
+from .identify.dynamic import is_dynamic_chain
 from .identify.fit import metrics, simulate_model
 from .models import (
     Backlash,
     BoucWenBacklash,
     Chain,
     CurveAngleModel,
+    FirstOrderLag,
     GeneralizedPrandtlIshlinskii,
     HysteresisModel,
+    LinearBlock,
     Polynomial,
     PrandtlIshlinskii,
+    SecondOrderLag,
 )
 from .models.base import _REGISTRY
+from .models.linear_block import sample_time
 
 AFFINE = "affine"
 
 
 def default_models(curve_angle: bool = False) -> list:
-    """The default candidates (CurveAngleModel too when the logs have a curve angle)."""
+    """The default candidates: the rate-independent operators, a BoucWenBacklash with a cubic
+    output map, and a rate-dependent Hammerstein chain (BoucWenBacklash followed by a
+    second-order lag; ``"lag1+bwb"`` names the Wiener one, ``"pi+lag1"`` a PI one); also
+    CurveAngleModel when the logs have a curve angle. Chains with a linear block need a
+    time column with a uniform step; they are left out of the defaults without one."""
     models: list = [
         Backlash,
         BoucWenBacklash,
         PrandtlIshlinskii,
         GeneralizedPrandtlIshlinskii,
         Chain(BoucWenBacklash(), Polynomial(3)),
+        Chain(BoucWenBacklash(), SecondOrderLag()),
     ]
     if curve_angle:
         models.append(CurveAngleModel)
     return models
 
+
+#: the model classes compare_models can fit (identify supports them)
+CANDIDATES = (
+    "Backlash",
+    "BoucWenBacklash",
+    "PrandtlIshlinskii",
+    "GeneralizedPrandtlIshlinskii",
+    "BoucWen",
+    "HystereticOscillator",
+    "CurveAngleModel",
+)
 
 _ALIASES = {
     "bwb": "BoucWenBacklash",
@@ -66,11 +91,13 @@ _ALIASES = {
     "bw": "BoucWen",
     "curve": "CurveAngleModel",
 }
+_BLOCKS = {"lag1": FirstOrderLag, "lag2": SecondOrderLag}
 
 
 def parse_model(spec) -> Any:
     """A candidate from a class, a Chain instance or a name: ``BoucWenBacklash``, ``gpi``,
-    ``bwb+poly3`` (Chain with a cubic), ``bwb+odd3`` (odd cubic)."""
+    ``bwb+poly3`` (Chain with a cubic), ``bwb+odd3`` (odd cubic), ``bwb+lag2`` / ``pi+lag1``
+    (Hammerstein: then a second- / first-order lag), ``lag1+bwb`` (Wiener)."""
     if isinstance(spec, Chain) or (isinstance(spec, type) and issubclass(spec, HysteresisModel)):
         return spec
     if not isinstance(spec, str):
@@ -81,19 +108,25 @@ def parse_model(spec) -> Any:
     def cls_of(name):
         name = _ALIASES.get(name.lower(), name)
         lookup = {k.lower(): v for k, v in _REGISTRY.items()}
-        if name.lower() not in lookup:
+        if name.lower() not in lookup or lookup[name.lower()].__name__ not in CANDIDATES:
             raise ValueError(
-                f"unknown model {name!r}; known: {sorted(_REGISTRY)} or aliases "
-                f"{sorted(_ALIASES)}, with +polyN / +oddN for a polynomial output map"
+                f"unknown model {name!r}; candidates: {', '.join(CANDIDATES)} (aliases "
+                f"{', '.join(sorted(_ALIASES))}), with +polyN / +oddN for a polynomial "
+                "output map"
             )
         return lookup[name.lower()]
 
+    if base.strip().lower() in _BLOCKS:  # Wiener: lagN+model
+        block = _BLOCKS[base.strip().lower()]
+        return Chain(block(), cls_of(tail.strip())())
     cls = cls_of(base)
     if not tail:
         return cls
+    if tail.strip().lower() in _BLOCKS:  # Hammerstein: model+lagN
+        return Chain(cls(), _BLOCKS[tail.strip().lower()]())
     m = re.fullmatch(r"(poly|odd)(\d+)", tail.strip().lower())
     if not m:
-        raise ValueError(f"model {text!r}: the part after '+' must be polyN or oddN")
+        raise ValueError(f"model {text!r}: the part after '+' must be polyN, oddN, lag1 or lag2")
     degree = int(m.group(2))
     if degree < 1:
         raise ValueError(f"model {text!r}: the degree must be >= 1")
@@ -101,7 +134,14 @@ def parse_model(spec) -> Any:
 
 
 def model_name(candidate) -> str:
+    """BoucWenBacklash, BoucWenBacklash+poly3, BoucWenBacklash+lag2 (Hammerstein),
+    lag1+BoucWenBacklash (Wiener)."""
     if isinstance(candidate, Chain):
+        short = {FirstOrderLag: "lag1", SecondOrderLag: "lag2"}
+        if isinstance(candidate.second, LinearBlock):
+            return f"{type(candidate.first).__name__}+{short[type(candidate.second)]}"
+        if isinstance(candidate.first, LinearBlock):
+            return f"{short[type(candidate.first)]}+{type(candidate.second).__name__}"
         p = candidate.second
         kind = "odd" if getattr(p, "options", {}).get("odd") else "poly"
         return f"{type(candidate.first).__name__}+{kind}{p.degree}"
@@ -111,8 +151,10 @@ def model_name(candidate) -> str:
 @dataclass
 class Comparison:
     """Result of :func:`compare_models`. ``table`` rows: model, n_params, train_rmse,
-    train_nrmse, val_rmse, val_nrmse, val_fit_percent, val_max_abs, ratio_to_affine, seconds,
-    error (if the fit failed); sorted by val_nrmse (failures last)."""
+    train_nrmse, val_rmse, val_nrmse, val_fit_percent, val_max_abs, ratio_to_affine, seconds
+    (fitting and scoring over all folds), error (if the fit failed); sorted by val_nrmse
+    (failures last). ``fits``: each candidate's Fit (a list of one per fold under
+    cross-validation); ``winner_fit``: the Fit of ``winner`` (None for the affine map)."""
 
     table: list[dict[str, Any]]
     winner: HysteresisModel
@@ -120,6 +162,7 @@ class Comparison:
     fits: dict[str, Any] = field(default_factory=dict, repr=False)
     validation: list[dict[str, Any]] = field(default_factory=list, repr=False)
     mode: str = ""
+    winner_fit: Any = field(default=None, repr=False)
 
     def row(self, name: str) -> dict[str, Any]:
         for r in self.table:
@@ -225,6 +268,16 @@ def _as_recs(logs) -> list:
     return make_recordings(recordings=list(logs))
 
 
+def _uniform(recs) -> bool:
+    """Every recording has a time column with a uniform step (linear blocks need one)."""
+    try:
+        for r in recs:
+            sample_time(r.t)
+    except ValueError:
+        return False
+    return True
+
+
 def _affine(recs) -> np.ndarray:
     x = np.concatenate([r.x for r in recs])
     y = np.concatenate([r.y for r in recs])
@@ -236,11 +289,76 @@ def _fit(candidate, recs, options: dict):
     return identify(candidate, recordings=recs, **options)
 
 
+def _piece(r, a: int, b: int):
+    return type(r)(
+        None if r.t is None else r.t[a:b],
+        r.x[a:b],
+        r.y[a:b],
+        None if r.curve_angle is None else r.curve_angle[a:b],
+    )
+
+
+MIN_PIECE = 20  # samples of a training piece in blocked folds (shorter ones are dropped)
+
+
+def _folds(recs, folds: int | None) -> tuple[list[tuple[list, list]], str]:
+    """Cross-validation folds: (training recordings, [(recording, first, end) scored]).
+
+    Several recordings: leave one recording out (at most 10 folds; more recordings are
+    grouped round-robin into ``folds`` or 5 groups). One recording: ``folds`` (default 3)
+    contiguous blocks; each block is scored with the model run over the whole recording
+    (its state carries over, as on the robot) and the model is fitted on the other blocks:
+    the part before the block, and the part after it simulated from the block's start
+    (its input is known) but counted only after the block's end.
+    """
+    if len(recs) >= 2:
+        k = len(recs) if len(recs) <= 10 and folds is None else min(folds or 5, len(recs))
+        if k < 2:
+            raise ValueError(f"folds: at least 2 are needed (got {folds})")
+        groups = [list(range(g, len(recs), k)) for g in range(k)]
+        out = []
+        for g in groups:
+            train = [r for i, r in enumerate(recs) if i not in g]
+            out.append((train, [(recs[i], 0, recs[i].n) for i in g]))
+        what = "recording" if k == len(recs) else "group of recordings"
+        return out, f"cross-validation: leave one {what} out ({k} folds)"
+    (r,) = recs
+    k = 3 if folds is None else int(folds)
+    if k < 2:
+        raise ValueError(f"folds: at least 2 are needed (got {folds})")
+    edges = np.linspace(0, r.n, k + 1).astype(int)
+    if np.min(np.diff(edges)) < MIN_PIECE:
+        raise ValueError(
+            f"{r.n} samples are too few for {k} folds of at least {MIN_PIECE} samples each"
+        )
+    out = []
+    for j in range(k):
+        a, b = int(edges[j]), int(edges[j + 1])
+        train = [_piece(r, 0, a)] if a >= MIN_PIECE else []
+        if r.n - b >= MIN_PIECE:
+            # after the held-out block: run from its start (the input is known), count
+            # only from its end, so the state there is the one the data built up. The
+            # block's outputs are not passed on at all: they are replaced by the affine
+            # map of the training samples (never counted; only data scales see them).
+            after = _piece(r, a, r.n)
+            after.skip = b - a
+            mask = np.ones(r.n, dtype=bool)
+            mask[a:b] = False
+            A = np.column_stack([np.ones(int(mask.sum())), r.x[mask]])
+            c0, c1 = np.linalg.lstsq(A, r.y[mask], rcond=None)[0]
+            after.y = after.y.copy()
+            after.y[: b - a] = c0 + c1 * after.x[: b - a]
+            train.append(after)
+        out.append((train, [(r, a, b)]))
+    return out, f"cross-validation: {k} contiguous blocks of the recording"
+
+
 def compare_models(
     logs,
     models: Sequence | None = None,
-    validate: float | Sequence | Any = 0.3,
+    validate: float | str | Sequence | Any = "cv",
     *,
+    folds: int | None = None,
     curve_angle=None,
     seed: int | None = 0,
     maxiter: int = 100,
@@ -248,25 +366,46 @@ def compare_models(
     workers: int | None = None,
     progress: bool = False,
     refit: bool = True,
+    on_fit=None,
 ) -> Comparison:
-    """Fit each candidate on the training data and rank them on held-out data.
+    """Fit each candidate on training data and rank them on held-out data.
 
     ``logs``: :class:`~tendonsheath.io.Log` objects or (t, x, y[, curve_angle]) tuples.
     ``models``: classes, Chain instances or names (see :func:`parse_model`); default
-    :func:`default_models`. ``validate``: a fraction (the last part of every recording is
-    held out) or held-out logs. ``curve_angle`` (a number) applies to recordings without one.
+    :func:`default_models`. ``validate``:
+
+    - ``"cv"`` (default): cross-validation, every sample held out once. Several recordings:
+      leave one recording out; one recording: ``folds`` (default 3) contiguous blocks, each
+      scored with the model fitted on the others. The winner is then fitted on all the data.
+    - a fraction: the last part of every recording is held out (one split);
+    - held-out logs: fitted on ``logs``, scored on these (the winner is that fit).
+
+    ``curve_angle`` (a number) applies to recordings without one. ``on_fit(name, seconds)``
+    is called after each candidate (progress). Each row's ``seconds`` is the candidate's
+    fitting and scoring time over all folds.
     """
     recs = make_recordings(recordings=list(_as_recs(logs)), curve_angle=curve_angle)
     has_angle = all(r.curve_angle is not None for r in recs)
-    candidates = [parse_model(m) for m in (models or default_models(has_angle))]
+    if models:
+        candidates = [parse_model(m) for m in models]
+    else:
+        candidates = default_models(has_angle)
+        if not _uniform(recs):
+            candidates = [c for c in candidates if not is_dynamic_chain(c)]
     names = [model_name(c) for c in candidates]
     if len(set(names)) != len(names):
         raise ValueError(f"the candidate models must differ (got {names})")
     options = dict(seed=seed, maxiter=maxiter, popsize=popsize, workers=workers)
     options["progress"] = progress
 
-    # training / validation split
-    if isinstance(validate, int | float) and not isinstance(validate, bool):
+    # training / validation split(s): a list of (training recordings, scored segments)
+    if isinstance(validate, str):
+        if validate != "cv":
+            raise ValueError(
+                f"validate: 'cv', a held-out fraction or held-out logs (got {validate!r})"
+            )
+        splits, mode = _folds(recs, folds)
+    elif isinstance(validate, int | float) and not isinstance(validate, bool):
         frac = float(validate)
         if not 0.0 < frac < 1.0:
             raise ValueError(f"validate: the held-out fraction must be in (0, 1) (got {frac})")
@@ -281,95 +420,109 @@ def compare_models(
                 raise ValueError(
                     f"recording {i}: {r.n} samples are too few to hold out {frac:g} of them"
                 )
-            sub = type(r)(
-                None if r.t is None else r.t[:k],
-                r.x[:k],
-                r.y[:k],
-                None if r.curve_angle is None else r.curve_angle[:k],
-            )
-            train.append(sub)
-            evals.append((r, k))
+            train.append(_piece(r, 0, k))
+            evals.append((r, k, r.n))
+        splits = [(train, evals)]
         mode = f"held out: the last {100 * frac:g} % of each recording"
     else:
         vrecs = make_recordings(recordings=list(_as_recs(validate)), curve_angle=curve_angle)
         if not vrecs:
-            raise ValueError("validate: give a held-out fraction or held-out logs")
-        train = recs
-        evals = [(r, 0) for r in vrecs]
+            raise ValueError("validate: give 'cv', a held-out fraction or held-out logs")
+        splits = [(recs, [(r, 0, r.n) for r in vrecs])]
         mode = f"held out: {len(vrecs)} validation recording(s)"
-
-    def score(predict) -> tuple[dict, list]:
-        ys, yh, preds = [], [], []
-        for r, k in evals:
-            p = predict(r)
-            preds.append(p)
-            ys.append(r.y[k:])
-            yh.append(p[k:])
-        return metrics(np.concatenate(ys), np.concatenate(yh)), preds
-
-    def train_score(predict) -> dict:
-        y = np.concatenate([r.y for r in train])
-        return metrics(y, np.concatenate([predict(r) for r in train]))
+    cv = isinstance(validate, str)
 
     validation = [
         {
-            "x": r.x[k:],
-            "y": r.y[k:],
-            "s": (r.t[k:] if r.t is not None else np.arange(k, r.n)),
+            "x": r.x[a:b],
+            "y": r.y[a:b],
+            "s": (r.t[a:b] if r.t is not None else np.arange(a, b)),
             "has_t": r.t is not None,
             "predictions": {},
         }
-        for r, k in evals
+        for _, evals in splits
+        for r, a, b in evals
     ]
-    rows, fits = [], {}
-    # affine baseline
-    b, a = _affine(train)
-    affine_model = Polynomial(coefficients=[b, a])
-    t0 = time.perf_counter()
-    vm, preds = score(lambda r: a * r.x + b)
-    tm = train_score(lambda r: a * r.x + b)
-    for v, p, (_, k) in zip(validation, preds, evals, strict=True):
-        v["predictions"][AFFINE] = p[k:]
-    rows.append(_row(AFFINE, 2, tm, vm, time.perf_counter() - t0))
-    fits[AFFINE] = affine_model
+
+    def evaluate(name, fit_split) -> tuple[dict, dict, float, Any]:
+        """Fit on every split's training part (fit_split(train) -> predict(rec)) and score."""
+        start, cpu = time.perf_counter(), time.process_time()
+        ys, yh, ts_, th = [], [], [], []
+        slot = 0
+        last = None
+        for train, evals in splits:
+            predict = fit_split(train)
+            last = predict
+            for r in train:
+                ts_.append(r.y[r.skip :])
+                th.append(predict(r)[r.skip :])
+            for r, a, b in evals:
+                p = predict(r)
+                ys.append(r.y[a:b])
+                yh.append(p[a:b])
+                validation[slot]["predictions"][name] = p[a:b]
+                slot += 1
+        vm = metrics(np.concatenate(ys), np.concatenate(yh))
+        tm = metrics(np.concatenate(ts_), np.concatenate(th))
+        cpu_seconds[name] = time.process_time() - cpu
+        return tm, vm, time.perf_counter() - start, last
+
+    rows, fits, cpu_seconds = [], {}, {}
+
+    def affine_split(train):
+        b, a = _affine(train)
+        return lambda r: a * r.x + b
+
+    tm, vm, sec, _ = evaluate(AFFINE, affine_split)
+    rows.append(_row(AFFINE, 2, tm, vm, sec))
+    b, a = _affine(recs if not isinstance(validate, int | float) or refit else splits[0][0])
+    fits[AFFINE] = Polynomial(coefficients=[b, a])
+    if on_fit is not None:
+        on_fit(AFFINE, sec)
     for cand, name in zip(candidates, names, strict=True):
         if getattr(cand, "uses_curve_angle", False) and not has_angle:
             rows.append({"model": name, "error": "needs a curve angle"})
             continue
-        t0 = time.perf_counter()
-        try:
+        fitted = []
+
+        def fit_split(train, cand=cand, fitted=fitted):
             fit = _fit(cand, train, options)
+            fitted.append(fit)
+            return lambda r, fit=fit: simulate_model(fit.model, r.t, r.x, r.curve_angle)
+
+        try:
+            tm, vm, sec, _ = evaluate(name, fit_split)
         except ValueError as exc:
             rows.append({"model": name, "error": str(exc)})
             continue
-        fits[name] = fit
-
-        def predict(r, fit=fit):
-            return simulate_model(fit.model, r.t, r.x, r.curve_angle)
-
-        vm, preds = score(predict)
-        tm = train_score(predict)
-        for v, p, (_, k) in zip(validation, preds, evals, strict=True):
-            v["predictions"][name] = p[k:]
-        rows.append(_row(name, _count(fit.model), tm, vm, time.perf_counter() - t0))
+        fits[name] = fitted[-1] if len(fitted) == 1 else fitted
+        rows.append(_row(name, _count(fitted[-1].model), tm, vm, sec))
+        if on_fit is not None:
+            on_fit(name, sec)
     base = rows[0]["val_rmse"]
     for r in rows:
         if not r.get("error"):
             r["ratio_to_affine"] = r["val_rmse"] / base if base > 0 else float("nan")
+            r["cpu_seconds"] = cpu_seconds[r["model"]]
     rows.sort(key=lambda r: (bool(r.get("error")), r.get("val_nrmse", np.inf)))
     best = rows[0]["model"]
+    winner_fit = None
     if best == AFFINE:
-        winner = affine_model
-        if refit:
-            b, a = _affine(recs if isinstance(validate, int | float) else train)
-            winner = Polynomial(coefficients=[b, a])
+        winner = fits[AFFINE]
+    elif cv:
+        # every fold's fit saw part of the data: the winner is fitted once on all of it
+        start = time.perf_counter()
+        winner_fit = _fit(candidates[names.index(best)], recs, options)
+        rows[0]["final_fit_seconds"] = time.perf_counter() - start
+        winner = winner_fit.model
+    elif refit and isinstance(validate, int | float):
+        # one split: the winner is refitted on the whole recordings (held-out part included)
+        winner_fit = _fit(candidates[names.index(best)], recs, options)
+        winner = winner_fit.model
     else:
-        cand = candidates[names.index(best)]
-        winner = fits[best].model
-        if refit:
-            full = recs  # whole recordings (fraction mode) or all training logs
-            winner = _fit(cand, full, options).model
-    return Comparison(rows, winner, best, fits, validation, mode)
+        winner_fit = fits[best]  # held-out logs: fitted on all the training data already
+        winner = winner_fit.model
+    return Comparison(rows, winner, best, fits, validation, mode, winner_fit)
 
 
 def _row(name, n_params, tm, vm, seconds) -> dict:

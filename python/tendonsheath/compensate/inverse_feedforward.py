@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from .. import _core as core
-from ..models import Backlash, BoucWenBacklash, HysteresisModel, PrandtlIshlinskii
+from ..models import Backlash, BoucWenBacklash, HysteresisModel, PrandtlIshlinskii, Scaled
 from .base import Feedforward
-from .limits import as_limits
+from .limits import CommandLimits, as_limits
 
 
 class InverseFeedforward(Feedforward):
@@ -17,6 +19,9 @@ class InverseFeedforward(Feedforward):
       2-5 % of the peak desired speed) sets how sharply the command switches branch at a
       reversal (-> 0: the exact backlash inverse, a jump of B_r + B_l).
     * ``PrandtlIshlinskii``: its exact inverse operator (continuous; no smoothing needed).
+    * ``Scaled`` (what ``identify`` returns for a negative gain or offsets) around one of
+      these: the inner model's inverse in its units, x = x_c + x_s inv((y_d - y_c) / g);
+      ``smoothing`` and ``limits`` stay in the raw output and command units.
 
     ``limits`` (a :class:`CommandLimits`) saturates the command and its rate.
     """
@@ -25,6 +30,18 @@ class InverseFeedforward(Feedforward):
         self.model = model
         self.smoothing = float(smoothing)
         self.limits = as_limits(limits)
+        self._map = None
+        if isinstance(model, Scaled):
+            mp = model.map
+            x_c, x_s, y_c, g = (mp[k] for k in mp)
+            lim = self.limits
+            inner_limits = CommandLimits(
+                (lim.min - x_c) / x_s, (lim.max - x_c) / x_s, lim.max_rate / x_s
+            )
+            self._inner = InverseFeedforward(model.inner, self.smoothing / abs(g), inner_limits)
+            self._engine = self._inner._engine
+            self._map = (x_c, x_s, y_c, g)
+            return
         if isinstance(model, Backlash | BoucWenBacklash):
             p = core.BacklashInverseParams()
             for key in ("c_r", "c_l", "B_r", "B_l"):
@@ -42,6 +59,19 @@ class InverseFeedforward(Feedforward):
                 "InverseFeedforward supports Backlash, BoucWenBacklash and PrandtlIshlinskii "
                 f"models (got {type(model).__name__})"
             )
+
+    def step(self, y_d: float, dt: float) -> float:
+        if self._map is None:
+            return super().step(y_d, dt)
+        x_c, x_s, y_c, g = self._map
+        return x_c + x_s * self._engine.step((float(y_d) - y_c) / g, float(dt))
+
+    def command(self, t, y_desired) -> np.ndarray:
+        if self._map is None:
+            return super().command(t, y_desired)
+        x_c, x_s, y_c, g = self._map
+        inner = self._inner.command(t, (np.asarray(y_desired, dtype=float) - y_c) / g)
+        return x_c + x_s * inner
 
     def __repr__(self) -> str:
         return f"InverseFeedforward({self.model!r}, smoothing={self.smoothing:g})"

@@ -101,9 +101,10 @@ class ChainProblem:
         m = np.max(np.abs(U), axis=1)
         m = np.where(m > 0, m, 1.0)
         Us = U / m[:, None]
-        B = Us[:, :, None] ** self.powers[None, None, :]  # (P, M, K), entries in [-1, 1]
-        G = np.einsum("pmk,pml->pkl", B, B)
-        rhs = np.einsum("pmk,m->pk", B, self.y)
+        B = _powers(Us, self.powers)  # (P, M, K), entries in [-1, 1]
+        Bt = B.transpose(0, 2, 1)
+        G = Bt @ B
+        rhs = Bt @ self.y
         ridge = 1e-12 * np.trace(G, axis1=1, axis2=2)[:, None, None] + 1e-300
         G = G + ridge * np.eye(self.powers.size)[None]
         try:
@@ -112,7 +113,7 @@ class ChainProblem:
             coef = np.stack(
                 [np.linalg.lstsq(g, r, rcond=None)[0] for g, r in zip(G, rhs, strict=True)]
             )
-        resid = self.y[None, :] - np.einsum("pmk,pk->pm", B, coef)
+        resid = self.y[None, :] - (B @ coef[:, :, None])[:, :, 0]
         sse = np.sum(resid**2, axis=1)
         sse = np.where(ok & np.isfinite(sse), sse, np.inf)
         a = coef / m[:, None] ** self.powers[None, :]
@@ -133,6 +134,18 @@ class ChainProblem:
         return Chain(first, Polynomial(coefficients=a[0], odd=self.odd))
 
 
+def _powers(U: np.ndarray, powers: np.ndarray) -> np.ndarray:
+    """U**k for the (evenly spaced) powers k, by repeated products (pow() is ~10x slower)."""
+    B = np.empty((*U.shape, powers.size))
+    step = U * U if powers.size > 1 and powers[1] - powers[0] == 2 else U
+    cur = U.copy() if powers[0] == 1 else np.ones_like(U)
+    for j in range(powers.size):
+        B[..., j] = cur
+        if j + 1 < powers.size:
+            cur = cur * step
+    return B
+
+
 def identify_chain(
     chain: Chain,
     recs,
@@ -150,7 +163,23 @@ def identify_chain(
 ) -> Fit:
     """Identify a Chain (see the module docstring); returns a :class:`Fit`."""
     from .core import _refine, global_search, nan_errors
+    from .dynamic import identify_dynamic, is_dynamic_chain
 
+    if is_dynamic_chain(chain):
+        if bounds or fixed:
+            raise ValueError("Chain with a linear block: bounds and fixed are not supported")
+        return identify_dynamic(
+            chain,
+            recs,
+            warmup=warmup,
+            seed=seed,
+            maxiter=maxiter,
+            popsize=popsize,
+            tol=tol,
+            workers=workers,
+            polish=polish,
+            progress=progress,
+        )
     n_workers = 0 if workers is None else int(workers)
     problem = ChainProblem(chain, recs, warmup, bounds, fixed, n_workers)
     check_for_fit(recs, warmup, problem.n_params, not problem.first_cls.rate_independent, False)

@@ -142,6 +142,7 @@ def identify(
     input_interpolation: str | None = None,
     periodic: bool | None = None,
     strategy: str = "auto",
+    normalize: bool = True,
 ) -> Fit:
     """Identify a model from input/output recordings by simulation-error minimisation.
 
@@ -196,7 +197,39 @@ def identify(
     GeneralizedPrandtlIshlinskii: the envelopes and the threshold scale are searched, the
     weights (>= 0) and an output offset are solved by bounded least squares; ``initial``
     gives the number of plays and the threshold pattern (default 10 evenly spaced plays).
+
+    Any sign, offset and units (``normalize``, default on): Backlash, BoucWenBacklash,
+    PrandtlIshlinskii, GeneralizedPrandtlIshlinskii and Chains of a (Bouc-Wen)
+    backlash and a polynomial are fitted on centred, scaled data with a positive gain and
+    mapped back (see :mod:`tendonsheath.identify.normalize`): into the class's own parameters
+    where exact, otherwise as a :class:`~tendonsheath.models.Scaled` model (e.g. a negative
+    gain). Not applied with ``bounds``, ``fixed`` or ``depends_on_angle`` (raw units).
     """
+    if normalize:
+        from . import normalize as _norm
+
+        if isinstance(model_class, str) and model_class in _REGISTRY:
+            model_class = _REGISTRY[model_class]
+        if _norm.applies(
+            model_class, depends=depends_on_angle, bounds=bounds, fixed=fixed, initial=initial
+        ):
+            return _norm.identify_normalized(
+                identify,
+                model_class,
+                make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle),
+                warmup=warmup,
+                free=free,
+                initial=initial,
+                seed=seed,
+                maxiter=maxiter,
+                popsize=popsize,
+                tol=tol,
+                workers=workers,
+                polish=polish,
+                separable=separable,
+                progress=progress,
+                search_samples=search_samples,
+            )
     if isinstance(model_class, Chain):
         from .chain import identify_chain
 

@@ -20,6 +20,7 @@ class Recording:
     x: np.ndarray
     y: np.ndarray
     curve_angle: np.ndarray | None = None
+    skip: int = 0  # leading samples simulated but not counted (on top of the warm-up)
 
     @property
     def n(self) -> int:
@@ -79,10 +80,13 @@ def make_recordings(
         if isinstance(recordings, tuple) and len(recordings) in (3, 4):
             recordings = [recordings]
         items = [_unpack(item, i) for i, item in enumerate(recordings)]
+        skips = [int(getattr(item, "skip", 0)) for item in recordings]
         if curve_angle is not None:
             items = [(a, b, c, curve_angle if d is None else d) for a, b, c, d in items]
     if not items:
         raise ValueError("no recordings given")
+    if recordings is None:
+        skips = [0]
     out = []
     for i, (ti, xi, yi, ai) in enumerate(items):
         who = "" if len(items) == 1 else f"recording {i}: "
@@ -116,7 +120,7 @@ def make_recordings(
                         f"{who}curve angle and x have different lengths "
                         f"({theta.size} and {xs.size})"
                     )
-        out.append(Recording(ts, xs, ys, theta))
+        out.append(Recording(ts, xs, ys, theta, skips[i]))
     return out
 
 
@@ -133,9 +137,9 @@ def check_for_fit(
             raise ValueError(f"{who}this model is rate-dependent: the time t is required")
         if needs_angle and r.curve_angle is None:
             raise ValueError(f"{who}this model needs the curve angle of every recording")
-        if r.n <= warmup:
+        if r.n <= warmup + r.skip:
             raise ValueError(f"{who}warm-up ({warmup} samples) leaves none of its {r.n} samples")
-        fitted += r.n - warmup
+        fitted += r.n - warmup - r.skip
     if fitted < max(MIN_SAMPLES, 3 * n_params):
         raise ValueError(
             f"too few samples to identify {n_params} parameters: {fitted} after warm-up "
@@ -160,7 +164,7 @@ def recording_set(recs: list[Recording], warmup: int, with_angle: bool) -> core.
         np.concatenate([r.y for r in recs]),
         theta,
         [r.n for r in recs],
-        [int(warmup)] * len(recs),
+        [int(warmup) + r.skip for r in recs],
     )
 
 
@@ -196,4 +200,4 @@ def search_windows(
 
 def fitted_mask(recs: list[Recording], warmup: int) -> np.ndarray:
     """True for the concatenated samples that enter the cost."""
-    return np.concatenate([np.arange(r.n) >= warmup for r in recs])
+    return np.concatenate([np.arange(r.n) >= warmup + r.skip for r in recs])

@@ -12,8 +12,10 @@ from .generalized_prandtl_ishlinskii import (
     GeneralizedPrandtlIshlinskiiInverse,
 )
 from .hysteretic_oscillator import HystereticOscillator
+from .linear_block import FirstOrderLag, LinearBlock, SecondOrderLag
 from .polynomial import Polynomial
 from .prandtl_ishlinskii import PrandtlIshlinskii, PrandtlIshlinskiiInverse
+from .scaled import Scaled
 
 __all__ = [
     "AngleDependent",
@@ -24,10 +26,14 @@ __all__ = [
     "GeneralizedPrandtlIshlinskii",
     "GeneralizedPrandtlIshlinskiiInverse",
     "CurveAngleModel",
+    "FirstOrderLag",
+    "LinearBlock",
+    "SecondOrderLag",
     "HysteresisModel",
     "HystereticOscillator",
     "Polynomial",
     "PrandtlIshlinskii",
     "PrandtlIshlinskiiInverse",
+    "Scaled",
     "load_model",
 ]
