@@ -203,7 +203,6 @@ def identify_chain(
         n_fit=y_fit.size,
         u_best=u_best,
         use_separable=True,
-        refine=_refine,
         method=standard_errors,
         count=bootstrap,
         block=bootstrap_block,

@@ -384,7 +384,6 @@ def identify(
         n_fit=y_fit.size,
         u_best=u_best,
         use_separable=use_separable,
-        refine=_refine,
         method=se_method,
         count=n_boot,
         block=bootstrap_block,

@@ -95,7 +95,9 @@ class Diagnostics:
     ``condition_number``: of the column-normalised Jacobian; ``near_bounds``: {name: "lower"
     or "upper"} with the bound values in ``bounds``; ``correlated``: pairs (a, b, r) with
     |r| > CORRELATION_LIMIT; ``notes``: other identifiability findings (e.g. the
-    CurveAngleModel's single-angle reparameterisation); ``jacobian``: where J came from.
+    CurveAngleModel's single-angle reparameterisation; those that start with "!" are also
+    warnings); ``jacobian``: where J came from; ``weak``: the parameters that dominate the
+    least determined direction.
     """
 
     names: list[str] = field(default_factory=list)
@@ -220,8 +222,8 @@ class Diagnostics:
                 out.append(
                     f"largest |correlation| {off[i, j]:.3f} ({self.names[i]} ~ {self.names[j]})"
                 )
-        out += [n.removeprefix("!") for n in self.notes]
-        out += [f"WARNING: {m}" for m in self.warnings() if not _is_note(m, self.notes)]
+        out += [n for n in self.notes if not n.startswith("!")]
+        out += [f"WARNING: {m}" for m in self.warnings()]
         return out
 
     def to_dict(self) -> dict[str, Any]:
@@ -239,10 +241,6 @@ class Diagnostics:
             "jacobian": self.jacobian,
             "least_determined": list(self.weak),
         }
-
-
-def _is_note(message: str, notes) -> bool:
-    return any(n.removeprefix("!") == message for n in notes)
 
 
 def _num(v) -> float | None:
