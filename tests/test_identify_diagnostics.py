@@ -293,3 +293,32 @@ def test_cli_identify_prints_diagnostics_and_warns(tmp_path):
     assert saved["fit"]["groups"]["backlash_half_width"]["value"] == pytest.approx(
         truth.backlash_half_width(2.0), rel=0.01
     )
+
+
+def test_self_class_bootstrap_over_recordings():
+    """Self-class Backlash, 8 recordings with their own noise: the bootstrap over recordings
+    gives errors of the same order as the linearised ones (white noise, where the
+    linearisation holds: ratio within 0.5-2), and refuses a single recording."""
+    truth = Backlash(c_r=1.0, c_l=0.9, B_r=0.12, B_l=0.08)
+    rng = np.random.default_rng(5)
+    t = T[:500]
+    recs = []
+    for k in range(8):
+        x = X[:500] * (0.8 + 0.05 * k)
+        recs.append((t, x, truth.simulate(t, x) + 0.005 * rng.standard_normal(t.size)))
+    lin, _ = _identify(Backlash, recordings=recs)
+    boot, _ = _identify(
+        Backlash, recordings=recs, standard_errors="bootstrap-recordings", bootstrap=60
+    )
+    assert boot.uncertainty["names"] == ["c_r", "c_l", "B_r", "B_l"]
+    for name, se in lin.standard_errors.items():
+        assert 0.5 < boot.standard_errors[name] / se < 2.0, (name, se, boot.standard_errors)
+    with pytest.raises(ValueError, match="needs several recordings"):
+        ts.identify(
+            Backlash,
+            t,
+            recs[0][1],
+            recs[0][2],
+            standard_errors="bootstrap-recordings",
+            progress=False,
+        )

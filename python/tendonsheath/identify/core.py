@@ -178,12 +178,13 @@ def identify(
     optimum; ``"bootstrap"``: the spread of ``bootstrap`` (default 200) moving-block
     bootstrap resamples of the residuals, each re-fitted by least squares from the estimate,
     seeded by ``seed``, blocks of ``bootstrap_block`` samples (default from the residual's
-    autocorrelation); ``"none"``) and ``diagnostics`` (parameters near their bounds,
-    correlations, condition number); an :class:`IdentifiabilityWarning` names the parameters
-    involved. CurveAngleModel recordings that cover a single curve angle cannot separate
-    friction from EA: the friction is then held (at ``initial``'s value, 0.1 by default,
-    unless given in ``fixed``), with a warning, and the identifiable groups (dead-zone
-    half-width, load offset, gain at that angle) are reported in ``fit.groups``.
+    autocorrelation); ``"bootstrap-recordings"``: resamples of the recordings, drawn with
+    replacement (for many recordings); ``"none"``) and ``diagnostics`` (parameters near
+    their bounds, correlations, condition number); an :class:`IdentifiabilityWarning` names
+    the parameters involved. CurveAngleModel recordings that cover a single curve angle
+    cannot separate friction from EA: the friction is then held (at ``initial``'s value, 0.1
+    by default, unless given in ``fixed``), with a warning, and the identifiable groups
+    (dead-zone half-width, load offset, gain at that angle) are reported in ``fit.groups``.
     """
     from .uncertainty import check_method
 

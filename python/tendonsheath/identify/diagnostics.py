@@ -20,8 +20,11 @@ standard errors come from). A fit whose diagnostics cross one of the limits belo
   parameters gives 2e4).
 
 Standard errors: linearised (``s^2 (J'J)^-1``, s^2 = SSE/(N - p)) by default; with
-``standard_errors="bootstrap"`` a moving-block bootstrap of the residuals, each resample
-re-fitted by least squares from the estimate (seeded), see :func:`moving_block_resample`.
+``standard_errors="bootstrap"`` a moving-block bootstrap of the residuals (y* = y_hat + e*,
+see :func:`moving_block_resample`), with ``"bootstrap-recordings"`` a bootstrap over the
+recordings (drawn with replacement; meaningful with many recordings); each resample is
+re-fitted by least squares from the estimate (seeded). The re-fits do not repeat the global
+search: they measure the spread of the estimate inside its basin.
 """
 
 from __future__ import annotations
@@ -416,25 +419,17 @@ def moving_block_resample(
 
 
 def bootstrap(
-    refit: Callable[[np.ndarray], np.ndarray | None],
-    y_hat: np.ndarray,
-    residual: np.ndarray,
-    segments: Sequence[int],
-    count: int,
-    seed: int | None,
-    block: int | None = None,
+    draw: Callable[[np.random.Generator], np.ndarray | None], count: int, seed: int | None
 ) -> dict[str, Any]:
-    """Re-fit ``count`` moving-block resamples y* = y_hat + e*; ``refit(y*)`` returns the
-    estimate vector (or None if it failed). Returns the samples (count_ok, k), the standard
-    errors (their standard deviation), the block length and the number of failures."""
+    """Re-fit ``count`` resamples: ``draw(rng)`` builds one resample, re-fits it and returns
+    the estimate vector (or None if the re-fit failed). Returns the samples (count_ok, k),
+    the standard errors (their standard deviation, ddof 1) and the number of failures."""
     if count < 2:
         raise ValueError(f"bootstrap must be at least 2 resamples (got {count})")
-    b = int(block) if block else block_length(residual)
     rng = np.random.default_rng(seed)
     samples, failed = [], 0
     for _ in range(int(count)):
-        y_star = y_hat + moving_block_resample(residual, segments, b, rng)
-        est = refit(y_star)
+        est = draw(rng)
         if est is None or not np.all(np.isfinite(est)):
             failed += 1
             continue
@@ -442,4 +437,4 @@ def bootstrap(
     if len(samples) < 2:
         raise ValueError(f"bootstrap: {failed} of {count} re-fits failed")
     S = np.vstack(samples)
-    return {"samples": S, "se": S.std(axis=0, ddof=1), "block": b, "failed": failed}
+    return {"samples": S, "se": S.std(axis=0, ddof=1), "failed": failed}

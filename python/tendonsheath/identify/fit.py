@@ -55,8 +55,9 @@ class Fit:
     ``groups``: identified groups where the parameters themselves are not identifiable
     ({name: {"value", "se", "unit", ...}}; the CurveAngleModel at a single curve angle).
     ``uncertainty``: how the standard errors were obtained ({"method": "linearised" |
-    "bootstrap" | "none", and for the bootstrap "resamples", "block", "failed", "seed",
-    "samples" (the re-fitted estimates, one row per resample)}).
+    "bootstrap" | "bootstrap-recordings" | "none", and for the bootstrap "resamples",
+    "block" (residual blocks only), "failed", "seed", "samples" (the re-fitted estimates,
+    one row per resample, columns named by "names")}).
     """
 
     model: HysteresisModel
@@ -151,6 +152,8 @@ class Fit:
                 f"bootstrap, {self.uncertainty['resamples']} resamples of "
                 f"{self.uncertainty['block']}-sample blocks"
             )
+        elif se_label == "bootstrap-recordings":
+            se_label = f"bootstrap over recordings, {self.uncertainty['resamples']} resamples"
         lines.append(f"parameters (+- standard error, {se_label}):")
         for name, value, se in self.table():
             lines.append(f"  {name:<{width}}  {value:>12}  +- {se}")

@@ -15,22 +15,26 @@ from typing import Any
 import numpy as np
 
 from ..models import CurveAngleModel, GeneralizedPrandtlIshlinskii, PrandtlIshlinskii
+from .chain import ChainProblem
+from .data import fitted_mask, recording_set
 from .diagnostics import (
     Diagnostics,
     Entry,
+    block_length,
     bootstrap,
     bound_side,
     covariance,
     entries_of,
     fd_jacobian,
     linearised_se,
+    moving_block_resample,
     vector_of,
     with_vector,
 )
 from .fit import simulate_model
 from .problem import DirectProblem
 
-SE_METHODS = ("linearised", "bootstrap", "none")
+SE_METHODS = ("linearised", "bootstrap", "bootstrap-recordings", "none")
 BOOTSTRAP_DEFAULT = 200
 
 # names of the linear (solved) coefficients of the separable specs, for the bound check
@@ -46,7 +50,7 @@ def check_method(standard_errors: str, count: int | None) -> tuple[str, int]:
             f"standard_errors must be one of {list(SE_METHODS)} (got {standard_errors!r})"
         )
     n = BOOTSTRAP_DEFAULT if count is None else int(count)
-    if standard_errors == "bootstrap" and n < 2:
+    if standard_errors.startswith("bootstrap") and n < 2:
         raise ValueError(f"bootstrap must be at least 2 resamples (got {count})")
     return standard_errors, n
 
@@ -328,16 +332,8 @@ def assess(
         if group_fn and J is not None:
             g_se = _delta_group_se(layout, model, group_fn, J, sse, n_fit, free_names)
     else:
-        y_hat, resid, segments = _residuals(problem, model, recs, warmup)
 
-        def refit(y_star):
-            p2 = copy.copy(problem)
-            y_full = np.array(problem.y, dtype=float)
-            if y_full.size == resid.size:  # Chain: y holds the fitted samples only
-                y_full = y_star
-            else:
-                y_full[problem.mask] = y_star
-            p2.y = y_full
+        def refit(p2):
             try:
                 u = _local_refit(p2, space, u_best, use_separable)
                 m = p2.model(space.natural(u))
@@ -348,15 +344,34 @@ def assess(
                 vec = np.r_[vec, list(group_fn(m).values())]
             return vec
 
-        boot = bootstrap(refit, y_hat, resid, segments, count, seed, block)
+        if method == "bootstrap":
+            y_hat, resid, segments = _residuals(model, recs, warmup)
+            b = int(block) if block else block_length(resid)
+            extra["block"] = b
+
+            def draw(rng):
+                y_star = y_hat + moving_block_resample(resid, segments, b, rng)
+                return refit(_with_fitted_output(problem, y_star))
+        else:
+            if len(recs) < 2:
+                raise ValueError(
+                    'standard_errors="bootstrap-recordings" needs several recordings '
+                    f'(got {len(recs)}); use "bootstrap" (residual blocks)'
+                )
+
+            def draw(rng):
+                idx = rng.integers(0, len(recs), size=len(recs))
+                return refit(_with_recordings(problem, [recs[i] for i in idx], warmup))
+
+        boot = bootstrap(draw, count, seed)
         k = len(layout.names)
         se = boot["se"][:k]
         g_se = {n: float(s) for n, s in zip(g_hat, boot["se"][k:], strict=True)}
         extra.update(
             resamples=int(count),
-            block=int(boot["block"]),
             failed=int(boot["failed"]),
             seed=seed,
+            names=[*layout.names, *g_hat],
             samples=boot["samples"],
         )
 
@@ -450,7 +465,36 @@ def _delta_group_se(layout, model, group_fn, J, sse, n_fit, free_names) -> dict[
     return {n: float(np.sqrt(max(v, 0.0))) for n, v in zip(g0, var, strict=True)}
 
 
-def _residuals(problem, model, recs, warmup):
+def _with_fitted_output(problem, y_star: np.ndarray):
+    """A shallow copy of ``problem`` whose measured output (fitted samples) is ``y_star``."""
+    p = copy.copy(problem)
+    if isinstance(problem, ChainProblem):  # y holds the fitted samples only
+        p.y = np.asarray(y_star, dtype=float)
+        return p
+    y = np.array(problem.y, dtype=float)
+    y[problem.mask] = y_star
+    p.y = y
+    return p
+
+
+def _with_recordings(problem, recs, warmup: int):
+    """A shallow copy of ``problem`` over other recordings (same parameters and bounds)."""
+    if isinstance(problem, ChainProblem):
+        p = copy.copy(problem)
+        p.inner = _with_recordings(problem.inner, recs, warmup)
+        p.y = p.inner.y[p.inner.mask]
+        return p
+    p = copy.copy(problem)
+    p.recs = recs
+    p.rs = recording_set(recs, warmup, getattr(problem, "with_angle", False))
+    p.y = np.concatenate([r.y for r in recs])
+    p.mask = fitted_mask(recs, warmup)
+    if hasattr(p, "angles"):
+        p.angles = None
+    return p
+
+
+def _residuals(model, recs, warmup):
     """Fitted predictions, residuals and per-recording fitted lengths."""
     y_hat = np.concatenate([simulate_model(model, r.t, r.x, r.curve_angle)[warmup:] for r in recs])
     y = np.concatenate([r.y[warmup:] for r in recs])
