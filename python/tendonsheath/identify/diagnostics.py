@@ -383,8 +383,11 @@ def linearised_se(J: np.ndarray, sse: float, n_fit: int) -> np.ndarray:
 
 
 def block_length(residual: np.ndarray) -> int:
-    """Moving-block length: twice the lag at which the residual's autocorrelation first falls
-    below 1/e, and at least N^(1/3) (the classic rate for variance estimation)."""
+    """Moving-block length: twice the residual's integrated autocorrelation time
+    tau = 1 + 2 sum_k rho_k (Sokal's window: the sum stops at the first lag M >= 5 tau), and
+    at least N^(1/3) (the classic rate for variance estimation); at most N/4. Blocks must
+    span the correlation of the residual, or the bootstrap spread is too small (coloured
+    noise, model error)."""
     e = np.asarray(residual, dtype=float)
     e = e - e.mean()
     n = e.size
@@ -394,9 +397,10 @@ def block_length(residual: np.ndarray) -> int:
     f = np.fft.rfft(e, 2 * n)
     ac = np.fft.irfft(f * np.conj(f))[:n]
     ac = ac / ac[0]
-    below = np.flatnonzero(ac < 1.0 / math.e)
-    lag = int(below[0]) if below.size else n // 4
-    return int(min(max(base, 2 * lag), max(n // 4, 1)))
+    tau = 1.0 + 2.0 * np.cumsum(ac[1:])
+    window = np.flatnonzero(np.arange(1, n) >= 5.0 * tau)
+    t = float(tau[window[0]]) if window.size else float(tau[-1])
+    return int(min(max(base, int(round(2.0 * max(t, 1.0)))), max(n // 4, 1)))
 
 
 def moving_block_resample(
