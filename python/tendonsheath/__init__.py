@@ -2,7 +2,7 @@
 
 from . import bench, compensate, io, loads, models, physics, presets
 from .compare import Comparison, compare_models
-from .identify import Fit, identify
+from .identify import Fit, IdentifiabilityWarning, identify
 from .models import load_model
 from .motor import Motor
 from .plant import (
@@ -23,6 +23,7 @@ __all__ = [
     "Comparison",
     "ContinuumPlant",
     "Fit",
+    "IdentifiabilityWarning",
     "Motor",
     "PullPullPlant",
     "Route",

@@ -162,6 +162,7 @@ def identify(
     """Fit MODEL to DATA and save it as JSON; print the fit table and the validation error."""
     from . import io
     from .identify import identify as run_identify
+    from .identify.diagnostics import IdentifiabilityWarning
 
     columns = {"time": time_col, "input": input_col, "output": output_col}
     try:
@@ -171,9 +172,13 @@ def identify(
             )
             for path in data
         ]
-        fit = run_identify(
-            model, recordings=logs, warmup=warmup, seed=seed, maxiter=maxiter, progress=True
-        )
+        import warnings
+
+        with warnings.catch_warnings():  # printed below with the diagnostics
+            warnings.simplefilter("ignore", IdentifiabilityWarning)
+            fit = run_identify(
+                model, recordings=logs, warmup=warmup, seed=seed, maxiter=maxiter, progress=True
+            )
         val = None
         if validate is not None:
             vlog = io.read_log(
@@ -202,6 +207,14 @@ def identify(
         f"rmse {fit.rmse:.4g}   nrmse {100 * fit.nrmse:.3f} %   fit {fit.fit_percent:.2f} %   "
         f"({fit.evaluations} evaluations, {fit.seconds:.2f} s)"
     )
+    for name, g in fit.groups.items():  # identified groups (e.g. CurveAngleModel, one angle)
+        se = f" +- {g['se']:.4g}" if g.get("se") is not None else " (held)"
+        console.print(f"group {name} = {g['value']:.6g}{se} {g.get('unit', '')}")
+    for line in fit.diagnostics.lines():
+        if line.startswith("WARNING: "):
+            console.print(f"[yellow]warning:[/yellow] {line.removeprefix('WARNING: ')}")
+        else:
+            console.print(f"identifiability: {line}", soft_wrap=True)
     if val is not None:
         console.print(
             f"validation on {validate}: rmse {val['rmse']:.4g}   nrmse {100 * val['nrmse']:.3f} %"

@@ -6,6 +6,7 @@ least-squares refinement. See :func:`identify`.
 """
 
 from .core import identify
+from .diagnostics import Diagnostics, IdentifiabilityWarning
 from .fit import Fit, metrics
 
-__all__ = ["Fit", "identify", "metrics"]
+__all__ = ["Diagnostics", "Fit", "IdentifiabilityWarning", "identify", "metrics"]

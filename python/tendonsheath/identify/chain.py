@@ -160,10 +160,14 @@ def identify_chain(
     workers=None,
     polish=True,
     progress=True,
+    standard_errors="linearised",
+    bootstrap=200,
+    bootstrap_block=None,
 ) -> Fit:
     """Identify a Chain (see the module docstring); returns a :class:`Fit`."""
-    from .core import _refine, global_search, nan_errors
+    from .core import _refine, global_search
     from .dynamic import identify_dynamic, is_dynamic_chain
+    from .uncertainty import assess
 
     if is_dynamic_chain(chain):
         if bounds or fixed:
@@ -211,12 +215,35 @@ def identify_chain(
     y_fit = np.concatenate([r.y[warmup:] for r in recs])
     y_hat = np.concatenate([p[warmup:] for p in predictions])
     overall = metrics(y_fit, y_hat)
-    return Fit(
+    assessed = assess(
+        cls=Chain,
+        model=model,
+        problem=problem,
+        recs=recs,
+        warmup=warmup,
+        values=problem.values,
+        free_names=problem.free,
+        all_bounds=problem.bounds,
+        spec=None,
+        options={},
+        depends={},
+        workers=n_workers,
+        sse=float(np.sum((y_fit - y_hat) ** 2)),
+        n_fit=y_fit.size,
+        u_best=u_best,
+        use_separable=True,
+        method=standard_errors,
+        count=bootstrap,
+        block=bootstrap_block,
+        seed=seed,
+        chain_free=problem.free,
+    )
+    fit = Fit(
         model=model,
         rmse=overall["rmse"],
         nrmse=overall["nrmse"],
         fit_percent=overall["fit_percent"],
-        standard_errors=nan_errors(model.params),
+        standard_errors=assessed["standard_errors"],
         identified=[f"first.{n}" for n in problem.free] + ["second.coefficients"],
         fixed={f"first.{k}": v for k, v in problem.held.items()},
         per_recording=[
@@ -232,4 +259,9 @@ def identify_chain(
         bounds={f"first.{k}": v for k, v in problem.bounds.items()},
         recordings=recs,
         predictions=predictions,
+        diagnostics=assessed["diagnostics"],
+        groups=assessed["groups"],
+        uncertainty=assessed["se_method"],
     )
+    fit.diagnostics.warn(stacklevel=4)
+    return fit

@@ -18,7 +18,7 @@ from ..models import (
 from ..models.base import _REGISTRY
 from .data import check_for_fit, make_recordings, search_windows
 from .fit import Fit, metrics, simulate_model
-from .problem import DirectProblem, SeparableProblem, _covariance_se, law_check
+from .problem import DirectProblem, SeparableProblem, law_check
 from .specs import SPECS, GeneralizedPrandtlIshlinskiiSpec, PrandtlIshlinskiiSpec, Scale
 
 GPI_PLAYS = 10  # default number of plays of an identified GeneralizedPrandtlIshlinskii
@@ -143,6 +143,9 @@ def identify(
     periodic: bool | None = None,
     strategy: str = "auto",
     normalize: bool = True,
+    standard_errors: str = "linearised",
+    bootstrap: int | None = None,
+    bootstrap_block: int | None = None,
 ) -> Fit:
     """Identify a model from input/output recordings by simulation-error minimisation.
 
@@ -204,7 +207,23 @@ def identify(
     mapped back (see :mod:`tendonsheath.identify.normalize`): into the class's own parameters
     where exact, otherwise as a :class:`~tendonsheath.models.Scaled` model (e.g. a negative
     gain). Not applied with ``bounds``, ``fixed`` or ``depends_on_angle`` (raw units).
+
+    Uncertainty and identifiability (:mod:`tendonsheath.identify.diagnostics`): every Fit
+    carries ``standard_errors`` (``standard_errors="linearised"``: from the Jacobian at the
+    optimum; ``"bootstrap"``: the spread of ``bootstrap`` (default 200) moving-block
+    bootstrap resamples of the residuals, each re-fitted by least squares from the estimate,
+    seeded by ``seed``, blocks of ``bootstrap_block`` samples (default from the residual's
+    autocorrelation); ``"bootstrap-recordings"``: resamples of the recordings, drawn with
+    replacement (for many recordings); ``"none"``) and ``diagnostics`` (parameters near
+    their bounds, correlations, condition number); an :class:`IdentifiabilityWarning` names
+    the parameters involved. CurveAngleModel recordings that cover a single curve angle
+    cannot separate friction from EA: the friction is then held (at ``initial``'s value, 0.1
+    by default, unless given in ``fixed``), with a warning, and the identifiable groups
+    (dead-zone half-width, load offset, gain at that angle) are reported in ``fit.groups``.
     """
+    from .uncertainty import check_method
+
+    se_method, n_boot = check_method(standard_errors, bootstrap)
     if normalize:
         from . import normalize as _norm
 
@@ -229,6 +248,9 @@ def identify(
                 separable=separable,
                 progress=progress,
                 search_samples=search_samples,
+                standard_errors=standard_errors,
+                bootstrap=bootstrap,
+                bootstrap_block=bootstrap_block,
             )
     if isinstance(model_class, Chain):
         from .chain import identify_chain
@@ -249,6 +271,9 @@ def identify(
             workers=workers,
             polish=polish,
             progress=progress,
+            standard_errors=se_method,
+            bootstrap=n_boot,
+            bootstrap_block=bootstrap_block,
         )
     cls = _model_class(model_class)
     depends = law_check(depends_on_angle or {}, cls.param_names)
@@ -328,6 +353,11 @@ def identify(
         if len(tuple(b)) != 2:
             raise ValueError(f"bounds[{name!r}] must be (low, high)")
         all_bounds[name] = (float(b[0]), float(b[1]))
+    from .uncertainty import assess, setup_single_angle
+
+    angle = None
+    if not depends:  # CurveAngleModel at a single curve angle: hold friction, report groups
+        angle = setup_single_angle(cls, recs, held, values, fixed, bounds, all_bounds, free_names)
     n_workers = 0 if workers is None else int(workers)
 
     user_fixed = set(fixed or {})
@@ -441,28 +471,35 @@ def identify(
     ]
     sse = float(np.sum((y_fit - y_hat) ** 2))
 
-    ses = _standard_errors(
-        cls,
-        model,
-        problem,
-        recs,
-        warmup,
-        values,
-        free_names,
-        all_bounds,
-        spec,
-        options,
-        depends,
-        n_workers,
-        sse,
-        y_fit.size,
+    assessed = assess(
+        cls=cls,
+        model=model,
+        problem=problem,
+        recs=recs,
+        warmup=warmup,
+        values=values,
+        free_names=free_names,
+        all_bounds=all_bounds,
+        spec=spec,
+        options=options,
+        depends=depends,
+        workers=n_workers,
+        sse=sse,
+        n_fit=y_fit.size,
+        u_best=u_best,
+        use_separable=use_separable,
+        method=se_method,
+        count=n_boot,
+        block=bootstrap_block,
+        seed=seed,
+        angle=angle,
     )
-    return Fit(
+    fit = Fit(
         model=model,
         rmse=overall["rmse"],
         nrmse=overall["nrmse"],
         fit_percent=overall["fit_percent"],
-        standard_errors=ses,
+        standard_errors=assessed["standard_errors"],
         identified=list(free_names),
         fixed=held,
         per_recording=per_recording,
@@ -476,7 +513,12 @@ def identify(
         bounds={n: (float(a), float(b)) for n, (a, b) in all_bounds.items() if n in free_names},
         recordings=recs,
         predictions=predictions,
+        diagnostics=assessed["diagnostics"],
+        groups=assessed["groups"],
+        uncertainty=assessed["se_method"],
     )
+    fit.diagnostics.warn(stacklevel=3)
+    return fit
 
 
 def _refine(problem, space, u0, counter, use_separable):
@@ -528,83 +570,6 @@ def _refine(problem, space, u0, counter, use_separable):
     if np.isfinite(cost1) and cost1 <= cost0:
         return res.x, res.message
     return u0, "kept the global optimum (no improvement)"
-
-
-def _standard_errors(
-    cls,
-    model,
-    problem,
-    recs,
-    warmup,
-    values,
-    free_names,
-    bounds,
-    spec,
-    options,
-    depends,
-    workers,
-    sse,
-    n_fit,
-) -> dict:
-    try:
-        if cls is PrandtlIshlinskii:
-            return _pi_standard_errors(model, problem, sse, n_fit)
-        if cls is GeneralizedPrandtlIshlinskii:  # not computed (envelopes x grid)
-            return nan_errors(model.params)
-        if isinstance(problem, DirectProblem):
-            se_problem = problem
-        else:
-            se_problem = DirectProblem(
-                cls,
-                recs,
-                warmup,
-                {**values, **model.params},
-                free_names,
-                bounds,
-                spec.log_names,
-                options,
-                None,
-                workers,
-            )
-        c = se_problem.coefficients_of(model)
-        se = se_problem.standard_errors(c, sse, n_fit)
-    except ValueError:
-        return {n: float("nan") for n in free_names}
-    if not depends:
-        return {n: float(s) for n, s in zip(free_names, se, strict=True)}
-    out: dict = {}
-    for p, law, i in se_problem.layout:
-        k = 1 if law == "constant" else 2
-        out[p] = [float(s) for s in se[i : i + k]]
-    if se_problem.tanh:
-        out["angle_friction"] = float(se[-1])
-    return out
-
-
-def nan_errors(params: dict) -> dict:
-    """Standard errors not computed: NaN in the shape of the parameters."""
-    return {
-        k: [float("nan")] * len(v) if isinstance(v, list) else float("nan")
-        for k, v in params.items()
-    }
-
-
-def _pi_standard_errors(model, problem, sse, n_fit) -> dict:
-    params = model.params
-    weights = np.asarray(params["weights"])
-    pattern = problem.spec.pattern
-    scale = float(params["thresholds"][-1]) / pattern[-1]
-
-    def features(s):
-        nl = np.ascontiguousarray(pattern * s)
-        return problem.features(problem.base, nl, problem.rs)[problem.mask]
-
-    F = features(scale)
-    h = 1e-6 * scale
-    d_scale = (features(scale + h) @ weights - features(scale - h) @ weights) / (2 * h)
-    J = np.column_stack([d_scale, F])
-    se = _covariance_se(J, sse, n_fit)
-    return {"thresholds": (pattern * se[0]).tolist(), "weights": se[1:].tolist()}
 
 
 def _laws_from_points(problem: DirectProblem, points: list[dict]) -> np.ndarray:

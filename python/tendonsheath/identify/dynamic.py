@@ -180,7 +180,7 @@ def identify_dynamic(
     progress=True,
 ) -> Fit:
     """Identify a Hammerstein or Wiener chain (see the module docstring)."""
-    from .core import _refine, global_search, nan_errors
+    from .core import _refine, global_search
 
     n_workers = 0 if workers is None else int(workers)
     for i, r in enumerate(recs):
@@ -226,7 +226,7 @@ def identify_dynamic(
         rmse=overall["rmse"],
         nrmse=overall["nrmse"],
         fit_percent=overall["fit_percent"],
-        standard_errors=nan_errors(model.params),
+        standard_errors=_nan_errors(model.params),
         identified=[f"{part}.{n}" for n in problem.static_cls.param_names]
         + [f"{other}.{n}" for n in problem.block_names],
         fixed={},
@@ -248,3 +248,11 @@ def identify_dynamic(
         recordings=recs,
         predictions=predictions,
     )
+
+
+def _nan_errors(params: dict) -> dict:
+    """Standard errors not computed (a linear block's chain): NaN in the parameters' shape."""
+    return {
+        k: [float("nan")] * len(v) if isinstance(v, list) else float("nan")
+        for k, v in params.items()
+    }

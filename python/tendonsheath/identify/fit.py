@@ -10,6 +10,7 @@ import numpy as np
 
 from ..models import HysteresisModel
 from .data import Recording
+from .diagnostics import Diagnostics
 
 
 def metrics(y, y_hat) -> dict[str, float]:
@@ -44,7 +45,19 @@ class Fit:
     ``rmse``, ``nrmse`` (rmse over the output's range) and ``fit_percent`` are over all fitted
     samples (after warm-up) of all recordings; ``per_recording`` has the same for each.
     ``standard_errors`` has one entry per identified parameter (or angle-law coefficient),
-    from the Jacobian of the simulation output at the optimum; fixed parameters are absent.
+    from the Jacobian of the simulation output at the optimum (or, with
+    ``standard_errors="bootstrap"``, the spread of bootstrap re-fits: see ``uncertainty``);
+    fixed parameters are absent.
+
+    ``diagnostics`` (:class:`~tendonsheath.identify.diagnostics.Diagnostics`): parameters at
+    or near their search bounds, the correlation matrix and the condition number of the
+    Jacobian, and the warnings they raise (:class:`IdentifiabilityWarning`).
+    ``groups``: identified groups where the parameters themselves are not identifiable
+    ({name: {"value", "se", "unit", ...}}; the CurveAngleModel at a single curve angle).
+    ``uncertainty``: how the standard errors were obtained ({"method": "linearised" |
+    "bootstrap" | "bootstrap-recordings" | "none", and for the bootstrap "resamples",
+    "block" (residual blocks only), "failed", "seed", "samples" (the re-fitted estimates,
+    one row per resample, columns named by "names")}).
     """
 
     model: HysteresisModel
@@ -65,6 +78,19 @@ class Fit:
     bounds: dict[str, tuple[float, float]] = field(default_factory=dict)
     recordings: list[Recording] = field(default_factory=list, repr=False)
     predictions: list[np.ndarray] = field(default_factory=list, repr=False)
+    diagnostics: Diagnostics = field(default_factory=Diagnostics)
+    groups: dict[str, dict[str, Any]] = field(default_factory=dict)
+    uncertainty: dict[str, Any] = field(
+        default_factory=lambda: {"method": "linearised"}, repr=False
+    )
+
+    def warnings(self) -> list[str]:
+        """The identifiability warnings of this fit (empty when there are none)."""
+        return self.diagnostics.warnings()
+
+    def warn(self) -> None:
+        """Emit the identifiability warnings (:class:`IdentifiabilityWarning`)."""
+        self.diagnostics.warn(stacklevel=4)
 
     @property
     def params(self) -> dict[str, Any]:
@@ -120,8 +146,24 @@ class Fit:
             f"{self.seconds:.2f} s",
         ]
         width = max(len(r[0]) for r in self.table())
+        se_label = self.uncertainty.get("method", "linearised")
+        if se_label == "bootstrap":
+            se_label = (
+                f"bootstrap, {self.uncertainty['resamples']} resamples of "
+                f"{self.uncertainty['block']}-sample blocks"
+            )
+        elif se_label == "bootstrap-recordings":
+            se_label = f"bootstrap over recordings, {self.uncertainty['resamples']} resamples"
+        lines.append(f"parameters (+- standard error, {se_label}):")
         for name, value, se in self.table():
             lines.append(f"  {name:<{width}}  {value:>12}  +- {se}")
+        if self.groups:
+            lines.append("identified groups:")
+            for name, g in self.groups.items():
+                se = "held" if not g.get("identified", True) else _fmt(g.get("se"))
+                lines.append(f"  {name}  {_fmt(g['value'])}  +- {se}  ({g.get('unit', '')})")
+        lines.append("identifiability:")
+        lines += [f"  {line}" for line in self.diagnostics.lines()]
         return "\n".join(lines)
 
     def __str__(self) -> str:
@@ -145,12 +187,18 @@ class Fit:
             "message": self.message,
             "warmup": self.warmup,
             "n_samples": self.n_samples,
+            "bounds": {k: [float(a), float(b)] for k, (a, b) in self.bounds.items()},
+            "diagnostics": self.diagnostics.to_dict(),
+            "groups": self.groups,
+            "uncertainty": {k: v for k, v in self.uncertainty.items() if k != "samples"},
         }
 
     def report(self, path: str | Path) -> Path:
-        """Draw measured vs predicted over time, the input-output loop and the residual."""
+        """Draw measured vs predicted over time, the input-output loop and the residual;
+        emits the fit's identifiability warnings (:class:`IdentifiabilityWarning`)."""
         from .report import draw_report
 
+        self.warn()
         return draw_report(self, Path(path))
 
 

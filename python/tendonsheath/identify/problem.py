@@ -201,6 +201,11 @@ class DirectProblem:
     def standard_errors(self, c: np.ndarray, sse: float, n_fit: int):
         """Standard errors of the coefficients from the Jacobian of the simulation output
         (central differences, one batched call): s^2 (J'J)^-1 with s^2 = SSE / (N - p)."""
+        return _covariance_se(self.jacobian(c), sse, n_fit)
+
+    def jacobian(self, c: np.ndarray) -> np.ndarray:
+        """(n_fitted, k) Jacobian of the simulation output with respect to the coefficients
+        (central differences, one batched call; one-sided at a validity limit)."""
         c = np.asarray(c, dtype=float)
         k = c.size
         h = 1e-4 * np.maximum(np.abs(c), 1e-3 * (self.space.upper - self.space.lower + 1e-300))
@@ -218,7 +223,7 @@ class DirectProblem:
                 J[i] = (up[i] - mid) / h[i]
             else:
                 J[i] = (mid - down[i]) / h[i]
-        return _covariance_se(J.T, sse, n_fit)
+        return J.T
 
 
 def _covariance_se(J: np.ndarray, sse: float, n_fit: int) -> np.ndarray:

@@ -1,0 +1,501 @@
+"""Standard errors (linearised or bootstrap), identifiability diagnostics and identified groups
+of a fit, for every model class; and the CurveAngleModel's single-angle reparameterisation.
+
+Called by :func:`~tendonsheath.identify.identify` and the Chain path once the estimate is
+known; see :mod:`tendonsheath.identify.diagnostics` for the figures and their limits.
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..models import CurveAngleModel, GeneralizedPrandtlIshlinskii, PrandtlIshlinskii
+from .chain import ChainProblem
+from .data import fitted_mask, recording_set
+from .diagnostics import (
+    Diagnostics,
+    Entry,
+    block_length,
+    bootstrap,
+    bound_side,
+    covariance,
+    entries_of,
+    fd_jacobian,
+    linearised_se,
+    moving_block_resample,
+    vector_of,
+    with_vector,
+)
+from .fit import simulate_model
+from .problem import DirectProblem
+
+SE_METHODS = ("linearised", "bootstrap", "bootstrap-recordings", "none")
+BOOTSTRAP_DEFAULT = 200
+
+# names of the linear (solved) coefficients of the separable specs, for the bound check
+_LINEAR_NAMES = {
+    "BoucWenBacklash": ["c_r", "B_r (c_r B_r)", "c_l", "B_l (c_l B_l)"],
+    "BoucWen": ["a", "(1 - a) k"],
+}
+
+
+def check_method(standard_errors: str, count: int | None) -> tuple[str, int]:
+    if standard_errors not in SE_METHODS:
+        raise ValueError(
+            f"standard_errors must be one of {list(SE_METHODS)} (got {standard_errors!r})"
+        )
+    n = BOOTSTRAP_DEFAULT if count is None else int(count)
+    if standard_errors.startswith("bootstrap") and n < 2:
+        raise ValueError(f"bootstrap must be at least 2 resamples (got {count})")
+    return standard_errors, n
+
+
+# -- the CurveAngleModel at a single curve angle ---------------------------------------------
+
+
+@dataclass
+class SingleAngle:
+    """The recordings cover one curve angle: friction is held, the groups are reported."""
+
+    angle: float
+    friction_held: bool
+    friction: float
+
+
+def single_angle(cls, recs) -> float | None:
+    """The common curve angle of all recordings if they cover only one, else None."""
+    if cls is not CurveAngleModel or any(r.curve_angle is None for r in recs):
+        return None
+    theta = np.concatenate([r.curve_angle for r in recs])
+    if np.ptp(theta) > 1e-12 * max(1.0, float(np.max(np.abs(theta)))):
+        return None
+    return float(theta[0])
+
+
+def setup_single_angle(cls, recs, held, values, user_fixed, user_bounds, all_bounds, free_names):
+    """Hold the friction (at the initial model's value) when the recordings cover a single
+    curve angle, and widen the load's bounds so that the groups cover what the default
+    friction range would reach (e_L/e_b = F_L/(T0 mu Theta)). Edits ``held``, ``values``,
+    ``all_bounds`` and ``free_names`` in place; returns a :class:`SingleAngle` or None."""
+    theta = single_angle(cls, recs)
+    if theta is None:
+        return None
+    user_fixed = set(user_fixed or {})
+    if "friction" in user_fixed:
+        return SingleAngle(theta, False, float(held["friction"]))
+    mu0 = float(values["friction"])
+    held["friction"] = mu0
+    values["friction"] = mu0
+    if "friction" in free_names:
+        free_names.remove("friction")
+    mu_lo = float(all_bounds["friction"][0])
+    if "load" not in (user_bounds or {}) and mu_lo > 0:
+        lo, hi = all_bounds["load"]
+        f = max(1.0, mu0 / mu_lo)
+        all_bounds["load"] = (f * lo, f * hi)
+    return SingleAngle(theta, True, mu0)
+
+
+def curve_angle_groups(model, theta: float) -> dict[str, float]:
+    """The identifiable groups of a CurveAngleModel at one curve angle (spec B): the dead-zone
+    half-width e_b/r_p and the load offset e_L/r_p (rad at the motor), and the gain
+    c r_p/r_d of the branches (distal rad per motor rad)."""
+    p = model.params
+    return {
+        "backlash_half_width": float(model.backlash_half_width(theta)),
+        "load_offset": float(model.load_offset(theta)),
+        "gain": float(model.slope(theta) * p["proximal_radius"] / p["distal_radius"]),
+    }
+
+
+_GROUP_UNITS = {
+    "backlash_half_width": "rad at the motor",
+    "load_offset": "rad at the motor",
+    "gain": "distal rad per motor rad",
+}
+_GAIN_NAMES = {"spring", "distal_radius", "proximal_radius", "stiffness"}
+
+
+# -- everything after the estimate -------------------------------------------------------------
+
+
+@dataclass
+class Layout:
+    """How the identified quantities are laid out: names (Jacobian columns), the estimate
+    vector of a model, and the standard-error dict built from a vector of errors."""
+
+    names: list[str]
+    vector: Callable[[Any], np.ndarray]
+    to_dict: Callable[[np.ndarray], dict]
+    jacobian: Callable[[], np.ndarray]
+    source: str
+
+
+def _direct_layout(se_problem: DirectProblem, model, depends, free_names) -> Layout:
+    def to_dict(se):
+        if not depends:
+            return {n: float(s) for n, s in zip(free_names, se, strict=True)}
+        out: dict = {}
+        for p, law, i in se_problem.layout:
+            k = 1 if law == "constant" else 2
+            out[p] = [float(s) for s in se[i : i + k]]
+        if se_problem.tanh:
+            out["angle_friction"] = float(se[-1])
+        return out
+
+    c = se_problem.coefficients_of(model)
+    return Layout(
+        list(se_problem.space.names),
+        se_problem.coefficients_of,
+        to_dict,
+        lambda: se_problem.jacobian(c),
+        "central differences of the simulation output w.r.t. the identified parameters",
+    )
+
+
+def _generic_layout(model, recs, warmup, names, scales=()) -> Layout:
+    entries = entries_of(model, names, scales)
+
+    def simulate(m):
+        return np.concatenate([simulate_model(m, r.t, r.x, r.curve_angle)[warmup:] for r in recs])
+
+    def to_dict(se):
+        params = model.params
+        out: dict = {}
+        for e, s in zip(entries, se, strict=True):
+            if e.scale:
+                v = np.asarray(params[e.key], dtype=float)
+                ref = float(np.max(np.abs(v)))
+                out[e.key] = (np.abs(v) * (float(s) / ref if ref > 0 else 0.0)).tolist()
+            elif e.index is not None:
+                out.setdefault(e.key, [0.0] * len(params[e.key]))[e.index] = float(s)
+            else:
+                out[e.key] = float(s)
+        return out
+
+    return Layout(
+        [e.label for e in entries],
+        lambda m: vector_of(m, entries),
+        to_dict,
+        lambda: fd_jacobian(simulate, model, entries),
+        "central differences of the simulation output w.r.t. the model's parameters",
+    )
+
+
+def _entries_names(cls, model, chain_free=None):
+    """(names, scales) of the generic layouts: PI, GPI and Chain."""
+    if chain_free is not None:
+        return [f"first.{n}" for n in chain_free] + ["second.coefficients"], []
+    if cls is PrandtlIshlinskii:
+        return ["weights"], ["thresholds"]
+    # GPI: rising_a is held at 1 (the weights carry the scale)
+    names = [
+        "rising_b",
+        "rising_c",
+        "rising_d",
+        "falling_a",
+        "falling_b",
+        "falling_c",
+        "falling_d",
+        "weights",
+    ]
+    return names, ["thresholds"]
+
+
+def assess(
+    *,
+    cls,
+    model,
+    problem,
+    recs,
+    warmup: int,
+    values: dict,
+    free_names: list[str],
+    all_bounds: dict,
+    spec,
+    options: dict,
+    depends: dict,
+    workers: int,
+    sse: float,
+    n_fit: int,
+    u_best: np.ndarray,
+    use_separable: bool,
+    method: str = "linearised",
+    count: int = BOOTSTRAP_DEFAULT,
+    block: int | None = None,
+    seed: int | None = 0,
+    angle: SingleAngle | None = None,
+    chain_free: list[str] | None = None,
+) -> dict[str, Any]:
+    """Standard errors, diagnostics, groups and the bootstrap record of a fitted model."""
+    notes: list[str] = []
+    # -- layout of the identified quantities
+    if chain_free is not None or cls in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii):
+        names, scales = _entries_names(cls, model, chain_free)
+        layout = _generic_layout(model, recs, warmup, names, scales)
+    else:
+        if isinstance(problem, DirectProblem):
+            se_problem = problem
+        else:
+            se_problem = DirectProblem(
+                cls,
+                recs,
+                warmup,
+                {**values, **model.params},
+                free_names,
+                all_bounds,
+                spec.log_names,
+                options,
+                None,
+                workers,
+            )
+        layout = _direct_layout(se_problem, model, depends, free_names)
+
+    try:
+        J = layout.jacobian()
+    except ValueError as exc:  # pragma: no cover - defensive
+        J = None
+        notes.append(f"no Jacobian ({exc})")
+
+    # -- bounds actually enforced: the searched coordinates and the solved linear ones
+    space = problem.space
+    best = space.natural(u_best) if space.lower.size else np.zeros(0)
+    lo_nat, hi_nat = space.natural(space.lower), space.natural(space.upper)
+    bvalues = {n: float(v) for n, v in zip(space.names, best, strict=True)}
+    bbounds = {n: (float(a), float(b)) for n, a, b in zip(space.names, lo_nat, hi_nat, strict=True)}
+    brefs: dict[str, float] = {}
+    if use_separable and hasattr(problem, "linear") and chain_free is None:
+        theta, _ = problem.linear(u_best if not space.lower.size else best)
+        lo, hi = problem.lin_lo, problem.lin_hi
+        if cls is PrandtlIshlinskii:
+            lin_names = [f"sum(weights[:{j + 1}])" for j in range(theta.size)]
+        elif cls is GeneralizedPrandtlIshlinskii:
+            lin_names = [f"weights[{j}]" for j in range(theta.size - 1)] + ["offset"]
+        else:
+            lin_names = _LINEAR_NAMES.get(cls.__name__, [f"linear[{j}]" for j in range(theta.size)])
+        ref = float(np.max(np.abs(theta))) if theta.size else 0.0
+        for n, v, a, b in zip(lin_names, theta, lo, hi, strict=False):
+            bvalues[n] = float(v)
+            bbounds[n] = (float(a), float(b))
+            brefs[n] = ref
+
+    # parameters held at an active one-sided constraint (e.g. a weight at 0) are not free at
+    # the optimum: they are left out of the linearised covariance and the conditioning
+    active = set()
+    for n, (a, b) in bbounds.items():
+        if np.isfinite(a) == np.isfinite(b):
+            continue
+        if bound_side(bvalues[n], a, b, ref=brefs.get(n, 0.0)) is not None:
+            label = n.split(" ")[0]
+            if label in layout.names:
+                active.add(label)
+    keep = [i for i, n in enumerate(layout.names) if n not in active]
+    if active:
+        notes.append(
+            f"{', '.join(sorted(active))} at an active constraint: left out of the linearised "
+            "covariance and the conditioning (standard error NaN there; "
+            'standard_errors="bootstrap" gives one)'
+        )
+    J_keep = J[:, keep] if J is not None else None
+    names_keep = [layout.names[i] for i in keep]
+
+    # -- groups (CurveAngleModel at one angle)
+    group_fn = None
+    if angle is not None:
+        group_fn = lambda m: curve_angle_groups(m, angle.angle)  # noqa: E731
+        if angle.friction_held:
+            notes.append(
+                f"!single curve angle ({angle.angle:.4g} rad): friction cannot be separated "
+                f"from the stiffness (EA) there; friction held at {angle.friction:g} and the "
+                "identifiable groups reported in fit.groups (backlash_half_width, load_offset"
+                + (", gain" if _gain_free(free_names) else "")
+                + "); the stiffness and load values are only meaningful with that friction"
+            )
+
+    # -- standard errors
+    extra: dict[str, Any] = {"method": method}
+    c_hat = layout.vector(model)
+    g_hat = group_fn(model) if group_fn else {}
+    g_se: dict[str, float] = {}
+    if method == "none":
+        se = np.full(len(layout.names), np.nan)
+        g_se = {k: float("nan") for k in g_hat}
+    elif method == "linearised":
+        se = np.full(len(layout.names), np.nan)
+        if J is not None:
+            se[keep] = linearised_se(J_keep, sse, n_fit)
+        if group_fn and J is not None:
+            g_se = _delta_group_se(layout, model, group_fn, J, sse, n_fit, free_names)
+    else:
+
+        def refit(p2):
+            try:
+                u = _local_refit(p2, space, u_best, use_separable)
+                m = p2.model(space.natural(u))
+            except (ValueError, np.linalg.LinAlgError):
+                return None
+            vec = layout.vector(m)
+            if group_fn:
+                vec = np.r_[vec, list(group_fn(m).values())]
+            return vec
+
+        if method == "bootstrap":
+            y_hat, resid, segments = _residuals(model, recs, warmup)
+            b = int(block) if block else block_length(resid)
+            extra["block"] = b
+
+            def draw(rng):
+                y_star = y_hat + moving_block_resample(resid, segments, b, rng)
+                return refit(_with_fitted_output(problem, y_star))
+        else:
+            if len(recs) < 2:
+                raise ValueError(
+                    'standard_errors="bootstrap-recordings" needs several recordings '
+                    f'(got {len(recs)}); use "bootstrap" (residual blocks)'
+                )
+
+            def draw(rng):
+                idx = rng.integers(0, len(recs), size=len(recs))
+                return refit(_with_recordings(problem, [recs[i] for i in idx], warmup))
+
+        boot = bootstrap(draw, count, seed)
+        k = len(layout.names)
+        se = boot["se"][:k]
+        g_se = {n: float(s) for n, s in zip(g_hat, boot["se"][k:], strict=True)}
+        extra.update(
+            resamples=int(count),
+            failed=int(boot["failed"]),
+            seed=seed,
+            names=[*layout.names, *g_hat],
+            samples=boot["samples"],
+        )
+
+    diag = Diagnostics.from_jacobian(
+        J_keep,
+        names_keep,
+        values=bvalues,
+        bounds=bbounds,
+        refs=brefs,
+        source=layout.source,
+        notes=notes,
+    )
+    groups = {}
+    for name, v in g_hat.items():
+        identified = name != "gain" or _gain_free(free_names)
+        groups[name] = {
+            "value": v,
+            "se": g_se.get(name) if identified else None,
+            "unit": _GROUP_UNITS[name],
+            "curve_angle": angle.angle,
+            "identified": identified,
+        }
+    return {
+        "standard_errors": layout.to_dict(se),
+        "diagnostics": diag,
+        "groups": groups,
+        "se_method": extra,
+        "estimate": c_hat,
+    }
+
+
+REFIT_NFEV = 30  # least-squares iterations of a bootstrap re-fit (it starts at the estimate)
+
+
+def _local_refit(problem, space, u0, use_separable) -> np.ndarray:
+    """Least squares on a resample's simulation error from the estimate ``u0`` (a bounded
+    trust-region run like the fit's own refinement, with a smaller budget: it starts at the
+    optimum of the original data, a few iterations away from the resample's)."""
+    from scipy.optimize import least_squares
+
+    span = space.upper - space.lower
+    u0 = np.clip(u0, space.lower + 1e-9 * span, space.upper - 1e-9 * span)
+    if use_separable:
+
+        def fun(u):
+            return problem.residual(space.natural(u))
+    else:
+
+        def fun(u):
+            return problem.residuals(space.natural(u)[None, :])[0]
+
+    res = least_squares(
+        fun,
+        u0,
+        jac="2-point",
+        bounds=(space.lower, space.upper),
+        method="trf",
+        x_scale="jac",
+        max_nfev=REFIT_NFEV,
+        ftol=1e-10,
+        xtol=1e-10,
+    )
+    return res.x
+
+
+def _gain_free(free_names) -> bool:
+    return bool(set(free_names) & (_GAIN_NAMES - {"stiffness"}))
+
+
+def _delta_group_se(layout, model, group_fn, J, sse, n_fit, free_names) -> dict[str, float]:
+    """Linearised standard errors of the groups: G cov G' with G = d group / d estimate."""
+    k = J.shape[1]
+    cov = covariance(J, sse, n_fit)
+    g0 = group_fn(model)
+    entries = [Entry(n, n) for n in free_names]
+    v0 = vector_of(model, entries)
+    G = np.zeros((len(g0), k))
+    for i in range(k):
+        h = 1e-6 * max(abs(v0[i]), 1e-9)
+        up = v0.copy()
+        up[i] += h
+        down = v0.copy()
+        down[i] -= h
+        try:
+            gu = group_fn(with_vector(model, entries, up))
+            gd = group_fn(with_vector(model, entries, down))
+        except ValueError:
+            continue
+        G[:, i] = [(gu[n] - gd[n]) / (2 * h) for n in g0]
+    var = np.einsum("ik,kl,il->i", G, cov, G)
+    return {n: float(np.sqrt(max(v, 0.0))) for n, v in zip(g0, var, strict=True)}
+
+
+def _with_fitted_output(problem, y_star: np.ndarray):
+    """A shallow copy of ``problem`` whose measured output (fitted samples) is ``y_star``."""
+    p = copy.copy(problem)
+    if isinstance(problem, ChainProblem):  # y holds the fitted samples only
+        p.y = np.asarray(y_star, dtype=float)
+        return p
+    y = np.array(problem.y, dtype=float)
+    y[problem.mask] = y_star
+    p.y = y
+    return p
+
+
+def _with_recordings(problem, recs, warmup: int):
+    """A shallow copy of ``problem`` over other recordings (same parameters and bounds)."""
+    if isinstance(problem, ChainProblem):
+        p = copy.copy(problem)
+        p.inner = _with_recordings(problem.inner, recs, warmup)
+        p.y = p.inner.y[p.inner.mask]
+        return p
+    p = copy.copy(problem)
+    p.recs = recs
+    p.rs = recording_set(recs, warmup, getattr(problem, "with_angle", False))
+    p.y = np.concatenate([r.y for r in recs])
+    p.mask = fitted_mask(recs, warmup)
+    if hasattr(p, "angles"):
+        p.angles = None
+    return p
+
+
+def _residuals(model, recs, warmup):
+    """Fitted predictions, residuals and per-recording fitted lengths."""
+    y_hat = np.concatenate([simulate_model(model, r.t, r.x, r.curve_angle)[warmup:] for r in recs])
+    y = np.concatenate([r.y[warmup:] for r in recs])
+    return y_hat, y - y_hat, [r.n - warmup for r in recs]
