@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -9,6 +10,8 @@ import typer
 from rich.console import Console
 from rich.table import Table
 from typer.core import TyperCommand
+
+from .identify.diagnostics import IdentifiabilityWarning
 
 app = typer.Typer(
     help="Model, identify and compensate tendon-sheath mechanisms.",
@@ -58,12 +61,20 @@ def demo(
         def tick(message: str) -> None:
             bar.update(task, description=message, advance=1)
 
-        try:
-            written = run_demo(
-                out, scale=scale, scenarios=scenario or None, progress=tick, seed=seed
-            )
-        except ValueError as exc:
-            _fail(str(exc))
+        # the calibrations' identifiability warnings are part of the result (the report's
+        # honesty panel lists the parameters at bounds): collected, then printed once each
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", IdentifiabilityWarning)
+            try:
+                written = run_demo(
+                    out, scale=scale, scenarios=scenario or None, progress=tick, seed=seed
+                )
+            except ValueError as exc:
+                _fail(str(exc))
+    for message in dict.fromkeys(
+        str(w.message) for w in caught if issubclass(w.category, IdentifiabilityWarning)
+    ):
+        console.print(f"[yellow]calibration: {message}[/yellow]")
     data = written["data"]
     for name, comps in data["scenarios"].items():
         table = Table(title=f"{name} ({written['timings'][name]:.1f} s)")
