@@ -31,7 +31,6 @@ CHAIN_HELD = {
 }
 # bounds of the first model's relative slopes (the scale is in the polynomial)
 _RELATIVE = {"c_l": (0.2, 5.0)}
-_PENALTY = 1e100
 
 
 class ChainProblem:
@@ -165,7 +164,7 @@ def identify_chain(
     bootstrap_block=None,
 ) -> Fit:
     """Identify a Chain (see the module docstring); returns a :class:`Fit`."""
-    from .core import _refine, global_search
+    from .core import search_and_refine
     from .dynamic import identify_dynamic, is_dynamic_chain
     from .uncertainty import assess
 
@@ -191,7 +190,7 @@ def identify_chain(
     counter = {"evaluations": 0}
 
     start = time.perf_counter()
-    res = global_search(
+    u_best, res, message = search_and_refine(
         problem,
         space,
         counter,
@@ -201,14 +200,8 @@ def identify_chain(
         popsize=popsize,
         tol=tol,
         seed=seed,
+        polish=polish,
     )
-    if not np.isfinite(res.fun) or res.fun >= _PENALTY:
-        raise ValueError("identification failed: no candidate gives a finite simulation")
-    u_best = res.x
-    message = f"differential evolution: {res.message}"
-    if polish and space.lower.size:
-        u_best, msg = _refine(problem, space, u_best, counter, True)
-        message += f"; least squares: {msg}"
     model = problem.model(space.natural(u_best))
     seconds = time.perf_counter() - start
     predictions = [simulate_model(model, r.t, r.x) for r in recs]

@@ -521,6 +521,33 @@ def identify(
     return fit
 
 
+def search_and_refine(
+    problem, space, counter, label, progress, *, maxiter, popsize, tol, seed, polish
+):
+    """Global search then least-squares refinement of a separable problem (chains): returns
+    (the best search coordinates, the DE result, a message). Raises when no candidate gives a
+    finite simulation."""
+    res = global_search(
+        problem,
+        space,
+        counter,
+        label,
+        progress,
+        maxiter=maxiter,
+        popsize=popsize,
+        tol=tol,
+        seed=seed,
+    )
+    if not np.isfinite(res.fun) or res.fun >= _PENALTY:
+        raise ValueError("identification failed: no candidate gives a finite simulation")
+    u_best = res.x
+    message = f"differential evolution: {res.message}"
+    if polish and space.lower.size:
+        u_best, msg = _refine(problem, space, u_best, counter, True)
+        message += f"; least squares: {msg}"
+    return u_best, res, message
+
+
 def _refine(problem, space, u0, counter, use_separable):
     """least_squares on the simulation error, from the best candidate of the global search."""
     span = space.upper - space.lower

@@ -180,7 +180,7 @@ def identify_dynamic(
     progress=True,
 ) -> Fit:
     """Identify a Hammerstein or Wiener chain (see the module docstring)."""
-    from .core import _refine, global_search
+    from .core import search_and_refine
 
     n_workers = 0 if workers is None else int(workers)
     for i, r in enumerate(recs):
@@ -193,7 +193,7 @@ def identify_dynamic(
     kind = "Hammerstein" if problem.hammerstein else "Wiener"
     label = f"identify {kind} ({problem.static_cls.__name__}, {problem.block_cls.__name__})"
     start = time.perf_counter()
-    res = global_search(
+    u_best, res, message = search_and_refine(
         problem,
         space,
         counter,
@@ -203,14 +203,8 @@ def identify_dynamic(
         popsize=popsize,
         tol=tol,
         seed=seed,
+        polish=polish,
     )
-    if not np.isfinite(res.fun) or res.fun >= _PENALTY:
-        raise ValueError("identification failed: no candidate gives a finite simulation")
-    u_best = res.x
-    message = f"differential evolution: {res.message}"
-    if polish and space.lower.size:
-        u_best, msg = _refine(problem, space, u_best, counter, True)
-        message += f"; least squares: {msg}"
     model = problem.model(space.natural(u_best))
     if problem.pool is not None:
         problem.pool.shutdown()
