@@ -1,0 +1,148 @@
+// The real-time contract, counted: after construction and a warm-up, step() of every
+// real-time class (and the streaming shape updates) allocates nothing. The global
+// operator new is replaced to count allocations while a counter is armed.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+#include <tendonsheath/tendonsheath.hpp>
+#include <vector>
+
+namespace {
+std::atomic<bool> armed{false};
+std::atomic<long> allocations{0};
+}  // namespace
+
+// The replacement pair is new -> malloc, delete -> free; GCC's -Wmismatched-new-delete
+// cannot see that they match once inlined.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
+
+void* operator new(std::size_t n) {
+  if (armed.load(std::memory_order_relaxed)) allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace ts = tendonsheath;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+// Allocations made by f() (run twice, so lazily sized state is sized by the first run).
+template <class F>
+long allocations_in(F&& f) {
+  f();
+  allocations = 0;
+  armed = true;
+  f();
+  armed = false;
+  return allocations.load();
+}
+
+// A demanding input: sines of two rates, reversals, a shock, a NaN and an extreme value.
+double input(int k) {
+  const double t = k * 1e-3;
+  double u = 0.5 * std::sin(2 * kPi * 0.7 * t) + 0.1 * std::sin(2 * kPi * 5.0 * t);
+  if (k == 300) u = NAN;
+  if (k == 400) u = 1e12;
+  return u;
+}
+}  // namespace
+
+TEST(NoAllocation, PlantsMotorAndSensorStep) {
+  ts::PullPullParams p;
+  p.elements = 40;
+  p.sheath_viscosity = 8.0;
+  p.relaxation_fraction = 0.08;
+  p.distal_inertia = 2e-5;
+  p.distal_damping = 2e-3;
+  ts::PullPullPlant pair(p, ts::Route::uniform(1.2, kPi));
+  ts::ContinuumParams c;
+  c.elements = 30;
+  ts::ContinuumPlant continuum(c, ts::Route::uniform(1.0, kPi));
+  ts::SingleTendonParams s;
+  s.elements = 30;
+  ts::SingleTendonPlant single(s, ts::Route::uniform(1.0, 2.0));
+  ts::MotorParams mp;
+  mp.reflected_inertia = 1e-4;
+  mp.coulomb_friction = 0.01;
+  mp.gear_backlash = 0.01;
+  ts::Motor motor(mp);
+  ts::Sensor sensor(ts::SensorParams{1e-4, 2e-4, 3});
+  std::vector<double> angles(pair.n_node_angles(), 0.05);
+  const long n = allocations_in([&] {
+    for (int k = 0; k < 1000; ++k) {
+      if (k % 250 == 0) {
+        for (double& a : angles) a = 0.02 + 0.0005 * (k / 250);
+        pair.set_node_angles(angles.data());  // a route change in the loop
+      }
+      const double q = motor.step(input(k), 1e-3, pair.drive_reaction());
+      sensor.measure(pair.step(q, 1e-3));
+      continuum.step(input(k), 1e-3);
+      single.step(1e-3 * input(k), 1e-3);
+      (void)pair.status();
+    }
+  });
+  EXPECT_EQ(n, 0);
+}
+
+TEST(NoAllocation, ModelsStep) {
+  ts::Backlash backlash(ts::BacklashParams{});
+  ts::BoucWenBacklash bwb(ts::BoucWenBacklashParams{});
+  ts::BoucWen bw(ts::BoucWenParams{});
+  ts::HystereticOscillator osc(ts::HystereticOscillatorParams{});
+  ts::PrandtlIshlinskii pi(ts::PrandtlIshlinskiiParams{{0.0, 0.1, 0.2}, {0.5, 0.3, 0.2}});
+  ts::PrandtlIshlinskiiInverse pi_inv(ts::PrandtlIshlinskiiParams{{0.0, 0.1, 0.2}, {0.5, 0.3, 0.2}});
+  ts::GeneralizedPrandtlIshlinskii gpi(ts::GeneralizedPrandtlIshlinskiiParams{});
+  ts::GeneralizedPrandtlIshlinskiiInverse gpi_inv(ts::GeneralizedPrandtlIshlinskiiParams{});
+  ts::CurveAngleModel curve(ts::CurveAngleParams{});
+  const long n = allocations_in([&] {
+    for (int k = 0; k < 1000; ++k) {
+      const double x = input(k);
+      backlash.step(x);
+      bwb.step(x, 1e-3);
+      bw.step(x, 1e-3);
+      osc.step(x, 1e-3);
+      pi.step(x);
+      pi_inv.step(x);
+      gpi.step(x);
+      gpi_inv.step(0.5 * x);
+      curve.step(x, 1e-3, 1.0 + 0.001 * k);
+    }
+  });
+  EXPECT_EQ(n, 0);
+}
+
+TEST(NoAllocation, CompensatorsStep) {
+  ts::BacklashInverseFeedforward inverse(ts::BacklashInverseParams{});
+  ts::CurveAngleFeedforward curve(ts::CurveAngleFeedforwardParams{});
+  ts::ContinuumFeedforward continuum(ts::ContinuumFeedforwardParams{});
+  ts::AdaptiveController adaptive(ts::AdaptiveControllerParams{});
+  const long n = allocations_in([&] {
+    for (int k = 0; k < 1000; ++k) {
+      const double y = input(k);
+      if (k % 100 == 0) curve.set_curve_angle(0.5 + 0.01 * k);
+      inverse.step(y, 1e-3);
+      curve.step(y, 1e-3);
+      continuum.step(y, 1e-3);
+      adaptive.step(y, k % 200 == 0 ? NAN : 0.9 * y, 0.8 * y, 1e-3);
+    }
+  });
+  EXPECT_EQ(n, 0);
+}
+
+// The counter itself works: a vector's growth is counted (this test must be able to fail).
+TEST(NoAllocation, TheCounterCounts) {
+  std::vector<double> v;
+  allocations = 0;
+  armed = true;
+  v.resize(1000);
+  armed = false;
+  EXPECT_GE(allocations.load(), 1);
+}
