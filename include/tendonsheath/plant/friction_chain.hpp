@@ -504,8 +504,7 @@ class FrictionChain {
       if (it > 0 && solved && opt_.fast_path && march(xt, inv_dt) > 0) {
         solve(xt, inv_dt);  // one full solve for all the front flips
         ++last_solves_;
-        compute_tensions(w_.data());
-        if (violations() == 0) return solution_finite();
+        if (tensions_and_violations() == 0) return solution_finite();
       }
       flip_violations();
       fact_valid_ = false;
@@ -714,14 +713,6 @@ class FrictionChain {
     return flips;
   }
 
-  // Nodes whose solution violates the stick/slip map: a branch-free counting pass (the
-  // common case: none); flip_violations() flips them. Only sheath nodes have h_ > 0.
-  int violations() const noexcept {
-    int viol = 0;
-    for (std::size_t j = 0; j <= M_; ++j) viol += violates(j) ? 1 : 0;
-    return viol;
-  }
-
   // Comparisons with NaN are false, so a NaN solution has no violations: it must not
   // count as converged (nor be committed).
   bool solution_finite() const noexcept {
@@ -730,7 +721,9 @@ class FrictionChain {
     return sum == 0.0;
   }
 
-  // compute_tensions(w_) and violations() in one pass.
+  // The tensions of w_ (into T_) and the number of nodes whose solution violates the
+  // stick/slip map, in one branch-free pass (the common case: none; flip_violations() flips
+  // them). Only sheath nodes have h_ > 0.
   int tensions_and_violations() noexcept {
     T_[0] = 0.0;
     T_[M_ + 1] = 0.0;
