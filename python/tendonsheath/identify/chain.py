@@ -18,7 +18,7 @@ import numpy as np
 
 from ..models import Backlash, BoucWen, BoucWenBacklash, Chain, HystereticOscillator, Polynomial
 from .data import check_for_fit
-from .fit import Fit, metrics, simulate_model
+from .fit import Fit, fit_quality, simulate_model
 from .problem import DirectProblem
 from .specs import SPECS, Scale
 
@@ -205,9 +205,7 @@ def identify_chain(
     model = problem.model(space.natural(u_best))
     seconds = time.perf_counter() - start
     predictions = [simulate_model(model, r.t, r.x) for r in recs]
-    y_fit = np.concatenate([r.y[warmup:] for r in recs])
-    y_hat = np.concatenate([p[warmup:] for p in predictions])
-    overall = metrics(y_fit, y_hat)
+    quality = fit_quality(recs, predictions, warmup)
     assessed = assess(
         cls=Chain,
         model=model,
@@ -221,8 +219,8 @@ def identify_chain(
         options={},
         depends={},
         workers=n_workers,
-        sse=float(np.sum((y_fit - y_hat) ** 2)),
-        n_fit=y_fit.size,
+        sse=quality.sse,
+        n_fit=quality.n,
         u_best=u_best,
         use_separable=True,
         method=standard_errors,
@@ -233,22 +231,20 @@ def identify_chain(
     )
     fit = Fit(
         model=model,
-        rmse=overall["rmse"],
-        nrmse=overall["nrmse"],
-        fit_percent=overall["fit_percent"],
+        rmse=quality.overall["rmse"],
+        nrmse=quality.overall["nrmse"],
+        fit_percent=quality.overall["fit_percent"],
         standard_errors=assessed["standard_errors"],
         identified=[f"first.{n}" for n in problem.free] + ["second.coefficients"],
         fixed={f"first.{k}": v for k, v in problem.held.items()},
-        per_recording=[
-            metrics(r.y[warmup:], p[warmup:]) for r, p in zip(recs, predictions, strict=True)
-        ],
+        per_recording=quality.per_recording,
         evaluations=counter["evaluations"],
         seconds=seconds,
         generations=int(res.nit),
         method="differential evolution + least squares (chain: polynomial solved)",
         message=message,
         warmup=warmup,
-        n_samples=int(y_fit.size),
+        n_samples=quality.n,
         bounds={f"first.{k}": v for k, v in problem.bounds.items()},
         recordings=recs,
         predictions=predictions,

@@ -17,7 +17,7 @@ from ..models import (
 )
 from ..models.base import _REGISTRY
 from .data import check_for_fit, make_recordings, search_windows
-from .fit import Fit, metrics, simulate_model
+from .fit import Fit, fit_quality, simulate_model
 from .problem import DirectProblem, SeparableProblem, law_check
 from .specs import SPECS, GeneralizedPrandtlIshlinskiiSpec, PrandtlIshlinskiiSpec, Scale
 
@@ -463,13 +463,7 @@ def identify(
     seconds = time.perf_counter() - start
 
     predictions = [simulate_model(model, r.t, r.x, r.curve_angle) for r in recs]
-    y_fit = np.concatenate([r.y[warmup:] for r in recs])
-    y_hat = np.concatenate([p[warmup:] for p in predictions])
-    overall = metrics(y_fit, y_hat)
-    per_recording = [
-        metrics(r.y[warmup:], p[warmup:]) for r, p in zip(recs, predictions, strict=True)
-    ]
-    sse = float(np.sum((y_fit - y_hat) ** 2))
+    quality = fit_quality(recs, predictions, warmup)
 
     assessed = assess(
         cls=cls,
@@ -484,8 +478,8 @@ def identify(
         options=options,
         depends=depends,
         workers=n_workers,
-        sse=sse,
-        n_fit=y_fit.size,
+        sse=quality.sse,
+        n_fit=quality.n,
         u_best=u_best,
         use_separable=use_separable,
         method=se_method,
@@ -496,20 +490,20 @@ def identify(
     )
     fit = Fit(
         model=model,
-        rmse=overall["rmse"],
-        nrmse=overall["nrmse"],
-        fit_percent=overall["fit_percent"],
+        rmse=quality.overall["rmse"],
+        nrmse=quality.overall["nrmse"],
+        fit_percent=quality.overall["fit_percent"],
         standard_errors=assessed["standard_errors"],
         identified=list(free_names),
         fixed=held,
-        per_recording=per_recording,
+        per_recording=quality.per_recording,
         evaluations=counter["evaluations"],
         seconds=seconds,
         generations=int(res.nit),
         method=method,
         message=message,
         warmup=warmup,
-        n_samples=int(y_fit.size),
+        n_samples=quality.n,
         bounds={n: (float(a), float(b)) for n, (a, b) in all_bounds.items() if n in free_names},
         recordings=recs,
         predictions=predictions,

@@ -25,7 +25,7 @@ from .. import _core as core
 from ..models import BoucWenBacklash, Chain, LinearBlock, PrandtlIshlinskii, SecondOrderLag
 from ..models.linear_block import apply_filter, sample_time
 from .data import Recording, check_for_fit, fitted_mask, recording_set
-from .fit import Fit, metrics, simulate_model
+from .fit import Fit, fit_quality, simulate_model
 from .problem import Space, _base_struct, bounded_lsq
 from .specs import BoucWenBacklashSpec, PrandtlIshlinskiiSpec, Scale
 
@@ -210,23 +210,19 @@ def identify_dynamic(
         problem.pool.shutdown()
     seconds = time.perf_counter() - start
     predictions = [simulate_model(model, r.t, r.x) for r in recs]
-    y_fit = np.concatenate([r.y[warmup:] for r in recs])
-    y_hat = np.concatenate([p[warmup:] for p in predictions])
-    overall = metrics(y_fit, y_hat)
+    quality = fit_quality(recs, predictions, warmup)
     part = "first" if problem.hammerstein else "second"
     other = "second" if problem.hammerstein else "first"
     return Fit(
         model=model,
-        rmse=overall["rmse"],
-        nrmse=overall["nrmse"],
-        fit_percent=overall["fit_percent"],
+        rmse=quality.overall["rmse"],
+        nrmse=quality.overall["nrmse"],
+        fit_percent=quality.overall["fit_percent"],
         standard_errors=_nan_errors(model.params),
         identified=[f"{part}.{n}" for n in problem.static_cls.param_names]
         + [f"{other}.{n}" for n in problem.block_names],
         fixed={},
-        per_recording=[
-            metrics(r.y[warmup:], p[warmup:]) for r, p in zip(recs, predictions, strict=True)
-        ],
+        per_recording=quality.per_recording,
         evaluations=counter["evaluations"],
         seconds=seconds,
         generations=int(res.nit),
@@ -234,7 +230,7 @@ def identify_dynamic(
         "parameters solved)",
         message=message,
         warmup=warmup,
-        n_samples=int(y_fit.size),
+        n_samples=quality.n,
         bounds={
             f"{part if n in problem.spec.search_names else other}.{n}": b
             for n, b in problem.bounds.items()

@@ -31,6 +31,31 @@ def metrics(y, y_hat) -> dict[str, float]:
     }
 
 
+@dataclass(frozen=True)
+class FitQuality:
+    """How predictions match the recordings after each one's warm-up."""
+
+    overall: dict[str, float]  # metrics() over all fitted samples
+    per_recording: list[dict[str, float]]
+    sse: float  # sum of squared errors over all fitted samples
+    n: int  # fitted samples
+
+
+def fit_quality(recs, predictions, warmup: int) -> FitQuality:
+    """Metrics of ``predictions`` (one per recording) against the recordings' outputs, from
+    sample ``warmup`` of each on: over all of them, per recording, the SSE and the count."""
+    y_fit = np.concatenate([r.y[warmup:] for r in recs])
+    y_hat = np.concatenate([p[warmup:] for p in predictions])
+    return FitQuality(
+        overall=metrics(y_fit, y_hat),
+        per_recording=[
+            metrics(r.y[warmup:], p[warmup:]) for r, p in zip(recs, predictions, strict=True)
+        ],
+        sse=float(np.sum((y_fit - y_hat) ** 2)),
+        n=int(y_fit.size),
+    )
+
+
 def simulate_model(model: HysteresisModel, t, x, curve_angle=None) -> np.ndarray:
     """Simulate any model; the curve angle is passed to the models that take one."""
     if getattr(model, "uses_curve_angle", False):

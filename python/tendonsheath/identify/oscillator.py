@@ -31,7 +31,7 @@ from .. import _core as core
 from ..models import HystereticOscillator
 from ..models.hysteretic_oscillator import fft_upsample, is_periodic, uniform_step
 from .data import check_for_fit
-from .fit import Fit, metrics
+from .fit import Fit, fit_quality
 from .problem import DirectProblem
 
 _PENALTY = 1e100
@@ -462,30 +462,24 @@ def identify_oscillator(
     seconds = time.perf_counter() - start
 
     predictions = [model.simulate(r.t, r.x, periodic=p) for r, p in zip(recs, per, strict=True)]
-    y_fit = np.concatenate([r.y[warmup:] for r in recs])
-    y_hat = np.concatenate([p[warmup:] for p in predictions])
-    overall = metrics(y_fit, y_hat)
-    per_recording = [
-        metrics(r.y[warmup:], p[warmup:]) for r, p in zip(recs, predictions, strict=True)
-    ]
-    sse = float(np.sum((y_fit - y_hat) ** 2))
+    quality = fit_quality(recs, predictions, warmup)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         try:
-            se = problem.standard_errors(problem.coefficients_of(model), sse, y_fit.size)
+            se = problem.standard_errors(problem.coefficients_of(model), quality.sse, quality.n)
             ses = {n: float(s) for n, s in zip(free_names, se, strict=True)}
         except ValueError:
             ses = {n: float("nan") for n in free_names}
     model.check_bounded(max(float(np.ptp(r.y)) for r in recs), "the measured displacement")
     return Fit(
         model=model,
-        rmse=overall["rmse"],
-        nrmse=overall["nrmse"],
-        fit_percent=overall["fit_percent"],
+        rmse=quality.overall["rmse"],
+        nrmse=quality.overall["nrmse"],
+        fit_percent=quality.overall["fit_percent"],
         standard_errors=ses,
         identified=list(free_names),
         fixed=held,
-        per_recording=per_recording,
+        per_recording=quality.per_recording,
         evaluations=evaluations,
         seconds=seconds,
         generations=int(res.nit),
@@ -493,7 +487,7 @@ def identify_oscillator(
         f"projection) + simulation-error least squares; input reconstruction {mode}",
         message="; ".join([*notes, f"least squares: {msg}"]),
         warmup=warmup,
-        n_samples=int(y_fit.size),
+        n_samples=quality.n,
         bounds={n: se_bounds[n] for n in free_names},
         recordings=recs,
         predictions=predictions,
