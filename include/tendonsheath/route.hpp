@@ -25,29 +25,22 @@ class Route {
   // 0 to L > 0, theta non-decreasing from 0).
   Route(std::vector<double> s, std::vector<double> theta) : s_(std::move(s)), th_(std::move(theta)) {
     const char* w = "Route";
-    require(s_.size() == th_.size(), w,
-            "s and theta have different lengths (" + std::to_string(s_.size()) + " and " +
-                std::to_string(th_.size()) + ")");
+    require(s_.size() == th_.size(), w, "s and theta have different lengths (", s_.size(), " and ",
+            th_.size(), ")");
     require(s_.size() >= 2, w, "at least two samples are needed");
     for (std::size_t i = 0; i < s_.size(); ++i) {
-      require(std::isfinite(s_[i]), w,
-              "s[" + std::to_string(i) + "] is not finite (" + detail::format_value(s_[i]) + ")");
-      require(std::isfinite(th_[i]), w,
-              "theta[" + std::to_string(i) + "] is not finite (" + detail::format_value(th_[i]) +
-                  ")");
+      require(std::isfinite(s_[i]), w, "s[", i, "] is not finite (", s_[i], ")");
+      require(std::isfinite(th_[i]), w, "theta[", i, "] is not finite (", th_[i], ")");
     }
-    require(s_[0] == 0.0, w, "s must start at 0 (got " + detail::format_value(s_[0]) + ")");
-    require(th_[0] == 0.0, w, "theta must start at 0 (got " + detail::format_value(th_[0]) + ")");
+    require(s_[0] == 0.0, w, "s must start at 0 (got ", s_[0], ")");
+    require(th_[0] == 0.0, w, "theta must start at 0 (got ", th_[0], ")");
     for (std::size_t i = 1; i < s_.size(); ++i) {
-      require(s_[i] >= s_[i - 1], w,
-              "s must be non-decreasing (s[" + std::to_string(i) + "] = " +
-                  detail::format_value(s_[i]) + " < " + detail::format_value(s_[i - 1]) + ")");
-      require(th_[i] >= th_[i - 1], w,
-              "theta must be non-decreasing (theta[" + std::to_string(i) +
-                  "] = " + detail::format_value(th_[i]) + " < " + detail::format_value(th_[i - 1]) +
-                  ")");
+      require(s_[i] >= s_[i - 1], w, "s must be non-decreasing (s[", i, "] = ", s_[i], " < ",
+              s_[i - 1], ")");
+      require(th_[i] >= th_[i - 1], w, "theta must be non-decreasing (theta[", i, "] = ", th_[i],
+              " < ", th_[i - 1], ")");
     }
-    require(s_.back() > 0.0, w, "length must be > 0 (got " + detail::format_value(s_.back()) + ")");
+    require(s_.back() > 0.0, w, "length must be > 0 (got ", s_.back(), ")");
   }
 
   // Constant curvature: theta(s) = total_angle * s / length.
@@ -65,12 +58,9 @@ class Route {
     std::vector<double> s{0.0}, th{0.0};
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       const double len = pieces[i].first, ang = pieces[i].second;
-      require(std::isfinite(len) && len > 0.0, w,
-              "length of piece " + std::to_string(i) + " must be > 0 (got " +
-                  detail::format_value(len) + ")");
-      require(std::isfinite(ang), w,
-              "angle of piece " + std::to_string(i) + " is not finite (" +
-                  detail::format_value(ang) + ")");
+      require(std::isfinite(len) && len > 0.0, w, "length of piece ", i, " must be > 0 (got ", len,
+              ")");
+      require(std::isfinite(ang), w, "angle of piece ", i, " is not finite (", ang, ")");
       s.push_back(s.back() + len);
       th.push_back(th.back() + std::fabs(ang));
     }
@@ -81,19 +71,17 @@ class Route {
   // interior vertex adds its turning angle as a jump of theta at that vertex.
   static Route from_points(const double* xyz, std::size_t k) {
     const char* w = "Route.from_points";
-    require(k >= 2, w, "at least two points are needed (got " + std::to_string(k) + ")");
+    require(k >= 2, w, "at least two points are needed (got ", k, ")");
     for (std::size_t i = 0; i < 3 * k; ++i)
-      require(std::isfinite(xyz[i]), w,
-              "point " + std::to_string(i / 3) + " is not finite (coordinate " +
-                  std::to_string(i % 3) + " = " + detail::format_value(xyz[i]) + ")");
+      require(std::isfinite(xyz[i]), w, "point ", i / 3, " is not finite (coordinate ", i % 3,
+              " = ", xyz[i], ")");
     std::vector<double> s{0.0}, th{0.0};
     double prev[3] = {0, 0, 0};
     for (std::size_t i = 0; i + 1 < k; ++i) {
       const double d[3] = {xyz[3 * (i + 1)] - xyz[3 * i], xyz[3 * (i + 1) + 1] - xyz[3 * i + 1],
                            xyz[3 * (i + 1) + 2] - xyz[3 * i + 2]};
       const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      require(len > 0.0, w,
-              "points " + std::to_string(i) + " and " + std::to_string(i + 1) + " coincide");
+      require(len > 0.0, w, "points ", i, " and ", i + 1, " coincide");
       if (i > 0) {
         const double cx = prev[1] * d[2] - prev[2] * d[1];
         const double cy = prev[2] * d[0] - prev[0] * d[2];
@@ -116,17 +104,12 @@ class Route {
   // start at 0); theta is the trapezoidal integral of |kappa|.
   static Route from_curvature(const double* s, const double* kappa, std::size_t n) {
     const char* w = "Route.from_curvature";
-    require(n >= 2, w, "at least two samples are needed (got " + std::to_string(n) + ")");
+    require(n >= 2, w, "at least two samples are needed (got ", n, ")");
     for (std::size_t i = 0; i < n; ++i) {
-      require(std::isfinite(s[i]), w,
-              "s[" + std::to_string(i) + "] is not finite (" + detail::format_value(s[i]) + ")");
-      require(std::isfinite(kappa[i]), w,
-              "kappa[" + std::to_string(i) + "] is not finite (" + detail::format_value(kappa[i]) +
-                  ")");
+      require(std::isfinite(s[i]), w, "s[", i, "] is not finite (", s[i], ")");
+      require(std::isfinite(kappa[i]), w, "kappa[", i, "] is not finite (", kappa[i], ")");
       if (i > 0)
-        require(s[i] > s[i - 1], w,
-                "s must be strictly increasing (s[" + std::to_string(i) +
-                    "] = " + detail::format_value(s[i]) + ")");
+        require(s[i] > s[i - 1], w, "s must be strictly increasing (s[", i, "] = ", s[i], ")");
     }
     std::vector<double> ss(n), th(n);
     ss[0] = 0.0;

@@ -1,5 +1,9 @@
 // Parameter and input validation. Used only at construction and in batch
 // (non-real-time) entry points; step() never throws.
+//
+// A check costs a comparison when it passes: its message is given as parts (text, numbers)
+// that are formatted only when the check fails (std::to_chars: no locale, no iostreams), so
+// a passing check allocates nothing, e.g. require(n >= 2, where, "n must be >= 2 (got ", n, ")").
 #pragma once
 
 #include <charconv>
@@ -7,6 +11,8 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <type_traits>
 
 namespace tendonsheath {
 
@@ -17,38 +23,53 @@ inline std::string format_value(double v) {
   const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
   return std::string(buf, end);
 }
+
+inline void append_part(std::string& s, std::string_view part) { s.append(part); }
+inline void append_part(std::string& s, char c) { s.push_back(c); }
+inline void append_part(std::string& s, double v) { s.append(format_value(v)); }
+template <class I, std::enable_if_t<std::is_integral_v<I> && !std::is_same_v<I, char>, int> = 0>
+void append_part(std::string& s, I v) {
+  char buf[24];
+  const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
+  s.append(buf, end);
+}
+
+// "<where>: <parts...>", built only here, on failure.
+template <class... Parts>
+[[noreturn]] void fail(std::string_view where, const Parts&... parts) {
+  std::string msg(where);
+  msg.append(": ");
+  (append_part(msg, parts), ...);
+  throw std::invalid_argument(msg);
+}
 }  // namespace detail
 
-// Throws std::invalid_argument with "<where>: <what>" when cond is false.
-inline void require(bool cond, const std::string& where, const std::string& what) {
-  if (!cond) throw std::invalid_argument(where + ": " + what);
+// Throws std::invalid_argument with "<where>: <parts...>" when cond is false; the parts
+// (text, floating-point and integer values) are formatted only then.
+template <class... Parts>
+inline void require(bool cond, std::string_view where, const Parts&... parts) {
+  if (!cond) detail::fail(where, parts...);
 }
 
 inline void require_finite(double v, const char* where, const char* name) {
-  require(std::isfinite(v), where,
-          std::string(name) + " must be finite (got " + detail::format_value(v) + ")");
+  require(std::isfinite(v), where, name, " must be finite (got ", v, ")");
 }
 
 inline void require_positive(double v, const char* where, const char* name) {
-  require(std::isfinite(v) && v > 0.0, where,
-          std::string(name) + " must be > 0 (got " + detail::format_value(v) + ")");
+  require(std::isfinite(v) && v > 0.0, where, name, " must be > 0 (got ", v, ")");
 }
 
 inline void require_non_negative(double v, const char* where, const char* name) {
-  require(std::isfinite(v) && v >= 0.0, where,
-          std::string(name) + " must be >= 0 (got " + detail::format_value(v) + ")");
+  require(std::isfinite(v) && v >= 0.0, where, name, " must be >= 0 (got ", v, ")");
 }
 
 inline void require_at_least(double v, double lo, const char* where, const char* name) {
-  require(std::isfinite(v) && v >= lo, where,
-          std::string(name) + " must be >= " + detail::format_value(lo) + " (got " +
-              detail::format_value(v) + ")");
+  require(std::isfinite(v) && v >= lo, where, name, " must be >= ", lo, " (got ", v, ")");
 }
 
 inline void require_in_range(double v, double lo, double hi, const char* where, const char* name) {
-  require(std::isfinite(v) && v >= lo && v <= hi, where,
-          std::string(name) + " must be in [" + detail::format_value(lo) + ", " +
-              detail::format_value(hi) + "] (got " + detail::format_value(v) + ")");
+  require(std::isfinite(v) && v >= lo && v <= hi, where, name, " must be in [", lo, ", ", hi,
+          "] (got ", v, ")");
 }
 
 // A sampled signal for batch simulation: n >= 1 finite samples, and when a
@@ -60,23 +81,16 @@ inline void check_series(const double* t, const double* x, std::size_t n, const 
   for (std::size_t k = 0; k < n; ++k) finite &= std::isfinite(x[k]);
   if (!finite) {
     for (std::size_t k = 0; k < n; ++k)
-      if (!std::isfinite(x[k]))
-        throw std::invalid_argument(std::string(where) + ": input sample x[" + std::to_string(k) +
-                                    "] is not finite (" + detail::format_value(x[k]) + ")");
+      require(std::isfinite(x[k]), where, "input sample x[", k, "] is not finite (", x[k], ")");
   }
   if (t == nullptr) return;
   bool ordered = std::isfinite(t[0]);
   for (std::size_t k = 1; k < n; ++k) ordered &= (t[k] > t[k - 1]) & std::isfinite(t[k]);
   if (ordered) return;
   for (std::size_t k = 0; k < n; ++k) {
-    if (!std::isfinite(t[k]))
-      throw std::invalid_argument(std::string(where) + ": time t[" + std::to_string(k) +
-                                  "] is not finite (" + detail::format_value(t[k]) + ")");
-    if (k > 0 && !(t[k] > t[k - 1]))
-      throw std::invalid_argument(std::string(where) + ": time is not strictly increasing at t[" +
-                                  std::to_string(k) + "] = " + detail::format_value(t[k]) +
-                                  " <= t[" + std::to_string(k - 1) +
-                                  "] = " + detail::format_value(t[k - 1]));
+    require(std::isfinite(t[k]), where, "time t[", k, "] is not finite (", t[k], ")");
+    require(k == 0 || t[k] > t[k - 1], where, "time is not strictly increasing at t[", k,
+            "] = ", t[k], " <= t[", k - 1, "] = ", k > 0 ? t[k - 1] : 0.0);
   }
 }
 

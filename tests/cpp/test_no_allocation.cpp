@@ -137,6 +137,28 @@ TEST(NoAllocation, CompensatorsStep) {
   EXPECT_EQ(n, 0);
 }
 
+// A route change with a valid route: its validation formats no message when nothing is wrong
+// (validate.hpp builds messages only on failure).
+TEST(NoAllocation, SetRouteWithAValidRoute) {
+  ts::PullPullParams p;
+  p.elements = 100;
+  ts::PullPullPlant pair(p, ts::Route::uniform(1.2, kPi));
+  ts::SingleTendonParams s;
+  s.elements = 50;
+  ts::SingleTendonPlant single(s, ts::Route::uniform(1.2, 2.0));
+  const ts::Route bent = ts::Route::arcs({{0.6, 0.5}, {0.6, 2.0}});
+  const ts::Route straight = ts::Route::uniform(1.2, 0.0);
+  const long n = allocations_in([&] {
+    for (int k = 0; k < 20; ++k) {
+      pair.set_route(k % 2 ? bent : straight, bent);
+      pair.set_route(bent);
+      single.set_route(k % 2 ? straight : bent);
+      pair.step(0.01 * k, 1e-3);
+    }
+  });
+  EXPECT_EQ(n, 0);
+}
+
 // The counter itself works: a vector's growth is counted (this test must be able to fail).
 TEST(NoAllocation, TheCounterCounts) {
   std::vector<double> v;
