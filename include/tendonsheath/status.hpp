@@ -1,5 +1,7 @@
 // What a real-time step did besides returning its value: flags, read with
-// status() right after step() (the plain double-returning step() stays).
+// status() right after step() (the plain double-returning step() stays). Every real-time
+// class has status(): plants, Motor, Sensor (after measure()), every model and inverse,
+// every feedforward and controller. step_with_status() does both in one call.
 #pragma once
 
 namespace tendonsheath {
@@ -21,6 +23,14 @@ constexpr Status& operator|=(Status& a, Status b) noexcept { return a = a | b; }
 // True when every flag of `flag` is set in `s` (has(s, Status::ok) is always true).
 constexpr bool has(Status s, Status flag) noexcept {
   return (static_cast<unsigned>(s) & static_cast<unsigned>(flag)) == static_cast<unsigned>(flag);
+}
+
+// One step that also reports its status (ruckig-style): y = step_with_status(obj, s, x, dt).
+template <class RealTime, class... Args>
+double step_with_status(RealTime& obj, Status& status, Args... args) noexcept {
+  const double y = obj.step(args...);
+  status = obj.status();
+  return y;
 }
 
 }  // namespace tendonsheath

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 
 namespace tendonsheath {
@@ -40,10 +41,8 @@ struct CommandLimits {
 
   void validate(const char* where) const {
     require(!std::isnan(min) && !std::isnan(max) && min < max, where,
-            "command limits need min < max (got min=" + detail::format_value(min) +
-                ", max=" + detail::format_value(max) + ")");
-    require(max_rate > 0.0, where,
-            "max_rate must be > 0 (got " + detail::format_value(max_rate) + ")");
+            "command limits need min < max (got min=", min, ", max=", max, ")");
+    require(max_rate > 0.0, where, "max_rate must be > 0 (got ", max_rate, ")");
   }
 };
 
@@ -55,18 +54,29 @@ class CommandShaper {
   explicit CommandShaper(const CommandLimits& limits) : lim_(limits) {}
   void reset() noexcept { primed_ = false; }
   double apply(double command, double dt) noexcept {
-    if (!std::isfinite(command)) return primed_ ? last_ : clamp(0.0);
+    held_ = !std::isfinite(command);
+    if (held_) {
+      saturated_ = false;
+      return primed_ ? last_ : clamp(0.0);
+    }
     double c = clamp(command);
     if (primed_ && std::isfinite(lim_.max_rate)) {
       const double step = lim_.max_rate * ((dt > 0.0 && std::isfinite(dt)) ? dt : 0.0);
       if (c > last_ + step) c = last_ + step;
       if (c < last_ - step) c = last_ - step;
     }
+    saturated_ = c != command;
     last_ = c;
     primed_ = true;
     return c;
   }
   double last() const noexcept { return last_; }
+  // The last apply(): held_nonfinite_input (command not finite: the last one held),
+  // saturated (the command was cut to the limits or the rate limit).
+  Status status() const noexcept {
+    Status s = held_ ? Status::held_nonfinite_input : Status::ok;
+    return saturated_ ? s | Status::saturated : s;
+  }
   const CommandLimits& limits() const noexcept { return lim_; }
 
  private:
@@ -74,6 +84,7 @@ class CommandShaper {
   CommandLimits lim_{};
   double last_ = 0.0;
   bool primed_ = false;
+  bool held_ = false, saturated_ = false;
 };
 
 }  // namespace tendonsheath

@@ -50,11 +50,9 @@ class ContinuumFeedforward {
     require_non_negative(p.pretension, w, "pretension");
     require_non_negative(p.total_angle, w, "total_angle");
     require(p.total_angle <= max_total_angle(p.gap_factor * p.friction), w,
-            "total_angle must be <= " +
-                detail::format_value(max_total_angle(p.gap_factor * p.friction)) +
-                " rad for gap_factor * friction = " +
-                detail::format_value(p.gap_factor * p.friction) +
-                " (xi * total_angle <= 50; got " + detail::format_value(p.total_angle) + ")");
+            "total_angle must be <= ", max_total_angle(p.gap_factor * p.friction),
+            " rad for gap_factor * friction = ", p.gap_factor * p.friction,
+            " (xi * total_angle <= 50; got ", p.total_angle, ")");
     require_positive(p.bending_stiffness, w, "bending_stiffness");
     require_positive(p.tendon_offset, w, "tendon_offset");
     require_positive(p.backbone_length, w, "backbone_length");
@@ -91,6 +89,10 @@ class ContinuumFeedforward {
     const double rate = rate_.update(theta_d, dt);
     return shaper_.apply(tendon_input(theta_d, std::tanh(rate / p_.v_eps)) / p_.proximal_radius, dt);
   }
+
+  // The last step's status: held_nonfinite_input (y_d not finite) and the command shaper's
+  // (saturated: the command was cut to its limits).
+  Status status() const noexcept { return shaper_.status(); }
 
   // Pulling force of the bent segment (Li & Rahn): F = kappa EI / r_t.
   double bending_force(double theta_d) const noexcept {

@@ -49,10 +49,9 @@ class CurveAngleFeedforward {
     require_positive(p.proximal_radius, w, "proximal_radius");
     require_positive(p.distal_radius, w, "distal_radius");
     require_non_negative(p.total_angle, w, "total_angle");
-    require(p.total_angle <= max_total_angle(p.friction), w,
-            "total_angle must be <= " + detail::format_value(max_total_angle(p.friction)) +
-                " rad for friction " + detail::format_value(p.friction) +
-                " (friction * total_angle <= 50; got " + detail::format_value(p.total_angle) + ")");
+    require(p.total_angle <= max_total_angle(p.friction), w, "total_angle must be <= ",
+            max_total_angle(p.friction), " rad for friction ", p.friction,
+            " (friction * total_angle <= 50; got ", p.total_angle, ")");
     require_positive(p.v_eps, w, "v_eps");
     require(p.max_correction_rate > 0.0, w, "max_correction_rate must be > 0");
     p.limits.validate(w);
@@ -97,9 +96,9 @@ class CurveAngleFeedforward {
   }
 
   // The last step's status: held (non-finite y_d), input_clamped (the curve angle in force
-  // was clamped to max_total_angle).
+  // was clamped to max_total_angle), saturated (the command was cut to its limits).
   Status status() const noexcept {
-    Status s = Status::ok;
+    Status s = shaper_.status();
     if (held_) s |= Status::held_nonfinite_input;
     if (angle_clamped_) s |= Status::input_clamped;
     return s;

@@ -57,6 +57,9 @@ class BacklashInverseFeedforward {
     if (!std::isfinite(y_d_rate)) y_d_rate = 0.0;
     return shaper_.apply(inverse(y_d, smooth_direction(y_d_rate, p_.v_eps)), dt);
   }
+  // The last step's status: held_nonfinite_input (y_d not finite) and the command shaper's
+  // (saturated: the command was cut to its limits).
+  Status status() const noexcept { return shaper_.status(); }
 
   double inverse(double y_d, double phi) const noexcept {
     return (y_d + phi * p_.c_r * p_.B_r - (1.0 - phi) * p_.c_l * p_.B_l) /
@@ -73,13 +76,15 @@ class PrandtlIshlinskiiFeedforward {
  public:
   PrandtlIshlinskiiFeedforward(const PrandtlIshlinskiiParams& p, const CommandLimits& limits)
       : inverse_(p), shaper_(limits) {
-    limits.validate("BacklashInverseFeedforward");
+    limits.validate("PrandtlIshlinskiiFeedforward");
   }
   void reset() noexcept {
     inverse_.reset();
     shaper_.reset();
   }
   double step(double y_d, double dt) noexcept { return shaper_.apply(inverse_.step(y_d), dt); }
+  // The inverse's status (held, input_clamped) and the shaper's (saturated).
+  Status status() const noexcept { return inverse_.status() | shaper_.status(); }
 
  private:
   PrandtlIshlinskiiInverse inverse_;

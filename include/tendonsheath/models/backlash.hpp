@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 
 namespace tendonsheath {
@@ -52,7 +53,8 @@ class Backlash {
 
   // The first call after reset() starts in the middle of the band at x.
   double step(double x, double /*dt*/ = 0.0) noexcept {
-    if (!std::isfinite(x)) return initialised_ ? y_ : 0.0;
+    held_ = !std::isfinite(x);
+    if (held_) return initialised_ ? y_ : 0.0;
     const double right = p_.c_r * (x - p_.B_r);
     const double left = p_.c_l * (x + p_.B_l);
     if (!initialised_) {
@@ -69,6 +71,8 @@ class Backlash {
   }
 
   double output() const noexcept { return y_; }
+  // The last step's status: held_nonfinite_input when its input was not finite.
+  Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
 
   // Put the model in a given state (for inverses and identification).
   void set_state(double x, double y) noexcept {
@@ -84,6 +88,7 @@ class Backlash {
   double x_ = 0.0;
   double y_ = 0.0;
   bool initialised_ = false;
+  bool held_ = false;
 };
 
 }  // namespace tendonsheath

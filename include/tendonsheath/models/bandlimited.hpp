@@ -48,8 +48,7 @@ class SincKernel {
   SincKernel() = default;
   explicit SincKernel(int half_width) : L_(half_width) {
     require(half_width >= 1 && half_width <= kMaxHalfWidth, "SincKernel",
-            "the look-ahead (half-width) must be in [1, 64] samples (got " +
-                std::to_string(half_width) + ")");
+            "the look-ahead (half-width) must be in [1, 64] samples (got ", half_width, ")");
     beta_ = 0.6 * L_ + 2.5;
     const int n = L_ * kPhases + 1;
     table_.resize(static_cast<std::size_t>(n) + 1, 0.0);

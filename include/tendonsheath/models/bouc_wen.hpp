@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 #include "bouc_wen_backlash.hpp"
 #include "power.hpp"
@@ -45,8 +46,8 @@ class BoucWen {
     require_positive(p.beta, w, "beta");
     require_finite(p.gamma, w, "gamma");
     require(std::fabs(p.gamma) <= p.beta, w,
-            "|gamma| must be <= beta for a bounded hysteretic state (got beta=" +
-                detail::format_value(p.beta) + ", gamma=" + detail::format_value(p.gamma) + ")");
+            "|gamma| must be <= beta for a bounded hysteretic state (got beta=", p.beta,
+            ", gamma=", p.gamma, ")");
     require(p.beta + p.gamma > 0.0, w, "beta + gamma must be > 0");
     require_at_least(p.n, 1.0, w, "n");
     require_in_range(p.a, 0.0, 1.0, w, "a");
@@ -66,7 +67,9 @@ class BoucWen {
   }
 
   double step(double x, double /*dt*/ = 0.0) noexcept {
-    if (!std::isfinite(x)) return initialised_ ? y_ : 0.0;
+    held_ = !std::isfinite(x);
+    kept_ = false;
+    if (held_) return initialised_ ? y_ : 0.0;
     if (!initialised_) {
       x_ = x;
       initialised_ = true;
@@ -80,6 +83,12 @@ class BoucWen {
   }
 
   double output() const noexcept { return y_; }
+  // The last step's status: held_nonfinite_input (input not finite), not_converged (the
+  // integration overflowed and the state was kept).
+  Status status() const noexcept {
+    Status s = held_ ? Status::held_nonfinite_input : Status::ok;
+    return kept_ ? s | Status::not_converged : s;
+  }
   double state() const noexcept { return z_; }
 
  private:
@@ -101,7 +110,8 @@ class BoucWen {
       const double k4 = rate(clamp_z(z + h * k3), s);
       z = clamp_z(z + h * (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0);
     }
-    if (std::isfinite(z)) z_ = z;  // an overflowing jump keeps the old state
+    kept_ = !std::isfinite(z);
+    if (!kept_) z_ = z;  // an overflowing jump keeps the old state
   }
 
   Params p_;
@@ -109,6 +119,7 @@ class BoucWen {
   double z_u_ = 1.0;
   double x_ = 0.0, z_ = 0.0, y_ = 0.0;
   bool initialised_ = false;
+  bool held_ = false, kept_ = false;
 };
 
 }  // namespace tendonsheath

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 #include "power.hpp"
 
@@ -114,7 +115,9 @@ class BoucWenBacklash {
   }
 
   double step(double x, double /*dt*/ = 0.0) noexcept {
-    if (!std::isfinite(x)) return initialised_ ? y_ : 0.0;
+    held_ = !std::isfinite(x);
+    kept_ = false;
+    if (held_) return initialised_ ? y_ : 0.0;
     if (!initialised_) {
       x_ = x;
       initialised_ = true;
@@ -132,7 +135,8 @@ class BoucWenBacklash {
         // w approaches +-1 geometrically and would stall one ulp short of it; within 1e-12
         // of the fixed point it is the fixed point (the output moves by < 1e-12 B).
         if (1.0 - std::fabs(w) < 1e-12) w = w > 0.0 ? 1.0 : -1.0;
-        if (std::isfinite(w)) w_ = w;  // an overflowing jump keeps the old state
+        kept_ = !std::isfinite(w);
+        if (!kept_) w_ = w;  // an overflowing jump keeps the old state
       }
       x_ = x;
     }
@@ -146,6 +150,12 @@ class BoucWenBacklash {
   }
 
   double output() const noexcept { return y_; }
+  // The last step's status: held_nonfinite_input (input not finite), not_converged (the
+  // integration overflowed and the state was kept).
+  Status status() const noexcept {
+    Status s = held_ ? Status::held_nonfinite_input : Status::ok;
+    return kept_ ? s | Status::not_converged : s;
+  }
   double state() const noexcept { return w_; }
   void set_state(double x, double w) noexcept {
     x_ = x;
@@ -180,6 +190,7 @@ class BoucWenBacklash {
   int int_exponent_ = -1;  // n - 1 when it is an integer in 0..11, else -1
   double x_ = 0.0, w_ = 0.0, y_ = 0.0;
   bool initialised_ = false;
+  bool held_ = false, kept_ = false;
 };
 
 }  // namespace tendonsheath

@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 
 namespace tendonsheath {
@@ -78,7 +79,7 @@ class CurveAngleModel {
 
   void reset() noexcept {
     initialised_ = false;
-    slack_ = false;
+    slack_ = step_slack_ = false;
   }
 
   // Closed-form terms at a curve angle (linear units, m).
@@ -102,7 +103,11 @@ class CurveAngleModel {
   }
   // Keeps the last curve angle (0, a straight sheath, before any was given).
   double step(double q_in, double /*dt*/ = 0.0) noexcept {
-    if (!std::isfinite(q_in)) return initialised_ ? y_ : 0.0;
+    held_ = !std::isfinite(q_in);
+    if (held_) {
+      step_slack_ = false;
+      return initialised_ ? y_ : 0.0;
+    }
     const double x_in = p_.proximal_radius * q_in;
     const double eb = backlash_half_width(theta_);
     const double eL = load_offset(theta_);
@@ -119,7 +124,8 @@ class CurveAngleModel {
     const double a = p_.friction * theta_;
     const double force = p_.load + p_.spring * x_out_;
     const double ratio = a < 1e-4 ? 1.0 - a * a / 6.0 : a / std::sinh(a);
-    if (std::fabs(force) >= p_.pretension * ratio * (1.0 + std::exp(-a))) slack_ = true;
+    step_slack_ = std::fabs(force) >= p_.pretension * ratio * (1.0 + std::exp(-a));
+    if (step_slack_) slack_ = true;
     y_ = x_out_ / p_.distal_radius;
     return y_;
   }
@@ -131,11 +137,17 @@ class CurveAngleModel {
   }
   // True once the distal load exceeded the no-slack limit since reset().
   bool slack() const noexcept { return slack_; }
+  // The last step's status: held_nonfinite_input (input not finite), slack (this step's
+  // distal load broke the no-slack condition; slack() keeps it since reset()).
+  Status status() const noexcept {
+    Status s = held_ ? Status::held_nonfinite_input : Status::ok;
+    return step_slack_ ? s | Status::slack : s;
+  }
 
  private:
   Params p_;
   double theta_ = 0.0, x_out_ = 0.0, y_ = 0.0;
-  bool initialised_ = false, slack_ = false;
+  bool initialised_ = false, slack_ = false, held_ = false, step_slack_ = false;
 };
 
 // Batch simulation with a per-sample curve angle (theta may be nullptr: keep the last).

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 
 namespace tendonsheath {
@@ -57,13 +58,11 @@ inline void validate_gpi(const GeneralizedPrandtlIshlinskiiParams& p, const char
     const std::string n = names[e];
     require_positive(env[e]->a, w, (n + ".a").c_str());
     require_positive(env[e]->b, w, (n + ".b").c_str());
-    require(env[e]->b >= kMinEnvelopeGain, w,
-            n + ".b must be >= " + format_value(kMinEnvelopeGain) +
-                " (the envelope spans 20/b of input; got " + format_value(env[e]->b) + ")");
+    require(env[e]->b >= kMinEnvelopeGain, w, n, ".b must be >= ", kMinEnvelopeGain,
+            " (the envelope spans 20/b of input; got ", env[e]->b, ")");
     require_finite(env[e]->c, w, (n + ".c").c_str());
-    require(std::fabs(env[e]->c) <= kMaxEnvelopeShift, w,
-            n + ".c must be within +-" + format_value(kMaxEnvelopeShift) + " (got " +
-                format_value(env[e]->c) + ")");
+    require(std::fabs(env[e]->c) <= kMaxEnvelopeShift, w, n, ".c must be within +-",
+            kMaxEnvelopeShift, " (got ", env[e]->c, ")");
     require_finite(env[e]->d, w, (n + ".d").c_str());
   }
   require(!p.thresholds.empty(), w, "thresholds must not be empty");
@@ -103,7 +102,8 @@ class GeneralizedPrandtlIshlinskii {
   void reset() noexcept { initialised_ = false; }
 
   double step(double x, double /*dt*/ = 0.0) noexcept {
-    if (!std::isfinite(x)) return initialised_ ? y_ : 0.0;
+    held_ = !std::isfinite(x);
+    if (held_) return initialised_ ? y_ : 0.0;
     if (!initialised_) {  // every play starts on the centre line (clamped into its band)
       for (std::size_t i = 0; i < z_.size(); ++i) z_[i] = centre(x);
       initialised_ = true;
@@ -130,6 +130,8 @@ class GeneralizedPrandtlIshlinskii {
   }
 
   double output() const noexcept { return y_; }
+  // The last step's status: held_nonfinite_input when its input was not finite.
+  Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
   double last_input() const noexcept { return x_; }
   bool initialised() const noexcept { return initialised_; }
   // The play outputs z_i after the last step (y = sum_i weights[i] z_i).
@@ -151,6 +153,7 @@ class GeneralizedPrandtlIshlinskii {
   std::vector<double> z_;
   double x_ = 0.0, y_ = 0.0;
   bool initialised_ = false;
+  bool held_ = false;
 };
 
 class GeneralizedPrandtlIshlinskiiInverse {
@@ -172,7 +175,11 @@ class GeneralizedPrandtlIshlinskiiInverse {
   // The input x for which the forward model reaches y_desired (clipped to the
   // reachable range: the envelopes saturate).
   double step(double y_desired, double /*dt*/ = 0.0) noexcept {
-    if (!std::isfinite(y_desired)) return model_.initialised() ? model_.last_input() : 0.0;
+    held_ = !std::isfinite(y_desired);
+    if (held_) {
+      clamped_ = false;
+      return model_.initialised() ? model_.last_input() : 0.0;
+    }
     if (!model_.initialised()) model_.step(initial_guess(y_desired));
     double lo = model_.last_input(), hi = lo;
     const double y_now = model_.output_if(lo);
@@ -199,6 +206,12 @@ class GeneralizedPrandtlIshlinskiiInverse {
   }
 
   double output() const noexcept { return model_.last_input(); }
+  // The last step's status: held_nonfinite_input (input not finite), input_clamped (see
+  // input_clamped()).
+  Status status() const noexcept {
+    Status s = held_ ? Status::held_nonfinite_input : Status::ok;
+    return clamped_ ? s | Status::input_clamped : s;
+  }
 
  private:
   // The first input x_0 solves initial_output(x_0) = y_0 (increasing in x), so the
@@ -220,6 +233,7 @@ class GeneralizedPrandtlIshlinskiiInverse {
   GeneralizedPrandtlIshlinskii model_;
   double x_min_ = -1.0, x_max_ = 1.0;
   bool clamped_ = false;
+  bool held_ = false;
 };
 
 }  // namespace tendonsheath

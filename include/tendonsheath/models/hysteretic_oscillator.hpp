@@ -33,6 +33,7 @@
 #include <limits>
 #include <vector>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 #include "bandlimited.hpp"
 #include "power.hpp"
@@ -86,7 +87,7 @@ class HystereticOscillator {
             w, "input_reconstruction must be 0 (hold), 1 (linear) or 2 (bandlimited)");
     if (p.input_reconstruction == kInputBandlimited) {
       require(p.lookahead >= 1 && p.lookahead <= SincKernel::kMaxHalfWidth, w,
-              "lookahead must be in [1, 64] samples (got " + std::to_string(p.lookahead) + ")");
+              "lookahead must be in [1, 64] samples (got ", p.lookahead, ")");
       kernel_ = SincKernel(p.lookahead);
       const std::size_t taps = static_cast<std::size_t>(2 * p.lookahead);
       history_.assign(2 * taps, 0.0);
@@ -113,7 +114,9 @@ class HystereticOscillator {
   // Starts at rest (y = y' = z = 0) at the first sample. A non-finite input sample is
   // ignored (held at the previous one when band-limited, so the timing is kept).
   double step(double u, double dt) noexcept {
-    if (!std::isfinite(u)) {
+    held_ = !std::isfinite(u);
+    kept_ = false;
+    if (held_) {
       if (p_.input_reconstruction != kInputBandlimited || !initialised_) return y_;
       u = last_input();
     }
@@ -151,6 +154,7 @@ class HystereticOscillator {
   // initialises (at rest) and reads nothing. When Q is even and Q / 2 sub-steps are enough,
   // RK4 takes exactly Q / 2 sub-steps on the grid; otherwise the grid is interpolated linearly.
   double step_dense(const double* u, int Q, double dt) noexcept {
+    held_ = kept_ = false;
     if (!initialised_) {
       initialised_ = true;
       return y_;
@@ -189,6 +193,12 @@ class HystereticOscillator {
   // integrated intervals) where it first happened is diverged_at().
   bool diverged() const noexcept { return diverged_at_ >= 0; }
   long diverged_at() const noexcept { return diverged_at_; }
+  // The last step's status: held_nonfinite_input (input not finite), not_converged (the
+  // integration overflowed in this step and the state was kept).
+  Status status() const noexcept {
+    Status s = held_ ? Status::held_nonfinite_input : Status::ok;
+    return kept_ ? s | Status::not_converged : s;
+  }
 
   // Bound on |z| while the displacement stays within an interval of width `range`: the
   // largest |z| on the outer loop of repeated full-range excursions (the steady cycle of
@@ -264,8 +274,9 @@ class HystereticOscillator {
       y_ = st[0];
       v_ = st[1];
       z_ = st[2];
-    } else if (diverged_at_ < 0) {
-      diverged_at_ = samples_;
+    } else {
+      kept_ = true;
+      if (diverged_at_ < 0) diverged_at_ = samples_;
     }
   }
 
@@ -362,6 +373,7 @@ class HystereticOscillator {
   double omega_ = 1.0;
   double y_ = 0.0, v_ = 0.0, z_ = 0.0, u_ = 0.0;
   bool initialised_ = false;
+  bool held_ = false, kept_ = false;
   long samples_ = 0;
   long diverged_at_ = -1;
   // band-limited reconstruction (allocated at construction when used)

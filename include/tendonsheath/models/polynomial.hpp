@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 
 namespace tendonsheath {
@@ -50,14 +51,18 @@ class Polynomial {
 
   void reset() noexcept {}
   double step(double u, double /*dt*/ = 0.0) noexcept {
-    if (std::isfinite(u)) y_ = evaluate(u);
+    held_ = !std::isfinite(u);
+    if (!held_) y_ = evaluate(u);
     return y_;
   }
   double output() const noexcept { return y_; }
+  // The last step's status: held_nonfinite_input when its input was not finite.
+  Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
 
  private:
   Params p_;
   double y_ = 0.0;
+  bool held_ = false;
 };
 
 // A hysteresis model followed by a static map: y = Second(First(x)).
@@ -72,6 +77,7 @@ class Chain {
   }
   double step(double x, double dt) noexcept { return second_.step(first_.step(x, dt), dt); }
   double output() const noexcept { return second_.output(); }
+  Status status() const noexcept { return first_.status() | second_.status(); }
   const First& first() const noexcept { return first_; }
   const Second& second() const noexcept { return second_; }
 

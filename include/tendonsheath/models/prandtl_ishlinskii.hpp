@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 
 namespace tendonsheath {
@@ -32,13 +33,13 @@ namespace detail {
 inline void validate_pi(const PrandtlIshlinskiiParams& p, const char* w, bool invertible) {
   require(!p.thresholds.empty(), w, "thresholds must not be empty");
   require(p.thresholds.size() == p.weights.size(), w,
-          "thresholds and weights must have the same length (got " +
-              std::to_string(p.thresholds.size()) + " and " + std::to_string(p.weights.size()) +
-              ")");
+          "thresholds and weights must have the same length (got ", p.thresholds.size(), " and ",
+          p.weights.size(), ")");
   if (invertible)
     require(p.thresholds.front() == 0.0, w,
             "thresholds[0] must be 0 for an invertible operator (a play with threshold 0 makes the "
-            "loading curve strictly increasing; got " + format_value(p.thresholds.front()) + ")");
+            "loading curve strictly increasing; got ",
+            p.thresholds.front(), ")");
   double partial = 0.0;
   for (std::size_t i = 0; i < p.thresholds.size(); ++i) {
     const std::string ri = "thresholds[" + std::to_string(i) + "]";
@@ -49,8 +50,8 @@ inline void validate_pi(const PrandtlIshlinskiiParams& p, const char* w, bool in
       require(p.thresholds[i] > p.thresholds[i - 1], w, "thresholds must be strictly increasing");
     partial += p.weights[i];
     require(partial > 0.0, w,
-            "partial sums of weights must be > 0 for an invertible operator (weights[0..." +
-                std::to_string(i) + "] sum to " + format_value(partial) + ")");
+            "partial sums of weights must be > 0 for an invertible operator (weights[0...", i,
+            "] sum to ", partial, ")");
   }
 }
 
@@ -85,7 +86,11 @@ class PrandtlIshlinskii {
   void reset() noexcept { initialised_ = false; }
 
   double step(double x, double /*dt*/ = 0.0) noexcept {
-    if (!std::isfinite(x)) return initialised_ ? y_ : 0.0;
+    held_ = !std::isfinite(x);
+    if (held_) {
+      clamped_ = false;
+      return initialised_ ? y_ : 0.0;
+    }
     clamped_ = std::fabs(x) > x_limit_;
     if (clamped_) x = std::copysign(x_limit_, x);
     const std::size_t n = z_.size();
@@ -102,6 +107,12 @@ class PrandtlIshlinskii {
   }
 
   double output() const noexcept { return y_; }
+  // The last step's status: held_nonfinite_input (input not finite), input_clamped (see
+  // input_clamped()).
+  Status status() const noexcept {
+    Status s = held_ ? Status::held_nonfinite_input : Status::ok;
+    return clamped_ ? s | Status::input_clamped : s;
+  }
   double last_input() const noexcept { return x_; }
   const std::vector<double>& play_states() const noexcept { return z_; }
 
@@ -111,6 +122,7 @@ class PrandtlIshlinskii {
   double x_ = 0.0, y_ = 0.0;
   double x_limit_ = 1e300;
   bool clamped_ = false;
+  bool held_ = false;
   bool initialised_ = false;
 };
 
@@ -132,7 +144,11 @@ class PrandtlIshlinskiiInverse {
 
   // Returns the input x that drives the forward operator to y_desired.
   double step(double y_desired, double /*dt*/ = 0.0) noexcept {
-    if (!std::isfinite(y_desired)) return initialised_ ? x_ : 0.0;
+    held_ = !std::isfinite(y_desired);
+    if (held_) {
+      clamped_ = false;
+      return initialised_ ? x_ : 0.0;
+    }
     if (!initialised_) {
       // Virgin curve from the demagnetised state at x = 0.
       for (double& z : z_) z = 0.0;
@@ -153,6 +169,12 @@ class PrandtlIshlinskiiInverse {
   }
 
   double output() const noexcept { return x_; }
+  // The last step's status: held_nonfinite_input (input not finite), input_clamped (see
+  // input_clamped()).
+  Status status() const noexcept {
+    Status s = held_ ? Status::held_nonfinite_input : Status::ok;
+    return clamped_ ? s | Status::input_clamped : s;
+  }
 
  private:
   // Rising input: play i follows max(z_i, x - r_i); it engages at b_i = z_i + r_i,
@@ -199,6 +221,7 @@ class PrandtlIshlinskiiInverse {
   double x_ = 0.0;
   double x_limit_ = 1e300;
   bool clamped_ = false;
+  bool held_ = false;
   bool initialised_ = false;
 };
 

@@ -64,7 +64,11 @@ class ContinuumPlant : public PullPullPlant {
       : PullPullPlant(continuum_to_pull_pull(c), r1, r2), c_(c) {}
   ContinuumPlant(const ContinuumParams& c, const Route& r) : ContinuumPlant(c, r, r) {}
 
+  // Params is ContinuumParams: params() returns them (the pull-pull pair they map to is
+  // pull_pull_params()).
+  const ContinuumParams& params() const noexcept { return c_; }
   const ContinuumParams& continuum_params() const noexcept { return c_; }
+  const PullPullParams& pull_pull_params() const noexcept { return PullPullPlant::params(); }
   // Bending angle theta_b (rad), the same as output().
   double bending_angle() const noexcept { return output(); }
   // Li and Rahn tendon force F = kappa EI / r_t for the current bending angle.

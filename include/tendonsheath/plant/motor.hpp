@@ -63,14 +63,14 @@ class Motor {
   explicit Motor(const Params& p) : p_(p) {
     const char* w = "Motor";
     require(p.kind == MotorKind::Position || p.kind == MotorKind::Torque, w, "unknown kind");
-    require(p.max_speed > 0.0 && !std::isnan(p.max_speed), w,
-            "max_speed must be > 0 (got " + detail::format_value(p.max_speed) + ")");
+    require(p.max_speed > 0.0 && !std::isnan(p.max_speed), w, "max_speed must be > 0 (got ",
+            p.max_speed, ")");
     require(p.max_substeps >= 1, w, "max_substeps must be >= 1");
     if (p.kind == MotorKind::Position) {
       require_positive(p.bandwidth_hz, w, "bandwidth_hz");
       require_positive(p.damping, w, "damping");
-      require(p.max_accel > 0.0 && !std::isnan(p.max_accel), w,
-              "max_accel must be > 0 (got " + detail::format_value(p.max_accel) + ")");
+      require(p.max_accel > 0.0 && !std::isnan(p.max_accel), w, "max_accel must be > 0 (got ",
+              p.max_accel, ")");
       require_non_negative(p.reflected_inertia, w, "reflected_inertia");
       require_non_negative(p.viscous_friction, w, "viscous_friction");
       require((p.coulomb_friction == 0.0 && p.viscous_friction == 0.0) ||
@@ -80,8 +80,8 @@ class Motor {
     } else {
       require_positive(p.inertia, w, "inertia");
       require_non_negative(p.viscous, w, "viscous");
-      require(p.max_torque > 0.0 && !std::isnan(p.max_torque), w,
-              "max_torque must be > 0 (got " + detail::format_value(p.max_torque) + ")");
+      require(p.max_torque > 0.0 && !std::isnan(p.max_torque), w, "max_torque must be > 0 (got ",
+              p.max_torque, ")");
     }
     require_non_negative(p.coulomb_friction, w, "coulomb_friction");
     require_non_negative(p.gear_backlash, w, "gear_backlash");
@@ -102,7 +102,7 @@ class Motor {
   double step(double u, double dt, double tau_ext = 0.0) noexcept {
     held_ = !std::isfinite(u);
     if (held_) {
-      clamped_ = false;
+      clamped_ = saturated_ = false;
       return pulley_;
     }
     if (!std::isfinite(tau_ext)) tau_ext = 0.0;
@@ -112,7 +112,7 @@ class Motor {
       v_ = 0.0;
       pulley_ = q_;
     }
-    clamped_ = false;
+    clamped_ = saturated_ = false;
     if (!(dt > 0.0) || !std::isfinite(dt)) return pulley_;
     const bool position = p_.kind == MotorKind::Position;
     const double w = 2.0 * kPi * p_.bandwidth_hz;
@@ -132,9 +132,9 @@ class Motor {
       clamped_ = true;
     }
     double tau = u;
-    if (!position) {
-      if (tau > p_.max_torque) tau = p_.max_torque;
-      if (tau < -p_.max_torque) tau = -p_.max_torque;
+    if (!position && std::fabs(tau) > p_.max_torque) {
+      tau = std::copysign(p_.max_torque, tau);
+      saturated_ = true;
     }
     const double stick = h * p_.coulomb_friction * inv_J;  // friction impulse per sub-step
     for (int i = 0; i < n; ++i) {
@@ -152,8 +152,10 @@ class Motor {
         if (v_new - v_ > amax) v_new = v_ + amax;
         if (v_new - v_ < -amax) v_new = v_ - amax;
       }
-      if (v_new > p_.max_speed) v_new = p_.max_speed;
-      if (v_new < -p_.max_speed) v_new = -p_.max_speed;
+      if (std::fabs(v_new) > p_.max_speed) {
+        v_new = std::copysign(p_.max_speed, v_new);
+        saturated_ = true;
+      }
       const double q_new = q_ + h * v_new;
       if (!std::isfinite(v_new) || !std::isfinite(q_new)) {  // hold a finite state
         v_ = 0.0;
@@ -175,11 +177,13 @@ class Motor {
   // The last step was longer than the sub-steps can span, or its command would have driven
   // the state beyond a double: the motor then covered less (or held), and stayed finite.
   bool clamped() const noexcept { return clamped_; }
-  // The last step's status: held (non-finite command), input_clamped (see clamped()).
+  // The last step's status: held (non-finite command), input_clamped (see clamped()),
+  // saturated (the torque limit, or the speed limit, cut the drive in this step).
   Status status() const noexcept {
     Status s = Status::ok;
     if (held_) s |= Status::held_nonfinite_input;
     if (clamped_) s |= Status::input_clamped;
+    if (saturated_) s |= Status::saturated;
     return s;
   }
   // Proximal pulley angle (after the gear play), the plant's input.
@@ -195,6 +199,7 @@ class Motor {
   Params p_;
   double q_ = 0.0, v_ = 0.0, pulley_ = 0.0;
   bool clamped_ = false;
+  bool saturated_ = false;
   bool held_ = false;
   bool initialised_ = false;
 };

@@ -84,11 +84,11 @@ class PullPullPlant {
     require_non_negative(p.distal_damping, w, "distal_damping");
     detail::validate_rate_effects(p.sheath_viscosity, p.relaxation_fraction, p.relaxation_time, w);
     require(p.friction2 == -1.0 || (p.friction2 >= 0.0 && std::isfinite(p.friction2)), w,
-            "friction2 must be finite and >= 0, or -1 for the same as friction (got " +
-                detail::format_value(p.friction2) + ")");
+            "friction2 must be finite and >= 0, or -1 for the same as friction (got ", p.friction2,
+            ")");
     require(p.stiffness2 == -1.0 || (p.stiffness2 > 0.0 && std::isfinite(p.stiffness2)), w,
-            "stiffness2 must be finite and > 0, or -1 for the same as stiffness (got " +
-                detail::format_value(p.stiffness2) + ")");
+            "stiffness2 must be finite and > 0, or -1 for the same as stiffness (got ",
+            p.stiffness2, ")");
     validate_chain_options(p.options, w);
     const std::size_t M = 2 * N_;
     chain_ = FrictionChain(M);
@@ -127,11 +127,14 @@ class PullPullPlant {
   double total_angle1() const noexcept { return theta1_; }
   double total_angle2() const noexcept { return theta2_; }
 
-  void reset() noexcept { chain_.reset(); }
+  void reset() noexcept {
+    chain_.reset();
+    updated_ = true;
+  }
 
   // Proximal pulley angle in (rad), distal pulley angle out (rad).
   double step(double q_in, double dt = 0.0) noexcept {
-    chain_.step(p_.proximal_radius * q_in, dt);
+    updated_ = chain_.step(p_.proximal_radius * q_in, dt);
     return output();
   }
   double output() const noexcept { return chain_.u(N_) / p_.distal_radius; }
@@ -191,9 +194,15 @@ class PullPullPlant {
   bool slack() const noexcept { return chain_.slack(); }
   double min_tension() const noexcept { return chain_.min_tension(); }
   long nonconverged() const noexcept { return chain_.nonconverged(); }
+  // The last step's status (see status.hpp): read right after step(). A step whose state
+  // the chain did not update (FrictionChain::step returned false) is flagged held when its
+  // input was not finite, else not_converged.
+  Status status() const noexcept {
+    const Status s = chain_.status();
+    if (updated_ || has(s, Status::held_nonfinite_input)) return s;
+    return s | Status::not_converged;
+  }
   // True when a step depends on dt (distal dynamics, damping, viscosity, creep).
-  // The last step's status (see status.hpp): read right after step().
-  Status status() const noexcept { return chain_.status(); }
   bool time_dependent() const noexcept { return chain_.time_dependent(); }
   const FrictionChain& chain() const noexcept { return chain_; }
 
@@ -215,6 +224,7 @@ class PullPullPlant {
   double theta1_ = 0.0, theta2_ = 0.0;
   FrictionChain chain_;
   std::vector<double> angles_, work_;
+  bool updated_ = true;
 };
 
 }  // namespace tendonsheath

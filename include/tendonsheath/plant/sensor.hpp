@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 
 namespace tendonsheath {
@@ -29,6 +30,8 @@ class Sensor {
     reset();
   }
   const Params& params() const noexcept { return p_; }
+  // The last reading's status: held_nonfinite_input when x was not finite.
+  Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
 
   void reset() noexcept {
     state_ = p_.seed;
@@ -38,7 +41,8 @@ class Sensor {
 
   // One reading of x; a non-finite x repeats the last reading.
   double measure(double x) noexcept {
-    if (!std::isfinite(x)) return last_;
+    held_ = !std::isfinite(x);
+    if (held_) return last_;
     double y = x;
     if (p_.noise_std > 0.0) y += p_.noise_std * gaussian();
     if (p_.resolution > 0.0) y = p_.resolution * std::round(y / p_.resolution);
@@ -73,6 +77,7 @@ class Sensor {
   double spare_ = 0.0;
   double last_ = 0.0;
   bool have_spare_ = false;
+  bool held_ = false;
 };
 
 }  // namespace tendonsheath

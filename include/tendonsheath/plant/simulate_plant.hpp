@@ -33,19 +33,16 @@ struct PlantTrace {
 template <class Plant>
 void check_schedule(const Plant& plant, const RouteSchedule& s, std::size_t n, const char* where) {
   if (s.count == 0) return;
-  require(s.width == plant.n_node_angles(), where,
-          "route schedule rows hold " + std::to_string(s.width) + " node angles, the plant needs " +
-              std::to_string(plant.n_node_angles()));
+  require(s.width == plant.n_node_angles(), where, "route schedule rows hold ", s.width,
+          " node angles, the plant needs ", plant.n_node_angles());
   for (std::size_t i = 0; i < s.count; ++i) {
-    require(s.index[i] < n, where,
-            "route schedule index " + std::to_string(s.index[i]) + " is beyond the input");
+    require(s.index[i] < n, where, "route schedule index ", s.index[i], " is beyond the input");
     require(i == 0 || s.index[i] > s.index[i - 1], where,
             "route schedule indices must be strictly increasing");
     for (std::size_t j = 0; j < s.width; ++j) {
       const double a = s.angles[i * s.width + j];
-      require(std::isfinite(a) && a >= 0.0, where,
-              "route schedule angle [" + std::to_string(i) + ", " + std::to_string(j) +
-                  "] must be finite and >= 0 (got " + detail::format_value(a) + ")");
+      require(std::isfinite(a) && a >= 0.0, where, "route schedule angle [", i, ", ", j,
+              "] must be finite and >= 0 (got ", a, ")");
     }
   }
 }

@@ -35,8 +35,8 @@ namespace detail {
 inline void validate_tendon(double mu, double EA, int N, const char* w) {
   require_non_negative(mu, w, "friction");
   require_positive(EA, w, "stiffness");
-  require(N >= 2, w, "elements must be >= 2 (got " + std::to_string(N) + ")");
-  require(N <= 1000000, w, "elements must be <= 1000000 (got " + std::to_string(N) + ")");
+  require(N >= 2, w, "elements must be >= 2 (got ", N, ")");
+  require(N <= 1000000, w, "elements must be <= 1000000 (got ", N, ")");
 }
 
 // Default sub-increment: 1/20 of the backlash half-width T L tanh(a/2)/EA;
@@ -49,15 +49,14 @@ inline double default_increment(double T, double L, double EA, double a) noexcep
 // Validation of the rate effects every plant shares.
 inline void validate_rate_effects(double viscosity, double fraction, double tau, const char* w) {
   require_non_negative(viscosity, w, "sheath_viscosity");
-  require(fraction >= 0.0 && fraction < 1.0, w,
-          "relaxation_fraction must be in [0, 1) (got " + format_value(fraction) + ")");
+  require(fraction >= 0.0 && fraction < 1.0, w, "relaxation_fraction must be in [0, 1) (got ",
+          fraction, ")");
   require_positive(tau, w, "relaxation_time");
 }
 
 inline void check_route_length(const Route& r, double L, const char* w) {
-  require(std::fabs(r.length() - L) <= 1e-9 * L, w,
-          "the new route is " + format_value(r.length()) + " m long but the sheath is " +
-              format_value(L) + " m (a route may bend, not change length)");
+  require(std::fabs(r.length() - L) <= 1e-9 * L, w, "the new route is ", r.length(),
+          " m long but the sheath is ", L, " m (a route may bend, not change length)");
 }
 }  // namespace detail
 
@@ -98,11 +97,14 @@ class SingleTendonPlant {
   double length() const noexcept { return L_; }
   double total_angle() const noexcept { return total_angle_; }
 
-  void reset() noexcept { chain_.reset(); }
+  void reset() noexcept {
+    chain_.reset();
+    updated_ = true;
+  }
 
   // Proximal displacement in (m), distal displacement out (m).
   double step(double x_in, double dt = 0.0) noexcept {
-    chain_.step(x_in, dt);
+    updated_ = chain_.step(x_in, dt);
     return output();
   }
   double output() const noexcept { return chain_.u(0); }
@@ -145,8 +147,14 @@ class SingleTendonPlant {
   bool slack() const noexcept { return chain_.slack(); }
   double min_tension() const noexcept { return chain_.min_tension(); }
   long nonconverged() const noexcept { return chain_.nonconverged(); }
-  // The last step's status (see status.hpp): read right after step().
-  Status status() const noexcept { return chain_.status(); }
+  // The last step's status (see status.hpp): read right after step(). A step whose state
+  // the chain did not update (FrictionChain::step returned false) is flagged held when its
+  // input was not finite, else not_converged.
+  Status status() const noexcept {
+    const Status s = chain_.status();
+    if (updated_ || has(s, Status::held_nonfinite_input)) return s;
+    return s | Status::not_converged;
+  }
   bool time_dependent() const noexcept { return chain_.time_dependent(); }
   const FrictionChain& chain() const noexcept { return chain_; }
 
@@ -165,6 +173,7 @@ class SingleTendonPlant {
   double total_angle_ = 0.0;
   FrictionChain chain_;
   std::vector<double> angles_, work_;
+  bool updated_ = true;
 };
 
 }  // namespace tendonsheath
