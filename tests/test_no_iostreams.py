@@ -5,7 +5,9 @@ import re
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-IOSTREAM_HEADERS = re.compile(r"#\s*include\s*<(iostream|[io]?stream|sstream|[io]?fstream|iomanip)>")
+IOSTREAM_HEADERS = re.compile(
+    r"#\s*include\s*<(iostream|[io]?stream|sstream|[io]?fstream|iomanip)>"
+)
 IOSTREAM_NAMES = re.compile(r"std::(ostringstream|istringstream|stringstream|cout|cerr|clog)\b")
 
 

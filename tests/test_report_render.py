@@ -10,6 +10,7 @@ import matplotlib.image as mpimg
 import numpy as np
 
 from tendonsheath.report.build import SCHEMA, SCHEMA_VERSION, write
+from tendonsheath.status import STATUS_FLAGS
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 FLAGS = [
@@ -42,6 +43,7 @@ def test_report_is_self_contained_and_renders(scenario_results, tmp_path):
     report = written["report"]
     text = report.read_text()
     assert "http://" not in text and "https://" not in text  # no network
+    assert text.count("<h3>Status per cycle</h3>") == len(scenario_results)
     assert text.count("<img") == len(written["figures"])
     for name in ("do2015", "sun2015", "lau2015"):
         assert f'id="{name}"' in text
@@ -71,5 +73,8 @@ def test_metrics_json_follows_its_schema(scenario_results, tmp_path):
         for comp, metrics in comps.items():
             for key in ("mse", "rmse", "max_abs", "percent_error", "loop_width"):
                 assert isinstance(metrics[key], float), (scenario, comp, key)
+            status = metrics["status"]  # cycles flagged with each status, per compensator
+            assert set(status) == set(STATUS_FLAGS), (scenario, comp)
+            assert all(isinstance(v, int) and v >= 0 for v in status.values()), (scenario, comp)
     assert data["paper"]["do2015"]["mse_rad2"]["none"] == 0.0158
     assert "frequency" in data["details"]["lau2015"]

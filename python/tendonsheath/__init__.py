@@ -14,7 +14,7 @@ from .plant import (
 )
 from .route import Route
 from .sensor import Sensor
-from .status import Status
+from .status import Status, status_counts
 from .sweep import sweep
 
 __version__ = "0.1.0"
@@ -42,6 +42,7 @@ __all__ = [
     "models",
     "physics",
     "presets",
+    "status_counts",
     "sweep",
     "__version__",
 ]

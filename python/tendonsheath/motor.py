@@ -8,6 +8,7 @@ import numpy as np
 
 from . import _core as core
 from ._arrays import as_time_and_signal
+from .status import Status
 
 
 class Motor:
@@ -99,6 +100,10 @@ class Motor:
     def step(self, command: float, dt: float, tau_ext: float = 0.0) -> float:
         """Advance by dt; returns the motor position (rad)."""
         return self._engine.step(float(command), float(dt), float(tau_ext))
+
+    def status(self) -> Status:
+        """The last step's :class:`~tendonsheath.Status` (held, clamped, saturated)."""
+        return Status(self._engine.status())
 
     def simulate(self, t, command) -> np.ndarray:
         """Motor position for a command sequence, unloaded (starts from rest)."""

@@ -35,6 +35,7 @@ from .loads import (
 from .motor import Motor
 from .route import Route
 from .sensor import Sensor
+from .status import Status
 
 
 class SlackWarning(RuntimeWarning):
@@ -51,7 +52,9 @@ class SimulationResult:
     ``q_out`` the output, ``measured`` the sensor reading of q_out (or
     q_out without a sensor), ``slack`` a per-sample flag, ``tensions`` the final tensions
     (rows: tendons, proximal to distal), ``nonconverged`` the count of accepted but
-    unconverged active-set increments (0 in normal use).
+    unconverged active-set increments (0 in normal use), ``status`` each sample's
+    :class:`~tendonsheath.Status` flags of plant, motor and sensor (uint8; count them with
+    :func:`~tendonsheath.status_counts`).
     """
 
     t: np.ndarray | None
@@ -63,6 +66,7 @@ class SimulationResult:
     tensions: np.ndarray
     nonconverged: int
     q_motor: np.ndarray | None = None
+    status: np.ndarray | None = None
 
     @property
     def any_slack(self) -> bool:
@@ -150,6 +154,14 @@ class _Plant:
             u = self._motor_engine.step(u, float(dt), self._engine.drive_reaction())
         return self._engine.step(u, float(dt))
 
+    def status(self) -> Status:
+        """The last step's :class:`~tendonsheath.Status`: the plant's (held, clamped,
+        not_converged, slack) and its motor's (held, clamped, saturated)."""
+        s = self._engine.status()
+        if self._motor_engine is not None:
+            s |= self._motor_engine.status()
+        return Status(s)
+
     def output(self) -> float:
         return self._engine.output()
 
@@ -194,13 +206,16 @@ class _Plant:
         return (np.arange(n) + 0.5) * L / n
 
     # -- batch -----------------------------------------------------------------------
-    def simulate(self, t, command, routes: Callable | None = None, full: bool = False):
+    def simulate(
+        self, t, command, routes: Callable | None = None, full: bool = False, status: bool = False
+    ):
         """Simulate from rest (on the current route) without touching the streaming state.
 
         ``t`` (s) may be None only without a motor, a damper and a route schedule. ``routes``
         is None or a callable t -> Route (or a (route1, route2) pair for a pull-pull plant); it
         is evaluated once per sample in Python and only the changes are passed to C++.
-        Returns q_out, or a :class:`SimulationResult` with ``full=True``. Warns
+        Returns q_out, or a :class:`SimulationResult` with ``full=True`` (its ``status`` holds
+        each sample's flags), or ``(q_out, flags)`` with ``status=True``. Warns
         (:class:`SlackWarning`) with the time of the first slack sample.
         """
         name = f"{type(self).__name__}.simulate"
@@ -215,7 +230,7 @@ class _Plant:
         motor = self._motor_engine
         motor_arg = core.Motor(self.motor._params) if motor is not None else None
         sensor_arg = core.Sensor(self.sensor._params) if self.sensor is not None else None
-        q_out, q_in, slack, meas, tens, noncon, q_motor = self._engine.simulate(
+        q_out, q_in, slack, meas, tens, noncon, q_motor, flags = self._engine.simulate(
             ts, us, motor_arg, sensor_arg, idx, angles
         )
         if slack.any():
@@ -229,7 +244,7 @@ class _Plant:
                 stacklevel=2,
             )
         if not full:
-            return q_out
+            return (q_out, flags) if status else q_out
         return SimulationResult(
             t=ts,
             command=us,
@@ -240,6 +255,7 @@ class _Plant:
             tensions=tens[0] if self._rows == 1 else tens,
             nonconverged=int(noncon),
             q_motor=q_motor,
+            status=flags,
         )
 
     def _schedule(self, ts, routes):

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _core as core
+from .status import Status
 
 
 class Sensor:
@@ -45,6 +46,10 @@ class Sensor:
         if arr.ndim == 0:
             return self._engine.measure(float(arr))
         return self._engine.measure_many(np.ascontiguousarray(arr.ravel())).reshape(arr.shape)
+
+    def status(self) -> Status:
+        """The last reading's :class:`~tendonsheath.Status` (held when x was not finite)."""
+        return Status(self._engine.status())
 
     def __repr__(self) -> str:
         return (

@@ -1,12 +1,17 @@
 """The status a real-time step reports besides its value (C++: include/tendonsheath/status.hpp).
 
-Read it right after a step: ``plant._engine.status()``, ``motor._engine.status()``,
-``controller._engine.status()`` return these flags as an int; ``Status(value)`` names them.
+Streaming: ``obj.status()`` right after ``obj.step(...)`` (plants, Motor, Sensor after
+``measure``, every model, feedforward and controller) returns a :class:`Status`. Batch: the
+per-sample flags come with ``model.simulate(t, x, status=True)``,
+``feedforward.command(t, y_d, status=True)`` and ``plant.simulate(..., full=True).status``, as
+a uint8 array; :func:`status_counts` counts each flag.
 """
 
 from __future__ import annotations
 
 from enum import IntFlag
+
+import numpy as np
 
 
 class Status(IntFlag):
@@ -21,4 +26,18 @@ class Status(IntFlag):
     SATURATED = 1 << 5  # the command hit its limit
 
 
-__all__ = ["Status"]
+# Every flag's name (lower case, as in C++ and in metrics.json), in bit order.
+STATUS_FLAGS: tuple[str, ...] = tuple(f.name.lower() for f in Status if f.value)
+
+
+def status_counts(flags) -> dict[str, int]:
+    """How many samples of a per-sample flag array carry each flag, by name (every flag
+    listed, 0 when absent)."""
+    a = np.asarray(flags)
+    if a.size and (not np.issubdtype(a.dtype, np.integer) or a.min() < 0):
+        raise ValueError("status_counts: flags must be non-negative integers (Status values)")
+    a = a.astype(np.int64, copy=False)
+    return {f.name.lower(): int(np.count_nonzero(a & f.value)) for f in Status if f.value}
+
+
+__all__ = ["STATUS_FLAGS", "Status", "status_counts"]

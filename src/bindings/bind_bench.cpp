@@ -42,8 +42,9 @@ nb::tuple run(const ts::PullPullPlant& plant_in, std::optional<ts::Motor> motor,
   auto [measured, pm] = new_array(n);
   auto [command, pc] = new_array(n);
   auto [motor_pos, pq] = new_array(n);
+  auto [status, pst] = new_bytes(n);
   std::vector<unsigned char> slack(n), fallback(n);
-  ts::ClosedLoopTrace trace{po, pm, pc, pq, slack.data(), fallback.data()};
+  ts::ClosedLoopTrace trace{po, pm, pc, pq, slack.data(), fallback.data(), pst};
   {
     nb::gil_scoped_release release;
     ts::run_closed_loop(plant, motor ? &*motor : nullptr, sensor ? &*sensor : nullptr, controller,
@@ -56,7 +57,7 @@ nb::tuple run(const ts::PullPullPlant& plant_in, std::optional<ts::Motor> motor,
     ps[k] = slack[k];
     pf[k] = fallback[k];
   }
-  return nb::make_tuple(output, measured, command, motor_pos, slack_arr, fallback_arr);
+  return nb::make_tuple(output, measured, command, motor_pos, slack_arr, fallback_arr, status);
 }
 
 template <class Make>

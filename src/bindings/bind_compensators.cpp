@@ -21,13 +21,17 @@ void check_lengths(std::size_t a, std::size_t b, const char* what, const char* w
                                 " samples, the trajectory has " + std::to_string(a));
 }
 
-// Runs a copy of the compensator over a whole trajectory: y_d[k] at t[k].
+// Runs a copy of the compensator over a whole trajectory: y_d[k] at t[k]. Returns the commands,
+// or (commands, per-sample Status flags as uint8) when with_status.
 template <class Comp, class PerStep>
-OutArray command_copy(const Comp& self, InArray t, InArray y_d, const char* where, PerStep per_step) {
+nb::object command_copy(const Comp& self, InArray t, InArray y_d, const char* where,
+                        PerStep per_step, bool with_status = false) {
   const std::size_t n = y_d.shape(0);
   check_lengths(n, t.shape(0), "t", where);
   ts::check_series(t.data(), y_d.data(), n, where);
   auto [out, u] = new_array(n);
+  auto [flags, fp] = new_bytes(with_status ? n : 0);
+  std::uint8_t* status = with_status ? fp : nullptr;
   Comp comp = self;
   comp.reset();
   const double* tp = t.data();
@@ -38,9 +42,16 @@ OutArray command_copy(const Comp& self, InArray t, InArray y_d, const char* wher
       const double dt = k == 0 ? 0.0 : tp[k] - tp[k - 1];
       per_step(comp, k);
       u[k] = comp.step(yp[k], dt);
+      if (status) status[k] = static_cast<std::uint8_t>(comp.status());
     }
   }
-  return out;
+  if (with_status) return nb::make_tuple(out, flags);
+  return nb::cast(out);
+}
+
+template <class Comp>
+unsigned status_of(const Comp& c) {
+  return static_cast<unsigned>(c.status());
 }
 
 void bind_limits(nb::module_& m) {
@@ -90,18 +101,28 @@ void bind_inverse(nb::module_& m) {
       .def("reset", &B::reset)
       .def("step", &B::step, "y_d"_a, "dt"_a)
       .def("step_with_rate", &B::step_with_rate, "y_d"_a, "y_d_rate"_a, "dt"_a)
-      .def("command", [](const B& self, InArray t, InArray y) {
-        return command_copy(self, t, y, "InverseFeedforward", [](B&, std::size_t) {});
-      });
+      .def("status", &status_of<B>)
+      .def(
+          "command",
+          [](const B& self, InArray t, InArray y, bool status) {
+            return command_copy(self, t, y, "BacklashInverseFeedforward",
+                                [](B&, std::size_t) {}, status);
+          },
+          "t"_a, "y_d"_a, "status"_a = false);
   using PI = ts::PrandtlIshlinskiiFeedforward;
   nb::class_<PI>(m, "PrandtlIshlinskiiFeedforward")
       .def(nb::init<const ts::PrandtlIshlinskiiParams&, const ts::CommandLimits&>(), "params"_a,
            "limits"_a)
       .def("reset", &PI::reset)
       .def("step", &PI::step, "y_d"_a, "dt"_a)
-      .def("command", [](const PI& self, InArray t, InArray y) {
-        return command_copy(self, t, y, "InverseFeedforward", [](PI&, std::size_t) {});
-      });
+      .def("status", &status_of<PI>)
+      .def(
+          "command",
+          [](const PI& self, InArray t, InArray y, bool status) {
+            return command_copy(self, t, y, "PrandtlIshlinskiiFeedforward",
+                                [](PI&, std::size_t) {}, status);
+          },
+          "t"_a, "y_d"_a, "status"_a = false);
 }
 
 void bind_curve_angle_feedforward(nb::module_& m) {
@@ -135,7 +156,7 @@ void bind_curve_angle_feedforward(nb::module_& m) {
       .def(
           "command",
           [](const C& self, InArray t, InArray y, std::optional<InArray> g, std::optional<InArray> G,
-             std::optional<InArray> theta) {
+             std::optional<InArray> theta, bool status) {
             const std::size_t n = y.shape(0);
             const char* where = "CurveAngleFeedforward";
             if (theta) check_lengths(n, theta->shape(0), "curve_angle", where);
@@ -148,9 +169,9 @@ void bind_curve_angle_feedforward(nb::module_& m) {
             return command_copy(self, t, y, where, [=](C& c, std::size_t k) {
               if (gp && Gp && tp) c.set_shape({gp[k], Gp[k], tp[k]});
               else if (tp) c.set_curve_angle(tp[k]);
-            });
+            }, status);
           },
-          "t"_a, "y_d"_a, "g"_a.none(), "G"_a.none(), "curve_angle"_a.none());
+          "t"_a, "y_d"_a, "g"_a.none(), "G"_a.none(), "curve_angle"_a.none(), "status"_a = false);
 }
 
 void bind_continuum(nb::module_& m) {
@@ -181,9 +202,13 @@ void bind_continuum(nb::module_& m) {
       .def("step", &C::step, "theta_d"_a, "dt"_a)
       .def("bending_force", &C::bending_force, "theta_d"_a)
       .def("tendon_input", &C::tendon_input, "theta_d"_a, "direction"_a)
-      .def("command", [](const C& self, InArray t, InArray y) {
-        return command_copy(self, t, y, "ContinuumFeedforward", [](C&, std::size_t) {});
-      });
+      .def("status", &status_of<C>)
+      .def(
+          "command",
+          [](const C& self, InArray t, InArray y, bool status) {
+            return command_copy(self, t, y, "ContinuumFeedforward", [](C&, std::size_t) {}, status);
+          },
+          "t"_a, "y_d"_a, "status"_a = false);
 }
 
 void bind_adaptive(nb::module_& m) {

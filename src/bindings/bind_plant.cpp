@@ -64,7 +64,7 @@ void set_angles(Plant& p, InArray a) {
 }
 
 // simulate(t, u, motor, sensor, schedule_index, schedule_angles)
-//   -> (q_out, q_in, slack, measured, final tensions)
+//   -> (q_out, q_in, slack, measured, final tensions, nonconverged, q_motor, status flags)
 template <class Plant>
 nb::tuple simulate_plant(const Plant& self, std::optional<InArray> t, InArray u,
                          std::optional<ts::Motor> motor, std::optional<ts::Sensor> sensor,
@@ -82,6 +82,7 @@ nb::tuple simulate_plant(const Plant& self, std::optional<InArray> t, InArray u,
   auto [slack, ps] = new_typed<bool>({n});
   auto [meas, pm] = new_array(n);
   auto [q_motor, pq] = new_array(n);
+  auto [flags, pf] = new_bytes(n);
   std::vector<unsigned char> sl(n);
   ts::PlantTrace tr;
   tr.q_out = po;
@@ -89,6 +90,7 @@ nb::tuple simulate_plant(const Plant& self, std::optional<InArray> t, InArray u,
   tr.slack = sl.data();
   tr.measured = pm;
   tr.q_motor = pq;
+  tr.status = pf;
   ts::Motor* mp = motor ? &*motor : nullptr;
   ts::Sensor* sp = sensor ? &*sensor : nullptr;
   const double* tp = t ? t->data() : nullptr;
@@ -99,7 +101,7 @@ nb::tuple simulate_plant(const Plant& self, std::optional<InArray> t, InArray u,
   }
   for (std::size_t k = 0; k < n; ++k) ps[k] = sl[k] != 0;
   return nb::make_tuple(q_out, q_in, slack, meas, tensions_of(plant, rows),
-                        plant.nonconverged(), q_motor);
+                        plant.nonconverged(), q_motor, flags);
 }
 
 template <class Plant, class Cls>
@@ -293,6 +295,7 @@ void bind_plant(nb::module_& m) {
   nb::class_<ts::Sensor>(m, "Sensor")
       .def(nb::init<const SeP&>(), "params"_a)
       .def_prop_ro("params", &ts::Sensor::params)
+      .def("status", [](const ts::Sensor& s) { return static_cast<unsigned>(s.status()); })
       .def("reset", &ts::Sensor::reset)
       .def("measure", &ts::Sensor::measure, "x"_a)
       .def(

@@ -32,6 +32,14 @@ inline std::pair<OutArray, double*> new_array(std::size_t n) {
   return {OutArray(data, {n}, owner), data};
 }
 
+// A fresh NumPy array of n bytes (per-sample Status flags) that owns its buffer.
+using OutBytes = nb::ndarray<nb::numpy, std::uint8_t, nb::ndim<1>>;
+inline std::pair<OutBytes, std::uint8_t*> new_bytes(std::size_t n) {
+  auto* data = new std::uint8_t[n > 0 ? n : 1]();
+  nb::capsule owner(data, [](void* p) noexcept { delete[] static_cast<std::uint8_t*>(p); });
+  return {OutBytes(data, {n}, owner), data};
+}
+
 inline std::pair<OutMatrix, double*> new_matrix(std::size_t rows, std::size_t cols) {
   double* data = new double[rows * cols > 0 ? rows * cols : 1];
   nb::capsule owner(data, [](void* p) noexcept { delete[] static_cast<double*>(p); });

@@ -34,6 +34,7 @@ struct ClosedLoopTrace {
                                     // the gear play when the motor has gear backlash)
   unsigned char* slack = nullptr;   // slack flag
   unsigned char* fallback = nullptr;  // controller in its fallback mode
+  unsigned char* status = nullptr;  // Status flags of controller, motor, plant and sensor
 };
 
 // Controllers as the loop sees them.
@@ -42,6 +43,7 @@ struct OpenLoop {  // uncompensated: the kinematic motor angle for the desired o
   void reset() noexcept {}
   void on_shape(const ShapeIntegrals&) noexcept {}
   bool in_fallback() const noexcept { return false; }
+  Status status() const noexcept { return Status::ok; }
   double command(double y_d, double, double, double) noexcept { return gain * y_d; }
 };
 
@@ -51,6 +53,7 @@ struct FeedforwardLoop {  // any feedforward compensator: no use of the measurem
   void reset() noexcept { ff.reset(); }
   void on_shape(const ShapeIntegrals&) noexcept {}
   bool in_fallback() const noexcept { return false; }
+  Status status() const noexcept { return ff.status(); }
   double command(double y_d, double, double, double dt) noexcept { return ff.step(y_d, dt); }
 };
 
@@ -59,6 +62,7 @@ struct CurveAngleLoop {  // follows the route's shape every cycle (shape sensing
   void reset() noexcept { ff.reset(); }
   void on_shape(const ShapeIntegrals& s) noexcept { ff.set_shape(s); }
   bool in_fallback() const noexcept { return false; }
+  Status status() const noexcept { return ff.status(); }
   double command(double y_d, double, double, double dt) noexcept { return ff.step(y_d, dt); }
 };
 
@@ -67,6 +71,7 @@ struct AdaptiveLoop {
   void reset() noexcept { ctrl.reset(); }
   void on_shape(const ShapeIntegrals&) noexcept {}
   bool in_fallback() const noexcept { return ctrl.in_fallback(); }
+  Status status() const noexcept { return ctrl.status(); }
   double command(double y_d, double measured, double motor, double dt) noexcept {
     return ctrl.step(y_d, measured, motor, dt);
   }
@@ -107,6 +112,12 @@ void run_closed_loop(Plant& plant, Motor* motor, Sensor* sensor, Controller& con
     if (out.motor) out.motor[k] = motor_position;
     if (out.slack) out.slack[k] = plant.slack() ? 1 : 0;
     if (out.fallback) out.fallback[k] = controller.in_fallback() ? 1 : 0;
+    if (out.status) {
+      Status s = controller.status() | plant.status();
+      if (motor) s |= motor->status();
+      if (sensor) s |= sensor->status();
+      out.status[k] = static_cast<unsigned char>(s);
+    }
   }
 }
 

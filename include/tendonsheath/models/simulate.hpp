@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 
 namespace tendonsheath {
@@ -23,6 +24,22 @@ struct has_divergence : std::false_type {};
 template <class M>
 struct has_divergence<M, std::void_t<decltype(std::declval<const M&>().diverged())>>
     : std::true_type {};
+
+template <class M, class = void>
+struct has_status : std::false_type {};
+template <class M>
+struct has_status<M, std::void_t<decltype(std::declval<const M&>().status())>> : std::true_type {};
+
+// The model's status after a step as one byte (Status fits in 8 bits), ok when it has none.
+template <class M>
+unsigned char status_byte(const M& m) noexcept {
+  if constexpr (has_status<M>::value) {
+    return static_cast<unsigned char>(m.status());
+  } else {
+    (void)m;
+    return 0;
+  }
+}
 
 template <class M>
 int delay_of(const M& m) noexcept {
@@ -51,9 +68,10 @@ bool diverged(const M& m) noexcept {
 // partial output is discarded by the caller). A model whose step() lags by delay()
 // samples is fed delay() more samples (the last one held) and y is realigned. A model
 // whose state diverged (diverged()) throws std::invalid_argument, naming the sample.
+// status, when given, receives each sample's Status flags (n bytes, written in the loop).
 template <class Model>
 void simulate(Model& model, const double* t, const double* x, double* y, std::size_t n,
-              const char* where) {
+              const char* where, unsigned char* status = nullptr) {
   require(n >= 1, where, "the input is empty");
   model.reset();
   const std::size_t D = static_cast<std::size_t>(detail::delay_of(model));
@@ -73,6 +91,7 @@ void simulate(Model& model, const double* t, const double* x, double* y, std::si
     }
     const double yk = model.step(x[k < n ? k : n - 1], dt);
     if (k >= D) y[k - D] = yk;
+    if (status != nullptr && k >= D) status[k - D] = detail::status_byte(model);
   }
   if constexpr (detail::has_divergence<Model>::value) {
     if (model.diverged()) {

@@ -28,6 +28,7 @@ struct PlantTrace {
   double* min_tension = nullptr;     // smallest tension per sample, optional
   double* measured = nullptr;        // sensor reading of q_out per sample, optional
   double* q_motor = nullptr;         // motor shaft angle (its encoder) per sample, optional
+  unsigned char* status = nullptr;   // Status flags of plant, motor and sensor per sample, optional
 };
 
 template <class Plant>
@@ -74,6 +75,12 @@ void simulate_plant(Plant& plant, Motor* motor, Sensor* sensor, const double* t,
     if (out.slack) out.slack[k] = plant.slack() ? 1 : 0;
     if (out.min_tension) out.min_tension[k] = plant.min_tension();
     if (out.measured) out.measured[k] = sensor ? sensor->measure(q) : q;
+    if (out.status) {
+      Status s = plant.status();
+      if (motor) s |= motor->status();
+      if (sensor && out.measured) s |= sensor->status();
+      out.status[k] = static_cast<unsigned char>(s);
+    }
   }
 }
 

@@ -19,12 +19,18 @@ from ..compensate import (
 from ..compensate.curve_angle_feedforward import shape_of
 from ..plant import PullPullPlant
 from ..sensor import Sensor
+from ..status import status_counts
 from .metrics import dominant_period, tracking_metrics
 
 
 @dataclass
 class Result:
-    """Every signal of a bench run and its metrics (computed after ``warmup`` seconds)."""
+    """Every signal of a bench run and its metrics (computed after ``warmup`` seconds).
+
+    ``status`` holds each cycle's :class:`~tendonsheath.Status` flags of controller, motor,
+    plant and sensor (uint8); ``metrics["status"]`` counts the cycles with each flag (the
+    whole run, warm-up included).
+    """
 
     controller: str
     t: np.ndarray
@@ -37,6 +43,7 @@ class Result:
     fallback: np.ndarray
     warmup: float
     metrics: dict[str, float] = field(default_factory=dict)
+    status: np.ndarray | None = None
 
     @property
     def error(self) -> np.ndarray:
@@ -154,7 +161,7 @@ def run(
     else:
         raise ValueError(f"bench.run does not know the controller {type(controller).__name__}")
 
-    output, measured, command, motor_pos, slack, fallback = fn(
+    output, measured, command, motor_pos, slack, fallback, status = fn(
         plant._engine, motor, sensor, engine, *args, idx, angles, shapes, mask
     )
     if warmup is None:
@@ -170,10 +177,12 @@ def run(
         slack=slack.astype(bool),
         fallback=fallback.astype(bool),
         warmup=float(warmup),
+        status=status,
     )
     keep = result.scored
     result.metrics = tracking_metrics(ys[keep], output[keep])
     result.metrics["slack_samples"] = int(result.slack.sum())
+    result.metrics["status"] = status_counts(status)
     if not math.isfinite(result.metrics["mse"]):
         raise RuntimeError("bench.run: the closed loop produced a non-finite output")
     return result

@@ -6,6 +6,7 @@ import math
 
 from .. import _core as core
 from ..models import Backlash, BoucWenBacklash
+from ..status import Status
 
 _GAINS = (
     "lambda_",
@@ -142,3 +143,7 @@ class AdaptiveController:
     def step(self, y_d: float, y_measured: float, motor_position: float, dt: float) -> float:
         """One control cycle; returns the motor torque. y_measured may be NaN (dropout)."""
         return self._engine.step(float(y_d), float(y_measured), float(motor_position), float(dt))
+
+    def status(self) -> Status:
+        """The last cycle's :class:`~tendonsheath.Status` (held, fallback, saturated)."""
+        return Status(self._engine.status())

@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-import numpy as np
-
 from .._arrays import as_time_and_signal
+from ..status import Status
 
 
 class Feedforward:
@@ -24,8 +23,14 @@ class Feedforward:
     def step(self, y_d: float, dt: float) -> float:
         return self._engine.step(float(y_d), float(dt))
 
-    def command(self, t, y_desired) -> np.ndarray:
+    def status(self) -> Status:
+        """The last step's :class:`~tendonsheath.Status` (held y_d, saturated command, ...)."""
+        return Status(self._engine.status())
+
+    def command(self, t, y_desired, status: bool = False):
+        """Motor commands for a whole trajectory; with ``status=True`` returns
+        ``(commands, flags)``, flags holding each cycle's :class:`Status` (uint8)."""
         ts, ys = as_time_and_signal(t, y_desired, "y_desired")
         if ts is None:
             raise ValueError(f"{type(self).__name__}.command needs the time vector t")
-        return self._engine.command(ts, ys)
+        return self._engine.command(ts, ys, bool(status))

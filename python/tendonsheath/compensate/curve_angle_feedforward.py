@@ -91,10 +91,16 @@ class CurveAngleFeedforward(Feedforward):
         return self._engine.step(float(y_d), float(dt))
 
     def command(
-        self, t, y_desired, curve_angle=None, routes: Callable[[float], object] | None = None
-    ) -> np.ndarray:
+        self,
+        t,
+        y_desired,
+        curve_angle=None,
+        routes: Callable[[float], object] | None = None,
+        status: bool = False,
+    ):
         """Motor angles for a whole trajectory; the shape from `curve_angle` (scalar or one
-        per sample) or `routes` (a callable t -> route), else the constructor's curve angle."""
+        per sample) or `routes` (a callable t -> route), else the constructor's curve angle.
+        With ``status=True`` returns ``(commands, flags)`` (each cycle's Status, uint8)."""
         ts, ys = as_time_and_signal(t, y_desired, "y_desired")
         if ts is None:
             raise ValueError("CurveAngleFeedforward.command needs the time vector t")
@@ -103,11 +109,11 @@ class CurveAngleFeedforward(Feedforward):
             g = np.array([s.g for s in shapes])
             G = np.array([s.G for s in shapes])
             theta = np.array([s.total_angle for s in shapes])
-            return self._engine.command(ts, ys, g, G, theta)
+            return self._engine.command(ts, ys, g, G, theta, bool(status))
         if curve_angle is not None:
             theta = np.broadcast_to(np.asarray(curve_angle, dtype=np.float64), ys.shape)
             theta = as_signal(theta, "curve_angle")
             if np.any(theta < 0):
                 raise ValueError("curve_angle must be >= 0")
-            return self._engine.command(ts, ys, None, None, theta)
-        return self._engine.command(ts, ys, None, None, None)
+            return self._engine.command(ts, ys, None, None, theta, bool(status))
+        return self._engine.command(ts, ys, None, None, None, bool(status))

@@ -66,11 +66,13 @@ class InverseFeedforward(Feedforward):
         x_c, x_s, y_c, g = self._map
         return x_c + x_s * self._engine.step((float(y_d) - y_c) / g, float(dt))
 
-    def command(self, t, y_desired) -> np.ndarray:
+    def command(self, t, y_desired, status: bool = False):
         if self._map is None:
-            return super().command(t, y_desired)
+            return super().command(t, y_desired, status)
         x_c, x_s, y_c, g = self._map
-        inner = self._inner.command(t, (np.asarray(y_desired, dtype=float) - y_c) / g)
+        inner = self._inner.command(t, (np.asarray(y_desired, dtype=float) - y_c) / g, status)
+        if status:
+            return x_c + x_s * inner[0], inner[1]
         return x_c + x_s * inner
 
     def __repr__(self) -> str:

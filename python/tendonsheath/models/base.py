@@ -7,9 +7,8 @@ import math
 from pathlib import Path
 from typing import Any, ClassVar
 
-import numpy as np
-
 from .._arrays import as_time_and_signal
+from ..status import Status
 
 FORMAT_NAME = "tendonsheath.model"
 FORMAT_VERSION = 1
@@ -77,15 +76,16 @@ class HysteresisModel:
         return type(self)(**values)
 
     # -- simulation ------------------------------------------------------------------
-    def simulate(self, t, x) -> np.ndarray:
+    def simulate(self, t, x, status: bool = False):
         """Output for the input samples x at times t (t may be None when rate-independent).
 
-        Starts from the model's initial state; does not disturb the streaming state.
+        Starts from the model's initial state; does not disturb the streaming state. With
+        ``status=True`` returns ``(y, flags)``: flags holds each sample's :class:`Status` (uint8).
         """
         if t is None and not self.rate_independent:
             raise ValueError(f"{type(self).__name__} is rate-dependent: t is required")
         ts, xs = as_time_and_signal(t, x)
-        return self._engine.simulate(ts, xs)
+        return self._engine.simulate(ts, xs, bool(status))
 
     def reset(self) -> None:
         """Forget the streaming state; the next step() starts afresh."""
@@ -94,6 +94,10 @@ class HysteresisModel:
     def step(self, x: float, dt: float = 0.0) -> float:
         """Advance one sample (streaming); dt is the time since the previous sample."""
         return self._engine.step(float(x), float(dt))
+
+    def status(self) -> Status:
+        """The last step's :class:`~tendonsheath.Status` (held input, clamped, ...)."""
+        return Status(self._engine.status())
 
     # -- persistence -----------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
@@ -112,6 +116,8 @@ class HysteresisModel:
             raise ValueError(f"file holds a {model_cls.__name__}, not a {cls.__name__}")
         if hasattr(model_cls, "_from_parts"):  # composite models (Chain, ...)
             return model_cls._from_parts(data)
+        if model_cls is not cls and "from_dict" in vars(model_cls):  # e.g. renamed parameters
+            return model_cls.from_dict(data)
         values = {**data.get("params", {}), **data.get("options", {})}
         known = set(model_cls.param_names) | set(model_cls.option_names)
         unknown = sorted(set(values) - known)

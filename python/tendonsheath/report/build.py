@@ -13,7 +13,8 @@ metrics.json (schema "tendonsheath.metrics", version 1):
 
 Metrics per compensator: mse (rad^2), rmse, max_abs (rad), percent_error and
 max_percent_error (% of the reference's range), loop_width (rad), slack_samples; all after
-the warm-up (the reference's first period).
+the warm-up (the reference's first period); status: cycles flagged with each Status flag
+(held_nonfinite_input, input_clamped, not_converged, slack, fallback, saturated; whole run).
 """
 
 from __future__ import annotations
@@ -30,6 +31,24 @@ from . import figures, html
 
 SCHEMA = "tendonsheath.metrics"
 SCHEMA_VERSION = 1
+
+
+def _status_table(runs) -> str:
+    """Cycles flagged with each status, per compensator (the loop's controller, motor, plant
+    and sensor together; metrics.json: scenarios.<scenario>.<compensator>.status)."""
+    rows = [
+        {"compensator": name, **r.metrics["status"]}
+        for name, r in runs.items()
+        if isinstance(r.metrics.get("status"), dict)
+    ]
+    if not rows:
+        return ""
+    return (
+        '<h3>Status per cycle</h3><p class="note">Control cycles in which the real-time loop '
+        "flagged each status (whole run): a held non-finite input, a clamped input, a solve "
+        "that did not converge, a slack tendon, a controller fallback (no measurement), a "
+        "saturated command (controller limits, motor torque or speed limit).</p>" + html.table(rows)
+    )
 
 
 def _jsonable(value: Any):
@@ -75,6 +94,7 @@ def scenario_section(result, out: Path) -> tuple[str, list[Path]]:
             "measured figure, not a failure to hide.</p>" + html.table(rows)
         )
     parts.append("<h3>Results beside the paper</h3>" + html.table(result.table))
+    parts.append(_status_table(result.runs))
     if result.paper.get("note"):
         parts.append(f'<p class="note">{html.fmt(result.paper["note"])}</p>')
     if result.name == "do2015":
