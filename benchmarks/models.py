@@ -105,7 +105,7 @@ def main() -> None:
             models.PrandtlIshlinskii(pi_r, pi_w),
             lambda: py_prandtl_ishlinskii(xp, pi_r, pi_w),
         ),
-        ("BoucWen", models.BoucWen(A=1, beta=2, gamma=1, n=1.5, a=0.3, k=1), None),
+        ("BoucWen", models.BoucWen(A=1, beta=2, gamma=1, n=1.5, alpha=0.3, k=1), None),
         (
             "HystereticOscillator",
             models.HystereticOscillator(m=1, c=0.5, k=2, alpha=3, beta=2, gamma=0.6, delta=0.4),

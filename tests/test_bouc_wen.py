@@ -10,7 +10,7 @@ def test_state_bounded_by_ultimate_value(rng):
         beta = rng.uniform(0.2, 3.0)
         gamma = rng.uniform(-beta, beta)
         A, n = rng.uniform(0.5, 2.0), rng.uniform(1.0, 5.0)
-        m = models.BoucWen(A=A, beta=beta, gamma=gamma, n=n, a=0.0, k=1.0)
+        m = models.BoucWen(A=A, beta=beta, gamma=gamma, n=n, alpha=0.0, k=1.0)
         z_u = (A / (beta + gamma)) ** (1 / n)
         x = np.cumsum(rng.normal(0, 0.5, 2000))
         z = m.simulate(None, x)  # a = 0, k = 1: the output is z
@@ -22,7 +22,7 @@ def test_monotone_loading_approaches_ultimate_value(rng):
         beta = rng.uniform(0.5, 2.0)
         gamma = rng.uniform(-0.5 * beta, beta)
         A, n = rng.uniform(0.5, 2.0), rng.uniform(1.0, 3.0)
-        m = models.BoucWen(A=A, beta=beta, gamma=gamma, n=n, a=0.0, k=1.0)
+        m = models.BoucWen(A=A, beta=beta, gamma=gamma, n=n, alpha=0.0, k=1.0)
         z = m.simulate(None, np.linspace(0, 50.0, 5000))
         z_u = (A / (beta + gamma)) ** (1 / n)
         assert abs(z[-1] - z_u) < 1e-3 * z_u
@@ -31,7 +31,7 @@ def test_monotone_loading_approaches_ultimate_value(rng):
 def test_n1_loading_curve_matches_closed_form():
     """n = 1, z >= 0 while loading from 0: dz/dx = A - (beta + gamma) z."""
     A, beta, gamma = 1.3, 0.9, 0.4
-    m = models.BoucWen(A=A, beta=beta, gamma=gamma, n=1.0, a=0.0, k=1.0)
+    m = models.BoucWen(A=A, beta=beta, gamma=gamma, n=1.0, alpha=0.0, k=1.0)
     x = np.linspace(0, 3, 301)
     z = m.simulate(None, x)
     exact = A / (beta + gamma) * (1 - np.exp(-(beta + gamma) * x))
@@ -39,7 +39,7 @@ def test_n1_loading_curve_matches_closed_form():
 
 
 def test_output_mix():
-    m = models.BoucWen(A=1.0, beta=1.0, gamma=0.0, n=1.0, a=0.25, k=2.0)
+    m = models.BoucWen(A=1.0, beta=1.0, gamma=0.0, n=1.0, alpha=0.25, k=2.0)
     x = np.linspace(0, 1, 101)
     exact_z = 1 - np.exp(-x)
     np.testing.assert_allclose(m.simulate(None, x), 0.25 * x + 0.75 * 2.0 * exact_z, atol=1e-8)

@@ -42,7 +42,7 @@ CASES = {
         BoucWenBacklash(c_r=1.0, c_l=0.9, B_r=0.12, B_l=0.08, rho=12.0, sigma=1.2, n=4.0),
         {},
     ),
-    "BoucWen": (BoucWen(A=1.0, beta=2.0, gamma=1.0, n=1.5, a=0.3, k=1.0), {}),
+    "BoucWen": (BoucWen(A=1.0, beta=2.0, gamma=1.0, n=1.5, alpha=0.3, k=1.0), {}),
     "PrandtlIshlinskii": (
         PrandtlIshlinskii.uniform(0.4, 6, weights=[0.6, 0.2, 0.15, 0.1, -0.05, 0.05]),
         {"initial": PrandtlIshlinskii.uniform(1.0, 6)},

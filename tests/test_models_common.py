@@ -11,7 +11,7 @@ from tendonsheath import models
 ALL_MODELS = [
     models.Backlash(c_r=1.1, c_l=0.9, B_r=0.12, B_l=0.08),
     models.BoucWenBacklash(c_r=1.0, c_l=0.95, B_r=0.1, B_l=0.15, n=6, sigma=1.5),
-    models.BoucWen(A=1.2, beta=1.5, gamma=-0.5, n=2.0, a=0.2, k=0.8),
+    models.BoucWen(A=1.2, beta=1.5, gamma=-0.5, n=2.0, alpha=0.2, k=0.8),
     models.PrandtlIshlinskii([0.0, 0.1, 0.3], [0.6, 0.3, -0.1]),
     models.PrandtlIshlinskiiInverse([0.0, 0.1, 0.3], [0.6, 0.3, 0.2]),
     models.HystereticOscillator(m=0.5, c=0.3, k=2.0, alpha=1.5, beta=2.0, gamma=0.7, delta=0.2),
@@ -111,7 +111,7 @@ def test_bad_input_gets_a_clear_error(model):
         (models.BoucWenBacklash, {"n": 0.5}),
         (models.BoucWenBacklash, {"rho": -3.0}),
         (models.BoucWen, {"gamma": 2.0}),
-        (models.BoucWen, {"a": 1.5}),
+        (models.BoucWen, {"alpha": 1.5}),
         (models.HystereticOscillator, {"m": 0.0}),
         (models.HystereticOscillator, {"nu": 0.5}),
         (models.HystereticOscillator, {"substeps": 0}),

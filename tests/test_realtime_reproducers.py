@@ -5,6 +5,7 @@ non-finite solution never committed, stable integrators), not in special cases."
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -172,3 +173,64 @@ def test_gpi_inverse_commands_stay_in_the_envelopes_range():
             thresholds=[0.0],
             weights=[1.0],
         )
+
+
+# -- issue 16, item 10: the smaller defects ------------------------------------------------
+
+
+def test_bouc_wen_has_one_name_per_parameter_and_reads_the_old_one():
+    """A is the amplitude, alpha the linear share (it was `a`, beside `A`)."""
+    names = ts.models.BoucWen.param_names
+    assert "alpha" in names and "a" not in names
+    rng = np.random.default_rng(3)
+    x = np.cumsum(rng.normal(0.0, 0.05, 500))
+    for alpha in (0.0, 0.25, 0.9):
+        new = ts.models.BoucWen(A=1.2, beta=1.0, gamma=0.2, n=1.5, alpha=alpha, k=0.7)
+        with pytest.warns(DeprecationWarning, match="'a' is now called 'alpha'"):
+            old = ts.models.BoucWen(A=1.2, beta=1.0, gamma=0.2, n=1.5, a=alpha, k=0.7)
+        assert old == new and new.params["alpha"] == alpha
+        # y = alpha x + (1 - alpha) k z: alpha is the slope of the linear path
+        z = ts.models.BoucWen(A=1.2, beta=1.0, gamma=0.2, n=1.5, alpha=0.0, k=1.0).simulate(None, x)
+        np.testing.assert_allclose(new.simulate(None, x), alpha * x + (1 - alpha) * 0.7 * z)
+        data = new.to_dict()
+        data["params"]["a"] = data["params"].pop("alpha")  # a file written before the rename
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            assert ts.load_model(data) == new
+            assert ts.models.BoucWen.from_dict(data) == new
+    with pytest.raises(ValueError, match="give alpha or its old name a, not both"):
+        ts.models.BoucWen(alpha=0.2, a=0.3)
+    with pytest.raises(ValueError, match=r"BoucWen: alpha must be in \[0, 1\]"):
+        ts.models.BoucWen(alpha=1.5)
+
+
+def test_backlash_inverse_feedforward_names_itself_in_errors():
+    ff = core.BacklashInverseFeedforward(core.BacklashInverseParams())
+    t = np.array([0.0, 0.1, 0.1])
+    with pytest.raises(ValueError, match=r"^BacklashInverseFeedforward: time is not strictly"):
+        ff.command(t, np.zeros(3))
+    lim = core.CommandLimits()
+    lim.min, lim.max = 1.0, 0.0
+    with pytest.raises(ValueError, match=r"^PrandtlIshlinskiiFeedforward: command limits"):
+        pi = core.PrandtlIshlinskiiParams()
+        pi.thresholds, pi.weights = [0.0, 0.1], [0.6, 0.4]
+        core.PrandtlIshlinskiiFeedforward(pi, lim)
+    p = core.BacklashInverseParams()
+    p.limits = lim
+    with pytest.raises(ValueError, match=r"^BacklashInverseFeedforward: command limits"):
+        core.BacklashInverseFeedforward(p)
+
+
+def test_plants_flag_a_step_the_chain_did_not_take():
+    """The plants keep FrictionChain::step's result: a held input is flagged in-band, and the
+    output stays the last one, in streaming and per sample."""
+    for plant in (
+        ts.SingleTendonPlant(route=ts.Route.uniform(1.0, 2.0), elements=20),
+        ts.PullPullPlant(route=ts.Route.uniform(1.0, 2.0), elements=20),
+        ts.ContinuumPlant(elements=20),
+    ):
+        y = plant.step(0.01, 1e-3)
+        assert plant.status() == ts.Status.OK
+        assert plant.step(math.inf, 1e-3) == y
+        assert plant.status() == ts.Status.HELD_NONFINITE_INPUT
+        assert plant._engine.last_converged()

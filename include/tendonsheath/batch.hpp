@@ -253,7 +253,7 @@ struct BoucWenFeatures {
   template <class Sink>
   static void run(const Params& p, const Recording& rec, Sink&& sink) {
     Params q = p;
-    q.a = 0.5;
+    q.alpha = 0.5;
     q.k = 1.0;
     BoucWen model(q);
     double row[2];

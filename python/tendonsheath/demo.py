@@ -31,7 +31,7 @@ def demo_models() -> dict[str, models.HysteresisModel]:
     return {
         "Backlash": models.Backlash(c_r=1.0, c_l=0.9, B_r=0.12, B_l=0.10),
         "BoucWenBacklash": models.BoucWenBacklash(c_r=1.0, c_l=0.9, B_r=0.12, B_l=0.10, n=8),
-        "BoucWen": models.BoucWen(A=1.0, beta=2.0, gamma=1.0, n=1.5, a=0.3, k=1.0),
+        "BoucWen": models.BoucWen(A=1.0, beta=2.0, gamma=1.0, n=1.5, alpha=0.3, k=1.0),
         "PrandtlIshlinskii": models.PrandtlIshlinskii.uniform(0.4, 8),
         "GeneralizedPrandtlIshlinskii": models.GeneralizedPrandtlIshlinskii(
             rising=(1.1, 1.6, 0.15, 0.0),

@@ -45,7 +45,7 @@ void bind_models(nb::module_& m) {
       .def_rw("beta", &BW::beta)
       .def_rw("gamma", &BW::gamma)
       .def_rw("n", &BW::n)
-      .def_rw("a", &BW::a)
+      .def_rw("alpha", &BW::alpha)
       .def_rw("k", &BW::k)
       .def_rw("max_step", &BW::max_step)
       .def_rw("max_substeps", &BW::max_substeps);

@@ -1,7 +1,7 @@
 // Classic Bouc-Wen hysteresis as a rate-independent input-output model:
 //
 //   dz = A dx - beta |dx| |z|^(n-1) z - gamma dx |z|^n
-//   y  = a x + (1 - a) k z
+//   y  = alpha x + (1 - alpha) k z
 //
 // Bounded-input bounded-state requires beta > 0 and |gamma| <= beta, so that
 // |z| <= z_u = (A / (beta + gamma))^(1/n). z is integrated in x with RK4.
@@ -22,7 +22,7 @@ struct BoucWenParams {
   double beta = 0.5;
   double gamma = 0.5;
   double n = 1.0;
-  double a = 0.5;  // share of the linear (elastic) path, in [0, 1]
+  double alpha = 0.5;  // share of the linear (elastic) path, in [0, 1] (A is the amplitude)
   double k = 1.0;  // gain of the hysteretic path
   double max_step = 0.05;  // largest change of z / z_u per RK4 sub-step
   int max_substeps = 256;
@@ -31,7 +31,7 @@ struct BoucWenParams {
   // param_names (numerical options are left as they are).
   static constexpr std::size_t vector_size = 6;
   void assign(const double* v) noexcept {
-    A = v[0]; beta = v[1]; gamma = v[2]; n = v[3]; a = v[4]; k = v[5];
+    A = v[0]; beta = v[1]; gamma = v[2]; n = v[3]; alpha = v[4]; k = v[5];
   }
 };
 
@@ -50,7 +50,7 @@ class BoucWen {
             ", gamma=", p.gamma, ")");
     require(p.beta + p.gamma > 0.0, w, "beta + gamma must be > 0");
     require_at_least(p.n, 1.0, w, "n");
-    require_in_range(p.a, 0.0, 1.0, w, "a");
+    require_in_range(p.alpha, 0.0, 1.0, w, "alpha");
     require_finite(p.k, w, "k");
     require_positive(p.max_step, w, "max_step");
     require(p.max_substeps >= 1, w, "max_substeps must be >= 1");
@@ -78,7 +78,7 @@ class BoucWen {
       if (dx != 0.0) integrate(std::fabs(dx), dx > 0.0 ? 1.0 : -1.0);
       x_ = x;
     }
-    y_ = p_.a * x_ + (1.0 - p_.a) * p_.k * z_;
+    y_ = p_.alpha * x_ + (1.0 - p_.alpha) * p_.k * z_;
     return y_;
   }
 

@@ -151,7 +151,7 @@ class BoucWenSpec(ModelSpec):
             "beta": (1e-3 / half, 1e3 / half),
             "gamma": (-1e3 / half, 1e3 / half),
             "n": (1.0, 6.0),
-            "a": (0.0, 1.0),
+            "alpha": (0.0, 1.0),
             "k": (0.05 * s.slope, 20.0 * s.slope),
         }
 
@@ -169,9 +169,9 @@ class BoucWenSpec(ModelSpec):
 
     def public(self, values, theta):
         nl = self.nonlinear({k: np.atleast_1d(v) for k, v in values.items()})[0]
-        a = float(theta[0])
-        k = float(theta[1]) / (1.0 - a) if a < 1.0 - 1e-12 else 1.0
-        return {"A": nl[0], "beta": nl[1], "gamma": nl[2], "n": nl[3], "a": a, "k": k}
+        alpha = float(theta[0])
+        k = float(theta[1]) / (1.0 - alpha) if alpha < 1.0 - 1e-12 else 1.0
+        return {"A": nl[0], "beta": nl[1], "gamma": nl[2], "n": nl[3], "alpha": alpha, "k": k}
 
 
 class HystereticOscillatorSpec(ModelSpec):

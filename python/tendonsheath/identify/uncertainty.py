@@ -40,7 +40,7 @@ BOOTSTRAP_DEFAULT = 200
 # names of the linear (solved) coefficients of the separable specs, for the bound check
 _LINEAR_NAMES = {
     "BoucWenBacklash": ["c_r", "B_r (c_r B_r)", "c_l", "B_l (c_l B_l)"],
-    "BoucWen": ["a", "(1 - a) k"],
+    "BoucWen": ["alpha", "(1 - alpha) k"],
 }
 
 
