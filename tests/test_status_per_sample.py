@@ -154,3 +154,50 @@ def test_bench_counts_the_adaptive_controllers_fallback_cycles():
     fallback = result.metrics["status"]["fallback"]
     assert fallback == int(result.fallback.sum())
     assert 450 <= fallback <= 510  # 0.5 s of dropout at 1 kHz (plus the cycle it is noticed)
+
+
+def test_curve_angle_model_flags_slack_only_in_the_cycles_past_the_no_slack_bound():
+    # spring load: the distal force grows with the output until it breaks the no-slack bound
+    model = ts.models.CurveAngleModel(pretension=2.0, spring=4000.0, length=1.0)
+    x = np.linspace(0.0, 3.0, 301)
+    x = np.r_[x, x[::-1]]
+    y, flags = model.simulate(None, x, curve_angle=np.pi, status=True)
+    np.testing.assert_array_equal(y, model.simulate(None, x, curve_angle=np.pi))
+    slack = (flags & Status.SLACK) != 0
+    assert slack.any() and not slack.all()
+    # slack where |F| = |k x_out| is largest: every flagged output exceeds every clean one
+    force = np.abs(y)
+    assert force[slack].min() >= force[~slack].max() - 1e-12
+    model.reset()
+    for k, xk in enumerate(x):
+        model.step(xk, 0.0, np.pi)
+        assert int(model.status()) == flags[k]
+
+
+def test_composite_models_report_their_parts_status():
+    backlash = ts.models.Backlash(B_r=0.05, B_l=0.05)
+    chain = ts.models.Chain(backlash, ts.models.SecondOrderLag())
+    x = np.r_[SINE[:100], np.full(3, 1e12), SINE[100:200]]
+    t = T[: x.size]
+    y, flags = chain.simulate(t, x, status=True)
+    np.testing.assert_array_equal(y, chain.simulate(t, x))
+    # the backlash reports (nothing to flag here); the linear block reports no status
+    _, inner = backlash.simulate(t, x, status=True)
+    np.testing.assert_array_equal(flags, inner)
+    with pytest.raises(TypeError, match="reports no status"):
+        ts.models.SecondOrderLag().status()
+    pi = ts.models.PrandtlIshlinskii(thresholds=[0.0, 0.1], weights=[0.6, 0.4])
+    scaled = ts.models.Scaled(pi, input_scale=2.0, output_gain=-1.5)
+    ys, fs = scaled.simulate(None, np.array([0.0, 1.0, 1e305, 0.5]), status=True)
+    assert [bool(f & Status.INPUT_CLAMPED) for f in fs] == [False, False, True, False]
+    np.testing.assert_array_equal(ys, scaled.simulate(None, np.array([0.0, 1.0, 1e305, 0.5])))
+    scaled.step(1e305)
+    assert scaled.status() == Status.INPUT_CLAMPED
+
+
+def test_oscillator_flags_come_with_both_simulation_paths():
+    osc = ts.models.HystereticOscillator()
+    for periodic in (False, True):
+        y, flags = osc.simulate(T[:-1], SINE[:-1], periodic=periodic, status=True)
+        np.testing.assert_array_equal(y, osc.simulate(T[:-1], SINE[:-1], periodic=periodic))
+        assert flags.dtype == np.uint8 and not flags.any()

@@ -150,9 +150,11 @@ class CurveAngleModel {
   bool initialised_ = false, slack_ = false, held_ = false, step_slack_ = false;
 };
 
-// Batch simulation with a per-sample curve angle (theta may be nullptr: keep the last).
+// Batch simulation with a per-sample curve angle (theta may be nullptr: keep the last);
+// status, when given, receives each sample's Status flags.
 inline void simulate(CurveAngleModel& model, const double* t, const double* x,
-                     const double* theta, double* y, std::size_t n, const char* where) {
+                     const double* theta, double* y, std::size_t n, const char* where,
+                     unsigned char* status = nullptr) {
   check_series(t, x, n, where);
   if (theta != nullptr) {
     for (std::size_t k = 0; k < n; ++k)
@@ -164,6 +166,7 @@ inline void simulate(CurveAngleModel& model, const double* t, const double* x,
   model.reset();
   for (std::size_t k = 0; k < n; ++k) {
     y[k] = theta ? model.step(x[k], 0.0, theta[k]) : model.step(x[k], 0.0);
+    if (status != nullptr) status[k] = static_cast<unsigned char>(model.status());
   }
 }
 

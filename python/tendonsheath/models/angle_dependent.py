@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from ..status import Status
 from .base import _REGISTRY, HysteresisModel
 from .curve_angle import curve_angle_samples
 
@@ -132,14 +133,14 @@ class AngleDependent(HysteresisModel):
         return self._base_cls(**self.params_at(curve_angle), **self._base_options)
 
     # -- simulation ------------------------------------------------------------------
-    def simulate(self, t, x, curve_angle=None) -> np.ndarray:
+    def simulate(self, t, x, curve_angle=None, status: bool = False):
         theta = curve_angle_samples(curve_angle, np.size(x), "AngleDependent")
         if np.any(theta != theta[0]):
             raise ValueError(
                 "AngleDependent: simulate takes one curve angle per call (the array varies); "
                 "CurveAngleModel handles a curve angle that changes during a run"
             )
-        return self.at(theta[0]).simulate(t, x)
+        return self.at(theta[0]).simulate(t, x, **({"status": True} if status else {}))
 
     def reset(self) -> None:
         self._stream = None
@@ -156,6 +157,10 @@ class AngleDependent(HysteresisModel):
                 "AngleDependent: the curve angle changed while streaming; reset() first"
             )
         return self._stream.step(x, dt)
+
+    def status(self) -> Status:
+        """The last step's Status (OK before the first step)."""
+        return self._stream.status() if self._stream is not None else Status.OK
 
     def __repr__(self) -> str:
         laws = {k: v for k, v in self._laws.items() if v != "constant"}

@@ -29,6 +29,8 @@ class HysteresisModel:
     param_names: ClassVar[tuple[str, ...]] = ()
     option_names: ClassVar[tuple[str, ...]] = ()
     rate_independent: ClassVar[bool] = True
+    # status() and simulate(..., status=True) report each step's Status (false: linear blocks)
+    reports_status: ClassVar[bool] = True
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -97,6 +99,8 @@ class HysteresisModel:
 
     def status(self) -> Status:
         """The last step's :class:`~tendonsheath.Status` (held input, clamped, ...)."""
+        if not self.reports_status:
+            raise TypeError(f"{type(self).__name__} has no real-time core and reports no status")
         return Status(self._engine.status())
 
     # -- persistence -----------------------------------------------------------------

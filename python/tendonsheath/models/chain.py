@@ -6,7 +6,16 @@ from typing import Any
 
 import numpy as np
 
+from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel
+
+
+def _reports(part: HysteresisModel, status: bool) -> bool:
+    return bool(status) and part.reports_status
+
+
+def _with_status(part: HysteresisModel, status: bool) -> dict[str, bool]:
+    return {"status": True} if _reports(part, status) else {}
 
 
 class Chain(HysteresisModel):
@@ -49,9 +58,20 @@ class Chain(HysteresisModel):
             self.first.with_params(**parts["first"]), self.second.with_params(**parts["second"])
         )
 
-    def simulate(self, t, x) -> np.ndarray:
-        u = self.first.simulate(t, x)
-        return self.second.simulate(None if self.second.rate_independent else t, u)
+    def simulate(self, t, x, status: bool = False):
+        """y = second(first(x)); with ``status=True`` also each sample's Status flags, those of
+        both parts together (a part without a status, a linear block, adds none)."""
+        u = self.first.simulate(t, x, **_with_status(self.first, status))
+        t2 = None if self.second.rate_independent else t
+        y = self.second.simulate(t2, u[0] if _reports(self.first, status) else u,
+                                 **_with_status(self.second, status))  # fmt: skip
+        if not status:
+            return y
+        flags = np.zeros(np.size(x), dtype=np.uint8)
+        for part, out in ((self.first, u), (self.second, y)):
+            if _reports(part, status):
+                flags |= out[1]
+        return (y[0] if _reports(self.second, status) else y), flags
 
     def reset(self) -> None:
         self.first.reset()
@@ -59,6 +79,14 @@ class Chain(HysteresisModel):
 
     def step(self, x: float, dt: float = 0.0) -> float:
         return self.second.step(self.first.step(x, dt), dt)
+
+    def status(self) -> Status:
+        """The last step's Status of both parts (a part without a status adds none)."""
+        s = Status.OK
+        for part in (self.first, self.second):
+            if part.reports_status:
+                s |= part.status()
+        return s
 
     def to_dict(self) -> dict[str, Any]:
         return {

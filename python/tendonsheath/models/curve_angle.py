@@ -73,11 +73,12 @@ class CurveAngleModel(HysteresisModel):
             distal_radius=distal_radius,
         )
 
-    def simulate(self, t, x, curve_angle=None) -> np.ndarray:
-        """Distal angle for motor angles x and curve angle(s) (scalar or per sample)."""
+    def simulate(self, t, x, curve_angle=None, status: bool = False):
+        """Distal angle for motor angles x and curve angle(s) (scalar or per sample); with
+        ``status=True`` also each sample's Status flags (held, slack)."""
         ts, xs = as_time_and_signal(t, x)
         theta = curve_angle_samples(curve_angle, xs.size, type(self).__name__)
-        return self._engine.simulate(ts, xs, theta)
+        return self._engine.simulate(ts, xs, theta, bool(status))
 
     def step(self, x: float, dt: float = 0.0, curve_angle: float | None = None) -> float:
         """One sample; ``curve_angle`` may be omitted after the first call (the last is kept)."""

@@ -123,7 +123,7 @@ class HystereticOscillator(HysteresisModel):
         from cycle to cycle, escapes, or would exceed 1e12 alpha * range)."""
         return float(self._engine.z_bound(float(displacement_range)))
 
-    def simulate(self, t, x, periodic: bool | None = None) -> np.ndarray:
+    def simulate(self, t, x, periodic: bool | None = None, status: bool = False):
         """Output for the input samples x at times t, from rest.
 
         ``periodic`` matters only for ``input_interpolation="bandlimited"``: True upsamples
@@ -132,7 +132,9 @@ class HystereticOscillator(HysteresisModel):
 
         Raises ValueError when the hysteretic force diverges during the simulation; warns
         (:class:`UnboundedStateWarning`) when the simulated displacement range leaves the
-        range over which z is bounded (:meth:`z_bound`).
+        range over which z is bounded (:meth:`z_bound`). ``status=True`` also returns each
+        sample's Status flags (all OK on the dense periodic path: its input is checked finite
+        and a divergence raises).
         """
         if t is None:
             raise ValueError("HystereticOscillator is rate-dependent: t is required")
@@ -145,10 +147,12 @@ class HystereticOscillator(HysteresisModel):
                 if periodic:
                     fine = 2 * int(self._engine.substeps(dt))
                     y = self._engine.simulate_dense(dt, xs.size, fft_upsample(xs, fine), fine)
+                    if status:
+                        y = (y, np.zeros(xs.size, dtype=np.uint8))
                 else:
-                    y = self._engine.simulate(ts, xs)
+                    y = self._engine.simulate(ts, xs, bool(status))
             else:
-                y = self._engine.simulate(ts, xs)
+                y = self._engine.simulate(ts, xs, bool(status))
         except ValueError as exc:
             if "diverged" not in str(exc):
                 raise
@@ -160,7 +164,7 @@ class HystereticOscillator(HysteresisModel):
                 "excitation drives the displacement beyond the range where this softening "
                 "Bouc-Wen loop is bounded"
             ) from None
-        self.check_bounded(float(np.ptp(y)), "the simulated displacement")
+        self.check_bounded(float(np.ptp(y[0] if status else y)), "the simulated displacement")
         return y
 
     def check_bounded(self, displacement_range: float, what: str = "the displacement") -> bool:

@@ -86,6 +86,8 @@ class LinearBlock(HysteresisModel):
         """(b, a) for ``scipy.signal.lfilter`` at sample time dt (first-order hold)."""
         return discretise(*self.transfer(), dt)
 
+    reports_status = False  # a linear filter in Python: no real-time core, no status
+
     def simulate(self, t, x) -> np.ndarray:
         x = np.asarray(x, dtype=float)
         if x.size == 0:

@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel
 
 _MAP = ("input_offset", "input_scale", "output_offset", "output_gain")
@@ -73,8 +74,19 @@ class Scaled(HysteresisModel):
     def from_inner_output(self, u) -> np.ndarray:
         return self.map["output_offset"] + self.map["output_gain"] * np.asarray(u, dtype=float)
 
-    def simulate(self, t, x, **kwargs) -> np.ndarray:
-        return self.from_inner_output(self.inner.simulate(t, self.to_inner_input(x), **kwargs))
+    @property
+    def reports_status(self) -> bool:
+        return self.inner.reports_status
+
+    def status(self) -> Status:
+        """The inner model's last step's Status."""
+        return self.inner.status()
+
+    def simulate(self, t, x, **kwargs):
+        out = self.inner.simulate(t, self.to_inner_input(x), **kwargs)
+        if kwargs.get("status"):  # (inner output, per-sample flags)
+            return self.from_inner_output(out[0]), out[1]
+        return self.from_inner_output(out)
 
     def reset(self) -> None:
         self.inner.reset()
