@@ -159,6 +159,45 @@ TEST(NoAllocation, SetRouteWithAValidRoute) {
   EXPECT_EQ(n, 0);
 }
 
+// The batch loops write each sample's Status into the caller's buffer: nothing allocated in
+// the loop (nor in the validation before it, which formats messages only on failure).
+TEST(NoAllocation, BatchLoopsCollectTheStatusPerSample) {
+  constexpr std::size_t n = 2000;
+  std::vector<double> t(n), x(n), y(n), measured(n), command(n);
+  std::vector<unsigned char> flags(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    t[k] = 1e-3 * static_cast<double>(k);
+    x[k] = 0.5 * std::sin(2 * kPi * t[k]);
+  }
+  ts::Backlash backlash(ts::BacklashParams{});
+  ts::PullPullParams p;
+  p.elements = 30;
+  ts::PullPullPlant plant(p, ts::Route::uniform(1.0, 2.0));
+  ts::Sensor sensor(ts::SensorParams{1e-4, 1e-4, 2});
+  ts::BacklashInverseParams bp;
+  bp.limits.max = 0.3;
+  ts::FeedforwardLoop<ts::BacklashInverseFeedforward> loop{ts::BacklashInverseFeedforward(bp)};
+  const long allocated = allocations_in([&] {
+    ts::simulate(backlash, t.data(), x.data(), y.data(), n, "simulate", flags.data());
+    ts::PlantTrace trace;
+    trace.q_out = y.data();
+    trace.status = flags.data();
+    ts::simulate_plant(plant, nullptr, nullptr, t.data(), x.data(), n, ts::RouteSchedule{}, trace,
+                       "simulate_plant");
+    ts::ClosedLoopTrace out;
+    out.output = y.data();
+    out.measured = measured.data();
+    out.command = command.data();
+    out.status = flags.data();
+    ts::run_closed_loop(plant, nullptr, &sensor, loop, t.data(), x.data(), n, ts::RouteSchedule{},
+                        ts::ShapeSchedule{}, nullptr, out, "bench");
+  });
+  EXPECT_EQ(allocated, 0);
+  long saturated = 0;  // the loop's last run: the 0.3 limit cuts the 0.5 amplitude sine
+  for (unsigned char f : flags) saturated += (f & static_cast<unsigned>(ts::Status::saturated)) != 0;
+  EXPECT_GT(saturated, 100);
+}
+
 // The counter itself works: a vector's growth is counted (this test must be able to fail).
 TEST(NoAllocation, TheCounterCounts) {
   std::vector<double> v;
