@@ -53,7 +53,11 @@ class CurveAngleFeedforward(Feedforward):
         """Built from an identified ``CurveAngleModel``: its friction, compliance L/EA,
         pretension and radii; the distal load defaults to the model's own (``load``,
         ``spring``) and can be replaced by the load expected in use (N, N/m at the tendon)."""
-        p = model.params
+        p = getattr(model, "params", None)
+        if not isinstance(p, dict):
+            raise TypeError(
+                f"CurveAngleFeedforward.from_model needs a CurveAngleModel (got {model!r})"
+            )
         missing = {"friction", "stiffness", "pretension", "length"} - set(p)
         if missing:
             raise ValueError(
@@ -81,6 +85,8 @@ class CurveAngleFeedforward(Feedforward):
 
     def set_route(self, route) -> None:
         """Any route: its exact g/G shape integrals are used (spec A.2 warning on Theta-only)."""
+        if not (hasattr(route, "s") and hasattr(route, "theta")):
+            raise TypeError(f"set_route needs a Route (got {route!r})")
         self._engine.set_shape(shape_of(route, self.friction))
 
     def step(self, y_d: float, dt: float, curve_angle=None, route=None) -> float:

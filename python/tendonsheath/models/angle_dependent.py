@@ -43,6 +43,7 @@ class AngleDependent(HysteresisModel):
 
     param_names = ("base", "laws", "coefficients", "angle_friction")
     option_names = ("base_options",)
+    nullable_params = ("angle_friction",)
     uses_curve_angle = True
 
     def __init__(

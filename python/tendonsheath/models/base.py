@@ -30,6 +30,8 @@ class HysteresisModel:
     param_names: ClassVar[tuple[str, ...]] = ()
     option_names: ClassVar[tuple[str, ...]] = ()
     rate_independent: ClassVar[bool] = True
+    # parameters a saved file may hold as null (all others must be present and not null)
+    nullable_params: ClassVar[tuple[str, ...]] = ()
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -112,7 +114,7 @@ class HysteresisModel:
             raise ValueError(f"file holds a {model_cls.__name__}, not a {cls.__name__}")
         if hasattr(model_cls, "_from_parts"):  # composite models (Chain, ...)
             return model_cls._from_parts(data)
-        values = {**data.get("params", {}), **data.get("options", {})}
+        values = {**_saved_params(model_cls, data), **_saved_options(model_cls, data)}
         known = set(model_cls.param_names) | set(model_cls.option_names)
         unknown = sorted(set(values) - known)
         if unknown:
@@ -146,6 +148,47 @@ def model_class_from_dict(data: dict[str, Any]) -> type[HysteresisModel]:
     if name not in _REGISTRY:
         raise ValueError(f"unknown model {name!r}; known: {sorted(_REGISTRY)}")
     return _REGISTRY[name]
+
+
+def _saved_params(model_cls, data: dict[str, Any]) -> dict[str, Any]:
+    """The saved parameters: every one present, none null (unless nullable), none boolean."""
+    name = model_cls.__name__
+    if "params" not in data:
+        raise ValueError(f"{name} file: 'params' is missing")
+    params = data["params"]
+    if not isinstance(params, dict):
+        raise ValueError(f"{name} file: 'params' must be an object (got {params!r})")
+    missing = [k for k in model_cls.param_names if k not in params]
+    if missing:
+        raise ValueError(f"{name} file: parameter(s) {missing} missing from 'params'")
+    for key, value in params.items():
+        if value is None and key not in model_cls.nullable_params:
+            raise ValueError(f"{name} file: parameter '{key}' is null")
+        _check_not_bool(name, f"parameter '{key}'", value)
+    return params
+
+
+def _saved_options(model_cls, data: dict[str, Any]) -> dict[str, Any]:
+    """The saved options (each may be left out: its default); none null."""
+    options = data.get("options", {})
+    if not isinstance(options, dict):
+        raise ValueError(f"{model_cls.__name__} file: 'options' must be an object")
+    for key, value in options.items():
+        if value is None:
+            raise ValueError(f"{model_cls.__name__} file: option '{key}' is null")
+    return options
+
+
+def _check_not_bool(name: str, what: str, value) -> None:
+    """true/false where a number belongs would silently become 1/0."""
+    if isinstance(value, bool):
+        raise ValueError(f"{name} file: {what} must be a number (got {json.dumps(value)})")
+    if isinstance(value, list | tuple):
+        for v in value:
+            _check_not_bool(name, what, v)
+    if isinstance(value, dict):
+        for v in value.values():
+            _check_not_bool(name, what, v)
 
 
 def load_model(source: str | Path | dict) -> HysteresisModel:
