@@ -473,6 +473,7 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
         },
         runs=runs,
         table=table,
+        table_title="Results",
         paper={},
         routes=shapes,
         route_schedule=[(0.0, sc.route["initial"].total_angle)]
