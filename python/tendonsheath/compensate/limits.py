@@ -40,7 +40,8 @@ def as_limits(limits) -> CommandLimits:
             raise TypeError(f"limits: unknown key(s) {unknown}; use min, max, max_rate")
         return CommandLimits(**{k: _limit_value(k, v) for k, v in limits.items()})
     if isinstance(limits, (tuple, list)) and len(limits) in (2, 3):
-        return CommandLimits(*(_limit_value(k, v) for k, v in zip(_FIELDS[: len(limits)], limits, strict=True)))
+        names = _FIELDS[: len(limits)]
+        return CommandLimits(*(_limit_value(k, v) for k, v in zip(names, limits, strict=True)))
     raise TypeError(
         "limits must be a CommandLimits, a (min, max[, max_rate]) tuple or a dict "
         f"with min/max/max_rate (got {limits!r})"
