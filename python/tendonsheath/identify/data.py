@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _core as core
+from ..route import check_curve_angle
 
 MIN_SAMPLES = 20  # fitted samples per fit (after warm-up), at the very least
 
@@ -120,6 +121,8 @@ def make_recordings(
                         f"{who}curve angle and x have different lengths "
                         f"({theta.size} and {xs.size})"
                     )
+        if theta is not None:
+            check_curve_angle(theta, f"{who}curve angle")
         out.append(Recording(ts, xs, ys, theta, skips[i]))
     return out
 

@@ -158,6 +158,11 @@ def _saved_params(model_cls, data: dict[str, Any]) -> dict[str, Any]:
     params = data["params"]
     if not isinstance(params, dict):
         raise ValueError(f"{name} file: 'params' must be an object (got {params!r})")
+    unknown = sorted(set(params) - set(model_cls.param_names) - set(model_cls.option_names))
+    if unknown:
+        raise ValueError(
+            f"{name}: unknown parameter(s) {unknown}; expected {list(model_cls.param_names)}"
+        )
     missing = [k for k in model_cls.param_names if k not in params]
     if missing:
         raise ValueError(f"{name} file: parameter(s) {missing} missing from 'params'")
