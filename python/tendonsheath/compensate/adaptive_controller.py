@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from .. import _core as core
+from .._arrays import checked_dt
 from ..models import Backlash, BoucWenBacklash
 
 _GAINS = (
@@ -141,4 +142,5 @@ class AdaptiveController:
 
     def step(self, y_d: float, y_measured: float, motor_position: float, dt: float) -> float:
         """One control cycle; returns the motor torque. y_measured may be NaN (dropout)."""
+        dt = checked_dt(dt)
         return self._engine.step(float(y_d), float(y_measured), float(motor_position), float(dt))

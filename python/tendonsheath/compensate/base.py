@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._arrays import as_time_and_signal
+from .._arrays import as_time_and_signal, checked_dt
 
 
 class Feedforward:
@@ -22,6 +22,7 @@ class Feedforward:
         self._engine.reset()
 
     def step(self, y_d: float, dt: float) -> float:
+        dt = checked_dt(dt)
         return self._engine.step(float(y_d), float(dt))
 
     def command(self, t, y_desired) -> np.ndarray:

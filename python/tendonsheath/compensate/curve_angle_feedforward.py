@@ -8,7 +8,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .. import _core as core
-from .._arrays import as_signal, as_time_and_signal
+from .._arrays import as_signal, as_time_and_signal, checked_dt
 from ..physics import route_shape as shape_of
 from .base import Feedforward
 from .limits import as_limits
@@ -90,6 +90,7 @@ class CurveAngleFeedforward(Feedforward):
         self._engine.set_shape(shape_of(route, self.friction))
 
     def step(self, y_d: float, dt: float, curve_angle=None, route=None) -> float:
+        dt = checked_dt(dt)
         if route is not None:
             self.set_route(route)
         elif curve_angle is not None:

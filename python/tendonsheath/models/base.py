@@ -9,7 +9,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from .._arrays import as_time_and_signal
+from .._arrays import as_time_and_signal, checked_dt
 
 FORMAT_NAME = "tendonsheath.model"
 FORMAT_VERSION = 1
@@ -95,6 +95,7 @@ class HysteresisModel:
 
     def step(self, x: float, dt: float = 0.0) -> float:
         """Advance one sample (streaming); dt is the time since the previous sample."""
+        dt = checked_dt(dt)
         return self._engine.step(float(x), float(dt))
 
     # -- persistence -----------------------------------------------------------------
