@@ -131,7 +131,7 @@ def _print_demo_tables(written: dict, unit: str) -> None:
     for name, comps in data["scenarios"].items():
         table = Table(title=f"{name} ({written['timings'][name]:.1f} s)")
         table.add_column("compensator")
-        for col in (f"mse [{unit}^2]", f"rmse [{unit}]", "percent error [%]"):
+        for col in (f"mse ({unit}^2)", f"rmse ({unit})", "percent error (%)"):
             table.add_column(col, justify="right")
         for comp, m in comps.items():
             _check_finite(f"{name} {comp}", {k: m.get(k) for k in ("mse", "rmse")})
@@ -144,8 +144,8 @@ def _print_demo_tables(written: dict, unit: str) -> None:
         console.print(table)
     if "robustness" in data:
         runs = data["robustness"]["runs"]
-        table = Table(title=f"robustness: mse [{unit}^2] over {runs} perturbed plants")
-        for col in ("compensator", "median", "95 %", "share <= 1e-4 rad^2 [%]"):
+        table = Table(title=f"robustness: mse ({unit}^2) over {runs} perturbed plants")
+        for col in ("compensator", "median", "95 %", "share <= 1e-4 rad^2 (%)"):
             table.add_column(col, justify="left" if col == "compensator" else "right")
         for comp, q in data["robustness"]["compensators"].items():
             table.add_row(
@@ -197,10 +197,10 @@ def bench(
     table = Table(title=sc.title)
     for col in (
         "compensator",
-        f"mse [{unit}^2]",
-        f"rmse [{unit}]",
-        "percent error [%]",
-        "mse vs none [x]",
+        f"mse ({unit}^2)",
+        f"rmse ({unit})",
+        "percent error (%)",
+        "mse vs none (x)",
     ):
         table.add_column(col, justify="left" if col == "compensator" else "right")
     for row in result.table:
@@ -292,7 +292,7 @@ def identify(
     _print_fit(fit, len(logs), output_col)
     if val is not None:
         console.print(
-            f"validation on {validate}: rmse {val['rmse']:.4g} [{output_col} units]   "
+            f"validation on {validate}: rmse {val['rmse']:.4g} ({output_col} units)   "
             f"nrmse {100 * val['nrmse']:.3f} %   fit {val['fit_percent']:.2f} %"
         )
     if report is not None:
@@ -330,7 +330,7 @@ def _print_fit(fit, n_logs: int, output_col: str) -> None:
         table.add_row(*row)
     console.print(table)
     console.print(
-        f"rmse {fit.rmse:.4g} [{output_col} units]   nrmse {100 * fit.nrmse:.3f} %   "
+        f"rmse {fit.rmse:.4g} ({output_col} units)   nrmse {100 * fit.nrmse:.3f} %   "
         f"fit {fit.fit_percent:.2f} %   ({fit.evaluations} evaluations, {fit.seconds:.2f} s)"
     )
     for name, g in fit.groups.items():  # identified groups (e.g. CurveAngleModel, one angle)
@@ -393,7 +393,8 @@ def predict(
         y_hat = simulate_model(model, log.t, log.x, log.curve_angle)
     except ValueError as exc:
         _fail(exc)
-    m = metrics(log.y[warmup:], y_hat[warmup:]) if log.y is not None else None
+    with np.errstate(over="ignore", invalid="ignore"):  # a non-finite metric: error below
+        m = metrics(log.y[warmup:], y_hat[warmup:]) if log.y is not None else None
     if m is not None:
         _check_finite(f"prediction of {data}", {k: m[k] for k in ("rmse", "nrmse")})
     cols = {}
@@ -407,7 +408,7 @@ def predict(
     console.print(f"wrote {len(y_hat)} predictions to {out}")
     if m is not None:
         console.print(
-            f"rmse {m['rmse']:.4g} [{wanted_output} units]   nrmse {100 * m['nrmse']:.3f} %   "
+            f"rmse {m['rmse']:.4g} ({wanted_output} units)   nrmse {100 * m['nrmse']:.3f} %   "
             f"fit {m['fit_percent']:.2f} %"
         )
 
@@ -651,11 +652,11 @@ def compare(
     table.add_column("model")
     for col in (
         "params",
-        f"train rmse [{output_col} units]",
-        f"val rmse [{output_col} units]",
-        "val nrmse [%]",
+        f"train rmse ({output_col} units)",
+        f"val rmse ({output_col} units)",
+        "val nrmse (%)",
         "val rmse / affine's",
-        "seconds [s]",
+        "seconds (s)",
     ):
         table.add_column(col, justify="right")
     for r in result.table:
