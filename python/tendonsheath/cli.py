@@ -217,7 +217,10 @@ def bench(
 
 def _fail(reason) -> None:
     """One-line reason on bad input, and a non-zero exit (2)."""
-    console.print(f"[red]error:[/red] {reason}", soft_wrap=True)
+    from rich.markup import escape
+
+    # escaped: "[plant]" or "[deg]" in a reason is text, not rich markup
+    console.print(f"[red]error:[/red] {escape(str(reason))}", soft_wrap=True, highlight=False)
     raise typer.Exit(code=2)
 
 
