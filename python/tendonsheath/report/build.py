@@ -95,17 +95,17 @@ def scenario_section(result, out: Path, angle_unit: str = "deg") -> tuple[str, l
             "log scale) beside the paper's.",
         )
     add(
-        figures.tracking(result.runs, f"{result.name}: tracking"),
+        figures.tracking(result.runs, f"{result.name}: tracking", unit=angle_unit),
         "tracking",
         "Reference (dashed) and distal output of each compensator, last 12 s.",
     )
     add(
-        figures.errors(result.runs, f"{result.name}: tracking error"),
+        figures.errors(result.runs, f"{result.name}: tracking error", unit=angle_unit),
         "error",
         "Tracking error over the whole run; metrics exclude the warm-up.",
     )
     add(
-        figures.loops(result.runs, f"{result.name}: output vs reference"),
+        figures.loops(result.runs, f"{result.name}: output vs reference", unit=angle_unit),
         "loops",
         "Hysteresis left by each compensator (output against reference).",
     )
