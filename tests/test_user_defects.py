@@ -281,6 +281,13 @@ def test_invalid_cli_options(data, model_file, tmp_path):
     one_line_error(["predict", model_file, run1, "--warmup", "100000", "-o", tmp_path / "p.csv"],
                    "leaves none of the 400 samples")  # fmt: skip
     one_line_error(["sweep", SWEEP, "--bound", "-1", "-o", tmp_path / "s"], "--bound must be")
+    bad_file = tmp_path / "sweep.toml"
+    bad_file.write_text(SWEEP.read_text().replace("bound = { mse = 1e-4 }", "bound = -1.0"))
+    one_line_error(["sweep", bad_file, "-o", tmp_path / "s"], "[report]", "bound must be > 0")
+    from tendonsheath.sweep.result import check_bound
+
+    with pytest.raises(ValueError, match="bound on mse must be finite"):
+        check_bound({"mse": math.inf})
 
 
 def _log():
