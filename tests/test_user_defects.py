@@ -212,6 +212,8 @@ def test_data_at_absurd_scales_or_constant_is_refused(data, model_file, tmp_path
                    "is not finite")  # fmt: skip
     one_line_error(["compare", data / "huge.csv", "--input", "motor", "--output", "tip",
                     "--models", "backlash"], "rescale")  # fmt: skip
+    one_line_error(["compare", data / "const.csv", "--input", "motor", "--output", "tip",
+                    "--models", "backlash"], "the output tip is constant")  # fmt: skip
 
 
 @pytest.mark.parametrize("angle, needle", [("1e300", "<= 628.3 rad"), ("-1", ">= 0")])

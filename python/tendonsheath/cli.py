@@ -631,6 +631,11 @@ def compare(
         logs = [read(p) for p in data]
         vlogs = [read(p) for p in validate] if validate else None
         for log in logs + (vlogs or []):  # before the (long) fitting
+            if np.ptp(log.y) == 0.0:
+                raise ValueError(
+                    f"{log.path}: the output {output_col} is constant ({log.y[0]:g}): "
+                    "there is nothing to compare"
+                )
             for note in log.notes:
                 console.print(f"[yellow]{log.path}:[/yellow] {_cli_note(note)}", soft_wrap=True)
         candidates = [m for m in models.split(",") if m.strip()] if models else None
@@ -678,7 +683,10 @@ def compare(
     console.print(table)
     winner = next((r for r in result.table if r["model"] == result.winner_name), None)
     if winner is not None:
-        _check_finite(f"winner {result.winner_name}", {"val rmse": winner.get("val_rmse")})
+        _check_finite(
+            f"winner {result.winner_name}",
+            {"val rmse": winner.get("val_rmse"), "val nrmse": winner.get("val_nrmse")},
+        )
     how = {
         True: "fitted on all the data",
         False: "fitted on the training files" if vlogs else "refitted on the whole files",

@@ -167,9 +167,9 @@ def check_for_fit(
     x_all = np.concatenate([r.x for r in recs])
     y_all = np.concatenate([r.y[warmup:] for r in recs])
     if np.ptp(x_all) == 0.0:
-        raise ValueError(f"the input is constant ({x_all[0]}): it excites nothing to identify")
+        raise ValueError("the input is constant: it excites nothing to identify")
     if np.ptp(y_all) == 0.0:
-        raise ValueError(f"the output is constant ({y_all[0]}): there is nothing to identify")
+        raise ValueError("the output is constant: there is nothing to identify")
 
 
 def recording_set(recs: list[Recording], warmup: int, with_angle: bool) -> core.RecordingSet:
