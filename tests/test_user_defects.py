@@ -422,6 +422,16 @@ def test_help_shows_no_bool_type():
         assert "<bool>" not in text and "--help" in text
 
 
+def test_command_descriptions_are_one_paragraph():
+    """A docstring's source line break split sentences in --help ("compare the compensators,
+    and" / "write report.html, ..."): each command's help is now one paragraph."""
+    import typer.main
+
+    group = typer.main.get_command(app)
+    for name, command in group.commands.items():
+        assert "\n" not in (command.help or ""), name
+
+
 def test_streamed_plant_takes_its_first_command_as_rest_state(rng):
     """Documented in PullPullPlant.step and the README: the first step(q) is the rest state,
     so the output equals q; the dead zone shows only from the next move on."""

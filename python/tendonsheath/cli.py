@@ -31,6 +31,13 @@ app = typer.Typer(
 )
 console = Console()
 
+
+def _one_paragraph(fn):
+    """The command's docstring as one paragraph: typer keeps a source line break, which then
+    splits a sentence in the middle in every --help."""
+    fn.__doc__ = " ".join((fn.__doc__ or "").split())
+    return fn
+
 _ANGLE_UNIT_HELP = "Unit of the angles shown in the tables and the report: deg or rad."
 
 
@@ -59,6 +66,7 @@ def _root() -> None:
 
 
 @app.command()
+@_one_paragraph
 def demo(
     out: Path = typer.Option(Path("demo-out"), "--out", "-o", help="Folder for the results."),
     scale: float = typer.Option(1.0, help="Run length factor (below 1: a quicker, shorter run)."),
@@ -166,6 +174,7 @@ def _checked(check, *args, **kwargs):
 
 
 @app.command()
+@_one_paragraph
 def bench(
     scenario: Path = typer.Argument(
         ...,
@@ -225,6 +234,7 @@ def _fail(reason) -> None:
 
 
 @app.command()
+@_one_paragraph
 def identify(
     data: list[Path] = typer.Argument(
         ..., help="Data file(s): CSV/TSV with header, NPY, NPZ, HDF5, Excel."
@@ -347,6 +357,7 @@ def _print_fit(fit, n_logs: int, output_col: str) -> None:
 
 
 @app.command()
+@_one_paragraph
 def predict(
     model_file: Path = typer.Argument(..., help="Model JSON written by `identify`."),
     data: Path = typer.Argument(..., help="Data file with the input column."),
@@ -435,6 +446,7 @@ def _saved_columns(model_file: Path) -> dict:
 
 
 @app.command("sweep")
+@_one_paragraph
 def sweep_command(
     config: Path = typer.Argument(..., help="The sweep file (TOML): run, design, parameters."),
     out: Path = typer.Option(Path("sweep-out"), "--out", "-o", help="Folder for the results."),
@@ -565,6 +577,7 @@ def _cli_note(note: str) -> str:
 
 
 @app.command(cls=_FilesAfterValidate)
+@_one_paragraph
 def compare(
     data: list[Path] = typer.Argument(
         ..., help="Training data file(s): CSV/TSV with header, NPY, NPZ, HDF5, Excel."
