@@ -38,6 +38,7 @@ def _one_paragraph(fn):
     fn.__doc__ = " ".join((fn.__doc__ or "").split())
     return fn
 
+
 _ANGLE_UNIT_HELP = "Unit of the angles shown in the tables and the report: deg or rad."
 
 
