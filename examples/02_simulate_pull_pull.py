@@ -1,6 +1,6 @@
 """Simulate a sine through a pull-pull tendon-sheath pair at two routes and plot the loops.
 
-.venv/bin/python examples/02_simulate_pull_pull.py --out out/
+.venv/bin/python examples/02_simulate_pull_pull.py --out example-out
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ import tendonsheath as ts  # noqa: E402
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", type=Path, default=Path("out"))
+    ap.add_argument("--out", type=Path, default=Path("example-out"))
     args = ap.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
 

@@ -1,6 +1,6 @@
 """How robust is a compensator? A Monte Carlo sweep over friction, pretension and route.
 
-.venv/bin/python examples/06_robustness_sweep.py --out out/ [--scheduler tcp://HOST:8786]
+.venv/bin/python examples/06_robustness_sweep.py --out example-out [--scheduler tcp://HOST:8786]
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from tendonsheath.sweep.example_runs import compensator_study
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", type=Path, default=Path("out"))
+    ap.add_argument("--out", type=Path, default=Path("example-out"))
     ap.add_argument("--n", type=int, default=100)
     ap.add_argument("--scheduler", default=None, help="a Dask scheduler (default: local cores)")
     args = ap.parse_args(argv)

@@ -4,7 +4,7 @@ The quasi-static capstan pair draws one loop at any rate (it is a classic backla
 realistic preset adds what a real rig has: a dynamic distal joint, viscous sheath friction,
 tendon creep, an unequal pair, motor friction and gear backlash.
 
-.venv/bin/python examples/07_realistic_plant.py --out out/
+.venv/bin/python examples/07_realistic_plant.py --out example-out
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from tendonsheath.bench.rate_dependence import hysteresis_loops, loops_figure
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", type=Path, default=Path("out"))
+    ap.add_argument("--out", type=Path, default=Path("example-out"))
     args = ap.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
 

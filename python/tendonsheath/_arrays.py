@@ -29,3 +29,12 @@ def as_time_and_signal(t, x, name: str = "x") -> tuple[np.ndarray | None, np.nda
     if ts.shape != xs.shape:
         raise ValueError(f"t and {name} have different lengths ({ts.size} and {xs.size})")
     return ts, xs
+
+
+def checked_dt(dt) -> float:
+    """A streaming step's dt (s): finite and >= 0. The C++ step holds its output on a bad dt
+    (real time never throws); the Python call says so instead."""
+    value = float(dt)
+    if not (value >= 0.0 and value < float("inf")):
+        raise ValueError(f"dt must be a finite number of seconds >= 0 (got {dt!r})")
+    return value

@@ -9,9 +9,20 @@ import numpy as np
 import typer
 from rich.console import Console
 from rich.table import Table
-from typer.core import TyperCommand
+from typer.core import TyperCommand, TyperOption
 
 from .identify.diagnostics import IdentifiabilityWarning
+from .outputs import check_image_file, check_output_file, check_output_folder
+
+_display_type = TyperOption.display_type_rich
+
+
+def _no_type_for_flags(self, ctx):
+    """A flag takes no value: typer's "<bool>" in every --help would say it does."""
+    return None if self.is_flag else _display_type(self, ctx)
+
+
+TyperOption.display_type_rich = _no_type_for_flags
 
 app = typer.Typer(
     help="Model, identify and compensate tendon-sheath mechanisms.",
@@ -21,12 +32,42 @@ app = typer.Typer(
 console = Console()
 
 
+def _one_paragraph(fn):
+    """The command's docstring as one paragraph: typer keeps a source line break, which then
+    splits a sentence in the middle in every --help."""
+    fn.__doc__ = " ".join((fn.__doc__ or "").split())
+    return fn
+
+
+_ANGLE_UNIT_HELP = "Unit of the angles shown in the tables and the report: deg or rad."
+
+
+def _angle_unit(unit: str) -> str:
+    if unit not in ("deg", "rad"):
+        _fail(f"--angle-unit must be deg or rad (got {unit!r})")
+    return unit
+
+
+def _in_unit(value_rad: float, unit: str, squared: bool = False) -> float:
+    factor = (180 / np.pi if unit == "deg" else 1.0) ** (2 if squared else 1)
+    return value_rad * factor
+
+
+def _check_finite(what: str, values: dict) -> None:
+    """A metric that is not finite is an error (exit 2), never a result."""
+    bad = {k: v for k, v in values.items() if v is None or not np.isfinite(v)}
+    if bad:
+        listed = ", ".join(f"{k} = {v}" for k, v in bad.items())
+        _fail(f"{what}: {listed} is not finite (data too small, too large or constant?)")
+
+
 @app.callback()
 def _root() -> None:
     """Model, identify and compensate tendon-sheath mechanisms."""
 
 
 @app.command()
+@_one_paragraph
 def demo(
     out: Path = typer.Option(Path("demo-out"), "--out", "-o", help="Folder for the results."),
     scale: float = typer.Option(1.0, help="Run length factor (below 1: a quicker, shorter run)."),
@@ -39,16 +80,23 @@ def demo(
         "--robustness/--no-robustness",
         help="Also run the Monte Carlo robustness study (200 draws x scale, at least 20).",
     ),
+    angle_unit: str = typer.Option("deg", "--angle-unit", help=_ANGLE_UNIT_HELP),
 ) -> None:
     """Run the virtual bench (the three seed experiments) and write report.html,
     metrics.json and the figures to OUT."""
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
+    from .bench.scenarios import SCENARIOS
     from .demo import run_demo
 
-    if not scale > 0:
-        _fail("--scale must be > 0")
-    steps = 1 + 3 * len(scenario or ["do2015", "sun2015", "lau2015"]) + 1 + int(robustness)
+    if not scale > 0 or not np.isfinite(scale):
+        _fail(f"--scale must be a finite number > 0 (got {scale})")
+    unit = _angle_unit(angle_unit)
+    unknown = [n for n in scenario or [] if n not in SCENARIOS]
+    if unknown:
+        _fail(f"unknown scenario(s) {unknown}; known: {list(SCENARIOS)}")
+    _checked(check_output_folder, out)
+    steps = 1 + 3 * len(scenario or SCENARIOS) + 1 + int(robustness)
     with Progress(
         TextColumn("{task.description}"),
         BarColumn(),
@@ -67,7 +115,13 @@ def demo(
             warnings.simplefilter("always", IdentifiabilityWarning)
             try:
                 written = run_demo(
-                    out, scale=scale, scenarios=scenario or None, progress=tick, seed=seed
+                    out,
+                    scale=scale,
+                    scenarios=scenario or None,
+                    progress=tick,
+                    seed=seed,
+                    robustness=robustness,
+                    angle_unit=unit,
                 )
             except ValueError as exc:
                 _fail(str(exc))
@@ -75,38 +129,53 @@ def demo(
         str(w.message) for w in caught if issubclass(w.category, IdentifiabilityWarning)
     ):
         console.print(f"[yellow]calibration: {message}[/yellow]")
-    data = written["data"]
-    for name, comps in data["scenarios"].items():
-        table = Table(title=f"{name} ({written['timings'][name]:.1f} s)")
-        table.add_column("compensator")
-        for col in ("mse [rad^2]", "rmse [deg]", "percent error"):
-            table.add_column(col, justify="right")
-        for comp, m in comps.items():
-            table.add_row(
-                comp,
-                f"{m['mse']:.3e}",
-                f"{np.degrees(m['rmse']):.3f}",
-                f"{m['percent_error']:.2f} %",
-            )
-        console.print(table)
-    if "robustness" in data:
-        table = Table(title=f"robustness: MSE over {data['robustness']['runs']} perturbed plants")
-        for col in ("compensator", "median", "95 %", "share <= 1e-4"):
-            table.add_column(col, justify="left" if col == "compensator" else "right")
-        for comp, q in data["robustness"]["compensators"].items():
-            table.add_row(
-                comp,
-                f"{q['median']:.3e}",
-                f"{q['q95']:.3e}",
-                f"{100 * q.get('within_bound', float('nan')):.0f} %",
-            )
-        console.print(table)
+    _print_demo_tables(written, unit)
     console.print(f"wrote {written['report']}")
     console.print(f"wrote {written['metrics']}")
     console.print(f"wrote {len(written['figures'])} figures to {out}")
 
 
+def _print_demo_tables(written: dict, unit: str) -> None:
+    data = written["data"]
+    for name, comps in data["scenarios"].items():
+        table = Table(title=f"{name} ({written['timings'][name]:.1f} s)")
+        table.add_column("compensator")
+        for col in (f"mse ({unit}^2)", f"rmse ({unit})", "percent error (%)"):
+            table.add_column(col, justify="right")
+        for comp, m in comps.items():
+            _check_finite(f"{name} {comp}", {k: m.get(k) for k in ("mse", "rmse")})
+            table.add_row(
+                comp,
+                f"{_in_unit(m['mse'], unit, squared=True):.3e}",
+                f"{_in_unit(m['rmse'], unit):.4g}",
+                f"{m['percent_error']:.2f}",
+            )
+        console.print(table)
+    if "robustness" in data:
+        runs = data["robustness"]["runs"]
+        table = Table(title=f"robustness: mse ({unit}^2) over {runs} perturbed plants")
+        for col in ("compensator", "median", "95 %", "share <= 1e-4 rad^2 (%)"):
+            table.add_column(col, justify="left" if col == "compensator" else "right")
+        for comp, q in data["robustness"]["compensators"].items():
+            table.add_row(
+                comp,
+                f"{_in_unit(q['median'], unit, squared=True):.3e}",
+                f"{_in_unit(q['q95'], unit, squared=True):.3e}",
+                f"{100 * q.get('within_bound', float('nan')):.0f}",
+            )
+        console.print(table)
+
+
+def _checked(check, *args, **kwargs):
+    """Run an input check; its ValueError is the one-line error."""
+    try:
+        return check(*args, **kwargs)
+    except ValueError as exc:
+        _fail(exc)
+
+
 @app.command()
+@_one_paragraph
 def bench(
     scenario: Path = typer.Argument(
         ...,
@@ -114,32 +183,43 @@ def bench(
         "load, motor, sensor, reference, compensators.",
     ),
     out: Path = typer.Option(Path("bench-out"), "--out", "-o", help="Folder for the results."),
+    angle_unit: str = typer.Option("deg", "--angle-unit", help=_ANGLE_UNIT_HELP),
 ) -> None:
     """Run a user scenario on the virtual bench: calibrate, compare the compensators, and
     write report.html, metrics.json and the figures to OUT."""
     from .bench.user_scenario import ScenarioError, load, run_user_scenario
     from .report.build import write
 
+    unit = _angle_unit(angle_unit)
     try:
         sc = load(scenario)
     except ScenarioError as exc:
         _fail(exc)
+    _checked(check_output_folder, out)
     with console.status("running") as status:
         try:
             result = run_user_scenario(sc, progress=lambda m: status.update(f"running: {m}"))
         except ScenarioError as exc:
             _fail(exc)
-    written = write(out, [result], None, title=sc.title)
+    for row in result.table:
+        _check_finite(f"{sc.source} {row['compensator']}", {k: row[k] for k in ("mse", "rmse")})
+    written = write(out, [result], None, title=sc.title, angle_unit=unit)
     table = Table(title=sc.title)
-    for col in ("compensator", "mse [rad^2]", "rmse [deg]", "percent error", "vs none"):
+    for col in (
+        "compensator",
+        f"mse ({unit}^2)",
+        f"rmse ({unit})",
+        "percent error (%)",
+        "mse vs none (x)",
+    ):
         table.add_column(col, justify="left" if col == "compensator" else "right")
     for row in result.table:
         table.add_row(
             row["compensator"],
-            f"{row['mse']:.3e}",
-            f"{np.degrees(row['rmse']):.3f}",
-            f"{row['percent_error']:.2f} %",
-            f"{row['improvement']:.1f}x",
+            f"{_in_unit(row['mse'], unit, squared=True):.3e}",
+            f"{_in_unit(row['rmse'], unit):.4g}",
+            f"{row['percent_error']:.2f}",
+            f"{row['improvement']:.1f}",
         )
     console.print(table)
     console.print(f"wrote {written['report']} and {written['metrics']}")
@@ -147,16 +227,25 @@ def bench(
 
 def _fail(reason) -> None:
     """One-line reason on bad input, and a non-zero exit (2)."""
-    console.print(f"[red]error:[/red] {reason}", soft_wrap=True)
+    from rich.markup import escape
+
+    # escaped: "[plant]" or "[deg]" in a reason is text, not rich markup
+    console.print(f"[red]error:[/red] {escape(str(reason))}", soft_wrap=True, highlight=False)
     raise typer.Exit(code=2)
 
 
 @app.command()
+@_one_paragraph
 def identify(
     data: list[Path] = typer.Argument(
-        ..., help="Data file(s): CSV/TSV with header, NPY, NPZ, HDF5."
+        ..., help="Data file(s): CSV/TSV with header, NPY, NPZ, HDF5, Excel."
     ),
-    model: str = typer.Option(..., "--model", "-m", help="Model class, e.g. BoucWenBacklash."),
+    model: str = typer.Option(
+        ...,
+        "--model",
+        "-m",
+        help="Model class or short name, e.g. BoucWenBacklash, bwb, pi, gpi, bwb+poly3.",
+    ),
     input_col: str = typer.Option(..., "--input", help="Input column (motor position)."),
     output_col: str = typer.Option(..., "--output", help="Output column (tip position)."),
     time_col: str | None = typer.Option(None, "--time", help="Time column (s)."),
@@ -168,13 +257,22 @@ def identify(
     warmup: int = typer.Option(0, "--warmup", help="Samples per recording not fitted."),
     seed: int = typer.Option(0, "--seed", help="Seed of the global search."),
     maxiter: int = typer.Option(100, "--maxiter", help="Generations of the global search."),
-    report: Path | None = typer.Option(None, "--report", help="Write a figure of the fit here."),
+    report: Path | None = typer.Option(
+        None, "--report", help="Write a figure of the fit here (.png, .pdf, .svg, ...)."
+    ),
 ) -> None:
     """Fit MODEL to DATA and save it as JSON; print the fit table and the validation error."""
     from . import io
     from .identify import identify as run_identify
-    from .identify.diagnostics import IdentifiabilityWarning
+    from .identify.core import check_search_options
 
+    _checked(check_output_file, out)
+    if report is not None:
+        _checked(check_image_file, report)
+    _checked(
+        check_search_options, maxiter=maxiter, popsize=15, tol=0.01, workers=None, warmup=warmup
+    )
+    candidate = _checked(_model_spec, model)
     columns = {"time": time_col, "input": input_col, "output": output_col}
     try:
         logs = [
@@ -183,12 +281,15 @@ def identify(
             )
             for path in data
         ]
-        import warnings
-
         with warnings.catch_warnings():  # printed below with the diagnostics
             warnings.simplefilter("ignore", IdentifiabilityWarning)
             fit = run_identify(
-                model, recordings=logs, warmup=warmup, seed=seed, maxiter=maxiter, progress=True
+                candidate,
+                recordings=logs,
+                warmup=warmup,
+                seed=seed,
+                maxiter=maxiter,
+                progress=True,
             )
         val = None
         if validate is not None:
@@ -198,16 +299,44 @@ def identify(
             val = fit.validate(vlog.t, vlog.x, vlog.y, vlog.curve_angle)
     except ValueError as exc:
         _fail(exc)
+    _check_finite("the fit", {"rmse": fit.rmse, "nrmse": fit.nrmse})
+    if val is not None:
+        _check_finite(f"validation on {validate}", {k: val[k] for k in ("rmse", "nrmse")})
+    _save_fit(out, fit, val, {**columns, "curve_angle": curve_angle})
+    _print_fit(fit, len(logs), output_col)
+    if val is not None:
+        console.print(
+            f"validation on {validate}: rmse {val['rmse']:.4g} ({output_col} units)   "
+            f"nrmse {100 * val['nrmse']:.3f} %   fit {val['fit_percent']:.2f} %"
+        )
+    if report is not None:
+        console.print(f"report: {fit.report(report)}")
+    console.print(f"model saved to {out}")
+
+
+def _model_spec(name: str):
+    """A registered class name as it is (any identifiable model), else compare's names
+    (bwb, pi, gpi, bw, curve, bwb+poly3, lag1+bwb, ...)."""
+    from .compare import parse_model
+    from .models.base import _REGISTRY
+
+    return name if name in _REGISTRY else parse_model(name)
+
+
+def _save_fit(out: Path, fit, val, data_columns: dict) -> None:
+    import json
+
     record = fit.model.to_dict()
-    record["data"] = {**columns, "curve_angle": curve_angle}
+    record["data"] = data_columns
     record["fit"] = {k: v for k, v in fit.to_dict().items() if k != "model"}
     if val is not None:
         record["validation"] = val
-    import json
-
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json.dumps(record, indent=2) + "\n")
-    table = Table(title=f"{type(fit.model).__name__} fitted to {len(logs)} recording(s)")
+
+
+def _print_fit(fit, n_logs: int, output_col: str) -> None:
+    table = Table(title=f"{type(fit.model).__name__} fitted to {n_logs} recording(s)")
     table.add_column("parameter")
     table.add_column("value", justify="right")
     table.add_column("std. error", justify="right")
@@ -215,8 +344,8 @@ def identify(
         table.add_row(*row)
     console.print(table)
     console.print(
-        f"rmse {fit.rmse:.4g}   nrmse {100 * fit.nrmse:.3f} %   fit {fit.fit_percent:.2f} %   "
-        f"({fit.evaluations} evaluations, {fit.seconds:.2f} s)"
+        f"rmse {fit.rmse:.4g} ({output_col} units)   nrmse {100 * fit.nrmse:.3f} %   "
+        f"fit {fit.fit_percent:.2f} %   ({fit.evaluations} evaluations, {fit.seconds:.2f} s)"
     )
     for name, g in fit.groups.items():  # identified groups (e.g. CurveAngleModel, one angle)
         se = f" +- {g['se']:.4g}" if g.get("se") is not None else " (held)"
@@ -226,17 +355,10 @@ def identify(
             console.print(f"[yellow]warning:[/yellow] {line.removeprefix('WARNING: ')}")
         else:
             console.print(f"identifiability: {line}", soft_wrap=True)
-    if val is not None:
-        console.print(
-            f"validation on {validate}: rmse {val['rmse']:.4g}   nrmse {100 * val['nrmse']:.3f} %"
-            f"   fit {val['fit_percent']:.2f} %"
-        )
-    if report is not None:
-        console.print(f"report: {fit.report(report)}")
-    console.print(f"model saved to {out}")
 
 
 @app.command()
+@_one_paragraph
 def predict(
     model_file: Path = typer.Argument(..., help="Model JSON written by `identify`."),
     data: Path = typer.Argument(..., help="Data file with the input column."),
@@ -254,19 +376,16 @@ def predict(
     warmup: int = typer.Option(0, "--warmup", help="Samples left out of the rmse."),
 ) -> None:
     """Predict the output of a saved model for DATA; print the rmse if the output is there."""
-    import json
-
     from . import io
     from .identify.fit import metrics, simulate_model
     from .models import load_model
 
+    if warmup < 0:
+        _fail(f"--warmup must be >= 0 (got {warmup})")
+    _checked(check_output_file, out, suffixes={"csv", "txt"})
     try:
         model = load_model(model_file)
-        saved = {}
-        try:
-            saved = json.loads(model_file.read_text()).get("data", {}) or {}
-        except (OSError, json.JSONDecodeError):
-            saved = {}
+        saved = _saved_columns(model_file)
         input_col = input_col or saved.get("input")
         time_col = time_col or saved.get("time")
         curve_angle = curve_angle or saved.get("curve_angle")
@@ -284,9 +403,15 @@ def predict(
             output=wanted_output if has_output else None,
             curve_angle=curve_angle,
         )
+        if log.y is not None and warmup >= log.x.size:
+            raise ValueError(f"--warmup {warmup} leaves none of the {log.x.size} samples")
         y_hat = simulate_model(model, log.t, log.x, log.curve_angle)
     except ValueError as exc:
         _fail(exc)
+    with np.errstate(over="ignore", invalid="ignore"):  # a non-finite metric: error below
+        m = metrics(log.y[warmup:], y_hat[warmup:]) if log.y is not None else None
+    if m is not None:
+        _check_finite(f"prediction of {data}", {k: m[k] for k in ("rmse", "nrmse")})
     cols = {}
     if log.t is not None:
         cols[time_col] = log.t
@@ -296,14 +421,33 @@ def predict(
     cols["predicted"] = y_hat
     io.write_csv(out, cols)
     console.print(f"wrote {len(y_hat)} predictions to {out}")
-    if log.y is not None:
-        m = metrics(log.y[warmup:], y_hat[warmup:])
+    if m is not None:
         console.print(
-            f"rmse {m['rmse']:.4g}   nrmse {100 * m['nrmse']:.3f} %   fit {m['fit_percent']:.2f} %"
+            f"rmse {m['rmse']:.4g} ({wanted_output} units)   nrmse {100 * m['nrmse']:.3f} %   "
+            f"fit {m['fit_percent']:.2f} %"
         )
 
 
+def _saved_columns(model_file: Path) -> dict:
+    """The column names `identify` saved beside the model ("data"), if any."""
+    import json
+
+    try:
+        saved = json.loads(model_file.read_text()).get("data")
+    except (OSError, json.JSONDecodeError):
+        return {}
+    if saved is None:
+        return {}
+    if not isinstance(saved, dict):
+        raise ValueError(f"{model_file}: 'data' must be an object of column names (got {saved!r})")
+    bad = {k: v for k, v in saved.items() if v is not None and not isinstance(v, str)}
+    if bad:
+        raise ValueError(f"{model_file}: 'data' holds column names, not {bad}")
+    return saved
+
+
 @app.command("sweep")
+@_one_paragraph
 def sweep_command(
     config: Path = typer.Argument(..., help="The sweep file (TOML): run, design, parameters."),
     out: Path = typer.Option(Path("sweep-out"), "--out", "-o", help="Folder for the results."),
@@ -328,6 +472,13 @@ def sweep_command(
     from .sweep.toml import read_sweep_file
 
     err = Console(stderr=True)
+    if bound is not None and not (np.isfinite(bound) and bound > 0):
+        _fail(f"--bound must be a finite number > 0 (got {bound})")
+    if workers is not None and workers < 1:
+        _fail(f"--workers must be >= 1 (got {workers})")
+    if n is not None and n < 1:
+        _fail(f"--n must be >= 1 (got {n})")
+    _checked(check_output_folder, out)
     try:
         spec = read_sweep_file(config)
         engine = scheduler or spec.scheduler or "local"
@@ -427,6 +578,7 @@ def _cli_note(note: str) -> str:
 
 
 @app.command(cls=_FilesAfterValidate)
+@_one_paragraph
 def compare(
     data: list[Path] = typer.Argument(
         ..., help="Training data file(s): CSV/TSV with header, NPY, NPZ, HDF5, Excel."
@@ -476,6 +628,8 @@ def compare(
         _fail("--holdout and --validate exclude each other")
     if folds is not None and (holdout is not None or validate):
         _fail("--folds is for cross-validation: not with --holdout or --validate")
+    if report is not None:
+        _checked(check_output_folder, report, "--report")
     try:
 
         def read(path):
@@ -491,6 +645,11 @@ def compare(
         logs = [read(p) for p in data]
         vlogs = [read(p) for p in validate] if validate else None
         for log in logs + (vlogs or []):  # before the (long) fitting
+            if np.ptp(log.y) == 0.0:
+                raise ValueError(
+                    f"{log.path}: the output {output_col} is constant ({log.y[0]:g}): "
+                    "there is nothing to compare"
+                )
             for note in log.notes:
                 console.print(f"[yellow]{log.path}:[/yellow] {_cli_note(note)}", soft_wrap=True)
         candidates = [m for m in models.split(",") if m.strip()] if models else None
@@ -513,7 +672,14 @@ def compare(
         _fail(exc)
     table = Table(title=f"model comparison ({result.mode})")
     table.add_column("model")
-    for col in ("params", "train rmse", "val rmse", "val nrmse", "vs affine", "seconds"):
+    for col in (
+        "params",
+        f"train rmse ({output_col} units)",
+        f"val rmse ({output_col} units)",
+        "val nrmse (%)",
+        "val rmse / affine's",
+        "seconds (s)",
+    ):
         table.add_column(col, justify="right")
     for r in result.table:
         if r.get("error"):
@@ -524,11 +690,17 @@ def compare(
             str(r["n_params"]),
             f"{r['train_rmse']:.4g}",
             f"{r['val_rmse']:.4g}",
-            f"{100 * r['val_nrmse']:.3f} %",
+            f"{100 * r['val_nrmse']:.3f}",
             f"{r['ratio_to_affine']:.3f}",
             f"{r['seconds']:.1f}",
         )
     console.print(table)
+    winner = next((r for r in result.table if r["model"] == result.winner_name), None)
+    if winner is not None:
+        _check_finite(
+            f"winner {result.winner_name}",
+            {"val rmse": winner.get("val_rmse"), "val nrmse": winner.get("val_nrmse")},
+        )
     how = {
         True: "fitted on all the data",
         False: "fitted on the training files" if vlogs else "refitted on the whole files",

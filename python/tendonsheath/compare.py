@@ -228,7 +228,10 @@ class Comparison:
                         ax.set_xlabel("time" if v["has_t"] else "sample")
                         ax.set_ylabel("measured - model")
                 r = self.row(name)
-                ax.set_title(f"{name}\nval rmse {r['val_rmse']:.3g}", fontsize=9)
+                ax.set_title(f"{name}\nval rmse {r['val_rmse']:.3g} (output units)", fontsize=9)
+                if kind == "loops":  # one entry each, however many validation files
+                    handles = dict(zip(*reversed(ax.get_legend_handles_labels()), strict=True))
+                    ax.legend(handles.values(), handles.keys(), fontsize=7)
             for ax in list(axes.flat)[len(names) :]:
                 ax.axis("off")
             fig.tight_layout()
@@ -237,7 +240,13 @@ class Comparison:
             plt.close(fig)
         head = "".join(
             f"<th>{h}</th>"
-            for h in ("model", "train rmse", "val rmse", "val nrmse %", "ratio to affine")
+            for h in (
+                "model",
+                "train rmse [output units]",
+                "val rmse [output units]",
+                "val nrmse [%]",
+                "val rmse / affine's",
+            )
         )
         body = "".join(
             f"<tr><td>{r['model']}</td><td>{r['train_rmse']:.4g}</td><td>{r['val_rmse']:.4g}"
@@ -247,6 +256,8 @@ class Comparison:
         )
         html = (
             "<!doctype html><html><head><meta charset='utf-8'><title>model comparison</title>"
+            "<meta name='viewport' content='width=device-width, initial-scale=1'>"
+            "<style>img{max-width:100%;height:auto}</style>"  # fits a 1280 px window
             "</head><body><h1>Model comparison</h1>"
             f"<p>{self.mode}; winner: <b>{self.winner_name}</b></p>"
             f"<table border='1' cellpadding='4'><tr>{head}</tr>{body}</table>"

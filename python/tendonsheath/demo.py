@@ -16,6 +16,7 @@ import numpy as np
 
 from . import models
 from .bench.metrics import loop_width
+from .report.units import check_angle_unit
 
 DEMO_SCHEMA_VERSION = 1
 
@@ -91,11 +92,13 @@ def run_demo(
     progress: Callable[[str], None] | None = None,
     seed: int = 0,
     robustness: bool = True,
+    angle_unit: str = "deg",
 ) -> dict:
     """Run the scenarios (all by default) and write the report; returns what was written."""
     from .bench.scenarios import SCENARIOS
     from .report.build import write
 
+    check_angle_unit(angle_unit)
     names = list(SCENARIOS) if scenarios is None else scenarios
     unknown = [n for n in names if n not in SCENARIOS]
     if unknown:
@@ -111,7 +114,8 @@ def run_demo(
         if progress:
             progress("robustness study")
         start = time.perf_counter()
-        extra.append(robustness_section(out, runs=max(20, round(200 * min(scale, 1.0))), seed=seed))
+        runs = max(20, round(200 * min(scale, 1.0)))
+        extra.append(robustness_section(out, runs=runs, seed=seed, angle_unit=angle_unit))
         timings["robustness"] = time.perf_counter() - start
     if progress:
         progress("rate dependence")
@@ -125,7 +129,7 @@ def run_demo(
         progress("hysteresis models")
     body, model_metrics, model_files = model_section(out)
     extra.append(("models", "Hysteresis models on a standard input", body, model_metrics))
-    written = write(out, results, extra)
+    written = write(out, results, extra, angle_unit=angle_unit)
     written["figures"] += [rate_file, *model_files]
     if robustness:
         written["figures"].append(out / "robustness_mse.png")
@@ -174,12 +178,13 @@ def rate_section(out: Path, frequencies=(0.1, 1.0, 5.0)):
     return body, numbers, path
 
 
-def robustness_section(out: Path, runs: int = 200, seed: int = 0):
+def robustness_section(out: Path, runs: int = 200, seed: int = 0, angle_unit: str = "deg"):
     """Each do2015 compensator's MSE over ``runs`` draws of friction (+/-30 %), pretension
     (+/-30 %) and route (random arcs, total angle within +/-50 % of pi), all calibrated on
     the nominal plant: robustness, not one lucky run."""
     from .bench.scenarios.do import _COMMON, NOMINAL, robustness_run
     from .report import html
+    from .report.units import rows_in_unit
     from .sweep.studies import robustness_design, robustness_study
     from .sweep.studies import robustness_section as study_figure
 
@@ -192,17 +197,19 @@ def robustness_section(out: Path, runs: int = 200, seed: int = 0):
         run=robustness_run, n=runs, seed=2015 + seed, design=design, progress=False
     )
     numbers = study_figure(result, out, metric="mse", bound=1e-4, design=design)
+    within = "share with MSE <= 1e-4 rad^2"
     rows = [
         {
             "compensator": k,
             "median MSE": v.get("median"),
-            "5 %": v.get("q05"),
-            "95 %": v.get("q95"),
-            "worst": v.get("max"),
-            "share with MSE <= 1e-4": v.get("within_bound"),
+            "MSE 5 %": v.get("q05"),
+            "MSE 95 %": v.get("q95"),
+            "worst MSE": v.get("max"),
+            within: None if v.get("within_bound") is None else 100 * v["within_bound"],
         }
         for k, v in numbers["compensators"].items()
     ]
+    rows = rows_in_unit(rows, angle_unit, {within: "%"})
     body = (
         "<p>The do2015 comparison over perturbed plants: friction and pretension within "
         "+/-30 % of the plant the compensators were calibrated on (by bench.calibrate, on its "

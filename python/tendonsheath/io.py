@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 MIN_ROWS = 3
+MAX_UPSAMPLING = 10  # resampling may multiply the samples by at most this
 
 
 @dataclass
@@ -97,6 +98,11 @@ class Log:
         if n < MIN_ROWS:
             raise ValueError(
                 f"{self.path}: resampling at {rate:g} Hz leaves {n} samples (< {MIN_ROWS})"
+            )
+        if n > MAX_UPSAMPLING * self.x.size:  # interpolation invents nothing: a typo'd rate
+            raise ValueError(
+                f"{self.path}: resampling at {rate:g} Hz would make {n} samples from "
+                f"{self.x.size} (more than {MAX_UPSAMPLING}x); give a rate near the recording's"
             )
         t = self.t[0] + np.arange(n) / rate
 

@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from . import _core as core
-from ._arrays import as_time_and_signal
+from ._arrays import as_time_and_signal, checked_dt
 from .status import Status
 
 
@@ -99,6 +99,7 @@ class Motor:
 
     def step(self, command: float, dt: float, tau_ext: float = 0.0) -> float:
         """Advance by dt; returns the motor position (rad)."""
+        dt = checked_dt(dt)
         return self._engine.step(float(command), float(dt), float(tau_ext))
 
     def status(self) -> Status:

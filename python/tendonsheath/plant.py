@@ -23,7 +23,7 @@ import numpy as np
 
 from . import _core as core
 from . import physics
-from ._arrays import as_time_and_signal
+from ._arrays import as_time_and_signal, checked_dt
 from .loads import (
     ConstantForce,
     ConstantTorque,
@@ -148,7 +148,11 @@ class _Plant:
         """One sample: the command goes through the motor (if any), then the plant.
 
         dt (s) is needed by a motor and by a damper load. A non-finite command holds the output.
+        The first step after construction or ``reset()`` takes its command as the rest state
+        (both tendons at pretension, output = command): start a stream from the position the
+        mechanism is really at, e.g. ``step(0.0)``, or the first move skips the dead zone.
         """
+        dt = checked_dt(dt)
         u = float(command)
         if self._motor_engine is not None:
             u = self._motor_engine.step(u, float(dt), self._engine.drive_reaction())

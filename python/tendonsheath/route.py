@@ -7,6 +7,10 @@ import numpy as np
 from . import _core as core
 from ._arrays import as_signal
 
+# 100 full turns: the largest curve angle accepted in measured data (no sheath route comes near
+# it; a larger logged value is a unit or column mistake). The plant itself takes any angle.
+MAX_CURVE_ANGLE = 200 * np.pi
+
 
 class Route:
     """The centreline of a sheath as its accumulated curve angle theta(s) = int_0^s |kappa| ds.
@@ -116,3 +120,15 @@ class Route:
 
     def __repr__(self) -> str:
         return f"Route(length={self.length:.6g} m, total_angle={self.total_angle:.6g} rad)"
+
+
+def check_curve_angle(value, what: str = "curve angle") -> None:
+    """A curve angle (rad, scalar or array) must be finite, >= 0 and at most 100 turns."""
+    arr = np.asarray(value, dtype=float).ravel()
+    for bad, rule in (
+        (~np.isfinite(arr), "be finite"),
+        (arr < 0, "be >= 0"),
+        (arr > MAX_CURVE_ANGLE, f"be <= {MAX_CURVE_ANGLE:.4g} rad (100 turns)"),
+    ):
+        if np.any(bad):
+            raise ValueError(f"{what} must {rule} (got {arr[np.argmax(bad)]:g})")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -73,6 +74,13 @@ def frequency_response(
         raise ValueError("frequencies must be a non-empty 1-D array of positive numbers (Hz)")
     if cycles < 2:
         raise ValueError("cycles must be >= 2 (the first is discarded)")
+    if not (math.isfinite(rate) and rate > 0):
+        raise ValueError(f"rate must be a finite number of Hz > 0 (got {rate})")
+    if np.any(f >= rate / 2):
+        raise ValueError(
+            f"frequencies must be below the Nyquist frequency rate / 2 = {rate / 2:g} Hz "
+            f"(got {f.max():g} Hz)"
+        )
     gains, phases, errors = [], [], []
     for fk in f:
         period = 1.0 / fk

@@ -116,6 +116,15 @@ def run(
     ts, ys = as_time_and_signal(t, reference, "reference")
     if ts is None:
         raise ValueError("bench.run needs the time vector t")
+    if ts.size < 2:
+        raise ValueError(f"bench.run needs at least 2 samples (got {ts.size})")
+    if warmup is not None:
+        warmup = float(warmup)
+        span = float(ts[-1] - ts[0])
+        if not 0.0 <= warmup < span:
+            raise ValueError(
+                f"bench.run: warmup must be in [0, {span:g}) s, the run's length (got {warmup})"
+            )
     idx = angles = shapes = None
     if routes is not None:
         if not callable(routes):

@@ -166,6 +166,19 @@ def _section(data: dict, name: str, source: str) -> dict[str, Any]:
     return out
 
 
+def _check_strain(plant: dict[str, Any], source: str) -> None:
+    """The pretension must stretch the tendon by less than its length (T0 / EA < 1): beyond it
+    the elastic model means nothing and the bench would report garbage."""
+    stiffness = plant.get("stiffness", 2.4e4)  # the plants' default EA
+    pretension = plant.get("pretension")
+    if pretension is not None and stiffness and stiffness > 0 and pretension / stiffness >= 1:
+        raise ScenarioError(
+            f"{source} [plant]: pretension {pretension:g} N would stretch the tendon by "
+            f"{pretension / stiffness:.3g} times its length (stiffness EA = {stiffness:g} N); "
+            "T0 / EA must be < 1"
+        )
+
+
 def _route(spec: dict[str, Any], where: str, length: float | None = None) -> Route:
     try:
         if "arcs" in spec:
@@ -187,6 +200,7 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         _check_type(source, key, value, _TOP[key])
     s = {name: _section(data, name, source) for name in _KEYS}
     plant_type = s["plant"].get("type", "pull_pull")
+    _check_strain(s["plant"], source)
     if plant_type not in ("pull_pull", "continuum"):
         raise ScenarioError(f"{source} [plant]: 'type' must be 'pull_pull' or 'continuum'")
     route = _route(s["route"], f"{source} [route]")
@@ -203,6 +217,11 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
     if any(b[0] <= a[0] for a, b in zip(changes, changes[1:], strict=False)):
         raise ScenarioError(f"{source} [[route.changes]]: times must increase")
     compensators = s["compare"].get("compensators", list(COMPENSATORS))
+    if not compensators:
+        raise ScenarioError(
+            f"{source} [compare]: 'compensators' is empty; name at least one of "
+            f"{list(COMPENSATORS)}"
+        )
     for name in compensators:
         if name not in COMPENSATORS:
             raise ScenarioError(
@@ -473,6 +492,7 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
         },
         runs=runs,
         table=table,
+        table_title="Results",
         paper={},
         routes=shapes,
         route_schedule=[(0.0, sc.route["initial"].total_angle)]

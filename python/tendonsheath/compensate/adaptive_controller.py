@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from .. import _core as core
+from .._arrays import checked_dt
 from ..models import Backlash, BoucWenBacklash
 from ..status import Status
 
@@ -142,6 +143,7 @@ class AdaptiveController:
 
     def step(self, y_d: float, y_measured: float, motor_position: float, dt: float) -> float:
         """One control cycle; returns the motor torque. y_measured may be NaN (dropout)."""
+        dt = checked_dt(dt)
         return self._engine.step(float(y_d), float(y_measured), float(motor_position), float(dt))
 
     def status(self) -> Status:

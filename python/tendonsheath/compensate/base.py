@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from .._arrays import as_time_and_signal
+import numpy as np
+
+from .._arrays import as_time_and_signal, checked_dt
 from ..status import Status
 
 
@@ -21,6 +23,7 @@ class Feedforward:
         self._engine.reset()
 
     def step(self, y_d: float, dt: float) -> float:
+        dt = checked_dt(dt)
         return self._engine.step(float(y_d), float(dt))
 
     def status(self) -> Status:

@@ -8,7 +8,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .. import _core as core
-from .._arrays import as_signal, as_time_and_signal
+from .._arrays import as_signal, as_time_and_signal, checked_dt
 from ..physics import route_shape as shape_of
 from .base import Feedforward
 from .limits import as_limits
@@ -53,7 +53,11 @@ class CurveAngleFeedforward(Feedforward):
         """Built from an identified ``CurveAngleModel``: its friction, compliance L/EA,
         pretension and radii; the distal load defaults to the model's own (``load``,
         ``spring``) and can be replaced by the load expected in use (N, N/m at the tendon)."""
-        p = model.params
+        p = getattr(model, "params", None)
+        if not isinstance(p, dict):
+            raise TypeError(
+                f"CurveAngleFeedforward.from_model needs a CurveAngleModel (got {model!r})"
+            )
         missing = {"friction", "stiffness", "pretension", "length"} - set(p)
         if missing:
             raise ValueError(
@@ -81,9 +85,12 @@ class CurveAngleFeedforward(Feedforward):
 
     def set_route(self, route) -> None:
         """Any route: its exact g/G shape integrals are used (spec A.2 warning on Theta-only)."""
+        if not (hasattr(route, "s") and hasattr(route, "theta")):
+            raise TypeError(f"set_route needs a Route (got {route!r})")
         self._engine.set_shape(shape_of(route, self.friction))
 
     def step(self, y_d: float, dt: float, curve_angle=None, route=None) -> float:
+        dt = checked_dt(dt)
         if route is not None:
             self.set_route(route)
         elif curve_angle is not None:

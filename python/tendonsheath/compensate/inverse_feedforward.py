@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _core as core
+from .._arrays import checked_dt
 from ..models import Backlash, BoucWenBacklash, HysteresisModel, PrandtlIshlinskii, Scaled
 from .base import Feedforward
 from .limits import CommandLimits, as_limits
@@ -61,6 +62,7 @@ class InverseFeedforward(Feedforward):
             )
 
     def step(self, y_d: float, dt: float) -> float:
+        dt = checked_dt(dt)
         if self._map is None:
             return super().step(y_d, dt)
         x_c, x_s, y_c, g = self._map

@@ -22,17 +22,33 @@ class CommandLimits:
         return lim
 
 
+_FIELDS = ("min", "max", "max_rate")
+
+
 def as_limits(limits) -> CommandLimits:
-    """Accept None, a CommandLimits, or any object with min/max/max_rate attributes."""
+    """Accept None, a CommandLimits, a (min, max[, max_rate]) tuple or list, or a dict with
+    min/max/max_rate keys; anything else is a TypeError (a limit is never silently ignored)."""
     if limits is None:
         return CommandLimits()
     if isinstance(limits, CommandLimits):
         return limits
-    try:
-        return CommandLimits(
-            getattr(limits, "min", -math.inf),
-            getattr(limits, "max", math.inf),
-            getattr(limits, "max_rate", math.inf),
-        )
-    except TypeError:
-        raise ValueError(f"limits must be a CommandLimits (got {limits!r})") from None
+    if isinstance(limits, core.CommandLimits):
+        return CommandLimits(limits.min, limits.max, limits.max_rate)
+    if isinstance(limits, dict):
+        unknown = sorted(set(map(str, limits)) - set(_FIELDS))
+        if unknown:
+            raise TypeError(f"limits: unknown key(s) {unknown}; use min, max, max_rate")
+        return CommandLimits(**{k: _limit_value(k, v) for k, v in limits.items()})
+    if isinstance(limits, (tuple, list)) and len(limits) in (2, 3):
+        names = _FIELDS[: len(limits)]
+        return CommandLimits(*(_limit_value(k, v) for k, v in zip(names, limits, strict=True)))
+    raise TypeError(
+        "limits must be a CommandLimits, a (min, max[, max_rate]) tuple or a dict "
+        f"with min/max/max_rate (got {limits!r})"
+    )
+
+
+def _limit_value(name: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise TypeError(f"limits: {name} must be a number (got {value!r})")
+    return float(value)

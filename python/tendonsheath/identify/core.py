@@ -24,7 +24,26 @@ from .specs import SPECS, GeneralizedPrandtlIshlinskiiSpec, PrandtlIshlinskiiSpe
 GPI_PLAYS = 10  # default number of plays of an identified GeneralizedPrandtlIshlinskii
 
 
+def check_search_options(*, maxiter, popsize, tol, workers, warmup) -> None:
+    """The global search's settings, checked once with a message naming the option."""
+    counts = (("maxiter", maxiter, 0), ("popsize", popsize, 1), ("warmup", warmup, 0))
+    for name, value, low in counts:
+        if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < low:
+            raise ValueError(f"{name} must be an integer >= {low} (got {value!r})")
+    if workers is not None and (
+        isinstance(workers, bool) or not isinstance(workers, int | np.integer) or workers < 1
+    ):
+        raise ValueError(f"workers must be an integer >= 1 or None (got {workers!r})")
+    if isinstance(tol, bool) or not isinstance(tol, int | float) or not tol >= 0:
+        raise ValueError(f"tol must be a number >= 0 (got {tol!r})")
+
+
 def _model_class(model_class) -> type[HysteresisModel]:
+    if isinstance(model_class, HysteresisModel):
+        raise ValueError(
+            f"identify takes a model class, e.g. {type(model_class).__name__}, not an instance "
+            f"({model_class!r}); give starting values with initial="
+        )
     if isinstance(model_class, str):
         if model_class not in _REGISTRY:
             raise ValueError(f"unknown model {model_class!r}; known: {sorted(SPECS_BY_NAME)}")
@@ -223,6 +242,7 @@ def identify(
     """
     from .uncertainty import check_method
 
+    check_search_options(maxiter=maxiter, popsize=popsize, tol=tol, workers=workers, warmup=warmup)
     se_method, n_boot = check_method(standard_errors, bootstrap)
     if normalize:
         from . import normalize as _norm
@@ -329,7 +349,7 @@ def identify(
         spec = SPECS[cls]()
 
     free_set = set(free or ())
-    unknown = (free_set | set(fixed or {})) - set(cls.param_names)
+    unknown = (free_set | set(fixed or {}) | set(bounds or {})) - set(cls.param_names)
     if unknown:
         raise ValueError(
             f"unknown parameter(s) {sorted(unknown)} of {cls.__name__}; "
@@ -340,6 +360,8 @@ def identify(
     if cls in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii) and held:
         raise ValueError(f"{cls.__name__}: fixed parameters are not supported")
     free_names = [n for n in cls.param_names if n not in held]
+    if not free_names and not depends:
+        raise ValueError(f"every parameter of {cls.__name__} is fixed: nothing to identify")
     values.update(held)
     if set(depends) & set(held):
         raise ValueError(f"fixed parameters cannot depend on the curve angle: {sorted(depends)}")

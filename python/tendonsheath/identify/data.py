@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _core as core
+from ..route import check_curve_angle
 
 MIN_SAMPLES = 20  # fitted samples per fit (after warm-up), at the very least
 
@@ -94,6 +95,8 @@ def make_recordings(
         ys = _vector(yi, f"{who}output y")
         if ys.size != xs.size:
             raise ValueError(f"{who}x and y have different lengths ({xs.size} and {ys.size})")
+        _check_scale(xs, f"{who}input x")
+        _check_scale(ys, f"{who}output y")
         ts = None
         if ti is not None:
             ts = _vector(ti, f"{who}time t")
@@ -120,8 +123,24 @@ def make_recordings(
                         f"{who}curve angle and x have different lengths "
                         f"({theta.size} and {xs.size})"
                     )
+        if theta is not None:
+            check_curve_angle(theta, f"{who}curve angle")
         out.append(Recording(ts, xs, ys, theta, skips[i]))
     return out
+
+
+# squared errors summed over ~1e6 samples stay normal doubles (1e-308 .. 1e308) in this range
+_SCALE_RANGE = (1e-150, 1e150)
+
+
+def _check_scale(values: np.ndarray, what: str) -> None:
+    """Magnitudes whose squares under- or overflow make every metric 0, inf or nan."""
+    big = float(np.max(np.abs(values))) if values.size else 0.0
+    if big > _SCALE_RANGE[1] or 0.0 < big < _SCALE_RANGE[0]:
+        raise ValueError(
+            f"{what} reaches {big:.3g}: outside {_SCALE_RANGE[0]:g} .. {_SCALE_RANGE[1]:g}, its "
+            "squared errors under- or overflow; rescale the data (e.g. to rad or mm)"
+        )
 
 
 def check_for_fit(
@@ -148,9 +167,9 @@ def check_for_fit(
     x_all = np.concatenate([r.x for r in recs])
     y_all = np.concatenate([r.y[warmup:] for r in recs])
     if np.ptp(x_all) == 0.0:
-        raise ValueError(f"the input is constant ({x_all[0]}): it excites nothing to identify")
+        raise ValueError("the input is constant: it excites nothing to identify")
     if np.ptp(y_all) == 0.0:
-        raise ValueError(f"the output is constant ({y_all[0]}): there is nothing to identify")
+        raise ValueError("the output is constant: there is nothing to identify")
 
 
 def recording_set(recs: list[Recording], warmup: int, with_angle: bool) -> core.RecordingSet:

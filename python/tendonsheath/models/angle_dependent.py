@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from .._arrays import checked_dt
 from ..status import Status
 from .base import _REGISTRY, HysteresisModel
 from .curve_angle import curve_angle_samples
@@ -44,6 +45,7 @@ class AngleDependent(HysteresisModel):
 
     param_names = ("base", "laws", "coefficients", "angle_friction")
     option_names = ("base_options",)
+    nullable_params = ("angle_friction",)
     uses_curve_angle = True
 
     def __init__(
@@ -147,6 +149,7 @@ class AngleDependent(HysteresisModel):
         self._stream_angle = None
 
     def step(self, x: float, dt: float = 0.0, curve_angle: float | None = None) -> float:
+        dt = checked_dt(dt)
         if self._stream is None:
             if curve_angle is None:
                 raise ValueError("AngleDependent: the first step() needs curve_angle")

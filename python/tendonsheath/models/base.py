@@ -7,7 +7,9 @@ import math
 from pathlib import Path
 from typing import Any, ClassVar
 
-from .._arrays import as_time_and_signal
+import numpy as np
+
+from .._arrays import as_time_and_signal, checked_dt
 from ..status import Status
 
 FORMAT_NAME = "tendonsheath.model"
@@ -31,6 +33,8 @@ class HysteresisModel:
     rate_independent: ClassVar[bool] = True
     # status() and simulate(..., status=True) report each step's Status (false: linear blocks)
     reports_status: ClassVar[bool] = True
+    # parameters a saved file may hold as null (all others must be present and not null)
+    nullable_params: ClassVar[tuple[str, ...]] = ()
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -95,6 +99,7 @@ class HysteresisModel:
 
     def step(self, x: float, dt: float = 0.0) -> float:
         """Advance one sample (streaming); dt is the time since the previous sample."""
+        dt = checked_dt(dt)
         return self._engine.step(float(x), float(dt))
 
     def status(self) -> Status:
@@ -122,7 +127,7 @@ class HysteresisModel:
             return model_cls._from_parts(data)
         if model_cls is not cls and "from_dict" in vars(model_cls):  # e.g. renamed parameters
             return model_cls.from_dict(data)
-        values = {**data.get("params", {}), **data.get("options", {})}
+        values = {**_saved_params(model_cls, data), **_saved_options(model_cls, data)}
         known = set(model_cls.param_names) | set(model_cls.option_names)
         unknown = sorted(set(values) - known)
         if unknown:
@@ -156,6 +161,52 @@ def model_class_from_dict(data: dict[str, Any]) -> type[HysteresisModel]:
     if name not in _REGISTRY:
         raise ValueError(f"unknown model {name!r}; known: {sorted(_REGISTRY)}")
     return _REGISTRY[name]
+
+
+def _saved_params(model_cls, data: dict[str, Any]) -> dict[str, Any]:
+    """The saved parameters: every one present, none null (unless nullable), none boolean."""
+    name = model_cls.__name__
+    if "params" not in data:
+        raise ValueError(f"{name} file: 'params' is missing")
+    params = data["params"]
+    if not isinstance(params, dict):
+        raise ValueError(f"{name} file: 'params' must be an object (got {params!r})")
+    unknown = sorted(set(params) - set(model_cls.param_names) - set(model_cls.option_names))
+    if unknown:
+        raise ValueError(
+            f"{name}: unknown parameter(s) {unknown}; expected {list(model_cls.param_names)}"
+        )
+    missing = [k for k in model_cls.param_names if k not in params]
+    if missing:
+        raise ValueError(f"{name} file: parameter(s) {missing} missing from 'params'")
+    for key, value in params.items():
+        if value is None and key not in model_cls.nullable_params:
+            raise ValueError(f"{name} file: parameter '{key}' is null")
+        _check_not_bool(name, f"parameter '{key}'", value)
+    return params
+
+
+def _saved_options(model_cls, data: dict[str, Any]) -> dict[str, Any]:
+    """The saved options (each may be left out: its default); none null."""
+    options = data.get("options", {})
+    if not isinstance(options, dict):
+        raise ValueError(f"{model_cls.__name__} file: 'options' must be an object")
+    for key, value in options.items():
+        if value is None:
+            raise ValueError(f"{model_cls.__name__} file: option '{key}' is null")
+    return options
+
+
+def _check_not_bool(name: str, what: str, value) -> None:
+    """true/false where a number belongs would silently become 1/0."""
+    if isinstance(value, bool):
+        raise ValueError(f"{name} file: {what} must be a number (got {json.dumps(value)})")
+    if isinstance(value, list | tuple):
+        for v in value:
+            _check_not_bool(name, what, v)
+    if isinstance(value, dict):
+        for v in value.values():
+            _check_not_bool(name, what, v)
 
 
 def load_model(source: str | Path | dict) -> HysteresisModel:

@@ -72,5 +72,7 @@ class BoucWen(HysteresisModel):
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> HysteresisModel:
         """Also reads files written before ``a`` was renamed ``alpha`` (without a warning)."""
-        params = _renamed(dict(data.get("params", {})), warn=False)
-        return super().from_dict({**data, "params": params})
+        params = data.get("params")
+        if not isinstance(params, dict):  # the base class names what is wrong
+            return super().from_dict(data)
+        return super().from_dict({**data, "params": _renamed(dict(params), warn=False)})

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _core as core
-from .._arrays import as_signal, as_time_and_signal
+from .._arrays import as_signal, as_time_and_signal, checked_dt
 from .base import HysteresisModel
 
 
@@ -82,6 +82,7 @@ class CurveAngleModel(HysteresisModel):
 
     def step(self, x: float, dt: float = 0.0, curve_angle: float | None = None) -> float:
         """One sample; ``curve_angle`` may be omitted after the first call (the last is kept)."""
+        dt = checked_dt(dt)
         if curve_angle is None:
             return self._engine.step(float(x), float(dt))
         return self._engine.step(float(x), float(dt), float(curve_angle))

@@ -24,6 +24,12 @@ class _GeneralizedBase(HysteresisModel):
         weights=(0.6, 0.2, 0.1, 0.1),
         **flat,
     ):
+        for side, env in (("rising", rising), ("falling", falling)):
+            if np.ndim(env) != 1 or len(env) != len(_ENVELOPE):
+                raise ValueError(
+                    f"{type(self).__name__}: {side} must be the 4 envelope coefficients "
+                    f"(a, b, c, d) (got {env!r})"
+                )
         values = dict(zip(_FLAT, [*rising, *falling], strict=True))
         values.update(flat)
         values["thresholds"] = [float(v) for v in np.asarray(thresholds, dtype=float)]

@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 from scipy.signal import cont2discrete, lfilter, lfilter_zi
 
+from .._arrays import checked_dt
 from .base import HysteresisModel
 
 _UNIFORM = 1e-3  # relative spread of the sample time accepted as uniform
@@ -103,6 +104,7 @@ class LinearBlock(HysteresisModel):
     def step(self, x: float, dt: float = 0.0) -> float:
         """One sample; dt > 0 after the first. A dt that changes re-discretises the block
         (the filter state is carried over as is: exact for a constant dt)."""
+        dt = checked_dt(dt)
         x = float(x)
         if self._rest is None:
             self._rest = x

@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from . import figures, html
+from .units import check_angle_unit, convert, rows_in_unit, unit_after
 
 SCHEMA = "tendonsheath.metrics"
 SCHEMA_VERSION = 1
@@ -65,8 +66,9 @@ def _jsonable(value: Any):
     return value
 
 
-def scenario_section(result, out: Path) -> tuple[str, list[Path]]:
-    """HTML for one scenario, and the PNG files written beside the report."""
+def scenario_section(result, out: Path, angle_unit: str = "deg") -> tuple[str, list[Path]]:
+    """HTML for one scenario, and the PNG files written beside the report; every angle in the
+    tables in ``angle_unit`` ("deg" or "rad")."""
     parts, written = [], []
 
     def add(fig, name, caption):
@@ -93,33 +95,37 @@ def scenario_section(result, out: Path) -> tuple[str, list[Path]]:
             "realistic plant with compensators calibrated from logs alone. A miss is a "
             "measured figure, not a failure to hide.</p>" + html.table(rows)
         )
-    parts.append("<h3>Results beside the paper</h3>" + html.table(result.table))
+    parts.append(
+        f"<h3>{html.fmt(result.table_title)}</h3>"
+        + html.table(rows_in_unit(result.table, angle_unit, result.table_units))
+    )
     parts.append(_status_table(result.runs))
     if result.paper.get("note"):
         parts.append(f'<p class="note">{html.fmt(result.paper["note"])}</p>')
     if result.name == "do2015":
         add(
             figures.bars(
-                {k: r.metrics["mse"] for k, r in result.runs.items()},
-                "MSE: this simulation and the paper",
-                "MSE [rad^2]",
-                result.paper["mse_rad2"],
+                {k: convert(r.metrics["mse"], "rad^2", angle_unit) for k, r in result.runs.items()},
+                "MSE under random route changes: this simulation and the paper",
+                f"MSE [{unit_after('rad^2', angle_unit)}]",
+                {k: convert(v, "rad^2", angle_unit) for k, v in result.paper["mse_rad2"].items()},
             ),
             "mse",
-            "Mean squared error (log scale).",
+            "Mean squared error of the headline runs (the route changing at random; "
+            "log scale) beside the paper's.",
         )
     add(
-        figures.tracking(result.runs, f"{result.name}: tracking"),
+        figures.tracking(result.runs, f"{result.name}: tracking", unit=angle_unit),
         "tracking",
         "Reference (dashed) and distal output of each compensator, last 12 s.",
     )
     add(
-        figures.errors(result.runs, f"{result.name}: tracking error"),
+        figures.errors(result.runs, f"{result.name}: tracking error", unit=angle_unit),
         "error",
         "Tracking error over the whole run; metrics exclude the warm-up.",
     )
     add(
-        figures.loops(result.runs, f"{result.name}: output vs reference"),
+        figures.loops(result.runs, f"{result.name}: output vs reference", unit=angle_unit),
         "loops",
         "Hysteresis left by each compensator (output against reference).",
     )
@@ -163,19 +169,19 @@ def scenario_section(result, out: Path) -> tuple[str, list[Path]]:
             + html.table(result.identified)
         )
     if result.honesty:
-        parts.append(honesty_section(result.honesty))
+        parts.append(honesty_section(result.honesty, angle_unit))
     return "".join(parts), written
 
 
-def honesty_section(panel: dict) -> str:
+def honesty_section(panel: dict, angle_unit: str = "deg") -> str:
     """The honesty panel: what each compensator was told and where it came from, parameters
     at their search bounds, and the best in-class fit on its own test run."""
     summary = [
         {
             "compensator": name,
             "model class": e.get("model_class"),
-            "best in-class fit rmse [rad]": e.get("in_class_rmse"),
-            "output range [rad]": e.get("output_range"),
+            "best in-class fit rmse": e.get("in_class_rmse"),
+            "output range": e.get("output_range"),
             "rmse / range": e.get("in_class_nrmse"),
             "parameters at search bounds": ", ".join(e.get("at_bounds") or []) or "none",
         }
@@ -197,7 +203,9 @@ def honesty_section(panel: dict) -> str:
         '<h3>Honesty panel</h3><p class="note">How far the plant lies from each '
         "compensator's model class: that class identified on the test run's own log (motor "
         "encoder in, distal sensor out), next to the output range.</p>"
-        + html.table(summary)
+        + html.table(
+            rows_in_unit(summary, angle_unit, {"output range": "rad", "rmse / range": "-"})
+        )
         + "<h3>What each compensator was told</h3>"
         + html.table(told)
     )
@@ -236,13 +244,16 @@ def write(
     scenario_results: list,
     extra_sections: list[tuple[str, str, str, dict]] | None = None,
     title: str = "tendonsheath virtual bench",
+    angle_unit: str = "deg",
 ) -> dict:
     """Write report.html and metrics.json. ``extra_sections`` are (anchor, heading, html,
-    data) after the scenarios; each one's data goes to metrics.json under its anchor."""
+    data) after the scenarios; each one's data goes to metrics.json under its anchor (always
+    in radians); the report's tables show angles in ``angle_unit``."""
+    check_angle_unit(angle_unit)
     out.mkdir(parents=True, exist_ok=True)
     sections, written = [], []
     for result in scenario_results:
-        body, files = scenario_section(result, out)
+        body, files = scenario_section(result, out, angle_unit)
         sections.append((result.name, result.title, body))
         written += files
     metrics = {

@@ -27,17 +27,22 @@ def png(fig) -> bytes:
     return buf.getvalue()
 
 
-def tracking(runs: dict, title: str, last_seconds: float | None = 12.0):
-    """Reference and outputs over time (the last `last_seconds`), in degrees."""
+def _angle(values, unit: str):
+    """Radians to the report's angle unit."""
+    return np.degrees(values) if unit == "deg" else np.asarray(values)
+
+
+def tracking(runs: dict, title: str, last_seconds: float | None = 12.0, unit: str = "deg"):
+    """Reference and outputs over time (the last `last_seconds`), in `unit` (deg or rad)."""
     fig, ax = plt.subplots(figsize=(9, 3.4))
     first = next(iter(runs.values()))
     t = first.t
     keep = t >= t[-1] - last_seconds if last_seconds else np.ones_like(t, bool)
-    ax.plot(t[keep], np.degrees(first.reference[keep]), "k--", lw=1.2, label="reference")
+    ax.plot(t[keep], _angle(first.reference[keep], unit), "k--", lw=1.2, label="reference")
     for i, (name, r) in enumerate(runs.items()):
-        ax.plot(t[keep], np.degrees(r.output[keep]), lw=1.0, color=_color(name, i), label=name)
+        ax.plot(t[keep], _angle(r.output[keep], unit), lw=1.0, color=_color(name, i), label=name)
     ax.set_xlabel("time [s]")
-    ax.set_ylabel("distal angle [deg]")
+    ax.set_ylabel(f"distal angle [{unit}]")
     ax.set_title(title)
     ax.grid(alpha=0.3)
     ax.legend(loc="upper right", fontsize=8)
@@ -45,10 +50,10 @@ def tracking(runs: dict, title: str, last_seconds: float | None = 12.0):
     return fig
 
 
-def errors(runs: dict, title: str):
+def errors(runs: dict, title: str, unit: str = "deg"):
     fig, ax = plt.subplots(figsize=(9, 3.0))
     for i, (name, r) in enumerate(runs.items()):
-        ax.plot(r.t, np.degrees(r.error), lw=0.8, color=_color(name, i), label=name)
+        ax.plot(r.t, _angle(r.error, unit), lw=0.8, color=_color(name, i), label=name)
     ax.axvline(
         next(iter(runs.values())).t[0] + next(iter(runs.values())).warmup,
         color="k",
@@ -57,7 +62,7 @@ def errors(runs: dict, title: str):
         label="end of warm-up",
     )
     ax.set_xlabel("time [s]")
-    ax.set_ylabel("tracking error [deg]")
+    ax.set_ylabel(f"tracking error [{unit}]")
     ax.set_title(title)
     ax.grid(alpha=0.3)
     ax.legend(loc="upper right", fontsize=8)
@@ -65,22 +70,22 @@ def errors(runs: dict, title: str):
     return fig
 
 
-def loops(runs: dict, title: str):
+def loops(runs: dict, title: str, unit: str = "deg"):
     """Output against reference after the warm-up: the hysteresis each compensator leaves."""
     fig, ax = plt.subplots(figsize=(4.8, 4.2))
     for i, (name, r) in enumerate(runs.items()):
         keep = r.scored
         ax.plot(
-            np.degrees(r.reference[keep]),
-            np.degrees(r.output[keep]),
+            _angle(r.reference[keep], unit),
+            _angle(r.output[keep], unit),
             lw=0.8,
             color=_color(name, i),
             label=name,
         )
-    lim = np.degrees(np.max(np.abs(next(iter(runs.values())).reference)))
+    lim = _angle(np.max(np.abs(next(iter(runs.values())).reference)), unit)
     ax.plot([-lim, lim], [-lim, lim], "k:", lw=0.8)
-    ax.set_xlabel("reference [deg]")
-    ax.set_ylabel("output [deg]")
+    ax.set_xlabel(f"reference [{unit}]")
+    ax.set_ylabel(f"output [{unit}]")
     ax.set_title(title)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)

@@ -23,6 +23,8 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
+from .main_guard import ADVICE, in_bootstrapping_worker, unguarded_script
+
 Item = tuple[int, dict[str, Any]]
 Outcome = tuple[int, Any, str | None, float]  # index, output, error text, seconds
 
@@ -217,6 +219,12 @@ def run_local(
     run, items, workers=None, batch_size=None, progress=None, mp_context=None
 ) -> tuple[dict, EngineStats]:
     """A process pool over this machine's cores (workers=None: os.cpu_count())."""
+    method = mp_context or _default_context()
+    if in_bootstrapping_worker():  # a worker re-running an unguarded script: stop it quietly
+        raise SystemExit(f"tendonsheath sweep: {ADVICE}")
+    script = unguarded_script() if method != "fork" else None
+    if script is not None:
+        raise SweepError(f"sweep(engine='local') in {script}: {ADVICE}")
     workers = int(workers or os.cpu_count() or 1)
     if workers < 1:
         raise ValueError(f"sweep: workers must be >= 1 (got {workers})")
@@ -224,7 +232,7 @@ def run_local(
     batches = make_batches(items, size)
     run = portable(run)
     start = time.perf_counter()
-    pool = local_pool(workers, mp_context or _default_context(), getattr(run, "__module__", None))
+    pool = local_pool(workers, method, getattr(run, "__module__", None))
     label = f"sweep (local, {workers} worker{'s' if workers > 1 else ''})"
     with progress_bar(progress, len(items), label) as advance:
         col = _Collector(len(items), advance)
@@ -233,11 +241,12 @@ def run_local(
             for fut in as_completed(futures):
                 col.add(fut.result())
         except BrokenProcessPool as exc:
-            _POOLS.pop((workers, mp_context or _default_context()), None)
+            _POOLS.pop((workers, method), None)
             raise SweepError(
                 f"a local worker process died ({exc}); the local engine does not retry: "
-                "use the Dask engine for fault tolerance"
-            ) from exc
+                "use the Dask engine for fault tolerance (a script that starts a sweep outside "
+                'its `if __name__ == "__main__":` block also kills its workers)'
+            ) from None
         except BaseException:
             for f in futures:
                 f.cancel()

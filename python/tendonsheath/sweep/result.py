@@ -145,6 +145,7 @@ class SweepResult:
         return "mse" if "mse" in self.metrics else self.metrics[0]
 
     def _bounds(self, bound) -> dict[str, float]:
+        check_bound(bound)
         if bound is None:
             return {}
         if isinstance(bound, Mapping):
@@ -373,3 +374,23 @@ def engine_info(stats) -> dict:
     d = asdict(stats)
     extra = d.pop("extra", {}) or {}
     return {**d, **extra}
+
+
+# error metrics are >= 0: a bound on one at or below 0 can only be a mistake
+_ERROR_METRICS = ("mse", "rmse", "max_abs", "percent_error", "max_percent_error")
+
+
+def check_bound(bound) -> None:
+    """A bound is a finite number (for the primary metric) or {metric: finite number}; on an
+    error metric (mse, rmse, ... or a plain number) it must be > 0."""
+    if bound is None:
+        return
+    items = bound.items() if isinstance(bound, Mapping) else [(None, bound)]
+    for metric, value in items:
+        what = "bound" if metric is None else f"bound on {metric}"
+        if isinstance(value, bool) or not isinstance(value, int | float | np.number):
+            raise ValueError(f"{what} must be a number (got {value!r})")
+        if not np.isfinite(value):
+            raise ValueError(f"{what} must be finite (got {value})")
+        if (metric is None or metric in _ERROR_METRICS) and value <= 0:
+            raise ValueError(f"{what} must be > 0: an error metric is >= 0 (got {value})")

@@ -54,6 +54,7 @@ from .distributions import (
     Seed,
     Uniform,
 )
+from .result import check_bound
 
 #: Named runs for ``[run] scenario = NAME``; the bench scenarios (do2015, ...) belong here.
 SCENARIOS: dict[str, str] = {
@@ -204,6 +205,10 @@ def read_sweep_file(path) -> SweepFile:
     report = data.get("report", {})
     if set(report) - {"bound"}:
         raise ValueError(f"{path}: unknown [report] key(s) {sorted(set(report) - {'bound'})}")
+    try:
+        check_bound(report.get("bound"))
+    except ValueError as exc:
+        raise ValueError(f"{path} [report]: {exc}") from None
     return SweepFile(
         path=path,
         run=run,

@@ -37,10 +37,18 @@ class ScenarioResult:
     identified: list[dict[str, Any]] = field(default_factory=list)  # identified groups, report
     # the paper's headline claims checked: {claim, target, measured, met}; a miss is reported
     targets: list[dict[str, Any]] = field(default_factory=list)
+    table_title: str = "Results beside the paper"
+    # unit of the table's columns whose key does not say it (e.g. one column per compensator)
+    table_units: dict[str, str] = field(default_factory=dict)
 
     def metrics(self) -> dict[str, dict[str, float]]:
         """compensator -> metric -> value, for metrics.json."""
         return {name: dict(result.metrics) for name, result in self.runs.items()}
+
+
+def first_paragraph(doc: str) -> str:
+    """A docstring's first paragraph as one line (the report's scenario summary)."""
+    return " ".join(doc.strip().split("\n\n")[0].split())
 
 
 def encoder(noise_std: float = 2e-4, resolution: float = 1e-4, seed: int = 1) -> Sensor:

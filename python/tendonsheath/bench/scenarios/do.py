@@ -17,6 +17,7 @@ from ..run import run
 from .common import (
     ScenarioResult,
     encoder,
+    first_paragraph,
     honesty_panel,
     identification_budget,
     kinematic_told,
@@ -230,7 +231,7 @@ def do2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
         targets=targets,
         name="do2015",
         title="Do et al. 2015: feedforward and adaptive control under changing routes",
-        summary=do2015.__doc__.strip().splitlines()[0],
+        summary=first_paragraph(do2015.__doc__),
         conditions=CONDITIONS,
         runs=runs,
         table=table,

@@ -17,6 +17,7 @@ from ..run import run
 from .common import (
     ScenarioResult,
     encoder,
+    first_paragraph,
     honesty_panel,
     identification_budget,
     kinematic_told,
@@ -164,7 +165,7 @@ def lau2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
         targets=targets,
         name="lau2015",
         title="Lau et al. 2015: continuum manipulator through a tendon-sheath drive",
-        summary=lau2015.__doc__.strip().splitlines()[0],
+        summary=first_paragraph(lau2015.__doc__),
         conditions=CONDITIONS,
         runs=runs,
         table=table,

@@ -17,6 +17,7 @@ from ..run import run
 from .common import (
     ScenarioResult,
     encoder,
+    first_paragraph,
     honesty_panel,
     identification_budget,
     kinematic_told,
@@ -232,10 +233,12 @@ def sun2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
         targets=targets,
         name="sun2015",
         title="Sun et al. 2015: curve-angle feedforward without a tip sensor",
-        summary=sun2015.__doc__.strip().splitlines()[0],
+        summary=first_paragraph(sun2015.__doc__),
         conditions=CONDITIONS,
         runs=runs,
         table=rows,
+        table_title="RMSE of the distal angle per condition (the last row: the route change run)",
+        table_units={name: "rad" for name in runs},
         paper={
             "note": "the seed's published RMSE values could not be recovered; compare the "
             "ranking (curve-angle feedforward < fixed feedforward < none)"
