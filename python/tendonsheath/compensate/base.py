@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import numpy as np
-
 from .._arrays import as_time_and_signal, checked_dt
 from ..status import Status
 

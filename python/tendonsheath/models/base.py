@@ -7,8 +7,6 @@ import math
 from pathlib import Path
 from typing import Any, ClassVar
 
-import numpy as np
-
 from .._arrays import as_time_and_signal, checked_dt
 from ..status import Status
 
