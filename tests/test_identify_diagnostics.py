@@ -28,8 +28,8 @@ X = np.sin(2 * np.pi * 0.5 * T) * (1 - 0.4 * T / T[-1]) + 0.25 * np.sin(2 * np.p
 
 def _identify(*args, **kwargs):
     """identify() with its IdentifiabilityWarnings recorded: (fit, [messages]). In raw units
-    (normalize=False): these tests judge each class's own errors and diagnostics, and the
-    normalisation maps standard errors back only for plain scalings."""
+    (normalize=False): these tests judge each class's own errors and diagnostics (the
+    normalisation's are in test_identify_normalized_errors.py)."""
     kwargs.setdefault("normalize", False)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")

@@ -280,6 +280,37 @@ def entries_of(model, names: Sequence[str], scales: Sequence[str] = ()) -> list[
     return out
 
 
+def entries_from_labels(labels: Sequence[str]) -> list[Entry]:
+    """The entries that :func:`entries_of` labelled ``labels`` (its inverse)."""
+    out = []
+    for label in labels:
+        if label.endswith(" (scale)"):
+            out.append(Entry(label, label.removesuffix(" (scale)"), scale=True))
+        elif label.endswith("]") and "[" in label:
+            key, index = label[:-1].rsplit("[", 1)
+            out.append(Entry(label, key, int(index)))
+        else:
+            out.append(Entry(label, label))
+    return out
+
+
+def se_dict(model, entries: Sequence[Entry], se: np.ndarray) -> dict:
+    """Standard errors in the shape of ``model.params``: a scale entry's error spread over its
+    list in proportion (a common factor), list elements in place, scalars as they are."""
+    params = model.params
+    out: dict = {}
+    for e, s in zip(entries, se, strict=True):
+        if e.scale:
+            v = np.asarray(params[e.key], dtype=float)
+            ref = float(np.max(np.abs(v)))
+            out[e.key] = (np.abs(v) * (float(s) / ref if ref > 0 else 0.0)).tolist()
+        elif e.index is not None:
+            out.setdefault(e.key, [0.0] * len(params[e.key]))[e.index] = float(s)
+        else:
+            out[e.key] = float(s)
+    return out
+
+
 def vector_of(model, entries: Sequence[Entry]) -> np.ndarray:
     params = model.params
     out = []

@@ -82,7 +82,9 @@ class Fit:
     ``uncertainty``: how the standard errors were obtained ({"method": "linearised" |
     "bootstrap" | "bootstrap-recordings" | "none", and for the bootstrap "resamples",
     "block" (residual blocks only), "failed", "seed", "samples" (the re-fitted estimates,
-    one row per resample, columns named by "names")}).
+    one row per resample, columns named by "names"), "estimate_names" (the identified
+    quantities, as the Jacobian's columns) and, when linearised, "covariance" (their
+    covariance matrix, NaN rows for those at an active constraint)}).
     """
 
     model: HysteresisModel
@@ -220,7 +222,9 @@ class Fit:
             "bounds": {k: [float(a), float(b)] for k, (a, b) in self.bounds.items()},
             "diagnostics": self.diagnostics.to_dict(),
             "groups": self.groups,
-            "uncertainty": {k: v for k, v in self.uncertainty.items() if k != "samples"},
+            "uncertainty": {
+                k: v for k, v in self.uncertainty.items() if k not in ("samples", "covariance")
+            },
         }
 
     def report(self, path: str | Path) -> Path:

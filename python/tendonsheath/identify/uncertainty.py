@@ -28,6 +28,7 @@ from .diagnostics import (
     fd_jacobian,
     linearised_se,
     moving_block_resample,
+    se_dict,
     vector_of,
     with_vector,
 )
@@ -164,24 +165,10 @@ def _generic_layout(model, recs, warmup, names, scales=()) -> Layout:
     def simulate(m):
         return np.concatenate([simulate_model(m, r.t, r.x, r.curve_angle)[warmup:] for r in recs])
 
-    def to_dict(se):
-        params = model.params
-        out: dict = {}
-        for e, s in zip(entries, se, strict=True):
-            if e.scale:
-                v = np.asarray(params[e.key], dtype=float)
-                ref = float(np.max(np.abs(v)))
-                out[e.key] = (np.abs(v) * (float(s) / ref if ref > 0 else 0.0)).tolist()
-            elif e.index is not None:
-                out.setdefault(e.key, [0.0] * len(params[e.key]))[e.index] = float(s)
-            else:
-                out[e.key] = float(s)
-        return out
-
     return Layout(
         [e.label for e in entries],
         lambda m: vector_of(m, entries),
-        to_dict,
+        lambda se: se_dict(model, entries, se),
         lambda: fd_jacobian(simulate, model, entries),
         "central differences of the simulation output w.r.t. the model's parameters",
     )
@@ -329,6 +316,10 @@ def assess(
         se = np.full(len(layout.names), np.nan)
         if J is not None:
             se[keep] = linearised_se(J_keep, sse, n_fit)
+            if np.all(np.isfinite(J_keep)):
+                cov = np.full((se.size, se.size), np.nan)
+                cov[np.ix_(keep, keep)] = covariance(J_keep, sse, n_fit)
+                extra["covariance"] = cov  # for mapping the errors to other parameters
         if group_fn and J is not None:
             g_se = _delta_group_se(layout, model, group_fn, J, sse, n_fit, free_names)
     else:
@@ -394,6 +385,7 @@ def assess(
             "curve_angle": angle.angle,
             "identified": identified,
         }
+    extra["estimate_names"] = list(layout.names)
     return {
         "standard_errors": layout.to_dict(se),
         "diagnostics": diag,
