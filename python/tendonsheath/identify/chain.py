@@ -182,6 +182,9 @@ def identify_chain(
             workers=workers,
             polish=polish,
             progress=progress,
+            standard_errors=standard_errors,
+            bootstrap=bootstrap,
+            bootstrap_block=bootstrap_block,
         )
     n_workers = 0 if workers is None else int(workers)
     problem = ChainProblem(chain, recs, warmup, bounds, fixed, n_workers)

@@ -218,11 +218,19 @@ def assess(
     seed: int | None = 0,
     angle: SingleAngle | None = None,
     chain_free: list[str] | None = None,
+    generic: tuple[list[str], list[str]] | None = None,
+    label_of: Callable[[str], str] | None = None,
 ) -> dict[str, Any]:
-    """Standard errors, diagnostics, groups and the bootstrap record of a fitted model."""
+    """Standard errors, diagnostics, groups and the bootstrap record of a fitted model.
+
+    ``generic`` ((names, scales) of the model's params) takes the Jacobian with respect to
+    those params (e.g. a Hammerstein chain's "first.rho", "second.time_constant");
+    ``label_of`` names the search and linear coordinates like them for the bound checks."""
     notes: list[str] = []
     # -- layout of the identified quantities
-    if chain_free is not None or cls in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii):
+    if generic is not None:
+        layout = _generic_layout(model, recs, warmup, *generic)
+    elif chain_free is not None or cls in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii):
         names, scales = _entries_names(cls, model, chain_free)
         layout = _generic_layout(model, recs, warmup, names, scales)
     else:
@@ -270,6 +278,11 @@ def assess(
             bvalues[n] = float(v)
             bbounds[n] = (float(a), float(b))
             brefs[n] = ref
+
+    if label_of is not None:
+        bvalues = {label_of(n): v for n, v in bvalues.items()}
+        bbounds = {label_of(n): v for n, v in bbounds.items()}
+        brefs = {label_of(n): v for n, v in brefs.items()}
 
     # parameters held at an active one-sided constraint (e.g. a weight at 0) are not free at
     # the optimum: they are left out of the linearised covariance and the conditioning
@@ -471,6 +484,17 @@ def _with_fitted_output(problem, y_star: np.ndarray):
 
 def _with_recordings(problem, recs, warmup: int):
     """A shallow copy of ``problem`` over other recordings (same parameters and bounds)."""
+    from .dynamic import DynamicProblem
+
+    if isinstance(problem, DynamicProblem):
+        p = copy.copy(problem)
+        p.recs = recs
+        p.rs = recording_set(recs, warmup, False)
+        p.y = np.concatenate([r.y for r in recs])
+        p.mask = fitted_mask(recs, warmup)
+        p.edges = np.cumsum([0] + [r.n for r in recs])
+        p.dts = [float(np.median(np.diff(r.t))) for r in recs]
+        return p
     if isinstance(problem, ChainProblem):
         p = copy.copy(problem)
         p.inner = _with_recordings(problem.inner, recs, warmup)
