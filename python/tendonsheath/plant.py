@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _core as core
-from . import physics
+from . import physics, plant_input
 from ._arrays import as_time_and_signal
 from .loads import (
     ConstantForce,
@@ -63,6 +63,7 @@ class SimulationResult:
     tensions: np.ndarray
     nonconverged: int
     q_motor: np.ndarray | None = None
+    input_interpolation: str = "hold"  # how the command was reconstructed between samples
 
     @property
     def any_slack(self) -> bool:
@@ -123,6 +124,23 @@ class _Plant:
     _engine = None
     motor: Motor | None = None
     sensor: Sensor | None = None
+    _interpolation = ("hold", plant_input.DEFAULT_SUBSTEPS, plant_input.DEFAULT_LOOKAHEAD)
+
+    def set_input_interpolation(
+        self,
+        mode: str,
+        substeps: int = plant_input.DEFAULT_SUBSTEPS,
+        lookahead: int = plant_input.DEFAULT_LOOKAHEAD,
+    ) -> None:
+        """The default reconstruction of the command between samples in :meth:`simulate`
+        ("hold", "linear" or "bandlimited", on a grid ``substeps`` times finer; see
+        :mod:`tendonsheath.plant_input`). :meth:`step` stays causal (hold) whatever it is."""
+        plant_input.check_interpolation(mode, substeps, lookahead, type(self).__name__)
+        self._interpolation = (mode, int(substeps), int(lookahead))
+
+    @property
+    def input_interpolation(self) -> str:
+        return self._interpolation[0]
 
     def _setup_io(self, motor, sensor):
         if motor is not None and not isinstance(motor, Motor):
@@ -194,8 +212,22 @@ class _Plant:
         return (np.arange(n) + 0.5) * L / n
 
     # -- batch -----------------------------------------------------------------------
-    def simulate(self, t, command, routes: Callable | None = None, full: bool = False):
+    def simulate(
+        self,
+        t,
+        command,
+        routes: Callable | None = None,
+        full: bool = False,
+        input_interpolation: str | None = None,
+        periodic: bool | None = None,
+    ):
         """Simulate from rest (on the current route) without touching the streaming state.
+
+        ``input_interpolation`` ("hold", "linear", "bandlimited"; default: the plant's, see
+        :meth:`set_input_interpolation`) reconstructs the command between samples and steps
+        the plant on the finer grid (uniform ``t`` needed); ``periodic`` (None: detected)
+        picks exact FFT upsampling for a record of whole periods (see
+        :mod:`tendonsheath.plant_input`).
 
         ``t`` (s) may be None only without a motor, a damper and a route schedule. ``routes``
         is None or a callable t -> Route (or a (route1, route2) pair for a pull-pull plant); it
@@ -215,9 +247,24 @@ class _Plant:
         motor = self._motor_engine
         motor_arg = core.Motor(self.motor._params) if motor is not None else None
         sensor_arg = core.Sensor(self.sensor._params) if self.sensor is not None else None
+        mode, fine, lookahead = self._interpolation
+        mode = mode if input_interpolation is None else input_interpolation
+        plant_input.check_interpolation(mode, fine, lookahead, name)
+        how, t_run, u_run, idx_run = "hold", ts, us, idx
+        if mode != "hold" and us.size > 1:
+            if ts is None:
+                raise ValueError(f"{name}: input_interpolation={mode!r} needs the time t")
+            t_run, u_run, how = plant_input.fine_grid(ts, us, mode, fine, lookahead, periodic, name)
+            idx_run = None if idx is None else (idx * fine).astype(np.uint64)
         q_out, q_in, slack, meas, tens, noncon, q_motor = self._engine.simulate(
-            ts, us, motor_arg, sensor_arg, idx, angles
+            t_run, u_run, motor_arg, sensor_arg, idx_run, angles
         )
+        if t_run is not ts:  # read at the original samples; slack anywhere in a step counts
+            step = slice(None, None, fine)
+            n = us.size
+            slack = np.r_[slack[0], slack[1 : (n - 1) * fine + 1].reshape(n - 1, fine).any(axis=1)]
+            q_out, q_in, meas = q_out[step], q_in[step], meas[step]
+            q_motor = None if q_motor is None or q_motor.size == 0 else q_motor[step]
         if slack.any():
             k = int(np.flatnonzero(slack)[0])
             when = f"t = {ts[k]:.6g} s" if ts is not None else "the start"
@@ -240,6 +287,7 @@ class _Plant:
             tensions=tens[0] if self._rows == 1 else tens,
             nonconverged=int(noncon),
             q_motor=q_motor,
+            input_interpolation=how,
         )
 
     def _schedule(self, ts, routes):
