@@ -263,6 +263,7 @@ class Entry:
     key: str
     index: int | None = None
     scale: bool = False
+    also: tuple[str, ...] = ()  # params tied to ``key`` (set to the same value)
 
 
 def entries_of(model, names: Sequence[str], scales: Sequence[str] = ()) -> list[Entry]:
@@ -271,6 +272,10 @@ def entries_of(model, names: Sequence[str], scales: Sequence[str] = ()) -> list[
     params = model.params
     out = []
     for name in names:
+        if " = " in name:  # tied params: "a = b"
+            key, *others = name.split(" = ")
+            out.append(Entry(name, key, also=tuple(others)))
+            continue
         v = params[name]
         if isinstance(v, list):
             out += [Entry(f"{name}[{i}]", name, i) for i in range(len(v))]
@@ -284,7 +289,10 @@ def entries_from_labels(labels: Sequence[str]) -> list[Entry]:
     """The entries that :func:`entries_of` labelled ``labels`` (its inverse)."""
     out = []
     for label in labels:
-        if label.endswith(" (scale)"):
+        if " = " in label:
+            key, *others = label.split(" = ")
+            out.append(Entry(label, key, also=tuple(others)))
+        elif label.endswith(" (scale)"):
             out.append(Entry(label, label.removesuffix(" (scale)"), scale=True))
         elif label.endswith("]") and "[" in label:
             key, index = label[:-1].rsplit("[", 1)
@@ -308,6 +316,8 @@ def se_dict(model, entries: Sequence[Entry], se: np.ndarray) -> dict:
             out.setdefault(e.key, [0.0] * len(params[e.key]))[e.index] = float(s)
         else:
             out[e.key] = float(s)
+        for key in e.also:
+            out[key] = float(s)
     return out
 
 
@@ -339,6 +349,8 @@ def with_vector(model, entries: Sequence[Entry], vec: np.ndarray):
             changes[e.key] = lst
         else:
             changes[e.key] = float(value)
+        for key in e.also:
+            changes[key] = float(value)
     return model.with_params(**changes)
 
 

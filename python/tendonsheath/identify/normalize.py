@@ -42,6 +42,7 @@ from ..models import (
     PrandtlIshlinskii,
     Scaled,
 )
+from . import gauge
 from .data import Recording
 from .diagnostics import entries_from_labels, se_dict, vector_of, with_vector
 from .fit import Fit, metrics, simulate_model
@@ -177,6 +178,8 @@ def _raw_vector(model_n, m: IOMap, entries_n, entries_raw):
         raw = to_raw(with_vector(model_n, entries_n, vec), m)
         if raw is None:
             raise ValueError("outside the mappable range")
+        if gauge.applies(raw) and any(e.also for e in entries_raw):
+            raw = gauge.canonical(raw)  # the raw offset moves the dead bands apart again
         return vector_of(raw, entries_raw)
 
     return fn
@@ -284,6 +287,9 @@ def identify_normalized(identify, model_class, recs: list[Recording], **options)
             scaled, model, rmse, preds = alt, alt, a_rmse, a_preds
             m = dataclasses.replace(m, y_c=float(b0), g=float(b1))
     raw = to_raw(fit_n.model, m)
+    gauged = any(" = " in n for n in fit_n.uncertainty.get("estimate_names", []))
+    if raw is not None and gauged:
+        raw = gauge.canonical(raw)
     if raw is not None:
         r_rmse, r_preds = score(raw)
         if np.isfinite(r_rmse) and r_rmse <= rmse * (1 + PLAIN_TOLERANCE) + 1e-12 * np.ptp(y):
@@ -297,6 +303,9 @@ def identify_normalized(identify, model_class, recs: list[Recording], **options)
     )
     prefix = (lambda k: f"inner.{k}") if model is scaled else (lambda k: k)
     errors, uncertainty = map_uncertainty(fit_n, model, m)
+    groups = fit_n.groups
+    if gauged:  # in raw units (a Scaled model keeps them inside, in its own units)
+        groups = gauge.groups(model, errors) if model is not scaled else {}
     return dataclasses.replace(
         fit_n,
         model=model,
@@ -305,6 +314,7 @@ def identify_normalized(identify, model_class, recs: list[Recording], **options)
         fit_percent=overall["fit_percent"],
         standard_errors=errors,
         uncertainty=uncertainty,
+        groups=groups,
         identified=[prefix(k) for k in fit_n.identified],
         fixed={prefix(k): v for k, v in fit_n.fixed.items()},
         per_recording=[

@@ -159,15 +159,18 @@ def _direct_layout(se_problem: DirectProblem, model, depends, free_names) -> Lay
     )
 
 
-def _generic_layout(model, recs, warmup, names, scales=()) -> Layout:
+def _generic_layout(model, recs, warmup, names, scales=(), canon=None) -> Layout:
+    """Central differences w.r.t. the model's params ``names`` / ``scales``; ``canon`` maps
+    any model (e.g. a bootstrap re-fit) to the parameterisation the names refer to."""
     entries = entries_of(model, names, scales)
+    canon = canon or (lambda m: m)
 
     def simulate(m):
         return np.concatenate([simulate_model(m, r.t, r.x, r.curve_angle)[warmup:] for r in recs])
 
     return Layout(
         [e.label for e in entries],
-        lambda m: vector_of(m, entries),
+        lambda m: vector_of(canon(m), entries),
         lambda se: se_dict(model, entries, se),
         lambda: fd_jacobian(simulate, model, entries),
         "central differences of the simulation output w.r.t. the model's parameters",
@@ -220,6 +223,7 @@ def assess(
     chain_free: list[str] | None = None,
     generic: tuple[list[str], list[str]] | None = None,
     label_of: Callable[[str], str] | None = None,
+    canon: Callable[[Any], Any] | None = None,
 ) -> dict[str, Any]:
     """Standard errors, diagnostics, groups and the bootstrap record of a fitted model.
 
@@ -229,7 +233,7 @@ def assess(
     notes: list[str] = []
     # -- layout of the identified quantities
     if generic is not None:
-        layout = _generic_layout(model, recs, warmup, *generic)
+        layout = _generic_layout(model, recs, warmup, *generic, canon=canon)
     elif chain_free is not None or cls in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii):
         names, scales = _entries_names(cls, model, chain_free)
         layout = _generic_layout(model, recs, warmup, names, scales)
