@@ -107,3 +107,18 @@ def test_bad_reconstruction_options_are_refused_with_a_reason():
         plant.simulate(np.r_[t[:10], t[10:] + 0.003], np.sin(t), input_interpolation="linear")
     with pytest.raises(ValueError, match="substeps must be an integer >= 1"):
         plant.set_input_interpolation("linear", substeps=0)
+
+
+def test_continuum_plant_takes_the_same_option():
+    """ContinuumPlant (a PullPullPlant) with distal dynamics: the same reconstruction runs."""
+    kw = realistic_plant()
+    for k in ("route", "friction2", "stiffness2"):
+        kw.pop(k, None)
+    plant = ts.ContinuumPlant(elements=20, pretension=30.0, **kw)
+    t = np.arange(300) / FS
+    x = _sines(np.random.default_rng(4), count=6)(t)
+    res = plant.simulate(t, x, full=True, input_interpolation="bandlimited", periodic=False)
+    held = plant.simulate(t, x)
+    assert res.input_interpolation == "bandlimited (windowed sinc)"
+    assert np.all(np.isfinite(res.q_out))
+    assert 1e-4 * np.ptp(held) < np.max(np.abs(res.q_out - held)) < 0.5 * np.ptp(held)

@@ -187,7 +187,6 @@ def identify_dynamic(
     and diagnostics: the Jacobian with respect to the chain's parameters (the operator's and
     the block's), or the bootstrap re-fits of :mod:`tendonsheath.identify.uncertainty`."""
     from .core import search_and_refine
-    from .uncertainty import assess
 
     n_workers = 0 if workers is None else int(workers)
     for i, r in enumerate(recs):
@@ -221,37 +220,16 @@ def identify_dynamic(
     quality = fit_quality(recs, predictions, warmup)
     part = "first" if problem.hammerstein else "second"
     other = "second" if problem.hammerstein else "first"
-
-    def label_of(name: str) -> str:
-        return f"{other if name in problem.block_names else part}.{name}"
-
-    if problem.static_cls is PrandtlIshlinskii:
-        names, scales = [f"{part}.weights"], [f"{part}.thresholds"]
-    else:
-        names, scales = [f"{part}.{n}" for n in problem.static_cls.param_names], []
-    assessed = assess(
-        cls=problem.static_cls,
-        model=model,
-        problem=problem,
-        recs=recs,
-        warmup=warmup,
-        values={},
-        free_names=[],
-        all_bounds={},
-        spec=problem.spec,
-        options={},
-        depends={},
-        workers=n_workers,
-        sse=quality.sse,
-        n_fit=quality.n,
-        u_best=u_best,
-        use_separable=True,
+    assessed = _assess(
+        problem,
+        model,
+        quality,
+        u_best,
+        n_workers,
         method=standard_errors,
         count=bootstrap,
         block=bootstrap_block,
         seed=seed,
-        generic=(names + [f"{other}.{n}" for n in problem.block_names], scales),
-        label_of=label_of,
     )
     fit = Fit(
         model=model,
@@ -283,3 +261,41 @@ def identify_dynamic(
     )
     fit.diagnostics.warn(stacklevel=5)
     return fit
+
+
+def _assess(problem: DynamicProblem, model: Chain, quality, u_best, workers: int, **se) -> dict:
+    """Standard errors and diagnostics w.r.t. the chain's parameters (the operator's, named
+    first./second. as in the Chain, and the block's)."""
+    from .uncertainty import assess
+
+    part = "first" if problem.hammerstein else "second"
+    other = "second" if problem.hammerstein else "first"
+
+    def label_of(name: str) -> str:
+        return f"{other if name in problem.block_names else part}.{name}"
+
+    if problem.static_cls is PrandtlIshlinskii:
+        names, scales = [f"{part}.weights"], [f"{part}.thresholds"]
+    else:
+        names, scales = [f"{part}.{n}" for n in problem.static_cls.param_names], []
+    return assess(
+        cls=problem.static_cls,
+        model=model,
+        problem=problem,
+        recs=problem.recs,
+        warmup=problem.warmup,
+        values={},
+        free_names=[],
+        all_bounds={},
+        spec=problem.spec,
+        options={},
+        depends={},
+        workers=workers,
+        sse=quality.sse,
+        n_fit=quality.n,
+        u_best=u_best,
+        use_separable=True,
+        generic=(names + [f"{other}.{n}" for n in problem.block_names], scales),
+        label_of=label_of,
+        **se,
+    )

@@ -240,9 +240,12 @@ def map_uncertainty(fit_n: Fit, raw, m: IOMap) -> tuple[dict, dict]:
                 rows.append(fn(row))
             except ValueError:
                 u["failed"] = u.get("failed", 0) + 1
-        S = np.vstack(rows)
-        se = S.std(axis=0, ddof=1)
-        u["samples"] = S
+        if len(rows) >= 2:
+            S = np.vstack(rows)
+            se = S.std(axis=0, ddof=1)
+            u["samples"] = S
+        else:
+            se = np.full(len(labels), np.nan)
     else:
         se = np.full(len(labels), np.nan)
     se[~np.isfinite(se_n)] = np.nan  # at an active constraint (or not computed) there too
