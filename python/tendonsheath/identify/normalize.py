@@ -214,7 +214,8 @@ def map_uncertainty(fit_n: Fit, raw, m: IOMap) -> tuple[dict, dict]:
     map from the normalised estimates to the raw parameters (nonlinear: e.g. the GPI's
     output offset spread over its d's by the weights' sum) carries them: the linearised
     covariance by the delta method (D C D' with D the map's Jacobian), bootstrap re-fits
-    one by one through the map itself."""
+    one by one through the map itself. The map's own constants (centres, scales and, when
+    re-solved, the output offset and gain) are taken as exact."""
     u = dict(fit_n.uncertainty)
     if isinstance(raw, Scaled):
         se = {f"inner.{k}": v for k, v in fit_n.standard_errors.items()}
