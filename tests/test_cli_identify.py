@@ -3,6 +3,7 @@
 import json
 
 import numpy as np
+import pytest
 from typer.testing import CliRunner
 
 import tendonsheath as ts
@@ -159,3 +160,77 @@ def test_bad_input_exits_nonzero_with_a_reason(tmp_path):
         ],
     )
     assert result.exit_code == 2 and "unknown model" in result.output
+
+
+def _identify_args(files, *extra):
+    return [
+        "identify",
+        *[str(f) for f in files],
+        "--model",
+        "Backlash",
+        "--input",
+        "motor",
+        "--output",
+        "tip",
+        "--time",
+        "time",
+        *extra,
+    ]
+
+
+def test_self_class_bootstrap_standard_errors_through_the_command(tmp_path):
+    """Self-class Backlash: --standard-errors bootstrap / bootstrap-recordings with
+    --resamples and --seed give what ts.identify gives with the same options, printed with the
+    diagnostics and saved in the model file; bad values exit 2 with the reason."""
+    truth = ts.models.Backlash(c_r=1.0, c_l=0.9, B_r=0.12, B_l=0.08)
+    t = np.arange(0.0, 2.0, 4e-3)
+    rng = np.random.default_rng(7)
+    files, recs = [], []
+    for k in range(4):
+        x = (0.8 + 0.1 * k) * np.sin(2 * np.pi * 0.7 * t)
+        y = truth.simulate(t, x) + 0.005 * rng.standard_normal(t.size)
+        files.append(tmp_path / f"r{k}.csv")
+        _write(files[-1], t, x, y)
+        recs.append((t, x, y))
+    for method, count in (("bootstrap", 15), ("bootstrap-recordings", 12)):
+        out = tmp_path / f"{method}.json"
+        result = runner.invoke(
+            app,
+            _identify_args(
+                files,
+                "--standard-errors",
+                method,
+                "--resamples",
+                str(count),
+                "--seed",
+                "4",
+                "-o",
+                str(out),
+            ),
+        )
+        assert result.exit_code == 0, result.output
+        text = " ".join(result.output.split())
+        assert f"standard errors: {method.replace('-recordings', ' over recordings')}" in text
+        assert f"{count} resamples" in text and "seed 4" in text
+        assert "condition number" in text  # printed with the diagnostics
+        saved = json.loads(out.read_text())["fit"]
+        assert saved["uncertainty"]["method"] == method
+        assert saved["uncertainty"]["resamples"] == count
+        want = ts.identify(
+            ts.models.Backlash,
+            recordings=recs,
+            seed=4,
+            standard_errors=method,
+            bootstrap=count,
+            progress=False,
+        ).standard_errors
+        for name, se in want.items():
+            assert 0 < saved["standard_errors"][name] == pytest.approx(se, rel=1e-6), name
+    bad = runner.invoke(app, _identify_args(files[:1], "--standard-errors", "jackknife"))
+    assert bad.exit_code == 2 and "standard_errors must be one of" in bad.output
+    bad = runner.invoke(
+        app, _identify_args(files[:1], "--standard-errors", "bootstrap", "--resamples", "1")
+    )
+    assert bad.exit_code == 2 and "at least 2 resamples" in bad.output
+    bad = runner.invoke(app, _identify_args(files[:1], "--standard-errors", "bootstrap-recordings"))
+    assert bad.exit_code == 2 and "needs several recordings" in bad.output

@@ -12,6 +12,7 @@ import pytest
 from typer.testing import CliRunner
 
 import tendonsheath as ts
+from tendonsheath.identify import gauge
 from tendonsheath.identify.diagnostics import CONDITION_LIMIT, bound_side
 from tendonsheath.models import (
     Backlash,
@@ -28,8 +29,8 @@ X = np.sin(2 * np.pi * 0.5 * T) * (1 - 0.4 * T / T[-1]) + 0.25 * np.sin(2 * np.p
 
 def _identify(*args, **kwargs):
     """identify() with its IdentifiabilityWarnings recorded: (fit, [messages]). In raw units
-    (normalize=False): these tests judge each class's own errors and diagnostics, and the
-    normalisation maps standard errors back only for plain scalings."""
+    (normalize=False): these tests judge each class's own errors and diagnostics (the
+    normalisation's are in test_identify_normalized_errors.py)."""
     kwargs.setdefault("normalize", False)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -124,25 +125,51 @@ def test_bound_side_rules():
     assert bound_side(1e-3, 0.0, np.inf, ref=1.0) is None
 
 
-def test_degenerate_chain_is_flagged_and_its_standard_errors_are_huge():
+@pytest.mark.parametrize("seed", [2, 3])
+def test_degenerate_chain_is_fitted_in_its_identifiable_gauge(seed):
     """Self-class Chain(BoucWenBacklash, Polynomial(3)): shifting the backlash output by d
-    (B_r -> B_r - d, B_l -> B_l + d with c_r = 1) is undone exactly by re-expanding the cubic
-    about the shifted point, so B_r, B_l and the polynomial's even coefficients are not
-    identifiable: the Jacobian is rank deficient."""
+    (B_r -> B_r - d / c_r, B_l -> B_l + d / c_l) is undone exactly by re-expanding the cubic
+    about the shifted point, so B_r, B_l and the polynomial are not identifiable as such. The
+    fit is expressed in the gauge B_r = B_l (identify.gauge), where the Jacobian is well
+    conditioned, and the groups (half-width, the re-expanded coefficients) match the truth's
+    own gauge. Measured (seeds 2, 3): condition number 7.1, groups within 0.5 % of
+    max(|value|, a tenth of the output range) and 2.7 SE (a0, seed 2; the others < 1.2)."""
+    truth = Chain(
+        BoucWenBacklash(c_r=1.0, c_l=0.9, B_r=0.12, B_l=0.08, rho=12.0, n=3.0),
+        Polynomial(coefficients=[0.02, 0.9, -0.3, -0.4]),
+    )
+    y = truth.simulate(T, X) + 0.005 * np.random.default_rng(seed).standard_normal(T.size)
+    for normalize in (False, True):
+        fit, caught = _identify(
+            Chain(BoucWenBacklash(), Polynomial(3)), T, X, y, maxiter=20, normalize=normalize
+        )
+        assert fit.rmse < 1.05 * 0.005
+        p = fit.params
+        assert p["first.B_r"] == pytest.approx(p["first.B_l"], rel=1e-12)
+        assert fit.diagnostics.condition_number < 100.0  # was > 1e4 (rank deficient)
+        assert not caught and any("gauge B_r = B_l" in n for n in fit.diagnostics.notes)
+        want = gauge.groups(gauge.canonical(truth), {})
+        for name, g in fit.groups.items():
+            w = want[name]["value"]
+            assert abs(g["value"] - w) < 0.01 * max(abs(w), 0.1 * np.ptp(y)), (name, g, w)
+            assert abs(g["value"] - w) < 4.0 * g["se"], (name, g, w)
+        assert set(fit.groups) == {"dead_band_half_width", "a0", "a1", "a2", "a3"}
+
+
+def test_degenerate_chain_bootstrap_in_the_gauge():
+    """Each bootstrap re-fit is brought to the gauge before it is counted: the spread is
+    finite and of the order of the linearised errors (white noise; 40 resamples, measured
+    ratio 0.73-0.94; a factor of 2 either way fails)."""
     truth = Chain(
         BoucWenBacklash(c_r=1.0, c_l=0.9, B_r=0.12, B_l=0.08, rho=12.0, n=3.0),
         Polynomial(coefficients=[0.02, 0.9, -0.3, -0.4]),
     )
     y = truth.simulate(T, X) + 0.005 * np.random.default_rng(2).standard_normal(T.size)
-    fit, caught = _identify(Chain(BoucWenBacklash(), Polynomial(3)), T, X, y, maxiter=20)
-    d = fit.diagnostics
-    assert d.condition_number > CONDITION_LIMIT
-    assert {"first.B_r", "first.B_l"} <= set(d.weakest())
-    assert any("ill-conditioned" in m and "first.B_r" in m for m in caught), caught
-    assert any({a, b} == {"first.B_r", "first.B_l"} and abs(r) > 0.99 for a, b, r in d.correlated)
-    se = fit.standard_errors
-    assert se["first.B_r"] > 100 * abs(fit.params["first.B_r"])  # not a finite-looking 1e-4
-    assert 0 < se["first.rho"] < 0.1 * fit.params["first.rho"]  # identified: ordinary error
+    template = Chain(BoucWenBacklash(), Polynomial(3))
+    lin, _ = _identify(template, T, X, y, maxiter=20)
+    boot, _ = _identify(template, T, X, y, maxiter=20, standard_errors="bootstrap", bootstrap=40)
+    for name, g in lin.groups.items():
+        assert 0.5 < boot.groups[name]["se"] / g["se"] < 2.0, (name, g, boot.groups[name])
 
 
 # -- standard errors for every class ----------------------------------------------------------

@@ -255,10 +255,19 @@ def identify(
     validate: Path | None = typer.Option(None, "--validate", help="Data file to validate on."),
     out: Path = typer.Option(Path("model.json"), "--out", "-o", help="Where to save the model."),
     warmup: int = typer.Option(0, "--warmup", help="Samples per recording not fitted."),
-    seed: int = typer.Option(0, "--seed", help="Seed of the global search."),
+    seed: int = typer.Option(0, "--seed", help="Seed of the global search and the bootstrap."),
     maxiter: int = typer.Option(100, "--maxiter", help="Generations of the global search."),
     report: Path | None = typer.Option(
         None, "--report", help="Write a figure of the fit here (.png, .pdf, .svg, ...)."
+    ),
+    standard_errors: str = typer.Option(
+        "linearised",
+        "--standard-errors",
+        help="linearised, bootstrap (residual blocks) or bootstrap-recordings (one resample "
+        "draws whole recordings).",
+    ),
+    resamples: int | None = typer.Option(
+        None, "--resamples", help="Bootstrap resamples (default 200)."
     ),
 ) -> None:
     """Fit MODEL to DATA and save it as JSON; print the fit table and the validation error."""
@@ -290,6 +299,8 @@ def identify(
                 seed=seed,
                 maxiter=maxiter,
                 progress=True,
+                standard_errors=standard_errors,
+                bootstrap=resamples,
             )
         val = None
         if validate is not None:
@@ -347,6 +358,7 @@ def _print_fit(fit, n_logs: int, output_col: str) -> None:
         f"rmse {fit.rmse:.4g} ({output_col} units)   nrmse {100 * fit.nrmse:.3f} %   "
         f"fit {fit.fit_percent:.2f} %   ({fit.evaluations} evaluations, {fit.seconds:.2f} s)"
     )
+    console.print(f"standard errors: {fit.se_description()}")
     for name, g in fit.groups.items():  # identified groups (e.g. CurveAngleModel, one angle)
         se = f" +- {g['se']:.4g}" if g.get("se") is not None else " (held)"
         console.print(f"group {name} = {g['value']:.6g}{se} {g.get('unit', '')}")

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _core as core
-from . import physics
+from . import physics, plant_input
 from ._arrays import as_time_and_signal, checked_dt
 from .loads import (
     ConstantForce,
@@ -67,6 +67,7 @@ class SimulationResult:
     nonconverged: int
     q_motor: np.ndarray | None = None
     status: np.ndarray | None = None
+    input_interpolation: str = "hold"  # how the command was reconstructed between samples
 
     @property
     def any_slack(self) -> bool:
@@ -127,6 +128,23 @@ class _Plant:
     _engine = None
     motor: Motor | None = None
     sensor: Sensor | None = None
+    _interpolation = ("hold", plant_input.DEFAULT_SUBSTEPS, plant_input.DEFAULT_LOOKAHEAD)
+
+    def set_input_interpolation(
+        self,
+        mode: str,
+        substeps: int = plant_input.DEFAULT_SUBSTEPS,
+        lookahead: int = plant_input.DEFAULT_LOOKAHEAD,
+    ) -> None:
+        """The default reconstruction of the command between samples in :meth:`simulate`
+        ("hold", "linear" or "bandlimited", on a grid ``substeps`` times finer; see
+        :mod:`tendonsheath.plant_input`). :meth:`step` stays causal (hold) whatever it is."""
+        plant_input.check_interpolation(mode, substeps, lookahead, type(self).__name__)
+        self._interpolation = (mode, int(substeps), int(lookahead))
+
+    @property
+    def input_interpolation(self) -> str:
+        return self._interpolation[0]
 
     def _setup_io(self, motor, sensor):
         if motor is not None and not isinstance(motor, Motor):
@@ -211,9 +229,22 @@ class _Plant:
 
     # -- batch -----------------------------------------------------------------------
     def simulate(
-        self, t, command, routes: Callable | None = None, full: bool = False, status: bool = False
+        self,
+        t,
+        command,
+        routes: Callable | None = None,
+        full: bool = False,
+        input_interpolation: str | None = None,
+        periodic: bool | None = None,
+        status: bool = False,
     ):
         """Simulate from rest (on the current route) without touching the streaming state.
+
+        ``input_interpolation`` ("hold", "linear", "bandlimited"; default: the plant's, see
+        :meth:`set_input_interpolation`) reconstructs the command between samples and steps
+        the plant on the finer grid (uniform ``t`` needed); ``periodic`` (None: detected)
+        picks exact FFT upsampling for a record of whole periods (see
+        :mod:`tendonsheath.plant_input`).
 
         ``t`` (s) may be None only without a motor, a damper and a route schedule. ``routes``
         is None or a callable t -> Route (or a (route1, route2) pair for a pull-pull plant); it
@@ -234,9 +265,28 @@ class _Plant:
         motor = self._motor_engine
         motor_arg = core.Motor(self.motor._params) if motor is not None else None
         sensor_arg = core.Sensor(self.sensor._params) if self.sensor is not None else None
+        mode, fine, lookahead = self._interpolation
+        mode = mode if input_interpolation is None else input_interpolation
+        plant_input.check_interpolation(mode, fine, lookahead, name)
+        how, t_run, u_run, idx_run = "hold", ts, us, idx
+        if mode != "hold" and us.size > 1:
+            if ts is None:
+                raise ValueError(f"{name}: input_interpolation={mode!r} needs the time t")
+            t_run, u_run, how = plant_input.fine_grid(ts, us, mode, fine, lookahead, periodic, name)
+            idx_run = None if idx is None else (idx * fine).astype(np.uint64)
         q_out, q_in, slack, meas, tens, noncon, q_motor, flags = self._engine.simulate(
-            ts, us, motor_arg, sensor_arg, idx, angles
+            t_run, u_run, motor_arg, sensor_arg, idx_run, angles
         )
+        if t_run is not ts:  # read at the original samples; slack anywhere in a step counts
+            step = slice(None, None, fine)
+            n = us.size
+            slack = np.r_[slack[0], slack[1 : (n - 1) * fine + 1].reshape(n - 1, fine).any(axis=1)]
+            flags = np.r_[
+                flags[0],
+                np.bitwise_or.reduce(flags[1 : (n - 1) * fine + 1].reshape(n - 1, fine), axis=1),
+            ].astype(flags.dtype)
+            q_out, q_in, meas = q_out[step], q_in[step], meas[step]
+            q_motor = None if q_motor is None or q_motor.size == 0 else q_motor[step]
         if slack.any():
             k = int(np.flatnonzero(slack)[0])
             when = f"t = {ts[k]:.6g} s" if ts is not None else "the start"
@@ -260,6 +310,7 @@ class _Plant:
             nonconverged=int(noncon),
             q_motor=q_motor,
             status=flags,
+            input_interpolation=how,
         )
 
     def _schedule(self, ts, routes):

@@ -17,6 +17,7 @@ import time
 import numpy as np
 
 from ..models import Backlash, BoucWen, BoucWenBacklash, Chain, HystereticOscillator, Polynomial
+from . import gauge
 from .data import check_for_fit
 from .fit import Fit, fit_quality, simulate_model
 from .problem import DirectProblem
@@ -182,6 +183,9 @@ def identify_chain(
             workers=workers,
             polish=polish,
             progress=progress,
+            standard_errors=standard_errors,
+            bootstrap=bootstrap,
+            bootstrap_block=bootstrap_block,
         )
     n_workers = 0 if workers is None else int(workers)
     problem = ChainProblem(chain, recs, warmup, bounds, fixed, n_workers)
@@ -203,6 +207,9 @@ def identify_chain(
         polish=polish,
     )
     model = problem.model(space.natural(u_best))
+    gauged = gauge.applies(model) and {"B_r", "B_l"} <= set(problem.free)
+    if gauged:  # the same map in its identifiable parameterisation
+        model = gauge.canonical(model)
     seconds = time.perf_counter() - start
     predictions = [simulate_model(model, r.t, r.x) for r in recs]
     quality = fit_quality(recs, predictions, warmup)
@@ -228,7 +235,16 @@ def identify_chain(
         block=bootstrap_block,
         seed=seed,
         chain_free=problem.free,
+        generic=(gauge.entry_names(problem.free), []) if gauged else None,
+        canon=gauge.canonical if gauged else None,
     )
+    if gauged:
+        assessed["diagnostics"].notes.append(
+            "the first model's output shift is undone exactly by re-expanding the polynomial: "
+            "fitted in the gauge B_r = B_l (the polynomial carries the offset); the identified "
+            "quantities are in fit.groups"
+        )
+        assessed["groups"] = gauge.groups(model, assessed["standard_errors"])
     fit = Fit(
         model=model,
         rmse=quality.overall["rmse"],

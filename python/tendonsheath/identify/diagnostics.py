@@ -263,6 +263,7 @@ class Entry:
     key: str
     index: int | None = None
     scale: bool = False
+    also: tuple[str, ...] = ()  # params tied to ``key`` (set to the same value)
 
 
 def entries_of(model, names: Sequence[str], scales: Sequence[str] = ()) -> list[Entry]:
@@ -271,12 +272,52 @@ def entries_of(model, names: Sequence[str], scales: Sequence[str] = ()) -> list[
     params = model.params
     out = []
     for name in names:
+        if " = " in name:  # tied params: "a = b"
+            key, *others = name.split(" = ")
+            out.append(Entry(name, key, also=tuple(others)))
+            continue
         v = params[name]
         if isinstance(v, list):
             out += [Entry(f"{name}[{i}]", name, i) for i in range(len(v))]
         else:
             out.append(Entry(name, name))
     out += [Entry(f"{name} (scale)", name, scale=True) for name in scales]
+    return out
+
+
+def entries_from_labels(labels: Sequence[str]) -> list[Entry]:
+    """The entries that :func:`entries_of` labelled ``labels`` (its inverse)."""
+    out = []
+    for label in labels:
+        if " = " in label:
+            key, *others = label.split(" = ")
+            out.append(Entry(label, key, also=tuple(others)))
+        elif label.endswith(" (scale)"):
+            out.append(Entry(label, label.removesuffix(" (scale)"), scale=True))
+        elif label.endswith("]") and "[" in label:
+            key, index = label[:-1].rsplit("[", 1)
+            out.append(Entry(label, key, int(index)))
+        else:
+            out.append(Entry(label, label))
+    return out
+
+
+def se_dict(model, entries: Sequence[Entry], se: np.ndarray) -> dict:
+    """Standard errors in the shape of ``model.params``: a scale entry's error spread over its
+    list in proportion (a common factor), list elements in place, scalars as they are."""
+    params = model.params
+    out: dict = {}
+    for e, s in zip(entries, se, strict=True):
+        if e.scale:
+            v = np.asarray(params[e.key], dtype=float)
+            ref = float(np.max(np.abs(v)))
+            out[e.key] = (np.abs(v) * (float(s) / ref if ref > 0 else 0.0)).tolist()
+        elif e.index is not None:
+            out.setdefault(e.key, [0.0] * len(params[e.key]))[e.index] = float(s)
+        else:
+            out[e.key] = float(s)
+        for key in e.also:
+            out[key] = float(s)
     return out
 
 
@@ -308,6 +349,8 @@ def with_vector(model, entries: Sequence[Entry], vec: np.ndarray):
             changes[e.key] = lst
         else:
             changes[e.key] = float(value)
+        for key in e.also:
+            changes[key] = float(value)
     return model.with_params(**changes)
 
 

@@ -87,6 +87,7 @@ class DynamicProblem:
         self.y = np.concatenate([r.y for r in recs])
         self.mask = fitted_mask(recs, warmup)
         self.lo, self.hi = self.spec.linear_bounds(scale)
+        self.lin_lo, self.lin_hi = self.lo, self.hi  # as SeparableProblem names them
         self.bounds = {n: (float(v[0]), float(v[1])) for n, v in {**sb, **bb}.items()}
         self.n_params = len(names) + self.lo.size
         self.edges = np.cumsum([0] + [r.n for r in recs])
@@ -178,8 +179,13 @@ def identify_dynamic(
     workers=None,
     polish=True,
     progress=True,
+    standard_errors="linearised",
+    bootstrap=200,
+    bootstrap_block=None,
 ) -> Fit:
-    """Identify a Hammerstein or Wiener chain (see the module docstring)."""
+    """Identify a Hammerstein or Wiener chain (see the module docstring). Standard errors
+    and diagnostics: the Jacobian with respect to the chain's parameters (the operator's and
+    the block's), or the bootstrap re-fits of :mod:`tendonsheath.identify.uncertainty`."""
     from .core import search_and_refine
 
     n_workers = 0 if workers is None else int(workers)
@@ -208,17 +214,29 @@ def identify_dynamic(
     model = problem.model(space.natural(u_best))
     if problem.pool is not None:
         problem.pool.shutdown()
+        problem.pool = None
     seconds = time.perf_counter() - start
     predictions = [simulate_model(model, r.t, r.x) for r in recs]
     quality = fit_quality(recs, predictions, warmup)
     part = "first" if problem.hammerstein else "second"
     other = "second" if problem.hammerstein else "first"
-    return Fit(
+    assessed = _assess(
+        problem,
+        model,
+        quality,
+        u_best,
+        n_workers,
+        method=standard_errors,
+        count=bootstrap,
+        block=bootstrap_block,
+        seed=seed,
+    )
+    fit = Fit(
         model=model,
         rmse=quality.overall["rmse"],
         nrmse=quality.overall["nrmse"],
         fit_percent=quality.overall["fit_percent"],
-        standard_errors=_nan_errors(model.params),
+        standard_errors=assessed["standard_errors"],
         identified=[f"{part}.{n}" for n in problem.static_cls.param_names]
         + [f"{other}.{n}" for n in problem.block_names],
         fixed={},
@@ -237,12 +255,47 @@ def identify_dynamic(
         },
         recordings=recs,
         predictions=predictions,
+        diagnostics=assessed["diagnostics"],
+        groups=assessed["groups"],
+        uncertainty=assessed["se_method"],
     )
+    fit.diagnostics.warn(stacklevel=5)
+    return fit
 
 
-def _nan_errors(params: dict) -> dict:
-    """Standard errors not computed (a linear block's chain): NaN in the parameters' shape."""
-    return {
-        k: [float("nan")] * len(v) if isinstance(v, list) else float("nan")
-        for k, v in params.items()
-    }
+def _assess(problem: DynamicProblem, model: Chain, quality, u_best, workers: int, **se) -> dict:
+    """Standard errors and diagnostics w.r.t. the chain's parameters (the operator's, named
+    first./second. as in the Chain, and the block's)."""
+    from .uncertainty import assess
+
+    part = "first" if problem.hammerstein else "second"
+    other = "second" if problem.hammerstein else "first"
+
+    def label_of(name: str) -> str:
+        return f"{other if name in problem.block_names else part}.{name}"
+
+    if problem.static_cls is PrandtlIshlinskii:
+        names, scales = [f"{part}.weights"], [f"{part}.thresholds"]
+    else:
+        names, scales = [f"{part}.{n}" for n in problem.static_cls.param_names], []
+    return assess(
+        cls=problem.static_cls,
+        model=model,
+        problem=problem,
+        recs=problem.recs,
+        warmup=problem.warmup,
+        values={},
+        free_names=[],
+        all_bounds={},
+        spec=problem.spec,
+        options={},
+        depends={},
+        workers=workers,
+        sse=quality.sse,
+        n_fit=quality.n,
+        u_best=u_best,
+        use_separable=True,
+        generic=(names + [f"{other}.{n}" for n in problem.block_names], scales),
+        label_of=label_of,
+        **se,
+    )

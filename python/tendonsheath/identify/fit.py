@@ -82,7 +82,9 @@ class Fit:
     ``uncertainty``: how the standard errors were obtained ({"method": "linearised" |
     "bootstrap" | "bootstrap-recordings" | "none", and for the bootstrap "resamples",
     "block" (residual blocks only), "failed", "seed", "samples" (the re-fitted estimates,
-    one row per resample, columns named by "names")}).
+    one row per resample, columns named by "names"), "estimate_names" (the identified
+    quantities, as the Jacobian's columns) and, when linearised, "covariance" (their
+    covariance matrix, NaN rows for those at an active constraint)}).
     """
 
     model: HysteresisModel
@@ -162,6 +164,19 @@ class Fit:
                 rows.append((name, _fmt(value), _fmt(se) if se is not None else "fixed"))
         return rows
 
+    def se_description(self) -> str:
+        """How the standard errors were obtained, in words."""
+        u = self.uncertainty
+        method = u.get("method", "linearised")
+        if method == "bootstrap":
+            text = f"bootstrap, {u['resamples']} resamples of {u['block']}-sample blocks"
+        elif method == "bootstrap-recordings":
+            text = f"bootstrap over recordings, {u['resamples']} resamples"
+        else:
+            return method
+        failed = f", {u['failed']} re-fits failed" if u.get("failed") else ""
+        return f"{text}, seed {u.get('seed')}{failed}"
+
     def summary(self) -> str:
         lines = [
             f"{type(self.model).__name__} identified from {len(self.recordings)} recording(s), "
@@ -171,15 +186,7 @@ class Fit:
             f"{self.seconds:.2f} s",
         ]
         width = max(len(r[0]) for r in self.table())
-        se_label = self.uncertainty.get("method", "linearised")
-        if se_label == "bootstrap":
-            se_label = (
-                f"bootstrap, {self.uncertainty['resamples']} resamples of "
-                f"{self.uncertainty['block']}-sample blocks"
-            )
-        elif se_label == "bootstrap-recordings":
-            se_label = f"bootstrap over recordings, {self.uncertainty['resamples']} resamples"
-        lines.append(f"parameters (+- standard error, {se_label}):")
+        lines.append(f"parameters (+- standard error, {self.se_description()}):")
         for name, value, se in self.table():
             lines.append(f"  {name:<{width}}  {value:>12}  +- {se}")
         if self.groups:
@@ -215,7 +222,9 @@ class Fit:
             "bounds": {k: [float(a), float(b)] for k, (a, b) in self.bounds.items()},
             "diagnostics": self.diagnostics.to_dict(),
             "groups": self.groups,
-            "uncertainty": {k: v for k, v in self.uncertainty.items() if k != "samples"},
+            "uncertainty": {
+                k: v for k, v in self.uncertainty.items() if k not in ("samples", "covariance")
+            },
         }
 
     def report(self, path: str | Path) -> Path:

@@ -17,7 +17,9 @@ centre line). The model identified on (x_n, y_n) is mapped back to raw units:
 - otherwise into :class:`~tendonsheath.models.Scaled`, the normalised model inside an affine
   input and output map (a negative gain, or a PrandtlIshlinskii with offsets).
 
-Either way ``fit.model.simulate(t, x_raw)`` predicts the raw output and saves to JSON. The
+Either way ``fit.model.simulate(t, x_raw)`` predicts the raw output and saves to JSON, and
+the standard errors are those of the returned model's parameters (:func:`map_uncertainty`:
+the delta method through the map back, or each bootstrap re-fit mapped). The
 mapped model is kept when it fits the training data as well as the Scaled one (rmse within
 ``PLAIN_TOLERANCE``), so a compensator gets the plain class whenever one serves. BoucWen is
 not normalised (its output has no offset and its state no input scale to map exactly).
@@ -40,7 +42,9 @@ from ..models import (
     PrandtlIshlinskii,
     Scaled,
 )
+from . import gauge
 from .data import Recording
+from .diagnostics import entries_from_labels, se_dict, vector_of, with_vector
 from .fit import Fit, metrics, simulate_model
 
 #: model classes identified on normalised data by default
@@ -167,28 +171,93 @@ def to_raw(model: HysteresisModel, m: IOMap) -> HysteresisModel | None:
     return None
 
 
-def _scaled_errors(model_n: HysteresisModel, raw, se: dict, m: IOMap) -> dict:
-    """Standard errors in the units of the returned model (linear parts of the map)."""
+def _raw_vector(model_n, m: IOMap, entries_n, entries_raw):
+    """vec -> the raw model's identified quantities, for the normalised ones ``vec``."""
+
+    def fn(vec):
+        raw = to_raw(with_vector(model_n, entries_n, vec), m)
+        if raw is None:
+            raise ValueError("outside the mappable range")
+        if gauge.applies(raw) and any(e.also for e in entries_raw):
+            raw = gauge.canonical(raw)  # the raw offset moves the dead bands apart again
+        return vector_of(raw, entries_raw)
+
+    return fn
+
+
+def _map_jacobian(fn, v0: np.ndarray) -> np.ndarray:
+    """Central differences of the map ``fn`` at ``v0`` (one-sided where it is not defined)."""
+    f0 = fn(v0)
+    typ = float(np.max(np.abs(v0))) if v0.size else 1.0
+    D = np.zeros((f0.size, v0.size))
+    for i in range(v0.size):
+        h = 1e-6 * max(abs(v0[i]), 1e-3 * typ, 1e-12)
+        cols = []
+        for sign in (1.0, -1.0):
+            v = v0.copy()
+            v[i] += sign * h
+            try:
+                cols.append((sign, fn(v)))
+            except ValueError:
+                pass
+        if len(cols) == 2:
+            D[:, i] = (cols[0][1] - cols[1][1]) / (2 * h)
+        elif cols:
+            D[:, i] = cols[0][0] * (cols[0][1] - f0) / h
+    return D
+
+
+def map_uncertainty(fit_n: Fit, raw, m: IOMap) -> tuple[dict, dict]:
+    """Standard errors (and the uncertainty record) of the mapped-back model ``raw``.
+
+    Scaled: the normalised model is inside it, its errors are the inner ones. Otherwise the
+    map from the normalised estimates to the raw parameters (nonlinear: e.g. the GPI's
+    output offset spread over its d's by the weights' sum) carries them: the linearised
+    covariance by the delta method (D C D' with D the map's Jacobian), bootstrap re-fits
+    one by one through the map itself. The map's own constants (centres, scales and, when
+    re-solved, the output offset and gain) are taken as exact."""
+    u = dict(fit_n.uncertainty)
     if isinstance(raw, Scaled):
-        return {f"inner.{k}": v for k, v in se.items()}
-    factor = {}
-    if isinstance(model_n, Backlash | BoucWenBacklash):
-        factor = {"c_r": m.g / m.x_s, "c_l": m.g / m.x_s, "B_r": m.x_s, "B_l": m.x_s}
-        factor.update({"rho": 1.0 / m.x_s, "sigma": 1.0, "n": 1.0})
-    elif isinstance(model_n, PrandtlIshlinskii):
-        factor = {"thresholds": m.x_s, "weights": m.g / m.x_s}
-    elif isinstance(model_n, GeneralizedPrandtlIshlinskii):
-        factor = {"weights": m.g, "thresholds": 1.0}
-    elif isinstance(model_n, Chain):
-        first = {"c_r": 1.0 / m.x_s, "c_l": 1.0 / m.x_s, "B_r": m.x_s, "B_l": m.x_s}
-        first.update({"rho": 1.0 / m.x_s, "sigma": 1.0, "n": 1.0})
-        factor = {f"first.{k}": v for k, v in first.items()}
-        factor["second.coefficients"] = abs(m.g)
-    out = {}
-    for k, v in se.items():
-        f = abs(factor.get(k, np.nan))
-        out[k] = [float(s) * f for s in v] if isinstance(v, list) else float(v) * f
-    return out
+        se = {f"inner.{k}": v for k, v in fit_n.standard_errors.items()}
+        if "names" in u:
+            u["names"] = [f"inner.{k}" for k in u["names"]]
+        u["estimate_names"] = [f"inner.{k}" for k in u.get("estimate_names", [])]
+        return se, u
+    labels = u.get("estimate_names", [])
+    entries = entries_from_labels(labels)
+    fn = _raw_vector(fit_n.model, m, entries, entries)
+    v0 = vector_of(fit_n.model, entries)
+    se_n = vector_of(_NanParams(fit_n.standard_errors), entries)
+    if u.get("method") == "linearised" and "covariance" in u:
+        cov_n = np.where(np.isfinite(u["covariance"]), u["covariance"], 0.0)
+        D = _map_jacobian(fn, v0)
+        cov = D @ cov_n @ D.T
+        se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+        u["covariance"] = cov
+    elif str(u.get("method", "")).startswith("bootstrap"):
+        rows = []
+        for row in u["samples"][:, : len(labels)]:
+            try:
+                rows.append(fn(row))
+            except ValueError:
+                u["failed"] = u.get("failed", 0) + 1
+        if len(rows) >= 2:
+            S = np.vstack(rows)
+            se = S.std(axis=0, ddof=1)
+            u["samples"] = S
+        else:
+            se = np.full(len(labels), np.nan)
+    else:
+        se = np.full(len(labels), np.nan)
+    se[~np.isfinite(se_n)] = np.nan  # at an active constraint (or not computed) there too
+    return se_dict(raw, entries, se), u
+
+
+class _NanParams:
+    """Standard errors read like a model's params (for :func:`vector_of`); NaN where absent."""
+
+    def __init__(self, se: dict):
+        self.params = {k: (v if v is not None else np.nan) for k, v in se.items()}
 
 
 def identify_normalized(identify, model_class, recs: list[Recording], **options) -> Fit:
@@ -222,6 +291,9 @@ def identify_normalized(identify, model_class, recs: list[Recording], **options)
             scaled, model, rmse, preds = alt, alt, a_rmse, a_preds
             m = dataclasses.replace(m, y_c=float(b0), g=float(b1))
     raw = to_raw(fit_n.model, m)
+    gauged = any(" = " in n for n in fit_n.uncertainty.get("estimate_names", []))
+    if raw is not None and gauged:
+        raw = gauge.canonical(raw)
     if raw is not None:
         r_rmse, r_preds = score(raw)
         if np.isfinite(r_rmse) and r_rmse <= rmse * (1 + PLAIN_TOLERANCE) + 1e-12 * np.ptp(y):
@@ -234,13 +306,19 @@ def identify_normalized(identify, model_class, recs: list[Recording], **options)
         + ("mapped back into the model's parameters" if model is not scaled else "as Scaled")
     )
     prefix = (lambda k: f"inner.{k}") if model is scaled else (lambda k: k)
+    errors, uncertainty = map_uncertainty(fit_n, model, m)
+    groups = fit_n.groups
+    if gauged:  # in raw units (a Scaled model keeps them inside, in its own units)
+        groups = gauge.groups(model, errors) if model is not scaled else {}
     return dataclasses.replace(
         fit_n,
         model=model,
         rmse=overall["rmse"],
         nrmse=overall["nrmse"],
         fit_percent=overall["fit_percent"],
-        standard_errors=_scaled_errors(fit_n.model, model, fit_n.standard_errors, m),
+        standard_errors=errors,
+        uncertainty=uncertainty,
+        groups=groups,
         identified=[prefix(k) for k in fit_n.identified],
         fixed={prefix(k): v for k, v in fit_n.fixed.items()},
         per_recording=[

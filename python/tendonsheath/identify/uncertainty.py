@@ -28,6 +28,7 @@ from .diagnostics import (
     fd_jacobian,
     linearised_se,
     moving_block_resample,
+    se_dict,
     vector_of,
     with_vector,
 )
@@ -158,30 +159,19 @@ def _direct_layout(se_problem: DirectProblem, model, depends, free_names) -> Lay
     )
 
 
-def _generic_layout(model, recs, warmup, names, scales=()) -> Layout:
+def _generic_layout(model, recs, warmup, names, scales=(), canon=None) -> Layout:
+    """Central differences w.r.t. the model's params ``names`` / ``scales``; ``canon`` maps
+    any model (e.g. a bootstrap re-fit) to the parameterisation the names refer to."""
     entries = entries_of(model, names, scales)
+    canon = canon or (lambda m: m)
 
     def simulate(m):
         return np.concatenate([simulate_model(m, r.t, r.x, r.curve_angle)[warmup:] for r in recs])
 
-    def to_dict(se):
-        params = model.params
-        out: dict = {}
-        for e, s in zip(entries, se, strict=True):
-            if e.scale:
-                v = np.asarray(params[e.key], dtype=float)
-                ref = float(np.max(np.abs(v)))
-                out[e.key] = (np.abs(v) * (float(s) / ref if ref > 0 else 0.0)).tolist()
-            elif e.index is not None:
-                out.setdefault(e.key, [0.0] * len(params[e.key]))[e.index] = float(s)
-            else:
-                out[e.key] = float(s)
-        return out
-
     return Layout(
         [e.label for e in entries],
-        lambda m: vector_of(m, entries),
-        to_dict,
+        lambda m: vector_of(canon(m), entries),
+        lambda se: se_dict(model, entries, se),
         lambda: fd_jacobian(simulate, model, entries),
         "central differences of the simulation output w.r.t. the model's parameters",
     )
@@ -231,11 +221,20 @@ def assess(
     seed: int | None = 0,
     angle: SingleAngle | None = None,
     chain_free: list[str] | None = None,
+    generic: tuple[list[str], list[str]] | None = None,
+    label_of: Callable[[str], str] | None = None,
+    canon: Callable[[Any], Any] | None = None,
 ) -> dict[str, Any]:
-    """Standard errors, diagnostics, groups and the bootstrap record of a fitted model."""
+    """Standard errors, diagnostics, groups and the bootstrap record of a fitted model.
+
+    ``generic`` ((names, scales) of the model's params) takes the Jacobian with respect to
+    those params (e.g. a Hammerstein chain's "first.rho", "second.time_constant");
+    ``label_of`` names the search and linear coordinates like them for the bound checks."""
     notes: list[str] = []
     # -- layout of the identified quantities
-    if chain_free is not None or cls in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii):
+    if generic is not None:
+        layout = _generic_layout(model, recs, warmup, *generic, canon=canon)
+    elif chain_free is not None or cls in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii):
         names, scales = _entries_names(cls, model, chain_free)
         layout = _generic_layout(model, recs, warmup, names, scales)
     else:
@@ -284,6 +283,11 @@ def assess(
             bbounds[n] = (float(a), float(b))
             brefs[n] = ref
 
+    if label_of is not None:
+        bvalues = {label_of(n): v for n, v in bvalues.items()}
+        bbounds = {label_of(n): v for n, v in bbounds.items()}
+        brefs = {label_of(n): v for n, v in brefs.items()}
+
     # parameters held at an active one-sided constraint (e.g. a weight at 0) are not free at
     # the optimum: they are left out of the linearised covariance and the conditioning
     active = set()
@@ -329,6 +333,10 @@ def assess(
         se = np.full(len(layout.names), np.nan)
         if J is not None:
             se[keep] = linearised_se(J_keep, sse, n_fit)
+            if np.all(np.isfinite(J_keep)):
+                cov = np.full((se.size, se.size), np.nan)
+                cov[np.ix_(keep, keep)] = covariance(J_keep, sse, n_fit)
+                extra["covariance"] = cov  # for mapping the errors to other parameters
         if group_fn and J is not None:
             g_se = _delta_group_se(layout, model, group_fn, J, sse, n_fit, free_names)
     else:
@@ -394,6 +402,7 @@ def assess(
             "curve_angle": angle.angle,
             "identified": identified,
         }
+    extra["estimate_names"] = list(layout.names)
     return {
         "standard_errors": layout.to_dict(se),
         "diagnostics": diag,
@@ -479,6 +488,17 @@ def _with_fitted_output(problem, y_star: np.ndarray):
 
 def _with_recordings(problem, recs, warmup: int):
     """A shallow copy of ``problem`` over other recordings (same parameters and bounds)."""
+    from .dynamic import DynamicProblem
+
+    if isinstance(problem, DynamicProblem):
+        p = copy.copy(problem)
+        p.recs = recs
+        p.rs = recording_set(recs, warmup, False)
+        p.y = np.concatenate([r.y for r in recs])
+        p.mask = fitted_mask(recs, warmup)
+        p.edges = np.cumsum([0] + [r.n for r in recs])
+        p.dts = [float(np.median(np.diff(r.t))) for r in recs]
+        return p
     if isinstance(problem, ChainProblem):
         p = copy.copy(problem)
         p.inner = _with_recordings(problem.inner, recs, warmup)

@@ -35,6 +35,14 @@ class BoucWen(HysteresisModel):
     Requires beta > 0 and |gamma| <= beta (bounded state, |z| <= (A/(beta+gamma))^(1/n)).
     ``alpha`` was called ``a`` before; ``a=`` still works with a DeprecationWarning, and model
     files that say ``a`` still load.
+
+    No ``input_interpolation`` option (unlike HystereticOscillator and the plants): z is
+    integrated in x, not in time (RK4 over the increment from one sample to the next), so
+    the output at a sample depends on the samples only, never on the time between them or
+    on how x gets from one to the next as long as it does not turn back: "hold" and "linear"
+    give the same result (checked in tests/test_bouc_wen.py). A reconstruction could only
+    matter through a reversal between samples (an overshoot of the band-limited
+    interpolant), which a rate-independent model fed at its sample rate does not see.
     """
 
     _core = core.BoucWen
