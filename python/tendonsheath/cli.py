@@ -335,7 +335,7 @@ def _model_spec(name: str):
 
 
 def _save_fit(out: Path, fit, val, data_columns: dict) -> None:
-    import json
+    from ._atomic import write_json
 
     record = fit.model.to_dict()
     record["data"] = data_columns
@@ -343,7 +343,7 @@ def _save_fit(out: Path, fit, val, data_columns: dict) -> None:
     if val is not None:
         record["validation"] = val
     out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(record, indent=2) + "\n")
+    write_json(out, record)
 
 
 def _print_fit(fit, n_logs: int, output_col: str) -> None:

@@ -21,7 +21,6 @@ baseline included, with each candidate's seconds), ``.winner`` (the affine basel
 
 from __future__ import annotations
 
-import json
 import re
 import time
 from collections.abc import Sequence
@@ -31,6 +30,7 @@ from typing import Any
 
 import numpy as np
 
+from ._atomic import save_figure, write_json, write_text
 from .identify import identify
 from .identify.data import make_recordings
 from .identify.dynamic import is_dynamic_chain
@@ -206,7 +206,7 @@ class Comparison:
 
         out = Path(path)
         out.mkdir(parents=True, exist_ok=True)
-        (out / "comparison.json").write_text(json.dumps(self.to_dict(), indent=2) + "\n")
+        write_json(out / "comparison.json", self.to_dict())
         names = [r["model"] for r in self.table if not r.get("error")]
         cols = min(3, len(names))
         rows = int(np.ceil(len(names) / cols))
@@ -236,7 +236,7 @@ class Comparison:
                 ax.axis("off")
             fig.tight_layout()
             figs[kind] = out / f"{kind}.png"
-            fig.savefig(figs[kind], dpi=110)
+            save_figure(fig, figs[kind], dpi=110)
             plt.close(fig)
         head = "".join(
             f"<th>{h}</th>"
@@ -265,7 +265,7 @@ class Comparison:
             "<h2>Validation residuals</h2><img src='residuals.png'></body></html>"
         )
         page = out / "report.html"
-        page.write_text(html)
+        write_text(page, html)
         return page
 
 

@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from . import models
+from ._atomic import write_bytes
 from .bench.metrics import loop_width
 from .report.units import check_angle_unit
 
@@ -79,7 +80,7 @@ def model_section(out: Path) -> tuple[str, dict, list[Path]]:
         fig.tight_layout()
         data = figures.png(fig)
         path = out / f"loop_{name}.png"
-        path.write_bytes(data)
+        write_bytes(path, data)
         written.append(path)
         parts.append(html.figure(data, f"{name}: input-output loop on a decaying 0.25 Hz sine"))
     return "".join(parts), metrics, written
@@ -165,7 +166,7 @@ def rate_section(out: Path, frequencies=(0.1, 1.0, 5.0)):
         )
     data = figures.png(loops_figure(loops["realistic"], title="Realistic do2015 drive"))
     path = out / "rate_dependence.png"
-    path.write_bytes(data)
+    write_bytes(path, data)
     body = (
         "<p>The do2015 drive driven by a 1 rad sine at each rate through its servo (motor "
         "encoder in, distal angle out, last of three periods). The capstan-only pair is rate "

@@ -21,11 +21,14 @@ Row numbers are those of the file: for text and Excel files row 1 is the header.
 
 from __future__ import annotations
 
-import csv
+import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
+
+from ._atomic import atomic_path
+from ._textread import Column, parse_cells, read_text_table
 
 MIN_ROWS = 3
 MAX_UPSAMPLING = 10  # resampling may multiply the samples by at most this
@@ -158,14 +161,16 @@ def _ranges(rows) -> str:
 
 
 class _Table:
-    """Column name -> raw values (strings for text files, arrays otherwise), with the row
-    number of the first data row in the file (for messages)."""
+    """Column name -> values: a :class:`Column` (text and Excel files: values with the first
+    empty and first text cell) or a raw array (binary formats); the file row of every data
+    row (``rows``), or of the first (``first_row``, rows then follow on)."""
 
-    def __init__(self, path: Path, columns: dict, first_row: int, text: bool):
+    def __init__(self, path: Path, columns: dict, first_row: int, rows=None, notes=()):
         self.path = path
         self.columns = columns
         self.first_row = first_row
-        self.text = text
+        self.rows = rows
+        self.notes = list(notes)
 
     def names(self) -> list[str]:
         return list(self.columns)
@@ -181,6 +186,12 @@ class _Table:
             return s
         return None
 
+    def row(self, i: int) -> int:
+        return int(self.rows[i]) if self.rows is not None else self.first_row + int(i)
+
+    def row_numbers(self, n: int) -> np.ndarray:
+        return np.asarray(self.rows) if self.rows is not None else self.first_row + np.arange(n)
+
     def numbers(self, name, role: str, allow_missing: bool = False) -> np.ndarray:
         key = self.key(name)
         if key is None:
@@ -188,21 +199,15 @@ class _Table:
                 f"{self.path}: unknown {role} column {name!r}; columns: {self.names()}"
             )
         raw = self.columns[key]
-        if self.text:
-            out = np.empty(len(raw))
-            for i, cell in enumerate(raw):
-                cell = cell.strip()
-                if cell == "" and allow_missing:
-                    out[i] = np.nan
-                    continue
-                try:
-                    out[i] = float(cell)
-                except ValueError:
-                    what = "is empty" if cell == "" else f"holds text {cell!r}"
-                    raise ValueError(
-                        f"{self.path}: column {key!r}, row {self.first_row + i}: {what}, "
-                        "not a number"
-                    ) from None
+        if isinstance(raw, Column):
+            where = f"{self.path}: column {key!r}, row"
+            if raw.first_text is not None:
+                row, cell = raw.first_text
+                hint = " (a decimal comma? use a decimal point)" if _decimal_comma(cell) else ""
+                raise ValueError(f"{where} {row}: holds text {cell!r}, not a number{hint}")
+            if raw.first_empty is not None and not allow_missing:
+                raise ValueError(f"{where} {raw.first_empty}: is empty, not a number")
+            out = raw.values.copy()
         else:
             try:
                 out = np.asarray(raw, dtype=np.float64).reshape(-1)
@@ -214,49 +219,30 @@ class _Table:
         if bad.size:
             i = int(bad[0])
             raise ValueError(
-                f"{self.path}: column {key!r}, row {self.first_row + i}: value {out[i]} "
+                f"{self.path}: column {key!r}, row {self.row(i)}: value {out[i]} "
                 "is not a finite number"
             )
         return out
 
+    def clean_numbers(self, name) -> np.ndarray | None:
+        """A column's values if every cell is a number (for the extras), else None."""
+        raw = self.columns[name]
+        if isinstance(raw, Column):
+            clean = raw.first_text is None and raw.first_empty is None
+            return raw.values if clean else None
+        try:
+            return np.asarray(raw, dtype=np.float64)
+        except (TypeError, ValueError):
+            return None
+
+
+def _decimal_comma(cell: str) -> bool:
+    return bool(re.fullmatch(r"[-+]?\d+,\d+", cell))
+
 
 def _read_text(path: Path) -> _Table:
-    text = path.read_text()
-    lines = text.splitlines()
-    if not lines:
-        raise ValueError(f"{path}: the file is empty")
-    if path.suffix.lower() in (".tsv", ".tab"):
-        delimiter = "\t"
-    elif path.suffix.lower() == ".csv":
-        delimiter = ","
-    else:
-        try:
-            delimiter = csv.Sniffer().sniff(lines[0], delimiters=",\t; ").delimiter
-        except csv.Error:
-            delimiter = ","
-    reader = csv.reader(lines, delimiter=delimiter)
-    header = [h.strip() for h in next(reader)]
-    if not header or any(h == "" for h in header):
-        raise ValueError(f"{path}: row 1 must be a header with a name for every column")
-    try:
-        [float(h) for h in header]
-    except ValueError:
-        pass
-    else:
-        raise ValueError(f"{path}: row 1 must be a header of column names (got numbers)")
-    if len(set(header)) != len(header):
-        raise ValueError(f"{path}: duplicate column names in the header")
-    columns: dict[str, list[str]] = {h: [] for h in header}
-    for row_number, row in enumerate(reader, start=2):
-        if not row or all(c.strip() == "" for c in row):
-            continue
-        if len(row) != len(header):
-            raise ValueError(
-                f"{path}: row {row_number} has {len(row)} fields, the header has {len(header)}"
-            )
-        for h, cell in zip(header, row, strict=True):
-            columns[h].append(cell)
-    return _Table(path, columns, 2, text=True)
+    table = read_text_table(path)
+    return _Table(path, table.columns, 2, rows=table.rows, notes=table.notes)
 
 
 def _read_npy(path: Path) -> _Table:
@@ -265,12 +251,12 @@ def _read_npy(path: Path) -> _Table:
     except ValueError as exc:
         raise ValueError(f"{path}: not a readable NPY file ({exc})") from None
     if arr.dtype.names:
-        return _Table(path, {n: arr[n] for n in arr.dtype.names}, 0, text=False)
+        return _Table(path, {n: arr[n] for n in arr.dtype.names}, 0)
     if arr.ndim == 1:
-        return _Table(path, {"0": arr}, 0, text=False)
+        return _Table(path, {"0": arr}, 0)
     if arr.ndim != 2:
         raise ValueError(f"{path}: expected a structured or 2-D array (got shape {arr.shape})")
-    return _Table(path, {str(i): arr[:, i] for i in range(arr.shape[1])}, 0, text=False)
+    return _Table(path, {str(i): arr[:, i] for i in range(arr.shape[1])}, 0)
 
 
 def _read_npz(path: Path) -> _Table:
@@ -282,7 +268,7 @@ def _read_npz(path: Path) -> _Table:
     for k, v in cols.items():
         if v.ndim != 1:
             raise ValueError(f"{path}: array {k!r} must be 1-D (got shape {v.shape})")
-    return _Table(path, cols, 0, text=False)
+    return _Table(path, cols, 0)
 
 
 def _read_hdf5(path: Path) -> _Table:
@@ -299,7 +285,7 @@ def _read_hdf5(path: Path) -> _Table:
             f.visititems(visit)
     except OSError as exc:
         raise ValueError(f"{path}: not a readable HDF5 file ({exc})") from None
-    return _Table(path, cols, 0, text=False)
+    return _Table(path, cols, 0)
 
 
 def _read_excel(path: Path, sheet=None) -> _Table:
@@ -340,19 +326,32 @@ def _read_excel(path: Path, sheet=None) -> _Table:
     names = [str(h).strip() for h in header]
     if len(set(names)) != len(names):
         raise ValueError(f"{path}: duplicate column names in the header")
-    columns: dict[str, list[str]] = {h: [] for h in names}
-    for r in rows[1:]:
+    cells: dict[str, list[str]] = {h: [] for h in names}
+    numbers: list[int] = []
+    for number, r in enumerate(rows[1:], start=2):
         r = list(r[:width]) + [None] * (width - len(r))
         if all(c is None for c in r):
             continue
+        numbers.append(number)
         for h, c in zip(names, r, strict=True):
-            columns[h].append("" if c is None else str(c))
-    return _Table(path, columns, 2, text=True)
+            cells[h].append("" if c is None else str(c))
+    row_array = np.asarray(numbers, dtype=np.int64)
+    if not numbers:
+        raise ValueError(f"{path}: the header names the columns {names} but there are no data rows")
+    columns = {h: parse_cells(v, row_array) for h, v in cells.items()}
+    return _Table(path, columns, 2, rows=row_array)
 
 
 def _open(path: Path, sheet=None) -> _Table:
+    if path.is_dir():
+        raise ValueError(f"{path}: is a folder, not a data file")
     if not path.is_file():
         raise ValueError(f"data file not found: {path}")
+    try:
+        with open(path, "rb"):
+            pass
+    except OSError as exc:
+        raise ValueError(f"{path}: cannot be read ({exc.strerror or exc})") from None
     suffix = path.suffix.lower()
     if suffix in (".xlsx", ".xlsm"):
         return _read_excel(path, sheet)
@@ -432,17 +431,11 @@ def read_log(
     for name in table.names():
         if name in used:
             continue
-        try:
-            values = np.asarray(
-                [float(v) for v in table.columns[name]] if table.text else table.columns[name],
-                dtype=np.float64,
-            )
-        except (TypeError, ValueError):
-            continue
-        if values.shape == (n,):
+        values = table.clean_numbers(name)
+        if values is not None and values.shape == (n,):
             extra[name] = values
-    rows = table.first_row + np.arange(n)
-    notes: list[str] = []
+    rows = table.row_numbers(n)
+    notes: list[str] = list(table.notes)
 
     def keep_rows(keep):
         nonlocal t, x, y, theta, extra, rows
@@ -458,7 +451,7 @@ def read_log(
         if back.size:
             i = int(back[0]) + 1
             raise ValueError(
-                f"{path}: column {table.key(time)!r}, row {table.first_row + i}: time goes "
+                f"{path}: column {table.key(time)!r}, row {table.row(i)}: time goes "
                 f"backwards ({t[i]} after {t[i - 1]})"
             )
         keep = np.r_[True, np.diff(t) != 0]
@@ -536,5 +529,6 @@ def write_csv(path: str | Path, columns: dict[str, np.ndarray]) -> Path:
     path = Path(path)
     names = list(columns)
     data = np.column_stack([np.asarray(columns[k], dtype=float) for k in names])
-    np.savetxt(path, data, delimiter=",", header=",".join(names), comments="", fmt="%.10g")
+    with atomic_path(path) as tmp:
+        np.savetxt(tmp, data, delimiter=",", header=",".join(names), comments="", fmt="%.10g")
     return path

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .._atomic import save_figure
+
 
 def draw_report(fit, path: Path) -> Path:
     import matplotlib
@@ -46,6 +48,6 @@ def draw_report(fit, path: Path) -> Path:
     ax_res.set_ylabel("measured - predicted")
     ax_res.set_title("residual (shaded: warm-up, not fitted)")
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path

@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from .._arrays import as_time_and_signal, checked_dt
+from .._atomic import write_text
 from ..status import Status
 
 FORMAT_NAME = "tendonsheath.model"
@@ -138,7 +139,7 @@ class HysteresisModel:
         """The model as JSON text; also written to `path` when one is given."""
         text = json.dumps(self.to_dict(), indent=2)
         if path is not None:
-            Path(path).write_text(text + "\n")
+            write_text(path, text + "\n")
         return text
 
     def __eq__(self, other) -> bool:

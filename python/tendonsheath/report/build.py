@@ -19,7 +19,6 @@ the warm-up (the reference's first period); status: cycles flagged with each Sta
 
 from __future__ import annotations
 
-import json
 import math
 from datetime import UTC, datetime
 from pathlib import Path
@@ -27,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from .._atomic import write_bytes, write_json, write_text
 from . import figures, html
 from .units import check_angle_unit, convert, rows_in_unit, unit_after
 
@@ -74,7 +74,7 @@ def scenario_section(result, out: Path, angle_unit: str = "deg") -> tuple[str, l
     def add(fig, name, caption):
         data = figures.png(fig)
         path = out / f"{result.name}_{name}.png"
-        path.write_bytes(data)
+        write_bytes(path, data)
         written.append(path)
         parts.append(html.figure(data, caption))
 
@@ -271,9 +271,9 @@ def write(
         metrics[anchor] = data
     intro = intro_for(scenario_results)
     report = out / "report.html"
-    report.write_text(html.page(title, intro, sections))
+    write_text(report, html.page(title, intro, sections))
     metrics_path = out / "metrics.json"
-    metrics_path.write_text(json.dumps(_jsonable(metrics), indent=2) + "\n")
+    write_json(metrics_path, _jsonable(metrics))
     return {
         "report": report,
         "metrics": metrics_path,

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .._atomic import save_figure
+
 
 def _log_scale(x: np.ndarray) -> bool:
     x = x[np.isfinite(x)]
@@ -44,7 +46,7 @@ def plot_all(result, out: Path, sensitivity=None) -> list[Path]:
         ax.grid(True, alpha=0.3)
         fig.tight_layout()
         path = out / f"hist_{m}.png"
-        fig.savefig(path, dpi=110)
+        save_figure(fig, path, dpi=110)
         plt.close(fig)
         written.append(path)
 
@@ -82,7 +84,7 @@ def plot_all(result, out: Path, sensitivity=None) -> list[Path]:
             fig.suptitle(f"{m} against each parameter")
             fig.tight_layout()
             path = out / f"{m}_vs_parameters.png"
-            fig.savefig(path, dpi=110)
+            save_figure(fig, path, dpi=110)
             plt.close(fig)
             written.append(path)
 
@@ -107,7 +109,7 @@ def plot_all(result, out: Path, sensitivity=None) -> list[Path]:
         ax.grid(True, axis="x", alpha=0.3)
         fig.tight_layout()
         path = out / "sensitivity.png"
-        fig.savefig(path, dpi=110)
+        save_figure(fig, path, dpi=110)
         plt.close(fig)
         written.append(path)
     return written

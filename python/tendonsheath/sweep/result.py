@@ -12,6 +12,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._atomic import atomic_path, write_json
+
 if TYPE_CHECKING:  # pandas is imported when a table is built (an optional dependency)
     import pandas as pd
 
@@ -298,7 +300,8 @@ class SweepResult:
     def to_csv(self, path) -> Path:
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
-        self.table.to_csv(path, index=False)
+        with atomic_path(path) as tmp:
+            self.table.to_csv(tmp, index=False)
         return path
 
     def to_parquet(self, path) -> Path:
@@ -308,7 +311,8 @@ class SweepResult:
         for c in table.columns:  # mixed-type (object) parameter columns: as text
             if table[c].dtype == object and c != "error":
                 table[c] = table[c].astype(str)
-        table.to_parquet(path, index=False)
+        with atomic_path(path) as tmp:
+            table.to_parquet(tmp, index=False)
         return path
 
     def metadata(self) -> dict:
@@ -340,7 +344,8 @@ class SweepResult:
         out.mkdir(parents=True, exist_ok=True)
         written = [self.to_csv(out / "table.csv"), self.to_parquet(out / "table.parquet")]
         summary = self.summary(bound)
-        summary.to_csv(out / "summary.csv", index=False)
+        with atomic_path(out / "summary.csv") as tmp:
+            summary.to_csv(tmp, index=False)
         written.append(out / "summary.csv")
         try:
             sens = self.sensitivity()
@@ -356,7 +361,7 @@ class SweepResult:
         }
         if sens_note:
             payload["sensitivity_note"] = sens_note
-        (out / "summary.json").write_text(json.dumps(payload, indent=2) + "\n")
+        write_json(out / "summary.json", payload)
         written.append(out / "summary.json")
         if figures:
             written += self.plots(out, sensitivity=sens if len(sens) else None)

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._atomic import save_figure
 from .distributions import Integers, MonteCarlo, Relative, Seed
 from .example_runs import NOMINAL, compensator_study
 
@@ -98,7 +99,7 @@ def robustness_section(
     ax.grid(True, axis="y", alpha=0.3)
     fig.tight_layout()
     path = out / f"robustness_{metric}.png"
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path, dpi=120)
     plt.close(fig)
 
     def clean(v):
