@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import warnings
 from pathlib import Path
 
@@ -61,6 +62,31 @@ def _check_finite(what: str, values: dict) -> None:
         _fail(f"{what}: {listed} is not finite (data too small, too large or constant?)")
 
 
+def _stops_on_ctrl_c(command):
+    """Ctrl-C: one line and exit code 130 (128 + SIGINT), no traceback. Outputs are written
+    atomically, so none is left half-written."""
+
+    @functools.wraps(command)
+    def run(*args, **kwargs):
+        try:
+            return command(*args, **kwargs)
+        except KeyboardInterrupt:
+            Console(stderr=True).print(
+                f"interrupted (Ctrl-C): {command.__name__.removesuffix('_command')} stopped; "
+                "no output file is left half-written",
+                highlight=False,
+            )
+            raise typer.Exit(130) from None
+
+    return run
+
+
+def _print_notes(log) -> None:
+    """The data-quality notes read_log collected (duplicates, gaps, irregular sampling)."""
+    for note in log.notes:
+        console.print(f"[yellow]{log.path}:[/yellow] {_cli_note(note)}", soft_wrap=True)
+
+
 @app.callback()
 def _root() -> None:
     """Model, identify and compensate tendon-sheath mechanisms."""
@@ -68,6 +94,7 @@ def _root() -> None:
 
 @app.command()
 @_one_paragraph
+@_stops_on_ctrl_c
 def demo(
     out: Path = typer.Option(Path("demo-out"), "--out", "-o", help="Folder for the results."),
     scale: float = typer.Option(1.0, help="Run length factor (below 1: a quicker, shorter run)."),
@@ -176,6 +203,7 @@ def _checked(check, *args, **kwargs):
 
 @app.command()
 @_one_paragraph
+@_stops_on_ctrl_c
 def bench(
     scenario: Path = typer.Argument(
         ...,
@@ -236,6 +264,7 @@ def _fail(reason) -> None:
 
 @app.command()
 @_one_paragraph
+@_stops_on_ctrl_c
 def identify(
     data: list[Path] = typer.Argument(
         ..., help="Data file(s): CSV/TSV with header, NPY, NPZ, HDF5, Excel."
@@ -290,6 +319,13 @@ def identify(
             )
             for path in data
         ]
+        vlog = None
+        if validate is not None:
+            vlog = io.read_log(
+                validate, time=time_col, input=input_col, output=output_col, curve_angle=curve_angle
+            )
+        for log in logs + ([vlog] if vlog is not None else []):  # before the (long) fitting
+            _print_notes(log)
         with warnings.catch_warnings():  # printed below with the diagnostics
             warnings.simplefilter("ignore", IdentifiabilityWarning)
             fit = run_identify(
@@ -303,10 +339,7 @@ def identify(
                 bootstrap=resamples,
             )
         val = None
-        if validate is not None:
-            vlog = io.read_log(
-                validate, time=time_col, input=input_col, output=output_col, curve_angle=curve_angle
-            )
+        if vlog is not None:
             val = fit.validate(vlog.t, vlog.x, vlog.y, vlog.curve_angle)
     except ValueError as exc:
         _fail(exc)
@@ -371,6 +404,7 @@ def _print_fit(fit, n_logs: int, output_col: str) -> None:
 
 @app.command()
 @_one_paragraph
+@_stops_on_ctrl_c
 def predict(
     model_file: Path = typer.Argument(..., help="Model JSON written by `identify`."),
     data: Path = typer.Argument(..., help="Data file with the input column."),
@@ -415,6 +449,7 @@ def predict(
             output=wanted_output if has_output else None,
             curve_angle=curve_angle,
         )
+        _print_notes(log)
         if log.y is not None and warmup >= log.x.size:
             raise ValueError(f"--warmup {warmup} leaves none of the {log.x.size} samples")
         y_hat = simulate_model(model, log.t, log.x, log.curve_angle)
@@ -460,6 +495,7 @@ def _saved_columns(model_file: Path) -> dict:
 
 @app.command("sweep")
 @_one_paragraph
+@_stops_on_ctrl_c
 def sweep_command(
     config: Path = typer.Argument(..., help="The sweep file (TOML): run, design, parameters."),
     out: Path = typer.Option(Path("sweep-out"), "--out", "-o", help="Folder for the results."),
@@ -591,6 +627,7 @@ def _cli_note(note: str) -> str:
 
 @app.command(cls=_FilesAfterValidate)
 @_one_paragraph
+@_stops_on_ctrl_c
 def compare(
     data: list[Path] = typer.Argument(
         ..., help="Training data file(s): CSV/TSV with header, NPY, NPZ, HDF5, Excel."
@@ -662,8 +699,7 @@ def compare(
                     f"{log.path}: the output {output_col} is constant ({log.y[0]:g}): "
                     "there is nothing to compare"
                 )
-            for note in log.notes:
-                console.print(f"[yellow]{log.path}:[/yellow] {_cli_note(note)}", soft_wrap=True)
+            _print_notes(log)
         candidates = [m for m in models.split(",") if m.strip()] if models else None
         with console.status("fitting the candidate models") as status:
 

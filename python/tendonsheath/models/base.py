@@ -213,16 +213,20 @@ def load_model(source: str | Path | dict) -> HysteresisModel:
     if isinstance(source, dict):
         data = source
     else:
-        text = str(source)
+        text, where = str(source), ""
         if not text.lstrip().startswith("{"):
             path = Path(source)
             if not path.is_file():
                 raise ValueError(f"model file not found: {path}")
-            text = path.read_text()
+            where = f"{path}: "
+            try:
+                text = path.read_text(encoding="utf-8-sig")
+            except UnicodeDecodeError:
+                raise ValueError(f"{where}not a model JSON file (binary, not UTF-8 text)") from None
         try:
             data = json.loads(text)
         except json.JSONDecodeError as exc:
-            raise ValueError(f"model file is not valid JSON: {exc}") from None
+            raise ValueError(f"{where}model file is not valid JSON: {exc}") from None
     return HysteresisModel.from_dict(data)
 
 
