@@ -511,9 +511,17 @@ def sweep_command(
         None, "--bound", help="Error bound on the primary metric (overrides the file)."
     ),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Write the figures."),
+    resume: bool = typer.Option(
+        True,
+        "--resume/--fresh",
+        help="Keep the runs an interrupted sweep of the same file stored in OUT/runs.jsonl "
+        "(default), or discard them and start afresh.",
+    ),
 ) -> None:
     """Run a robustness sweep from a TOML file; write the table (CSV, Parquet), a summary
     (quantiles per compensator, fraction within the bound), a sensitivity ranking and figures."""
+    import hashlib
+
     from rich.markup import escape
 
     from .sweep import SweepError, sweep
@@ -527,8 +535,11 @@ def sweep_command(
     if n is not None and n < 1:
         _fail(f"--n must be >= 1 (got {n})")
     _checked(check_output_folder, out)
+    runs_file = out / "runs.jsonl"
     try:
         spec = read_sweep_file(config)
+        if not resume:
+            runs_file.unlink(missing_ok=True)
         engine = scheduler or spec.scheduler or "local"
         res = sweep(
             spec.run,
@@ -541,12 +552,22 @@ def sweep_command(
             on_error=spec.on_error,
             retries=spec.retries,
             progress=True,
+            checkpoint=runs_file,
+            checkpoint_tag=hashlib.sha256(config.read_bytes()).hexdigest()[:16],
         )
         the_bound = bound if bound is not None else spec.bound
         written = res.save(out, bound=the_bound, figures=figures)
     except (ValueError, ConnectionError, SweepError) as exc:
         err.print(f"[red]error:[/red] {escape(str(exc))}", soft_wrap=True, highlight=False)
         raise typer.Exit(2) from None
+    except KeyboardInterrupt:
+        err.print(
+            f"interrupted (Ctrl-C): sweep stopped; its finished runs are kept in {runs_file}: "
+            "the same command resumes from them",
+            soft_wrap=True,
+            highlight=False,
+        )
+        raise typer.Exit(130) from None
 
     metric = res.primary_metric()
     summary = res.summary(the_bound)
@@ -585,6 +606,11 @@ def sweep_command(
         f"{res.n_runs} runs on {e['engine']} ({e['workers']} worker"
         f"{'s' if e['workers'] != 1 else ''}) in "
         f"{e['wall_seconds']:.1f} s, {e['runs_per_second']:.1f} runs/s"
+        + (
+            f" ({e['resumed_runs']} more stored by an earlier call)"
+            if e.get("resumed_runs")
+            else ""
+        )
     )
     console.print(f"wrote {len(written)} files to {out}:")
     for path in written:

@@ -20,6 +20,7 @@ import math
 import time
 from collections.abc import Callable, Iterable, Mapping
 
+from .checkpoint import Checkpoint
 from .distributions import (
     Choice,
     Design,
@@ -36,7 +37,15 @@ from .distributions import (
     Uniform,
     as_design,
 )
-from .engines import SweepError, connect, is_dask_client, run_dask, run_local, run_serial
+from .engines import (
+    EngineStats,
+    SweepError,
+    connect,
+    is_dask_client,
+    run_dask,
+    run_local,
+    run_serial,
+)
 from .plan import Plan, make_plan
 from .result import SweepResult, build_table, engine_info
 from .studies import robustness_section, robustness_study
@@ -99,6 +108,8 @@ def sweep(
     retries: int = 3,
     progress: bool | None = None,
     connect_timeout: float = 5.0,
+    checkpoint=None,
+    checkpoint_tag: str | None = None,
 ) -> SweepResult:
     """Evaluate ``run`` over a design and return a :class:`SweepResult` (a tidy table).
 
@@ -118,6 +129,11 @@ def sweep(
     any other name is an error before work starts. ``on_error``: ``"raise"`` (a failed run
     stops the sweep with its index and parameters) or ``"record"`` (NaN metrics and an
     ``error`` column). ``progress``: a progress bar on stderr (None: on a terminal only).
+
+    ``checkpoint``: a file (JSON lines) where every finished run is stored as its batch
+    comes back; when it already holds runs of this same sweep (design, seed, number of
+    runs, ``checkpoint_tag`` and every run's parameters), those runs are not run again, so
+    an interrupted sweep resumes. The runs of another sweep there are a ValueError.
     """
     if not callable(run):
         raise ValueError(f"sweep: run must be callable (got {type(run).__name__})")
@@ -134,7 +150,12 @@ def sweep(
     design = as_design(design)
     _check_names(design, declared_parameters(run, parameters))
     plan = make_plan(design, n, seed)
-    items = list(enumerate(plan.runs))
+    stored: dict = {}
+    ck = None
+    if checkpoint is not None:
+        ck = Checkpoint(checkpoint, plan, checkpoint_tag)
+        stored = ck.load()
+    items = [(i, p) for i, p in enumerate(plan.runs) if i not in stored]
 
     client, own_client = None, False
     if isinstance(engine, str) and engine not in ("local", "serial"):
@@ -153,17 +174,27 @@ def sweep(
         )
 
     start = time.perf_counter()
+    record = None
+    if ck is not None:
+        ck.open(keep=bool(stored))
+        record = ck.record
     try:
-        if client is not None:
-            results, stats = run_dask(run, items, client, batch_size, retries, progress)
+        if not items:  # every run was stored by an earlier, interrupted call
+            results, stats = {}, EngineStats("resumed", 0, 0, 0)
+        elif client is not None:
+            results, stats = run_dask(run, items, client, batch_size, retries, progress, record)
         elif engine == "serial":
-            results, stats = run_serial(run, items, progress)
+            results, stats = run_serial(run, items, progress, record)
         else:
-            results, stats = run_local(run, items, workers, batch_size, progress)
+            results, stats = run_local(run, items, workers, batch_size, progress, record=record)
     finally:
         if own_client:
             client.close()
-    failed = [(i, results[i][1]) for i in range(len(items)) if results[i][1] is not None]
+        if ck is not None:
+            ck.close()
+    results = {**stored, **results}
+    n_all = len(plan.runs)
+    failed = [(i, results[i][1]) for i in range(n_all) if results[i][1] is not None]
     if failed and on_error == "raise":
         i, err = failed[0]
         raise SweepError(
@@ -171,7 +202,7 @@ def sweep(
             + (f" ({len(failed) - 1} more runs failed)" if len(failed) > 1 else "")
             + "; pass on_error='record' to keep going"
         )
-    if len(failed) == len(items):
+    if len(failed) == n_all:
         raise SweepError(f"sweep: every run failed; the first: run 0: {failed[0][1]}")
     table, metrics, compensators = build_table(plan, results)
     info = engine_info(stats)
@@ -180,6 +211,7 @@ def sweep(
         len(items) / info["wall_seconds"] if info["wall_seconds"] else math.inf
     )
     info["failed_runs"] = len(failed)
+    info["resumed_runs"] = len(stored)
     # worker-time each run cost beyond its own compute (start-up, transfer, scheduling, idle)
     if stats.compute_seconds > 0:
         used = stats.seconds * stats.workers

@@ -12,6 +12,7 @@ import math
 import multiprocessing
 import os
 import pickle
+import signal
 import sys
 import time
 import traceback
@@ -118,22 +119,25 @@ class EngineStats:
 class _Collector:
     """Keeps the first outcome of every run index; counts duplicates."""
 
-    def __init__(self, n: int, progress):
+    def __init__(self, n: int, progress, record=None):
         self.results: dict[int, tuple[Any, str | None]] = {}
         self.duplicates = 0
         self.compute = 0.0
         self.progress = progress
+        self.record = record  # called with each batch's new outcomes (a checkpoint)
 
     def add(self, outcomes: list[Outcome]) -> None:
-        new = 0
+        new = []
         for index, value, error, seconds in outcomes:
             if index in self.results:
                 self.duplicates += 1
                 continue
             self.results[index] = (value, error)
             self.compute += seconds
-            new += 1
-        self.progress(new)
+            new.append((index, value, error, seconds))
+        if self.record is not None:
+            self.record(new)
+        self.progress(len(new))
 
 
 @contextmanager
@@ -170,10 +174,10 @@ def progress_bar(enabled: bool | None, total: int, label: str):
 # -- serial and local ------------------------------------------------------------------------
 
 
-def run_serial(run, items, progress=None) -> tuple[dict, EngineStats]:
+def run_serial(run, items, progress=None, record=None) -> tuple[dict, EngineStats]:
     start = time.perf_counter()
     with progress_bar(progress, len(items), "sweep (this process)") as advance:
-        col = _Collector(len(items), advance)
+        col = _Collector(len(items), advance, record)
         for item in items:
             col.add(run_batch(run, [item]))
     stats = EngineStats(
@@ -203,9 +207,25 @@ def local_pool(workers: int, method: str, preload: str | None = None) -> Process
         # workers fork from a server that has already imported the package and the run's
         # module (effective when this process starts its fork server, i.e. the first time)
         ctx.set_forkserver_preload(["tendonsheath", *([preload] if preload else [])])
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx)
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_ignore_sigint)
     _POOLS[key] = pool
     return pool
+
+
+def _ignore_sigint() -> None:
+    """Workers leave Ctrl-C to the main process (which stops them): a terminal sends SIGINT
+    to every process of the command, and each worker would print its own traceback."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _stop_pool(key) -> None:
+    """Stop a pool's workers now (after Ctrl-C or an error: their batches are not wanted)."""
+    pool = _POOLS.pop(key, None)
+    if pool is None:
+        return
+    for proc in list((getattr(pool, "_processes", None) or {}).values()):
+        proc.terminate()
+    pool.shutdown(wait=True, cancel_futures=True)
 
 
 def shutdown_local_pools() -> None:
@@ -216,7 +236,7 @@ def shutdown_local_pools() -> None:
 
 
 def run_local(
-    run, items, workers=None, batch_size=None, progress=None, mp_context=None
+    run, items, workers=None, batch_size=None, progress=None, mp_context=None, record=None
 ) -> tuple[dict, EngineStats]:
     """A process pool over this machine's cores (workers=None: os.cpu_count())."""
     method = mp_context or _default_context()
@@ -235,7 +255,7 @@ def run_local(
     pool = local_pool(workers, method, getattr(run, "__module__", None))
     label = f"sweep (local, {workers} worker{'s' if workers > 1 else ''})"
     with progress_bar(progress, len(items), label) as advance:
-        col = _Collector(len(items), advance)
+        col = _Collector(len(items), advance, record)
         futures = [pool.submit(run_batch, run, b) for b in batches]
         try:
             for fut in as_completed(futures):
@@ -250,6 +270,7 @@ def run_local(
         except BaseException:
             for f in futures:
                 f.cancel()
+            _stop_pool((workers, mp_context or _default_context()))
             raise
     stats = EngineStats(
         "local",
@@ -294,6 +315,7 @@ def run_dask(
     batch_size=None,
     retries: int = 3,
     progress=None,
+    record=None,
 ) -> tuple[dict, EngineStats]:
     """Batches as Dask tasks; a batch lost with its worker is rescheduled (by the scheduler,
     then by us, up to ``retries`` times); outcomes are deduplicated by run index."""
@@ -319,7 +341,7 @@ def run_dask(
     resubmitted = 0
     label = f"sweep (dask, {workers} worker{'s' if workers > 1 else ''})"
     with progress_bar(progress, len(items), label) as advance:
-        col = _Collector(len(items), advance)
+        col = _Collector(len(items), advance, record)
         futures = [submit(b) for b in range(len(batches))]
         ac = dask_as_completed(futures)
         try:
