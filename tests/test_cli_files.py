@@ -133,3 +133,26 @@ def test_ctrl_c_stops_identify_cleanly_and_writes_nothing(tmp_path):
         "interrupted (Ctrl-C): identify stopped; no output file is left half-written"
     ]
     assert list(Path(out.parent).iterdir()) == []
+
+
+def test_ctrl_c_stops_demo_cleanly(tmp_path):
+    out = tmp_path / "demo"
+    env = {**os.environ, "PYTHONUNBUFFERED": "1"}
+    cmd = [sys.executable, "-c", "from tendonsheath.cli import main; main()", "demo",
+           "--out", str(out), "--scale", "0.2"]  # fmt: skip
+    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, start_new_session=True)  # fmt: skip
+    deadline = time.monotonic() + 120
+    while not out.is_dir() and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.05)  # the folder is made once the command runs (past the imports)
+    time.sleep(1.0)
+    assert proc.poll() is None, "the demo finished before it could be interrupted"
+    os.killpg(proc.pid, signal.SIGINT)
+    stdout, stderr = proc.communicate(timeout=60)
+    assert proc.returncode == 130, stdout + stderr
+    assert "Traceback" not in stdout + stderr
+    assert [ln for ln in stderr.splitlines() if ln.strip()] == [
+        "interrupted (Ctrl-C): demo stopped; no output file is left half-written"
+    ]
+    assert not [p for p in out.iterdir() if ".tmp" in p.name]
+    assert not (out / "report.html").exists()
