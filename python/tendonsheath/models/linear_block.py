@@ -59,7 +59,13 @@ class LinearBlock(HysteresisModel):
     def __init__(self, **values):
         out = {}
         for name in self.param_names:
-            v = float(values.pop(name))
+            raw = values.pop(name)
+            try:
+                v = float(raw)
+            except (TypeError, ValueError):
+                raise ValueError(
+                    f"{type(self).__name__}: {name} must be a number (got {raw!r})"
+                ) from None
             lo, hi = self._limits[name]
             if not (math.isfinite(v) and lo < v < hi):
                 raise ValueError(f"{type(self).__name__}: {name} must be in ({lo}, {hi}) (got {v})")
