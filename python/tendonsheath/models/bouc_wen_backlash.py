@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import numbers
 
 from .. import _core as core
@@ -43,6 +44,11 @@ class BoucWenBacklash(HysteresisModel):
             if not width > 0:
                 raise ValueError("BoucWenBacklash: give rho when B_r + B_l is not > 0")
             rho = 2.0 / width
+            if not math.isfinite(rho):
+                raise ValueError(
+                    f"BoucWenBacklash: B_r + B_l = {width:g} is too small to derive "
+                    "rho = 2 / (B_r + B_l); give rho"
+                )
         super().__init__(
             c_r=c_r,
             c_l=c_l,
