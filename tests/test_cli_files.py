@@ -156,3 +156,19 @@ def test_ctrl_c_stops_demo_cleanly(tmp_path):
     ]
     assert not [p for p in out.iterdir() if ".tmp" in p.name]
     assert not (out / "report.html").exists()
+
+
+@pytest.mark.parametrize(
+    ("content", "expected"),
+    [
+        (b"#ROSBAG V2.0\n\xb8\x00", "this is a ROS 1 bag, not a"),
+        (b'[run]\nscenario = "\x80\xff"\n', "not UTF-8 text (byte 0x80 on line 2)"),
+        (bytes(range(256)), "this is a binary file, not a"),
+    ],
+)
+@pytest.mark.parametrize("command", ["bench", "sweep"])
+def test_bench_and_sweep_name_a_bad_toml_file(tmp_path, command, content, expected):
+    path = tmp_path / "scenario.toml"
+    path.write_bytes(content)
+    result = runner.invoke(app, [command, str(path), "--out", str(tmp_path / "o")])
+    _one_line_error(result, expected)

@@ -78,13 +78,30 @@ def _fail(path: Path, message: str) -> ValueError:
     return ValueError(f"{path}: {message}")
 
 
-def sniff_binary(path: Path, head: bytes) -> None:
+def sniff_binary(path: Path, head: bytes, expected: str = "") -> None:
     """A clear error for a binary file (a known format by its magic bytes, else any NUL)."""
+    want = expected or f"a data table; supported: {SUPPORTED}"
     for magic, what, todo in _MAGIC:
         if head.startswith(magic):
-            raise _fail(path, f"this is {what}, not a data table; supported: {SUPPORTED}; {todo}")
+            raise _fail(path, f"this is {what}, not {want}" + ("" if expected else f"; {todo}"))
     if b"\x00" in head:
-        raise _fail(path, f"this is a binary file, not a text table; supported: {SUPPORTED}")
+        raise _fail(path, f"this is a binary file, not {want}")
+
+
+def read_config_text(path: Path, what: str = "a TOML file") -> str:
+    """The text of a small UTF-8 configuration file, or a one-line ValueError saying why
+    not (a folder, a binary file, not UTF-8)."""
+    if path.is_dir():
+        raise _fail(path, f"is a folder, not {what}")
+    data = path.read_bytes()
+    sniff_binary(path, data[:HEAD_BYTES], what)
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise _fail(
+            path, f"not UTF-8 text (byte 0x{data[exc.start]:02x} on line {line}); save it as UTF-8"
+        ) from None
 
 
 def _first_bad_utf8(path: Path) -> tuple[int, int, int] | None:

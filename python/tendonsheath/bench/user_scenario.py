@@ -72,6 +72,7 @@ from typing import Any
 import numpy as np
 
 from .. import loads, presets
+from .._textread import read_config_text
 from ..compensate import AdaptiveController
 from ..motor import Motor
 from ..plant import ContinuumPlant, PullPullPlant
@@ -271,7 +272,11 @@ def load(path: str | Path) -> UserScenario:
     path = Path(path)
     if not path.is_file():
         raise ScenarioError(f"scenario file not found: {path}")
-    return parse(path.read_text(), str(path))
+    try:
+        text = read_config_text(path, "a scenario file (TOML)")
+    except ValueError as exc:
+        raise ScenarioError(str(exc)) from None
+    return parse(text, str(path))
 
 
 def _load_object(spec):

@@ -40,6 +40,7 @@ from typing import Any
 
 import numpy as np
 
+from .._textread import read_config_text
 from .distributions import (
     Choice,
     Design,
@@ -164,7 +165,7 @@ def read_sweep_file(path) -> SweepFile:
     """Parse and check a sweep file; every mistake is a ValueError naming the entry."""
     path = Path(path)
     try:
-        data = tomllib.loads(path.read_text())
+        data = tomllib.loads(read_config_text(path, "a sweep file (TOML)"))
     except FileNotFoundError:
         raise ValueError(f"{path}: no such file") from None
     except tomllib.TOMLDecodeError as exc:
