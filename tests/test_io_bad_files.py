@@ -20,7 +20,7 @@ BAD = [
     ("blank.csv", b"\n \n\t\n", r"only blank lines"),
     ("header.csv", b"t,x,y\n", r"header names the columns \['t', 'x', 'y'\] but there are no data"),
     ("header_blank.csv", b"t,x,y\n\n\n", r"no data rows"),
-    ("binary.dat", bytes(range(256)) * 8, r"a binary file, not a text table"),
+    ("binary.dat", bytes(range(256)) * 8, r"a binary file, not a data table; supported: CSV"),
     ("zip.csv", b"PK\x03\x04rest", r"ZIP archive"),
     ("xls.csv", b"\xd0\xcf\x11\xe0\xa1\xb1", r"old Excel \.xls"),
     ("text.csv", b"t,x,y\n0,1,2\n1,2,3\n2,abc,4\n", r"column 'x', row 4: holds text 'abc'"),

@@ -70,7 +70,8 @@ class Column:
 @dataclass
 class TextTable:
     columns: dict[str, Column]
-    rows: np.ndarray  # file row of every data row
+    rows: np.ndarray | None  # file row of every data row (None: they follow on from first_row)
+    first_row: int
     notes: list[str] = field(default_factory=list)
 
 
@@ -211,7 +212,8 @@ def _parse_chunk(path, lines, rows, names, delimiter) -> list[Column]:
                 lines, delimiter=delimiter, quotechar='"', dtype=float, ndmin=2, comments=None
             )
             if arr.shape == (len(lines), len(names)):
-                return [Column(arr[:, j]) for j in range(len(names))]
+                # copies, not views of arr: each column's memory is released on its own
+                return [Column(arr[:, j].copy()) for j in range(len(names))]
         except ValueError:
             pass
     table = _cells(lines, delimiter)
@@ -225,15 +227,28 @@ def _parse_chunk(path, lines, rows, names, delimiter) -> list[Column]:
     return [parse_cells([r[j] for r in table], rows) for j in range(len(names))]
 
 
-def _merge(parts: list[list[Column]], n_cols: int) -> list[Column]:
+def _merge(parts: list[list[Column | None]], n_cols: int) -> list[Column]:
+    """One Column per column from the chunks' columns; each chunk's piece is released as soon
+    as its column is joined, so the peak is the data plus one column, not twice the data."""
     merged = []
     for j in range(n_cols):
         cols = [p[j] for p in parts]
+        for p in parts:
+            p[j] = None
         values = np.concatenate([c.values for c in cols]) if cols else np.empty(0)
         empty = next((c.first_empty for c in cols if c.first_empty is not None), None)
         text = next((c.first_text for c in cols if c.first_text is not None), None)
+        del cols
         merged.append(Column(values, empty, text))
     return merged
+
+
+def _join_rows(row_parts: list[np.ndarray]) -> np.ndarray | None:
+    """The file row of every data row, or None when they follow on without a gap."""
+    first, last = int(row_parts[0][0]), int(row_parts[-1][-1])
+    if last - first + 1 == sum(r.size for r in row_parts):
+        return None
+    return np.concatenate(row_parts)
 
 
 def _data_lines(f, first_row: int):
@@ -283,4 +298,4 @@ def read_text_table(path: Path) -> TextTable:
         shown = {None: "whitespace", "\t": "tab"}.get(delimiter, repr(delimiter))
         notes.append(f"columns separated by {shown}, not the {suffix} file's usual one")
     columns = dict(zip(names, _merge(parts, len(names)), strict=True))
-    return TextTable(columns, np.concatenate(row_parts), notes)
+    return TextTable(columns, _join_rows(row_parts), int(row_parts[0][0]), notes)

@@ -207,7 +207,7 @@ class _Table:
                 raise ValueError(f"{where} {row}: holds text {cell!r}, not a number{hint}")
             if raw.first_empty is not None and not allow_missing:
                 raise ValueError(f"{where} {raw.first_empty}: is empty, not a number")
-            out = raw.values.copy()
+            out = raw.values  # the table is discarded after read_log: no copy
         else:
             try:
                 out = np.asarray(raw, dtype=np.float64).reshape(-1)
@@ -242,7 +242,7 @@ def _decimal_comma(cell: str) -> bool:
 
 def _read_text(path: Path) -> _Table:
     table = read_text_table(path)
-    return _Table(path, table.columns, 2, rows=table.rows, notes=table.notes)
+    return _Table(path, table.columns, table.first_row, rows=table.rows, notes=table.notes)
 
 
 def _read_npy(path: Path) -> _Table:
