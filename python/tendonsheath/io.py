@@ -195,9 +195,11 @@ class _Table:
     def numbers(self, name, role: str, allow_missing: bool = False) -> np.ndarray:
         key = self.key(name)
         if key is None:
-            raise ValueError(
-                f"{self.path}: unknown {role} column {name!r}; columns: {self.names()}"
-            )
+            names = self.names()
+            hint = ""
+            if len(names) == 1 and re.search(r"[^\w .()\[\]/°µ-]", names[0]):
+                hint = " (one column: the delimiter is none of , ; tab | or spaces?)"
+            raise ValueError(f"{self.path}: unknown {role} column {name!r}; columns: {names}{hint}")
         raw = self.columns[key]
         if isinstance(raw, Column):
             where = f"{self.path}: column {key!r}, row"

@@ -1,0 +1,156 @@
+"""The table of docs/bad-inputs.md: every bad input tried, with the one-line error (or the
+result) it gets today. Each case is run here, so the table is what the code says.
+
+    .venv/bin/python benchmarks/bad_inputs_table.py > /tmp/table.md
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+import tendonsheath as ts
+
+GOOD = "t,x,y\n0,1,2\n1,2,3\n2,3,4\n"
+
+FILES = [
+    ("a ROS 1 bag", "run.bag", b"#ROSBAG V2.0\nE\x00\x00\x00op=\x03\xb8\x01"),
+    ("an MCAP (ROS 2) bag", "run.mcap", b"\x89MCAP0\r\n\x00"),
+    ("a ROS 2 .db3 bag", "run.db3", b"SQLite format 3\x00\x10\x00"),
+    ("a Parquet file", "run.csv", b"PAR1\x15\x04"),
+    ("a ZIP (an .xlsx renamed .csv)", "run.csv", b"PK\x03\x04\x14\x00"),
+    ("gzip-compressed CSV", "run.csv.gz", b"\x1f\x8b\x08\x00"),
+    ("an old .xls saved as .csv", "run.csv", b"\xd0\xcf\x11\xe0\xa1\xb1"),
+    ("a MATLAB .mat", "run.mat", b"MATLAB 5.0 MAT-file, Platform: GLNXA64"),
+    ("random binary", "run.dat", bytes(range(256)) * 4),
+    ("an empty file", "run.csv", b""),
+    ("only blank lines", "run.csv", b"\n  \n\t\n"),
+    ("a header only", "run.csv", b"t,x,y\n"),
+    ("numbers where the header should be", "run.csv", b"0,1,2\n1,2,3\n2,3,4\n"),
+    ("a duplicate column name", "run.csv", b"t,x,x\n0,1,2\n1,2,3\n2,3,4\n"),
+    ("an empty column name", "run.csv", b"t,,y\n0,1,2\n1,2,3\n2,3,4\n"),
+    ("text in a number column", "run.csv", b"t,x,y\n0,1,2\n1,2,3\n2,abc,4\n"),
+    ("a decimal comma", "run.csv", b"t;x;y\n0;1,5;2\n1;2;3\n2;3;4\n"),
+    ("an empty cell", "run.csv", b"t,x,y\n0,1,2\n1,,3\n2,3,4\n"),
+    ("NaN in a cell", "run.csv", b"t,x,y\n0,1,2\n1,nan,3\n2,3,4\n"),
+    ("a short row", "run.csv", b"t,x,y\n0,1,2\n1,2\n2,3,4\n"),
+    ("wrong delimiter, one column", "run.csv", b"t:x:y\n0:1:2\n1:2:3\n2:3:4\n"),
+    ("time going backwards", "run.csv", b"t,x,y\n0,1,2\n2,2,3\n1,3,4\n"),
+    ("two data rows", "run.csv", b"t,x,y\n0,1,2\n1,2,3\n"),
+    ("Cyrillic in cp1251 (not UTF-8)", "run.csv", "t,x,y,Время\n0,1,2,3\n".encode("cp1251")),
+    ("UTF-16 without a byte-order mark", "run.csv", GOOD.encode("utf-16-le")),
+    ("a folder", "folder", None),
+    ("a missing file", "missing.csv", False),
+]
+
+WORKS = [
+    ("Excel's CSV UTF-8 (a byte-order mark)", "run.csv", ("\ufeff" + GOOD).encode()),
+    (
+        "Windows-1252 (a degree sign in the header)",
+        "run.csv",
+        "t,x,y,Winkel (°)\n0,1,2,3\n1,2,3,4\n2,3,4,5\n".encode("cp1252"),
+    ),
+    (
+        "UTF-16 with a byte-order mark (Excel's Unicode text)",
+        "run.txt",
+        GOOD.replace(",", "\t").encode("utf-16"),
+    ),
+    ("semicolons in a .csv", "run.csv", GOOD.replace(",", ";").encode()),
+    ("whitespace-separated", "run.txt", GOOD.replace(",", " ").encode()),
+    ("blank lines between rows", "run.csv", b"t,x,y\n0,1,2\n\n1,2,3\n\n2,3,4\n"),
+    ("Windows line ends", "run.csv", GOOD.replace("\n", "\r\n").encode()),
+]
+
+
+def _message(fn) -> str:
+    try:
+        out = fn()
+    except (ValueError, TypeError) as exc:
+        return f"{type(exc).__name__}: {exc}"
+    return f"works: {out}"
+
+
+def _cell(text: str) -> str:
+    return text.replace("|", "\\|").replace("\n", " ")
+
+
+def _file_rows(cases) -> list[str]:
+    rows = []
+    for what, name, content in cases:
+        path = Path(name)
+        if content is None:
+            path.mkdir(exist_ok=True)
+        elif content is not False:
+            path.write_bytes(content)
+
+        def read(path=path):
+            log = ts.io.read_log(path, time="t", input="x", output="y")
+            return f"{len(log)} rows" + (f"; note: {'; '.join(log.notes)}" if log.notes else "")
+
+        rows.append(f"| {what} | {_cell(_message(read))} |")
+        if content not in (None, False):
+            path.unlink()
+    return rows
+
+
+def _toml_rows() -> list[str]:
+    from tendonsheath.bench.user_scenario import load
+    from tendonsheath.sweep.toml import read_sweep_file
+
+    rows = []
+    for what, content in [
+        ("a ROS 1 bag as the TOML file", b"#ROSBAG V2.0\n\xb8"),
+        ("a non-UTF-8 TOML file", b'[run]\nscenario = "\x80"\n'),
+    ]:
+        Path("scenario.toml").write_bytes(content)
+        for label, fn in (("bench", load), ("sweep", read_sweep_file)):
+            msg = _cell(_message(lambda fn=fn: fn(Path("scenario.toml"))))
+            rows.append(f"| {label}: {what} | {msg} |")
+    Path("model.json").write_bytes(b"\x89PNG\r\n\x1a\n\x00")
+    msg = _cell(_message(lambda: ts.load_model("model.json")))
+    rows.append(f"| predict: a binary model file | {msg} |")
+    return rows
+
+
+def _api_rows() -> list[str]:
+    t = np.arange(20) * 0.01
+    x = np.sin(7 * t)
+    cases = [
+        ("identify: y shorter than x", lambda: ts.identify("Backlash", t, x, x[:10])),
+        ("identify: NaN in x", lambda: ts.identify("Backlash", t, np.r_[x[:-1], np.nan], x)),
+        ("identify: time going backwards", lambda: ts.identify("Backlash", t[::-1], x, x)),
+        ("identify: 2-D x", lambda: ts.identify("Backlash", t, np.c_[x, x], x)),
+        ("identify: two samples", lambda: ts.identify("Backlash", t[:2], x[:2], x[:2])),
+        (
+            "FirstOrderLag(time_constant=None) (Hypothesis; was a bare TypeError)",
+            lambda: ts.models.FirstOrderLag(time_constant=None),
+        ),
+        (
+            "BoucWenBacklash(B_l=None) (Hypothesis; was a bare TypeError)",
+            lambda: ts.models.BoucWenBacklash(B_l=None),
+        ),
+        (
+            "BoucWenBacklash(B_r=2.2e-313, B_l=0) (Hypothesis; was 'rho must be > 0 (got inf)')",
+            lambda: ts.models.BoucWenBacklash(B_r=2.2250738585e-313, B_l=0.0),
+        ),
+        ("Backlash(B_r=nan)", lambda: ts.models.Backlash(B_r=float("nan"))),
+        ("BoucWen(n=-1)", lambda: ts.models.BoucWen(n=-1.0)),
+        ("Backlash(B_l=None): None means the default", lambda: ts.models.Backlash(B_l=None).params),
+    ]
+    return [f"| {what} | {_cell(_message(fn))} |" for what, fn in cases]
+
+
+def main() -> None:
+    with tempfile.TemporaryDirectory() as tmp:
+        os.chdir(tmp)
+        print("| bad input | what you get |\n| --- | --- |")
+        print("\n".join(_file_rows(FILES) + _toml_rows() + _api_rows()))
+        print("\n| unusual but readable | what you get |\n| --- | --- |")
+        print("\n".join(_file_rows(WORKS)))
+
+
+if __name__ == "__main__":
+    main()
