@@ -171,6 +171,7 @@ class _Table:
         self.first_row = first_row
         self.rows = rows
         self.notes = list(notes)
+        self._taken: set = set()
 
     def names(self) -> list[str]:
         return list(self.columns)
@@ -209,7 +210,9 @@ class _Table:
                 raise ValueError(f"{where} {row}: holds text {cell!r}, not a number{hint}")
             if raw.first_empty is not None and not allow_missing:
                 raise ValueError(f"{where} {raw.first_empty}: is empty, not a number")
-            out = raw.values  # the table is discarded after read_log: no copy
+            # the table is discarded after read_log: its arrays are handed over, once each
+            out = raw.values.copy() if key in self._taken else raw.values
+            self._taken.add(key)
         else:
             try:
                 out = np.asarray(raw, dtype=np.float64).reshape(-1)
