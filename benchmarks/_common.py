@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-import json
 import platform
 import time
 from pathlib import Path
+
+from tendonsheath._atomic import write_json
 
 RESULTS = Path(__file__).resolve().parent / "results"
 
@@ -24,5 +25,4 @@ def write_results(name: str, payload: dict) -> Path:
     RESULTS.mkdir(exist_ok=True)
     payload = {"machine": platform.machine(), "python": platform.python_version(), **payload}
     path = RESULTS / f"{name}.json"
-    path.write_text(json.dumps(payload, indent=2) + "\n")
-    return path
+    return write_json(path, payload)  # atomic: an interrupted benchmark leaves the old file
