@@ -42,6 +42,7 @@ FILES = [
     ("two data rows", "run.csv", b"t,x,y\n0,1,2\n1,2,3\n"),
     ("Cyrillic in cp1251 (not UTF-8)", "run.csv", "t,x,y,Время\n0,1,2,3\n".encode("cp1251")),
     ("UTF-16 without a byte-order mark", "run.csv", GOOD.encode("utf-16-le")),
+    ("UTF-16 cut off mid-character", "run.csv", GOOD.encode("utf-16")[:-1]),
     ("a folder", "folder", None),
     ("a missing file", "missing.csv", False),
 ]

@@ -29,6 +29,7 @@ BAD = [
     ("cyrillic.csv", "t,Время,y\n0,1,2\n".encode("cp1251"), r"not UTF-8 text \(byte 0xc2"),
     ("numbers.csv", b"0,1,2\n1,2,3\n2,3,4\n", r"header of column names \(got numbers\)"),
     ("dup.csv", b"t,x,x\n0,1,2\n1,2,3\n2,3,4\n", r"duplicate column names in the header: \['x'\]"),
+    ("cut16.csv", GOOD.encode("utf-16")[:-1], r"not valid utf-16 text \(truncated data\)"),
 ]
 
 
@@ -104,3 +105,14 @@ def test_chunked_reading_matches_one_chunk(tmp_path, monkeypatch):
     assert len(log) == n - 1 and any(
         "row(s) with a missing value dropped: rows 901" in s for s in log.notes
     )
+
+
+def test_columns_reads_the_header_alone(tmp_path, monkeypatch):
+    path = tmp_path / "big.csv"
+    path.write_text(GOOD + "3,oops,5\n")
+
+    def no_data(*args, **kwargs):
+        raise AssertionError("columns() parsed the data rows")
+
+    monkeypatch.setattr(_textread, "_parse_chunk", no_data)
+    assert io.columns(path) == ["t", "x", "y"]

@@ -14,6 +14,7 @@ from __future__ import annotations
 import codecs
 import csv
 import re
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -266,8 +267,10 @@ def _data_lines(f, first_row: int):
         yield lines, np.asarray(rows)
 
 
-def read_text_table(path: Path) -> TextTable:
-    """Read a delimited text table with a header row (see the module's doc)."""
+@contextmanager
+def _past_header(path: Path):
+    """Yields (the file positioned after its header, column names, delimiter, the header's
+    row, notes), after the checks that need no data (binary, empty, encoding, header)."""
     with open(path, "rb") as f:
         head = f.read(HEAD_BYTES)
     if not head:
@@ -276,16 +279,31 @@ def read_text_table(path: Path) -> TextTable:
         sniff_binary(path, head)
     encoding, note = choose_encoding(path, head)
     notes = [note] if note else []
-    with open(path, encoding=encoding, newline="") as f:
-        header_line, first = "", 0
-        for first, line in enumerate(f, start=1):  # noqa: B007 - first: the header's row
-            if line.strip():
-                header_line = line
-                break
-        if not header_line.strip():
-            raise _fail(path, "the file holds only blank lines: no header, no data")
-        delimiter, header = _split_header(header_line.rstrip("\r\n"))
-        names = _check_header(path, header)
+    try:
+        with open(path, encoding=encoding, newline="") as f:
+            header_line, first = "", 0
+            for first, line in enumerate(f, start=1):  # noqa: B007 - first: the header's row
+                if line.strip():
+                    header_line = line
+                    break
+            if not header_line.strip():
+                raise _fail(path, "the file holds only blank lines: no header, no data")
+            delimiter, header = _split_header(header_line.rstrip("\r\n"))
+            names = _check_header(path, header)
+            yield f, names, delimiter, first, notes
+    except UnicodeDecodeError as exc:  # UTF-16 cut off in a character, say
+        raise _fail(path, f"not valid {encoding} text ({exc.reason})") from None
+
+
+def read_text_header(path: Path) -> list[str]:
+    """The column names of a text table (reads the header only)."""
+    with _past_header(path) as (_, names, *_rest):
+        return names
+
+
+def read_text_table(path: Path) -> TextTable:
+    """Read a delimited text table with a header row (see the module's doc)."""
+    with _past_header(path) as (f, names, delimiter, first, notes):
         parts, row_parts = [], []
         for lines, rows in _data_lines(f, first + 1):
             parts.append(_parse_chunk(path, lines, rows, names, delimiter))

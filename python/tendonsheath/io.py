@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from ._atomic import atomic_path
-from ._textread import Column, parse_cells, read_text_table
+from ._textread import Column, parse_cells, read_text_header, read_text_table
 
 MIN_ROWS = 3
 MAX_UPSAMPLING = 10  # resampling may multiply the samples by at most this
@@ -347,7 +347,14 @@ def _read_excel(path: Path, sheet=None) -> _Table:
     return _Table(path, columns, 2, rows=row_array)
 
 
-def _open(path: Path, sheet=None) -> _Table:
+_BINARY_SUFFIXES = (".xlsx", ".xlsm", ".xls", ".npy", ".npz", ".h5", ".hdf5", ".hdf")
+
+
+def _is_text(path: Path) -> bool:
+    return path.suffix.lower() not in _BINARY_SUFFIXES
+
+
+def _check_readable(path: Path) -> None:
     if path.is_dir():
         raise ValueError(f"{path}: is a folder, not a data file")
     if not path.is_file():
@@ -357,6 +364,10 @@ def _open(path: Path, sheet=None) -> _Table:
             pass
     except OSError as exc:
         raise ValueError(f"{path}: cannot be read ({exc.strerror or exc})") from None
+
+
+def _open(path: Path, sheet=None) -> _Table:
+    _check_readable(path)
     suffix = path.suffix.lower()
     if suffix in (".xlsx", ".xlsm"):
         return _read_excel(path, sheet)
@@ -372,8 +383,12 @@ def _open(path: Path, sheet=None) -> _Table:
 
 
 def columns(path: str | Path, sheet=None) -> list[str]:
-    """The column names of a data file."""
-    return _open(Path(path), sheet).names()
+    """The column names of a data file (of a text file: from its header alone)."""
+    path = Path(path)
+    if _is_text(path):
+        _check_readable(path)
+        return read_text_header(path)
+    return _open(path, sheet).names()
 
 
 def read_log(
