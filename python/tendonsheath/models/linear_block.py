@@ -14,6 +14,7 @@ Discretisation: exact for an input linear between samples (first-order hold, Sci
 from __future__ import annotations
 
 import math
+import numbers
 from typing import Any
 
 import numpy as np
@@ -60,12 +61,9 @@ class LinearBlock(HysteresisModel):
         out = {}
         for name in self.param_names:
             raw = values.pop(name)
-            try:
-                v = float(raw)
-            except (TypeError, ValueError):
-                raise ValueError(
-                    f"{type(self).__name__}: {name} must be a number (got {raw!r})"
-                ) from None
+            if isinstance(raw, bool) or not isinstance(raw, numbers.Real):  # not "1", not None
+                raise ValueError(f"{type(self).__name__}: {name} must be a number (got {raw!r})")
+            v = float(raw)
             lo, hi = self._limits[name]
             if not (math.isfinite(v) and lo < v < hi):
                 raise ValueError(f"{type(self).__name__}: {name} must be in ({lo}, {hi}) (got {v})")
