@@ -130,6 +130,10 @@ def _api_rows() -> list[str]:
             lambda: ts.models.FirstOrderLag(time_constant=None),
         ),
         (
+            "FirstOrderLag(time_constant='1') (Hypothesis; was accepted as 1.0)",
+            lambda: ts.models.FirstOrderLag(time_constant="1"),
+        ),
+        (
             "BoucWenBacklash(B_l=None) (Hypothesis; was a bare TypeError)",
             lambda: ts.models.BoucWenBacklash(B_l=None),
         ),
