@@ -162,6 +162,7 @@ def identify_chain(
     standard_errors="linearised",
     bootstrap=200,
     bootstrap_block=None,
+    budget=None,
 ) -> Fit:
     """Identify a Chain (see the module docstring); returns a :class:`Fit`."""
     from .core import search_and_refine
@@ -182,6 +183,7 @@ def identify_chain(
             workers=workers,
             polish=polish,
             progress=progress,
+            budget=budget,
         )
     n_workers = 0 if workers is None else int(workers)
     problem = ChainProblem(chain, recs, warmup, bounds, fixed, n_workers)
@@ -201,6 +203,7 @@ def identify_chain(
         tol=tol,
         seed=seed,
         polish=polish,
+        budget=budget,
     )
     model = problem.model(space.natural(u_best))
     seconds = time.perf_counter() - start

@@ -178,6 +178,7 @@ def identify_dynamic(
     workers=None,
     polish=True,
     progress=True,
+    budget=None,
 ) -> Fit:
     """Identify a Hammerstein or Wiener chain (see the module docstring)."""
     from .core import search_and_refine
@@ -204,6 +205,7 @@ def identify_dynamic(
         tol=tol,
         seed=seed,
         polish=polish,
+        budget=budget,
     )
     model = problem.model(space.natural(u_best))
     if problem.pool is not None:

@@ -83,6 +83,8 @@ class Fit:
     "bootstrap" | "bootstrap-recordings" | "none", and for the bootstrap "resamples",
     "block" (residual blocks only), "failed", "seed", "samples" (the re-fitted estimates,
     one row per resample, columns named by "names")}).
+    ``stopped_on_budget``: the ``time_budget`` of identify() stopped the search or the
+    refinement (the model is the best found by then).
     """
 
     model: HysteresisModel
@@ -108,6 +110,7 @@ class Fit:
     uncertainty: dict[str, Any] = field(
         default_factory=lambda: {"method": "linearised"}, repr=False
     )
+    stopped_on_budget: bool = False
 
     def warnings(self) -> list[str]:
         """The identifiability warnings of this fit (empty when there are none)."""
@@ -170,6 +173,8 @@ class Fit:
             f"{self.method}: {self.evaluations} evaluations, {self.generations} generations, "
             f"{self.seconds:.2f} s",
         ]
+        if self.stopped_on_budget:
+            lines.append("stopped by the time budget: the best model found by then")
         width = max(len(r[0]) for r in self.table())
         se_label = self.uncertainty.get("method", "linearised")
         if se_label == "bootstrap":
@@ -210,6 +215,7 @@ class Fit:
             "seconds": self.seconds,
             "method": self.method,
             "message": self.message,
+            "stopped_on_budget": self.stopped_on_budget,
             "warmup": self.warmup,
             "n_samples": self.n_samples,
             "bounds": {k: [float(a), float(b)] for k, (a, b) in self.bounds.items()},
