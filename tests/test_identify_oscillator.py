@@ -114,3 +114,4 @@ def test_time_budget_stops_early_and_keeps_a_valid_model():
     fit = ts.identify(ts.models.HystereticOscillator, t, u(t), y, progress=False, time_budget=0.05)
     assert np.isfinite(fit.rmse)
     assert "time budget" in fit.message
+    assert fit.stopped_on_budget
