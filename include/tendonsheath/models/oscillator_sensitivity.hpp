@@ -29,22 +29,9 @@ class OscillatorSensitivity {
 
   // As HystereticOscillator::step_dense(); dy[0..7] receives dy/dp at the end of the interval.
   double step_dense(const double* u, int Q, double dt, double* dy) noexcept {
-    if (initialised_ && dt > 0.0 && std::isfinite(dt) && Q >= 1) {
-      const int need = osc_.substeps(dt);
-      if (Q % 2 == 0 && Q / 2 >= need) {
-        integrate([u](int i) { return u[i]; }, Q / 2, dt);
-      } else {
-        const double r = static_cast<double>(Q) / (2 * need);
-        integrate(
-            [u, r, Q](int i) {
-              const double s = i * r;
-              int j = static_cast<int>(s);
-              if (j >= Q) j = Q - 1;
-              return u[j] + (s - j) * (u[j + 1] - u[j]);
-            },
-            need, dt);
-      }
-    }
+    if (initialised_ && dt > 0.0 && std::isfinite(dt) && Q >= 1)
+      detail::on_dense_grid(u, Q, osc_.substeps(dt),
+                            [&](const auto& u_at, int m) { integrate(u_at, m, dt); });
     initialised_ = true;
     for (int j = 0; j < kParams; ++j) dy[j] = S_[j];
     return s_[0];

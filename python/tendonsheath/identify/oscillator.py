@@ -496,21 +496,9 @@ def identify_oscillator(
     finally:
         stages.close()
     seconds = time.perf_counter() - start
-    return _fit(
-        model,
-        problem,
-        recs,
-        per,
-        warmup,
-        held,
-        free_names,
-        se_bounds,
-        counter,
-        seconds,
-        res,
-        mode,
-        "; ".join([*notes, f"least squares: {msg}"]),
-    )
+    run = dict(recs=recs, per=per, warmup=warmup, held=held, mode=mode, counter=counter)
+    message = "; ".join([*notes, f"least squares: {msg}"])
+    return _fit(run, model, problem, se_bounds, seconds, int(res.nit), message)
 
 
 def _jacobian(problem, space, recs, dense):
@@ -548,22 +536,11 @@ def _jacobian(problem, space, recs, dense):
     return sensitivities
 
 
-def _fit(
-    model,
-    problem,
-    recs,
-    per,
-    warmup,
-    held,
-    free_names,
-    se_bounds,
-    counter,
-    seconds,
-    res,
-    mode,
-    message,
-) -> Fit:
-    predictions = [model.simulate(r.t, r.x, periodic=p) for r, p in zip(recs, per, strict=True)]
+def _fit(run: dict, model, problem, se_bounds, seconds, generations, message) -> Fit:
+    recs, warmup, free_names = run["recs"], run["warmup"], problem.free
+    predictions = [
+        model.simulate(r.t, r.x, periodic=p) for r, p in zip(recs, run["per"], strict=True)
+    ]
     quality = fit_quality(recs, predictions, warmup)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -580,13 +557,13 @@ def _fit(
         fit_percent=quality.overall["fit_percent"],
         standard_errors=ses,
         identified=list(free_names),
-        fixed=held,
+        fixed=run["held"],
         per_recording=quality.per_recording,
-        evaluations=counter["evaluations"],
+        evaluations=run["counter"]["evaluations"],
         seconds=seconds,
-        generations=int(res.nit),
+        generations=generations,
         method="best linear approximation + equation error (differential evolution, variable "
-        f"projection) + simulation-error least squares; input reconstruction {mode}",
+        f"projection) + simulation-error least squares; input reconstruction {run['mode']}",
         message=message,
         warmup=warmup,
         n_samples=quality.n,
