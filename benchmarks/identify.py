@@ -380,7 +380,7 @@ def oscillator_main(draws: int) -> None:
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--oscillator", action="store_true", help="the oscillator test")
-    parser.add_argument("--draws", type=int, default=5, help="parameter draws (oscillator)")
+    parser.add_argument("--draws", type=int, default=10, help="parameter draws (oscillator)")
     args = parser.parse_args()
     if args.oscillator:
         oscillator_main(args.draws)
