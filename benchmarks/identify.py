@@ -21,12 +21,23 @@ Prints a table and writes benchmarks/results/identify.json.
 ``--oscillator`` runs the Step 9 done-when test instead (key "oscillator" of the same JSON,
 the other keys kept): a Bouc-Wen hysteretic oscillator simulated by SciPy's DOP853 (at most
 dt/20 per step) on the continuous input, driven by a 5-150 Hz random-phase multisine sampled
-at 750 Hz (3 periods of 1024 samples), noise at 1e-3 of the output range; identified with
-band-limited input reconstruction, validated (noise-free reference) on another multisine
-realisation and on a 5-150 Hz sine sweep, for random parameter draws around the Bouc-Wen
-benchmark system (softening draws, gamma + delta < 0, alternate with hardening ones) and
-random seeds. Target: validation rmse within 2x of the generating parameters' rmse through
-the same reconstruction, under 120 s of CPU per identification.
+at 750 Hz (40 periods of 1024 samples: 40 960, the record length of issue 12 and of the
+Bouc-Wen benchmark data), noise at 1e-3 of the output range; identified with band-limited
+input reconstruction, validated (noise-free reference) on another multisine realisation and
+on a 5-150 Hz sine sweep, for random parameter draws around the Bouc-Wen benchmark system
+(softening draws, gamma + delta < 0, alternate with hardening ones) and random seeds.
+Target: validation rmse within 2x of the generating parameters' rmse through the same
+reconstruction, under 120 s of CPU per identification.
+
+The generating rmse g is the discretisation error of the model's own integrator (~1e-7 m)
+while the noise is ~4e-6 m, so the ratio is set by the parameter variance that the noise
+leaves: "predicted" is the ratio expected at the Cramer-Rao bound of the record,
+sqrt(1 + s^2 tr(Jv (J'J)^-1 Jv') / (Nv g^2)), with J, Jv the output Jacobians at the
+generating parameters on the training and validation inputs. With 3 periods (3 072 samples)
+it is 3.93 for draw 1 (measured 3.71; oscillator_case(..., periods=3)): no estimator gets
+within 2x on such a short record. The search is not what fails there: for draw 0 (measured
+2.01, expected 1.50) least squares started from the generating parameters ends at the same
+estimate.
 """
 
 from __future__ import annotations
@@ -225,7 +236,7 @@ def oscillator_draw(i: int, seed: int = 100) -> dict:
     return p
 
 
-def oscillator_case(params: dict, seed: int, period: int = 1024, periods: int = 3) -> dict:
+def oscillator_case(params: dict, seed: int, period: int = 1024, periods: int = 40) -> dict:
     """One draw: data from the DOP853 reference, identification, validation."""
     from tendonsheath._reference_oscillator import Multisine, Sweep, simulate_reference
 
@@ -260,6 +271,7 @@ def oscillator_case(params: dict, seed: int, period: int = 1024, periods: int = 
         return float(np.sqrt(np.mean((a - b) ** 2)))
 
     out = {"params": params, "cpu_seconds": cpu, "wall_seconds": wall, "noise_std": noise}
+    out["samples"] = int(t.size)
     for name, (tt, xx, yy) in {
         "multisine": (tv, xv, yv),
         "sweep": (ts_, xs, ys),
@@ -267,6 +279,7 @@ def oscillator_case(params: dict, seed: int, period: int = 1024, periods: int = 
         g = rmse(gen.simulate(tt, xx), yy)
         f = rmse(fit.model.simulate(tt, xx), yy)
         out[name] = {"generating_rmse": g, "identified_rmse": f, "ratio": f / g}
+        out[name]["predicted_ratio"] = predicted_ratio(gen, (t, x), (tt, xx), noise, g)
         noisy = yy + noise * rng.standard_normal(yy.size)
         out[name]["noisy_ratio"] = rmse(fit.model.simulate(tt, xx), noisy) / rmse(
             gen.simulate(tt, xx), noisy
@@ -288,6 +301,26 @@ def oscillator_case(params: dict, seed: int, period: int = 1024, periods: int = 
     return out
 
 
+def _output_jacobian(model, t, x) -> np.ndarray:
+    """d y / d (m, c, k, alpha, gamma, delta, nu) by forward differences (beta held)."""
+    base = model.simulate(t, x)
+    p = model.params
+    cols = []
+    for name in ("m", "c", "k", "alpha", "gamma", "delta", "nu"):
+        h = 1e-6 * (abs(p[name]) if name != "nu" else 1.0)
+        cols.append((model.with_params(**{name: p[name] + h}).simulate(t, x) - base) / h)
+    return np.column_stack(cols)
+
+
+def predicted_ratio(model, train, valid, noise: float, g: float) -> float:
+    """The validation ratio expected at the Cramer-Rao bound of the training record."""
+    J = _output_jacobian(model, *train)
+    Jv = _output_jacobian(model, *valid)
+    cov = noise**2 * np.linalg.inv(J.T @ J)
+    var = float(np.einsum("ij,jk,ik->", Jv, cov, Jv)) / Jv.shape[0]
+    return math.sqrt(1.0 + var / g**2)
+
+
 def oscillator_main(draws: int) -> None:
     console = Console()
     rows = []
@@ -304,6 +337,7 @@ def oscillator_main(draws: int) -> None:
         "generating rmse",
         "identified rmse",
         "ratio",
+        "predicted",
         "CPU s",
     ):
         table.add_column(col, justify="right")
@@ -318,6 +352,7 @@ def oscillator_main(draws: int) -> None:
                 f"{v['generating_rmse']:.3g}",
                 f"{v['identified_rmse']:.3g}",
                 f"{v['ratio']:.2f}",
+                f"{v['predicted_ratio']:.2f}",
                 f"{r['cpu_seconds']:.1f}",
             )
     console.print(table)
@@ -326,10 +361,11 @@ def oscillator_main(draws: int) -> None:
     out = Path(__file__).resolve().parent / "results" / "identify.json"
     data = json.loads(out.read_text()) if out.exists() else {}
     data["oscillator"] = {
-        "task": "HystereticOscillator from 3 periods x 1024 samples at 750 Hz of a DOP853 "
+        "task": "HystereticOscillator from 40 periods x 1024 samples at 750 Hz of a DOP853 "
         "reference (5-150 Hz random-phase multisine, noise 1e-3 of the output range), "
         "bandlimited input reconstruction; validation on a new multisine and a 5-150 Hz "
-        "sweep against the noise-free reference",
+        "sweep against the noise-free reference; predicted_ratio: expected at the Cramer-Rao "
+        "bound of the training record",
         "cores": os.cpu_count(),
         "draws": rows,
         "worst_ratio": worst,  # against the noise-free reference
@@ -346,7 +382,7 @@ def oscillator_main(draws: int) -> None:
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--oscillator", action="store_true", help="the oscillator test")
-    parser.add_argument("--draws", type=int, default=5, help="parameter draws (oscillator)")
+    parser.add_argument("--draws", type=int, default=10, help="parameter draws (oscillator)")
     args = parser.parse_args()
     if args.oscillator:
         oscillator_main(args.draws)

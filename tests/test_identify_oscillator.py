@@ -72,12 +72,15 @@ def test_self_class_recovery_oscillator_parameters_and_new_input():
 
 
 def test_softening_benchmark_system_identified_within_2x_of_its_generating_rmse():
-    """Step 9 done-when, short version (benchmarks/identify.py --oscillator has 5 draws):
+    """Step 9 done-when, short version (benchmarks/identify.py --oscillator has 10 draws
+    on 40 960 samples):
     the Bouc-Wen benchmark system (softening, beta (gamma + delta) = -300) simulated by
     DOP853 on a 5-150 Hz multisine (3 periods of 512 samples at 750 Hz), noise 1e-3 of the
     range, identified with band-limited input; validated on a new multisine against the
     noise-free reference. Measured: identified rmse 3.2e-7 vs 2.4e-7 for the generating
-    parameters (ratio 1.34); the criterion is 2x."""
+    parameters (ratio 1.34); the criterion is 2x. This short record suffices here because the
+    generating rmse (2.4e-7) is large next to the spread the noise leaves in the estimate;
+    draws with a smaller one need the benchmark's 40 960 samples."""
     from tendonsheath._reference_oscillator import BENCHMARK, Multisine, simulate_reference
 
     ms = Multisine(750.0, 512, 5.0, 150.0, 50.0, 21)
@@ -114,3 +117,4 @@ def test_time_budget_stops_early_and_keeps_a_valid_model():
     fit = ts.identify(ts.models.HystereticOscillator, t, u(t), y, progress=False, time_budget=0.05)
     assert np.isfinite(fit.rmse)
     assert "time budget" in fit.message
+    assert fit.stopped_on_budget

@@ -7,6 +7,7 @@
 #include "models/bouc_wen.hpp"
 #include "models/bouc_wen_backlash.hpp"
 #include "models/hysteretic_oscillator.hpp"
+#include "models/oscillator_sensitivity.hpp"
 #include "models/prandtl_ishlinskii.hpp"
 #include "models/simulate.hpp"
 #include "physics/pull_pull_statics.hpp"

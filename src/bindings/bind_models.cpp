@@ -103,6 +103,30 @@ void bind_models(nb::module_& m) {
           "dt"_a, "n"_a, "x_fine"_a, "fine"_a,
           "Simulate from an input given on a grid `fine` times finer than the samples.");
   m.def(
+      "oscillator_sensitivity_dense",
+      [](const HO& params, double dt, std::size_t n, InArray x_fine, int fine) {
+        if (fine < 1 || x_fine.shape(0) != n * static_cast<std::size_t>(fine))
+          throw std::invalid_argument(
+              "oscillator_sensitivity_dense: x_fine must have n * fine values (fine >= 1)");
+        if (!(dt > 0.0) || !std::isfinite(dt))
+          throw std::invalid_argument("oscillator_sensitivity_dense: dt must be > 0");
+        ts::OscillatorSensitivity sens(params);
+        auto [out_y, y] = new_array(n);
+        auto [out_s, S] = new_matrix(n, ts::OscillatorSensitivity::kParams);
+        const double* u = x_fine.data();
+        {
+          nb::gil_scoped_release release;
+          for (std::size_t k = 0; k < n; ++k)
+            y[k] = sens.step_dense(u + (k > 0 ? (k - 1) * fine : 0), fine, dt,
+                                   S + k * ts::OscillatorSensitivity::kParams);
+        }
+        return nb::make_tuple(out_y, out_s);
+      },
+      "params"_a, "dt"_a, "n"_a, "x_fine"_a, "fine"_a,
+      "HystereticOscillator displacement and its derivatives with respect to (m, c, k, alpha, "
+      "beta, gamma, delta, nu) (n x 8), for an input on a grid `fine` times finer (forward "
+      "sensitivities of the RK4 scheme of simulate_dense).");
+  m.def(
       "reconstruct_bandlimited",
       [](InArray x, int fine, int lookahead) {
         const std::size_t n = x.shape(0);

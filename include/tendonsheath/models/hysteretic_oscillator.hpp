@@ -42,6 +42,29 @@ namespace tendonsheath {
 
 enum InputReconstruction : int { kInputHold = 0, kInputLinear = 1, kInputBandlimited = 2 };
 
+namespace detail {
+// One sample interval whose input is given on a grid of Q + 1 points: integrate(u_at, m) runs
+// m RK4 sub-steps reading the input at fraction i / (2m) as u_at(i). Q / 2 sub-steps on the
+// grid itself when Q is even and that is at least `need`; else `need` sub-steps on the grid
+// interpolated linearly.
+template <class Integrate>
+void on_dense_grid(const double* u, int Q, int need, const Integrate& integrate) noexcept {
+  if (Q % 2 == 0 && Q / 2 >= need) {
+    integrate([u](int i) { return u[i]; }, Q / 2);
+    return;
+  }
+  const double r = static_cast<double>(Q) / (2 * need);
+  integrate(
+      [u, r, Q](int i) {
+        const double s = i * r;
+        int j = static_cast<int>(s);
+        if (j >= Q) j = Q - 1;
+        return u[j] + (s - j) * (u[j + 1] - u[j]);
+      },
+      need);
+}
+}  // namespace detail
+
 struct HystereticOscillatorParams {
   double m = 1.0;
   double c = 0.1;
@@ -161,20 +184,8 @@ class HystereticOscillator {
     }
     if (!(dt > 0.0) || !std::isfinite(dt) || Q < 1) return y_;
     ++samples_;
-    const int need = substeps(dt);
-    if (Q % 2 == 0 && Q / 2 >= need) {
-      integrate([u](int i) { return u[i]; }, Q / 2, dt);
-    } else {
-      const double r = static_cast<double>(Q) / (2 * need);
-      integrate(
-          [u, r, Q](int i) {
-            const double s = i * r;
-            int j = static_cast<int>(s);
-            if (j >= Q) j = Q - 1;
-            return u[j] + (s - j) * (u[j + 1] - u[j]);
-          },
-          need, dt);
-    }
+    detail::on_dense_grid(u, Q, substeps(dt),
+                          [&](const auto& u_at, int m) { integrate(u_at, m, dt); });
     return y_;
   }
 

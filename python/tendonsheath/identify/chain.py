@@ -163,6 +163,7 @@ def identify_chain(
     standard_errors="linearised",
     bootstrap=200,
     bootstrap_block=None,
+    budget=None,
 ) -> Fit:
     """Identify a Chain (see the module docstring); returns a :class:`Fit`."""
     from .core import search_and_refine
@@ -186,6 +187,7 @@ def identify_chain(
             standard_errors=standard_errors,
             bootstrap=bootstrap,
             bootstrap_block=bootstrap_block,
+            budget=budget,
         )
     n_workers = 0 if workers is None else int(workers)
     problem = ChainProblem(chain, recs, warmup, bounds, fixed, n_workers)
@@ -205,6 +207,7 @@ def identify_chain(
         tol=tol,
         seed=seed,
         polish=polish,
+        budget=budget,
     )
     model = problem.model(space.natural(u_best))
     gauged = gauge.applies(model) and {"B_r", "B_l"} <= set(problem.free)

@@ -6,7 +6,7 @@ import time
 from collections.abc import Iterable, Sequence
 
 import numpy as np
-from scipy.optimize import differential_evolution, least_squares
+from scipy.optimize import differential_evolution
 
 from ..models import (
     Chain,
@@ -19,6 +19,7 @@ from ..models.base import _REGISTRY
 from .data import check_for_fit, make_recordings, search_windows
 from .fit import Fit, fit_quality, simulate_model
 from .problem import DirectProblem, SeparableProblem, law_check
+from .refine import TimeBudget, refine
 from .specs import SPECS, GeneralizedPrandtlIshlinskiiSpec, PrandtlIshlinskiiSpec, Scale
 
 GPI_PLAYS = 10  # default number of plays of an identified GeneralizedPrandtlIshlinskii
@@ -97,10 +98,11 @@ class _Progress:
 
 
 def global_search(
-    problem, space, counter, label, progress, *, maxiter, popsize, tol, seed, x0=None
+    problem, space, counter, label, progress, *, maxiter, popsize, tol, seed, x0=None, budget=None
 ):
     """SciPy's differential evolution over ``space`` (search coordinates), each generation
-    evaluated in one batched call of ``problem.cost``; invalid candidates cost _PENALTY."""
+    evaluated in one batched call of ``problem.cost``; invalid candidates cost _PENALTY. Stops
+    after the generation in which ``budget`` (a TimeBudget) runs out."""
 
     def population(U: np.ndarray) -> np.ndarray:  # U: (D, S) in search coordinates
         C = space.natural(np.asarray(U).T)
@@ -114,6 +116,7 @@ def global_search(
     def callback(intermediate_result):
         generation["n"] += 1
         bar.update(generation["n"], float(intermediate_result.fun))
+        return budget is not None and budget.over()
 
     try:
         return differential_evolution(
@@ -214,7 +217,11 @@ def identify(
     "bandlimited"; default: ``initial``'s) is the input reconstruction between samples,
     recorded in the fitted model's options and the Fit's method; ``periodic`` says whether
     the records are whole periods (None: detected) for the band-limited reconstruction;
-    ``time_budget`` (seconds of wall clock) stops the stages and keeps the best so far.
+    ``time_budget`` (seconds of wall clock, every model and chain): the global search stops
+    after the generation in which it runs out and the least-squares stage at its next
+    evaluation, keeping the best point so far; ``fit.stopped_on_budget`` records it and
+    ``fit.message`` says so. Standard errors and diagnostics are computed after it, outside
+    the budget.
 
     GeneralizedPrandtlIshlinskii: the envelopes and the threshold scale are searched, the
     weights (>= 0) and an output offset are solved by bounded least squares; ``initial``
@@ -244,6 +251,7 @@ def identify(
 
     check_search_options(maxiter=maxiter, popsize=popsize, tol=tol, workers=workers, warmup=warmup)
     se_method, n_boot = check_method(standard_errors, bootstrap)
+    budget = time_budget if isinstance(time_budget, TimeBudget) else TimeBudget(time_budget)
     if normalize:
         from . import normalize as _norm
 
@@ -252,7 +260,7 @@ def identify(
         if _norm.applies(
             model_class, depends=depends_on_angle, bounds=bounds, fixed=fixed, initial=initial
         ):
-            return _norm.identify_normalized(
+            fit = _norm.identify_normalized(
                 identify,
                 model_class,
                 make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle),
@@ -271,14 +279,16 @@ def identify(
                 standard_errors=standard_errors,
                 bootstrap=bootstrap,
                 bootstrap_block=bootstrap_block,
+                time_budget=budget,
             )
+            return _stamp(budget, fit)
     if isinstance(model_class, Chain):
         from .chain import identify_chain
 
         if depends_on_angle:
             raise ValueError("a Chain's parameters cannot depend on the curve angle")
         recs = make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle)
-        return identify_chain(
+        fit = identify_chain(
             model_class,
             recs,
             warmup=int(warmup),
@@ -294,7 +304,9 @@ def identify(
             standard_errors=se_method,
             bootstrap=n_boot,
             bootstrap_block=bootstrap_block,
+            budget=budget,
         )
+        return _stamp(budget, fit)
     cls = _model_class(model_class)
     depends = law_check(depends_on_angle or {}, cls.param_names)
     if depends and getattr(cls, "uses_curve_angle", False):
@@ -308,7 +320,7 @@ def identify(
     if cls is HystereticOscillator and strategy == "auto" and not depends:
         from .oscillator import identify_oscillator
 
-        return identify_oscillator(
+        fit = identify_oscillator(
             recs,
             warmup=warmup,
             bounds=bounds,
@@ -322,10 +334,11 @@ def identify(
             workers=workers,
             polish=polish,
             progress=progress,
-            time_budget=time_budget,
+            budget=budget,
             input_interpolation=input_interpolation,
             periodic=periodic,
         )
+        return _stamp(budget, fit)
     if input_interpolation is not None:
         if cls is not HystereticOscillator:
             raise ValueError(f"{cls.__name__} has no input_interpolation option")
@@ -447,6 +460,7 @@ def identify(
                 polish=True,
                 separable=separable,
                 progress=False,
+                time_budget=budget,
             )
             for r in recs
         ]
@@ -467,6 +481,7 @@ def identify(
         tol=tol,
         seed=seed,
         x0=x0,
+        budget=budget,
     )
     if not np.isfinite(res.fun) or res.fun >= _PENALTY:
         raise ValueError(
@@ -477,8 +492,16 @@ def identify(
     u_best = res.x
     message = f"differential evolution: {res.message}"
 
-    if polish and space.lower.size:
-        u_best, msg = _refine(problem, space, u_best, counter, use_separable)
+    if polish and space.lower.size and not budget.over():
+        u_best, msg = refine(
+            problem,
+            space,
+            u_best,
+            counter,
+            separable=use_separable,
+            budget=budget,
+            max_nfev=200 if use_separable else 100,
+        )
         message += f"; least squares: {msg}"
     best = space.natural(u_best)
     model = problem.model(best)
@@ -534,11 +557,19 @@ def identify(
         uncertainty=assessed["se_method"],
     )
     fit.diagnostics.warn(stacklevel=3)
+    return _stamp(budget, fit)
+
+
+def _stamp(budget: TimeBudget, fit: Fit) -> Fit:
+    """Record on the Fit that the time budget stopped a stage (once, for nested calls)."""
+    if budget.hit and not fit.stopped_on_budget:
+        fit.stopped_on_budget = True
+        fit.message += budget.note()
     return fit
 
 
 def search_and_refine(
-    problem, space, counter, label, progress, *, maxiter, popsize, tol, seed, polish
+    problem, space, counter, label, progress, *, maxiter, popsize, tol, seed, polish, budget=None
 ):
     """Global search then least-squares refinement of a separable problem (chains): returns
     (the best search coordinates, the DE result, a message). Raises when no candidate gives a
@@ -553,66 +584,18 @@ def search_and_refine(
         popsize=popsize,
         tol=tol,
         seed=seed,
+        budget=budget,
     )
     if not np.isfinite(res.fun) or res.fun >= _PENALTY:
         raise ValueError("identification failed: no candidate gives a finite simulation")
     u_best = res.x
     message = f"differential evolution: {res.message}"
-    if polish and space.lower.size:
-        u_best, msg = _refine(problem, space, u_best, counter, True)
+    if polish and space.lower.size and not (budget is not None and budget.over()):
+        u_best, msg = refine(
+            problem, space, u_best, counter, separable=True, budget=budget, max_nfev=200
+        )
         message += f"; least squares: {msg}"
     return u_best, res, message
-
-
-def _refine(problem, space, u0, counter, use_separable):
-    """least_squares on the simulation error, from the best candidate of the global search."""
-    span = space.upper - space.lower
-    u0 = np.clip(u0, space.lower + 1e-9 * span, space.upper - 1e-9 * span)
-
-    if use_separable:
-
-        def fun(u):
-            counter["evaluations"] += 1
-            return problem.residual(space.natural(u))
-
-        jac = "2-point"
-    else:
-
-        def fun(u):
-            counter["evaluations"] += 1
-            return problem.residuals(space.natural(u)[None, :])[0]
-
-        def jac(u):
-            h = 1e-6 * span
-            U = np.vstack([u, u[None, :] + np.diag(h)])
-            flip = U[1:] > space.upper
-            U[1:][flip] -= 2 * np.diag(h)[flip]
-            counter["evaluations"] += U.shape[0]
-            R = problem.residuals(space.natural(U))
-            step = np.diag(U[1:] - u[None, :])
-            J = (R[1:] - R[0][None, :]) / step[:, None]
-            return J.T
-
-    r0 = fun(u0)
-    cost0 = float(r0 @ r0) if np.all(np.isfinite(r0)) else np.inf
-    try:
-        res = least_squares(
-            fun,
-            u0,
-            jac=jac,
-            bounds=(space.lower, space.upper),
-            method="trf",
-            x_scale="jac",
-            max_nfev=100 if not use_separable else 200,
-            ftol=1e-12,
-            xtol=1e-10,
-        )
-    except (ValueError, np.linalg.LinAlgError) as exc:  # pragma: no cover - defensive
-        return u0, f"skipped ({exc})"
-    cost1 = 2.0 * res.cost
-    if np.isfinite(cost1) and cost1 <= cost0:
-        return res.x, res.message
-    return u0, "kept the global optimum (no improvement)"
 
 
 def _laws_from_points(problem: DirectProblem, points: list[dict]) -> np.ndarray:

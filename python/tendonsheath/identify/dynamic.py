@@ -182,6 +182,7 @@ def identify_dynamic(
     standard_errors="linearised",
     bootstrap=200,
     bootstrap_block=None,
+    budget=None,
 ) -> Fit:
     """Identify a Hammerstein or Wiener chain (see the module docstring). Standard errors
     and diagnostics: the Jacobian with respect to the chain's parameters (the operator's and
@@ -210,6 +211,7 @@ def identify_dynamic(
         tol=tol,
         seed=seed,
         polish=polish,
+        budget=budget,
     )
     model = problem.model(space.natural(u_best))
     if problem.pool is not None:

@@ -85,6 +85,8 @@ class Fit:
     one row per resample, columns named by "names"), "estimate_names" (the identified
     quantities, as the Jacobian's columns) and, when linearised, "covariance" (their
     covariance matrix, NaN rows for those at an active constraint)}).
+    ``stopped_on_budget``: the ``time_budget`` of identify() stopped the search or the
+    refinement (the model is the best found by then).
     """
 
     model: HysteresisModel
@@ -110,6 +112,7 @@ class Fit:
     uncertainty: dict[str, Any] = field(
         default_factory=lambda: {"method": "linearised"}, repr=False
     )
+    stopped_on_budget: bool = False
 
     def warnings(self) -> list[str]:
         """The identifiability warnings of this fit (empty when there are none)."""
@@ -185,6 +188,8 @@ class Fit:
             f"{self.method}: {self.evaluations} evaluations, {self.generations} generations, "
             f"{self.seconds:.2f} s",
         ]
+        if self.stopped_on_budget:
+            lines.append("stopped by the time budget: the best model found by then")
         width = max(len(r[0]) for r in self.table())
         lines.append(f"parameters (+- standard error, {self.se_description()}):")
         for name, value, se in self.table():
@@ -217,6 +222,7 @@ class Fit:
             "seconds": self.seconds,
             "method": self.method,
             "message": self.message,
+            "stopped_on_budget": self.stopped_on_budget,
             "warmup": self.warmup,
             "n_samples": self.n_samples,
             "bounds": {k: [float(a), float(b)] for k, (a, b) in self.bounds.items()},

@@ -10,9 +10,22 @@
    from non-negative least squares for every candidate (variable projection); (G, D, nu)
    are searched by differential evolution in G (Y/2)^nu, D (Y/2)^nu in [-30, 30] (both
    signs: softening and hardening loops alike, a box, no wall), then polished.
-3. Simulation error: least squares on the free-run simulation of every recording, from the
-   equation-error estimate, with forward-difference Jacobians evaluated in one batched C++
-   call per Jacobian (no analytic or forward-sensitivity Jacobian yet).
+3. Simulation error: least squares (:func:`~tendonsheath.identify.refine.refine`, shared with
+   every identification path) on the free-run simulation of every recording, from the
+   equation-error estimate. With band-limited input the Jacobian comes from forward
+   sensitivities (the tangent-linear model of the RK4 scheme, in C++: exact for the simulated
+   output); with "hold" or "linear" from forward differences in one batched C++ call.
+
+Stage 2 plays the role of multiple shooting: its residual is the one-step force balance on
+the measured displacement, so it has no long free-run simulation to trap it in a local
+minimum, and stage 3 starts in the basin of the simulation error.
+
+What limits the accuracy: at the optimum the simulation-error estimate is the maximum-
+likelihood one for white output noise, so its spread is set by the information in the record
+(the Cramer-Rao bound). With noise at 1e-3 of the output range, the validation error that the
+parameter spread adds is about noise * sqrt(7 / N) for N samples: ~2e-7 m at N = 3 072, larger
+than the model's own discretisation error (~5e-8 to 3e-7 m); benchmarks/identify.py
+--oscillator prints the ratio expected from the bound next to the one measured.
 
 Multi-period records (an input that repeats exactly) are detected: stages 1 and 2 use the
 average of the steady-state periods (the first period, the transient, is dropped); stage 3
@@ -33,41 +46,33 @@ from ..models.hysteretic_oscillator import fft_upsample, is_periodic, uniform_st
 from .data import check_for_fit
 from .fit import Fit, fit_quality
 from .problem import DirectProblem
+from .refine import TimeBudget, forward_jacobian, refine
 
 _PENALTY = 1e100
 _SE_NAMES = ("m", "c", "k", "alpha", "gamma", "delta", "nu")
 
 
-class _Budget(Exception):
-    pass
-
-
 class _Stages:
     """Progress: one line per stage (rich), with the elapsed time; silent when disabled."""
 
-    def __init__(self, enabled: bool, budget: float | None):
-        self.enabled = enabled
-        self.start = time.perf_counter()
+    def __init__(self, enabled: bool, budget: TimeBudget):
         self.budget = budget
         self.status = None
         if enabled:
             from rich.console import Console
 
-            self.console = Console(stderr=True)
-            self.status = self.console.status("identify HystereticOscillator")
+            self.status = Console(stderr=True).status("identify HystereticOscillator")
             self.status.start()
 
-    def elapsed(self) -> float:
-        return time.perf_counter() - self.start
-
     def over(self) -> bool:
-        return self.budget is not None and self.elapsed() > self.budget
+        return self.budget.over()
 
     def stage(self, text: str) -> None:
         if self.status is not None:
-            left = "" if self.budget is None else f" (budget {self.budget:.0f} s)"
+            b = self.budget.seconds
+            left = "" if b is None else f" (budget {b:.0f} s)"
             self.status.update(
-                f"identify HystereticOscillator: {text}, {self.elapsed():.1f} s{left}"
+                f"identify HystereticOscillator: {text}, {self.budget.elapsed():.1f} s{left}"
             )
 
     def close(self) -> None:
@@ -241,25 +246,8 @@ class _EquationError:
         return {"m": m, "c": c, "k": k, "alpha": alpha, "bg": G / a, "bd": D / a, "nu": nu}
 
 
-def identify_oscillator(
-    recs,
-    *,
-    warmup: int,
-    bounds,
-    fixed,
-    free,
-    initial,
-    seed,
-    maxiter: int,
-    popsize: int,
-    tol: float,
-    workers,
-    polish: bool,
-    progress: bool,
-    time_budget: float | None,
-    input_interpolation: str | None,
-    periodic: bool | None,
-) -> Fit:
+def _setup(initial, input_interpolation, fixed, free):
+    """(options, values with the held ones, held, free names) of the fit."""
     cls = HystereticOscillator
     if initial is None:
         initial = cls()
@@ -269,7 +257,6 @@ def identify_oscillator(
     if input_interpolation is not None:
         options["input_interpolation"] = input_interpolation
         cls(**options)  # validates the name
-    mode = options["input_interpolation"]
     values = dict(initial.params)
     free_set = set(free or ())
     unknown = (free_set | set(fixed or {})) - set(cls.param_names)
@@ -286,15 +273,167 @@ def identify_oscillator(
             "HystereticOscillator: beta is not identifiable (only beta gamma and beta delta "
             "are); keep it fixed"
         )
-    free_names = [n for n in cls.param_names if n not in held]
+    return options, values, held, [n for n in cls.param_names if n not in held]
+
+
+def _equation_error_stage(ee, held, seed, popsize, maxiter, budget, counter):
+    """Differential evolution over (G, D, nu) then a least-squares polish: the search
+    coordinates and the DE result."""
+    nu_lo, nu_hi = (1.0, 3.0) if "nu" not in held else (held["nu"], held["nu"])
+    ee_bounds = [(-30.0, 30.0), (-30.0, 30.0), (nu_lo, max(nu_hi, nu_lo + 1e-12))]
+    fixed_nu = "nu" in held
+
+    def ee_cost(U):
+        U = np.array(U, dtype=float).T
+        if fixed_nu:
+            U[:, 2] = held["nu"]
+        counter["evaluations"] += U.shape[0]
+        return ee.costs(U)
+
+    res = differential_evolution(
+        ee_cost,
+        ee_bounds,
+        vectorized=True,
+        updating="deferred",
+        popsize=max(popsize, 10),
+        maxiter=max(maxiter, 30),
+        tol=1e-6,
+        seed=seed,
+        polish=False,
+        init="latinhypercube",
+        callback=lambda intermediate_result: budget.over(),
+    )
+    u_ee = res.x
+    lo = np.array([b[0] for b in ee_bounds])
+    hi = np.array([b[1] for b in ee_bounds])
+    if budget.over():
+        return u_ee, res
+    keep = slice(0, 2) if fixed_nu else slice(0, 3)
+    try:
+        ls = least_squares(
+            lambda v: ee.residual(np.r_[v, u_ee[2:]][:3]),
+            np.clip(u_ee[keep], lo[keep] + 1e-9, hi[keep] - 1e-9),
+            bounds=(lo[keep], hi[keep]),
+            x_scale="jac",
+            max_nfev=60,
+        )
+        counter["evaluations"] += int(ls.nfev)
+        u_ee = np.r_[ls.x, u_ee[ls.x.size :]]
+    except (ValueError, np.linalg.LinAlgError):
+        pass
+    return u_ee, res
+
+
+def _start_values(p_ee, m0, ce0, beta, held):
+    start = {
+        "m": p_ee["m"] if p_ee["m"] > 0 else m0,
+        "c": max(p_ee["c"], 1e-6 * max(ce0, 1e-300)),
+        "k": p_ee["k"],
+        "alpha": p_ee["alpha"],
+        "beta": beta,
+        "gamma": p_ee["bg"] / beta,
+        "delta": p_ee["bd"] / beta,
+        "nu": p_ee["nu"],
+    }
+    start.update(held)
+    return start
+
+
+def _simulation_bounds(start, ce0, beta, bounds):
+    k_tot = start["k"] + start["alpha"]
+    g = max(abs(start["gamma"]), abs(start["delta"]), 1e-300)
+    out = {
+        "m": (0.2 * start["m"], 5.0 * start["m"]),
+        "c": (1e-3 * max(ce0, start["c"]), 5.0 * max(ce0, start["c"])),
+        "k": (0.0, 3.0 * k_tot),
+        "alpha": (0.0, 3.0 * k_tot),
+        "beta": (0.1 * beta, 10.0 * beta),
+        "gamma": (-10.0 * g, 10.0 * g),
+        "delta": (-10.0 * g, 10.0 * g),
+        "nu": (1.0, 3.0),
+    }
+    for name, b in (bounds or {}).items():
+        if name not in out or len(tuple(b)) != 2:
+            raise ValueError(f"bounds[{name!r}] must be (low, high) of a parameter")
+        out[name] = (float(b[0]), float(b[1]))
+    return out
+
+
+def _simulation_problem(recs, per, warmup, start, free_names, se_bounds, options, workers):
+    """The simulation-error problem over the whole records (band-limited input reconstructed
+    once, on the grid of the RK4 sub-steps), a note on the reconstruction, and the dense
+    input (per-recording grids, points per sample) or None."""
+    mode = options["input_interpolation"]
+    problem = DirectProblem(
+        HystereticOscillator,
+        recs,
+        warmup,
+        start,
+        free_names,
+        se_bounds,
+        frozenset({"m", "c"}),
+        options,
+        None,
+        workers,
+    )
+    if mode != "bandlimited":
+        return problem, f"input reconstruction {mode}", None
+    engine = HystereticOscillator(**start, **options)._engine
+    fine = 2 * max(
+        int(options["substeps"]), max(int(engine.substeps(float(r.t[1] - r.t[0]))) for r in recs)
+    )
+    grids = [
+        fft_upsample(r.x, fine)
+        if p
+        else core.reconstruct_bandlimited(r.x, fine, int(options["lookahead"]))
+        for r, p in zip(recs, per, strict=True)
+    ]
+    x_fine = np.concatenate(grids)
+    problem.rs = core.RecordingSet(
+        np.concatenate([r.t for r in recs]),
+        np.concatenate([r.x for r in recs]),
+        np.concatenate([r.y for r in recs]),
+        None,
+        [r.n for r in recs],
+        [int(warmup)] * len(recs),
+        np.ascontiguousarray(x_fine),
+        fine,
+    )
+    note = (
+        "input reconstruction bandlimited ("
+        + ", ".join("periodic: FFT" if p else "windowed sinc" for p in per)
+        + f"), {fine // 2} RK4 sub-steps per sample"
+    )
+    return problem, note, (grids, fine)
+
+
+def identify_oscillator(
+    recs,
+    *,
+    warmup: int,
+    bounds,
+    fixed,
+    free,
+    initial,
+    seed,
+    maxiter: int,
+    popsize: int,
+    tol: float,
+    workers,
+    polish: bool,
+    progress: bool,
+    budget: TimeBudget,
+    input_interpolation: str | None,
+    periodic: bool | None,
+) -> Fit:
+    cls = HystereticOscillator
+    options, values, held, free_names = _setup(initial, input_interpolation, fixed, free)
+    mode = options["input_interpolation"]
     check_for_fit(recs, warmup, len(free_names), True, False)
     n_workers = 0 if workers is None else int(workers)
-    budget = None if time_budget is None else float(time_budget)
-    if budget is not None and not budget > 0:
-        raise ValueError(f"time_budget must be > 0 seconds (got {time_budget})")
     stages = _Stages(progress, budget)
     start = time.perf_counter()
-    evaluations = 0
+    counter = {"evaluations": 0}
     notes = []
     try:
         # -- data: periodicity, steady periods --------------------------------------------
@@ -308,7 +447,6 @@ def identify_oscillator(
             if s.periods >= 2:
                 notes.append(f"recording {i}: {s.periods} periods, {s.periods - 1} averaged")
 
-        # -- stage 1: best linear approximation -------------------------------------------
         stages.stage("best linear approximation")
         m0, ce0, ke0, f_top = _bla(segments)
         if not (m0 > 0 and ke0 > 0):
@@ -319,149 +457,90 @@ def identify_oscillator(
             )
         notes.append(f"BLA m {m0:.4g}, c {ce0:.4g}, k+alpha {ke0:.4g}")
 
-        # -- stage 2: equation error ------------------------------------------------------
         stages.stage("equation error (force balance on the measured displacement)")
         ee = _EquationError(segments, f_top, n_workers)
-        nu_lo, nu_hi = (1.0, 3.0) if "nu" not in held else (held["nu"], held["nu"])
-        ee_bounds = [(-30.0, 30.0), (-30.0, 30.0), (nu_lo, max(nu_hi, nu_lo + 1e-12))]
-        fixed_nu = "nu" in held
-
-        def ee_cost(U):
-            nonlocal evaluations
-            U = np.array(U, dtype=float).T
-            if fixed_nu:
-                U[:, 2] = held["nu"]
-            evaluations += U.shape[0]
-            return ee.costs(U)
-
-        def ee_callback(intermediate_result):
-            return stages.over()
-
-        res = differential_evolution(
-            ee_cost,
-            ee_bounds,
-            vectorized=True,
-            updating="deferred",
-            popsize=max(popsize, 10),
-            maxiter=max(maxiter, 30),
-            tol=1e-6,
-            seed=seed,
-            polish=False,
-            init="latinhypercube",
-            callback=ee_callback,
-        )
-        u_ee = res.x
-        lo = np.array([b[0] for b in ee_bounds])
-        hi = np.array([b[1] for b in ee_bounds])
-        if not stages.over():
-            keep = slice(0, 2) if fixed_nu else slice(0, 3)
-            try:
-                ls = least_squares(
-                    lambda v: ee.residual(np.r_[v, u_ee[2:]][:3]),
-                    np.clip(u_ee[keep], lo[keep] + 1e-9, hi[keep] - 1e-9),
-                    bounds=(lo[keep], hi[keep]),
-                    x_scale="jac",
-                    max_nfev=60,
-                )
-                evaluations += int(ls.nfev)
-                u_ee = np.r_[ls.x, u_ee[ls.x.size :]]
-            except (ValueError, np.linalg.LinAlgError):
-                pass
-        p_ee = ee.params(u_ee)
+        u_ee, res = _equation_error_stage(ee, held, seed, popsize, maxiter, budget, counter)
         beta = values["beta"]
-        start_values = {
-            "m": p_ee["m"] if p_ee["m"] > 0 else m0,
-            "c": max(p_ee["c"], 1e-6 * max(ce0, 1e-300)),
-            "k": p_ee["k"],
-            "alpha": p_ee["alpha"],
-            "beta": beta,
-            "gamma": p_ee["bg"] / beta,
-            "delta": p_ee["bd"] / beta,
-            "nu": p_ee["nu"],
-        }
-        start_values.update(held)
+        start_values = _start_values(ee.params(u_ee), m0, ce0, beta, held)
         notes.append(
             "equation error: "
             + ", ".join(f"{k} {start_values[k]:.4g}" for k in cls.param_names if k in free_names)
         )
 
-        # -- stage 3: simulation error ----------------------------------------------------
         stages.stage("simulation error (least squares)")
-        k_tot = start_values["k"] + start_values["alpha"]
-        g = max(abs(start_values["gamma"]), abs(start_values["delta"]), 1e-300)
-        se_bounds = {
-            "m": (0.2 * start_values["m"], 5.0 * start_values["m"]),
-            "c": (1e-3 * max(ce0, start_values["c"]), 5.0 * max(ce0, start_values["c"])),
-            "k": (0.0, 3.0 * k_tot),
-            "alpha": (0.0, 3.0 * k_tot),
-            "beta": (0.1 * beta, 10.0 * beta),
-            "gamma": (-10.0 * g, 10.0 * g),
-            "delta": (-10.0 * g, 10.0 * g),
-            "nu": (1.0, 3.0),
-        }
-        for name, b in (bounds or {}).items():
-            if name not in se_bounds or len(tuple(b)) != 2:
-                raise ValueError(f"bounds[{name!r}] must be (low, high) of a parameter")
-            se_bounds[name] = (float(b[0]), float(b[1]))
-        fine = 0
-        x_fine = None
-        if mode == "bandlimited":
-            model0 = cls(**start_values, **options)
-            fine = 2 * max(
-                int(options["substeps"]),
-                max(int(model0._engine.substeps(float(r.t[1] - r.t[0]))) for r in recs),
-            )
-            x_fine = np.concatenate(
-                [
-                    fft_upsample(r.x, fine)
-                    if p
-                    else core.reconstruct_bandlimited(r.x, fine, int(options["lookahead"]))
-                    for r, p in zip(recs, per, strict=True)
-                ]
-            )
-            notes.append(
-                "input reconstruction bandlimited ("
-                + ", ".join("periodic: FFT" if p else "windowed sinc" for p in per)
-                + f"), {fine // 2} RK4 sub-steps per sample"
+        se_bounds = _simulation_bounds(start_values, ce0, beta, bounds)
+        problem, note, dense = _simulation_problem(
+            recs, per, warmup, start_values, free_names, se_bounds, options, n_workers
+        )
+        notes.append(note)
+        space = problem.space
+        u0 = np.clip(space.search([start_values[n] for n in free_names]), space.lower, space.upper)
+        if polish and not budget.over():
+            u_best, msg = refine(
+                problem,
+                space,
+                u0,
+                counter,
+                budget=budget,
+                jacobian=_jacobian(problem, space, recs, dense),
+                max_nfev=200,
+                xtol=1e-12,
+                gtol=1e-12,
             )
         else:
-            notes.append(f"input reconstruction {mode}")
-        problem = DirectProblem(
-            cls,
-            recs,
-            warmup,
-            start_values,
-            free_names,
-            se_bounds,
-            frozenset({"m", "c"}),
-            options,
-            None,
-            n_workers,
-        )
-        if x_fine is not None:
-            problem.rs = core.RecordingSet(
-                np.concatenate([r.t for r in recs]),
-                np.concatenate([r.x for r in recs]),
-                np.concatenate([r.y for r in recs]),
-                None,
-                [r.n for r in recs],
-                [int(warmup)] * len(recs),
-                np.ascontiguousarray(x_fine),
-                fine,
+            u_best, msg = (
+                u0,
+                "skipped (" + ("time budget spent" if polish else "polish=False") + ")",
             )
-        space = problem.space
-        c0 = np.array([start_values[n] for n in free_names])
-        u0 = np.clip(space.search(c0), space.lower, space.upper)
-        u_best, msg, n_eval = _refine(problem, space, u0, stages, polish)
-        evaluations += n_eval
         model = problem.model(space.natural(u_best))
-        if stages.over():
-            msg += f"; stopped by the time budget ({budget:.0f} s)"
     finally:
         stages.close()
     seconds = time.perf_counter() - start
+    run = dict(recs=recs, per=per, warmup=warmup, held=held, mode=mode, counter=counter)
+    message = "; ".join([*notes, f"least squares: {msg}"])
+    return _fit(run, model, problem, se_bounds, seconds, int(res.nit), message)
 
-    predictions = [model.simulate(r.t, r.x, periodic=p) for r, p in zip(recs, per, strict=True)]
+
+def _jacobian(problem, space, recs, dense):
+    """The residuals' Jacobian in search coordinates: forward sensitivities of the RK4
+    scheme (C++, exact for the simulated output) with the band-limited input on its fine grid;
+    otherwise forward differences with steps relative to the coordinates (the parameters span
+    many decades: k ~ 1e4, m ~ 1), one batched call per Jacobian."""
+    span = space.upper - space.lower
+
+    def differences(u):
+        return forward_jacobian(problem, space, u, 1e-7 * np.maximum(np.abs(u), 1e-3 * span))
+
+    if dense is None:
+        return differences
+    grids, fine = dense
+    cols = [HystereticOscillator.param_names.index(n) for n in problem.free]
+
+    def sensitivities(u):
+        v = space.natural(u)
+        try:
+            params = problem.model(v)._engine.params
+        except ValueError:
+            return differences(u)
+        S = np.vstack(
+            [
+                core.oscillator_sensitivity_dense(
+                    params, float(r.t[1] - r.t[0]), r.n, np.ascontiguousarray(g), fine
+                )[1]
+                for r, g in zip(recs, grids, strict=True)
+            ]
+        )
+        J = -S[problem.mask][:, cols] * np.where(space.log, v, 1.0)[None, :]
+        return J if np.all(np.isfinite(J)) else differences(u)
+
+    return sensitivities
+
+
+def _fit(run: dict, model, problem, se_bounds, seconds, generations, message) -> Fit:
+    recs, warmup, free_names = run["recs"], run["warmup"], problem.free
+    predictions = [
+        model.simulate(r.t, r.x, periodic=p) for r, p in zip(recs, run["per"], strict=True)
+    ]
     quality = fit_quality(recs, predictions, warmup)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -478,77 +557,17 @@ def identify_oscillator(
         fit_percent=quality.overall["fit_percent"],
         standard_errors=ses,
         identified=list(free_names),
-        fixed=held,
+        fixed=run["held"],
         per_recording=quality.per_recording,
-        evaluations=evaluations,
+        evaluations=run["counter"]["evaluations"],
         seconds=seconds,
-        generations=int(res.nit),
+        generations=generations,
         method="best linear approximation + equation error (differential evolution, variable "
-        f"projection) + simulation-error least squares; input reconstruction {mode}",
-        message="; ".join([*notes, f"least squares: {msg}"]),
+        f"projection) + simulation-error least squares; input reconstruction {run['mode']}",
+        message=message,
         warmup=warmup,
         n_samples=quality.n,
         bounds={n: se_bounds[n] for n in free_names},
         recordings=recs,
         predictions=predictions,
     )
-
-
-def _refine(problem, space, u0, stages, polish):
-    """least_squares on the simulation error (forward differences, one batched call per
-    Jacobian); stops at the time budget with the best point so far."""
-    count = {"n": 0}
-    best = {"u": np.array(u0, dtype=float), "cost": np.inf}
-    span = space.upper - space.lower
-
-    def fun(u, check=True):
-        if check and stages.over():
-            raise _Budget
-        count["n"] += 1
-        r = problem.residuals(space.natural(u)[None, :])[0]
-        if not np.all(np.isfinite(r)):
-            return np.full(r.size, 1e3 * (np.ptp(problem.y) + 1.0))
-        c = float(r @ r)
-        if c < best["cost"]:
-            best["u"], best["cost"] = np.array(u, dtype=float), c
-        return r
-
-    def jac(u):
-        if stages.over():
-            raise _Budget
-        h = 1e-7 * np.maximum(np.abs(u), 1e-3 * span)
-        U = np.vstack([u, u[None, :] + np.diag(h)])
-        flip = U[1:] > space.upper
-        U[1:][flip] -= 2 * np.diag(h)[flip]
-        count["n"] += U.shape[0]
-        R = problem.residuals(space.natural(U))
-        step = np.diag(U[1:] - u[None, :])
-        J = (R[1:] - R[0][None, :]) / step[:, None]
-        J[~np.isfinite(J)] = 0.0
-        return J.T
-
-    u0 = np.clip(u0, space.lower + 1e-9 * span, space.upper - 1e-9 * span)
-    fun(u0, check=False)  # the start is always evaluated
-    if stages.over():
-        return best["u"], "skipped (time budget spent)", count["n"]
-    if not polish:
-        return best["u"], "skipped (polish=False)", count["n"]
-    try:
-        res = least_squares(
-            fun,
-            u0,
-            jac=jac,
-            bounds=(space.lower, space.upper),
-            method="trf",
-            x_scale="jac",
-            max_nfev=200,
-            ftol=1e-12,
-            xtol=1e-12,
-            gtol=1e-12,
-        )
-        msg = str(res.message)
-    except _Budget:
-        msg = "stopped at the time budget"
-    except (ValueError, np.linalg.LinAlgError) as exc:  # pragma: no cover - defensive
-        msg = f"failed ({exc})"
-    return best["u"], msg, count["n"]
