@@ -234,3 +234,24 @@ def test_self_class_bootstrap_standard_errors_through_the_command(tmp_path):
     assert bad.exit_code == 2 and "at least 2 resamples" in bad.output
     bad = runner.invoke(app, _identify_args(files[:1], "--standard-errors", "bootstrap-recordings"))
     assert bad.exit_code == 2 and "needs several recordings" in bad.output
+
+
+def test_time_budget_through_the_command(tmp_path):
+    """--time-budget reaches ts.identify: a tiny budget stops the search, the output says so
+    and the saved fit records it; a budget of 0 is a one-line error."""
+    truth = ts.models.BoucWenBacklash(c_r=1.0, c_l=0.9, B_r=0.12, B_l=0.08)
+    t = np.arange(0.0, 4.0, 2e-3)
+    x = 0.8 * np.sin(2 * np.pi * 0.7 * t) + 0.2 * np.sin(2 * np.pi * 1.9 * t)
+    y = truth.simulate(t, x)
+    f = tmp_path / "r.csv"
+    _write(f, t, x, y)
+    out = tmp_path / "m.json"
+    args = ["identify", str(f), "--model", "bwb", "--input", "motor", "--output", "tip"]
+    result = runner.invoke(
+        app, [*args, "--time", "time", "--time-budget", "1e-3", "--maxiter", "200", "-o", str(out)]
+    )
+    assert result.exit_code == 0, result.output
+    assert "stopped by the time budget" in " ".join(result.output.split())
+    assert json.loads(out.read_text())["fit"]["stopped_on_budget"] is True
+    bad = runner.invoke(app, [*args, "--time", "time", "--time-budget", "0", "-o", str(out)])
+    assert bad.exit_code == 2 and "time_budget" in bad.output

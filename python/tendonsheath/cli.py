@@ -298,6 +298,12 @@ def identify(
     resamples: int | None = typer.Option(
         None, "--resamples", help="Bootstrap resamples (default 200)."
     ),
+    time_budget: float | None = typer.Option(
+        None,
+        "--time-budget",
+        help="Seconds of wall clock for the search and the refinement; the best model found "
+        "by then is kept and the output says so.",
+    ),
 ) -> None:
     """Fit MODEL to DATA and save it as JSON; print the fit table and the validation error."""
     from . import io
@@ -337,6 +343,7 @@ def identify(
                 progress=True,
                 standard_errors=standard_errors,
                 bootstrap=resamples,
+                time_budget=time_budget,
             )
         val = None
         if vlog is not None:
@@ -392,6 +399,8 @@ def _print_fit(fit, n_logs: int, output_col: str) -> None:
         f"fit {fit.fit_percent:.2f} %   ({fit.evaluations} evaluations, {fit.seconds:.2f} s)"
     )
     console.print(f"standard errors: {fit.se_description()}")
+    if fit.stopped_on_budget:
+        console.print("stopped by the time budget: the best model found by then")
     for name, g in fit.groups.items():  # identified groups (e.g. CurveAngleModel, one angle)
         se = f" +- {g['se']:.4g}" if g.get("se") is not None else " (held)"
         console.print(f"group {name} = {g['value']:.6g}{se} {g.get('unit', '')}")
