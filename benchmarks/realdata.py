@@ -16,11 +16,12 @@ README for how the columns were decoded.
    into 3 contiguous blocks, each block is held out in turn (the models are fitted on the
    other two, run over the whole input, and only the block's samples count), and the
    held-out errors are pooled. Each run's start until the input's first reversal (the
-   model's initial state is unknown there) is neither fitted nor scored. confX_ampY files are resampled to 50 Hz (above the sensor's
-   ~37 Hz update rate). Fitting settings are the library defaults (seed 0); nothing is
-   tuned on the held-out parts. ``seconds`` is the whole compare_models call on the file
-   (all candidates, all folds, the winner's final fit), on this machine; ``cpu_seconds``
-   its CPU time (all threads) and ``load_average`` the machine's load when it ended.
+   model's initial state is unknown there) is neither fitted nor scored. confX_ampY files
+   are resampled to 50 Hz (above the sensor's ~37 Hz update rate). Fitting settings are
+   the library defaults (seed 0); nothing is tuned on the held-out parts. ``seconds`` is
+   the whole compare_models call on the file (all candidates, all folds, the winner's
+   final fit), on this machine; ``cpu_seconds`` its CPU time (all threads) and
+   ``load_average`` the machine's load when it ended.
 2. Across configurations: the configuration label (deg) is used as the curve angle, in rad
    (it is an inferred label, not a measured bend). Input and output are converted to rad.
    Models with configuration-dependent parameters are fitted on some configurations (whole
