@@ -159,3 +159,31 @@ def test_real_short_record_beats_affine_threefold():
     cmp = ts.compare_models([log], models=["backlash", "gpi"])
     # measured: Backlash 0.21, GPI 0.23 of the affine map's held-out rmse
     assert cmp.table[0]["ratio_to_affine"] < 0.3
+
+
+def test_progress_counts_every_fit(monkeypatch):
+    """The bar's total is the number of fits it advances through (affine and candidates over
+    every fold, and the winner's final fit), so its ETA ends at zero."""
+    seen = {}
+
+    class Recorder:
+        def __init__(self, enabled, total):
+            seen.update(enabled=enabled, total=total, advanced=0, shown=[])
+
+        def show(self, what):
+            seen["shown"].append(what)
+
+        def advance(self):
+            seen["advanced"] += 1
+
+        def close(self):
+            seen["closed"] = True
+
+    monkeypatch.setattr(compare, "CompareProgress", Recorder)
+    t, x, y = plant_log(n=300)
+    cmp = ts.compare_models([(t, x, y)], models=["backlash", "pi"], progress=True, **FAST)
+    assert cmp.winner_name != "affine"
+    assert seen["enabled"] and seen["closed"]
+    assert seen["total"] == 3 * 3 + 1 == seen["advanced"]
+    assert "Backlash: fold 2/3" in seen["shown"]
+    assert any("final fit" in s for s in seen["shown"])

@@ -550,7 +550,7 @@ class _Run:
         self.budget = time_budget
         self.deadline = None if time_budget is None else time.perf_counter() + time_budget
         self.final = final  # the winner is refitted on all the data at the end
-        total = n_candidates * len(splits) + int(final)
+        total = (n_candidates + 1) * len(splits) + int(final)  # the affine map too
         self.view = CompareProgress(progress, total)
 
     def _late(self) -> bool:
