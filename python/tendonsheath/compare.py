@@ -154,9 +154,10 @@ def model_name(candidate) -> str:
 class Comparison:
     """Result of :func:`compare_models`. ``table`` rows: model, n_params, train_rmse,
     train_nrmse, val_rmse, val_nrmse, val_fit_percent, val_max_abs, ratio_to_affine, seconds
-    (fitting and scoring over all folds), error (if the fit failed); sorted by val_nrmse
-    (failures last). ``fits``: each candidate's Fit (a list of one per fold under
-    cross-validation); ``winner_fit``: the Fit of ``winner`` (None for the affine map)."""
+    and cpu_seconds (fitting and scoring over all folds), error (if the fit failed) and
+    status ("out of time" past the time budget); sorted by val_nrmse (failures last).
+    ``fits``: each candidate's Fit (a list of one per fold under cross-validation);
+    ``winner_fit``: the Fit of ``winner`` (None for the affine map)."""
 
     table: list[dict[str, Any]]
     winner: HysteresisModel
