@@ -701,6 +701,15 @@ def compare(
     report: Path | None = typer.Option(
         None, "--report", help="Folder for report.html, loops, residuals and JSON."
     ),
+    time_budget: float | None = typer.Option(
+        None,
+        "--time-budget",
+        help="Seconds for the candidates' fits; a candidate that runs out is reported as "
+        "out of time.",
+    ),
+    quiet: bool = typer.Option(
+        False, "--quiet", "-q", help="No progress bar or per-candidate lines."
+    ),
 ) -> None:
     """Fit candidate models on DATA, rank them on held-out data against y = a x + b."""
     from . import io
@@ -736,21 +745,22 @@ def compare(
                 )
             _print_notes(log)
         candidates = [m for m in models.split(",") if m.strip()] if models else None
-        with console.status("fitting the candidate models") as status:
 
-            def done(name, seconds):
+        def done(name, seconds):
+            if not quiet:
                 console.print(f"  fitted {name} ({seconds:.1f} s)", highlight=False)
-                status.update("fitting the candidate models")
 
-            result = compare_models(
-                logs,
-                models=candidates,
-                validate=vlogs if vlogs else (holdout if holdout is not None else "cv"),
-                folds=folds,
-                seed=seed,
-                maxiter=maxiter,
-                on_fit=done,
-            )
+        result = compare_models(
+            logs,
+            models=candidates,
+            validate=vlogs if vlogs else (holdout if holdout is not None else "cv"),
+            folds=folds,
+            seed=seed,
+            maxiter=maxiter,
+            on_fit=done,
+            progress=not quiet,
+            time_budget=time_budget,
+        )
     except ValueError as exc:
         _fail(exc)
     table = Table(title=f"model comparison ({result.mode})")
@@ -761,12 +771,14 @@ def compare(
         f"val rmse ({output_col} units)",
         "val nrmse (%)",
         "val rmse / affine's",
-        "seconds (s)",
+        "wall (s)",
+        "CPU (s)",
     ):
         table.add_column(col, justify="right")
     for r in result.table:
         if r.get("error"):
-            table.add_row(r["model"], "", "", "failed", r["error"][:40], "", "")
+            console.print(f"[yellow]{r['model']}:[/yellow] {r['error']}", highlight=False)
+            table.add_row(r["model"], "", "", r.get("status", "failed"), "", "", "", "")
             continue
         table.add_row(
             r["model"],
@@ -776,6 +788,7 @@ def compare(
             f"{100 * r['val_nrmse']:.3f}",
             f"{r['ratio_to_affine']:.3f}",
             f"{r['seconds']:.1f}",
+            f"{r['cpu_seconds']:.1f}",
         )
     console.print(table)
     winner = next((r for r in result.table if r["model"] == result.winner_name), None)

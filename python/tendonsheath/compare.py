@@ -24,14 +24,16 @@ from __future__ import annotations
 import re
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from ._atomic import save_figure, write_json, write_text
+from ._compare_progress import CompareProgress
 from .identify import identify
+from .identify.core import SEARCH_DEADLINE
 from .identify.data import make_recordings
 from .identify.dynamic import is_dynamic_chain
 from .identify.fit import metrics, simulate_model
@@ -152,9 +154,10 @@ def model_name(candidate) -> str:
 class Comparison:
     """Result of :func:`compare_models`. ``table`` rows: model, n_params, train_rmse,
     train_nrmse, val_rmse, val_nrmse, val_fit_percent, val_max_abs, ratio_to_affine, seconds
-    (fitting and scoring over all folds), error (if the fit failed); sorted by val_nrmse
-    (failures last). ``fits``: each candidate's Fit (a list of one per fold under
-    cross-validation); ``winner_fit``: the Fit of ``winner`` (None for the affine map)."""
+    and cpu_seconds (fitting and scoring over all folds), error (if the fit failed) and
+    status ("out of time" past the time budget); sorted by val_nrmse (failures last).
+    ``fits``: each candidate's Fit (a list of one per fold under cross-validation);
+    ``winner_fit``: the Fit of ``winner`` (None for the affine map)."""
 
     table: list[dict[str, Any]]
     winner: HysteresisModel
@@ -176,7 +179,7 @@ class Comparison:
         ]
         for r in self.table:
             if r.get("error"):
-                lines.append(f"{r['model']:<34} failed: {r['error']}")
+                lines.append(f"{r['model']:<34} {r.get('status', 'failed')}: {r['error']}")
                 continue
             lines.append(
                 f"{r['model']:<34} {r['train_rmse']:>11.4g} {r['val_rmse']:>11.4g} "
@@ -364,6 +367,40 @@ def _folds(recs, folds: int | None) -> tuple[list[tuple[list, list]], str]:
     return out, f"cross-validation: {k} contiguous blocks of the recording"
 
 
+SETTLE_FRACTION = 0.05  # of the input's range: a reversal counts once the input moves back this far
+SETTLE_NOTE = "each run's start until the input's first reversal is neither fitted nor scored"
+
+
+def _settle(x: np.ndarray) -> int:
+    """Samples before the input's first reversal (by more than SETTLE_FRACTION of its
+    range), at most a quarter of them: until then a hysteresis model's output depends on
+    its unknown initial state (a run's start is at rest, a piece's start mid-record is
+    not), afterwards on the input history it has seen."""
+    tol = SETTLE_FRACTION * float(np.ptp(x))
+    cap = x.size // 4
+    moved = np.flatnonzero(np.abs(x - x[0]) > tol)
+    if tol <= 0.0 or moved.size == 0:
+        return 0
+    if x[moved[0]] > x[0]:  # rising first: the first drop from the running maximum
+        back = np.flatnonzero(np.maximum.accumulate(x) - x > tol)
+    else:
+        back = np.flatnonzero(x - np.minimum.accumulate(x) > tol)
+    return int(min(back[0] if back.size else cap, cap))
+
+
+def _without_initial_transients(splits):
+    """Every simulated run starts from the model's rest state, not the robot's state: the
+    samples before the input's first reversal are neither fitted (a training piece's skip)
+    nor scored (a held-out block's first sample), for every candidate and the affine map."""
+    out = []
+    for train, evals in splits:
+        train = [replace(r, skip=max(r.skip, _settle(r.x))) for r in train]
+        train = [r for r in train if r.n - r.skip >= MIN_PIECE]
+        kept = [(r, max(a, _settle(r.x)), b) for r, a, b in evals]
+        out.append((train, [(r, a, b) for r, a, b in kept if b - a >= 1]))
+    return out
+
+
 def compare_models(
     logs,
     models: Sequence | None = None,
@@ -378,6 +415,7 @@ def compare_models(
     progress: bool = False,
     refit: bool = True,
     on_fit=None,
+    time_budget: float | None = None,
 ) -> Comparison:
     """Fit each candidate on training data and rank them on held-out data.
 
@@ -392,9 +430,20 @@ def compare_models(
     - held-out logs: fitted on ``logs``, scored on these (the winner is that fit).
 
     ``curve_angle`` (a number) applies to recordings without one. ``on_fit(name, seconds)``
-    is called after each candidate (progress). Each row's ``seconds`` is the candidate's
-    fitting and scoring time over all folds.
+    is called after each candidate. ``progress``: a bar over the fits (candidate, fold,
+    elapsed time and ETA) on a terminal. Each row's ``seconds`` (wall) and ``cpu_seconds``
+    are the candidate's fitting and scoring time over all folds.
+
+    ``time_budget`` (seconds of wall clock for the candidates' cross-validation): a global
+    search running at the deadline stops after its generation; a candidate whose folds end
+    past it, or that was not started, gets a row with ``status`` "out of time" and an
+    ``error`` saying so (never ranked, never dropped). The winner's final fit on all the
+    data comes after the budget (about one fold's time).
     """
+    if time_budget is not None and not (
+        isinstance(time_budget, int | float) and time_budget > 0 and np.isfinite(time_budget)
+    ):
+        raise ValueError(f"time_budget must be a number of seconds > 0 (got {time_budget!r})")
     recs = make_recordings(recordings=list(_as_recs(logs)), curve_angle=curve_angle)
     has_angle = all(r.curve_angle is not None for r in recs)
     if models:
@@ -407,7 +456,7 @@ def compare_models(
     if len(set(names)) != len(names):
         raise ValueError(f"the candidate models must differ (got {names})")
     options = dict(seed=seed, maxiter=maxiter, popsize=popsize, workers=workers)
-    options["progress"] = progress
+    options["progress"] = False  # one bar for the comparison (CompareProgress)
 
     # training / validation split(s): a list of (training recordings, scored segments)
     if isinstance(validate, str):
@@ -442,6 +491,8 @@ def compare_models(
         splits = [(recs, [(r, 0, r.n) for r in vrecs])]
         mode = f"held out: {len(vrecs)} validation recording(s)"
     cv = isinstance(validate, str)
+    splits = _without_initial_transients(splits)
+    mode += "; " + SETTLE_NOTE
 
     validation = [
         {
@@ -455,15 +506,83 @@ def compare_models(
         for r, a, b in evals
     ]
 
-    def evaluate(name, fit_split) -> tuple[dict, dict, float, Any]:
-        """Fit on every split's training part (fit_split(train) -> predict(rec)) and score."""
+    b, a = _affine(recs if not isinstance(validate, int | float) or refit else splits[0][0])
+    final = cv or (refit and isinstance(validate, int | float))
+    run = _Run(splits, validation, time_budget, progress, len(candidates), final)
+    token = SEARCH_DEADLINE.set(run.deadline)
+    try:
+        rows, fits = run.all_candidates(candidates, names, options, has_angle, on_fit)
+        fits[AFFINE] = Polynomial(coefficients=[b, a])
+    finally:
+        SEARCH_DEADLINE.reset(token)
+    try:
+        winner, winner_fit, best = _winner(rows, fits, candidates, names, recs, options, run)
+    finally:
+        run.view.close()
+    return Comparison(rows, winner, best, fits, validation, mode, winner_fit)
+
+
+def _winner(rows, fits, candidates, names, recs, options, run):
+    """Rank the rows; the winner's model and Fit (refitted on all the data where needed)."""
+    base = rows[0]["val_rmse"]
+    for r in rows:
+        if not r.get("error"):
+            r["ratio_to_affine"] = r["val_rmse"] / base if base > 0 else float("nan")
+    rows.sort(key=lambda r: (bool(r.get("error")), r.get("val_nrmse", np.inf)))
+    best = rows[0]["model"]
+    winner_fit = None
+    if best == AFFINE:
+        winner = fits[AFFINE]
+    elif run.final:
+        # cross-validation: every fold's fit saw part of the data; one split: the held-out
+        # part too. The winner is fitted once on all of it (outside the time budget).
+        start = time.perf_counter()
+        run.view.show(f"{best}: final fit on all the data")
+        winner_fit = _fit(candidates[names.index(best)], recs, options)
+        run.view.advance()
+        rows[0]["final_fit_seconds"] = time.perf_counter() - start
+        winner = winner_fit.model
+    else:
+        winner_fit = fits[best]  # held-out logs: fitted on all the training data already
+        winner = winner_fit.model
+    return winner, winner_fit, best
+
+
+class OutOfTime(Exception):
+    """A candidate's folds ran past compare_models' time budget."""
+
+
+class _Run:
+    """Fits and scores every candidate over the splits, with the progress bar and the
+    time budget."""
+
+    def __init__(self, splits, validation, time_budget, progress, n_candidates, final):
+        self.splits = splits
+        self.validation = validation
+        self.budget = time_budget
+        self.deadline = None if time_budget is None else time.perf_counter() + time_budget
+        self.final = final  # the winner is refitted on all the data at the end
+        total = (n_candidates + 1) * len(splits) + int(final)  # the affine map too
+        self.view = CompareProgress(progress, total)
+
+    def _late(self) -> bool:
+        return self.deadline is not None and time.perf_counter() > self.deadline
+
+    def evaluate(self, name, fit_split, budgeted=True) -> tuple[dict, dict, float, float]:
+        """Fit on every split's training part (fit_split(train) -> predict(rec)) and score:
+        (training metrics, held-out metrics, wall s, CPU s); OutOfTime past the deadline
+        (``budgeted``; the affine baseline is not)."""
         start, cpu = time.perf_counter(), time.process_time()
-        ys, yh, ts_, th = [], [], [], []
-        slot = 0
-        last = None
-        for train, evals in splits:
+        ys, yh, ts_, th, preds = [], [], [], [], []
+        for k, (train, evals) in enumerate(self.splits):
+            self.view.show(f"{name}: fold {k + 1}/{len(self.splits)}")
             predict = fit_split(train)
-            last = predict
+            self.view.advance()
+            if budgeted and self._late():
+                raise OutOfTime(
+                    f"out of time: the {self.budget:g} s budget ran out after {k + 1} of "
+                    f"{len(self.splits)} folds ({time.perf_counter() - start:.1f} s)"
+                )
             for r in train:
                 ts_.append(r.y[r.skip :])
                 th.append(predict(r)[r.skip :])
@@ -471,72 +590,60 @@ def compare_models(
                 p = predict(r)
                 ys.append(r.y[a:b])
                 yh.append(p[a:b])
-                validation[slot]["predictions"][name] = p[a:b]
-                slot += 1
+                preds.append(p[a:b])
+        for slot, p in zip(self.validation, preds, strict=True):
+            slot["predictions"][name] = p
         vm = metrics(np.concatenate(ys), np.concatenate(yh))
         tm = metrics(np.concatenate(ts_), np.concatenate(th))
-        cpu_seconds[name] = time.process_time() - cpu
-        return tm, vm, time.perf_counter() - start, last
+        return tm, vm, time.perf_counter() - start, time.process_time() - cpu
 
-    rows, fits, cpu_seconds = [], {}, {}
+    def all_candidates(self, candidates, names, options, has_angle, on_fit):
+        """The table's rows (the affine baseline first) and the fits."""
 
-    def affine_split(train):
-        b, a = _affine(train)
-        return lambda r: a * r.x + b
+        def affine_split(train):
+            b, a = _affine(train)
+            return lambda r: a * r.x + b
 
-    tm, vm, sec, _ = evaluate(AFFINE, affine_split)
-    rows.append(_row(AFFINE, 2, tm, vm, sec))
-    b, a = _affine(recs if not isinstance(validate, int | float) or refit else splits[0][0])
-    fits[AFFINE] = Polynomial(coefficients=[b, a])
-    if on_fit is not None:
-        on_fit(AFFINE, sec)
-    for cand, name in zip(candidates, names, strict=True):
-        if getattr(cand, "uses_curve_angle", False) and not has_angle:
-            rows.append({"model": name, "error": "needs a curve angle"})
-            continue
-        fitted = []
-
-        def fit_split(train, cand=cand, fitted=fitted):
-            fit = _fit(cand, train, options)
-            fitted.append(fit)
-            return lambda r, fit=fit: simulate_model(fit.model, r.t, r.x, r.curve_angle)
-
-        try:
-            tm, vm, sec, _ = evaluate(name, fit_split)
-        except ValueError as exc:
-            rows.append({"model": name, "error": str(exc)})
-            continue
-        fits[name] = fitted[-1] if len(fitted) == 1 else fitted
-        rows.append(_row(name, _count(fitted[-1].model), tm, vm, sec))
+        tm, vm, sec, cpu = self.evaluate(AFFINE, affine_split, budgeted=False)
+        rows, fits = [_row(AFFINE, 2, tm, vm, sec, cpu)], {}
         if on_fit is not None:
-            on_fit(name, sec)
-    base = rows[0]["val_rmse"]
-    for r in rows:
-        if not r.get("error"):
-            r["ratio_to_affine"] = r["val_rmse"] / base if base > 0 else float("nan")
-            r["cpu_seconds"] = cpu_seconds[r["model"]]
-    rows.sort(key=lambda r: (bool(r.get("error")), r.get("val_nrmse", np.inf)))
-    best = rows[0]["model"]
-    winner_fit = None
-    if best == AFFINE:
-        winner = fits[AFFINE]
-    elif cv:
-        # every fold's fit saw part of the data: the winner is fitted once on all of it
-        start = time.perf_counter()
-        winner_fit = _fit(candidates[names.index(best)], recs, options)
-        rows[0]["final_fit_seconds"] = time.perf_counter() - start
-        winner = winner_fit.model
-    elif refit and isinstance(validate, int | float):
-        # one split: the winner is refitted on the whole recordings (held-out part included)
-        winner_fit = _fit(candidates[names.index(best)], recs, options)
-        winner = winner_fit.model
-    else:
-        winner_fit = fits[best]  # held-out logs: fitted on all the training data already
-        winner = winner_fit.model
-    return Comparison(rows, winner, best, fits, validation, mode, winner_fit)
+            on_fit(AFFINE, sec)
+        for cand, name in zip(candidates, names, strict=True):
+            if getattr(cand, "uses_curve_angle", False) and not has_angle:
+                rows.append({"model": name, "error": "needs a curve angle"})
+                continue
+            if self._late():
+                rows.append(
+                    _out_of_time(name, f"out of time: the {self.budget:g} s budget was spent")
+                )
+                continue
+            fitted = []
+
+            def fit_split(train, cand=cand, fitted=fitted):
+                fit = _fit(cand, train, options)
+                fitted.append(fit)
+                return lambda r, fit=fit: simulate_model(fit.model, r.t, r.x, r.curve_angle)
+
+            try:
+                tm, vm, sec, cpu = self.evaluate(name, fit_split)
+            except OutOfTime as exc:
+                rows.append(_out_of_time(name, str(exc)))
+                continue
+            except ValueError as exc:
+                rows.append({"model": name, "error": str(exc)})
+                continue
+            fits[name] = fitted[-1] if len(fitted) == 1 else fitted
+            rows.append(_row(name, _count(fitted[-1].model), tm, vm, sec, cpu))
+            if on_fit is not None:
+                on_fit(name, sec)
+        return rows, fits
 
 
-def _row(name, n_params, tm, vm, seconds) -> dict:
+def _out_of_time(name: str, message: str) -> dict:
+    return {"model": name, "error": message, "status": "out of time"}
+
+
+def _row(name, n_params, tm, vm, seconds, cpu_seconds) -> dict:
     return {
         "model": name,
         "n_params": int(n_params),
@@ -547,6 +654,7 @@ def _row(name, n_params, tm, vm, seconds) -> dict:
         "val_fit_percent": vm["fit_percent"],
         "val_max_abs": vm["max_abs"],
         "seconds": float(seconds),
+        "cpu_seconds": float(cpu_seconds),
     }
 
 

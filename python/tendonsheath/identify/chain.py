@@ -18,7 +18,7 @@ import numpy as np
 
 from ..models import Backlash, BoucWen, BoucWenBacklash, Chain, HystereticOscillator, Polynomial
 from . import gauge
-from .data import check_for_fit
+from .data import check_for_fit, thin_for_search
 from .fit import Fit, fit_quality, simulate_model
 from .problem import DirectProblem
 from .specs import SPECS, Scale
@@ -194,6 +194,11 @@ def identify_chain(
     check_for_fit(recs, warmup, problem.n_params, not problem.first_cls.rate_independent, False)
     space = problem.space
     counter = {"evaluations": 0}
+    search_problem = None
+    if chain.rate_independent:  # the search needs the basin: thinned records suffice
+        thin, thin_warmup = thin_for_search(recs, warmup)
+        if thin is not recs:
+            search_problem = ChainProblem(chain, thin, thin_warmup, bounds, fixed, n_workers)
 
     start = time.perf_counter()
     u_best, res, message = search_and_refine(
@@ -208,6 +213,7 @@ def identify_chain(
         seed=seed,
         polish=polish,
         budget=budget,
+        search_problem=search_problem,
     )
     model = problem.model(space.natural(u_best))
     gauged = gauge.applies(model) and {"B_r", "B_l"} <= set(problem.free)

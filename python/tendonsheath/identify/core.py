@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Iterable, Sequence
+from contextvars import ContextVar
 
 import numpy as np
 from scipy.optimize import differential_evolution
@@ -16,7 +17,7 @@ from ..models import (
     PrandtlIshlinskii,
 )
 from ..models.base import _REGISTRY
-from .data import check_for_fit, make_recordings, search_windows
+from .data import check_for_fit, make_recordings, search_windows, thin_for_search
 from .fit import Fit, fit_quality, simulate_model
 from .problem import DirectProblem, SeparableProblem, law_check
 from .refine import TimeBudget, refine
@@ -59,6 +60,11 @@ def _model_class(model_class) -> type[HysteresisModel]:
 
 SPECS_BY_NAME = {cls.__name__: cls for cls in SPECS}
 _PENALTY = 1e100  # cost of invalid candidates (finite: DE squares energies)
+
+
+#: a time.perf_counter() instant past which every global search stops after its generation
+#: and keeps its best so far (set by compare_models' time budget; None: no deadline)
+SEARCH_DEADLINE: ContextVar[float | None] = ContextVar("SEARCH_DEADLINE", default=None)
 
 
 class _Progress:
@@ -116,7 +122,9 @@ def global_search(
     def callback(intermediate_result):
         generation["n"] += 1
         bar.update(generation["n"], float(intermediate_result.fun))
-        return budget is not None and budget.over()
+        deadline = SEARCH_DEADLINE.get()  # compare_models' budget over all candidates
+        over_deadline = deadline is not None and time.perf_counter() > deadline
+        return over_deadline or (budget is not None and budget.over())  # True stops DE
 
     try:
         return differential_evolution(
@@ -187,7 +195,10 @@ def identify(
     more than ``search_samples`` samples (default 200 000; None: no limit) it runs on 8 evenly
     spaced windows per recording counting that many samples (each window starts from the
     model's rest state, with a warm-up of a fifth of its length); the refinement and
-    everything after it use every sample. The cost per evaluation is linear in the samples and
+    everything after it use every sample. A rate-independent model's search runs on the
+    records thinned to about 2 000 samples (every m-th sample, m <= 20, and every turning
+    point of the input; see :func:`~tendonsheath.identify.data.thin_for_search`).
+    The cost per evaluation is linear in the samples and
     memory grows linearly with them (no candidate's output is kept during the search).
 
     Linear-in-parameter parts are solved by least squares instead of searched (``separable``):
@@ -434,10 +445,14 @@ def identify(
     space = problem.space
     search_problem = problem
     if search_samples is not None and not depends:
-        windows, win_warmup = search_windows(recs, warmup, int(search_samples))
+        search_recs, search_warmup = recs, warmup
+        if cls.rate_independent:
+            search_recs, search_warmup = thin_for_search(recs, warmup)
+        windows, win_warmup = search_windows(search_recs, search_warmup, int(search_samples))
         if windows is not recs:
             search_problem = make_problem(windows, win_warmup)
-            method += f" (global search on {sum(r.n for r in windows)} samples in windows)"
+            how = "in windows" if windows is not search_recs else "thinned"
+            method += f" (global search on {sum(r.n for r in windows)} samples {how})"
 
     counter = {"evaluations": 0}
     x0 = None
@@ -569,13 +584,26 @@ def _stamp(budget: TimeBudget, fit: Fit) -> Fit:
 
 
 def search_and_refine(
-    problem, space, counter, label, progress, *, maxiter, popsize, tol, seed, polish, budget=None
+    problem,
+    space,
+    counter,
+    label,
+    progress,
+    *,
+    maxiter,
+    popsize,
+    tol,
+    seed,
+    polish,
+    search_problem=None,
+    budget=None,
 ):
-    """Global search then least-squares refinement of a separable problem (chains): returns
-    (the best search coordinates, the DE result, a message). Raises when no candidate gives a
-    finite simulation."""
+    """Global search (on ``search_problem``, e.g. thinned records, default ``problem``) then
+    least-squares refinement of a separable problem (chains): returns (the best search
+    coordinates, the DE result, a message). Raises when no candidate gives a finite
+    simulation."""
     res = global_search(
-        problem,
+        search_problem or problem,
         space,
         counter,
         label,

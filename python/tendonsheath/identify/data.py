@@ -220,3 +220,55 @@ def search_windows(
 def fitted_mask(recs: list[Recording], warmup: int) -> np.ndarray:
     """True for the concatenated samples that enter the cost."""
     return np.concatenate([np.arange(r.n) >= warmup + r.skip for r in recs])
+
+
+#: samples the global search of a rate-independent model runs on (see thin_for_search)
+SEARCH_THIN = 2000
+#: at most every this-many-th sample is kept (a Bouc-Wen state integrates the input's steps)
+MAX_THIN_STEP = 20
+
+
+def _kept(x: np.ndarray, step: int, first_counted: int) -> np.ndarray:
+    """Every ``step``-th sample, the input's turning points, the ends and the first counted
+    sample."""
+    dx = np.diff(x)
+    moving = np.flatnonzero(dx != 0.0)
+    turns = moving[1:][np.sign(dx[moving[1:]]) != np.sign(dx[moving[:-1]])]  # reversal at i
+    keep = np.zeros(x.size, dtype=bool)
+    keep[::step] = True
+    keep[turns] = True
+    keep[[0, x.size - 1, min(first_counted, x.size - 1)]] = True
+    return np.flatnonzero(keep)
+
+
+def thin_for_search(
+    recs: list[Recording], warmup: int, budget: int | None = None
+) -> tuple[list[Recording], int]:
+    """Recordings thinned for the global search of a rate-independent model: about
+    ``budget`` samples in all (every m-th sample, m <= MAX_THIN_STEP), with every turning
+    point of the input kept, so an operator's state at the kept samples is (almost) the
+    one the whole record builds: the search needs the basin, and the refinement uses every
+    sample. Warm-up and skipped samples map to the kept ones (returned warm-up 0,
+    per-recording skip). Records within the budget, or of which more than 3/4 would be
+    kept (turning points everywhere: a noisy input), come back whole."""
+    total = sum(r.n for r in recs)
+    budget = SEARCH_THIN if budget is None else budget
+    step = min(int(np.ceil(total / max(budget, 1))), MAX_THIN_STEP)
+    if step <= 1:
+        return recs, warmup
+    out = []
+    for r in recs:
+        first = int(warmup) + r.skip
+        idx = _kept(r.x, step, first)
+        out.append(
+            Recording(
+                None if r.t is None else r.t[idx],
+                r.x[idx],
+                r.y[idx],
+                None if r.curve_angle is None else r.curve_angle[idx],
+                int(np.searchsorted(idx, first)),
+            )
+        )
+    if sum(r.n for r in out) > 0.75 * total:
+        return recs, warmup
+    return out, 0

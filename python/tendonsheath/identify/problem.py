@@ -298,18 +298,42 @@ class SeparableProblem:
         return self.model_class(**public, **self.options)
 
 
+def _triangular_factor(M: np.ndarray) -> np.ndarray:
+    """R with R^T R = M^T M (as from M = Q R): the Cholesky factor of the column-scaled Gram
+    matrix, one BLAS product, ~30x cheaper than a Householder QR of a tall matrix. Squaring
+    the condition number costs accuracy only along directions M hardly excites, which move
+    the residual as little; a singular Gram matrix (a play that never moves: a constant
+    column) gets a 1e-10 relative ridge, a QR is the last resort."""
+    norms = np.linalg.norm(M, axis=0)
+    norms[norms == 0] = 1.0
+    Ms = M / norms
+    G = Ms.T @ Ms
+    for ridge in (0.0, 1e-10):
+        try:
+            return np.linalg.cholesky(G + ridge * np.eye(G.shape[0])).T * norms
+        except np.linalg.LinAlgError:
+            continue
+    return np.linalg.qr(Ms, mode="r") * norms  # pragma: no cover - defensive
+
+
 def bounded_lsq(F: np.ndarray, y: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
     """min ||y - F theta|| with lo <= theta <= hi, for bounds of the kinds the specs use.
 
     Coefficients bounded below only (theta >= lo) are shifted to v = theta - lo >= 0 and the
     unbounded ones (an offset) projected out, so the problem is an exact active-set NNLS
-    (Lawson-Hanson, as in the C++ batch). SciPy's ``lsq_linear`` (trust-region reflective)
-    is kept for other bounds only: with an unbounded column and every other bound active,
-    as on a negative-gain record, its reflected step multiplies an infinite stride by zero
-    ("invalid value encountered in multiply") and it is also ~50x slower.
+    (Lawson-Hanson, as in the C++ batch), solved on the triangular factor of [F y]. SciPy's
+    ``lsq_linear`` (trust-region reflective) is kept for other bounds only: with an
+    unbounded column and every other bound active, as on a negative-gain record, its
+    reflected step multiplies an infinite stride by zero ("invalid value encountered in
+    multiply") and it is also ~50x slower.
     """
     lo = np.asarray(lo, dtype=float)
     hi = np.asarray(hi, dtype=float)
+    if F.shape[0] > F.shape[1] + 1:
+        # ||F theta - y|| = ||R[:, :n] theta - R[:, n]|| up to a constant, for R the
+        # triangular factor of [F y]: the same minimiser from n+1 rows instead of every sample
+        R = _triangular_factor(np.column_stack([F, y]))
+        F, y = R[:, :-1], R[:, -1]
     col = np.linalg.norm(F, axis=0)
     col[col == 0] = 1.0
     Fs = F / col
