@@ -339,7 +339,10 @@ class FrictionChain {
       budget_hit_ = true;
       return;
     }
-    if (try_increment(xt, dt, opt_.max_iterations, false)) {
+    meet_halfway_ = depth == 0 && !has_damper_;  // retries march as before (see meeting_point)
+    const bool first_ok = try_increment(xt, dt, opt_.max_iterations, false);
+    meet_halfway_ = false;
+    if (first_ok) {
       commit(xt, true, dt);
       return;
     }
@@ -672,8 +675,9 @@ class FrictionChain {
       double l, b, c, d;
       if (!row(g - 1, xt, inv_dt, l, b, c, d)) continue;  // the zone on the left must slip
       double cprev = cp_[g - 1], dprev = dp_[g - 1];
+      const std::size_t stop = meet_halfway_ ? meeting_point(g, xt, inv_dt) : M_;
       std::size_t j = g;
-      while (j < M_ && stuck_violates(j, T_[j], T_[j + 1])) {
+      while (j < M_ && j <= stop && stuck_violates(j, T_[j], T_[j + 1])) {
         double lj, bj, cj, dj;
         if (row(j + 1, xt, inv_dt, lj, bj, cj, dj)) break;  // next node not stuck: stop
         sw_[j] = T_[j + 1] > T_[j] ? 1 : -1;
@@ -725,6 +729,24 @@ class FrictionChain {
       if (j == 0) break;
     }
     return flips;
+  }
+
+  // The last node a front at g moving toward node M may take: the stuck run it enters may end
+  // at a front moving the other way (a slipping zone beyond it and its end node violating),
+  // which the second loop of march() would advance through the same run. The plain loop moves
+  // both one node per iteration, so they meet halfway; a front that took the whole run left
+  // the other blocked at its first node, and the loop then retreated the run a node per two
+  // solves. Used on the first attempt of an increment of a chain without dampers (with a
+  // damped load it put more steps at the work bound); halvings and the last resort march as
+  // before. Adversarial set, N = 400, spring load: solves a step at p99 401 -> 58.
+  std::size_t meeting_point(std::size_t g, double xt, double inv_dt) const noexcept {
+    std::size_t e = g;
+    double l, b, c, d;
+    while (e + 1 < M_ && kind_[e + 1] == NodeKind::Sheath && !row(e + 1, xt, inv_dt, l, b, c, d))
+      ++e;
+    const bool opposed = e + 1 < M_ && kind_[e + 1] == NodeKind::Sheath && sw_[e + 1] != 0 &&
+                         h_[e + 1] > 0.0 && stuck_violates(e, T_[e], T_[e + 1]);
+    return opposed ? g + (e - g) / 2 : M_;
   }
 
   // Comparisons with NaN are false, so a NaN solution has no violations: it must not
@@ -799,6 +821,7 @@ class FrictionChain {
   bool input_held_ = false;
   bool last_converged_ = true;
   bool budget_hit_ = false;  // the last step reached max_solves()
+  bool meet_halfway_ = false;  // march() stops opposed fronts halfway (first attempts only)
   bool has_damper_ = false;  // any time-dependent effect (damper, mass, viscosity, SLS)
   bool has_mass_ = false;
   bool initialised_ = false;
