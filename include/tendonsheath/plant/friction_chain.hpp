@@ -47,8 +47,9 @@
 // default options that is 4 M + 264: 8 N + 264 for a pull-pull pair of N elements per sheath
 // (M = 2 N), 4 N + 264 for a single tendon (M = N). A step that reaches the bound keeps its
 // last finite iterate (or stops at its last finished sub-increment), reports not_converged
-// and counts in nonconverged(); the next step goes on from there to its own input; a non-finite input or a non-finite solution
-// leaves the state unchanged (a non-finite solution never counts as converged).
+// and counts in nonconverged(); the next step goes on from there to its own input. A
+// non-finite input or a non-finite solution leaves the state unchanged (a non-finite
+// solution never counts as converged).
 // Inputs beyond +-kMaxInput (m) are clamped to it (input_clamped() tells): past
 // that the elastic forces k x of a chain no longer fit a double. A node's
 // friction angle mu dtheta is capped at kMaxNodeFrictionAngle (capstan ratio
