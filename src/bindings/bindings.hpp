@@ -68,6 +68,7 @@ void bind_models(nb::module_& m);
 void bind_compensators(nb::module_& m);
 void bind_models_extended(nb::module_& m);
 void bind_plant(nb::module_& m);
+void bind_profile(nb::module_& m);
 void bind_bench(nb::module_& m);
 void bind_curve_angle(nb::module_& m);
 void bind_batch(nb::module_& m);

@@ -6,6 +6,7 @@ NB_MODULE(_core, m) {
   tsbind::bind_compensators(m);
   tsbind::bind_models_extended(m);
   tsbind::bind_plant(m);
+  tsbind::bind_profile(m);
   tsbind::bind_bench(m);
   tsbind::bind_curve_angle(m);
   tsbind::bind_batch(m);

@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 #include "../status.hpp"
 #include "../validate.hpp"
@@ -58,14 +59,14 @@ class Backlash {
     const double right = p_.c_r * (x - p_.B_r);
     const double left = p_.c_l * (x + p_.B_l);
     if (!initialised_) {
-      y_ = 0.5 * (right + left);
+      y_ = saturated(0.5 * (right + left));
       x_ = x;
       initialised_ = true;
       return y_;
     }
     double lo = right, hi = left;
     if (lo > hi) lo = hi = 0.5 * (right + left);  // past the crossing: a zero-width band
-    y_ = y_ < lo ? lo : (y_ > hi ? hi : y_);
+    y_ = saturated(y_ < lo ? lo : (y_ > hi ? hi : y_));
     x_ = x;
     return y_;
   }
@@ -84,6 +85,12 @@ class Backlash {
   bool initialised() const noexcept { return initialised_; }
 
  private:
+  // c x overflows for a finite x near the largest double: the output saturates there
+  static double saturated(double y) noexcept {
+    constexpr double big = std::numeric_limits<double>::max();
+    return y > big ? big : (y < -big ? -big : y);
+  }
+
   Params p_;
   double x_ = 0.0;
   double y_ = 0.0;

@@ -41,8 +41,15 @@
 // its last iterate for extra_iterations more and the result is accepted (and
 // counted in nonconverged()). Inputs are split into sub-increments of at most
 // max_increment (at most max_substeps of them). step() is noexcept, allocates
-// nothing and does bounded work; a non-finite input or a non-finite solution
-// leaves the state unchanged (a non-finite solution never counts as converged).
+// nothing and does bounded work: at most
+//   max_solves() = max_substeps + 2 (max_iterations + E),  E = extra_iterations (-1: 2 M + 50)
+// tridiagonal solves (an iteration is one solve, plus one after a slip-front march). With the
+// default options that is 4 M + 264: 8 N + 264 for a pull-pull pair of N elements per sheath
+// (M = 2 N), 4 N + 264 for a single tendon (M = N). A step that reaches the bound keeps its
+// last finite iterate (or stops at its last finished sub-increment), reports not_converged
+// and counts in nonconverged(); the next step goes on from there to its own input. A
+// non-finite input or a non-finite solution leaves the state unchanged (a non-finite
+// solution never counts as converged).
 // Inputs beyond +-kMaxInput (m) are clamped to it (input_clamped() tells): past
 // that the elastic forces k x of a chain no longer fit a double. A node's
 // friction angle mu dtheta is capped at kMaxNodeFrictionAngle (capstan ratio
@@ -216,6 +223,7 @@ class FrictionChain {
     input_clamped_ = false;
     input_held_ = false;
     last_converged_ = true;
+    budget_hit_ = false;
     fact_valid_ = false;
     tfact_valid_ = false;
     consistent_ = false;
@@ -237,6 +245,7 @@ class FrictionChain {
     }
     if (!(dt >= 0.0) || !std::isfinite(dt)) dt = 0.0;
     last_solves_ = 0;
+    budget_hit_ = false;
     const long noncon_before = nonconverged_;
     if (!initialised_) {
       for (std::size_t j = 0; j <= M_; ++j) u_[j] += x - x_;
@@ -262,12 +271,12 @@ class FrictionChain {
                                                         : (m >= 1.0 ? static_cast<int>(m) : 1);
     }
     const double x0 = x_;
-    for (int i = 1; i <= n; ++i) {
+    for (int i = 1; i <= n && !budget_hit_; ++i) {
       const double xi = (i == n) ? x : x0 + dx * static_cast<double>(i) / static_cast<double>(n);
       sub_increment(xi, dt / n, 0);
     }
     dirty_ = false;
-    last_converged_ = nonconverged_ == noncon_before;
+    last_converged_ = nonconverged_ == noncon_before && !budget_hit_;
     return true;
   }
 
@@ -310,7 +319,12 @@ class FrictionChain {
   bool input_clamped() const noexcept { return input_clamped_; }
   // Every increment of the last step converged (false: the best bounded iterate was kept).
   bool last_converged() const noexcept { return last_converged_; }
+  // Solves (and shortcut updates) the last step made; never more than max_solves().
   int last_solves() const noexcept { return last_solves_; }
+  // The hard work bound of one step (see the header): max_substeps + 2 (max_iterations + E).
+  long long max_solves() const noexcept {
+    return opt_.max_substeps + 2LL * (opt_.max_iterations + extra_iterations());
+  }
   double friction() const noexcept { return M_ >= 1 ? mu_[1] : 0.0; }
   double node_friction(std::size_t j) const noexcept { return mu_[j]; }
   // True when a step depends on dt (dampers, masses, viscosity, relaxation).
@@ -318,25 +332,31 @@ class FrictionChain {
   const ChainOptions& options() const noexcept { return opt_; }
 
  private:
-  // One increment to xt with halving on failure.
+  // One increment to xt with halving on failure. With no solve left it changes nothing (the
+  // step stops at its last finished increment).
   void sub_increment(double xt, double dt, int depth) noexcept {
-    const bool can_halve =
-        depth < opt_.max_halvings && xt != x_ && last_solves_ < solve_budget();
-    if (try_increment(xt, dt, opt_.max_iterations, false)) {
+    if (!solves_left()) {
+      if (!budget_hit_) ++nonconverged_;
+      budget_hit_ = true;
+      return;
+    }
+    meet_halfway_ = depth == 0 && !has_damper_;  // retries march as before (see meeting_point)
+    const bool first_ok = try_increment(xt, dt, opt_.max_iterations, false);
+    meet_halfway_ = false;
+    if (first_ok) {
       commit(xt, true, dt);
       return;
     }
     // A slack iterate (a tension <= 0) lies outside the model: no smaller increment makes it
     // valid (with a damper, halving only stiffens it), so go straight to the last resort.
-    if (can_halve && !(min_of_tensions() <= 0.0)) {
+    if (depth < opt_.max_halvings && xt != x_ && solves_left() && !(min_of_tensions() <= 0.0)) {
       const double xm = 0.5 * (x_ + xt);
       sub_increment(xm, 0.5 * dt, depth + 1);
       sub_increment(xt, 0.5 * dt, depth + 1);
       return;
     }
-    const int extra = opt_.extra_iterations >= 0 ? opt_.extra_iterations
-                                                 : static_cast<int>(2 * M_ + 50);
-    const bool ok = try_increment(xt, dt, extra, true);
+    // the last resort goes on from the last iterate; with no solve left that iterate is kept
+    const bool ok = solves_left() && try_increment(xt, dt, extra_iterations(), true);
     if (!ok) ++nonconverged_;
     fact_valid_ = fact_valid_ && ok;
     for (std::size_t j = 0; j <= M_; ++j)
@@ -349,12 +369,10 @@ class FrictionChain {
     commit(xt, ok, dt);
   }
 
-  // Solves one step may spend on halvings (64 x the iterations x the substeps, both capped by
-  // validation, so the product fits in a long long).
-  long long solve_budget() const noexcept {
-    const long long budget = 64LL * opt_.max_iterations * opt_.max_substeps;
-    return budget < (1LL << 30) ? budget : (1LL << 30);
+  int extra_iterations() const noexcept {
+    return opt_.extra_iterations >= 0 ? opt_.extra_iterations : static_cast<int>(2 * M_ + 50);
   }
+  bool solves_left() const noexcept { return last_solves_ < max_solves(); }
 
   void commit(double xt, bool converged, double dt) noexcept {
     consistent_ = converged && fact_valid_;
@@ -486,7 +504,7 @@ class FrictionChain {
     const double inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;
     const bool damped = has_damper_;  // the matrix then depends on dt
     refresh_elements(dt);
-    for (int it = 0; it < max_it; ++it) {
+    for (int it = 0; it < max_it && solves_left(); ++it) {
       bool solved = false;  // the elimination factors belong to this iterate
       if (it == 0 && !from_work && fact_valid_ && consistent_ && !damped && opt_.fast_path) {
         const double dx = xt - x_;
@@ -501,7 +519,7 @@ class FrictionChain {
       if (tensions_and_violations() == 0) return solution_finite();
       // after one plain flip the front is known to be moving: march it (the rows
       // include dampers and viscosity, and the final solve and check decide)
-      if (it > 0 && solved && opt_.fast_path && march(xt, inv_dt) > 0) {
+      if (it > 0 && solved && opt_.fast_path && solves_left() && march(xt, inv_dt) > 0) {
         solve(xt, inv_dt);  // one full solve for all the front flips
         ++last_solves_;
         if (tensions_and_violations() == 0) return solution_finite();
@@ -658,8 +676,9 @@ class FrictionChain {
       double l, b, c, d;
       if (!row(g - 1, xt, inv_dt, l, b, c, d)) continue;  // the zone on the left must slip
       double cprev = cp_[g - 1], dprev = dp_[g - 1];
+      const std::size_t stop = meet_halfway_ ? meeting_point(g, xt, inv_dt) : M_;
       std::size_t j = g;
-      while (j < M_ && stuck_violates(j, T_[j], T_[j + 1])) {
+      while (j < M_ && j <= stop && stuck_violates(j, T_[j], T_[j + 1])) {
         double lj, bj, cj, dj;
         if (row(j + 1, xt, inv_dt, lj, bj, cj, dj)) break;  // next node not stuck: stop
         sw_[j] = T_[j + 1] > T_[j] ? 1 : -1;
@@ -711,6 +730,24 @@ class FrictionChain {
       if (j == 0) break;
     }
     return flips;
+  }
+
+  // The last node a front at g moving toward node M may take: the stuck run it enters may end
+  // at a front moving the other way (a slipping zone beyond it and its end node violating),
+  // which the second loop of march() would advance through the same run. The plain loop moves
+  // both one node per iteration, so they meet halfway; a front that took the whole run left
+  // the other blocked at its first node, and the loop then retreated the run a node per two
+  // solves. Used on the first attempt of an increment of a chain without dampers (with a
+  // damped load it put more steps at the work bound); halvings and the last resort march as
+  // before. Adversarial set, N = 400, spring load: solves a step at p99 401 -> 58.
+  std::size_t meeting_point(std::size_t g, double xt, double inv_dt) const noexcept {
+    std::size_t e = g;
+    double l, b, c, d;
+    while (e + 1 < M_ && kind_[e + 1] == NodeKind::Sheath && !row(e + 1, xt, inv_dt, l, b, c, d))
+      ++e;
+    const bool opposed = e + 1 < M_ && kind_[e + 1] == NodeKind::Sheath && sw_[e + 1] != 0 &&
+                         h_[e + 1] > 0.0 && stuck_violates(e, T_[e], T_[e + 1]);
+    return opposed ? g + (e - g) / 2 : M_;
   }
 
   // Comparisons with NaN are false, so a NaN solution has no violations: it must not
@@ -784,6 +821,8 @@ class FrictionChain {
   bool input_clamped_ = false;
   bool input_held_ = false;
   bool last_converged_ = true;
+  bool budget_hit_ = false;  // the last step reached max_solves()
+  bool meet_halfway_ = false;  // march() stops opposed fronts halfway (first attempts only)
   bool has_damper_ = false;  // any time-dependent effect (damper, mass, viscosity, SLS)
   bool has_mass_ = false;
   bool initialised_ = false;

@@ -45,7 +45,9 @@ class Sensor {
     if (held_) return last_;
     double y = x;
     if (p_.noise_std > 0.0) y += p_.noise_std * gaussian();
-    if (p_.resolution > 0.0) y = p_.resolution * std::round(y / p_.resolution);
+    // past 2^52 steps y / resolution is an integer already (and it may overflow): kept
+    if (p_.resolution > 0.0 && std::fabs(y / p_.resolution) < 4503599627370496.0)
+      y = p_.resolution * std::round(y / p_.resolution);
     last_ = y;
     return y;
   }
