@@ -5,13 +5,16 @@ so its system is discrete-time with the sample time ``dt`` the user gives. The e
 their state inside C++ objects whose layout differs from class to class, so the system's
 state vector does not spell that state out: it holds one number, the index of a *snapshot*,
 an exact copy of the engine after a given input history. The system keeps its snapshots;
-the update function steps a copy of snapshot ``i`` and files the result as a new snapshot
-(the same ``(i, input)`` always gives the same index), the output function steps a throw-away
-copy. Both are therefore pure functions of ``(state, input)``, as ``control.interconnect`` and
-``control.input_output_response`` need, and index 0 (the default initial state) is the
-engine at rest, as ``simulate`` and ``command`` start. What this rules out: ``linearize``,
-``find_eqpt`` and any continuous-state algebra on the index. Each distinct step keeps one
-engine copy (a few hundred bytes) for the life of the system.
+stepping a copy of snapshot ``i`` with input ``u`` gives the output, and the stepped copy is
+filed as a new snapshot, whose index is the next state; each distinct ``(i, u)`` is stepped
+once and remembered. Output and update are therefore pure functions of ``(state, input)``,
+as ``control.interconnect`` and ``control.input_output_response`` need, and index 0 (the
+default initial state) is the engine at rest, as ``simulate`` and ``command`` start.
+
+What this rules out: ``linearize``, ``find_eqpt`` and any continuous-state algebra on the
+index. Each distinct step keeps one engine copy and its output for the life of the system
+(see ``benchmarks/python_control.py`` for the memory and CPU time per sample); ``simulate``
+and ``command`` stay the way to run long records.
 """
 
 from __future__ import annotations
@@ -64,22 +67,23 @@ class Snapshots:
             )
         return self._engines[index]
 
-    def _step(self, engine, started: bool, u) -> float:
-        return float(engine._control_step(u, self.dt if started else 0.0))
-
-    def output(self, state, u) -> float:
-        engine, started = self._at(state)
-        return self._step(copy.deepcopy(engine), started, u)
-
-    def update(self, state, u) -> int:
+    def _advance(self, state, u) -> tuple[int, float]:
+        """(index of the snapshot after input u, output at u) from the snapshot ``state``:
+        stepped once per distinct (state, input), then remembered."""
         key = (float(np.asarray(state).reshape(-1)[0]), tuple(float(v) for v in u))
         if key not in self._next:
             engine, started = self._at(state)
             engine = copy.deepcopy(engine)
-            self._step(engine, started, u)
+            y = float(engine._control_step(u, self.dt if started else 0.0))
             self._engines.append((engine, True))
-            self._next[key] = len(self._engines) - 1
+            self._next[key] = (len(self._engines) - 1, y)
         return self._next[key]
+
+    def output(self, state, u) -> float:
+        return self._advance(state, u)[1]
+
+    def update(self, state, u) -> int:
+        return self._advance(state, u)[0]
 
 
 def to_system(
