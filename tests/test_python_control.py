@@ -135,6 +135,17 @@ def test_curve_angle_model_takes_the_curve_angle_as_a_second_input(seed):
     _close(out, model.simulate(t, x, curve_angle=theta))
 
 
+def test_scaled_curve_angle_model_keeps_the_curve_angle_input():
+    rng = np.random.default_rng(5)
+    model = M.Scaled(M.CurveAngleModel(friction=0.2), 0.1, 0.5, -0.2, -2.0)
+    dt, t, x = _signal(rng)
+    theta = 2.0 + np.sin(2 * np.pi * t / t[-1])
+    sys = model.to_control(dt)
+    assert sys.input_labels == ["x", "curve_angle"]
+    out = ct.input_output_response(sys, t, [x, theta]).outputs
+    _close(out, model.simulate(t, x, curve_angle=theta))
+
+
 def test_angle_dependent_model_at_one_curve_angle():
     model = M.AngleDependent(
         "Backlash",
