@@ -52,6 +52,12 @@ def _generalized_pi(rng):
     return M.GeneralizedPrandtlIshlinskii(envelope(), envelope(), thresholds, weights)
 
 
+def _inverses(rng):
+    if rng.random() < 0.5:
+        return _prandtl_ishlinskii(rng).inverse()
+    return _generalized_pi(rng).inverse()
+
+
 def _polynomial(rng):
     return M.Polynomial(coefficients=rng.normal(size=4))
 
@@ -86,7 +92,7 @@ def _second_order(rng):
 
 
 MODELS = [
-    _backlash, _bouc_wen, _bouc_wen_backlash, _prandtl_ishlinskii, _generalized_pi,
+    _backlash, _bouc_wen, _bouc_wen_backlash, _prandtl_ishlinskii, _generalized_pi, _inverses,
     _polynomial, _chain, _scaled, _oscillator, _first_order, _second_order,
 ]  # fmt: skip
 
