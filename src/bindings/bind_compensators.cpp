@@ -95,7 +95,7 @@ void bind_inverse(nb::module_& m) {
       .def_rw("v_eps", &P::v_eps)
       .def_rw("limits", &P::limits);
   using B = ts::BacklashInverseFeedforward;
-  nb::class_<B>(m, "BacklashInverseFeedforward")
+  bind_copy(nb::class_<B>(m, "BacklashInverseFeedforward"))
       .def(nb::init<const P&>(), "params"_a)
       .def_prop_ro("params", &B::params)
       .def("reset", &B::reset)
@@ -110,7 +110,7 @@ void bind_inverse(nb::module_& m) {
           },
           "t"_a, "y_d"_a, "status"_a = false);
   using PI = ts::PrandtlIshlinskiiFeedforward;
-  nb::class_<PI>(m, "PrandtlIshlinskiiFeedforward")
+  bind_copy(nb::class_<PI>(m, "PrandtlIshlinskiiFeedforward"))
       .def(nb::init<const ts::PrandtlIshlinskiiParams&, const ts::CommandLimits&>(), "params"_a,
            "limits"_a)
       .def("reset", &PI::reset)
@@ -141,7 +141,7 @@ void bind_curve_angle_feedforward(nb::module_& m) {
       .def_rw("max_correction_rate", &P::max_correction_rate)
       .def_rw("limits", &P::limits);
   using C = ts::CurveAngleFeedforward;
-  nb::class_<C>(m, "CurveAngleFeedforward")
+  bind_copy(nb::class_<C>(m, "CurveAngleFeedforward"))
       .def(nb::init<const P&>(), "params"_a)
       .def_prop_ro("params", &C::params)
       .def_prop_ro("shape", &C::shape)
@@ -195,7 +195,7 @@ void bind_continuum(nb::module_& m) {
       .def_rw("mode", &P::mode)
       .def_rw("limits", &P::limits);
   using C = ts::ContinuumFeedforward;
-  nb::class_<C>(m, "ContinuumFeedforward")
+  bind_copy(nb::class_<C>(m, "ContinuumFeedforward"))
       .def(nb::init<const P&>(), "params"_a)
       .def_prop_ro("params", &C::params)
       .def("reset", &C::reset)
@@ -245,7 +245,7 @@ void bind_adaptive(nb::module_& m) {
       .def_ro("phi", &ts::AdaptiveEstimates::phi)
       .def_ro("D", &ts::AdaptiveEstimates::D);
   using C = ts::AdaptiveController;
-  nb::class_<C>(m, "AdaptiveController")
+  bind_copy(nb::class_<C>(m, "AdaptiveController"))
       .def(nb::init<const P&>(), "params"_a)
       .def_prop_ro("params", &C::params)
       .def_prop_ro("estimates", &C::estimates)

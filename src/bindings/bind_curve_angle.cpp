@@ -25,7 +25,7 @@ void bind_curve_angle(nb::module_& m) {
       .def_rw("distal_radius", &P::distal_radius);
 
   using M = ts::CurveAngleModel;
-  nb::class_<M>(m, "CurveAngleModel")
+  bind_copy(nb::class_<M>(m, "CurveAngleModel"))
       .def(nb::init<const P&>(), "params"_a)
       .def_prop_ro("params", &M::params)
       .def("reset", &M::reset)

@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -62,6 +63,16 @@ inline tendonsheath::RouteSchedule to_schedule(const std::optional<InIndex>& sid
   sched.count = storage.size();
   sched.width = sang->shape(1);
   return sched;
+}
+
+// copy.copy and copy.deepcopy of a streaming engine: a snapshot of its whole state (the
+// python-control systems of tendonsheath.control step from saved snapshots).
+template <class Cls>
+std::decay_t<Cls> bind_copy(Cls&& cls) {
+  using T = typename std::decay_t<Cls>::Type;
+  cls.def("__copy__", [](const T& self) { return T(self); });
+  cls.def("__deepcopy__", [](const T& self, nb::handle) { return T(self); }, nb::arg("memo"));
+  return std::forward<Cls>(cls);
 }
 
 void bind_models(nb::module_& m);

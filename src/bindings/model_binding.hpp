@@ -52,6 +52,7 @@ nb::class_<Model> bind_model(nb::module_& m, const char* name) {
           },
           "t"_a.none(), "x"_a, "status"_a = false)
       .def_ro_static("rate_independent", &Model::rate_independent);
+  bind_copy(cls);
   return cls;
 }
 

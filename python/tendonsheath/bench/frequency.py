@@ -33,6 +33,13 @@ class FrequencyResponse:
             "bandwidth_error_hz": self.bandwidth_error,
         }
 
+    def to_control(self, name: str | None = None):
+        """The gain and phase as a ``control.FrequencyResponseData`` (omega = 2 pi f, rad/s).
+        Needs python-control: ``pip install 'tendonsheath[control]'``."""
+        from ..control_interop import frequency_response_data
+
+        return frequency_response_data(self.frequencies, self.gain_db, self.phase_deg, name)
+
 
 def _fundamental(t: np.ndarray, signal: np.ndarray, f: float) -> complex:
     """Complex amplitude of the component at f (lock-in over whole cycles)."""

@@ -48,6 +48,10 @@ class AdaptiveController:
     normalised example; :meth:`from_model` scales them to a motor and an identified model.
     """
 
+    # signal names of to_control()'s system: desired and measured output, motor angle in
+    control_inputs = ("y_d", "y", "q")
+    control_output = "torque"
+
     def __init__(self, feedforward_model=None, smoothing: float = 0.05, **gains):
         unknown = set(gains) - set(_GAINS)
         if unknown:
@@ -145,6 +149,18 @@ class AdaptiveController:
         """One control cycle; returns the motor torque. y_measured may be NaN (dropout)."""
         dt = checked_dt(dt)
         return self._engine.step(float(y_d), float(y_measured), float(motor_position), float(dt))
+
+    def to_control(self, dt: float, name: str | None = None, inputs=None, output=None):
+        """This controller as a discrete-time ``control.NonlinearIOSystem`` with sample time dt
+        (s): inputs ``y_d``, ``y`` (measured distal output) and ``q`` (motor angle), output
+        ``torque``; one state, the index of an exact snapshot of the engine (see
+        :mod:`tendonsheath.control_interop`)."""
+        from ..control_interop import to_system
+
+        return to_system(self, dt, inputs, output, name)
+
+    def _control_step(self, u, dt: float) -> float:
+        return self.step(u[0], u[1], u[2], dt)
 
     def status(self) -> Status:
         """The last cycle's :class:`~tendonsheath.Status` (held, fallback, saturated)."""

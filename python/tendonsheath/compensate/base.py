@@ -15,6 +15,9 @@ class Feedforward:
     """
 
     _engine: object
+    # signal names of to_control()'s system: desired output in, motor command out
+    control_inputs: tuple[str, ...] = ("y_d",)
+    control_output: str = "x"
 
     def reset(self) -> None:
         """Forget the streaming state (the desired-rate history and the last command)."""
@@ -35,3 +38,15 @@ class Feedforward:
         if ts is None:
             raise ValueError(f"{type(self).__name__}.command needs the time vector t")
         return self._engine.command(ts, ys, bool(status))
+
+    def to_control(self, dt: float, name: str | None = None, inputs=None, output=None):
+        """This compensator as a discrete-time ``control.NonlinearIOSystem`` with sample time dt
+        (s): input ``y_d``, output ``x`` (the motor command, the input name of a model's
+        system, so ``control.interconnect`` connects them by name); one state, the index of an
+        exact snapshot of the engine (see :mod:`tendonsheath.control_interop`)."""
+        from ..control_interop import to_system
+
+        return to_system(self, dt, inputs, output, name)
+
+    def _control_step(self, u, dt: float) -> float:
+        return self.step(u[0], dt)

@@ -26,6 +26,8 @@ class CurveAngleFeedforward(Feedforward):
     correction may change, e.g. after a sudden change of the route. Angles in rad.
     """
 
+    control_inputs = ("y_d", "curve_angle")
+
     def __init__(
         self,
         friction: float,
@@ -96,6 +98,9 @@ class CurveAngleFeedforward(Feedforward):
         elif curve_angle is not None:
             self.set_curve_angle(curve_angle)
         return self._engine.step(float(y_d), float(dt))
+
+    def _control_step(self, u, dt: float) -> float:
+        return self.step(u[0], dt, curve_angle=u[1])
 
     def command(
         self,

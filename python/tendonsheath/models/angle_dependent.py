@@ -161,6 +161,15 @@ class AngleDependent(HysteresisModel):
             )
         return self._stream.step(x, dt)
 
+    def to_control(
+        self, dt: float, name: str | None = None, inputs=None, output=None, curve_angle=None
+    ):
+        """The base model at one ``curve_angle`` (rad) as a python-control system (a run at one
+        curve angle, as :meth:`simulate`); see :meth:`HysteresisModel.to_control`."""
+        if curve_angle is None:
+            raise ValueError("AngleDependent.to_control needs curve_angle (rad): one per system")
+        return self.at(curve_angle).to_control(dt, name, inputs, output)
+
     def status(self) -> Status:
         """The last step's Status (OK before the first step)."""
         return self._stream.status() if self._stream is not None else Status.OK

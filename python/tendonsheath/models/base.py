@@ -34,6 +34,9 @@ class HysteresisModel:
     reports_status: ClassVar[bool] = True
     # parameters a saved file may hold as null (all others must be present and not null)
     nullable_params: ClassVar[tuple[str, ...]] = ()
+    # signal names of to_control()'s system
+    control_inputs: ClassVar[tuple[str, ...]] = ("x",)
+    control_output: ClassVar[str] = "y"
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -106,6 +109,19 @@ class HysteresisModel:
         if not self.reports_status:
             raise TypeError(f"{type(self).__name__} has no real-time core and reports no status")
         return Status(self._engine.status())
+
+    # -- python-control ---------------------------------------------------------------
+    def to_control(self, dt: float, name: str | None = None, inputs=None, output=None):
+        """This model as a discrete-time ``control.NonlinearIOSystem`` with sample time dt (s),
+        input ``x`` (and ``curve_angle`` where the model takes one), output ``y`` and one state,
+        the index of an exact snapshot of the engine (see :mod:`tendonsheath.control_interop`).
+        Needs python-control: ``pip install 'tendonsheath[control]'``."""
+        from ..control_interop import to_system
+
+        return to_system(self, dt, inputs, output, name)
+
+    def _control_step(self, u, dt: float) -> float:
+        return self.step(u[0], dt)
 
     # -- persistence -----------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:

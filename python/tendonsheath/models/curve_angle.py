@@ -50,6 +50,7 @@ class CurveAngleModel(HysteresisModel):
         "distal_radius",
     )
     uses_curve_angle = True
+    control_inputs = ("x", "curve_angle")
 
     def __init__(
         self,
@@ -86,6 +87,9 @@ class CurveAngleModel(HysteresisModel):
         if curve_angle is None:
             return self._engine.step(float(x), float(dt))
         return self._engine.step(float(x), float(dt), float(curve_angle))
+
+    def _control_step(self, u, dt: float) -> float:
+        return self.step(u[0], dt, curve_angle=u[1])
 
     # closed-form terms, in the rotary units of the model (rad at the motor / at the joint)
     def backlash_half_width(self, curve_angle: float) -> float:

@@ -46,6 +46,7 @@ class Scaled(HysteresisModel):
         self.map = dict(zip(_MAP, values, strict=True))
         self.rate_independent = inner.rate_independent
         self.uses_curve_angle = getattr(inner, "uses_curve_angle", False)
+        self.control_inputs = inner.control_inputs  # x, and the inner model's curve_angle
 
     @property
     def params(self) -> dict[str, Any]:
@@ -94,6 +95,11 @@ class Scaled(HysteresisModel):
     def step(self, x: float, dt: float = 0.0) -> float:
         u = self.inner.step((float(x) - self.map["input_offset"]) / self.map["input_scale"], dt)
         return self.map["output_offset"] + self.map["output_gain"] * u
+
+    def _control_step(self, u, dt: float) -> float:
+        x = (float(u[0]) - self.map["input_offset"]) / self.map["input_scale"]
+        inner = self.inner._control_step([x, *u[1:]], dt)
+        return self.map["output_offset"] + self.map["output_gain"] * inner
 
     def to_dict(self) -> dict[str, Any]:
         return {

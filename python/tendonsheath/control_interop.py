@@ -1,0 +1,147 @@
+"""python-control interop: models and compensators as discrete-time NonlinearIOSystems.
+
+Every model and compensator updates its state from one sample to the next (``step(x, dt)``),
+so its system is discrete-time with the sample time ``dt`` the user gives. The engines keep
+their state inside C++ objects whose layout differs from class to class, so the system's
+state vector does not spell that state out: it holds one number, the index of a *snapshot*,
+an exact copy of the engine after a given input history. The system keeps its snapshots;
+stepping a copy of snapshot ``i`` with input ``u`` gives the output, and the stepped copy is
+filed as a new snapshot, whose index is the next state; each distinct ``(i, u)`` is stepped
+once and remembered. Output and update are therefore pure functions of ``(state, input)``,
+as ``control.interconnect`` and ``control.input_output_response`` need, and index 0 (the
+default initial state) is the engine at rest, as ``simulate`` and ``command`` start.
+
+What this rules out: ``linearize``, ``find_eqpt`` and any continuous-state algebra on the
+index. Each distinct step keeps one engine copy and its output for the life of the system
+(see ``benchmarks/python_control.py`` for the memory and CPU time per sample); ``simulate``
+and ``command`` stay the way to run long records.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+INSTALL_HINT = "pip install 'tendonsheath[control]'"
+
+
+def require_control():
+    """The ``control`` module, or an ImportError that says how to install it."""
+    try:
+        import control
+    except ImportError as exc:
+        raise ImportError(
+            f"python-control interop needs the optional 'control' package: {INSTALL_HINT}"
+        ) from exc
+    return control
+
+
+class Snapshots:
+    """Engine snapshots addressed by a float index; index 0 is the engine at rest.
+
+    ``block`` is a model or compensator: deep-copyable, with ``reset()`` and
+    ``_control_step(u, dt)`` (u: the input vector); a block's first step gets dt = 0, as in
+    ``simulate`` and ``command``.
+    """
+
+    def __init__(self, block, dt: float):
+        fresh = copy.deepcopy(block)
+        fresh.reset()
+        self.dt = dt
+        self._engines: list[tuple[object, bool]] = [(fresh, False)]
+        self._next: dict[tuple, int] = {}
+
+    def __len__(self) -> int:
+        return len(self._engines)
+
+    def _at(self, state) -> tuple[object, bool]:
+        value = float(np.asarray(state, dtype=float).reshape(-1)[0])
+        index = int(value) if math.isfinite(value) else -1
+        if index != value or not 0 <= index < len(self._engines):
+            raise ValueError(
+                f"tendonsheath control system: the state is a snapshot index (0 = at rest, "
+                f"0..{len(self._engines) - 1} known), got {value!r}"
+            )
+        return self._engines[index]
+
+    def _advance(self, state, u) -> tuple[int, float]:
+        """(index of the snapshot after input u, output at u) from the snapshot ``state``:
+        stepped once per distinct (state, input), then remembered."""
+        key = (float(np.asarray(state).reshape(-1)[0]), tuple(float(v) for v in u))
+        if key not in self._next:
+            engine, started = self._at(state)
+            engine = copy.deepcopy(engine)
+            y = float(engine._control_step(u, self.dt if started else 0.0))
+            self._engines.append((engine, True))
+            self._next[key] = (len(self._engines) - 1, y)
+        return self._next[key]
+
+    def output(self, state, u) -> float:
+        return self._advance(state, u)[1]
+
+    def update(self, state, u) -> int:
+        return self._advance(state, u)[0]
+
+
+def to_system(
+    block,
+    dt: float,
+    inputs: Sequence[str] | None = None,
+    output: str | None = None,
+    name: str | None = None,
+):
+    """A ``control.NonlinearIOSystem`` (discrete, sample time dt) stepping ``block``; the
+    signal names default to the block's ``control_inputs`` and ``control_output``."""
+    control = require_control()
+    inputs = list(block.control_inputs if inputs is None else inputs)
+    if len(inputs) != len(block.control_inputs):
+        raise ValueError(
+            f"to_control: {type(block).__name__} has {len(block.control_inputs)} input(s) "
+            f"{list(block.control_inputs)}; got the names {inputs}"
+        )
+    output = block.control_output if output is None else output
+    number = isinstance(dt, int | float) and not isinstance(dt, bool)
+    if not (number and math.isfinite(dt) and dt > 0):
+        raise ValueError(f"to_control: dt must be a finite sample time > 0 in s (got {dt!r})")
+    lag = streaming_delay(block)
+    if lag:
+        raise ValueError(
+            f"to_control: {type(block).__name__} streams with a delay of {lag} samples "
+            "(input_interpolation='bandlimited'); use 'linear' or 'hold'"
+        )
+    snaps = Snapshots(block, float(dt))
+    system = control.nlsys(
+        lambda t, x, u, params: np.array([snaps.update(x, u)], dtype=float),
+        lambda t, x, u, params: np.array([snaps.output(x, u)]),
+        inputs=inputs,
+        outputs=[output],
+        states=["snapshot"],
+        dt=float(dt),
+        name=name,
+    )
+    system.snapshots = snaps
+    return system
+
+
+def streaming_delay(block) -> int:
+    """Samples by which ``block.step`` lags its input (parts of a Chain or Scaled included)."""
+    lag = getattr(block, "delay", 0)
+    lag = lag if isinstance(lag, int) else 0
+    for part in ("first", "second", "inner"):
+        inner = getattr(block, part, None)
+        if inner is not None and inner is not block and hasattr(inner, "step"):
+            lag += streaming_delay(inner)
+    return lag
+
+
+def frequency_response_data(frequencies_hz, gain_db, phase_deg, name: str | None = None):
+    """``control.FrequencyResponseData`` from gains (dB) and phases (deg) at frequencies (Hz)."""
+    control = require_control()
+    f = np.asarray(frequencies_hz, dtype=float)
+    response = 10.0 ** (np.asarray(gain_db, dtype=float) / 20.0) * np.exp(
+        1j * np.radians(np.asarray(phase_deg, dtype=float))
+    )
+    return control.FrequencyResponseData(response, 2.0 * np.pi * f, name=name)
