@@ -65,9 +65,7 @@ def _opened(path: Path):
         from rosbags.highlevel import AnyReader
         from rosbags.typesys import Stores, get_typestore
     except ImportError:
-        raise ValueError(
-            f"{path}: reading ROS bags needs the rosbags library: {INSTALL}"
-        ) from None
+        raise ValueError(f"{path}: reading ROS bags needs the rosbags library: {INSTALL}") from None
     if not path.exists():
         raise ValueError(f"data file not found: {path}")
     # a ROS 2 bag written before Iron holds no type definitions: the standard ones serve
@@ -259,11 +257,11 @@ def _plan(reader, path: Path, specs: dict, time_signal: Signal | None) -> dict[s
 def read_bag(path: Path, time, specs: dict, missing: str) -> BagTable:
     """Read and align the named signals (``specs``: role -> "/topic:field"; roles "input",
     "output", "curve angle") by the rules in the module's doc."""
-    try:
-        mode, time_signal = _time_mode(time)
-    except ValueError as exc:
-        raise ValueError(f"{path}: {exc}") from None
     with _opened(path) as reader:
+        try:
+            mode, time_signal = _time_mode(time)
+        except ValueError as exc:
+            raise ValueError(f"{path}: {exc}") from None
         if specs.get("input") is None:
             raise ValueError(
                 f"{path}: name the input as /topic:field; topics: {_topic_list(reader)}"

@@ -34,7 +34,7 @@ class Signal:
 
 
 def parse_signal(spec, role: str) -> Signal:
-    """"/topic:field" (or "/topic") -> Signal; a one-line ValueError for anything else."""
+    """A "/topic:field" (or "/topic") -> Signal; a one-line ValueError for anything else."""
     s = str(spec).strip()
     topic, _, field = s.partition(":")
     if not topic or any(c.isspace() for c in topic):
