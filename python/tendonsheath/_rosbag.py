@@ -232,7 +232,10 @@ def _plan(reader, path: Path, specs: dict, time_signal: Signal | None) -> dict[s
     """The topics to read, with the signals each carries (an error for a missing topic)."""
     infos = reader.topics
     topics: dict[str, _Topic] = {}
-    named = [(role, parse_signal(spec, role)) for role, spec in specs.items()]
+    try:
+        named = [(role, parse_signal(spec, role)) for role, spec in specs.items()]
+    except ValueError as exc:
+        raise ValueError(f"{path}: {exc}") from None
     if time_signal is not None:
         named.append(("time", time_signal))
     for role, signal in named:
