@@ -189,6 +189,15 @@ ERRORS = [
     ({"input": "/f", "time": "t"}, r"time must be 'header', 'receive' or /topic:field"),
     ({"input": "/f", "time": "/js:header.stamp"}, r"time topic /js must be the input's or"),
     ({"input": "/f", "curve_angle": "/theta:data"}, r"no curve angle topic '/theta'"),
+    (
+        {"input": "/js:position[0]", "time": "/js:name[0]"},
+        r"run.bag: topic /js, message 1: the time field 'name\[0\]' is neither a "
+        r"builtin_interfaces/msg/Time nor a number of seconds$",
+    ),
+    (
+        {"input": "/js:position[0]", "time": "/js:position[7]"},
+        r"run.bag: topic /js, message 1: time field position\[7\] has 2 item\(s\), no index 7$",
+    ),
 ]
 
 
@@ -251,6 +260,17 @@ def test_columns_lists_every_number_as_topic_and_field(tmp_path, kind):
     assert "/f" in cols and "/f:data" in cols
     assert {"/js:position[0]", "/js:position[1]", "/js:header.stamp.sec"} <= set(cols)
     assert "/js" not in cols  # more than one number: no bare topic
+
+
+def test_a_long_array_lists_its_first_items_only(tmp_path):
+    topics = {"/big": [(EPOCH_NS, joint_state("ros1", EPOCH_NS, np.arange(5000.0)))]}
+    cols = io.columns(_bag(tmp_path, "ros1", topics))
+    assert "/big:position[63]" in cols and "/big:position[64]" not in cols
+    # 40 fields listed: the ROS 1 header's three numbers, then position[0] to position[36]
+    with pytest.raises(
+        ValueError, match=r"stamp.nanosec, position\[0\], .*, position\[36\], \.\.\.$"
+    ):
+        io.read_log(_bag(tmp_path, "ros1", topics, name="b"), input="/big:nope")
 
 
 def test_constant_curve_angle_and_a_curve_angle_topic(tmp_path):

@@ -31,6 +31,7 @@ import numpy as np
 from ._rosfields import (
     Signal,
     check_signal,
+    field_value,
     header_stamp_ns,
     numeric_fields,
     only_number,
@@ -148,11 +149,9 @@ def _resolve(topic: _Topic, msg, path: Path) -> None:
 
 def _time_value(signal: Signal, msg, number: int) -> int:
     """A time field in nanoseconds: a builtin_interfaces/msg/Time, or a number of seconds."""
-    value = msg
-    for step in signal.steps:
-        value = value[step] if isinstance(step, int) else getattr(value, step, None)
-        if value is None:
-            break
+    value, failed, why = field_value(msg, signal.steps)
+    if failed is not None:
+        raise ValueError(f"topic {signal.topic}, message {number}: time field {signal.field} {why}")
     ns = stamp_ns(value)
     if ns is not None:
         return ns

@@ -18,6 +18,7 @@ import numpy as np
 _FIELD = re.compile(r"[A-Za-z_]\w*(\[-?\d+\])*(\.[A-Za-z_]\w*(\[-?\d+\])*)*")
 _STEP = re.compile(r"\.?([A-Za-z_]\w*)|\[(-?\d+)\]")
 MAX_LISTED = 40  # fields named in an error message
+MAX_ITEMS = 64  # items listed of one array (an image's pixels are not fields to list)
 
 
 @dataclass(frozen=True)
@@ -66,8 +67,8 @@ def _is_number(value) -> bool:
 
 
 def numeric_fields(msg, prefix: str = "", limit: int | None = None) -> list[str]:
-    """The field paths of every number in a message (array items one by one; of an array of
-    messages, the first item's), in the message's order; at most ``limit``."""
+    """The field paths of every number in a message (array items one by one, the first
+    ``MAX_ITEMS``; of an array of messages, the first item's), in order; at most ``limit``."""
     out: list[str] = []
 
     def walk(value, path):
@@ -79,7 +80,7 @@ def numeric_fields(msg, prefix: str = "", limit: int | None = None) -> list[str]
         elif _is_number(value):
             out.append(path)
         elif isinstance(value, np.ndarray) and value.dtype.kind in "biuf":
-            out.extend(f"{path}[{i}]" for i in range(value.size))
+            out.extend(f"{path}[{i}]" for i in range(min(value.size, MAX_ITEMS)))
         elif isinstance(value, list | tuple) and value:
             walk(value[0], f"{path}[0]")
 
@@ -102,7 +103,7 @@ def only_number(msg) -> str | None:
     return names[0] if len(names) == 1 else None
 
 
-def _walk(msg, steps: tuple):
+def field_value(msg, steps: tuple):
     """The value at a field path, or (None, the step that failed, why)."""
     value = msg
     for k, step in enumerate(steps):
@@ -131,7 +132,7 @@ def check_signal(signal: Signal, msg, msgtype: str, role: str) -> Signal:
                 f"{signal.topic}:FIELD; fields: {describe_fields(msg)}"
             )
         return parse_signal(f"{signal.topic}:{name}", role)
-    value, failed, why = _walk(msg, signal.steps)
+    value, failed, why = field_value(msg, signal.steps)
     if failed is not None:
         raise ValueError(
             f"{where}: no {role} field {signal.field!r} ({_prefix(signal.steps, failed)} "
@@ -166,7 +167,7 @@ def _kind(value) -> str:
 def value_of(signal: Signal, msg, number: int) -> float:
     """The signal's number in one message (checked on the topic's first message; later ones
     may still differ, e.g. a shorter array)."""
-    value, failed, why = _walk(msg, signal.steps)
+    value, failed, why = field_value(msg, signal.steps)
     where = f"topic {signal.topic}, message {number}"
     if failed is not None:
         raise ValueError(f"{where}: {_prefix(signal.steps, failed)} {why}")
