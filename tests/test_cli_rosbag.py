@@ -84,3 +84,28 @@ def test_a_missing_topic_is_one_line_through_the_command(tmp_path):
         "no input topic '/motor'; topics: /motor/joint_states (sensor_msgs/msg/JointState" in text
     )
     assert "Traceback" not in result.output and not (tmp_path / "m.json").exists()
+
+
+def test_compare_ranks_candidates_on_a_bag(tmp_path):
+    bag = _run_bag(tmp_path / "run", "sqlite3")
+    args = ["compare", str(bag), *SIGNALS, "--models", "backlash", "--maxiter", "5", "--quiet"]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 0, result.output
+    text = " ".join(result.output.split())
+    assert "Backlash" in text and "samples: the messages of /tip/point" in text
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_resample_a_bag_onto_a_uniform_grid(tmp_path, kind):
+    log = ts.io.read_log(
+        _run_bag(tmp_path / "run", kind),
+        input="/motor/joint_states:position[0]",
+        output="/tip/point:point.x",
+        resample=50.0,
+    )
+    np.testing.assert_allclose(np.diff(log.t), 0.02, atol=1e-12)
+    # the input is a 0.5 Hz sine (w = pi rad/s), interpolated twice: from the 4 ms commands
+    # to the 10 ms tip stamps, then onto the 20 ms grid; each errs by at most h^2 w^2 / 8
+    t_abs = log.t + 3e-3  # the tip's first stamp is 3 ms after the motor's
+    bound = (0.004**2 + 0.01**2) * np.pi**2 / 8
+    assert np.max(np.abs(log.x - np.sin(np.pi * t_abs))) <= bound
