@@ -236,6 +236,15 @@ def test_topics_that_do_not_overlap_in_time(tmp_path):
         io.read_log(_bag(tmp_path, "ros1", topics), input="/a", output="/b")
 
 
+def test_topics_that_each_overlap_the_output_but_not_each_other(tmp_path):
+    def stream(first, count):
+        return [(EPOCH_NS + (first + k) * 10**7, float64("ros1", k)) for k in range(count)]
+
+    topics = {"/y": stream(0, 30), "/x": stream(0, 10), "/theta": stream(20, 10)}
+    with pytest.raises(ValueError, match=r"no message of /y lies within the time span of every"):
+        io.read_log(_bag(tmp_path, "ros1", topics), input="/x", output="/y", curve_angle="/theta")
+
+
 def test_a_broken_or_renamed_bag_and_a_missing_library(tmp_path, monkeypatch):
     good = _simple(tmp_path)
     cut = tmp_path / "cut.bag"

@@ -316,6 +316,11 @@ def _align(topics: dict[str, _Topic], specs: dict, mode: str) -> BagTable:
                 f"{int((t_ns < s.min()).sum())}, after its last: {int((t_ns > s.max()).sum())})"
             )
         keep &= inside
+    if not keep.any():
+        raise ValueError(
+            f"no message of {base.name} lies within the time span of every other topic "
+            f"({', '.join(f'{n}: {_span(stamps[n])}' for n in others)})"
+        )
     t_ns, rows = t_ns[keep], rows[keep]
     start = int(t_ns[0])
     columns = {TIME_KEY: (t_ns - start) * 1e-9}
