@@ -432,6 +432,8 @@ def read_log(
     irregular). ``degrees``: convert input, output and curve angle from degrees to radians.
     ``sheet``: the Excel sheet (name or index; default the first). Findings (duplicate
     timestamps, missing values, gaps, irregular sampling) are listed in ``Log.notes``.
+    A ROS bag (.bag, .db3, .mcap, a bag folder): signals are "/topic:field" and ``time`` is
+    None, "header", "receive" or "/topic:field" (see the module's doc).
     """
     if missing not in ("error", "drop", "interpolate"):
         raise ValueError(f"missing must be 'error', 'drop' or 'interpolate' (got {missing!r})")
