@@ -17,9 +17,10 @@ import tendonsheath as ts
 GOOD = "t,x,y\n0,1,2\n1,2,3\n2,3,4\n"
 
 FILES = [
-    ("a ROS 1 bag", "run.bag", b"#ROSBAG V2.0\nE\x00\x00\x00op=\x03\xb8\x01"),
-    ("an MCAP (ROS 2) bag", "run.mcap", b"\x89MCAP0\r\n\x00"),
-    ("a ROS 2 .db3 bag", "run.db3", b"SQLite format 3\x00\x10\x00"),
+    ("a cut-off ROS 1 bag", "run.bag", b"#ROSBAG V2.0\nE\x00\x00\x00op=\x03\xb8\x01"),
+    ("a cut-off MCAP (ROS 2) bag", "run.mcap", b"\x89MCAP0\r\n\x00"),
+    ("a cut-off ROS 2 .db3 bag", "run.db3", b"SQLite format 3\x00\x10\x00"),
+    ("a ROS 1 bag named .csv", "run.csv", b"#ROSBAG V2.0\nE\x00\x00\x00op=\x03\xb8\x01"),
     ("a Parquet file", "run.csv", b"PAR1\x15\x04"),
     ("a ZIP (an .xlsx renamed .csv)", "run.csv", b"PK\x03\x04\x14\x00"),
     ("gzip-compressed CSV", "run.csv.gz", b"\x1f\x8b\x08\x00"),
@@ -148,6 +149,92 @@ def _api_rows() -> list[str]:
     return [f"| {what} | {_cell(_message(fn))} |" for what, fn in cases]
 
 
+def _write_bag(path: Path) -> None:
+    """A real ROS 1 bag: /motor/joint_states (JointState, header stamps) at 100 Hz, /tip
+    (Float64, no header) at 50 Hz with a NaN in message 4, /late (Float64) after both."""
+    from rosbags.rosbag1 import Writer
+    from rosbags.typesys import Stores, get_typestore
+
+    store = get_typestore(Stores.ROS1_NOETIC)
+    ty = store.types
+    t0 = 1_700_000_000 * 10**9
+
+    def joint_state(ns, k):
+        stamp = ty["builtin_interfaces/msg/Time"](sec=ns // 10**9, nanosec=ns % 10**9)
+        header = ty["std_msgs/msg/Header"](seq=k, stamp=stamp, frame_id="")
+        pos = np.array([np.sin(k / 10), 0.0])
+        zero = np.zeros(0)
+        return ty["sensor_msgs/msg/JointState"](
+            header=header, name=["m0", "m1"], position=pos, velocity=zero, effort=zero
+        )
+
+    def float64(value):
+        return ty["std_msgs/msg/Float64"](data=float(value))
+
+    with Writer(path) as w:
+        conns = {
+            name: w.add_connection(name, msgtype, typestore=store)
+            for name, msgtype in (
+                ("/motor/joint_states", "sensor_msgs/msg/JointState"),
+                ("/tip", "std_msgs/msg/Float64"),
+                ("/late", "std_msgs/msg/Float64"),
+            )
+        }
+        stream = [
+            (t0 + k * 10**7, "/motor/joint_states", joint_state(t0 + k * 10**7, k))
+            for k in range(100)
+        ]
+        stream += [
+            (t0 + k * 2 * 10**7 + 1, "/tip", float64(np.nan if k == 3 else k)) for k in range(50)
+        ]
+        stream += [(t0 + 2 * 10**9 + k * 10**7, "/late", float64(k)) for k in range(10)]
+        for ns, topic, msg in sorted(stream, key=lambda item: item[0]):
+            w.write(conns[topic], ns, store.serialize_ros1(msg, msg.__msgtype__))
+
+
+def _bag_rows() -> list[str]:
+    import sys
+
+    path = Path("run.bag")
+    _write_bag(path)
+    motor = "/motor/joint_states:position[0]"
+    cases = [
+        ("no input named", {"input": None}),
+        ("a topic the bag lacks", {"input": "/motor:position[0]"}),
+        ("a field the message lacks", {"input": "/motor/joint_states:pos"}),
+        ("an index past the array's end", {"input": "/motor/joint_states:position[5]"}),
+        ("an array without an index", {"input": "/motor/joint_states:position"}),
+        ("a nested message, not a number", {"input": "/motor/joint_states:header.stamp"}),
+        ("a text field", {"input": "/motor/joint_states:name[0]"}),
+        ("a topic with several numbers named alone", {"input": "/motor/joint_states"}),
+        ("not a field path", {"input": "/motor/joint_states:position[0"}),
+        ("a CSV time column name", {"input": motor, "time": "t"}),
+        ("header time on a topic without a header", {"input": "/late", "time": "header"}),
+        ("a NaN in a message", {"input": motor, "output": "/tip"}),
+        ("topics that do not overlap in time", {"input": motor, "output": "/late"}),
+        (
+            "works: NaN dropped (missing='drop')",
+            {"input": motor, "output": "/tip", "missing": "drop"},
+        ),
+    ]
+    rows = []
+    for what, kwargs in cases:
+
+        def read(kwargs=kwargs):
+            log = ts.io.read_log(path, **kwargs)
+            return f"{len(log)} samples; notes: {'; '.join(log.notes)}"
+
+        rows.append(f"| {what} | {_cell(_message(read))} |")
+    saved = sys.modules.get("rosbags.highlevel")
+    sys.modules["rosbags.highlevel"] = None  # as if the ros extra were not installed
+    try:
+        msg = _message(lambda: ts.io.read_log(path, input=motor))
+    finally:
+        sys.modules["rosbags.highlevel"] = saved
+    rows.append(f"| the rosbags library not installed | {_cell(msg)} |")
+    return rows
+
+
 def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         os.chdir(tmp)
@@ -155,6 +242,8 @@ def main() -> None:
         print("\n".join(_file_rows(FILES) + _toml_rows() + _api_rows()))
         print("\n| unusual but readable | what you get |\n| --- | --- |")
         print("\n".join(_file_rows(WORKS)))
+        print("\n| ROS bag (run.bag, written by the script) | what you get |\n| --- | --- |")
+        print("\n".join(_bag_rows()))
 
 
 if __name__ == "__main__":

@@ -13,8 +13,9 @@ BAD = [
     (
         "ros.bag",
         b"#ROSBAG V2.0\nE\x00\x00\x00\x05op=\x03\xb8\x01",
-        r"a ROS 1 bag, not a data table",
+        r"ros.bag: cannot read it as a ROS 1 bag \(",
     ),
+    ("ros.csv", b"#ROSBAG V2.0\nE\x00", r"a ROS 1 bag, not a data table.*name it .bag"),
     ("mcap.csv", b"\x89MCAP0\r\n\x00\x00", r"MCAP"),
     ("empty.csv", b"", r"the file is empty \(0 bytes\)"),
     ("blank.csv", b"\n \n\t\n", r"only blank lines"),

@@ -44,6 +44,7 @@ def placeholders(tmp_path, monkeypatch):
     tip = ts.models.BoucWenBacklash(B_r=0.1, B_l=0.08).simulate(ts_xlsx, motor)
     frame = pd.DataFrame({"t": ts_xlsx, "motor": np.degrees(motor), "tip": np.degrees(tip)})
     frame.to_excel(tmp_path / "run.xlsx", index=False)
+    _write_run_bag(tmp_path / "run", ts_xlsx, motor, tip)
     return {
         "t": t,
         "x": x,
@@ -55,6 +56,23 @@ def placeholders(tmp_path, monkeypatch):
         "y_measured_k": 0.19,
         "motor_position_k": 0.25,
     }
+
+
+def _write_run_bag(path, t, motor, tip):
+    """run.bag: the motor on a JointState topic, the tip on a PointStamped one (ROS 1)."""
+    from _rosbag_helpers import EPOCH_NS, joint_state, point_stamped, write_bag
+
+    ns = EPOCH_NS + np.round(np.sort(t - t.min()) * 1e9).astype(np.int64)
+    write_bag(
+        path,
+        "ros1",
+        {
+            "/motor/joint_states": [
+                (s, joint_state("ros1", s, [m])) for s, m in zip(ns, motor, strict=True)
+            ],
+            "/tip/point": [(s, point_stamped("ros1", s, y)) for s, y in zip(ns, tip, strict=True)],
+        },
+    )
 
 
 def test_readme_has_its_snippets():
@@ -74,6 +92,7 @@ def test_every_readme_python_snippet_runs_as_written(placeholders, tmp_path):
     assert (tmp_path / "fit.png").stat().st_size > 0
     assert (tmp_path / "compare-out" / "report.html").is_file()
     assert ts.load_model(tmp_path / "model.json") is not None
+    assert namespace["bag_log"].y.size > 1000  # run.bag, read from its two topics
     assert np.isfinite(namespace["result"].metrics["rmse"])
     assert np.isfinite(namespace["tau"]) and np.isfinite(namespace["u_k"])
 

@@ -23,20 +23,20 @@ import numpy as np
 CHUNK_LINES = 1 << 16
 HEAD_BYTES = 1 << 16
 DELIMITERS = (",", "\t", ";", "|")
-SUPPORTED = "CSV/TSV text with a header row, NPY, NPZ, HDF5 (.h5) or Excel (.xlsx)"
+SUPPORTED = (
+    "CSV/TSV text with a header row, NPY, NPZ, HDF5 (.h5), Excel (.xlsx) or a ROS bag "
+    "(.bag, .db3, .mcap)"
+)
 
 # (magic bytes at offset 0, what the file looks like, what to do)
 _MAGIC = (
-    (
-        b"#ROSBAG",
-        "a ROS 1 bag",
-        "export the topics to CSV first, e.g. `rostopic echo -b FILE.bag -p /topic > topic.csv`",
-    ),
-    (b"\x89MCAP", "an MCAP (ROS 2) bag", "export the topics to CSV first"),
+    # a bag is read by its suffix (that is how rosbags tells them apart)
+    (b"#ROSBAG", "a ROS 1 bag", "name it .bag to read it as one"),
+    (b"\x89MCAP", "an MCAP (ROS 2) bag", "name it .mcap to read it as one"),
     (
         b"SQLite format 3\x00",
         "an SQLite database (a ROS 2 .db3 bag?)",
-        "export the topics to CSV first",
+        "if it is a ROS 2 bag, name it .db3",
     ),
     (b"PAR1", "a Parquet file", "convert it, e.g. pandas.read_parquet(...).to_csv(...)"),
     (b"\x89HDF\r\n\x1a\n", "an HDF5 file", "name it .h5"),

@@ -253,6 +253,12 @@ def bench(
     console.print(f"wrote {written['report']} and {written['metrics']}")
 
 
+_TIME_HELP = (
+    "Time column (s). In a ROS bag: header, receive or /topic:field (default: header stamps "
+    "where the messages have them, else the receive time)."
+)
+
+
 def _fail(reason) -> None:
     """One-line reason on bad input, and a non-zero exit (2)."""
     from rich.markup import escape
@@ -267,7 +273,9 @@ def _fail(reason) -> None:
 @_stops_on_ctrl_c
 def identify(
     data: list[Path] = typer.Argument(
-        ..., help="Data file(s): CSV/TSV with header, NPY, NPZ, HDF5, Excel."
+        ...,
+        help="Data file(s): CSV/TSV with header, NPY, NPZ, HDF5, Excel, ROS bag (.bag, .db3, "
+        ".mcap or a bag folder).",
     ),
     model: str = typer.Option(
         ...,
@@ -275,9 +283,16 @@ def identify(
         "-m",
         help="Model class or short name, e.g. BoucWenBacklash, bwb, pi, gpi, bwb+poly3.",
     ),
-    input_col: str = typer.Option(..., "--input", help="Input column (motor position)."),
-    output_col: str = typer.Option(..., "--output", help="Output column (tip position)."),
-    time_col: str | None = typer.Option(None, "--time", help="Time column (s)."),
+    input_col: str = typer.Option(
+        ...,
+        "--input",
+        help="Input column (motor position); in a ROS bag /topic:field, e.g. "
+        "/motor/joint_states:position[0].",
+    ),
+    output_col: str = typer.Option(
+        ..., "--output", help="Output column (tip position); in a ROS bag /topic:field."
+    ),
+    time_col: str | None = typer.Option(None, "--time", help=_TIME_HELP),
     curve_angle: str | None = typer.Option(
         None, "--curve-angle", help="Curve-angle column, or a number (rad)."
     ),
@@ -470,7 +485,7 @@ def predict(
         _check_finite(f"prediction of {data}", {k: m[k] for k in ("rmse", "nrmse")})
     cols = {}
     if log.t is not None:
-        cols[time_col] = log.t
+        cols[time_col or "time"] = log.t  # a bag has a time without a time column
     cols[input_col] = log.x
     if log.y is not None:
         cols[wanted_output] = log.y
@@ -665,11 +680,15 @@ def _cli_note(note: str) -> str:
 @_stops_on_ctrl_c
 def compare(
     data: list[Path] = typer.Argument(
-        ..., help="Training data file(s): CSV/TSV with header, NPY, NPZ, HDF5, Excel."
+        ...,
+        help="Training data file(s): CSV/TSV with header, NPY, NPZ, HDF5, Excel, ROS bag "
+        "(.bag, .db3, .mcap or a bag folder).",
     ),
-    input_col: str = typer.Option(..., "--input", help="Input column."),
-    output_col: str = typer.Option(..., "--output", help="Output column."),
-    time_col: str | None = typer.Option(None, "--time", help="Time column (s)."),
+    input_col: str = typer.Option(..., "--input", help="Input column; in a ROS bag /topic:field."),
+    output_col: str = typer.Option(
+        ..., "--output", help="Output column; in a ROS bag /topic:field."
+    ),
+    time_col: str | None = typer.Option(None, "--time", help=_TIME_HELP),
     curve_angle: str | None = typer.Option(
         None, "--curve-angle", help="Curve-angle column, or a number."
     ),

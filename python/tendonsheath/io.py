@@ -1,4 +1,5 @@
-"""Reading logged data: CSV/TSV with a header, NPY (structured or 2-D), NPZ, HDF5, Excel.
+"""Reading logged data: CSV/TSV with a header, NPY (structured or 2-D), NPZ, HDF5, Excel, and
+ROS bags (ROS 1 .bag; ROS 2 .db3, .mcap or a bag folder; the ``ros`` extra).
 
 ``read_log(path, time=..., input=..., output=..., curve_angle=...)`` returns a :class:`Log`
 with the named columns as float arrays. Every problem raises ValueError naming the file,
@@ -17,6 +18,13 @@ sample index (``Log.index``). ``degrees=True`` converts the input, the output an
 angle from degrees to radians; :func:`deg2rad` and :func:`rad2deg` convert arrays.
 
 Row numbers are those of the file: for text and Excel files row 1 is the header.
+
+In a ROS bag the input, output and curve angle are named "/topic:field" (e.g.
+"/motor/joint_states:position[0]", "/tip/pose:pose.position.x"); ``time`` is None (header
+stamps where a message has them, else the receive time), "header", "receive" or a
+"/topic:field". The output topic's messages are the samples and the input is interpolated
+at their times (see ``_rosbag`` for the rules; ``Log.notes`` says what was used); a row is
+then a message number.
 """
 
 from __future__ import annotations
@@ -28,6 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from ._atomic import atomic_path
+from ._rosbag import TIME_KEY, bag_columns, bag_path, read_bag
 from ._textread import Column, parse_cells, read_text_header, read_text_table
 
 MIN_ROWS = 3
@@ -47,7 +56,7 @@ class Log:
     path: str = ""
     columns: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
-    rows: np.ndarray | None = None  # the file row of every sample (None after resampling)
+    rows: np.ndarray | None = None  # the file row (bag: message) of every sample; None resampled
 
     def __len__(self) -> int:
         return int(self.x.size)
@@ -165,8 +174,11 @@ class _Table:
     empty and first text cell) or a raw array (binary formats); the file row of every data
     row (``rows``), or of the first (``first_row``, rows then follow on)."""
 
-    def __init__(self, path: Path, columns: dict, first_row: int, rows=None, notes=()):
+    def __init__(
+        self, path: Path, columns: dict, first_row: int, rows=None, notes=(), row_name="row"
+    ):
         self.path = path
+        self.row_name = row_name  # "message" in a ROS bag
         self.columns = columns
         self.first_row = first_row
         self.rows = rows
@@ -224,7 +236,7 @@ class _Table:
         if bad.size:
             i = int(bad[0])
             raise ValueError(
-                f"{self.path}: column {key!r}, row {self.row(i)}: value {out[i]} "
+                f"{self.path}: column {key!r}, {self.row_name} {self.row(i)}: value {out[i]} "
                 "is not a finite number"
             )
         return out
@@ -383,8 +395,12 @@ def _open(path: Path, sheet=None) -> _Table:
 
 
 def columns(path: str | Path, sheet=None) -> list[str]:
-    """The column names of a data file (of a text file: from its header alone)."""
+    """The column names of a data file (of a text file: from its header alone; of a ROS bag:
+    every number its topics hold, as /topic:field)."""
     path = Path(path)
+    bag = bag_path(path)
+    if bag is not None:
+        return bag_columns(bag)
     if _is_text(path):
         _check_readable(path)
         return read_text_header(path)
@@ -416,11 +432,18 @@ def read_log(
     irregular). ``degrees``: convert input, output and curve angle from degrees to radians.
     ``sheet``: the Excel sheet (name or index; default the first). Findings (duplicate
     timestamps, missing values, gaps, irregular sampling) are listed in ``Log.notes``.
+    A ROS bag (.bag, .db3, .mcap, a bag folder): signals are "/topic:field" and ``time`` is
+    None, "header", "receive" or "/topic:field" (see the module's doc).
     """
     if missing not in ("error", "drop", "interpolate"):
         raise ValueError(f"missing must be 'error', 'drop' or 'interpolate' (got {missing!r})")
     path = Path(path)
-    table = _open(path, sheet)
+    bag = bag_path(path)
+    if bag is not None:
+        table = _read_bag(bag, time, input, output, curve_angle, missing)
+        time = TIME_KEY
+    else:
+        table = _open(path, sheet)
     if input is None:
         raise ValueError(f"{path}: name the input column; columns: {table.names()}")
     allow = missing != "error"
@@ -477,8 +500,8 @@ def read_log(
         keep = np.r_[True, np.diff(t) != 0]
         if not keep.all():
             notes.append(
-                f"{int((~keep).sum())} row(s) with a duplicate timestamp dropped (first kept): "
-                f"rows {_ranges(rows[~keep])}"
+                f"{int((~keep).sum())} {table.row_name}(s) with a duplicate timestamp dropped "
+                f"(first kept): {table.row_name}s {_ranges(rows[~keep])}"
             )
             keep_rows(keep)
     if allow:
@@ -489,8 +512,8 @@ def read_log(
         if bad.any():
             if missing == "drop":
                 notes.append(
-                    f"{int(bad.sum())} row(s) with a missing value dropped: "
-                    f"rows {_ranges(rows[bad])}"
+                    f"{int(bad.sum())} {table.row_name}(s) with a missing value dropped: "
+                    f"{table.row_name}s {_ranges(rows[bad])}"
                 )
                 keep_rows(~bad)
             else:
@@ -504,11 +527,13 @@ def read_log(
                     if m.any():
                         arr[m] = np.interp(base[m], base[~m], arr[~m])
                 notes.append(
-                    f"{int(bad.sum())} row(s) with a missing value interpolated: "
-                    f"rows {_ranges(rows[bad])}"
+                    f"{int(bad.sum())} {table.row_name}(s) with a missing value interpolated: "
+                    f"{table.row_name}s {_ranges(rows[bad])}"
                 )
     if x.size < MIN_ROWS:
-        raise ValueError(f"{path}: too few rows ({x.size}); at least {MIN_ROWS} are needed")
+        raise ValueError(
+            f"{path}: too few {table.row_name}s ({x.size}); at least {MIN_ROWS} are needed"
+        )
     if t is not None:
         dt = np.diff(t)
         med = float(np.median(dt))
@@ -516,7 +541,7 @@ def read_log(
         if gaps.size:
             notes.append(
                 f"{gaps.size} gap(s) in time longer than {gap_factor:g}x the median step "
-                f"({med:.4g}): before rows {_ranges(rows[gaps + 1])} "
+                f"({med:.4g}): before {table.row_name}s {_ranges(rows[gaps + 1])} "
                 f"(longest {float(dt.max()):.4g})"
             )
         if _irregular(t):
@@ -542,6 +567,23 @@ def read_log(
     if degrees:
         log = log.to_radians()
     return log
+
+
+def _read_bag(bag: Path, time, input, output, curve_angle, missing) -> _Table:  # noqa: A002
+    """A ROS bag's named signals, aligned (``_rosbag``), as a table of columns."""
+    specs = {"input": input, "output": output}
+    if curve_angle is not None and not _is_number(curve_angle):
+        specs["curve angle"] = curve_angle
+    data = read_bag(bag, time, specs, missing)
+    return _Table(bag, data.columns, 1, rows=data.rows, notes=data.notes, row_name="message")
+
+
+def _is_number(value) -> bool:
+    try:
+        float(value)
+    except (TypeError, ValueError):
+        return False
+    return True
 
 
 def write_csv(path: str | Path, columns: dict[str, np.ndarray]) -> Path:
