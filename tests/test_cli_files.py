@@ -123,6 +123,12 @@ def test_ctrl_c_stops_identify_cleanly_and_writes_nothing(tmp_path):
         *COLS,
         "--maxiter",
         "100000",
+        # the fit alone can end within the second before Ctrl-C; a million bootstrap re-fits
+        # after it cannot, so the interrupt always lands in the work
+        "--standard-errors",
+        "bootstrap",
+        "--resamples",
+        "1000000",
         "-o",
         str(out),
     ]
