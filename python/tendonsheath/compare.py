@@ -84,6 +84,7 @@ CANDIDATES = (
     "BoucWen",
     "HystereticOscillator",
     "CurveAngleModel",
+    "PlantModel",
 )
 
 _ALIASES = {
@@ -92,6 +93,7 @@ _ALIASES = {
     "gpi": "GeneralizedPrandtlIshlinskii",
     "bw": "BoucWen",
     "curve": "CurveAngleModel",
+    "plant": "PlantModel",
 }
 _BLOCKS = {"lag1": FirstOrderLag, "lag2": SecondOrderLag}
 

@@ -14,6 +14,7 @@ from ..models import (
     GeneralizedPrandtlIshlinskii,
     HysteresisModel,
     HystereticOscillator,
+    PlantModel,
     PrandtlIshlinskii,
 )
 from ..models.base import _REGISTRY
@@ -305,6 +306,30 @@ def identify(
             warmup=int(warmup),
             bounds=bounds,
             fixed=fixed,
+            seed=seed,
+            maxiter=maxiter,
+            popsize=popsize,
+            tol=tol,
+            workers=workers,
+            polish=polish,
+            progress=progress,
+            standard_errors=se_method,
+            bootstrap=n_boot,
+            bootstrap_block=bootstrap_block,
+            budget=budget,
+        )
+        return _stamp(budget, fit)
+    if model_class in (PlantModel, "PlantModel"):
+        from .plant_model import identify_plant
+
+        if depends_on_angle or bounds or fixed:
+            raise ValueError("PlantModel: bounds, fixed and depends_on_angle are not supported")
+        if initial is not None and not isinstance(initial, PlantModel):
+            raise ValueError(f"initial must be a PlantModel (got {type(initial).__name__})")
+        fit = identify_plant(
+            make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle),
+            warmup=int(warmup),
+            initial=initial,
             seed=seed,
             maxiter=maxiter,
             popsize=popsize,
