@@ -235,6 +235,13 @@ def identify(
     ``fit.message`` says so. Standard errors and diagnostics are computed after it, outside
     the budget.
 
+    PlantModel (the grey-box pull-pull plant): friction angle, backlash and viscous time are
+    searched by a short differential evolution (at most 25 generations of 6 per parameter:
+    each candidate is a plant simulation) and refined by least squares; the output gain and
+    offset are solved by least squares for every candidate (see
+    :mod:`tendonsheath.identify.plant_model`). ``bounds``, ``fixed`` and ``depends_on_angle``
+    are not supported for it; ``initial`` sets its element count.
+
     GeneralizedPrandtlIshlinskii: the envelopes and the threshold scale are searched, the
     weights (>= 0) and an output offset are solved by bounded least squares; ``initial``
     gives the number of plays and the threshold pattern (default 10 evenly spaced plays).

@@ -39,6 +39,11 @@ class PlantModel(HysteresisModel):
 
     ``elements`` (option, default 10): the sheath's element count; a small one keeps the
     model cheap enough to identify in a model comparison.
+
+    The tendons are linear springs: where the viscous drag (``viscous_time`` times the speed)
+    exceeds the dead zone a tendon's tension passes below zero. The model then goes on as an
+    effective one (no :class:`~tendonsheath.plant.SlackWarning`); ``status`` and
+    ``simulate(..., status=True)`` flag those samples SLACK.
     """
 
     param_names = ("friction_angle", "backlash", "viscous_time", "gain", "offset")
@@ -100,7 +105,7 @@ class PlantModel(HysteresisModel):
         """Output for the input samples x at times t (needed), from rest at x[0]."""
         if t is None:
             raise ValueError("PlantModel is rate-dependent: t is required")
-        with warnings.catch_warnings():  # no load: a slack tendon is not expected; flagged
+        with warnings.catch_warnings():  # slack: flagged in the status, not warned (above)
             warnings.simplefilter("ignore")
             out = self._plant.simulate(t, x, status=bool(status))
         q, flags = out if status else (out, None)
