@@ -84,6 +84,7 @@ CANDIDATES = (
     "BoucWen",
     "HystereticOscillator",
     "CurveAngleModel",
+    "PlantModel",
 )
 
 _ALIASES = {
@@ -92,6 +93,7 @@ _ALIASES = {
     "gpi": "GeneralizedPrandtlIshlinskii",
     "bw": "BoucWen",
     "curve": "CurveAngleModel",
+    "plant": "PlantModel",
 }
 _BLOCKS = {"lag1": FirstOrderLag, "lag2": SecondOrderLag}
 
@@ -99,7 +101,8 @@ _BLOCKS = {"lag1": FirstOrderLag, "lag2": SecondOrderLag}
 def parse_model(spec) -> Any:
     """A candidate from a class, a Chain instance or a name: ``BoucWenBacklash``, ``gpi``,
     ``bwb+poly3`` (Chain with a cubic), ``bwb+odd3`` (odd cubic), ``bwb+lag2`` / ``pi+lag1``
-    (Hammerstein: then a second- / first-order lag), ``lag1+bwb`` (Wiener)."""
+    (Hammerstein: then a second- / first-order lag), ``lag1+bwb`` (Wiener), ``plant`` (the
+    grey-box :class:`~tendonsheath.models.PlantModel`; not a default candidate)."""
     if isinstance(spec, Chain) or (isinstance(spec, type) and issubclass(spec, HysteresisModel)):
         return spec
     if not isinstance(spec, str):

@@ -75,6 +75,9 @@ double rk4_in_x(const F& f, double w, double s, double h, int m) noexcept {
     const double k3 = f(clamp_stage(w + 0.5 * h * k2), s);
     const double k4 = f(clamp_stage(w + h * k3), s);
     w = clamp_unit(w + h * (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0);
+    // within 1e-12 of the attracting fixed point w = s the remaining sub-steps cannot leave
+    // it (the caller snaps it to s): the work is bounded by the transition, not the travel
+    if (w * s >= 1.0 - 1e-12) return s;
   }
   return w;
 }

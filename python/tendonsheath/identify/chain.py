@@ -120,7 +120,7 @@ class ChainProblem:
         return a, sse, resid
 
     def cost(self, C: np.ndarray) -> np.ndarray:
-        return self._solve(self.inner.simulate(C))[1]
+        return self._solve(self.inner.simulate(C, search=True))[1]
 
     def residual(self, c: np.ndarray) -> np.ndarray:
         _, sse, resid = self._solve(self.inner.simulate(np.atleast_2d(c)))

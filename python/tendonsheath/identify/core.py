@@ -14,6 +14,7 @@ from ..models import (
     GeneralizedPrandtlIshlinskii,
     HysteresisModel,
     HystereticOscillator,
+    PlantModel,
     PrandtlIshlinskii,
 )
 from ..models.base import _REGISTRY
@@ -234,6 +235,13 @@ def identify(
     ``fit.message`` says so. Standard errors and diagnostics are computed after it, outside
     the budget.
 
+    PlantModel (the grey-box pull-pull plant): friction angle, backlash and viscous time are
+    searched by a short differential evolution (at most 25 generations of 6 per parameter:
+    each candidate is a plant simulation) and refined by least squares; the output gain and
+    offset are solved by least squares for every candidate (see
+    :mod:`tendonsheath.identify.plant_model`). ``bounds``, ``fixed`` and ``depends_on_angle``
+    are not supported for it; ``initial`` sets its element count.
+
     GeneralizedPrandtlIshlinskii: the envelopes and the threshold scale are searched, the
     weights (>= 0) and an output offset are solved by bounded least squares; ``initial``
     gives the number of plays and the threshold pattern (default 10 evenly spaced plays).
@@ -305,6 +313,30 @@ def identify(
             warmup=int(warmup),
             bounds=bounds,
             fixed=fixed,
+            seed=seed,
+            maxiter=maxiter,
+            popsize=popsize,
+            tol=tol,
+            workers=workers,
+            polish=polish,
+            progress=progress,
+            standard_errors=se_method,
+            bootstrap=n_boot,
+            bootstrap_block=bootstrap_block,
+            budget=budget,
+        )
+        return _stamp(budget, fit)
+    if model_class in (PlantModel, "PlantModel"):
+        from .plant_model import identify_plant
+
+        if depends_on_angle or bounds or fixed:
+            raise ValueError("PlantModel: bounds, fixed and depends_on_angle are not supported")
+        if initial is not None and not isinstance(initial, PlantModel):
+            raise ValueError(f"initial must be a PlantModel (got {type(initial).__name__})")
+        fit = identify_plant(
+            make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle),
+            warmup=int(warmup),
+            initial=initial,
             seed=seed,
             maxiter=maxiter,
             popsize=popsize,

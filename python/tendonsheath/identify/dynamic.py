@@ -26,7 +26,7 @@ from ..models import BoucWenBacklash, Chain, LinearBlock, PrandtlIshlinskii, Sec
 from ..models.linear_block import apply_filter, sample_time
 from .data import Recording, check_for_fit, fitted_mask, recording_set
 from .fit import Fit, fit_quality, simulate_model
-from .problem import Space, _base_struct, bounded_lsq
+from .problem import Space, _base_struct, _search_base, bounded_lsq
 from .specs import BoucWenBacklashSpec, PrandtlIshlinskiiSpec, Scale
 
 STATIC = (BoucWenBacklash, PrandtlIshlinskii)
@@ -82,6 +82,9 @@ class DynamicProblem:
         self.space = Space(names, {**sb, **bb}, log)
         self.block_names = block.param_names
         self.base = _base_struct(self.static_cls, self.options, static.params)
+        self.search_base = _search_base(
+            self.static_cls, self.options, self.spec.search_options, static.params
+        )
         self.features = getattr(core, f"features_{self.spec.kind}")
         self.rs = recording_set(recs, warmup, False)
         self.y = np.concatenate([r.y for r in recs])
@@ -117,27 +120,29 @@ class DynamicProblem:
             out[s] = apply_filter(b, a, X[s], axis=0)
         return out
 
-    def regressors(self, c: np.ndarray) -> np.ndarray:
+    def regressors(self, c: np.ndarray, search: bool = False) -> np.ndarray:
         values, block = self._split(c)
         nl = np.ascontiguousarray(self.spec.nonlinear(values)[0], dtype=float)
+        base = self.search_base if search else self.base
         if self.hammerstein:
-            F = self._filter(block, self.features(self.base, nl, self.rs))
+            F = self._filter(block, self.features(base, nl, self.rs))
         else:
             xf = self._filter(block, np.concatenate([r.x for r in self.recs]))
             recs = [
                 Recording(r.t, xf[self.edges[i] : self.edges[i + 1]], r.y, None, r.skip)
                 for i, r in enumerate(self.recs)
             ]
-            F = self.features(self.base, nl, recording_set(recs, self.warmup, False))
+            F = self.features(base, nl, recording_set(recs, self.warmup, False))
         F = F[self.mask]
         if hasattr(self.spec, "to_partial_sums"):
             F = self.spec.to_partial_sums(F)
         return F
 
-    def linear(self, c: np.ndarray):
+    def linear(self, c: np.ndarray, search: bool = False):
+        """(linear parameters, residual) at c (``search``: the global search's options)."""
         y = self.y[self.mask]
         try:
-            F = self.regressors(c)
+            F = self.regressors(c, search)
         except ValueError:
             F = np.full((y.size, self.lo.size), np.nan)
         if not np.all(np.isfinite(F)):
@@ -146,7 +151,7 @@ class DynamicProblem:
         return theta, y - F @ theta
 
     def _one_cost(self, c: np.ndarray) -> float:
-        theta, r = self.linear(c)
+        theta, r = self.linear(c, search=True)
         return float(r @ r) if np.all(np.isfinite(theta)) else _PENALTY
 
     def cost(self, C: np.ndarray) -> np.ndarray:

@@ -38,6 +38,7 @@ from ..models import (
     GeneralizedPrandtlIshlinskii,
     HysteresisModel,
     LinearBlock,
+    PlantModel,
     Polynomial,
     PrandtlIshlinskii,
     Scaled,
@@ -48,7 +49,13 @@ from .diagnostics import entries_from_labels, se_dict, vector_of, with_vector
 from .fit import Fit, metrics, simulate_model
 
 #: model classes identified on normalised data by default
-NORMALIZED = (Backlash, BoucWenBacklash, PrandtlIshlinskii, GeneralizedPrandtlIshlinskii)
+NORMALIZED = (
+    Backlash,
+    BoucWenBacklash,
+    PrandtlIshlinskii,
+    GeneralizedPrandtlIshlinskii,
+    PlantModel,
+)
 _CHAIN_FIRST = (Backlash, BoucWenBacklash)
 #: the model in its own class is preferred to Scaled when its training rmse is at most this
 #: much (relative) worse: a PrandtlIshlinskii's plays start from x = 0, so the input offset

@@ -50,6 +50,25 @@ def _base_struct(model_class, options: dict, values: dict | None = None):
     return model_class(**(values or {}), **options)._engine.params
 
 
+#: options that the global search may only coarsen (it needs the basin, not the last digit)
+_COARSER = ("max_step",)
+
+
+def _search_base(model_class, options: dict, search_options: dict | None, values=None):
+    """The parameter struct used during the global search only: the spec's
+    ``search_options`` cap the work (``max_substeps``: the smaller one; ``max_step``: the
+    larger one); the refinement and the fitted model use ``options`` as given."""
+    if not search_options:
+        return _base_struct(model_class, options, values)
+    merged = dict(options)
+    for k, v in search_options.items():
+        pick = max if k in _COARSER else min
+        merged[k] = pick(merged.get(k, v), v)
+    if "substeps" in merged and "max_substeps" in merged:
+        merged["max_substeps"] = max(merged["max_substeps"], merged["substeps"])
+    return _base_struct(model_class, merged, values)
+
+
 class DirectProblem:
     """Search the free parameters (or angle-law coefficients) of a model directly."""
 
@@ -79,14 +98,7 @@ class DirectProblem:
         self.with_angle = model_class is CurveAngleModel
         self.rs = recording_set(recs, warmup, self.with_angle)
         self.base = _base_struct(model_class, options)
-        self.search_base = self.base
-        if search_options:
-            merged = dict(options)
-            for k, v in search_options.items():
-                merged[k] = min(merged.get(k, v), v)
-            if "substeps" in merged and "max_substeps" in merged:
-                merged["max_substeps"] = max(merged["max_substeps"], merged["substeps"])
-            self.search_base = _base_struct(model_class, merged)
+        self.search_base = _search_base(model_class, options, search_options)
         self.population_cost = getattr(core, f"population_cost_{model_class.__name__}")
         self.population_simulate = getattr(core, f"population_simulate_{model_class.__name__}")
         self.y = np.concatenate([r.y for r in recs])
@@ -159,8 +171,10 @@ class DirectProblem:
     def cost(self, C: np.ndarray) -> np.ndarray:
         return self.population_cost(self.search_base, self.rows(C), self.rs, self.workers)
 
-    def simulate(self, C: np.ndarray) -> np.ndarray:
-        return self.population_simulate(self.base, self.rows(C), self.rs, self.workers)
+    def simulate(self, C: np.ndarray, search: bool = False) -> np.ndarray:
+        """Outputs of a population (``search``: with the global search's options)."""
+        base = self.search_base if search else self.base
+        return self.population_simulate(base, self.rows(C), self.rs, self.workers)
 
     def residuals(self, C: np.ndarray) -> np.ndarray:
         """(P, n_fitted) residuals y - y_hat after warm-up."""
@@ -254,6 +268,7 @@ class SeparableProblem:
         self.space = Space(names, search_bounds, spec.log_names)
         self.rs = recording_set(recs, warmup, False)
         self.base = _base_struct(self.model_class, options, initial)
+        self.search_base = _search_base(self.model_class, options, spec.search_options, initial)
         kind = spec.kind
         self.separable_cost = getattr(core, f"separable_cost_{kind}")
         self.features = getattr(core, f"features_{kind}")
@@ -270,7 +285,7 @@ class SeparableProblem:
 
     def cost(self, S: np.ndarray) -> np.ndarray:
         nl = np.ascontiguousarray(self.spec.nonlinear(self._values(S)), dtype=float)
-        return self.separable_cost(self.base, nl, self.rs, self.workers)
+        return self.separable_cost(self.search_base, nl, self.rs, self.workers)
 
     def _regressors(self, s: np.ndarray) -> np.ndarray:
         nl = np.ascontiguousarray(self.spec.nonlinear(self._values(s))[0], dtype=float)

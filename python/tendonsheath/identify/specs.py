@@ -91,6 +91,10 @@ class BoucWenBacklashSpec(ModelSpec):
     log_names = frozenset({"rho"})
     separable = True
     search_names = ("rho", "sigma", "n")
+    # the global search integrates with RK4 sub-steps of rho |dx| <= 0.1 (the model's own
+    # 0.05 in the refinement and the fit): half the work, the same basin on the shared
+    # recordings and the plant data (benchmarks/realdata.py)
+    search_options = {"max_step": 0.1}
 
     def bounds(self, s, fixed):
         c = (0.2 * s.slope, 5.0 * s.slope)

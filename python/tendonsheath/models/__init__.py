@@ -13,6 +13,7 @@ from .generalized_prandtl_ishlinskii import (
 )
 from .hysteretic_oscillator import HystereticOscillator
 from .linear_block import FirstOrderLag, LinearBlock, SecondOrderLag
+from .plant_model import PlantModel
 from .polynomial import Polynomial
 from .prandtl_ishlinskii import PrandtlIshlinskii, PrandtlIshlinskiiInverse
 from .scaled import Scaled
@@ -28,6 +29,7 @@ __all__ = [
     "CurveAngleModel",
     "FirstOrderLag",
     "LinearBlock",
+    "PlantModel",
     "SecondOrderLag",
     "HysteresisModel",
     "HystereticOscillator",

@@ -1,0 +1,142 @@
+"""The pull-pull plant as a grey-box model: a few identifiable physical groups, not a copy of
+any plant's parameters."""
+
+from __future__ import annotations
+
+import math
+import numbers
+import warnings
+from typing import Any
+
+import numpy as np
+
+from ..status import Status
+from .base import HysteresisModel
+
+#: wrap angle of the internal uniform route (rad); only friction * wrap angle matters on it
+WRAP = 2.0 * math.pi
+_LIMITS = {  # (low, high, low included)
+    "friction_angle": (0.0, 20.0, False),
+    "backlash": (0.0, math.inf, False),
+    "viscous_time": (0.0, math.inf, True),
+    "gain": (-math.inf, math.inf, False),
+    "offset": (-math.inf, math.inf, False),
+}
+
+
+class PlantModel(HysteresisModel):
+    """A :class:`~tendonsheath.PullPullPlant` reduced to the groups its input/output data can
+    identify, in the data's own units (the pulley angle *is* the input):
+
+    - ``friction_angle`` mu Theta (rad): the capstan exponent, which shapes the transition
+      after a reversal (the route is a uniform arc; only the product matters on it);
+    - ``backlash`` e_b: half the dead zone, in input units; the tendon compliance follows as
+      L / EA = e_b / (T0 tanh(mu Theta / 2)) (spec A7; pretension, length and radii are
+      scale choices that the data cannot separate from it);
+    - ``viscous_time`` (s): the sheath's viscous drag relative to the tendon stiffness,
+      c_v L^2 / EA, which widens the loop with the rate (0: quasi-static);
+    - ``gain`` and ``offset``: the output map y = offset + gain * q_out (any sign, units).
+
+    ``elements`` (option, default 10): the sheath's element count; a small one keeps the
+    model cheap enough to identify in a model comparison.
+
+    The tendons are linear springs: where the viscous drag (``viscous_time`` times the speed)
+    exceeds the dead zone a tendon's tension passes below zero. The model then goes on as an
+    effective one (no :class:`~tendonsheath.plant.SlackWarning`); ``status`` and
+    ``simulate(..., status=True)`` flag those samples SLACK.
+    """
+
+    param_names = ("friction_angle", "backlash", "viscous_time", "gain", "offset")
+    option_names = ("elements",)
+    rate_independent = False
+
+    def __init__(
+        self,
+        friction_angle: float = 1.0,
+        backlash: float = 0.1,
+        viscous_time: float = 0.0,
+        gain: float = 1.0,
+        offset: float = 0.0,
+        elements: int = 10,
+    ):
+        values = {
+            "friction_angle": friction_angle,
+            "backlash": backlash,
+            "viscous_time": viscous_time,
+            "gain": gain,
+            "offset": offset,
+        }
+        self._values = {k: _checked(k, v) for k, v in values.items()}
+        if isinstance(elements, bool) or not isinstance(elements, numbers.Integral):
+            raise ValueError(f"PlantModel: elements must be an integer >= 2 (got {elements!r})")
+        if elements < 2:
+            raise ValueError(f"PlantModel: elements must be >= 2 (got {elements})")
+        self._elements = int(elements)
+        self._plant = self._make_plant()
+
+    def _make_plant(self):
+        from ..plant import PullPullPlant
+        from ..route import Route
+
+        v = self._values
+        compliance = v["backlash"] / math.tanh(0.5 * v["friction_angle"])  # L/EA at T0 = 1
+        stiffness = 1.0 / compliance  # EA with L = 1 m, T0 = 1 N, r_p = r_d = 1 m
+        viscosity = v["viscous_time"] * stiffness  # c_v = tau EA / L^2
+        return PullPullPlant(
+            route=Route.uniform(length=1.0, total_angle=WRAP),
+            friction=v["friction_angle"] / WRAP,
+            stiffness=stiffness,
+            pretension=1.0,
+            proximal_radius=1.0,
+            distal_radius=1.0,
+            elements=self._elements,
+            sheath_viscosity=viscosity if viscosity > 0 else None,
+        )
+
+    @property
+    def params(self) -> dict[str, Any]:
+        return dict(self._values)
+
+    @property
+    def options(self) -> dict[str, Any]:
+        return {"elements": self._elements}
+
+    def simulate(self, t, x, status: bool = False):
+        """Output for the input samples x at times t (needed), from rest at x[0]."""
+        if t is None:
+            raise ValueError("PlantModel is rate-dependent: t is required")
+        with warnings.catch_warnings():  # slack: flagged in the status, not warned (above)
+            warnings.simplefilter("ignore")
+            out = self._plant.simulate(t, x, status=bool(status))
+        q, flags = out if status else (out, None)
+        y = self._values["offset"] + self._values["gain"] * np.asarray(q)
+        return (y, flags) if status else y
+
+    def reset(self) -> None:
+        self._plant.reset()
+
+    def step(self, x: float, dt: float = 0.0) -> float:
+        return self._values["offset"] + self._values["gain"] * self._plant.step(x, dt)
+
+    def status(self) -> Status:
+        return self._plant.status()
+
+    def __repr__(self) -> str:
+        inner = ", ".join(f"{k}={v:.6g}" for k, v in self._values.items())
+        return f"PlantModel({inner}, elements={self._elements})"
+
+
+def _checked(name: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(f"PlantModel: {name} must be a number (got {value!r})")
+    v = float(value)
+    lo, hi, closed = _LIMITS[name]
+    ok = math.isfinite(v) and (lo <= v if closed else lo < v) and v < hi
+    if name == "gain":
+        ok = math.isfinite(v) and v != 0.0
+    if name == "offset":
+        ok = math.isfinite(v)
+    if not ok:
+        what = "finite and not 0" if name == "gain" else f"in {'[' if closed else '('}{lo}, {hi})"
+        raise ValueError(f"PlantModel: {name} must be {what} (got {v})")
+    return v
