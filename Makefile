@@ -108,7 +108,7 @@ wheel: install $(WHEEL_TOOLS)
 
 # the repaired wheel in a fresh venv outside the source tree, running the quick start
 wheel-test: wheel
-	bash tests/wheel_smoke.sh dist/*.whl
+	PYTHON=$(PYTHON) bash tests/wheel_smoke.sh dist/*.whl
 
 test-python: install chromium
 	$(PY) -m pytest -q
