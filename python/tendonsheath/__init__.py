@@ -1,5 +1,7 @@
 """tendonsheath: model, identify and compensate tendon-sheath mechanisms."""
 
+from importlib.metadata import version as _version
+
 from . import bench, compensate, io, loads, models, physics, presets
 from .compare import Comparison, compare_models
 from .identify import Fit, IdentifiabilityWarning, identify
@@ -17,7 +19,8 @@ from .sensor import Sensor
 from .status import Status, status_counts
 from .sweep import sweep
 
-__version__ = "0.1.0"
+# one source: pyproject.toml's version, as installed
+__version__ = _version("tendonsheath")
 
 __all__ = [
     "Comparison",

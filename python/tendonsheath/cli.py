@@ -87,8 +87,24 @@ def _print_notes(log) -> None:
         console.print(f"[yellow]{log.path}:[/yellow] {_cli_note(note)}", soft_wrap=True)
 
 
+def _print_version(value: bool) -> None:
+    if value:
+        from . import __version__
+
+        typer.echo(f"tendonsheath {__version__}")
+        raise typer.Exit()
+
+
 @app.callback()
-def _root() -> None:
+def _root(
+    version: bool = typer.Option(
+        False,
+        "--version",
+        callback=_print_version,
+        is_eager=True,
+        help="Print the version and exit.",
+    ),
+) -> None:
     """Model, identify and compensate tendon-sheath mechanisms."""
 
 

@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# Installs a built wheel into a fresh venv outside the source tree and runs the quick start
+# from there, so `import tendonsheath` can only find the installed wheel.
+# Usage: bash tests/wheel_smoke.sh dist/tendonsheath-*.whl
+set -euo pipefail
+wheel=$(realpath "${1:?usage: wheel_smoke.sh WHEEL}")
+python=${PYTHON:-python3}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+
+"$python" -m venv venv
+venv/bin/python -m pip install --quiet "$wheel"
+
+expected=$(venv/bin/python -c "from importlib.metadata import version; print(version('tendonsheath'))")
+for cmd in "venv/bin/tendonsheath --version" "venv/bin/python -m tendonsheath --version"; do
+  got=$($cmd)
+  [ "$got" = "tendonsheath $expected" ] || { echo "FAIL: '$cmd' printed '$got'"; exit 1; }
+done
+help=$(venv/bin/tendonsheath --help)
+for command in demo identify compare; do
+  grep -q "$command" <<< "$help" || { echo "FAIL: tendonsheath --help lists no $command"; exit 1; }
+done
+
+venv/bin/python - "$work" <<'PY'
+import subprocess
+import sys
+
+import numpy as np
+
+import tendonsheath as ts
+from tendonsheath import _core
+
+venv = sys.argv[1]
+for module in (ts, _core):
+    assert module.__file__.startswith(venv), f"{module.__name__} from {module.__file__}"
+# the extension uses the process's libstdc++ (one copy), not a static one of its own
+needed = subprocess.run(["ldd", _core.__file__], capture_output=True, text=True).stdout
+assert "libstdc++.so.6" in needed, needed
+assert ts.__version__ == subprocess.run(
+    [f"{venv}/venv/bin/tendonsheath", "--version"], capture_output=True, text=True
+).stdout.split()[1]
+
+# a model: exact backlash on a unit sine peaks at c (1 - B) and -c (1 - B)
+t = np.arange(0.0, 4.0, 1e-3)
+x = np.sin(2 * np.pi * t)
+y = ts.models.Backlash(c_r=2.0, c_l=2.0, B_r=0.1, B_l=0.1).simulate(t, x)
+assert abs(y.max() - 1.8) < 1e-3 and abs(y.min() + 1.8) < 1e-3, (y.min(), y.max())
+
+# validation formats its message (the C++ path that crashed in issue 15's story)
+try:
+    ts.models.Backlash(B_r=-1.0)
+except ValueError as e:
+    assert "B_r" in str(e), e
+else:
+    raise AssertionError("Backlash(B_r=-1) was accepted")
+
+# a plant: the pull-pull pair follows the motor through its dead zone, finite and bounded
+route = ts.Route.arcs([(0.5, 0.0), (0.5, np.pi / 2)])
+plant = ts.PullPullPlant(route=route, friction=0.1, stiffness=5e3, pretension=20.0,
+                         proximal_radius=15e-3, distal_radius=15e-3, elements=40)
+q = plant.simulate(t, x)
+assert np.all(np.isfinite(q)), "plant output not finite"
+assert 0.5 < np.ptp(q) / np.ptp(x) <= 1.0 + 1e-9, np.ptp(q)
+print(f"wheel smoke: tendonsheath {ts.__version__} from {ts.__file__}: quick start passed")
+PY
