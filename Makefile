@@ -112,6 +112,7 @@ wheel-test: wheel
 
 # The documentation site into build/docs (mkdocs.yml; warnings are errors). Its tools are the
 # `docs` extra, installed into the venv; the API reference is read from python/ by griffe.
+# Not --quiet: it hides the warnings from --strict too, and a broken link would pass.
 DOCS_TOOLS := $(VENV)/.docs-tools-stamp
 
 $(DOCS_TOOLS): $(STAMP) pyproject.toml
@@ -119,7 +120,7 @@ $(DOCS_TOOLS): $(STAMP) pyproject.toml
 	touch $(DOCS_TOOLS)
 
 docs: $(DOCS_TOOLS)
-	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/mkdocs build --strict --quiet
+	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/mkdocs build --strict
 
 test-python: install chromium
 	$(PY) -m pytest -q
