@@ -6,6 +6,9 @@ runs as one, in a fresh interpreter (as in ``test_readme_snippets.py``). Buildin
 warnings as errors is ``make docs``, which ``make test`` runs.
 """
 
+import importlib
+import importlib.util
+import inspect
 import re
 import subprocess
 import sys
@@ -72,6 +75,45 @@ def test_make_docs_installs_the_docs_extra():
     rule = re.search(r"^\$\(DOCS_TOOLS\):.*\n\t(.*)$", (ROOT / "Makefile").read_text(), re.M)
     assert rule is not None
     assert re.findall(r'"([^"]+)"', rule.group(1)) == extra
+
+
+API_MODULES = [
+    "models",
+    "identify",
+    "compensate",
+    "bench",
+    "io",
+    "sweep",
+    "physics",
+    "presets",
+    "loads",
+]
+
+
+def api_directives() -> set[str]:
+    text = "\n".join(p.read_text() for p in (DOCS / "api").glob("*.md"))
+    return set(re.findall(r"^::: (\S+)$", text, flags=re.M))
+
+
+def test_the_api_reference_covers_the_public_modules():
+    assert {"tendonsheath", *(f"tendonsheath.{m}" for m in API_MODULES)} <= api_directives()
+
+
+@pytest.mark.parametrize("module", [f"tendonsheath.{m}" for m in API_MODULES])
+def test_no_public_function_is_hidden_behind_its_submodule(module):
+    """mkdocstrings documents ``bench.run`` as the submodule bench/run.py, not the function it
+    exports: such a name needs its own ``::: module.name.name`` directive."""
+    mod = importlib.import_module(module)
+    is_package = hasattr(mod, "__path__")
+    shadowed = [
+        name
+        for name in getattr(mod, "__all__", [])
+        if is_package
+        and importlib.util.find_spec(f"{module}.{name}") is not None
+        and not inspect.ismodule(getattr(mod, name))
+    ]
+    directives = api_directives()
+    assert [n for n in shadowed if f"{module}.{n}.{n}" not in directives] == []
 
 
 @pytest.mark.parametrize("page", PAGES)
