@@ -8,7 +8,7 @@
 // std::invalid_argument naming the key. null stands for an unbounded limit (JSON has no inf).
 #pragma once
 
-#include <fstream>
+#include <cstdio>
 #include <limits>
 #include <set>
 #include <stdexcept>
@@ -272,17 +272,24 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
                           " (known: ContinuumFeedforward, CurveAngleFeedforward, InverseFeedforward)");
 }
 
-// A compensator from a file written by Python's `to_json(path)`.
-inline LoadedCompensator load_compensator_json(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open the compensator file");
-  json f;
+// The parsed contents of a JSON file (read with stdio: the library uses no iostreams).
+inline json read_json_file(const std::string& path) {
+  std::FILE* in = std::fopen(path.c_str(), "rb");
+  if (!in) throw std::invalid_argument(path + ": cannot open the file");
+  std::string text;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, in)) > 0;) text.append(buffer, n);
+  std::fclose(in);
   try {
-    f = json::parse(in);
+    return json::parse(text);
   } catch (const json::parse_error& e) {
     throw std::invalid_argument(path + ": not valid JSON (" + e.what() + ")");
   }
-  return compensator_from_json(f, path);
+}
+
+// A compensator from a file written by Python's `to_json(path)`.
+inline LoadedCompensator load_compensator_json(const std::string& path) {
+  return compensator_from_json(read_json_file(path), path);
 }
 
 }  // namespace tendonsheath::io
