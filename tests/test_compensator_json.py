@@ -76,6 +76,7 @@ def test_commands_are_equal_after_reload(tmp_path, k):
     again = ts.compensate.load(path)
     assert type(again) is type(ff)
     assert again.to_dict() == ff.to_dict()
+    assert set(again.params) == set(type(ff)._saved_settings)
     t, y_d = _trajectory(rng)
     u0, u1 = ff.command(t, y_d), again.command(t, y_d)
     assert np.all(np.isfinite(u0))

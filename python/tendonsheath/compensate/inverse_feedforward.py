@@ -64,6 +64,10 @@ class InverseFeedforward(Feedforward):
                 f"models (got {type(model).__name__})"
             )
 
+    @property
+    def params(self) -> dict:
+        return {**super().params, "model": self.model}
+
     def to_dict(self) -> dict:
         data = super().to_dict()
         return {**data, "model": self.model.to_dict()}
