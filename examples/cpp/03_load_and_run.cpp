@@ -41,8 +41,18 @@ int run_trajectory(ts::io::LoadedCompensator& ff, const char* in_path, const cha
 
 int self_check(ts::io::LoadedCompensator& ff, const std::string& path) {
   const double pi = 3.14159265358979323846, dt = 1e-3, amplitude = 1.0;
+  if (ff.kind() != "InverseFeedforward") {
+    std::fprintf(stderr, "the self-check runs an InverseFeedforward (got %s): give TRAJ OUT\n",
+                 ff.kind().c_str());
+    return 2;
+  }
   const ts::io::json file = ts::io::read_json_file(path);
   const ts::io::InvertibleModel m = ts::io::invertible_model_from_json(file.at("model"), path);
+  if (m.name != "Backlash" || m.map.input_scale != 1.0 || m.map.output_gain != 1.0) {
+    std::fprintf(stderr, "the self-check drives a Backlash model (got %s): give TRAJ OUT\n",
+                 m.name.c_str());
+    return 2;
+  }
   ts::BacklashParams bp;
   bp.c_r = m.backlash.c_r, bp.c_l = m.backlash.c_l, bp.B_r = m.backlash.B_r, bp.B_l = m.backlash.B_l;
   ts::Backlash plant(bp);
