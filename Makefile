@@ -10,8 +10,8 @@ DEMO_OUT ?= demo-out
 # the real robot's recordings for benchmarks/realdata.py (not in this repository)
 REALDATA ?= ../shared/data/nhoyh_vio_com
 
-.PHONY: all venv install demo test test-python test-cpp gtest chromium clang fuzz bench results readme lint clean \
-	wheel wheel-test docs
+.PHONY: all venv install demo test test-python test-cpp gtest nlohmann-json chromium clang fuzz bench results \
+	readme lint clean wheel wheel-test docs
 
 all: install
 
@@ -35,6 +35,13 @@ gtest:
 	@if [ ! -f /usr/include/gtest/gtest.h ] && [ ! -f /usr/local/include/gtest/gtest.h ]; then \
 	  echo "GoogleTest not found: installing libgtest-dev with apt-get"; \
 	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libgtest-dev googletest; \
+	fi
+
+# nlohmann/json for the optional tendonsheath/io/json.hpp, its test and C++ example 03
+nlohmann-json:
+	@if [ ! -f /usr/include/nlohmann/json.hpp ] && [ ! -f /usr/local/include/nlohmann/json.hpp ]; then \
+	  echo "nlohmann/json not found: installing nlohmann-json3-dev with apt-get"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nlohmann-json3-dev; \
 	fi
 
 # The report test renders report.html in headless Chromium (Debian's package).
@@ -77,7 +84,7 @@ fuzz: clang
 	  test $${PIPESTATUS[0]} -eq 0 || exit 1; \
 	done
 
-test-cpp: gtest
+test-cpp: gtest nlohmann-json
 	cmake -S . -B $(CPP_BUILD) -DCMAKE_BUILD_TYPE=Release -DTENDONSHEATH_BUILD_TESTS=ON \
 	  -DTENDONSHEATH_BUILD_EXAMPLES=ON > /dev/null
 	cmake --build $(CPP_BUILD) -j $(JOBS)

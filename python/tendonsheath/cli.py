@@ -841,6 +841,30 @@ def compare(
         console.print(f"report: {result.report(report)}")
 
 
+@app.command("export")
+@_one_paragraph
+def export_command(
+    source: Path = typer.Argument(..., help="Model or compensator JSON (from to_json)."),
+    cpp: Path = typer.Option(..., "--cpp", help="C++ header to write."),
+    namespace: str | None = typer.Option(
+        None, "--namespace", help="C++ namespace of the parameters (default: the file's stem)."
+    ),
+) -> None:
+    """Write a saved model or compensator as a C++ header of constexpr parameters, for targets
+    with no file system."""
+    from ._atomic import write_text
+    from .export_cpp import cpp_header
+
+    try:
+        if not source.is_file():
+            raise ValueError(f"file not found: {source}")
+        check_output_file(cpp, "--cpp")
+        write_text(cpp, cpp_header(source, namespace))
+    except ValueError as exc:
+        _fail(exc)
+    console.print(f"wrote {cpp}", highlight=False)
+
+
 def main() -> None:
     app()
 

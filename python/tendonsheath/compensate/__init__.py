@@ -5,6 +5,9 @@ from .continuum_feedforward import ContinuumFeedforward
 from .curve_angle_feedforward import CurveAngleFeedforward, shape_of
 from .inverse_feedforward import InverseFeedforward
 from .limits import CommandLimits
+from .persistence import load_compensator
+
+load = load_compensator
 
 __all__ = [
     "AdaptiveController",
@@ -12,5 +15,7 @@ __all__ = [
     "ContinuumFeedforward",
     "CurveAngleFeedforward",
     "InverseFeedforward",
+    "load",
+    "load_compensator",
     "shape_of",
 ]

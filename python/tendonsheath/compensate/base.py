@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from .._arrays import as_time_and_signal, checked_dt
 from ..status import Status
+from . import persistence
 
 
 class Feedforward:
@@ -15,6 +16,8 @@ class Feedforward:
     """
 
     _engine: object
+    _settings: dict  # the constructor's settings, saved by to_json
+    _saved_settings: tuple[str, ...] = ()  # the keys of a saved file, in order
     # signal names of to_control()'s system: desired output in, motor command out
     control_inputs: tuple[str, ...] = ("y_d",)
     control_output: str = "x"
@@ -50,3 +53,22 @@ class Feedforward:
 
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], dt)
+
+    # -- persistence -----------------------------------------------------------------
+    @property
+    def params(self) -> dict:
+        """The constructor settings (a copy)."""
+        return dict(self._settings)
+
+    def to_dict(self) -> dict:
+        """The compensator as a dict (format ``tendonsheath.compensator``)."""
+        return persistence.compensator_dict(type(self).__name__, self._settings)
+
+    def to_json(self, path=None) -> str:
+        """The compensator as JSON text; also written to `path` when one is given.
+        ``tendonsheath.compensate.load`` and the C++ ``tendonsheath/io/json.hpp`` read it."""
+        return persistence.to_json(self.to_dict(), path)
+
+    @classmethod
+    def _from_saved(cls, values: dict):
+        return cls(**values)

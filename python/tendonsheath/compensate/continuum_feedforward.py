@@ -20,6 +20,22 @@ class ContinuumFeedforward(Feedforward):
     under the bending force F = kappa EI / r_t, without double counting.
     """
 
+    _saved_settings = (
+        "friction",
+        "sheath_length",
+        "stiffness",
+        "pretension",
+        "total_angle",
+        "bending_stiffness",
+        "tendon_offset",
+        "backbone_length",
+        "proximal_radius",
+        "gap_factor",
+        "smoothing",
+        "mode",
+        "limits",
+    )
+
     def __init__(
         self,
         friction: float = 0.1,
@@ -40,13 +56,28 @@ class ContinuumFeedforward(Feedforward):
             raise ValueError(
                 f"ContinuumFeedforward: mode must be one of {list(_MODES)} (got {mode!r})"
             )
+        self._settings = {
+            "friction": friction,
+            "sheath_length": sheath_length,
+            "stiffness": stiffness,
+            "pretension": pretension,
+            "total_angle": total_angle,
+            "bending_stiffness": bending_stiffness,
+            "tendon_offset": tendon_offset,
+            "backbone_length": backbone_length,
+            "proximal_radius": proximal_radius,
+            "gap_factor": gap_factor,
+            "smoothing": smoothing,
+            "mode": mode,
+            "limits": as_limits(limits),
+        }
         p = core.ContinuumFeedforwardParams()
         p.friction, p.sheath_length, p.stiffness = friction, sheath_length, stiffness
         p.pretension, p.total_angle = pretension, total_angle
         p.bending_stiffness, p.tendon_offset = bending_stiffness, tendon_offset
         p.backbone_length, p.proximal_radius = backbone_length, proximal_radius
         p.gap_factor, p.v_eps, p.mode = gap_factor, smoothing, _MODES[mode]
-        p.limits = as_limits(limits).to_core()
+        p.limits = self._settings["limits"].to_core()
         self.mode = mode
         self._engine = core.ContinuumFeedforward(p)
 

@@ -27,6 +27,19 @@ class CurveAngleFeedforward(Feedforward):
     """
 
     control_inputs = ("y_d", "curve_angle")
+    _saved_settings = (
+        "friction",
+        "compliance",
+        "pretension",
+        "load_force",
+        "load_stiffness",
+        "proximal_radius",
+        "distal_radius",
+        "curve_angle",
+        "smoothing",
+        "max_correction_rate",
+        "limits",
+    )
 
     def __init__(
         self,
@@ -42,12 +55,25 @@ class CurveAngleFeedforward(Feedforward):
         max_correction_rate: float = math.inf,
         limits=None,
     ):
+        self._settings = {
+            "friction": friction,
+            "compliance": compliance,
+            "pretension": pretension,
+            "load_force": load_force,
+            "load_stiffness": load_stiffness,
+            "proximal_radius": proximal_radius,
+            "distal_radius": distal_radius,
+            "curve_angle": curve_angle,
+            "smoothing": smoothing,
+            "max_correction_rate": max_correction_rate,
+            "limits": as_limits(limits),
+        }
         p = core.CurveAngleFeedforwardParams()
         p.friction, p.compliance, p.pretension = friction, compliance, pretension
         p.load_force, p.load_stiffness = load_force, load_stiffness
         p.proximal_radius, p.distal_radius = proximal_radius, distal_radius
         p.total_angle, p.v_eps, p.max_correction_rate = curve_angle, smoothing, max_correction_rate
-        p.limits = as_limits(limits).to_core()
+        p.limits = self._settings["limits"].to_core()
         self._engine = core.CurveAngleFeedforward(p)
 
     @classmethod

@@ -27,10 +27,13 @@ class InverseFeedforward(Feedforward):
     ``limits`` (a :class:`CommandLimits`) saturates the command and its rate.
     """
 
+    _saved_settings = ("model", "smoothing", "limits")
+
     def __init__(self, model: HysteresisModel, smoothing: float = 0.05, limits=None):
         self.model = model
         self.smoothing = float(smoothing)
         self.limits = as_limits(limits)
+        self._settings = {"smoothing": self.smoothing, "limits": self.limits}
         self._map = None
         if isinstance(model, Scaled):
             mp = model.map
@@ -60,6 +63,14 @@ class InverseFeedforward(Feedforward):
                 "InverseFeedforward supports Backlash, BoucWenBacklash and PrandtlIshlinskii "
                 f"models (got {type(model).__name__})"
             )
+
+    @property
+    def params(self) -> dict:
+        return {**super().params, "model": self.model}
+
+    def to_dict(self) -> dict:
+        data = super().to_dict()
+        return {**data, "model": self.model.to_dict()}
 
     def step(self, y_d: float, dt: float) -> float:
         dt = checked_dt(dt)

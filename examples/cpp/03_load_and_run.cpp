@@ -1,0 +1,84 @@
+// 03: a compensator identified in Python, loaded from its JSON file and run in a 1 kHz loop.
+//
+//   example_03_load_and_run COMPENSATOR.json             1 kHz sine, self-check (ctest)
+//   example_03_load_and_run COMPENSATOR.json TRAJ OUT    t,y_d lines in TRAJ -> commands in OUT
+//
+// The file comes from Python (examples/cpp/data/make_inverse_feedforward.py):
+//   ts.compensate.InverseFeedforward(identified_model, ...).to_json("inverse_feedforward.json")
+// Loading (tendonsheath/io/json.hpp, needs nlohmann/json) allocates and may throw, so it happens
+// once before the loop; the loop's step() is the real-time core's. The self-check drives the
+// identified backlash with the commands and exits 0 when it tracks the sine to 2 % of its
+// amplitude (measured: 0.16 %, the smoothing's rounding at each reversal; without the
+// compensator the error is the dead band, ~10 %).
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <tendonsheath/io/json.hpp>
+#include <tendonsheath/tendonsheath.hpp>
+
+namespace ts = tendonsheath;
+
+namespace {
+
+int run_trajectory(ts::io::LoadedCompensator& ff, const char* in_path, const char* out_path) {
+  std::FILE* in = std::fopen(in_path, "r");
+  std::FILE* out = in ? std::fopen(out_path, "w") : nullptr;
+  if (!out) {
+    std::fprintf(stderr, "cannot open %s or %s\n", in_path, out_path);
+    if (in) std::fclose(in);
+    return 2;
+  }
+  double t = 0.0, y_d = 0.0, t_prev = 0.0;
+  for (bool first = true; std::fscanf(in, "%lf,%lf", &t, &y_d) == 2; first = false) {
+    const double dt = first ? 0.0 : t - t_prev;  // as Python's command(): dt 0 on the first cycle
+    std::fprintf(out, "%.17g\n", ff.step(y_d, dt));
+    t_prev = t;
+  }
+  std::fclose(in);
+  std::fclose(out);
+  return 0;
+}
+
+int self_check(ts::io::LoadedCompensator& ff, const std::string& path) {
+  const double pi = 3.14159265358979323846, dt = 1e-3, amplitude = 1.0;
+  if (ff.kind() != "InverseFeedforward") {
+    std::fprintf(stderr, "the self-check runs an InverseFeedforward (got %s): give TRAJ OUT\n",
+                 ff.kind().c_str());
+    return 2;
+  }
+  const ts::io::json file = ts::io::read_json_file(path);
+  const ts::io::InvertibleModel m = ts::io::invertible_model_from_json(file.at("model"), path);
+  if (m.name != "Backlash" || m.map.input_scale != 1.0 || m.map.output_gain != 1.0) {
+    std::fprintf(stderr, "the self-check drives a Backlash model (got %s): give TRAJ OUT\n",
+                 m.name.c_str());
+    return 2;
+  }
+  ts::BacklashParams bp;
+  bp.c_r = m.backlash.c_r, bp.c_l = m.backlash.c_l, bp.B_r = m.backlash.B_r, bp.B_l = m.backlash.B_l;
+  ts::Backlash plant(bp);
+  double worst = 0.0;
+  for (int k = 0; k < 5000; ++k) {  // 5 s at 1 kHz
+    const double y_d = amplitude * std::sin(2 * pi * 0.5 * k * dt);
+    const double y = plant.step(ff.step(y_d, k == 0 ? 0.0 : dt));
+    if (k >= 1000) worst = std::fmax(worst, std::fabs(y - y_d));
+  }
+  std::printf("%s from %s: worst tracking error %.4g (amplitude %.3g)\n", ff.kind().c_str(),
+              path.c_str(), worst, amplitude);
+  return worst < 0.02 * amplitude ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2 && argc != 4) {
+    std::fprintf(stderr, "usage: %s COMPENSATOR.json [TRAJECTORY.csv OUT.csv]\n", argv[0]);
+    return 2;
+  }
+  try {
+    ts::io::LoadedCompensator ff = ts::io::load_compensator_json(argv[1]);
+    return argc == 4 ? run_trajectory(ff, argv[2], argv[3]) : self_check(ff, argv[1]);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  }
+}

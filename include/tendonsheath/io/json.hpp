@@ -1,0 +1,295 @@
+// Loading compensators saved by Python's `Compensator.to_json` (format
+// "tendonsheath.compensator", version 1) into the real-time core.
+//
+// OPTIONAL and OUTSIDE the real-time path: it needs nlohmann/json (Debian's
+// nlohmann-json3-dev, CMake target nlohmann_json::nlohmann_json), reads files and allocates.
+// Load once at start-up; the returned LoadedCompensator's step() is the core's: noexcept,
+// no allocation. Strict, like Python's loader: a missing, unknown, null or mistyped key is a
+// std::invalid_argument naming the key. null stands for an unbounded limit (JSON has no inf).
+#pragma once
+
+#include <cstdio>
+#include <limits>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <variant>
+
+#include <nlohmann/json.hpp>
+
+#include "../compensators/continuum_feedforward.hpp"
+#include "../compensators/curve_angle_feedforward.hpp"
+#include "../compensators/inverse_feedforward.hpp"
+
+namespace tendonsheath::io {
+
+using json = nlohmann::json;
+
+namespace detail {
+
+[[noreturn]] inline void fail(const std::string& where, const std::string& what) {
+  throw std::invalid_argument(where + ": " + what);
+}
+
+inline const json& member(const json& obj, const std::string& key, const std::string& where) {
+  if (!obj.is_object()) fail(where, "must be a JSON object");
+  const auto it = obj.find(key);
+  if (it == obj.end()) fail(where, "key '" + key + "' is missing");
+  return *it;
+}
+
+// every key of obj is one of `allowed` and every one of `required` is there
+inline void check_keys(const json& obj, const std::set<std::string>& allowed,
+                       const std::set<std::string>& required, const std::string& where) {
+  if (!obj.is_object()) fail(where, "must be a JSON object");
+  for (const auto& item : obj.items())
+    if (!allowed.count(item.key())) fail(where, "unknown key '" + item.key() + "'");
+  for (const auto& key : required) member(obj, key, where);
+}
+
+// a number; null means `unbounded` when that is not NaN, else it is an error
+inline double number(const json& obj, const std::string& key, const std::string& where,
+                     double unbounded = std::numeric_limits<double>::quiet_NaN()) {
+  const json& v = member(obj, key, where);
+  if (v.is_null() && !std::isnan(unbounded)) return unbounded;
+  if (!v.is_number()) fail(where, "key '" + key + "' must be a number (got " + v.dump() + ")");
+  return v.get<double>();
+}
+
+inline std::vector<double> numbers(const json& obj, const std::string& key,
+                                   const std::string& where) {
+  const json& v = member(obj, key, where);
+  if (!v.is_array()) fail(where, "key '" + key + "' must be an array of numbers");
+  std::vector<double> out;
+  for (const json& e : v) {
+    if (!e.is_number()) fail(where, "key '" + key + "' must hold only numbers (got " + e.dump() + ")");
+    out.push_back(e.get<double>());
+  }
+  return out;
+}
+
+inline CommandLimits limits(const json& file, const std::string& where) {
+  const json& l = member(file, "limits", where);
+  const std::string w = where + ": limits";
+  check_keys(l, {"min", "max", "max_rate"}, {}, w);
+  const double inf = std::numeric_limits<double>::infinity();
+  CommandLimits out;
+  if (l.contains("min")) out.min = number(l, "min", w, -inf);
+  if (l.contains("max")) out.max = number(l, "max", w, inf);
+  if (l.contains("max_rate")) out.max_rate = number(l, "max_rate", w, inf);
+  return out;
+}
+
+inline void check_format(const json& file, const char* format, const std::string& where) {
+  const json& f = member(file, "format", where);
+  if (f != format) fail(where, std::string("key 'format' must be \"") + format + "\" (got " + f.dump() + ")");
+  const json& v = member(file, "version", where);
+  if (v != 1) fail(where, "unsupported 'version' " + v.dump() + " (expected 1)");
+}
+
+}  // namespace detail
+
+// The affine map of a Python `Scaled` model around the inverted one:
+// command = input_offset + input_scale * inner((y_d - output_offset) / output_gain).
+struct ScaledMap {
+  double input_offset = 0.0;
+  double input_scale = 1.0;
+  double output_offset = 0.0;
+  double output_gain = 1.0;
+};
+
+// A model file ("tendonsheath.model") reduced to what its inverse needs.
+struct InvertibleModel {
+  std::string name;                  // Backlash, BoucWenBacklash or PrandtlIshlinskii
+  BacklashInverseParams backlash{};  // c_r, c_l, B_r, B_l (Backlash, BoucWenBacklash)
+  PrandtlIshlinskiiParams pi{};      // PrandtlIshlinskii
+  ScaledMap map{};                   // identity unless the file held a Scaled model
+};
+
+inline InvertibleModel invertible_model_from_json(const json& m, const std::string& where) {
+  detail::check_format(m, "tendonsheath.model", where);
+  const json& name = detail::member(m, "model", where);
+  InvertibleModel out;
+  out.name = name.is_string() ? name.get<std::string>() : name.dump();
+  if (out.name == "Scaled") {
+    detail::check_keys(m, {"format", "version", "model", "inner", "map"}, {"inner", "map"}, where);
+    const std::string w = where + ": map";
+    const json& mp = m.at("map");
+    detail::check_keys(mp, {"input_offset", "input_scale", "output_offset", "output_gain"},
+                       {"input_offset", "input_scale", "output_offset", "output_gain"}, w);
+    const ScaledMap map{detail::number(mp, "input_offset", w), detail::number(mp, "input_scale", w),
+                        detail::number(mp, "output_offset", w), detail::number(mp, "output_gain", w)};
+    if (!(map.input_scale > 0)) detail::fail(w, "key 'input_scale' must be > 0");
+    if (map.output_gain == 0) detail::fail(w, "key 'output_gain' must not be 0");
+    out = invertible_model_from_json(m.at("inner"), where + ": inner");
+    if (out.map.input_scale != 1.0 || out.map.output_gain != 1.0 || out.map.input_offset != 0.0 ||
+        out.map.output_offset != 0.0)
+      detail::fail(where, "a Scaled model inside a Scaled model is not supported");
+    out.map = map;
+    return out;
+  }
+  detail::check_keys(m, {"format", "version", "model", "params", "options"}, {"params"}, where);
+  const json& p = m.at("params");
+  const std::string w = where + ": params";
+  if (out.name == "Backlash" || out.name == "BoucWenBacklash") {
+    const bool bw = out.name == "BoucWenBacklash";
+    std::set<std::string> keys{"c_r", "c_l", "B_r", "B_l"};
+    if (bw) keys.insert({"rho", "sigma", "n"});
+    detail::check_keys(p, keys, keys, w);
+    for (const auto& k : keys) detail::number(p, k, w);  // every one a number, used or not
+    out.backlash.c_r = detail::number(p, "c_r", w);
+    out.backlash.c_l = detail::number(p, "c_l", w);
+    out.backlash.B_r = detail::number(p, "B_r", w);
+    out.backlash.B_l = detail::number(p, "B_l", w);
+  } else if (out.name == "PrandtlIshlinskii") {
+    detail::check_keys(p, {"thresholds", "weights"}, {"thresholds", "weights"}, w);
+    out.pi.thresholds = detail::numbers(p, "thresholds", w);
+    out.pi.weights = detail::numbers(p, "weights", w);
+  } else {
+    detail::fail(where, "key 'model': the C++ loader inverts Backlash, BoucWenBacklash, "
+                        "PrandtlIshlinskii and Scaled around them (got " + name.dump() + ")");
+  }
+  return out;
+}
+
+inline CurveAngleFeedforwardParams curve_angle_feedforward_params(const json& f,
+                                                                 const std::string& where) {
+  const double inf = std::numeric_limits<double>::infinity();
+  CurveAngleFeedforwardParams p;
+  p.friction = detail::number(f, "friction", where);
+  p.compliance = detail::number(f, "compliance", where);
+  p.pretension = detail::number(f, "pretension", where);
+  p.load_force = detail::number(f, "load_force", where);
+  p.load_stiffness = detail::number(f, "load_stiffness", where);
+  p.proximal_radius = detail::number(f, "proximal_radius", where);
+  p.distal_radius = detail::number(f, "distal_radius", where);
+  p.total_angle = detail::number(f, "curve_angle", where);
+  p.v_eps = detail::number(f, "smoothing", where);
+  p.max_correction_rate = detail::number(f, "max_correction_rate", where, inf);
+  p.limits = detail::limits(f, where);
+  return p;
+}
+
+inline ContinuumFeedforwardParams continuum_feedforward_params(const json& f,
+                                                               const std::string& where) {
+  ContinuumFeedforwardParams p;
+  p.friction = detail::number(f, "friction", where);
+  p.sheath_length = detail::number(f, "sheath_length", where);
+  p.stiffness = detail::number(f, "stiffness", where);
+  p.pretension = detail::number(f, "pretension", where);
+  p.total_angle = detail::number(f, "total_angle", where);
+  p.bending_stiffness = detail::number(f, "bending_stiffness", where);
+  p.tendon_offset = detail::number(f, "tendon_offset", where);
+  p.backbone_length = detail::number(f, "backbone_length", where);
+  p.proximal_radius = detail::number(f, "proximal_radius", where);
+  p.gap_factor = detail::number(f, "gap_factor", where);
+  p.v_eps = detail::number(f, "smoothing", where);
+  const json& mode = detail::member(f, "mode", where);
+  if (mode == "exact") p.mode = ContinuumMode::Exact;
+  else if (mode == "published") p.mode = ContinuumMode::Published;
+  else detail::fail(where, "key 'mode' must be \"exact\" or \"published\" (got " + mode.dump() + ")");
+  p.limits = detail::limits(f, where);
+  return p;
+}
+
+// A loaded compensator: one of the core's feedforwards (validated by its constructor), with the
+// affine map of a Scaled model applied around an inverse. step() is noexcept and allocates nothing.
+class LoadedCompensator {
+ public:
+  using Engine = std::variant<BacklashInverseFeedforward, PrandtlIshlinskiiFeedforward,
+                              CurveAngleFeedforward, ContinuumFeedforward>;
+
+  LoadedCompensator(std::string kind, Engine engine, ScaledMap map = {})
+      : kind_(std::move(kind)), engine_(std::move(engine)), map_(map) {}
+
+  double step(double y_d, double dt) noexcept {
+    const double inner_y = (y_d - map_.output_offset) / map_.output_gain;
+    const double x = std::visit([&](auto& e) noexcept { return e.step(inner_y, dt); }, engine_);
+    return map_.input_offset + map_.input_scale * x;
+  }
+  void reset() noexcept {
+    std::visit([](auto& e) noexcept { e.reset(); }, engine_);
+  }
+  Status status() const noexcept {
+    return std::visit([](const auto& e) noexcept { return e.status(); }, engine_);
+  }
+  const std::string& kind() const noexcept { return kind_; }  // the Python class name
+  Engine& engine() noexcept { return engine_; }  // e.g. CurveAngleFeedforward::set_curve_angle
+  const ScaledMap& map() const noexcept { return map_; }
+
+ private:
+  std::string kind_;
+  Engine engine_;
+  ScaledMap map_;
+};
+
+namespace detail {
+
+// Python's InverseFeedforward over a Scaled model: the inner inverse in the inner units.
+inline LoadedCompensator inverse_from_json(const json& f, const std::string& where) {
+  check_keys(f, {"format", "version", "compensator", "model", "smoothing", "limits"},
+             {"model", "smoothing", "limits"}, where);
+  const InvertibleModel m = invertible_model_from_json(f.at("model"), where + ": model");
+  const ScaledMap& s = m.map;
+  CommandLimits lim = limits(f, where);
+  lim = CommandLimits{(lim.min - s.input_offset) / s.input_scale,
+                      (lim.max - s.input_offset) / s.input_scale, lim.max_rate / s.input_scale};
+  const double smoothing = number(f, "smoothing", where) / std::fabs(s.output_gain);
+  if (m.name == "PrandtlIshlinskii")
+    return {"InverseFeedforward", PrandtlIshlinskiiFeedforward(m.pi, lim), s};
+  BacklashInverseParams p = m.backlash;
+  p.v_eps = smoothing;
+  p.limits = lim;
+  return {"InverseFeedforward", BacklashInverseFeedforward(p), s};
+}
+
+inline const std::set<std::string> kCurveAngleKeys{
+    "format", "version", "compensator", "friction", "compliance", "pretension", "load_force",
+    "load_stiffness", "proximal_radius", "distal_radius", "curve_angle", "smoothing",
+    "max_correction_rate", "limits"};
+inline const std::set<std::string> kContinuumKeys{
+    "format", "version", "compensator", "friction", "sheath_length", "stiffness", "pretension",
+    "total_angle", "bending_stiffness", "tendon_offset", "backbone_length", "proximal_radius",
+    "gap_factor", "smoothing", "mode", "limits"};
+
+}  // namespace detail
+
+// A compensator from the parsed contents of a "tendonsheath.compensator" file.
+inline LoadedCompensator compensator_from_json(const json& f, const std::string& where = "compensator") {
+  detail::check_format(f, "tendonsheath.compensator", where);
+  const json& kind = detail::member(f, "compensator", where);
+  if (kind == "InverseFeedforward") return detail::inverse_from_json(f, where);
+  if (kind == "CurveAngleFeedforward") {
+    detail::check_keys(f, detail::kCurveAngleKeys, detail::kCurveAngleKeys, where);
+    return {"CurveAngleFeedforward", CurveAngleFeedforward(curve_angle_feedforward_params(f, where))};
+  }
+  if (kind == "ContinuumFeedforward") {
+    detail::check_keys(f, detail::kContinuumKeys, detail::kContinuumKeys, where);
+    return {"ContinuumFeedforward", ContinuumFeedforward(continuum_feedforward_params(f, where))};
+  }
+  detail::fail(where, "key 'compensator': unknown compensator " + kind.dump() +
+                          " (known: ContinuumFeedforward, CurveAngleFeedforward, InverseFeedforward)");
+}
+
+// The parsed contents of a JSON file (read with stdio: the library uses no iostreams).
+inline json read_json_file(const std::string& path) {
+  std::FILE* in = std::fopen(path.c_str(), "rb");
+  if (!in) throw std::invalid_argument(path + ": cannot open the file");
+  std::string text;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, in)) > 0;) text.append(buffer, n);
+  std::fclose(in);
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw std::invalid_argument(path + ": not valid JSON (" + e.what() + ")");
+  }
+}
+
+// A compensator from a file written by Python's `to_json(path)`.
+inline LoadedCompensator load_compensator_json(const std::string& path) {
+  return compensator_from_json(read_json_file(path), path);
+}
+
+}  // namespace tendonsheath::io

@@ -1,0 +1,136 @@
+"""Compensators saved as JSON and loaded back, like models (format ``tendonsheath.compensator``).
+
+A file holds the compensator's class name and its constructor settings; an
+``InverseFeedforward`` embeds its model's own dict. Unbounded settings (infinite limits,
+``max_correction_rate``) are written as ``null``, since JSON has no infinity and the C++ loader
+(``tendonsheath/io/json.hpp``) reads the same files.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+from .._atomic import write_text
+
+FORMAT_NAME = "tendonsheath.compensator"
+FORMAT_VERSION = 1
+
+# settings that may be null (= unbounded) and the value null stands for
+_UNBOUNDED = {"max_correction_rate": math.inf}
+_LIMIT_UNBOUNDED = {"min": -math.inf, "max": math.inf, "max_rate": math.inf}
+
+
+def compensator_dict(name: str, settings: dict[str, Any]) -> dict[str, Any]:
+    """The file contents for compensator class `name` built with `settings`."""
+    out = {k: _finite_or_none(v) for k, v in settings.items() if k != "limits"}
+    lim = settings["limits"]
+    out["limits"] = {k: _finite_or_none(getattr(lim, k)) for k in _LIMIT_UNBOUNDED}
+    return {"format": FORMAT_NAME, "version": FORMAT_VERSION, "compensator": name, **out}
+
+
+def to_json(data: dict[str, Any], path: str | Path | None) -> str:
+    text = json.dumps(data, indent=2, allow_nan=False)
+    if path is not None:
+        write_text(path, text + "\n")
+    return text
+
+
+def _finite_or_none(value):
+    if isinstance(value, str):
+        return value
+    value = float(value)  # numpy scalars too
+    return None if math.isinf(value) else value
+
+
+def _registry() -> dict[str, type]:
+    from .continuum_feedforward import ContinuumFeedforward
+    from .curve_angle_feedforward import CurveAngleFeedforward
+    from .inverse_feedforward import InverseFeedforward
+
+    return {
+        c.__name__: c for c in (InverseFeedforward, CurveAngleFeedforward, ContinuumFeedforward)
+    }
+
+
+def compensator_from_dict(data: dict[str, Any]):
+    """Build the compensator a dict from ``to_dict`` describes; strict: every key checked."""
+    if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
+        raise ValueError(f"not a tendonsheath compensator file (missing format '{FORMAT_NAME}')")
+    if data.get("version") != FORMAT_VERSION:
+        raise ValueError(
+            f"unsupported compensator file version {data.get('version')!r} "
+            f"(expected {FORMAT_VERSION})"
+        )
+    registry = _registry()
+    name = data.get("compensator")
+    if name not in registry:
+        raise ValueError(f"unknown compensator {name!r}; known: {sorted(registry)}")
+    cls = registry[name]
+    settings = {k: v for k, v in data.items() if k not in ("format", "version", "compensator")}
+    expected = cls._saved_settings
+    unknown = sorted(set(settings) - set(expected))
+    if unknown:
+        raise ValueError(f"{name} file: unknown key(s) {unknown}; expected {list(expected)}")
+    missing = [k for k in expected if k not in settings]
+    if missing:
+        raise ValueError(f"{name} file: key(s) {missing} missing")
+    values = {k: _setting(name, k, v) for k, v in settings.items()}
+    return cls._from_saved(values)
+
+
+def _setting(name: str, key: str, value):
+    if key == "limits":
+        return _limits(name, value)
+    if key == "model":
+        from ..models import HysteresisModel
+
+        return HysteresisModel.from_dict(value)
+    if key == "mode":
+        if not isinstance(value, str):
+            raise ValueError(f"{name} file: 'mode' must be a string (got {json.dumps(value)})")
+        return value
+    if value is None and key in _UNBOUNDED:
+        return _UNBOUNDED[key]
+    return _number(name, f"'{key}'", value)
+
+
+def _limits(name: str, value) -> dict[str, float]:
+    if not isinstance(value, dict):
+        raise ValueError(f"{name} file: 'limits' must be an object (got {json.dumps(value)})")
+    unknown = sorted(set(value) - set(_LIMIT_UNBOUNDED))
+    if unknown:
+        raise ValueError(f"{name} file: unknown key(s) {unknown} in 'limits'")
+    return {
+        k: _LIMIT_UNBOUNDED[k] if value.get(k) is None else _number(name, f"'limits.{k}'", value[k])
+        for k in _LIMIT_UNBOUNDED
+    }
+
+
+def _number(name: str, what: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise ValueError(f"{name} file: {what} must be a number (got {json.dumps(value)})")
+    return float(value)
+
+
+def load_compensator(source: str | Path | dict):
+    """Load a compensator saved with ``to_json``: a path, a JSON string or a dict."""
+    if isinstance(source, dict):
+        return compensator_from_dict(source)
+    text, where = str(source), ""
+    if not text.lstrip().startswith("{"):
+        path = Path(source)
+        if not path.is_file():
+            raise ValueError(f"compensator file not found: {path}")
+        where = f"{path}: "
+        try:
+            text = path.read_text(encoding="utf-8-sig")
+        except UnicodeDecodeError:
+            raise ValueError(f"{where}not a compensator JSON file (not UTF-8 text)") from None
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"{where}compensator file is not valid JSON: {exc}") from None
+    return compensator_from_dict(data)

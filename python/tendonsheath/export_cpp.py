@@ -1,0 +1,154 @@
+"""A saved model or compensator as a C++ header of constexpr parameters, for targets with no
+file system (``tendonsheath export FILE --cpp OUT.hpp``).
+
+Fixed-size parameters become a ``constexpr`` params struct of the real-time core (filled by a
+constexpr lambda: C++17 has no designated initialisers); a Prandtl-Ishlinskii operator's
+thresholds and weights become constexpr arrays, from which the user fills the params struct (its
+vectors allocate, once, at construction). Numbers are written with Python's shortest round-trip
+repr, so the C++ doubles equal Python's bit for bit.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+
+_INF = "std::numeric_limits<double>::infinity()"
+_BACKLASH_KEYS = ("c_r", "c_l", "B_r", "B_l")
+
+
+def _number(value: float) -> str:
+    value = float(value)
+    if math.isnan(value):
+        raise ValueError("export --cpp: a parameter is NaN")
+    if math.isinf(value):
+        return _INF if value > 0 else f"-{_INF}"
+    return repr(value)
+
+
+def _literal(value) -> str:
+    if isinstance(value, str):  # an enum value, already C++
+        return value
+    if isinstance(value, int) and not isinstance(value, bool):
+        return str(value)
+    return _number(value)
+
+
+def _struct(cpp_type: str, fields: dict) -> str:
+    body = "".join(f"  p.{k} = {_literal(v)};\n" for k, v in fields.items())
+    return (
+        f"inline constexpr tendonsheath::{cpp_type} params = [] {{\n"
+        f"  tendonsheath::{cpp_type} p{{}};\n{body}  return p;\n}}();\n"
+    )
+
+
+def _limits_fields(limits) -> dict:
+    return {f"limits.{k}": getattr(limits, k) for k in ("min", "max", "max_rate")}
+
+
+def _array(name: str, values) -> str:
+    return f"inline constexpr double {name}[] = {{{', '.join(_number(v) for v in values)}}};\n"
+
+
+def _pi_arrays(model) -> str:
+    p = model.params
+    return (
+        "// tendonsheath::PrandtlIshlinskiiParams{{std::begin(thresholds), std::end(thresholds)},\n"
+        "//                                       {std::begin(weights), std::end(weights)}}\n"
+        + _array("thresholds", p["thresholds"])
+        + _array("weights", p["weights"])
+    )
+
+
+def _model_body(model) -> tuple[str, str]:
+    """(header to include, declarations) for a model."""
+    kind = type(model).__name__
+    if kind == "Backlash":
+        return "models/backlash.hpp", _struct("BacklashParams", model.params)
+    if kind == "BoucWenBacklash":
+        options = {"max_step": model.options["max_step"]}
+        options["max_substeps"] = int(model.options["max_substeps"])
+        return "models/bouc_wen_backlash.hpp", _struct(
+            "BoucWenBacklashParams", {**model.params, **options}
+        )
+    if kind == "PrandtlIshlinskii":
+        return "models/prandtl_ishlinskii.hpp", _pi_arrays(model)
+    raise ValueError(
+        "export --cpp writes Backlash, BoucWenBacklash and PrandtlIshlinskii models and the "
+        "InverseFeedforward, CurveAngleFeedforward and ContinuumFeedforward compensators "
+        f"(got {kind})"
+    )
+
+
+def _inverse_body(ff) -> tuple[str, str]:
+    if ff._map is not None:  # a Scaled model: the inner inverse and the map around it
+        include, body = _inverse_body(ff._inner)
+        names = ("input_offset", "input_scale", "output_offset", "output_gain")
+        consts = "".join(
+            f"inline constexpr double {n} = {_number(v)};\n"
+            for n, v in zip(names, ff._map, strict=True)
+        )
+        note = (
+            "// command = input_offset\n"
+            "//   + input_scale * inverse.step((y_d - output_offset) / output_gain, dt)\n"
+        )
+        return include, body + note + consts
+    kind = type(ff.model).__name__
+    if kind in ("Backlash", "BoucWenBacklash"):
+        fields = {k: ff.model.params[k] for k in _BACKLASH_KEYS}
+        fields = {**fields, "v_eps": ff.smoothing, **_limits_fields(ff.limits)}
+        return "compensators/inverse_feedforward.hpp", _struct("BacklashInverseParams", fields)
+    limits = _struct(
+        "CommandLimits", {k: getattr(ff.limits, k) for k in ("min", "max", "max_rate")}
+    )
+    return "compensators/inverse_feedforward.hpp", _pi_arrays(ff.model) + limits.replace(
+        " params =", " limits ="
+    )
+
+
+def _compensator_body(ff) -> tuple[str, str]:
+    kind = type(ff).__name__
+    if kind == "InverseFeedforward":
+        return _inverse_body(ff)
+    s = ff.params
+    limits = _limits_fields(s.pop("limits"))
+    if kind == "CurveAngleFeedforward":
+        s["total_angle"], s["v_eps"] = s.pop("curve_angle"), s.pop("smoothing")
+        return "compensators/curve_angle_feedforward.hpp", _struct(
+            "CurveAngleFeedforwardParams", {**s, **limits}
+        )
+    s["v_eps"] = s.pop("smoothing")
+    s["mode"] = "tendonsheath::ContinuumMode::" + s["mode"].capitalize()
+    return "compensators/continuum_feedforward.hpp", _struct(
+        "ContinuumFeedforwardParams", {**s, **limits}
+    )
+
+
+def cpp_header(source: str | Path, namespace: str | None = None) -> str:
+    """The header text for a model or compensator JSON file, its declarations in `namespace`
+    (default: the file's stem)."""
+    from .compensate import load_compensator
+    from .models import load_model
+
+    path = Path(source)
+    namespace = namespace or re.sub(r"\W", "_", path.stem)
+    if not re.fullmatch(r"[A-Za-z_]\w*", namespace):
+        raise ValueError(f"export --cpp: {namespace!r} is not a C++ namespace name")
+    try:
+        fmt = json.loads(path.read_text(encoding="utf-8-sig")).get("format")
+    except (OSError, ValueError, AttributeError) as exc:
+        raise ValueError(f"{path}: not a model or compensator JSON file ({exc})") from None
+    if fmt == "tendonsheath.compensator":
+        obj = load_compensator(path)
+        include, body = _compensator_body(obj)
+    else:
+        obj = load_model(path)
+        include, body = _model_body(obj)
+    kind = type(obj).__name__
+    return (
+        f"// Generated by `tendonsheath export {path.name} --cpp`: {kind}. Do not edit.\n"
+        f"#pragma once\n\n#include <limits>\n#include <tendonsheath/{include}>\n\n"
+        f"namespace {namespace} {{\n\n{body}\n}}  // namespace {namespace}\n"
+    )

@@ -1,0 +1,150 @@
+// tendonsheath/io/json.hpp: compensator files as Python writes them load into the core's
+// feedforwards with the same numbers, and every malformed key is an error naming it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+#include <tendonsheath/io/json.hpp>
+
+namespace ts = tendonsheath;
+using ts::io::json;
+
+namespace {
+
+json backlash_model(double c_r, double c_l, double B_r, double B_l) {
+  return {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "Backlash"},
+          {"params", {{"c_r", c_r}, {"c_l", c_l}, {"B_r", B_r}, {"B_l", B_l}}},
+          {"options", json::object()}};
+}
+
+json inverse_file(json model, double smoothing = 0.05) {
+  return {{"format", "tendonsheath.compensator"}, {"version", 1},
+          {"compensator", "InverseFeedforward"}, {"model", std::move(model)},
+          {"smoothing", smoothing},
+          {"limits", {{"min", nullptr}, {"max", nullptr}, {"max_rate", nullptr}}}};
+}
+
+json curve_angle_file() {
+  return {{"format", "tendonsheath.compensator"}, {"version", 1},
+          {"compensator", "CurveAngleFeedforward"}, {"friction", 0.12}, {"compliance", 2e-4},
+          {"pretension", 15.0}, {"load_force", 1.0}, {"load_stiffness", 50.0},
+          {"proximal_radius", 6e-3}, {"distal_radius", 4e-3}, {"curve_angle", 2.0},
+          {"smoothing", 0.03}, {"max_correction_rate", nullptr},
+          {"limits", {{"min", -3.0}, {"max", 3.0}, {"max_rate", 20.0}}}};
+}
+
+std::string error_of(const json& file) {
+  try {
+    ts::io::compensator_from_json(file, "f");
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST(IoJson, BacklashInverseStepsEqualTheCoreObjectOverRandomCases) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.2, 2.0), b(0.0, 0.3), y(-1.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    ts::BacklashInverseParams p;
+    p.c_r = u(rng), p.c_l = u(rng), p.B_r = b(rng), p.B_l = b(rng), p.v_eps = 0.01 + b(rng);
+    ts::io::LoadedCompensator loaded =
+        ts::io::compensator_from_json(inverse_file(backlash_model(p.c_r, p.c_l, p.B_r, p.B_l), p.v_eps));
+    ts::BacklashInverseFeedforward direct(p);
+    EXPECT_EQ(loaded.kind(), "InverseFeedforward");
+    for (int k = 0; k < 200; ++k) {
+      const double yd = y(rng);
+      ASSERT_EQ(loaded.step(yd, 1e-3), direct.step(yd, 1e-3)) << "trial " << trial;
+    }
+  }
+}
+
+TEST(IoJson, ScaledModelAppliesItsMapAroundTheInnerInverse) {
+  json scaled = {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "Scaled"},
+                 {"inner", backlash_model(1.2, 0.8, 0.1, 0.05)},
+                 {"map", {{"input_offset", 0.3}, {"input_scale", 2.0}, {"output_offset", -0.1},
+                          {"output_gain", -1.5}}}};
+  json file = inverse_file(scaled, 0.06);
+  file["limits"]["max"] = 1.0;
+  ts::io::LoadedCompensator loaded = ts::io::compensator_from_json(file);
+  ts::BacklashInverseParams p;
+  p.c_r = 1.2, p.c_l = 0.8, p.B_r = 0.1, p.B_l = 0.05, p.v_eps = 0.06 / 1.5;
+  p.limits.max = (1.0 - 0.3) / 2.0;  // the raw command's limit in the inner units
+  ts::BacklashInverseFeedforward inner(p);
+  for (int k = 0; k < 500; ++k) {
+    const double yd = std::sin(0.02 * k);
+    const double expected = 0.3 + 2.0 * inner.step((yd + 0.1) / -1.5, 1e-3);
+    ASSERT_EQ(loaded.step(yd, 1e-3), expected);
+    ASSERT_LE(loaded.step(yd, 0.0), 1.0 + 1e-12);  // the raw limit holds
+  }
+}
+
+TEST(IoJson, PrandtlIshlinskiiAndBoucWenBacklashModelsLoad) {
+  json pi = {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "PrandtlIshlinskii"},
+             {"params", {{"thresholds", {0.0, 0.1, 0.2}}, {"weights", {1.0, 0.4, 0.2}}}}};
+  const ts::io::InvertibleModel m = ts::io::invertible_model_from_json(pi, "m");
+  EXPECT_EQ(m.pi.weights, (std::vector<double>{1.0, 0.4, 0.2}));
+  ts::io::LoadedCompensator loaded = ts::io::compensator_from_json(inverse_file(pi));
+  EXPECT_TRUE(std::holds_alternative<ts::PrandtlIshlinskiiFeedforward>(loaded.engine()));
+  json bw = backlash_model(1.0, 1.1, 0.1, 0.2);
+  bw["model"] = "BoucWenBacklash";
+  bw["params"].update({{"rho", 5.0}, {"sigma", 0.5}, {"n", 1.0}});
+  bw["options"] = {{"max_step", 0.01}, {"max_substeps", 100}};
+  EXPECT_EQ(ts::io::invertible_model_from_json(bw, "m").backlash.c_l, 1.1);
+}
+
+TEST(IoJson, CurveAngleFileFillsEveryField) {
+  const ts::CurveAngleFeedforwardParams p =
+      ts::io::curve_angle_feedforward_params(curve_angle_file(), "f");
+  EXPECT_EQ(p.friction, 0.12);
+  EXPECT_EQ(p.compliance, 2e-4);
+  EXPECT_EQ(p.distal_radius, 4e-3);
+  EXPECT_EQ(p.total_angle, 2.0);
+  EXPECT_EQ(p.v_eps, 0.03);
+  EXPECT_TRUE(std::isinf(p.max_correction_rate));
+  EXPECT_EQ(p.limits.min, -3.0);
+  EXPECT_EQ(p.limits.max_rate, 20.0);
+  ts::io::LoadedCompensator loaded = ts::io::compensator_from_json(curve_angle_file());
+  ts::CurveAngleFeedforward direct(p);
+  for (int k = 0; k < 300; ++k)
+    ASSERT_EQ(loaded.step(std::sin(0.01 * k), 1e-3), direct.step(std::sin(0.01 * k), 1e-3));
+}
+
+TEST(IoJson, MalformedFilesNameTheKey) {
+  json f = curve_angle_file();
+  f.erase("pretension");
+  EXPECT_NE(error_of(f).find("'pretension' is missing"), std::string::npos) << error_of(f);
+  f = curve_angle_file();
+  f["extra"] = 1;
+  EXPECT_NE(error_of(f).find("unknown key 'extra'"), std::string::npos) << error_of(f);
+  f = curve_angle_file();
+  f["friction"] = true;
+  EXPECT_NE(error_of(f).find("'friction' must be a number"), std::string::npos) << error_of(f);
+  f = curve_angle_file();
+  f["compliance"] = nullptr;
+  EXPECT_NE(error_of(f).find("'compliance' must be a number"), std::string::npos) << error_of(f);
+  f = curve_angle_file();
+  f["limits"]["low"] = 0.0;
+  EXPECT_NE(error_of(f).find("limits: unknown key 'low'"), std::string::npos) << error_of(f);
+  f = curve_angle_file();
+  f["format"] = "tendonsheath.model";
+  EXPECT_NE(error_of(f).find("'format'"), std::string::npos) << error_of(f);
+  json inv = inverse_file(backlash_model(1, 1, 0.1, 0.1));
+  inv["model"]["model"] = "PolynomialHysteresis";
+  EXPECT_NE(error_of(inv).find("key 'model'"), std::string::npos) << error_of(inv);
+  inv = inverse_file(backlash_model(1, 1, 0.1, 0.1));
+  inv["model"]["params"].erase("B_l");
+  EXPECT_NE(error_of(inv).find("model: params: key 'B_l' is missing"), std::string::npos)
+      << error_of(inv);
+  f = curve_angle_file();
+  f["compensator"] = "AdaptiveController";
+  EXPECT_NE(error_of(f).find("unknown compensator"), std::string::npos) << error_of(f);
+}
+
+TEST(IoJson, UnreadableFilesAreOneLineErrors) {
+  EXPECT_THROW(ts::io::load_compensator_json("/nonexistent/ff.json"), std::invalid_argument);
+}

@@ -1,0 +1,89 @@
+"""C++ example 03 loads compensators saved by Python and gives Python's commands to 1e-12
+on the same 1 kHz trajectory (issue 15, Done-when line 2)."""
+
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tendonsheath.compensate import (
+    ContinuumFeedforward,
+    CurveAngleFeedforward,
+    InverseFeedforward,
+)
+from tendonsheath.models import Backlash, BoucWenBacklash, PrandtlIshlinskii, Scaled
+
+ROOT = Path(__file__).resolve().parents[1]
+TARGET = "example_03_load_and_run"
+
+
+@pytest.fixture(scope="module")
+def example(tmp_path_factory) -> Path:
+    """The example built by `make test-cpp`, else built here with CMake."""
+    built = ROOT / "build" / "cpp" / "examples" / "cpp" / TARGET
+    if built.is_file():
+        return built
+    if not Path("/usr/include/nlohmann/json.hpp").is_file() or shutil.which("cmake") is None:
+        pytest.fail("example 03 needs cmake and nlohmann/json: run `make test-cpp` first")
+    build = tmp_path_factory.mktemp("cpp")
+    cmake = ["cmake", "-S", str(ROOT), "-B", str(build), "-DTENDONSHEATH_BUILD_EXAMPLES=ON"]
+    subprocess.run([*cmake, "-DCMAKE_BUILD_TYPE=Release"], check=True, capture_output=True)
+    subprocess.run(
+        ["cmake", "--build", str(build), "--target", TARGET], check=True, capture_output=True
+    )
+    return build / "examples" / "cpp" / TARGET
+
+
+COMPENSATORS = {
+    "backlash": lambda: InverseFeedforward(
+        Backlash(c_r=0.96, c_l=0.92, B_r=0.117, B_l=0.071), 0.05, (-3.0, 3.0, 50.0)
+    ),
+    "bouc_wen_backlash": lambda: InverseFeedforward(
+        BoucWenBacklash(c_r=1.1, c_l=0.9, B_r=0.05, B_l=0.1, rho=12.0), 0.03
+    ),
+    "prandtl_ishlinskii": lambda: InverseFeedforward(
+        PrandtlIshlinskii(thresholds=[0.0, 0.1, 0.2, 0.4], weights=[0.9, 0.3, 0.2, 0.1]),
+        limits={"max_rate": 20.0},
+    ),
+    "scaled": lambda: InverseFeedforward(
+        Scaled(Backlash(B_r=0.08, B_l=0.12), input_offset=0.1, input_scale=2.0, output_gain=-1.3),
+        0.04,
+        (-2.5, 2.0),
+    ),
+    "curve_angle": lambda: CurveAngleFeedforward(
+        0.12, 2e-4, 15.0, load_force=1.0, curve_angle=2.5, max_correction_rate=0.5
+    ),
+    "continuum": lambda: ContinuumFeedforward(mode="published", limits=(-4.0, 4.0, 30.0)),
+}
+
+
+@pytest.mark.parametrize("name", sorted(COMPENSATORS))
+def test_cpp_commands_equal_python(example, tmp_path, name):
+    ff = COMPENSATORS[name]()
+    ff.to_json(tmp_path / "ff.json")
+    t = np.arange(0.0, 4.0, 1e-3)  # 1 kHz
+    y_d = 0.8 * np.sin(2 * np.pi * 0.5 * t) + 0.1 * np.sin(2 * np.pi * 3.1 * t)
+    trajectory = tmp_path / "trajectory.csv"
+    trajectory.write_text(
+        "".join(f"{a!r},{b!r}\n" for a, b in zip(t.tolist(), y_d.tolist(), strict=True))
+    )
+    out = tmp_path / "commands.csv"
+    run = subprocess.run(
+        [example, tmp_path / "ff.json", trajectory, out], capture_output=True, text=True
+    )
+    assert run.returncode == 0, run.stderr
+    cpp = np.loadtxt(out)
+    python = ff.command(t, y_d)
+    assert cpp.shape == python.shape
+    assert np.ptp(python) > 0.5  # the trajectory exercises the compensator
+    np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
+
+
+def test_cpp_rejects_a_bad_file_naming_the_key(example, tmp_path):
+    text = InverseFeedforward(Backlash()).to_json().replace('"B_l"', '"B_left"')
+    (tmp_path / "ff.json").write_text(text)
+    run = subprocess.run([example, tmp_path / "ff.json"], capture_output=True, text=True)
+    assert run.returncode == 2
+    assert "unknown key 'B_left'" in run.stderr
