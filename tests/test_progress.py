@@ -69,3 +69,22 @@ def test_sweep_command_prints_no_bar_off_a_terminal(tmp_path):
         )
         assert result.exit_code == 0, result.output
         assert "ETA" not in result.output and "runs" not in result.output.split("mse over")[0]
+
+
+def test_identify_search_uses_the_shared_bar(monkeypatch):
+    import importlib
+
+    core = importlib.import_module("tendonsheath.identify.core")  # the package shadows it
+    terminal = _Terminal()
+    monkeypatch.setattr(sys, "stderr", terminal)
+    bar = core._Progress(True, "Backlash", 10)
+    bar.start -= 2.0  # past the second a bar waits for
+    for generation in range(1, 11):
+        bar.update(generation, 1.0 / generation)
+    bar.close()
+    text = terminal.getvalue()
+    assert "10/10" in text and "generations" in text and "best cost 0.1" in text
+    quiet = core._Progress(False, "Backlash", 10)
+    quiet.start -= 2.0
+    quiet.update(1, 1.0)
+    assert quiet.bar is None
