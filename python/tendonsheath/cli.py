@@ -40,6 +40,12 @@ def _one_paragraph(fn):
     return fn
 
 
+def _quiet_option():
+    return typer.Option(
+        False, "--quiet", "-q", help="No progress bar (none either when not on a terminal)."
+    )
+
+
 _ANGLE_UNIT_HELP = "Unit of the angles shown in the tables and the report: deg or rad."
 
 
@@ -124,11 +130,11 @@ def demo(
         help="Also run the Monte Carlo robustness study (200 draws x scale, at least 20).",
     ),
     angle_unit: str = typer.Option("deg", "--angle-unit", help=_ANGLE_UNIT_HELP),
+    quiet: bool = _quiet_option(),
 ) -> None:
     """Run the virtual bench (the three seed experiments) and write report.html,
     metrics.json and the figures to OUT."""
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
-
+    from ._progress import StepProgress, wanted
     from .bench.scenarios import SCENARIOS
     from .demo import run_demo
 
@@ -140,18 +146,7 @@ def demo(
         _fail(f"unknown scenario(s) {unknown}; known: {list(SCENARIOS)}")
     _checked(check_output_folder, out)
     steps = 1 + 3 * len(scenario or SCENARIOS) + 1 + int(robustness)
-    with Progress(
-        TextColumn("{task.description}"),
-        BarColumn(),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-    ) as bar:
-        task = bar.add_task("starting", total=steps)
-
-        def tick(message: str) -> None:
-            bar.update(task, description=message, advance=1)
-
+    with StepProgress(wanted(quiet), steps, "starting") as bar:
         # the calibrations' identifiability warnings are part of the result (the report's
         # honesty panel lists the parameters at bounds): collected, then printed once each
         with warnings.catch_warnings(record=True) as caught:
@@ -161,7 +156,7 @@ def demo(
                     out,
                     scale=scale,
                     scenarios=scenario or None,
-                    progress=tick,
+                    progress=bar.step,
                     seed=seed,
                     robustness=robustness,
                     angle_unit=unit,
@@ -228,9 +223,11 @@ def bench(
     ),
     out: Path = typer.Option(Path("bench-out"), "--out", "-o", help="Folder for the results."),
     angle_unit: str = typer.Option("deg", "--angle-unit", help=_ANGLE_UNIT_HELP),
+    quiet: bool = _quiet_option(),
 ) -> None:
     """Run a user scenario on the virtual bench: calibrate, compare the compensators, and
     write report.html, metrics.json and the figures to OUT."""
+    from ._progress import StepProgress, wanted
     from .bench.user_scenario import ScenarioError, load, run_user_scenario
     from .report.build import write
 
@@ -240,9 +237,10 @@ def bench(
     except ScenarioError as exc:
         _fail(exc)
     _checked(check_output_folder, out)
-    with console.status("running") as status:
+    steps = len(sc.compensators) + 2  # calibration, each compensator, honesty panel
+    with StepProgress(wanted(quiet), steps, "starting") as bar:
         try:
-            result = run_user_scenario(sc, progress=lambda m: status.update(f"running: {m}"))
+            result = run_user_scenario(sc, progress=bar.step)
         except ScenarioError as exc:
             _fail(exc)
     for row in result.table:
@@ -335,9 +333,11 @@ def identify(
         help="Seconds of wall clock for the search and the refinement; the best model found "
         "by then is kept and the output says so.",
     ),
+    quiet: bool = _quiet_option(),
 ) -> None:
     """Fit MODEL to DATA and save it as JSON; print the fit table and the validation error."""
     from . import io
+    from ._progress import wanted
     from .identify import identify as run_identify
     from .identify.core import check_search_options
 
@@ -371,7 +371,7 @@ def identify(
                 warmup=warmup,
                 seed=seed,
                 maxiter=maxiter,
-                progress=True,
+                progress=wanted(quiet),
                 standard_errors=standard_errors,
                 bootstrap=resamples,
                 time_budget=time_budget,
@@ -557,6 +557,7 @@ def sweep_command(
         help="Keep the runs an interrupted sweep of the same file stored in OUT/runs.jsonl "
         "(default), or discard them and start afresh.",
     ),
+    quiet: bool = _quiet_option(),
 ) -> None:
     """Run a robustness sweep from a TOML file; write the table (CSV, Parquet), a summary
     (quantiles per compensator, fraction within the bound), a sensitivity ranking and figures."""
@@ -591,7 +592,7 @@ def sweep_command(
             batch_size=spec.batch_size,
             on_error=spec.on_error,
             retries=spec.retries,
-            progress=True,
+            progress=False if quiet else None,  # None: a bar on a terminal only
             checkpoint=runs_file,
             checkpoint_tag=hashlib.sha256(config.read_bytes()).hexdigest()[:16],
         )

@@ -9,6 +9,7 @@ from contextvars import ContextVar
 import numpy as np
 from scipy.optimize import differential_evolution
 
+from .._progress import StepProgress
 from ..models import (
     Chain,
     GeneralizedPrandtlIshlinskii,
@@ -69,7 +70,8 @@ SEARCH_DEADLINE: ContextVar[float | None] = ContextVar("SEARCH_DEADLINE", defaul
 
 
 class _Progress:
-    """A rich progress bar that appears only when the search lasts more than a second."""
+    """The shared progress bar (generations, best cost, ETA), shown only when the search lasts
+    more than a second and the output is a terminal."""
 
     def __init__(self, enabled: bool, title: str, total: int):
         self.enabled = enabled
@@ -77,7 +79,7 @@ class _Progress:
         self.total = total
         self.start = time.perf_counter()
         self.bar = None
-        self.task = None
+        self.shown = 0  # generations counted on the bar
 
     def update(self, generation: int, best: float) -> None:
         if not self.enabled:
@@ -85,23 +87,14 @@ class _Progress:
         if self.bar is None:
             if time.perf_counter() - self.start < 1.0:
                 return
-            from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
-
-            self.bar = Progress(
-                TextColumn("{task.description}"),
-                BarColumn(),
-                TextColumn("{task.completed}/{task.total} generations"),
-                TextColumn("best cost {task.fields[best]:.4g}"),
-                TimeElapsedColumn(),
-                transient=True,
-            )
-            self.bar.start()
-            self.task = self.bar.add_task(self.title, total=self.total, best=best)
-        self.bar.update(self.task, completed=generation, best=best)
+            self.bar = StepProgress(True, self.total, self.title, "generations")
+        self.bar.show(f"{self.title}  best cost {best:.4g}")
+        self.bar.advance(generation - self.shown)
+        self.shown = generation
 
     def close(self) -> None:
         if self.bar is not None:
-            self.bar.stop()
+            self.bar.close()
 
 
 def global_search(

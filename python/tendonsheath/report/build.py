@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 
 from .._atomic import write_bytes, write_json, write_text
-from . import figures, html
+from . import figures, html, interactive
 from .units import check_angle_unit, convert, rows_in_unit, unit_after
 
 SCHEMA = "tendonsheath.metrics"
@@ -71,12 +71,16 @@ def scenario_section(result, out: Path, angle_unit: str = "deg") -> tuple[str, l
     tables in ``angle_unit`` ("deg" or "rad")."""
     parts, written = [], []
 
-    def add(fig, name, caption):
+    def add(fig, name, caption, interactive_div=None):
+        """The PNG beside the report; in the page, the interactive figure where there is one."""
         data = figures.png(fig)
         path = out / f"{result.name}_{name}.png"
         write_bytes(path, data)
         written.append(path)
-        parts.append(html.figure(data, caption))
+        if interactive_div is None:
+            parts.append(html.figure(data, caption))
+        else:
+            parts.append(html.interactive_figure(interactive_div, path.name))
 
     parts.append(f"<p>{html.fmt(result.summary)}</p>")
     parts.append("<h3>What was simulated</h3>" + html.conditions(result.conditions))
@@ -114,21 +118,41 @@ def scenario_section(result, out: Path, angle_unit: str = "deg") -> tuple[str, l
             "Mean squared error of the headline runs (the route changing at random; "
             "log scale) beside the paper's.",
         )
-    add(
-        figures.tracking(result.runs, f"{result.name}: tracking", unit=angle_unit),
-        "tracking",
-        "Reference (dashed) and distal output of each compensator, last 12 s.",
-    )
-    add(
-        figures.errors(result.runs, f"{result.name}: tracking error", unit=angle_unit),
-        "error",
-        "Tracking error over the whole run; metrics exclude the warm-up.",
-    )
-    add(
-        figures.loops(result.runs, f"{result.name}: output vs reference", unit=angle_unit),
-        "loops",
-        "Hysteresis left by each compensator (output against reference).",
-    )
+    for name, static, live, title, caption in (
+        (
+            "tracking",
+            figures.tracking,
+            interactive.tracking,
+            "tracking",
+            "Reference (dashed) and distal output of each compensator, last 12 s.",
+        ),
+        (
+            "error",
+            figures.errors,
+            interactive.errors,
+            "tracking error",
+            "Tracking error over the whole run; metrics exclude the warm-up (dotted line).",
+        ),
+        (
+            "loops",
+            figures.loops,
+            interactive.loops,
+            "output vs reference",
+            "Hysteresis left by each compensator (output against reference).",
+        ),
+    ):
+        title = f"{result.name}: {title}"
+        add(
+            static(result.runs, title, unit=angle_unit),
+            name,
+            caption,
+            live(
+                result.runs,
+                title,
+                caption + " Zoom, pan, hide a trace in the legend.",
+                unit=angle_unit,
+            ),
+        )
     if result.routes:
         add(
             figures.routes(result.routes, f"{result.name}: route shapes"),

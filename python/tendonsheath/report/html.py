@@ -1,4 +1,5 @@
-"""A single self-contained HTML report: figures embedded as base64 PNG, no network."""
+"""A single self-contained HTML report: figures embedded as base64 PNG or as Plotly divs with
+plotly.js inlined once, no network."""
 
 from __future__ import annotations
 
@@ -19,6 +20,7 @@ th,td{border:1px solid #ccc;padding:.25rem .55rem;text-align:right}
 th{background:#eef2f7}td:first-child,th:first-child{text-align:left}
 figure{margin:.8rem 0;background:#fff;border:1px solid #e3e3e3;padding:.4rem;display:inline-block;
 max-width:100%}figure img{max-width:100%;height:auto;display:block}
+figure.interactive{display:block}
 figcaption{font-size:.82rem;color:#555;margin-top:.25rem}
 .conditions td{text-align:left}.note{color:#555;font-size:.9rem}
 nav a{margin-right:1rem}
@@ -72,6 +74,22 @@ def figure(png: bytes, caption: str, alt: str | None = None) -> str:
     )
 
 
+def interactive_figure(div: str, png_name: str) -> str:
+    """A Plotly figure (``div`` from report.interactive) and a link to its PNG for papers."""
+    link = (
+        f'<p class="note">Static figure for papers: <a href="{html.escape(png_name)}">'
+        f"{html.escape(png_name)}</a></p>"
+    )
+    return div + link
+
+
+def _plotly_script(body: str) -> str:
+    """plotly.js, inlined once, when the page has a Plotly figure."""
+    from .interactive import MARKER, plotly_js
+
+    return f"<script>{plotly_js()}</script>" if MARKER in body else ""
+
+
 def page(title: str, intro: str, sections: list[tuple[str, str, str]]) -> str:
     """sections: (anchor, heading, html body)."""
     nav = "".join(f'<a href="#{a}">{html.escape(h)}</a>' for a, h, _ in sections)
@@ -82,7 +100,7 @@ def page(title: str, intro: str, sections: list[tuple[str, str, str]]) -> str:
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
 <meta name="viewport" content="width=device-width, initial-scale=1">
-<title>{html.escape(title)}</title><style>{STYLE}</style></head>
+<title>{html.escape(title)}</title><style>{STYLE}</style>{_plotly_script(body)}</head>
 <body><main><h1>{html.escape(title)}</h1><p class="note">Generated {stamp} by tendonsheath.</p>
 {intro}<nav>{nav}</nav>{body}</main><script>{CHECK_SCRIPT}</script></body></html>
 """

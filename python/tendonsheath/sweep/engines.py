@@ -13,7 +13,6 @@ import multiprocessing
 import os
 import pickle
 import signal
-import sys
 import time
 import traceback
 import uuid
@@ -24,6 +23,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
+from .._progress import StepProgress
 from .main_guard import ADVICE, in_bootstrapping_worker, unguarded_script
 
 Item = tuple[int, dict[str, Any]]
@@ -143,32 +143,10 @@ class _Collector:
 @contextmanager
 def progress_bar(enabled: bool | None, total: int, label: str):
     """A rich progress bar on stderr (enabled=None: only on a terminal); yields advance(k)."""
-    if enabled is None:
-        enabled = sys.stderr.isatty()
-    if not enabled:
-        yield lambda k: None
-        return
-    from rich.console import Console
-    from rich.progress import (
-        BarColumn,
-        MofNCompleteColumn,
-        Progress,
-        TextColumn,
-        TimeElapsedColumn,
-        TimeRemainingColumn,
-    )
-
-    with Progress(
-        TextColumn("{task.description}"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        TimeRemainingColumn(),
-        console=Console(stderr=True),
-        transient=False,
+    with StepProgress(
+        enabled is not False, total, label, "runs", terminal_only=enabled is None, transient=False
     ) as bar:
-        task = bar.add_task(label, total=total)
-        yield lambda k: bar.advance(task, k)
+        yield bar.advance
 
 
 # -- serial and local ------------------------------------------------------------------------
