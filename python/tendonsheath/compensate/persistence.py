@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from .._atomic import write_text
+from .._json_source import read_json_source
 
 FORMAT_NAME = "tendonsheath.compensator"
 FORMAT_VERSION = 1
@@ -117,20 +118,4 @@ def _number(name: str, what: str, value) -> float:
 
 def load_compensator(source: str | Path | dict):
     """Load a compensator saved with ``to_json``: a path, a JSON string or a dict."""
-    if isinstance(source, dict):
-        return compensator_from_dict(source)
-    text, where = str(source), ""
-    if not text.lstrip().startswith("{"):
-        path = Path(source)
-        if not path.is_file():
-            raise ValueError(f"compensator file not found: {path}")
-        where = f"{path}: "
-        try:
-            text = path.read_text(encoding="utf-8-sig")
-        except UnicodeDecodeError:
-            raise ValueError(f"{where}not a compensator JSON file (not UTF-8 text)") from None
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise ValueError(f"{where}compensator file is not valid JSON: {exc}") from None
-    return compensator_from_dict(data)
+    return compensator_from_dict(read_json_source(source, "compensator"))

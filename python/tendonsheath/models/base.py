@@ -9,6 +9,7 @@ from typing import Any, ClassVar
 
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
+from .._json_source import read_json_source
 from ..status import Status
 
 FORMAT_NAME = "tendonsheath.model"
@@ -226,24 +227,7 @@ def _check_not_bool(name: str, what: str, value) -> None:
 
 def load_model(source: str | Path | dict) -> HysteresisModel:
     """Load a model saved with ``to_json``: a path, a JSON string or a dict."""
-    if isinstance(source, dict):
-        data = source
-    else:
-        text, where = str(source), ""
-        if not text.lstrip().startswith("{"):
-            path = Path(source)
-            if not path.is_file():
-                raise ValueError(f"model file not found: {path}")
-            where = f"{path}: "
-            try:
-                text = path.read_text(encoding="utf-8-sig")
-            except UnicodeDecodeError:
-                raise ValueError(f"{where}not a model JSON file (binary, not UTF-8 text)") from None
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise ValueError(f"{where}model file is not valid JSON: {exc}") from None
-    return HysteresisModel.from_dict(data)
+    return HysteresisModel.from_dict(read_json_source(source, "model"))
 
 
 def _plain(value):
