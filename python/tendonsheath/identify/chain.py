@@ -254,28 +254,21 @@ def identify_chain(
             "quantities are in fit.groups"
         )
         assessed["groups"] = gauge.groups(model, assessed["standard_errors"])
-    fit = Fit(
-        model=model,
-        rmse=quality.overall["rmse"],
-        nrmse=quality.overall["nrmse"],
-        fit_percent=quality.overall["fit_percent"],
-        standard_errors=assessed["standard_errors"],
+    fit = Fit.from_quality(
+        model,
+        quality,
+        assessed,
         identified=[f"first.{n}" for n in problem.free] + ["second.coefficients"],
         fixed={f"first.{k}": v for k, v in problem.held.items()},
-        per_recording=quality.per_recording,
         evaluations=counter["evaluations"],
         seconds=seconds,
         generations=int(res.nit),
         method="differential evolution + least squares (chain: polynomial solved)",
         message=message,
         warmup=warmup,
-        n_samples=quality.n,
         bounds={f"first.{k}": v for k, v in problem.bounds.items()},
         recordings=recs,
         predictions=predictions,
-        diagnostics=assessed["diagnostics"],
-        groups=assessed["groups"],
-        uncertainty=assessed["se_method"],
     )
     fit.diagnostics.warn(stacklevel=4)
     return fit

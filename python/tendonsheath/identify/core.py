@@ -264,6 +264,20 @@ def identify(
     check_search_options(maxiter=maxiter, popsize=popsize, tol=tol, workers=workers, warmup=warmup)
     se_method, n_boot = check_method(standard_errors, bootstrap)
     budget = time_budget if isinstance(time_budget, TimeBudget) else TimeBudget(time_budget)
+    # the search and standard-error settings every path below takes as they are
+    search = dict(
+        seed=seed,
+        maxiter=maxiter,
+        popsize=popsize,
+        tol=tol,
+        workers=workers,
+        polish=polish,
+        progress=progress,
+        standard_errors=se_method,
+        bootstrap=n_boot,
+        bootstrap_block=bootstrap_block,
+        budget=budget,
+    )
     if normalize:
         from . import normalize as _norm
 
@@ -306,17 +320,7 @@ def identify(
             warmup=int(warmup),
             bounds=bounds,
             fixed=fixed,
-            seed=seed,
-            maxiter=maxiter,
-            popsize=popsize,
-            tol=tol,
-            workers=workers,
-            polish=polish,
-            progress=progress,
-            standard_errors=se_method,
-            bootstrap=n_boot,
-            bootstrap_block=bootstrap_block,
-            budget=budget,
+            **search,
         )
         return _stamp(budget, fit)
     if model_class in (PlantModel, "PlantModel"):
@@ -330,17 +334,7 @@ def identify(
             make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle),
             warmup=int(warmup),
             initial=initial,
-            seed=seed,
-            maxiter=maxiter,
-            popsize=popsize,
-            tol=tol,
-            workers=workers,
-            polish=polish,
-            progress=progress,
-            standard_errors=se_method,
-            bootstrap=n_boot,
-            bootstrap_block=bootstrap_block,
-            budget=budget,
+            **search,
         )
         return _stamp(budget, fit)
     cls = _model_class(model_class)
@@ -573,28 +567,21 @@ def identify(
         seed=seed,
         angle=angle,
     )
-    fit = Fit(
-        model=model,
-        rmse=quality.overall["rmse"],
-        nrmse=quality.overall["nrmse"],
-        fit_percent=quality.overall["fit_percent"],
-        standard_errors=assessed["standard_errors"],
+    fit = Fit.from_quality(
+        model,
+        quality,
+        assessed,
         identified=list(free_names),
         fixed=held,
-        per_recording=quality.per_recording,
         evaluations=counter["evaluations"],
         seconds=seconds,
         generations=int(res.nit),
         method=method,
         message=message,
         warmup=warmup,
-        n_samples=quality.n,
         bounds={n: (float(a), float(b)) for n, (a, b) in all_bounds.items() if n in free_names},
         recordings=recs,
         predictions=predictions,
-        diagnostics=assessed["diagnostics"],
-        groups=assessed["groups"],
-        uncertainty=assessed["se_method"],
     )
     fit.diagnostics.warn(stacklevel=3)
     return _stamp(budget, fit)

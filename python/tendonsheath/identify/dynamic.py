@@ -238,16 +238,13 @@ def identify_dynamic(
         block=bootstrap_block,
         seed=seed,
     )
-    fit = Fit(
-        model=model,
-        rmse=quality.overall["rmse"],
-        nrmse=quality.overall["nrmse"],
-        fit_percent=quality.overall["fit_percent"],
-        standard_errors=assessed["standard_errors"],
+    fit = Fit.from_quality(
+        model,
+        quality,
+        assessed,
         identified=[f"{part}.{n}" for n in problem.static_cls.param_names]
         + [f"{other}.{n}" for n in problem.block_names],
         fixed={},
-        per_recording=quality.per_recording,
         evaluations=counter["evaluations"],
         seconds=seconds,
         generations=int(res.nit),
@@ -255,16 +252,12 @@ def identify_dynamic(
         "parameters solved)",
         message=message,
         warmup=warmup,
-        n_samples=quality.n,
         bounds={
             f"{part if n in problem.spec.search_names else other}.{n}": b
             for n, b in problem.bounds.items()
         },
         recordings=recs,
         predictions=predictions,
-        diagnostics=assessed["diagnostics"],
-        groups=assessed["groups"],
-        uncertainty=assessed["se_method"],
     )
     fit.diagnostics.warn(stacklevel=5)
     return fit

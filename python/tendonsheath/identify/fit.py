@@ -114,6 +114,30 @@ class Fit:
     )
     stopped_on_budget: bool = False
 
+    @classmethod
+    def from_quality(
+        cls, model: HysteresisModel, quality: FitQuality, assessed: dict | None = None, **fields
+    ) -> Fit:
+        """The Fit of ``model`` from its :func:`fit_quality` and, where given, its
+        ``uncertainty.assess()`` result (standard errors, diagnostics, groups, method);
+        ``fields`` are the identification path's own (identified, fixed, bounds, counts...)."""
+        if assessed is not None:
+            fields.update(
+                standard_errors=assessed["standard_errors"],
+                diagnostics=assessed["diagnostics"],
+                groups=assessed["groups"],
+                uncertainty=assessed["se_method"],
+            )
+        return cls(
+            model=model,
+            rmse=quality.overall["rmse"],
+            nrmse=quality.overall["nrmse"],
+            fit_percent=quality.overall["fit_percent"],
+            per_recording=quality.per_recording,
+            n_samples=quality.n,
+            **fields,
+        )
+
     def warnings(self) -> list[str]:
         """The identifiability warnings of this fit (empty when there are none)."""
         return self.diagnostics.warnings()

@@ -550,15 +550,12 @@ def _fit(run: dict, model, problem, se_bounds, seconds, generations, message) ->
         except ValueError:
             ses = {n: float("nan") for n in free_names}
     model.check_bounded(max(float(np.ptp(r.y)) for r in recs), "the measured displacement")
-    return Fit(
-        model=model,
-        rmse=quality.overall["rmse"],
-        nrmse=quality.overall["nrmse"],
-        fit_percent=quality.overall["fit_percent"],
+    return Fit.from_quality(
+        model,
+        quality,
         standard_errors=ses,
         identified=list(free_names),
         fixed=run["held"],
-        per_recording=quality.per_recording,
         evaluations=run["counter"]["evaluations"],
         seconds=seconds,
         generations=generations,
@@ -566,7 +563,6 @@ def _fit(run: dict, model, problem, se_bounds, seconds, generations, message) ->
         f"projection) + simulation-error least squares; input reconstruction {run['mode']}",
         message=message,
         warmup=warmup,
-        n_samples=quality.n,
         bounds={n: se_bounds[n] for n in free_names},
         recordings=recs,
         predictions=predictions,

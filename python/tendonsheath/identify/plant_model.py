@@ -165,28 +165,21 @@ def identify_plant(
         seed=seed,
         generic=(names, []),
     )
-    fit = Fit(
-        model=model,
-        rmse=quality.overall["rmse"],
-        nrmse=quality.overall["nrmse"],
-        fit_percent=quality.overall["fit_percent"],
-        standard_errors=assessed["standard_errors"],
+    fit = Fit.from_quality(
+        model,
+        quality,
+        assessed,
         identified=names,
         fixed={},
-        per_recording=quality.per_recording,
         evaluations=counter["evaluations"],
         seconds=seconds,
         generations=int(res.nit),
         method="differential evolution + least squares (grey-box plant: output map solved)",
         message=message,
         warmup=warmup,
-        n_samples=quality.n,
         bounds=dict(problem.bounds),
         recordings=recs,
         predictions=predictions,
-        diagnostics=assessed["diagnostics"],
-        groups=assessed["groups"],
-        uncertainty=assessed["se_method"],
     )
     fit.diagnostics.warn(stacklevel=4)
     return fit
