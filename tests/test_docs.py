@@ -10,45 +10,32 @@ import importlib
 import importlib.util
 import inspect
 import re
-import subprocess
-import sys
 import tomllib
 from pathlib import Path
 
 import numpy as np
 import pytest
+from _snippets import MAIN_GUARD, python_blocks, run_as_script
 
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
 PAGES = ["index.md", *sorted(p.relative_to(DOCS).as_posix() for p in DOCS.glob("tutorials/*.md"))]
 # the only edits: run lengths (a sweep of 4 draws takes the same code path as 200)
 SHORTER = {"n=200": "n=4"}
-MAIN_GUARD = 'if __name__ == "__main__":'
 
 
-def python_blocks(page: str) -> list[str]:
-    return re.findall(r"```python\n(.*?)```", (DOCS / page).read_text(), flags=re.S)
+def page_blocks(page: str) -> list[str]:
+    return python_blocks((DOCS / page).read_text())
 
 
 def run_page(page: str, folder: Path) -> dict:
     namespace: dict = {"__name__": "docs_page"}
-    for i, code in enumerate(python_blocks(page)):
+    for i, code in enumerate(page_blocks(page)):
         if MAIN_GUARD in code:
-            run_as_script(code, folder / f"block_{i}.py")
+            run_as_script(code, folder / f"block_{i}.py", SHORTER, f"docs/{page}")
         else:
             exec(compile(code, f"docs/{page} python block {i + 1}", "exec"), namespace)
     return namespace
-
-
-def run_as_script(code: str, path: Path) -> None:
-    for long, short in SHORTER.items():
-        assert code.count(long) == 1, f"the script no longer holds {long!r}"
-        code = code.replace(long, short)
-    path.write_text(code)
-    done = subprocess.run(
-        [sys.executable, str(path)], capture_output=True, text=True, timeout=600, cwd=path.parent
-    )
-    assert done.returncode == 0, done.stderr[-3000:]
 
 
 def test_the_four_tutorials_are_there_with_code():
@@ -59,7 +46,7 @@ def test_the_four_tutorials_are_there_with_code():
         "tutorials/compensate.md",
         "tutorials/sweep.md",
     }
-    assert all(python_blocks(page) for page in PAGES)
+    assert all(page_blocks(page) for page in PAGES)
 
 
 def test_every_page_is_in_the_site_navigation():

@@ -7,14 +7,12 @@ fixture below. A snippet with an ``if __name__ == "__main__":`` block is a scrip
 own and runs as one, in a fresh interpreter, as a user would run it.
 """
 
-import re
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
+from _snippets import MAIN_GUARD, python_blocks, run_as_script
 
 import tendonsheath as ts
 
@@ -24,7 +22,7 @@ SHORTER = {"n=1000": "n=2"}
 
 
 def python_snippets() -> list[str]:
-    return re.findall(r"```python\n(.*?)```", README.read_text(), flags=re.S)
+    return python_blocks(README.read_text())
 
 
 @pytest.fixture
@@ -78,14 +76,14 @@ def _write_run_bag(path, t, motor, tip):
 def test_readme_has_its_snippets():
     snippets = python_snippets()
     assert len(snippets) >= 7
-    assert sum('if __name__ == "__main__":' in s for s in snippets) == 1  # the sweep
+    assert sum(MAIN_GUARD in s for s in snippets) == 1  # the sweep
 
 
 def test_every_readme_python_snippet_runs_as_written(placeholders, tmp_path):
     namespace = dict(placeholders)
     for i, code in enumerate(python_snippets()):
-        if 'if __name__ == "__main__":' in code:
-            run_as_script(code, tmp_path / f"snippet_{i}.py")
+        if MAIN_GUARD in code:
+            run_as_script(code, tmp_path / f"snippet_{i}.py", SHORTER, "README")
             continue
         exec(compile(code, f"README.md python snippet {i + 1}", "exec"), namespace)
     # what the snippets say they make
@@ -95,15 +93,4 @@ def test_every_readme_python_snippet_runs_as_written(placeholders, tmp_path):
     assert namespace["bag_log"].y.size > 1000  # run.bag, read from its two topics
     assert np.isfinite(namespace["result"].metrics["rmse"])
     assert np.isfinite(namespace["tau"]) and np.isfinite(namespace["u_k"])
-
-
-def run_as_script(code: str, path: Path) -> None:
-    for long, short in SHORTER.items():
-        assert code.count(long) == 1, f"README's sweep snippet no longer holds {long!r}"
-        code = code.replace(long, short)
-    path.write_text(code)
-    done = subprocess.run(
-        [sys.executable, str(path)], capture_output=True, text=True, timeout=600, cwd=path.parent
-    )
-    assert done.returncode == 0, done.stderr[-3000:]
-    assert (path.parent / "sweep-out").is_dir()
+    assert (tmp_path / "sweep-out").is_dir()  # the sweep script's output
