@@ -307,12 +307,7 @@ def _fit(candidate, recs, options: dict):
 
 
 def _piece(r, a: int, b: int):
-    return type(r)(
-        None if r.t is None else r.t[a:b],
-        r.x[a:b],
-        r.y[a:b],
-        None if r.curve_angle is None else r.curve_angle[a:b],
-    )
+    return r.take(slice(a, b))
 
 
 MIN_PIECE = 20  # samples of a training piece in blocked folds (shorter ones are dropped)

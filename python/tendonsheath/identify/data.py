@@ -27,6 +27,16 @@ class Recording:
     def n(self) -> int:
         return int(self.x.size)
 
+    def take(self, index, skip: int = 0) -> Recording:
+        """The samples at ``index`` (a slice or an index array), as a recording of their own."""
+        return Recording(
+            None if self.t is None else self.t[index],
+            self.x[index],
+            self.y[index],
+            None if self.curve_angle is None else self.curve_angle[index],
+            skip,
+        )
+
     def angle(self) -> float | None:
         """The recording's curve angle when it is constant, else None."""
         if self.curve_angle is None:
@@ -206,14 +216,7 @@ def search_windows(
         starts = np.linspace(0, r.n - size, windows).astype(int)
         for s in np.unique(starts):
             sl = slice(int(s), int(s) + size)
-            out.append(
-                Recording(
-                    None if r.t is None else r.t[sl],
-                    r.x[sl],
-                    r.y[sl],
-                    None if r.curve_angle is None else r.curve_angle[sl],
-                )
-            )
+            out.append(r.take(sl))
     return out, win_warmup
 
 
@@ -260,15 +263,7 @@ def thin_for_search(
     for r in recs:
         first = int(warmup) + r.skip
         idx = _kept(r.x, step, first)
-        out.append(
-            Recording(
-                None if r.t is None else r.t[idx],
-                r.x[idx],
-                r.y[idx],
-                None if r.curve_angle is None else r.curve_angle[idx],
-                int(np.searchsorted(idx, first)),
-            )
-        )
+        out.append(r.take(idx, int(np.searchsorted(idx, first))))
     if sum(r.n for r in out) > 0.75 * total:
         return recs, warmup
     return out, 0
