@@ -21,8 +21,8 @@ namespace tendonsheath {
 
 class Route {
  public:
-  // Samples of the accumulated angle; validated (finite, s non-decreasing from
-  // 0 to L > 0, theta non-decreasing from 0).
+  /// Samples of the accumulated angle; validated (finite, s non-decreasing from
+  /// 0 to L > 0, theta non-decreasing from 0).
   Route(std::vector<double> s, std::vector<double> theta) : s_(std::move(s)), th_(std::move(theta)) {
     const char* w = "Route";
     require(s_.size() == th_.size(), w, "s and theta have different lengths (", s_.size(), " and ",
@@ -43,15 +43,15 @@ class Route {
     require(s_.back() > 0.0, w, "length must be > 0 (got ", s_.back(), ")");
   }
 
-  // Constant curvature: theta(s) = total_angle * s / length.
+  /// Constant curvature: theta(s) = total_angle * s / length.
   static Route uniform(double length, double total_angle) {
     require_positive(length, "Route.uniform", "length");
     require_non_negative(total_angle, "Route.uniform", "total_angle");
     return Route({0.0, length}, {0.0, total_angle});
   }
 
-  // Consecutive arcs of constant curvature: (length > 0, bend angle). A bend
-  // to the other side (negative angle) accumulates |angle|.
+  /// Consecutive arcs of constant curvature: (length > 0, bend angle). A bend
+  /// to the other side (negative angle) accumulates |angle|.
   static Route arcs(const std::vector<std::pair<double, double>>& pieces) {
     const char* w = "Route.arcs";
     require(!pieces.empty(), w, "at least one (length, angle) piece is needed");
@@ -67,8 +67,8 @@ class Route {
     return Route(std::move(s), std::move(th));
   }
 
-  // A 3-D polyline of K >= 2 points (xyz row-major, K x 3, metres). Each
-  // interior vertex adds its turning angle as a jump of theta at that vertex.
+  /// A 3-D polyline of K >= 2 points (xyz row-major, K x 3, metres). Each
+  /// interior vertex adds its turning angle as a jump of theta at that vertex.
   static Route from_points(const double* xyz, std::size_t k) {
     const char* w = "Route.from_points";
     require(k >= 2, w, "at least two points are needed (got ", k, ")");
@@ -100,8 +100,8 @@ class Route {
     return Route(std::move(s), std::move(th));
   }
 
-  // A sampled curvature profile kappa(s) (s strictly increasing, shifted to
-  // start at 0); theta is the trapezoidal integral of |kappa|.
+  /// A sampled curvature profile kappa(s) (s strictly increasing, shifted to
+  /// start at 0); theta is the trapezoidal integral of |kappa|.
   static Route from_curvature(const double* s, const double* kappa, std::size_t n) {
     const char* w = "Route.from_curvature";
     require(n >= 2, w, "at least two samples are needed (got ", n, ")");
@@ -126,7 +126,7 @@ class Route {
   const std::vector<double>& s() const noexcept { return s_; }
   const std::vector<double>& theta() const noexcept { return th_; }
 
-  // theta(s), right-continuous at jumps; clamped outside [0, L].
+  /// theta(s), right-continuous at jumps; clamped outside [0, L].
   double angle_at(double s) const noexcept {
     if (!(s > 0.0)) return (s == 0.0 && s_[1] == 0.0) ? theta_right_of_zero() : 0.0;
     if (s >= s_.back()) return th_.back();
@@ -142,11 +142,11 @@ class Route {
     return th_[lo] + (th_[hi] - th_[lo]) * (s - s_[lo]) / ds;
   }
 
-  // Angles of n equal elements (out[0..n-1], proximal to distal): the
-  // increments of theta over [e L/n, (e+1) L/n]. Allocation-free, O(n + K).
-  // A jump exactly at an element boundary goes to the element ending there;
-  // a jump at s = 0 goes to the first element. The sum is exactly theta(L)
-  // up to rounding.
+  /// Angles of n equal elements (out[0..n-1], proximal to distal): the
+  /// increments of theta over [e L/n, (e+1) L/n]. Allocation-free, O(n + K).
+  /// A jump exactly at an element boundary goes to the element ending there;
+  /// a jump at s = 0 goes to the first element. The sum is exactly theta(L)
+  /// up to rounding.
   void element_angles(std::size_t n, double* out) const noexcept {
     const double L = s_.back();
     double prev = 0.0;
@@ -174,11 +174,11 @@ class Route {
     }
   }
 
-  // Lumped angles of the n-1 interior nodes of an n-element sheath
-  // (out[0..n-2], node 1 to node n-1, proximal to distal): half of each
-  // adjacent element, plus the outer halves of the two end elements (whose
-  // outer nodes are driven ends or the distal pulley). Their sum equals the
-  // total angle. Needs n >= 2; `work` holds n doubles (scratch).
+  /// Lumped angles of the n-1 interior nodes of an n-element sheath
+  /// (out[0..n-2], node 1 to node n-1, proximal to distal): half of each
+  /// adjacent element, plus the outer halves of the two end elements (whose
+  /// outer nodes are driven ends or the distal pulley). Their sum equals the
+  /// total angle. Needs n >= 2; `work` holds n doubles (scratch).
   void node_angles(std::size_t n, double* out, double* work) const noexcept {
     element_angles(n, work);
     for (std::size_t j = 1; j < n; ++j) out[j - 1] = 0.5 * (work[j - 1] + work[j]);

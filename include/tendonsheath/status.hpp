@@ -8,24 +8,24 @@ namespace tendonsheath {
 
 enum class Status : unsigned {
   ok = 0u,
-  held_nonfinite_input = 1u << 0,  // a non-finite input was ignored: the last output is held
-  input_clamped = 1u << 1,         // an input (or dt, or a curve angle) beyond its bound was clamped
-  not_converged = 1u << 2,         // the solver kept its best bounded iterate
-  slack = 1u << 3,                 // a tendon tension is <= 0: the model is not valid there
-  fallback = 1u << 4,              // a controller ran its fallback (no measurement)
-  saturated = 1u << 5,             // the command hit its limit
+  held_nonfinite_input = 1u << 0,  ///< a non-finite input was ignored: the last output is held
+  input_clamped = 1u << 1,         ///< an input (or dt, or a curve angle) beyond its bound was clamped
+  not_converged = 1u << 2,         ///< the solver kept its best bounded iterate
+  slack = 1u << 3,                 ///< a tendon tension is <= 0: the model is not valid there
+  fallback = 1u << 4,              ///< a controller ran its fallback (no measurement)
+  saturated = 1u << 5,             ///< the command hit its limit
 };
 
 constexpr Status operator|(Status a, Status b) noexcept {
   return static_cast<Status>(static_cast<unsigned>(a) | static_cast<unsigned>(b));
 }
 constexpr Status& operator|=(Status& a, Status b) noexcept { return a = a | b; }
-// True when every flag of `flag` is set in `s` (has(s, Status::ok) is always true).
+/// True when every flag of `flag` is set in `s` (has(s, Status::ok) is always true).
 constexpr bool has(Status s, Status flag) noexcept {
   return (static_cast<unsigned>(s) & static_cast<unsigned>(flag)) == static_cast<unsigned>(flag);
 }
 
-// One step that also reports its status (ruckig-style): y = step_with_status(obj, s, x, dt).
+/// One step that also reports its status (ruckig-style): y = step_with_status(obj, s, x, dt).
 template <class RealTime, class... Args>
 double step_with_status(RealTime& obj, Status& status, Args... args) noexcept {
   const double y = obj.step(args...);

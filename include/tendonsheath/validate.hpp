@@ -44,8 +44,8 @@ template <class... Parts>
 }
 }  // namespace detail
 
-// Throws std::invalid_argument with "<where>: <parts...>" when cond is false; the parts
-// (text, floating-point and integer values) are formatted only then.
+/// Throws std::invalid_argument with "<where>: <parts...>" when cond is false; the parts
+/// (text, floating-point and integer values) are formatted only then.
 template <class... Parts>
 inline void require(bool cond, std::string_view where, const Parts&... parts) {
   if (!cond) detail::fail(where, parts...);
@@ -72,8 +72,8 @@ inline void require_in_range(double v, double lo, double hi, const char* where, 
           "] (got ", v, ")");
 }
 
-// A sampled signal for batch simulation: n >= 1 finite samples, and when a
-// time vector is given it must be finite and strictly increasing.
+/// A sampled signal for batch simulation: n >= 1 finite samples, and when a
+/// time vector is given it must be finite and strictly increasing.
 inline void check_series(const double* t, const double* x, std::size_t n, const char* where) {
   require(n >= 1, where, "the input is empty");
   // Branch-free scans first (they vectorise); locate the culprit only on failure.

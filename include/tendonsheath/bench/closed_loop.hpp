@@ -21,28 +21,30 @@
 
 namespace tendonsheath {
 
-// Route shapes seen by a controller, at the same indices as the plant's RouteSchedule.
+/// Route shapes seen by a controller, at the same indices as the plant's RouteSchedule.
 struct ShapeSchedule {
-  const ShapeIntegrals* shapes = nullptr;  // one per route change, or nullptr
+  const ShapeIntegrals* shapes = nullptr;  ///< one per route change, or nullptr
 };
 
 struct ClosedLoopTrace {
-  double* output = nullptr;         // true distal output per sample (required)
-  double* measured = nullptr;       // what the sensor reported (NaN in dropouts)
-  double* command = nullptr;        // controller output (motor angle or torque)
-  double* motor = nullptr;          // motor shaft position (its encoder; the pulley lags it by
-                                    // the gear play when the motor has gear backlash)
-  unsigned char* slack = nullptr;   // slack flag
-  unsigned char* fallback = nullptr;  // controller in its fallback mode
-  unsigned char* status = nullptr;  // Status flags of controller, motor, plant and sensor
+  double* output = nullptr;         ///< true distal output per sample (required)
+  double* measured = nullptr;       ///< what the sensor reported (NaN in dropouts)
+  double* command = nullptr;        ///< controller output (motor angle or torque)
+  double* motor = nullptr;          ///< motor shaft position (its encoder; the pulley lags it by
+                                    /// the gear play when the motor has gear backlash)
+  unsigned char* slack = nullptr;   ///< slack flag
+  unsigned char* fallback = nullptr;  ///< controller in its fallback mode
+  unsigned char* status = nullptr;  ///< Status flags of controller, motor, plant and sensor
 };
 
-// Controllers as the loop sees them.
+/// Controllers as the loop sees them.
 struct OpenLoop {  // uncompensated: the kinematic motor angle for the desired output
   double gain = 1.0;
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {}
   void on_shape(const ShapeIntegrals&) noexcept {}
   bool in_fallback() const noexcept { return false; }
+  /// The last step's status flags (see Status).
   Status status() const noexcept { return Status::ok; }
   double command(double y_d, double, double, double) noexcept { return gain * y_d; }
 };
@@ -50,27 +52,33 @@ struct OpenLoop {  // uncompensated: the kinematic motor angle for the desired o
 template <class Feedforward>
 struct FeedforwardLoop {  // any feedforward compensator: no use of the measurement
   Feedforward ff;
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept { ff.reset(); }
   void on_shape(const ShapeIntegrals&) noexcept {}
   bool in_fallback() const noexcept { return false; }
+  /// The last step's status flags (see Status).
   Status status() const noexcept { return ff.status(); }
   double command(double y_d, double, double, double dt) noexcept { return ff.step(y_d, dt); }
 };
 
 struct CurveAngleLoop {  // follows the route's shape every cycle (shape sensing)
   CurveAngleFeedforward ff;
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept { ff.reset(); }
   void on_shape(const ShapeIntegrals& s) noexcept { ff.set_shape(s); }
   bool in_fallback() const noexcept { return false; }
+  /// The last step's status flags (see Status).
   Status status() const noexcept { return ff.status(); }
   double command(double y_d, double, double, double dt) noexcept { return ff.step(y_d, dt); }
 };
 
 struct AdaptiveLoop {
   AdaptiveController ctrl;
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept { ctrl.reset(); }
   void on_shape(const ShapeIntegrals&) noexcept {}
   bool in_fallback() const noexcept { return ctrl.in_fallback(); }
+  /// The last step's status flags (see Status).
   Status status() const noexcept { return ctrl.status(); }
   double command(double y_d, double measured, double motor, double dt) noexcept {
     return ctrl.step(y_d, measured, motor, dt);

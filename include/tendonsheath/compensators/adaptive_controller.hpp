@@ -26,30 +26,30 @@
 namespace tendonsheath {
 
 struct AdaptiveControllerParams {
-  double lambda = 20.0;   // 1/s
-  double k_s = 1.0;       // feedback gain on s, torque per (rad/s)
-  double epsilon = 0.05;  // boundary layer of the robust term, rad/s
+  double lambda = 20.0;   ///< 1/s
+  double k_s = 1.0;       ///< feedback gain on s, torque per (rad/s)
+  double epsilon = 0.05;  ///< boundary layer of the robust term, rad/s
   double gamma_psi = 0.5, gamma_phi = 1e-3, gamma_D = 5.0;
-  double sigma_psi = 0.0, sigma_phi = 0.0, sigma_D = 0.0;  // leakage
-  double psi_0 = 0.0, phi_0 = 0.005, D_0 = 0.0;              // initial estimates / prior of phi
+  double sigma_psi = 0.0, sigma_phi = 0.0, sigma_D = 0.0;  ///< leakage
+  double psi_0 = 0.0, phi_0 = 0.005, D_0 = 0.0;              ///< initial estimates / prior of phi
   double phi_min = 1e-5;
-  // Projection bounds. D_max matters most: D/epsilon is a feedback gain on s, and s
-  // contains the filtered derivative, so D_max/(epsilon phi) must stay well below the
-  // derivative filter's bandwidth or the loop goes unstable.
+  /// Projection bounds. D_max matters most: D/epsilon is a feedback gain on s, and s
+  /// contains the filtered derivative, so D_max/(epsilon phi) must stay well below the
+  /// derivative filter's bandwidth or the loop goes unstable.
   double psi_max = 10.0, phi_max = 1.0, D_max = 0.2;
-  double adaptation_deadzone = 0.0;  // no adaptation while |s| is below this (noise floor)
+  double adaptation_deadzone = 0.0;  ///< no adaptation while |s| is below this (noise floor)
   double derivative_cutoff_hz = 40.0;
   double derivative_damping = 0.7071067811865476;
   double max_torque = std::numeric_limits<double>::infinity();
-  // Fallback on sensor dropout.
+  /// Fallback on sensor dropout.
   bool has_feedforward = false;
   BacklashInverseParams feedforward{};
-  double fallback_kp = 1.0;   // torque per rad of motor position error
-  double fallback_kd = 0.05;  // torque per rad/s of motor velocity error
-  // With a feedforward model: take the acceleration the model asks of the output,
-  // c * x_ff'' (which includes the quick crossing of the dead band at a reversal), in
-  // place of y_d'' in nu_r, so the inertial term pushes the motor across the band
-  // before the output error shows it. The difference is part of the bounded delta.
+  double fallback_kp = 1.0;   ///< torque per rad of motor position error
+  double fallback_kd = 0.05;  ///< torque per rad/s of motor velocity error
+  /// With a feedforward model: take the acceleration the model asks of the output,
+  /// c * x_ff'' (which includes the quick crossing of the dead band at a reversal), in
+  /// place of y_d'' in nu_r, so the inertial term pushes the motor across the band
+  /// before the output error shows it. The difference is part of the bounded delta.
   bool model_acceleration = false;
 };
 
@@ -59,6 +59,7 @@ struct AdaptiveEstimates {
 
 class AdaptiveController {
  public:
+  /// The parameter struct its constructor takes.
   using Params = AdaptiveControllerParams;
 
   explicit AdaptiveController(const Params& p)
@@ -89,10 +90,12 @@ class AdaptiveController {
     reset();
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
   const AdaptiveEstimates& estimates() const noexcept { return est_; }
   bool in_fallback() const noexcept { return fallback_; }
 
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     est_ = {p_.psi_0, p_.phi_0, p_.D_0};
     yd_rate_.reset();
@@ -107,9 +110,9 @@ class AdaptiveController {
     torque_ = 0.0;
   }
 
-  // One control cycle: desired output y_d, measured output y (NaN on dropout),
-  // motor position (used by the fallback only), dt since the previous cycle.
-  // Returns the motor torque command.
+  /// One control cycle: desired output y_d, measured output y (NaN on dropout),
+  /// motor position (used by the fallback only), dt since the previous cycle.
+  /// Returns the motor torque command.
   double step(double y_d, double y_measured, double motor_position, double dt) noexcept {
     held_ = !std::isfinite(y_d);
     if (held_) return torque_;
@@ -157,8 +160,8 @@ class AdaptiveController {
 
   double filtered_rate() const noexcept { return filtered_rate_; }
 
-  // The last step's status: held (non-finite y_d), fallback (no measurement), saturated
-  // (|torque| at max_torque).
+  /// The last step's status: held (non-finite y_d), fallback (no measurement), saturated
+  /// (|torque| at max_torque).
   Status status() const noexcept {
     Status s = Status::ok;
     if (held_) s |= Status::held_nonfinite_input;

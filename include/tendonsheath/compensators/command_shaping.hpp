@@ -10,15 +10,16 @@
 
 namespace tendonsheath {
 
-// phi = (1 + tanh(v / v_eps)) / 2: 1 moving forward, 0 moving backward, 1/2 at
-// rest (spec D.2, B2). v_eps is the smoothing speed (2-5 % of the peak speed).
+/// phi = (1 + tanh(v / v_eps)) / 2: 1 moving forward, 0 moving backward, 1/2 at
+/// rest (spec D.2, B2). v_eps is the smoothing speed (2-5 % of the peak speed).
 inline double smooth_direction(double velocity, double v_eps) noexcept {
   return 0.5 * (1.0 + std::tanh(velocity / v_eps));
 }
 
-// Backward-difference rate of a sampled signal; 0 on the first sample.
+/// Backward-difference rate of a sampled signal; 0 on the first sample.
 class RateEstimator {
  public:
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept { primed_ = false; }
   bool primed() const noexcept { return primed_; }
   double update(double value, double dt) noexcept {
@@ -46,12 +47,13 @@ struct CommandLimits {
   }
 };
 
-// Saturates a command to the limits and its rate of change; holds the last
-// command on non-finite input, so the output is never NaN.
+/// Saturates a command to the limits and its rate of change; holds the last
+/// command on non-finite input, so the output is never NaN.
 class CommandShaper {
  public:
   CommandShaper() = default;
   explicit CommandShaper(const CommandLimits& limits) : lim_(limits) {}
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept { primed_ = false; }
   double apply(double command, double dt) noexcept {
     held_ = !std::isfinite(command);
@@ -71,8 +73,8 @@ class CommandShaper {
     return c;
   }
   double last() const noexcept { return last_; }
-  // The last apply(): held_nonfinite_input (command not finite: the last one held),
-  // saturated (the command was cut to the limits or the rate limit).
+  /// The last apply(): held_nonfinite_input (command not finite: the last one held),
+  /// saturated (the command was cut to the limits or the rate limit).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return saturated_ ? s | Status::saturated : s;

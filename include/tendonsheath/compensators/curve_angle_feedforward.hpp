@@ -22,21 +22,22 @@
 namespace tendonsheath {
 
 struct CurveAngleFeedforwardParams {
-  double friction = 0.1;           // mu
-  double compliance = 5e-5;        // L / EA, m/N
-  double pretension = 10.0;        // T0, N
-  double load_force = 0.0;         // F_0 at the distal tendon level, N
-  double load_stiffness = 0.0;     // k_e of a spring environment at the tendon level, N/m
-  double proximal_radius = 5e-3;   // r_p, m
-  double distal_radius = 5e-3;     // r_d, m
-  double total_angle = 3.141592653589793;  // initial Theta (uniform curvature), rad
-  double v_eps = 0.05;             // smoothing speed of the direction switch, rad/s of output
+  double friction = 0.1;           ///< mu
+  double compliance = 5e-5;        ///< L / EA, m/N
+  double pretension = 10.0;        ///< T0, N
+  double load_force = 0.0;         ///< F_0 at the distal tendon level, N
+  double load_stiffness = 0.0;     ///< k_e of a spring environment at the tendon level, N/m
+  double proximal_radius = 5e-3;   ///< r_p, m
+  double distal_radius = 5e-3;     ///< r_d, m
+  double total_angle = 3.141592653589793;  ///< initial Theta (uniform curvature), rad
+  double v_eps = 0.05;             ///< smoothing speed of the direction switch, rad/s of output
   double max_correction_rate = std::numeric_limits<double>::infinity();  // m/s at the tendon
   CommandLimits limits{};          // on the motor angle, rad
 };
 
 class CurveAngleFeedforward {
  public:
+  /// The parameter struct its constructor takes.
   using Params = CurveAngleFeedforwardParams;
 
   explicit CurveAngleFeedforward(const Params& p) : p_(p), shaper_(p.limits) {
@@ -59,19 +60,21 @@ class CurveAngleFeedforward {
     update_shape(uniform_shape(p.friction, p.total_angle));
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
   const ShapeIntegrals& shape() const noexcept { return shape_; }
-  // True when the last set_curve_angle() was beyond max_total_angle(friction) and clamped.
+  /// True when the last set_curve_angle() was beyond max_total_angle(friction) and clamped.
   bool angle_clamped() const noexcept { return angle_clamped_; }
 
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     rate_.reset();
     shaper_.reset();
     correction_primed_ = false;
   }
 
-  // Uniform curvature with total angle theta (rad); non-finite or negative is ignored, and an
-  // angle beyond max_total_angle(friction) is clamped to it (angle_clamped() tells).
+  /// Uniform curvature with total angle theta (rad); non-finite or negative is ignored, and an
+  /// angle beyond max_total_angle(friction) is clamped to it (angle_clamped() tells).
   void set_curve_angle(double theta) noexcept {
     angle_clamped_ = theta > max_total_angle(p_.friction);
     if (angle_clamped_) theta = max_total_angle(p_.friction);
@@ -80,7 +83,7 @@ class CurveAngleFeedforward {
       uniform_ = true;
     }
   }
-  // Any route: its shape integrals g, G (see shape_integrals) and total angle.
+  /// Any route: its shape integrals g, G (see shape_integrals) and total angle.
   void set_shape(const ShapeIntegrals& shape) noexcept {
     if (std::isfinite(shape.g) && std::isfinite(shape.G) && shape.g > 0.0 && shape.G > 0.0 &&
         std::isfinite(shape.total_angle) && shape.total_angle >= 0.0) {
@@ -95,8 +98,8 @@ class CurveAngleFeedforward {
     return step_with_rate(y_d, rate_.update(y_d, dt), dt);
   }
 
-  // The last step's status: held (non-finite y_d), input_clamped (the curve angle in force
-  // was clamped to max_total_angle), saturated (the command was cut to its limits).
+  /// The last step's status: held (non-finite y_d), input_clamped (the curve angle in force
+  /// was clamped to max_total_angle), saturated (the command was cut to its limits).
   Status status() const noexcept {
     Status s = shaper_.status();
     if (held_) s |= Status::held_nonfinite_input;
@@ -118,7 +121,7 @@ class CurveAngleFeedforward {
     return shaper_.apply((x_d + c) / p_.proximal_radius, dt);
   }
 
-  // Tendon-level correction for a desired distal displacement x_d and direction blend phi.
+  /// Tendon-level correction for a desired distal displacement x_d and direction blend phi.
   double correction(double x_d, double phi) const noexcept {
     const double load = p_.load_force + p_.load_stiffness * x_d;
     return phi * (affine_.forward_offset + affine_.forward_slope * load) +

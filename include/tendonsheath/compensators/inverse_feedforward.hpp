@@ -21,12 +21,13 @@ struct BacklashInverseParams {
   double c_l = 1.0;
   double B_r = 0.1;
   double B_l = 0.1;
-  double v_eps = 0.05;  // smoothing speed of the direction switch, output units per s
+  double v_eps = 0.05;  ///< smoothing speed of the direction switch, output units per s
   CommandLimits limits{};
 };
 
 class BacklashInverseFeedforward {
  public:
+  /// The parameter struct its constructor takes.
   using Params = BacklashInverseParams;
 
   explicit BacklashInverseFeedforward(const Params& p) : p_(p), shaper_(p.limits) {
@@ -39,26 +40,28 @@ class BacklashInverseFeedforward {
     p.limits.validate(w);
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
 
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     rate_.reset();
     shaper_.reset();
   }
 
-  // Desired output y_d at this cycle, dt since the previous one; returns the motor command.
+  /// Desired output y_d at this cycle, dt since the previous one; returns the motor command.
   double step(double y_d, double dt) noexcept {
     if (!std::isfinite(y_d)) return shaper_.apply(NAN, dt);
     return step_with_rate(y_d, rate_.update(y_d, dt), dt);
   }
 
-  // Same, with the desired output rate given (e.g. from a trajectory generator).
+  /// Same, with the desired output rate given (e.g. from a trajectory generator).
   double step_with_rate(double y_d, double y_d_rate, double dt) noexcept {
     if (!std::isfinite(y_d_rate)) y_d_rate = 0.0;
     return shaper_.apply(inverse(y_d, smooth_direction(y_d_rate, p_.v_eps)), dt);
   }
-  // The last step's status: held_nonfinite_input (y_d not finite) and the command shaper's
-  // (saturated: the command was cut to its limits).
+  /// The last step's status: held_nonfinite_input (y_d not finite) and the command shaper's
+  /// (saturated: the command was cut to its limits).
   Status status() const noexcept { return shaper_.status(); }
 
   double inverse(double y_d, double phi) const noexcept {
@@ -78,12 +81,13 @@ class PrandtlIshlinskiiFeedforward {
       : inverse_(p), shaper_(limits) {
     limits.validate("PrandtlIshlinskiiFeedforward");
   }
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     inverse_.reset();
     shaper_.reset();
   }
   double step(double y_d, double dt) noexcept { return shaper_.apply(inverse_.step(y_d), dt); }
-  // The inverse's status (held, input_clamped) and the shaper's (saturated).
+  /// The inverse's status (held, input_clamped) and the shaper's (saturated).
   Status status() const noexcept { return inverse_.status() | shaper_.status(); }
 
  private:

@@ -90,8 +90,8 @@ inline void check_format(const json& file, const char* format, const std::string
 
 }  // namespace detail
 
-// The affine map of a Python `Scaled` model around the inverted one:
-// command = input_offset + input_scale * inner((y_d - output_offset) / output_gain).
+/// The affine map of a Python `Scaled` model around the inverted one:
+/// command = input_offset + input_scale * inner((y_d - output_offset) / output_gain).
 struct ScaledMap {
   double input_offset = 0.0;
   double input_scale = 1.0;
@@ -99,9 +99,9 @@ struct ScaledMap {
   double output_gain = 1.0;
 };
 
-// A model file ("tendonsheath.model") reduced to what its inverse needs.
+/// A model file ("tendonsheath.model") reduced to what its inverse needs.
 struct InvertibleModel {
-  std::string name;                  // Backlash, BoucWenBacklash or PrandtlIshlinskii
+  std::string name;                  ///< Backlash, BoucWenBacklash or PrandtlIshlinskii
   BacklashInverseParams backlash{};  // c_r, c_l, B_r, B_l (Backlash, BoucWenBacklash)
   PrandtlIshlinskiiParams pi{};      // PrandtlIshlinskii
   ScaledMap map{};                   // identity unless the file held a Scaled model
@@ -193,8 +193,8 @@ inline ContinuumFeedforwardParams continuum_feedforward_params(const json& f,
   return p;
 }
 
-// A loaded compensator: one of the core's feedforwards (validated by its constructor), with the
-// affine map of a Scaled model applied around an inverse. step() is noexcept and allocates nothing.
+/// A loaded compensator: one of the core's feedforwards (validated by its constructor), with the
+/// affine map of a Scaled model applied around an inverse. step() is noexcept and allocates nothing.
 class LoadedCompensator {
  public:
   using Engine = std::variant<BacklashInverseFeedforward, PrandtlIshlinskiiFeedforward,
@@ -208,9 +208,11 @@ class LoadedCompensator {
     const double x = std::visit([&](auto& e) noexcept { return e.step(inner_y, dt); }, engine_);
     return map_.input_offset + map_.input_scale * x;
   }
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     std::visit([](auto& e) noexcept { e.reset(); }, engine_);
   }
+  /// The last step's status flags (see Status).
   Status status() const noexcept {
     return std::visit([](const auto& e) noexcept { return e.status(); }, engine_);
   }
@@ -255,7 +257,7 @@ inline const std::set<std::string> kContinuumKeys{
 
 }  // namespace detail
 
-// A compensator from the parsed contents of a "tendonsheath.compensator" file.
+/// A compensator from the parsed contents of a "tendonsheath.compensator" file.
 inline LoadedCompensator compensator_from_json(const json& f, const std::string& where = "compensator") {
   detail::check_format(f, "tendonsheath.compensator", where);
   const json& kind = detail::member(f, "compensator", where);
@@ -272,7 +274,7 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
                           " (known: ContinuumFeedforward, CurveAngleFeedforward, InverseFeedforward)");
 }
 
-// The parsed contents of a JSON file (read with stdio: the library uses no iostreams).
+/// The parsed contents of a JSON file (read with stdio: the library uses no iostreams).
 inline json read_json_file(const std::string& path) {
   std::FILE* in = std::fopen(path.c_str(), "rb");
   if (!in) throw std::invalid_argument(path + ": cannot open the file");
@@ -287,7 +289,7 @@ inline json read_json_file(const std::string& path) {
   }
 }
 
-// A compensator from a file written by Python's `to_json(path)`.
+/// A compensator from a file written by Python's `to_json(path)`.
 inline LoadedCompensator load_compensator_json(const std::string& path) {
   return compensator_from_json(read_json_file(path), path);
 }

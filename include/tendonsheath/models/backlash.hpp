@@ -22,14 +22,15 @@
 namespace tendonsheath {
 
 struct BacklashParams {
-  double c_r = 1.0;  // slope of the right (rising) branch
-  double c_l = 1.0;  // slope of the left (falling) branch
-  double B_r = 0.1;  // dead-band offset of the right branch, input units
-  double B_l = 0.1;  // dead-band offset of the left branch, input units
+  double c_r = 1.0;  ///< slope of the right (rising) branch
+  double c_l = 1.0;  ///< slope of the left (falling) branch
+  double B_r = 0.1;  ///< dead-band offset of the right branch, input units
+  double B_l = 0.1;  ///< dead-band offset of the left branch, input units
 
-  // The identifiable parameters as a flat vector, in the order of the Python
-  // param_names (numerical options are left as they are).
+  /// The identifiable parameters as a flat vector, in the order of the Python
+  /// param_names (numerical options are left as they are).
   static constexpr std::size_t vector_size = 4;
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
   void assign(const double* v) noexcept {
     c_r = v[0]; c_l = v[1]; B_r = v[2]; B_l = v[3];
   }
@@ -37,7 +38,9 @@ struct BacklashParams {
 
 class Backlash {
  public:
+  /// The parameter struct its constructor takes.
   using Params = BacklashParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
   explicit Backlash(const Params& p) : p_(p) {
@@ -48,11 +51,13 @@ class Backlash {
     require_non_negative(p.B_l, w, "B_l");
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
 
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept { initialised_ = false; }
 
-  // The first call after reset() starts in the middle of the band at x.
+  /// The first call after reset() starts in the middle of the band at x.
   double step(double x, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(x);
     if (held_) return initialised_ ? y_ : 0.0;
@@ -72,10 +77,10 @@ class Backlash {
   }
 
   double output() const noexcept { return y_; }
-  // The last step's status: held_nonfinite_input when its input was not finite.
+  /// The last step's status: held_nonfinite_input when its input was not finite.
   Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
 
-  // Put the model in a given state (for inverses and identification).
+  /// Put the model in a given state (for inverses and identification).
   void set_state(double x, double y) noexcept {
     x_ = x;
     y_ = y;

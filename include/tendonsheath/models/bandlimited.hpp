@@ -42,7 +42,7 @@ inline double bessel_i0(double x) noexcept {
 
 class SincKernel {
  public:
-  static constexpr int kPhases = 512;  // table points per sample
+  static constexpr int kPhases = 512;  ///< table points per sample
   static constexpr int kMaxHalfWidth = 64;
 
   SincKernel() = default;
@@ -67,7 +67,7 @@ class SincKernel {
   int taps() const noexcept { return 2 * L_; }
   double beta() const noexcept { return beta_; }
 
-  // h(x), x in any sign (0 outside (-L, L)).
+  /// h(x), x in any sign (0 outside (-L, L)).
   double value(double x) const noexcept {
     const double a = std::fabs(x) * kPhases;
     if (!(a < static_cast<double>(L_) * kPhases)) return 0.0;
@@ -76,8 +76,8 @@ class SincKernel {
     return table_[i] + f * (table_[i + 1] - table_[i]);
   }
 
-  // Normalised weights w[0..2L-1] of the samples at offsets -L+1..L from the interval's
-  // first sample, for the fraction tau in [0, 1] of the interval.
+  /// Normalised weights w[0..2L-1] of the samples at offsets -L+1..L from the interval's
+  /// first sample, for the fraction tau in [0, 1] of the interval.
   void weights(double tau, double* w) const noexcept {
     double sum = 0.0;
     for (int i = 0; i < 2 * L_; ++i) {
@@ -94,10 +94,10 @@ class SincKernel {
   std::vector<double> table_;
 };
 
-// Offline reconstruction on a grid Q times finer: out[k Q + i] = u(t_k + (i / Q) dt) for
-// k in [0, n), i in [0, Q) (out has n Q values). The same values as the streaming
-// interpolation of HystereticOscillator (input held before the first and after the last
-// sample).
+/// Offline reconstruction on a grid Q times finer: out[k Q + i] = u(t_k + (i / Q) dt) for
+/// k in [0, n), i in [0, Q) (out has n Q values). The same values as the streaming
+/// interpolation of HystereticOscillator (input held before the first and after the last
+/// sample).
 inline void reconstruct_bandlimited(const SincKernel& kernel, const double* x, std::size_t n,
                                     int Q, double* out) {
   require(n >= 1, "reconstruct_bandlimited", "the input is empty");

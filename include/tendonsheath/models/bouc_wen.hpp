@@ -22,14 +22,15 @@ struct BoucWenParams {
   double beta = 0.5;
   double gamma = 0.5;
   double n = 1.0;
-  double alpha = 0.5;  // share of the linear (elastic) path, in [0, 1] (A is the amplitude)
-  double k = 1.0;  // gain of the hysteretic path
-  double max_step = 0.05;  // largest change of z / z_u per RK4 sub-step
+  double alpha = 0.5;  ///< share of the linear (elastic) path, in [0, 1] (A is the amplitude)
+  double k = 1.0;  ///< gain of the hysteretic path
+  double max_step = 0.05;  ///< largest change of z / z_u per RK4 sub-step
   int max_substeps = 256;
 
-  // The identifiable parameters as a flat vector, in the order of the Python
-  // param_names (numerical options are left as they are).
+  /// The identifiable parameters as a flat vector, in the order of the Python
+  /// param_names (numerical options are left as they are).
   static constexpr std::size_t vector_size = 6;
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
   void assign(const double* v) noexcept {
     A = v[0]; beta = v[1]; gamma = v[2]; n = v[3]; alpha = v[4]; k = v[5];
   }
@@ -37,7 +38,9 @@ struct BoucWenParams {
 
 class BoucWen {
  public:
+  /// The parameter struct its constructor takes.
   using Params = BoucWenParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
   explicit BoucWen(const Params& p) : p_(p) {
@@ -58,9 +61,11 @@ class BoucWen {
     z_u_ = std::pow(p.A / (p.beta + p.gamma), 1.0 / p.n);
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
   double z_ultimate() const noexcept { return z_u_; }
 
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     initialised_ = false;
     z_ = 0.0;
@@ -83,8 +88,8 @@ class BoucWen {
   }
 
   double output() const noexcept { return y_; }
-  // The last step's status: held_nonfinite_input (input not finite), not_converged (the
-  // integration overflowed and the state was kept).
+  /// The last step's status: held_nonfinite_input (input not finite), not_converged (the
+  /// integration overflowed and the state was kept).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return kept_ ? s | Status::not_converged : s;

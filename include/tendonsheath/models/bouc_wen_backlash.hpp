@@ -24,15 +24,16 @@ struct BoucWenBacklashParams {
   double c_l = 1.0;
   double B_r = 0.1;
   double B_l = 0.1;
-  double rho = 10.0;   // transition rate, 1/input unit (spec default 2/(B_r+B_l))
-  double sigma = 1.0;  // shape, >= 0.5
-  double n = 4.0;      // sharpness, >= 1
-  double max_step = 0.05;  // largest rho*|dx| per RK4 sub-step
+  double rho = 10.0;   ///< transition rate, 1/input unit (spec default 2/(B_r+B_l))
+  double sigma = 1.0;  ///< shape, >= 0.5
+  double n = 4.0;      ///< sharpness, >= 1
+  double max_step = 0.05;  ///< largest rho*|dx| per RK4 sub-step
   int max_substeps = 256;
 
-  // The identifiable parameters as a flat vector, in the order of the Python
-  // param_names (numerical options are left as they are).
+  /// The identifiable parameters as a flat vector, in the order of the Python
+  /// param_names (numerical options are left as they are).
   static constexpr std::size_t vector_size = 7;
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
   void assign(const double* v) noexcept {
     c_r = v[0]; c_l = v[1]; B_r = v[2]; B_l = v[3]; rho = v[4]; sigma = v[5]; n = v[6];
   }
@@ -91,7 +92,9 @@ inline int substeps_for(double scaled_travel, double max_step, int max_substeps)
 
 class BoucWenBacklash {
  public:
+  /// The parameter struct its constructor takes.
   using Params = BoucWenBacklashParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
   explicit BoucWenBacklash(const Params& p) : p_(p) {
@@ -110,8 +113,10 @@ class BoucWenBacklash {
     int_exponent_ = (e == std::round(e) && e >= 0.0 && e <= 11.0) ? static_cast<int>(e) : -1;
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
 
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     initialised_ = false;
     w_ = 0.0;
@@ -153,8 +158,8 @@ class BoucWenBacklash {
   }
 
   double output() const noexcept { return y_; }
-  // The last step's status: held_nonfinite_input (input not finite), not_converged (the
-  // integration overflowed and the state was kept).
+  /// The last step's status: held_nonfinite_input (input not finite), not_converged (the
+  /// integration overflowed and the state was kept).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return kept_ ? s | Status::not_converged : s;

@@ -31,7 +31,7 @@
 
 namespace tendonsheath {
 
-// tanh(a/2) and tanh(a/2)/a, with series for small |a| (spec pitfall 7).
+/// tanh(a/2) and tanh(a/2)/a, with series for small |a| (spec pitfall 7).
 inline double curve_tanh_half(double a) noexcept {
   if (std::fabs(a) < 1e-4) return 0.5 * a - a * a * a / 24.0;
   return std::tanh(0.5 * a);
@@ -42,16 +42,18 @@ inline double curve_tanh_half_over(double a) noexcept {
 }
 
 struct CurveAngleParams {
-  double friction = 0.1;          // mu, Coulomb friction coefficient
-  double stiffness = 2.4e4;       // EA, tendon axial stiffness, N
-  double pretension = 10.0;       // T0, N
-  double length = 1.2;            // L, sheath length, m
-  double load = 0.0;              // F_L, constant distal load at tendon level, N (resists forward)
-  double spring = 0.0;            // k_e, environment spring at tendon level, N/m
-  double proximal_radius = 5e-3;  // r_p, m
-  double distal_radius = 5e-3;    // r_d, m
+  double friction = 0.1;          ///< mu, Coulomb friction coefficient
+  double stiffness = 2.4e4;       ///< EA, tendon axial stiffness, N
+  double pretension = 10.0;       ///< T0, N
+  double length = 1.2;            ///< L, sheath length, m
+  double load = 0.0;              ///< F_L, constant distal load at tendon level, N (resists forward)
+  double spring = 0.0;            ///< k_e, environment spring at tendon level, N/m
+  double proximal_radius = 5e-3;  ///< r_p, m
+  double distal_radius = 5e-3;    ///< r_d, m
 
+  /// How many identifiable parameters assign() reads.
   static constexpr std::size_t vector_size = 8;
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
   void assign(const double* v) noexcept {
     friction = v[0]; stiffness = v[1]; pretension = v[2]; length = v[3];
     load = v[4]; spring = v[5]; proximal_radius = v[6]; distal_radius = v[7];
@@ -60,7 +62,9 @@ struct CurveAngleParams {
 
 class CurveAngleModel {
  public:
+  /// The parameter struct its constructor takes.
   using Params = CurveAngleParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
   explicit CurveAngleModel(const Params& p) : p_(p) {
@@ -75,14 +79,16 @@ class CurveAngleModel {
     require_positive(p.distal_radius, w, "distal_radius");
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
 
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     initialised_ = false;
     slack_ = step_slack_ = false;
   }
 
-  // Closed-form terms at a curve angle (linear units, m).
+  /// Closed-form terms at a curve angle (linear units, m).
   double backlash_half_width(double theta) const noexcept {
     return p_.pretension * p_.length / p_.stiffness *
            curve_tanh_half(p_.friction * std::fabs(theta));
@@ -96,12 +102,12 @@ class CurveAngleModel {
                             curve_tanh_half_over(p_.friction * std::fabs(theta)));
   }
 
-  // Streaming: proximal angle q_in (rad), curve angle theta (rad) -> distal angle (rad).
+  /// Streaming: proximal angle q_in (rad), curve angle theta (rad) -> distal angle (rad).
   double step(double q_in, double /*dt*/, double theta) noexcept {
     if (std::isfinite(theta)) theta_ = std::fabs(theta);
     return step(q_in);
   }
-  // Keeps the last curve angle (0, a straight sheath, before any was given).
+  /// Keeps the last curve angle (0, a straight sheath, before any was given).
   double step(double q_in, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(q_in);
     if (held_) {
@@ -135,10 +141,10 @@ class CurveAngleModel {
   void set_curve_angle(double theta) noexcept {
     if (std::isfinite(theta)) theta_ = std::fabs(theta);
   }
-  // True once the distal load exceeded the no-slack limit since reset().
+  /// True once the distal load exceeded the no-slack limit since reset().
   bool slack() const noexcept { return slack_; }
-  // The last step's status: held_nonfinite_input (input not finite), slack (this step's
-  // distal load broke the no-slack condition; slack() keeps it since reset()).
+  /// The last step's status: held_nonfinite_input (input not finite), slack (this step's
+  /// distal load broke the no-slack condition; slack() keeps it since reset()).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return step_slack_ ? s | Status::slack : s;
@@ -150,8 +156,8 @@ class CurveAngleModel {
   bool initialised_ = false, slack_ = false, held_ = false, step_slack_ = false;
 };
 
-// Batch simulation with a per-sample curve angle (theta may be nullptr: keep the last);
-// status, when given, receives each sample's Status flags.
+/// Batch simulation with a per-sample curve angle (theta may be nullptr: keep the last);
+/// status, when given, receives each sample's Status flags.
 inline void simulate(CurveAngleModel& model, const double* t, const double* x,
                      const double* theta, double* y, std::size_t n, const char* where,
                      unsigned char* status = nullptr) {

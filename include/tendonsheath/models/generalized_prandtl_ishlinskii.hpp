@@ -23,12 +23,12 @@
 namespace tendonsheath {
 
 struct Envelope {
-  double a = 1.0;  // amplitude (> 0): the envelope saturates at d +- a
-  double b = 1.0;  // input gain (> 0): initial slope a*b
-  double c = 0.0;  // input shift
-  double d = 0.0;  // output shift
+  double a = 1.0;  ///< amplitude (> 0): the envelope saturates at d +- a
+  double b = 1.0;  ///< input gain (> 0): initial slope a*b
+  double c = 0.0;  ///< input shift
+  double d = 0.0;  ///< output shift
   double operator()(double x) const noexcept { return a * std::tanh(b * (x - c)) + d; }
-  // Inverse, clipped to the open range (d - a, d + a).
+  /// Inverse, clipped to the open range (d - a, d + a).
   double inverse(double g) const noexcept {
     double u = (g - d) / a;
     const double lim = 1.0 - 1e-15;
@@ -44,8 +44,8 @@ struct GeneralizedPrandtlIshlinskiiParams {
   std::vector<double> weights{0.6, 0.2, 0.1, 0.1};
 };
 
-// Bounds on an envelope's input gain and shift: its input range c +- kEnvelopeSpan / b (past
-// which tanh is 1 to double precision) must stay a representable, finite interval.
+/// Bounds on an envelope's input gain and shift: its input range c +- kEnvelopeSpan / b (past
+/// which tanh is 1 to double precision) must stay a representable, finite interval.
 constexpr double kEnvelopeSpan = 20.0;
 constexpr double kMinEnvelopeGain = 1e-9;
 constexpr double kMaxEnvelopeShift = 1e12;
@@ -91,14 +91,18 @@ inline double gpi_play(double z, double x, double r, const Envelope& up, const E
 
 class GeneralizedPrandtlIshlinskii {
  public:
+  /// The parameter struct its constructor takes.
   using Params = GeneralizedPrandtlIshlinskiiParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
   explicit GeneralizedPrandtlIshlinskii(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
     detail::validate_gpi(p, "GeneralizedPrandtlIshlinskii");
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept { initialised_ = false; }
 
   double step(double x, double /*dt*/ = 0.0) noexcept {
@@ -113,7 +117,7 @@ class GeneralizedPrandtlIshlinskii {
     return y_;
   }
 
-  // Output if the input moved to x from the current state (the state is kept).
+  /// Output if the input moved to x from the current state (the state is kept).
   double output_if(double x) const noexcept {
     double y = 0.0;
     for (std::size_t i = 0; i < z_.size(); ++i)
@@ -121,7 +125,7 @@ class GeneralizedPrandtlIshlinskii {
     return y;
   }
 
-  // Output of the first sample when it is x: increasing in x.
+  /// Output of the first sample when it is x: increasing in x.
   double initial_output(double x) const noexcept {
     double y = 0.0;
     for (std::size_t i = 0; i < z_.size(); ++i)
@@ -130,11 +134,11 @@ class GeneralizedPrandtlIshlinskii {
   }
 
   double output() const noexcept { return y_; }
-  // The last step's status: held_nonfinite_input when its input was not finite.
+  /// The last step's status: held_nonfinite_input when its input was not finite.
   Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
   double last_input() const noexcept { return x_; }
   bool initialised() const noexcept { return initialised_; }
-  // The play outputs z_i after the last step (y = sum_i weights[i] z_i).
+  /// The play outputs z_i after the last step (y = sum_i weights[i] z_i).
   const std::vector<double>& play_states() const noexcept { return z_; }
 
  protected:
@@ -158,7 +162,9 @@ class GeneralizedPrandtlIshlinskii {
 
 class GeneralizedPrandtlIshlinskiiInverse {
  public:
+  /// The parameter struct its constructor takes.
   using Params = GeneralizedPrandtlIshlinskiiParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
   explicit GeneralizedPrandtlIshlinskiiInverse(const Params& p) : model_(p) {
@@ -166,14 +172,16 @@ class GeneralizedPrandtlIshlinskiiInverse {
     x_min_ = std::fmin(p.rising.c, p.falling.c) - 2.0 * kEnvelopeSpan / gain;
     x_max_ = std::fmax(p.rising.c, p.falling.c) + 2.0 * kEnvelopeSpan / gain;
   }
-  // The last target was out of reach: the command sits at the end of the envelopes' input
-  // range, [c_min - 40/b, c_max + 40/b], past which the output no longer changes.
+  /// The last target was out of reach: the command sits at the end of the envelopes' input
+  /// range, [c_min - 40/b, c_max + 40/b], past which the output no longer changes.
   bool input_clamped() const noexcept { return clamped_; }
+  /// The parameters it was built with.
   const Params& params() const noexcept { return model_.params(); }
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept { model_.reset(); }
 
-  // The input x for which the forward model reaches y_desired (clipped to the
-  // reachable range: the envelopes saturate).
+  /// The input x for which the forward model reaches y_desired (clipped to the
+  /// reachable range: the envelopes saturate).
   double step(double y_desired, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(y_desired);
     if (held_) {
@@ -206,8 +214,8 @@ class GeneralizedPrandtlIshlinskiiInverse {
   }
 
   double output() const noexcept { return model_.last_input(); }
-  // The last step's status: held_nonfinite_input (input not finite), input_clamped (see
-  // input_clamped()).
+  /// The last step's status: held_nonfinite_input (input not finite), input_clamped (see
+  /// input_clamped()).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return clamped_ ? s | Status::input_clamped : s;

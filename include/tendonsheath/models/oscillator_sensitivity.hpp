@@ -17,17 +17,18 @@ namespace tendonsheath {
 
 class OscillatorSensitivity {
  public:
-  static constexpr int kParams = 8;  // m, c, k, alpha, beta, gamma, delta, nu
+  static constexpr int kParams = 8;  ///< m, c, k, alpha, beta, gamma, delta, nu
 
   explicit OscillatorSensitivity(const HystereticOscillatorParams& p) : osc_(p), p_(p) { reset(); }
 
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     initialised_ = false;
     for (double& x : s_) x = 0.0;
     for (double& x : S_) x = 0.0;
   }
 
-  // As HystereticOscillator::step_dense(); dy[0..7] receives dy/dp at the end of the interval.
+  /// As HystereticOscillator::step_dense(); dy[0..7] receives dy/dp at the end of the interval.
   double step_dense(const double* u, int Q, double dt, double* dy) noexcept {
     if (initialised_ && dt > 0.0 && std::isfinite(dt) && Q >= 1)
       detail::on_dense_grid(u, Q, osc_.substeps(dt),

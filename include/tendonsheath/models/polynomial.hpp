@@ -19,7 +19,9 @@ struct PolynomialParams {
 
 class Polynomial {
  public:
+  /// The parameter struct its constructor takes.
   using Params = PolynomialParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
   explicit Polynomial(const Params& p) : p_(p) {
@@ -31,6 +33,7 @@ class Polynomial {
     }
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
   std::size_t degree() const noexcept {
     const std::size_t n = p_.coefficients.size();
@@ -49,6 +52,7 @@ class Polynomial {
     return acc;
   }
 
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {}
   double step(double u, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(u);
@@ -56,7 +60,7 @@ class Polynomial {
     return y_;
   }
   double output() const noexcept { return y_; }
-  // The last step's status: held_nonfinite_input when its input was not finite.
+  /// The last step's status: held_nonfinite_input when its input was not finite.
   Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
 
  private:
@@ -65,18 +69,21 @@ class Polynomial {
   bool held_ = false;
 };
 
-// A hysteresis model followed by a static map: y = Second(First(x)).
+/// A hysteresis model followed by a static map: y = Second(First(x)).
 template <class First, class Second>
 class Chain {
  public:
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = First::rate_independent && Second::rate_independent;
   Chain(const First& first, const Second& second) : first_(first), second_(second) {}
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     first_.reset();
     second_.reset();
   }
   double step(double x, double dt) noexcept { return second_.step(first_.step(x, dt), dt); }
   double output() const noexcept { return second_.output(); }
+  /// The last step's status flags (see Status).
   Status status() const noexcept { return first_.status() | second_.status(); }
   const First& first() const noexcept { return first_; }
   const Second& second() const noexcept { return second_; }

@@ -71,18 +71,22 @@ inline double clamp_play(double z, double x, double r) noexcept {
 
 class PrandtlIshlinskii {
  public:
+  /// The parameter struct its constructor takes.
   using Params = PrandtlIshlinskiiParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
   explicit PrandtlIshlinskii(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
     detail::validate_pi(p, "PrandtlIshlinskii", false);
     x_limit_ = detail::pi_input_limit(p_);
   }
-  // The last step's input was beyond +-input_limit() and was clamped to it.
+  /// The last step's input was beyond +-input_limit() and was clamped to it.
   bool input_clamped() const noexcept { return clamped_; }
   double input_limit() const noexcept { return x_limit_; }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept { initialised_ = false; }
 
   double step(double x, double /*dt*/ = 0.0) noexcept {
@@ -107,8 +111,8 @@ class PrandtlIshlinskii {
   }
 
   double output() const noexcept { return y_; }
-  // The last step's status: held_nonfinite_input (input not finite), input_clamped (see
-  // input_clamped()).
+  /// The last step's status: held_nonfinite_input (input not finite), input_clamped (see
+  /// input_clamped()).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return clamped_ ? s | Status::input_clamped : s;
@@ -128,21 +132,25 @@ class PrandtlIshlinskii {
 
 class PrandtlIshlinskiiInverse {
  public:
+  /// The parameter struct its constructor takes.
   using Params = PrandtlIshlinskiiParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
   explicit PrandtlIshlinskiiInverse(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
     detail::validate_pi(p, "PrandtlIshlinskiiInverse", true);
     x_limit_ = detail::pi_input_limit(p_);
   }
-  // The last command was beyond +-input_limit() (or its target unreachable) and was clamped.
+  /// The last command was beyond +-input_limit() (or its target unreachable) and was clamped.
   bool input_clamped() const noexcept { return clamped_; }
   double input_limit() const noexcept { return x_limit_; }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept { initialised_ = false; }
 
-  // Returns the input x that drives the forward operator to y_desired.
+  /// Returns the input x that drives the forward operator to y_desired.
   double step(double y_desired, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(y_desired);
     if (held_) {
@@ -169,8 +177,8 @@ class PrandtlIshlinskiiInverse {
   }
 
   double output() const noexcept { return x_; }
-  // The last step's status: held_nonfinite_input (input not finite), input_clamped (see
-  // input_clamped()).
+  /// The last step's status: held_nonfinite_input (input not finite), input_clamped (see
+  /// input_clamped()).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return clamped_ ? s | Status::input_clamped : s;

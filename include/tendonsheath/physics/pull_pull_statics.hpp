@@ -16,36 +16,36 @@
 
 namespace tendonsheath {
 
-// (exp(x) - 1) / x without cancellation near 0.
+/// (exp(x) - 1) / x without cancellation near 0.
 inline double expm1_over(double x) noexcept {
   return std::fabs(x) < 1e-8 ? 1.0 + 0.5 * x : std::expm1(x) / x;
 }
 
 struct ShapeIntegrals {
-  double g = 1.0;            // (1/L) int e^{-mu theta} ds
-  double G = 1.0;            // (1/L) int e^{+mu theta} ds
-  double total_angle = 0.0;  // Theta
+  double g = 1.0;            ///< (1/L) int e^{-mu theta} ds
+  double G = 1.0;            ///< (1/L) int e^{+mu theta} ds
+  double total_angle = 0.0;  ///< Theta
 };
 
-// The largest friction angle mu Theta the closed forms accept: the capstan ratio e^{-50}
-// (2e-22) already transmits nothing, and e^{mu Theta} must stay far from overflow.
+/// The largest friction angle mu Theta the closed forms accept: the capstan ratio e^{-50}
+/// (2e-22) already transmits nothing, and e^{mu Theta} must stay far from overflow.
 constexpr double kMaxFrictionAngle = 50.0;
 
-// Uniform curvature: g = (1 - e^{-a})/a, G = (e^a - 1)/a. (G through e^{-a} divided by
-// zero once e^{-a} - 1 rounded to -1, at a of about 37.4.)
+/// Uniform curvature: g = (1 - e^{-a})/a, G = (e^a - 1)/a. (G through e^{-a} divided by
+/// zero once e^{-a} - 1 rounded to -1, at a of about 37.4.)
 inline ShapeIntegrals uniform_shape(double mu, double total_angle) noexcept {
   const double a = mu * total_angle;
   if (std::fabs(a) < 1e-4) return {expm1_over(-a), expm1_over(a), total_angle};
   return {-std::expm1(-a) / a, std::expm1(a) / a, total_angle};
 }
 
-// The largest total angle (rad) a friction mu admits: kMaxFrictionAngle / mu (inf for mu = 0).
+/// The largest total angle (rad) a friction mu admits: kMaxFrictionAngle / mu (inf for mu = 0).
 inline double max_total_angle(double mu) noexcept {
   return mu > 0.0 ? kMaxFrictionAngle / mu : std::numeric_limits<double>::infinity();
 }
 
-// Exact for a piecewise-linear theta(s) given at samples (s_i, theta_i), s
-// non-decreasing from 0 to L (repeated s = a jump of theta, which adds no length).
+/// Exact for a piecewise-linear theta(s) given at samples (s_i, theta_i), s
+/// non-decreasing from 0 to L (repeated s = a jump of theta, which adds no length).
 inline ShapeIntegrals shape_integrals(const double* s, const double* theta, std::size_t n,
                                       double mu) noexcept {
   if (n < 2 || !(s[n - 1] > 0.0)) return uniform_shape(mu, n ? theta[n - 1] : 0.0);
@@ -62,25 +62,25 @@ inline ShapeIntegrals shape_integrals(const double* s, const double* theta, std:
 }
 
 struct PullPullStatics {
-  double friction = 0.1;     // mu
-  double compliance = 5e-5;  // L / EA, m/N
-  double pretension = 10.0;  // T0, N
+  double friction = 0.1;     ///< mu
+  double compliance = 5e-5;  ///< L / EA, m/N
+  double pretension = 10.0;  ///< T0, N
 
-  // Elongation Delta1 of the pulled tendon in forward full slip under load F_L.
+  /// Elongation Delta1 of the pulled tendon in forward full slip under load F_L.
   double forward_elongation(const ShapeIntegrals& sh, double load) const noexcept {
     const double a = friction * sh.total_angle;
     const double ema = std::exp(-a);
     const double t1p = (2.0 * pretension + load * sh.G * ema) / (sh.g + sh.G * ema * ema);
     return compliance * (t1p * sh.g - pretension);
   }
-  // Elongation Delta1 of tendon 1 in backward full slip under load F_L.
+  /// Elongation Delta1 of tendon 1 in backward full slip under load F_L.
   double backward_elongation(const ShapeIntegrals& sh, double load) const noexcept {
     const double a = friction * sh.total_angle;
     const double ea = std::exp(a);
     const double t1p = (2.0 * pretension + load * sh.g * ea) / (sh.G + sh.g * ea * ea);
     return compliance * (t1p * sh.G - pretension);
   }
-  // Both elongations are affine in the load: Delta = offset + slope * F_L.
+  /// Both elongations are affine in the load: Delta = offset + slope * F_L.
   struct Affine {
     double forward_offset, forward_slope, backward_offset, backward_slope;
   };
@@ -93,7 +93,7 @@ struct PullPullStatics {
             compliance * sh.g * ea * sh.G / db};
   }
 
-  // Half-width of the dead zone: (forward - backward)/2 at the same load.
+  /// Half-width of the dead zone: (forward - backward)/2 at the same load.
   double backlash_half_width(const ShapeIntegrals& sh, double load = 0.0) const noexcept {
     return 0.5 * (forward_elongation(sh, load) - backward_elongation(sh, load));
   }

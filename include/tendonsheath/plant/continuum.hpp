@@ -13,18 +13,18 @@
 namespace tendonsheath {
 
 struct ContinuumParams {
-  double friction = 0.1;          // mu
-  double stiffness = 2.4e4;       // EA of each tendon, N
-  double pretension = 10.0;       // T0, N
-  double proximal_radius = 5e-3;  // r_p, m
-  double bending_stiffness = 4e-4;  // EI of the backbone, N m^2
-  double tendon_offset = 2e-3;      // r_t, m
-  double backbone_length = 0.03;    // l, m
+  double friction = 0.1;          ///< mu
+  double stiffness = 2.4e4;       ///< EA of each tendon, N
+  double pretension = 10.0;       ///< T0, N
+  double proximal_radius = 5e-3;  ///< r_p, m
+  double bending_stiffness = 4e-4;  ///< EI of the backbone, N m^2
+  double tendon_offset = 2e-3;      ///< r_t, m
+  double backbone_length = 0.03;    ///< l, m
   int elements = 100;
-  // effects beyond the quasi-static pair (see PullPullParams)
-  double distal_inertia = 0.0;     // kg m^2 of the segment about its bending (at theta_b)
-  double distal_damping = 0.0;     // N m s/rad
-  double sheath_viscosity = 0.0;   // N s/m^2
+  /// effects beyond the quasi-static pair (see PullPullParams)
+  double distal_inertia = 0.0;     ///< kg m^2 of the segment about its bending (at theta_b)
+  double distal_damping = 0.0;     ///< N m s/rad
+  double sheath_viscosity = 0.0;   ///< N s/m^2
   double relaxation_fraction = 0.0;
   double relaxation_time = 1.0;
   double friction2 = -1.0;
@@ -58,20 +58,21 @@ inline PullPullParams continuum_to_pull_pull(const ContinuumParams& c) {
 
 class ContinuumPlant : public PullPullPlant {
  public:
+  /// The parameter struct its constructor takes.
   using Params = ContinuumParams;
 
   ContinuumPlant(const ContinuumParams& c, const Route& r1, const Route& r2)
       : PullPullPlant(continuum_to_pull_pull(c), r1, r2), c_(c) {}
   ContinuumPlant(const ContinuumParams& c, const Route& r) : ContinuumPlant(c, r, r) {}
 
-  // Params is ContinuumParams: params() returns them (the pull-pull pair they map to is
-  // pull_pull_params()).
+  /// Params is ContinuumParams: params() returns them (the pull-pull pair they map to is
+  /// pull_pull_params()).
   const ContinuumParams& params() const noexcept { return c_; }
   const ContinuumParams& continuum_params() const noexcept { return c_; }
   const PullPullParams& pull_pull_params() const noexcept { return PullPullPlant::params(); }
-  // Bending angle theta_b (rad), the same as output().
+  /// Bending angle theta_b (rad), the same as output().
   double bending_angle() const noexcept { return output(); }
-  // Li and Rahn tendon force F = kappa EI / r_t for the current bending angle.
+  /// Li and Rahn tendon force F = kappa EI / r_t for the current bending angle.
   double tendon_force() const noexcept {
     return output() / c_.backbone_length * c_.bending_stiffness / c_.tendon_offset;
   }

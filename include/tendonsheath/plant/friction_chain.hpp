@@ -77,12 +77,12 @@ constexpr int kMaxIterationsCap = 100000;       // the largest accepted max_iter
 constexpr int kMaxSubstepsCap = 100000;         // ... max_substeps and extra_iterations
 
 struct ChainOptions {
-  int max_iterations = 50;     // active-set iterations per attempt
-  int max_halvings = 4;        // halvings of a failed increment
-  int max_substeps = 64;       // sub-increments per step at most
-  double max_increment = 0.0;  // largest input sub-increment (m); 0: the plant chooses
-  int extra_iterations = -1;   // iterations of the last-resort attempt; -1: 2 M + 50
-  bool fast_path = true;       // exact shortcuts (lazy update while the map stays valid)
+  int max_iterations = 50;     ///< active-set iterations per attempt
+  int max_halvings = 4;        ///< halvings of a failed increment
+  int max_substeps = 64;       ///< sub-increments per step at most
+  double max_increment = 0.0;  ///< largest input sub-increment (m); 0: the plant chooses
+  int extra_iterations = -1;   ///< iterations of the last-resort attempt; -1: 2 M + 50
+  bool fast_path = true;       ///< exact shortcuts (lazy update while the map stays valid)
 };
 
 inline void validate_chain_options(const ChainOptions& o, const char* where) {
@@ -113,7 +113,7 @@ class FrictionChain {
  public:
   FrictionChain() = default;
 
-  // M + 1 nodes (all Sheath, no angle) and M elements (to be set).
+  /// M + 1 nodes (all Sheath, no angle) and M elements (to be set).
   explicit FrictionChain(std::size_t M)
       : M_(M),
         kind_(M + 1, NodeKind::Sheath),
@@ -144,7 +144,7 @@ class FrictionChain {
         iv_(M + 1, 1.0),
         fmap_(M + 1, 0) {}
 
-  // ---- set-up (not real-time) ----------------------------------------------------
+  /// ---- set-up (not real-time) ----------------------------------------------------
   void set_element(std::size_t e, double k, double T0) {
     k_.at(e) = k;
     T0_.at(e) = T0;
@@ -161,13 +161,13 @@ class FrictionChain {
     has_mass_ = has_mass_ || mass > 0.0;
     has_damper_ = has_damper_ || c > 0.0 || mass > 0.0;
   }
-  // Viscous friction coefficient c_j (N s/m) of sheath node j.
+  /// Viscous friction coefficient c_j (N s/m) of sheath node j.
   void set_node_viscosity(std::size_t j, double c) {
     cv_.at(j) = c;
     has_damper_ = has_damper_ || c > 0.0;
   }
-  // Standard-linear-solid elements: fraction r in [0, 1) of each element's
-  // stiffness in a Maxwell arm with time constant tau (s); r = 0: elastic.
+  /// Standard-linear-solid elements: fraction r in [0, 1) of each element's
+  /// stiffness in a Maxwell arm with time constant tau (s); r = 0: elastic.
   void set_relaxation(double fraction, double tau) {
     relax_ = fraction;
     tau_ = tau;
@@ -181,7 +181,7 @@ class FrictionChain {
     fact_valid_ = false;
     tfact_valid_ = false;
   }
-  // Friction coefficient of one node (e.g. a second sheath of another material).
+  /// Friction coefficient of one node (e.g. a second sheath of another material).
   void set_node_friction(std::size_t j, double mu) {
     mu_.at(j) = mu;
     h_[j] = detail::node_h(mu, dtheta_[j]);
@@ -190,9 +190,9 @@ class FrictionChain {
     tfact_valid_ = false;
   }
 
-  // ---- real-time ---------------------------------------------------------------
-  // Lumped angle of a sheath node (ignored for other nodes). A change takes
-  // effect at the next step; over-capacity nodes then start to slip.
+  /// ---- real-time ---------------------------------------------------------------
+  /// Lumped angle of a sheath node (ignored for other nodes). A change takes
+  /// effect at the next step; over-capacity nodes then start to slip.
   void set_node_angle(std::size_t j, double dtheta) noexcept {
     if (j > M_ || kind_[j] != NodeKind::Sheath || !(dtheta >= 0.0) || !std::isfinite(dtheta))
       return;
@@ -204,8 +204,8 @@ class FrictionChain {
     tfact_valid_ = false;
   }
 
-  // At rest, uniform reference tensions, everything stuck; the next step()
-  // starts by moving the whole chain rigidly to its input.
+  /// At rest, uniform reference tensions, everything stuck; the next step()
+  /// starts by moving the whole chain rigidly to its input.
   void reset() noexcept {
     std::fill(u_.begin(), u_.end(), 0.0);
     std::fill(sig_.begin(), sig_.end(), 0);
@@ -233,8 +233,8 @@ class FrictionChain {
     compute_tensions(u_.data());
   }
 
-  // Advance to the driven input x (dt: time since the previous step, used by
-  // dampers only). Returns true when the state was updated.
+  /// Advance to the driven input x (dt: time since the previous step, used by
+  /// dampers only). Returns true when the state was updated.
   bool step(double x, double dt) noexcept {
     input_clamped_ = false;
     input_held_ = !std::isfinite(x);
@@ -280,33 +280,33 @@ class FrictionChain {
     return true;
   }
 
-  // ---- read-out ----------------------------------------------------------------
+  /// ---- read-out ----------------------------------------------------------------
   std::size_t nodes() const noexcept { return M_ + 1; }
   std::size_t elements() const noexcept { return M_; }
   double u(std::size_t j) const noexcept {
     return lazy_ != 0.0 ? u_[j] + lazy_ * z_[j] : u_[j];
   }
-  // Tension of element e (1..M) after the last step.
+  /// Tension of element e (1..M) after the last step.
   double tension(std::size_t e) const noexcept {
     return T0b_[e] + (1.0 - relax_) * kb_[e] * (u(e) - u(e - 1)) + sigma_[e];
   }
-  // Stick/slip state of node j: 0 stuck, +1/-1 slipping toward node M / node 0
-  // (driven and load nodes report 0; frictionless sheath nodes report 0 too).
+  /// Stick/slip state of node j: 0 stuck, +1/-1 slipping toward node M / node 0
+  /// (driven and load nodes report 0; frictionless sheath nodes report 0 too).
   int state(std::size_t j) const noexcept { return h_[j] > 0.0 ? sig_[j] : 0; }
   NodeKind kind(std::size_t j) const noexcept { return kind_[j]; }
   double node_angle(std::size_t j) const noexcept { return dtheta_[j]; }
   double input() const noexcept { return x_; }
-  // Smallest element tension (O(M)).
+  /// Smallest element tension (O(M)).
   double min_tension() const noexcept {
     double mn = std::numeric_limits<double>::infinity();
     for (std::size_t e = 1; e <= M_; ++e) mn = std::min(mn, tension(e));
     return mn;
   }
   bool slack() const noexcept { return slack_; }
-  // Slack test used by slack(): min tension <= 0 (strict = false) or < 0.
+  /// Slack test used by slack(): min tension <= 0 (strict = false) or < 0.
   void set_slack_strict(bool strict) noexcept { slack_strict_ = strict; }
   long nonconverged() const noexcept { return nonconverged_; }
-  // The last step: its input held (non-finite), clamped, not converged, slack.
+  /// The last step: its input held (non-finite), clamped, not converged, slack.
   Status status() const noexcept {
     Status s = Status::ok;
     if (input_held_) s |= Status::held_nonfinite_input;
@@ -315,19 +315,19 @@ class FrictionChain {
     if (slack_) s |= Status::slack;
     return s;
   }
-  // The last step's input was beyond +-kMaxInput and was clamped to it.
+  /// The last step's input was beyond +-kMaxInput and was clamped to it.
   bool input_clamped() const noexcept { return input_clamped_; }
-  // Every increment of the last step converged (false: the best bounded iterate was kept).
+  /// Every increment of the last step converged (false: the best bounded iterate was kept).
   bool last_converged() const noexcept { return last_converged_; }
-  // Solves (and shortcut updates) the last step made; never more than max_solves().
+  /// Solves (and shortcut updates) the last step made; never more than max_solves().
   int last_solves() const noexcept { return last_solves_; }
-  // The hard work bound of one step (see the header): max_substeps + 2 (max_iterations + E).
+  /// The hard work bound of one step (see the header): max_substeps + 2 (max_iterations + E).
   long long max_solves() const noexcept {
     return opt_.max_substeps + 2LL * (opt_.max_iterations + extra_iterations());
   }
   double friction() const noexcept { return M_ >= 1 ? mu_[1] : 0.0; }
   double node_friction(std::size_t j) const noexcept { return mu_[j]; }
-  // True when a step depends on dt (dampers, masses, viscosity, relaxation).
+  /// True when a step depends on dt (dampers, masses, viscosity, relaxation).
   bool time_dependent() const noexcept { return has_damper_; }
   const ChainOptions& options() const noexcept { return opt_; }
 

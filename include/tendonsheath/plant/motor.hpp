@@ -40,24 +40,25 @@ enum class MotorKind : int { Position = 0, Torque = 1 };
 
 struct MotorParams {
   MotorKind kind = MotorKind::Position;
-  double bandwidth_hz = 1.5;  // natural frequency f_n (position)
-  double damping = 0.7;       // zeta (position)
+  double bandwidth_hz = 1.5;  ///< natural frequency f_n (position)
+  double damping = 0.7;       ///< zeta (position)
   double max_speed = std::numeric_limits<double>::infinity();  // rad/s (both)
   double max_accel = std::numeric_limits<double>::infinity();  // rad/s^2 (position)
-  double inertia = 1e-2;      // J (torque)
-  double viscous = 0.2;       // b (torque)
+  double inertia = 1e-2;      ///< J (torque)
+  double viscous = 0.2;       ///< b (torque)
   double max_torque = std::numeric_limits<double>::infinity();  // (torque)
   int max_substeps = 256;
-  double reflected_inertia = 0.0;  // J_r, kg m^2 (position): 0 = ideal lag, ignores torques
-  double coulomb_friction = 0.0;   // tau_c, N m (both; position needs reflected_inertia > 0)
-  double viscous_friction = 0.0;   // b_m, N m s/rad (position; torque kind: use viscous)
-  double gear_backlash = 0.0;      // g, rad: total play between shaft and pulley (both)
+  double reflected_inertia = 0.0;  ///< J_r, kg m^2 (position): 0 = ideal lag, ignores torques
+  double coulomb_friction = 0.0;   ///< tau_c, N m (both; position needs reflected_inertia > 0)
+  double viscous_friction = 0.0;   ///< b_m, N m s/rad (position; torque kind: use viscous)
+  double gear_backlash = 0.0;      ///< g, rad: total play between shaft and pulley (both)
 };
 
 class Motor {
   static constexpr double kPi = 3.14159265358979323846;
 
  public:
+  /// The parameter struct its constructor takes.
   using Params = MotorParams;
 
   explicit Motor(const Params& p) : p_(p) {
@@ -88,7 +89,9 @@ class Motor {
     require(std::isfinite(p.gear_backlash), w, "gear_backlash must be finite");
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     q_ = 0.0;
     v_ = 0.0;
@@ -96,9 +99,9 @@ class Motor {
     initialised_ = false;
   }
 
-  // Advance by dt under command u (angle or torque); returns the proximal
-  // pulley angle (the shaft angle without gear backlash). A non-finite command
-  // holds the last position.
+  /// Advance by dt under command u (angle or torque); returns the proximal
+  /// pulley angle (the shaft angle without gear backlash). A non-finite command
+  /// holds the last position.
   double step(double u, double dt, double tau_ext = 0.0) noexcept {
     held_ = !std::isfinite(u);
     if (held_) {
@@ -171,14 +174,14 @@ class Motor {
     return pulley_;
   }
 
-  // Motor shaft angle (what a motor encoder reads).
+  /// Motor shaft angle (what a motor encoder reads).
   double position() const noexcept { return q_; }
   double velocity() const noexcept { return v_; }
-  // The last step was longer than the sub-steps can span, or its command would have driven
-  // the state beyond a double: the motor then covered less (or held), and stayed finite.
+  /// The last step was longer than the sub-steps can span, or its command would have driven
+  /// the state beyond a double: the motor then covered less (or held), and stayed finite.
   bool clamped() const noexcept { return clamped_; }
-  // The last step's status: held (non-finite command), input_clamped (see clamped()),
-  // saturated (the torque limit, or the speed limit, cut the drive in this step).
+  /// The last step's status: held (non-finite command), input_clamped (see clamped()),
+  /// saturated (the torque limit, or the speed limit, cut the drive in this step).
   Status status() const noexcept {
     Status s = Status::ok;
     if (held_) s |= Status::held_nonfinite_input;
@@ -186,7 +189,7 @@ class Motor {
     if (saturated_) s |= Status::saturated;
     return s;
   }
-  // Proximal pulley angle (after the gear play), the plant's input.
+  /// Proximal pulley angle (after the gear play), the plant's input.
   double output() const noexcept { return pulley_; }
   void set_state(double q, double v) noexcept {
     q_ = q;

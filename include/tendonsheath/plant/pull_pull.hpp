@@ -34,22 +34,22 @@
 namespace tendonsheath {
 
 struct PullPullParams {
-  double friction = 0.1;           // mu
-  double stiffness = 2.4e4;        // EA, N
-  double pretension = 10.0;        // T0, N
-  double proximal_radius = 5e-3;   // r_p, m
-  double distal_radius = 5e-3;     // r_d, m
-  int elements = 100;              // N per sheath, >= 2
-  double load_torque = 0.0;        // tau_0, N m
-  double load_stiffness = 0.0;     // k_theta, N m/rad
-  double load_damping = 0.0;       // c_theta, N m s/rad
-  double distal_inertia = 0.0;     // J_d, kg m^2: the distal joint's inertia
-  double distal_damping = 0.0;     // c_d, N m s/rad: the distal joint's viscous damping
-  double sheath_viscosity = 0.0;   // N s/m^2: viscous drag per metre of sheath
-  double relaxation_fraction = 0.0;  // r in [0, 1): share of EA in the Maxwell arm
-  double relaxation_time = 1.0;      // tau, s
-  double friction2 = -1.0;         // mu of sheath 2; -1: the same as friction
-  double stiffness2 = -1.0;        // EA of tendon 2, N; -1: the same as stiffness
+  double friction = 0.1;           ///< mu
+  double stiffness = 2.4e4;        ///< EA, N
+  double pretension = 10.0;        ///< T0, N
+  double proximal_radius = 5e-3;   ///< r_p, m
+  double distal_radius = 5e-3;     ///< r_d, m
+  int elements = 100;              ///< N per sheath, >= 2
+  double load_torque = 0.0;        ///< tau_0, N m
+  double load_stiffness = 0.0;     ///< k_theta, N m/rad
+  double load_damping = 0.0;       ///< c_theta, N m s/rad
+  double distal_inertia = 0.0;     ///< J_d, kg m^2: the distal joint's inertia
+  double distal_damping = 0.0;     ///< c_d, N m s/rad: the distal joint's viscous damping
+  double sheath_viscosity = 0.0;   ///< N s/m^2: viscous drag per metre of sheath
+  double relaxation_fraction = 0.0;  ///< r in [0, 1): share of EA in the Maxwell arm
+  double relaxation_time = 1.0;      ///< tau, s
+  double friction2 = -1.0;         ///< mu of sheath 2; -1: the same as friction
+  double stiffness2 = -1.0;        ///< EA of tendon 2, N; -1: the same as stiffness
   ChainOptions options;
 };
 
@@ -64,9 +64,10 @@ inline double stiffness2_of(const PullPullParams& p) noexcept {
 
 class PullPullPlant {
  public:
+  /// The parameter struct its constructor takes.
   using Params = PullPullParams;
 
-  // route1: sheath of tendon 1 (pulled by positive input); route2: sheath of tendon 2.
+  /// route1: sheath of tendon 1 (pulled by positive input); route2: sheath of tendon 2.
   PullPullPlant(const Params& p, const Route& route1, const Route& route2)
       : p_(p),
         N_(static_cast<std::size_t>(p.elements > 0 ? p.elements : 0)),
@@ -120,6 +121,7 @@ class PullPullPlant {
 
   PullPullPlant(const Params& p, const Route& route) : PullPullPlant(p, route, route) {}
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
   std::size_t elements() const noexcept { return N_; }
   double length1() const noexcept { return L1_; }
@@ -127,12 +129,13 @@ class PullPullPlant {
   double total_angle1() const noexcept { return theta1_; }
   double total_angle2() const noexcept { return theta2_; }
 
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     chain_.reset();
     updated_ = true;
   }
 
-  // Proximal pulley angle in (rad), distal pulley angle out (rad).
+  /// Proximal pulley angle in (rad), distal pulley angle out (rad).
   double step(double q_in, double dt = 0.0) noexcept {
     updated_ = chain_.step(p_.proximal_radius * q_in, dt);
     return output();
@@ -150,7 +153,7 @@ class PullPullPlant {
   }
   void set_route(const Route& r) { set_route(r, r); }
 
-  // 2(N-1) lumped node angles: sheath 1 then sheath 2, each proximal to distal.
+  /// 2(N-1) lumped node angles: sheath 1 then sheath 2, each proximal to distal.
   void set_node_angles(const double* a) noexcept {
     double s1 = 0.0, s2 = 0.0;
     for (std::size_t i = 1; i < N_; ++i) {
@@ -172,37 +175,37 @@ class PullPullPlant {
     r2.node_angles(N_, out + (N_ - 1), work.data());
   }
 
-  // Tensions (2 x N): row 0 tendon 1, row 1 tendon 2, each proximal to distal.
+  /// Tensions (2 x N): row 0 tendon 1, row 1 tendon 2, each proximal to distal.
   void tensions(double* out) const noexcept {
     for (std::size_t i = 1; i <= N_; ++i) {
       out[i - 1] = chain_.tension(2 * N_ - i + 1);
       out[N_ + i - 1] = chain_.tension(i);
     }
   }
-  // Stick/slip (2 x (N-1)), proximal to distal: +1 tendon slipping toward its
-  // proximal end, -1 toward its distal end, 0 stuck.
+  /// Stick/slip (2 x (N-1)), proximal to distal: +1 tendon slipping toward its
+  /// proximal end, -1 toward its distal end, 0 stuck.
   void slip_state(int* out) const noexcept {
     for (std::size_t i = 1; i < N_; ++i) {
       out[i - 1] = chain_.state(2 * N_ - i);
       out[N_ - 1 + i - 1] = -chain_.state(i);
     }
   }
-  // Torque of the tendons on the proximal pulley, positive along the input.
+  /// Torque of the tendons on the proximal pulley, positive along the input.
   double drive_reaction() const noexcept {
     return p_.proximal_radius * (chain_.tension(1) - chain_.tension(2 * N_));
   }
   bool slack() const noexcept { return chain_.slack(); }
   double min_tension() const noexcept { return chain_.min_tension(); }
   long nonconverged() const noexcept { return chain_.nonconverged(); }
-  // The last step's status (see status.hpp): read right after step(). A step whose state
-  // the chain did not update (FrictionChain::step returned false) is flagged held when its
-  // input was not finite, else not_converged.
+  /// The last step's status (see status.hpp): read right after step(). A step whose state
+  /// the chain did not update (FrictionChain::step returned false) is flagged held when its
+  /// input was not finite, else not_converged.
   Status status() const noexcept {
     const Status s = chain_.status();
     if (updated_ || has(s, Status::held_nonfinite_input)) return s;
     return s | Status::not_converged;
   }
-  // True when a step depends on dt (distal dynamics, damping, viscosity, creep).
+  /// True when a step depends on dt (distal dynamics, damping, viscosity, creep).
   bool time_dependent() const noexcept { return chain_.time_dependent(); }
   const FrictionChain& chain() const noexcept { return chain_; }
 

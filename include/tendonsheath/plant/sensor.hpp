@@ -13,8 +13,8 @@
 namespace tendonsheath {
 
 struct SensorParams {
-  double resolution = 0.0;  // quantisation step (same unit as x), 0 = none
-  double noise_std = 0.0;   // Gaussian noise standard deviation
+  double resolution = 0.0;  ///< quantisation step (same unit as x), 0 = none
+  double noise_std = 0.0;   ///< Gaussian noise standard deviation
   std::uint64_t seed = 0;
 };
 
@@ -22,6 +22,7 @@ class Sensor {
   static constexpr double kPi = 3.14159265358979323846;
 
  public:
+  /// The parameter struct its constructor takes.
   using Params = SensorParams;
 
   explicit Sensor(const Params& p) : p_(p) {
@@ -29,17 +30,19 @@ class Sensor {
     require_non_negative(p.noise_std, "Sensor", "noise_std");
     reset();
   }
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
-  // The last reading's status: held_nonfinite_input when x was not finite.
+  /// The last reading's status: held_nonfinite_input when x was not finite.
   Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
 
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     state_ = p_.seed;
     have_spare_ = false;
     last_ = 0.0;
   }
 
-  // One reading of x; a non-finite x repeats the last reading.
+  /// One reading of x; a non-finite x repeats the last reading.
   double measure(double x) noexcept {
     held_ = !std::isfinite(x);
     if (held_) return last_;

@@ -12,8 +12,8 @@
 
 namespace tendonsheath {
 
-// Route changes: before sample index[i] the plant's node angles become row i
-// of `angles` (count rows of `width` values, row-major).
+/// Route changes: before sample index[i] the plant's node angles become row i
+/// of `angles` (count rows of `width` values, row-major).
 struct RouteSchedule {
   const std::size_t* index = nullptr;
   const double* angles = nullptr;
@@ -22,13 +22,13 @@ struct RouteSchedule {
 };
 
 struct PlantTrace {
-  double* q_out = nullptr;           // plant output per sample (required)
-  double* q_in = nullptr;            // plant input (motor position) per sample, optional
-  unsigned char* slack = nullptr;    // slack flag per sample, optional
-  double* min_tension = nullptr;     // smallest tension per sample, optional
-  double* measured = nullptr;        // sensor reading of q_out per sample, optional
-  double* q_motor = nullptr;         // motor shaft angle (its encoder) per sample, optional
-  unsigned char* status = nullptr;   // Status flags of plant, motor and sensor per sample, optional
+  double* q_out = nullptr;           ///< plant output per sample (required)
+  double* q_in = nullptr;            ///< plant input (motor position) per sample, optional
+  unsigned char* slack = nullptr;    ///< slack flag per sample, optional
+  double* min_tension = nullptr;     ///< smallest tension per sample, optional
+  double* measured = nullptr;        ///< sensor reading of q_out per sample, optional
+  double* q_motor = nullptr;         ///< motor shaft angle (its encoder) per sample, optional
+  unsigned char* status = nullptr;   ///< Status flags of plant, motor and sensor per sample, optional
 };
 
 template <class Plant>
@@ -48,8 +48,8 @@ void check_schedule(const Plant& plant, const RouteSchedule& s, std::size_t n, c
   }
 }
 
-// Starts from plant.reset() (at rest, current route); t may be nullptr when
-// there is no motor and the load has no damper (dt = 0).
+/// Starts from plant.reset() (at rest, current route); t may be nullptr when
+/// there is no motor and the load has no damper (dt = 0).
 template <class Plant>
 void simulate_plant(Plant& plant, Motor* motor, Sensor* sensor, const double* t, const double* u,
                     std::size_t n, const RouteSchedule& sched, const PlantTrace& out,

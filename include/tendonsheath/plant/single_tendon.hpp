@@ -20,14 +20,14 @@
 namespace tendonsheath {
 
 struct SingleTendonParams {
-  double friction = 0.1;        // mu
-  double stiffness = 2.4e4;     // EA, N
-  int elements = 100;           // N >= 2
-  double load_force = 10.0;     // F0, N: distal load (and tendon tension) at x_out = 0
-  double load_stiffness = 0.0;  // k, N/m
-  double sheath_viscosity = 0.0;     // N s/m^2: viscous drag per metre of sheath
-  double relaxation_fraction = 0.0;  // SLS tendon: share of EA in the Maxwell arm, [0, 1)
-  double relaxation_time = 1.0;      // s
+  double friction = 0.1;        ///< mu
+  double stiffness = 2.4e4;     ///< EA, N
+  int elements = 100;           ///< N >= 2
+  double load_force = 10.0;     ///< F0, N: distal load (and tendon tension) at x_out = 0
+  double load_stiffness = 0.0;  ///< k, N/m
+  double sheath_viscosity = 0.0;     ///< N s/m^2: viscous drag per metre of sheath
+  double relaxation_fraction = 0.0;  ///< SLS tendon: share of EA in the Maxwell arm, [0, 1)
+  double relaxation_time = 1.0;      ///< s
   ChainOptions options;
 };
 
@@ -62,6 +62,7 @@ inline void check_route_length(const Route& r, double L, const char* w) {
 
 class SingleTendonPlant {
  public:
+  /// The parameter struct its constructor takes.
   using Params = SingleTendonParams;
 
   SingleTendonPlant(const Params& p, const Route& route)
@@ -92,17 +93,19 @@ class SingleTendonPlant {
     reset();
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
   std::size_t elements() const noexcept { return N_; }
   double length() const noexcept { return L_; }
   double total_angle() const noexcept { return total_angle_; }
 
+  /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept {
     chain_.reset();
     updated_ = true;
   }
 
-  // Proximal displacement in (m), distal displacement out (m).
+  /// Proximal displacement in (m), distal displacement out (m).
   double step(double x_in, double dt = 0.0) noexcept {
     updated_ = chain_.step(x_in, dt);
     return output();
@@ -110,13 +113,13 @@ class SingleTendonPlant {
   double output() const noexcept { return chain_.u(0); }
   double input() const noexcept { return chain_.input(); }
 
-  // Route changes (length must stay the same).
+  /// Route changes (length must stay the same).
   void set_route(const Route& r) {
     detail::check_route_length(r, L_, "SingleTendonPlant.set_route");
     r.node_angles(N_, angles_.data(), work_.data());
     set_node_angles(angles_.data());
   }
-  // N-1 lumped angles of the interior sheath nodes, proximal to distal.
+  /// N-1 lumped angles of the interior sheath nodes, proximal to distal.
   void set_node_angles(const double* a) noexcept {
     double sum = 0.0;
     for (std::size_t i = 1; i < N_; ++i) {
@@ -133,23 +136,23 @@ class SingleTendonPlant {
     r.node_angles(N_, out, work.data());
   }
 
-  // Tensions of the N elements, proximal to distal.
+  /// Tensions of the N elements, proximal to distal.
   void tensions(double* out) const noexcept {
     for (std::size_t i = 1; i <= N_; ++i) out[i - 1] = chain_.tension(N_ - i + 1);
   }
-  // Stick/slip state of the N-1 interior nodes, proximal to distal:
-  // +1 slipping toward the proximal end (pulled), -1 toward the distal end, 0 stuck.
+  /// Stick/slip state of the N-1 interior nodes, proximal to distal:
+  /// +1 slipping toward the proximal end (pulled), -1 toward the distal end, 0 stuck.
   void slip_state(int* out) const noexcept {
     for (std::size_t i = 1; i < N_; ++i) out[i - 1] = chain_.state(N_ - i);
   }
-  // Force the tendon exerts on the actuator, in the direction of positive input.
+  /// Force the tendon exerts on the actuator, in the direction of positive input.
   double drive_reaction() const noexcept { return -chain_.tension(N_); }
   bool slack() const noexcept { return chain_.slack(); }
   double min_tension() const noexcept { return chain_.min_tension(); }
   long nonconverged() const noexcept { return chain_.nonconverged(); }
-  // The last step's status (see status.hpp): read right after step(). A step whose state
-  // the chain did not update (FrictionChain::step returned false) is flagged held when its
-  // input was not finite, else not_converged.
+  /// The last step's status (see status.hpp): read right after step(). A step whose state
+  /// the chain did not update (FrictionChain::step returned false) is flagged held when its
+  /// input was not finite, else not_converged.
   Status status() const noexcept {
     const Status s = chain_.status();
     if (updated_ || has(s, Status::held_nonfinite_input)) return s;
