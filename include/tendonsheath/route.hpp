@@ -19,6 +19,12 @@
 
 namespace tendonsheath {
 
+/// @brief The route of a sheath: the accumulated curve angle theta(s) = int_0^s |kappa| ds along
+/// the arc length s in [0, L] (spec A.1, A.5).
+///
+/// Stored as samples (s_i, theta_i), theta linear between them; two samples with the same s are a
+/// jump (the turning angle at a polyline vertex), right-continuous. Built once, before the control
+/// loop (the constructors allocate and validate); the queries are noexcept and allocate nothing.
 class Route {
  public:
   /// Samples of the accumulated angle; validated (finite, s non-decreasing from
@@ -121,9 +127,13 @@ class Route {
     return Route(std::move(ss), std::move(th));
   }
 
+  /// The arc length L of the route, metres.
   double length() const noexcept { return s_.back(); }
+  /// The total curve angle theta(L), radians.
   double total_angle() const noexcept { return th_.back(); }
+  /// The arc-length samples s_i, metres (non-decreasing, from 0 to L).
   const std::vector<double>& s() const noexcept { return s_; }
+  /// The accumulated-angle samples theta_i, radians (non-decreasing, from 0).
   const std::vector<double>& theta() const noexcept { return th_; }
 
   /// theta(s), right-continuous at jumps; clamped outside [0, L].

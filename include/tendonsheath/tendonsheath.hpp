@@ -28,3 +28,11 @@
 #include "plant/simulate_plant.hpp"
 #include "bench/closed_loop.hpp"
 #include "models/curve_angle.hpp"
+
+/// @namespace tendonsheath
+/// @brief The real-time core: hysteresis models and their inverses, physics plants,
+/// compensators and the closed-loop bench.
+///
+/// Every class validates its parameters once, in its constructor (std::invalid_argument naming
+/// the class and the parameter). After that, step() is noexcept, allocates nothing, does bounded
+/// work and never returns NaN for finite input; status() tells what the last step did.

@@ -21,6 +21,7 @@
 
 namespace tendonsheath {
 
+/// Parameters of Backlash (validated by its constructor).
 struct BacklashParams {
   double c_r = 1.0;  ///< slope of the right (rising) branch
   double c_l = 1.0;  ///< slope of the left (falling) branch
@@ -36,6 +37,11 @@ struct BacklashParams {
   }
 };
 
+/// @brief Classic backlash (Tao & Kokotovic): y <- clamp(y, c_r (x - B_r), c_l (x + B_l)).
+///
+/// Two straight branches with slopes c_r, c_l and dead-band offsets B_r, B_l; between them the
+/// output holds. Past the crossing of the lines (c_r != c_l) the band has zero width and y follows
+/// their mean, so y is continuous with |dy| <= max(c_r, c_l) |dx|. Rate-independent.
 class Backlash {
  public:
   /// The parameter struct its constructor takes.
@@ -43,6 +49,7 @@ class Backlash {
   /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit Backlash(const Params& p) : p_(p) {
     const char* w = "Backlash";
     require_positive(p.c_r, w, "c_r");
@@ -58,6 +65,8 @@ class Backlash {
   void reset() noexcept { initialised_ = false; }
 
   /// The first call after reset() starts in the middle of the band at x.
+  /// @param x the input; a non-finite x is ignored and the last output held (0 before the first step)
+  /// @return the output y
   double step(double x, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(x);
     if (held_) return initialised_ ? y_ : 0.0;
@@ -76,6 +85,7 @@ class Backlash {
     return y_;
   }
 
+  /// The output of the last step().
   double output() const noexcept { return y_; }
   /// The last step's status: held_nonfinite_input when its input was not finite.
   Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
@@ -86,7 +96,9 @@ class Backlash {
     y_ = y;
     initialised_ = true;
   }
+  /// The input of the last step() (or of set_state()).
   double last_input() const noexcept { return x_; }
+  /// False until the first finite step() or set_state() after construction or reset().
   bool initialised() const noexcept { return initialised_; }
 
  private:
