@@ -40,12 +40,20 @@ inline double bessel_i0(double x) noexcept {
 }
 }  // namespace detail
 
+/// @brief A Kaiser-windowed sinc of half-width L samples (2L taps), h(x) = sinc(x)
+/// I0(b sqrt(1 - (x/L)^2)) / I0(b) with b = 0.6 L + 2.5, for band-limited reconstruction of a
+/// uniformly sampled input between its samples.
+///
+/// Tabulated once, at construction (kPhases points per sample, linear interpolation between them);
+/// the evaluations are noexcept and allocate nothing. In real time the interpolation between
+/// samples j and j + 1 needs the samples up to j + L: a look-ahead delay of L - 1 samples.
 class SincKernel {
  public:
   static constexpr int kPhases = 512;  ///< table points per sample
-  static constexpr int kMaxHalfWidth = 64;
+  static constexpr int kMaxHalfWidth = 64;  ///< the largest half-width accepted, samples
 
   SincKernel() = default;
+  /// @param half_width L, in [1, kMaxHalfWidth] samples; throws std::invalid_argument otherwise.
   explicit SincKernel(int half_width) : L_(half_width) {
     require(half_width >= 1 && half_width <= kMaxHalfWidth, "SincKernel",
             "the look-ahead (half-width) must be in [1, 64] samples (got ", half_width, ")");
@@ -63,8 +71,11 @@ class SincKernel {
     }
   }
 
+  /// The half-width L, samples.
   int half_width() const noexcept { return L_; }
+  /// The number of taps, 2 L.
   int taps() const noexcept { return 2 * L_; }
+  /// The Kaiser window's shape b = 0.6 L + 2.5.
   double beta() const noexcept { return beta_; }
 
   /// h(x), x in any sign (0 outside (-L, L)).

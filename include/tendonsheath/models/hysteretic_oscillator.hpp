@@ -40,6 +40,7 @@
 
 namespace tendonsheath {
 
+/// How HystereticOscillator reconstructs the input between samples (input_reconstruction).
 enum InputReconstruction : int { kInputHold = 0, kInputLinear = 1, kInputBandlimited = 2 };
 
 namespace detail {
@@ -65,17 +66,18 @@ void on_dense_grid(const double* u, int Q, int need, const Integrate& integrate)
 }
 }  // namespace detail
 
+/// Parameters of HystereticOscillator and OscillatorSensitivity (validated by their constructors).
 struct HystereticOscillatorParams {
-  double m = 1.0;
-  double c = 0.1;
-  double k = 1.0;
-  double alpha = 1.0;
-  double beta = 1.0;
-  double gamma = 0.5;
-  double delta = 0.5;
-  double nu = 1.0;
-  int substeps = 4;
-  int max_substeps = 4096;
+  double m = 1.0;  ///< mass, > 0
+  double c = 0.1;  ///< viscous damping, >= 0
+  double k = 1.0;  ///< linear stiffness, >= 0 (k + alpha > 0)
+  double alpha = 1.0;  ///< Bouc-Wen stiffness of the hysteretic force, >= 0
+  double beta = 1.0;  ///< Bouc-Wen scale, >= 0
+  double gamma = 0.5;  ///< Bouc-Wen shape (any sign)
+  double delta = 0.5;  ///< Bouc-Wen shape (any sign)
+  double nu = 1.0;  ///< Bouc-Wen sharpness, >= 1
+  int substeps = 4;  ///< fewest RK4 sub-steps per sample, >= 1
+  int max_substeps = 4096;  ///< most RK4 sub-steps per sample, >= substeps (bounds the work)
   int input_reconstruction = kInputLinear;  ///< kInputHold, kInputLinear or kInputBandlimited
   int lookahead = 16;  ///< half-width of the band-limited interpolation kernel, samples
 
@@ -88,6 +90,16 @@ struct HystereticOscillatorParams {
   }
 };
 
+/// @brief Single-degree-of-freedom oscillator with a Bouc-Wen restoring force, force u in,
+/// displacement y out: m y'' + c y' + k y + z = u, z' = alpha y' - beta (gamma |y'| |z|^(nu-1) z
+/// + delta y' |z|^nu).
+///
+/// Integrated by RK4 with a bounded number of sub-steps per sample (at least substeps, raised so
+/// that h omega <= 0.5, never above max_substeps). The input between samples is held, linear (the
+/// default) or band-limited (a Kaiser-windowed sinc: the output then lags by delay() samples). No
+/// sign of the Bouc-Wen shape is rejected: a state that overflows sets diverged() and is kept at
+/// its last finite value, so step() never returns NaN for finite input. Not rate-independent:
+/// step() needs dt.
 class HystereticOscillator {
  public:
   /// The parameter struct its constructor takes.
@@ -96,6 +108,8 @@ class HystereticOscillator {
   static constexpr bool rate_independent = false;
   static constexpr int kWeightCacheSubsteps = 16;  ///< band-limited weights cached up to this m
 
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range. The
+  /// band-limited history is allocated here, once.
   explicit HystereticOscillator(const Params& p) : p_(p) {
     const char* w = "HystereticOscillator";
     require_positive(p.m, w, "m");
@@ -141,6 +155,9 @@ class HystereticOscillator {
 
   /// Starts at rest (y = y' = z = 0) at the first sample. A non-finite input sample is
   /// ignored (held at the previous one when band-limited, so the timing is kept).
+  /// @param u the force input
+  /// @param dt the sample interval, s; a dt that is not finite and > 0 integrates nothing
+  /// @return the displacement y (delay() samples late when band-limited)
   double step(double u, double dt) noexcept {
     held_ = !std::isfinite(u);
     kept_ = false;
@@ -194,6 +211,7 @@ class HystereticOscillator {
     return y_;
   }
 
+  /// The RK4 sub-steps one sample interval of dt seconds takes.
   int substeps(double dt) const noexcept {
     const double need = std::ceil(dt * omega_ / 0.5);
     double m = need > p_.substeps ? need : p_.substeps;
@@ -201,13 +219,17 @@ class HystereticOscillator {
     return static_cast<int>(m);
   }
 
+  /// The displacement y after the last step().
   double output() const noexcept { return y_; }
+  /// The velocity y' after the last step().
   double velocity() const noexcept { return v_; }
+  /// The hysteretic force z after the last step().
   double hysteretic_force() const noexcept { return z_; }
 
   /// True once the state overflowed (z diverged) since reset(); the sample (1-based count of
   /// integrated intervals) where it first happened is diverged_at().
   bool diverged() const noexcept { return diverged_at_ >= 0; }
+  /// The sample (1-based count of integrated intervals) where the state first overflowed, or -1.
   long diverged_at() const noexcept { return diverged_at_; }
   /// The last step's status: held_nonfinite_input (input not finite), not_converged (the
   /// integration overflowed in this step and the state was kept).

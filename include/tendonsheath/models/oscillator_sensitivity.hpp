@@ -15,10 +15,17 @@
 
 namespace tendonsheath {
 
+/// @brief Forward sensitivities dy/dp of the HystereticOscillator's displacement to its eight
+/// parameters (m, c, k, alpha, beta, gamma, delta, nu), for the identification's least squares.
+///
+/// The tangent-linear model of the very RK4 scheme that step_dense() runs (same sub-steps, same
+/// input grid), so dy/dp is the exact derivative of the simulated output; at a kink of |v| or |z|
+/// the one-sided derivative of the branch in use is taken.
 class OscillatorSensitivity {
  public:
   static constexpr int kParams = 8;  ///< m, c, k, alpha, beta, gamma, delta, nu
 
+  /// @param p the oscillator's parameters; throws std::invalid_argument as HystereticOscillator does.
   explicit OscillatorSensitivity(const HystereticOscillatorParams& p) : osc_(p), p_(p) { reset(); }
 
   /// Back to the state right after construction; the parameters are kept.
