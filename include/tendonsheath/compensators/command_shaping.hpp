@@ -21,7 +21,11 @@ class RateEstimator {
  public:
   /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept { primed_ = false; }
+  /// True once update() has seen a sample since construction or reset().
   bool primed() const noexcept { return primed_; }
+  /// @param value the new sample
+  /// @param dt the time since the last sample, s (a dt that is not finite and > 0 gives rate 0)
+  /// @return (value - last) / dt, or 0 on the first sample
   double update(double value, double dt) noexcept {
     double rate = 0.0;
     if (primed_ && dt > 0.0 && std::isfinite(dt)) rate = (value - last_) / dt;
@@ -35,11 +39,13 @@ class RateEstimator {
   bool primed_ = false;
 };
 
+/// The motor command's limits, in command units (rad for a motor angle); unbounded by default.
 struct CommandLimits {
-  double min = -std::numeric_limits<double>::infinity();  // smallest command
-  double max = std::numeric_limits<double>::infinity();   // largest command
-  double max_rate = std::numeric_limits<double>::infinity();  // |d command / dt| limit, per s
+  double min = -std::numeric_limits<double>::infinity();  ///< smallest command
+  double max = std::numeric_limits<double>::infinity();   ///< largest command
+  double max_rate = std::numeric_limits<double>::infinity();  ///< |d command / dt| limit, per s
 
+  /// Throws std::invalid_argument (message starting with `where`) unless min < max and max_rate > 0.
   void validate(const char* where) const {
     require(!std::isnan(min) && !std::isnan(max) && min < max, where,
             "command limits need min < max (got min=", min, ", max=", max, ")");
@@ -52,9 +58,14 @@ struct CommandLimits {
 class CommandShaper {
  public:
   CommandShaper() = default;
+  /// @param limits the limits; not validated here (the compensators that own a shaper validate them).
   explicit CommandShaper(const CommandLimits& limits) : lim_(limits) {}
   /// Back to the state right after construction; the parameters are kept.
   void reset() noexcept { primed_ = false; }
+  /// @brief Shape one command.
+  /// @param command the raw command; a non-finite one holds the last command (the clamped 0 at first)
+  /// @param dt the time since the last command, s (the rate limit allows max_rate dt of change)
+  /// @return the command clamped to [min, max] and to the rate limit
   double apply(double command, double dt) noexcept {
     held_ = !std::isfinite(command);
     if (held_) {
@@ -72,6 +83,7 @@ class CommandShaper {
     primed_ = true;
     return c;
   }
+  /// The last shaped command.
   double last() const noexcept { return last_; }
   /// The last apply(): held_nonfinite_input (command not finite: the last one held),
   /// saturated (the command was cut to the limits or the rate limit).
@@ -79,6 +91,7 @@ class CommandShaper {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return saturated_ ? s | Status::saturated : s;
   }
+  /// The limits.
   const CommandLimits& limits() const noexcept { return lim_; }
 
  private:
