@@ -21,6 +21,8 @@ inline double expm1_over(double x) noexcept {
   return std::fabs(x) < 1e-8 ? 1.0 + 0.5 * x : std::expm1(x) / x;
 }
 
+/// The shape of a route as the closed forms need it: the friction-weighted integrals g, G and the
+/// total curve angle (see shape_integrals() and uniform_shape()).
 struct ShapeIntegrals {
   double g = 1.0;            ///< (1/L) int e^{-mu theta} ds
   double G = 1.0;            ///< (1/L) int e^{+mu theta} ds
@@ -61,6 +63,14 @@ inline ShapeIntegrals shape_integrals(const double* s, const double* theta, std:
   return {g / L, G / L, theta[n - 1]};
 }
 
+/// @brief Closed-form statics of a bidirectional pull-pull tendon-sheath pair in full slip
+/// (spec A.2, A.4: equations A5-A7), for any distribution of curvature.
+///
+/// Tendon 1 is pulled (forward) or released (backward); the output is x_out = x_in - Delta1. Forward:
+/// T1p = (2 T0 + F_L G e^{-a}) / (g + G e^{-2a}), Delta1 = (L/EA)(T1p g - T0); backward:
+/// T1p = (2 T0 + F_L g e^{a}) / (G + g e^{2a}), Delta1 = (L/EA)(T1p G - T0), with a = mu Theta.
+/// Uniform curvature reduces this to (A7): Delta1 = (L/EA) tanh(a/2) [T0 sigma + F_L / a]. All
+/// members are noexcept and allocate nothing.
 struct PullPullStatics {
   double friction = 0.1;     ///< mu
   double compliance = 5e-5;  ///< L / EA, m/N
@@ -82,8 +92,12 @@ struct PullPullStatics {
   }
   /// Both elongations are affine in the load: Delta = offset + slope * F_L.
   struct Affine {
+    /// @{
+    /// forward: Delta1 = forward_offset + forward_slope F_L; backward: Delta1 = backward_offset + backward_slope F_L (m, and m/N)
     double forward_offset, forward_slope, backward_offset, backward_slope;
+    /// @}
   };
+  /// The forward and backward elongations for route shape sh as affine functions of the load.
   Affine affine(const ShapeIntegrals& sh) const noexcept {
     const double ema = std::exp(-friction * sh.total_angle), ea = 1.0 / ema;
     const double df = sh.g + sh.G * ema * ema, db = sh.G + sh.g * ea * ea;
