@@ -22,6 +22,12 @@
 #include "../compensators/curve_angle_feedforward.hpp"
 #include "../compensators/inverse_feedforward.hpp"
 
+/// @brief Loading compensators saved by Python's `to_json` into the real-time core (optional
+/// header tendonsheath/io/json.hpp, needs nlohmann/json).
+///
+/// Outside the real-time path: it reads files, allocates and throws std::invalid_argument naming a
+/// missing, unknown, null or mistyped key. Load once at start-up; the LoadedCompensator's step() is
+/// the core's: noexcept, no allocation.
 namespace tendonsheath::io {
 
 using json = nlohmann::json;
@@ -93,18 +99,18 @@ inline void check_format(const json& file, const char* format, const std::string
 /// The affine map of a Python `Scaled` model around the inverted one:
 /// command = input_offset + input_scale * inner((y_d - output_offset) / output_gain).
 struct ScaledMap {
-  double input_offset = 0.0;
-  double input_scale = 1.0;
-  double output_offset = 0.0;
-  double output_gain = 1.0;
+  double input_offset = 0.0;  ///< added to the inner command
+  double input_scale = 1.0;  ///< scales the inner command, > 0
+  double output_offset = 0.0;  ///< subtracted from the desired output
+  double output_gain = 1.0;  ///< divides the desired output, != 0
 };
 
 /// A model file ("tendonsheath.model") reduced to what its inverse needs.
 struct InvertibleModel {
   std::string name;                  ///< Backlash, BoucWenBacklash or PrandtlIshlinskii
-  BacklashInverseParams backlash{};  // c_r, c_l, B_r, B_l (Backlash, BoucWenBacklash)
-  PrandtlIshlinskiiParams pi{};      // PrandtlIshlinskii
-  ScaledMap map{};                   // identity unless the file held a Scaled model
+  BacklashInverseParams backlash{};  ///< c_r, c_l, B_r, B_l (Backlash, BoucWenBacklash)
+  PrandtlIshlinskiiParams pi{};      ///< PrandtlIshlinskii
+  ScaledMap map{};                   ///< identity unless the file held a Scaled model
 };
 
 inline InvertibleModel invertible_model_from_json(const json& m, const std::string& where) {
@@ -197,12 +203,20 @@ inline ContinuumFeedforwardParams continuum_feedforward_params(const json& f,
 /// affine map of a Scaled model applied around an inverse. step() is noexcept and allocates nothing.
 class LoadedCompensator {
  public:
+  /// The feedforwards a compensator file can hold.
   using Engine = std::variant<BacklashInverseFeedforward, PrandtlIshlinskiiFeedforward,
                               CurveAngleFeedforward, ContinuumFeedforward>;
 
+  /// @param kind the Python class name of the compensator
+  /// @param engine the feedforward, built (and validated) from the file
+  /// @param map the affine map of a Scaled model around the inverse (identity by default)
   LoadedCompensator(std::string kind, Engine engine, ScaledMap map = {})
       : kind_(std::move(kind)), engine_(std::move(engine)), map_(map) {}
 
+  /// @param y_d the desired output, in the file's (outer) units
+  /// @param dt the time since the previous cycle, s
+  /// @return the motor command: input_offset + input_scale * engine.step((y_d - output_offset) /
+  /// output_gain, dt)
   double step(double y_d, double dt) noexcept {
     const double inner_y = (y_d - map_.output_offset) / map_.output_gain;
     const double x = std::visit([&](auto& e) noexcept { return e.step(inner_y, dt); }, engine_);
@@ -216,8 +230,9 @@ class LoadedCompensator {
   Status status() const noexcept {
     return std::visit([](const auto& e) noexcept { return e.status(); }, engine_);
   }
-  const std::string& kind() const noexcept { return kind_; }  // the Python class name
-  Engine& engine() noexcept { return engine_; }  // e.g. CurveAngleFeedforward::set_curve_angle
+  const std::string& kind() const noexcept { return kind_; }  ///< the Python class name
+  Engine& engine() noexcept { return engine_; }  ///< the feedforward itself, e.g. for CurveAngleFeedforward::set_curve_angle
+  /// The affine map around the inverse.
   const ScaledMap& map() const noexcept { return map_; }
 
  private:
