@@ -30,6 +30,7 @@
 /// the core's: noexcept, no allocation.
 namespace tendonsheath::io {
 
+/// The JSON value type of nlohmann/json.
 using json = nlohmann::json;
 
 namespace detail {
@@ -113,6 +114,8 @@ struct InvertibleModel {
   ScaledMap map{};                   ///< identity unless the file held a Scaled model
 };
 
+/// The model of a "tendonsheath.model" document (a Scaled model around an invertible one, or an
+/// invertible one). Throws std::invalid_argument, message starting with `where`, naming the bad key.
 inline InvertibleModel invertible_model_from_json(const json& m, const std::string& where) {
   detail::check_format(m, "tendonsheath.model", where);
   const json& name = detail::member(m, "model", where);
@@ -159,6 +162,9 @@ inline InvertibleModel invertible_model_from_json(const json& m, const std::stri
   return out;
 }
 
+/// The CurveAngleFeedforward parameters of a "tendonsheath.compensator" document (Python's names:
+/// curve_angle, smoothing; a null max_correction_rate is unbounded). Throws std::invalid_argument,
+/// message starting with `where`, naming a missing or mistyped key.
 inline CurveAngleFeedforwardParams curve_angle_feedforward_params(const json& f,
                                                                  const std::string& where) {
   const double inf = std::numeric_limits<double>::infinity();
@@ -177,6 +183,9 @@ inline CurveAngleFeedforwardParams curve_angle_feedforward_params(const json& f,
   return p;
 }
 
+/// The ContinuumFeedforward parameters of a "tendonsheath.compensator" document (mode "exact" or
+/// "published"). Throws std::invalid_argument, message starting with `where`, naming a missing or
+/// mistyped key.
 inline ContinuumFeedforwardParams continuum_feedforward_params(const json& f,
                                                                const std::string& where) {
   ContinuumFeedforwardParams p;
