@@ -33,7 +33,7 @@ struct ClosedLoopTrace {
   double* measured = nullptr;       ///< what the sensor reported (NaN in dropouts)
   double* command = nullptr;        ///< controller output (motor angle or torque)
   double* motor = nullptr;          ///< motor shaft position (its encoder; the pulley lags it by
-                                    /// the gear play when the motor has gear backlash)
+                                    ///< the gear play when the motor has gear backlash)
   unsigned char* slack = nullptr;   ///< slack flag
   unsigned char* fallback = nullptr;  ///< controller in its fallback mode
   unsigned char* status = nullptr;  ///< Status flags of controller, motor, plant and sensor

@@ -74,7 +74,7 @@ struct AdaptiveEstimates {
   /// @}
 };
 
-/// @brief Adaptive output-feedback controller of Do et al. (spec D.3) for a torque-driven motor
+/// @brief Adaptive output-feedback controller of Do et al.\ (spec D.3) for a torque-driven motor
 /// behind a tendon-sheath drive; returns the motor torque.
 ///
 /// The output y = c x + d(t) seen through J x'' + b x' + tau_d = u is treated as
@@ -152,7 +152,7 @@ class AdaptiveController {
     return step_with_derivatives(y_d, yd_rate, yd_acc, y_measured, motor_position, dt);
   }
 
-  /// @brief As step(), with the desired output's rate and acceleration given (e.g. from a trajectory
+  /// @brief As step(), with the desired output's rate and acceleration given (e.g.\ from a trajectory
   /// generator; a non-finite one counts as 0).
   /// @param y_d the desired output
   /// @param yd_rate its rate

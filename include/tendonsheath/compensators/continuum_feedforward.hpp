@@ -40,7 +40,7 @@ struct ContinuumFeedforwardParams {
   CommandLimits limits{};           ///< the motor command's limits, on the motor angle, rad
 };
 
-/// @brief Feedforward of Lau et al. (spec C) for a tendon-sheath-driven continuum segment: desired
+/// @brief Feedforward of Lau et al.\ (spec C) for a tendon-sheath-driven continuum segment: desired
 /// bending angle in, motor angle out.
 ///
 /// Published: X_d = r_t theta_d, F = (theta_d / l) EI / r_t, the paper's tensions and

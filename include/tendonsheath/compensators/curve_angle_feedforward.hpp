@@ -122,7 +122,7 @@ class CurveAngleFeedforward {
     return s;
   }
 
-  /// @brief As step(), with the desired output rate given (e.g. from a trajectory generator).
+  /// @brief As step(), with the desired output rate given (e.g.\ from a trajectory generator).
   /// @param y_d the desired distal angle, rad
   /// @param y_d_rate its rate, rad/s (a non-finite rate counts as 0)
   /// @param dt the time since the previous cycle, s

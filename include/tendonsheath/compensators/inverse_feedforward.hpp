@@ -67,7 +67,7 @@ class BacklashInverseFeedforward {
     return step_with_rate(y_d, rate_.update(y_d, dt), dt);
   }
 
-  /// Same, with the desired output rate given (e.g. from a trajectory generator).
+  /// Same, with the desired output rate given (e.g.\ from a trajectory generator).
   double step_with_rate(double y_d, double y_d_rate, double dt) noexcept {
     if (!std::isfinite(y_d_rate)) y_d_rate = 0.0;
     return shaper_.apply(inverse(y_d, smooth_direction(y_d_rate, p_.v_eps)), dt);

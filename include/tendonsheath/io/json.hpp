@@ -240,7 +240,7 @@ class LoadedCompensator {
     return std::visit([](const auto& e) noexcept { return e.status(); }, engine_);
   }
   const std::string& kind() const noexcept { return kind_; }  ///< the Python class name
-  Engine& engine() noexcept { return engine_; }  ///< the feedforward itself, e.g. for CurveAngleFeedforward::set_curve_angle
+  Engine& engine() noexcept { return engine_; }  ///< the feedforward itself, e.g.\ for CurveAngleFeedforward::set_curve_angle
   /// The affine map around the inverse.
   const ScaledMap& map() const noexcept { return map_; }
 

@@ -91,7 +91,7 @@ inline int substeps_for(double scaled_travel, double max_step, int max_substeps)
 }
 }  // namespace detail
 
-/// @brief Backlash-like hysteresis of Do et al. (spec D.1): a normalised Bouc-Wen state w in
+/// @brief Backlash-like hysteresis of Do et al.\ (spec D.1): a normalised Bouc-Wen state w in
 /// [-1, 1] blends the two backlash branches.
 ///
 /// dw = rho [dx - sigma |dx| |w|^(n-1) w + (sigma - 1) dx |w|^n], phi = (1 + w) / 2 and

@@ -91,8 +91,8 @@ struct HystereticOscillatorParams {
 };
 
 /// @brief Single-degree-of-freedom oscillator with a Bouc-Wen restoring force, force u in,
-/// displacement y out: m y'' + c y' + k y + z = u, z' = alpha y' - beta (gamma |y'| |z|^(nu-1) z
-/// + delta y' |z|^nu).
+/// displacement y out: m y'' + c y' + k y + z = u,
+/// z' = alpha y' - beta (gamma |y'| |z|^(nu-1) z + delta y' |z|^nu).
 ///
 /// Integrated by RK4 with a bounded number of sub-steps per sample (at least substeps, raised so
 /// that h omega <= 0.5, never above max_substeps). The input between samples is held, linear (the

@@ -22,7 +22,7 @@ struct ContinuumParams {
   double tendon_offset = 2e-3;      ///< r_t, m
   double backbone_length = 0.03;    ///< l, m
   int elements = 100;  ///< N per sheath, >= 2
-  /// effects beyond the quasi-static pair (see PullPullParams)
+  // effects beyond the quasi-static pair (see PullPullParams)
   double distal_inertia = 0.0;     ///< kg m^2 of the segment about its bending (at theta_b)
   double distal_damping = 0.0;     ///< N m s/rad
   double sheath_viscosity = 0.0;   ///< N s/m^2

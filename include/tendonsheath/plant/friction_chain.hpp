@@ -204,7 +204,7 @@ class FrictionChain {
     fact_valid_ = false;
     tfact_valid_ = false;
   }
-  /// Friction coefficient of one node (e.g. a second sheath of another material).
+  /// Friction coefficient of one node (e.g.\ a second sheath of another material).
   void set_node_friction(std::size_t j, double mu) {
     mu_.at(j) = mu;
     h_[j] = detail::node_h(mu, dtheta_[j]);
