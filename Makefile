@@ -128,7 +128,7 @@ $(DOCS_TOOLS): $(STAMP) pyproject.toml
 
 # Doxygen (Debian's package) renders the C++ headers' comments into build/doxygen/html (Doxyfile:
 # warnings are errors, an undocumented public class or member is one); the hook
-# docs/hooks/doxygen.py serves it at cpp/ in the site.
+# docs/hooks/doxygen.py serves it at cpp/reference/ in the site.
 doxygen:
 	@if ! command -v doxygen > /dev/null; then \
 	  echo "Doxygen not found: installing Debian's doxygen package with apt-get"; \
