@@ -29,6 +29,9 @@ class Route {
  public:
   /// Samples of the accumulated angle; validated (finite, s non-decreasing from
   /// 0 to L > 0, theta non-decreasing from 0).
+  /// @param s the arc-length samples, m
+  /// @param theta the accumulated-angle samples, rad (as many as s)
+  /// Throws std::invalid_argument naming the first bad sample.
   Route(std::vector<double> s, std::vector<double> theta) : s_(std::move(s)), th_(std::move(theta)) {
     const char* w = "Route";
     require(s_.size() == th_.size(), w, "s and theta have different lengths (", s_.size(), " and ",
@@ -50,6 +53,9 @@ class Route {
   }
 
   /// Constant curvature: theta(s) = total_angle * s / length.
+  /// @param length L, m, > 0
+  /// @param total_angle Theta, rad, >= 0
+  /// @return the route; throws std::invalid_argument on a bad argument
   static Route uniform(double length, double total_angle) {
     require_positive(length, "Route.uniform", "length");
     require_non_negative(total_angle, "Route.uniform", "total_angle");
@@ -58,6 +64,8 @@ class Route {
 
   /// Consecutive arcs of constant curvature: (length > 0, bend angle). A bend
   /// to the other side (negative angle) accumulates |angle|.
+  /// @param pieces (length, angle) pairs, m and rad, at least one
+  /// @return the route; throws std::invalid_argument naming the first bad piece
   static Route arcs(const std::vector<std::pair<double, double>>& pieces) {
     const char* w = "Route.arcs";
     require(!pieces.empty(), w, "at least one (length, angle) piece is needed");
@@ -75,6 +83,9 @@ class Route {
 
   /// A 3-D polyline of K >= 2 points (xyz row-major, K x 3, metres). Each
   /// interior vertex adds its turning angle as a jump of theta at that vertex.
+  /// @param xyz the k points, 3 k coordinates, m
+  /// @param k the number of points, >= 2
+  /// @return the route; throws std::invalid_argument on a non-finite point or two coinciding ones
   static Route from_points(const double* xyz, std::size_t k) {
     const char* w = "Route.from_points";
     require(k >= 2, w, "at least two points are needed (got ", k, ")");
@@ -108,6 +119,10 @@ class Route {
 
   /// A sampled curvature profile kappa(s) (s strictly increasing, shifted to
   /// start at 0); theta is the trapezoidal integral of |kappa|.
+  /// @param s the n arc lengths, m, strictly increasing
+  /// @param kappa the n curvatures, 1/m (their magnitudes are used)
+  /// @param n the number of samples, >= 2
+  /// @return the route; throws std::invalid_argument naming the first bad sample
   static Route from_curvature(const double* s, const double* kappa, std::size_t n) {
     const char* w = "Route.from_curvature";
     require(n >= 2, w, "at least two samples are needed (got ", n, ")");
@@ -137,6 +152,8 @@ class Route {
   const std::vector<double>& theta() const noexcept { return th_; }
 
   /// theta(s), right-continuous at jumps; clamped outside [0, L].
+  /// @param s the arc length, m
+  /// @return theta(s), rad
   double angle_at(double s) const noexcept {
     if (!(s > 0.0)) return (s == 0.0 && s_[1] == 0.0) ? theta_right_of_zero() : 0.0;
     if (s >= s_.back()) return th_.back();
@@ -157,6 +174,8 @@ class Route {
   /// A jump exactly at an element boundary goes to the element ending there;
   /// a jump at s = 0 goes to the first element. The sum is exactly theta(L)
   /// up to rounding.
+  /// @param n the number of elements, >= 1
+  /// @param out receives the n element angles, rad
   void element_angles(std::size_t n, double* out) const noexcept {
     const double L = s_.back();
     double prev = 0.0;
@@ -189,6 +208,9 @@ class Route {
   /// adjacent element, plus the outer halves of the two end elements (whose
   /// outer nodes are driven ends or the distal pulley). Their sum equals the
   /// total angle. Needs n >= 2; `work` holds n doubles (scratch).
+  /// @param n the number of elements, >= 2
+  /// @param out receives the n - 1 node angles, rad
+  /// @param work scratch space of n doubles
   void node_angles(std::size_t n, double* out, double* work) const noexcept {
     element_angles(n, work);
     for (std::size_t j = 1; j < n; ++j) out[j - 1] = 0.5 * (work[j - 1] + work[j]);

@@ -142,6 +142,11 @@ class AdaptiveController {
   /// One control cycle: desired output y_d, measured output y (NaN on dropout),
   /// motor position (used by the fallback only), dt since the previous cycle.
   /// Returns the motor torque command, within +-max_torque; a non-finite y_d holds the last one.
+  /// @param y_d the desired output
+  /// @param y_measured the measured output, NaN on dropout (runs the fallback)
+  /// @param motor_position the motor position (used by the fallback only)
+  /// @param dt the time since the previous cycle, s
+  /// @return the motor torque command
   double step(double y_d, double y_measured, double motor_position, double dt) noexcept {
     held_ = !std::isfinite(y_d);
     if (held_) return torque_;

@@ -198,6 +198,10 @@ class HystereticOscillator {
   /// i = 0..Q (Q + 1 values; u[Q] is the next sample). The first call after reset() only
   /// initialises (at rest) and reads nothing. When Q is even and Q / 2 sub-steps are enough,
   /// RK4 takes exactly Q / 2 sub-steps on the grid; otherwise the grid is interpolated linearly.
+  /// @param u the Q + 1 input values of the interval
+  /// @param Q the refinement of the grid, >= 1 (else nothing is integrated)
+  /// @param dt the sample interval, s
+  /// @return the displacement y at the end of the interval
   double step_dense(const double* u, int Q, double dt) noexcept {
     held_ = kept_ = false;
     if (!initialised_) {

@@ -36,6 +36,11 @@ class OscillatorSensitivity {
   }
 
   /// As HystereticOscillator::step_dense(); dy[0..7] receives dy/dp at the end of the interval.
+  /// @param u the Q + 1 input values of the interval
+  /// @param Q the refinement of the grid, >= 1
+  /// @param dt the sample interval, s
+  /// @param dy receives the kParams sensitivities dy/dp
+  /// @return the displacement y at the end of the interval
   double step_dense(const double* u, int Q, double dt, double* dy) noexcept {
     if (initialised_ && dt > 0.0 && std::isfinite(dt) && Q >= 1)
       detail::on_dense_grid(u, Q, osc_.substeps(dt),

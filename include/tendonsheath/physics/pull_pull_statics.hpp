@@ -77,6 +77,9 @@ struct PullPullStatics {
   double pretension = 10.0;  ///< T0, N
 
   /// Elongation Delta1 of the pulled tendon in forward full slip under load F_L.
+  /// @param sh the route's shape
+  /// @param load F_L, the distal load at the tendon level, N
+  /// @return Delta1, m
   double forward_elongation(const ShapeIntegrals& sh, double load) const noexcept {
     const double a = friction * sh.total_angle;
     const double ema = std::exp(-a);
@@ -84,6 +87,9 @@ struct PullPullStatics {
     return compliance * (t1p * sh.g - pretension);
   }
   /// Elongation Delta1 of tendon 1 in backward full slip under load F_L.
+  /// @param sh the route's shape
+  /// @param load F_L, the distal load at the tendon level, N
+  /// @return Delta1, m
   double backward_elongation(const ShapeIntegrals& sh, double load) const noexcept {
     const double a = friction * sh.total_angle;
     const double ea = std::exp(a);
@@ -108,6 +114,9 @@ struct PullPullStatics {
   }
 
   /// Half-width of the dead zone: (forward - backward)/2 at the same load.
+  /// @param sh the route's shape
+  /// @param load F_L, N
+  /// @return the half-width, m (at the tendon level)
   double backlash_half_width(const ShapeIntegrals& sh, double load = 0.0) const noexcept {
     return 0.5 * (forward_elongation(sh, load) - backward_elongation(sh, load));
   }

@@ -258,6 +258,10 @@ class FrictionChain {
 
   /// Advance to the driven input x (dt: time since the previous step, used by
   /// dampers only). Returns true when the state was updated.
+  /// @param x the driven input, m; a non-finite x leaves the state unchanged, one beyond
+  /// +-kMaxInput is clamped
+  /// @param dt the time since the previous step, s (used only when time_dependent())
+  /// @return true when the state was updated (see status())
   bool step(double x, double dt) noexcept {
     input_clamped_ = false;
     input_held_ = !std::isfinite(x);

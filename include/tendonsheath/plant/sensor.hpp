@@ -50,6 +50,8 @@ class Sensor {
   }
 
   /// One reading of x; a non-finite x repeats the last reading.
+  /// @param x the true value
+  /// @return the reading: x plus noise, quantised (the last reading when x is not finite)
   double measure(double x) noexcept {
     held_ = !std::isfinite(x);
     if (held_) return last_;
