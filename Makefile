@@ -146,7 +146,8 @@ test-python: install chromium doxygen
 # wheel-test before pytest so that pytest's summary closes the output; it adds ~40 s wall
 # (~22 s CPU) on a clean clone: the wheel reuses the extension `make install` compiled in build/,
 # and the fresh venv takes numpy, scipy, ... from pip's cache. docs adds ~8 s wall (~7 s CPU:
-# ~6.7 s to install its tools from pip's cache into the venv, once; ~1.6 s to build the site)
+# ~6.7 s to install its tools from pip's cache into the venv, once; ~1.6 s to build the site;
+# Doxygen ~0.3 s, plus ~6 s to apt-get install it, once)
 test: test-cpp lint wheel-test docs test-python
 
 bench: install
