@@ -137,6 +137,7 @@ doxygen:
 
 docs: $(DOCS_TOOLS) doxygen
 	rm -rf build/doxygen
+	mkdir -p build/doxygen
 	doxygen Doxyfile
 	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/mkdocs build --strict
 
