@@ -46,7 +46,8 @@ struct ClosedLoopTrace {
 struct OpenLoop {  // uncompensated: the kinematic motor angle for the desired output
   /// motor angle per unit of desired output (the kinematic ratio)
   double gain = 1.0;
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {}
   /// Ignores the route: this controller does not follow it.
   void on_shape(const ShapeIntegrals&) noexcept {}
@@ -65,7 +66,8 @@ template <class Feedforward>
 struct FeedforwardLoop {  // any feedforward compensator: no use of the measurement
   /// the compensator
   Feedforward ff;
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { ff.reset(); }
   /// Ignores the route: this controller does not follow it.
   void on_shape(const ShapeIntegrals&) noexcept {}
@@ -81,7 +83,8 @@ struct FeedforwardLoop {  // any feedforward compensator: no use of the measurem
 struct CurveAngleLoop {  // follows the route's shape every cycle (shape sensing)
   /// the compensator
   CurveAngleFeedforward ff;
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { ff.reset(); }
   /// Passes the new route shape to the feedforward (set_shape).
   void on_shape(const ShapeIntegrals& s) noexcept { ff.set_shape(s); }
@@ -98,7 +101,8 @@ struct CurveAngleLoop {  // follows the route's shape every cycle (shape sensing
 struct AdaptiveLoop {
   /// the controller
   AdaptiveController ctrl;
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { ctrl.reset(); }
   /// Ignores the route: this controller does not follow it.
   void on_shape(const ShapeIntegrals&) noexcept {}

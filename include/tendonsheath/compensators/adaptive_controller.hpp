@@ -124,7 +124,8 @@ class AdaptiveController {
   /// True when the last step ran the fallback (its measurement was not finite).
   bool in_fallback() const noexcept { return fallback_; }
 
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     est_ = {p_.psi_0, p_.phi_0, p_.D_0};
     yd_rate_.reset();

@@ -19,7 +19,8 @@ inline double smooth_direction(double velocity, double v_eps) noexcept {
 /// Backward-difference rate of a sampled signal; 0 on the first sample.
 class RateEstimator {
  public:
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { primed_ = false; }
   /// True once update() has seen a sample since construction or reset().
   bool primed() const noexcept { return primed_; }
@@ -60,7 +61,8 @@ class CommandShaper {
   CommandShaper() = default;
   /// @param limits the limits; not validated here (the compensators that own a shaper validate them).
   explicit CommandShaper(const CommandLimits& limits) : lim_(limits) {}
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { primed_ = false; }
   /// @brief Shape one command.
   /// @param command the raw command; a non-finite one holds the last command (the clamped 0 at first)

@@ -78,7 +78,8 @@ class CurveAngleFeedforward {
   /// True when the last set_curve_angle() was beyond max_total_angle(friction) and clamped.
   bool angle_clamped() const noexcept { return angle_clamped_; }
 
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     rate_.reset();
     shaper_.reset();

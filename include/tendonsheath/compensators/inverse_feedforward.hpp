@@ -52,7 +52,8 @@ class BacklashInverseFeedforward {
   /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
 
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     rate_.reset();
     shaper_.reset();
@@ -99,7 +100,8 @@ class PrandtlIshlinskiiFeedforward {
       : inverse_(p), shaper_(limits) {
     limits.validate("PrandtlIshlinskiiFeedforward");
   }
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     inverse_.reset();
     shaper_.reset();

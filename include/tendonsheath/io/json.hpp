@@ -231,7 +231,8 @@ class LoadedCompensator {
     const double x = std::visit([&](auto& e) noexcept { return e.step(inner_y, dt); }, engine_);
     return map_.input_offset + map_.input_scale * x;
   }
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     std::visit([](auto& e) noexcept { e.reset(); }, engine_);
   }

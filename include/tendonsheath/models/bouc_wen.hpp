@@ -73,7 +73,8 @@ class BoucWen {
   /// The bound of the hysteretic state: z_u = (A / (beta + gamma))^(1/n).
   double z_ultimate() const noexcept { return z_u_; }
 
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     initialised_ = false;
     z_ = 0.0;

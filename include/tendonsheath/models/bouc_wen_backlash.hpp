@@ -124,7 +124,8 @@ class BoucWenBacklash {
   /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
 
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     initialised_ = false;
     w_ = 0.0;

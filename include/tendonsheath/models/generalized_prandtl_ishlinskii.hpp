@@ -115,7 +115,8 @@ class GeneralizedPrandtlIshlinskii {
 
   /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { initialised_ = false; }
 
   /// @param x the input; a non-finite x holds the last output (0 before the first step)
@@ -201,7 +202,8 @@ class GeneralizedPrandtlIshlinskiiInverse {
   bool input_clamped() const noexcept { return clamped_; }
   /// The parameters it was built with.
   const Params& params() const noexcept { return model_.params(); }
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { model_.reset(); }
 
   /// The input x for which the forward model reaches y_desired (clipped to the

@@ -145,7 +145,8 @@ class HystereticOscillator {
     return p_.input_reconstruction == kInputBandlimited ? p_.lookahead - 1 : 0;
   }
 
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     initialised_ = false;
     y_ = v_ = z_ = 0.0;

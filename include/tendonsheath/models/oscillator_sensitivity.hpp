@@ -28,7 +28,8 @@ class OscillatorSensitivity {
   /// @param p the oscillator's parameters; throws std::invalid_argument as HystereticOscillator does.
   explicit OscillatorSensitivity(const HystereticOscillatorParams& p) : osc_(p), p_(p) { reset(); }
 
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     initialised_ = false;
     for (double& x : s_) x = 0.0;

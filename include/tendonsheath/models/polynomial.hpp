@@ -91,7 +91,8 @@ class Chain {
   /// @param first the hysteresis model (copied)
   /// @param second the static map applied to its output (copied)
   Chain(const First& first, const Second& second) : first_(first), second_(second) {}
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     first_.reset();
     second_.reset();

@@ -95,7 +95,8 @@ class PrandtlIshlinskii {
 
   /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { initialised_ = false; }
 
   /// @param x the input; a non-finite x holds the last output, one beyond +-input_limit() is clamped
@@ -169,7 +170,8 @@ class PrandtlIshlinskiiInverse {
 
   /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { initialised_ = false; }
 
   /// Returns the input x that drives the forward operator to y_desired.

@@ -150,7 +150,8 @@ class PullPullPlant {
   /// The total curve angle of sheath 2's current route, rad.
   double total_angle2() const noexcept { return theta2_; }
 
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     chain_.reset();
     updated_ = true;

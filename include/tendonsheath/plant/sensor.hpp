@@ -42,7 +42,8 @@ class Sensor {
   /// The last reading's status: held_nonfinite_input when x was not finite.
   Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
 
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     state_ = p_.seed;
     have_spare_ = false;

@@ -112,7 +112,8 @@ class SingleTendonPlant {
   /// The total curve angle of the current route, rad.
   double total_angle() const noexcept { return total_angle_; }
 
-  /// Back to the state right after construction; the parameters are kept.
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     chain_.reset();
     updated_ = true;
