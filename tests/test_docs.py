@@ -10,8 +10,10 @@ import importlib
 import importlib.util
 import inspect
 import re
+import subprocess
 import tomllib
 from pathlib import Path
+from xml.etree import ElementTree
 
 import numpy as np
 import pytest
@@ -137,3 +139,61 @@ CHECKS = {
     "tutorials/compensate.md": _compensate,
     "tutorials/sweep.md": _sweep,
 }
+
+
+# --- the C++ reference (Doxygen) ---------------------------------------------------------
+
+HEADERS = ROOT / "include" / "tendonsheath"
+# not part of the real-time API, kept out of the reference by Doxyfile's EXCLUDE_PATTERNS
+NOT_REAL_TIME = {"batch.hpp"}
+DETAIL = re.compile(r"namespace (?:\w+::)*detail \{.*?\}\s*// namespace (?:\w+::)*detail", re.S)
+CLASS = re.compile(r"^\s*(?:template\s*<[^;{]*>\s*)?(?:class|struct)\s+(\w+)\b[^;]*?\{", re.M)
+
+
+def public_classes() -> set[str]:
+    """Every class and struct defined in namespace tendonsheath outside its detail namespaces."""
+    names = set()
+    for header in HEADERS.rglob("*.hpp"):
+        if header.name in NOT_REAL_TIME:
+            continue
+        names |= set(CLASS.findall(DETAIL.sub("", header.read_text())))
+    return names
+
+
+@pytest.fixture(scope="module")
+def doxygen_html(tmp_path_factory) -> Path:
+    """Doxyfile run as `make docs` runs it, into a temporary folder; its warnings are errors."""
+    out = tmp_path_factory.mktemp("doxygen")
+    doxyfile = (ROOT / "Doxyfile").read_text() + f"\nOUTPUT_DIRECTORY = {out}\n"
+    try:
+        run = subprocess.run(
+            ["doxygen", "-"], input=doxyfile, cwd=ROOT, capture_output=True, text=True
+        )
+    except FileNotFoundError:
+        pytest.fail("doxygen not found: `make doxygen` installs Debian's package")
+    assert run.returncode == 0 and run.stderr == "", run.stderr
+    return out
+
+
+def compound_pages(out: Path) -> dict[str, Path]:
+    """Doxygen's index: qualified class name -> its HTML page."""
+    index = ElementTree.parse(out / "xml" / "index.xml").getroot()
+    return {
+        c.findtext("name"): out / "html" / f"{c.get('refid')}.html"
+        for c in index.iter("compound")
+        if c.get("kind") in ("class", "struct")
+    }
+
+
+def test_the_header_parser_finds_the_classes():
+    # guards the test below against a parser that finds nothing: known public and detail names
+    names = public_classes()
+    assert {"Backlash", "PullPullPlant", "Affine", "LoadedCompensator"} <= names
+    assert "AbsPower" not in names and "FixedPower" not in names  # in detail namespaces
+
+
+def test_every_public_class_has_a_page_in_the_cpp_reference(doxygen_html):
+    pages = compound_pages(doxygen_html)
+    documented = {name.rsplit("::", 1)[-1] for name, page in pages.items() if page.is_file()}
+    assert sorted(public_classes() - documented) == []
+    assert [name for name in pages if "::detail::" in name] == []

@@ -19,10 +19,19 @@
 
 namespace tendonsheath {
 
+/// @brief The route of a sheath: the accumulated curve angle theta(s) = int_0^s |kappa| ds along
+/// the arc length s in [0, L] (spec A.1, A.5).
+///
+/// Stored as samples (s_i, theta_i), theta linear between them; two samples with the same s are a
+/// jump (the turning angle at a polyline vertex), right-continuous. Built once, before the control
+/// loop (the constructors allocate and validate); the queries are noexcept and allocate nothing.
 class Route {
  public:
-  // Samples of the accumulated angle; validated (finite, s non-decreasing from
-  // 0 to L > 0, theta non-decreasing from 0).
+  /// Samples of the accumulated angle; validated (finite, s non-decreasing from
+  /// 0 to L > 0, theta non-decreasing from 0).
+  /// @param s the arc-length samples, m
+  /// @param theta the accumulated-angle samples, rad (as many as s)
+  /// Throws std::invalid_argument naming the first bad sample.
   Route(std::vector<double> s, std::vector<double> theta) : s_(std::move(s)), th_(std::move(theta)) {
     const char* w = "Route";
     require(s_.size() == th_.size(), w, "s and theta have different lengths (", s_.size(), " and ",
@@ -43,15 +52,20 @@ class Route {
     require(s_.back() > 0.0, w, "length must be > 0 (got ", s_.back(), ")");
   }
 
-  // Constant curvature: theta(s) = total_angle * s / length.
+  /// Constant curvature: theta(s) = total_angle * s / length.
+  /// @param length L, m, > 0
+  /// @param total_angle Theta, rad, >= 0
+  /// @return the route; throws std::invalid_argument on a bad argument
   static Route uniform(double length, double total_angle) {
     require_positive(length, "Route.uniform", "length");
     require_non_negative(total_angle, "Route.uniform", "total_angle");
     return Route({0.0, length}, {0.0, total_angle});
   }
 
-  // Consecutive arcs of constant curvature: (length > 0, bend angle). A bend
-  // to the other side (negative angle) accumulates |angle|.
+  /// Consecutive arcs of constant curvature: (length > 0, bend angle). A bend
+  /// to the other side (negative angle) accumulates |angle|.
+  /// @param pieces (length, angle) pairs, m and rad, at least one
+  /// @return the route; throws std::invalid_argument naming the first bad piece
   static Route arcs(const std::vector<std::pair<double, double>>& pieces) {
     const char* w = "Route.arcs";
     require(!pieces.empty(), w, "at least one (length, angle) piece is needed");
@@ -67,8 +81,11 @@ class Route {
     return Route(std::move(s), std::move(th));
   }
 
-  // A 3-D polyline of K >= 2 points (xyz row-major, K x 3, metres). Each
-  // interior vertex adds its turning angle as a jump of theta at that vertex.
+  /// A 3-D polyline of K >= 2 points (xyz row-major, K x 3, metres). Each
+  /// interior vertex adds its turning angle as a jump of theta at that vertex.
+  /// @param xyz the k points, 3 k coordinates, m
+  /// @param k the number of points, >= 2
+  /// @return the route; throws std::invalid_argument on a non-finite point or two coinciding ones
   static Route from_points(const double* xyz, std::size_t k) {
     const char* w = "Route.from_points";
     require(k >= 2, w, "at least two points are needed (got ", k, ")");
@@ -100,8 +117,12 @@ class Route {
     return Route(std::move(s), std::move(th));
   }
 
-  // A sampled curvature profile kappa(s) (s strictly increasing, shifted to
-  // start at 0); theta is the trapezoidal integral of |kappa|.
+  /// A sampled curvature profile kappa(s) (s strictly increasing, shifted to
+  /// start at 0); theta is the trapezoidal integral of |kappa|.
+  /// @param s the n arc lengths, m, strictly increasing
+  /// @param kappa the n curvatures, 1/m (their magnitudes are used)
+  /// @param n the number of samples, >= 2
+  /// @return the route; throws std::invalid_argument naming the first bad sample
   static Route from_curvature(const double* s, const double* kappa, std::size_t n) {
     const char* w = "Route.from_curvature";
     require(n >= 2, w, "at least two samples are needed (got ", n, ")");
@@ -121,12 +142,18 @@ class Route {
     return Route(std::move(ss), std::move(th));
   }
 
+  /// The arc length L of the route, metres.
   double length() const noexcept { return s_.back(); }
+  /// The total curve angle theta(L), radians.
   double total_angle() const noexcept { return th_.back(); }
+  /// The arc-length samples s_i, metres (non-decreasing, from 0 to L).
   const std::vector<double>& s() const noexcept { return s_; }
+  /// The accumulated-angle samples theta_i, radians (non-decreasing, from 0).
   const std::vector<double>& theta() const noexcept { return th_; }
 
-  // theta(s), right-continuous at jumps; clamped outside [0, L].
+  /// theta(s), right-continuous at jumps; clamped outside [0, L].
+  /// @param s the arc length, m
+  /// @return theta(s), rad
   double angle_at(double s) const noexcept {
     if (!(s > 0.0)) return (s == 0.0 && s_[1] == 0.0) ? theta_right_of_zero() : 0.0;
     if (s >= s_.back()) return th_.back();
@@ -142,11 +169,13 @@ class Route {
     return th_[lo] + (th_[hi] - th_[lo]) * (s - s_[lo]) / ds;
   }
 
-  // Angles of n equal elements (out[0..n-1], proximal to distal): the
-  // increments of theta over [e L/n, (e+1) L/n]. Allocation-free, O(n + K).
-  // A jump exactly at an element boundary goes to the element ending there;
-  // a jump at s = 0 goes to the first element. The sum is exactly theta(L)
-  // up to rounding.
+  /// Angles of n equal elements (out[0..n-1], proximal to distal): the
+  /// increments of theta over [e L/n, (e+1) L/n]. Allocation-free, O(n + K).
+  /// A jump exactly at an element boundary goes to the element ending there;
+  /// a jump at s = 0 goes to the first element. The sum is exactly theta(L)
+  /// up to rounding.
+  /// @param n the number of elements, >= 1
+  /// @param out receives the n element angles, rad
   void element_angles(std::size_t n, double* out) const noexcept {
     const double L = s_.back();
     double prev = 0.0;
@@ -174,11 +203,14 @@ class Route {
     }
   }
 
-  // Lumped angles of the n-1 interior nodes of an n-element sheath
-  // (out[0..n-2], node 1 to node n-1, proximal to distal): half of each
-  // adjacent element, plus the outer halves of the two end elements (whose
-  // outer nodes are driven ends or the distal pulley). Their sum equals the
-  // total angle. Needs n >= 2; `work` holds n doubles (scratch).
+  /// Lumped angles of the n-1 interior nodes of an n-element sheath
+  /// (out[0..n-2], node 1 to node n-1, proximal to distal): half of each
+  /// adjacent element, plus the outer halves of the two end elements (whose
+  /// outer nodes are driven ends or the distal pulley). Their sum equals the
+  /// total angle. Needs n >= 2; `work` holds n doubles (scratch).
+  /// @param n the number of elements, >= 2
+  /// @param out receives the n - 1 node angles, rad
+  /// @param work scratch space of n doubles
   void node_angles(std::size_t n, double* out, double* work) const noexcept {
     element_angles(n, work);
     for (std::size_t j = 1; j < n; ++j) out[j - 1] = 0.5 * (work[j - 1] + work[j]);

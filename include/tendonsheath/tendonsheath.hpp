@@ -28,3 +28,16 @@
 #include "plant/simulate_plant.hpp"
 #include "bench/closed_loop.hpp"
 #include "models/curve_angle.hpp"
+
+/// @mainpage The real-time C++ core
+/// Header-only C++17: include tendonsheath/tendonsheath.hpp and link the CMake target
+/// tendonsheath::core. Start from the namespace tendonsheath or the class list; the
+/// <a href="../index.html">C++ page of the documentation site</a> introduces the CMake package,
+/// the real-time contract and the examples.
+
+/// @brief The real-time core: hysteresis models and their inverses, physics plants,
+/// compensators and the closed-loop bench.
+///
+/// Every class validates its parameters once, in its constructor (std::invalid_argument naming
+/// the class and the parameter). After that, step() is noexcept, allocates nothing, does bounded
+/// work and never returns NaN for finite input; status() tells what the last step did.

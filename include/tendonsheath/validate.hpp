@@ -44,36 +44,42 @@ template <class... Parts>
 }
 }  // namespace detail
 
-// Throws std::invalid_argument with "<where>: <parts...>" when cond is false; the parts
-// (text, floating-point and integer values) are formatted only then.
+/// Throws std::invalid_argument with "<where>: <parts...>" when cond is false; the parts
+/// (text, floating-point and integer values) are formatted only then.
 template <class... Parts>
 inline void require(bool cond, std::string_view where, const Parts&... parts) {
   if (!cond) detail::fail(where, parts...);
 }
 
+/// Throws std::invalid_argument "<where>: <name> must be finite (got v)" unless v is finite.
 inline void require_finite(double v, const char* where, const char* name) {
   require(std::isfinite(v), where, name, " must be finite (got ", v, ")");
 }
 
+/// Throws std::invalid_argument "<where>: <name> must be > 0 (got v)" unless v is finite and > 0.
 inline void require_positive(double v, const char* where, const char* name) {
   require(std::isfinite(v) && v > 0.0, where, name, " must be > 0 (got ", v, ")");
 }
 
+/// Throws std::invalid_argument "<where>: <name> must be >= 0 (got v)" unless v is finite and >= 0.
 inline void require_non_negative(double v, const char* where, const char* name) {
   require(std::isfinite(v) && v >= 0.0, where, name, " must be >= 0 (got ", v, ")");
 }
 
+/// Throws std::invalid_argument "<where>: <name> must be >= lo (got v)" unless v is finite and >= lo.
 inline void require_at_least(double v, double lo, const char* where, const char* name) {
   require(std::isfinite(v) && v >= lo, where, name, " must be >= ", lo, " (got ", v, ")");
 }
 
+/// Throws std::invalid_argument "<where>: <name> must be in [lo, hi] (got v)" unless v is finite and
+/// in [lo, hi].
 inline void require_in_range(double v, double lo, double hi, const char* where, const char* name) {
   require(std::isfinite(v) && v >= lo && v <= hi, where, name, " must be in [", lo, ", ", hi,
           "] (got ", v, ")");
 }
 
-// A sampled signal for batch simulation: n >= 1 finite samples, and when a
-// time vector is given it must be finite and strictly increasing.
+/// A sampled signal for batch simulation: n >= 1 finite samples, and when a
+/// time vector is given it must be finite and strictly increasing.
 inline void check_series(const double* t, const double* x, std::size_t n, const char* where) {
   require(n >= 1, where, "the input is empty");
   // Branch-free scans first (they vectorise); locate the culprit only on failure.

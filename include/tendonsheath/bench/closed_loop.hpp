@@ -21,62 +21,124 @@
 
 namespace tendonsheath {
 
-// Route shapes seen by a controller, at the same indices as the plant's RouteSchedule.
+/// Route shapes seen by a controller, at the same indices as the plant's RouteSchedule.
 struct ShapeSchedule {
-  const ShapeIntegrals* shapes = nullptr;  // one per route change, or nullptr
+  const ShapeIntegrals* shapes = nullptr;  ///< one per route change, or nullptr
 };
 
+/// Where run_closed_loop() writes each sample's record: n values per array; output is required, a
+/// nullptr array is not written.
 struct ClosedLoopTrace {
-  double* output = nullptr;         // true distal output per sample (required)
-  double* measured = nullptr;       // what the sensor reported (NaN in dropouts)
-  double* command = nullptr;        // controller output (motor angle or torque)
-  double* motor = nullptr;          // motor shaft position (its encoder; the pulley lags it by
-                                    // the gear play when the motor has gear backlash)
-  unsigned char* slack = nullptr;   // slack flag
-  unsigned char* fallback = nullptr;  // controller in its fallback mode
-  unsigned char* status = nullptr;  // Status flags of controller, motor, plant and sensor
+  double* output = nullptr;         ///< true distal output per sample (required)
+  double* measured = nullptr;       ///< what the sensor reported (NaN in dropouts)
+  double* command = nullptr;        ///< controller output (motor angle or torque)
+  double* motor = nullptr;          ///< motor shaft position (its encoder; the pulley lags it by
+                                    ///< the gear play when the motor has gear backlash)
+  unsigned char* slack = nullptr;   ///< slack flag
+  unsigned char* fallback = nullptr;  ///< controller in its fallback mode
+  unsigned char* status = nullptr;  ///< Status flags of controller, motor, plant and sensor
 };
 
-// Controllers as the loop sees them.
+/// @brief Uncompensated: the kinematic motor angle gain * y_d for the desired output.
+///
+/// OpenLoop, FeedforwardLoop, CurveAngleLoop and AdaptiveLoop are the controllers as
+/// run_closed_loop() sees them: reset(), on_shape(), in_fallback(), status() and command().
 struct OpenLoop {  // uncompensated: the kinematic motor angle for the desired output
+  /// motor angle per unit of desired output (the kinematic ratio)
   double gain = 1.0;
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {}
+  /// Ignores the route: this controller does not follow it.
   void on_shape(const ShapeIntegrals&) noexcept {}
+  /// Always false: there is no fallback.
   bool in_fallback() const noexcept { return false; }
+  /// The last step's status flags (see Status).
   Status status() const noexcept { return Status::ok; }
+  /// @return the motor command gain * y_d for desired output y_d (measurement, motor and dt unused)
   double command(double y_d, double, double, double) noexcept { return gain * y_d; }
 };
 
+/// @brief Any feedforward compensator (step(y_d, dt)) in the loop: the measurement is not used.
+/// @tparam Feedforward BacklashInverseFeedforward, PrandtlIshlinskiiFeedforward,
+/// ContinuumFeedforward, CurveAngleFeedforward or io::LoadedCompensator
 template <class Feedforward>
 struct FeedforwardLoop {  // any feedforward compensator: no use of the measurement
+  /// the compensator
   Feedforward ff;
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { ff.reset(); }
+  /// Ignores the route: this controller does not follow it.
   void on_shape(const ShapeIntegrals&) noexcept {}
+  /// Always false: there is no fallback.
   bool in_fallback() const noexcept { return false; }
+  /// The last step's status flags (see Status).
   Status status() const noexcept { return ff.status(); }
+  /// @return ff.step(y_d, dt), the motor command
   double command(double y_d, double, double, double dt) noexcept { return ff.step(y_d, dt); }
 };
 
+/// A curve-angle feedforward that follows the route's shape every cycle (shape sensing).
 struct CurveAngleLoop {  // follows the route's shape every cycle (shape sensing)
+  /// the compensator
   CurveAngleFeedforward ff;
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { ff.reset(); }
+  /// Passes the new route shape to the feedforward (set_shape).
   void on_shape(const ShapeIntegrals& s) noexcept { ff.set_shape(s); }
+  /// Always false: there is no fallback.
   bool in_fallback() const noexcept { return false; }
+  /// The last step's status flags (see Status).
   Status status() const noexcept { return ff.status(); }
+  /// @return ff.step(y_d, dt), the motor angle command
   double command(double y_d, double, double, double dt) noexcept { return ff.step(y_d, dt); }
 };
 
+/// The adaptive output-feedback controller in the loop: it uses the measurement and the motor
+/// position, and returns a torque (so the loop needs a Motor).
 struct AdaptiveLoop {
+  /// the controller
   AdaptiveController ctrl;
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { ctrl.reset(); }
+  /// Ignores the route: this controller does not follow it.
   void on_shape(const ShapeIntegrals&) noexcept {}
+  /// True when the last command ran the controller's fallback (measurement lost).
   bool in_fallback() const noexcept { return ctrl.in_fallback(); }
+  /// The last step's status flags (see Status).
   Status status() const noexcept { return ctrl.status(); }
+  /// @return the torque command ctrl.step(y_d, measured, motor, dt)
   double command(double y_d, double measured, double motor, double dt) noexcept {
     return ctrl.step(y_d, measured, motor, dt);
   }
 };
 
+/// @brief The virtual bench: controller -> motor -> plant -> sensor -> controller at the sample
+/// times t, the whole loop in C++.
+///
+/// At sample k (dt = t_k - t_{k-1}): the route changes due at k are applied (to the plant, and as
+/// shape integrals to the controller), the controller computes u_k from y_d[k], the last
+/// measurement and the motor position, the motor advances under u_k, the plant under the motor
+/// position, and the sensor reads the new output (NaN where dropout is set). Not real-time as a
+/// whole: it validates its inputs first and throws std::invalid_argument naming the problem.
+/// @tparam Plant SingleTendonPlant, PullPullPlant or ContinuumPlant
+/// @tparam Controller OpenLoop, FeedforwardLoop, CurveAngleLoop, AdaptiveLoop or one with the same
+/// members
+/// @param plant the plant, reset first
+/// @param motor the motor between command and plant, or nullptr (the command is the pulley angle)
+/// @param sensor the output sensor, or nullptr (exact measurement)
+/// @param controller the controller, reset first
+/// @param t the n sample times, s, finite and increasing
+/// @param y_d the n desired outputs
+/// @param n the number of samples, >= 1
+/// @param sched the plant's route changes
+/// @param shapes the same changes as shape integrals for the controller (shapes may be nullptr)
+/// @param dropout n flags, nonzero where the measurement is lost, or nullptr
+/// @param out where each sample's record goes
+/// @param where the name that starts an error message
 template <class Plant, class Controller>
 void run_closed_loop(Plant& plant, Motor* motor, Sensor* sensor, Controller& controller,
                      const double* t, const double* y_d, std::size_t n, const RouteSchedule& sched,

@@ -25,42 +25,70 @@
 
 namespace tendonsheath {
 
+/// Parameters of AdaptiveController (validated by its constructor).
 struct AdaptiveControllerParams {
-  double lambda = 20.0;   // 1/s
-  double k_s = 1.0;       // feedback gain on s, torque per (rad/s)
-  double epsilon = 0.05;  // boundary layer of the robust term, rad/s
+  double lambda = 20.0;   ///< 1/s
+  double k_s = 1.0;       ///< feedback gain on s, torque per (rad/s)
+  double epsilon = 0.05;  ///< boundary layer of the robust term, rad/s
+  /// @{
+  /// adaptation gains g_psi, g_phi, g_D
   double gamma_psi = 0.5, gamma_phi = 1e-3, gamma_D = 5.0;
-  double sigma_psi = 0.0, sigma_phi = 0.0, sigma_D = 0.0;  // leakage
-  double psi_0 = 0.0, phi_0 = 0.005, D_0 = 0.0;              // initial estimates / prior of phi
-  double phi_min = 1e-5;
-  // Projection bounds. D_max matters most: D/epsilon is a feedback gain on s, and s
-  // contains the filtered derivative, so D_max/(epsilon phi) must stay well below the
-  // derivative filter's bandwidth or the loop goes unstable.
+  /// @}
+  /// @{
+  /// leakage s_psi, s_phi, s_D of the adaptation laws, >= 0
+  double sigma_psi = 0.0, sigma_phi = 0.0, sigma_D = 0.0;
+  /// @}
+  /// @{
+  /// initial estimates psi_0, phi_0, D_0 (phi_0 is also the prior that the phi leakage pulls toward)
+  double psi_0 = 0.0, phi_0 = 0.005, D_0 = 0.0;
+  /// @}
+  double phi_min = 1e-5;  ///< lower projection bound of phi, > 0
+  /// @{
+  /// Projection bounds psi in [-psi_max, psi_max], phi in [phi_min, phi_max], D in [0, D_max]. D_max matters most: D/epsilon is a feedback gain on s, and s
+  /// contains the filtered derivative, so D_max/(epsilon phi) must stay well below the
+  /// derivative filter's bandwidth or the loop goes unstable.
   double psi_max = 10.0, phi_max = 1.0, D_max = 0.2;
-  double adaptation_deadzone = 0.0;  // no adaptation while |s| is below this (noise floor)
-  double derivative_cutoff_hz = 40.0;
-  double derivative_damping = 0.7071067811865476;
-  double max_torque = std::numeric_limits<double>::infinity();
-  // Fallback on sensor dropout.
+  /// @}
+  double adaptation_deadzone = 0.0;  ///< no adaptation while |s| is below this (noise floor)
+  double derivative_cutoff_hz = 40.0;  ///< natural frequency of the second-order derivative filter of y, Hz
+  double derivative_damping = 0.7071067811865476;  ///< damping ratio of that filter
+  double max_torque = std::numeric_limits<double>::infinity();  ///< torque limit, |u| <= max_torque
+  /// Fallback on sensor dropout: true when `feedforward` holds a backlash model, whose direct
+  /// inverse is the fallback's motor target (else the target is y_d itself).
   bool has_feedforward = false;
-  BacklashInverseParams feedforward{};
-  double fallback_kp = 1.0;   // torque per rad of motor position error
-  double fallback_kd = 0.05;  // torque per rad/s of motor velocity error
-  // With a feedforward model: take the acceleration the model asks of the output,
-  // c * x_ff'' (which includes the quick crossing of the dead band at a reversal), in
-  // place of y_d'' in nu_r, so the inertial term pushes the motor across the band
-  // before the output error shows it. The difference is part of the bounded delta.
+  BacklashInverseParams feedforward{};  ///< the backlash model of the fallback's feedforward (used when has_feedforward)
+  double fallback_kp = 1.0;   ///< torque per rad of motor position error
+  double fallback_kd = 0.05;  ///< torque per rad/s of motor velocity error
+  /// With a feedforward model: take the acceleration the model asks of the output,
+  /// c * x_ff'' (which includes the quick crossing of the dead band at a reversal), in
+  /// place of y_d'' in nu_r, so the inertial term pushes the motor across the band
+  /// before the output error shows it. The difference is part of the bounded delta.
   bool model_acceleration = false;
 };
 
+/// The adaptive controller's online estimates.
 struct AdaptiveEstimates {
+  /// @{
+  /// the estimates psi (of -b/c), phi (of J/c) and D (of the bound of the disturbance delta)
   double psi = 0.0, phi = 0.0, D = 0.0;
+  /// @}
 };
 
+/// @brief Adaptive output-feedback controller of Do et al.\ (spec D.3) for a torque-driven motor
+/// behind a tendon-sheath drive; returns the motor torque.
+///
+/// The output y = c x + d(t) seen through J x'' + b x' + tau_d = u is treated as
+/// y'' = -a y' + beta u + delta(t). With e = y - y_d, s = e' + lambda e, nu_r = lambda e' - y_d'':
+/// u = -k_s s - psi y' - phi nu_r - D tanh(s / eps); psi, phi and D adapt online (leakage,
+/// projection onto their bounds). y' is a second-order filtered derivative of the measured output.
+/// A non-finite measurement (sensor dropout) freezes the estimates and runs the fallback: a PD loop
+/// on the motor position toward the direct inverse feedforward of the backlash model.
 class AdaptiveController {
  public:
+  /// The parameter struct its constructor takes.
   using Params = AdaptiveControllerParams;
 
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit AdaptiveController(const Params& p)
       : p_(p), ff_(checked_feedforward(p)), slope_(0.5 * (p.feedforward.c_r + p.feedforward.c_l)) {
     const char* w = "AdaptiveController";
@@ -89,10 +117,15 @@ class AdaptiveController {
     reset();
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// The current estimates psi, phi, D.
   const AdaptiveEstimates& estimates() const noexcept { return est_; }
+  /// True when the last step ran the fallback (its measurement was not finite).
   bool in_fallback() const noexcept { return fallback_; }
 
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     est_ = {p_.psi_0, p_.phi_0, p_.D_0};
     yd_rate_.reset();
@@ -107,9 +140,14 @@ class AdaptiveController {
     torque_ = 0.0;
   }
 
-  // One control cycle: desired output y_d, measured output y (NaN on dropout),
-  // motor position (used by the fallback only), dt since the previous cycle.
-  // Returns the motor torque command.
+  /// One control cycle: desired output y_d, measured output y (NaN on dropout),
+  /// motor position (used by the fallback only), dt since the previous cycle.
+  /// Returns the motor torque command, within +-max_torque; a non-finite y_d holds the last one.
+  /// @param y_d the desired output
+  /// @param y_measured the measured output, NaN on dropout (runs the fallback)
+  /// @param motor_position the motor position (used by the fallback only)
+  /// @param dt the time since the previous cycle, s
+  /// @return the motor torque command
   double step(double y_d, double y_measured, double motor_position, double dt) noexcept {
     held_ = !std::isfinite(y_d);
     if (held_) return torque_;
@@ -120,6 +158,15 @@ class AdaptiveController {
     return step_with_derivatives(y_d, yd_rate, yd_acc, y_measured, motor_position, dt);
   }
 
+  /// @brief As step(), with the desired output's rate and acceleration given (e.g.\ from a trajectory
+  /// generator; a non-finite one counts as 0).
+  /// @param y_d the desired output
+  /// @param yd_rate its rate
+  /// @param yd_acc its acceleration
+  /// @param y_measured the measured output, NaN on dropout
+  /// @param motor_position the motor position (used by the fallback only)
+  /// @param dt the time since the previous cycle, s
+  /// @return the motor torque command, within +-max_torque
   double step_with_derivatives(double y_d, double yd_rate, double yd_acc, double y_measured,
                                double motor_position, double dt) noexcept {
     if (!(dt > 0.0) || !std::isfinite(dt)) dt = 0.0;
@@ -155,10 +202,11 @@ class AdaptiveController {
     return torque_ = saturate(u);
   }
 
+  /// The filtered derivative y' of the measured output.
   double filtered_rate() const noexcept { return filtered_rate_; }
 
-  // The last step's status: held (non-finite y_d), fallback (no measurement), saturated
-  // (|torque| at max_torque).
+  /// The last step's status: held (non-finite y_d), fallback (no measurement), saturated
+  /// (|torque| at max_torque).
   Status status() const noexcept {
     Status s = Status::ok;
     if (held_) s |= Status::held_nonfinite_input;

@@ -19,28 +19,40 @@
 
 namespace tendonsheath {
 
+/// Which equations ContinuumFeedforward runs: Exact, capstan-consistent without double counting
+/// (spec A.4, C.6), or Published, the paper's equations as printed (eqs. 11-38).
 enum class ContinuumMode { Exact = 0, Published = 1 };
 
+/// Parameters of ContinuumFeedforward (validated by its constructor).
 struct ContinuumFeedforwardParams {
-  double friction = 0.1;            // mu (xi = gap_factor * mu)
-  double gap_factor = 1.0;          // gamma * delta_r of Kesner & Howe; 1 = plain capstan
-  double sheath_length = 1.0;       // L, m
-  double stiffness = 2.4e4;         // EA, N
-  double pretension = 10.0;         // T0, N
-  double total_angle = 3.141592653589793;  // Theta of a constant-radius route, rad
-  double bending_stiffness = 4e-4;  // EI of the backbone, N m^2
-  double tendon_offset = 2e-3;      // r_t, m
-  double backbone_length = 0.03;    // l, m
-  double proximal_radius = 5e-3;    // r_p, m
-  double v_eps = 0.1;               // smoothing speed of the direction switch, rad/s
-  ContinuumMode mode = ContinuumMode::Exact;
-  CommandLimits limits{};           // on the motor angle, rad
+  double friction = 0.1;            ///< mu (xi = gap_factor * mu)
+  double gap_factor = 1.0;          ///< gamma * delta_r of Kesner & Howe; 1 = plain capstan
+  double sheath_length = 1.0;       ///< L, m
+  double stiffness = 2.4e4;         ///< EA, N
+  double pretension = 10.0;         ///< T0, N
+  double total_angle = 3.141592653589793;  ///< Theta of a constant-radius route, rad
+  double bending_stiffness = 4e-4;  ///< EI of the backbone, N m^2
+  double tendon_offset = 2e-3;      ///< r_t, m
+  double backbone_length = 0.03;    ///< l, m
+  double proximal_radius = 5e-3;    ///< r_p, m
+  double v_eps = 0.1;               ///< smoothing speed of the direction switch, rad/s
+  ContinuumMode mode = ContinuumMode::Exact;  ///< which equations: the capstan-consistent ones or the paper's
+  CommandLimits limits{};           ///< the motor command's limits, on the motor angle, rad
 };
 
+/// @brief Feedforward of Lau et al.\ (spec C) for a tendon-sheath-driven continuum segment: desired
+/// bending angle in, motor angle out.
+///
+/// Published: X_d = r_t theta_d, F = (theta_d / l) EI / r_t, the paper's tensions and
+/// X_in = X_d + S (delta_pull + delta_0) + F L / EA with S = tanh(theta_d' / v_eps). Exact:
+/// X_in = X_d + phi Delta_fwd(F) + (1 - phi) Delta_bwd(F), phi = (1 + S)/2. In both the command is
+/// q_motor = X_in / r_p, shaped to the limits. The route is fixed at construction.
 class ContinuumFeedforward {
  public:
+  /// The parameter struct its constructor takes.
   using Params = ContinuumFeedforwardParams;
 
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit ContinuumFeedforward(const Params& p) : p_(p), shaper_(p.limits) {
     const char* w = "ContinuumFeedforward";
     require_non_negative(p.friction, w, "friction");
@@ -77,29 +89,35 @@ class ContinuumFeedforward {
     }
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     rate_.reset();
     shaper_.reset();
   }
 
-  // Desired bending angle (rad) -> motor angle (rad).
+  /// Desired bending angle (rad) -> motor angle (rad).
+  /// @param theta_d the desired bending angle, rad; a non-finite one holds the last command
+  /// @param dt the time since the previous cycle, s (S uses theta_d's backward difference)
+  /// @return the motor angle command, rad, within the limits
   double step(double theta_d, double dt) noexcept {
     if (!std::isfinite(theta_d)) return shaper_.apply(NAN, dt);
     const double rate = rate_.update(theta_d, dt);
     return shaper_.apply(tendon_input(theta_d, std::tanh(rate / p_.v_eps)) / p_.proximal_radius, dt);
   }
 
-  // The last step's status: held_nonfinite_input (y_d not finite) and the command shaper's
-  // (saturated: the command was cut to its limits).
+  /// The last step's status: held_nonfinite_input (y_d not finite) and the command shaper's
+  /// (saturated: the command was cut to its limits).
   Status status() const noexcept { return shaper_.status(); }
 
-  // Pulling force of the bent segment (Li & Rahn): F = kappa EI / r_t.
+  /// Pulling force of the bent segment (Li & Rahn): F = kappa EI / r_t.
   double bending_force(double theta_d) const noexcept {
     return theta_d / p_.backbone_length * p_.bending_stiffness / p_.tendon_offset;
   }
 
-  // X_in for the desired bending angle and a direction S in [-1, 1].
+  /// X_in for the desired bending angle and a direction S in [-1, 1].
   double tendon_input(double theta_d, double s) const noexcept {
     const double x_d = p_.tendon_offset * theta_d;
     const double F = bending_force(theta_d);

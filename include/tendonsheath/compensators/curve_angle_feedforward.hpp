@@ -21,24 +21,36 @@
 
 namespace tendonsheath {
 
+/// Parameters of CurveAngleFeedforward (validated by its constructor).
 struct CurveAngleFeedforwardParams {
-  double friction = 0.1;           // mu
-  double compliance = 5e-5;        // L / EA, m/N
-  double pretension = 10.0;        // T0, N
-  double load_force = 0.0;         // F_0 at the distal tendon level, N
-  double load_stiffness = 0.0;     // k_e of a spring environment at the tendon level, N/m
-  double proximal_radius = 5e-3;   // r_p, m
-  double distal_radius = 5e-3;     // r_d, m
-  double total_angle = 3.141592653589793;  // initial Theta (uniform curvature), rad
-  double v_eps = 0.05;             // smoothing speed of the direction switch, rad/s of output
-  double max_correction_rate = std::numeric_limits<double>::infinity();  // m/s at the tendon
-  CommandLimits limits{};          // on the motor angle, rad
+  double friction = 0.1;           ///< mu
+  double compliance = 5e-5;        ///< L / EA, m/N
+  double pretension = 10.0;        ///< T0, N
+  double load_force = 0.0;         ///< F_0 at the distal tendon level, N
+  double load_stiffness = 0.0;     ///< k_e of a spring environment at the tendon level, N/m
+  double proximal_radius = 5e-3;   ///< r_p, m
+  double distal_radius = 5e-3;     ///< r_d, m
+  double total_angle = 3.141592653589793;  ///< initial Theta (uniform curvature), rad
+  double v_eps = 0.05;             ///< smoothing speed of the direction switch, rad/s of output
+  double max_correction_rate = std::numeric_limits<double>::infinity();  ///< the correction's largest rate of change, m/s at the tendon
+  CommandLimits limits{};          ///< the motor command's limits, on the motor angle, rad
 };
 
+/// @brief Curve-angle feedforward of Sun, Wang & Phee (spec B2): the motor input modified by the
+/// pull-pull elongation predicted for the route's current shape, with no distal sensor.
+///
+/// x_in = r_d y_d + phi Delta_fwd(shape, F_L) + (1 - phi) Delta_bwd(shape, F_L), q_in = x_in / r_p,
+/// phi = (1 + tanh(y_d' / v_eps)) / 2, F_L = F_0 + k_e r_d y_d. Delta_fwd/bwd are the full-slip
+/// elongations (A5)/(A6) with the shape integrals g, G, so non-uniform routes are handled; the
+/// shape (set_shape) or curve angle (set_curve_angle) may change every cycle, and the correction's
+/// rate of change is limited by max_correction_rate.
 class CurveAngleFeedforward {
  public:
+  /// The parameter struct its constructor takes.
   using Params = CurveAngleFeedforwardParams;
 
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range
+  /// (friction * total_angle must be <= 50).
   explicit CurveAngleFeedforward(const Params& p) : p_(p), shaper_(p.limits) {
     const char* w = "CurveAngleFeedforward";
     require_non_negative(p.friction, w, "friction");
@@ -59,19 +71,23 @@ class CurveAngleFeedforward {
     update_shape(uniform_shape(p.friction, p.total_angle));
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// The route shape in use.
   const ShapeIntegrals& shape() const noexcept { return shape_; }
-  // True when the last set_curve_angle() was beyond max_total_angle(friction) and clamped.
+  /// True when the last set_curve_angle() was beyond max_total_angle(friction) and clamped.
   bool angle_clamped() const noexcept { return angle_clamped_; }
 
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     rate_.reset();
     shaper_.reset();
     correction_primed_ = false;
   }
 
-  // Uniform curvature with total angle theta (rad); non-finite or negative is ignored, and an
-  // angle beyond max_total_angle(friction) is clamped to it (angle_clamped() tells).
+  /// Uniform curvature with total angle theta (rad); non-finite or negative is ignored, and an
+  /// angle beyond max_total_angle(friction) is clamped to it (angle_clamped() tells).
   void set_curve_angle(double theta) noexcept {
     angle_clamped_ = theta > max_total_angle(p_.friction);
     if (angle_clamped_) theta = max_total_angle(p_.friction);
@@ -80,7 +96,7 @@ class CurveAngleFeedforward {
       uniform_ = true;
     }
   }
-  // Any route: its shape integrals g, G (see shape_integrals) and total angle.
+  /// Any route: its shape integrals g, G (see shape_integrals) and total angle.
   void set_shape(const ShapeIntegrals& shape) noexcept {
     if (std::isfinite(shape.g) && std::isfinite(shape.G) && shape.g > 0.0 && shape.G > 0.0 &&
         std::isfinite(shape.total_angle) && shape.total_angle >= 0.0) {
@@ -89,14 +105,17 @@ class CurveAngleFeedforward {
     }
   }
 
+  /// @param y_d the desired distal angle, rad; a non-finite one holds the last command
+  /// @param dt the time since the previous cycle, s (the desired rate is y_d's backward difference)
+  /// @return the motor angle command, rad, within the limits
   double step(double y_d, double dt) noexcept {
     held_ = !std::isfinite(y_d);
     if (held_) return shaper_.apply(NAN, dt);
     return step_with_rate(y_d, rate_.update(y_d, dt), dt);
   }
 
-  // The last step's status: held (non-finite y_d), input_clamped (the curve angle in force
-  // was clamped to max_total_angle), saturated (the command was cut to its limits).
+  /// The last step's status: held (non-finite y_d), input_clamped (the curve angle in force
+  /// was clamped to max_total_angle), saturated (the command was cut to its limits).
   Status status() const noexcept {
     Status s = shaper_.status();
     if (held_) s |= Status::held_nonfinite_input;
@@ -104,6 +123,11 @@ class CurveAngleFeedforward {
     return s;
   }
 
+  /// @brief As step(), with the desired output rate given (e.g.\ from a trajectory generator).
+  /// @param y_d the desired distal angle, rad
+  /// @param y_d_rate its rate, rad/s (a non-finite rate counts as 0)
+  /// @param dt the time since the previous cycle, s
+  /// @return the motor angle command, rad, within the limits
   double step_with_rate(double y_d, double y_d_rate, double dt) noexcept {
     if (!std::isfinite(y_d_rate)) y_d_rate = 0.0;
     const double x_d = p_.distal_radius * y_d;
@@ -118,13 +142,14 @@ class CurveAngleFeedforward {
     return shaper_.apply((x_d + c) / p_.proximal_radius, dt);
   }
 
-  // Tendon-level correction for a desired distal displacement x_d and direction blend phi.
+  /// Tendon-level correction for a desired distal displacement x_d and direction blend phi.
   double correction(double x_d, double phi) const noexcept {
     const double load = p_.load_force + p_.load_stiffness * x_d;
     return phi * (affine_.forward_offset + affine_.forward_slope * load) +
            (1.0 - phi) * (affine_.backward_offset + affine_.backward_slope * load);
   }
 
+  /// The tendon-level correction of the last step, m (after its rate limit).
   double last_correction() const noexcept { return correction_; }
 
  private:

@@ -16,19 +16,29 @@
 
 namespace tendonsheath {
 
+/// Parameters of BacklashInverseFeedforward: the identified backlash branches, the smoothing and
+/// the command limits (validated by its constructor).
 struct BacklashInverseParams {
-  double c_r = 1.0;
-  double c_l = 1.0;
-  double B_r = 0.1;
-  double B_l = 0.1;
-  double v_eps = 0.05;  // smoothing speed of the direction switch, output units per s
-  CommandLimits limits{};
+  double c_r = 1.0;  ///< slope of the right (rising) branch, > 0
+  double c_l = 1.0;  ///< slope of the left (falling) branch, > 0
+  double B_r = 0.1;  ///< dead-band offset of the right branch, command units, >= 0
+  double B_l = 0.1;  ///< dead-band offset of the left branch, command units, >= 0
+  double v_eps = 0.05;  ///< smoothing speed of the direction switch, output units per s
+  CommandLimits limits{};  ///< the motor command's limits
 };
 
+/// @brief Direct inverse feedforward of backlash-like hysteresis (spec D.2): no iteration.
+///
+/// phi_d = (1 + tanh(y_d' / v_eps)) / 2 and x_ff = [y_d + phi_d c_r B_r - (1 - phi_d) c_l B_l] /
+/// [phi_d c_r + (1 - phi_d) c_l] (the denominator is >= min(c_r, c_l) > 0), then shaped to the
+/// command limits. v_eps -> 0 gives the exact backlash inverse. Inverts Backlash and
+/// BoucWenBacklash.
 class BacklashInverseFeedforward {
  public:
+  /// The parameter struct its constructor takes.
   using Params = BacklashInverseParams;
 
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit BacklashInverseFeedforward(const Params& p) : p_(p), shaper_(p.limits) {
     const char* w = "BacklashInverseFeedforward";
     require_positive(p.c_r, w, "c_r");
@@ -39,28 +49,35 @@ class BacklashInverseFeedforward {
     p.limits.validate(w);
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
 
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     rate_.reset();
     shaper_.reset();
   }
 
-  // Desired output y_d at this cycle, dt since the previous one; returns the motor command.
+  /// Desired output y_d at this cycle, dt since the previous one; returns the motor command.
+  /// @param y_d the desired output; a non-finite one holds the last command
+  /// @param dt the time since the previous cycle, s (the desired rate is y_d's backward difference)
+  /// @return the motor command, within the limits
   double step(double y_d, double dt) noexcept {
     if (!std::isfinite(y_d)) return shaper_.apply(NAN, dt);
     return step_with_rate(y_d, rate_.update(y_d, dt), dt);
   }
 
-  // Same, with the desired output rate given (e.g. from a trajectory generator).
+  /// Same, with the desired output rate given (e.g.\ from a trajectory generator).
   double step_with_rate(double y_d, double y_d_rate, double dt) noexcept {
     if (!std::isfinite(y_d_rate)) y_d_rate = 0.0;
     return shaper_.apply(inverse(y_d, smooth_direction(y_d_rate, p_.v_eps)), dt);
   }
-  // The last step's status: held_nonfinite_input (y_d not finite) and the command shaper's
-  // (saturated: the command was cut to its limits).
+  /// The last step's status: held_nonfinite_input (y_d not finite) and the command shaper's
+  /// (saturated: the command was cut to its limits).
   Status status() const noexcept { return shaper_.status(); }
 
+  /// The unshaped inverse x_ff for desired output y_d and direction weight phi in [0, 1].
   double inverse(double y_d, double phi) const noexcept {
     return (y_d + phi * p_.c_r * p_.B_r - (1.0 - phi) * p_.c_l * p_.B_l) /
            (phi * p_.c_r + (1.0 - phi) * p_.c_l);
@@ -72,18 +89,28 @@ class BacklashInverseFeedforward {
   CommandShaper shaper_{};
 };
 
+/// The exact Prandtl-Ishlinskii inverse (PrandtlIshlinskiiInverse) as a compensator: its command
+/// shaped to the motor's limits.
 class PrandtlIshlinskiiFeedforward {
  public:
+  /// @param p the identified operator (thresholds[0] must be 0)
+  /// @param limits the motor command's limits
+  /// Throws std::invalid_argument naming the first bad parameter.
   PrandtlIshlinskiiFeedforward(const PrandtlIshlinskiiParams& p, const CommandLimits& limits)
       : inverse_(p), shaper_(limits) {
     limits.validate("PrandtlIshlinskiiFeedforward");
   }
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     inverse_.reset();
     shaper_.reset();
   }
+  /// @param y_d the desired output; a non-finite one holds the last command
+  /// @param dt the time since the previous cycle, s
+  /// @return the motor command
   double step(double y_d, double dt) noexcept { return shaper_.apply(inverse_.step(y_d), dt); }
-  // The inverse's status (held, input_clamped) and the shaper's (saturated).
+  /// The inverse's status (held, input_clamped) and the shaper's (saturated).
   Status status() const noexcept { return inverse_.status() | shaper_.status(); }
 
  private:

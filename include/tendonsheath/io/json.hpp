@@ -22,8 +22,15 @@
 #include "../compensators/curve_angle_feedforward.hpp"
 #include "../compensators/inverse_feedforward.hpp"
 
+/// @brief Loading compensators saved by Python's `to_json` into the real-time core (optional
+/// header tendonsheath/io/json.hpp, needs nlohmann/json).
+///
+/// Outside the real-time path: it reads files, allocates and throws std::invalid_argument naming a
+/// missing, unknown, null or mistyped key. Load once at start-up; the LoadedCompensator's step() is
+/// the core's: noexcept, no allocation.
 namespace tendonsheath::io {
 
+/// The JSON value type of nlohmann/json.
 using json = nlohmann::json;
 
 namespace detail {
@@ -90,23 +97,25 @@ inline void check_format(const json& file, const char* format, const std::string
 
 }  // namespace detail
 
-// The affine map of a Python `Scaled` model around the inverted one:
-// command = input_offset + input_scale * inner((y_d - output_offset) / output_gain).
+/// The affine map of a Python `Scaled` model around the inverted one:
+/// command = input_offset + input_scale * inner((y_d - output_offset) / output_gain).
 struct ScaledMap {
-  double input_offset = 0.0;
-  double input_scale = 1.0;
-  double output_offset = 0.0;
-  double output_gain = 1.0;
+  double input_offset = 0.0;  ///< added to the inner command
+  double input_scale = 1.0;  ///< scales the inner command, > 0
+  double output_offset = 0.0;  ///< subtracted from the desired output
+  double output_gain = 1.0;  ///< divides the desired output, != 0
 };
 
-// A model file ("tendonsheath.model") reduced to what its inverse needs.
+/// A model file ("tendonsheath.model") reduced to what its inverse needs.
 struct InvertibleModel {
-  std::string name;                  // Backlash, BoucWenBacklash or PrandtlIshlinskii
-  BacklashInverseParams backlash{};  // c_r, c_l, B_r, B_l (Backlash, BoucWenBacklash)
-  PrandtlIshlinskiiParams pi{};      // PrandtlIshlinskii
-  ScaledMap map{};                   // identity unless the file held a Scaled model
+  std::string name;                  ///< Backlash, BoucWenBacklash or PrandtlIshlinskii
+  BacklashInverseParams backlash{};  ///< c_r, c_l, B_r, B_l (Backlash, BoucWenBacklash)
+  PrandtlIshlinskiiParams pi{};      ///< PrandtlIshlinskii
+  ScaledMap map{};                   ///< identity unless the file held a Scaled model
 };
 
+/// The model of a "tendonsheath.model" document (a Scaled model around an invertible one, or an
+/// invertible one). Throws std::invalid_argument, message starting with `where`, naming the bad key.
 inline InvertibleModel invertible_model_from_json(const json& m, const std::string& where) {
   detail::check_format(m, "tendonsheath.model", where);
   const json& name = detail::member(m, "model", where);
@@ -153,6 +162,9 @@ inline InvertibleModel invertible_model_from_json(const json& m, const std::stri
   return out;
 }
 
+/// The CurveAngleFeedforward parameters of a "tendonsheath.compensator" document (Python's names:
+/// curve_angle, smoothing; a null max_correction_rate is unbounded). Throws std::invalid_argument,
+/// message starting with `where`, naming a missing or mistyped key.
 inline CurveAngleFeedforwardParams curve_angle_feedforward_params(const json& f,
                                                                  const std::string& where) {
   const double inf = std::numeric_limits<double>::infinity();
@@ -171,6 +183,9 @@ inline CurveAngleFeedforwardParams curve_angle_feedforward_params(const json& f,
   return p;
 }
 
+/// The ContinuumFeedforward parameters of a "tendonsheath.compensator" document (mode "exact" or
+/// "published"). Throws std::invalid_argument, message starting with `where`, naming a missing or
+/// mistyped key.
 inline ContinuumFeedforwardParams continuum_feedforward_params(const json& f,
                                                                const std::string& where) {
   ContinuumFeedforwardParams p;
@@ -193,29 +208,41 @@ inline ContinuumFeedforwardParams continuum_feedforward_params(const json& f,
   return p;
 }
 
-// A loaded compensator: one of the core's feedforwards (validated by its constructor), with the
-// affine map of a Scaled model applied around an inverse. step() is noexcept and allocates nothing.
+/// A loaded compensator: one of the core's feedforwards (validated by its constructor), with the
+/// affine map of a Scaled model applied around an inverse. step() is noexcept and allocates nothing.
 class LoadedCompensator {
  public:
+  /// The feedforwards a compensator file can hold.
   using Engine = std::variant<BacklashInverseFeedforward, PrandtlIshlinskiiFeedforward,
                               CurveAngleFeedforward, ContinuumFeedforward>;
 
+  /// @param kind the Python class name of the compensator
+  /// @param engine the feedforward, built (and validated) from the file
+  /// @param map the affine map of a Scaled model around the inverse (identity by default)
   LoadedCompensator(std::string kind, Engine engine, ScaledMap map = {})
       : kind_(std::move(kind)), engine_(std::move(engine)), map_(map) {}
 
+  /// @param y_d the desired output, in the file's (outer) units
+  /// @param dt the time since the previous cycle, s
+  /// @return the motor command: input_offset + input_scale * engine.step((y_d - output_offset) /
+  /// output_gain, dt)
   double step(double y_d, double dt) noexcept {
     const double inner_y = (y_d - map_.output_offset) / map_.output_gain;
     const double x = std::visit([&](auto& e) noexcept { return e.step(inner_y, dt); }, engine_);
     return map_.input_offset + map_.input_scale * x;
   }
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     std::visit([](auto& e) noexcept { e.reset(); }, engine_);
   }
+  /// The last step's status flags (see Status).
   Status status() const noexcept {
     return std::visit([](const auto& e) noexcept { return e.status(); }, engine_);
   }
-  const std::string& kind() const noexcept { return kind_; }  // the Python class name
-  Engine& engine() noexcept { return engine_; }  // e.g. CurveAngleFeedforward::set_curve_angle
+  const std::string& kind() const noexcept { return kind_; }  ///< the Python class name
+  Engine& engine() noexcept { return engine_; }  ///< the feedforward itself, e.g.\ for CurveAngleFeedforward::set_curve_angle
+  /// The affine map around the inverse.
   const ScaledMap& map() const noexcept { return map_; }
 
  private:
@@ -255,7 +282,7 @@ inline const std::set<std::string> kContinuumKeys{
 
 }  // namespace detail
 
-// A compensator from the parsed contents of a "tendonsheath.compensator" file.
+/// A compensator from the parsed contents of a "tendonsheath.compensator" file.
 inline LoadedCompensator compensator_from_json(const json& f, const std::string& where = "compensator") {
   detail::check_format(f, "tendonsheath.compensator", where);
   const json& kind = detail::member(f, "compensator", where);
@@ -272,7 +299,7 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
                           " (known: ContinuumFeedforward, CurveAngleFeedforward, InverseFeedforward)");
 }
 
-// The parsed contents of a JSON file (read with stdio: the library uses no iostreams).
+/// The parsed contents of a JSON file (read with stdio: the library uses no iostreams).
 inline json read_json_file(const std::string& path) {
   std::FILE* in = std::fopen(path.c_str(), "rb");
   if (!in) throw std::invalid_argument(path + ": cannot open the file");
@@ -287,7 +314,7 @@ inline json read_json_file(const std::string& path) {
   }
 }
 
-// A compensator from a file written by Python's `to_json(path)`.
+/// A compensator from a file written by Python's `to_json(path)`.
 inline LoadedCompensator load_compensator_json(const std::string& path) {
   return compensator_from_json(read_json_file(path), path);
 }

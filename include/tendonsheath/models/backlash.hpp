@@ -21,25 +21,35 @@
 
 namespace tendonsheath {
 
+/// Parameters of Backlash (validated by its constructor).
 struct BacklashParams {
-  double c_r = 1.0;  // slope of the right (rising) branch
-  double c_l = 1.0;  // slope of the left (falling) branch
-  double B_r = 0.1;  // dead-band offset of the right branch, input units
-  double B_l = 0.1;  // dead-band offset of the left branch, input units
+  double c_r = 1.0;  ///< slope of the right (rising) branch
+  double c_l = 1.0;  ///< slope of the left (falling) branch
+  double B_r = 0.1;  ///< dead-band offset of the right branch, input units
+  double B_l = 0.1;  ///< dead-band offset of the left branch, input units
 
-  // The identifiable parameters as a flat vector, in the order of the Python
-  // param_names (numerical options are left as they are).
+  /// The identifiable parameters as a flat vector, in the order of the Python
+  /// param_names (numerical options are left as they are).
   static constexpr std::size_t vector_size = 4;
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
   void assign(const double* v) noexcept {
     c_r = v[0]; c_l = v[1]; B_r = v[2]; B_l = v[3];
   }
 };
 
+/// @brief Classic backlash (Tao & Kokotovic): y <- clamp(y, c_r (x - B_r), c_l (x + B_l)).
+///
+/// Two straight branches with slopes c_r, c_l and dead-band offsets B_r, B_l; between them the
+/// output holds. Past the crossing of the lines (c_r != c_l) the band has zero width and y follows
+/// their mean, so y is continuous with |dy| <= max(c_r, c_l) |dx|. Rate-independent.
 class Backlash {
  public:
+  /// The parameter struct its constructor takes.
   using Params = BacklashParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit Backlash(const Params& p) : p_(p) {
     const char* w = "Backlash";
     require_positive(p.c_r, w, "c_r");
@@ -48,11 +58,16 @@ class Backlash {
     require_non_negative(p.B_l, w, "B_l");
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
 
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { initialised_ = false; }
 
-  // The first call after reset() starts in the middle of the band at x.
+  /// The first call after reset() starts in the middle of the band at x.
+  /// @param x the input; a non-finite x is ignored and the last output held (0 before the first step)
+  /// @return the output y
   double step(double x, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(x);
     if (held_) return initialised_ ? y_ : 0.0;
@@ -71,17 +86,20 @@ class Backlash {
     return y_;
   }
 
+  /// The output of the last step().
   double output() const noexcept { return y_; }
-  // The last step's status: held_nonfinite_input when its input was not finite.
+  /// The last step's status: held_nonfinite_input when its input was not finite.
   Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
 
-  // Put the model in a given state (for inverses and identification).
+  /// Put the model in a given state (for inverses and identification).
   void set_state(double x, double y) noexcept {
     x_ = x;
     y_ = y;
     initialised_ = true;
   }
+  /// The input of the last step() (or of set_state()).
   double last_input() const noexcept { return x_; }
+  /// False until the first finite step() or set_state() after construction or reset().
   bool initialised() const noexcept { return initialised_; }
 
  private:

@@ -40,12 +40,20 @@ inline double bessel_i0(double x) noexcept {
 }
 }  // namespace detail
 
+/// @brief A Kaiser-windowed sinc of half-width L samples (2L taps), h(x) = sinc(x)
+/// I0(b sqrt(1 - (x/L)^2)) / I0(b) with b = 0.6 L + 2.5, for band-limited reconstruction of a
+/// uniformly sampled input between its samples.
+///
+/// Tabulated once, at construction (kPhases points per sample, linear interpolation between them);
+/// the evaluations are noexcept and allocate nothing. In real time the interpolation between
+/// samples j and j + 1 needs the samples up to j + L: a look-ahead delay of L - 1 samples.
 class SincKernel {
  public:
-  static constexpr int kPhases = 512;  // table points per sample
-  static constexpr int kMaxHalfWidth = 64;
+  static constexpr int kPhases = 512;  ///< table points per sample
+  static constexpr int kMaxHalfWidth = 64;  ///< the largest half-width accepted, samples
 
   SincKernel() = default;
+  /// @param half_width L, in [1, kMaxHalfWidth] samples; throws std::invalid_argument otherwise.
   explicit SincKernel(int half_width) : L_(half_width) {
     require(half_width >= 1 && half_width <= kMaxHalfWidth, "SincKernel",
             "the look-ahead (half-width) must be in [1, 64] samples (got ", half_width, ")");
@@ -63,11 +71,14 @@ class SincKernel {
     }
   }
 
+  /// The half-width L, samples.
   int half_width() const noexcept { return L_; }
+  /// The number of taps, 2 L.
   int taps() const noexcept { return 2 * L_; }
+  /// The Kaiser window's shape b = 0.6 L + 2.5.
   double beta() const noexcept { return beta_; }
 
-  // h(x), x in any sign (0 outside (-L, L)).
+  /// h(x), x in any sign (0 outside (-L, L)).
   double value(double x) const noexcept {
     const double a = std::fabs(x) * kPhases;
     if (!(a < static_cast<double>(L_) * kPhases)) return 0.0;
@@ -76,8 +87,8 @@ class SincKernel {
     return table_[i] + f * (table_[i + 1] - table_[i]);
   }
 
-  // Normalised weights w[0..2L-1] of the samples at offsets -L+1..L from the interval's
-  // first sample, for the fraction tau in [0, 1] of the interval.
+  /// Normalised weights w[0..2L-1] of the samples at offsets -L+1..L from the interval's
+  /// first sample, for the fraction tau in [0, 1] of the interval.
   void weights(double tau, double* w) const noexcept {
     double sum = 0.0;
     for (int i = 0; i < 2 * L_; ++i) {
@@ -94,10 +105,10 @@ class SincKernel {
   std::vector<double> table_;
 };
 
-// Offline reconstruction on a grid Q times finer: out[k Q + i] = u(t_k + (i / Q) dt) for
-// k in [0, n), i in [0, Q) (out has n Q values). The same values as the streaming
-// interpolation of HystereticOscillator (input held before the first and after the last
-// sample).
+/// Offline reconstruction on a grid Q times finer: out[k Q + i] = u(t_k + (i / Q) dt) for
+/// k in [0, n), i in [0, Q) (out has n Q values). The same values as the streaming
+/// interpolation of HystereticOscillator (input held before the first and after the last
+/// sample).
 inline void reconstruct_bandlimited(const SincKernel& kernel, const double* x, std::size_t n,
                                     int Q, double* out) {
   require(n >= 1, "reconstruct_bandlimited", "the input is empty");

@@ -17,29 +17,39 @@
 
 namespace tendonsheath {
 
+/// Parameters of BoucWen (validated by its constructor).
 struct BoucWenParams {
-  double A = 1.0;
-  double beta = 0.5;
-  double gamma = 0.5;
-  double n = 1.0;
-  double alpha = 0.5;  // share of the linear (elastic) path, in [0, 1] (A is the amplitude)
-  double k = 1.0;  // gain of the hysteretic path
-  double max_step = 0.05;  // largest change of z / z_u per RK4 sub-step
-  int max_substeps = 256;
+  double A = 1.0;  ///< amplitude of the hysteretic state's rate, > 0
+  double beta = 0.5;  ///< shape parameter, > 0
+  double gamma = 0.5;  ///< shape parameter, |gamma| <= beta (bounded state)
+  double n = 1.0;  ///< sharpness of the transitions, >= 1
+  double alpha = 0.5;  ///< share of the linear (elastic) path, in [0, 1] (A is the amplitude)
+  double k = 1.0;  ///< gain of the hysteretic path
+  double max_step = 0.05;  ///< largest change of z / z_u per RK4 sub-step
+  int max_substeps = 256;  ///< most RK4 sub-steps in one step(), >= 1 (bounds its work)
 
-  // The identifiable parameters as a flat vector, in the order of the Python
-  // param_names (numerical options are left as they are).
+  /// The identifiable parameters as a flat vector, in the order of the Python
+  /// param_names (numerical options are left as they are).
   static constexpr std::size_t vector_size = 6;
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
   void assign(const double* v) noexcept {
     A = v[0]; beta = v[1]; gamma = v[2]; n = v[3]; alpha = v[4]; k = v[5];
   }
 };
 
+/// @brief Classic Bouc-Wen hysteresis as a rate-independent input-output model.
+///
+/// dz = A dx - beta |dx| |z|^(n-1) z - gamma dx |z|^n and y = alpha x + (1 - alpha) k z, with z
+/// integrated in x by RK4 (at most max_substeps sub-steps a step). With beta > 0 and
+/// |gamma| <= beta the state stays within z_ultimate().
 class BoucWen {
  public:
+  /// The parameter struct its constructor takes.
   using Params = BoucWenParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit BoucWen(const Params& p) : p_(p) {
     const char* w = "BoucWen";
     require_positive(p.A, w, "A");
@@ -58,14 +68,21 @@ class BoucWen {
     z_u_ = std::pow(p.A / (p.beta + p.gamma), 1.0 / p.n);
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// The bound of the hysteretic state: z_u = (A / (beta + gamma))^(1/n).
   double z_ultimate() const noexcept { return z_u_; }
 
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     initialised_ = false;
     z_ = 0.0;
   }
 
+  /// @brief One sample: move the input to x and return the output y.
+  /// @param x the input; a non-finite x is ignored and the last output held (0 before the first step)
+  /// @return y = alpha x + (1 - alpha) k z; the first call after reset() starts with z = 0 at x
   double step(double x, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(x);
     kept_ = false;
@@ -82,13 +99,15 @@ class BoucWen {
     return y_;
   }
 
+  /// The output of the last step().
   double output() const noexcept { return y_; }
-  // The last step's status: held_nonfinite_input (input not finite), not_converged (the
-  // integration overflowed and the state was kept).
+  /// The last step's status: held_nonfinite_input (input not finite), not_converged (the
+  /// integration overflowed and the state was kept).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return kept_ ? s | Status::not_converged : s;
   }
+  /// The hysteretic state z.
   double state() const noexcept { return z_; }
 
  private:

@@ -19,20 +19,22 @@
 
 namespace tendonsheath {
 
+/// Parameters of BoucWenBacklash (validated by its constructor).
 struct BoucWenBacklashParams {
-  double c_r = 1.0;
-  double c_l = 1.0;
-  double B_r = 0.1;
-  double B_l = 0.1;
-  double rho = 10.0;   // transition rate, 1/input unit (spec default 2/(B_r+B_l))
-  double sigma = 1.0;  // shape, >= 0.5
-  double n = 4.0;      // sharpness, >= 1
-  double max_step = 0.05;  // largest rho*|dx| per RK4 sub-step
-  int max_substeps = 256;
+  double c_r = 1.0;  ///< slope of the right (rising) branch, > 0
+  double c_l = 1.0;  ///< slope of the left (falling) branch, > 0
+  double B_r = 0.1;  ///< dead-band offset of the right branch, input units, >= 0
+  double B_l = 0.1;  ///< dead-band offset of the left branch, input units, >= 0
+  double rho = 10.0;   ///< transition rate, 1/input unit (spec default 2/(B_r+B_l))
+  double sigma = 1.0;  ///< shape, >= 0.5
+  double n = 4.0;      ///< sharpness, >= 1
+  double max_step = 0.05;  ///< largest rho*|dx| per RK4 sub-step
+  int max_substeps = 256;  ///< most RK4 sub-steps in one step(), >= 1 (bounds its work)
 
-  // The identifiable parameters as a flat vector, in the order of the Python
-  // param_names (numerical options are left as they are).
+  /// The identifiable parameters as a flat vector, in the order of the Python
+  /// param_names (numerical options are left as they are).
   static constexpr std::size_t vector_size = 7;
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
   void assign(const double* v) noexcept {
     c_r = v[0]; c_l = v[1]; B_r = v[2]; B_l = v[3]; rho = v[4]; sigma = v[5]; n = v[6];
   }
@@ -89,11 +91,20 @@ inline int substeps_for(double scaled_travel, double max_step, int max_substeps)
 }
 }  // namespace detail
 
+/// @brief Backlash-like hysteresis of Do et al.\ (spec D.1): a normalised Bouc-Wen state w in
+/// [-1, 1] blends the two backlash branches.
+///
+/// dw = rho [dx - sigma |dx| |w|^(n-1) w + (sigma - 1) dx |w|^n], phi = (1 + w) / 2 and
+/// y = phi c_r (x - B_r) + (1 - phi) c_l (x + B_l); w is integrated in x by RK4 (at most
+/// max_substeps sub-steps a step). Rate-independent.
 class BoucWenBacklash {
  public:
+  /// The parameter struct its constructor takes.
   using Params = BoucWenBacklashParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit BoucWenBacklash(const Params& p) : p_(p) {
     const char* w = "BoucWenBacklash";
     require_positive(p.c_r, w, "c_r");
@@ -110,13 +121,19 @@ class BoucWenBacklash {
     int_exponent_ = (e == std::round(e) && e >= 0.0 && e <= 11.0) ? static_cast<int>(e) : -1;
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
 
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     initialised_ = false;
     w_ = 0.0;
   }
 
+  /// @brief One sample: move the input to x and return the output y.
+  /// @param x the input; a non-finite x is ignored and the last output held (0 before the first step)
+  /// @return the output y; the first call after reset() starts with w = 0 at x
   double step(double x, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(x);
     kept_ = false;
@@ -147,19 +164,23 @@ class BoucWenBacklash {
     return y_;
   }
 
+  /// The output y for input x and state w (no change of state).
   double output_at(double x, double w) const noexcept {
     const double phi = 0.5 * (1.0 + w);
     return phi * p_.c_r * (x - p_.B_r) + (1.0 - phi) * p_.c_l * (x + p_.B_l);
   }
 
+  /// The output of the last step().
   double output() const noexcept { return y_; }
-  // The last step's status: held_nonfinite_input (input not finite), not_converged (the
-  // integration overflowed and the state was kept).
+  /// The last step's status: held_nonfinite_input (input not finite), not_converged (the
+  /// integration overflowed and the state was kept).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return kept_ ? s | Status::not_converged : s;
   }
+  /// The blending state w, in [-1, 1].
   double state() const noexcept { return w_; }
+  /// Put the model at input x with state w (clamped to [-1, 1]), for inverses and identification.
   void set_state(double x, double w) noexcept {
     x_ = x;
     w_ = detail::clamp_unit(w);

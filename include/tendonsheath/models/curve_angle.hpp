@@ -31,38 +31,54 @@
 
 namespace tendonsheath {
 
-// tanh(a/2) and tanh(a/2)/a, with series for small |a| (spec pitfall 7).
+/// tanh(a/2) and tanh(a/2)/a, with series for small |a| (spec pitfall 7).
 inline double curve_tanh_half(double a) noexcept {
   if (std::fabs(a) < 1e-4) return 0.5 * a - a * a * a / 24.0;
   return std::tanh(0.5 * a);
 }
+/// tanh(a/2)/a, with its series for small |a| (-> 1/2 at a = 0).
 inline double curve_tanh_half_over(double a) noexcept {
   if (std::fabs(a) < 1e-4) return 0.5 - a * a / 24.0;
   return std::tanh(0.5 * a) / a;
 }
 
+/// Parameters of CurveAngleModel (validated by its constructor); SI units, tendon level.
 struct CurveAngleParams {
-  double friction = 0.1;          // mu, Coulomb friction coefficient
-  double stiffness = 2.4e4;       // EA, tendon axial stiffness, N
-  double pretension = 10.0;       // T0, N
-  double length = 1.2;            // L, sheath length, m
-  double load = 0.0;              // F_L, constant distal load at tendon level, N (resists forward)
-  double spring = 0.0;            // k_e, environment spring at tendon level, N/m
-  double proximal_radius = 5e-3;  // r_p, m
-  double distal_radius = 5e-3;    // r_d, m
+  double friction = 0.1;          ///< mu, Coulomb friction coefficient
+  double stiffness = 2.4e4;       ///< EA, tendon axial stiffness, N
+  double pretension = 10.0;       ///< T0, N
+  double length = 1.2;            ///< L, sheath length, m
+  double load = 0.0;              ///< F_L, constant distal load at tendon level, N (resists forward)
+  double spring = 0.0;            ///< k_e, environment spring at tendon level, N/m
+  double proximal_radius = 5e-3;  ///< r_p, m
+  double distal_radius = 5e-3;    ///< r_d, m
 
+  /// How many identifiable parameters assign() reads.
   static constexpr std::size_t vector_size = 8;
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
   void assign(const double* v) noexcept {
     friction = v[0]; stiffness = v[1]; pretension = v[2]; length = v[3];
     load = v[4]; spring = v[5]; proximal_radius = v[6]; distal_radius = v[7];
   }
 };
 
+/// @brief Closed-form pull-pull tendon-sheath model with the curve angle as a second input (spec B,
+/// from the uniform-curvature closed form A.7 and the spring slope of A.4).
+///
+/// With a = mu Theta: backlash half-width e_b = (T0 L / EA) tanh(a/2), load offset
+/// e_L = (F_L L / EA) tanh(a/2) / a and branch slope c = 1 / (1 + k_e (L / EA) tanh(a/2) / a);
+/// x_out <- clamp(x_out, c (x_in - e_b - e_L), c (x_in + e_b - e_L)). The clamp covers a moving
+/// input and a changing curve angle at rest (raising Theta widens the band, lowering it lets the
+/// held output creep onto the new branch). Input and output are angles (rad): x_in = r_p q_in,
+/// q_out = x_out / r_d. It starts in the middle of the band, x_out = c (x_in - e_L).
 class CurveAngleModel {
  public:
+  /// The parameter struct its constructor takes.
   using Params = CurveAngleParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit CurveAngleModel(const Params& p) : p_(p) {
     const char* w = "CurveAngleModel";
     require_non_negative(p.friction, w, "friction");
@@ -75,33 +91,44 @@ class CurveAngleModel {
     require_positive(p.distal_radius, w, "distal_radius");
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
 
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     initialised_ = false;
     slack_ = step_slack_ = false;
   }
 
-  // Closed-form terms at a curve angle (linear units, m).
+  /// Closed-form terms at a curve angle (linear units, m): the backlash half-width e_b at
+  /// curve angle theta (rad).
   double backlash_half_width(double theta) const noexcept {
     return p_.pretension * p_.length / p_.stiffness *
            curve_tanh_half(p_.friction * std::fabs(theta));
   }
+  /// The load offset e_L at curve angle theta (rad), m.
   double load_offset(double theta) const noexcept {
     return p_.load * p_.length / p_.stiffness *
            curve_tanh_half_over(p_.friction * std::fabs(theta));
   }
+  /// The branch slope c at curve angle theta (rad), in (0, 1].
   double slope(double theta) const noexcept {
     return 1.0 / (1.0 + p_.spring * p_.length / p_.stiffness *
                             curve_tanh_half_over(p_.friction * std::fabs(theta)));
   }
 
-  // Streaming: proximal angle q_in (rad), curve angle theta (rad) -> distal angle (rad).
+  /// Streaming: proximal angle q_in (rad), curve angle theta (rad) -> distal angle (rad).
+  /// @param q_in the proximal angle, rad; a non-finite q_in holds the last output
+  /// @param theta the curve angle, rad (its magnitude is used); a non-finite theta keeps the last
+  /// @return the distal angle, rad
   double step(double q_in, double /*dt*/, double theta) noexcept {
     if (std::isfinite(theta)) theta_ = std::fabs(theta);
     return step(q_in);
   }
-  // Keeps the last curve angle (0, a straight sheath, before any was given).
+  /// Keeps the last curve angle (0, a straight sheath, before any was given).
+  /// @param q_in the proximal angle, rad; a non-finite q_in holds the last output
+  /// @return the distal angle, rad
   double step(double q_in, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(q_in);
     if (held_) {
@@ -130,15 +157,18 @@ class CurveAngleModel {
     return y_;
   }
 
+  /// The distal angle of the last step(), rad.
   double output() const noexcept { return y_; }
+  /// The curve angle in use, rad (>= 0).
   double curve_angle() const noexcept { return theta_; }
+  /// Set the curve angle |theta| (rad) for the next steps; a non-finite theta is ignored.
   void set_curve_angle(double theta) noexcept {
     if (std::isfinite(theta)) theta_ = std::fabs(theta);
   }
-  // True once the distal load exceeded the no-slack limit since reset().
+  /// True once the distal load exceeded the no-slack limit since reset().
   bool slack() const noexcept { return slack_; }
-  // The last step's status: held_nonfinite_input (input not finite), slack (this step's
-  // distal load broke the no-slack condition; slack() keeps it since reset()).
+  /// The last step's status: held_nonfinite_input (input not finite), slack (this step's
+  /// distal load broke the no-slack condition; slack() keeps it since reset()).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return step_slack_ ? s | Status::slack : s;
@@ -150,8 +180,17 @@ class CurveAngleModel {
   bool initialised_ = false, slack_ = false, held_ = false, step_slack_ = false;
 };
 
-// Batch simulation with a per-sample curve angle (theta may be nullptr: keep the last);
-// status, when given, receives each sample's Status flags.
+/// Batch simulation with a per-sample curve angle (theta may be nullptr: keep the last);
+/// status, when given, receives each sample's Status flags. Not real-time: it validates the
+/// series and throws std::invalid_argument (message starting with `where`) on a bad sample.
+/// @param model reset, then stepped once per sample
+/// @param t the n sample times, s, finite and increasing, or nullptr (the model ignores dt)
+/// @param x the n proximal angles, rad, finite
+/// @param theta the n curve angles, rad, finite, or nullptr (keep the model's)
+/// @param y receives the n distal angles, rad
+/// @param n the number of samples, >= 1
+/// @param where the name that starts an error message
+/// @param status receives the n samples' Status flags, or nullptr
 inline void simulate(CurveAngleModel& model, const double* t, const double* x,
                      const double* theta, double* y, std::size_t n, const char* where,
                      unsigned char* status = nullptr) {

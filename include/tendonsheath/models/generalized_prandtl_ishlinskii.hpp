@@ -22,13 +22,15 @@
 
 namespace tendonsheath {
 
+/// A saturating envelope gamma(x) = a tanh(b (x - c)) + d of the generalized play operators.
 struct Envelope {
-  double a = 1.0;  // amplitude (> 0): the envelope saturates at d +- a
-  double b = 1.0;  // input gain (> 0): initial slope a*b
-  double c = 0.0;  // input shift
-  double d = 0.0;  // output shift
+  double a = 1.0;  ///< amplitude (> 0): the envelope saturates at d +- a
+  double b = 1.0;  ///< input gain (> 0): initial slope a*b
+  double c = 0.0;  ///< input shift
+  double d = 0.0;  ///< output shift
+  /// The envelope at x.
   double operator()(double x) const noexcept { return a * std::tanh(b * (x - c)) + d; }
-  // Inverse, clipped to the open range (d - a, d + a).
+  /// Inverse, clipped to the open range (d - a, d + a).
   double inverse(double g) const noexcept {
     double u = (g - d) / a;
     const double lim = 1.0 - 1e-15;
@@ -37,17 +39,20 @@ struct Envelope {
   }
 };
 
+/// Parameters of GeneralizedPrandtlIshlinskii and its inverse (validated by their constructors).
 struct GeneralizedPrandtlIshlinskiiParams {
-  Envelope rising{};
-  Envelope falling{};
-  std::vector<double> thresholds{0.0, 0.05, 0.1, 0.2};
-  std::vector<double> weights{0.6, 0.2, 0.1, 0.1};
+  Envelope rising{};  ///< the rising (loading) envelope gamma_r
+  Envelope falling{};  ///< the falling (unloading) envelope gamma_l
+  std::vector<double> thresholds{0.0, 0.05, 0.1, 0.2};  ///< play thresholds, 0 = r_0 < r_1 < ..., input units
+  std::vector<double> weights{0.6, 0.2, 0.1, 0.1};  ///< play weights, p_0 > 0 and p_i >= 0
 };
 
-// Bounds on an envelope's input gain and shift: its input range c +- kEnvelopeSpan / b (past
-// which tanh is 1 to double precision) must stay a representable, finite interval.
+/// Bounds on an envelope's input gain and shift: its input range c +- kEnvelopeSpan / b (past
+/// which tanh is 1 to double precision) must stay a representable, finite interval.
 constexpr double kEnvelopeSpan = 20.0;
+/// The smallest envelope input gain b accepted.
 constexpr double kMinEnvelopeGain = 1e-9;
+/// The largest envelope input shift |c| accepted.
 constexpr double kMaxEnvelopeShift = 1e12;
 
 namespace detail {
@@ -89,18 +94,33 @@ inline double gpi_play(double z, double x, double r, const Envelope& up, const E
 }
 }  // namespace detail
 
+/// @brief Generalized Prandtl-Ishlinskii model (Al Janaideh, Rakheja & Su): plays whose rising and
+/// falling boundaries follow saturating envelopes, for asymmetric and saturated loops.
+///
+/// z_i <- max(gamma_r(x) - r_i, min(gamma_l(x) + r_i, z_i)), y = sum_i p_i z_i, with the play of
+/// threshold 0 on the centre line (gamma_r + gamma_l) / 2. The play states are allocated once, in
+/// the constructor; step() does O(number of plays) work. Rate-independent.
 class GeneralizedPrandtlIshlinskii {
  public:
+  /// The parameter struct its constructor takes.
   using Params = GeneralizedPrandtlIshlinskiiParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
+  /// @param p the envelopes, thresholds and weights; throws std::invalid_argument naming the first
+  /// bad one.
   explicit GeneralizedPrandtlIshlinskii(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
     detail::validate_gpi(p, "GeneralizedPrandtlIshlinskii");
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { initialised_ = false; }
 
+  /// @param x the input; a non-finite x holds the last output (0 before the first step)
+  /// @return the output y; the first step after reset() starts every play on the centre line
   double step(double x, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(x);
     if (held_) return initialised_ ? y_ : 0.0;
@@ -113,7 +133,7 @@ class GeneralizedPrandtlIshlinskii {
     return y_;
   }
 
-  // Output if the input moved to x from the current state (the state is kept).
+  /// Output if the input moved to x from the current state (the state is kept).
   double output_if(double x) const noexcept {
     double y = 0.0;
     for (std::size_t i = 0; i < z_.size(); ++i)
@@ -121,7 +141,7 @@ class GeneralizedPrandtlIshlinskii {
     return y;
   }
 
-  // Output of the first sample when it is x: increasing in x.
+  /// Output of the first sample when it is x: increasing in x.
   double initial_output(double x) const noexcept {
     double y = 0.0;
     for (std::size_t i = 0; i < z_.size(); ++i)
@@ -129,15 +149,19 @@ class GeneralizedPrandtlIshlinskii {
     return y;
   }
 
+  /// The output of the last step().
   double output() const noexcept { return y_; }
-  // The last step's status: held_nonfinite_input when its input was not finite.
+  /// The last step's status: held_nonfinite_input when its input was not finite.
   Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
+  /// The input of the last step().
   double last_input() const noexcept { return x_; }
+  /// False until the first finite step() after construction or reset().
   bool initialised() const noexcept { return initialised_; }
-  // The play outputs z_i after the last step (y = sum_i weights[i] z_i).
+  /// The play outputs z_i after the last step (y = sum_i weights[i] z_i).
   const std::vector<double>& play_states() const noexcept { return z_; }
 
  protected:
+  /// Move the plays z (one per threshold) to input x; returns y = sum_i p_i z_i.
   double advance(double x, double* z) noexcept {
     double y = 0.0;
     for (std::size_t i = 0; i < z_.size(); ++i) {
@@ -147,33 +171,45 @@ class GeneralizedPrandtlIshlinskii {
     return y;
   }
 
+  /// The centre line (gamma_r(x) + gamma_l(x)) / 2, where the plays start.
   double centre(double x) const noexcept { return 0.5 * (p_.rising(x) + p_.falling(x)); }
 
-  Params p_;
-  std::vector<double> z_;
-  double x_ = 0.0, y_ = 0.0;
-  bool initialised_ = false;
-  bool held_ = false;
+  Params p_;              ///< the parameters
+  std::vector<double> z_;  ///< the play states, one per threshold
+  /// the last input (x_); the last output (y_)
+  double x_ = 0.0, y_ = 0.0;  ///< the last output
+  bool initialised_ = false;  ///< false until the first finite step
+  bool held_ = false;         ///< the last input was not finite
 };
 
+/// @brief The inverse of GeneralizedPrandtlIshlinskii: each step solves the monotone equation
+/// y(x) = y_desired by safeguarded bisection on a bracket (at most 200 iterations: bounded work).
 class GeneralizedPrandtlIshlinskiiInverse {
  public:
+  /// The parameter struct its constructor takes.
   using Params = GeneralizedPrandtlIshlinskiiParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
+  /// @param p the forward model's parameters; throws std::invalid_argument naming the first bad one.
   explicit GeneralizedPrandtlIshlinskiiInverse(const Params& p) : model_(p) {
     const double gain = std::fmin(p.rising.b, p.falling.b);
     x_min_ = std::fmin(p.rising.c, p.falling.c) - 2.0 * kEnvelopeSpan / gain;
     x_max_ = std::fmax(p.rising.c, p.falling.c) + 2.0 * kEnvelopeSpan / gain;
   }
-  // The last target was out of reach: the command sits at the end of the envelopes' input
-  // range, [c_min - 40/b, c_max + 40/b], past which the output no longer changes.
+  /// The last target was out of reach: the command sits at the end of the envelopes' input
+  /// range, [c_min - 40/b, c_max + 40/b], past which the output no longer changes.
   bool input_clamped() const noexcept { return clamped_; }
+  /// The parameters it was built with.
   const Params& params() const noexcept { return model_.params(); }
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { model_.reset(); }
 
-  // The input x for which the forward model reaches y_desired (clipped to the
-  // reachable range: the envelopes saturate).
+  /// The input x for which the forward model reaches y_desired (clipped to the
+  /// reachable range: the envelopes saturate).
+  /// @param y_desired the desired output; a non-finite one holds the last command
+  /// @return the command x
   double step(double y_desired, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(y_desired);
     if (held_) {
@@ -205,9 +241,10 @@ class GeneralizedPrandtlIshlinskiiInverse {
     return x;
   }
 
+  /// The command x of the last step().
   double output() const noexcept { return model_.last_input(); }
-  // The last step's status: held_nonfinite_input (input not finite), input_clamped (see
-  // input_clamped()).
+  /// The last step's status: held_nonfinite_input (input not finite), input_clamped (see
+  /// input_clamped()).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return clamped_ ? s | Status::input_clamped : s;

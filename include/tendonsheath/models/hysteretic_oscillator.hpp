@@ -40,6 +40,7 @@
 
 namespace tendonsheath {
 
+/// How HystereticOscillator reconstructs the input between samples (input_reconstruction).
 enum InputReconstruction : int { kInputHold = 0, kInputLinear = 1, kInputBandlimited = 2 };
 
 namespace detail {
@@ -65,34 +66,50 @@ void on_dense_grid(const double* u, int Q, int need, const Integrate& integrate)
 }
 }  // namespace detail
 
+/// Parameters of HystereticOscillator and OscillatorSensitivity (validated by their constructors).
 struct HystereticOscillatorParams {
-  double m = 1.0;
-  double c = 0.1;
-  double k = 1.0;
-  double alpha = 1.0;
-  double beta = 1.0;
-  double gamma = 0.5;
-  double delta = 0.5;
-  double nu = 1.0;
-  int substeps = 4;
-  int max_substeps = 4096;
-  int input_reconstruction = kInputLinear;  // kInputHold, kInputLinear or kInputBandlimited
-  int lookahead = 16;  // half-width of the band-limited interpolation kernel, samples
+  double m = 1.0;  ///< mass, > 0
+  double c = 0.1;  ///< viscous damping, >= 0
+  double k = 1.0;  ///< linear stiffness, >= 0 (k + alpha > 0)
+  double alpha = 1.0;  ///< Bouc-Wen stiffness of the hysteretic force, >= 0
+  double beta = 1.0;  ///< Bouc-Wen scale, >= 0
+  double gamma = 0.5;  ///< Bouc-Wen shape (any sign)
+  double delta = 0.5;  ///< Bouc-Wen shape (any sign)
+  double nu = 1.0;  ///< Bouc-Wen sharpness, >= 1
+  int substeps = 4;  ///< fewest RK4 sub-steps per sample, >= 1
+  int max_substeps = 4096;  ///< most RK4 sub-steps per sample, >= substeps (bounds the work)
+  int input_reconstruction = kInputLinear;  ///< kInputHold, kInputLinear or kInputBandlimited
+  int lookahead = 16;  ///< half-width of the band-limited interpolation kernel, samples
 
-  // The identifiable parameters as a flat vector, in the order of the Python
-  // param_names (numerical options are left as they are).
+  /// The identifiable parameters as a flat vector, in the order of the Python
+  /// param_names (numerical options are left as they are).
   static constexpr std::size_t vector_size = 8;
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
   void assign(const double* v) noexcept {
     m = v[0]; c = v[1]; k = v[2]; alpha = v[3]; beta = v[4]; gamma = v[5]; delta = v[6]; nu = v[7];
   }
 };
 
+/// @brief Single-degree-of-freedom oscillator with a Bouc-Wen restoring force, force u in,
+/// displacement y out: m y'' + c y' + k y + z = u,
+/// z' = alpha y' - beta (gamma |y'| |z|^(nu-1) z + delta y' |z|^nu).
+///
+/// Integrated by RK4 with a bounded number of sub-steps per sample (at least substeps, raised so
+/// that h omega <= 0.5, never above max_substeps). The input between samples is held, linear (the
+/// default) or band-limited (a Kaiser-windowed sinc: the output then lags by delay() samples). No
+/// sign of the Bouc-Wen shape is rejected: a state that overflows sets diverged() and is kept at
+/// its last finite value, so step() never returns NaN for finite input. Not rate-independent:
+/// step() needs dt.
 class HystereticOscillator {
  public:
+  /// The parameter struct its constructor takes.
   using Params = HystereticOscillatorParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = false;
-  static constexpr int kWeightCacheSubsteps = 16;  // band-limited weights cached up to this m
+  static constexpr int kWeightCacheSubsteps = 16;  ///< band-limited weights cached up to this m
 
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range. The
+  /// band-limited history is allocated here, once.
   explicit HystereticOscillator(const Params& p) : p_(p) {
     const char* w = "HystereticOscillator";
     require_positive(p.m, w, "m");
@@ -120,13 +137,16 @@ class HystereticOscillator {
     omega_ = std::sqrt((p.k + p.alpha) / p.m) + p.c / p.m;
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
 
-  // Samples by which step()'s output lags its input (lookahead - 1 when band-limited).
+  /// Samples by which step()'s output lags its input (lookahead - 1 when band-limited).
   int delay() const noexcept {
     return p_.input_reconstruction == kInputBandlimited ? p_.lookahead - 1 : 0;
   }
 
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     initialised_ = false;
     y_ = v_ = z_ = 0.0;
@@ -134,8 +154,11 @@ class HystereticOscillator {
     diverged_at_ = -1;
   }
 
-  // Starts at rest (y = y' = z = 0) at the first sample. A non-finite input sample is
-  // ignored (held at the previous one when band-limited, so the timing is kept).
+  /// Starts at rest (y = y' = z = 0) at the first sample. A non-finite input sample is
+  /// ignored (held at the previous one when band-limited, so the timing is kept).
+  /// @param u the force input
+  /// @param dt the sample interval, s; a dt that is not finite and > 0 integrates nothing
+  /// @return the displacement y (delay() samples late when band-limited)
   double step(double u, double dt) noexcept {
     held_ = !std::isfinite(u);
     kept_ = false;
@@ -172,10 +195,14 @@ class HystereticOscillator {
     return y_;
   }
 
-  // One sample interval with the input given on a grid Q times finer: u[i] = u(t0 + i dt / Q),
-  // i = 0..Q (Q + 1 values; u[Q] is the next sample). The first call after reset() only
-  // initialises (at rest) and reads nothing. When Q is even and Q / 2 sub-steps are enough,
-  // RK4 takes exactly Q / 2 sub-steps on the grid; otherwise the grid is interpolated linearly.
+  /// One sample interval with the input given on a grid Q times finer: u[i] = u(t0 + i dt / Q),
+  /// i = 0..Q (Q + 1 values; u[Q] is the next sample). The first call after reset() only
+  /// initialises (at rest) and reads nothing. When Q is even and Q / 2 sub-steps are enough,
+  /// RK4 takes exactly Q / 2 sub-steps on the grid; otherwise the grid is interpolated linearly.
+  /// @param u the Q + 1 input values of the interval
+  /// @param Q the refinement of the grid, >= 1 (else nothing is integrated)
+  /// @param dt the sample interval, s
+  /// @return the displacement y at the end of the interval
   double step_dense(const double* u, int Q, double dt) noexcept {
     held_ = kept_ = false;
     if (!initialised_) {
@@ -189,6 +216,7 @@ class HystereticOscillator {
     return y_;
   }
 
+  /// The RK4 sub-steps one sample interval of dt seconds takes.
   int substeps(double dt) const noexcept {
     const double need = std::ceil(dt * omega_ / 0.5);
     double m = need > p_.substeps ? need : p_.substeps;
@@ -196,27 +224,31 @@ class HystereticOscillator {
     return static_cast<int>(m);
   }
 
+  /// The displacement y after the last step().
   double output() const noexcept { return y_; }
+  /// The velocity y' after the last step().
   double velocity() const noexcept { return v_; }
+  /// The hysteretic force z after the last step().
   double hysteretic_force() const noexcept { return z_; }
 
-  // True once the state overflowed (z diverged) since reset(); the sample (1-based count of
-  // integrated intervals) where it first happened is diverged_at().
+  /// True once the state overflowed (z diverged) since reset(); the sample (1-based count of
+  /// integrated intervals) where it first happened is diverged_at().
   bool diverged() const noexcept { return diverged_at_ >= 0; }
+  /// The sample (1-based count of integrated intervals) where the state first overflowed, or -1.
   long diverged_at() const noexcept { return diverged_at_; }
-  // The last step's status: held_nonfinite_input (input not finite), not_converged (the
-  // integration overflowed in this step and the state was kept).
+  /// The last step's status: held_nonfinite_input (input not finite), not_converged (the
+  /// integration overflowed in this step and the state was kept).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return kept_ ? s | Status::not_converged : s;
   }
 
-  // Bound on |z| while the displacement stays within an interval of width `range`: the
-  // largest |z| on the outer loop of repeated full-range excursions (the steady cycle of
-  // the half-cycle map, found by bisection) and on the first full-range loading from rest.
-  // +inf when that cycle does not exist or is unstable (z ratchets up from cycle to cycle,
-  // or escapes in finite displacement when nu > 1 and beta (gamma + delta) < 0), or when
-  // |z| would exceed 1e12 alpha range. Not real-time (a few thousand RK4 steps).
+  /// Bound on |z| while the displacement stays within an interval of width `range`: the
+  /// largest |z| on the outer loop of repeated full-range excursions (the steady cycle of
+  /// the half-cycle map, found by bisection) and on the first full-range loading from rest.
+  /// +inf when that cycle does not exist or is unstable (z ratchets up from cycle to cycle,
+  /// or escapes in finite displacement when nu > 1 and beta (gamma + delta) < 0), or when
+  /// |z| would exceed 1e12 alpha range. Not real-time (a few thousand RK4 steps).
   double z_bound(double range) const noexcept {
     constexpr double inf = std::numeric_limits<double>::infinity();
     if (!(range > 0.0) || !std::isfinite(range) || p_.alpha == 0.0) return 0.0;
@@ -395,15 +427,15 @@ class HystereticOscillator {
   int cached_m_ = 0;
 };
 
-// The Bouc-Wen state along a sampled displacement path y[0..n-1], scaled by alpha
-// (z = alpha w), starting at w = 0:
-//
-//   dw/dy = 1 - |w|^(nu-1) (G s w + D |w|),  s = sign(dy),  G = alpha^(nu-1) beta gamma,
-//   D = alpha^(nu-1) beta delta,
-//
-// rate-independent, integrated by RK4 in y (a few sub-steps per sample). Used by the
-// equation-error stage of the identification, where y is the measured displacement (on a
-// fine grid). Returns false if w overflows (the rest of w is then NaN).
+/// The Bouc-Wen state along a sampled displacement path y[0..n-1], scaled by alpha
+/// (z = alpha w), starting at w = 0:
+///
+///   dw/dy = 1 - |w|^(nu-1) (G s w + D |w|),  s = sign(dy),  G = alpha^(nu-1) beta gamma,
+///   D = alpha^(nu-1) beta delta,
+///
+/// rate-independent, integrated by RK4 in y (a few sub-steps per sample). Used by the
+/// equation-error stage of the identification, where y is the measured displacement (on a
+/// fine grid). Returns false if w overflows (the rest of w is then NaN).
 inline bool bouc_wen_path(const double* y, std::size_t n, double G, double D, double nu,
                           double* w) noexcept {
   const detail::AbsPower pw(nu - 1.0);

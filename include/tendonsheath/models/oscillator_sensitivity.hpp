@@ -15,19 +15,33 @@
 
 namespace tendonsheath {
 
+/// @brief Forward sensitivities dy/dp of the HystereticOscillator's displacement to its eight
+/// parameters (m, c, k, alpha, beta, gamma, delta, nu), for the identification's least squares.
+///
+/// The tangent-linear model of the very RK4 scheme that step_dense() runs (same sub-steps, same
+/// input grid), so dy/dp is the exact derivative of the simulated output; at a kink of |v| or |z|
+/// the one-sided derivative of the branch in use is taken.
 class OscillatorSensitivity {
  public:
-  static constexpr int kParams = 8;  // m, c, k, alpha, beta, gamma, delta, nu
+  static constexpr int kParams = 8;  ///< m, c, k, alpha, beta, gamma, delta, nu
 
+  /// @param p the oscillator's parameters; throws std::invalid_argument as HystereticOscillator does.
   explicit OscillatorSensitivity(const HystereticOscillatorParams& p) : osc_(p), p_(p) { reset(); }
 
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     initialised_ = false;
     for (double& x : s_) x = 0.0;
     for (double& x : S_) x = 0.0;
   }
 
-  // As HystereticOscillator::step_dense(); dy[0..7] receives dy/dp at the end of the interval.
+  /// As HystereticOscillator::step_dense(); dy[0..7] receives dy/dp at the end of the interval.
+  /// @param u the Q + 1 input values of the interval
+  /// @param Q the refinement of the grid, >= 1
+  /// @param dt the sample interval, s
+  /// @param dy receives the kParams sensitivities dy/dp
+  /// @return the displacement y at the end of the interval
   double step_dense(const double* u, int Q, double dt, double* dy) noexcept {
     if (initialised_ && dt > 0.0 && std::isfinite(dt) && Q >= 1)
       detail::on_dense_grid(u, Q, osc_.substeps(dt),

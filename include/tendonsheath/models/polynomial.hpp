@@ -12,16 +12,24 @@
 
 namespace tendonsheath {
 
+/// Parameters of Polynomial (validated by its constructor).
 struct PolynomialParams {
-  std::vector<double> coefficients{0.0, 1.0};  // a_0, a_1, ... (all powers) or a_1, a_3, ... (odd)
-  bool odd = false;
+  std::vector<double> coefficients{0.0, 1.0};  ///< a_0, a_1, ... (all powers) or a_1, a_3, ... (odd)
+  bool odd = false;  ///< true: the coefficients are those of the odd powers a_1, a_3, ...
 };
 
+/// @brief Static output map y = sum_k a_k u^k (k = 0..degree, or odd powers only).
+///
+/// Composed after a hysteresis model (Chain) it bends straight branches into the asymmetric,
+/// saturating loops that real tendon drives show. Memoryless; step() ignores dt.
 class Polynomial {
  public:
+  /// The parameter struct its constructor takes.
   using Params = PolynomialParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
+  /// @param p the coefficients (at least one, all finite); throws std::invalid_argument otherwise.
   explicit Polynomial(const Params& p) : p_(p) {
     const char* w = "Polynomial";
     require(!p.coefficients.empty(), w, "coefficients must not be empty");
@@ -31,12 +39,15 @@ class Polynomial {
     }
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// The degree of the polynomial (2 n - 1 for n odd-power coefficients).
   std::size_t degree() const noexcept {
     const std::size_t n = p_.coefficients.size();
     return p_.odd ? 2 * n - 1 : n - 1;
   }
 
+  /// The map at u (Horner), without touching output() or status().
   double evaluate(double u) const noexcept {
     const auto& a = p_.coefficients;
     double acc = 0.0;
@@ -49,14 +60,18 @@ class Polynomial {
     return acc;
   }
 
+  /// Nothing to reset: the map has no state (output() keeps the last value).
   void reset() noexcept {}
+  /// @param u the input; a non-finite u is ignored and the last output held
+  /// @return y = sum_k a_k u^k
   double step(double u, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(u);
     if (!held_) y_ = evaluate(u);
     return y_;
   }
+  /// The output of the last step().
   double output() const noexcept { return y_; }
-  // The last step's status: held_nonfinite_input when its input was not finite.
+  /// The last step's status: held_nonfinite_input when its input was not finite.
   Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
 
  private:
@@ -65,20 +80,32 @@ class Polynomial {
   bool held_ = false;
 };
 
-// A hysteresis model followed by a static map: y = Second(First(x)).
+/// A hysteresis model followed by a static map: y = Second(First(x)).
+/// @tparam First a model of the core (step(x, dt), output(), status(), reset())
+/// @tparam Second a static map such as Polynomial
 template <class First, class Second>
 class Chain {
  public:
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = First::rate_independent && Second::rate_independent;
+  /// @param first the hysteresis model (copied)
+  /// @param second the static map applied to its output (copied)
   Chain(const First& first, const Second& second) : first_(first), second_(second) {}
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     first_.reset();
     second_.reset();
   }
+  /// @return second.step(first.step(x, dt), dt)
   double step(double x, double dt) noexcept { return second_.step(first_.step(x, dt), dt); }
+  /// The output of the last step().
   double output() const noexcept { return second_.output(); }
+  /// The last step's status flags (see Status).
   Status status() const noexcept { return first_.status() | second_.status(); }
+  /// The hysteresis model.
   const First& first() const noexcept { return first_; }
+  /// The static map.
   const Second& second() const noexcept { return second_; }
 
  private:

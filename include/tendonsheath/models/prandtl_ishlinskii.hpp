@@ -23,9 +23,10 @@
 
 namespace tendonsheath {
 
+/// Parameters of PrandtlIshlinskii and PrandtlIshlinskiiInverse (validated by their constructors).
 struct PrandtlIshlinskiiParams {
-  std::vector<double> thresholds{0.0, 0.05, 0.1, 0.15, 0.2};
-  std::vector<double> weights{0.5, 0.2, 0.15, 0.1, 0.05};
+  std::vector<double> thresholds{0.0, 0.05, 0.1, 0.15, 0.2};  ///< play thresholds r_i >= 0, strictly increasing, input units (r_0 = 0 for the inverse)
+  std::vector<double> weights{0.5, 0.2, 0.15, 0.1, 0.05};  ///< play weights p_i; every partial sum p_0 + ... + p_j must be > 0
 };
 
 namespace detail {
@@ -69,22 +70,37 @@ inline double clamp_play(double z, double x, double r) noexcept {
 
 }  // namespace detail
 
+/// @brief Prandtl-Ishlinskii hysteresis: y = sum_i p_i F_{r_i}[x], a weighted sum of play
+/// operators F_r: z <- max(x - r, min(x + r, z)).
+///
+/// The plays start on the virgin curve from 0. The play states are allocated once, in the
+/// constructor; step() does O(number of plays) work. Rate-independent.
 class PrandtlIshlinskii {
  public:
+  /// The parameter struct its constructor takes.
   using Params = PrandtlIshlinskiiParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
+  /// @param p the thresholds and weights; throws std::invalid_argument naming the first bad entry.
   explicit PrandtlIshlinskii(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
     detail::validate_pi(p, "PrandtlIshlinskii", false);
     x_limit_ = detail::pi_input_limit(p_);
   }
-  // The last step's input was beyond +-input_limit() and was clamped to it.
+  /// The last step's input was beyond +-input_limit() and was clamped to it.
   bool input_clamped() const noexcept { return clamped_; }
+  /// The largest input magnitude accepted, 1e9 (1 + the largest threshold); beyond it inputs are
+  /// clamped.
   double input_limit() const noexcept { return x_limit_; }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { initialised_ = false; }
 
+  /// @param x the input; a non-finite x holds the last output, one beyond +-input_limit() is clamped
+  /// @return the output y = sum_i p_i z_i
   double step(double x, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(x);
     if (held_) {
@@ -106,14 +122,17 @@ class PrandtlIshlinskii {
     return y;
   }
 
+  /// The output of the last step().
   double output() const noexcept { return y_; }
-  // The last step's status: held_nonfinite_input (input not finite), input_clamped (see
-  // input_clamped()).
+  /// The last step's status: held_nonfinite_input (input not finite), input_clamped (see
+  /// input_clamped()).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return clamped_ ? s | Status::input_clamped : s;
   }
+  /// The input of the last step(), after clamping.
   double last_input() const noexcept { return x_; }
+  /// The play states z_i, one per threshold.
   const std::vector<double>& play_states() const noexcept { return z_; }
 
  private:
@@ -126,23 +145,38 @@ class PrandtlIshlinskii {
   bool initialised_ = false;
 };
 
+/// @brief The exact inverse of PrandtlIshlinskii (thresholds[0] must be 0): every step solves the
+/// piecewise-linear equation y(x) = y_desired along the breakpoints of the plays.
+///
+/// It updates the same play states, so model(inverse(y)) == y and inverse(model(x)) == x up to
+/// rounding. step() does O(number of plays) work and allocates nothing.
 class PrandtlIshlinskiiInverse {
  public:
+  /// The parameter struct its constructor takes.
   using Params = PrandtlIshlinskiiParams;
+  /// True when the output depends only on the input's path, not on its timing (step() ignores dt).
   static constexpr bool rate_independent = true;
 
+  /// @param p the thresholds (thresholds[0] == 0) and weights; throws std::invalid_argument naming the
+  /// first bad entry.
   explicit PrandtlIshlinskiiInverse(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
     detail::validate_pi(p, "PrandtlIshlinskiiInverse", true);
     x_limit_ = detail::pi_input_limit(p_);
   }
-  // The last command was beyond +-input_limit() (or its target unreachable) and was clamped.
+  /// The last command was beyond +-input_limit() (or its target unreachable) and was clamped.
   bool input_clamped() const noexcept { return clamped_; }
+  /// The largest command magnitude it returns, 1e9 (1 + the largest threshold).
   double input_limit() const noexcept { return x_limit_; }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept { initialised_ = false; }
 
-  // Returns the input x that drives the forward operator to y_desired.
+  /// Returns the input x that drives the forward operator to y_desired.
+  /// @param y_desired the desired output; a non-finite one holds the last command
+  /// @return the command x, within +-input_limit()
   double step(double y_desired, double /*dt*/ = 0.0) noexcept {
     held_ = !std::isfinite(y_desired);
     if (held_) {
@@ -168,9 +202,10 @@ class PrandtlIshlinskiiInverse {
     return x;
   }
 
+  /// The command x of the last step().
   double output() const noexcept { return x_; }
-  // The last step's status: held_nonfinite_input (input not finite), input_clamped (see
-  // input_clamped()).
+  /// The last step's status: held_nonfinite_input (input not finite), input_clamped (see
+  /// input_clamped()).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
     return clamped_ ? s | Status::input_clamped : s;

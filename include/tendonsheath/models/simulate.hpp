@@ -61,14 +61,14 @@ bool diverged(const M& m) noexcept {
 }
 }  // namespace detail
 
-// Model concept: reset() noexcept; double step(double x, double dt) noexcept;
-// The first step() after reset() initialises the state at x (dt is ignored).
-// t may be nullptr for rate-independent models; then dt = 1 per sample.
-// The input is validated in the same pass (a bad sample throws, naming it, and the
-// partial output is discarded by the caller). A model whose step() lags by delay()
-// samples is fed delay() more samples (the last one held) and y is realigned. A model
-// whose state diverged (diverged()) throws std::invalid_argument, naming the sample.
-// status, when given, receives each sample's Status flags (n bytes, written in the loop).
+/// Model concept: reset() noexcept; double step(double x, double dt) noexcept;
+/// The first step() after reset() initialises the state at x (dt is ignored).
+/// t may be nullptr for rate-independent models; then dt = 1 per sample.
+/// The input is validated in the same pass (a bad sample throws, naming it, and the
+/// partial output is discarded by the caller). A model whose step() lags by delay()
+/// samples is fed delay() more samples (the last one held) and y is realigned. A model
+/// whose state diverged (diverged()) throws std::invalid_argument, naming the sample.
+/// status, when given, receives each sample's Status flags (n bytes, written in the loop).
 template <class Model>
 void simulate(Model& model, const double* t, const double* x, double* y, std::size_t n,
               const char* where, unsigned char* status = nullptr) {

@@ -12,26 +12,30 @@
 
 namespace tendonsheath {
 
+/// Parameters of ContinuumPlant (validated by its constructor); SI units.
 struct ContinuumParams {
-  double friction = 0.1;          // mu
-  double stiffness = 2.4e4;       // EA of each tendon, N
-  double pretension = 10.0;       // T0, N
-  double proximal_radius = 5e-3;  // r_p, m
-  double bending_stiffness = 4e-4;  // EI of the backbone, N m^2
-  double tendon_offset = 2e-3;      // r_t, m
-  double backbone_length = 0.03;    // l, m
-  int elements = 100;
+  double friction = 0.1;          ///< mu
+  double stiffness = 2.4e4;       ///< EA of each tendon, N
+  double pretension = 10.0;       ///< T0, N
+  double proximal_radius = 5e-3;  ///< r_p, m
+  double bending_stiffness = 4e-4;  ///< EI of the backbone, N m^2
+  double tendon_offset = 2e-3;      ///< r_t, m
+  double backbone_length = 0.03;    ///< l, m
+  int elements = 100;  ///< N per sheath, >= 2
   // effects beyond the quasi-static pair (see PullPullParams)
-  double distal_inertia = 0.0;     // kg m^2 of the segment about its bending (at theta_b)
-  double distal_damping = 0.0;     // N m s/rad
-  double sheath_viscosity = 0.0;   // N s/m^2
-  double relaxation_fraction = 0.0;
-  double relaxation_time = 1.0;
-  double friction2 = -1.0;
-  double stiffness2 = -1.0;
-  ChainOptions options;
+  double distal_inertia = 0.0;     ///< kg m^2 of the segment about its bending (at theta_b)
+  double distal_damping = 0.0;     ///< N m s/rad
+  double sheath_viscosity = 0.0;   ///< N s/m^2
+  double relaxation_fraction = 0.0;  ///< r in [0, 1): share of EA in the Maxwell arm
+  double relaxation_time = 1.0;  ///< tau, s
+  double friction2 = -1.0;  ///< mu of sheath 2; -1: the same as friction
+  double stiffness2 = -1.0;  ///< EA of tendon 2, N; -1: the same as stiffness
+  ChainOptions options;  ///< numerical options of the friction chain (bound the work of a step)
 };
 
+/// The pull-pull pair a continuum segment maps to: distal radius r_t and a torsional load stiffness
+/// EI / l. Throws std::invalid_argument when bending_stiffness, tendon_offset or backbone_length is
+/// not > 0.
 inline PullPullParams continuum_to_pull_pull(const ContinuumParams& c) {
   const char* w = "ContinuumPlant";
   require_positive(c.bending_stiffness, w, "bending_stiffness");
@@ -56,22 +60,35 @@ inline PullPullParams continuum_to_pull_pull(const ContinuumParams& c) {
   return p;
 }
 
+/// @brief A pull-pull pair driving one constant-curvature continuum segment (spec C.5): desired
+/// motor angle in, bending angle theta_b out.
+///
+/// Li and Rahn: the tendon pull that holds theta_b = kappa l is F = kappa EI / r_t and the stroke
+/// is x_out = r_t theta_b, so the segment is a linear spring k = EI / (r_t^2 l) on the stroke: a
+/// PullPullPlant whose distal pulley has radius r_t and torsional stiffness EI / l.
 class ContinuumPlant : public PullPullPlant {
  public:
+  /// The parameter struct its constructor takes.
   using Params = ContinuumParams;
 
+  /// @param c the parameters; throws std::invalid_argument naming the first one out of range
+  /// @param r1 the route of sheath 1 (its tendon is pulled by a positive input)
+  /// @param r2 the route of sheath 2
   ContinuumPlant(const ContinuumParams& c, const Route& r1, const Route& r2)
       : PullPullPlant(continuum_to_pull_pull(c), r1, r2), c_(c) {}
+  /// Both sheaths along the same route.
   ContinuumPlant(const ContinuumParams& c, const Route& r) : ContinuumPlant(c, r, r) {}
 
-  // Params is ContinuumParams: params() returns them (the pull-pull pair they map to is
-  // pull_pull_params()).
+  /// Params is ContinuumParams: params() returns them (the pull-pull pair they map to is
+  /// pull_pull_params()).
   const ContinuumParams& params() const noexcept { return c_; }
+  /// The parameters it was built with (the same as params()).
   const ContinuumParams& continuum_params() const noexcept { return c_; }
+  /// The parameters of the pull-pull pair they map to.
   const PullPullParams& pull_pull_params() const noexcept { return PullPullPlant::params(); }
-  // Bending angle theta_b (rad), the same as output().
+  /// Bending angle theta_b (rad), the same as output().
   double bending_angle() const noexcept { return output(); }
-  // Li and Rahn tendon force F = kappa EI / r_t for the current bending angle.
+  /// Li and Rahn tendon force F = kappa EI / r_t for the current bending angle.
   double tendon_force() const noexcept {
     return output() / c_.backbone_length * c_.bending_stiffness / c_.tendon_offset;
   }

@@ -69,22 +69,29 @@
 
 namespace tendonsheath {
 
+/// What a node of a FrictionChain is: Driven (moved to the input), Sheath (a point of the sheath with
+/// friction: stuck or slipping) or Load (a load law: constant force, spring, damper, mass).
 enum class NodeKind : unsigned char { Driven = 0, Sheath = 1, Load = 2 };
 
-constexpr double kMaxInput = 1e6;  // m: round-off after a return from it stays below 1e-9 m
-constexpr double kMaxNodeFrictionAngle = 30.0;  // mu dtheta of one node
-constexpr int kMaxIterationsCap = 100000;       // the largest accepted max_iterations
-constexpr int kMaxSubstepsCap = 100000;         // ... max_substeps and extra_iterations
+/// Inputs beyond +-kMaxInput are clamped to it: past that the elastic forces of a chain no longer fit
+/// a double.
+constexpr double kMaxInput = 1e6;  ///< m: round-off after a return from it stays below 1e-9 m
+constexpr double kMaxNodeFrictionAngle = 30.0;  ///< the largest friction angle mu dtheta of one node
+constexpr int kMaxIterationsCap = 100000;       ///< the largest accepted max_iterations
+constexpr int kMaxSubstepsCap = 100000;         ///< the largest accepted max_substeps and extra_iterations
 
+/// The numerical options of a FrictionChain: they bound the work of one step (see
+/// FrictionChain::max_solves()). Validated by validate_chain_options().
 struct ChainOptions {
-  int max_iterations = 50;     // active-set iterations per attempt
-  int max_halvings = 4;        // halvings of a failed increment
-  int max_substeps = 64;       // sub-increments per step at most
-  double max_increment = 0.0;  // largest input sub-increment (m); 0: the plant chooses
-  int extra_iterations = -1;   // iterations of the last-resort attempt; -1: 2 M + 50
-  bool fast_path = true;       // exact shortcuts (lazy update while the map stays valid)
+  int max_iterations = 50;     ///< active-set iterations per attempt
+  int max_halvings = 4;        ///< halvings of a failed increment
+  int max_substeps = 64;       ///< sub-increments per step at most
+  double max_increment = 0.0;  ///< largest input sub-increment (m); 0: the plant chooses
+  int extra_iterations = -1;   ///< iterations of the last-resort attempt; -1: 2 M + 50
+  bool fast_path = true;       ///< exact shortcuts (lazy update while the map stays valid)
 };
 
+/// Throws std::invalid_argument (message starting with `where`) naming the first option out of range.
 inline void validate_chain_options(const ChainOptions& o, const char* where) {
   require(o.max_iterations >= 1 && o.max_iterations <= kMaxIterationsCap, where,
           "max_iterations must be in [1, " + std::to_string(kMaxIterationsCap) + "] (got " +
@@ -109,11 +116,22 @@ inline double node_h(double mu, double dtheta) noexcept {
 }
 }  // namespace detail
 
+/// @brief The quasi-static N-element friction chain of spec A.5, shared by all plants.
+///
+/// Nodes j = 0..M carry displacements u_j; element e joins nodes e-1 and e with tension
+/// T_e = T0_e + k_e (u_e - u_{e-1}). Each node is Driven (u_j = x), Sheath (stuck, or slipping with
+/// the exact discrete capstan ratio exp(-mu dtheta_j)) or Load (T_{j+1} - T_j = F0 + k u + c v + m a).
+/// Viscous sheath friction and viscoelastic (standard linear solid) elements make it rate-dependent.
+/// Per input increment an active-set loop solves the tridiagonal system (Thomas, O(M)) and flips
+/// nodes until nothing flips, halving a failed increment. The set-up members allocate and may
+/// throw; step() is noexcept, allocates nothing and does at most max_solves() solves: a step that
+/// reaches the bound keeps its last finite iterate, reports not_converged and counts in
+/// nonconverged(). A non-finite input or solution leaves the state unchanged.
 class FrictionChain {
  public:
   FrictionChain() = default;
 
-  // M + 1 nodes (all Sheath, no angle) and M elements (to be set).
+  /// M + 1 nodes (all Sheath, no angle) and M elements (to be set).
   explicit FrictionChain(std::size_t M)
       : M_(M),
         kind_(M + 1, NodeKind::Sheath),
@@ -145,13 +163,16 @@ class FrictionChain {
         fmap_(M + 1, 0) {}
 
   // ---- set-up (not real-time) ----------------------------------------------------
+  /// Set up element e (1..M): stiffness k (N/m) and reference tension T0 (N).
   void set_element(std::size_t e, double k, double T0) {
     k_.at(e) = k;
     T0_.at(e) = T0;
     kb_.at(e) = k;
     T0b_.at(e) = T0;
   }
+  /// Make node j a driven node (it moves with the input).
   void set_driven(std::size_t j) { kind_.at(j) = NodeKind::Driven; }
+  /// Make node j a load node: T_{j+1} - T_j = F0 + k u_j + c v_j + mass a_j (N, N/m, N s/m, kg).
   void set_load(std::size_t j, double F0, double k, double c, double mass = 0.0) {
     kind_.at(j) = NodeKind::Load;
     F0_.at(j) = F0;
@@ -161,19 +182,21 @@ class FrictionChain {
     has_mass_ = has_mass_ || mass > 0.0;
     has_damper_ = has_damper_ || c > 0.0 || mass > 0.0;
   }
-  // Viscous friction coefficient c_j (N s/m) of sheath node j.
+  /// Viscous friction coefficient c_j (N s/m) of sheath node j.
   void set_node_viscosity(std::size_t j, double c) {
     cv_.at(j) = c;
     has_damper_ = has_damper_ || c > 0.0;
   }
-  // Standard-linear-solid elements: fraction r in [0, 1) of each element's
-  // stiffness in a Maxwell arm with time constant tau (s); r = 0: elastic.
+  /// Standard-linear-solid elements: fraction r in [0, 1) of each element's
+  /// stiffness in a Maxwell arm with time constant tau (s); r = 0: elastic.
   void set_relaxation(double fraction, double tau) {
     relax_ = fraction;
     tau_ = tau;
     has_damper_ = has_damper_ || fraction > 0.0;
   }
+  /// Set the numerical options (validate them first with validate_chain_options()).
   void set_options(const ChainOptions& o) noexcept { opt_ = o; }
+  /// Set the friction coefficient of every node.
   void set_friction(double mu) noexcept {
     for (std::size_t j = 0; j <= M_; ++j) mu_[j] = mu;
     for (std::size_t j = 0; j <= M_; ++j) h_[j] = detail::node_h(mu_[j], dtheta_[j]);
@@ -181,7 +204,7 @@ class FrictionChain {
     fact_valid_ = false;
     tfact_valid_ = false;
   }
-  // Friction coefficient of one node (e.g. a second sheath of another material).
+  /// Friction coefficient of one node (e.g.\ a second sheath of another material).
   void set_node_friction(std::size_t j, double mu) {
     mu_.at(j) = mu;
     h_[j] = detail::node_h(mu, dtheta_[j]);
@@ -191,8 +214,8 @@ class FrictionChain {
   }
 
   // ---- real-time ---------------------------------------------------------------
-  // Lumped angle of a sheath node (ignored for other nodes). A change takes
-  // effect at the next step; over-capacity nodes then start to slip.
+  /// Lumped angle of a sheath node (ignored for other nodes). A change takes
+  /// effect at the next step; over-capacity nodes then start to slip.
   void set_node_angle(std::size_t j, double dtheta) noexcept {
     if (j > M_ || kind_[j] != NodeKind::Sheath || !(dtheta >= 0.0) || !std::isfinite(dtheta))
       return;
@@ -204,8 +227,8 @@ class FrictionChain {
     tfact_valid_ = false;
   }
 
-  // At rest, uniform reference tensions, everything stuck; the next step()
-  // starts by moving the whole chain rigidly to its input.
+  /// At rest, uniform reference tensions, everything stuck; the next step()
+  /// starts by moving the whole chain rigidly to its input.
   void reset() noexcept {
     std::fill(u_.begin(), u_.end(), 0.0);
     std::fill(sig_.begin(), sig_.end(), 0);
@@ -233,8 +256,12 @@ class FrictionChain {
     compute_tensions(u_.data());
   }
 
-  // Advance to the driven input x (dt: time since the previous step, used by
-  // dampers only). Returns true when the state was updated.
+  /// Advance to the driven input x (dt: time since the previous step, used by
+  /// dampers only). Returns true when the state was updated.
+  /// @param x the driven input, m; a non-finite x leaves the state unchanged, one beyond
+  /// +-kMaxInput is clamped
+  /// @param dt the time since the previous step, s (used only when time_dependent())
+  /// @return true when the state was updated (see status())
   bool step(double x, double dt) noexcept {
     input_clamped_ = false;
     input_held_ = !std::isfinite(x);
@@ -281,32 +308,40 @@ class FrictionChain {
   }
 
   // ---- read-out ----------------------------------------------------------------
+  /// The number of nodes M + 1.
   std::size_t nodes() const noexcept { return M_ + 1; }
+  /// The number of elements M.
   std::size_t elements() const noexcept { return M_; }
+  /// The displacement u_j of node j (0..M), m.
   double u(std::size_t j) const noexcept {
     return lazy_ != 0.0 ? u_[j] + lazy_ * z_[j] : u_[j];
   }
-  // Tension of element e (1..M) after the last step.
+  /// Tension of element e (1..M) after the last step.
   double tension(std::size_t e) const noexcept {
     return T0b_[e] + (1.0 - relax_) * kb_[e] * (u(e) - u(e - 1)) + sigma_[e];
   }
-  // Stick/slip state of node j: 0 stuck, +1/-1 slipping toward node M / node 0
-  // (driven and load nodes report 0; frictionless sheath nodes report 0 too).
+  /// Stick/slip state of node j: 0 stuck, +1/-1 slipping toward node M / node 0
+  /// (driven and load nodes report 0; frictionless sheath nodes report 0 too).
   int state(std::size_t j) const noexcept { return h_[j] > 0.0 ? sig_[j] : 0; }
+  /// The kind of node j.
   NodeKind kind(std::size_t j) const noexcept { return kind_[j]; }
+  /// The lumped curve angle of node j, rad.
   double node_angle(std::size_t j) const noexcept { return dtheta_[j]; }
+  /// The driven input x of the last step, m (after clamping).
   double input() const noexcept { return x_; }
-  // Smallest element tension (O(M)).
+  /// Smallest element tension (O(M)).
   double min_tension() const noexcept {
     double mn = std::numeric_limits<double>::infinity();
     for (std::size_t e = 1; e <= M_; ++e) mn = std::min(mn, tension(e));
     return mn;
   }
+  /// True when the last step left an element tension at or below zero (see set_slack_strict()).
   bool slack() const noexcept { return slack_; }
-  // Slack test used by slack(): min tension <= 0 (strict = false) or < 0.
+  /// Slack test used by slack(): min tension <= 0 (strict = false) or < 0.
   void set_slack_strict(bool strict) noexcept { slack_strict_ = strict; }
+  /// Steps that reached the work bound since reset().
   long nonconverged() const noexcept { return nonconverged_; }
-  // The last step: its input held (non-finite), clamped, not converged, slack.
+  /// The last step: its input held (non-finite), clamped, not converged, slack.
   Status status() const noexcept {
     Status s = Status::ok;
     if (input_held_) s |= Status::held_nonfinite_input;
@@ -315,20 +350,23 @@ class FrictionChain {
     if (slack_) s |= Status::slack;
     return s;
   }
-  // The last step's input was beyond +-kMaxInput and was clamped to it.
+  /// The last step's input was beyond +-kMaxInput and was clamped to it.
   bool input_clamped() const noexcept { return input_clamped_; }
-  // Every increment of the last step converged (false: the best bounded iterate was kept).
+  /// Every increment of the last step converged (false: the best bounded iterate was kept).
   bool last_converged() const noexcept { return last_converged_; }
-  // Solves (and shortcut updates) the last step made; never more than max_solves().
+  /// Solves (and shortcut updates) the last step made; never more than max_solves().
   int last_solves() const noexcept { return last_solves_; }
-  // The hard work bound of one step (see the header): max_substeps + 2 (max_iterations + E).
+  /// The hard work bound of one step (see the header): max_substeps + 2 (max_iterations + E).
   long long max_solves() const noexcept {
     return opt_.max_substeps + 2LL * (opt_.max_iterations + extra_iterations());
   }
+  /// The friction coefficient of the first sheath node.
   double friction() const noexcept { return M_ >= 1 ? mu_[1] : 0.0; }
+  /// The friction coefficient of node j.
   double node_friction(std::size_t j) const noexcept { return mu_[j]; }
-  // True when a step depends on dt (dampers, masses, viscosity, relaxation).
+  /// True when a step depends on dt (dampers, masses, viscosity, relaxation).
   bool time_dependent() const noexcept { return has_damper_; }
+  /// The numerical options.
   const ChainOptions& options() const noexcept { return opt_; }
 
  private:

@@ -36,30 +36,46 @@
 
 namespace tendonsheath {
 
+/// What a Motor's command is: Position (a position-controlled drive: a commanded angle) or Torque (a
+/// commanded torque).
 enum class MotorKind : int { Position = 0, Torque = 1 };
 
+/// Parameters of Motor (validated by its constructor); angles in rad (m for a SingleTendonPlant).
 struct MotorParams {
-  MotorKind kind = MotorKind::Position;
-  double bandwidth_hz = 1.5;  // natural frequency f_n (position)
-  double damping = 0.7;       // zeta (position)
-  double max_speed = std::numeric_limits<double>::infinity();  // rad/s (both)
-  double max_accel = std::numeric_limits<double>::infinity();  // rad/s^2 (position)
-  double inertia = 1e-2;      // J (torque)
-  double viscous = 0.2;       // b (torque)
-  double max_torque = std::numeric_limits<double>::infinity();  // (torque)
-  int max_substeps = 256;
-  double reflected_inertia = 0.0;  // J_r, kg m^2 (position): 0 = ideal lag, ignores torques
-  double coulomb_friction = 0.0;   // tau_c, N m (both; position needs reflected_inertia > 0)
-  double viscous_friction = 0.0;   // b_m, N m s/rad (position; torque kind: use viscous)
-  double gear_backlash = 0.0;      // g, rad: total play between shaft and pulley (both)
+  MotorKind kind = MotorKind::Position;  ///< a position-controlled drive or a torque-driven one
+  double bandwidth_hz = 1.5;  ///< natural frequency f_n (position)
+  double damping = 0.7;       ///< zeta (position)
+  double max_speed = std::numeric_limits<double>::infinity();  ///< largest speed |q'|, rad/s (both)
+  double max_accel = std::numeric_limits<double>::infinity();  ///< largest acceleration |q''|, rad/s^2 (position)
+  double inertia = 1e-2;      ///< J (torque)
+  double viscous = 0.2;       ///< b (torque)
+  double max_torque = std::numeric_limits<double>::infinity();  ///< torque limit of the command, N m (torque)
+  int max_substeps = 256;  ///< most integration sub-steps in one step(), >= 1 (bounds its work)
+  double reflected_inertia = 0.0;  ///< J_r, kg m^2 (position): 0 = ideal lag, ignores torques
+  double coulomb_friction = 0.0;   ///< tau_c, N m (both; position needs reflected_inertia > 0)
+  double viscous_friction = 0.0;   ///< b_m, N m s/rad (position; torque kind: use viscous)
+  double gear_backlash = 0.0;      ///< g, rad: total play between shaft and pulley (both)
 };
 
+/// @brief A motor model that turns a command into the proximal pulley angle (rad), or for a
+/// SingleTendonPlant the proximal displacement (m).
+///
+/// Position: a second-order lag q'' = w^2 (q_cmd - q) - 2 zeta w q', w = 2 pi f_n, with
+/// |q''| <= max_accel and |q'| <= max_speed, backward Euler on sub-steps of w h <= 0.1; the first
+/// step after reset() starts at rest at the command. Torque: J q'' + b q' = sat(tau_cmd,
+/// max_torque) + tau_ext, with tau_ext the tendons' torque on the pulley; it starts at rest at 0.
+/// Optional (off by default): Coulomb and viscous shaft friction (the position servo feels torques
+/// through its reflected inertia J_r) and gear backlash between the shaft (position()) and the
+/// pulley (output()). step() is noexcept, allocates nothing and takes at most max_substeps
+/// sub-steps.
 class Motor {
   static constexpr double kPi = 3.14159265358979323846;
 
  public:
+  /// The parameter struct its constructor takes.
   using Params = MotorParams;
 
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit Motor(const Params& p) : p_(p) {
     const char* w = "Motor";
     require(p.kind == MotorKind::Position || p.kind == MotorKind::Torque, w, "unknown kind");
@@ -88,7 +104,10 @@ class Motor {
     require(std::isfinite(p.gear_backlash), w, "gear_backlash must be finite");
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     q_ = 0.0;
     v_ = 0.0;
@@ -96,9 +115,13 @@ class Motor {
     initialised_ = false;
   }
 
-  // Advance by dt under command u (angle or torque); returns the proximal
-  // pulley angle (the shaft angle without gear backlash). A non-finite command
-  // holds the last position.
+  /// Advance by dt under command u (angle or torque); returns the proximal
+  /// pulley angle (the shaft angle without gear backlash). A non-finite command
+  /// holds the last position.
+  /// @param u the command: an angle (Position kind) or a torque (Torque kind)
+  /// @param dt the time since the previous step, s
+  /// @param tau_ext the torque the tendons exert on the pulley (the plant's drive_reaction())
+  /// @return the proximal pulley angle, the plant's input
   double step(double u, double dt, double tau_ext = 0.0) noexcept {
     held_ = !std::isfinite(u);
     if (held_) {
@@ -171,14 +194,15 @@ class Motor {
     return pulley_;
   }
 
-  // Motor shaft angle (what a motor encoder reads).
+  /// Motor shaft angle (what a motor encoder reads).
   double position() const noexcept { return q_; }
+  /// Motor shaft velocity, rad/s.
   double velocity() const noexcept { return v_; }
-  // The last step was longer than the sub-steps can span, or its command would have driven
-  // the state beyond a double: the motor then covered less (or held), and stayed finite.
+  /// The last step was longer than the sub-steps can span, or its command would have driven
+  /// the state beyond a double: the motor then covered less (or held), and stayed finite.
   bool clamped() const noexcept { return clamped_; }
-  // The last step's status: held (non-finite command), input_clamped (see clamped()),
-  // saturated (the torque limit, or the speed limit, cut the drive in this step).
+  /// The last step's status: held (non-finite command), input_clamped (see clamped()),
+  /// saturated (the torque limit, or the speed limit, cut the drive in this step).
   Status status() const noexcept {
     Status s = Status::ok;
     if (held_) s |= Status::held_nonfinite_input;
@@ -186,8 +210,9 @@ class Motor {
     if (saturated_) s |= Status::saturated;
     return s;
   }
-  // Proximal pulley angle (after the gear play), the plant's input.
+  /// Proximal pulley angle (after the gear play), the plant's input.
   double output() const noexcept { return pulley_; }
+  /// Put the shaft (and the pulley) at angle q with velocity v.
   void set_state(double q, double v) noexcept {
     q_ = q;
     v_ = v;

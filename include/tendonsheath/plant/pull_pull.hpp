@@ -33,24 +33,25 @@
 
 namespace tendonsheath {
 
+/// Parameters of PullPullPlant (validated by its constructor); SI units.
 struct PullPullParams {
-  double friction = 0.1;           // mu
-  double stiffness = 2.4e4;        // EA, N
-  double pretension = 10.0;        // T0, N
-  double proximal_radius = 5e-3;   // r_p, m
-  double distal_radius = 5e-3;     // r_d, m
-  int elements = 100;              // N per sheath, >= 2
-  double load_torque = 0.0;        // tau_0, N m
-  double load_stiffness = 0.0;     // k_theta, N m/rad
-  double load_damping = 0.0;       // c_theta, N m s/rad
-  double distal_inertia = 0.0;     // J_d, kg m^2: the distal joint's inertia
-  double distal_damping = 0.0;     // c_d, N m s/rad: the distal joint's viscous damping
-  double sheath_viscosity = 0.0;   // N s/m^2: viscous drag per metre of sheath
-  double relaxation_fraction = 0.0;  // r in [0, 1): share of EA in the Maxwell arm
-  double relaxation_time = 1.0;      // tau, s
-  double friction2 = -1.0;         // mu of sheath 2; -1: the same as friction
-  double stiffness2 = -1.0;        // EA of tendon 2, N; -1: the same as stiffness
-  ChainOptions options;
+  double friction = 0.1;           ///< mu
+  double stiffness = 2.4e4;        ///< EA, N
+  double pretension = 10.0;        ///< T0, N
+  double proximal_radius = 5e-3;   ///< r_p, m
+  double distal_radius = 5e-3;     ///< r_d, m
+  int elements = 100;              ///< N per sheath, >= 2
+  double load_torque = 0.0;        ///< tau_0, N m
+  double load_stiffness = 0.0;     ///< k_theta, N m/rad
+  double load_damping = 0.0;       ///< c_theta, N m s/rad
+  double distal_inertia = 0.0;     ///< J_d, kg m^2: the distal joint's inertia
+  double distal_damping = 0.0;     ///< c_d, N m s/rad: the distal joint's viscous damping
+  double sheath_viscosity = 0.0;   ///< N s/m^2: viscous drag per metre of sheath
+  double relaxation_fraction = 0.0;  ///< r in [0, 1): share of EA in the Maxwell arm
+  double relaxation_time = 1.0;      ///< tau, s
+  double friction2 = -1.0;         ///< mu of sheath 2; -1: the same as friction
+  double stiffness2 = -1.0;        ///< EA of tendon 2, N; -1: the same as stiffness
+  ChainOptions options;  ///< numerical options of the friction chain (bound the work of a step)
 };
 
 namespace detail {
@@ -62,11 +63,26 @@ inline double stiffness2_of(const PullPullParams& p) noexcept {
 }
 }  // namespace detail
 
+/// @brief Bidirectional pull-pull pair (spec A.4/A.5): two pretensioned tendons in two sheaths
+/// between a proximal pulley (angle in, radius r_p) and a distal pulley (angle out, radius r_d)
+/// with a load.
+///
+/// A FrictionChain of 2N elements: tendon 2 from its proximal end through sheath 2 to the distal
+/// pulley (node N), then back through sheath 1 to the proximal end of tendon 1. A positive input
+/// pulls tendon 1; u_0 = u_2N = r_p q_in and q_out = u_N / r_d. The load resists positive motion:
+/// tau_L = tau_0 + k_theta q_out + c_theta dq_out/dt. Optional (off by default): distal inertia and
+/// damping, viscous sheath friction, tendon viscoelasticity, an unequal pair. The constructor
+/// allocates and may throw (set_route() may throw too); step() is noexcept, allocates nothing and
+/// does bounded work (FrictionChain::max_solves()).
 class PullPullPlant {
  public:
+  /// The parameter struct its constructor takes.
   using Params = PullPullParams;
 
-  // route1: sheath of tendon 1 (pulled by positive input); route2: sheath of tendon 2.
+  /// route1: sheath of tendon 1 (pulled by positive input); route2: sheath of tendon 2.
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range
+  /// @param route1 the route of sheath 1 (its tendon is pulled by a positive input)
+  /// @param route2 the route of sheath 2
   PullPullPlant(const Params& p, const Route& route1, const Route& route2)
       : p_(p),
         N_(static_cast<std::size_t>(p.elements > 0 ? p.elements : 0)),
@@ -118,29 +134,47 @@ class PullPullPlant {
     reset();
   }
 
+  /// Both sheaths along the same route.
   PullPullPlant(const Params& p, const Route& route) : PullPullPlant(p, route, route) {}
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// The number of elements N per sheath.
   std::size_t elements() const noexcept { return N_; }
+  /// The length of sheath 1, m.
   double length1() const noexcept { return L1_; }
+  /// The length of sheath 2, m.
   double length2() const noexcept { return L2_; }
+  /// The total curve angle of sheath 1's current route, rad.
   double total_angle1() const noexcept { return theta1_; }
+  /// The total curve angle of sheath 2's current route, rad.
   double total_angle2() const noexcept { return theta2_; }
 
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     chain_.reset();
     updated_ = true;
   }
 
-  // Proximal pulley angle in (rad), distal pulley angle out (rad).
+  /// Proximal pulley angle in (rad), distal pulley angle out (rad).
+  /// @param q_in the proximal pulley angle, rad; a non-finite one leaves the state unchanged
+  /// @param dt the time since the previous step, s (used only when time_dependent())
+  /// @return the distal pulley angle, rad
   double step(double q_in, double dt = 0.0) noexcept {
     updated_ = chain_.step(p_.proximal_radius * q_in, dt);
     return output();
   }
+  /// The distal pulley angle after the last step, rad.
   double output() const noexcept { return chain_.u(N_) / p_.distal_radius; }
+  /// The proximal pulley angle of the last step, rad (after clamping).
   double input() const noexcept { return chain_.input() / p_.proximal_radius; }
+  /// The distal pulley's displacement at the tendon level, r_d q_out, m.
   double output_displacement() const noexcept { return chain_.u(N_); }
 
+  /// New routes for the sheaths (each length must stay the same; throws std::invalid_argument
+  /// otherwise). It allocates nothing; in a noexcept loop, compute node_angles() beforehand and call
+  /// set_node_angles().
   void set_route(const Route& r1, const Route& r2) {
     detail::check_route_length(r1, L1_, "PullPullPlant.set_route (sheath 1)");
     detail::check_route_length(r2, L2_, "PullPullPlant.set_route (sheath 2)");
@@ -148,9 +182,10 @@ class PullPullPlant {
     r2.node_angles(N_, angles_.data() + (N_ - 1), work_.data());
     set_node_angles(angles_.data());
   }
+  /// Both sheaths along the same new route (see the two-route set_route()).
   void set_route(const Route& r) { set_route(r, r); }
 
-  // 2(N-1) lumped node angles: sheath 1 then sheath 2, each proximal to distal.
+  /// 2(N-1) lumped node angles: sheath 1 then sheath 2, each proximal to distal.
   void set_node_angles(const double* a) noexcept {
     double s1 = 0.0, s2 = 0.0;
     for (std::size_t i = 1; i < N_; ++i) {
@@ -163,7 +198,10 @@ class PullPullPlant {
     theta2_ = s2;
     update_increment();
   }
+  /// The number of lumped node angles set_node_angles() reads, 2 (N - 1).
   std::size_t n_node_angles() const noexcept { return 2 * (N_ - 1); }
+  /// Write the routes' 2 (N - 1) lumped node angles (rad) into out, for set_node_angles() in a loop
+  /// later (not real-time: it allocates; throws when a length differs from the sheath's).
   void node_angles(const Route& r1, const Route& r2, double* out) const {
     detail::check_route_length(r1, L1_, "PullPullPlant (sheath 1)");
     detail::check_route_length(r2, L2_, "PullPullPlant (sheath 2)");
@@ -172,38 +210,42 @@ class PullPullPlant {
     r2.node_angles(N_, out + (N_ - 1), work.data());
   }
 
-  // Tensions (2 x N): row 0 tendon 1, row 1 tendon 2, each proximal to distal.
+  /// Tensions (2 x N): row 0 tendon 1, row 1 tendon 2, each proximal to distal.
   void tensions(double* out) const noexcept {
     for (std::size_t i = 1; i <= N_; ++i) {
       out[i - 1] = chain_.tension(2 * N_ - i + 1);
       out[N_ + i - 1] = chain_.tension(i);
     }
   }
-  // Stick/slip (2 x (N-1)), proximal to distal: +1 tendon slipping toward its
-  // proximal end, -1 toward its distal end, 0 stuck.
+  /// Stick/slip (2 x (N-1)), proximal to distal: +1 tendon slipping toward its
+  /// proximal end, -1 toward its distal end, 0 stuck.
   void slip_state(int* out) const noexcept {
     for (std::size_t i = 1; i < N_; ++i) {
       out[i - 1] = chain_.state(2 * N_ - i);
       out[N_ - 1 + i - 1] = -chain_.state(i);
     }
   }
-  // Torque of the tendons on the proximal pulley, positive along the input.
+  /// Torque of the tendons on the proximal pulley, positive along the input.
   double drive_reaction() const noexcept {
     return p_.proximal_radius * (chain_.tension(1) - chain_.tension(2 * N_));
   }
+  /// True when the last step left a tension <= 0 (a tendon went slack: the model is not valid there).
   bool slack() const noexcept { return chain_.slack(); }
+  /// The smallest element tension, N (O(N)).
   double min_tension() const noexcept { return chain_.min_tension(); }
+  /// Steps that reached the work bound since reset().
   long nonconverged() const noexcept { return chain_.nonconverged(); }
-  // The last step's status (see status.hpp): read right after step(). A step whose state
-  // the chain did not update (FrictionChain::step returned false) is flagged held when its
-  // input was not finite, else not_converged.
+  /// The last step's status (see status.hpp): read right after step(). A step whose state
+  /// the chain did not update (FrictionChain::step returned false) is flagged held when its
+  /// input was not finite, else not_converged.
   Status status() const noexcept {
     const Status s = chain_.status();
     if (updated_ || has(s, Status::held_nonfinite_input)) return s;
     return s | Status::not_converged;
   }
-  // True when a step depends on dt (distal dynamics, damping, viscosity, creep).
+  /// True when a step depends on dt (distal dynamics, damping, viscosity, creep).
   bool time_dependent() const noexcept { return chain_.time_dependent(); }
+  /// The underlying friction chain.
   const FrictionChain& chain() const noexcept { return chain_; }
 
  private:

@@ -12,34 +12,47 @@
 
 namespace tendonsheath {
 
+/// Parameters of Sensor (validated by its constructor).
 struct SensorParams {
-  double resolution = 0.0;  // quantisation step (same unit as x), 0 = none
-  double noise_std = 0.0;   // Gaussian noise standard deviation
-  std::uint64_t seed = 0;
+  double resolution = 0.0;  ///< quantisation step (same unit as x), 0 = none
+  double noise_std = 0.0;   ///< Gaussian noise standard deviation
+  std::uint64_t seed = 0;  ///< seed of the noise generator: a seed gives the same sequence on every platform
 };
 
+/// @brief An encoder-like sensor: y = quantise(x + noise), Gaussian noise of standard deviation
+/// noise_std and quantisation to multiples of resolution (0: none).
+///
+/// The noise comes from a seeded splitmix64 generator and a Box-Muller transform. measure() is
+/// noexcept and allocates nothing; reset() restarts the noise sequence from the seed.
 class Sensor {
   static constexpr double kPi = 3.14159265358979323846;
 
  public:
+  /// The parameter struct its constructor takes.
   using Params = SensorParams;
 
+  /// @param p the parameters; throws std::invalid_argument when resolution or noise_std is not >= 0.
   explicit Sensor(const Params& p) : p_(p) {
     require_non_negative(p.resolution, "Sensor", "resolution");
     require_non_negative(p.noise_std, "Sensor", "noise_std");
     reset();
   }
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
-  // The last reading's status: held_nonfinite_input when x was not finite.
+  /// The last reading's status: held_nonfinite_input when x was not finite.
   Status status() const noexcept { return held_ ? Status::held_nonfinite_input : Status::ok; }
 
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     state_ = p_.seed;
     have_spare_ = false;
     last_ = 0.0;
   }
 
-  // One reading of x; a non-finite x repeats the last reading.
+  /// One reading of x; a non-finite x repeats the last reading.
+  /// @param x the true value
+  /// @return the reading: x plus noise, quantised (the last reading when x is not finite)
   double measure(double x) noexcept {
     held_ = !std::isfinite(x);
     if (held_) return last_;

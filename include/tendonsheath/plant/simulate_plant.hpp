@@ -12,25 +12,29 @@
 
 namespace tendonsheath {
 
-// Route changes: before sample index[i] the plant's node angles become row i
-// of `angles` (count rows of `width` values, row-major).
+/// Route changes: before sample index[i] the plant's node angles become row i
+/// of `angles` (count rows of `width` values, row-major).
 struct RouteSchedule {
-  const std::size_t* index = nullptr;
-  const double* angles = nullptr;
-  std::size_t count = 0;
-  std::size_t width = 0;
+  const std::size_t* index = nullptr;  ///< count sample indices, strictly increasing
+  const double* angles = nullptr;  ///< count x width node angles, rad, finite and >= 0
+  std::size_t count = 0;  ///< the number of route changes (0: none)
+  std::size_t width = 0;  ///< node angles per change: the plant's n_node_angles()
 };
 
+/// Where simulate_plant() writes each sample's record: n values per array; q_out is required, a
+/// nullptr array is not written.
 struct PlantTrace {
-  double* q_out = nullptr;           // plant output per sample (required)
-  double* q_in = nullptr;            // plant input (motor position) per sample, optional
-  unsigned char* slack = nullptr;    // slack flag per sample, optional
-  double* min_tension = nullptr;     // smallest tension per sample, optional
-  double* measured = nullptr;        // sensor reading of q_out per sample, optional
-  double* q_motor = nullptr;         // motor shaft angle (its encoder) per sample, optional
-  unsigned char* status = nullptr;   // Status flags of plant, motor and sensor per sample, optional
+  double* q_out = nullptr;           ///< plant output per sample (required)
+  double* q_in = nullptr;            ///< plant input (motor position) per sample, optional
+  unsigned char* slack = nullptr;    ///< slack flag per sample, optional
+  double* min_tension = nullptr;     ///< smallest tension per sample, optional
+  double* measured = nullptr;        ///< sensor reading of q_out per sample, optional
+  double* q_motor = nullptr;         ///< motor shaft angle (its encoder) per sample, optional
+  unsigned char* status = nullptr;   ///< Status flags of plant, motor and sensor per sample, optional
 };
 
+/// Throws std::invalid_argument (message starting with `where`) unless schedule s fits the plant
+/// and n samples: rows of plant.n_node_angles() finite angles >= 0 at increasing indices < n.
 template <class Plant>
 void check_schedule(const Plant& plant, const RouteSchedule& s, std::size_t n, const char* where) {
   if (s.count == 0) return;
@@ -48,8 +52,19 @@ void check_schedule(const Plant& plant, const RouteSchedule& s, std::size_t n, c
   }
 }
 
-// Starts from plant.reset() (at rest, current route); t may be nullptr when
-// there is no motor and the load has no damper (dt = 0).
+/// Starts from plant.reset() (at rest, current route); t may be nullptr when
+/// there is no motor and the load has no damper (dt = 0).
+/// Validates its inputs first (std::invalid_argument naming the problem), then runs the loop.
+/// @tparam Plant SingleTendonPlant, PullPullPlant or ContinuumPlant
+/// @param plant the plant, reset first
+/// @param motor the motor between the input and the plant, or nullptr (u is the plant input)
+/// @param sensor the output sensor, or nullptr (read only when out.measured is given)
+/// @param t the n sample times, s, finite and increasing, or nullptr (see above)
+/// @param u the n inputs (motor commands, or plant inputs without a motor)
+/// @param n the number of samples, >= 1
+/// @param sched the route changes
+/// @param out where each sample's record goes
+/// @param where the name that starts an error message
 template <class Plant>
 void simulate_plant(Plant& plant, Motor* motor, Sensor* sensor, const double* t, const double* u,
                     std::size_t n, const RouteSchedule& sched, const PlantTrace& out,

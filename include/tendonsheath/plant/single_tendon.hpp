@@ -19,16 +19,17 @@
 
 namespace tendonsheath {
 
+/// Parameters of SingleTendonPlant (validated by its constructor); SI units.
 struct SingleTendonParams {
-  double friction = 0.1;        // mu
-  double stiffness = 2.4e4;     // EA, N
-  int elements = 100;           // N >= 2
-  double load_force = 10.0;     // F0, N: distal load (and tendon tension) at x_out = 0
-  double load_stiffness = 0.0;  // k, N/m
-  double sheath_viscosity = 0.0;     // N s/m^2: viscous drag per metre of sheath
-  double relaxation_fraction = 0.0;  // SLS tendon: share of EA in the Maxwell arm, [0, 1)
-  double relaxation_time = 1.0;      // s
-  ChainOptions options;
+  double friction = 0.1;        ///< mu
+  double stiffness = 2.4e4;     ///< EA, N
+  int elements = 100;           ///< N >= 2
+  double load_force = 10.0;     ///< F0, N: distal load (and tendon tension) at x_out = 0
+  double load_stiffness = 0.0;  ///< k, N/m
+  double sheath_viscosity = 0.0;     ///< N s/m^2: viscous drag per metre of sheath
+  double relaxation_fraction = 0.0;  ///< SLS tendon: share of EA in the Maxwell arm, [0, 1)
+  double relaxation_time = 1.0;      ///< s
+  ChainOptions options;  ///< numerical options of the friction chain (bound the work of a step)
 };
 
 namespace detail {
@@ -60,10 +61,20 @@ inline void check_route_length(const Route& r, double L, const char* w) {
 }
 }  // namespace detail
 
+/// @brief One tendon in one sheath (spec A.1-A.3): proximal displacement in, distal displacement
+/// out (m), with a distal load law F = F0 + k x_out that resists pulling.
+///
+/// A FrictionChain of N elements: node 0 is the distal end (load node), nodes 1..N-1 sheath
+/// nodes, node N the driven proximal end; positive displacement is toward the proximal end. At
+/// rest the tension is uniform, F0. The constructor allocates and may throw (set_route() may
+/// throw too); step() is noexcept, allocates nothing and does bounded work (FrictionChain::max_solves()).
 class SingleTendonPlant {
  public:
+  /// The parameter struct its constructor takes.
   using Params = SingleTendonParams;
 
+  /// @param p the parameters; throws std::invalid_argument naming the first one out of range
+  /// @param route the sheath's route (its length is the sheath length)
   SingleTendonPlant(const Params& p, const Route& route)
       : p_(p), N_(static_cast<std::size_t>(p.elements > 0 ? p.elements : 0)), L_(route.length()) {
     const char* w = "SingleTendonPlant";
@@ -92,31 +103,44 @@ class SingleTendonPlant {
     reset();
   }
 
+  /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
+  /// The number of elements N.
   std::size_t elements() const noexcept { return N_; }
+  /// The sheath length L, m.
   double length() const noexcept { return L_; }
+  /// The total curve angle of the current route, rad.
   double total_angle() const noexcept { return total_angle_; }
 
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
   void reset() noexcept {
     chain_.reset();
     updated_ = true;
   }
 
-  // Proximal displacement in (m), distal displacement out (m).
+  /// Proximal displacement in (m), distal displacement out (m).
+  /// @param x_in the proximal displacement, m; a non-finite one leaves the state unchanged
+  /// @param dt the time since the previous step, s (used only when time_dependent())
+  /// @return the distal displacement, m
   double step(double x_in, double dt = 0.0) noexcept {
     updated_ = chain_.step(x_in, dt);
     return output();
   }
+  /// The distal displacement after the last step, m.
   double output() const noexcept { return chain_.u(0); }
+  /// The proximal displacement of the last step, m (after clamping).
   double input() const noexcept { return chain_.input(); }
 
-  // Route changes (length must stay the same).
+  /// Route changes (length must stay the same; throws std::invalid_argument otherwise). It
+  /// allocates nothing; in a noexcept loop, compute node_angles() beforehand and call
+  /// set_node_angles().
   void set_route(const Route& r) {
     detail::check_route_length(r, L_, "SingleTendonPlant.set_route");
     r.node_angles(N_, angles_.data(), work_.data());
     set_node_angles(angles_.data());
   }
-  // N-1 lumped angles of the interior sheath nodes, proximal to distal.
+  /// N-1 lumped angles of the interior sheath nodes, proximal to distal.
   void set_node_angles(const double* a) noexcept {
     double sum = 0.0;
     for (std::size_t i = 1; i < N_; ++i) {
@@ -126,36 +150,44 @@ class SingleTendonPlant {
     total_angle_ = sum;
     update_increment();
   }
+  /// The number of lumped node angles set_node_angles() reads, N - 1.
   std::size_t n_node_angles() const noexcept { return N_ - 1; }
+  /// Write route r's N - 1 lumped node angles (rad) into out, for set_node_angles() in a loop later
+  /// (not real-time: it allocates; throws when r's length differs from the sheath's).
   void node_angles(const Route& r, double* out) {
     detail::check_route_length(r, L_, "SingleTendonPlant");
     std::vector<double> work(N_);
     r.node_angles(N_, out, work.data());
   }
 
-  // Tensions of the N elements, proximal to distal.
+  /// Tensions of the N elements, proximal to distal.
   void tensions(double* out) const noexcept {
     for (std::size_t i = 1; i <= N_; ++i) out[i - 1] = chain_.tension(N_ - i + 1);
   }
-  // Stick/slip state of the N-1 interior nodes, proximal to distal:
-  // +1 slipping toward the proximal end (pulled), -1 toward the distal end, 0 stuck.
+  /// Stick/slip state of the N-1 interior nodes, proximal to distal:
+  /// +1 slipping toward the proximal end (pulled), -1 toward the distal end, 0 stuck.
   void slip_state(int* out) const noexcept {
     for (std::size_t i = 1; i < N_; ++i) out[i - 1] = chain_.state(N_ - i);
   }
-  // Force the tendon exerts on the actuator, in the direction of positive input.
+  /// Force the tendon exerts on the actuator, in the direction of positive input.
   double drive_reaction() const noexcept { return -chain_.tension(N_); }
+  /// True when the last step left a tension <= 0 (the load pushes: the model is not valid there).
   bool slack() const noexcept { return chain_.slack(); }
+  /// The smallest element tension, N (O(N)).
   double min_tension() const noexcept { return chain_.min_tension(); }
+  /// Steps that reached the work bound since reset().
   long nonconverged() const noexcept { return chain_.nonconverged(); }
-  // The last step's status (see status.hpp): read right after step(). A step whose state
-  // the chain did not update (FrictionChain::step returned false) is flagged held when its
-  // input was not finite, else not_converged.
+  /// The last step's status (see status.hpp): read right after step(). A step whose state
+  /// the chain did not update (FrictionChain::step returned false) is flagged held when its
+  /// input was not finite, else not_converged.
   Status status() const noexcept {
     const Status s = chain_.status();
     if (updated_ || has(s, Status::held_nonfinite_input)) return s;
     return s | Status::not_converged;
   }
+  /// True when a step depends on dt (sheath viscosity or tendon relaxation).
   bool time_dependent() const noexcept { return chain_.time_dependent(); }
+  /// The underlying friction chain.
   const FrictionChain& chain() const noexcept { return chain_; }
 
  private:
