@@ -107,16 +107,31 @@ def _module_names(module) -> list[str]:
 
 
 def _own_members(cls) -> list[tuple[str, object]]:
-    """A class's own public methods and properties (inherited ones are walked on their class)."""
-    members = []
-    for name, raw in vars(cls).items():
-        if name.startswith("_"):
+    """A class's public methods and properties: its own, and those it inherits from a
+    private base of the package (a public base's are walked on that base)."""
+    members, seen = [], set()
+    for klass in cls.__mro__:
+        inherited = klass is not cls
+        if inherited and not (klass.__module__.startswith("tendonsheath") and _private_base(klass)):
             continue
-        if isinstance(raw, (classmethod, staticmethod)):
-            members.append((name, raw.__func__))
-        elif isinstance(raw, property) or inspect.isfunction(raw):
-            members.append((name, raw))
+        for name, raw in vars(klass).items():
+            if name.startswith("_") or name in seen:
+                continue
+            seen.add(name)
+            if isinstance(raw, (classmethod, staticmethod)):
+                members.append((name, raw.__func__))
+            elif isinstance(raw, property) or inspect.isfunction(raw):
+                members.append((name, raw))
     return members
+
+
+def _private_base(klass) -> bool:
+    """A base class no public module exports (e.g. ``_GeneralizedBase``, ``Feedforward``)."""
+    for modname in PUBLIC_MODULES:
+        module = importlib.import_module(modname)
+        if any(getattr(module, n, None) is klass for n in _module_names(module)):
+            return False
+    return True
 
 
 def _is_exception(obj) -> bool:
