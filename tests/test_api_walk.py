@@ -227,8 +227,10 @@ def _docstring_problems(obj) -> list[str]:
             return [f"not numpydoc: {err}"]
     if not doc["Summary"]:
         return ["no summary line"]
-    if isinstance(obj, property):
-        return []  # numpydoc: a property is documented by its summary, as an attribute
+    if isinstance(obj, property) or _is_exception(obj):
+        # numpydoc: a property is documented by its summary, as an attribute; an exception
+        # or warning takes its message as BaseException does
+        return []
     problems = []
     wanted = _signature_params(obj)
     if _documented_params(doc) != wanted:
