@@ -10,7 +10,9 @@ methods and properties. For every public callable:
   ``**kwargs`` under their starred names) and a ``Returns`` (or ``Yields``) section when it
   returns something; a class documents its constructor's parameters in the class docstring;
 * it rejects an unknown keyword with a TypeError that names the keyword;
-* no parameter has a deprecated name (``DEPRECATED`` below).
+* no parameter has a deprecated name (``DEPRECATED`` below);
+
+and no call inside the package passes a deprecated keyword.
 
 A check that cannot apply to a name is listed in ``NOT_APPLICABLE`` with the reason.
 """
@@ -22,6 +24,7 @@ import importlib
 import inspect
 import textwrap
 import warnings
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -436,3 +439,33 @@ def test_no_parameter_has_a_deprecated_name(qual):
     assert not old, f"{qual}: deprecated parameter name(s), use " + ", ".join(
         f"{new!r} for {name!r}" for name, new in old.items()
     )
+
+
+def _deprecated_keyword_calls(source: str, filename: str) -> list[str]:
+    """Calls in ``source`` that pass a deprecated keyword to a Python callable (the C++
+    structs of ``_core`` keep their own names: they are left out)."""
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        if not isinstance(node, ast.Call):
+            continue
+        callee = ast.unparse(node.func)
+        if callee.split(".")[0] in ("core", "_core"):
+            continue
+        for kw in node.keywords:
+            if kw.arg and _deprecated_in(callee, kw.arg):
+                found.append(f"{filename}:{node.lineno}: {callee}({kw.arg}=...)")
+    return found
+
+
+def test_no_deprecated_keyword_is_used_inside_the_package():
+    package = Path(ts.__file__).parent
+    found = []
+    for path in sorted(package.rglob("*.py")):
+        found += _deprecated_keyword_calls(path.read_text(), str(path.relative_to(package)))
+    assert not found, "deprecated keyword(s) used inside the package:\n" + "\n".join(found)
+
+
+def test_the_deprecated_keyword_scan_can_fail():
+    source = "Route.uniform(1.0, total_angle=2.0)\nmodels.BoucWen(a=0.3)\ncore.X(v_eps=1)\nf(a=1)"
+    found = _deprecated_keyword_calls(source, "x.py")
+    assert found == ["x.py:1: Route.uniform(total_angle=...)", "x.py:2: models.BoucWen(a=...)"]
