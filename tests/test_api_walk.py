@@ -22,6 +22,7 @@ from __future__ import annotations
 import ast
 import importlib
 import inspect
+import re
 import textwrap
 import warnings
 from pathlib import Path
@@ -164,16 +165,43 @@ PUBLIC = public_objects()
 CALLABLES = {q: v for q, v in PUBLIC.items() if not isinstance(v[1], property)}
 
 
-def _signature_params(obj) -> list[str]:
-    """The names a caller passes, as numpydoc writes them (``*args``, ``**kwargs``)."""
-    target = obj.__init__ if inspect.isclass(obj) else obj
-    sig = inspect.signature(obj if inspect.isclass(obj) else target)
-    names = []
-    for i, p in enumerate(sig.parameters.values()):
-        if i == 0 and p.name in ("self", "cls") and not inspect.isclass(obj):
+def _nanobind_signature(obj) -> tuple[list[str], bool] | None:
+    """(parameter names, whether it returns None) of a nanobind function or class (its first
+    overload, from ``__nb_signature__``: ``inspect.signature`` cannot read those)."""
+    sigs = getattr(obj.__init__ if inspect.isclass(obj) else obj, "__nb_signature__", None)
+    if not sigs:
+        return None
+    text = sigs[0][0]
+    inner, returns = text[text.index("(") + 1 : text.rindex(")")], text[text.rindex(")") + 1 :]
+    names, depth, part = [], 0, ""
+    for ch in inner + ",":
+        if ch == "," and depth == 0:
+            names.append(re.split(r"[:=]", part)[0].strip())
+            part = ""
             continue
+        depth += (ch in "([{") - (ch in ")]}")
+        part += ch
+    names = [n for n in names if n not in ("", "/", "*")]
+    return names, returns.strip() in ("", "-> None")
+
+
+def _raw_params(obj) -> list[str]:
+    """The signature's names, ``self`` included, starred as numpydoc writes them."""
+    nb = _nanobind_signature(obj)
+    if nb is not None:
+        return nb[0]
+    names = []
+    for p in inspect.signature(obj).parameters.values():
         prefix = {p.VAR_POSITIONAL: "*", p.VAR_KEYWORD: "**"}.get(p.kind, "")
         names.append(prefix + p.name)
+    return names
+
+
+def _signature_params(obj) -> list[str]:
+    """The names a caller passes, as numpydoc writes them (``*args``, ``**kwargs``)."""
+    names = _raw_params(obj)
+    if names and names[0] in ("self", "cls"):
+        names = names[1:]
     return names
 
 
@@ -205,6 +233,9 @@ def _own_nodes(node):
 
 def _what_it_gives(func) -> str | None:
     """The section the function needs: Yields, Returns or None (it returns None)."""
+    nb = _nanobind_signature(func)
+    if nb is not None:
+        return None if nb[1] else "Returns"
     node = _function_node(func)
     if node is None:
         return "Returns"
@@ -405,10 +436,7 @@ def _takes_kwargs(obj) -> bool:
 
 def _call_with_bogus(qual, obj):
     """Call with only the unknown keyword: binding fails before the body runs."""
-    if not inspect.isclass(obj) and next(iter(inspect.signature(obj).parameters), "") in (
-        "self",
-        "cls",
-    ):
+    if not inspect.isclass(obj) and _raw_params(obj)[:1] in (["self"], ["cls"]):
         return obj(None, **{BOGUS: 1})
     return obj(**{BOGUS: 1})
 
@@ -469,3 +497,15 @@ def test_the_deprecated_keyword_scan_can_fail():
     source = "Route.uniform(1.0, total_angle=2.0)\nmodels.BoucWen(a=0.3)\ncore.X(v_eps=1)\nf(a=1)"
     found = _deprecated_keyword_calls(source, "x.py")
     assert found == ["x.py:1: Route.uniform(total_angle=...)", "x.py:2: models.BoucWen(a=...)"]
+
+
+def test_the_walk_reads_nanobind_signatures():
+    # a name bound from C++ (nanobind) is walked like a Python one
+    from tendonsheath import _core
+
+    assert _signature_params(_core.shape_integrals) == ["s", "theta", "friction"]
+    assert _what_it_gives(_core.shape_integrals) == "Returns"
+    assert _signature_params(_core.Route) == ["s", "theta"]
+    assert _signature_params(_core.Route.angle_at) == ["s"]
+    with pytest.raises(TypeError, match=REJECTED):
+        _call_with_bogus("shape_integrals", _core.shape_integrals)
