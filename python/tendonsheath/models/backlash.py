@@ -16,7 +16,7 @@ class Backlash(HysteresisModel):
     c_r, c_l : float, default 1.0
         Slopes of the rising and falling branches (> 0).
     B_r, B_l : float, default 0.1
-        Half-widths of the band on the rising and falling side (input unit); B_r + B_l >= 0.
+        Half-widths of the band on the rising and falling side (input unit), >= 0.
     """
 
     _core = core.Backlash

@@ -47,9 +47,9 @@ class BoucWen(HysteresisModel):
     Parameters
     ----------
     A : float, default 1.0
-        Amplitude of the state's increment.
+        Amplitude of the state's increment, > 0.
     beta : float, default 0.5
-        Shape parameter, > 0.
+        Shape parameter, > 0 (and beta + gamma > 0).
     gamma : float, default 0.5
         Shape parameter, |gamma| <= beta.
     n : float, default 1.0
@@ -57,7 +57,7 @@ class BoucWen(HysteresisModel):
     alpha : float, optional
         Share of the linear path, in [0, 1] (default 0.5).
     k : float, default 1.0
-        Gain.
+        Gain, finite.
     max_step : float, default 0.05
         Largest RK4 sub-step in x (input unit).
     max_substeps : int, default 256

@@ -21,11 +21,11 @@ class BoucWenBacklash(HysteresisModel):
     c_r, c_l : float, default 1.0
         Slopes of the rising and falling branches (> 0).
     B_r, B_l : float, default 0.1
-        Dead-zone offsets on the rising and falling side (input unit).
+        Dead-zone offsets on the rising and falling side (input unit), >= 0.
     rho : float, optional
-        Rate of the state w per unit input; default 2 / (B_r + B_l).
+        Rate of the state w per unit input, > 0; default 2 / (B_r + B_l).
     sigma : float, default 1.0
-        Shape of the transitions.
+        Shape of the transitions, >= 0.5.
     n : float, default 4.0
         Flatness of the dead zone (>= 1).
     max_step : float, default 0.05

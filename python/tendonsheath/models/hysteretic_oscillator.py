@@ -53,11 +53,11 @@ class HystereticOscillator(HysteresisModel):
     c : float, default 0.1
         Viscous damping, >= 0.
     k : float, default 1.0
-        Linear stiffness.
+        Linear stiffness, >= 0 (k + alpha > 0).
     alpha : float, default 1.0
-        Hysteretic stiffness of z.
+        Hysteretic stiffness of z, >= 0.
     beta : float, default 1.0
-        Scale of the hysteretic terms.
+        Scale of the hysteretic terms, >= 0.
     gamma, delta : float, default 0.5
         Shape of the loop (any sign of gamma + delta; see above).
     nu : float, default 1.0
@@ -65,7 +65,7 @@ class HystereticOscillator(HysteresisModel):
     substeps : int, default 4
         Least RK4 sub-steps per sample.
     max_substeps : int, default 4096
-        Most RK4 sub-steps per sample.
+        Most RK4 sub-steps per sample, >= substeps.
     input_interpolation : {"linear", "hold", "bandlimited"}, default "linear"
         The input reconstruction between samples.
     lookahead : int, default 16
