@@ -433,9 +433,8 @@ MINIMAL_CALLS = {
         lambda kw: ts.compensate.AdaptiveController.from_model(_model(), inertia=1e-4, **kw)
     ),
     "tendonsheath.compensate.continuum_feedforward.ContinuumFeedforward.from_model": (
-        lambda kw: ts.compensate.ContinuumFeedforward.from_model(
-            _sprung(), tendon_offset=0.002, backbone_length=0.05, **{"total_angle": 1.0, **kw}
-        )
+        # the curve angle positionally: its keyword is being renamed (issue 14)
+        lambda kw: ts.compensate.ContinuumFeedforward.from_model(_sprung(), 0.002, 0.05, 1.0, **kw)
     ),
     "tendonsheath.compensate.curve_angle_feedforward.CurveAngleFeedforward.from_model": (
         lambda kw: ts.compensate.CurveAngleFeedforward.from_model(ts.models.CurveAngleModel(), **kw)
