@@ -61,7 +61,18 @@ def default_models(curve_angle: bool = False) -> list:
     output map, and a rate-dependent Hammerstein chain (BoucWenBacklash followed by a
     second-order lag; ``"lag1+bwb"`` names the Wiener one, ``"pi+lag1"`` a PI one); also
     CurveAngleModel when the logs have a curve angle. Chains with a linear block need a
-    time column with a uniform step; they are left out of the defaults without one."""
+    time column with a uniform step; they are left out of the defaults without one.
+
+    Parameters
+    ----------
+    curve_angle : bool, default False
+        Whether the logs have a curve angle (adds CurveAngleModel).
+
+    Returns
+    -------
+    list
+        Model classes and Chain instances.
+    """
     models: list = [
         Backlash,
         BoucWenBacklash,
@@ -102,7 +113,23 @@ def parse_model(spec) -> Any:
     """A candidate from a class, a Chain instance or a name: ``BoucWenBacklash``, ``gpi``,
     ``bwb+poly3`` (Chain with a cubic), ``bwb+odd3`` (odd cubic), ``bwb+lag2`` / ``pi+lag1``
     (Hammerstein: then a second- / first-order lag), ``lag1+bwb`` (Wiener), ``plant`` (the
-    grey-box :class:`~tendonsheath.models.PlantModel`; not a default candidate)."""
+    grey-box :class:`~tendonsheath.models.PlantModel`; not a default candidate).
+
+    Parameters
+    ----------
+    spec : type, Chain or str
+        The candidate.
+
+    Returns
+    -------
+    type or Chain
+        A model class or a Chain instance.
+
+    Raises
+    ------
+    ValueError
+        Not a class, a Chain or a known name.
+    """
     if isinstance(spec, Chain) or (isinstance(spec, type) and issubclass(spec, HysteresisModel)):
         return spec
     if not isinstance(spec, str):
@@ -140,7 +167,18 @@ def parse_model(spec) -> Any:
 
 def model_name(candidate) -> str:
     """BoucWenBacklash, BoucWenBacklash+poly3, BoucWenBacklash+lag2 (Hammerstein),
-    lag1+BoucWenBacklash (Wiener)."""
+    lag1+BoucWenBacklash (Wiener).
+
+    Parameters
+    ----------
+    candidate : type or Chain
+        A model class or a Chain instance.
+
+    Returns
+    -------
+    str
+        Its name in the comparison table.
+    """
     if isinstance(candidate, Chain):
         short = {FirstOrderLag: "lag1", SecondOrderLag: "lag2"}
         if isinstance(candidate.second, LinearBlock):
@@ -160,7 +198,25 @@ class Comparison:
     and cpu_seconds (fitting and scoring over all folds), error (if the fit failed) and
     status ("out of time" past the time budget); sorted by val_nrmse (failures last).
     ``fits``: each candidate's Fit (a list of one per fold under cross-validation);
-    ``winner_fit``: the Fit of ``winner`` (None for the affine map)."""
+    ``winner_fit``: the Fit of ``winner`` (None for the affine map).
+
+    Parameters
+    ----------
+    table : list of dict
+        One row per candidate (see above).
+    winner : HysteresisModel
+        The best model, fitted on all the data.
+    winner_name : str
+        Its name.
+    fits : dict, optional
+        Each candidate's Fit (a list per fold under cross-validation).
+    validation : list of dict, optional
+        The held-out data and each model's predictions (for the report's figures).
+    mode : str, default ""
+        How the models were validated.
+    winner_fit : Fit, optional
+        The winner's Fit.
+    """
 
     table: list[dict[str, Any]]
     winner: HysteresisModel
@@ -171,12 +227,36 @@ class Comparison:
     winner_fit: Any = field(default=None, repr=False)
 
     def row(self, name: str) -> dict[str, Any]:
+        """The table's row of one candidate.
+
+        Parameters
+        ----------
+        name : str
+            The candidate's name (:func:`model_name`).
+
+        Returns
+        -------
+        dict
+            Its row.
+
+        Raises
+        ------
+        KeyError
+            No candidate of that name.
+        """
         for r in self.table:
             if r["model"] == name:
                 return r
         raise KeyError(name)
 
     def text(self) -> str:
+        """The table as text, one line per candidate, and the winner.
+
+        Returns
+        -------
+        str
+            Several lines (also ``str(comparison)``).
+        """
         lines = [
             f"{'model':<34} {'train rmse':>11} {'val rmse':>11} {'val nrmse':>10} {'/affine':>8}"
         ]
@@ -195,6 +275,13 @@ class Comparison:
         return self.text()
 
     def to_dict(self) -> dict[str, Any]:
+        """The comparison as a JSON-ready dict: mode, table, winner and the winner's model.
+
+        Returns
+        -------
+        dict
+            What comparison.json holds.
+        """
         return {
             "mode": self.mode,
             "table": self.table,
@@ -204,7 +291,18 @@ class Comparison:
 
     def report(self, path: str | Path) -> Path:
         """Write DIR/comparison.json, DIR/loops.png, DIR/residuals.png and DIR/report.html
-        (validation loops and residuals of every model); returns the HTML path."""
+        (validation loops and residuals of every model); returns the HTML path.
+
+        Parameters
+        ----------
+        path : str or Path
+            The folder (made as needed).
+
+        Returns
+        -------
+        Path
+            DIR/report.html.
+        """
         import matplotlib
 
         matplotlib.use("Agg")
@@ -437,6 +535,46 @@ def compare_models(
     past it, or that was not started, gets a row with ``status`` "out of time" and an
     ``error`` saying so (never ranked, never dropped). The winner's final fit on all the
     data comes after the budget (about one fold's time).
+
+    Parameters
+    ----------
+    logs : list of Log or tuple
+        The recordings.
+    models : sequence, optional
+        The candidates (default :func:`default_models`).
+    validate : "cv", float or sequence of Log, default "cv"
+        Cross-validation, a held-out fraction, or held-out logs.
+    folds : int, optional
+        Blocks of a single recording's cross-validation (default 3).
+    curve_angle : float, optional
+        The curve angle (rad) of recordings without one.
+    seed : int or None, default 0
+        Seed of every identification.
+    maxiter : int, default 100
+        Generations of each search.
+    popsize : int, default 15
+        Population per parameter of each search.
+    workers : int, optional
+        Threads of the batched simulations (default all cores).
+    progress : bool, default False
+        Show a progress bar.
+    refit : bool, default True
+        With a held-out fraction, fit the winner on all the data (False: keep its fit on the
+        training part); cross-validation always does.
+    on_fit : callable, optional
+        Called as on_fit(name, seconds) after each candidate.
+    time_budget : float, optional
+        Seconds of wall clock for the candidates' cross-validation.
+
+    Returns
+    -------
+    Comparison
+        The table, the winner and the fits.
+
+    Raises
+    ------
+    ValueError
+        Bad logs, models, validation or time budget.
     """
     if time_budget is not None and not (
         isinstance(time_budget, int | float) and time_budget > 0 and np.isfinite(time_budget)

@@ -29,7 +29,18 @@ INSTALL_HINT = "pip install 'tendonsheath[control]'"
 
 
 def require_control():
-    """The ``control`` module, or an ImportError that says how to install it."""
+    """The ``control`` module, or an ImportError that says how to install it.
+
+    Returns
+    -------
+    module
+        python-control.
+
+    Raises
+    ------
+    ImportError
+        python-control is not installed.
+    """
     try:
         import control
     except ImportError as exc:
@@ -45,6 +56,13 @@ class Snapshots:
     ``block`` is a model or compensator: deep-copyable, with ``reset()`` and
     ``_control_step(u, dt)`` (u: the input vector); a block's first step gets dt = 0, as in
     ``simulate`` and ``command``.
+
+    Parameters
+    ----------
+    block : model or compensator
+        The block to step (deep-copied; the original is not touched).
+    dt : float
+        Sample time (s).
     """
 
     def __init__(self, block, dt: float):
@@ -80,9 +98,47 @@ class Snapshots:
         return self._next[key]
 
     def output(self, state, u) -> float:
+        """The block's output for input u from snapshot ``state``.
+
+        Parameters
+        ----------
+        state : array_like of float
+            The snapshot index (the system's one state).
+        u : array_like of float
+            The input vector.
+
+        Returns
+        -------
+        float
+            The output.
+
+        Raises
+        ------
+        ValueError
+            A state that is not a known snapshot index.
+        """
         return self._advance(state, u)[1]
 
     def update(self, state, u) -> int:
+        """The snapshot index after input u from snapshot ``state``.
+
+        Parameters
+        ----------
+        state : array_like of float
+            The snapshot index (the system's one state).
+        u : array_like of float
+            The input vector.
+
+        Returns
+        -------
+        int
+            The next state.
+
+        Raises
+        ------
+        ValueError
+            A state that is not a known snapshot index.
+        """
         return self._advance(state, u)[0]
 
 
@@ -94,7 +150,33 @@ def to_system(
     name: str | None = None,
 ):
     """A ``control.NonlinearIOSystem`` (discrete, sample time dt) stepping ``block``; the
-    signal names default to the block's ``control_inputs`` and ``control_output``."""
+    signal names default to the block's ``control_inputs`` and ``control_output``.
+
+    Parameters
+    ----------
+    block : model or compensator
+        The block.
+    dt : float
+        Sample time (s), finite and > 0.
+    inputs : sequence of str, optional
+        Input signal names, as many as the block's.
+    output : str, optional
+        Output signal name.
+    name : str, optional
+        The system's name.
+
+    Returns
+    -------
+    control.NonlinearIOSystem
+        The system, with its ``snapshots`` attached.
+
+    Raises
+    ------
+    ValueError
+        A wrong number of input names, a bad dt, or a block that streams with a delay.
+    ImportError
+        python-control is not installed.
+    """
     control = require_control()
     inputs = list(block.control_inputs if inputs is None else inputs)
     if len(inputs) != len(block.control_inputs):
@@ -127,7 +209,18 @@ def to_system(
 
 
 def streaming_delay(block) -> int:
-    """Samples by which ``block.step`` lags its input (parts of a Chain or Scaled included)."""
+    """Samples by which ``block.step`` lags its input (parts of a Chain or Scaled included).
+
+    Parameters
+    ----------
+    block : model or compensator
+        The block.
+
+    Returns
+    -------
+    int
+        The delay in samples.
+    """
     lag = getattr(block, "delay", 0)
     lag = lag if isinstance(lag, int) else 0
     for part in ("first", "second", "inner"):
@@ -138,7 +231,24 @@ def streaming_delay(block) -> int:
 
 
 def frequency_response_data(frequencies_hz, gain_db, phase_deg, name: str | None = None):
-    """``control.FrequencyResponseData`` from gains (dB) and phases (deg) at frequencies (Hz)."""
+    """``control.FrequencyResponseData`` from gains (dB) and phases (deg) at frequencies (Hz).
+
+    Parameters
+    ----------
+    frequencies_hz : array_like of float
+        Frequencies (Hz).
+    gain_db : array_like of float
+        Gains (dB).
+    phase_deg : array_like of float
+        Phases (deg).
+    name : str, optional
+        The system's name.
+
+    Returns
+    -------
+    control.FrequencyResponseData
+        The response at omega = 2 pi f (rad/s).
+    """
     control = require_control()
     f = np.asarray(frequencies_hz, dtype=float)
     response = 10.0 ** (np.asarray(gain_db, dtype=float) / 20.0) * np.exp(

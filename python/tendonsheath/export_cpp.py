@@ -128,7 +128,25 @@ def _compensator_body(ff) -> tuple[str, str]:
 
 def cpp_header(source: str | Path, namespace: str | None = None) -> str:
     """The header text for a model or compensator JSON file, its declarations in `namespace`
-    (default: the file's stem)."""
+    (default: the file's stem).
+
+    Parameters
+    ----------
+    source : str or Path
+        A model or compensator saved with ``to_json``.
+    namespace : str, optional
+        A C++ namespace name (default the file's stem, non-word characters as "_").
+
+    Returns
+    -------
+    str
+        The header's text.
+
+    Raises
+    ------
+    ValueError
+        An invalid namespace name, or a file that is not a model or compensator.
+    """
     from .compensate import load_compensator
     from .models import load_model
 

@@ -46,7 +46,29 @@ MAX_UPSAMPLING = 10  # resampling may multiply the samples by at most this
 @dataclass
 class Log:
     """Columns of one recording. ``t`` is None when no time column was asked for; ``y`` is
-    None when no output column was; ``curve_angle`` is a per-sample array or None."""
+    None when no output column was; ``curve_angle`` is a per-sample array or None.
+
+    Parameters
+    ----------
+    t : numpy.ndarray of float or None
+        Sample times (s), or None without a time column.
+    x : numpy.ndarray of float
+        The input column.
+    y : numpy.ndarray of float or None
+        The output column, or None.
+    curve_angle : numpy.ndarray of float, optional
+        The curve angle of each sample (rad), or None.
+    extra : dict of str to numpy.ndarray, optional
+        The file's other numeric columns, by name.
+    path : str, default ""
+        The file it was read from.
+    columns : list of str, optional
+        All column names of the file.
+    notes : list of str, optional
+        Findings of the reader (dropped or filled rows, gaps, resampling, ...).
+    rows : numpy.ndarray of int, optional
+        The file row (bag: message number) of every sample; None once resampled.
+    """
 
     t: np.ndarray | None
     x: np.ndarray
@@ -80,7 +102,25 @@ class Log:
 
     def split(self, fraction: float) -> tuple[int, float | None]:
         """Sample index where the last ``fraction`` of the recording (in time, else in
-        samples) begins, and its time."""
+        samples) begins, and its time.
+
+        Parameters
+        ----------
+        fraction : float
+            The held-out share, in (0, 1).
+
+        Returns
+        -------
+        index : int
+            First sample of the held-out part.
+        time : float or None
+            Its time (s); None without a time column.
+
+        Raises
+        ------
+        ValueError
+            fraction not in (0, 1).
+        """
         if not 0.0 < fraction < 1.0:
             raise ValueError(f"the held-out fraction must be in (0, 1) (got {fraction})")
         if self.t is None:
@@ -91,7 +131,13 @@ class Log:
         return k, float(t_cut)
 
     def to_radians(self) -> Log:
-        """A copy with x, y and the curve angle converted from degrees to radians."""
+        """A copy with x, y and the curve angle converted from degrees to radians.
+
+        Returns
+        -------
+        Log
+            The converted copy, with a note saying so.
+        """
         return replace(
             self,
             x=deg2rad(self.x),
@@ -101,7 +147,23 @@ class Log:
         )
 
     def resampled(self, rate: float) -> Log:
-        """A copy on a uniform time grid at ``rate`` Hz (linear interpolation)."""
+        """A copy on a uniform time grid at ``rate`` Hz (linear interpolation).
+
+        Parameters
+        ----------
+        rate : float
+            Sample rate (Hz), > 0.
+
+        Returns
+        -------
+        Log
+            The resampled copy (``rows`` None), with a note saying so.
+
+        Raises
+        ------
+        ValueError
+            No time column, a rate not > 0, fewer than 3 samples, or more than 10x upsampling.
+        """
         if self.t is None:
             raise ValueError(f"{self.path}: resampling needs a time column")
         if not (np.isfinite(rate) and rate > 0):
@@ -134,12 +196,34 @@ class Log:
 
 
 def deg2rad(values):
-    """Degrees to radians (arrays or numbers)."""
+    """Degrees to radians (arrays or numbers).
+
+    Parameters
+    ----------
+    values : float or array_like of float
+        Angles (deg).
+
+    Returns
+    -------
+    numpy.ndarray of float
+        Angles (rad), shaped as values.
+    """
     return np.deg2rad(np.asarray(values, dtype=float))
 
 
 def rad2deg(values):
-    """Radians to degrees (arrays or numbers)."""
+    """Radians to degrees (arrays or numbers).
+
+    Parameters
+    ----------
+    values : float or array_like of float
+        Angles (rad).
+
+    Returns
+    -------
+    numpy.ndarray of float
+        Angles (deg), shaped as values.
+    """
     return np.rad2deg(np.asarray(values, dtype=float))
 
 
@@ -396,7 +480,25 @@ def _open(path: Path, sheet=None) -> _Table:
 
 def columns(path: str | Path, sheet=None) -> list[str]:
     """The column names of a data file (of a text file: from its header alone; of a ROS bag:
-    every number its topics hold, as /topic:field)."""
+    every number its topics hold, as /topic:field).
+
+    Parameters
+    ----------
+    path : str or Path
+        A data file or ROS bag.
+    sheet : str or int, optional
+        The Excel sheet (default the first).
+
+    Returns
+    -------
+    list of str
+        The column names.
+
+    Raises
+    ------
+    ValueError
+        A file that cannot be read (the message names it).
+    """
     path = Path(path)
     bag = bag_path(path)
     if bag is not None:
@@ -434,6 +536,39 @@ def read_log(
     timestamps, missing values, gaps, irregular sampling) are listed in ``Log.notes``.
     A ROS bag (.bag, .db3, .mcap, a bag folder): signals are "/topic:field" and ``time`` is
     None, "header", "receive" or "/topic:field" (see the module's doc).
+
+    Parameters
+    ----------
+    path : str or Path
+        A CSV/TSV, NPY, NPZ, HDF5 or Excel file, or a ROS bag.
+    time : str or int, optional
+        The time column (s); None: none, models run on the sample index.
+    input : str or int
+        The input column; required.
+    output : str or int, optional
+        The output column; None for prediction only.
+    curve_angle : str, int or float, optional
+        The curve-angle column, or a constant curve angle.
+    resample : float or "auto", optional
+        Resample to this rate (Hz), or to the median rate when irregular.
+    missing : {"error", "drop", "interpolate"}, default "error"
+        What to do with NaN or empty cells.
+    degrees : bool, default False
+        Convert input, output and curve angle from degrees to radians.
+    sheet : str or int, optional
+        The Excel sheet (default the first).
+    gap_factor : float, default 3.0
+        A time step above this many median steps is reported as a gap.
+
+    Returns
+    -------
+    Log
+        The recording.
+
+    Raises
+    ------
+    ValueError
+        Any problem with the file, naming the file and, where it applies, column and row.
     """
     if missing not in ("error", "drop", "interpolate"):
         raise ValueError(f"missing must be 'error', 'drop' or 'interpolate' (got {missing!r})")
@@ -587,7 +722,20 @@ def _is_number(value) -> bool:
 
 
 def write_csv(path: str | Path, columns: dict[str, np.ndarray]) -> Path:
-    """Write equal-length columns as a CSV with a header."""
+    """Write equal-length columns as a CSV with a header.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file to write (atomically).
+    columns : dict of str to array_like
+        Column name -> values, all of one length.
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
     path = Path(path)
     names = list(columns)
     data = np.column_stack([np.asarray(columns[k], dtype=float) for k in names])

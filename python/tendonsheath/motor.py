@@ -28,6 +28,16 @@ class Motor:
     q'' = w^2 (q_cmd - q) - 2 zeta w q' + (tau_tendons - b_m q' - tau_c sgn q') / J.
     The plant is driven by the pulley angle; a motor encoder reads the shaft
     (``SimulationResult.q_motor``).
+
+    Parameters
+    ----------
+    params : MotorParams
+        The C++ parameter struct; build a motor with :meth:`position` or :meth:`torque`.
+
+    Raises
+    ------
+    ValueError
+        A parameter the C++ core rejects (the message names it).
     """
 
     def __init__(self, params):
@@ -46,6 +56,37 @@ class Motor:
         viscous_friction: float = 0.0,
         gear_backlash: float = 0.0,
     ) -> Motor:
+        """A position-controlled motor (a second-order lag on the commanded angle).
+
+        Parameters
+        ----------
+        bandwidth_hz : float, default 1.5
+            Natural frequency of the position loop (Hz), > 0.
+        damping : float, default 0.7
+            Damping ratio zeta of the loop, > 0.
+        max_speed : float, default inf
+            Speed limit (rad/s), > 0.
+        max_accel : float, default inf
+            Acceleration limit (rad/s^2), > 0.
+        inertia : float, default 0.0
+            Reflected inertia J (kg m^2), >= 0; 0 is the ideal lag that feels no torque.
+        coulomb_friction : float, default 0.0
+            Coulomb friction on the shaft (N m), >= 0.
+        viscous_friction : float, default 0.0
+            Viscous friction on the shaft (N m s/rad), >= 0.
+        gear_backlash : float, default 0.0
+            Total play between shaft and pulley (rad), >= 0.
+
+        Returns
+        -------
+        Motor
+            The motor, at rest at its first command.
+
+        Raises
+        ------
+        ValueError
+            A parameter out of range (the message names it).
+        """
         p = core.MotorParams()
         p.kind = core.MotorKind.Position
         p.bandwidth_hz = float(bandwidth_hz)
@@ -68,6 +109,33 @@ class Motor:
         coulomb_friction: float = 0.0,
         gear_backlash: float = 0.0,
     ) -> Motor:
+        """A torque-commanded motor: J q'' + b q' = sat(tau_cmd, max_torque) + tau_tendons.
+
+        Parameters
+        ----------
+        inertia : float, default 1e-2
+            Rotor inertia J (kg m^2), > 0.
+        viscous : float, default 0.2
+            Viscous damping b (N m s/rad), >= 0.
+        max_torque : float, default inf
+            Saturation of the commanded torque (N m), > 0.
+        max_speed : float, default inf
+            Speed limit (rad/s), > 0.
+        coulomb_friction : float, default 0.0
+            Coulomb friction on the shaft (N m), >= 0.
+        gear_backlash : float, default 0.0
+            Total play between shaft and pulley (rad), >= 0.
+
+        Returns
+        -------
+        Motor
+            The motor, at rest at q = 0.
+
+        Raises
+        ------
+        ValueError
+            A parameter out of range (the message names it).
+        """
         p = core.MotorParams()
         p.kind = core.MotorKind.Torque
         p.inertia = float(inertia)
@@ -80,10 +148,12 @@ class Motor:
 
     @property
     def kind(self) -> str:
+        """The kind: "position" or "torque"."""
         return "position" if self._params.kind == core.MotorKind.Position else "torque"
 
     @property
     def params(self) -> dict:
+        """The motor's parameters by the names of :meth:`position` or :meth:`torque`."""
         p = self._params
         if self.kind == "position":
             keys = ("bandwidth_hz", "damping", "max_speed", "max_accel")
@@ -95,19 +165,59 @@ class Motor:
         return {**{k: getattr(p, k) for k in keys}, **extra}
 
     def reset(self) -> None:
+        """Back to rest: the next step starts afresh."""
         self._engine.reset()
 
     def step(self, command: float, dt: float, tau_ext: float = 0.0) -> float:
-        """Advance by dt; returns the motor position (rad)."""
+        """Advance by dt; returns the motor position (rad).
+
+        Parameters
+        ----------
+        command : float
+            Commanded angle (rad, position kind) or torque (N m, torque kind).
+        dt : float
+            Time step (s), >= 0.
+        tau_ext : float, default 0.0
+            External torque on the pulley from the tendons (N m).
+
+        Returns
+        -------
+        float
+            The pulley angle (rad).
+        """
         dt = checked_dt(dt)
         return self._engine.step(float(command), float(dt), float(tau_ext))
 
     def status(self) -> Status:
-        """The last step's :class:`~tendonsheath.Status` (held, clamped, saturated)."""
+        """The last step's :class:`~tendonsheath.Status` (held, clamped, saturated).
+
+        Returns
+        -------
+        Status
+            The flags of the last :meth:`step`.
+        """
         return Status(self._engine.status())
 
     def simulate(self, t, command) -> np.ndarray:
-        """Motor position for a command sequence, unloaded (starts from rest)."""
+        """Motor position for a command sequence, unloaded (starts from rest).
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,)
+            Sample times (s), increasing; required.
+        command : array_like of float, shape (n,)
+            Commands (rad or N m, by kind).
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (n,)
+            The pulley angle at each sample (rad).
+
+        Raises
+        ------
+        ValueError
+            t missing, or samples not finite or of different lengths.
+        """
         ts, us = as_time_and_signal(t, command, "command")
         if ts is None:
             raise ValueError("Motor.simulate: t is required")

@@ -14,20 +14,59 @@ from .route import Route
 
 
 def tanh_half_over(a):
-    """tanh(a/2)/a, -> 1/2 - a^2/24 as a -> 0."""
+    """tanh(a/2)/a, -> 1/2 - a^2/24 as a -> 0.
+
+    Parameters
+    ----------
+    a : float or array_like
+        The capstan exponent mu Theta.
+
+    Returns
+    -------
+    numpy.ndarray of float
+        tanh(a/2)/a, shaped as a (the series below 1e-4).
+    """
     a = np.asarray(a, dtype=np.float64)
     safe = np.where(np.abs(a) < 1e-4, 1.0, a)
     return np.where(np.abs(a) < 1e-4, 0.5 - a * a / 24, np.tanh(safe / 2) / safe)
 
 
 def capstan_ratio(mu, total_angle, direction=1.0):
-    """Full-slip distal/proximal tension ratio T_d/T_p = exp(-direction mu Theta) (A1)."""
+    """Full-slip distal/proximal tension ratio T_d/T_p = exp(-direction mu Theta) (A1).
+
+    Parameters
+    ----------
+    mu : float or array_like
+        Friction coefficient mu.
+    total_angle : float or array_like
+        Total curve angle Theta (rad).
+    direction : float or array_like, default 1.0
+        +1 when the tendon is pulled (slides towards the motor), -1 when released.
+
+    Returns
+    -------
+    numpy.ndarray of float
+        T_d / T_p, broadcast over the arguments.
+    """
     return np.exp(-np.asarray(direction) * np.asarray(mu) * np.asarray(total_angle))
 
 
 def route_shape(route, mu: float) -> core.ShapeIntegrals:
     """g, G and Theta of a route (anything with ``s`` and ``theta`` samples) for friction mu,
-    as the C++ core's compensators take them."""
+    as the C++ core's compensators take them.
+
+    Parameters
+    ----------
+    route : Route
+        Or any object with ``s`` (m) and ``theta`` (rad) sample arrays.
+    mu : float
+        Friction coefficient.
+
+    Returns
+    -------
+    ShapeIntegrals
+        The C++ struct with ``g``, ``G`` and the total angle.
+    """
     return core.shape_integrals(
         np.ascontiguousarray(route.s, dtype=np.float64),
         np.ascontiguousarray(route.theta, dtype=np.float64),
@@ -37,13 +76,45 @@ def route_shape(route, mu: float) -> core.ShapeIntegrals:
 
 def shape_integrals(route: Route, mu: float) -> tuple[float, float]:
     """g = (1/L) int e^{-mu theta} ds and G = (1/L) int e^{+mu theta} ds (spec A.2), exact for
-    the piecewise-linear theta(s) of a route (the C++ core's computation)."""
+    the piecewise-linear theta(s) of a route (the C++ core's computation).
+
+    Parameters
+    ----------
+    route : Route
+        The sheath's route.
+    mu : float
+        Friction coefficient.
+
+    Returns
+    -------
+    g, G : float
+        The two shape integrals (dimensionless).
+    """
     shape = route_shape(route, mu)
     return float(shape.g), float(shape.G)
 
 
 def backlash_half_width(length, EA, pretension, mu, total_angle):
-    """e_b = T0 L tanh(mu Theta/2) / EA: half the pull-pull dead zone, uniform curvature (A7)."""
+    """e_b = T0 L tanh(mu Theta/2) / EA: half the pull-pull dead zone, uniform curvature (A7).
+
+    Parameters
+    ----------
+    length : float or array_like
+        Sheath length L (m).
+    EA : float or array_like
+        Tendon axial stiffness EA (N).
+    pretension : float or array_like
+        Pretension T0 (N).
+    mu : float or array_like
+        Friction coefficient mu.
+    total_angle : float or array_like
+        Total curve angle Theta (rad).
+
+    Returns
+    -------
+    numpy.ndarray of float
+        e_b (m), broadcast over the arguments.
+    """
     return (
         np.asarray(pretension)
         * np.asarray(length)
@@ -53,7 +124,26 @@ def backlash_half_width(length, EA, pretension, mu, total_angle):
 
 
 def load_offset(length, EA, load_force, mu, total_angle):
-    """e_L = F_L L tanh(a/2) / (EA a), a = mu Theta: the load shift of both branches (A7)."""
+    """e_L = F_L L tanh(a/2) / (EA a), a = mu Theta: the load shift of both branches (A7).
+
+    Parameters
+    ----------
+    length : float or array_like
+        Sheath length L (m).
+    EA : float or array_like
+        Tendon axial stiffness EA (N).
+    load_force : float or array_like
+        Distal load F_L (N), positive resisting forward motion.
+    mu : float or array_like
+        Friction coefficient mu.
+    total_angle : float or array_like
+        Total curve angle Theta (rad).
+
+    Returns
+    -------
+    numpy.ndarray of float
+        e_L (m), broadcast over the arguments.
+    """
     return (
         np.asarray(load_force)
         * np.asarray(length)
@@ -63,22 +153,92 @@ def load_offset(length, EA, load_force, mu, total_angle):
 
 
 def load_compliance(length, EA, mu, total_angle):
-    """C_L = L tanh(a/2) / (EA a) (m/N): output shift per newton of distal load."""
+    """C_L = L tanh(a/2) / (EA a) (m/N): output shift per newton of distal load.
+
+    Parameters
+    ----------
+    length : float or array_like
+        Sheath length L (m).
+    EA : float or array_like
+        Tendon axial stiffness EA (N).
+    mu : float or array_like
+        Friction coefficient mu.
+    total_angle : float or array_like
+        Total curve angle Theta (rad).
+
+    Returns
+    -------
+    numpy.ndarray of float
+        C_L (m/N), broadcast over the arguments.
+    """
     return np.asarray(length) * tanh_half_over(np.asarray(mu) * np.asarray(total_angle)) / EA
 
 
 def spring_slope(length, EA, mu, total_angle, k):
-    """Branch slope dx_out/dx_in = 1/(1 + k C_L) with a spring load F_L = k x_out (spec A.4)."""
+    """Branch slope dx_out/dx_in = 1/(1 + k C_L) with a spring load F_L = k x_out (spec A.4).
+
+    Parameters
+    ----------
+    length : float or array_like
+        Sheath length L (m).
+    EA : float or array_like
+        Tendon axial stiffness EA (N).
+    mu : float or array_like
+        Friction coefficient mu.
+    total_angle : float or array_like
+        Total curve angle Theta (rad).
+    k : float or array_like
+        Stiffness of the spring load (N/m).
+
+    Returns
+    -------
+    numpy.ndarray of float
+        The slope (dimensionless, in (0, 1]), broadcast over the arguments.
+    """
     return 1.0 / (1.0 + np.asarray(k) * load_compliance(length, EA, mu, total_angle))
 
 
 def dead_zone_width(length, EA, pretension, mu, total_angle):
-    """2 e_b: the input dead zone of a pull-pull pair, uniform curvature (A7)."""
+    """2 e_b: the input dead zone of a pull-pull pair, uniform curvature (A7).
+
+    Parameters
+    ----------
+    length : float or array_like
+        Sheath length L (m).
+    EA : float or array_like
+        Tendon axial stiffness EA (N).
+    pretension : float or array_like
+        Pretension T0 (N).
+    mu : float or array_like
+        Friction coefficient mu.
+    total_angle : float or array_like
+        Total curve angle Theta (rad).
+
+    Returns
+    -------
+    numpy.ndarray of float
+        2 e_b (m), broadcast over the arguments.
+    """
     return 2.0 * backlash_half_width(length, EA, pretension, mu, total_angle)
 
 
 def no_slack_limit(pretension, mu, total_angle):
-    """Largest distal load F_L before the released tendon goes slack: T0 (a/sinh a)(1 + e^-a)."""
+    """Largest distal load F_L before the released tendon goes slack: T0 (a/sinh a)(1 + e^-a).
+
+    Parameters
+    ----------
+    pretension : float or array_like
+        Pretension T0 (N).
+    mu : float or array_like
+        Friction coefficient mu.
+    total_angle : float or array_like
+        Total curve angle Theta (rad).
+
+    Returns
+    -------
+    numpy.ndarray of float
+        The load limit (N), broadcast over the arguments (a -> 0: 2 T0).
+    """
     a = np.asarray(mu) * np.asarray(total_angle)
     safe = np.where(np.abs(a) < 1e-8, 1.0, a)
     ratio = np.where(np.abs(a) < 1e-8, 1.0, safe / np.sinh(safe))
@@ -98,6 +258,26 @@ def pull_pull_offsets(
     General (A5)/(A6) with the shape integrals g, G of each sheath (they may differ in shape
     and length); with equal uniform sheaths this is (A7):
     x_out = x_in - (L/EA) tanh(a/2) [T0 sigma + F_L/a].
+
+    Parameters
+    ----------
+    route1 : Route
+        Route of sheath 1 (the tendon pulled forward).
+    EA : float
+        Tendon axial stiffness (N), both tendons.
+    pretension : float
+        Pretension T0 (N).
+    mu : float
+        Friction coefficient, both sheaths.
+    load_force : float, default 0.0
+        Distal load F_L (N).
+    route2 : Route, optional
+        Route of sheath 2 (default: route1).
+
+    Returns
+    -------
+    forward, backward : float
+        x_in - x_out on the forward and the backward branch (m).
     """
     route2 = route1 if route2 is None else route2
     L1, L2 = route1.length, route2.length
@@ -118,7 +298,28 @@ def pull_pull_offsets(
 
 
 def pull_pull_dead_zone(route1: Route, EA, pretension, mu, load_force=0.0, route2=None) -> float:
-    """Input dead-zone width (m) of a pull-pull pair: forward minus backward steady offset."""
+    """Input dead-zone width (m) of a pull-pull pair: forward minus backward steady offset.
+
+    Parameters
+    ----------
+    route1 : Route
+        Route of sheath 1.
+    EA : float
+        Tendon axial stiffness (N).
+    pretension : float
+        Pretension T0 (N).
+    mu : float
+        Friction coefficient.
+    load_force : float, default 0.0
+        Distal load F_L (N).
+    route2 : Route, optional
+        Route of sheath 2 (default: route1).
+
+    Returns
+    -------
+    float
+        The dead-zone width (m).
+    """
     f, b = pull_pull_offsets(route1, EA, pretension, mu, load_force, route2)
     return f - b
 
@@ -127,6 +328,22 @@ def single_tendon_dead_zone(route: Route, EA, distal_tension, mu) -> float:
     """(A4): input travel to reverse a single tendon pulled at distal tension T_d (m).
 
     b = (L/EA) T_p0 [g - e^{-2a} G] with T_p0 = T_d e^{a}; uniform: 4 T_d L sinh^2(a/2)/(EA a).
+
+    Parameters
+    ----------
+    route : Route
+        The sheath's route.
+    EA : float
+        Tendon axial stiffness (N).
+    distal_tension : float
+        Distal tension T_d (N).
+    mu : float
+        Friction coefficient.
+
+    Returns
+    -------
+    float
+        The input travel b (m).
     """
     a = mu * route.total_angle
     g, G = shape_integrals(route, mu)
@@ -136,7 +353,28 @@ def single_tendon_dead_zone(route: Route, EA, distal_tension, mu) -> float:
 
 def single_tendon_elongation(route: Route, EA, proximal_tension, mu, reference_tension, sign=1):
     """(A3) in full slip: Delta = (L/EA)(T_p g - T_ref) when pulled (sign +1),
-    (L/EA)(T_p G - T_ref) when released (sign -1)."""
+    (L/EA)(T_p G - T_ref) when released (sign -1).
+
+    Parameters
+    ----------
+    route : Route
+        The sheath's route.
+    EA : float
+        Tendon axial stiffness (N).
+    proximal_tension : float
+        Proximal tension T_p (N).
+    mu : float
+        Friction coefficient.
+    reference_tension : float
+        Tension T_ref at which the tendon has its rest length (N).
+    sign : int, default 1
+        +1 pulled, -1 released.
+
+    Returns
+    -------
+    float
+        The elongation Delta (m).
+    """
     g, G = shape_integrals(route, mu)
     shape = g if sign > 0 else G
     return float(route.length / EA * (proximal_tension * shape - reference_tension))

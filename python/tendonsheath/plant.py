@@ -55,6 +55,31 @@ class SimulationResult:
     unconverged active-set increments (0 in normal use), ``status`` each sample's
     :class:`~tendonsheath.Status` flags of plant, motor and sensor (uint8; count them with
     :func:`~tendonsheath.status_counts`).
+
+    Parameters
+    ----------
+    t : numpy.ndarray of float or None
+        Sample times (s).
+    command : numpy.ndarray of float
+        The commands given.
+    q_in : numpy.ndarray of float
+        Plant input after the motor (proximal pulley angle, rad; m for a single tendon).
+    q_out : numpy.ndarray of float
+        The output.
+    measured : numpy.ndarray of float
+        The sensor reading of q_out (q_out without a sensor).
+    slack : numpy.ndarray of bool
+        Per sample: a tendon went slack.
+    tensions : numpy.ndarray of float
+        Final element tensions (N); rows: tendons, proximal to distal.
+    nonconverged : int
+        Accepted but unconverged active-set increments (0 in normal use).
+    q_motor : numpy.ndarray of float, optional
+        Motor shaft angle (rad), with a motor.
+    status : numpy.ndarray of uint8, optional
+        Each sample's Status flags.
+    input_interpolation : str, default "hold"
+        How the command was reconstructed between samples.
     """
 
     t: np.ndarray | None
@@ -71,10 +96,12 @@ class SimulationResult:
 
     @property
     def any_slack(self) -> bool:
+        """Whether a tendon went slack at any sample."""
         return bool(self.slack.any())
 
     @property
     def first_slack_index(self) -> int | None:
+        """Index of the first slack sample (None when there is none)."""
         idx = np.flatnonzero(self.slack)
         return int(idx[0]) if idx.size else None
 
@@ -138,12 +165,29 @@ class _Plant:
     ) -> None:
         """The default reconstruction of the command between samples in :meth:`simulate`
         ("hold", "linear" or "bandlimited", on a grid ``substeps`` times finer; see
-        :mod:`tendonsheath.plant_input`). :meth:`step` stays causal (hold) whatever it is."""
+        :mod:`tendonsheath.plant_input`). :meth:`step` stays causal (hold) whatever it is.
+
+        Parameters
+        ----------
+        mode : {"hold", "linear", "bandlimited"}
+            The reconstruction.
+        substeps : int, optional
+            Refinement of the grid (default ``plant_input.DEFAULT_SUBSTEPS``).
+        lookahead : int, optional
+            Half-width of the band-limited sinc in samples (default
+            ``plant_input.DEFAULT_LOOKAHEAD``).
+
+        Raises
+        ------
+        ValueError
+            An unknown mode or a substeps or lookahead out of range.
+        """
         plant_input.check_interpolation(mode, substeps, lookahead, type(self).__name__)
         self._interpolation = (mode, int(substeps), int(lookahead))
 
     @property
     def input_interpolation(self) -> str:
+        """The default reconstruction of the command in :meth:`simulate`."""
         return self._interpolation[0]
 
     def _setup_io(self, motor, sensor):
@@ -169,6 +213,18 @@ class _Plant:
         The first step after construction or ``reset()`` takes its command as the rest state
         (both tendons at pretension, output = command): start a stream from the position the
         mechanism is really at, e.g. ``step(0.0)``, or the first move skips the dead zone.
+
+        Parameters
+        ----------
+        command : float
+            The command (rad at the pulley; m for a single tendon; N m for a torque motor).
+        dt : float, default 0.0
+            Time since the previous sample (s).
+
+        Returns
+        -------
+        float
+            The output after the step (rad; m for a single tendon).
         """
         dt = checked_dt(dt)
         u = float(command)
@@ -178,51 +234,109 @@ class _Plant:
 
     def status(self) -> Status:
         """The last step's :class:`~tendonsheath.Status`: the plant's (held, clamped,
-        not_converged, slack) and its motor's (held, clamped, saturated)."""
+        not_converged, slack) and its motor's (held, clamped, saturated).
+
+        Returns
+        -------
+        Status
+            The flags of the last :meth:`step`.
+        """
         s = self._engine.status()
         if self._motor_engine is not None:
             s |= self._motor_engine.status()
         return Status(s)
 
     def output(self) -> float:
+        """The output after the last step (rad or m).
+
+        Returns
+        -------
+        float
+            The output.
+        """
         return self._engine.output()
 
     def input(self) -> float:
-        """The plant input after the motor (rad or m)."""
+        """The plant input after the motor (rad or m).
+
+        Returns
+        -------
+        float
+            The proximal pulley angle (rad) or displacement (m).
+        """
         return self._engine.input()
 
     def tensions(self) -> np.ndarray:
-        """Element tensions (N) after the last step, proximal to distal."""
+        """Element tensions (N) after the last step, proximal to distal.
+
+        Returns
+        -------
+        numpy.ndarray of float
+            Shape (N,) for one tendon, (2, N) for a pair.
+        """
         t = self._engine.tensions()
         return t[0] if self._rows == 1 else t
 
     def slip_state(self) -> np.ndarray:
         """Stick/slip map of the interior sheath nodes, proximal to distal: +1 slipping toward
-        the proximal end (the tendon is pulled), -1 toward the distal end, 0 stuck."""
+        the proximal end (the tendon is pulled), -1 toward the distal end, 0 stuck.
+
+        Returns
+        -------
+        numpy.ndarray of int
+            Shape (N - 1,) for one tendon, (2, N - 1) for a pair.
+        """
         s = self._engine.slip_state()
         return s[0] if self._rows == 1 else s
 
     def slack(self) -> bool:
-        """True when a tendon tension is <= 0 after the last step."""
+        """True when a tendon tension is <= 0 after the last step.
+
+        Returns
+        -------
+        bool
+            Whether a tendon is slack.
+        """
         return self._engine.slack()
 
     def min_tension(self) -> float:
+        """The smallest element tension after the last step.
+
+        Returns
+        -------
+        float
+            The tension (N).
+        """
         return self._engine.min_tension()
 
     @property
     def elements(self) -> int:
+        """Elements per sheath."""
         return self._engine.elements
 
     @property
     def friction(self) -> float:
+        """Friction coefficient mu (of sheath 1)."""
         return self._engine.params.friction
 
     @property
     def stiffness(self) -> float:
+        """Tendon axial stiffness EA (N) (of tendon 1)."""
         return self._engine.params.stiffness
 
     def element_positions(self, sheath: int = 1) -> np.ndarray:
-        """Arc length (m) of each element's midpoint along its sheath, proximal to distal."""
+        """Arc length (m) of each element's midpoint along its sheath, proximal to distal.
+
+        Parameters
+        ----------
+        sheath : int, default 1
+            1, or 2 for the second sheath of a pair.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (N,)
+            The midpoints (m).
+        """
         L = self._lengths()[sheath - 1]
         n = self.elements
         return (np.arange(n) + 0.5) * L / n
@@ -252,6 +366,34 @@ class _Plant:
         Returns q_out, or a :class:`SimulationResult` with ``full=True`` (its ``status`` holds
         each sample's flags), or ``(q_out, flags)`` with ``status=True``. Warns
         (:class:`SlackWarning`) with the time of the first slack sample.
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s), increasing.
+        command : array_like of float, shape (n,)
+            Commands (as for :meth:`step`).
+        routes : callable, optional
+            t -> Route (or a (route1, route2) pair), evaluated at every sample.
+        full : bool, default False
+            Return a :class:`SimulationResult`.
+        input_interpolation : {"hold", "linear", "bandlimited"}, optional
+            The reconstruction of the command (default: the plant's).
+        periodic : bool, optional
+            Whether the record is a whole number of periods (None: detected).
+        status : bool, default False
+            Also return each sample's Status flags.
+
+        Returns
+        -------
+        q_out : numpy.ndarray of float, shape (n,)
+            The output; ``(q_out, flags)`` with ``status=True``, a :class:`SimulationResult`
+            with ``full=True``.
+
+        Raises
+        ------
+        ValueError
+            t missing where it is needed, routes not callable, a bad route, or bad samples.
         """
         name = f"{type(self).__name__}.simulate"
         ts, us = as_time_and_signal(t, command, "command")
@@ -337,7 +479,18 @@ class _Plant:
         return self._engine.time_dependent()
 
     def plot_tensions(self, ax=None):
-        """Draw the tension profile along the route(s) (see :func:`tendonsheath.plots`)."""
+        """Draw the tension profile along the route(s) (see :func:`tendonsheath.plots`).
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Where to draw (default a new figure).
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+        """
         from .plots import plot_tension_profile
 
         return plot_tension_profile(self, ax=ax)
@@ -348,6 +501,41 @@ class SingleTendonPlant(_Plant):
 
     ``load`` is a :class:`~tendonsheath.loads.ConstantForce`, ``LinearSpring`` or
     ``SpringPreload`` pulling the distal end (default ConstantForce(10 N)).
+
+    Parameters
+    ----------
+    route : Route
+        Route of the sheath.
+    friction : float, default 0.1
+        Friction coefficient mu.
+    stiffness : float, default 2.4e4
+        Tendon axial stiffness EA (N).
+    elements : int, default 100
+        Elements N per sheath, >= 2.
+    load : ConstantForce, LinearSpring or SpringPreload, optional
+        The distal load (default ConstantForce(10.0)).
+    motor : Motor, optional
+        A drive between the command and the proximal pulley.
+    sensor : Sensor, optional
+        Reads the output (``SimulationResult.measured``).
+    max_increment : float, optional
+        Largest input sub-increment of the solver (m); None: the plant chooses.
+    fast_path : bool, default True
+        Use the solver's exact shortcuts (lazy update while the slip map stays valid).
+    sheath_viscosity : float, optional
+        Viscous drag on the sliding tendon (N s/m per metre of sheath; None: off).
+    relaxation_fraction : float, optional
+        Share r in [0, 1) of EA that relaxes (standard linear solid; None: off).
+    relaxation_time : float, optional
+        Time constant tau of the relaxation (s).
+
+    Raises
+    ------
+    ValueError
+        A route, load, motor or sensor of the wrong kind, elements not an integer >= 2, or a
+        value the C++ core rejects (the message names it).
+    TypeError
+        An effect that is not a number.
     """
 
     _rows = 1
@@ -395,7 +583,18 @@ class SingleTendonPlant(_Plant):
         return (self.route.length,)
 
     def set_route(self, route: Route) -> None:
-        """Bend the sheath to a new route (same length); over-capacity nodes slip next step."""
+        """Bend the sheath to a new route (same length); over-capacity nodes slip next step.
+
+        Parameters
+        ----------
+        route : Route
+            The new route, of the same length.
+
+        Raises
+        ------
+        ValueError
+            Not a Route, or of another length.
+        """
         self._engine.set_route(_check_route(route, "route", type(self).__name__)._core)
         self.route = route
 
@@ -403,7 +602,13 @@ class SingleTendonPlant(_Plant):
         return self._engine.node_angles(_check_route(r, "routes(t)", type(self).__name__)._core)
 
     def closed_form(self) -> dict:
-        """Capstan ratio and (A4) dead zone for the current route and load at rest (m)."""
+        """Capstan ratio and (A4) dead zone for the current route and load at rest (m).
+
+        Returns
+        -------
+        dict
+            ``capstan_ratio`` and ``dead_zone`` (m).
+        """
         F0, _ = self.load.linear()
         return {
             "capstan_ratio": float(physics.capstan_ratio(self.friction, self.route.total_angle)),
@@ -436,6 +641,57 @@ class PullPullPlant(_Plant):
       unequal (None: the same as tendon 1).
 
     Any of these (or a damped load) makes a step depend on dt, so ``t`` is then required.
+
+    Parameters
+    ----------
+    route : Route
+        Route of the sheath (of tendon 1 for a pair).
+    friction : float, default 0.1
+        Friction coefficient mu (of sheath 1 for a pair).
+    stiffness : float, default 2.4e4
+        Tendon axial stiffness EA (N) (of tendon 1 for a pair).
+    pretension : float, default 10.0
+        Pretension T0 of both tendons (N).
+    proximal_radius : float, default 5e-3
+        Proximal (motor) pulley radius r_p (m).
+    distal_radius : float, default 5e-3
+        Distal pulley radius r_d (m).
+    elements : int, default 100
+        Elements N per sheath, >= 2.
+    load : ConstantTorque, TorsionalSpring or SpringDamper, optional
+        The load on the distal pulley (None: none).
+    motor : Motor, optional
+        A drive between the command and the proximal pulley.
+    route2 : Route, optional
+        Route of sheath 2 (default: route).
+    sensor : Sensor, optional
+        Reads the output (``SimulationResult.measured``).
+    max_increment : float, optional
+        Largest input sub-increment of the solver (m); None: the plant chooses.
+    fast_path : bool, default True
+        Use the solver's exact shortcuts (lazy update while the slip map stays valid).
+    distal_inertia : float, optional
+        J_d (kg m^2) of a dynamic distal joint (None: off).
+    distal_damping : float, optional
+        c_d (N m s/rad) of the distal joint (None: off).
+    sheath_viscosity : float, optional
+        Viscous drag on the sliding tendon (N s/m per metre of sheath; None: off).
+    relaxation_fraction : float, optional
+        Share r in [0, 1) of EA that relaxes (standard linear solid; None: off).
+    relaxation_time : float, optional
+        Time constant tau of the relaxation (s).
+    friction2 : float, optional
+        Friction of sheath 2 (None: as sheath 1).
+    stiffness2 : float, optional
+        EA of tendon 2 (N) (None: as tendon 1).
+
+    Raises
+    ------
+    ValueError
+        A route, load, motor or sensor of the wrong kind, elements not an integer >= 2, or a
+        value the C++ core rejects (the message names it).
+    TypeError
+        An effect that is not a number.
     """
 
     _rows = 2
@@ -500,14 +756,17 @@ class PullPullPlant(_Plant):
     # parameters
     @property
     def pretension(self) -> float:
+        """Pretension T0 (N)."""
         return self._engine.params.pretension
 
     @property
     def proximal_radius(self) -> float:
+        """Proximal pulley radius r_p (m)."""
         return self._engine.params.proximal_radius
 
     @property
     def distal_radius(self) -> float:
+        """Distal pulley radius r_d (m)."""
         return self._engine.params.distal_radius
 
     def _lengths(self):
@@ -516,7 +775,20 @@ class PullPullPlant(_Plant):
     def set_route(self, route: Route, route2: Route | None = None) -> None:
         """Bend the sheaths (route2 defaults to route); lengths must not change. Nodes whose
         stored tension gradient exceeds the new friction capacity start to slip at the next
-        step (spec A.5)."""
+        step (spec A.5).
+
+        Parameters
+        ----------
+        route : Route
+            New route of sheath 1.
+        route2 : Route, optional
+            New route of sheath 2 (default: route).
+
+        Raises
+        ------
+        ValueError
+            Not a Route, or a length that changed.
+        """
         cls = type(self).__name__
         r1 = _check_route(route, "route", cls)
         r2 = r1 if route2 is None else _check_route(route2, "route2", cls)
@@ -535,29 +807,70 @@ class PullPullPlant(_Plant):
 
     # closed forms ------------------------------------------------------------------
     def load_force(self) -> float:
-        """Distal load at rest at the tendon level F_L = tau_L / r_d (N) (springs: preload)."""
+        """Distal load at rest at the tendon level F_L = tau_L / r_d (N) (springs: preload).
+
+        Returns
+        -------
+        float
+            F_L (N); 0 without a load.
+        """
         if self.load is None:
             return 0.0
         return self.load.rotary()[0] / self.distal_radius
 
     def steady_offsets(self, load_force: float | None = None) -> tuple[float, float]:
-        """Full-slip x_in - x_out (m) on the forward and backward branch: (A5)/(A6) with g, G."""
+        """Full-slip x_in - x_out (m) on the forward and backward branch: (A5)/(A6) with g, G.
+
+        Parameters
+        ----------
+        load_force : float, optional
+            Distal load F_L (N); default :meth:`load_force`.
+
+        Returns
+        -------
+        forward, backward : float
+            The two offsets (m at the tendon level).
+        """
         F = self.load_force() if load_force is None else float(load_force)
         return physics.pull_pull_offsets(
             self.route, self.stiffness, self.pretension, self.friction, F, self.route2
         )
 
     def dead_zone_width(self, load_force: float | None = None) -> float:
-        """Input dead-zone width (m at the tendon level; divide by r_p for rad): A7 / g, G."""
+        """Input dead-zone width (m at the tendon level; divide by r_p for rad): A7 / g, G.
+
+        Parameters
+        ----------
+        load_force : float, optional
+            Distal load F_L (N); default :meth:`load_force`.
+
+        Returns
+        -------
+        float
+            The width (m).
+        """
         f, b = self.steady_offsets(load_force)
         return f - b
 
     def backlash_half_width(self) -> float:
-        """e_b (m): half the dead zone without load (uniform routes: T0 L tanh(a/2)/EA)."""
+        """e_b (m): half the dead zone without load (uniform routes: T0 L tanh(a/2)/EA).
+
+        Returns
+        -------
+        float
+            e_b (m).
+        """
         return 0.5 * self.dead_zone_width(0.0)
 
     def closed_form(self) -> dict:
-        """Closed-form figures for the current routes and load (m at the tendon level)."""
+        """Closed-form figures for the current routes and load (m at the tendon level).
+
+        Returns
+        -------
+        dict
+            offset_forward, offset_backward, dead_zone, backlash_half_width, load_offset (m)
+            and no_slack_limit (N).
+        """
         f, b = self.steady_offsets()
         return {
             "offset_forward": f,
@@ -582,6 +895,59 @@ class ContinuumPlant(PullPullPlant):
     kappa = theta_b / l, and the stroke is x_out = r_t theta_b, so the segment is a spring
     k = EI/(r_t^2 l) on the stroke. Defaults: EI = 4e-4 N m^2, r_t = 2 mm, l = 30 mm and a 1 m
     sheath on a 0.6 m-diameter semicircle (Theta = pi).
+
+    Parameters
+    ----------
+    route : Route, optional
+        Route of sheath 1 (default: 1 m, Theta = pi, uniform).
+    friction : float, default 0.1
+        Friction coefficient mu (of sheath 1 for a pair).
+    stiffness : float, default 2.4e4
+        Tendon axial stiffness EA (N) (of tendon 1 for a pair).
+    pretension : float, default 10.0
+        Pretension T0 of both tendons (N).
+    proximal_radius : float, default 5e-3
+        Proximal (motor) pulley radius r_p (m).
+    bending_stiffness : float, default 4e-4
+        Backbone bending stiffness EI (N m^2).
+    tendon_offset : float, default 2e-3
+        Distance r_t of the tendons from the backbone (m).
+    backbone_length : float, default 0.03
+        Length l of the segment (m).
+    elements : int, default 100
+        Elements N per sheath, >= 2.
+    motor : Motor, optional
+        A drive between the command and the proximal pulley.
+    route2 : Route, optional
+        Route of sheath 2 (default: route).
+    sensor : Sensor, optional
+        Reads the output (``SimulationResult.measured``).
+    max_increment : float, optional
+        Largest input sub-increment of the solver (m); None: the plant chooses.
+    fast_path : bool, default True
+        Use the solver's exact shortcuts (lazy update while the slip map stays valid).
+    distal_inertia : float, optional
+        J_d (kg m^2) of a dynamic distal joint (None: off).
+    distal_damping : float, optional
+        c_d (N m s/rad) of the distal joint (None: off).
+    sheath_viscosity : float, optional
+        Viscous drag on the sliding tendon (N s/m per metre of sheath; None: off).
+    relaxation_fraction : float, optional
+        Share r in [0, 1) of EA that relaxes (standard linear solid; None: off).
+    relaxation_time : float, optional
+        Time constant tau of the relaxation (s).
+    friction2 : float, optional
+        Friction of sheath 2 (None: as sheath 1).
+    stiffness2 : float, optional
+        EA of tendon 2 (N) (None: as tendon 1).
+
+    Raises
+    ------
+    ValueError
+        A route, load, motor or sensor of the wrong kind, elements not an integer >= 2, or a
+        value the C++ core rejects (the message names it).
+    TypeError
+        An effect that is not a number.
     """
 
     def __init__(
@@ -630,14 +996,17 @@ class ContinuumPlant(PullPullPlant):
 
     @property
     def bending_stiffness(self) -> float:
+        """Backbone bending stiffness EI (N m^2)."""
         return self._engine.continuum_params.bending_stiffness
 
     @property
     def tendon_offset(self) -> float:
+        """Distance r_t of the tendons from the backbone (m)."""
         return self._engine.continuum_params.tendon_offset
 
     @property
     def backbone_length(self) -> float:
+        """Length l of the segment (m)."""
         return self._engine.continuum_params.backbone_length
 
     @property
@@ -646,7 +1015,13 @@ class ContinuumPlant(PullPullPlant):
         return self.bending_stiffness / (self.tendon_offset**2 * self.backbone_length)
 
     def tendon_force(self) -> float:
-        """Li and Rahn tendon force F = kappa EI / r_t (N) at the current bending angle."""
+        """Li and Rahn tendon force F = kappa EI / r_t (N) at the current bending angle.
+
+        Returns
+        -------
+        float
+            F (N).
+        """
         return self._engine.tendon_force()
 
 

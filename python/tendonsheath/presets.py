@@ -58,6 +58,27 @@ def realistic_plant(friction: float = 0.1, stiffness: float = 2.4e4, **overrides
     turn the realistic effects on: ``friction`` and ``stiffness`` (tendon 1) with sheath 2 and
     tendon 2 off by the preset ratios, distal joint inertia and damping, sheath viscosity and
     tendon creep. ``overrides`` replace any of the returned values (e.g. ``distal_inertia=0``).
+
+    Parameters
+    ----------
+    friction : float, default 0.1
+        Friction coefficient of sheath 1.
+    stiffness : float, default 2.4e4
+        Axial stiffness EA of tendon 1 (N).
+    **overrides
+        Replacements for any of the returned keywords.
+
+    Returns
+    -------
+    dict
+        Keyword arguments for the plant: friction, stiffness, friction2, stiffness2,
+        distal_inertia, distal_damping, sheath_viscosity, relaxation_fraction,
+        relaxation_time.
+
+    Raises
+    ------
+    TypeError
+        An override that is not one of the returned keywords.
     """
     kwargs = {
         "friction": float(friction),
@@ -86,6 +107,25 @@ def realistic_motor(kind: str = "position", **kwargs) -> Motor:
     ``kind="position"``: the other keywords go to :meth:`Motor.position` (e.g. ``bandwidth_hz``,
     ``damping``); ``kind="torque"``: to :meth:`Motor.torque` (``inertia``, ``viscous``,
     ``max_torque``). Keywords given override the preset's.
+
+    Parameters
+    ----------
+    kind : {"position", "torque"}, default "position"
+        The motor's kind.
+    **kwargs
+        Keywords of :meth:`Motor.position` or :meth:`Motor.torque`; they override the preset.
+
+    Returns
+    -------
+    Motor
+        The motor.
+
+    Raises
+    ------
+    ValueError
+        An unknown kind or an invalid motor parameter.
+    TypeError
+        A keyword the chosen kind does not take.
     """
     if kind == "position":
         base = {

@@ -19,6 +19,18 @@ class Route:
     linear in between; two samples at the same s are a jump (a polyline corner). Only the
     distribution of theta along s matters to the friction physics, not the 3-D shape.
     Build one with :meth:`uniform`, :meth:`arcs`, :meth:`from_points` or :meth:`from_curvature`.
+
+    Parameters
+    ----------
+    s : array_like of float, shape (k,)
+        Arc lengths (m), from 0 to the length L, non-decreasing.
+    theta : array_like of float, shape (k,)
+        Accumulated curve angle at each s (rad), from 0, non-decreasing.
+
+    Raises
+    ------
+    ValueError
+        Samples that are not finite, of different lengths, or not as above.
     """
 
     __slots__ = ("_core",)
@@ -36,7 +48,20 @@ class Route:
 
     @classmethod
     def uniform(cls, length: float, total_angle: float) -> Route:
-        """Constant curvature: theta(s) = total_angle * s / length."""
+        """Constant curvature: theta(s) = total_angle * s / length.
+
+        Parameters
+        ----------
+        length : float
+            Sheath length L (m), > 0.
+        total_angle : float
+            Total curve angle Theta (rad), >= 0.
+
+        Returns
+        -------
+        Route
+            The uniform route.
+        """
         return cls._wrap(core.Route.uniform(float(length), float(total_angle)))
 
     @classmethod
@@ -44,6 +69,21 @@ class Route:
         """Consecutive constant-curvature pieces [(length m, bend angle rad), ...].
 
         A bend to the other side (negative angle) accumulates |angle|.
+
+        Parameters
+        ----------
+        pieces : iterable of (float, float)
+            (length in m, bend angle in rad) of each piece, proximal to distal.
+
+        Returns
+        -------
+        Route
+            The piecewise-uniform route.
+
+        Raises
+        ------
+        ValueError
+            pieces that are not (length, angle) pairs, or invalid values.
         """
         try:
             items = [(float(a), float(b)) for a, b in pieces]
@@ -53,7 +93,23 @@ class Route:
 
     @classmethod
     def from_points(cls, xyz) -> Route:
-        """A 3-D polyline (K x 3, metres); each corner adds its turning angle."""
+        """A 3-D polyline (K x 3, metres); each corner adds its turning angle.
+
+        Parameters
+        ----------
+        xyz : array_like of float, shape (K, 3)
+            The polyline's points (m), proximal to distal.
+
+        Returns
+        -------
+        Route
+            The route, with a jump of theta at each corner.
+
+        Raises
+        ------
+        ValueError
+            Points not K x 3, or not valid (fewer than two, not finite, repeated).
+        """
         pts = np.ascontiguousarray(np.asarray(xyz, dtype=np.float64))
         if pts.ndim != 2 or pts.shape[1] != 3:
             raise ValueError(f"Route.from_points: points must be K x 3 (got shape {pts.shape})")
@@ -61,7 +117,25 @@ class Route:
 
     @classmethod
     def from_curvature(cls, s, kappa) -> Route:
-        """A sampled curvature profile |kappa(s)| (1/m); theta is its trapezoidal integral."""
+        """A sampled curvature profile |kappa(s)| (1/m); theta is its trapezoidal integral.
+
+        Parameters
+        ----------
+        s : array_like of float, shape (k,)
+            Arc lengths (m), from 0, increasing.
+        kappa : array_like of float, shape (k,)
+            Curvature at each s (1/m); its absolute value is integrated.
+
+        Returns
+        -------
+        Route
+            The route.
+
+        Raises
+        ------
+        ValueError
+            s and kappa of different lengths, or invalid samples.
+        """
         s_arr = as_signal(s, "s")
         k_arr = as_signal(kappa, "kappa")
         if s_arr.shape != k_arr.shape:
@@ -74,22 +148,37 @@ class Route:
     # -- properties ------------------------------------------------------------------
     @property
     def length(self) -> float:
+        """Sheath length L (m)."""
         return self._core.length
 
     @property
     def total_angle(self) -> float:
+        """Total curve angle Theta = theta(L) (rad)."""
         return self._core.total_angle
 
     @property
     def s(self) -> np.ndarray:
+        """The sample arc lengths (m)."""
         return self._core.s_samples()
 
     @property
     def theta(self) -> np.ndarray:
+        """The accumulated curve angle at each sample (rad)."""
         return self._core.theta_samples()
 
     def angle_at(self, s):
-        """theta(s) (rad), vectorised; right-continuous at corners, clamped outside [0, L]."""
+        """theta(s) (rad), vectorised; right-continuous at corners, clamped outside [0, L].
+
+        Parameters
+        ----------
+        s : float or array_like of float
+            Arc length(s) (m).
+
+        Returns
+        -------
+        float or numpy.ndarray of float
+            theta at each s, shaped as s.
+        """
         arr = np.asarray(s, dtype=np.float64)
         if arr.ndim == 0:
             return self._core.angle_at(float(arr))
@@ -97,15 +186,48 @@ class Route:
         return self._core.angles_at(flat).reshape(arr.shape)
 
     def element_angles(self, n: int) -> np.ndarray:
-        """Angles of n equal elements, proximal to distal (they sum to total_angle)."""
+        """Angles of n equal elements, proximal to distal (they sum to total_angle).
+
+        Parameters
+        ----------
+        n : int
+            Number of elements, >= 1.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (n,)
+            The curve angle of each element (rad).
+        """
         return self._core.element_angles(int(n))
 
     def node_angles(self, n: int) -> np.ndarray:
-        """Lumped angles of the n-1 interior nodes of an n-element sheath (sum: total_angle)."""
+        """Lumped angles of the n-1 interior nodes of an n-element sheath (sum: total_angle).
+
+        Parameters
+        ----------
+        n : int
+            Number of elements, >= 2.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (n - 1,)
+            The curve angle lumped at each interior node (rad).
+        """
         return self._core.node_angles(int(n))
 
     def scaled(self, factor: float) -> Route:
-        """The same shape with every bend scaled by factor >= 0 (same length)."""
+        """The same shape with every bend scaled by factor >= 0 (same length).
+
+        Parameters
+        ----------
+        factor : float
+            Scale of theta, >= 0.
+
+        Returns
+        -------
+        Route
+            A new route.
+        """
         return Route(self.s, self.theta * float(factor))
 
     def __eq__(self, other) -> bool:
@@ -123,7 +245,20 @@ class Route:
 
 
 def check_curve_angle(value, what: str = "curve angle") -> None:
-    """A curve angle (rad, scalar or array) must be finite, >= 0 and at most 100 turns."""
+    """A curve angle (rad, scalar or array) must be finite, >= 0 and at most 100 turns.
+
+    Parameters
+    ----------
+    value : float or array_like of float
+        The curve angle(s) (rad).
+    what : str, default "curve angle"
+        What the value is, for the error message.
+
+    Raises
+    ------
+    ValueError
+        A value not finite, negative, or above 200 pi rad.
+    """
     arr = np.asarray(value, dtype=float).ravel()
     for bad, rule in (
         (~np.isfinite(arr), "be finite"),

@@ -32,7 +32,23 @@ STATUS_FLAGS: tuple[str, ...] = tuple(f.name.lower() for f in Status if f.value)
 
 def status_counts(flags) -> dict[str, int]:
     """How many samples of a per-sample flag array carry each flag, by name (every flag
-    listed, 0 when absent)."""
+    listed, 0 when absent).
+
+    Parameters
+    ----------
+    flags : array_like of int
+        Per-sample :class:`Status` values (e.g. ``simulate(..., status=True)``'s flags).
+
+    Returns
+    -------
+    dict of str to int
+        Flag name (lower case) -> number of samples carrying it.
+
+    Raises
+    ------
+    ValueError
+        flags that are not non-negative integers.
+    """
     a = np.asarray(flags)
     if a.size and (not np.issubdtype(a.dtype, np.integer) or a.min() < 0):
         raise ValueError("status_counts: flags must be non-negative integers (Status values)")

@@ -46,7 +46,19 @@ class ShapeSensing:
     """Shape sensing of the route (e.g. an FBG fibre or bending-knob readings): the sensed
     total curve angle is the true one ``delay`` seconds ago plus Gaussian noise of
     ``noise_std`` rad, a new reading every 1/``rate_hz`` s. Only the curve angle is sensed:
-    a compensator that takes a route shape gets a uniform-curvature route of that angle."""
+    a compensator that takes a route shape gets a uniform-curvature route of that angle.
+
+    Parameters
+    ----------
+    noise_std : float, default 0.05
+        Standard deviation of the sensed angle (rad).
+    delay : float, default 0.1
+        Delay of the readings (s).
+    rate_hz : float, default 10.0
+        Readings per second.
+    seed : int, default 0
+        Seed of the noise.
+    """
 
     noise_std: float = 0.05
     delay: float = 0.1
@@ -54,6 +66,13 @@ class ShapeSensing:
     seed: int = 0
 
     def describe(self) -> str:
+        """One line saying how the angle is sensed (for the provenance records).
+
+        Returns
+        -------
+        str
+            Noise, delay and rate.
+        """
         return (
             f"sensed curve angle (noise {self.noise_std:g} rad, delay {self.delay:g} s, "
             f"{self.rate_hz:g} Hz readings)"
@@ -62,7 +81,24 @@ class ShapeSensing:
     def readings(
         self, t: np.ndarray, angle_at: Callable[[float], float], seed_offset: int = 0
     ) -> tuple[np.ndarray, np.ndarray]:
-        """(sample index of each reading, sensed angle of each reading) over times t."""
+        """(sample index of each reading, sensed angle of each reading) over times t.
+
+        Parameters
+        ----------
+        t : array_like of float
+            The run's sample times (s).
+        angle_at : callable
+            Time (s) -> the true curve angle (rad).
+        seed_offset : int, default 0
+            Added to the seed, so that runs get different noise.
+
+        Returns
+        -------
+        index : numpy.ndarray of int
+            The sample index of each reading.
+        sensed : numpy.ndarray of float
+            The sensed angle of each reading (rad, >= 0).
+        """
         t = np.asarray(t, dtype=float)
         period = 1.0 / self.rate_hz
         times = np.arange(t[0], t[-1] + 0.5 * period, period)
@@ -76,7 +112,22 @@ class ShapeSensing:
 
     def static_reading(self, angle: float, duration: float, seed_offset: int = 0) -> float:
         """The median of the readings over a run on a route held still: the angle a user
-        records for a calibration shape."""
+        records for a calibration shape.
+
+        Parameters
+        ----------
+        angle : float
+            The true curve angle (rad).
+        duration : float
+            Length of the run (s).
+        seed_offset : int, default 0
+            Added to the seed.
+
+        Returns
+        -------
+        float
+            The recorded angle (rad).
+        """
         t = np.arange(0.0, duration, 1.0 / self.rate_hz)
         _, sensed = self.readings(t, lambda _t: float(angle), seed_offset)
         return float(np.median(sensed))
@@ -140,6 +191,25 @@ class Calibration:
     (name -> {"value", "source", "identified"}); ``runs``: the calibration experiments;
     ``declared``: nominal or user-declared values (never read from the plant);
     ``at_bounds``: identified parameters within 1 % of their search bounds.
+
+    Parameters
+    ----------
+    fits : dict of str to Fit
+        The identified models, by name.
+    runs : list of CalibrationRun
+        The calibration experiments.
+    declared : dict of str to Told
+        Declared values (nominal or the user's).
+    groups : dict of str to dict
+        The identified groups.
+    shape : ShapeSensing
+        How the curve angle was sensed.
+    at_bounds : dict of str to list of str, optional
+        Per fit, the parameters at their search bounds.
+    loads : dict of str to dict, optional
+        The load groups of each load run (:func:`calibrate_load`).
+    friction_identified : bool, default True
+        False when one curve angle could not identify friction.
     """
 
     fits: dict[str, Any]
@@ -154,16 +224,29 @@ class Calibration:
     # -- the compensators ------------------------------------------------------------
     @property
     def backlash_model(self):
+        """The identified BoucWenBacklash."""
         return self.fits["BoucWenBacklash"].model
 
     @property
     def curve_model(self):
+        """The identified CurveAngleModel."""
         return self.fits["CurveAngleModel"].model
 
     def curve_model_with_load(self, load: str | None = "calibrated"):
         """The CurveAngleModel with a load: "calibrated" the load groups identified from the
         calibration runs themselves (what the robot carried then), a name the load of that
-        load run (:func:`calibrate_load`), None no load (not told)."""
+        load run (:func:`calibrate_load`), None no load (not told).
+
+        Parameters
+        ----------
+        load : str or None, default "calibrated"
+            Which load.
+
+        Returns
+        -------
+        CurveAngleModel
+            The model with that load.
+        """
         p = dict(self.curve_model.params)
         if load == "calibrated":
             pass
@@ -174,11 +257,38 @@ class Calibration:
         return models.CurveAngleModel(**p)
 
     def inverse_feedforward(self, **options):
+        """The InverseFeedforward of the identified BoucWenBacklash.
+
+        Parameters
+        ----------
+        **options
+            Other keywords of :class:`~tendonsheath.compensate.InverseFeedforward`.
+
+        Returns
+        -------
+        InverseFeedforward
+            The compensator.
+        """
         from ..compensate import InverseFeedforward
 
         return InverseFeedforward(self.backlash_model, **options)
 
     def curve_angle_feedforward(self, load: str | None = "calibrated", **options):
+        """The CurveAngleFeedforward of the identified CurveAngleModel.
+
+        Parameters
+        ----------
+        load : str or None, default "calibrated"
+            Which load it is told (see :meth:`curve_model_with_load`).
+        **options
+            Other keywords of
+            :meth:`~tendonsheath.compensate.CurveAngleFeedforward.from_model`.
+
+        Returns
+        -------
+        CurveAngleFeedforward
+            The compensator.
+        """
         from ..compensate import CurveAngleFeedforward
 
         return CurveAngleFeedforward.from_model(self.curve_model_with_load(load), **options)
@@ -186,7 +296,22 @@ class Calibration:
     def continuum_feedforward(self, sensed_angle: float, mode: str = "exact", **options):
         """Lau et al.'s feedforward from the identified groups: tendon offset r_t = the
         identified r_d at the nominal r_p; the backbone length cancels (EI = k_e r_t^2 l
-        enters only as EI/(r_t l)), so it is held at 1."""
+        enters only as EI/(r_t l)), so it is held at 1.
+
+        Parameters
+        ----------
+        sensed_angle : float
+            The sheath's sensed curve angle (rad).
+        mode : {"exact", "published"}, default "exact"
+            See :class:`~tendonsheath.compensate.ContinuumFeedforward`.
+        **options
+            Other constructor keywords (gap_factor, smoothing, limits).
+
+        Returns
+        -------
+        ContinuumFeedforward
+            The compensator.
+        """
         from ..compensate import ContinuumFeedforward
 
         p = self.curve_model.params
@@ -201,7 +326,22 @@ class Calibration:
 
     def told(self, compensator: str, load: str | None = "calibrated", **declared) -> list[dict]:
         """What compensator ``compensator`` is told and where each value came from.
-        ``declared``: other values given by the user (name -> (value, source))."""
+        ``declared``: other values given by the user (name -> (value, source)).
+
+        Parameters
+        ----------
+        compensator : str
+            The compensator's name (e.g. "InverseFeedforward", "CurveAngleFeedforward").
+        load : str or None, default "calibrated"
+            Which load it is told.
+        **declared
+            Other values given by the user, as name=(value, source).
+
+        Returns
+        -------
+        list of dict
+            quantity, value and source of each value told.
+        """
         rows: list[Told] = []
         if compensator in ("InverseFeedforward", "AdaptiveController", "fixed feedforward"):
             fit = self.fits["BoucWenBacklash"]
@@ -233,6 +373,18 @@ class Calibration:
         return [r.as_dict() for r in rows]
 
     def bounds_of(self, compensator: str) -> list[str]:
+        """The identified parameters behind ``compensator`` that sit at their search bounds.
+
+        Parameters
+        ----------
+        compensator : str
+            The compensator's name.
+
+        Returns
+        -------
+        list of str
+            Parameter names (load runs' as "load: NAME PARAM").
+        """
         if compensator in ("InverseFeedforward", "AdaptiveController", "fixed feedforward"):
             return list(self.at_bounds.get("BoucWenBacklash", []))
         if compensator == "CurveAngleFeedforward" or compensator.startswith("Continuum"):
@@ -244,6 +396,13 @@ class Calibration:
         return []
 
     def to_dict(self) -> dict[str, Any]:
+        """The calibration as a JSON-ready dict (runs, declared values, groups, fits, ...).
+
+        Returns
+        -------
+        dict
+            The provenance record.
+        """
         return {
             "runs": [vars(r) for r in self.runs],
             "declared": {k: v.as_dict() for k, v in self.declared.items()},
@@ -265,7 +424,13 @@ class Calibration:
         }
 
     def identified_rows(self) -> list[dict[str, Any]]:
-        """Rows for the report: each identified group or parameter and its source."""
+        """Rows for the report: each identified group or parameter and its source.
+
+        Returns
+        -------
+        list of dict
+            quantity, value, relative s.e. and source.
+        """
         rows = [
             {
                 "quantity": k,
@@ -392,6 +557,44 @@ def calibrate(
       reported unidentified.
 
     ``budget``: options of :func:`tendonsheath.identify` (maxiter, popsize).
+
+    Parameters
+    ----------
+    plant : PullPullPlant or ContinuumPlant
+        The robot (only driven and logged, never read).
+    routes : sequence of Route
+        The calibration shapes.
+    models_ : sequence of str, default ("BoucWenBacklash", "CurveAngleModel")
+        The models to identify.
+    backlash_route : int, default 0
+        The run the BoucWenBacklash is identified on.
+    spring : bool, default False
+        Also identify the environment spring (for ContinuumFeedforward).
+    duration : float, default 15.0
+        Length of each run (s).
+    amplitude : float, default 1.0
+        Amplitude of the excitation (rad).
+    sensor : Sensor, optional
+        The distal sensor (default the plant's own).
+    shape : ShapeSensing, optional
+        The shape sensing (default one with ``seed``).
+    declared : dict of str to float, optional
+        Design values of pretension, length and proximal radius.
+    declared_friction : float, optional
+        Friction held when one curve angle cannot identify it (default 0.1).
+    warmup : float, default 1.5
+        Seconds at the start of each run left out of the fits.
+    seed : int, default 0
+        Seed of the noise and of the identification.
+    budget : dict, optional
+        Options of :func:`tendonsheath.identify` (maxiter, popsize).
+    names : sequence of str, optional
+        Names of the runs (default cal1, cal2, ...).
+
+    Returns
+    -------
+    Calibration
+        The identified models and their provenance.
     """
     from ..identify import identify
 
@@ -528,7 +731,31 @@ def calibrate_load(
     """A load calibration run: the robot carrying load ``name`` (``plant``) is driven on a
     calibration ``route``; the load groups F_L L/EA and k_e L/EA of the CurveAngleModel are
     identified with the other groups held at their identified values. Adds
-    ``cal.loads[name]``."""
+    ``cal.loads[name]``.
+
+    Parameters
+    ----------
+    cal : Calibration
+        The calibration to add to (changed in place).
+    name : str
+        The load's name.
+    plant : PullPullPlant or ContinuumPlant
+        The robot carrying the load.
+    route : Route
+        The calibration shape.
+    duration : float, default 10.0
+        Length of the run (s).
+    amplitude : float, default 1.0
+        Amplitude of the excitation (rad).
+    sensor : Sensor, optional
+        The distal sensor (default the plant's own).
+    warmup : float, default 1.5
+        Seconds left out of the fit.
+    seed : int, default 0
+        Seed of the noise and of the identification.
+    budget : dict, optional
+        Options of :func:`tendonsheath.identify` (maxiter, popsize).
+    """
     from ..identify import identify
 
     t, command = calibration_input(duration, amplitude)
@@ -595,7 +822,28 @@ def in_class_fit(
     """The best fit of ``compensator``'s model class to the test run's own log (motor
     encoder in, distal sensor out, decimated to ``rate_hz``; the first period excluded):
     how far the plant lies from what the compensator can represent, next to the output's
-    range. ``curve_angle``: per-sample curve angle of the run (CurveAngleModel)."""
+    range. ``curve_angle``: per-sample curve angle of the run (CurveAngleModel).
+
+    Parameters
+    ----------
+    compensator : str
+        The compensator's name (its model class follows from it).
+    result : Result
+        The test run (:func:`tendonsheath.bench.run`).
+    curve_angle : float or array_like of float, optional
+        The run's curve angle, for a CurveAngleModel class.
+    rate_hz : float, default 200.0
+        Rate the log is decimated to (Hz).
+    seed : int, default 0
+        Seed of the identification.
+    budget : dict, optional
+        Options of :func:`tendonsheath.identify` (maxiter, popsize).
+
+    Returns
+    -------
+    dict
+        model_class, output_range, in_class_rmse and in_class_nrmse.
+    """
     from ..identify import identify
 
     t = np.asarray(result.t)
@@ -652,7 +900,30 @@ def honesty_entry(
     seed: int = 0,
     budget: dict | None = None,
 ) -> dict[str, Any]:
-    """One row of a scenario's honesty panel (see docs/metrics-json.md, "honesty")."""
+    """One row of a scenario's honesty panel (see docs/metrics-json.md, "honesty").
+
+    Parameters
+    ----------
+    compensator : str
+        The compensator's name.
+    result : Result
+        Its test run.
+    told : list of dict
+        What it was told (:meth:`Calibration.told`).
+    at_bounds : list of str
+        Its parameters at their search bounds (:meth:`Calibration.bounds_of`).
+    curve_angle : float or array_like of float, optional
+        The run's curve angle.
+    seed : int, default 0
+        Seed of the in-class fit.
+    budget : dict, optional
+        Options of :func:`tendonsheath.identify` (maxiter, popsize).
+
+    Returns
+    -------
+    dict
+        told, at_bounds and the :func:`in_class_fit` figures.
+    """
     entry = {"told": told, "at_bounds": at_bounds}
     entry.update(in_class_fit(compensator, result, curve_angle, seed=seed, budget=budget))
     return entry

@@ -14,7 +14,24 @@ from .run import run
 class FrequencyResponse:
     """Per frequency (Hz): gain |Y/Y_d| in dB, phase (deg) and error magnitude |E|/|Y_d| of the
     fundamental; the bandwidths where the gain reaches -3 dB and where the error magnitude
-    rises past twice its low-frequency level (NaN when not reached in the sweep)."""
+    rises past twice its low-frequency level (NaN when not reached in the sweep).
+
+    Parameters
+    ----------
+    frequencies : numpy.ndarray of float
+        The sweep's frequencies (Hz).
+    gain_db : numpy.ndarray of float
+        |Y/Y_d| (dB) at each frequency.
+    phase_deg : numpy.ndarray of float
+        Phase of Y/Y_d (deg, unwrapped).
+    error_magnitude : numpy.ndarray of float
+        |E|/|Y_d| at each frequency.
+    bandwidth_3db : float
+        Frequency where the gain reaches -3 dB (Hz; NaN if not reached).
+    bandwidth_error : float
+        Frequency where the error magnitude rises past twice its low-frequency level (Hz;
+        NaN if not reached).
+    """
 
     frequencies: np.ndarray
     gain_db: np.ndarray
@@ -24,6 +41,14 @@ class FrequencyResponse:
     bandwidth_error: float
 
     def as_dict(self) -> dict:
+        """The response as a JSON-ready dict (frequencies in Hz, lists of numbers).
+
+        Returns
+        -------
+        dict
+            frequencies_hz, gain_db, phase_deg, error_magnitude, bandwidth_3db_hz and
+            bandwidth_error_hz.
+        """
         return {
             "frequencies_hz": self.frequencies.tolist(),
             "gain_db": self.gain_db.tolist(),
@@ -35,7 +60,18 @@ class FrequencyResponse:
 
     def to_control(self, name: str | None = None):
         """The gain and phase as a ``control.FrequencyResponseData`` (omega = 2 pi f, rad/s).
-        Needs python-control: ``pip install 'tendonsheath[control]'``."""
+        Needs python-control: ``pip install 'tendonsheath[control]'``.
+
+        Parameters
+        ----------
+        name : str, optional
+            The system's name.
+
+        Returns
+        -------
+        control.FrequencyResponseData
+            The measured response.
+        """
         from ..control_interop import frequency_response_data
 
         return frequency_response_data(self.frequencies, self.gain_db, self.phase_deg, name)
@@ -71,7 +107,37 @@ def frequency_response(
 ) -> FrequencyResponse:
     """Sine sweep: at each frequency run the bench for ``cycles`` whole periods (at least
     ``min_duration`` s), discard the first period, and fit the fundamentals of the output and
-    of the error. Default frequencies: 12 log-spaced from 0.05 to 2 Hz."""
+    of the error. Default frequencies: 12 log-spaced from 0.05 to 2 Hz.
+
+    Parameters
+    ----------
+    plant : PullPullPlant or ContinuumPlant
+        The plant.
+    controller : compensator or None
+        As for :func:`tendonsheath.bench.run`.
+    frequencies : array_like of float, optional
+        The frequencies (Hz), positive and below rate / 2.
+    amplitude : float, default 0.5
+        Amplitude of the desired sine (rad).
+    cycles : int, default 3
+        Whole periods per frequency, >= 2 (the first is discarded).
+    rate : float, default 1000.0
+        The loop's rate (Hz).
+    min_duration : float, default 2.0
+        Shortest run per frequency (s).
+    noise : Sensor or float, optional
+        As for :func:`tendonsheath.bench.run`.
+
+    Returns
+    -------
+    FrequencyResponse
+        Gain, phase and error magnitude per frequency, and the two bandwidths.
+
+    Raises
+    ------
+    ValueError
+        Bad frequencies, cycles < 2 or a rate not > 0.
+    """
     f = (
         np.logspace(np.log10(0.05), np.log10(2.0), 12)
         if frequencies is None

@@ -19,7 +19,22 @@ def dominant_period(t: np.ndarray, signal: np.ndarray) -> float:
 
 
 def loop_width(x: np.ndarray, y: np.ndarray, points: int = 200) -> float:
-    """Largest vertical gap between the rising and the falling branch of y against x."""
+    """Largest vertical gap between the rising and the falling branch of y against x.
+
+    Parameters
+    ----------
+    x : numpy.ndarray of float
+        The abscissa (e.g. the reference).
+    y : numpy.ndarray of float
+        The ordinate (e.g. the output), of x's length.
+    points : int, default 200
+        Grid points over the range both branches cover.
+
+    Returns
+    -------
+    float
+        The largest gap (unit of y); 0 when a branch is missing.
+    """
     dx = np.gradient(x)
     up, down = dx > 0, dx < 0
     if up.sum() < 2 or down.sum() < 2:
@@ -37,7 +52,20 @@ def loop_width(x: np.ndarray, y: np.ndarray, points: int = 200) -> float:
 
 def tracking_metrics(reference: np.ndarray, output: np.ndarray) -> dict[str, float]:
     """mse, rmse, max_abs (output units), percent_error and max_percent_error (of the
-    reference's range, seed 001's measure) and the output-vs-reference loop width."""
+    reference's range, seed 001's measure) and the output-vs-reference loop width.
+
+    Parameters
+    ----------
+    reference : numpy.ndarray of float
+        The desired output.
+    output : numpy.ndarray of float
+        The output, of reference's length.
+
+    Returns
+    -------
+    dict of str to float
+        mse, rmse, max_abs, percent_error, max_percent_error and loop_width.
+    """
     e = output - reference
     span = float(np.ptp(reference)) or 1.0
     mse = float(np.mean(e**2))

@@ -30,6 +30,33 @@ class Result:
     ``status`` holds each cycle's :class:`~tendonsheath.Status` flags of controller, motor,
     plant and sensor (uint8); ``metrics["status"]`` counts the cycles with each flag (the
     whole run, warm-up included).
+
+    Parameters
+    ----------
+    controller : str
+        The controller's name ("none" uncompensated).
+    t : numpy.ndarray of float
+        Sample times (s).
+    reference : numpy.ndarray of float
+        The desired output (rad).
+    output : numpy.ndarray of float
+        The plant's output (rad).
+    measured : numpy.ndarray of float
+        The sensor's reading of the output (NaN during dropouts).
+    command : numpy.ndarray of float
+        The controller's command (rad, or N m for a torque controller).
+    motor : numpy.ndarray of float
+        The motor angle (rad).
+    slack : numpy.ndarray of bool
+        Per cycle: a tendon was slack.
+    fallback : numpy.ndarray of bool
+        Per cycle: the controller ran its dropout fallback.
+    warmup : float
+        Seconds at the start left out of the metrics.
+    metrics : dict, optional
+        The tracking metrics (:func:`tracking_metrics`), slack_samples and status counts.
+    status : numpy.ndarray of uint8, optional
+        Each cycle's Status flags.
     """
 
     controller: str
@@ -47,6 +74,7 @@ class Result:
 
     @property
     def error(self) -> np.ndarray:
+        """The tracking error output - reference (rad)."""
         return self.output - self.reference
 
     @property
@@ -108,6 +136,40 @@ def run(
     ``shape_sensing`` (a :class:`~tendonsheath.bench.calibration.ShapeSensing`): the
     CurveAngleFeedforward is told the sensed curve angle (noise, delay, reading rate)
     instead of the route's exact shape.
+
+    Parameters
+    ----------
+    plant : PullPullPlant or ContinuumPlant
+        The plant (with its motor and sensor).
+    controller : compensator or None
+        See above.
+    t : array_like of float, shape (n,)
+        Sample times (s), at least 2.
+    reference : array_like of float, shape (n,)
+        The desired distal angle (rad).
+    routes : callable, optional
+        t -> Route (or a (route1, route2) pair).
+    noise : Sensor or float, optional
+        The distal sensor, or its noise standard deviation (rad).
+    dropout : list of (float, float), optional
+        Windows (s) when the sensor reads NaN.
+    warmup : float, optional
+        Seconds excluded from the metrics, in [0, the run's length).
+    shape_sensing : ShapeSensing, optional
+        Tell a CurveAngleFeedforward the sensed curve angle instead of the exact shape.
+
+    Returns
+    -------
+    Result
+        Every signal and the metrics.
+
+    Raises
+    ------
+    ValueError
+        A plant or controller it does not know, bad samples or arguments, or an
+        AdaptiveController without a torque motor.
+    RuntimeError
+        The closed loop produced a non-finite output.
     """
     if not isinstance(plant, PullPullPlant):
         raise ValueError(

@@ -46,6 +46,24 @@ class AdaptiveController:
     estimates and drives the motor by a PD loop toward the inverse feedforward of
     ``feedforward_model`` (or toward y_d when none is given). Gains default to spec D.3's
     normalised example; :meth:`from_model` scales them to a motor and an identified model.
+
+    Parameters
+    ----------
+    feedforward_model : Backlash or BoucWenBacklash, optional
+        The model whose inverse feedforward the dropout fallback tracks.
+    smoothing : float, default 0.05
+        Branch-switch speed of that inverse feedforward (output units per s), > 0.
+    **gains
+        Any of the controller's gains by name: lambda_, k_s, epsilon, gamma_psi, gamma_phi,
+        gamma_D, sigma_psi, sigma_phi, sigma_D, psi_0, phi_0, D_0, phi_min, psi_max,
+        phi_max, D_max, adaptation_deadzone, derivative_cutoff_hz, derivative_damping,
+        max_torque, fallback_kp, fallback_kd, model_acceleration.
+
+    Raises
+    ------
+    ValueError
+        An unknown gain, a feedforward model of another class, or a value the C++ core
+        rejects.
     """
 
     # signal names of to_control()'s system: desired and measured output, motor angle in
@@ -93,6 +111,35 @@ class AdaptiveController:
         eps phi_min w_f / 3 (w_f the derivative filter's corner, default 8 x bandwidth):
         eps = 0.05 lambda leaves an error of a few thousandths of a radian for a lumped
         disturbance (friction torque, dead-zone crossings) up to that bound.
+
+        Parameters
+        ----------
+        model : Backlash or BoucWenBacklash
+            The identified model (also the fallback's feedforward).
+        inertia : float
+            Motor inertia J at the shaft (kg m^2), > 0.
+        viscous : float, default 0.0
+            Motor viscous damping b (N m s/rad).
+        bandwidth_hz : float, default 5.0
+            Closed-loop bandwidth (Hz), > 0.
+        derivative_cutoff_hz : float, optional
+            Corner of the derivative filter (Hz); default 8 x bandwidth_hz.
+        max_torque : float, default inf
+            Saturation of the torque (N m).
+        noise_std : float, default 0.0
+            Standard deviation of the output sensor's noise: sets the adaptation dead zone.
+        **overrides
+            Gains that replace the scaled ones (see the class).
+
+        Returns
+        -------
+        AdaptiveController
+            The controller.
+
+        Raises
+        ------
+        ValueError
+            inertia or bandwidth_hz not > 0, or an unknown gain.
         """
         if not inertia > 0:
             raise ValueError("AdaptiveController.from_model: inertia must be > 0")
@@ -135,18 +182,38 @@ class AdaptiveController:
 
     @property
     def estimates(self) -> dict[str, float]:
+        """The current estimates psi, phi and D."""
         e = self._engine.estimates
         return {"psi": e.psi, "phi": e.phi, "D": e.D}
 
     @property
     def in_fallback(self) -> bool:
+        """Whether the last cycle ran the dropout fallback (a NaN measurement)."""
         return self._engine.in_fallback()
 
     def reset(self) -> None:
+        """Back to the initial estimates and state."""
         self._engine.reset()
 
     def step(self, y_d: float, y_measured: float, motor_position: float, dt: float) -> float:
-        """One control cycle; returns the motor torque. y_measured may be NaN (dropout)."""
+        """One control cycle; returns the motor torque. y_measured may be NaN (dropout).
+
+        Parameters
+        ----------
+        y_d : float
+            Desired distal output.
+        y_measured : float
+            Measured distal output; NaN for a dropout.
+        motor_position : float
+            Motor angle (rad).
+        dt : float
+            Time since the previous cycle (s), >= 0.
+
+        Returns
+        -------
+        float
+            The motor torque (N m).
+        """
         dt = checked_dt(dt)
         return self._engine.step(float(y_d), float(y_measured), float(motor_position), float(dt))
 
@@ -154,7 +221,24 @@ class AdaptiveController:
         """This controller as a discrete-time ``control.NonlinearIOSystem`` with sample time dt
         (s): inputs ``y_d``, ``y`` (measured distal output) and ``q`` (motor angle), output
         ``torque``; one state, the index of an exact snapshot of the engine (see
-        :mod:`tendonsheath.control_interop`)."""
+        :mod:`tendonsheath.control_interop`).
+
+        Parameters
+        ----------
+        dt : float
+            Sample time (s), > 0.
+        name : str, optional
+            The system's name.
+        inputs : list of str, optional
+            Input signal names (default y_d, y, q).
+        output : str, optional
+            Output signal name (default torque).
+
+        Returns
+        -------
+        control.NonlinearIOSystem
+            The discrete-time system.
+        """
         from ..control_interop import to_system
 
         return to_system(self, dt, inputs, output, name)
@@ -163,5 +247,11 @@ class AdaptiveController:
         return self.step(u[0], u[1], u[2], dt)
 
     def status(self) -> Status:
-        """The last cycle's :class:`~tendonsheath.Status` (held, fallback, saturated)."""
+        """The last cycle's :class:`~tendonsheath.Status` (held, fallback, saturated).
+
+        Returns
+        -------
+        Status
+            The flags of the last :meth:`step`.
+        """
         return Status(self._engine.status())

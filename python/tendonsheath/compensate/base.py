@@ -27,16 +27,57 @@ class Feedforward:
         self._engine.reset()
 
     def step(self, y_d: float, dt: float) -> float:
+        """One control cycle (real-time core, no allocation).
+
+        Parameters
+        ----------
+        y_d : float
+            Desired output (the model's output unit).
+        dt : float
+            Time since the previous cycle (s), >= 0.
+
+        Returns
+        -------
+        float
+            The motor command.
+        """
         dt = checked_dt(dt)
         return self._engine.step(float(y_d), float(dt))
 
     def status(self) -> Status:
-        """The last step's :class:`~tendonsheath.Status` (held y_d, saturated command, ...)."""
+        """The last step's :class:`~tendonsheath.Status` (held y_d, saturated command, ...).
+
+        Returns
+        -------
+        Status
+            The flags of the last :meth:`step`.
+        """
         return Status(self._engine.status())
 
     def command(self, t, y_desired, status: bool = False):
         """Motor commands for a whole trajectory; with ``status=True`` returns
-        ``(commands, flags)``, flags holding each cycle's :class:`Status` (uint8)."""
+        ``(commands, flags)``, flags holding each cycle's :class:`Status` (uint8).
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,)
+            Sample times (s), increasing; required.
+        y_desired : array_like of float, shape (n,)
+            Desired outputs.
+        status : bool, default False
+            Also return each cycle's Status flags.
+
+        Returns
+        -------
+        commands : numpy.ndarray of float, shape (n,)
+            Motor commands; ``(commands, flags)`` with ``status=True``, flags each cycle's
+            :class:`~tendonsheath.Status` (uint8).
+
+        Raises
+        ------
+        ValueError
+            t missing, or samples not finite or of different lengths.
+        """
         ts, ys = as_time_and_signal(t, y_desired, "y_desired")
         if ts is None:
             raise ValueError(f"{type(self).__name__}.command needs the time vector t")
@@ -46,7 +87,24 @@ class Feedforward:
         """This compensator as a discrete-time ``control.NonlinearIOSystem`` with sample time dt
         (s): input ``y_d``, output ``x`` (the motor command, the input name of a model's
         system, so ``control.interconnect`` connects them by name); one state, the index of an
-        exact snapshot of the engine (see :mod:`tendonsheath.control_interop`)."""
+        exact snapshot of the engine (see :mod:`tendonsheath.control_interop`).
+
+        Parameters
+        ----------
+        dt : float
+            Sample time (s), > 0.
+        name : str, optional
+            The system's name.
+        inputs : str or list of str, optional
+            Input signal names (default ``control_inputs``).
+        output : str, optional
+            Output signal name (default ``control_output``).
+
+        Returns
+        -------
+        control.NonlinearIOSystem
+            The discrete-time system.
+        """
         from ..control_interop import to_system
 
         return to_system(self, dt, inputs, output, name)
@@ -61,12 +119,29 @@ class Feedforward:
         return dict(self._settings)
 
     def to_dict(self) -> dict:
-        """The compensator as a dict (format ``tendonsheath.compensator``)."""
+        """The compensator as a dict (format ``tendonsheath.compensator``).
+
+        Returns
+        -------
+        dict
+            format, version, compensator and its settings.
+        """
         return persistence.compensator_dict(type(self).__name__, self._settings)
 
     def to_json(self, path=None) -> str:
         """The compensator as JSON text; also written to `path` when one is given.
-        ``tendonsheath.compensate.load`` and the C++ ``tendonsheath/io/json.hpp`` read it."""
+        ``tendonsheath.compensate.load`` and the C++ ``tendonsheath/io/json.hpp`` read it.
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            A file to write the JSON to.
+
+        Returns
+        -------
+        str
+            The JSON text.
+        """
         return persistence.to_json(self.to_dict(), path)
 
     @classmethod

@@ -18,6 +18,40 @@ class ContinuumFeedforward(Feedforward):
     delta_0 = 2 T0 L (1 - e^{-xi Theta})/EA and a separate delta_F, which partly double
     count); ``mode="exact"`` uses the capstan-consistent full-slip elongations (spec A5/A6)
     under the bending force F = kappa EI / r_t, without double counting.
+
+    Parameters
+    ----------
+    friction : float, default 0.1
+        Friction coefficient mu.
+    sheath_length : float, default 1.0
+        Sheath length L (m).
+    stiffness : float, default 2.4e4
+        Tendon axial stiffness EA (N).
+    pretension : float, default 10.0
+        Pretension T0 (N).
+    total_angle : float, default pi
+        Curve angle Theta of the sheath (rad).
+    bending_stiffness : float, default 4e-4
+        Backbone bending stiffness EI (N m^2).
+    tendon_offset : float, default 2e-3
+        Distance r_t of the tendon from the backbone (m).
+    backbone_length : float, default 0.03
+        Length l of the bending segment (m).
+    proximal_radius : float, default 5e-3
+        Motor pulley radius (m).
+    gap_factor : float, default 1.0
+        Kesner and Howe's gamma delta_r: xi = gap_factor mu (1: plain capstan), > 0.
+    smoothing : float, default 0.1
+        Direction-switch speed (rad/s of the bending angle), > 0.
+    mode : {"exact", "published"}, default "exact"
+        Capstan-consistent equations, or Lau et al.'s as printed.
+    limits : CommandLimits, tuple, dict or None, optional
+        Saturation of the command and its rate (see :class:`CommandLimits`).
+
+    Raises
+    ------
+    ValueError
+        An unknown mode, or a value the C++ core rejects (the message names it).
     """
 
     _saved_settings = (
@@ -94,7 +128,33 @@ class ContinuumFeedforward(Feedforward):
         """Built from a ``CurveAngleModel`` identified on the continuum drive (motor angle in,
         bending angle out, its ``distal_radius`` = r_t): friction, EA, T0 and L carry over,
         and the identified environment spring k_e (N/m on the stroke) is the backbone,
-        EI = k_e r_t^2 l (Li and Rahn)."""
+        EI = k_e r_t^2 l (Li and Rahn).
+
+        Parameters
+        ----------
+        model : CurveAngleModel
+            Identified on the continuum drive, with a spring k_e > 0.
+        tendon_offset : float
+            r_t (m).
+        backbone_length : float
+            l (m).
+        total_angle : float
+            Curve angle of the sheath (rad).
+        mode : {"exact", "published"}, default "exact"
+            See the class.
+        **options
+            Other constructor settings (gap_factor, smoothing, limits).
+
+        Returns
+        -------
+        ContinuumFeedforward
+            The compensator.
+
+        Raises
+        ------
+        ValueError
+            model lacks a CurveAngleModel parameter or has no spring.
+        """
         p = model.params
         missing = {"friction", "stiffness", "pretension", "length", "spring"} - set(p)
         if missing:
@@ -120,5 +180,16 @@ class ContinuumFeedforward(Feedforward):
         )
 
     def bending_force(self, theta_d: float) -> float:
-        """Tendon pulling force of the bent segment, F = kappa EI / r_t (N)."""
+        """Tendon pulling force of the bent segment, F = kappa EI / r_t (N).
+
+        Parameters
+        ----------
+        theta_d : float
+            Bending angle of the segment (rad).
+
+        Returns
+        -------
+        float
+            F (N).
+        """
         return self._engine.bending_force(float(theta_d))

@@ -24,6 +24,36 @@ class CurveAngleFeedforward(Feedforward):
     sensing or bending-knob readings. ``smoothing`` is the direction-switch speed (rad/s of
     the distal angle); ``max_correction_rate`` (m/s at the tendon) limits how fast the
     correction may change, e.g. after a sudden change of the route. Angles in rad.
+
+    Parameters
+    ----------
+    friction : float
+        Friction coefficient mu.
+    compliance : float
+        Tendon compliance L/EA (m/N).
+    pretension : float
+        Pretension T0 (N).
+    load_force : float, default 0.0
+        Constant distal load at the tendon (N).
+    load_stiffness : float, default 0.0
+        Environment stiffness at the tendon (N/m).
+    proximal_radius : float, default 5e-3
+        Motor pulley radius r_p (m).
+    distal_radius : float, default 5e-3
+        Joint pulley radius r_d (m).
+    curve_angle : float, default pi
+        Curve angle Theta (rad) until a route or another angle is given.
+    smoothing : float, default 0.05
+        Direction-switch speed (rad/s of the distal angle), > 0.
+    max_correction_rate : float, default inf
+        Largest rate of change of the correction (m/s at the tendon).
+    limits : CommandLimits, tuple, dict or None, optional
+        Saturation of the command and its rate (see :class:`CommandLimits`).
+
+    Raises
+    ------
+    ValueError
+        A value the C++ core rejects (the message names it).
     """
 
     control_inputs = ("y_d", "curve_angle")
@@ -80,7 +110,31 @@ class CurveAngleFeedforward(Feedforward):
     def from_model(cls, model, load_force=None, load_stiffness=None, **options):
         """Built from an identified ``CurveAngleModel``: its friction, compliance L/EA,
         pretension and radii; the distal load defaults to the model's own (``load``,
-        ``spring``) and can be replaced by the load expected in use (N, N/m at the tendon)."""
+        ``spring``) and can be replaced by the load expected in use (N, N/m at the tendon).
+
+        Parameters
+        ----------
+        model : CurveAngleModel
+            The identified model.
+        load_force : float, optional
+            Distal load (N at the tendon); default the model's ``load``.
+        load_stiffness : float, optional
+            Environment stiffness (N/m at the tendon); default the model's ``spring``.
+        **options
+            Other constructor settings (curve_angle, smoothing, max_correction_rate, limits).
+
+        Returns
+        -------
+        CurveAngleFeedforward
+            The compensator.
+
+        Raises
+        ------
+        TypeError
+            model has no parameter dict.
+        ValueError
+            model lacks a CurveAngleModel parameter.
+        """
         p = getattr(model, "params", None)
         if not isinstance(p, dict):
             raise TypeError(
@@ -105,19 +159,55 @@ class CurveAngleFeedforward(Feedforward):
 
     @property
     def friction(self) -> float:
+        """Friction coefficient mu."""
         return self._engine.params.friction
 
     def set_curve_angle(self, total_angle: float) -> None:
-        """Uniform curvature with this total curve angle (rad)."""
+        """Uniform curvature with this total curve angle (rad).
+
+        Parameters
+        ----------
+        total_angle : float
+            The curve angle Theta (rad), >= 0.
+        """
         self._engine.set_curve_angle(float(total_angle))
 
     def set_route(self, route) -> None:
-        """Any route: its exact g/G shape integrals are used (spec A.2 warning on Theta-only)."""
+        """Any route: its exact g/G shape integrals are used (spec A.2 warning on Theta-only).
+
+        Parameters
+        ----------
+        route : Route
+            Or any object with ``s`` and ``theta`` samples.
+
+        Raises
+        ------
+        TypeError
+            route has no ``s`` and ``theta``.
+        """
         if not (hasattr(route, "s") and hasattr(route, "theta")):
             raise TypeError(f"set_route needs a Route (got {route!r})")
         self._engine.set_shape(shape_of(route, self.friction))
 
     def step(self, y_d: float, dt: float, curve_angle=None, route=None) -> float:
+        """One control cycle, after taking a new route or curve angle when one is given.
+
+        Parameters
+        ----------
+        y_d : float
+            Desired distal angle (rad).
+        dt : float
+            Time since the previous cycle (s), >= 0.
+        curve_angle : float, optional
+            A new curve angle (rad): uniform curvature.
+        route : Route, optional
+            A new route (takes precedence over curve_angle).
+
+        Returns
+        -------
+        float
+            The motor angle (rad).
+        """
         dt = checked_dt(dt)
         if route is not None:
             self.set_route(route)
@@ -138,7 +228,32 @@ class CurveAngleFeedforward(Feedforward):
     ):
         """Motor angles for a whole trajectory; the shape from `curve_angle` (scalar or one
         per sample) or `routes` (a callable t -> route), else the constructor's curve angle.
-        With ``status=True`` returns ``(commands, flags)`` (each cycle's Status, uint8)."""
+        With ``status=True`` returns ``(commands, flags)`` (each cycle's Status, uint8).
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,)
+            Sample times (s), increasing; required.
+        y_desired : array_like of float, shape (n,)
+            Desired distal angles (rad).
+        curve_angle : float or array_like of float, optional
+            Curve angle (rad), one value or one per sample, >= 0.
+        routes : callable, optional
+            t -> the route at time t (takes precedence over curve_angle).
+        status : bool, default False
+            Also return each cycle's Status flags.
+
+        Returns
+        -------
+        commands : numpy.ndarray of float, shape (n,)
+            Motor angles (rad); ``(commands, flags)`` with ``status=True``, flags each cycle's
+            :class:`~tendonsheath.Status` (uint8).
+
+        Raises
+        ------
+        ValueError
+            t missing, or samples not finite or of different lengths.
+        """
         ts, ys = as_time_and_signal(t, y_desired, "y_desired")
         if ts is None:
             raise ValueError("CurveAngleFeedforward.command needs the time vector t")

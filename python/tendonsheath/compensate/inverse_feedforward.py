@@ -25,6 +25,20 @@ class InverseFeedforward(Feedforward):
       ``smoothing`` and ``limits`` stay in the raw output and command units.
 
     ``limits`` (a :class:`CommandLimits`) saturates the command and its rate.
+
+    Parameters
+    ----------
+    model : HysteresisModel
+        A Backlash, BoucWenBacklash or PrandtlIshlinskii, or a Scaled one around them.
+    smoothing : float, default 0.05
+        Desired-output speed of the branch switch (output units per s), > 0.
+    limits : CommandLimits, tuple, dict or None, optional
+        Saturation of the command and its rate (see :class:`CommandLimits`).
+
+    Raises
+    ------
+    ValueError
+        A model of another class, or a smoothing or limit the C++ core rejects.
     """
 
     _saved_settings = ("model", "smoothing", "limits")
@@ -66,13 +80,35 @@ class InverseFeedforward(Feedforward):
 
     @property
     def params(self) -> dict:
+        """The constructor settings and the model (a copy)."""
         return {**super().params, "model": self.model}
 
     def to_dict(self) -> dict:
+        """The compensator as a dict, its model saved whole.
+
+        Returns
+        -------
+        dict
+            What :func:`~tendonsheath.compensate.load_compensator` reads back.
+        """
         data = super().to_dict()
         return {**data, "model": self.model.to_dict()}
 
     def step(self, y_d: float, dt: float) -> float:
+        """One control cycle (real-time core, no allocation).
+
+        Parameters
+        ----------
+        y_d : float
+            Desired output (the model's output unit).
+        dt : float
+            Time since the previous cycle (s), >= 0.
+
+        Returns
+        -------
+        float
+            The motor command.
+        """
         dt = checked_dt(dt)
         if self._map is None:
             return super().step(y_d, dt)
@@ -80,6 +116,28 @@ class InverseFeedforward(Feedforward):
         return x_c + x_s * self._engine.step((float(y_d) - y_c) / g, float(dt))
 
     def command(self, t, y_desired, status: bool = False):
+        """Motor commands for a whole trajectory, from the initial state.
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,)
+            Sample times (s), increasing; required.
+        y_desired : array_like of float, shape (n,)
+            Desired outputs.
+        status : bool, default False
+            Also return each cycle's Status flags.
+
+        Returns
+        -------
+        commands : numpy.ndarray of float, shape (n,)
+            Motor commands; ``(commands, flags)`` with ``status=True``, flags each cycle's
+            :class:`~tendonsheath.Status` (uint8).
+
+        Raises
+        ------
+        ValueError
+            t missing, or samples not finite or of different lengths.
+        """
         if self._map is None:
             return super().command(t, y_desired, status)
         x_c, x_s, y_c, g = self._map

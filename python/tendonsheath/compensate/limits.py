@@ -10,13 +10,30 @@ from .. import _core as core
 
 @dataclass(frozen=True)
 class CommandLimits:
-    """Saturation of a compensator's command: range and rate (units of the command, per s)."""
+    """Saturation of a compensator's command: range and rate (units of the command, per s).
+
+    Parameters
+    ----------
+    min : float, default -inf
+        Lowest command.
+    max : float, default inf
+        Highest command.
+    max_rate : float, default inf
+        Largest command rate (command units per s).
+    """
 
     min: float = -math.inf
     max: float = math.inf
     max_rate: float = math.inf
 
     def to_core(self) -> core.CommandLimits:
+        """The C++ struct the real-time cores take.
+
+        Returns
+        -------
+        tendonsheath._core.CommandLimits
+            min, max and max_rate.
+        """
         lim = core.CommandLimits()
         lim.min, lim.max, lim.max_rate = float(self.min), float(self.max), float(self.max_rate)
         return lim

@@ -117,5 +117,21 @@ def _number(name: str, what: str, value) -> float:
 
 
 def load_compensator(source: str | Path | dict):
-    """Load a compensator saved with ``to_json``: a path, a JSON string or a dict."""
+    """Load a compensator saved with ``to_json``: a path, a JSON string or a dict.
+
+    Parameters
+    ----------
+    source : str, Path or dict
+        A path to a JSON file, JSON text, or the dict itself.
+
+    Returns
+    -------
+    InverseFeedforward, CurveAngleFeedforward, ContinuumFeedforward or AdaptiveController
+        The saved compensator.
+
+    Raises
+    ------
+    ValueError
+        An unreadable source or an invalid compensator file.
+    """
     return compensator_from_dict(read_json_source(source, "compensator"))

@@ -258,6 +258,78 @@ def identify(
     cannot separate friction from EA: the friction is then held (at ``initial``'s value, 0.1
     by default, unless given in ``fixed``), with a warning, and the identifiable groups
     (dead-zone half-width, load offset, gain at that angle) are reported in ``fit.groups``.
+
+    Parameters
+    ----------
+    model_class : type or Chain
+        The model class (e.g. ``BoucWenBacklash``), or a Chain instance.
+    t : array_like of float, shape (n,), optional
+        Sample times (s); None for a rate-independent model.
+    x : array_like of float, shape (n,), optional
+        Input samples (or give ``recordings``).
+    y : array_like of float, shape (n,), optional
+        Output samples.
+    recordings : sequence of tuple, optional
+        (t, x, y) or (t, x, y, curve_angle) per recording, instead of t, x, y.
+    curve_angle : float or array_like of float, optional
+        The curve angle (rad) of t, x, y, for models that take one.
+    warmup : int, default 0
+        Samples at the start of every recording left out of the cost.
+    bounds : dict of str to (float, float), optional
+        Search bounds by parameter (default from the data's scale).
+    fixed : dict of str to float, optional
+        Parameters held at given values.
+    free : iterable of str, optional
+        Parameters held by default that are to be identified.
+    initial : HysteresisModel, optional
+        Values of held parameters and numerical options.
+    depends_on_angle : dict of str to str, optional
+        Parameter -> "constant", "linear" or "tanh" law of the curve angle.
+    seed : int or None, default 0
+        Seed of the search (and of the bootstrap).
+    maxiter : int, default 100
+        Generations of differential evolution.
+    popsize : int, default 15
+        Population per parameter.
+    tol : float, default 0.01
+        Relative tolerance of the search.
+    workers : int, optional
+        Threads of the batched simulations (default all cores).
+    polish : bool, default True
+        Refine the search's best candidate by least squares.
+    separable : bool, default True
+        Solve linear-in-parameter parts by least squares.
+    progress : bool, default True
+        Show a progress bar.
+    search_samples : int or None, default 200000
+        Samples the global search runs on at most (None: no limit).
+    time_budget : float, optional
+        Seconds of wall clock for the search and the refinement.
+    input_interpolation : {"hold", "linear", "bandlimited"}, optional
+        The input reconstruction between samples.
+    periodic : bool, optional
+        Whether the records are whole periods (None: detected).
+    strategy : {"auto", "search"}, default "auto"
+        HystereticOscillator's path.
+    normalize : bool, default True
+        Fit on centred, scaled data and map back.
+    standard_errors : {"linearised", "bootstrap", "bootstrap-recordings", "none"}
+        How the standard errors are obtained (default "linearised").
+    bootstrap : int, optional
+        Bootstrap resamples (default 200).
+    bootstrap_block : int, optional
+        Block length of the residual bootstrap (default from the autocorrelation).
+
+    Returns
+    -------
+    Fit
+        The identified model, its errors, standard errors and diagnostics.
+
+    Raises
+    ------
+    ValueError
+        Bad data or arguments (the message names them), or an option the model does not
+        support.
     """
     from .uncertainty import check_method
 

@@ -101,6 +101,27 @@ class Diagnostics:
     CurveAngleModel's single-angle reparameterisation; those that start with "!" are also
     warnings); ``jacobian``: where J came from; ``weak``: the parameters that dominate the
     least determined direction.
+
+    Parameters
+    ----------
+    names : list of str, optional
+        The identified quantities.
+    correlation : list of list of float, optional
+        Their correlation matrix.
+    condition_number : float, default nan
+        Of the column-normalised Jacobian.
+    near_bounds : dict of str to str, optional
+        Name -> "lower" or "upper".
+    bounds : dict of str to (float, float), optional
+        The search bounds of those names.
+    correlated : list of (str, str, float), optional
+        Pairs correlated beyond CORRELATION_LIMIT.
+    notes : list of str, optional
+        Other findings ("!" first: also a warning).
+    jacobian : str, default ""
+        Where the Jacobian came from.
+    weak : list of str, optional
+        The parameters of the least determined direction.
     """
 
     names: list[str] = field(default_factory=list)
@@ -125,6 +146,30 @@ class Diagnostics:
         source: str = "",
         notes: Sequence[str] = (),
     ) -> Diagnostics:
+        """The diagnostics of a Jacobian J of the output (samples x identified quantities).
+
+        Parameters
+        ----------
+        J : numpy.ndarray of float, shape (n, len(names)), or None
+            The Jacobian; None or empty: only the bounds are checked.
+        names : sequence of str
+            The quantity of each column.
+        values : dict of str to float, optional
+            The identified values (to check against the bounds).
+        bounds : dict of str to (float, float), optional
+            The search bounds.
+        refs : dict of str to float, optional
+            Reference values of the bound test (default 0).
+        source : str, default ""
+            Where J came from.
+        notes : sequence of str, optional
+            Findings to keep.
+
+        Returns
+        -------
+        Diagnostics
+            Bounds, correlation, condition number and the weakest direction.
+        """
         names = list(names)
         d = cls(names=names, jacobian=source, notes=list(notes))
         for name, (lo, hi) in (bounds or {}).items():
@@ -169,7 +214,13 @@ class Diagnostics:
 
     # -- reading -----------------------------------------------------------------------
     def warnings(self) -> list[str]:
-        """One message per finding that crosses a limit, naming the parameters."""
+        """One message per finding that crosses a limit, naming the parameters.
+
+        Returns
+        -------
+        list of str
+            The messages (empty when nothing crosses a limit).
+        """
         out = []
         if self.near_bounds:
             items = ", ".join(
@@ -197,16 +248,34 @@ class Diagnostics:
 
     def weakest(self) -> list[str]:
         """The parameters that dominate the least determined direction of the Jacobian (its
-        smallest right singular vector, components above 0.25)."""
+        smallest right singular vector, components above 0.25).
+
+        Returns
+        -------
+        list of str
+            At most four names.
+        """
         return list(self.weak)
 
     def warn(self, stacklevel: int = 3) -> None:
-        """Emit one :class:`IdentifiabilityWarning` per finding."""
+        """Emit one :class:`IdentifiabilityWarning` per finding.
+
+        Parameters
+        ----------
+        stacklevel : int, default 3
+            Passed to :func:`warnings.warn`.
+        """
         for message in self.warnings():
             warnings.warn(message, IdentifiabilityWarning, stacklevel=stacklevel)
 
     def lines(self) -> list[str]:
-        """Readable lines for a summary."""
+        """Readable lines for a summary.
+
+        Returns
+        -------
+        list of str
+            Condition number, bounds, correlations and notes.
+        """
         out = []
         if math.isfinite(self.condition_number) or self.condition_number == float("inf"):
             out.append(
@@ -230,6 +299,13 @@ class Diagnostics:
         return out
 
     def to_dict(self) -> dict[str, Any]:
+        """The diagnostics as a JSON-ready dict, with the limits and the warnings.
+
+        Returns
+        -------
+        dict
+            Non-finite numbers as None.
+        """
         return {
             "names": list(self.names),
             "correlation": [[_num(v) for v in row] for row in self.correlation],

@@ -14,7 +14,20 @@ from .diagnostics import Diagnostics
 
 
 def metrics(y, y_hat) -> dict[str, float]:
-    """rmse; nrmse = rmse / (max(y) - min(y)); fit % = 100 (1 - ||y - y_hat|| / ||y - mean(y)||)."""
+    """rmse; nrmse = rmse / (max(y) - min(y)); fit % = 100 (1 - ||y - y_hat|| / ||y - mean(y)||).
+
+    Parameters
+    ----------
+    y : array_like of float
+        Measured outputs.
+    y_hat : array_like of float
+        Predicted outputs, of y's length.
+
+    Returns
+    -------
+    dict of str to float
+        rmse, nrmse, fit_percent (NaN for a constant y) and max_abs.
+    """
     y = np.asarray(y, dtype=float)
     y_hat = np.asarray(y_hat, dtype=float)
     e = y - y_hat
@@ -87,6 +100,49 @@ class Fit:
     covariance matrix, NaN rows for those at an active constraint)}).
     ``stopped_on_budget``: the ``time_budget`` of identify() stopped the search or the
     refinement (the model is the best found by then).
+
+    Parameters
+    ----------
+    model : HysteresisModel
+        The identified model.
+    rmse, nrmse, fit_percent : float
+        Over all fitted samples.
+    standard_errors : dict
+        Identified parameter -> standard error (a list for a vector parameter).
+    identified : list of str
+        The identified parameters.
+    fixed : dict
+        The parameters held at given values.
+    per_recording : list of dict
+        :func:`metrics` of each recording.
+    evaluations : int
+        Simulations the search ran.
+    seconds : float
+        Wall time of the identification (s).
+    generations : int
+        Generations of the global search.
+    method : str
+        The search method.
+    message : str
+        The optimiser's message.
+    warmup : int
+        Samples at the start of each recording left out of the fit.
+    n_samples : int
+        Fitted samples in all.
+    bounds : dict of str to (float, float), optional
+        The search bounds.
+    recordings : list of Recording, optional
+        The data fitted.
+    predictions : list of numpy.ndarray, optional
+        The model's output on each recording.
+    diagnostics : Diagnostics, optional
+        Identifiability diagnostics.
+    groups : dict, optional
+        Identified groups.
+    uncertainty : dict, optional
+        How the standard errors were obtained.
+    stopped_on_budget : bool, default False
+        The time budget stopped the search.
     """
 
     model: HysteresisModel
@@ -120,7 +176,29 @@ class Fit:
     ) -> Fit:
         """The Fit of ``model`` from its :func:`fit_quality` and, where given, its
         ``uncertainty.assess()`` result (standard errors, diagnostics, groups, method);
-        ``fields`` are the identification path's own (identified, fixed, bounds, counts...)."""
+        ``fields`` are the identification path's own (identified, fixed, bounds, counts...).
+
+        Parameters
+        ----------
+        model : HysteresisModel
+            The identified model.
+        quality : FitQuality
+            Its :func:`fit_quality` on the recordings.
+        assessed : dict, optional
+            ``uncertainty.assess()``'s result.
+        **fields
+            The other fields of :class:`Fit`.
+
+        Returns
+        -------
+        Fit
+            The fit.
+
+        Raises
+        ------
+        TypeError
+            A field that Fit does not have, or one missing.
+        """
         if assessed is not None:
             fields.update(
                 standard_errors=assessed["standard_errors"],
@@ -139,7 +217,13 @@ class Fit:
         )
 
     def warnings(self) -> list[str]:
-        """The identifiability warnings of this fit (empty when there are none)."""
+        """The identifiability warnings of this fit (empty when there are none).
+
+        Returns
+        -------
+        list of str
+            The warnings' texts.
+        """
         return self.diagnostics.warnings()
 
     def warn(self) -> None:
@@ -148,20 +232,61 @@ class Fit:
 
     @property
     def params(self) -> dict[str, Any]:
+        """The fitted model's parameters."""
         return self.model.params
 
     def predict(self, t, x, curve_angle=None) -> np.ndarray:
-        """The fitted model's output for a new input."""
+        """The fitted model's output for a new input.
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s); None for a rate-independent model.
+        x : array_like of float, shape (n,)
+            Input samples.
+        curve_angle : float or array_like of float, optional
+            The curve angle (rad), for models that take one.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (n,)
+            The predicted output.
+        """
         return simulate_model(self.model, t, x, curve_angle)
 
     def validate(self, t, x, y, curve_angle=None, warmup: int | None = None) -> dict[str, float]:
-        """Metrics of the fitted model on another recording (after the same warm-up)."""
+        """Metrics of the fitted model on another recording (after the same warm-up).
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s); None for a rate-independent model.
+        x : array_like of float, shape (n,)
+            Input samples.
+        y : array_like of float, shape (n,)
+            Measured outputs.
+        curve_angle : float or array_like of float, optional
+            The curve angle (rad), for models that take one.
+        warmup : int, optional
+            Samples left out at the start (default the fit's).
+
+        Returns
+        -------
+        dict of str to float
+            :func:`metrics` of the prediction.
+        """
         w = self.warmup if warmup is None else int(warmup)
         y_hat = self.predict(t, x, curve_angle)
         return metrics(np.asarray(y, dtype=float)[w:], y_hat[w:])
 
     def table(self) -> list[tuple[str, str, str]]:
-        """Rows (parameter, value, standard error) with fixed parameters marked."""
+        """Rows (parameter, value, standard error) with fixed parameters marked.
+
+        Returns
+        -------
+        list of (str, str, str)
+            Name, value and standard error ("fixed" for a fixed parameter), as text.
+        """
         rows = []
         params = self.model.params
         if "coefficients" in params:  # AngleDependent
@@ -192,7 +317,13 @@ class Fit:
         return rows
 
     def se_description(self) -> str:
-        """How the standard errors were obtained, in words."""
+        """How the standard errors were obtained, in words.
+
+        Returns
+        -------
+        str
+            E.g. "linearised" or "bootstrap, 200 resamples of 50-sample blocks, seed 0".
+        """
         u = self.uncertainty
         method = u.get("method", "linearised")
         if method == "bootstrap":
@@ -205,6 +336,13 @@ class Fit:
         return f"{text}, seed {u.get('seed')}{failed}"
 
     def summary(self) -> str:
+        """The fit in words: figures, parameters with standard errors, groups, identifiability.
+
+        Returns
+        -------
+        str
+            Several lines of text (also ``str(fit)``).
+        """
         lines = [
             f"{type(self.model).__name__} identified from {len(self.recordings)} recording(s), "
             f"{self.n_samples} fitted samples",
@@ -231,7 +369,13 @@ class Fit:
         return self.summary()
 
     def to_dict(self) -> dict[str, Any]:
-        """Figures of the fit (JSON-friendly), with the model itself."""
+        """Figures of the fit (JSON-friendly), with the model itself.
+
+        Returns
+        -------
+        dict
+            The fields of the fit, the model as :meth:`HysteresisModel.to_dict`.
+        """
         return {
             "model": self.model.to_dict(),
             "rmse": self.rmse,
@@ -259,7 +403,18 @@ class Fit:
 
     def report(self, path: str | Path) -> Path:
         """Draw measured vs predicted over time, the input-output loop and the residual;
-        emits the fit's identifiability warnings (:class:`IdentifiabilityWarning`)."""
+        emits the fit's identifiability warnings (:class:`IdentifiabilityWarning`).
+
+        Parameters
+        ----------
+        path : str or Path
+            The figure file.
+
+        Returns
+        -------
+        Path
+            The file written.
+        """
         from .report import draw_report
 
         self.warn()

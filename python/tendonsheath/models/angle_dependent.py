@@ -41,6 +41,26 @@ class AngleDependent(HysteresisModel):
     ``simulate(t, x, curve_angle=...)`` takes one curve angle per call (a number, or an array
     that is constant); :meth:`at` gives the plain base model at an angle. Streaming ``step``
     works at one angle until ``reset()``.
+
+    Parameters
+    ----------
+    base : str or type
+        The base model's class or class name (not one that takes the curve angle itself).
+    coefficients : dict of str to list of float
+        Every base parameter -> its coefficients: [p0] for a constant law, [p0, p1] otherwise.
+    laws : dict of str to str, optional
+        Base parameter -> "constant", "linear" or "tanh"; a parameter left out is constant.
+    angle_friction : float, optional
+        The friction coefficient mu of the tanh laws (> 0; required with a tanh law).
+    base_options : dict, optional
+        Options passed to the base model (e.g. ``max_step``).
+
+    Raises
+    ------
+    ValueError
+        An unknown base model or parameter, an unknown law, a wrong number of coefficients,
+        a non-finite coefficient, a missing angle_friction, or base parameters invalid at
+        Theta = 0 (pi with a tanh law).
     """
 
     param_names = ("base", "laws", "coefficients", "angle_friction")
@@ -107,10 +127,12 @@ class AngleDependent(HysteresisModel):
     # -- parameters ------------------------------------------------------------------
     @property
     def base(self) -> type[HysteresisModel]:
+        """The base model's class."""
         return self._base_cls
 
     @property
     def params(self) -> dict[str, Any]:
+        """base, laws, coefficients and angle_friction, as a dict (a copy)."""
         return {
             "base": self._base_cls.__name__,
             "laws": dict(self._laws),
@@ -120,10 +142,22 @@ class AngleDependent(HysteresisModel):
 
     @property
     def options(self) -> dict[str, Any]:
+        """``{"base_options": ...}``, the base model's options (a copy)."""
         return {"base_options": dict(self._base_options)}
 
     def params_at(self, curve_angle: float) -> dict[str, float]:
-        """The base model's parameters at one curve angle."""
+        """The base model's parameters at one curve angle.
+
+        Parameters
+        ----------
+        curve_angle : float
+            The route's curve angle Theta (rad).
+
+        Returns
+        -------
+        dict of str to float
+            Each base parameter's value by its law.
+        """
         theta = float(curve_angle)
         return {
             k: float(law_value(self._laws[k], self._coefs[k], theta, self._mu))
@@ -131,11 +165,50 @@ class AngleDependent(HysteresisModel):
         }
 
     def at(self, curve_angle: float) -> HysteresisModel:
-        """The base model at one curve angle (ValueError if its parameters are invalid there)."""
+        """The base model at one curve angle.
+
+        Parameters
+        ----------
+        curve_angle : float
+            The route's curve angle Theta (rad).
+
+        Returns
+        -------
+        HysteresisModel
+            The base model with :meth:`params_at` ``(curve_angle)``.
+
+        Raises
+        ------
+        ValueError
+            The base parameters are invalid at that angle.
+        """
         return self._base_cls(**self.params_at(curve_angle), **self._base_options)
 
     # -- simulation ------------------------------------------------------------------
     def simulate(self, t, x, curve_angle=None, status: bool = False):
+        """Output of the base model at one curve angle for the input samples x at times t.
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s); None when the base model is rate-independent.
+        x : array_like of float, shape (n,)
+            Input samples.
+        curve_angle : float or array_like of float
+            The curve angle Theta (rad): a number, or an array of n equal values.
+        status : bool, default False
+            Also return each sample's :class:`~tendonsheath.Status`.
+
+        Returns
+        -------
+        y : numpy.ndarray of float, shape (n,)
+            Output samples (``(y, flags)`` with ``status=True``).
+
+        Raises
+        ------
+        ValueError
+            No curve angle, or one that varies during the run.
+        """
         theta = curve_angle_samples(curve_angle, np.size(x), "AngleDependent")
         if np.any(theta != theta[0]):
             raise ValueError(
@@ -145,10 +218,33 @@ class AngleDependent(HysteresisModel):
         return self.at(theta[0]).simulate(t, x, **({"status": True} if status else {}))
 
     def reset(self) -> None:
+        """Forget the streaming state and its curve angle."""
         self._stream = None
         self._stream_angle = None
 
     def step(self, x: float, dt: float = 0.0, curve_angle: float | None = None) -> float:
+        """Advance one sample (streaming) at the curve angle fixed by the first step.
+
+        Parameters
+        ----------
+        x : float
+            The input sample.
+        dt : float, default 0.0
+            Time since the previous sample (s).
+        curve_angle : float, optional
+            The curve angle (rad): required on the first step after a reset, and unchanged
+            after it.
+
+        Returns
+        -------
+        float
+            The output sample.
+
+        Raises
+        ------
+        ValueError
+            No curve angle on the first step, or a different one later without a reset.
+        """
         dt = checked_dt(dt)
         if self._stream is None:
             if curve_angle is None:
@@ -165,13 +261,38 @@ class AngleDependent(HysteresisModel):
         self, dt: float, name: str | None = None, inputs=None, output=None, curve_angle=None
     ):
         """The base model at one ``curve_angle`` (rad) as a python-control system (a run at one
-        curve angle, as :meth:`simulate`); see :meth:`HysteresisModel.to_control`."""
+        curve angle, as :meth:`simulate`); see :meth:`HysteresisModel.to_control`.
+
+        Parameters
+        ----------
+        dt : float
+            Sample time (s), > 0.
+        name : str, optional
+            The system's name.
+        inputs : str or list of str, optional
+            Input signal names.
+        output : str, optional
+            Output signal name.
+        curve_angle : float
+            The curve angle (rad); required.
+
+        Returns
+        -------
+        control.NonlinearIOSystem
+            The discrete-time system of :meth:`at` ``(curve_angle)``.
+        """
         if curve_angle is None:
             raise ValueError("AngleDependent.to_control needs curve_angle (rad): one per system")
         return self.at(curve_angle).to_control(dt, name, inputs, output)
 
     def status(self) -> Status:
-        """The last step's Status (OK before the first step)."""
+        """The last step's Status (OK before the first step).
+
+        Returns
+        -------
+        Status
+            The flags of the last :meth:`step`.
+        """
         return self._stream.status() if self._stream is not None else Status.OK
 
     def __repr__(self) -> str:

@@ -10,6 +10,13 @@ class Backlash(HysteresisModel):
     """Exact piecewise backlash: y = c_r (x - B_r) rising, y = c_l (x + B_l) falling, held between.
 
     Starts in the middle of the band at the first sample. Rate-independent.
+
+    Parameters
+    ----------
+    c_r, c_l : float, default 1.0
+        Slopes of the rising and falling branches (> 0).
+    B_r, B_l : float, default 0.1
+        Half-widths of the band on the rising and falling side (input unit), >= 0.
     """
 
     _core = core.Backlash

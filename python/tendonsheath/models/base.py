@@ -24,6 +24,18 @@ class HysteresisModel:
     Subclasses declare ``_core`` (the C++ class), ``_core_params`` (its parameter
     struct) and ``param_names`` (the identifiable parameters, in order), and may
     list ``option_names`` (numerical settings that are not identified).
+
+    Parameters
+    ----------
+    **values
+        The subclass's parameters (``param_names``) and options (``option_names``) by name; a
+        name left out or given as None keeps the C++ default.
+
+    Raises
+    ------
+    ValueError
+        An unknown name, a value of the wrong type, or a value the C++ core rejects (the
+        message names the parameter).
     """
 
     _core: ClassVar[Any]
@@ -76,11 +88,23 @@ class HysteresisModel:
 
     @property
     def options(self) -> dict[str, Any]:
+        """The numerical options (not identified), as a dict (a copy)."""
         s = self._engine.params
         return {k: _plain(getattr(s, k)) for k in self.option_names}
 
     def with_params(self, **changes) -> HysteresisModel:
-        """A new model with some parameters changed (options kept)."""
+        """A new model with some parameters changed (options kept).
+
+        Parameters
+        ----------
+        **changes
+            Parameters or options by name, with their new values.
+
+        Returns
+        -------
+        HysteresisModel
+            A new model of the same class; this one is unchanged.
+        """
         values = {**self.params, **self.options, **changes}
         return type(self)(**values)
 
@@ -88,8 +112,30 @@ class HysteresisModel:
     def simulate(self, t, x, status: bool = False):
         """Output for the input samples x at times t (t may be None when rate-independent).
 
-        Starts from the model's initial state; does not disturb the streaming state. With
-        ``status=True`` returns ``(y, flags)``: flags holds each sample's :class:`Status` (uint8).
+        Starts from the model's initial state; does not disturb the streaming state.
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s), increasing; None for a rate-independent model.
+        x : array_like of float, shape (n,)
+            Input samples (the model's input unit, e.g. rad or m).
+        status : bool, default False
+            Also return each sample's :class:`~tendonsheath.Status`.
+
+        Returns
+        -------
+        y : numpy.ndarray of float, shape (n,)
+            Output samples.
+        flags : numpy.ndarray of uint8, shape (n,)
+            Each sample's :class:`~tendonsheath.Status` bits; only with ``status=True``, as
+            ``(y, flags)``.
+
+        Raises
+        ------
+        ValueError
+            t missing for a rate-dependent model, or t and x of different lengths, not finite
+            or t not increasing.
         """
         if t is None and not self.rate_independent:
             raise ValueError(f"{type(self).__name__} is rate-dependent: t is required")
@@ -97,16 +143,45 @@ class HysteresisModel:
         return self._engine.simulate(ts, xs, bool(status))
 
     def reset(self) -> None:
-        """Forget the streaming state; the next step() starts afresh."""
+        """Forget the streaming state; the next step() starts afresh.
+
+        Returns
+        -------
+        None
+        """
         self._engine.reset()
 
     def step(self, x: float, dt: float = 0.0) -> float:
-        """Advance one sample (streaming); dt is the time since the previous sample."""
+        """Advance one sample (streaming).
+
+        Parameters
+        ----------
+        x : float
+            The input sample.
+        dt : float, default 0.0
+            Time since the previous sample (s); ignored by rate-independent models.
+
+        Returns
+        -------
+        float
+            The output sample.
+        """
         dt = checked_dt(dt)
         return self._engine.step(float(x), float(dt))
 
     def status(self) -> Status:
-        """The last step's :class:`~tendonsheath.Status` (held input, clamped, ...)."""
+        """The last step's :class:`~tendonsheath.Status` (held input, clamped, ...).
+
+        Returns
+        -------
+        Status
+            The flags of the last :meth:`step`.
+
+        Raises
+        ------
+        TypeError
+            The model has no real-time core and reports no status (linear blocks).
+        """
         if not self.reports_status:
             raise TypeError(f"{type(self).__name__} has no real-time core and reports no status")
         return Status(self._engine.status())
@@ -116,7 +191,24 @@ class HysteresisModel:
         """This model as a discrete-time ``control.NonlinearIOSystem`` with sample time dt (s),
         input ``x`` (and ``curve_angle`` where the model takes one), output ``y`` and one state,
         the index of an exact snapshot of the engine (see :mod:`tendonsheath.control_interop`).
-        Needs python-control: ``pip install 'tendonsheath[control]'``."""
+        Needs python-control: ``pip install 'tendonsheath[control]'``.
+
+        Parameters
+        ----------
+        dt : float
+            Sample time (s), > 0.
+        name : str, optional
+            The system's name.
+        inputs : str or list of str, optional
+            Input signal names (default ``control_inputs``).
+        output : str, optional
+            Output signal name (default ``control_output``).
+
+        Returns
+        -------
+        control.NonlinearIOSystem
+            The discrete-time system.
+        """
         from ..control_interop import to_system
 
         return to_system(self, dt, inputs, output, name)
@@ -126,6 +218,13 @@ class HysteresisModel:
 
     # -- persistence -----------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
+        """The model as a JSON-ready dict (format, version, model, params, options).
+
+        Returns
+        -------
+        dict
+            What :meth:`from_dict` and :func:`load_model` read back.
+        """
         return {
             "format": FORMAT_NAME,
             "version": FORMAT_VERSION,
@@ -136,6 +235,24 @@ class HysteresisModel:
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> HysteresisModel:
+        """The model saved in ``data`` (as written by :meth:`to_dict`).
+
+        Parameters
+        ----------
+        data : dict
+            A saved model: format, version, model, params and options.
+
+        Returns
+        -------
+        HysteresisModel
+            The saved model's class, with its parameters.
+
+        Raises
+        ------
+        ValueError
+            Not a model file, an unknown version or model, a model of another class than
+            ``cls``, or a missing, null, unknown or boolean parameter.
+        """
         model_cls = model_class_from_dict(data)
         if cls is not HysteresisModel and not issubclass(model_cls, cls):
             raise ValueError(f"file holds a {model_cls.__name__}, not a {cls.__name__}")
@@ -153,7 +270,18 @@ class HysteresisModel:
         return model_cls(**values)
 
     def to_json(self, path: str | Path | None = None) -> str:
-        """The model as JSON text; also written to `path` when one is given."""
+        """The model as JSON text; also written to `path` when one is given.
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            A file to write the JSON to (atomically).
+
+        Returns
+        -------
+        str
+            The JSON text.
+        """
         text = json.dumps(self.to_dict(), indent=2)
         if path is not None:
             write_text(path, text + "\n")
@@ -226,7 +354,23 @@ def _check_not_bool(name: str, what: str, value) -> None:
 
 
 def load_model(source: str | Path | dict) -> HysteresisModel:
-    """Load a model saved with ``to_json``: a path, a JSON string or a dict."""
+    """Load a model saved with ``to_json``: a path, a JSON string or a dict.
+
+    Parameters
+    ----------
+    source : str, Path or dict
+        A path to a JSON file, JSON text, or the dict itself.
+
+    Returns
+    -------
+    HysteresisModel
+        The saved model.
+
+    Raises
+    ------
+    ValueError
+        An unreadable source or an invalid model file (the message says what is wrong).
+    """
     return HysteresisModel.from_dict(read_json_source(source, "model"))
 
 

@@ -43,6 +43,34 @@ class BoucWen(HysteresisModel):
     give the same result (checked in tests/test_bouc_wen.py). A reconstruction could only
     matter through a reversal between samples (an overshoot of the band-limited
     interpolant), which a rate-independent model fed at its sample rate does not see.
+
+    Parameters
+    ----------
+    A : float, default 1.0
+        Amplitude of the state's increment, > 0.
+    beta : float, default 0.5
+        Shape parameter, > 0 (and beta + gamma > 0).
+    gamma : float, default 0.5
+        Shape parameter, |gamma| <= beta.
+    n : float, default 1.0
+        Sharpness of the transitions, >= 1.
+    alpha : float, optional
+        Share of the linear path, in [0, 1] (default 0.5).
+    k : float, default 1.0
+        Gain, finite.
+    max_step : float, default 0.05
+        Largest RK4 sub-step in x (input unit).
+    max_substeps : int, default 256
+        Most RK4 sub-steps per sample.
+    **renamed
+        Only ``a``, the old name of ``alpha`` (DeprecationWarning).
+
+    Raises
+    ------
+    TypeError
+        A keyword other than the parameters above and ``a``.
+    ValueError
+        Both ``alpha`` and ``a``, or a parameter the C++ core rejects.
     """
 
     _core = core.BoucWen
@@ -79,7 +107,18 @@ class BoucWen(HysteresisModel):
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> HysteresisModel:
-        """Also reads files written before ``a`` was renamed ``alpha`` (without a warning)."""
+        """Also reads files written before ``a`` was renamed ``alpha`` (without a warning).
+
+        Parameters
+        ----------
+        data : dict
+            A saved model (see :meth:`HysteresisModel.from_dict`).
+
+        Returns
+        -------
+        HysteresisModel
+            The saved model.
+        """
         params = data.get("params")
         if not isinstance(params, dict):  # the base class names what is wrong
             return super().from_dict(data)

@@ -15,6 +15,29 @@ class BoucWenBacklash(HysteresisModel):
     dw = rho [dx - sigma |dx| |w|^(n-1) w + (sigma - 1) dx |w|^n]. ``rho`` defaults to
     2 / (B_r + B_l). Larger n makes the dead zone flatter (n -> inf tends to Backlash).
     ``max_step`` and ``max_substeps`` set the RK4 sub-stepping in x (numerical options).
+
+    Parameters
+    ----------
+    c_r, c_l : float, default 1.0
+        Slopes of the rising and falling branches (> 0).
+    B_r, B_l : float, default 0.1
+        Dead-zone offsets on the rising and falling side (input unit), >= 0.
+    rho : float, optional
+        Rate of the state w per unit input, > 0; default 2 / (B_r + B_l).
+    sigma : float, default 1.0
+        Shape of the transitions, >= 0.5.
+    n : float, default 4.0
+        Flatness of the dead zone (>= 1).
+    max_step : float, default 0.05
+        Largest RK4 sub-step in x (input unit).
+    max_substeps : int, default 256
+        Most RK4 sub-steps per sample.
+
+    Raises
+    ------
+    ValueError
+        rho not given with B_r + B_l not > 0 (or too small), or a parameter the C++ core
+        rejects.
     """
 
     _core = core.BoucWenBacklash

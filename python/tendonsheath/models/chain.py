@@ -22,6 +22,18 @@ class Chain(HysteresisModel):
     """y = second(first(x)), e.g. ``Chain(BoucWenBacklash(), Polynomial(3))``.
 
     Parameters are addressed as ``first.<name>`` and ``second.<name>``.
+
+    Parameters
+    ----------
+    first : HysteresisModel
+        The model fed with x (not a Chain).
+    second : HysteresisModel
+        The model fed with first's output (not a Chain).
+
+    Raises
+    ------
+    ValueError
+        A part that is not a tendonsheath model, or is itself a chain.
     """
 
     param_names = ()
@@ -37,15 +49,34 @@ class Chain(HysteresisModel):
 
     @property
     def params(self) -> dict[str, Any]:
+        """Both parts' parameters, as ``first.<name>`` and ``second.<name>`` (a copy)."""
         out = {f"first.{k}": v for k, v in self.first.params.items()}
         out.update({f"second.{k}": v for k, v in self.second.params.items()})
         return out
 
     @property
     def options(self) -> dict[str, Any]:
+        """No options of its own (each part keeps its own): an empty dict."""
         return {}
 
     def with_params(self, **changes) -> Chain:
+        """A new chain with some parameters of its parts changed.
+
+        Parameters
+        ----------
+        **changes
+            New values by ``first.<name>`` or ``second.<name>``.
+
+        Returns
+        -------
+        Chain
+            A new chain; this one is unchanged.
+
+        Raises
+        ------
+        ValueError
+            A name that is not ``first.<name>`` or ``second.<name>``.
+        """
         parts = {"first": {}, "second": {}}
         for key, value in changes.items():
             part, _, name = key.partition(".")
@@ -60,7 +91,23 @@ class Chain(HysteresisModel):
 
     def simulate(self, t, x, status: bool = False):
         """y = second(first(x)); with ``status=True`` also each sample's Status flags, those of
-        both parts together (a part without a status, a linear block, adds none)."""
+        both parts together (a part without a status, a linear block, adds none).
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s); None when both parts are rate-independent.
+        x : array_like of float, shape (n,)
+            Input samples.
+        status : bool, default False
+            Also return each sample's Status flags.
+
+        Returns
+        -------
+        y : numpy.ndarray of float, shape (n,)
+            Output samples; ``(y, flags)`` with ``status=True``, flags the uint8
+            :class:`~tendonsheath.Status` bits of each sample.
+        """
         u = self.first.simulate(t, x, **_with_status(self.first, status))
         t2 = None if self.second.rate_independent else t
         y = self.second.simulate(t2, u[0] if _reports(self.first, status) else u,
@@ -74,14 +121,35 @@ class Chain(HysteresisModel):
         return (y[0] if _reports(self.second, status) else y), flags
 
     def reset(self) -> None:
+        """Forget both parts' streaming state."""
         self.first.reset()
         self.second.reset()
 
     def step(self, x: float, dt: float = 0.0) -> float:
+        """Advance one sample through both parts (streaming).
+
+        Parameters
+        ----------
+        x : float
+            The input sample.
+        dt : float, default 0.0
+            Time since the previous sample (s).
+
+        Returns
+        -------
+        float
+            second(first(x)).
+        """
         return self.second.step(self.first.step(x, dt), dt)
 
     def status(self) -> Status:
-        """The last step's Status of both parts (a part without a status adds none)."""
+        """The last step's Status of both parts (a part without a status adds none).
+
+        Returns
+        -------
+        Status
+            The union of both parts' flags.
+        """
         s = Status.OK
         for part in (self.first, self.second):
             if part.reports_status:
@@ -89,6 +157,13 @@ class Chain(HysteresisModel):
         return s
 
     def to_dict(self) -> dict[str, Any]:
+        """The chain as a JSON-ready dict, each part saved whole.
+
+        Returns
+        -------
+        dict
+            format, version, model ("Chain"), first and second.
+        """
         return {
             "format": FORMAT_NAME,
             "version": FORMAT_VERSION,

@@ -25,10 +25,27 @@ class CurveAngleModel(HysteresisModel):
     A change of Theta at rest obeys spec B's memory effect: raising it does not move the
     output, lowering it moves the held output onto the new, narrower branch.
 
-    Parameters: ``friction`` mu, ``stiffness`` EA (N), ``pretension`` T0 (N), ``length`` L (m),
-    ``load`` F_L (N, constant distal load at the tendon, positive resisting forward motion),
-    ``spring`` k_e (N/m, environment stiffness at the tendon), ``proximal_radius`` r_p and
-    ``distal_radius`` r_d (m).
+    Parameters
+    ----------
+    friction : float, default 0.1
+        Friction coefficient mu of the tendon in the sheath.
+    stiffness : float, default 2.4e4
+        Axial stiffness EA of the tendon (N).
+    pretension : float, default 10.0
+        Pretension T0 (N).
+    length : float, default 1.2
+        Sheath length L (m).
+    load : float, default 0.0
+        F_L (N): constant distal load at the tendon, positive resisting forward motion.
+    spring : float, default 0.0
+        k_e (N/m): environment stiffness at the tendon.
+    proximal_radius : float, default 5e-3
+        Motor pulley radius r_p (m).
+    distal_radius : float, default 5e-3
+        Joint pulley radius r_d (m).
+
+    Notes
+    -----
 
     Identifiability: T0, F_L and k_e enter only through the products T0 L/EA, F_L L/EA and
     k_e L/EA. :func:`tendonsheath.identify` therefore holds the pretension, the length and the
@@ -76,13 +93,50 @@ class CurveAngleModel(HysteresisModel):
 
     def simulate(self, t, x, curve_angle=None, status: bool = False):
         """Distal angle for motor angles x and curve angle(s) (scalar or per sample); with
-        ``status=True`` also each sample's Status flags (held, slack)."""
+        ``status=True`` also each sample's Status flags (held, slack).
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s); may be None (rate-independent).
+        x : array_like of float, shape (n,)
+            Motor angles (rad).
+        curve_angle : float or array_like of float, shape (n,)
+            The curve angle Theta (rad), one value or one per sample; required.
+        status : bool, default False
+            Also return each sample's Status flags.
+
+        Returns
+        -------
+        y : numpy.ndarray of float, shape (n,)
+            Distal angles (rad); ``(y, flags)`` with ``status=True``.
+
+        Raises
+        ------
+        ValueError
+            No curve angle, a non-finite one, or one of another length than x.
+        """
         ts, xs = as_time_and_signal(t, x)
         theta = curve_angle_samples(curve_angle, xs.size, type(self).__name__)
         return self._engine.simulate(ts, xs, theta, bool(status))
 
     def step(self, x: float, dt: float = 0.0, curve_angle: float | None = None) -> float:
-        """One sample; ``curve_angle`` may be omitted after the first call (the last is kept)."""
+        """One sample; ``curve_angle`` may be omitted after the first call (the last is kept).
+
+        Parameters
+        ----------
+        x : float
+            Motor angle (rad).
+        dt : float, default 0.0
+            Time since the previous sample (s).
+        curve_angle : float, optional
+            The curve angle (rad); the last one when left out.
+
+        Returns
+        -------
+        float
+            Distal angle (rad).
+        """
         dt = checked_dt(dt)
         if curve_angle is None:
             return self._engine.step(float(x), float(dt))
@@ -93,15 +147,48 @@ class CurveAngleModel(HysteresisModel):
 
     # closed-form terms, in the rotary units of the model (rad at the motor / at the joint)
     def backlash_half_width(self, curve_angle: float) -> float:
-        """Half the dead-zone width at the motor, rad: e_b / r_p."""
+        """Half the dead-zone width at the motor, rad: e_b / r_p.
+
+        Parameters
+        ----------
+        curve_angle : float
+            The curve angle Theta (rad).
+
+        Returns
+        -------
+        float
+            e_b / r_p (rad).
+        """
         return self._engine.backlash_half_width(float(curve_angle)) / self.params["proximal_radius"]
 
     def load_offset(self, curve_angle: float) -> float:
-        """Load offset at the motor, rad: e_L / r_p."""
+        """Load offset at the motor, rad: e_L / r_p.
+
+        Parameters
+        ----------
+        curve_angle : float
+            The curve angle Theta (rad).
+
+        Returns
+        -------
+        float
+            e_L / r_p (rad).
+        """
         return self._engine.load_offset(float(curve_angle)) / self.params["proximal_radius"]
 
     def slope(self, curve_angle: float) -> float:
-        """Branch slope c of the linear displacements (dimensionless)."""
+        """Branch slope c of the linear displacements (dimensionless).
+
+        Parameters
+        ----------
+        curve_angle : float
+            The curve angle Theta (rad).
+
+        Returns
+        -------
+        float
+            c = 1/(1 + k_e L tanh(a/2)/(EA a)), a = mu Theta.
+        """
         return self._engine.slope(float(curve_angle))
 
 

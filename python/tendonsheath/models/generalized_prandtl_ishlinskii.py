@@ -50,6 +50,7 @@ class _GeneralizedBase(HysteresisModel):
 
     @property
     def params(self) -> dict[str, Any]:
+        """The flat envelope coefficients, thresholds and weights, as a dict (a copy)."""
         s = self._engine.params
         out = {
             f"{side}_{k}": getattr(getattr(s, side), k)
@@ -61,7 +62,18 @@ class _GeneralizedBase(HysteresisModel):
         return out
 
     def envelopes(self, x) -> tuple[np.ndarray, np.ndarray]:
-        """The rising and falling envelope functions evaluated at x."""
+        """The rising and falling envelope functions evaluated at x.
+
+        Parameters
+        ----------
+        x : array_like of float
+            Inputs.
+
+        Returns
+        -------
+        up, down : numpy.ndarray of float
+            The rising and falling envelopes at x, shaped as x.
+        """
         p = self.params
         x = np.asarray(x, dtype=float)
         up = p["rising_a"] * np.tanh(p["rising_b"] * (x - p["rising_c"])) + p["rising_d"]
@@ -76,21 +88,74 @@ class GeneralizedPrandtlIshlinskii(_GeneralizedBase):
     ``rising`` and ``falling`` are (a, b, c, d); thresholds start at 0 and increase; weights
     are >= 0 with weights[0] > 0, which makes the operator invertible (:meth:`inverse`)
     inside the envelopes' range.
+
+    Parameters
+    ----------
+    rising, falling : sequence of 4 float, default (1.0, 1.0, 0.0, 0.0)
+        Envelope coefficients (a, b, c, d) of gamma(x) = a tanh(b (x - c)) + d for rising and
+        falling input.
+    thresholds : sequence of float, default (0.0, 0.05, 0.1, 0.2)
+        Play thresholds (input unit): the first 0, increasing.
+    weights : sequence of float, default (0.6, 0.2, 0.1, 0.1)
+        Play weights, one per threshold: >= 0, weights[0] > 0.
+    **flat
+        The envelope coefficients by flat name (``rising_a`` ... ``falling_d``), as in
+        :attr:`params`; they override ``rising``/``falling``.
+
+    Raises
+    ------
+    ValueError
+        An envelope that is not 4 numbers, an unknown name, or parameters the C++ core
+        rejects.
     """
 
     _core = core.GeneralizedPrandtlIshlinskii
     _core_params = core.GeneralizedPrandtlIshlinskiiParams
 
     def inverse(self) -> GeneralizedPrandtlIshlinskiiInverse:
+        """The inverse operator with the same parameters.
+
+        Returns
+        -------
+        GeneralizedPrandtlIshlinskiiInverse
+            Maps a desired output to the input that gives it.
+        """
         return GeneralizedPrandtlIshlinskiiInverse(**self.params)
 
 
 class GeneralizedPrandtlIshlinskiiInverse(_GeneralizedBase):
     """Inverse of :class:`GeneralizedPrandtlIshlinskii`: solves the monotone loading curve of
-    the current play states each step (bounded bisection), clipped to the reachable range."""
+    the current play states each step (bounded bisection), clipped to the reachable range.
+
+    Parameters
+    ----------
+    rising, falling : sequence of 4 float, default (1.0, 1.0, 0.0, 0.0)
+        Envelope coefficients (a, b, c, d) of gamma(x) = a tanh(b (x - c)) + d for rising and
+        falling input.
+    thresholds : sequence of float, default (0.0, 0.05, 0.1, 0.2)
+        Play thresholds (input unit): the first 0, increasing.
+    weights : sequence of float, default (0.6, 0.2, 0.1, 0.1)
+        Play weights, one per threshold: >= 0, weights[0] > 0.
+    **flat
+        The envelope coefficients by flat name (``rising_a`` ... ``falling_d``), as in
+        :attr:`params`; they override ``rising``/``falling``.
+
+    Raises
+    ------
+    ValueError
+        An envelope that is not 4 numbers, an unknown name, or parameters the C++ core
+        rejects.
+    """
 
     _core = core.GeneralizedPrandtlIshlinskiiInverse
     _core_params = core.GeneralizedPrandtlIshlinskiiParams
 
     def inverse(self) -> GeneralizedPrandtlIshlinskii:
+        """The forward operator with the same parameters.
+
+        Returns
+        -------
+        GeneralizedPrandtlIshlinskii
+            The operator this one inverts.
+        """
         return GeneralizedPrandtlIshlinskii(**self.params)

@@ -45,6 +45,36 @@ class HystereticOscillator(HysteresisModel):
       otherwise uses a Kaiser-windowed sinc of half-width ``lookahead`` samples. The
       streaming :meth:`step` uses the same windowed sinc, so its output lags the input by
       :attr:`delay` = ``lookahead - 1`` samples. Needs uniform sampling.
+
+    Parameters
+    ----------
+    m : float, default 1.0
+        Mass, > 0.
+    c : float, default 0.1
+        Viscous damping, >= 0.
+    k : float, default 1.0
+        Linear stiffness, >= 0 (k + alpha > 0).
+    alpha : float, default 1.0
+        Hysteretic stiffness of z, >= 0.
+    beta : float, default 1.0
+        Scale of the hysteretic terms, >= 0.
+    gamma, delta : float, default 0.5
+        Shape of the loop (any sign of gamma + delta; see above).
+    nu : float, default 1.0
+        Exponent of |z|, >= 1.
+    substeps : int, default 4
+        Least RK4 sub-steps per sample.
+    max_substeps : int, default 4096
+        Most RK4 sub-steps per sample, >= substeps.
+    input_interpolation : {"linear", "hold", "bandlimited"}, default "linear"
+        The input reconstruction between samples.
+    lookahead : int, default 16
+        Half-width of the band-limited sinc (samples).
+
+    Raises
+    ------
+    ValueError
+        An unknown input_interpolation or a parameter the C++ core rejects.
     """
 
     _core = core.HystereticOscillator
@@ -97,6 +127,7 @@ class HystereticOscillator(HysteresisModel):
 
     @property
     def options(self) -> dict[str, Any]:
+        """substeps, max_substeps, input_interpolation and lookahead, as a dict (a copy)."""
         s = self._engine.params
         mode = {v: k for k, v in _CODES.items()}[s.input_reconstruction]
         return {
@@ -108,6 +139,7 @@ class HystereticOscillator(HysteresisModel):
 
     @property
     def input_interpolation(self) -> str:
+        """The input reconstruction between samples: "linear", "hold" or "bandlimited"."""
         return self.options["input_interpolation"]
 
     @property
@@ -120,7 +152,18 @@ class HystereticOscillator(HysteresisModel):
         """A bound on |z| while the displacement stays within an interval of that width: the
         largest |z| on the outer loop of repeated full-range excursions (and on the first
         loading from rest); ``inf`` when z is not bounded over that range (the loop ratchets
-        from cycle to cycle, escapes, or would exceed 1e12 alpha * range)."""
+        from cycle to cycle, escapes, or would exceed 1e12 alpha * range).
+
+        Parameters
+        ----------
+        displacement_range : float
+            Width of the displacement interval (output unit).
+
+        Returns
+        -------
+        float
+            The bound on |z| (force unit), or ``inf``.
+        """
         return float(self._engine.z_bound(float(displacement_range)))
 
     def simulate(self, t, x, periodic: bool | None = None, status: bool = False):
@@ -135,6 +178,27 @@ class HystereticOscillator(HysteresisModel):
         range over which z is bounded (:meth:`z_bound`). ``status=True`` also returns each
         sample's Status flags (all OK on the dense periodic path: its input is checked finite
         and a divergence raises).
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,)
+            Sample times (s), increasing; required (uniform for "bandlimited").
+        x : array_like of float, shape (n,)
+            Input force samples.
+        periodic : bool, optional
+            Whether the record is a whole number of periods (band-limited input only).
+        status : bool, default False
+            Also return each sample's Status flags.
+
+        Returns
+        -------
+        y : numpy.ndarray of float, shape (n,)
+            Displacements; ``(y, flags)`` with ``status=True``.
+
+        Raises
+        ------
+        ValueError
+            t missing, bad samples, non-uniform sampling with "bandlimited", or z diverging.
         """
         if t is None:
             raise ValueError("HystereticOscillator is rate-dependent: t is required")
@@ -169,7 +233,20 @@ class HystereticOscillator(HysteresisModel):
 
     def check_bounded(self, displacement_range: float, what: str = "the displacement") -> bool:
         """Warn (:class:`UnboundedStateWarning`) and return False when z has no finite bound
-        over ``displacement_range``."""
+        over ``displacement_range``.
+
+        Parameters
+        ----------
+        displacement_range : float
+            Width of the displacement interval.
+        what : str, default "the displacement"
+            What spans that range, for the warning's message.
+
+        Returns
+        -------
+        bool
+            True when z is bounded over the range (or beta = 0, or the range is not > 0).
+        """
         p = self.params
         if p["beta"] == 0.0 or not displacement_range > 0:
             return True

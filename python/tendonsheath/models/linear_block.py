@@ -51,7 +51,18 @@ def sample_time(t) -> float:
 
 
 class LinearBlock(HysteresisModel):
-    """Base of the linear blocks: ``transfer()`` gives (num, den) in s, unit static gain."""
+    """Base of the linear blocks: ``transfer()`` gives (num, den) in s, unit static gain.
+
+    Parameters
+    ----------
+    **values
+        The subclass's parameters (``param_names``), each a real number inside its limits.
+
+    Raises
+    ------
+    ValueError
+        A missing, non-numeric, out-of-range or unknown parameter.
+    """
 
     rate_independent = False
     param_names: tuple[str, ...] = ()
@@ -78,22 +89,61 @@ class LinearBlock(HysteresisModel):
 
     @property
     def params(self) -> dict[str, Any]:
+        """The block's parameters, as a dict (a copy)."""
         return dict(self._values)
 
     @property
     def options(self) -> dict[str, Any]:
+        """No options: an empty dict."""
         return {}
 
     def transfer(self) -> tuple[list[float], list[float]]:
+        """The continuous transfer function (unit static gain); each block defines it.
+
+        Returns
+        -------
+        num, den : list of float
+            Coefficients of the transfer function in s, highest power first.
+        """
         raise NotImplementedError
 
     def filter_coefficients(self, dt: float) -> tuple[np.ndarray, np.ndarray]:
-        """(b, a) for ``scipy.signal.lfilter`` at sample time dt (first-order hold)."""
+        """(b, a) for ``scipy.signal.lfilter`` at sample time dt (first-order hold).
+
+        Parameters
+        ----------
+        dt : float
+            Sample time (s), > 0.
+
+        Returns
+        -------
+        b, a : numpy.ndarray of float
+            Numerator and denominator in z^-1, a[0] = 1.
+        """
         return discretise(*self.transfer(), dt)
 
     reports_status = False  # a linear filter in Python: no real-time core, no status
 
     def simulate(self, t, x) -> np.ndarray:
+        """Output for the input samples x at uniform times t, from rest at x[0].
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,)
+            Sample times (s), uniform (a relative spread up to 1e-3).
+        x : array_like of float, shape (n,)
+            Input samples.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (n,)
+            Output samples.
+
+        Raises
+        ------
+        ValueError
+            t missing or not uniform.
+        """
         x = np.asarray(x, dtype=float)
         if x.size == 0:
             return x.copy()
@@ -101,13 +151,32 @@ class LinearBlock(HysteresisModel):
         return apply_filter(b, a, x)
 
     def reset(self) -> None:
+        """Forget the streaming state: the next step starts at rest at its input."""
         self._rest = None  # the first input (the block starts at rest there)
         self._z = None  # filter state, once the sample time is known
         self._cache = (None, None, None)
 
     def step(self, x: float, dt: float = 0.0) -> float:
         """One sample; dt > 0 after the first. A dt that changes re-discretises the block
-        (the filter state is carried over as is: exact for a constant dt)."""
+        (the filter state is carried over as is: exact for a constant dt).
+
+        Parameters
+        ----------
+        x : float
+            The input sample.
+        dt : float, default 0.0
+            Time since the previous sample (s), > 0 after the first.
+
+        Returns
+        -------
+        float
+            The output sample (x itself on the first).
+
+        Raises
+        ------
+        ValueError
+            dt not > 0 after the first sample.
+        """
         dt = checked_dt(dt)
         x = float(x)
         if self._rest is None:
@@ -141,7 +210,13 @@ def apply_filter(b: np.ndarray, a: np.ndarray, x: np.ndarray, axis: int = 0) -> 
 
 
 class FirstOrderLag(LinearBlock):
-    """1 / (time_constant s + 1): a first-order lag (s), unit static gain."""
+    """1 / (time_constant s + 1): a first-order lag (s), unit static gain.
+
+    Parameters
+    ----------
+    time_constant : float, default 0.05
+        The lag's time constant (s), > 0.
+    """
 
     param_names = ("time_constant",)
     _limits = {"time_constant": (0.0, math.inf)}
@@ -150,9 +225,28 @@ class FirstOrderLag(LinearBlock):
         super().__init__(time_constant=time_constant)
 
     def transfer(self):
+        """1 / (time_constant s + 1).
+
+        Returns
+        -------
+        num, den : list of float
+            Coefficients of the transfer function in s, highest power first.
+        """
         return [1.0], [self._values["time_constant"], 1.0]
 
     def filter_coefficients(self, dt: float) -> tuple[np.ndarray, np.ndarray]:
+        """(b, a) for ``scipy.signal.lfilter`` at sample time dt (first-order hold, closed form).
+
+        Parameters
+        ----------
+        dt : float
+            Sample time (s), > 0.
+
+        Returns
+        -------
+        b, a : numpy.ndarray of float
+            Numerator and denominator in z^-1, a[0] = 1.
+        """
         # exact for an input linear between samples: y_k = a y_k-1 + b0 u_k + b1 u_k-1
         r = dt / self._values["time_constant"]
         a = math.exp(-r)
@@ -162,7 +256,15 @@ class FirstOrderLag(LinearBlock):
 
 class SecondOrderLag(LinearBlock):
     """w^2 / (s^2 + 2 damping w s + w^2), w = 2 pi frequency (Hz): a resonance or, damped
-    beyond 1, two lags; unit static gain."""
+    beyond 1, two lags; unit static gain.
+
+    Parameters
+    ----------
+    frequency : float, default 5.0
+        Natural frequency (Hz), > 0.
+    damping : float, default 0.7
+        Damping ratio, > 0.
+    """
 
     param_names = ("frequency", "damping")
     _limits = {"frequency": (0.0, math.inf), "damping": (0.0, math.inf)}
@@ -171,10 +273,29 @@ class SecondOrderLag(LinearBlock):
         super().__init__(frequency=frequency, damping=damping)
 
     def transfer(self):
+        """w^2 / (s^2 + 2 damping w s + w^2), w = 2 pi frequency.
+
+        Returns
+        -------
+        num, den : list of float
+            Coefficients of the transfer function in s, highest power first.
+        """
         w = 2.0 * math.pi * self._values["frequency"]
         return [w * w], [1.0, 2.0 * self._values["damping"] * w, w * w]
 
     def filter_coefficients(self, dt: float) -> tuple[np.ndarray, np.ndarray]:
+        """(b, a) for ``scipy.signal.lfilter`` at sample time dt (first-order hold).
+
+        Parameters
+        ----------
+        dt : float
+            Sample time (s), > 0.
+
+        Returns
+        -------
+        b, a : numpy.ndarray of float
+            Numerator and denominator in z^-1, a[0] = 1.
+        """
         # SciPy's first-order-hold construction (block matrix exponential) on the 2-state
         # model, with a small Taylor expm: cont2discrete's Pade expm costs ~1 ms per call
         w = 2.0 * math.pi * self._values["frequency"]

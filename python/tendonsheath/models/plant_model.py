@@ -44,6 +44,26 @@ class PlantModel(HysteresisModel):
     exceeds the dead zone a tendon's tension passes below zero. The model then goes on as an
     effective one (no :class:`~tendonsheath.plant.SlackWarning`); ``status`` and
     ``simulate(..., status=True)`` flag those samples SLACK.
+
+    Parameters
+    ----------
+    friction_angle : float, default 1.0
+        mu Theta (rad), in (0, 20).
+    backlash : float, default 0.1
+        Half the dead zone e_b (input unit), > 0.
+    viscous_time : float, default 0.0
+        c_v L^2 / EA (s), >= 0.
+    gain : float, default 1.0
+        Output gain, finite and not 0.
+    offset : float, default 0.0
+        Output offset (output unit).
+    elements : int, default 10
+        The sheath's element count, >= 2.
+
+    Raises
+    ------
+    ValueError
+        A value that is not a number or is out of its range.
     """
 
     param_names = ("friction_angle", "backlash", "viscous_time", "gain", "offset")
@@ -95,14 +115,31 @@ class PlantModel(HysteresisModel):
 
     @property
     def params(self) -> dict[str, Any]:
+        """The five identifiable groups, as a dict (a copy)."""
         return dict(self._values)
 
     @property
     def options(self) -> dict[str, Any]:
+        """``{"elements": ...}``."""
         return {"elements": self._elements}
 
     def simulate(self, t, x, status: bool = False):
-        """Output for the input samples x at times t (needed), from rest at x[0]."""
+        """Output for the input samples x at times t (needed), from rest at x[0].
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,)
+            Sample times (s); required.
+        x : array_like of float, shape (n,)
+            Input samples (pulley angle, input unit).
+        status : bool, default False
+            Also return each sample's Status flags (SLACK where a tendon went slack).
+
+        Returns
+        -------
+        y : numpy.ndarray of float, shape (n,)
+            Output samples; ``(y, flags)`` with ``status=True``.
+        """
         if t is None:
             raise ValueError("PlantModel is rate-dependent: t is required")
         with warnings.catch_warnings():  # slack: flagged in the status, not warned (above)
@@ -113,12 +150,34 @@ class PlantModel(HysteresisModel):
         return (y, flags) if status else y
 
     def reset(self) -> None:
+        """Forget the streaming state."""
         self._plant.reset()
 
     def step(self, x: float, dt: float = 0.0) -> float:
+        """Advance one sample (streaming).
+
+        Parameters
+        ----------
+        x : float
+            The input sample.
+        dt : float, default 0.0
+            Time since the previous sample (s).
+
+        Returns
+        -------
+        float
+            The output sample.
+        """
         return self._values["offset"] + self._values["gain"] * self._plant.step(x, dt)
 
     def status(self) -> Status:
+        """The last step's Status (SLACK when a tendon's tension passed below zero).
+
+        Returns
+        -------
+        Status
+            The flags of the last :meth:`step`.
+        """
         return self._plant.status()
 
     def __repr__(self) -> str:

@@ -13,6 +13,20 @@ class Polynomial(HysteresisModel):
     ``odd=True`` keeps odd powers only (coefficients a_1, a_3, ...).
 
     Static and rate-independent; use it after a hysteresis model with :class:`Chain`.
+
+    Parameters
+    ----------
+    degree : int, optional
+        Degree >= 1 of the identity polynomial; ignored when coefficients are given.
+    coefficients : array_like of float, optional
+        a_0, a_1, ... (a_1, a_3, ... with ``odd=True``).
+    odd : bool, default False
+        Keep odd powers only.
+
+    Raises
+    ------
+    ValueError
+        Neither a degree >= 1 nor coefficients.
     """
 
     _core = core.Polynomial
@@ -33,11 +47,23 @@ class Polynomial(HysteresisModel):
 
     @property
     def degree(self) -> int:
+        """The highest power."""
         n = len(self.params["coefficients"])
         return 2 * n - 1 if self.options["odd"] else n - 1
 
     def basis(self, u) -> np.ndarray:
-        """Columns u^k of the powers in use: y = basis(u) @ coefficients."""
+        """Columns u^k of the powers in use: y = basis(u) @ coefficients.
+
+        Parameters
+        ----------
+        u : array_like of float
+            Inputs.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape u.shape + (len(coefficients),)
+            The powers of u in use.
+        """
         u = np.asarray(u, dtype=float)
         powers = range(1, self.degree + 1, 2) if self.options["odd"] else range(self.degree + 1)
         return np.stack([u**k for k in powers], axis=-1)

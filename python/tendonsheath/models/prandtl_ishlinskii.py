@@ -14,6 +14,18 @@ class PrandtlIshlinskii(HysteresisModel):
     Thresholds: 0 <= r_0 < r_1 < ...; the partial sums of the weights must be > 0.
     With r_0 = 0 too, the loading curve is strictly increasing and the operator is
     exactly invertible: see :meth:`inverse`. Plays start on the virgin curve from x = 0.
+
+    Parameters
+    ----------
+    thresholds : array_like of float, default (0.0, 0.05, 0.1, 0.15, 0.2)
+        Play thresholds r_i (input unit), 1-D, increasing from >= 0.
+    weights : array_like of float, default (0.5, 0.2, 0.15, 0.1, 0.05)
+        Play weights, one per threshold; partial sums > 0.
+
+    Raises
+    ------
+    ValueError
+        Arrays that are not 1-D, or values the C++ core rejects.
     """
 
     _core = core.PrandtlIshlinskii
@@ -25,7 +37,27 @@ class PrandtlIshlinskii(HysteresisModel):
 
     @classmethod
     def uniform(cls, max_threshold: float, count: int, weights=None) -> PrandtlIshlinskii:
-        """count thresholds evenly spaced on [0, max_threshold); weights default to a decay."""
+        """count thresholds evenly spaced on [0, max_threshold); weights default to a decay.
+
+        Parameters
+        ----------
+        max_threshold : float
+            Upper end of the thresholds' interval (input unit), > 0.
+        count : int
+            Number of plays, >= 1.
+        weights : array_like of float, optional
+            One weight per play (default 1 then 0.5 shared by the others).
+
+        Returns
+        -------
+        PrandtlIshlinskii
+            The operator.
+
+        Raises
+        ------
+        ValueError
+            count < 1 or max_threshold not > 0.
+        """
         if count < 1:
             raise ValueError("PrandtlIshlinskii.uniform: count must be >= 1")
         if not max_threshold > 0:
@@ -36,7 +68,13 @@ class PrandtlIshlinskii(HysteresisModel):
         return cls(r, weights)
 
     def inverse(self) -> PrandtlIshlinskiiInverse:
-        """The exact inverse operator: maps a desired output to the input that produces it."""
+        """The exact inverse operator: maps a desired output to the input that produces it.
+
+        Returns
+        -------
+        PrandtlIshlinskiiInverse
+            With the same thresholds and weights.
+        """
         p = self.params
         return PrandtlIshlinskiiInverse(p["thresholds"], p["weights"])
 
@@ -46,6 +84,18 @@ class PrandtlIshlinskiiInverse(HysteresisModel):
 
     Each sample solves the piecewise-linear loading curve of the current play states
     exactly, so ``forward.simulate(t, inverse.simulate(t, y)) == y`` to rounding.
+
+    Parameters
+    ----------
+    thresholds : array_like of float, default (0.0, 0.05, 0.1, 0.15, 0.2)
+        Play thresholds r_i (input unit), 1-D, increasing from >= 0.
+    weights : array_like of float, default (0.5, 0.2, 0.15, 0.1, 0.05)
+        Play weights, one per threshold; partial sums > 0.
+
+    Raises
+    ------
+    ValueError
+        Arrays that are not 1-D, or values the C++ core rejects.
     """
 
     _core = core.PrandtlIshlinskiiInverse
@@ -56,6 +106,13 @@ class PrandtlIshlinskiiInverse(HysteresisModel):
         super().__init__(thresholds=_vector(thresholds), weights=_vector(weights))
 
     def inverse(self) -> PrandtlIshlinskii:
+        """The forward operator this one inverts.
+
+        Returns
+        -------
+        PrandtlIshlinskii
+            With the same thresholds and weights.
+        """
         p = self.params
         return PrandtlIshlinskii(p["thresholds"], p["weights"])
 

@@ -20,6 +20,25 @@ class Scaled(HysteresisModel):
     steps 1017-2202 in and degrees out): the inner model is the one identified on centred,
     scaled data with a positive gain. ``output_gain`` may be negative; ``input_scale > 0``.
     Parameters are ``inner.<name>`` and the four map values; saved to JSON like any model.
+
+    Parameters
+    ----------
+    inner : HysteresisModel
+        The model in its own units (not a Scaled one).
+    input_offset : float, default 0.0
+        Subtracted from x.
+    input_scale : float, default 1.0
+        Divides x - input_offset; > 0.
+    output_offset : float, default 0.0
+        Added to the scaled inner output.
+    output_gain : float, default 1.0
+        Multiplies the inner output; any sign, not 0.
+
+    Raises
+    ------
+    ValueError
+        inner not a model (or a Scaled one), a map value not finite, input_scale not > 0 or
+        output_gain 0.
     """
 
     param_names = ()
@@ -50,15 +69,34 @@ class Scaled(HysteresisModel):
 
     @property
     def params(self) -> dict[str, Any]:
+        """The inner parameters as ``inner.<name>`` and the four map values (a copy)."""
         out = {f"inner.{k}": v for k, v in self.inner.params.items()}
         out.update(self.map)
         return out
 
     @property
     def options(self) -> dict[str, Any]:
+        """No options of its own: an empty dict."""
         return {}
 
     def with_params(self, **changes) -> Scaled:
+        """A new Scaled model with some parameters changed.
+
+        Parameters
+        ----------
+        **changes
+            New values by ``inner.<name>`` or by map value name.
+
+        Returns
+        -------
+        Scaled
+            A new model; this one is unchanged.
+
+        Raises
+        ------
+        ValueError
+            An unknown name.
+        """
         inner, mapping = {}, dict(self.map)
         for key, value in changes.items():
             if key.startswith("inner."):
@@ -70,29 +108,91 @@ class Scaled(HysteresisModel):
         return Scaled(self.inner.with_params(**inner), **mapping)
 
     def to_inner_input(self, x) -> np.ndarray:
+        """(x - input_offset) / input_scale.
+
+        Parameters
+        ----------
+        x : array_like of float
+            Inputs in the data's units.
+
+        Returns
+        -------
+        numpy.ndarray of float
+            Inputs in the inner model's units.
+        """
         return (np.asarray(x, dtype=float) - self.map["input_offset"]) / self.map["input_scale"]
 
     def from_inner_output(self, u) -> np.ndarray:
+        """output_offset + output_gain * u.
+
+        Parameters
+        ----------
+        u : array_like of float
+            Outputs of the inner model.
+
+        Returns
+        -------
+        numpy.ndarray of float
+            Outputs in the data's units.
+        """
         return self.map["output_offset"] + self.map["output_gain"] * np.asarray(u, dtype=float)
 
     @property
     def reports_status(self) -> bool:
+        """Whether the inner model reports a Status."""
         return self.inner.reports_status
 
     def status(self) -> Status:
-        """The inner model's last step's Status."""
+        """The inner model's last step's Status.
+
+        Returns
+        -------
+        Status
+            The inner model's flags.
+        """
         return self.inner.status()
 
     def simulate(self, t, x, **kwargs):
+        """The inner model's simulation, in the data's units.
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s); None when the inner model is rate-independent.
+        x : array_like of float, shape (n,)
+            Input samples in the data's units.
+        **kwargs
+            Passed to the inner model's ``simulate`` (``status``, ``curve_angle``, ...).
+
+        Returns
+        -------
+        y : numpy.ndarray of float, shape (n,)
+            Output samples; ``(y, flags)`` with ``status=True``.
+        """
         out = self.inner.simulate(t, self.to_inner_input(x), **kwargs)
         if kwargs.get("status"):  # (inner output, per-sample flags)
             return self.from_inner_output(out[0]), out[1]
         return self.from_inner_output(out)
 
     def reset(self) -> None:
+        """Forget the inner model's streaming state."""
         self.inner.reset()
 
     def step(self, x: float, dt: float = 0.0) -> float:
+        """Advance one sample (streaming), in the data's units.
+
+        Parameters
+        ----------
+        x : float
+            The input sample.
+        dt : float, default 0.0
+            Time since the previous sample (s).
+
+        Returns
+        -------
+        float
+            The output sample.
+        """
         u = self.inner.step((float(x) - self.map["input_offset"]) / self.map["input_scale"], dt)
         return self.map["output_offset"] + self.map["output_gain"] * u
 
@@ -102,6 +202,13 @@ class Scaled(HysteresisModel):
         return self.map["output_offset"] + self.map["output_gain"] * inner
 
     def to_dict(self) -> dict[str, Any]:
+        """The model as a JSON-ready dict: the inner model whole and the map.
+
+        Returns
+        -------
+        dict
+            format, version, model ("Scaled"), inner and map.
+        """
         return {
             "format": FORMAT_NAME,
             "version": FORMAT_VERSION,

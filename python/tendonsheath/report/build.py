@@ -68,7 +68,24 @@ def _jsonable(value: Any):
 
 def scenario_section(result, out: Path, angle_unit: str = "deg") -> tuple[str, list[Path]]:
     """HTML for one scenario, and the PNG files written beside the report; every angle in the
-    tables in ``angle_unit`` ("deg" or "rad")."""
+    tables in ``angle_unit`` ("deg" or "rad").
+
+    Parameters
+    ----------
+    result : ScenarioResult
+        One scenario's result.
+    out : Path
+        The report's folder.
+    angle_unit : {"deg", "rad"}, default "deg"
+        Unit of the angles in the tables.
+
+    Returns
+    -------
+    html : str
+        The section's HTML.
+    written : list of Path
+        The PNG files written.
+    """
     parts, written = [], []
 
     def add(fig, name, caption, interactive_div=None):
@@ -199,7 +216,20 @@ def scenario_section(result, out: Path, angle_unit: str = "deg") -> tuple[str, l
 
 def honesty_section(panel: dict, angle_unit: str = "deg") -> str:
     """The honesty panel: what each compensator was told and where it came from, parameters
-    at their search bounds, and the best in-class fit on its own test run."""
+    at their search bounds, and the best in-class fit on its own test run.
+
+    Parameters
+    ----------
+    panel : dict
+        Compensator name -> its honesty entry (:func:`tendonsheath.bench.honesty_entry`).
+    angle_unit : {"deg", "rad"}, default "deg"
+        Unit of the angles in the tables.
+
+    Returns
+    -------
+    str
+        The panel's HTML.
+    """
     summary = [
         {
             "compensator": name,
@@ -236,7 +266,18 @@ def honesty_section(panel: dict, angle_unit: str = "deg") -> str:
 
 
 def intro_for(results: list) -> str:
-    """The report's introduction, from what each scenario actually did."""
+    """The report's introduction, from what each scenario actually did.
+
+    Parameters
+    ----------
+    results : list of ScenarioResult
+        The scenarios' results.
+
+    Returns
+    -------
+    str
+        The introduction's HTML.
+    """
     lines = [
         f"<li>{html.fmt(r.protocol)}</li>"
         if r.protocol
@@ -252,6 +293,19 @@ def intro_for(results: list) -> str:
 
 
 def details(result) -> dict:
+    """A scenario's details for metrics.json: calibration, table, identified values, route
+    schedule, frequency responses and the scenario's extra data.
+
+    Parameters
+    ----------
+    result : ScenarioResult
+        One scenario's result.
+
+    Returns
+    -------
+    dict
+        The details (angles in radians).
+    """
     d = {"calibration": result.calibration, "table": result.table}
     if result.identified:
         d["identified"] = result.identified
@@ -272,7 +326,32 @@ def write(
 ) -> dict:
     """Write report.html and metrics.json. ``extra_sections`` are (anchor, heading, html,
     data) after the scenarios; each one's data goes to metrics.json under its anchor (always
-    in radians); the report's tables show angles in ``angle_unit``."""
+    in radians); the report's tables show angles in ``angle_unit``.
+
+    Parameters
+    ----------
+    out : Path
+        The folder (made as needed).
+    scenario_results : list of ScenarioResult
+        The scenarios' results.
+    extra_sections : list of (str, str, str, dict), optional
+        (anchor, heading, html, data) of each extra section.
+    title : str, default "tendonsheath virtual bench"
+        The page's title.
+    angle_unit : {"deg", "rad"}, default "deg"
+        Unit of the angles in the tables.
+
+    Returns
+    -------
+    dict
+        report and metrics (the paths written), figures (list of Path) and data (what
+        metrics.json holds).
+
+    Raises
+    ------
+    ValueError
+        An angle_unit other than "deg" or "rad".
+    """
     check_angle_unit(angle_unit)
     out.mkdir(parents=True, exist_ok=True)
     sections, written = [], []

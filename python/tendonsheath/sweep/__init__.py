@@ -134,6 +134,52 @@ def sweep(
     comes back; when it already holds runs of this same sweep (design, seed, number of
     runs, ``checkpoint_tag`` and every run's parameters), those runs are not run again, so
     an interrupted sweep resumes. The runs of another sweep there are a ValueError.
+
+    Parameters
+    ----------
+    run : callable
+        dict of parameters -> mapping of metric name -> value; must pickle for the local
+        and Dask engines.
+    design : Design or mapping
+        The parameters and how they are drawn (a mapping: Monte Carlo).
+    n : int, optional
+        Number of draws (Saltelli: base samples); not needed for a Grid.
+    seed : int, optional
+        Seed of every draw; None: a fresh one, kept in the result.
+    engine : {"local", "serial"}, str or dask.distributed.Client, default "local"
+        Where the runs go (see above).
+    workers : int, optional
+        Processes of the local engine (default all cores).
+    batch_size : int, optional
+        Runs per batch.
+    parameters : iterable of str, optional
+        The names the run accepts (default the run's ``parameters`` attribute).
+    on_error : {"raise", "record"}, default "raise"
+        What a failed run does.
+    retries : int, default 3
+        Re-runs of a batch lost with its Dask worker.
+    progress : bool, optional
+        Show a progress bar (None: on a terminal only).
+    connect_timeout : float, default 5.0
+        Seconds to connect to a scheduler address.
+    checkpoint : str or Path, optional
+        A JSON-lines file of finished runs, to resume from.
+    checkpoint_tag : str, optional
+        Tells sweeps apart in one checkpoint file.
+
+    Returns
+    -------
+    SweepResult
+        The tidy table of every run's parameters and metrics, with the engine's figures.
+
+    Raises
+    ------
+    ValueError
+        A bad argument, an unknown parameter name, or a checkpoint of another sweep.
+    SweepError
+        A run failed (with ``on_error="raise"``), or every run failed.
+    ConnectionError
+        The scheduler could not be reached within ``connect_timeout``.
     """
     if not callable(run):
         raise ValueError(f"sweep: run must be callable (got {type(run).__name__})")

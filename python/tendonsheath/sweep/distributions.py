@@ -45,10 +45,35 @@ class Distribution:
     ranked = True
 
     def ppf(self, u: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
+        """The inverse CDF; each distribution defines it.
+
+        Parameters
+        ----------
+        u : array_like of float
+            Uniform numbers in (0, 1).
+
+        Returns
+        -------
+        numpy.ndarray
+            The values, shaped as u.
+        """
         raise NotImplementedError
 
     def sample(self, rng: np.random.Generator, size: int | None = None):
-        """Independent draws from ``rng``."""
+        """Independent draws from ``rng``.
+
+        Parameters
+        ----------
+        rng : numpy.random.Generator
+            The random generator.
+        size : int, optional
+            Number of draws; None for one value.
+
+        Returns
+        -------
+        value or numpy.ndarray
+            One value, or an array of ``size`` values.
+        """
         u = rng.random(size)
         out = self.ppf(np.atleast_1d(u))
         return out if size is not None else out[0]
@@ -61,7 +86,20 @@ class Distribution:
 
 
 class Uniform(Distribution):
-    """Uniform on [lo, hi) (hi > lo)."""
+    """Uniform on [lo, hi) (hi > lo).
+
+    Parameters
+    ----------
+    lo : float
+        Lower bound.
+    hi : float
+        Upper bound, > lo.
+
+    Raises
+    ------
+    ValueError
+        A bound not finite, or hi <= lo.
+    """
 
     def __init__(self, lo: float, hi: float):
         self.lo = _finite(lo, "Uniform: lo")
@@ -70,6 +108,18 @@ class Uniform(Distribution):
             raise ValueError(f"Uniform: empty range [{self.lo:g}, {self.hi:g}] (need hi > lo)")
 
     def ppf(self, u):
+        """lo + (hi - lo) u.
+
+        Parameters
+        ----------
+        u : array_like of float
+            Uniform numbers in (0, 1).
+
+        Returns
+        -------
+        numpy.ndarray
+            The values, shaped as u.
+        """
         return self.lo + (self.hi - self.lo) * np.asarray(u, dtype=np.float64)
 
     def __repr__(self) -> str:
@@ -77,7 +127,20 @@ class Uniform(Distribution):
 
 
 class Relative(Uniform):
-    """Uniform within +/- ``fraction`` of ``nominal``: Relative(10.0, 0.3) is Uniform(7, 13)."""
+    """Uniform within +/- ``fraction`` of ``nominal``: Relative(10.0, 0.3) is Uniform(7, 13).
+
+    Parameters
+    ----------
+    nominal : float
+        The nominal value, not 0.
+    fraction : float
+        The relative half-width, > 0.
+
+    Raises
+    ------
+    ValueError
+        A value not finite, nominal 0 or fraction not > 0.
+    """
 
     def __init__(self, nominal: float, fraction: float):
         self.nominal = _finite(nominal, "Relative: nominal")
@@ -95,7 +158,22 @@ class Relative(Uniform):
 
 
 class Normal(Distribution):
-    """Normal(mean, std) (std > 0), optionally truncated to [lo, hi]."""
+    """Normal(mean, std) (std > 0), optionally truncated to [lo, hi].
+
+    Parameters
+    ----------
+    mean : float
+        Mean.
+    std : float
+        Standard deviation, > 0.
+    lo, hi : float, optional
+        Truncation bounds (default none).
+
+    Raises
+    ------
+    ValueError
+        A value not finite, std not > 0, or a truncation range with no probability mass.
+    """
 
     def __init__(self, mean: float, std: float, lo: float | None = None, hi: float | None = None):
         self.mean = _finite(mean, "Normal: mean")
@@ -114,6 +192,18 @@ class Normal(Distribution):
             )
 
     def ppf(self, u):
+        """The (truncated) normal inverse CDF.
+
+        Parameters
+        ----------
+        u : array_like of float
+            Uniform numbers in (0, 1).
+
+        Returns
+        -------
+        numpy.ndarray
+            The values, shaped as u.
+        """
         u = np.clip(np.asarray(u, dtype=np.float64), _EPS, 1 - _EPS)
         q = self._cdf_lo + (self._cdf_hi - self._cdf_lo) * u
         return np.clip(stats.norm.ppf(q, self.mean, self.std), self.lo, self.hi)
@@ -126,7 +216,20 @@ class Normal(Distribution):
 
 
 class LogNormal(Distribution):
-    """Log-normal: ln X ~ Normal(ln median, sigma); median > 0, sigma > 0 (e.g. 0.2 ~ 20 %)."""
+    """Log-normal: ln X ~ Normal(ln median, sigma); median > 0, sigma > 0 (e.g. 0.2 ~ 20 %).
+
+    Parameters
+    ----------
+    median : float
+        Median, > 0.
+    sigma : float
+        Standard deviation of ln X, > 0.
+
+    Raises
+    ------
+    ValueError
+        A value not finite or not > 0.
+    """
 
     def __init__(self, median: float, sigma: float):
         self.median = _finite(median, "LogNormal: median")
@@ -137,6 +240,18 @@ class LogNormal(Distribution):
             raise ValueError(f"LogNormal: sigma must be > 0 (got {self.sigma:g})")
 
     def ppf(self, u):
+        """median exp(sigma Phi^-1(u)).
+
+        Parameters
+        ----------
+        u : array_like of float
+            Uniform numbers in (0, 1).
+
+        Returns
+        -------
+        numpy.ndarray
+            The values, shaped as u.
+        """
         u = np.clip(np.asarray(u, dtype=np.float64), _EPS, 1 - _EPS)
         return self.median * np.exp(self.sigma * stats.norm.ppf(u))
 
@@ -145,7 +260,20 @@ class LogNormal(Distribution):
 
 
 class Integers(Distribution):
-    """Uniform integers lo, lo + 1, ..., hi (inclusive); e.g. a seed for a random route."""
+    """Uniform integers lo, lo + 1, ..., hi (inclusive); e.g. a seed for a random route.
+
+    Parameters
+    ----------
+    lo : int
+        Lowest value.
+    hi : int
+        Highest value, >= lo.
+
+    Raises
+    ------
+    ValueError
+        A bound that is not an integer, or hi < lo.
+    """
 
     def __init__(self, lo: int, hi: int):
         if int(lo) != lo or int(hi) != hi:
@@ -155,6 +283,18 @@ class Integers(Distribution):
             raise ValueError(f"Integers: empty range [{self.lo}, {self.hi}] (need hi >= lo)")
 
     def ppf(self, u):
+        """The integer of the stratum u falls in.
+
+        Parameters
+        ----------
+        u : array_like of float
+            Uniform numbers in (0, 1).
+
+        Returns
+        -------
+        numpy.ndarray
+            The values, shaped as u.
+        """
         k = np.floor(np.asarray(u, dtype=np.float64) * (self.hi - self.lo + 1)).astype(np.int64)
         return self.lo + np.clip(k, 0, self.hi - self.lo)
 
@@ -176,7 +316,18 @@ class Seed(Integers):
 
 
 class Choice(Distribution):
-    """One of ``values``, each equally likely (values may be numbers or strings)."""
+    """One of ``values``, each equally likely (values may be numbers or strings).
+
+    Parameters
+    ----------
+    values : sequence
+        The choices, at least one.
+
+    Raises
+    ------
+    ValueError
+        Not a list, or an empty one.
+    """
 
     def __init__(self, values: Sequence[Any]):
         if isinstance(values, str | bytes) or not isinstance(values, Iterable):
@@ -191,6 +342,18 @@ class Choice(Distribution):
         self.ranked = self.numeric
 
     def ppf(self, u):
+        """The value of the stratum u falls in.
+
+        Parameters
+        ----------
+        u : array_like of float
+            Uniform numbers in (0, 1).
+
+        Returns
+        -------
+        numpy.ndarray
+            The values, shaped as u.
+        """
         k = np.floor(np.asarray(u, dtype=np.float64) * len(self.values)).astype(np.int64)
         k = np.clip(k, 0, len(self.values) - 1)
         return np.array([self.values[i] for i in k], dtype=object if not self.numeric else None)
@@ -214,7 +377,18 @@ def _split(spec: Mapping[str, Any], what: str) -> tuple[dict[str, Distribution],
 
 
 class Design:
-    """A set of parameters and how to combine their draws into runs."""
+    """A set of parameters and how to combine their draws into runs.
+
+    Parameters
+    ----------
+    parameters : mapping of str to Distribution or value
+        Parameter name -> a :class:`Distribution` (drawn) or any other value (a constant).
+
+    Raises
+    ------
+    ValueError
+        Not a mapping, or a parameter name that is not a non-empty string.
+    """
 
     kind = "design"
 
@@ -223,6 +397,7 @@ class Design:
 
     @property
     def names(self) -> list[str]:
+        """The parameter names, drawn ones first."""
         return [*self.distributions, *self.fixed]
 
     def __repr__(self) -> str:
@@ -231,13 +406,37 @@ class Design:
 
 
 class MonteCarlo(Design):
-    """Independent random draws of every distribution (what a plain dict means)."""
+    """Independent random draws of every distribution (what a plain dict means).
+
+    Parameters
+    ----------
+    parameters : mapping of str to Distribution or value
+        Parameter name -> a :class:`Distribution` (drawn) or any other value (a constant).
+
+    Raises
+    ------
+    ValueError
+        Not a mapping, or a parameter name that is not a non-empty string.
+    """
 
     kind = "random"
 
 
 class LatinHypercube(Design):
-    """Latin hypercube draws (scipy.stats.qmc.LatinHypercube), mapped through each ppf."""
+    """Latin hypercube draws (scipy.stats.qmc.LatinHypercube), mapped through each ppf.
+
+    Parameters
+    ----------
+    parameters : mapping of str to Distribution or value
+        Parameter name -> a :class:`Distribution` (drawn; at least one) or a constant.
+    optimization : str, optional
+        scipy's ``optimization`` of the hypercube (e.g. "random-cd").
+
+    Raises
+    ------
+    ValueError
+        Not a mapping, a bad name, or no distribution.
+    """
 
     kind = "lhs"
 
@@ -250,7 +449,18 @@ class LatinHypercube(Design):
 
 class Saltelli(Design):
     """SALib's Saltelli/Sobol design: ``n`` base samples (a power of 2) -> n * (d + 2) runs,
-    first-order and total Sobol indices in :meth:`SweepResult.sensitivity`."""
+    first-order and total Sobol indices in :meth:`SweepResult.sensitivity`.
+
+    Parameters
+    ----------
+    parameters : mapping of str to Distribution or value
+        Parameter name -> a numeric :class:`Distribution` (at least one) or a constant.
+
+    Raises
+    ------
+    ValueError
+        Not a mapping, a bad name, no distribution, or a non-numeric one.
+    """
 
     kind = "saltelli"
 
@@ -265,7 +475,18 @@ class Saltelli(Design):
 
 class Grid(Design):
     """The full factorial of value lists: Grid({"friction": [0.05, 0.1], "load": [0, 1, 2]})
-    is 6 runs; the first parameter varies slowest. Scalars are constants."""
+    is 6 runs; the first parameter varies slowest. Scalars are constants.
+
+    Parameters
+    ----------
+    parameters : mapping of str to list or value
+        Parameter name -> a list of values (an axis) or a scalar (a constant).
+
+    Raises
+    ------
+    ValueError
+        Not a mapping, a bad name, a distribution, or an empty list.
+    """
 
     kind = "grid"
 
@@ -295,10 +516,12 @@ class Grid(Design):
 
     @property
     def names(self) -> list[str]:
+        """The parameter names, axes first."""
         return [*self.axes, *self.fixed]
 
     @property
     def size(self) -> int:
+        """The number of runs (the product of the axes' lengths)."""
         return math.prod(len(v) for v in self.axes.values())
 
     def __repr__(self) -> str:

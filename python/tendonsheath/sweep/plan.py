@@ -26,7 +26,23 @@ def _py(value) -> Any:
 
 @dataclass
 class Plan:
-    """Every run's parameters (``runs[i]`` is run i), and how they were made."""
+    """Every run's parameters (``runs[i]`` is run i), and how they were made.
+
+    Parameters
+    ----------
+    design : Design
+        The design the runs were drawn from.
+    seed : int
+        The seed they were drawn with.
+    runs : list of dict
+        Each run's parameters, by name.
+    drawn : list of str
+        The parameters that vary (distributions, or a grid's axes).
+    fixed : dict, optional
+        The constants passed to every run.
+    salib_problem : dict, optional
+        SALib's problem definition (Saltelli designs only).
+    """
 
     design: Design
     seed: int
@@ -46,6 +62,7 @@ class Plan:
 
     @property
     def kind(self) -> str:
+        """The design's kind: "random", "lhs", "saltelli" or "grid"."""
         return self.design.kind
 
 
@@ -73,7 +90,28 @@ def _unit_to_runs(design: Design, names: list[str], u: np.ndarray) -> list[dict[
 
 
 def make_plan(design: Design, n: int | None, seed: int | None) -> Plan:
-    """All runs of ``design``: ``n`` draws (or the grid), reproducible from ``seed``."""
+    """All runs of ``design``: ``n`` draws (or the grid), reproducible from ``seed``.
+
+    Parameters
+    ----------
+    design : Design
+        A MonteCarlo, LatinHypercube, Saltelli or Grid design.
+    n : int or None
+        Number of draws (Saltelli: base samples); None (or the grid's size) for a Grid.
+    seed : int or None
+        A non-negative seed; None draws a fresh one (kept in the plan).
+
+    Returns
+    -------
+    Plan
+        Every run's parameters.
+
+    Raises
+    ------
+    ValueError
+        A bad seed, n missing or not a positive integer, n not the grid's size, or SALib
+        missing for a Saltelli design.
+    """
     if seed is None:
         seed = new_seed()
     if isinstance(seed, bool) or int(seed) != seed or int(seed) < 0:

@@ -108,6 +108,29 @@ class SweepResult:
     ``table``: a pandas DataFrame, one row per run (per run and compensator when the run
     returned compensator -> metrics), columns ``run``, the drawn parameters, ``compensator``
     (if any), the metrics, and ``error`` (only when some run failed with on_error='record').
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        One row per run (and compensator).
+    parameters : list of str
+        The drawn parameters.
+    metrics : list of str
+        The metric columns.
+    compensators : list of str or None
+        The compensators, when the run returned compensator -> metrics.
+    fixed : dict
+        The constants passed to every run.
+    design : str
+        The design's kind.
+    seed : int
+        The sweep's seed.
+    engine : dict, optional
+        The engine's figures (workers, wall time, runs per second, ...).
+    salib_problem : dict, optional
+        SALib's problem (Saltelli designs).
+    unranked : list of str, optional
+        Drawn parameters that sensitivity rankings leave out.
     """
 
     table: pd.DataFrame
@@ -127,6 +150,7 @@ class SweepResult:
 
     @property
     def n_runs(self) -> int:
+        """The number of runs."""
         return int(self.table["run"].nunique())
 
     def __repr__(self) -> str:
@@ -144,6 +168,13 @@ class SweepResult:
             yield "all", self.table
 
     def primary_metric(self) -> str:
+        """The metric a bare number bound applies to: mse if present, else the first.
+
+        Returns
+        -------
+        str
+            The metric's name.
+        """
         return "mse" if "mse" in self.metrics else self.metrics[0]
 
     def _bounds(self, bound) -> dict[str, float]:
@@ -161,7 +192,24 @@ class SweepResult:
     def summary(self, bound: float | Mapping[str, float] | None = None) -> pd.DataFrame:
         """Quantiles of each metric per compensator; with ``bound`` (a number for the
         primary metric, mse if present, or {metric: bound}) the fraction of runs whose
-        metric is <= the bound (failed runs count as not meeting it)."""
+        metric is <= the bound (failed runs count as not meeting it).
+
+        Parameters
+        ----------
+        bound : float or mapping of str to float, optional
+            A bound on the primary metric, or per metric.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per compensator and metric: n, failed, mean, std, min, quantiles, max,
+            and bound and within_bound with a bound.
+
+        Raises
+        ------
+        ValueError
+            A bound that is not a number, or on an unknown metric.
+        """
         pd = _pandas()
         bounds = self._bounds(bound)
         rows = []
@@ -191,6 +239,13 @@ class SweepResult:
 
     # -- sensitivity -------------------------------------------------------------------------
     def numeric_parameters(self) -> list[str]:
+        """The drawn parameters a sensitivity analysis regresses on: numeric, varying, ranked.
+
+        Returns
+        -------
+        list of str
+            Their names.
+        """
         pd = _pandas()
         out = []
         for p in self.parameters:
@@ -212,6 +267,24 @@ class SweepResult:
           Saltelli design. ``"auto"``: sobol for a Saltelli design, else src.
 
         Rows are sorted by importance (|src| or ST) within each compensator and metric.
+
+        Parameters
+        ----------
+        method : {"auto", "src", "srrc", "sobol"}, default "auto"
+            The analysis.
+        metrics : str or list of str, optional
+            The metrics to analyse (default all).
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per compensator, metric and parameter, with its rank.
+
+        Raises
+        ------
+        ValueError
+            An unknown method, sobol without a Saltelli design or with failed runs, or no
+            numeric parameter that varies.
         """
         pd = _pandas()
         if method == "auto":
@@ -298,6 +371,18 @@ class SweepResult:
 
     # -- files ---------------------------------------------------------------------------------
     def to_csv(self, path) -> Path:
+        """Write the table as CSV (atomically; folders made as needed).
+
+        Parameters
+        ----------
+        path : str or Path
+            The file.
+
+        Returns
+        -------
+        Path
+            The file written.
+        """
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
         with atomic_path(path) as tmp:
@@ -305,6 +390,18 @@ class SweepResult:
         return path
 
     def to_parquet(self, path) -> Path:
+        """Write the table as Parquet (mixed-type columns as text; atomically).
+
+        Parameters
+        ----------
+        path : str or Path
+            The file.
+
+        Returns
+        -------
+        Path
+            The file written.
+        """
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
         table = self.table.copy()
@@ -316,6 +413,15 @@ class SweepResult:
         return path
 
     def metadata(self) -> dict:
+        """How the sweep was made, JSON-ready: design, seed, runs, parameters, fixed values,
+        metrics, compensators and the engine's figures.
+
+        Returns
+        -------
+        dict
+            The metadata (non-finite numbers as None).
+        """
+
         def plain(v):
             if isinstance(v, np.generic):
                 return v.item()
@@ -338,7 +444,22 @@ class SweepResult:
 
     def save(self, out_dir, bound=None, figures: bool = True) -> list[Path]:
         """table.csv, table.parquet, summary.csv, summary.json (summary, sensitivity, how the
-        sweep was made) and, with ``figures``, the plots of :meth:`plots`."""
+        sweep was made) and, with ``figures``, the plots of :meth:`plots`.
+
+        Parameters
+        ----------
+        out_dir : str or Path
+            The folder (made as needed).
+        bound : float or mapping of str to float, optional
+            As for :meth:`summary`.
+        figures : bool, default True
+            Also draw the plots.
+
+        Returns
+        -------
+        list of Path
+            The files written.
+        """
         pd = _pandas()
         out = Path(out_dir)
         out.mkdir(parents=True, exist_ok=True)
@@ -369,7 +490,20 @@ class SweepResult:
 
     def plots(self, out_dir, sensitivity: pd.DataFrame | None = None) -> list[Path]:
         """hist_<metric>.png (per compensator), <metric>_vs_parameters.png and
-        sensitivity.png (the primary metric's ranking) in ``out_dir``."""
+        sensitivity.png (the primary metric's ranking) in ``out_dir``.
+
+        Parameters
+        ----------
+        out_dir : str or Path
+            The folder.
+        sensitivity : pandas.DataFrame, optional
+            A :meth:`sensitivity` table for the ranking figure.
+
+        Returns
+        -------
+        list of Path
+            The figures written.
+        """
         from .plots import plot_all
 
         return plot_all(self, Path(out_dir), sensitivity)

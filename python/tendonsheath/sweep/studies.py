@@ -53,7 +53,28 @@ def robustness_study(
     design: MonteCarlo | None = None,
     **sweep_options,
 ):
-    """Each compensator's metrics over ``n`` perturbed plants (a :class:`SweepResult`)."""
+    """Each compensator's metrics over ``n`` perturbed plants (a :class:`SweepResult`).
+
+    Parameters
+    ----------
+    run : callable, optional
+        The run (default the built-in compensator study).
+    n : int, default 200
+        Number of perturbed plants.
+    seed : int, default 2015
+        The sweep's seed.
+    engine : str or dask.distributed.Client, default "local"
+        As for :func:`tendonsheath.sweep`.
+    design : MonteCarlo, optional
+        The perturbations (default :func:`robustness_design`).
+    **sweep_options
+        Other keywords of :func:`tendonsheath.sweep`.
+
+    Returns
+    -------
+    SweepResult
+        The runs' metrics.
+    """
     from . import sweep
 
     return sweep(run, design or robustness_design(), n=n, seed=seed, engine=engine,
@@ -70,7 +91,26 @@ def robustness_section(
     """The report's robustness figure (robustness_<metric>.png: the spread of ``metric`` per
     compensator, log scale) and numbers: quantiles per compensator and, with ``bound``, the
     fraction of runs within it. ``design``: the design that ran (written to the numbers;
-    without it only the result's design name is known)."""
+    without it only the result's design name is known).
+
+    Parameters
+    ----------
+    result : SweepResult
+        A robustness study's result.
+    out_dir : str or Path
+        Where the figure goes.
+    metric : str, default "mse"
+        The metric shown.
+    bound : float, optional
+        A bound on the metric, drawn and counted.
+    design : MonteCarlo, optional
+        The design that ran.
+
+    Returns
+    -------
+    dict
+        runs, seed, design, metric, bound, per-compensator quantiles and the figure's path.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
