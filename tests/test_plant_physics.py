@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 import tendonsheath as ts
+from reference.plant import ReferencePullPull
 from tendonsheath import physics
-from tendonsheath._reference_plant import ReferencePullPull
 
 
 def ramp(plant, q0, q1, dq):
