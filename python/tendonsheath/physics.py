@@ -3,6 +3,10 @@
 All functions take the friction coefficient ``mu``, lengths in m, the tendon stiffness ``EA``
 in N and angles in rad, and are safe at mu*Theta -> 0 (series, spec pitfall 7). Rotary
 quantities: divide a tendon displacement by the pulley radius to get an angle.
+
+The closed forms are computed by the C++ core (``physics/pull_pull_statics.hpp``), the one
+source that the real-time models and compensators use too; the uniform-curvature ones take
+NumPy arrays (broadcast together) and loop in C++.
 """
 
 from __future__ import annotations
@@ -11,6 +15,20 @@ import numpy as np
 
 from . import _core as core
 from .route import Route
+
+
+def _elementwise(kernel, *args):
+    """kernel (a C++ loop over equal-length float64 arrays) on the broadcast arguments; a
+    NumPy scalar for scalar arguments, else an array of their broadcast shape."""
+    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=np.float64) for a in args))
+    flat = [np.ascontiguousarray(a).ravel() for a in arrays]
+    out = np.asarray(kernel(*flat)).reshape(arrays[0].shape)
+    return out[()] if out.ndim == 0 else out
+
+
+def _friction_angle(mu, total_angle):
+    """a = mu Theta, the argument of every uniform closed form."""
+    return np.multiply(np.asarray(mu, dtype=np.float64), np.asarray(total_angle, np.float64))
 
 
 def tanh_half_over(a):
@@ -26,9 +44,7 @@ def tanh_half_over(a):
     numpy.ndarray of float
         tanh(a/2)/a, shaped as a (the series below 1e-4).
     """
-    a = np.asarray(a, dtype=np.float64)
-    safe = np.where(np.abs(a) < 1e-4, 1.0, a)
-    return np.where(np.abs(a) < 1e-4, 0.5 - a * a / 24, np.tanh(safe / 2) / safe)
+    return _elementwise(core.tanh_half_over, a)
 
 
 def capstan_ratio(mu, total_angle, direction=1.0):
@@ -115,12 +131,8 @@ def backlash_half_width(length, EA, pretension, mu, total_angle):
     numpy.ndarray of float
         e_b (m), broadcast over the arguments.
     """
-    return (
-        np.asarray(pretension)
-        * np.asarray(length)
-        * np.tanh(np.asarray(mu) * np.asarray(total_angle) / 2)
-        / np.asarray(EA)
-    )
+    a = _friction_angle(mu, total_angle)
+    return _elementwise(core.uniform_backlash_half_width, length, EA, pretension, a)
 
 
 def load_offset(length, EA, load_force, mu, total_angle):
@@ -144,12 +156,8 @@ def load_offset(length, EA, load_force, mu, total_angle):
     numpy.ndarray of float
         e_L (m), broadcast over the arguments.
     """
-    return (
-        np.asarray(load_force)
-        * np.asarray(length)
-        * tanh_half_over(np.asarray(mu) * np.asarray(total_angle))
-        / np.asarray(EA)
-    )
+    a = _friction_angle(mu, total_angle)
+    return _elementwise(core.uniform_load_offset, length, EA, load_force, a)
 
 
 def load_compliance(length, EA, mu, total_angle):
@@ -171,7 +179,7 @@ def load_compliance(length, EA, mu, total_angle):
     numpy.ndarray of float
         C_L (m/N), broadcast over the arguments.
     """
-    return np.asarray(length) * tanh_half_over(np.asarray(mu) * np.asarray(total_angle)) / EA
+    return _elementwise(core.uniform_load_compliance, length, EA, _friction_angle(mu, total_angle))
 
 
 def spring_slope(length, EA, mu, total_angle, k):
@@ -195,7 +203,8 @@ def spring_slope(length, EA, mu, total_angle, k):
     numpy.ndarray of float
         The slope (dimensionless, in (0, 1]), broadcast over the arguments.
     """
-    return 1.0 / (1.0 + np.asarray(k) * load_compliance(length, EA, mu, total_angle))
+    a = _friction_angle(mu, total_angle)
+    return _elementwise(core.uniform_spring_slope, length, EA, k, a)
 
 
 def dead_zone_width(length, EA, pretension, mu, total_angle):
@@ -239,10 +248,7 @@ def no_slack_limit(pretension, mu, total_angle):
     numpy.ndarray of float
         The load limit (N), broadcast over the arguments (a -> 0: 2 T0).
     """
-    a = np.asarray(mu) * np.asarray(total_angle)
-    safe = np.where(np.abs(a) < 1e-8, 1.0, a)
-    ratio = np.where(np.abs(a) < 1e-8, 1.0, safe / np.sinh(safe))
-    return np.asarray(pretension) * ratio * (1.0 + np.exp(-a))
+    return _elementwise(core.uniform_no_slack_limit, pretension, _friction_angle(mu, total_angle))
 
 
 def pull_pull_offsets(
@@ -280,20 +286,13 @@ def pull_pull_offsets(
         x_in - x_out on the forward and the backward branch (m).
     """
     route2 = route1 if route2 is None else route2
-    L1, L2 = route1.length, route2.length
-    a1, a2 = mu * route1.total_angle, mu * route2.total_angle
-    g1, G1 = shape_integrals(route1, mu)
-    g2, G2 = shape_integrals(route2, mu)
-    T0, F = pretension, load_force
-    rhs = T0 * (L1 + L2)
-    # forward: tendon 1 pulled (T1p e^{-mu theta1}), tendon 2 released (T2p e^{+mu theta2})
-    A = np.array([[L1 * g1, L2 * G2], [np.exp(-a1), -np.exp(a2)]])
-    t1f, _ = np.linalg.solve(A, [rhs, F])
-    fwd = L1 / EA * (t1f * g1 - T0)
-    # backward: tendon 1 released, tendon 2 pulled
-    B = np.array([[L1 * G1, L2 * g2], [np.exp(a1), -np.exp(-a2)]])
-    t1b, _ = np.linalg.solve(B, [rhs, F])
-    bwd = L1 / EA * (t1b * G1 - T0)
+    statics = core.PullPullStatics()
+    statics.friction = float(mu)
+    statics.compliance = route1.length / EA
+    statics.pretension = float(pretension)
+    shapes = (route_shape(route1, mu), route_shape(route2, mu), route2.length / route1.length)
+    fwd = statics.forward_elongation(*shapes, float(load_force))
+    bwd = statics.backward_elongation(*shapes, float(load_force))
     return float(fwd), float(bwd)
 
 

@@ -276,7 +276,7 @@ def robustness_run(params: dict) -> dict[str, dict[str, float]]:
     """One draw of the robustness study: the plant's friction, pretension and route differ
     from the nominal plant the compensators were calibrated on; 10 s of the do2015 reference
     on a fixed (random-arc) route. Returns compensator -> metrics (a ``ts.sweep`` run)."""
-    from ...sweep.example_runs import random_arcs
+    from .routes import random_arcs
 
     kwargs = physics(
         friction=float(params.get("friction", _COMMON["friction"])),
