@@ -440,7 +440,9 @@ MINIMAL_CALLS = {
         lambda kw: ts.compensate.CurveAngleFeedforward.from_model(ts.models.CurveAngleModel(), **kw)
     ),
     "tendonsheath.sweep.studies.robustness_study": (
-        lambda kw: importlib.import_module("tendonsheath.sweep").robustness_study(n=1, **kw)
+        lambda kw: importlib.import_module("tendonsheath.sweep").robustness_study(
+            importlib.import_module("tendonsheath.bench.scenarios.do").robustness_run, n=1, **kw
+        )
     ),
     "tendonsheath.bench.calibration.Calibration.inverse_feedforward": (
         lambda kw: _calibration().inverse_feedforward(**kw)

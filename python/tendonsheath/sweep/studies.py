@@ -56,8 +56,9 @@ def robustness_study(
 
     Parameters
     ----------
-    run : callable, optional
-        The run (default the built-in compensator study).
+    run : callable
+        The run: perturbed parameters in, each compensator's metrics out (for example
+        :func:`tendonsheath.bench.scenarios.do.robustness_run`).
     n : int, default 200
         Number of perturbed plants.
     seed : int, default 2015
