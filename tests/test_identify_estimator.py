@@ -123,6 +123,9 @@ def test_unknown_settings_are_rejected_by_name(log):
         Identifier(Backlash, maxiter=-1).fit([(t, x, y)])
     with pytest.raises(ValueError, match="standard_errors must be one of"):
         Identifier(Backlash, standard_errors="jackknife").fit([(t, x, y)])
+    # the normalised path passes every setting down: no longer silently dropped there
+    with pytest.raises(ValueError, match="Backlash has no input_interpolation option"):
+        ts.identify(Backlash, t, x, y, input_interpolation="hold", **FAST)
 
 
 def test_warnings_name_the_callers_line():
