@@ -114,7 +114,7 @@ class ClassSetup:
     warmup: int
 
     @classmethod
-    def of(cls_, cls, recs, opt: Options, depends: dict) -> ClassSetup:
+    def of(setup, cls, recs, opt: Options, depends: dict) -> ClassSetup:
         from .uncertainty import setup_single_angle
 
         initial = _initial(cls, opt)
@@ -136,7 +136,7 @@ class ClassSetup:
             angle = setup_single_angle(
                 cls, recs, held, values, opt.fixed, opt.bounds, all_bounds, free_names
             )
-        return cls_(
+        return setup(
             cls,
             spec,
             initial,
