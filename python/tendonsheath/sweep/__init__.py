@@ -139,11 +139,8 @@ def sweep(
     design = as_design(design)
     _check_names(design, declared_parameters(run, parameters))
     plan = make_plan(design, n, seed)
-    stored: dict = {}
-    ck = None
-    if checkpoint is not None:
-        ck = Checkpoint(checkpoint, plan, checkpoint_tag)
-        stored = ck.load()
+    ck = Checkpoint(checkpoint, plan, checkpoint_tag) if checkpoint is not None else None
+    stored: dict = ck.load() if ck is not None else {}
     items = [(i, p) for i, p in enumerate(plan.runs) if i not in stored]
     client, own_client = _client(engine, connect_timeout)
     start = time.perf_counter()
@@ -152,14 +149,8 @@ def sweep(
         ck.open(keep=bool(stored))
         record = ck.record
     try:
-        if not items:  # every run was stored by an earlier, interrupted call
-            results, stats = {}, EngineStats("resumed", 0, 0, 0)
-        elif client is not None:
-            results, stats = run_dask(run, items, client, batch_size, retries, progress, record)
-        elif engine == "serial":
-            results, stats = run_serial(run, items, progress, record)
-        else:
-            results, stats = run_local(run, items, workers, batch_size, progress, record=record)
+        engines = (engine, client, workers, batch_size, retries)
+        results, stats = _run_items(run, items, engines, progress, record)
     finally:
         if own_client:
             client.close()
@@ -167,10 +158,17 @@ def sweep(
             ck.close()
     results = {**stored, **results}
     failed = _failed_runs(plan, results, on_error)
-    table, metrics, compensators = build_table(plan, results)
+    built = build_table(plan, results)
     info = engine_info(stats)
     info["wall_seconds"] = time.perf_counter() - start
     info.update(_throughput(stats, info["wall_seconds"], len(items), len(failed), len(stored)))
+    return _sweep_result(plan, built, info)
+
+
+def _sweep_result(plan: Plan, built: tuple, info: dict) -> SweepResult:
+    """The result of ``plan``'s runs: ``built`` is build_table's (table, metrics,
+    compensators) and ``info`` the engine's figures."""
+    table, metrics, compensators = built
     return SweepResult(
         table=table,
         parameters=list(plan.drawn),
@@ -219,6 +217,19 @@ def _client(engine, connect_timeout: float):
             f"address (got {type(engine).__name__})"
         )
     return None, False
+
+
+def _run_items(run, items: list, engines: tuple, progress, record):
+    """Run ``items`` (index, parameters) on the engine ``engines`` names (engine, Dask
+    client or None, workers, batch size, retries): (index -> result, EngineStats)."""
+    engine, client, workers, batch_size, retries = engines
+    if not items:  # every run was stored by an earlier, interrupted call
+        return {}, EngineStats("resumed", 0, 0, 0)
+    if client is not None:
+        return run_dask(run, items, client, batch_size, retries, progress, record)
+    if engine == "serial":
+        return run_serial(run, items, progress, record)
+    return run_local(run, items, workers, batch_size, progress, record=record)
 
 
 def _failed_runs(plan: Plan, results: dict, on_error: str) -> list:
