@@ -396,36 +396,53 @@ def calibrate(
     shape = shape or ShapeSensing(seed=seed)
     t, command = calibration_input(duration, amplitude)
     names = list(names) if names is not None else [f"cal{i + 1}" for i in range(len(routes))]
+    experiment = (plant, t, command, sensor, seed)
+    runs, recordings = _calibration_logs(experiment, routes, names, shape, duration)
+    warm = int(round(warmup / (t[1] - t[0])))
+    options = {"warmup": warm, "seed": seed, "budget": dict(budget or {})}
+    cal = Calibration(
+        fits={}, runs=runs, declared=_declared_values(declared), groups={}, shape=shape
+    )
+    if "BoucWenBacklash" in models_:
+        tb, xb, yb, _ = recordings[backlash_route]
+        _add_fit(cal, "BoucWenBacklash", [names[backlash_route]], (tb, xb, yb), {}, **options)
+    if "CurveAngleModel" in models_:
+        _add_curve_angle_fit(cal, recordings, names, spring, declared_friction, options)
+    return cal
+
+
+def _calibration_logs(experiment: tuple, routes, names: list[str], shape, duration: float):
+    """Drive the robot on each calibration route (``experiment``: plant, t, command, distal
+    sensor, seed) and log it: the runs and their (t, encoder, distal reading, sensed curve
+    angle) recordings."""
+    plant, t, command, sensor, seed = experiment
     runs, recordings = [], []
     for i, route in enumerate(routes):
         x, y = _run_experiment(plant, route, t, command, sensor, seed + 101 + i)
         sensed = shape.static_reading(route.total_angle, duration, seed_offset=i)
         runs.append(CalibrationRun(names[i], sensed, duration, int(t.size)))
         recordings.append((t, x, y, sensed))
-    decl = _declared_values(declared)
-    warm = int(round(warmup / (t[1] - t[0])))
-    options = {"warmup": warm, "seed": seed, "budget": dict(budget or {})}
-    cal = Calibration(fits={}, runs=runs, declared=decl, groups={}, shape=shape)
-    if "BoucWenBacklash" in models_:
-        tb, xb, yb, _ = recordings[backlash_route]
-        _add_fit(cal, "BoucWenBacklash", [names[backlash_route]], (tb, xb, yb), {}, **options)
-    if "CurveAngleModel" in models_:
-        fixed = {k: d.value for k, d in decl.items()}
-        if len({round(r[3], 3) for r in recordings}) < 2:
-            cal.friction_identified = False
-            fixed["friction"] = (
-                NOMINAL_FRICTION if declared_friction is None else float(declared_friction)
-            )
-        r_d0 = fixed["proximal_radius"] / max(_mean_slope(recordings), 1e-6)
-        search = {
-            "recordings": recordings,
-            "fixed": fixed,
-            "free": ["distal_radius"] + (["spring"] if spring else []),
-            "bounds": {"distal_radius": (0.3 * r_d0, 3.0 * r_d0)},
-        }
-        fit = _add_fit(cal, "CurveAngleModel", names, (), search, **options)
-        cal.groups = _curve_angle_groups(fit, runs, cal.friction_identified, spring)
-    return cal
+    return runs, recordings
+
+
+def _add_curve_angle_fit(cal, recordings, names, spring: bool, declared_friction, options):
+    """The CurveAngleModel on all calibration runs with the declared values held (and
+    friction too where a single curve angle cannot identify it), and its groups."""
+    fixed = {k: d.value for k, d in cal.declared.items()}
+    if len({round(r[3], 3) for r in recordings}) < 2:
+        cal.friction_identified = False
+        fixed["friction"] = (
+            NOMINAL_FRICTION if declared_friction is None else float(declared_friction)
+        )
+    r_d0 = fixed["proximal_radius"] / max(_mean_slope(recordings), 1e-6)
+    search = {
+        "recordings": recordings,
+        "fixed": fixed,
+        "free": ["distal_radius"] + (["spring"] if spring else []),
+        "bounds": {"distal_radius": (0.3 * r_d0, 3.0 * r_d0)},
+    }
+    fit = _add_fit(cal, "CurveAngleModel", names, (), search, **options)
+    cal.groups = _curve_angle_groups(fit, cal.runs, cal.friction_identified, spring)
 
 
 def _declared_values(declared: dict[str, float] | None) -> dict[str, Told]:
