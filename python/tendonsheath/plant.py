@@ -14,6 +14,8 @@ it is flagged per sample in the full result and raises a :class:`SlackWarning`.
 
 from __future__ import annotations
 
+import functools
+import inspect
 import math
 import warnings
 from collections.abc import Callable
@@ -121,6 +123,22 @@ def _check_route(route, name, cls):
     return route
 
 
+def _recording_arguments(init):
+    """``init`` that first keeps its bound arguments as ``self._arguments`` (the outermost
+    constructor's, when a subclass's calls its parent's)."""
+    signature = inspect.signature(init)
+
+    @functools.wraps(init)
+    def wrapper(self, *args, **kwargs):
+        if not hasattr(self, "_arguments"):
+            bound = signature.bind(self, *args, **kwargs)
+            bound.apply_defaults()
+            self._arguments = {k: v for k, v in list(bound.arguments.items())[1:]}
+        init(self, *args, **kwargs)
+
+    return wrapper
+
+
 class _Plant:
     """Shared streaming/batch behaviour; subclasses build ``_engine`` and describe their routes."""
 
@@ -129,6 +147,16 @@ class _Plant:
     motor: Motor | None = None
     sensor: Sensor | None = None
     _interpolation = ("hold", plant_input.DEFAULT_SUBSTEPS, plant_input.DEFAULT_LOOKAHEAD)
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if "__init__" in vars(cls):
+            cls.__init__ = _recording_arguments(cls.__init__)
+
+    @property
+    def params(self) -> dict:
+        """The constructor's arguments, defaults filled in (a copy)."""
+        return dict(self._arguments)
 
     def set_input_interpolation(
         self,
