@@ -97,7 +97,8 @@ def _setting(name: str, key: str, value):
         return None if value is None else HysteresisModel.from_dict(value)
     if key in _FLAGS:
         if not isinstance(value, bool):
-            raise ValueError(f"{name} file: '{key}' must be true or false (got {json.dumps(value)})")
+            got = json.dumps(value)
+            raise ValueError(f"{name} file: '{key}' must be true or false (got {got})")
         return value
     if key == "mode":
         if not isinstance(value, str):
