@@ -6,7 +6,7 @@ are there (not their signatures).
 
 * :class:`StreamingCompensator`: ``reset()`` and ``step(...)``, all that :func:`bench.run
   <tendonsheath.bench.run>` calls. ``step`` takes the signals named by the optional attribute
-  ``control_inputs`` (default ``("y_d",)``: the desired output; ``"y"``: the measured output,
+  ``step_inputs`` (default ``("y_d",)``: the desired output; ``"y"``: the measured output,
   NaN in a sensor dropout; ``"q"``: the motor encoder angle), then ``dt`` (s), and returns the
   command: a motor angle, or a torque when the optional attribute ``control_output`` is
   ``"torque"`` (the bench then needs a torque motor on the plant).
@@ -27,7 +27,7 @@ __all__ = [
     "Plant",
     "StreamingCompensator",
     "missing_members",
-    "step_inputs",
+    "step_signals",
 ]
 
 # the signals a compensator's step may ask for, by their to_control() names
@@ -36,7 +36,7 @@ STEP_SIGNALS = ("y_d", "y", "q")
 
 @runtime_checkable
 class StreamingCompensator(Protocol):
-    """One control cycle at a time: ``reset()``, then ``step(<control_inputs>, dt)``."""
+    """One control cycle at a time: ``reset()``, then ``step(<step_inputs>, dt)``."""
 
     def reset(self) -> None: ...
 
@@ -88,13 +88,13 @@ def missing_members(obj: object, protocol: type) -> list[str]:
     return missing
 
 
-def step_inputs(compensator: object) -> tuple[str, ...]:
-    """The signals ``compensator.step`` takes before dt: its ``control_inputs`` (checked)."""
-    inputs = tuple(getattr(compensator, "control_inputs", ("y_d",)))
+def step_signals(compensator: object) -> tuple[str, ...]:
+    """The signals ``compensator.step`` takes before dt: its ``step_inputs`` (checked)."""
+    inputs = tuple(getattr(compensator, "step_inputs", ("y_d",)))
     bad = [s for s in inputs if s not in STEP_SIGNALS]
     if bad or len(set(inputs)) != len(inputs) or not inputs:
         raise TypeError(
-            f"{type(compensator).__name__}.control_inputs must name distinct signals among "
+            f"{type(compensator).__name__}.step_inputs must name distinct signals among "
             f"{list(STEP_SIGNALS)} (got {list(inputs)})"
         )
     return inputs

@@ -1,5 +1,6 @@
 // The closed-loop virtual bench: one call runs the whole loop in C++.
 #include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
@@ -25,7 +26,7 @@ struct PythonLoop {
   nb::object self;
   nb::object step;
   nb::object status_fn;          // None: no status
-  std::vector<int> inputs;       // 0: y_d, 1: measured, 2: motor (control_inputs order)
+  std::vector<int> inputs;       // 0: y_d, 1: measured, 2: motor (step_inputs order)
   std::string name;
   static constexpr bool needs_gil = true;
 

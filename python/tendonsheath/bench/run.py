@@ -12,7 +12,7 @@ from .. import _core as core
 from .._arrays import as_time_and_signal
 from ..compensate.curve_angle_feedforward import shape_of
 from ..plant import PullPullPlant
-from ..protocols import STEP_SIGNALS, StreamingCompensator, missing_members, step_inputs
+from ..protocols import STEP_SIGNALS, StreamingCompensator, missing_members, step_signals
 from ..sensor import Sensor
 from ..status import status_counts
 from .metrics import dominant_period, tracking_metrics
@@ -103,7 +103,7 @@ def run(
 
     ``controller``: None (uncompensated: the kinematic motor angle r_d/r_p * y_d) or any
     compensator meeting :class:`~tendonsheath.protocols.StreamingCompensator` (``reset()`` and
-    ``step(<control_inputs>, dt)``; a ``control_output`` of "torque" needs a torque motor on
+    ``step(<step_inputs>, dt)``; a ``control_output`` of "torque" needs a torque motor on
     the plant). The shipped compensators, and a user's C++ one bound with
     ``tendonsheath_bind/compensator.hpp``, run in the C++ loop; any other is stepped from
     Python once per cycle, on itself (it is reset first and left in its final state). A
@@ -191,7 +191,7 @@ def _run_controller(loop: _Loop, controller, shape_sensing):
     fn = _ENGINE_LOOPS.get(type(engine))
     if fn is not None:
         return loop.call(fn, engine, shapes=None)
-    codes = [STEP_SIGNALS.index(s) for s in step_inputs(controller)]
+    codes = [STEP_SIGNALS.index(s) for s in step_signals(controller)]
     return loop.call(core.bench_python, controller, codes)
 
 
@@ -201,7 +201,7 @@ def _check_compensator(controller) -> None:
         raise TypeError(
             f"bench.run: the controller {type(controller).__name__} has no "
             f"{' and no '.join(missing)}: a compensator needs reset() and "
-            "step(<control_inputs>, dt) (see tendonsheath.protocols.StreamingCompensator)"
+            "step(<step_inputs>, dt) (see tendonsheath.protocols.StreamingCompensator)"
         )
 
 

@@ -52,6 +52,8 @@ class AdaptiveController:
     # signal names of to_control()'s system: desired and measured output, motor angle in
     control_inputs = ("y_d", "y", "q")
     control_output = "torque"
+    # what step() takes before dt (tendonsheath.protocols): desired, measured, motor angle
+    step_inputs = ("y_d", "y", "q")
 
     def __init__(self, feedforward_model=None, smoothing: float = 0.05, **gains):
         unknown = set(gains) - set(_GAINS)

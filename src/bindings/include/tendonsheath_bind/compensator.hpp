@@ -12,7 +12,7 @@
 //   }
 //
 // The Python class gets reset(), step(...) (the same signals as the C++ step, then dt),
-// control_inputs and control_output (what bench.run reads to feed and check it), and
+// step_inputs and control_output (what bench.run reads to feed and check it), and
 // _tendonsheath_compensator(): a capsule holding a copy of the instance for the C++ loop.
 #pragma once
 
@@ -56,12 +56,12 @@ void def_step(nb::class_<C>& cls) {
   if constexpr (n == 1) {
     cls.def("step", [](C& c, double r, double dt) { return c.step(r, checked_dt(dt)); },
             "y_d"_a, "dt"_a, "One control cycle: the command for the desired output y_d.");
-    cls.attr("control_inputs") = nb::make_tuple("y_d");
+    cls.attr("step_inputs") = nb::make_tuple("y_d");
   } else if constexpr (n == 2) {
     cls.def("step",
             [](C& c, double r, double y, double dt) { return c.step(r, y, checked_dt(dt)); },
             "y_d"_a, "y"_a, "dt"_a, "One control cycle from y_d and the measured output y.");
-    cls.attr("control_inputs") = nb::make_tuple("y_d", "y");
+    cls.attr("step_inputs") = nb::make_tuple("y_d", "y");
   } else {
     cls.def("step",
             [](C& c, double r, double y, double q, double dt) {
@@ -69,7 +69,7 @@ void def_step(nb::class_<C>& cls) {
             },
             "y_d"_a, "y"_a, "q"_a, "dt"_a,
             "One control cycle from y_d, the measured output y and the motor angle q.");
-    cls.attr("control_inputs") = nb::make_tuple("y_d", "y", "q");
+    cls.attr("step_inputs") = nb::make_tuple("y_d", "y", "q");
   }
 }
 
