@@ -19,7 +19,6 @@ import inspect
 import math
 import warnings
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -37,48 +36,12 @@ from .loads import (
 from .motor import Motor
 from .route import Route
 from .sensor import Sensor
+from .simulation_result import SimulationResult
 from .status import Status
 
 
 class SlackWarning(RuntimeWarning):
     """A tendon went slack (tension <= 0): the quasi-static model is not valid there."""
-
-
-@dataclass
-class SimulationResult:
-    """Everything a plant simulation produced (``plant.simulate(..., full=True)``).
-
-    ``command`` is what was given, ``q_in`` the plant input after the motor (the proximal
-    pulley angle; equal to the command without a motor), ``q_motor`` the motor shaft angle a
-    motor encoder reads (``q_in`` plus the gear play, when the motor has gear backlash),
-    ``q_out`` the output, ``measured`` the sensor reading of q_out (or
-    q_out without a sensor), ``slack`` a per-sample flag, ``tensions`` the final tensions
-    (rows: tendons, proximal to distal), ``nonconverged`` the count of accepted but
-    unconverged active-set increments (0 in normal use), ``status`` each sample's
-    :class:`~tendonsheath.Status` flags of plant, motor and sensor (uint8; count them with
-    :func:`~tendonsheath.status_counts`).
-    """
-
-    t: np.ndarray | None
-    command: np.ndarray
-    q_in: np.ndarray
-    q_out: np.ndarray
-    measured: np.ndarray
-    slack: np.ndarray
-    tensions: np.ndarray
-    nonconverged: int
-    q_motor: np.ndarray | None = None
-    status: np.ndarray | None = None
-    input_interpolation: str = "hold"  # how the command was reconstructed between samples
-
-    @property
-    def any_slack(self) -> bool:
-        return bool(self.slack.any())
-
-    @property
-    def first_slack_index(self) -> int | None:
-        idx = np.flatnonzero(self.slack)
-        return int(idx[0]) if idx.size else None
 
 
 def _options(elements, max_increment, fast_path):
@@ -277,8 +240,10 @@ class _Plant:
         ``t`` (s) may be None only without a motor, a damper and a route schedule. ``routes``
         is None or a callable t -> Route (or a (route1, route2) pair for a pull-pull plant); it
         is evaluated once per sample in Python and only the changes are passed to C++.
-        Returns q_out, or a :class:`SimulationResult` with ``full=True`` (its ``status`` holds
-        each sample's flags), or ``(q_out, flags)`` with ``status=True``. Warns
+        Returns a :class:`SimulationResult`: q_out as an array, with ``t``, ``input`` (the
+        command), ``success``, ``message``, ``status`` (each sample's flags), ``q_in``,
+        ``measured``, ``slack``, ``tensions``, ... (``full`` is kept for old code: every result
+        is the full one); ``(result, flags)`` with ``status=True``. Warns
         (:class:`SlackWarning`) with the time of the first slack sample.
         """
         name = f"{type(self).__name__}.simulate"
@@ -325,13 +290,12 @@ class _Plant:
                 SlackWarning,
                 stacklevel=2,
             )
-        if not full:
-            return (q_out, flags) if status else q_out
-        return SimulationResult(
+        result = SimulationResult(
+            q_out,
             t=ts,
+            input=us,
             command=us,
             q_in=q_in,
-            q_out=q_out,
             measured=meas,
             slack=slack,
             tensions=tens[0] if self._rows == 1 else tens,
@@ -340,6 +304,7 @@ class _Plant:
             status=flags,
             input_interpolation=how,
         )
+        return (result, flags) if status else result
 
     def _schedule(self, ts, routes):
         idx, rows = [], []
