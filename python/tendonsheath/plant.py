@@ -280,16 +280,7 @@ class _Plant:
             ].astype(flags.dtype)
             q_out, q_in, meas = q_out[step], q_in[step], meas[step]
             q_motor = None if q_motor is None or q_motor.size == 0 else q_motor[step]
-        if slack.any():
-            k = int(np.flatnonzero(slack)[0])
-            when = f"t = {ts[k]:.6g} s" if ts is not None else "the start"
-            warnings.warn(
-                f"{type(self).__name__}: a tendon went slack (tension <= 0) first at {when} "
-                f"(sample {k}, {int(slack.sum())} samples in all); the quasi-static model is not "
-                f"valid there: raise the pretension or lower the load",
-                SlackWarning,
-                stacklevel=2,
-            )
+        self._warn_slack(ts, slack)
         result = SimulationResult(
             q_out,
             t=ts,
@@ -305,6 +296,21 @@ class _Plant:
             input_interpolation=how,
         )
         return (result, flags) if status else result
+
+    def _warn_slack(self, ts, slack) -> None:
+        """A SlackWarning with the time of the first slack sample (pointing at the caller of
+        simulate)."""
+        if not slack.any():
+            return
+        k = int(np.flatnonzero(slack)[0])
+        when = f"t = {ts[k]:.6g} s" if ts is not None else "the start"
+        warnings.warn(
+            f"{type(self).__name__}: a tendon went slack (tension <= 0) first at {when} "
+            f"(sample {k}, {int(slack.sum())} samples in all); the quasi-static model is not "
+            f"valid there: raise the pretension or lower the load",
+            SlackWarning,
+            stacklevel=3,
+        )
 
     def _schedule(self, ts, routes):
         idx, rows = [], []
