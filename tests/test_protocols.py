@@ -186,9 +186,12 @@ def test_python_path_equals_the_cpp_loop(seed):
         (torque, AdaptiveController.from_model(model, inertia=0.01, viscous=0.2, max_torque=5.0)),
     ]
     noise = ts.Sensor(noise_std=2e-4, seed=seed)
+    bent = ts.Route.arcs([(0.5, 0.0), (0.6, rng.uniform(2.5, 4.0))])
+    kw = dict(noise=noise, dropout=[(2.0, 2.3)])
     for plant, c in cases:
-        fast = ts.bench.run(plant, c, T, Y_D, noise=noise, dropout=[(2.0, 2.3)])
-        slow = ts.bench.run(plant, _Delegate(c), T, Y_D, noise=noise, dropout=[(2.0, 2.3)])
+        kw["routes"] = lambda tk, first=plant.route: bent if tk >= 1.0 else first
+        fast = ts.bench.run(plant, c, T, Y_D, **kw)
+        slow = ts.bench.run(plant, _Delegate(c), T, Y_D, **kw)
         assert slow.controller == "_Delegate"
         for name in ("output", "measured", "command", "motor"):
             np.testing.assert_array_equal(getattr(slow, name), getattr(fast, name))
