@@ -154,6 +154,13 @@ class _Delegate:
     def step(self, *signals):
         return self.inner.step(*signals)
 
+    def status(self):
+        return self.inner.status()
+
+    @property
+    def in_fallback(self):
+        return getattr(self.inner, "in_fallback", False)
+
 
 def _bench_plant(motor):
     route = ts.Route.arcs([(0.5, 0.0), (0.6, 2.0)])
@@ -193,8 +200,12 @@ def test_python_path_equals_the_cpp_loop(seed):
         fast = ts.bench.run(plant, c, T, Y_D, **kw)
         slow = ts.bench.run(plant, _Delegate(c), T, Y_D, **kw)
         assert slow.controller == "_Delegate"
-        for name in ("output", "measured", "command", "motor"):
+        for name in ("output", "measured", "command", "motor", "status", "fallback"):
             np.testing.assert_array_equal(getattr(slow, name), getattr(fast, name))
+        assert fast.metrics["status"] == slow.metrics["status"]
+        if isinstance(c, AdaptiveController):  # in fallback exactly after a NaN reading
+            np.testing.assert_array_equal(fast.fallback[1:], np.isnan(fast.measured[:-1]))
+            assert fast.fallback.sum() == np.isnan(fast.measured).sum() > 0
 
 
 def test_user_compensator_is_what_a_hand_written_loop_gives():
@@ -245,6 +256,17 @@ class _Torque(_Wordy):
     control_output = "torque"
 
 
+class _Moody:
+    def reset(self):
+        pass
+
+    def step(self, y_d, dt):
+        return y_d
+
+    def status(self):
+        return "fine"
+
+
 class _BadInputs(_Wordy):
     step_inputs = ("y_d", "force")
 
@@ -259,5 +281,7 @@ def test_bench_names_what_a_compensator_lacks():
         ts.bench.run(plant, _Broken(), T, Y_D)
     with pytest.raises(ValueError, match="_Torque commands torque"):
         ts.bench.run(plant, _Torque(), T, Y_D)
+    with pytest.raises(TypeError, match=r"_Moody.status\(\) must return Status flags"):
+        ts.bench.run(plant, _Moody(), T, Y_D)
     with pytest.raises(TypeError, match=r"step_inputs must name distinct signals"):
         ts.bench.run(plant, _BadInputs(), T, Y_D)

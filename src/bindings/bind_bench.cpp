@@ -32,10 +32,20 @@ struct PythonLoop {
 
   void reset() { self.attr("reset")(); }
   void on_shape(const ts::ShapeIntegrals&) noexcept {}
-  bool in_fallback() const noexcept { return false; }
+  // a property (AdaptiveController.in_fallback) or a method; absent: never in fallback
+  bool in_fallback() const {
+    if (!nb::hasattr(self, "in_fallback")) return false;
+    nb::object v = self.attr("in_fallback");
+    if (PyCallable_Check(v.ptr())) v = v();
+    return PyObject_IsTrue(v.ptr()) == 1;
+  }
   ts::Status status() const {
     if (status_fn.is_none()) return ts::Status::ok;
-    return static_cast<ts::Status>(nb::cast<unsigned>(nb::int_(status_fn())));
+    nb::object flags = status_fn();
+    if (!PyLong_Check(flags.ptr()))  // tendonsheath.Status is an IntFlag
+      throw nb::type_error(("bench.run: " + name + ".status() must return Status flags (an int), not " +
+                            nb::cast<std::string>(nb::repr(flags))).c_str());
+    return static_cast<ts::Status>(nb::cast<unsigned>(flags));
   }
   double command(double y_d, double measured, double motor, double dt) {
     const std::array<double, 3> v{y_d, measured, motor};
