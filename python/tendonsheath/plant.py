@@ -94,12 +94,26 @@ def _recording_arguments(init):
     @functools.wraps(init)
     def wrapper(self, *args, **kwargs):
         if not hasattr(self, "_arguments"):
-            bound = signature.bind(self, *args, **kwargs)
+            try:
+                bound = signature.bind(self, *args, **kwargs)
+            except TypeError:  # the constructor itself names the bad argument
+                return init(self, *args, **kwargs)
             bound.apply_defaults()
-            self._arguments = {k: v for k, v in list(bound.arguments.items())[1:]}
+            self._arguments = _flat_arguments(signature, bound.arguments)
         init(self, *args, **kwargs)
 
     return wrapper
+
+
+def _flat_arguments(signature, arguments: dict) -> dict:
+    """Bound arguments without ``self``, a ``**kwargs`` catch-all spread into its keys."""
+    out = {}
+    for name, value in list(arguments.items())[1:]:
+        if signature.parameters[name].kind is inspect.Parameter.VAR_KEYWORD:
+            out.update(value)
+        else:
+            out[name] = value
+    return out
 
 
 class _Plant:
