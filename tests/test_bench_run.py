@@ -87,7 +87,7 @@ def test_curve_angle_controller_sees_route_changes():
 def test_bad_input():
     with pytest.raises(ValueError, match="PullPullPlant"):
         ts.bench.run(object(), None, T, Y_D)
-    with pytest.raises(ValueError, match="controller"):
+    with pytest.raises(TypeError, match="has no reset and no step"):
         ts.bench.run(_plant(), object(), T, Y_D)
     with pytest.raises(ValueError, match="not finite"):
         ts.bench.run(_plant(), None, T, np.where(T > 1, np.nan, Y_D))

@@ -122,15 +122,16 @@ def test_slack_is_flagged_and_warned_with_time():
     t = np.arange(400) * 1e-3
     q = np.linspace(0, 1.0, 400)
     with pytest.warns(ts.SlackWarning, match=r"first at t = 0 s"):
-        res = plant.simulate(t, q, full=True)
+        res = plant.simulate(t, q)
     assert isinstance(res, ts.SimulationResult)
     assert res.any_slack and res.first_slack_index == 0
+    assert not res.success and "slack" in res.message
     assert res.slack.dtype == bool and res.slack.shape == q.shape
     # a load that becomes too large only late: the first slack time is reported
     plant = ts.PullPullPlant(route=ROUTE, elements=30, load=ts.loads.TorsionalSpring(0.05))
     q = np.linspace(0, 3.0, 400)
     with pytest.warns(ts.SlackWarning) as record:
-        res = plant.simulate(t, q, full=True)
+        res = plant.simulate(t, q)
     k = res.first_slack_index
     assert k is not None and k > 0 and not res.slack[:k].any()
     assert f"t = {t[k]:.6g} s" in str(record[0].message)
@@ -140,8 +141,8 @@ def test_no_warning_without_slack():
     plant = ts.PullPullPlant(route=ROUTE, elements=30)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        res = plant.simulate(*sine(1000), full=True)
-    assert not res.any_slack
+        res = plant.simulate(*sine(1000))
+    assert not res.any_slack and res.success and res.message == ""
     assert res.nonconverged == 0
     np.testing.assert_array_equal(res.q_in, res.command)
     np.testing.assert_array_equal(res.measured, res.q_out)

@@ -14,10 +14,11 @@ it is flagged per sample in the full result and raises a :class:`SlackWarning`.
 
 from __future__ import annotations
 
+import functools
+import inspect
 import math
 import warnings
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -35,75 +36,12 @@ from .loads import (
 from .motor import Motor
 from .route import Route
 from .sensor import Sensor
+from .simulation_result import SimulationResult
 from .status import Status
 
 
 class SlackWarning(RuntimeWarning):
     """A tendon went slack (tension <= 0): the quasi-static model is not valid there."""
-
-
-@dataclass
-class SimulationResult:
-    """Everything a plant simulation produced (``plant.simulate(..., full=True)``).
-
-    ``command`` is what was given, ``q_in`` the plant input after the motor (the proximal
-    pulley angle; equal to the command without a motor), ``q_motor`` the motor shaft angle a
-    motor encoder reads (``q_in`` plus the gear play, when the motor has gear backlash),
-    ``q_out`` the output, ``measured`` the sensor reading of q_out (or
-    q_out without a sensor), ``slack`` a per-sample flag, ``tensions`` the final tensions
-    (rows: tendons, proximal to distal), ``nonconverged`` the count of accepted but
-    unconverged active-set increments (0 in normal use), ``status`` each sample's
-    :class:`~tendonsheath.Status` flags of plant, motor and sensor (uint8; count them with
-    :func:`~tendonsheath.status_counts`).
-
-    Parameters
-    ----------
-    t : numpy.ndarray of float or None
-        Sample times (s).
-    command : numpy.ndarray of float
-        The commands given.
-    q_in : numpy.ndarray of float
-        Plant input after the motor (proximal pulley angle, rad; m for a single tendon).
-    q_out : numpy.ndarray of float
-        The output.
-    measured : numpy.ndarray of float
-        The sensor reading of q_out (q_out without a sensor).
-    slack : numpy.ndarray of bool
-        Per sample: a tendon went slack.
-    tensions : numpy.ndarray of float
-        Final element tensions (N); rows: tendons, proximal to distal.
-    nonconverged : int
-        Accepted but unconverged active-set increments (0 in normal use).
-    q_motor : numpy.ndarray of float, optional
-        Motor shaft angle (rad), with a motor.
-    status : numpy.ndarray of uint8, optional
-        Each sample's Status flags.
-    input_interpolation : str, default "hold"
-        How the command was reconstructed between samples.
-    """
-
-    t: np.ndarray | None
-    command: np.ndarray
-    q_in: np.ndarray
-    q_out: np.ndarray
-    measured: np.ndarray
-    slack: np.ndarray
-    tensions: np.ndarray
-    nonconverged: int
-    q_motor: np.ndarray | None = None
-    status: np.ndarray | None = None
-    input_interpolation: str = "hold"  # how the command was reconstructed between samples
-
-    @property
-    def any_slack(self) -> bool:
-        """Whether a tendon went slack at any sample."""
-        return bool(self.slack.any())
-
-    @property
-    def first_slack_index(self) -> int | None:
-        """Index of the first slack sample (None when there is none)."""
-        idx = np.flatnonzero(self.slack)
-        return int(idx[0]) if idx.size else None
 
 
 def _options(elements, max_increment, fast_path):
@@ -148,6 +86,36 @@ def _check_route(route, name, cls):
     return route
 
 
+def _recording_arguments(init):
+    """``init`` that first keeps its bound arguments as ``self._arguments`` (the outermost
+    constructor's, when a subclass's calls its parent's)."""
+    signature = inspect.signature(init)
+
+    @functools.wraps(init)
+    def wrapper(self, *args, **kwargs):
+        if not hasattr(self, "_arguments"):
+            try:
+                bound = signature.bind(self, *args, **kwargs)
+            except TypeError:  # the constructor itself names the bad argument
+                return init(self, *args, **kwargs)
+            bound.apply_defaults()
+            self._arguments = _flat_arguments(signature, bound.arguments)
+        init(self, *args, **kwargs)
+
+    return wrapper
+
+
+def _flat_arguments(signature, arguments: dict) -> dict:
+    """Bound arguments without ``self``, a ``**kwargs`` catch-all spread into its keys."""
+    out = {}
+    for name, value in list(arguments.items())[1:]:
+        if signature.parameters[name].kind is inspect.Parameter.VAR_KEYWORD:
+            out.update(value)
+        else:
+            out[name] = value
+    return out
+
+
 class _Plant:
     """Shared streaming/batch behaviour; subclasses build ``_engine`` and describe their routes."""
 
@@ -156,6 +124,16 @@ class _Plant:
     motor: Motor | None = None
     sensor: Sensor | None = None
     _interpolation = ("hold", plant_input.DEFAULT_SUBSTEPS, plant_input.DEFAULT_LOOKAHEAD)
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if "__init__" in vars(cls):
+            cls.__init__ = _recording_arguments(cls.__init__)
+
+    @property
+    def params(self) -> dict:
+        """The constructor's arguments, defaults filled in (a copy)."""
+        return dict(self._arguments)
 
     def set_input_interpolation(
         self,
@@ -187,7 +165,6 @@ class _Plant:
 
     @property
     def input_interpolation(self) -> str:
-        """The default reconstruction of the command in :meth:`simulate`."""
         return self._interpolation[0]
 
     def _setup_io(self, motor, sensor):
@@ -311,17 +288,14 @@ class _Plant:
 
     @property
     def elements(self) -> int:
-        """Elements per sheath."""
         return self._engine.elements
 
     @property
     def friction(self) -> float:
-        """Friction coefficient mu (of sheath 1)."""
         return self._engine.params.friction
 
     @property
     def stiffness(self) -> float:
-        """Tendon axial stiffness EA (N) (of tendon 1)."""
         return self._engine.params.stiffness
 
     def element_positions(self, sheath: int = 1) -> np.ndarray:
@@ -429,23 +403,13 @@ class _Plant:
             ].astype(flags.dtype)
             q_out, q_in, meas = q_out[step], q_in[step], meas[step]
             q_motor = None if q_motor is None or q_motor.size == 0 else q_motor[step]
-        if slack.any():
-            k = int(np.flatnonzero(slack)[0])
-            when = f"t = {ts[k]:.6g} s" if ts is not None else "the start"
-            warnings.warn(
-                f"{type(self).__name__}: a tendon went slack (tension <= 0) first at {when} "
-                f"(sample {k}, {int(slack.sum())} samples in all); the quasi-static model is not "
-                f"valid there: raise the pretension or lower the load",
-                SlackWarning,
-                stacklevel=2,
-            )
-        if not full:
-            return (q_out, flags) if status else q_out
-        return SimulationResult(
+        self._warn_slack(ts, slack)
+        result = SimulationResult(
+            q_out,
             t=ts,
+            input=us,
             command=us,
             q_in=q_in,
-            q_out=q_out,
             measured=meas,
             slack=slack,
             tensions=tens[0] if self._rows == 1 else tens,
@@ -453,6 +417,22 @@ class _Plant:
             q_motor=q_motor,
             status=flags,
             input_interpolation=how,
+        )
+        return (result, flags) if status else result
+
+    def _warn_slack(self, ts, slack) -> None:
+        """A SlackWarning with the time of the first slack sample (pointing at the caller of
+        simulate)."""
+        if not slack.any():
+            return
+        k = int(np.flatnonzero(slack)[0])
+        when = f"t = {ts[k]:.6g} s" if ts is not None else "the start"
+        warnings.warn(
+            f"{type(self).__name__}: a tendon went slack (tension <= 0) first at {when} "
+            f"(sample {k}, {int(slack.sum())} samples in all); the quasi-static model is not "
+            f"valid there: raise the pretension or lower the load",
+            SlackWarning,
+            stacklevel=3,
         )
 
     def _schedule(self, ts, routes):
@@ -756,17 +736,14 @@ class PullPullPlant(_Plant):
     # parameters
     @property
     def pretension(self) -> float:
-        """Pretension T0 (N)."""
         return self._engine.params.pretension
 
     @property
     def proximal_radius(self) -> float:
-        """Proximal pulley radius r_p (m)."""
         return self._engine.params.proximal_radius
 
     @property
     def distal_radius(self) -> float:
-        """Distal pulley radius r_d (m)."""
         return self._engine.params.distal_radius
 
     def _lengths(self):
@@ -996,17 +973,14 @@ class ContinuumPlant(PullPullPlant):
 
     @property
     def bending_stiffness(self) -> float:
-        """Backbone bending stiffness EI (N m^2)."""
         return self._engine.continuum_params.bending_stiffness
 
     @property
     def tendon_offset(self) -> float:
-        """Distance r_t of the tendons from the backbone (m)."""
         return self._engine.continuum_params.tendon_offset
 
     @property
     def backbone_length(self) -> float:
-        """Length l of the segment (m)."""
         return self._engine.continuum_params.backbone_length
 
     @property

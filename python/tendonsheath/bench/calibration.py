@@ -510,7 +510,7 @@ def _run_experiment(plant, route, t, command, sensor: Sensor | None, seed: int):
     previous = plant.route
     plant.set_route(route)
     try:
-        sim = plant.simulate(t, command, full=True)
+        sim = plant.simulate(t, command)
     finally:
         plant.set_route(previous)
     if sensor is not None:

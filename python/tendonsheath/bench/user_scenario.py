@@ -58,6 +58,11 @@
     [compare]
     compensators = ["none", "inverse_feedforward", "curve_angle_feedforward", "adaptive"]
 
+    [[compare.user]]                    # optional, repeatable: your own compensator
+    class = "my_package.control:MyCompensator"   # module:Class, or file = "mine.py" and
+    kwargs = { gain = 1.0 }                      #   class = "MyCompensator" (see
+                                                 #   tendonsheath.bench.user_compensators)
+
 Every table and key is checked; an unknown or ill-typed one is named in the error.
 """
 
@@ -80,6 +85,7 @@ from ..route import Route
 from ..sensor import Sensor
 from .run import run
 from .scenarios.common import ScenarioResult, piecewise_routes, ratio
+from .user_compensators import UserCompensator, parse_user_compensators, told_by_user
 
 COMPENSATORS = ("none", "inverse_feedforward", "curve_angle_feedforward", "adaptive")
 
@@ -110,7 +116,7 @@ _KEYS: dict[str, dict[str, type | tuple]] = {
         "shape_noise": float,
         "shape_delay": float,
     },
-    "compare": {"compensators": list},
+    "compare": {"compensators": list, "user": list},
 }
 _TOP = {"title": str, "seed": int, **{k: dict for k in _KEYS}}
 
@@ -134,6 +140,7 @@ class UserScenario:
     seed: int = 0
     source: str = "<scenario>"
     route_changes: list[tuple[float, Route]] = field(default_factory=list)
+    user_compensators: list[UserCompensator] = field(default_factory=list)
 
 
 def _check_type(where: str, key: str, value, kind):
@@ -218,7 +225,8 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
     if any(b[0] <= a[0] for a, b in zip(changes, changes[1:], strict=False)):
         raise ScenarioError(f"{source} [[route.changes]]: times must increase")
     compensators = s["compare"].get("compensators", list(COMPENSATORS))
-    if not compensators:
+    user = _user_compensators(s["compare"], source)
+    if not compensators and not user:
         raise ScenarioError(
             f"{source} [compare]: 'compensators' is empty; name at least one of "
             f"{list(COMPENSATORS)}"
@@ -265,7 +273,33 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         seed=int(data.get("seed", 0)),
         source=source,
         route_changes=changes,
+        user_compensators=user,
     )
+
+
+def _user_compensators(compare: dict, source: str) -> list[UserCompensator]:
+    """The [[compare.user]] entries; a 'file' is relative to the scenario file's folder."""
+    base = Path(source).parent if Path(source).is_file() else Path.cwd()
+    shipped = {"none", "InverseFeedforward", "CurveAngleFeedforward", "AdaptiveController"}
+    try:
+        return parse_user_compensators(
+            compare.get("user", []), f"{source} [compare]", base, shipped
+        )
+    except ValueError as exc:
+        raise ScenarioError(str(exc)) from None
+
+
+def run_user_compensators(sc: UserScenario, t, y_d, routes, sensor) -> tuple[dict, dict]:
+    """Bench runs of the scenario's own compensators and what each was told: on the plant with
+    the torque motor when it commands torque, else on the one with the position servo."""
+    runs, told = {}, {}
+    for user in sc.user_compensators:
+        compensator = user.build()
+        torque = getattr(compensator, "control_output", "x") == "torque"
+        plant = _plant(sc, _torque(sc) if torque else _servo(sc))
+        runs[user.name] = run(plant, compensator, t, y_d, routes=routes, noise=sensor)
+        told[user.name] = told_by_user(user)
+    return runs, told
 
 
 def load(path: str | Path) -> UserScenario:
@@ -393,6 +427,11 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
     runs, told = _run_compensators(
         sc, cal, _plant(sc, servo_motor), t, y_d, routes, sensor, shape, progress
     )
+    if sc.user_compensators:
+        announce(progress, "user compensators")
+    user_runs, user_told = run_user_compensators(sc, t, y_d, routes, sensor)
+    runs.update(user_runs)
+    told.update(user_told)
     announce(progress, "honesty panel")
     theta = (
         np.array([routes(tk).total_angle for tk in t])

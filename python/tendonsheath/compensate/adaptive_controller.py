@@ -8,6 +8,7 @@ from .. import _core as core
 from .._arrays import checked_dt
 from ..models import Backlash, BoucWenBacklash
 from ..status import Status
+from . import persistence
 
 _GAINS = (
     "lambda_",
@@ -69,6 +70,8 @@ class AdaptiveController:
     # signal names of to_control()'s system: desired and measured output, motor angle in
     control_inputs = ("y_d", "y", "q")
     control_output = "torque"
+    # what step() takes before dt (tendonsheath.protocols): desired, measured, motor angle
+    step_inputs = ("y_d", "y", "q")
 
     def __init__(self, feedforward_model=None, smoothing: float = 0.05, **gains):
         unknown = set(gains) - set(_GAINS)
@@ -87,7 +90,14 @@ class AdaptiveController:
             p.feedforward = ff
             p.has_feedforward = True
         self.feedforward_model = feedforward_model
+        self.smoothing = float(smoothing)
         self._engine = core.AdaptiveController(p)
+        resolved = self._engine.params
+        self._settings = {
+            "feedforward_model": feedforward_model,
+            "smoothing": self.smoothing,
+            **{key: getattr(resolved, key) for key in _GAINS},
+        }
 
     @classmethod
     def from_model(
@@ -255,3 +265,35 @@ class AdaptiveController:
             The flags of the last :meth:`step`.
         """
         return Status(self._engine.status())
+
+    def _bench_engine(self):
+        """The C++ engine ``bench.run`` runs in its C++ loop."""
+        return self._engine
+
+    # -- persistence -----------------------------------------------------------------
+    _saved_settings = ("feedforward_model", "smoothing", *_GAINS)
+
+    @property
+    def params(self) -> dict:
+        """The constructor settings, every gain resolved (a copy)."""
+        return dict(self._settings)
+
+    def to_dict(self) -> dict:
+        """The controller as a dict (format ``tendonsheath.compensator``; the feedforward
+        model as its own dict, or null)."""
+        return persistence.compensator_dict(type(self).__name__, self._settings)
+
+    def to_json(self, path=None) -> str:
+        """The controller as JSON text; also written to `path` when one is given.
+        ``tendonsheath.compensate.load`` reads it (the C++ loader does not: it reads the
+        feedforwards only)."""
+        return persistence.to_json(self.to_dict(), path)
+
+    @classmethod
+    def load(cls, source) -> AdaptiveController:
+        """A controller saved with :meth:`to_json` (a path, JSON text or a dict)."""
+        return persistence.load_as(cls, source)
+
+    @classmethod
+    def _from_saved(cls, values: dict) -> AdaptiveController:
+        return cls(**values)

@@ -146,5 +146,9 @@ class InverseFeedforward(Feedforward):
             return x_c + x_s * inner[0], inner[1]
         return x_c + x_s * inner
 
+    def _bench_engine(self):
+        # the C++ loops know the inner engine only: a Scaled model's map runs in step()
+        return self._engine if self._map is None else None
+
     def __repr__(self) -> str:
         return f"InverseFeedforward({self.model!r}, smoothing={self.smoothing:g})"

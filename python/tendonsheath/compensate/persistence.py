@@ -20,15 +20,19 @@ FORMAT_NAME = "tendonsheath.compensator"
 FORMAT_VERSION = 1
 
 # settings that may be null (= unbounded) and the value null stands for
-_UNBOUNDED = {"max_correction_rate": math.inf}
+_UNBOUNDED = {"max_correction_rate": math.inf, "max_torque": math.inf}
+# settings saved as a model's own dict (null: no model)
+_MODELS = ("model", "feedforward_model")
+_FLAGS = ("model_acceleration",)
 _LIMIT_UNBOUNDED = {"min": -math.inf, "max": math.inf, "max_rate": math.inf}
 
 
 def compensator_dict(name: str, settings: dict[str, Any]) -> dict[str, Any]:
     """The file contents for compensator class `name` built with `settings`."""
     out = {k: _finite_or_none(v) for k, v in settings.items() if k != "limits"}
-    lim = settings["limits"]
-    out["limits"] = {k: _finite_or_none(getattr(lim, k)) for k in _LIMIT_UNBOUNDED}
+    if "limits" in settings:
+        lim = settings["limits"]
+        out["limits"] = {k: _finite_or_none(getattr(lim, k)) for k in _LIMIT_UNBOUNDED}
     return {"format": FORMAT_NAME, "version": FORMAT_VERSION, "compensator": name, **out}
 
 
@@ -40,20 +44,22 @@ def to_json(data: dict[str, Any], path: str | Path | None) -> str:
 
 
 def _finite_or_none(value):
-    if isinstance(value, str):
+    if value is None or isinstance(value, str | bool):
         return value
+    if hasattr(value, "to_dict"):  # a model
+        return value.to_dict()
     value = float(value)  # numpy scalars too
     return None if math.isinf(value) else value
 
 
 def _registry() -> dict[str, type]:
+    from .adaptive_controller import AdaptiveController
     from .continuum_feedforward import ContinuumFeedforward
     from .curve_angle_feedforward import CurveAngleFeedforward
     from .inverse_feedforward import InverseFeedforward
 
-    return {
-        c.__name__: c for c in (InverseFeedforward, CurveAngleFeedforward, ContinuumFeedforward)
-    }
+    kinds = (InverseFeedforward, CurveAngleFeedforward, ContinuumFeedforward, AdaptiveController)
+    return {c.__name__: c for c in kinds}
 
 
 def compensator_from_dict(data: dict[str, Any]):
@@ -85,10 +91,15 @@ def compensator_from_dict(data: dict[str, Any]):
 def _setting(name: str, key: str, value):
     if key == "limits":
         return _limits(name, value)
-    if key == "model":
+    if key in _MODELS:
         from ..models import HysteresisModel
 
-        return HysteresisModel.from_dict(value)
+        return None if value is None else HysteresisModel.from_dict(value)
+    if key in _FLAGS:
+        if not isinstance(value, bool):
+            got = json.dumps(value)
+            raise ValueError(f"{name} file: '{key}' must be true or false (got {got})")
+        return value
     if key == "mode":
         if not isinstance(value, str):
             raise ValueError(f"{name} file: 'mode' must be a string (got {json.dumps(value)})")
@@ -135,3 +146,14 @@ def load_compensator(source: str | Path | dict):
         An unreadable source or an invalid compensator file.
     """
     return compensator_from_dict(read_json_source(source, "compensator"))
+
+
+def load_as(cls: type, source: str | Path | dict):
+    """``cls.load(source)``: a saved compensator, which must be a ``cls``."""
+    compensator = load_compensator(source)
+    if not isinstance(compensator, cls):
+        raise TypeError(
+            f"{cls.__name__}.load: the file holds a {type(compensator).__name__}, "
+            f"not a {cls.__name__} (tendonsheath.compensate.load reads any compensator)"
+        )
+    return compensator

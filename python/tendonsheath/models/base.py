@@ -2,20 +2,42 @@
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 from pathlib import Path
 from typing import Any, ClassVar
 
+import numpy as np
+
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import read_json_source
+from ..simulation_result import SimulationResult
 from ..status import Status
 
 FORMAT_NAME = "tendonsheath.model"
 FORMAT_VERSION = 1
 
 _REGISTRY: dict[str, type[HysteresisModel]] = {}
+
+
+def _returning_result(simulate):
+    """``simulate`` that returns a :class:`SimulationResult` (the output with its time and
+    input), or ``(result, flags)`` where it returned ``(y, flags)``."""
+
+    @functools.wraps(simulate)
+    def wrapper(self, t, x, *args, **kwargs):
+        out = simulate(self, t, x, *args, **kwargs)
+        y, flags = out if isinstance(out, tuple) else (out, None)
+        if flags is None and isinstance(y, SimulationResult):
+            flags = y.status
+        # this model's own t and x (a wrapper's inner model saw transformed ones)
+        ts = None if t is None else np.asarray(t, dtype=float)
+        y = SimulationResult(y, t=ts, input=np.asarray(x, dtype=float), status=flags)
+        return (y, flags) if isinstance(out, tuple) else y
+
+    return wrapper
 
 
 class HysteresisModel:
@@ -54,6 +76,8 @@ class HysteresisModel:
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         _REGISTRY[cls.__name__] = cls
+        if "simulate" in vars(cls):  # every model's simulate returns a SimulationResult
+            cls.simulate = _returning_result(cls.simulate)
 
     def __init__(self, **values):
         unknown = set(values) - set(self.param_names) - set(self.option_names)
@@ -88,7 +112,6 @@ class HysteresisModel:
 
     @property
     def options(self) -> dict[str, Any]:
-        """The numerical options (not identified), as a dict (a copy)."""
         s = self._engine.params
         return {k: _plain(getattr(s, k)) for k in self.option_names}
 
@@ -109,6 +132,7 @@ class HysteresisModel:
         return type(self)(**values)
 
     # -- simulation ------------------------------------------------------------------
+    @_returning_result
     def simulate(self, t, x, status: bool = False):
         """Output for the input samples x at times t (t may be None when rate-independent).
 
