@@ -61,9 +61,12 @@ def recording_groups(n: int, folds: int | None = None) -> tuple[list[list[int]],
     5) groups."""
     if n < 2:
         raise ValueError(f"cross-validation over recordings needs at least 2 (got {n})")
+    if folds is not None:
+        if isinstance(folds, bool) or not isinstance(folds, int | np.integer):
+            raise TypeError(f"folds must be an integer (got {folds!r})")
+        if folds < 2:
+            raise ValueError(f"folds: at least 2 are needed (got {folds})")
     k = n if n <= MAX_LEAVE_ONE_OUT and folds is None else min(folds or 5, n)
-    if k < 2:
-        raise ValueError(f"folds: at least 2 are needed (got {folds})")
     groups = [list(range(g, n, k)) for g in range(k)]
     what = "recording" if k == n else "group of recordings"
     return groups, f"cross-validation: leave one {what} out ({k} folds)"
