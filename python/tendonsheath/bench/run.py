@@ -78,6 +78,7 @@ class Result:
 
     @property
     def error(self) -> np.ndarray:
+        """The tracking error output - reference (rad)."""
         return self.output - self.reference
 
     @property
