@@ -3,8 +3,6 @@
 A function's length is its lines as ``ast`` gives them, signature and comments included,
 less its docstring: the numpydoc Parameters/Returns sections the API walk asks for
 (tests/test_api_walk.py) grow with the number of parameters, not with the logic to carry.
-``STILL_LONG`` would list a function allowed over the limit while it is being split; an
-entry is an error once its function is short, so the list can only shrink (it is empty).
 """
 
 from __future__ import annotations
@@ -16,9 +14,6 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "python" / "tendonsheath"
 LIMIT = 80
-
-# functions allowed over the limit while being split (none left: keep it empty)
-STILL_LONG: set[str] = set()
 
 
 def function_lengths(root: Path) -> dict[str, int]:
@@ -58,11 +53,5 @@ def lengths() -> dict[str, int]:
 
 
 def test_no_function_is_over_80_lines(lengths):
-    long = {k: n for k, n in lengths.items() if n > LIMIT and k not in STILL_LONG}
+    long = {k: n for k, n in lengths.items() if n > LIMIT}
     assert not long, f"functions over {LIMIT} lines (split them into named steps): {long}"
-
-
-@pytest.mark.parametrize("name", sorted(STILL_LONG))
-def test_a_listed_long_function_is_still_long(name, lengths):
-    assert name in lengths, f"{name} is gone: remove it from STILL_LONG"
-    assert lengths[name] > LIMIT, f"{name} is {lengths[name]} lines now: remove it from STILL_LONG"
