@@ -101,7 +101,7 @@ def pull_pull_offsets(
     """
     route2 = route1 if route2 is None else route2
     L1, L2 = route1.length, route2.length
-    a1, a2 = mu * route1.total_angle, mu * route2.total_angle
+    a1, a2 = mu * route1.curve_angle, mu * route2.curve_angle
     g1, G1 = shape_integrals(route1, mu)
     g2, G2 = shape_integrals(route2, mu)
     T0, F = pretension, load_force
@@ -128,7 +128,7 @@ def single_tendon_dead_zone(route: Route, EA, distal_tension, mu) -> float:
 
     b = (L/EA) T_p0 [g - e^{-2a} G] with T_p0 = T_d e^{a}; uniform: 4 T_d L sinh^2(a/2)/(EA a).
     """
-    a = mu * route.total_angle
+    a = mu * route.curve_angle
     g, G = shape_integrals(route, mu)
     Tp0 = distal_tension * np.exp(a)
     return float(route.length / EA * Tp0 * (g - np.exp(-2 * a) * G))

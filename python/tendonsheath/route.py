@@ -5,11 +5,15 @@ from __future__ import annotations
 import numpy as np
 
 from . import _core as core
+from ._args import number, python_names, reject_unknown, renamed, warn_renamed
 from ._arrays import as_signal
 
 # 100 full turns: the largest curve angle accepted in measured data (no sheath route comes near
 # it; a larger logged value is a unit or column mistake). The plant itself takes any angle.
 MAX_CURVE_ANGLE = 200 * np.pi
+
+_RENAMED = {"total_angle": "curve_angle"}  # old name -> vocabulary name (docs/vocabulary.md)
+_PIECE = ("Route.arcs", "piece")
 
 
 class Route:
@@ -35,9 +39,17 @@ class Route:
         return obj
 
     @classmethod
-    def uniform(cls, length: float, total_angle: float) -> Route:
-        """Constant curvature: theta(s) = total_angle * s / length."""
-        return cls._wrap(core.Route.uniform(float(length), float(total_angle)))
+    def uniform(cls, length: float, curve_angle: float | None = None, **old_names) -> Route:
+        """Constant curvature: theta(s) = curve_angle * s / length (``total_angle=``, its old
+        name, still works with a DeprecationWarning)."""
+        reject_unknown("Route.uniform", old_names, _RENAMED)
+        values = renamed("Route.uniform", {"curve_angle": curve_angle, **old_names}, _RENAMED)
+        if values["curve_angle"] is None:
+            raise TypeError("Route.uniform: missing the argument curve_angle (rad)")
+        length = number("Route.uniform", "length", length)
+        angle = number("Route.uniform", "curve_angle", values["curve_angle"])
+        with python_names("Route.uniform"):
+            return cls._wrap(core.Route.uniform(length, angle))
 
     @classmethod
     def arcs(cls, pieces) -> Route:
@@ -46,10 +58,13 @@ class Route:
         A bend to the other side (negative angle) accumulates |angle|.
         """
         try:
-            items = [(float(a), float(b)) for a, b in pieces]
+            items = [(number(*_PIECE, a), number(*_PIECE, b)) for a, b in pieces]
         except (TypeError, ValueError):
-            raise ValueError("Route.arcs: pieces must be (length, angle) pairs") from None
-        return cls._wrap(core.Route.arcs(items))
+            raise TypeError(
+                f"Route.arcs: pieces must be (length, angle) pairs of numbers (got {pieces!r})"
+            ) from None
+        with python_names("Route.arcs"):
+            return cls._wrap(core.Route.arcs(items))
 
     @classmethod
     def from_points(cls, xyz) -> Route:
@@ -77,8 +92,15 @@ class Route:
         return self._core.length
 
     @property
-    def total_angle(self) -> float:
+    def curve_angle(self) -> float:
+        """The accumulated curve angle Theta = theta(L) (rad)."""
         return self._core.total_angle
+
+    @property
+    def total_angle(self) -> float:
+        """Deprecated: the old name of :attr:`curve_angle`."""
+        warn_renamed("Route", "total_angle", "curve_angle")
+        return self.curve_angle
 
     @property
     def s(self) -> np.ndarray:
@@ -97,11 +119,11 @@ class Route:
         return self._core.angles_at(flat).reshape(arr.shape)
 
     def element_angles(self, n: int) -> np.ndarray:
-        """Angles of n equal elements, proximal to distal (they sum to total_angle)."""
+        """Angles of n equal elements, proximal to distal (they sum to curve_angle)."""
         return self._core.element_angles(int(n))
 
     def node_angles(self, n: int) -> np.ndarray:
-        """Lumped angles of the n-1 interior nodes of an n-element sheath (sum: total_angle)."""
+        """Lumped angles of the n-1 interior nodes of an n-element sheath (sum: curve_angle)."""
         return self._core.node_angles(int(n))
 
     def scaled(self, factor: float) -> Route:
@@ -119,7 +141,7 @@ class Route:
         return hash((self.s.tobytes(), self.theta.tobytes()))
 
     def __repr__(self) -> str:
-        return f"Route(length={self.length:.6g} m, total_angle={self.total_angle:.6g} rad)"
+        return f"Route(length={self.length:.6g} m, curve_angle={self.curve_angle:.6g} rad)"
 
 
 def check_curve_angle(value, what: str = "curve angle") -> None:

@@ -339,7 +339,7 @@ def tension_bench_friction(plant) -> float:
     for q in np.linspace(0.0, travel, 400):
         plant.step(float(q))
     tension = plant.tensions()[0]  # row 0: tendon 1, proximal to distal
-    span = float(plant.route.total_angle)
+    span = float(plant.route.curve_angle)
     plant.reset()
     if not span > 0:
         return 0.0
@@ -349,7 +349,7 @@ def tension_bench_friction(plant) -> float:
 def calibration_angles(sc: UserScenario) -> list[float]:
     """The calibration curve angles: [calibration] angles, or 0.4, 1.1 and 1.7 pi, each
     moved off any test route's angle (by at least 0.1 rad)."""
-    tests = [sc.route["initial"].total_angle] + [r.total_angle for _, r in sc.route_changes]
+    tests = [sc.route["initial"].curve_angle] + [r.curve_angle for _, r in sc.route_changes]
     given = sc.calibration.get("angles")
     if given is not None:
         angles = [float(a) for a in given]
@@ -392,7 +392,7 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
         model_names.append("BoucWenBacklash")
     if "curve_angle_feedforward" in wants:
         model_names.append("CurveAngleModel")
-    sensed_initial = shape.static_reading(sc.route["initial"].total_angle, 1.0, seed_offset=77)
+    sensed_initial = shape.static_reading(sc.route["initial"].curve_angle, 1.0, seed_offset=77)
     nearest = int(np.argmin([abs(a - sensed_initial) for a in angles]))
     spring = sc.plant["type"] == "continuum" or bool(
         sc.load and sc.load.get("type") != "constant_torque"
@@ -460,9 +460,9 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
     if progress:
         progress("honesty panel")
     theta = (
-        np.array([routes(tk).total_angle for tk in t])
+        np.array([routes(tk).curve_angle for tk in t])
         if routes is not None
-        else sc.route["initial"].total_angle
+        else sc.route["initial"].curve_angle
     )
     honesty = honesty_panel(cal, runs, curve_angle=theta, told=told, seed=sc.seed)
     base = runs["none"].metrics["mse"] if "none" in runs else float("nan")
@@ -500,8 +500,8 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
         table_title="Results",
         paper={},
         routes=shapes,
-        route_schedule=[(0.0, sc.route["initial"].total_angle)]
-        + [(tc, r.total_angle) for tc, r in sc.route_changes],
+        route_schedule=[(0.0, sc.route["initial"].curve_angle)]
+        + [(tc, r.curve_angle) for tc, r in sc.route_changes],
         calibration=cal.to_dict() if cal is not None else {},
         protocol=f"{sc.title}: compensators calibrated by bench.calibrate from the plant's "
         "logs at curve angles "
