@@ -5,10 +5,35 @@ from __future__ import annotations
 import math
 
 from .. import _core as core
+from .._args import number, python_names, reject_unknown, renamed
 from .base import Feedforward
 from .limits import as_limits
 
 _MODES = {"exact": core.ContinuumMode.exact, "published": core.ContinuumMode.published}
+# old argument names -> vocabulary names (docs/vocabulary.md)
+RENAMED = {"sheath_length": "length", "total_angle": "curve_angle"}
+# defaults of the renamed arguments (None in the signature, to tell an old name apart)
+_DEFAULTS = {"length": 1.0, "curve_angle": math.pi}
+# settings with the same name in Python and in ContinuumFeedforwardParams
+_SAME_NAMES = (
+    "friction",
+    "stiffness",
+    "pretension",
+    "bending_stiffness",
+    "tendon_offset",
+    "backbone_length",
+    "proximal_radius",
+    "gap_factor",
+)
+
+
+def _numbers(arguments: dict) -> dict:
+    """The numeric constructor arguments (all but self, mode, limits and the old names)."""
+    return {
+        k: v
+        for k, v in arguments.items()
+        if k not in ("self", "mode", "limits", "old_names", "who")
+    }
 
 
 class ContinuumFeedforward(Feedforward):
@@ -18,14 +43,18 @@ class ContinuumFeedforward(Feedforward):
     delta_0 = 2 T0 L (1 - e^{-xi Theta})/EA and a separate delta_F, which partly double
     count); ``mode="exact"`` uses the capstan-consistent full-slip elongations (spec A5/A6)
     under the bending force F = kappa EI / r_t, without double counting.
+
+    ``length`` (default 1 m) is the sheath's and ``curve_angle`` (default pi) its curve angle;
+    their old names ``sheath_length`` and ``total_angle`` still work, with a DeprecationWarning
+    (docs/vocabulary.md).
     """
 
     _saved_settings = (
         "friction",
-        "sheath_length",
+        "length",
         "stiffness",
         "pretension",
-        "total_angle",
+        "curve_angle",
         "bending_stiffness",
         "tendon_offset",
         "backbone_length",
@@ -39,10 +68,10 @@ class ContinuumFeedforward(Feedforward):
     def __init__(
         self,
         friction: float = 0.1,
-        sheath_length: float = 1.0,
+        length: float | None = None,
         stiffness: float = 2.4e4,
         pretension: float = 10.0,
-        total_angle: float = math.pi,
+        curve_angle: float | None = None,
         bending_stiffness: float = 4e-4,
         tendon_offset: float = 2e-3,
         backbone_length: float = 0.03,
@@ -51,35 +80,27 @@ class ContinuumFeedforward(Feedforward):
         smoothing: float = 0.1,
         mode: str = "exact",
         limits=None,
+        **old_names,
     ):
+        who = type(self).__name__
+        reject_unknown(who, old_names, RENAMED)
+        values = renamed(who, {**_numbers(locals()), **old_names}, RENAMED)
+        values = {**values, **{k: v for k, v in _DEFAULTS.items() if values[k] is None}}
+        if not isinstance(mode, str):
+            raise TypeError(f"{who}: mode must be a string (got {type(mode).__name__} {mode!r})")
         if mode not in _MODES:
-            raise ValueError(
-                f"ContinuumFeedforward: mode must be one of {list(_MODES)} (got {mode!r})"
-            )
-        self._settings = {
-            "friction": friction,
-            "sheath_length": sheath_length,
-            "stiffness": stiffness,
-            "pretension": pretension,
-            "total_angle": total_angle,
-            "bending_stiffness": bending_stiffness,
-            "tendon_offset": tendon_offset,
-            "backbone_length": backbone_length,
-            "proximal_radius": proximal_radius,
-            "gap_factor": gap_factor,
-            "smoothing": smoothing,
-            "mode": mode,
-            "limits": as_limits(limits),
-        }
+            raise ValueError(f"{who}: mode must be one of {list(_MODES)} (got {mode!r})")
+        self._settings = {k: number(who, k, v) for k, v in values.items()}
+        self._settings.update(mode=mode, limits=as_limits(limits))
         p = core.ContinuumFeedforwardParams()
-        p.friction, p.sheath_length, p.stiffness = friction, sheath_length, stiffness
-        p.pretension, p.total_angle = pretension, total_angle
-        p.bending_stiffness, p.tendon_offset = bending_stiffness, tendon_offset
-        p.backbone_length, p.proximal_radius = backbone_length, proximal_radius
-        p.gap_factor, p.v_eps, p.mode = gap_factor, smoothing, _MODES[mode]
+        for name in _SAME_NAMES:
+            setattr(p, name, self._settings[name])
+        p.sheath_length, p.total_angle = self._settings["length"], self._settings["curve_angle"]
+        p.v_eps, p.mode = self._settings["smoothing"], _MODES[mode]
         p.limits = self._settings["limits"].to_core()
         self.mode = mode
-        self._engine = core.ContinuumFeedforward(p)
+        with python_names(who):
+            self._engine = core.ContinuumFeedforward(p)
 
     @classmethod
     def from_model(
@@ -87,7 +108,7 @@ class ContinuumFeedforward(Feedforward):
         model,
         tendon_offset: float,
         backbone_length: float,
-        total_angle: float,
+        curve_angle: float | None = None,
         mode: str = "exact",
         **options,
     ) -> ContinuumFeedforward:
@@ -95,6 +116,11 @@ class ContinuumFeedforward(Feedforward):
         bending angle out, its ``distal_radius`` = r_t): friction, EA, T0 and L carry over,
         and the identified environment spring k_e (N/m on the stroke) is the backbone,
         EI = k_e r_t^2 l (Li and Rahn)."""
+        old = {k: options.pop(k) for k in ("total_angle",) if k in options}
+        who = "ContinuumFeedforward.from_model"
+        curve_angle = renamed(who, {"curve_angle": curve_angle, **old}, RENAMED)["curve_angle"]
+        if curve_angle is None:
+            raise TypeError(f"{who}: missing the argument curve_angle (rad)")
         p = model.params
         missing = {"friction", "stiffness", "pretension", "length", "spring"} - set(p)
         if missing:
@@ -107,10 +133,10 @@ class ContinuumFeedforward(Feedforward):
             raise ValueError("ContinuumFeedforward.from_model: the model has no spring (k_e <= 0)")
         return cls(
             friction=p["friction"],
-            sheath_length=p["length"],
+            length=p["length"],
             stiffness=p["stiffness"],
             pretension=p["pretension"],
-            total_angle=total_angle,
+            curve_angle=curve_angle,
             bending_stiffness=k_e * tendon_offset**2 * backbone_length,
             tendon_offset=tendon_offset,
             backbone_length=backbone_length,

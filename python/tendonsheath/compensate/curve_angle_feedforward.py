@@ -8,6 +8,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .. import _core as core
+from .._args import number, python_names, reject_unknown, renamed, warn_renamed
 from .._arrays import as_signal, as_time_and_signal, checked_dt
 from ..physics import route_shape as shape_of
 from .base import Feedforward
@@ -24,12 +25,16 @@ class CurveAngleFeedforward(Feedforward):
     sensing or bending-knob readings. ``smoothing`` is the direction-switch speed (rad/s of
     the distal angle); ``max_correction_rate`` (m/s at the tendon) limits how fast the
     correction may change, e.g. after a sudden change of the route. Angles in rad.
+
+    The sheath: ``stiffness`` EA (N) and ``length`` L (m), of which only L/EA matters (the old
+    ``compliance=`` L/EA still works, with a DeprecationWarning; docs/vocabulary.md).
     """
 
     control_inputs = ("y_d", "curve_angle")
     _saved_settings = (
         "friction",
-        "compliance",
+        "stiffness",
+        "length",
         "pretension",
         "load_force",
         "load_stiffness",
@@ -44,8 +49,9 @@ class CurveAngleFeedforward(Feedforward):
     def __init__(
         self,
         friction: float,
-        compliance: float,
-        pretension: float,
+        stiffness: float | None = None,
+        length: float | None = None,
+        pretension: float | None = None,
         load_force: float = 0.0,
         load_stiffness: float = 0.0,
         proximal_radius: float = 5e-3,
@@ -54,10 +60,17 @@ class CurveAngleFeedforward(Feedforward):
         smoothing: float = 0.05,
         max_correction_rate: float = math.inf,
         limits=None,
+        **old_names,
     ):
-        self._settings = {
+        who = type(self).__name__
+        reject_unknown(who, old_names, ("compliance",))
+        stiffness, length = _sheath(who, stiffness, length, old_names)
+        if pretension is None:
+            raise TypeError(f"{who}: missing the argument pretension (N)")
+        values = {
             "friction": friction,
-            "compliance": compliance,
+            "stiffness": stiffness,
+            "length": length,
             "pretension": pretension,
             "load_force": load_force,
             "load_stiffness": load_stiffness,
@@ -66,19 +79,14 @@ class CurveAngleFeedforward(Feedforward):
             "curve_angle": curve_angle,
             "smoothing": smoothing,
             "max_correction_rate": max_correction_rate,
-            "limits": as_limits(limits),
         }
-        p = core.CurveAngleFeedforwardParams()
-        p.friction, p.compliance, p.pretension = friction, compliance, pretension
-        p.load_force, p.load_stiffness = load_force, load_stiffness
-        p.proximal_radius, p.distal_radius = proximal_radius, distal_radius
-        p.total_angle, p.v_eps, p.max_correction_rate = curve_angle, smoothing, max_correction_rate
-        p.limits = self._settings["limits"].to_core()
-        self._engine = core.CurveAngleFeedforward(p)
+        self._settings = {k: number(who, k, v) for k, v in values.items()}
+        self._settings["limits"] = as_limits(limits)
+        self._engine = _engine(who, self._settings)
 
     @classmethod
     def from_model(cls, model, load_force=None, load_stiffness=None, **options):
-        """Built from an identified ``CurveAngleModel``: its friction, compliance L/EA,
+        """Built from an identified ``CurveAngleModel``: its friction, stiffness EA, length L,
         pretension and radii; the distal load defaults to the model's own (``load``,
         ``spring``) and can be replaced by the load expected in use (N, N/m at the tendon)."""
         p = getattr(model, "params", None)
@@ -94,7 +102,8 @@ class CurveAngleFeedforward(Feedforward):
             )
         return cls(
             friction=p["friction"],
-            compliance=p["length"] / p["stiffness"],
+            stiffness=p["stiffness"],
+            length=p["length"],
             pretension=p["pretension"],
             load_force=p.get("load", 0.0) if load_force is None else load_force,
             load_stiffness=p.get("spring", 0.0) if load_stiffness is None else load_stiffness,
@@ -107,9 +116,12 @@ class CurveAngleFeedforward(Feedforward):
     def friction(self) -> float:
         return self._engine.params.friction
 
-    def set_curve_angle(self, total_angle: float) -> None:
-        """Uniform curvature with this total curve angle (rad)."""
-        self._engine.set_curve_angle(float(total_angle))
+    def set_curve_angle(self, curve_angle: float | None = None, **old_names) -> None:
+        """Uniform curvature with this curve angle (rad)."""
+        reject_unknown("CurveAngleFeedforward.set_curve_angle", old_names, _RENAMED)
+        who = "CurveAngleFeedforward.set_curve_angle"
+        angle = renamed(who, {"curve_angle": curve_angle, **old_names}, _RENAMED)["curve_angle"]
+        self._engine.set_curve_angle(number(who, "curve_angle", angle))
 
     def set_route(self, route) -> None:
         """Any route: its exact g/G shape integrals are used (spec A.2 warning on Theta-only)."""
@@ -152,6 +164,48 @@ class CurveAngleFeedforward(Feedforward):
             theta = np.broadcast_to(np.asarray(curve_angle, dtype=np.float64), ys.shape)
             theta = as_signal(theta, "curve_angle")
             if np.any(theta < 0):
-                raise ValueError("curve_angle must be >= 0")
+                bad = theta[np.argmax(theta < 0)]
+                raise ValueError(
+                    f"CurveAngleFeedforward.command: curve_angle must be >= 0 (got {bad:g})"
+                )
             return self._engine.command(ts, ys, None, None, theta, bool(status))
         return self._engine.command(ts, ys, None, None, None, bool(status))
+
+
+# old argument names -> vocabulary names (docs/vocabulary.md); the old compliance = L/EA is
+# handled by _sheath
+_RENAMED = {"total_angle": "curve_angle"}
+
+
+def _sheath(who: str, stiffness, length, old_names: dict) -> tuple:
+    """EA and L; the deprecated ``compliance=`` (L/EA) stands for EA = 1/compliance, L = 1 m."""
+    if "compliance" not in old_names:
+        if stiffness is None or length is None:
+            raise TypeError(f"{who}: give stiffness (EA, N) and length (L, m) of the sheath")
+        return stiffness, length
+    if stiffness is not None or length is not None:
+        raise TypeError(f"{who}: give stiffness and length or their old form compliance, not both")
+    warn_renamed(who, "compliance", "stiffness and length", 4)  # compliance = length / stiffness
+    compliance = number(who, "compliance", old_names["compliance"])
+    if not compliance > 0:
+        raise ValueError(f"{who}: compliance must be > 0 (got {compliance:g})")
+    return 1.0 / compliance, 1.0
+
+
+def _engine(who: str, v: dict):
+    for name in ("stiffness", "length"):
+        if not v[name] > 0:
+            raise ValueError(f"{who}: {name} must be > 0 (got {v[name]:g})")
+    p = core.CurveAngleFeedforwardParams()
+    p.friction, p.compliance, p.pretension = (
+        v["friction"],
+        v["length"] / v["stiffness"],
+        v["pretension"],
+    )
+    p.load_force, p.load_stiffness = v["load_force"], v["load_stiffness"]
+    p.proximal_radius, p.distal_radius = v["proximal_radius"], v["distal_radius"]
+    p.total_angle, p.v_eps = v["curve_angle"], v["smoothing"]
+    p.max_correction_rate = v["max_correction_rate"]
+    p.limits = v["limits"].to_core()
+    with python_names(who):
+        return core.CurveAngleFeedforward(p)
