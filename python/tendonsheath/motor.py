@@ -49,9 +49,9 @@ class Motor:
         viscous_friction: float = 0.0,
         gear_backlash: float = 0.0,
     ) -> Motor:
-        who = "Motor.position"
         p = core.MotorParams()
         p.kind = core.MotorKind.Position
+        who = "Motor.position"
         p.bandwidth_hz = number(who, "bandwidth_hz", bandwidth_hz)
         p.damping = number(who, "damping", damping)
         p.max_speed = number(who, "max_speed", max_speed)
@@ -72,9 +72,9 @@ class Motor:
         coulomb_friction: float = 0.0,
         gear_backlash: float = 0.0,
     ) -> Motor:
-        who = "Motor.torque"
         p = core.MotorParams()
         p.kind = core.MotorKind.Torque
+        who = "Motor.torque"
         p.inertia = number(who, "inertia", inertia)
         p.viscous = number(who, "viscous", viscous)
         p.max_torque = number(who, "max_torque", max_torque)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _core as core
-from ._args import number, python_names, reject_unknown, renamed, warn_renamed
+from ._args import number, number_array, python_names, reject_unknown, renamed, warn_renamed
 from ._arrays import as_signal
 
 # 100 full turns: the largest curve angle accepted in measured data (no sheath route comes near
@@ -28,9 +28,10 @@ class Route:
     __slots__ = ("_core",)
 
     def __init__(self, s, theta):
-        s_arr = as_signal(s, "s")
-        th_arr = as_signal(theta, "theta")
-        self._core = core.Route(s_arr.tolist(), th_arr.tolist())
+        s_arr = as_signal(number_array("Route", "s", s), "s")
+        th_arr = as_signal(number_array("Route", "theta", theta), "theta")
+        with python_names("Route"):
+            self._core = core.Route(s_arr.tolist(), th_arr.tolist())
 
     @classmethod
     def _wrap(cls, engine) -> Route:
@@ -40,8 +41,23 @@ class Route:
 
     @classmethod
     def uniform(cls, length: float, curve_angle: float | None = None, **old_names) -> Route:
-        """Constant curvature: theta(s) = curve_angle * s / length (``total_angle=``, its old
-        name, still works with a DeprecationWarning)."""
+        """Constant curvature: theta(s) = curve_angle * s / length.
+
+        Parameters
+        ----------
+        length : float
+            Sheath length L (m), > 0.
+        curve_angle : float
+            Curve angle Theta (rad), >= 0.
+        **old_names
+            ``total_angle=``, the old name of curve_angle: it still works for one release, with
+            a DeprecationWarning (docs/vocabulary.md).
+
+        Returns
+        -------
+        Route
+            The uniform route.
+        """
         reject_unknown("Route.uniform", old_names, _RENAMED)
         values = renamed("Route.uniform", {"curve_angle": curve_angle, **old_names}, _RENAMED)
         if values["curve_angle"] is None:
@@ -69,7 +85,7 @@ class Route:
     @classmethod
     def from_points(cls, xyz) -> Route:
         """A 3-D polyline (K x 3, metres); each corner adds its turning angle."""
-        pts = np.ascontiguousarray(np.asarray(xyz, dtype=np.float64))
+        pts = np.ascontiguousarray(number_array("Route.from_points", "xyz", xyz))
         if pts.ndim != 2 or pts.shape[1] != 3:
             raise ValueError(f"Route.from_points: points must be K x 3 (got shape {pts.shape})")
         return cls._wrap(core.Route.from_points(pts))
@@ -77,8 +93,8 @@ class Route:
     @classmethod
     def from_curvature(cls, s, kappa) -> Route:
         """A sampled curvature profile |kappa(s)| (1/m); theta is its trapezoidal integral."""
-        s_arr = as_signal(s, "s")
-        k_arr = as_signal(kappa, "kappa")
+        s_arr = as_signal(number_array("Route.from_curvature", "s", s), "s")
+        k_arr = as_signal(number_array("Route.from_curvature", "kappa", kappa), "kappa")
         if s_arr.shape != k_arr.shape:
             raise ValueError(
                 f"Route.from_curvature: s and kappa have different lengths "
@@ -93,7 +109,7 @@ class Route:
 
     @property
     def curve_angle(self) -> float:
-        """The accumulated curve angle Theta = theta(L) (rad)."""
+        """Curve angle Theta = theta(L) (rad)."""
         return self._core.total_angle
 
     @property
@@ -119,11 +135,33 @@ class Route:
         return self._core.angles_at(flat).reshape(arr.shape)
 
     def element_angles(self, n: int) -> np.ndarray:
-        """Angles of n equal elements, proximal to distal (they sum to curve_angle)."""
+        """Angles of n equal elements, proximal to distal (they sum to curve_angle).
+
+        Parameters
+        ----------
+        n : int
+            Number of elements, >= 1.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (n,)
+            The curve angle of each element (rad).
+        """
         return self._core.element_angles(int(n))
 
     def node_angles(self, n: int) -> np.ndarray:
-        """Lumped angles of the n-1 interior nodes of an n-element sheath (sum: curve_angle)."""
+        """Lumped angles of the n-1 interior nodes of an n-element sheath (sum: curve_angle).
+
+        Parameters
+        ----------
+        n : int
+            Number of elements, >= 2.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (n - 1,)
+            The curve angle lumped at each interior node (rad).
+        """
         return self._core.node_angles(int(n))
 
     def scaled(self, factor: float) -> Route:

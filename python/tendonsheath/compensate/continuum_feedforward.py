@@ -44,9 +44,44 @@ class ContinuumFeedforward(Feedforward):
     count); ``mode="exact"`` uses the capstan-consistent full-slip elongations (spec A5/A6)
     under the bending force F = kappa EI / r_t, without double counting.
 
-    ``length`` (default 1 m) is the sheath's and ``curve_angle`` (default pi) its curve angle;
-    their old names ``sheath_length`` and ``total_angle`` still work, with a DeprecationWarning
-    (docs/vocabulary.md).
+    Parameters
+    ----------
+    friction : float, default 0.1
+        Friction coefficient mu.
+    length : float, default 1.0
+        Sheath length L (m).
+    stiffness : float, default 2.4e4
+        Tendon axial stiffness EA (N).
+    pretension : float, default 10.0
+        Pretension T0 (N).
+    curve_angle : float, default pi
+        Curve angle Theta of the sheath (rad).
+    bending_stiffness : float, default 4e-4
+        Backbone bending stiffness EI (N m^2).
+    tendon_offset : float, default 2e-3
+        Distance r_t of the tendon from the backbone (m).
+    backbone_length : float, default 0.03
+        Length l of the bending segment (m).
+    proximal_radius : float, default 5e-3
+        Motor pulley radius (m).
+    gap_factor : float, default 1.0
+        Kesner and Howe's gamma delta_r: xi = gap_factor mu (1: plain capstan), > 0.
+    smoothing : float, default 0.1
+        Direction-switch speed (rad/s of the bending angle), > 0.
+    mode : {"exact", "published"}, default "exact"
+        Capstan-consistent equations, or Lau et al.'s as printed.
+    limits : CommandLimits, tuple, dict or None, optional
+        Saturation of the command and its rate (see :class:`CommandLimits`).
+    **old_names
+        ``sheath_length=`` and ``total_angle=``, the old names of length and curve_angle: they
+        still work for one release, with a DeprecationWarning (docs/vocabulary.md).
+
+    Raises
+    ------
+    TypeError
+        A value of the wrong type, or an unknown keyword.
+    ValueError
+        An unknown mode, or a value out of range (the message names the argument and the value).
     """
 
     _saved_settings = (
@@ -115,7 +150,36 @@ class ContinuumFeedforward(Feedforward):
         """Built from a ``CurveAngleModel`` identified on the continuum drive (motor angle in,
         bending angle out, its ``distal_radius`` = r_t): friction, EA, T0 and L carry over,
         and the identified environment spring k_e (N/m on the stroke) is the backbone,
-        EI = k_e r_t^2 l (Li and Rahn)."""
+        EI = k_e r_t^2 l (Li and Rahn).
+
+        Parameters
+        ----------
+        model : CurveAngleModel
+            Identified on the continuum drive, with a spring k_e > 0.
+        tendon_offset : float
+            r_t (m).
+        backbone_length : float
+            l (m).
+        curve_angle : float
+            Curve angle of the sheath (rad).
+        mode : {"exact", "published"}, default "exact"
+            See the class.
+        **options
+            Other constructor settings (gap_factor, smoothing, limits); ``total_angle=``, the
+            old name of curve_angle, still works with a DeprecationWarning.
+
+        Returns
+        -------
+        ContinuumFeedforward
+            The compensator.
+
+        Raises
+        ------
+        TypeError
+            curve_angle missing.
+        ValueError
+            model lacks a CurveAngleModel parameter or has no spring.
+        """
         old = {k: options.pop(k) for k in ("total_angle",) if k in options}
         who = "ContinuumFeedforward.from_model"
         curve_angle = renamed(who, {"curve_angle": curve_angle, **old}, RENAMED)["curve_angle"]

@@ -26,8 +26,42 @@ class CurveAngleFeedforward(Feedforward):
     the distal angle); ``max_correction_rate`` (m/s at the tendon) limits how fast the
     correction may change, e.g. after a sudden change of the route. Angles in rad.
 
-    The sheath: ``stiffness`` EA (N) and ``length`` L (m), of which only L/EA matters (the old
-    ``compliance=`` L/EA still works, with a DeprecationWarning; docs/vocabulary.md).
+    Parameters
+    ----------
+    friction : float
+        Friction coefficient mu.
+    stiffness : float
+        Tendon axial stiffness EA (N), > 0; only L/EA enters the feedforward.
+    length : float
+        Sheath length L (m), > 0.
+    pretension : float
+        Pretension T0 (N).
+    load_force : float, default 0.0
+        Constant distal load at the tendon (N).
+    load_stiffness : float, default 0.0
+        Environment stiffness at the tendon (N/m).
+    proximal_radius : float, default 5e-3
+        Motor pulley radius r_p (m).
+    distal_radius : float, default 5e-3
+        Joint pulley radius r_d (m).
+    curve_angle : float, default pi
+        Curve angle Theta (rad) until a route or another angle is given.
+    smoothing : float, default 0.05
+        Direction-switch speed (rad/s of the distal angle), > 0.
+    max_correction_rate : float, default inf
+        Largest rate of change of the correction (m/s at the tendon).
+    limits : CommandLimits, tuple, dict or None, optional
+        Saturation of the command and its rate (see :class:`CommandLimits`).
+    **old_names
+        ``compliance=`` L/EA (m/N), the old form of stiffness and length: it still works for
+        one release, with a DeprecationWarning (docs/vocabulary.md).
+
+    Raises
+    ------
+    TypeError
+        A value of the wrong type, a missing sheath or pretension, or an unknown keyword.
+    ValueError
+        A value out of range (the message names the argument and the value).
     """
 
     control_inputs = ("y_d", "curve_angle")
@@ -117,7 +151,15 @@ class CurveAngleFeedforward(Feedforward):
         return self._engine.params.friction
 
     def set_curve_angle(self, curve_angle: float | None = None, **old_names) -> None:
-        """Uniform curvature with this curve angle (rad)."""
+        """Uniform curvature with this curve angle (rad).
+
+        Parameters
+        ----------
+        curve_angle : float
+            The curve angle Theta (rad), >= 0.
+        **old_names
+            ``total_angle=``, the old name of curve_angle (DeprecationWarning).
+        """
         reject_unknown("CurveAngleFeedforward.set_curve_angle", old_names, _RENAMED)
         who = "CurveAngleFeedforward.set_curve_angle"
         angle = renamed(who, {"curve_angle": curve_angle, **old_names}, _RENAMED)["curve_angle"]

@@ -63,8 +63,8 @@ class InverseFeedforward(Feedforward):
                 self._engine = core.PrandtlIshlinskiiFeedforward(pi, self.limits.to_core())
         else:
             raise TypeError(
-                "InverseFeedforward supports Backlash, BoucWenBacklash and PrandtlIshlinskii "
-                f"models (got {type(model).__name__})"
+                "InverseFeedforward: model must be a Backlash, BoucWenBacklash or "
+                f"PrandtlIshlinskii, or a Scaled one of them (got {type(model).__name__})"
             )
 
     @property

@@ -29,7 +29,10 @@ class Chain(HysteresisModel):
 
     def __init__(self, first: HysteresisModel, second: HysteresisModel):
         if not isinstance(first, HysteresisModel) or not isinstance(second, HysteresisModel):
-            raise ValueError("Chain: both parts must be tendonsheath models")
+            raise TypeError(
+                "Chain: both parts must be tendonsheath models "
+                f"(got {type(first).__name__} and {type(second).__name__})"
+            )
         if isinstance(first, Chain) or isinstance(second, Chain):
             raise ValueError("Chain: parts cannot themselves be chains")
         self.first, self.second = first, second
