@@ -84,7 +84,25 @@ class Route:
 
     @classmethod
     def from_points(cls, xyz) -> Route:
-        """A 3-D polyline (K x 3, metres); each corner adds its turning angle."""
+        """A 3-D polyline (K x 3, metres); each corner adds its turning angle.
+
+        Parameters
+        ----------
+        xyz : array_like of float, shape (K, 3)
+            The polyline's points (m), proximal to distal.
+
+        Returns
+        -------
+        Route
+            The route, with a jump of theta at each corner.
+
+        Raises
+        ------
+        TypeError
+            Points that are not numbers.
+        ValueError
+            Points not K x 3, or not valid (fewer than two, not finite, repeated).
+        """
         pts = np.ascontiguousarray(number_array("Route.from_points", "xyz", xyz))
         if pts.ndim != 2 or pts.shape[1] != 3:
             raise ValueError(f"Route.from_points: points must be K x 3 (got shape {pts.shape})")
@@ -92,7 +110,27 @@ class Route:
 
     @classmethod
     def from_curvature(cls, s, kappa) -> Route:
-        """A sampled curvature profile |kappa(s)| (1/m); theta is its trapezoidal integral."""
+        """A sampled curvature profile |kappa(s)| (1/m); theta is its trapezoidal integral.
+
+        Parameters
+        ----------
+        s : array_like of float, shape (k,)
+            Arc lengths (m), from 0, increasing.
+        kappa : array_like of float, shape (k,)
+            Curvature at each s (1/m); its absolute value is integrated.
+
+        Returns
+        -------
+        Route
+            The route.
+
+        Raises
+        ------
+        TypeError
+            s or kappa that are not numbers.
+        ValueError
+            s and kappa of different lengths, or invalid samples.
+        """
         s_arr = as_signal(number_array("Route.from_curvature", "s", s), "s")
         k_arr = as_signal(number_array("Route.from_curvature", "kappa", kappa), "kappa")
         if s_arr.shape != k_arr.shape:
