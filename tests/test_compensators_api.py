@@ -121,7 +121,7 @@ def test_bad_parameters_are_named():
         ContinuumFeedforward(mode="fancy")
     with pytest.raises(ValueError, match="min < max"):
         CurveAngleFeedforward(0.1, 1 / 5e-5, 1.0, 10.0, limits=CommandLimits(min=1.0, max=0.0))
-    with pytest.raises(TypeError, match="supports"):
+    with pytest.raises(TypeError, match="model must be a Backlash"):
         InverseFeedforward(ts.models.BoucWen())
     with pytest.raises(TypeError, match="unknown gain"):
         AdaptiveController(gain=3)

@@ -148,6 +148,41 @@ def test_a_wrong_type_is_a_type_error_naming_the_argument_and_the_type(name, arg
         assert type(value).__name__ in message, message
 
 
+# arguments that take an object or an array, each given a string
+OBJECT_CASES = [
+    ("Route", "s", lambda v: ts.Route(v, [0.0, 1.0])),
+    ("Route", "theta", lambda v: ts.Route([0.0, 1.0], v)),
+    ("Route.arcs", "pieces", lambda v: ts.Route.arcs(v)),
+    ("Route.from_points", "xyz", lambda v: ts.Route.from_points(v)),
+    ("Route.from_curvature", "kappa", lambda v: ts.Route.from_curvature([0.0, 1.0], v)),
+    ("CommandLimits", "min", lambda v: ts.compensate.CommandLimits(min=v)),
+    ("CommandLimits", "max_rate", lambda v: ts.compensate.CommandLimits(max_rate=v)),
+    ("InverseFeedforward", "limits", lambda v: InverseFeedforward(ts.models.Backlash(), limits=v)),
+    ("InverseFeedforward", "model", lambda v: InverseFeedforward(v)),
+    ("AdaptiveController", "feedforward_model", lambda v: AdaptiveController(v)),
+    ("Chain", "models", lambda v: ts.models.Chain(v, ts.models.Backlash())),
+    ("Scaled", "inner", lambda v: ts.models.Scaled(v)),
+    ("PullPullPlant", "route", lambda v: ts.PullPullPlant(v)),
+    ("PullPullPlant", "route2", lambda v: ts.PullPullPlant(ROUTE, route2=v)),
+    ("PullPullPlant", "load", lambda v: ts.PullPullPlant(ROUTE, load=v)),
+    ("PullPullPlant", "motor", lambda v: ts.PullPullPlant(ROUTE, motor=v)),
+    ("SingleTendonPlant", "sensor", lambda v: ts.SingleTendonPlant(ROUTE, sensor=v)),
+    ("ContinuumFeedforward", "mode", lambda v: ContinuumFeedforward(mode=3.0)),
+]
+
+
+@pytest.mark.parametrize(
+    ("who", "arg", "make"), OBJECT_CASES, ids=[c[0] + "-" + c[1] for c in OBJECT_CASES]
+)
+def test_an_object_or_array_of_the_wrong_type_is_a_type_error(who, arg, make):
+    with pytest.raises(TypeError) as info:
+        make("high")
+    message = str(info.value)
+    assert "\n" not in message and ("high" in message or "str" in message), message
+    if arg != "models":  # Chain names its two parts together
+        assert re.search(rf"\b{arg}\b", message), message
+
+
 def test_the_issue_examples():
     with pytest.raises(ValueError, match=r"^InverseFeedforward: smoothing must be > 0 \(got 0\)$"):
         InverseFeedforward(ts.models.Backlash(), smoothing=0)
@@ -318,18 +353,21 @@ def test_the_old_compliance_is_the_ratio_length_over_stiffness(rng):
 @pytest.mark.parametrize(
     ("make", "message"),
     [
-        (lambda: ts.Route.uniform(1.0, 1.0, total_angle=1.0), "curve_angle or its old name"),
+        (lambda: ts.Route.uniform(1.0, 1.0, total_angle=1.0), "multiple values .* 'curve_angle'"),
         (lambda: ContinuumFeedforward(length=1.0, sheath_length=1.0), "length or its old name"),
-        (lambda: CurveAngleFeedforward(0.1, 2e4, 1.0, 10.0, compliance=1e-4), "not both"),
-        (lambda: CurveAngleFeedforward(0.1, 2e4), "give stiffness .* and length"),
-        (lambda: CurveAngleFeedforward(0.1, 5e-5, 10.0), "missing the argument pretension"),
-        (lambda: ts.Route.uniform(1.0, angle=1.0), r"unexpected keyword argument\(s\) \['angle'\]"),
+        (lambda: CurveAngleFeedforward(0.1, 2e4, 1.0, 10.0, compliance=1e-4), "multiple values"),
         (
-            lambda: ContinuumFeedforward(spring=1.0),
-            r"unexpected keyword argument\(s\) \['spring'\]",
+            lambda: CurveAngleFeedforward(0.1, length=1.0, pretension=10.0, compliance=1e-4),
+            "not both",
         ),
+        (lambda: CurveAngleFeedforward(0.1, 2e4), "missing 2 .* 'length' and 'pretension'"),
+        (lambda: CurveAngleFeedforward(0.1, 5e-5, 10.0), "missing 1 .* 'pretension'"),
+        (lambda: ts.Route.uniform(1.0, angle=1.0), "unexpected keyword argument 'angle'"),
+        (lambda: ContinuumFeedforward(spring=1.0), "unexpected keyword argument 'spring'"),
+        (lambda: ts.models.BoucWen(b=1.0), r"unexpected keyword argument\(s\) \['b'\]"),
     ],
 )
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")  # the old names warn: tested above
 def test_old_and_new_name_together_or_unknown_keywords_are_type_errors(make, message):
     with pytest.raises(TypeError, match=message):
         make()

@@ -3,10 +3,11 @@ C++ core's error messages translated into the Python vocabulary (docs/vocabulary
 
 from __future__ import annotations
 
+import functools
 import numbers
 import re
 import warnings
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from typing import Any
 
@@ -56,6 +57,34 @@ def warn_renamed(who: str, old: str, new: str, stacklevel: int = 3) -> None:
         DeprecationWarning,
         stacklevel=stacklevel,
     )
+
+
+def accepts_old_names(who: str, renames: Mapping[str, str | Callable[[Any], dict[str, Any]]]):
+    """Decorator: the function also takes the old keywords of `renames` for one release, each
+    with a DeprecationWarning that names the new one. A rename maps an old name to its new name,
+    or to a function of the old value that gives the new keywords (one old setting split in
+    two). The signature (``inspect.signature``, the docs) shows only the new names."""
+
+    def wrap(fn):
+        @functools.wraps(fn)
+        def call(*args, **kwargs):
+            for old in sorted(renames.keys() & kwargs.keys()):
+                kwargs = _new_keywords(who, old, renames[old], kwargs)
+            return fn(*args, **kwargs)
+
+        return call
+
+    return wrap
+
+
+def _new_keywords(who: str, old: str, new, kwargs: dict[str, Any]) -> dict[str, Any]:
+    value = kwargs.pop(old)
+    values = new(value) if callable(new) else {new: value}
+    label = " and ".join(values)
+    if set(values) & set(kwargs):
+        raise TypeError(f"{who}: give {label} or its old name {old}, not both")
+    warn_renamed(who, old, label, stacklevel=4)
+    return {**kwargs, **values}
 
 
 def reject_unknown(who: str, extra: Mapping[str, Any], old_names: Iterable[str]) -> None:

@@ -5,14 +5,13 @@ from __future__ import annotations
 import numpy as np
 
 from . import _core as core
-from ._args import number, number_array, python_names, reject_unknown, renamed, warn_renamed
+from ._args import accepts_old_names, number, number_array, python_names, warn_renamed
 from ._arrays import as_signal
 
 # 100 full turns: the largest curve angle accepted in measured data (no sheath route comes near
 # it; a larger logged value is a unit or column mistake). The plant itself takes any angle.
 MAX_CURVE_ANGLE = 200 * np.pi
 
-_RENAMED = {"total_angle": "curve_angle"}  # old name -> vocabulary name (docs/vocabulary.md)
 _PIECE = ("Route.arcs", "piece")
 
 
@@ -40,7 +39,8 @@ class Route:
         return obj
 
     @classmethod
-    def uniform(cls, length: float, curve_angle: float | None = None, **old_names) -> Route:
+    @accepts_old_names("Route.uniform", {"total_angle": "curve_angle"})
+    def uniform(cls, length: float, curve_angle: float) -> Route:
         """Constant curvature: theta(s) = curve_angle * s / length.
 
         Parameters
@@ -48,22 +48,16 @@ class Route:
         length : float
             Sheath length L (m), > 0.
         curve_angle : float
-            Curve angle Theta (rad), >= 0.
-        **old_names
-            ``total_angle=``, the old name of curve_angle: it still works for one release, with
-            a DeprecationWarning (docs/vocabulary.md).
+            Curve angle Theta (rad), >= 0 (its old name ``total_angle=`` still works for one
+            release, with a DeprecationWarning; docs/vocabulary.md).
 
         Returns
         -------
         Route
             The uniform route.
         """
-        reject_unknown("Route.uniform", old_names, _RENAMED)
-        values = renamed("Route.uniform", {"curve_angle": curve_angle, **old_names}, _RENAMED)
-        if values["curve_angle"] is None:
-            raise TypeError("Route.uniform: missing the argument curve_angle (rad)")
         length = number("Route.uniform", "length", length)
-        angle = number("Route.uniform", "curve_angle", values["curve_angle"])
+        angle = number("Route.uniform", "curve_angle", curve_angle)
         with python_names("Route.uniform"):
             return cls._wrap(core.Route.uniform(length, angle))
 

@@ -5,15 +5,13 @@ from __future__ import annotations
 import math
 
 from .. import _core as core
-from .._args import number, python_names, reject_unknown, renamed
+from .._args import accepts_old_names, number, python_names
 from .base import Feedforward
 from .limits import as_limits
 
 _MODES = {"exact": core.ContinuumMode.exact, "published": core.ContinuumMode.published}
 # old argument names -> vocabulary names (docs/vocabulary.md)
 RENAMED = {"sheath_length": "length", "total_angle": "curve_angle"}
-# defaults of the renamed arguments (None in the signature, to tell an old name apart)
-_DEFAULTS = {"length": 1.0, "curve_angle": math.pi}
 # settings with the same name in Python and in ContinuumFeedforwardParams
 _SAME_NAMES = (
     "friction",
@@ -29,11 +27,7 @@ _SAME_NAMES = (
 
 def _numbers(arguments: dict) -> dict:
     """The numeric constructor arguments (all but self, mode, limits and the old names)."""
-    return {
-        k: v
-        for k, v in arguments.items()
-        if k not in ("self", "mode", "limits", "old_names", "who")
-    }
+    return {k: v for k, v in arguments.items() if k not in ("self", "mode", "limits", "who")}
 
 
 class ContinuumFeedforward(Feedforward):
@@ -72,9 +66,9 @@ class ContinuumFeedforward(Feedforward):
         Capstan-consistent equations, or Lau et al.'s as printed.
     limits : CommandLimits, tuple, dict or None, optional
         Saturation of the command and its rate (see :class:`CommandLimits`).
-    **old_names
-        ``sheath_length=`` and ``total_angle=``, the old names of length and curve_angle: they
-        still work for one release, with a DeprecationWarning (docs/vocabulary.md).
+
+    The old names ``sheath_length=`` and ``total_angle=`` still work for one release, with a
+    DeprecationWarning (docs/vocabulary.md).
 
     Raises
     ------
@@ -100,13 +94,14 @@ class ContinuumFeedforward(Feedforward):
         "limits",
     )
 
+    @accepts_old_names("ContinuumFeedforward", RENAMED)
     def __init__(
         self,
         friction: float = 0.1,
-        length: float | None = None,
+        length: float = 1.0,
         stiffness: float = 2.4e4,
         pretension: float = 10.0,
-        curve_angle: float | None = None,
+        curve_angle: float = math.pi,
         bending_stiffness: float = 4e-4,
         tendon_offset: float = 2e-3,
         backbone_length: float = 0.03,
@@ -115,12 +110,9 @@ class ContinuumFeedforward(Feedforward):
         smoothing: float = 0.1,
         mode: str = "exact",
         limits=None,
-        **old_names,
     ):
         who = type(self).__name__
-        reject_unknown(who, old_names, RENAMED)
-        values = renamed(who, {**_numbers(locals()), **old_names}, RENAMED)
-        values = {**values, **{k: v for k, v in _DEFAULTS.items() if values[k] is None}}
+        values = _numbers(locals())
         if not isinstance(mode, str):
             raise TypeError(f"{who}: mode must be a string (got {type(mode).__name__} {mode!r})")
         if mode not in _MODES:
@@ -138,12 +130,13 @@ class ContinuumFeedforward(Feedforward):
             self._engine = core.ContinuumFeedforward(p)
 
     @classmethod
+    @accepts_old_names("ContinuumFeedforward.from_model", {"total_angle": "curve_angle"})
     def from_model(
         cls,
         model,
         tendon_offset: float,
         backbone_length: float,
-        curve_angle: float | None = None,
+        curve_angle: float,
         mode: str = "exact",
         **options,
     ) -> ContinuumFeedforward:
@@ -161,12 +154,12 @@ class ContinuumFeedforward(Feedforward):
         backbone_length : float
             l (m).
         curve_angle : float
-            Curve angle of the sheath (rad).
+            Curve angle of the sheath (rad) (its old name ``total_angle=`` still works for one
+            release, with a DeprecationWarning).
         mode : {"exact", "published"}, default "exact"
             See the class.
         **options
-            Other constructor settings (gap_factor, smoothing, limits); ``total_angle=``, the
-            old name of curve_angle, still works with a DeprecationWarning.
+            Other constructor settings (gap_factor, smoothing, limits).
 
         Returns
         -------
@@ -175,16 +168,9 @@ class ContinuumFeedforward(Feedforward):
 
         Raises
         ------
-        TypeError
-            curve_angle missing.
         ValueError
             model lacks a CurveAngleModel parameter or has no spring.
         """
-        old = {k: options.pop(k) for k in ("total_angle",) if k in options}
-        who = "ContinuumFeedforward.from_model"
-        curve_angle = renamed(who, {"curve_angle": curve_angle, **old}, RENAMED)["curve_angle"]
-        if curve_angle is None:
-            raise TypeError(f"{who}: missing the argument curve_angle (rad)")
         p = model.params
         missing = {"friction", "stiffness", "pretension", "length", "spring"} - set(p)
         if missing:

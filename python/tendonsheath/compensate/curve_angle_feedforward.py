@@ -8,7 +8,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .. import _core as core
-from .._args import number, python_names, reject_unknown, renamed, warn_renamed
+from .._args import accepts_old_names, number, python_names
 from .._arrays import as_signal, as_time_and_signal, checked_dt
 from ..physics import route_shape as shape_of
 from .base import Feedforward
@@ -31,7 +31,9 @@ class CurveAngleFeedforward(Feedforward):
     friction : float
         Friction coefficient mu.
     stiffness : float
-        Tendon axial stiffness EA (N), > 0; only L/EA enters the feedforward.
+        Tendon axial stiffness EA (N), > 0; only L/EA enters the feedforward (the old
+        ``compliance=`` L/EA still works for one release, with a DeprecationWarning, as
+        stiffness 1/compliance and length 1 m; docs/vocabulary.md).
     length : float
         Sheath length L (m), > 0.
     pretension : float
@@ -52,14 +54,11 @@ class CurveAngleFeedforward(Feedforward):
         Largest rate of change of the correction (m/s at the tendon).
     limits : CommandLimits, tuple, dict or None, optional
         Saturation of the command and its rate (see :class:`CommandLimits`).
-    **old_names
-        ``compliance=`` L/EA (m/N), the old form of stiffness and length: it still works for
-        one release, with a DeprecationWarning (docs/vocabulary.md).
 
     Raises
     ------
     TypeError
-        A value of the wrong type, a missing sheath or pretension, or an unknown keyword.
+        A value of the wrong type, or an unknown keyword.
     ValueError
         A value out of range (the message names the argument and the value).
     """
@@ -80,12 +79,13 @@ class CurveAngleFeedforward(Feedforward):
         "limits",
     )
 
+    @accepts_old_names("CurveAngleFeedforward", {"compliance": lambda c: _from_compliance(c)})
     def __init__(
         self,
         friction: float,
-        stiffness: float | None = None,
-        length: float | None = None,
-        pretension: float | None = None,
+        stiffness: float,
+        length: float,
+        pretension: float,
         load_force: float = 0.0,
         load_stiffness: float = 0.0,
         proximal_radius: float = 5e-3,
@@ -94,13 +94,8 @@ class CurveAngleFeedforward(Feedforward):
         smoothing: float = 0.05,
         max_correction_rate: float = math.inf,
         limits=None,
-        **old_names,
     ):
         who = type(self).__name__
-        reject_unknown(who, old_names, ("compliance",))
-        stiffness, length = _sheath(who, stiffness, length, old_names)
-        if pretension is None:
-            raise TypeError(f"{who}: missing the argument pretension (N)")
         values = {
             "friction": friction,
             "stiffness": stiffness,
@@ -150,20 +145,18 @@ class CurveAngleFeedforward(Feedforward):
     def friction(self) -> float:
         return self._engine.params.friction
 
-    def set_curve_angle(self, curve_angle: float | None = None, **old_names) -> None:
+    @accepts_old_names("CurveAngleFeedforward.set_curve_angle", {"total_angle": "curve_angle"})
+    def set_curve_angle(self, curve_angle: float) -> None:
         """Uniform curvature with this curve angle (rad).
 
         Parameters
         ----------
         curve_angle : float
-            The curve angle Theta (rad), >= 0.
-        **old_names
-            ``total_angle=``, the old name of curve_angle (DeprecationWarning).
+            The curve angle Theta (rad), >= 0 (its old name ``total_angle=`` still works for
+            one release, with a DeprecationWarning).
         """
-        reject_unknown("CurveAngleFeedforward.set_curve_angle", old_names, _RENAMED)
         who = "CurveAngleFeedforward.set_curve_angle"
-        angle = renamed(who, {"curve_angle": curve_angle, **old_names}, _RENAMED)["curve_angle"]
-        self._engine.set_curve_angle(number(who, "curve_angle", angle))
+        self._engine.set_curve_angle(number(who, "curve_angle", curve_angle))
 
     def set_route(self, route) -> None:
         """Any route: its exact g/G shape integrals are used (spec A.2 warning on Theta-only)."""
@@ -214,24 +207,12 @@ class CurveAngleFeedforward(Feedforward):
         return self._engine.command(ts, ys, None, None, None, bool(status))
 
 
-# old argument names -> vocabulary names (docs/vocabulary.md); the old compliance = L/EA is
-# handled by _sheath
-_RENAMED = {"total_angle": "curve_angle"}
-
-
-def _sheath(who: str, stiffness, length, old_names: dict) -> tuple:
-    """EA and L; the deprecated ``compliance=`` (L/EA) stands for EA = 1/compliance, L = 1 m."""
-    if "compliance" not in old_names:
-        if stiffness is None or length is None:
-            raise TypeError(f"{who}: give stiffness (EA, N) and length (L, m) of the sheath")
-        return stiffness, length
-    if stiffness is not None or length is not None:
-        raise TypeError(f"{who}: give stiffness and length or their old form compliance, not both")
-    warn_renamed(who, "compliance", "stiffness and length", 4)  # compliance = length / stiffness
-    compliance = number(who, "compliance", old_names["compliance"])
+def _from_compliance(compliance) -> dict[str, float]:
+    """The deprecated ``compliance=`` (L/EA, docs/vocabulary.md) as EA = 1/compliance, L = 1 m."""
+    compliance = number("CurveAngleFeedforward", "compliance", compliance)
     if not compliance > 0:
-        raise ValueError(f"{who}: compliance must be > 0 (got {compliance:g})")
-    return 1.0 / compliance, 1.0
+        raise ValueError(f"CurveAngleFeedforward: compliance must be > 0 (got {compliance:g})")
+    return {"stiffness": 1.0 / compliance, "length": 1.0}
 
 
 def _engine(who: str, v: dict):

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from .. import _args
 from .. import _core as core
-from .._args import reject_unknown, renamed
 from .base import HysteresisModel
 
 # Parameters renamed (old name -> new name); the old names still work, with a warning.
@@ -43,10 +43,10 @@ class BoucWen(HysteresisModel):
         k: float = 1.0,
         max_step: float = 0.05,
         max_substeps: int = 256,
-        **old_names,
+        **renamed,
     ):
-        reject_unknown("BoucWen", old_names, _RENAMED)
-        alpha = renamed("BoucWen", {"alpha": alpha, **old_names}, _RENAMED)["alpha"]
+        _args.reject_unknown("BoucWen", renamed, _RENAMED)
+        alpha = _args.renamed("BoucWen", {"alpha": alpha, **renamed}, _RENAMED)["alpha"]
         super().__init__(
             A=A,
             beta=beta,
@@ -65,5 +65,5 @@ class BoucWen(HysteresisModel):
         if not isinstance(params, dict):  # the base class names what is wrong
             return super().from_dict(data)
         return super().from_dict(
-            {**data, "params": renamed(cls.__name__, params, _RENAMED, warn=False)}
+            {**data, "params": _args.renamed(cls.__name__, params, _RENAMED, warn=False)}
         )
