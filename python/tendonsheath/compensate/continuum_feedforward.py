@@ -43,13 +43,15 @@ class ContinuumFeedforward(Feedforward):
     friction : float, default 0.1
         Friction coefficient mu.
     length : float, default 1.0
-        Sheath length L (m).
+        Sheath length L (m) (its old name ``sheath_length=`` still works for one release, with
+        a DeprecationWarning; docs/vocabulary.md).
     stiffness : float, default 2.4e4
         Tendon axial stiffness EA (N).
     pretension : float, default 10.0
         Pretension T0 (N).
     curve_angle : float, default pi
-        Curve angle Theta of the sheath (rad).
+        Curve angle Theta of the sheath (rad) (its old name ``total_angle=`` still works for
+        one release, with a DeprecationWarning).
     bending_stiffness : float, default 4e-4
         Backbone bending stiffness EI (N m^2).
     tendon_offset : float, default 2e-3
@@ -66,9 +68,6 @@ class ContinuumFeedforward(Feedforward):
         Capstan-consistent equations, or Lau et al.'s as printed.
     limits : CommandLimits, tuple, dict or None, optional
         Saturation of the command and its rate (see :class:`CommandLimits`).
-
-    The old names ``sheath_length=`` and ``total_angle=`` still work for one release, with a
-    DeprecationWarning (docs/vocabulary.md).
 
     Raises
     ------

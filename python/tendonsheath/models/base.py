@@ -48,8 +48,8 @@ class HysteresisModel:
 
     def __init__(self, **values):
         unknown = set(values) - set(self.param_names) - set(self.option_names)
-        if unknown:
-            raise ValueError(
+        if unknown:  # an unknown keyword: TypeError, as Python says for any function
+            raise TypeError(
                 f"{type(self).__name__}: unknown parameter(s) {sorted(unknown)}; "
                 f"expected {list(self.param_names + self.option_names)}"
             )

@@ -53,9 +53,7 @@ class Chain(HysteresisModel):
         for key, value in changes.items():
             part, _, name = key.partition(".")
             if part not in parts or not name:
-                raise ValueError(
-                    f"Chain: parameter names are first.<name> or second.<name> ({key})"
-                )
+                raise TypeError(f"Chain: parameter names are first.<name> or second.<name> ({key})")
             parts[part][name] = value
         return Chain(
             self.first.with_params(**parts["first"]), self.second.with_params(**parts["second"])

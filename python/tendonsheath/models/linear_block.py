@@ -66,7 +66,7 @@ class LinearBlock(HysteresisModel):
                 raise ValueError(f"{type(self).__name__}: {name} must be in ({lo}, {hi}) (got {v})")
             out[name] = v
         if values:
-            raise ValueError(
+            raise TypeError(
                 f"{type(self).__name__}: unknown parameter(s) {sorted(values)}; "
                 f"expected {list(self.param_names)}"
             )

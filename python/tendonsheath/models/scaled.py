@@ -75,7 +75,7 @@ class Scaled(HysteresisModel):
             elif key in mapping:
                 mapping[key] = value
             else:
-                raise ValueError(f"Scaled: unknown parameter {key!r}; inner.<name> or {_MAP}")
+                raise TypeError(f"Scaled: unknown parameter {key!r}; inner.<name> or {_MAP}")
         return Scaled(self.inner.with_params(**inner), **mapping)
 
     def to_inner_input(self, x) -> np.ndarray:
