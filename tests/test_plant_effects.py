@@ -272,7 +272,7 @@ def test_effects_are_validated_with_their_names():
             ts.PullPullPlant(route, **kw)
     with pytest.raises(TypeError, match="sheath_viscosity"):
         ts.PullPullPlant(route, sheath_viscosity="high")
-    with pytest.raises(ValueError, match="reflected_inertia"):
+    with pytest.raises(ValueError, match="Motor.position: .*inertia"):
         ts.Motor.position(10.0, 0.7, coulomb_friction=0.1)
     with pytest.raises(ValueError, match="gear_backlash"):
         ts.Motor.position(10.0, 0.7, gear_backlash=-0.1)

@@ -24,6 +24,7 @@ import numpy as np
 
 from . import _core as core
 from . import physics, plant_input
+from ._args import integer, number, python_names
 from ._arrays import as_time_and_signal, checked_dt
 from .loads import (
     ConstantForce,
@@ -44,10 +45,10 @@ class SlackWarning(RuntimeWarning):
     """A tendon went slack (tension <= 0): the quasi-static model is not valid there."""
 
 
-def _options(elements, max_increment, fast_path):
+def _options(cls, max_increment, fast_path):
     o = core.ChainOptions()
     if max_increment is not None:
-        o.max_increment = float(max_increment)
+        o.max_increment = number(cls, "max_increment", max_increment)
     o.fast_path = bool(fast_path)
     return o
 
@@ -63,9 +64,22 @@ def _set_effects(p, cls, names, values):
         value = values[name]
         if value is None:
             continue
-        if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
-            raise TypeError(f"{cls}: {name} must be a number (got {type(value).__name__})")
-        setattr(p, name, float(value))
+        setattr(p, name, number(cls, name, value))
+
+
+# The plants' scalar parameters (same names in Python and C++).
+_PAIR_NUMBERS = ("friction", "stiffness", "pretension", "proximal_radius", "distal_radius")
+_CONTINUUM_NUMBERS = (
+    *_PAIR_NUMBERS[:4],
+    "bending_stiffness",
+    "tendon_offset",
+    "backbone_length",
+)
+
+
+def _set_numbers(p, cls, names, values):
+    for name in names:
+        setattr(p, name, number(cls, name, values[name]))
 
 
 def _effects_of(p, names) -> dict:
@@ -73,8 +87,7 @@ def _effects_of(p, names) -> dict:
 
 
 def _check_elements(elements, cls):
-    if isinstance(elements, bool) or not isinstance(elements, int | np.integer):
-        raise ValueError(f"{cls}: elements must be an integer >= 2 (got {elements!r})")
+    elements = integer(cls, "elements", elements)
     if elements < 2:
         raise ValueError(f"{cls}: elements must be >= 2 (got {elements})")
     return int(elements)
@@ -82,7 +95,7 @@ def _check_elements(elements, cls):
 
 def _check_route(route, name, cls):
     if not isinstance(route, Route):
-        raise ValueError(f"{cls}: {name} must be a tendonsheath.Route (got {type(route).__name__})")
+        raise TypeError(f"{cls}: {name} must be a tendonsheath.Route (got {type(route).__name__})")
     return route
 
 
@@ -171,9 +184,15 @@ class _Plant:
 
     def _setup_io(self, motor, sensor):
         if motor is not None and not isinstance(motor, Motor):
-            raise ValueError(f"{type(self).__name__}: motor must be a tendonsheath.Motor or None")
+            raise TypeError(
+                f"{type(self).__name__}: motor must be a tendonsheath.Motor or None "
+                f"(got {type(motor).__name__})"
+            )
         if sensor is not None and not isinstance(sensor, Sensor):
-            raise ValueError(f"{type(self).__name__}: sensor must be a tendonsheath.Sensor or None")
+            raise TypeError(
+                f"{type(self).__name__}: sensor must be a tendonsheath.Sensor or None "
+                f"(got {type(sensor).__name__})"
+            )
         self.motor = motor
         self.sensor = sensor
         self._motor_engine = core.Motor(motor._params) if motor is not None else None
@@ -550,19 +569,20 @@ class SingleTendonPlant(_Plant):
         self.route = _check_route(route, "route", cls)
         load = ConstantForce(10.0) if load is None else load
         if not isinstance(load, ConstantForce | LinearSpring | SpringPreload):
-            raise ValueError(
+            raise TypeError(
                 f"{cls}: load must be ConstantForce, LinearSpring or SpringPreload "
                 f"(got {type(load).__name__})"
             )
         self.load = load
         p = core.SingleTendonParams()
-        p.friction = float(friction)
-        p.stiffness = float(stiffness)
+        p.friction = number(cls, "friction", friction)
+        p.stiffness = number(cls, "stiffness", stiffness)
         p.elements = _check_elements(elements, cls)
         p.load_force, p.load_stiffness = load.linear()
-        p.options = _options(elements, max_increment, fast_path)
+        p.options = _options(cls, max_increment, fast_path)
         _set_effects(p, cls, _RATE_EFFECTS, effects)
-        self._engine = core.SingleTendonPlant(p, route._core)
+        with python_names(cls):
+            self._engine = core.SingleTendonPlant(p, route._core)
         self._setup_io(motor, sensor)
 
     def _lengths(self):
@@ -597,7 +617,7 @@ class SingleTendonPlant(_Plant):
         """
         F0, _ = self.load.linear()
         return {
-            "capstan_ratio": float(physics.capstan_ratio(self.friction, self.route.total_angle)),
+            "capstan_ratio": float(physics.capstan_ratio(self.friction, self.route.curve_angle)),
             "dead_zone": physics.single_tendon_dead_zone(
                 self.route, self.stiffness, F0, self.friction
             ),
@@ -712,23 +732,20 @@ class PullPullPlant(_Plant):
         if load is not None and not isinstance(
             load, ConstantTorque | TorsionalSpring | SpringDamper
         ):
-            raise ValueError(
+            raise TypeError(
                 f"{cls}: load must be None, ConstantTorque, TorsionalSpring or SpringDamper "
                 f"(got {type(load).__name__})"
             )
         self.load = load
         p = core.PullPullParams()
-        p.friction = float(friction)
-        p.stiffness = float(stiffness)
-        p.pretension = float(pretension)
-        p.proximal_radius = float(proximal_radius)
-        p.distal_radius = float(distal_radius)
+        _set_numbers(p, cls, _PAIR_NUMBERS, locals())
         p.elements = _check_elements(elements, cls)
         if load is not None:
             p.load_torque, p.load_stiffness, p.load_damping = load.rotary()
-        p.options = _options(elements, max_increment, fast_path)
+        p.options = _options(cls, max_increment, fast_path)
         _set_effects(p, cls, _PAIR_EFFECTS, effects)
-        self._engine = self._make_engine(p)
+        with python_names(cls):
+            self._engine = self._make_engine(p)
         self._setup_io(motor, sensor)
 
     def _make_engine(self, p):
@@ -868,7 +885,7 @@ class PullPullPlant(_Plant):
                 physics.no_slack_limit(
                     self.pretension,
                     self.friction,
-                    max(self.route.total_angle, self.route2.total_angle),
+                    max(self.route.curve_angle, self.route2.curve_angle),
                 )
             ),
         }
@@ -966,17 +983,12 @@ class ContinuumPlant(PullPullPlant):
         self.route = _check_route(route, "route", cls)
         self.route2 = _check_route(route if route2 is None else route2, "route2", cls)
         c = core.ContinuumParams()
-        c.friction = float(friction)
-        c.stiffness = float(stiffness)
-        c.pretension = float(pretension)
-        c.proximal_radius = float(proximal_radius)
-        c.bending_stiffness = float(bending_stiffness)
-        c.tendon_offset = float(tendon_offset)
-        c.backbone_length = float(backbone_length)
+        _set_numbers(c, cls, _CONTINUUM_NUMBERS, locals())
         c.elements = _check_elements(elements, cls)
-        c.options = _options(elements, max_increment, fast_path)
+        c.options = _options(cls, max_increment, fast_path)
         _set_effects(c, cls, _PAIR_EFFECTS, effects)
-        self._engine = core.ContinuumPlant(c, self.route._core, self.route2._core)
+        with python_names(cls):
+            self._engine = core.ContinuumPlant(c, self.route._core, self.route2._core)
         self.load = TorsionalSpring(c.bending_stiffness / c.backbone_length)
         self._setup_io(motor, sensor)
 

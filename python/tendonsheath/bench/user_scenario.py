@@ -373,7 +373,7 @@ def tension_bench_friction(plant) -> float:
     for q in np.linspace(0.0, travel, 400):
         plant.step(float(q))
     tension = plant.tensions()[0]  # row 0: tendon 1, proximal to distal
-    span = float(plant.route.total_angle)
+    span = float(plant.route.curve_angle)
     plant.reset()
     if not span > 0:
         return 0.0
@@ -383,7 +383,7 @@ def tension_bench_friction(plant) -> float:
 def calibration_angles(sc: UserScenario) -> list[float]:
     """The calibration curve angles: [calibration] angles, or 0.4, 1.1 and 1.7 pi, each
     moved off any test route's angle (by at least 0.1 rad)."""
-    tests = [sc.route["initial"].total_angle] + [r.total_angle for _, r in sc.route_changes]
+    tests = [sc.route["initial"].curve_angle] + [r.curve_angle for _, r in sc.route_changes]
     given = sc.calibration.get("angles")
     if given is not None:
         angles = [float(a) for a in given]
@@ -434,9 +434,9 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
     told.update(user_told)
     announce(progress, "honesty panel")
     theta = (
-        np.array([routes(tk).total_angle for tk in t])
+        np.array([routes(tk).curve_angle for tk in t])
         if routes is not None
-        else sc.route["initial"].total_angle
+        else sc.route["initial"].curve_angle
     )
     honesty = honesty_panel(cal, runs, curve_angle=theta, told=told, seed=sc.seed)
     return _result(sc, cal, runs, honesty, angles, shape)
@@ -455,7 +455,7 @@ def _calibration(sc: UserScenario, shape, angles: list[float]):
         model_names.append("CurveAngleModel")
     if not model_names:
         return None
-    sensed_initial = shape.static_reading(sc.route["initial"].total_angle, 1.0, seed_offset=77)
+    sensed_initial = shape.static_reading(sc.route["initial"].curve_angle, 1.0, seed_offset=77)
     length = sc.route["initial"].length
     return calibrate(
         _plant(sc, _servo(sc)),
@@ -550,8 +550,8 @@ def _result(sc: UserScenario, cal, runs: dict, honesty: dict, angles, shape) -> 
         table_title="Results",
         paper={},
         routes=shapes,
-        route_schedule=[(0.0, sc.route["initial"].total_angle)]
-        + [(tc, r.total_angle) for tc, r in sc.route_changes],
+        route_schedule=[(0.0, sc.route["initial"].curve_angle)]
+        + [(tc, r.curve_angle) for tc, r in sc.route_changes],
         calibration=cal.to_dict() if cal is not None else {},
         protocol=f"{sc.title}: compensators calibrated by bench.calibrate from the plant's "
         f"logs at curve angles {at_angles} rad and judged on the scenario's own routes and "

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from .. import _core as core
+from .._args import number, python_names
 from .._arrays import checked_dt
 from ..models import Backlash, BoucWenBacklash
 from ..status import Status
@@ -74,24 +75,29 @@ class AdaptiveController:
     step_inputs = ("y_d", "y", "q")
 
     def __init__(self, feedforward_model=None, smoothing: float = 0.05, **gains):
+        who = "AdaptiveController"
         unknown = set(gains) - set(_GAINS)
         if unknown:
-            raise ValueError(f"AdaptiveController: unknown gain(s) {sorted(unknown)}")
+            raise TypeError(f"{who}: unknown gain(s) {sorted(unknown)}")
         p = core.AdaptiveControllerParams()
         for key, value in gains.items():
-            setattr(p, key, bool(value) if key == "model_acceleration" else float(value))
+            setattr(p, key, bool(value) if key == "model_acceleration" else number(who, key, value))
         if feedforward_model is not None:
             if not isinstance(feedforward_model, Backlash | BoucWenBacklash):
-                raise ValueError("feedforward_model must be a Backlash or BoucWenBacklash")
+                raise TypeError(
+                    f"{who}: feedforward_model must be a Backlash or BoucWenBacklash "
+                    f"(got {type(feedforward_model).__name__})"
+                )
             ff = core.BacklashInverseParams()
             for key in ("c_r", "c_l", "B_r", "B_l"):
                 setattr(ff, key, feedforward_model.params[key])
-            ff.v_eps = smoothing
+            ff.v_eps = number(who, "smoothing", smoothing)
             p.feedforward = ff
             p.has_feedforward = True
         self.feedforward_model = feedforward_model
-        self.smoothing = float(smoothing)
-        self._engine = core.AdaptiveController(p)
+        self.smoothing = number(who, "smoothing", smoothing)
+        with python_names(who):
+            self._engine = core.AdaptiveController(p)
         resolved = self._engine.params
         self._settings = {
             "feedforward_model": feedforward_model,
@@ -151,6 +157,15 @@ class AdaptiveController:
         ValueError
             inertia or bandwidth_hz not > 0, or an unknown gain.
         """
+        who = "AdaptiveController.from_model"
+        inertia, viscous = number(who, "inertia", inertia), number(who, "viscous", viscous)
+        bandwidth_hz = number(who, "bandwidth_hz", bandwidth_hz)
+        max_torque, noise_std = (
+            number(who, "max_torque", max_torque),
+            number(who, "noise_std", noise_std),
+        )
+        if derivative_cutoff_hz is not None:
+            derivative_cutoff_hz = number(who, "derivative_cutoff_hz", derivative_cutoff_hz)
         if not inertia > 0:
             raise ValueError("AdaptiveController.from_model: inertia must be > 0")
         if not bandwidth_hz > 0:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _core as core
+from .._args import number, python_names
 from .._arrays import checked_dt
 from ..models import Backlash, BoucWenBacklash, HysteresisModel, PrandtlIshlinskii, Scaled
 from .base import Feedforward
@@ -45,7 +46,7 @@ class InverseFeedforward(Feedforward):
 
     def __init__(self, model: HysteresisModel, smoothing: float = 0.05, limits=None):
         self.model = model
-        self.smoothing = float(smoothing)
+        self.smoothing = number("InverseFeedforward", "smoothing", smoothing)
         self.limits = as_limits(limits)
         self._settings = {"smoothing": self.smoothing, "limits": self.limits}
         self._map = None
@@ -66,16 +67,18 @@ class InverseFeedforward(Feedforward):
                 setattr(p, key, model.params[key])
             p.v_eps = self.smoothing
             p.limits = self.limits.to_core()
-            self._engine = core.BacklashInverseFeedforward(p)
+            with python_names("InverseFeedforward"):
+                self._engine = core.BacklashInverseFeedforward(p)
         elif isinstance(model, PrandtlIshlinskii):
             pi = core.PrandtlIshlinskiiParams()
             pi.thresholds = model.params["thresholds"]
             pi.weights = model.params["weights"]
-            self._engine = core.PrandtlIshlinskiiFeedforward(pi, self.limits.to_core())
+            with python_names("InverseFeedforward"):
+                self._engine = core.PrandtlIshlinskiiFeedforward(pi, self.limits.to_core())
         else:
-            raise ValueError(
-                "InverseFeedforward supports Backlash, BoucWenBacklash and PrandtlIshlinskii "
-                f"models (got {type(model).__name__})"
+            raise TypeError(
+                "InverseFeedforward: model must be a Backlash, BoucWenBacklash or "
+                f"PrandtlIshlinskii, or a Scaled one of them (got {type(model).__name__})"
             )
 
     @property

@@ -13,6 +13,7 @@ import math
 from pathlib import Path
 from typing import Any
 
+from .._args import renamed
 from .._atomic import write_text
 from .._json_source import read_json_source
 
@@ -77,6 +78,7 @@ def compensator_from_dict(data: dict[str, Any]):
         raise ValueError(f"unknown compensator {name!r}; known: {sorted(registry)}")
     cls = registry[name]
     settings = {k: v for k, v in data.items() if k not in ("format", "version", "compensator")}
+    settings = _upgraded(name, settings)
     expected = cls._saved_settings
     unknown = sorted(set(settings) - set(expected))
     if unknown:
@@ -86,6 +88,27 @@ def compensator_from_dict(data: dict[str, Any]):
         raise ValueError(f"{name} file: key(s) {missing} missing")
     values = {k: _setting(name, k, v) for k, v in settings.items()}
     return cls._from_saved(values)
+
+
+def _upgraded(name: str, settings: dict[str, Any]) -> dict[str, Any]:
+    """Settings of a file written before the vocabulary (docs/vocabulary.md) under their new
+    names; such files load without a warning."""
+    if name == "ContinuumFeedforward":
+        from .continuum_feedforward import RENAMED
+
+        try:
+            return renamed(f"{name} file", settings, RENAMED, warn=False)
+        except TypeError as err:  # both names: a bad file
+            raise ValueError(str(err)) from None
+    if name == "CurveAngleFeedforward" and "compliance" in settings:
+        out = dict(settings)
+        compliance = _number(name, "'compliance'", out.pop("compliance"))
+        if not compliance > 0:
+            raise ValueError(f"{name} file: 'compliance' must be > 0 (got {compliance:g})")
+        if "stiffness" in out or "length" in out:
+            raise ValueError(f"{name} file: give stiffness and length or compliance, not both")
+        return {**out, "stiffness": 1.0 / compliance, "length": 1.0}
+    return settings
 
 
 def _setting(name: str, key: str, value):
