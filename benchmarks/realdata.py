@@ -26,8 +26,8 @@ README for how the columns were decoded.
    (it is an inferred label, not a measured bend). Input and output are converted to rad.
    Models with configuration-dependent parameters are fitted on some configurations (whole
    files) and predict the others (whole files): BoucWenBacklash with c_r, c_l, B_r, B_l
-   linear in the angle (``ts.identify(..., depends_on_angle=...)``), CurveAngleModel (spring
-   free), and an affine baseline with a and b linear in the angle.
+   linear in the angle (``ts.identify(..., depends_on_angle=...)``), CurveAngleModel
+   (load_stiffness free), and an affine baseline with a and b linear in the angle.
    Split A (interpolation): train 0/90/180/270, predict 30/60/120/150/210/240.
    Split B (extrapolation): train 0/30/60/90, predict 120..270 (error vs distance).
 3. Amplitude: train on conf0_amp60 (whole file), predict conf0_amp50, conf0_amp70 and the
@@ -207,7 +207,7 @@ def cross_config(data: Path, train: list[int], test: list[int], maxiter: int) ->
         "CurveAngleModel": ts.identify(
             ts.models.CurveAngleModel,
             recordings=tr,
-            free=["spring"],
+            free=["load_stiffness"],
             maxiter=maxiter,
             progress=False,
         ).model,

@@ -85,6 +85,9 @@ DEPRECATED = {
     "a": ("alpha", ("BoucWen",)),  # BoucWen's share of the linear path
     "sheath_length": ("length", ("ContinuumFeedforward",)),
     "compliance": ("stiffness", ("CurveAngleFeedforward",)),
+    # CurveAngleModel's scalar loads at the tendon (a plant's load= is a load object: kept)
+    "load": ("load_force", ("CurveAngleModel",)),
+    "spring": ("load_stiffness", ("CurveAngleModel",)),
 }
 
 
@@ -407,7 +410,7 @@ def _chain():
 
 
 def _sprung():
-    return ts.models.CurveAngleModel(spring=100.0)
+    return ts.models.CurveAngleModel(load_stiffness=100.0)
 
 
 def _calibration():
@@ -573,9 +576,17 @@ def test_no_deprecated_keyword_is_used_inside_the_package():
 
 
 def test_the_deprecated_keyword_scan_can_fail():
-    source = "Route.uniform(1.0, total_angle=2.0)\nmodels.BoucWen(a=0.3)\ncore.X(v_eps=1)\nf(a=1)"
+    source = (
+        "Route.uniform(1.0, total_angle=2.0)\nmodels.BoucWen(a=0.3)\ncore.X(v_eps=1)\nf(a=1)\n"
+        "CurveAngleModel(load=1.0, spring=2.0)\nPullPullPlant(route, load=spring)\n"
+    )
     found = _deprecated_keyword_calls(source, "x.py")
-    assert found == ["x.py:1: Route.uniform(total_angle=...)", "x.py:2: models.BoucWen(a=...)"]
+    assert found == [
+        "x.py:1: Route.uniform(total_angle=...)",
+        "x.py:2: models.BoucWen(a=...)",
+        "x.py:5: CurveAngleModel(load=...)",
+        "x.py:5: CurveAngleModel(spring=...)",
+    ]
 
 
 def test_the_walk_reads_nanobind_signatures():

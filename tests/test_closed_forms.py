@@ -159,8 +159,8 @@ def test_curve_angle_model_helpers_are_the_physics_closed_forms(rng):
             stiffness=10 ** rng.uniform(3, 5),
             pretension=rng.uniform(1, 30),
             length=rng.uniform(0.3, 2),
-            load=rng.uniform(-2, 2),
-            spring=10 ** rng.uniform(1, 4),
+            load_force=rng.uniform(-2, 2),
+            load_stiffness=10 ** rng.uniform(1, 4),
             proximal_radius=rng.uniform(2e-3, 1e-2),
         )
         model = ts.models.CurveAngleModel(**p)
@@ -169,8 +169,8 @@ def test_curve_angle_model_helpers_are_the_physics_closed_forms(rng):
         rp = p["proximal_radius"]
         L, EA = p["length"], p["stiffness"]
         eb = [ref.backlash_half_width(L, EA, p["pretension"], x) / rp for x in a]
-        eL = [ref.load_offset(L, EA, p["load"], x) / rp for x in a]
-        c = [ref.spring_slope(L, EA, p["spring"], x) for x in a]
+        eL = [ref.load_offset(L, EA, p["load_force"], x) / rp for x in a]
+        c = [ref.spring_slope(L, EA, p["load_stiffness"], x) for x in a]
         assert rel_err(model.backlash_half_width(theta), eb).max() < 4e-15
         assert np.all(np.abs(model.load_offset(theta) - eL) <= 4e-15 * np.abs(eL))
         assert rel_err(model.slope(theta), c).max() < 4e-15

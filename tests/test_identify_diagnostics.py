@@ -51,7 +51,7 @@ def test_self_class_single_angle_groups_match_truth_and_warn(seed):
     truth = CurveAngleModel(
         friction=rng.uniform(0.05, 0.4),
         stiffness=rng.uniform(1e4, 5e4),
-        load=rng.choice([-1, 1]) * rng.uniform(1.0, 3.0),
+        load_force=rng.choice([-1, 1]) * rng.uniform(1.0, 3.0),
     )
     theta = rng.uniform(np.pi / 2, 2 * np.pi)
     t = np.arange(0.0, 6.0, 5e-3)
@@ -68,7 +68,7 @@ def test_self_class_single_angle_groups_match_truth_and_warn(seed):
         g = fit.groups[name]
         assert g["value"] == pytest.approx(value, rel=0.01), (name, g, value)
         assert g["identified"] and g["se"] > 0 and g["curve_angle"] == theta
-    assert not fit.groups["gain"]["identified"]  # radii and spring held: the gain is known
+    assert not fit.groups["gain"]["identified"]  # radii and load_stiffness held: the gain is known
     assert "identified groups" in fit.summary()
     assert json.loads(json.dumps(fit.to_dict()))["groups"]["load_offset"]["value"] == (
         pytest.approx(want["load_offset"], rel=0.01)
@@ -77,7 +77,7 @@ def test_self_class_single_angle_groups_match_truth_and_warn(seed):
 
 def test_self_class_several_angles_identify_friction_without_groups():
     """Self-class (CurveAngleModel at two angles): friction is identified, no groups."""
-    truth = CurveAngleModel(friction=0.25, stiffness=2.0e4, load=2.0)
+    truth = CurveAngleModel(friction=0.25, stiffness=2.0e4, load_force=2.0)
     t = np.arange(0.0, 6.0, 5e-3)
     x = 0.6 * np.sin(2 * np.pi * 0.4 * t)
     recs = [(t, x, truth.simulate(t, x, curve_angle=th), th) for th in (np.pi / 2, 2 * np.pi)]
@@ -293,7 +293,7 @@ def test_cli_identify_prints_diagnostics_and_warns(tmp_path):
     number and a warning line naming friction."""
     from tendonsheath.cli import app
 
-    truth = CurveAngleModel(friction=0.3, stiffness=2.0e4, load=1.5)
+    truth = CurveAngleModel(friction=0.3, stiffness=2.0e4, load_force=1.5)
     t = np.arange(0.0, 4.0, 5e-3)
     x = 0.6 * np.sin(2 * np.pi * 0.5 * t)
     y = truth.simulate(t, x, curve_angle=2.0)

@@ -131,7 +131,7 @@ def test_unknown_settings_are_rejected_by_name(log):
 def test_warnings_name_the_callers_line():
     """The steps are several calls deep: an IdentifiabilityWarning still points at the
     user's line (here, this file), from identify() and from Identifier.fit alike."""
-    truth = CurveAngleModel(friction=0.2, stiffness=2e4, load=1.5)
+    truth = CurveAngleModel(friction=0.2, stiffness=2e4, load_force=1.5)
     t = np.arange(0.0, 4.0, 5e-3)
     x = 0.6 * np.sin(2 * np.pi * 0.4 * t) + 0.2 * np.sin(2 * np.pi * 0.9 * t)
     y = truth.simulate(t, x, curve_angle=3.0)

@@ -131,7 +131,7 @@ def test_curve_angle_model_takes_the_curve_angle_as_a_second_input(seed):
     rng = np.random.default_rng(seed)
     model = M.CurveAngleModel(
         friction=_u(rng, 0.05, 0.3), stiffness=_u(rng, 1e4, 5e4), pretension=_u(rng, 5, 20),
-        length=_u(rng, 0.5, 1.5), load=_u(rng, 0, 5), spring=_u(rng, 0, 200),
+        length=_u(rng, 0.5, 1.5), load_force=_u(rng, 0, 5), load_stiffness=_u(rng, 0, 200),
     )  # fmt: skip
     dt, t, x = _signal(rng)
     theta = _u(rng, 1, 4) + 1.5 * np.sin(2 * np.pi * t / t[-1] * _u(rng, 0.5, 3))

@@ -158,7 +158,7 @@ def test_bench_counts_the_adaptive_controllers_fallback_cycles():
 
 def test_curve_angle_model_flags_slack_only_in_the_cycles_past_the_no_slack_bound():
     # spring load: the distal force grows with the output until it breaks the no-slack bound
-    model = ts.models.CurveAngleModel(pretension=2.0, spring=4000.0, length=1.0)
+    model = ts.models.CurveAngleModel(pretension=2.0, load_stiffness=4000.0, length=1.0)
     x = np.linspace(0.0, 3.0, 301)
     x = np.r_[x, x[::-1]]
     y, flags = model.simulate(None, x, curve_angle=np.pi, status=True)

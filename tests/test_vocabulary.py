@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import ast
 import inspect
+import json
 import math
 import re
 from pathlib import Path
@@ -27,6 +28,7 @@ ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "python" / "tendonsheath"
 ROUTE = ts.Route.uniform(1.0, np.pi)
 CPP_ONLY = ("v_eps", "total_angle", "sheath_length", "reflected_inertia", "compliance")
+CURVE_MODEL_CPP_ONLY = ("load", "spring")  # CurveAngleParams' fields (CurveAngleModel's names)
 SHEATH = {"friction": 0.1, "stiffness": 2e4, "length": 1.0, "pretension": 10.0}
 
 
@@ -220,6 +222,7 @@ RANGE_CASES = [
     (lambda v: ts.Motor.position(coulomb_friction=v), "inertia"),
     (lambda v: ts.PullPullPlant(ROUTE, friction=-v), "friction"),
     (lambda v: ts.Sensor(noise_std=-v), "noise_std"),
+    (lambda v: ts.models.CurveAngleModel(load_stiffness=-v), "load_stiffness"),
 ]
 
 
@@ -231,12 +234,12 @@ def test_a_value_out_of_range_names_the_python_argument_not_the_cpp_field(make, 
             make(float(v))
         message = str(info.value)
         assert re.search(rf"\b{re.escape(arg)}\b", message), message
-        for cpp in CPP_ONLY:
+        for cpp in CPP_ONLY + CURVE_MODEL_CPP_ONLY:
             assert not re.search(rf"\b{cpp}\b", message), message
         head = message.split(": ", 1)[0]
         assert who in (None, head) and "\n" not in message  # one prefix: the Python class
         who = head
-    assert who.split(".")[0] in dir(ts) + dir(ts.compensate) + ["Motor"]
+    assert who.split(".")[0] in dir(ts) + dir(ts.compensate) + dir(ts.models) + ["Motor"]
 
 
 # -- deprecated aliases ------------------------------------------------------------------------
@@ -269,7 +272,7 @@ def _continuum_length(old: bool, p: dict):
 
 
 def _continuum_from_model(old: bool, p: dict):
-    model = ts.models.CurveAngleModel(friction=p["mu"], spring=300.0, distal_radius=2e-3)
+    model = ts.models.CurveAngleModel(friction=p["mu"], load_stiffness=300.0, distal_radius=2e-3)
     key = "total_angle" if old else "curve_angle"
     return ContinuumFeedforward.from_model(model, 2e-3, 0.03, **{key: p["angle"]})
 
@@ -290,6 +293,29 @@ def _bouc_wen(old: bool, p: dict):
     return ts.models.BoucWen(**{"a" if old else "alpha": p["share"]})
 
 
+def _bouc_wen_with_params(old: bool, p: dict):
+    return ts.models.BoucWen().with_params(**{"a" if old else "alpha": p["share"]})
+
+
+def _curve_model_load(old: bool, p: dict):
+    return ts.models.CurveAngleModel(friction=p["mu"], **{"load" if old else "load_force": p["F"]})
+
+
+def _curve_model_spring(old: bool, p: dict):
+    key = "spring" if old else "load_stiffness"
+    return ts.models.CurveAngleModel(friction=p["mu"], **{key: p["k"]})
+
+
+def _curve_with_load(old: bool, p: dict):
+    model = ts.models.CurveAngleModel(friction=p["mu"], load_stiffness=p["k"])
+    return model.with_params(**{"load" if old else "load_force": p["F"]})
+
+
+def _curve_with_spring(old: bool, p: dict):
+    model = ts.models.CurveAngleModel(friction=p["mu"], load_force=p["F"])
+    return model.with_params(**{"spring" if old else "load_stiffness": p["k"]})
+
+
 ALIASES = [
     ("Route.uniform", "total_angle", "curve_angle", _route_uniform),
     ("Route", "total_angle", "curve_angle", _route_attribute),
@@ -299,6 +325,11 @@ ALIASES = [
     ("CurveAngleFeedforward", "compliance", "stiffness and length", _curve_compliance),
     ("CurveAngleFeedforward.set_curve_angle", "total_angle", "curve_angle", _curve_set_angle),
     ("BoucWen", "a", "alpha", _bouc_wen),
+    ("BoucWen.with_params", "a", "alpha", _bouc_wen_with_params),
+    ("CurveAngleModel", "load", "load_force", _curve_model_load),
+    ("CurveAngleModel", "spring", "load_stiffness", _curve_model_spring),
+    ("CurveAngleModel.with_params", "load", "load_force", _curve_with_load),
+    ("CurveAngleModel.with_params", "spring", "load_stiffness", _curve_with_spring),
 ]
 
 
@@ -311,6 +342,12 @@ def _same_behaviour(old, new, rng) -> None:
         assert old.params == new.params
     else:
         assert old == new
+    if isinstance(new, ts.models.CurveAngleModel):  # and they run the same
+        q = np.cumsum(rng.normal(0.0, 0.05, 500))
+        theta = rng.uniform(0.0, 2.0 * np.pi)
+        np.testing.assert_array_equal(
+            old.simulate(None, q, curve_angle=theta), new.simulate(None, q, curve_angle=theta)
+        )
 
 
 @pytest.mark.parametrize(
@@ -324,6 +361,8 @@ def test_an_old_name_warns_naming_the_new_one_and_behaves_the_same(who, old, new
             "length": rng.uniform(0.3, 2.0),
             "C": rng.uniform(1e-5, 1e-4),
             "share": rng.uniform(0.0, 1.0),
+            "F": rng.uniform(-5.0, 5.0),
+            "k": 10 ** rng.uniform(1.0, 4.0),
         }
         with pytest.warns(DeprecationWarning) as caught:
             got_old = build(True, p)
@@ -365,6 +404,15 @@ def test_the_old_compliance_is_the_ratio_length_over_stiffness(rng):
         (lambda: ts.Route.uniform(1.0, angle=1.0), "unexpected keyword argument 'angle'"),
         (lambda: ContinuumFeedforward(spring=1.0), "unexpected keyword argument 'spring'"),
         (lambda: ts.models.BoucWen(b=1.0), r"unexpected keyword argument\(s\) \['b'\]"),
+        (
+            lambda: ts.models.CurveAngleModel(load=1.0, load_force=1.0),
+            "give load_force or its old name load, not both",
+        ),
+        (
+            lambda: ts.models.CurveAngleModel().with_params(spring=1.0, load_stiffness=2.0),
+            "give load_stiffness or its old name spring, not both",
+        ),
+        (lambda: ts.models.CurveAngleModel(springs=1.0), "unexpected keyword argument 'springs'"),
     ],
 )
 @pytest.mark.filterwarnings("ignore::DeprecationWarning")  # the old names warn: tested above
@@ -391,9 +439,88 @@ def test_files_saved_with_the_old_names_still_load_without_a_warning(recwarn):
     assert not [w for w in recwarn if issubclass(w.category, DeprecationWarning)]
 
 
+def test_model_files_saved_with_the_old_load_names_still_load_without_a_warning(recwarn, rng):
+    for _ in range(5):
+        new = ts.models.CurveAngleModel(
+            friction=rng.uniform(0.05, 0.3),
+            load_force=rng.uniform(-5.0, 5.0),
+            load_stiffness=10 ** rng.uniform(1.0, 4.0),
+        )
+        data = new.to_dict()
+        assert {"load_force", "load_stiffness"} <= set(data["params"])
+        assert not {"load", "spring"} & set(data["params"])
+        params = data["params"]
+        params["load"], params["spring"] = params.pop("load_force"), params.pop("load_stiffness")
+        old = ts.models.load_model(json.dumps(data))
+        assert old == new and old.params == new.params
+    assert not [w for w in recwarn if issubclass(w.category, DeprecationWarning)]
+
+
+def test_a_model_file_with_a_load_under_both_names_is_a_bad_file():
+    data = ts.models.CurveAngleModel(load_force=1.0).to_dict()
+    data["params"]["load"] = 2.0
+    with pytest.raises(ValueError, match="CurveAngleModel file: give load_force or its old name"):
+        ts.models.load_model(data)
+
+
+# -- identify's fixed, free and bounds with CurveAngleModel's old names ----------------------
+
+
+def _curve_recordings():
+    truth = ts.models.CurveAngleModel(friction=0.15, stiffness=2e3, load_force=1.5)
+    t = np.linspace(0.0, 4.0, 401)
+    x = 0.3 * np.sin(2 * np.pi * 0.5 * t)
+    return [(t, x, truth.simulate(t, x, curve_angle=a), a) for a in (1.0, 3.0)]
+
+
+IDENTIFY_OLD_NEW = [
+    ({"fixed": {"spring": 50.0}}, {"fixed": {"load_stiffness": 50.0}}, ["spring"]),
+    ({"free": ["spring"]}, {"free": ["load_stiffness"]}, ["spring"]),
+    ({"bounds": {"load": (-4.0, 4.0)}}, {"bounds": {"load_force": (-4.0, 4.0)}}, ["load"]),
+    (  # spring in free and in bounds: one warning per old name and call
+        {"free": ["spring"], "bounds": {"spring": (0.0, 1e3), "load": (-4.0, 4.0)}},
+        {
+            "free": ["load_stiffness"],
+            "bounds": {"load_stiffness": (0.0, 1e3), "load_force": (-4.0, 4.0)},
+        },
+        ["load", "spring"],
+    ),
+]
+
+
+@pytest.mark.parametrize(("old", "new", "names"), IDENTIFY_OLD_NEW)
+def test_identify_takes_the_old_load_names_with_one_warning_each(old, new, names):
+    recordings = _curve_recordings()
+    quick = dict(maxiter=4, popsize=5, seed=0, workers=1, progress=False, standard_errors="none")
+    with pytest.warns(DeprecationWarning) as caught:
+        got_old = ts.identify(ts.models.CurveAngleModel, recordings=recordings, **old, **quick)
+    deprecations = [w for w in caught if w.category is DeprecationWarning]
+    messages = sorted(str(w.message) for w in deprecations)
+    assert len(messages) == len(names), messages
+    for message, name in zip(messages, names, strict=True):
+        renamed = {"load": "load_force", "spring": "load_stiffness"}[name]
+        assert message.startswith(f"identify(CurveAngleModel): '{name}' is now called '{renamed}'")
+    assert {Path(w.filename).resolve() for w in deprecations} == {Path(__file__).resolve()}
+    got_new = ts.identify(ts.models.CurveAngleModel, recordings=recordings, **new, **quick)
+    assert got_old.model == got_new.model
+    assert sorted(got_old.fixed) == sorted(got_new.fixed)
+
+
+def test_identify_with_a_load_under_both_names_is_a_type_error():
+    with pytest.raises(TypeError, match="give load_stiffness or its old name spring, not both"):
+        ts.identify(
+            ts.models.CurveAngleModel,
+            recordings=_curve_recordings(),
+            fixed={"spring": 1.0, "load_stiffness": 2.0},
+            progress=False,
+        )
+
+
 # -- no deprecated name inside the package ------------------------------------------------------
 
 OLD_KEYWORDS = {"total_angle", "sheath_length", "compliance"}
+# old keywords of one class only (a plant's load= is a load object, not an old name)
+OLD_KEYWORDS_OF = {"CurveAngleModel": {"load", "spring"}}
 # objects whose .total_angle is the C++ field (a ShapeIntegrals or a parameter struct)
 CPP_OBJECTS = {"s", "p", "self._core", "shape"}
 
@@ -403,7 +530,8 @@ def _old_names_in(path: Path) -> list[str]:
     found = []
     for node in ast.walk(tree):
         if isinstance(node, ast.Call):
-            found += [f"{k.arg}=" for k in node.keywords if k.arg in OLD_KEYWORDS]
+            old = OLD_KEYWORDS | OLD_KEYWORDS_OF.get(ast.unparse(node.func).split(".")[-1], set())
+            found += [f"{k.arg}=" for k in node.keywords if k.arg in old]
         if (
             isinstance(node, ast.Attribute)
             and node.attr == "total_angle"
@@ -429,8 +557,9 @@ def test_the_scan_finds_an_old_name(tmp_path):
     bad = tmp_path / "bad.py"
     bad.write_text(
         "r = Route.uniform(1.0, total_angle=2.0)\nprint(route.total_angle, s.total_angle)\n"
+        "m = models.CurveAngleModel(load=1.0)\np = PullPullPlant(route, load=spring)\n"
     )
-    assert _old_names_in(bad) == ["total_angle=", "route.total_angle"]
+    assert sorted(_old_names_in(bad)) == ["load=", "route.total_angle", "total_angle="]
 
 
 # -- the table in docs/vocabulary.md ---------------------------------------------------------
@@ -438,9 +567,12 @@ def test_the_scan_finds_an_old_name(tmp_path):
 
 def test_the_documented_cpp_names_are_the_ones_errors_are_translated_with():
     text = (ROOT / "docs" / "vocabulary.md").read_text(encoding="utf-8")
-    table = text.split("## C++ name and Python name", 1)[1]
+    section = text.split("## C++ name and Python name", 1)[1]
+    table, curve_model = section.split("| C++ field of `CurveAngleParams` |", 1)
     rows = re.findall(r"^\| `([^`]+)` \| `([^`]+)` \|$", table, re.M)
     assert dict(rows) == _args.CORE_NAMES
+    rows = re.findall(r"^\| `([^`]+)` \| `([^`]+)` \|$", curve_model, re.M)
+    assert dict(rows) == ts.models.CurveAngleModel.core_names
 
 
 # -- models are hashable values ----------------------------------------------------------------

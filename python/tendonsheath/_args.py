@@ -5,7 +5,9 @@ from __future__ import annotations
 
 import functools
 import numbers
+import os
 import re
+import sys
 import warnings
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
@@ -57,6 +59,19 @@ def warn_renamed(who: str, old: str, new: str, stacklevel: int = 3) -> None:
         DeprecationWarning,
         stacklevel=stacklevel,
     )
+
+
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def caller_outside_package() -> int:
+    """The ``stacklevel`` for :func:`warn_renamed`, called by the caller of this function, that
+    points at the first frame outside the package: the user's line, for a warning raised some
+    calls deep (identify's settings pass through the estimator first)."""
+    frame, level = sys._getframe(1), 2  # the caller; warn_renamed itself is level 1
+    while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_DIR):
+        frame, level = frame.f_back, level + 1
+    return level
 
 
 def accepts_old_names(who: str, renames: Mapping[str, str | Callable[[Any], dict[str, Any]]]):

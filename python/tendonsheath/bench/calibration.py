@@ -251,9 +251,10 @@ class Calibration:
         if load == "calibrated":
             pass
         elif load is None:
-            p["load"], p["spring"] = 0.0, 0.0
+            p["load_force"], p["load_stiffness"] = 0.0, 0.0
         else:
-            p["load"], p["spring"] = self.loads[load]["load"], self.loads[load]["spring"]
+            told = self.loads[load]
+            p["load_force"], p["load_stiffness"] = told["load_force"], told["load_stiffness"]
         return models.CurveAngleModel(**p)
 
     def inverse_feedforward(self, **options):
@@ -641,7 +642,7 @@ def _add_curve_angle_fit(cal, recordings, names, spring: bool, declared_friction
     search = {
         "recordings": recordings,
         "fixed": fixed,
-        "free": ["distal_radius"] + (["spring"] if spring else []),
+        "free": ["distal_radius"] + (["load_stiffness"] if spring else []),
         "bounds": {"distal_radius": (0.3 * r_d0, 3.0 * r_d0)},
     }
     fit = _add_fit(cal, "CurveAngleModel", names, (), search, **options)
@@ -721,17 +722,17 @@ def _curve_angle_groups(fit, runs, friction_identified: bool, spring: bool) -> d
         "identified": True,
     }
     groups["F_L L/(EA r_p)"] = {
-        "value": p["load"] * scale,
+        "value": p["load_force"] * scale,
         "source": src,
-        "relative_se": rel("stiffness", "load"),
+        "relative_se": rel("stiffness", "load_force"),
         "identified": True,
         "unit": "rad at the motor",
     }
     if spring:
         groups["k_e L/EA"] = {
-            "value": p["spring"] * p["length"] / p["stiffness"],
+            "value": p["load_stiffness"] * p["length"] / p["stiffness"],
             "source": src,
-            "relative_se": rel("stiffness", "spring"),
+            "relative_se": rel("stiffness", "load_stiffness"),
             "identified": True,
         }
     return groups
@@ -788,7 +789,7 @@ def calibrate_load(
     run_name = f"load '{name}'"
     cal.runs.append(CalibrationRun(run_name, sensed, duration, int(t.size)))
     p = dict(cal.curve_model.params)
-    fixed = {k: v for k, v in p.items() if k not in ("load", "spring")}
+    fixed = {k: v for k, v in p.items() if k not in ("load_force", "load_stiffness")}
     fit = identify(
         models.CurveAngleModel,
         t,
@@ -796,7 +797,7 @@ def calibrate_load(
         y,
         curve_angle=sensed,
         fixed=fixed,
-        free=["spring", "distal_radius"],
+        free=["load_stiffness", "distal_radius"],
         warmup=warm,
         seed=seed,
         progress=False,
@@ -808,10 +809,10 @@ def calibrate_load(
     cal.at_bounds[f"load: {name}"] = _near_bounds(fit)
     scale = q["length"] / (q["stiffness"] * q["proximal_radius"])
     cal.loads[name] = {
-        "load": q["load"],
-        "spring": q["spring"],
-        "F_L L/(EA r_p)": q["load"] * scale,
-        "k_e L/EA": q["spring"] * q["length"] / q["stiffness"],
+        "load_force": q["load_force"],
+        "load_stiffness": q["load_stiffness"],
+        "F_L L/(EA r_p)": q["load_force"] * scale,
+        "k_e L/EA": q["load_stiffness"] * q["length"] / q["stiffness"],
         "source": f"identified from calibration run {run_name} (sensed angle {sensed:.3f} rad)",
     }
 
@@ -900,7 +901,7 @@ def in_class_fit(
             y,
             curve_angle=theta,
             fixed=dict(NOMINAL),
-            free=["distal_radius"] + (["spring"] if "spring" in name else []),
+            free=["distal_radius"] + (["load_stiffness"] if "spring" in name else []),
             bounds={"distal_radius": (0.3 / slope, 3.0 / slope)},
             warmup=warm,
             seed=seed,

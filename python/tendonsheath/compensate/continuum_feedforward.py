@@ -147,7 +147,7 @@ class ContinuumFeedforward(Feedforward):
         Parameters
         ----------
         model : CurveAngleModel
-            Identified on the continuum drive, with a spring k_e > 0.
+            Identified on the continuum drive, with a spring k_e = load_stiffness > 0.
         tendon_offset : float
             r_t (m).
         backbone_length : float
@@ -168,18 +168,20 @@ class ContinuumFeedforward(Feedforward):
         Raises
         ------
         ValueError
-            model lacks a CurveAngleModel parameter or has no spring.
+            model lacks a CurveAngleModel parameter or has no spring (load_stiffness <= 0).
         """
         p = model.params
-        missing = {"friction", "stiffness", "pretension", "length", "spring"} - set(p)
+        missing = {"friction", "stiffness", "pretension", "length", "load_stiffness"} - set(p)
         if missing:
             raise ValueError(
                 "ContinuumFeedforward.from_model needs a CurveAngleModel "
                 f"(missing {sorted(missing)})"
             )
-        k_e = p["spring"]
+        k_e = p["load_stiffness"]
         if not k_e > 0:
-            raise ValueError("ContinuumFeedforward.from_model: the model has no spring (k_e <= 0)")
+            raise ValueError(
+                "ContinuumFeedforward.from_model: the model has no spring (load_stiffness <= 0)"
+            )
         return cls(
             friction=p["friction"],
             length=p["length"],

@@ -116,17 +116,17 @@ class CurveAngleFeedforward(Feedforward):
     @classmethod
     def from_model(cls, model, load_force=None, load_stiffness=None, **options):
         """Built from an identified ``CurveAngleModel``: its friction, stiffness EA, length L,
-        pretension and radii; the distal load defaults to the model's own (``load``,
-        ``spring``) and can be replaced by the load expected in use (N, N/m at the tendon).
+        pretension and radii; the distal load defaults to the model's own (``load_force``,
+        ``load_stiffness``) and can be replaced by the load expected in use (N, N/m at the tendon).
 
         Parameters
         ----------
         model : CurveAngleModel
             The identified model.
         load_force : float, optional
-            Distal load (N at the tendon); default the model's ``load``.
+            Distal load (N at the tendon); default the model's ``load_force``.
         load_stiffness : float, optional
-            Environment stiffness (N/m at the tendon); default the model's ``spring``.
+            Environment stiffness (N/m at the tendon); default the model's ``load_stiffness``.
         **options
             Other constructor settings (curve_angle, smoothing, max_correction_rate, limits).
 
@@ -158,8 +158,10 @@ class CurveAngleFeedforward(Feedforward):
             stiffness=p["stiffness"],
             length=p["length"],
             pretension=p["pretension"],
-            load_force=p.get("load", 0.0) if load_force is None else load_force,
-            load_stiffness=p.get("spring", 0.0) if load_stiffness is None else load_stiffness,
+            load_force=p.get("load_force", 0.0) if load_force is None else load_force,
+            load_stiffness=(
+                p.get("load_stiffness", 0.0) if load_stiffness is None else load_stiffness
+            ),
             proximal_radius=p.get("proximal_radius", 5e-3),
             distal_radius=p.get("distal_radius", 5e-3),
             **options,

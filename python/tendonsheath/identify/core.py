@@ -18,7 +18,13 @@ from ..models.base import _REGISTRY
 from .data import Recording, make_recordings
 from .fit import Fit
 from .refine import TimeBudget, refine
-from .settings import Options, Search, check_search_options, with_settings_signature
+from .settings import (
+    Options,
+    Search,
+    check_search_options,
+    with_new_names,
+    with_settings_signature,
+)
 
 __all__ = ["check_search_options", "identify", "run"]
 
@@ -141,7 +147,7 @@ def identify(
 
     ``fixed`` holds parameters at given values; some are held by default because they are
     not identifiable from input/output data (BoucWen: A; HystereticOscillator: beta;
-    CurveAngleModel: pretension, length, radii and spring); ``free`` releases those.
+    CurveAngleModel: pretension, length, radii and load_stiffness); ``free`` releases those.
     ``initial`` supplies the values of held parameters and the numerical options (for
     PrandtlIshlinskii: the threshold pattern, whose scale is identified).
 
@@ -283,6 +289,7 @@ def run(model_class, recs: list[Recording], options: Options, search: Search) ->
     plant or one model class (see :mod:`tendonsheath.identify.generic`)."""
     if isinstance(model_class, str) and model_class in _REGISTRY:
         model_class = _REGISTRY[model_class]
+    options = with_new_names(model_class, options)
     return _stamp(search.budget, _dispatch(model_class, recs, options, search))
 
 

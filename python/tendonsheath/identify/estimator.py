@@ -61,7 +61,7 @@ class Identifier:
     fixed : dict of str to float, optional
         Parameters held at given values. Some are held by default because input/output data
         cannot identify them (BoucWen: A; HystereticOscillator: beta; CurveAngleModel:
-        pretension, length, radii and spring).
+        pretension, length, radii and load_stiffness).
     free : iterable of str, optional
         Parameters held by default that are to be identified.
     initial : HysteresisModel, optional

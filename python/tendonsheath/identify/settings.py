@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from .._args import caller_outside_package, renamed, warn_renamed
 from .refine import TimeBudget
 
 
@@ -60,6 +61,30 @@ def with_settings_signature(fn):
     ]
     fn.__signature__ = sig.replace(parameters=kept + named)
     return fn
+
+
+def with_new_names(model_class, options: Options) -> Options:
+    """``options`` with the renamed parameters of ``model_class`` (old -> new, such as
+    CurveAngleModel's ``spring`` -> ``load_stiffness``) under their new names in ``fixed``,
+    ``free`` and ``bounds``; each old name found warns once (DeprecationWarning)."""
+    renames = getattr(model_class, "renamed_params", None)
+    if not isinstance(model_class, type) or not renames:
+        return options
+    who = f"identify({model_class.__name__})"
+    fixed, bounds, free = options.fixed or {}, options.bounds or {}, list(options.free or ())
+    found = sorted((set(fixed) | set(bounds) | set(free)) & renames.keys())
+    if not found:
+        return options
+    new = dataclasses.replace(  # first: an old and a new name together raise, not warn
+        options,
+        fixed=renamed(who, fixed, renames, warn=False) if options.fixed is not None else None,
+        bounds=renamed(who, bounds, renames, warn=False) if options.bounds is not None else None,
+        free=[renames.get(n, n) for n in free] if options.free is not None else None,
+    )
+    level = caller_outside_package()
+    for old in found:
+        warn_renamed(who, old, renames[old], stacklevel=level)
+    return new
 
 
 def check_names(names, owner: str) -> None:

@@ -216,12 +216,12 @@ class HystereticOscillatorSpec(ModelSpec):
 class CurveAngleModelSpec(ModelSpec):
     """pretension, length and the radii are held known; EA, mu and the load are identified.
 
-    The spring is held too (0 by default); free it with ``free=["spring"]``.
+    The load stiffness is held too (0 by default); free it with ``free=["load_stiffness"]``.
     """
 
     model_class = CurveAngleModel
     kind = "CurveAngleModel"
-    default_fixed = ("pretension", "length", "proximal_radius", "distal_radius", "spring")
+    default_fixed = ("pretension", "length", "proximal_radius", "distal_radius", "load_stiffness")
     log_names = frozenset({"stiffness"})
 
     def bounds(self, s, fixed):
@@ -234,8 +234,8 @@ class CurveAngleModelSpec(ModelSpec):
             "stiffness": (0.02 * ref, 1e5 * ref),
             "pretension": (0.1 * t0, 10.0 * t0),
             "length": (0.1 * length, 10.0 * length),
-            "load": (-2.0 * max(t0, 1e-3), 2.0 * max(t0, 1e-3)),
-            "spring": (0.0, 1e5 * ref / length),
+            "load_force": (-2.0 * max(t0, 1e-3), 2.0 * max(t0, 1e-3)),
+            "load_stiffness": (0.0, 1e5 * ref / length),
             "proximal_radius": (0.1 * r_p, 10.0 * r_p),
             "distal_radius": (0.1 * fixed.get("distal_radius", 5e-3), 10.0 * r_p),
         }

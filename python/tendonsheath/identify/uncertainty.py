@@ -95,10 +95,10 @@ def setup_single_angle(cls, recs, held, values, user_fixed, user_bounds, all_bou
     if "friction" in free_names:
         free_names.remove("friction")
     mu_lo = float(all_bounds["friction"][0])
-    if "load" not in (user_bounds or {}) and mu_lo > 0:
-        lo, hi = all_bounds["load"]
+    if "load_force" not in (user_bounds or {}) and mu_lo > 0:
+        lo, hi = all_bounds["load_force"]
         f = max(1.0, mu0 / mu_lo)
-        all_bounds["load"] = (f * lo, f * hi)
+        all_bounds["load_force"] = (f * lo, f * hi)
     return SingleAngle(theta, True, mu0)
 
 
@@ -119,7 +119,7 @@ _GROUP_UNITS = {
     "load_offset": "rad at the motor",
     "gain": "distal rad per motor rad",
 }
-_GAIN_NAMES = {"spring", "distal_radius", "proximal_radius", "stiffness"}
+_GAIN_NAMES = {"load_stiffness", "distal_radius", "proximal_radius", "stiffness"}
 
 
 # -- everything after the estimate -------------------------------------------------------------

@@ -13,7 +13,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from .._args import python_names
+from .._args import python_names, renamed
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import read_json_source
@@ -82,6 +82,11 @@ class HysteresisModel:
     # signal names of to_control()'s system
     control_inputs: ClassVar[tuple[str, ...]] = ("x",)
     control_output: ClassVar[str] = "y"
+    # parameters renamed (old -> new): with_params takes the old names with a warning for one
+    # release, and saved files with them still load (silently)
+    renamed_params: ClassVar[dict[str, str]] = {}
+    # C++ struct fields named otherwise in Python (C++ -> Python), on top of _args.CORE_NAMES
+    core_names: ClassVar[dict[str, str]] = {}
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -103,21 +108,27 @@ class HysteresisModel:
             try:
                 setattr(struct, key, value)
             except TypeError:
-                raise _field_error(type(self).__name__, key, value) from None
-        with python_names(type(self).__name__):  # the core names the parameter
+                name = self.core_names.get(key, key)
+                raise _field_error(type(self).__name__, name, value) from None
+        with python_names(type(self).__name__, self.core_names):  # the core names the parameter
             self._engine = self._core(struct)
 
     @classmethod
     def _core_values(cls, values: dict[str, Any]) -> dict[str, Any]:
         """Map user-facing values to fields of the C++ parameter struct."""
-        return values
+        return {cls._core_field(k): v for k, v in values.items()}
+
+    @classmethod
+    def _core_field(cls, name: str) -> str:
+        """The C++ struct field of the Python parameter `name`."""
+        return next((cpp for cpp, py in cls.core_names.items() if py == name), name)
 
     # -- parameters ------------------------------------------------------------------
     @property
     def params(self) -> dict[str, Any]:
         """The identifiable parameters, as a dict (a copy)."""
         s = self._engine.params
-        return {k: _plain(getattr(s, k)) for k in self.param_names}
+        return {k: _plain(getattr(s, self._core_field(k))) for k in self.param_names}
 
     @property
     def options(self) -> dict[str, Any]:
@@ -131,13 +142,15 @@ class HysteresisModel:
         Parameters
         ----------
         **changes
-            Parameters or options by name, with their new values.
+            Parameters or options by name, with their new values (a renamed parameter's old
+            name too, for one release, with a DeprecationWarning).
 
         Returns
         -------
         HysteresisModel
             A new model of the same class; this one is unchanged.
         """
+        changes = renamed(f"{type(self).__name__}.with_params", changes, self.renamed_params)
         values = {**self.params, **self.options, **changes}
         return type(self)(**values)
 
@@ -377,6 +390,10 @@ def _saved_params(model_cls, data: dict[str, Any]) -> dict[str, Any]:
     params = data["params"]
     if not isinstance(params, dict):
         raise ValueError(f"{name} file: 'params' must be an object (got {params!r})")
+    try:
+        params = renamed(name, params, model_cls.renamed_params, warn=False)
+    except TypeError as err:  # a parameter under its old and new names: a bad file
+        raise ValueError(f"{name} file: {str(err).removeprefix(name + ': ')}") from None
     unknown = sorted(set(params) - set(model_cls.param_names) - set(model_cls.option_names))
     if unknown:
         raise ValueError(

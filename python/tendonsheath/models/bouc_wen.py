@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 from .. import _args
 from .. import _core as core
 from .base import HysteresisModel
@@ -60,6 +58,7 @@ class BoucWen(HysteresisModel):
     _core_params = core.BoucWenParams
     param_names = ("A", "beta", "gamma", "n", "alpha", "k")
     option_names = ("max_step", "max_substeps")
+    renamed_params = _RENAMED
 
     def __init__(
         self,
@@ -84,25 +83,4 @@ class BoucWen(HysteresisModel):
             k=k,
             max_step=max_step,
             max_substeps=max_substeps,
-        )
-
-    @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> HysteresisModel:
-        """Also reads files written before ``a`` was renamed ``alpha`` (without a warning).
-
-        Parameters
-        ----------
-        data : dict
-            A saved model (see :meth:`HysteresisModel.from_dict`).
-
-        Returns
-        -------
-        HysteresisModel
-            The saved model.
-        """
-        params = data.get("params")
-        if not isinstance(params, dict):  # the base class names what is wrong
-            return super().from_dict(data)
-        return super().from_dict(
-            {**data, "params": _args.renamed(cls.__name__, params, _RENAMED, warn=False)}
         )

@@ -6,8 +6,13 @@ import numpy as np
 
 from .. import _core as core
 from .. import physics
+from .._args import accepts_old_names
 from .._arrays import as_signal, as_time_and_signal, checked_dt
 from .base import HysteresisModel
+
+# Parameters renamed (old name -> new name, docs/vocabulary.md); the old names still work for one
+# release, with a warning, and model files that hold them still load.
+_RENAMED = {"load": "load_force", "spring": "load_stiffness"}
 
 
 class CurveAngleModel(HysteresisModel):
@@ -36,10 +41,11 @@ class CurveAngleModel(HysteresisModel):
         Pretension T0 (N).
     length : float, default 1.2
         Sheath length L (m).
-    load : float, default 0.0
-        F_L (N): constant distal load at the tendon, positive resisting forward motion.
-    spring : float, default 0.0
-        k_e (N/m): environment stiffness at the tendon.
+    load_force : float, default 0.0
+        F_L (N): constant distal load at the tendon, positive resisting forward motion (was
+        ``load``; the old name works for one release, with a DeprecationWarning).
+    load_stiffness : float, default 0.0
+        k_e (N/m): environment stiffness at the tendon (was ``spring``, likewise).
     proximal_radius : float, default 5e-3
         Motor pulley radius r_p (m).
     distal_radius : float, default 5e-3
@@ -50,9 +56,9 @@ class CurveAngleModel(HysteresisModel):
 
     Identifiability: T0, F_L and k_e enter only through the products T0 L/EA, F_L L/EA and
     k_e L/EA. :func:`tendonsheath.identify` therefore holds the pretension, the length and the
-    two radii at their given values and identifies friction, stiffness (EA), load and spring:
-    a wrong pretension scales the identified EA, F_L and k_e by the same factor and leaves the
-    predictions unchanged.
+    two radii at their given values and identifies friction, stiffness (EA), load_force and (when
+    freed) load_stiffness: a wrong pretension scales the identified EA, F_L and k_e by the same
+    factor and leaves the predictions unchanged.
     """
 
     _core = core.CurveAngleModel
@@ -62,22 +68,25 @@ class CurveAngleModel(HysteresisModel):
         "stiffness",
         "pretension",
         "length",
-        "load",
-        "spring",
+        "load_force",
+        "load_stiffness",
         "proximal_radius",
         "distal_radius",
     )
     uses_curve_angle = True
     control_inputs = ("x", "curve_angle")
+    renamed_params = _RENAMED
+    core_names = dict(_RENAMED)  # the C++ fields keep the old names
 
+    @accepts_old_names("CurveAngleModel", _RENAMED)
     def __init__(
         self,
         friction: float = 0.1,
         stiffness: float = 2.4e4,
         pretension: float = 10.0,
         length: float = 1.2,
-        load: float = 0.0,
-        spring: float = 0.0,
+        load_force: float = 0.0,
+        load_stiffness: float = 0.0,
         proximal_radius: float = 5e-3,
         distal_radius: float = 5e-3,
     ):
@@ -86,8 +95,8 @@ class CurveAngleModel(HysteresisModel):
             stiffness=stiffness,
             pretension=pretension,
             length=length,
-            load=load,
-            spring=spring,
+            load_force=load_force,
+            load_stiffness=load_stiffness,
             proximal_radius=proximal_radius,
             distal_radius=distal_radius,
         )
@@ -183,7 +192,7 @@ class CurveAngleModel(HysteresisModel):
         """
         p = self.params
         e_L = physics.load_offset(
-            p["length"], p["stiffness"], p["load"], p["friction"], np.abs(curve_angle)
+            p["length"], p["stiffness"], p["load_force"], p["friction"], np.abs(curve_angle)
         )
         return e_L / p["proximal_radius"]
 
@@ -202,7 +211,7 @@ class CurveAngleModel(HysteresisModel):
         """
         p = self.params
         return physics.spring_slope(
-            p["length"], p["stiffness"], p["friction"], np.abs(curve_angle), p["spring"]
+            p["length"], p["stiffness"], p["friction"], np.abs(curve_angle), p["load_stiffness"]
         )
 
 
