@@ -8,8 +8,7 @@ from .. import _core as core
 from .._args import number, python_names
 from .._arrays import checked_dt
 from ..models import Backlash, BoucWenBacklash
-from ..status import Status
-from . import persistence
+from .base import EngineCompensator
 
 _GAINS = (
     "lambda_",
@@ -38,7 +37,7 @@ _GAINS = (
 )
 
 
-class AdaptiveController:
+class AdaptiveController(EngineCompensator):
     """Sliding-surface adaptive controller with a distal sensor; outputs motor torque.
 
     u = -k_s s - psi y' - phi nu_r - D tanh(s/epsilon) with s = e' + lambda e, and online
@@ -271,79 +270,5 @@ class AdaptiveController:
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], u[1], u[2], dt)
 
-    def status(self) -> Status:
-        """The last cycle's :class:`~tendonsheath.Status` (held, fallback, saturated).
-
-        Returns
-        -------
-        Status
-            The flags of the last :meth:`step`.
-        """
-        return Status(self._engine.status())
-
-    def _bench_engine(self):
-        """The C++ engine ``bench.run`` runs in its C++ loop."""
-        return self._engine
-
     # -- persistence -----------------------------------------------------------------
     _saved_settings = ("feedforward_model", "smoothing", *_GAINS)
-
-    @property
-    def params(self) -> dict:
-        """The constructor settings, every gain resolved (a copy)."""
-        return dict(self._settings)
-
-    def to_dict(self) -> dict:
-        """The controller as a dict (format ``tendonsheath.compensator``; the feedforward
-        model as its own dict, or null).
-
-        Returns
-        -------
-        dict
-            format, version, compensator and its settings (every gain resolved).
-        """
-        return persistence.compensator_dict(type(self).__name__, self._settings)
-
-    def to_json(self, path=None) -> str:
-        """The controller as JSON text; also written to `path` when one is given.
-        ``tendonsheath.compensate.load`` reads it (the C++ loader does not: it reads the
-        feedforwards only).
-
-        Parameters
-        ----------
-        path : str or Path, optional
-            A file to write the JSON to.
-
-        Returns
-        -------
-        str
-            The JSON text.
-        """
-        return persistence.to_json(self.to_dict(), path)
-
-    @classmethod
-    def load(cls, source) -> AdaptiveController:
-        """A controller saved with :meth:`to_json` (a path, JSON text or a dict).
-
-        Parameters
-        ----------
-        source : str, Path or dict
-            A path to a JSON file, JSON text, or the dict itself.
-
-        Returns
-        -------
-        AdaptiveController
-            The saved controller.
-
-        Raises
-        ------
-        ValueError
-            An unreadable source or an invalid compensator file.
-        TypeError
-            The file holds another kind of compensator.
-        """
-        return persistence.load_as(cls, source)
-
-    @classmethod
-    def _from_saved(cls, values: dict) -> AdaptiveController:
-        return cls(**values)
