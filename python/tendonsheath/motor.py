@@ -8,7 +8,7 @@ import numpy as np
 
 from . import _core as core
 from ._args import number, python_names
-from ._arrays import as_time_and_signal, checked_dt
+from ._arrays import as_timed_signal, checked_dt
 from .status import Status
 
 # a constructor's arguments -> the MotorParams fields they set, by kind (a position motor's
@@ -235,9 +235,7 @@ class Motor:
         ValueError
             t missing, or samples not finite or of different lengths.
         """
-        ts, us = as_time_and_signal(t, command, "command")
-        if ts is None:
-            raise ValueError("Motor.simulate: t is required")
+        ts, us = as_timed_signal(t, command, "command", "Motor.simulate")
         m = core.Motor(self._params)
         out = np.empty_like(us)
         for k in range(us.size):

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .._arrays import as_time_and_signal, checked_dt
+from .._arrays import as_timed_signal, checked_dt
 from ..status import Status
 from . import persistence
 
@@ -149,9 +149,7 @@ class Feedforward(EngineCompensator):
         ValueError
             t missing, or samples not finite or of different lengths.
         """
-        ts, ys = as_time_and_signal(t, y_desired, "y_desired")
-        if ts is None:
-            raise ValueError(f"{type(self).__name__}.command needs the time vector t")
+        ts, ys = as_timed_signal(t, y_desired, "y_desired", f"{type(self).__name__}.command")
         return self._engine.command(ts, ys, bool(status))
 
     def to_control(self, dt: float, name: str | None = None, inputs=None, output=None):
