@@ -142,3 +142,17 @@ def test_an_unknown_result_field_is_a_type_error_naming_it():
         ts.SimulationResult(np.zeros(3), mesured=np.zeros(3))
     ok = ts.SimulationResult(np.zeros(3), measured=np.ones(3))
     np.testing.assert_array_equal(ok.measured, np.ones(3))
+
+
+def test_motor_simulate_returns_the_result_type_too():
+    t = np.linspace(0.0, 1.0, 201)
+    command = np.sin(2 * np.pi * t)
+    motor = ts.Motor.position(bandwidth_hz=5.0)
+    res = motor.simulate(t, command)
+    assert isinstance(res, ts.SimulationResult) and res.success
+    np.testing.assert_array_equal(res.t, t)
+    np.testing.assert_array_equal(res.input, command)
+    # the same samples as stepping the motor by hand
+    fresh = ts.Motor.position(bandwidth_hz=5.0)
+    by_hand = [fresh.step(u, 0.0 if k == 0 else t[k] - t[k - 1]) for k, u in enumerate(command)]
+    np.testing.assert_allclose(np.asarray(res), by_hand, rtol=0, atol=1e-15)

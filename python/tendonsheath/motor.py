@@ -9,6 +9,7 @@ import numpy as np
 from . import _core as core
 from ._args import number, python_names
 from ._arrays import as_timed_signal, checked_dt
+from .simulation_result import SimulationResult
 from .status import Status
 
 # a constructor's arguments -> the MotorParams fields they set, by kind (a position motor's
@@ -215,7 +216,7 @@ class Motor:
         """
         return Status(self._engine.status())
 
-    def simulate(self, t, command) -> np.ndarray:
+    def simulate(self, t, command) -> SimulationResult:
         """Motor position for a command sequence, unloaded (starts from rest).
 
         Parameters
@@ -227,8 +228,9 @@ class Motor:
 
         Returns
         -------
-        numpy.ndarray of float, shape (n,)
-            The pulley angle at each sample (rad).
+        SimulationResult
+            The pulley angle at each sample (rad), shape (n,), as an array; ``t``, ``input``
+            (the command), ``success``/``message`` and ``.plot()`` like every ``simulate``.
 
         Raises
         ------
@@ -240,7 +242,7 @@ class Motor:
         out = np.empty_like(us)
         for k in range(us.size):
             out[k] = m.step(us[k], 0.0 if k == 0 else ts[k] - ts[k - 1], 0.0)
-        return out
+        return SimulationResult(out, t=ts, input=us)
 
     def __repr__(self) -> str:
         inner = ", ".join(f"{k}={v:.6g}" for k, v in self.params.items())
