@@ -241,32 +241,6 @@ class AdaptiveController(EngineCompensator):
         dt = checked_dt(dt)
         return self._engine.step(float(y_d), float(y_measured), float(motor_position), float(dt))
 
-    def to_control(self, dt: float, name: str | None = None, inputs=None, output=None):
-        """This controller as a discrete-time ``control.NonlinearIOSystem`` with sample time dt
-        (s): inputs ``y_d``, ``y`` (measured distal output) and ``q`` (motor angle), output
-        ``torque``; one state, the index of an exact snapshot of the engine (see
-        :mod:`tendonsheath.control_interop`).
-
-        Parameters
-        ----------
-        dt : float
-            Sample time (s), > 0.
-        name : str, optional
-            The system's name.
-        inputs : list of str, optional
-            Input signal names (default y_d, y, q).
-        output : str, optional
-            Output signal name (default torque).
-
-        Returns
-        -------
-        control.NonlinearIOSystem
-            The discrete-time system.
-        """
-        from ..control_interop import to_system
-
-        return to_system(self, dt, inputs, output, name)
-
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], u[1], u[2], dt)
 

@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 from .._arrays import as_timed_signal, checked_dt
+from ..control_interop import _ControlBlock
 from ..status import Status
 from . import persistence
 
 
-class EngineCompensator:
+class EngineCompensator(_ControlBlock):
     """What every compensator built on a C++ engine shares: its status, its constructor
     settings and saving them (``to_json``/``load``), and the engine ``bench.run`` steps."""
 
@@ -151,32 +152,3 @@ class Feedforward(EngineCompensator):
         """
         ts, ys = as_timed_signal(t, y_desired, "y_desired", f"{type(self).__name__}.command")
         return self._engine.command(ts, ys, bool(status))
-
-    def to_control(self, dt: float, name: str | None = None, inputs=None, output=None):
-        """This compensator as a discrete-time ``control.NonlinearIOSystem`` with sample time dt
-        (s): input ``y_d``, output ``x`` (the motor command, the input name of a model's
-        system, so ``control.interconnect`` connects them by name); one state, the index of an
-        exact snapshot of the engine (see :mod:`tendonsheath.control_interop`).
-
-        Parameters
-        ----------
-        dt : float
-            Sample time (s), > 0.
-        name : str, optional
-            The system's name.
-        inputs : str or list of str, optional
-            Input signal names (default ``control_inputs``).
-        output : str, optional
-            Output signal name (default ``control_output``).
-
-        Returns
-        -------
-        control.NonlinearIOSystem
-            The discrete-time system.
-        """
-        from ..control_interop import to_system
-
-        return to_system(self, dt, inputs, output, name)
-
-    def _control_step(self, u, dt: float) -> float:
-        return self.step(u[0], dt)
