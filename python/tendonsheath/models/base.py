@@ -17,6 +17,7 @@ from .._args import python_names, renamed
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import read_json_source
+from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
 from ..status import Status
 
@@ -50,7 +51,7 @@ def _returning_result(simulate):
     return wrapper
 
 
-class HysteresisModel:
+class HysteresisModel(_ControlBlock):
     """A single-input single-output model backed by a real-time C++ core object.
 
     Subclasses declare ``_core`` (the C++ class), ``_core_params`` (its parameter
@@ -233,36 +234,6 @@ class HysteresisModel:
         if not self.reports_status:
             raise TypeError(f"{type(self).__name__} has no real-time core and reports no status")
         return Status(self._engine.status())
-
-    # -- python-control ---------------------------------------------------------------
-    def to_control(self, dt: float, name: str | None = None, inputs=None, output=None):
-        """This model as a discrete-time ``control.NonlinearIOSystem`` with sample time dt (s),
-        input ``x`` (and ``curve_angle`` where the model takes one), output ``y`` and one state,
-        the index of an exact snapshot of the engine (see :mod:`tendonsheath.control_interop`).
-        Needs python-control: ``pip install 'tendonsheath[control]'``.
-
-        Parameters
-        ----------
-        dt : float
-            Sample time (s), > 0.
-        name : str, optional
-            The system's name.
-        inputs : str or list of str, optional
-            Input signal names (default ``control_inputs``).
-        output : str, optional
-            Output signal name (default ``control_output``).
-
-        Returns
-        -------
-        control.NonlinearIOSystem
-            The discrete-time system.
-        """
-        from ..control_interop import to_system
-
-        return to_system(self, dt, inputs, output, name)
-
-    def _control_step(self, u, dt: float) -> float:
-        return self.step(u[0], dt)
 
     # -- persistence -----------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
