@@ -10,10 +10,11 @@ from __future__ import annotations
 import numpy as np
 
 from . import _core as core
+from ._typing import ArrayLike, FloatArray
 from .route import Route
 
 
-def tanh_half_over(a):
+def tanh_half_over(a: ArrayLike) -> FloatArray:
     """tanh(a/2)/a, -> 1/2 - a^2/24 as a -> 0.
 
     Parameters
@@ -31,7 +32,7 @@ def tanh_half_over(a):
     return np.where(np.abs(a) < 1e-4, 0.5 - a * a / 24, np.tanh(safe / 2) / safe)
 
 
-def capstan_ratio(mu, total_angle, direction=1.0):
+def capstan_ratio(mu: ArrayLike, total_angle: ArrayLike, direction: ArrayLike = 1.0) -> FloatArray:
     """Full-slip distal/proximal tension ratio T_d/T_p = exp(-direction mu Theta) (A1).
 
     Parameters
@@ -51,7 +52,7 @@ def capstan_ratio(mu, total_angle, direction=1.0):
     return np.exp(-np.asarray(direction) * np.asarray(mu) * np.asarray(total_angle))
 
 
-def route_shape(route, mu: float) -> core.ShapeIntegrals:
+def route_shape(route: Route, mu: float) -> core.ShapeIntegrals:
     """g, G and Theta of a route (anything with ``s`` and ``theta`` samples) for friction mu,
     as the C++ core's compensators take them.
 
@@ -94,7 +95,9 @@ def shape_integrals(route: Route, mu: float) -> tuple[float, float]:
     return float(shape.g), float(shape.G)
 
 
-def backlash_half_width(length, EA, pretension, mu, total_angle):
+def backlash_half_width(
+    length: ArrayLike, EA: ArrayLike, pretension: ArrayLike, mu: ArrayLike, total_angle: ArrayLike
+) -> FloatArray:
     """e_b = T0 L tanh(mu Theta/2) / EA: half the pull-pull dead zone, uniform curvature (A7).
 
     Parameters
@@ -123,7 +126,9 @@ def backlash_half_width(length, EA, pretension, mu, total_angle):
     )
 
 
-def load_offset(length, EA, load_force, mu, total_angle):
+def load_offset(
+    length: ArrayLike, EA: ArrayLike, load_force: ArrayLike, mu: ArrayLike, total_angle: ArrayLike
+) -> FloatArray:
     """e_L = F_L L tanh(a/2) / (EA a), a = mu Theta: the load shift of both branches (A7).
 
     Parameters
@@ -152,7 +157,9 @@ def load_offset(length, EA, load_force, mu, total_angle):
     )
 
 
-def load_compliance(length, EA, mu, total_angle):
+def load_compliance(
+    length: ArrayLike, EA: ArrayLike, mu: ArrayLike, total_angle: ArrayLike
+) -> FloatArray:
     """C_L = L tanh(a/2) / (EA a) (m/N): output shift per newton of distal load.
 
     Parameters
@@ -171,10 +178,13 @@ def load_compliance(length, EA, mu, total_angle):
     numpy.ndarray of float
         C_L (m/N), broadcast over the arguments.
     """
-    return np.asarray(length) * tanh_half_over(np.asarray(mu) * np.asarray(total_angle)) / EA
+    a = np.asarray(mu) * np.asarray(total_angle)
+    return np.asarray(length) * tanh_half_over(a) / np.asarray(EA)
 
 
-def spring_slope(length, EA, mu, total_angle, k):
+def spring_slope(
+    length: ArrayLike, EA: ArrayLike, mu: ArrayLike, total_angle: ArrayLike, k: ArrayLike
+) -> FloatArray:
     """Branch slope dx_out/dx_in = 1/(1 + k C_L) with a spring load F_L = k x_out (spec A.4).
 
     Parameters
@@ -198,7 +208,9 @@ def spring_slope(length, EA, mu, total_angle, k):
     return 1.0 / (1.0 + np.asarray(k) * load_compliance(length, EA, mu, total_angle))
 
 
-def dead_zone_width(length, EA, pretension, mu, total_angle):
+def dead_zone_width(
+    length: ArrayLike, EA: ArrayLike, pretension: ArrayLike, mu: ArrayLike, total_angle: ArrayLike
+) -> FloatArray:
     """2 e_b: the input dead zone of a pull-pull pair, uniform curvature (A7).
 
     Parameters
@@ -222,7 +234,7 @@ def dead_zone_width(length, EA, pretension, mu, total_angle):
     return 2.0 * backlash_half_width(length, EA, pretension, mu, total_angle)
 
 
-def no_slack_limit(pretension, mu, total_angle):
+def no_slack_limit(pretension: ArrayLike, mu: ArrayLike, total_angle: ArrayLike) -> FloatArray:
     """Largest distal load F_L before the released tendon goes slack: T0 (a/sinh a)(1 + e^-a).
 
     Parameters
@@ -297,7 +309,14 @@ def pull_pull_offsets(
     return float(fwd), float(bwd)
 
 
-def pull_pull_dead_zone(route1: Route, EA, pretension, mu, load_force=0.0, route2=None) -> float:
+def pull_pull_dead_zone(
+    route1: Route,
+    EA: float,
+    pretension: float,
+    mu: float,
+    load_force: float = 0.0,
+    route2: Route | None = None,
+) -> float:
     """Input dead-zone width (m) of a pull-pull pair: forward minus backward steady offset.
 
     Parameters
@@ -324,7 +343,7 @@ def pull_pull_dead_zone(route1: Route, EA, pretension, mu, load_force=0.0, route
     return f - b
 
 
-def single_tendon_dead_zone(route: Route, EA, distal_tension, mu) -> float:
+def single_tendon_dead_zone(route: Route, EA: float, distal_tension: float, mu: float) -> float:
     """(A4): input travel to reverse a single tendon pulled at distal tension T_d (m).
 
     b = (L/EA) T_p0 [g - e^{-2a} G] with T_p0 = T_d e^{a}; uniform: 4 T_d L sinh^2(a/2)/(EA a).
@@ -351,7 +370,14 @@ def single_tendon_dead_zone(route: Route, EA, distal_tension, mu) -> float:
     return float(route.length / EA * Tp0 * (g - np.exp(-2 * a) * G))
 
 
-def single_tendon_elongation(route: Route, EA, proximal_tension, mu, reference_tension, sign=1):
+def single_tendon_elongation(
+    route: Route,
+    EA: float,
+    proximal_tension: float,
+    mu: float,
+    reference_tension: float,
+    sign: float = 1,
+) -> float:
     """(A3) in full slip: Delta = (L/EA)(T_p g - T_ref) when pulled (sign +1),
     (L/EA)(T_p G - T_ref) when released (sign -1).
 

@@ -18,12 +18,14 @@ import math
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from . import _core as core
 from . import physics, plant_input
 from ._arrays import as_time_and_signal, checked_dt
+from ._typing import ArrayLike, FloatArray
 from .loads import (
     ConstantForce,
     ConstantTorque,
@@ -36,6 +38,9 @@ from .motor import Motor
 from .route import Route
 from .sensor import Sensor
 from .status import Status
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 
 class SlackWarning(RuntimeWarning):
@@ -152,7 +157,8 @@ class _Plant:
     """Shared streaming/batch behaviour; subclasses build ``_engine`` and describe their routes."""
 
     _rows = 1
-    _engine = None
+    # core.SingleTendonPlant, core.PullPullPlant or core.ContinuumPlant, built by the subclass
+    _engine: Any = None
     motor: Motor | None = None
     sensor: Sensor | None = None
     _interpolation = ("hold", plant_input.DEFAULT_SUBSTEPS, plant_input.DEFAULT_LOOKAHEAD)
@@ -344,14 +350,14 @@ class _Plant:
     # -- batch -----------------------------------------------------------------------
     def simulate(
         self,
-        t,
-        command,
+        t: ArrayLike | None,
+        command: ArrayLike,
         routes: Callable | None = None,
         full: bool = False,
         input_interpolation: str | None = None,
         periodic: bool | None = None,
         status: bool = False,
-    ):
+    ) -> FloatArray | tuple[FloatArray, np.ndarray] | SimulationResult:
         """Simulate from rest (on the current route) without touching the streaming state.
 
         ``input_interpolation`` ("hold", "linear", "bandlimited"; default: the plant's, see
@@ -404,8 +410,7 @@ class _Plant:
             if not callable(routes):
                 raise ValueError(f"{name}: routes must be None or a callable t -> Route")
             idx, angles = self._schedule(ts, routes)
-        motor = self._motor_engine
-        motor_arg = core.Motor(self.motor._params) if motor is not None else None
+        motor_arg = core.Motor(self.motor._params) if self.motor is not None else None
         sensor_arg = core.Sensor(self.sensor._params) if self.sensor is not None else None
         mode, fine, lookahead = self._interpolation
         mode = mode if input_interpolation is None else input_interpolation
@@ -475,10 +480,13 @@ class _Plant:
             np.ascontiguousarray(np.vstack(rows)),
         )
 
+    def _lengths(self) -> tuple[float, ...]:
+        raise NotImplementedError  # the subclass's sheath lengths
+
     def _needs_time(self) -> bool:
         return self._engine.time_dependent()
 
-    def plot_tensions(self, ax=None):
+    def plot_tensions(self, ax: Axes | None = None) -> Axes:
         """Draw the tension profile along the route(s) (see :func:`tendonsheath.plots`).
 
         Parameters
@@ -546,7 +554,7 @@ class SingleTendonPlant(_Plant):
         friction: float = 0.1,
         stiffness: float = 2.4e4,
         elements: int = 100,
-        load=None,
+        load: ConstantForce | LinearSpring | SpringPreload | None = None,
         motor: Motor | None = None,
         sensor: Sensor | None = None,
         max_increment: float | None = None,
@@ -579,7 +587,7 @@ class SingleTendonPlant(_Plant):
         self._engine = core.SingleTendonPlant(p, route._core)
         self._setup_io(motor, sensor)
 
-    def _lengths(self):
+    def _lengths(self) -> tuple[float, ...]:
         return (self.route.length,)
 
     def set_route(self, route: Route) -> None:
@@ -705,7 +713,7 @@ class PullPullPlant(_Plant):
         proximal_radius: float = 5e-3,
         distal_radius: float = 5e-3,
         elements: int = 100,
-        load=None,
+        load: ConstantTorque | TorsionalSpring | SpringDamper | None = None,
         motor: Motor | None = None,
         route2: Route | None = None,
         sensor: Sensor | None = None,
@@ -769,7 +777,7 @@ class PullPullPlant(_Plant):
         """Distal pulley radius r_d (m)."""
         return self._engine.params.distal_radius
 
-    def _lengths(self):
+    def _lengths(self) -> tuple[float, ...]:
         return (self.route.length, self.route2.length)
 
     def set_route(self, route: Route, route2: Route | None = None) -> None:

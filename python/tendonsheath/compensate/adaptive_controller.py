@@ -3,11 +3,16 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 from .. import _core as core
 from .._arrays import checked_dt
-from ..models import Backlash, BoucWenBacklash
+from ..models import Backlash, BoucWenBacklash, HysteresisModel
 from ..status import Status
+
+if TYPE_CHECKING:
+    import control  # python-control ships no types: its systems are Any to mypy
 
 _GAINS = (
     "lambda_",
@@ -70,7 +75,12 @@ class AdaptiveController:
     control_inputs = ("y_d", "y", "q")
     control_output = "torque"
 
-    def __init__(self, feedforward_model=None, smoothing: float = 0.05, **gains):
+    def __init__(
+        self,
+        feedforward_model: HysteresisModel | None = None,
+        smoothing: float = 0.05,
+        **gains: float,
+    ):
         unknown = set(gains) - set(_GAINS)
         if unknown:
             raise ValueError(f"AdaptiveController: unknown gain(s) {sorted(unknown)}")
@@ -92,14 +102,14 @@ class AdaptiveController:
     @classmethod
     def from_model(
         cls,
-        model,
+        model: HysteresisModel,
         inertia: float,
         viscous: float = 0.0,
         bandwidth_hz: float = 5.0,
         derivative_cutoff_hz: float | None = None,
         max_torque: float = math.inf,
         noise_std: float = 0.0,
-        **overrides,
+        **overrides: float,
     ) -> AdaptiveController:
         """Gains scaled to a torque-driven motor (inertia J, viscous b, at the motor shaft)
         and an identified backlash model (its mean slope c).
@@ -217,7 +227,13 @@ class AdaptiveController:
         dt = checked_dt(dt)
         return self._engine.step(float(y_d), float(y_measured), float(motor_position), float(dt))
 
-    def to_control(self, dt: float, name: str | None = None, inputs=None, output=None):
+    def to_control(
+        self,
+        dt: float,
+        name: str | None = None,
+        inputs: Sequence[str] | None = None,
+        output: str | None = None,
+    ) -> control.NonlinearIOSystem:
         """This controller as a discrete-time ``control.NonlinearIOSystem`` with sample time dt
         (s): inputs ``y_d``, ``y`` (measured distal output) and ``q`` (motor angle), output
         ``torque``; one state, the index of an exact snapshot of the engine (see

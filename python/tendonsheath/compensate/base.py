@@ -2,9 +2,19 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
 from .._arrays import as_time_and_signal, checked_dt
+from .._typing import ArrayLike, FloatArray
 from ..status import Status
 from . import persistence
+
+if TYPE_CHECKING:
+    import control  # python-control ships no types: its systems are Any to mypy
 
 
 class Feedforward:
@@ -15,7 +25,7 @@ class Feedforward:
     leaves the streaming state untouched.
     """
 
-    _engine: object
+    _engine: Any  # the C++ compensator the subclass builds (each its own class)
     _settings: dict  # the constructor's settings, saved by to_json
     _saved_settings: tuple[str, ...] = ()  # the keys of a saved file, in order
     # signal names of to_control()'s system: desired output in, motor command out
@@ -54,7 +64,9 @@ class Feedforward:
         """
         return Status(self._engine.status())
 
-    def command(self, t, y_desired, status: bool = False):
+    def command(
+        self, t: ArrayLike, y_desired: ArrayLike, status: bool = False
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Motor commands for a whole trajectory; with ``status=True`` returns
         ``(commands, flags)``, flags holding each cycle's :class:`Status` (uint8).
 
@@ -83,7 +95,13 @@ class Feedforward:
             raise ValueError(f"{type(self).__name__}.command needs the time vector t")
         return self._engine.command(ts, ys, bool(status))
 
-    def to_control(self, dt: float, name: str | None = None, inputs=None, output=None):
+    def to_control(
+        self,
+        dt: float,
+        name: str | None = None,
+        inputs: Sequence[str] | None = None,
+        output: str | None = None,
+    ) -> control.NonlinearIOSystem:
         """This compensator as a discrete-time ``control.NonlinearIOSystem`` with sample time dt
         (s): input ``y_d``, output ``x`` (the motor command, the input name of a model's
         system, so ``control.interconnect`` connects them by name); one state, the index of an
@@ -128,7 +146,7 @@ class Feedforward:
         """
         return persistence.compensator_dict(type(self).__name__, self._settings)
 
-    def to_json(self, path=None) -> str:
+    def to_json(self, path: str | Path | None = None) -> str:
         """The compensator as JSON text; also written to `path` when one is given.
         ``tendonsheath.compensate.load`` and the C++ ``tendonsheath/io/json.hpp`` read it.
 

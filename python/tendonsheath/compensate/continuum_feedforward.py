@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any
 
 from .. import _core as core
 from .base import Feedforward
-from .limits import as_limits
+from .limits import LimitsLike, as_limits
+
+if TYPE_CHECKING:
+    from ..models import CurveAngleModel
 
 _MODES = {"exact": core.ContinuumMode.exact, "published": core.ContinuumMode.published}
 
@@ -84,7 +88,7 @@ class ContinuumFeedforward(Feedforward):
         gap_factor: float = 1.0,
         smoothing: float = 0.1,
         mode: str = "exact",
-        limits=None,
+        limits: LimitsLike = None,
     ):
         if mode not in _MODES:
             raise ValueError(
@@ -118,12 +122,12 @@ class ContinuumFeedforward(Feedforward):
     @classmethod
     def from_model(
         cls,
-        model,
+        model: CurveAngleModel,
         tendon_offset: float,
         backbone_length: float,
         total_angle: float,
         mode: str = "exact",
-        **options,
+        **options: Any,
     ) -> ContinuumFeedforward:
         """Built from a ``CurveAngleModel`` identified on the continuum drive (motor angle in,
         bending angle out, its ``distal_radius`` = r_t): friction, EA, T0 and L carry over,

@@ -11,10 +11,13 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .._atomic import write_text
 from .._json_source import read_json_source
+
+if TYPE_CHECKING:
+    from .base import Feedforward
 
 FORMAT_NAME = "tendonsheath.compensator"
 FORMAT_VERSION = 1
@@ -46,7 +49,7 @@ def _finite_or_none(value):
     return None if math.isinf(value) else value
 
 
-def _registry() -> dict[str, type]:
+def _registry() -> dict[str, type[Feedforward]]:
     from .continuum_feedforward import ContinuumFeedforward
     from .curve_angle_feedforward import CurveAngleFeedforward
     from .inverse_feedforward import InverseFeedforward
@@ -56,7 +59,7 @@ def _registry() -> dict[str, type]:
     }
 
 
-def compensator_from_dict(data: dict[str, Any]):
+def compensator_from_dict(data: dict[str, Any]) -> Feedforward:
     """Build the compensator a dict from ``to_dict`` describes; strict: every key checked."""
     if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
         raise ValueError(f"not a tendonsheath compensator file (missing format '{FORMAT_NAME}')")
@@ -116,7 +119,7 @@ def _number(name: str, what: str, value) -> float:
     return float(value)
 
 
-def load_compensator(source: str | Path | dict):
+def load_compensator(source: str | Path | dict) -> Feedforward:
     """Load a compensator saved with ``to_json``: a path, a JSON string or a dict.
 
     Parameters

@@ -4,13 +4,20 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
+
+import numpy as np
 
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import read_json_source
+from .._typing import ArrayLike, FloatArray
 from ..status import Status
+
+if TYPE_CHECKING:
+    import control  # python-control ships no types: its systems are Any to mypy
 
 FORMAT_NAME = "tendonsheath.model"
 FORMAT_VERSION = 1
@@ -55,7 +62,7 @@ class HysteresisModel:
         super().__init_subclass__(**kwargs)
         _REGISTRY[cls.__name__] = cls
 
-    def __init__(self, **values):
+    def __init__(self, **values: Any) -> None:
         unknown = set(values) - set(self.param_names) - set(self.option_names)
         if unknown:
             raise ValueError(
@@ -92,7 +99,7 @@ class HysteresisModel:
         s = self._engine.params
         return {k: _plain(getattr(s, k)) for k in self.option_names}
 
-    def with_params(self, **changes) -> HysteresisModel:
+    def with_params(self, **changes: Any) -> HysteresisModel:
         """A new model with some parameters changed (options kept).
 
         Parameters
@@ -109,7 +116,9 @@ class HysteresisModel:
         return type(self)(**values)
 
     # -- simulation ------------------------------------------------------------------
-    def simulate(self, t, x, status: bool = False):
+    def simulate(
+        self, t: ArrayLike | None, x: ArrayLike, status: bool = False
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Output for the input samples x at times t (t may be None when rate-independent).
 
         Starts from the model's initial state; does not disturb the streaming state.
@@ -187,7 +196,13 @@ class HysteresisModel:
         return Status(self._engine.status())
 
     # -- python-control ---------------------------------------------------------------
-    def to_control(self, dt: float, name: str | None = None, inputs=None, output=None):
+    def to_control(
+        self,
+        dt: float,
+        name: str | None = None,
+        inputs: Sequence[str] | None = None,
+        output: str | None = None,
+    ) -> control.NonlinearIOSystem:
         """This model as a discrete-time ``control.NonlinearIOSystem`` with sample time dt (s),
         input ``x`` (and ``curve_angle`` where the model takes one), output ``y`` and one state,
         the index of an exact snapshot of the engine (see :mod:`tendonsheath.control_interop`).

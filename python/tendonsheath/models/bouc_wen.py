@@ -88,7 +88,7 @@ class BoucWen(HysteresisModel):
         k: float = 1.0,
         max_step: float = 0.05,
         max_substeps: int = 256,
-        **renamed,
+        **renamed: float,
     ):
         unknown = sorted(set(renamed) - set(_RENAMED))
         if unknown:

@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from .._typing import ArrayLike, FloatArray
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel
 
@@ -59,7 +60,7 @@ class Chain(HysteresisModel):
         """No options of its own (each part keeps its own): an empty dict."""
         return {}
 
-    def with_params(self, **changes) -> Chain:
+    def with_params(self, **changes: Any) -> Chain:
         """A new chain with some parameters of its parts changed.
 
         Parameters
@@ -89,7 +90,9 @@ class Chain(HysteresisModel):
             self.first.with_params(**parts["first"]), self.second.with_params(**parts["second"])
         )
 
-    def simulate(self, t, x, status: bool = False):
+    def simulate(
+        self, t: ArrayLike | None, x: ArrayLike, status: bool = False
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """y = second(first(x)); with ``status=True`` also each sample's Status flags, those of
         both parts together (a part without a status, a linear block, adds none).
 

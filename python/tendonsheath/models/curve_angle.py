@@ -6,6 +6,7 @@ import numpy as np
 
 from .. import _core as core
 from .._arrays import as_signal, as_time_and_signal, checked_dt
+from .._typing import ArrayLike, FloatArray
 from .base import HysteresisModel
 
 
@@ -91,7 +92,13 @@ class CurveAngleModel(HysteresisModel):
             distal_radius=distal_radius,
         )
 
-    def simulate(self, t, x, curve_angle=None, status: bool = False):
+    def simulate(
+        self,
+        t: ArrayLike | None,
+        x: ArrayLike,
+        curve_angle: ArrayLike | None = None,
+        status: bool = False,
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Distal angle for motor angles x and curve angle(s) (scalar or per sample); with
         ``status=True`` also each sample's Status flags (held, slack).
 

@@ -21,6 +21,7 @@ import numpy as np
 from scipy.signal import cont2discrete, lfilter, lfilter_zi
 
 from .._arrays import checked_dt
+from .._typing import ArrayLike, FloatArray
 from .base import HysteresisModel
 
 _UNIFORM = 1e-3  # relative spread of the sample time accepted as uniform
@@ -68,7 +69,7 @@ class LinearBlock(HysteresisModel):
     param_names: tuple[str, ...] = ()
     _limits: dict[str, tuple[float, float]] = {}
 
-    def __init__(self, **values):
+    def __init__(self, **values: float) -> None:
         out = {}
         for name in self.param_names:
             raw = values.pop(name)
@@ -124,7 +125,7 @@ class LinearBlock(HysteresisModel):
 
     reports_status = False  # a linear filter in Python: no real-time core, no status
 
-    def simulate(self, t, x) -> np.ndarray:
+    def simulate(self, t: ArrayLike | None, x: ArrayLike) -> FloatArray:
         """Output for the input samples x at uniform times t, from rest at x[0].
 
         Parameters
@@ -224,7 +225,7 @@ class FirstOrderLag(LinearBlock):
     def __init__(self, time_constant: float = 0.05):
         super().__init__(time_constant=time_constant)
 
-    def transfer(self):
+    def transfer(self) -> tuple[list[float], list[float]]:
         """1 / (time_constant s + 1).
 
         Returns
@@ -272,7 +273,7 @@ class SecondOrderLag(LinearBlock):
     def __init__(self, frequency: float = 5.0, damping: float = 0.7):
         super().__init__(frequency=frequency, damping=damping)
 
-    def transfer(self):
+    def transfer(self) -> tuple[list[float], list[float]]:
         """w^2 / (s^2 + 2 damping w s + w^2), w = 2 pi frequency.
 
         Returns

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from .._typing import ArrayLike, FloatArray
 from ..status import Status
 from .base import HysteresisModel
 
@@ -123,7 +124,9 @@ class PlantModel(HysteresisModel):
         """``{"elements": ...}``."""
         return {"elements": self._elements}
 
-    def simulate(self, t, x, status: bool = False):
+    def simulate(
+        self, t: ArrayLike | None, x: ArrayLike, status: bool = False
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Output for the input samples x at times t (needed), from rest at x[0].
 
         Parameters

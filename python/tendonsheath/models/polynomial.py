@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _core as core
+from .._typing import ArrayLike, FloatArray
 from .base import HysteresisModel
 
 
@@ -34,7 +35,9 @@ class Polynomial(HysteresisModel):
     param_names = ("coefficients",)
     option_names = ("odd",)
 
-    def __init__(self, degree: int | None = None, coefficients=None, odd: bool = False):
+    def __init__(
+        self, degree: int | None = None, coefficients: ArrayLike | None = None, odd: bool = False
+    ):
         if coefficients is None:
             if degree is None or int(degree) < 1:
                 raise ValueError("Polynomial: give a degree >= 1 or the coefficients")
@@ -51,7 +54,7 @@ class Polynomial(HysteresisModel):
         n = len(self.params["coefficients"])
         return 2 * n - 1 if self.options["odd"] else n - 1
 
-    def basis(self, u) -> np.ndarray:
+    def basis(self, u: ArrayLike) -> FloatArray:
         """Columns u^k of the powers in use: y = basis(u) @ coefficients.
 
         Parameters

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _core as core
+from .._typing import ArrayLike
 from .base import HysteresisModel
 
 
@@ -32,11 +33,17 @@ class PrandtlIshlinskii(HysteresisModel):
     _core_params = core.PrandtlIshlinskiiParams
     param_names = ("thresholds", "weights")
 
-    def __init__(self, thresholds=(0.0, 0.05, 0.1, 0.15, 0.2), weights=(0.5, 0.2, 0.15, 0.1, 0.05)):
+    def __init__(
+        self,
+        thresholds: ArrayLike = (0.0, 0.05, 0.1, 0.15, 0.2),
+        weights: ArrayLike = (0.5, 0.2, 0.15, 0.1, 0.05),
+    ):
         super().__init__(thresholds=_vector(thresholds), weights=_vector(weights))
 
     @classmethod
-    def uniform(cls, max_threshold: float, count: int, weights=None) -> PrandtlIshlinskii:
+    def uniform(
+        cls, max_threshold: float, count: int, weights: ArrayLike | None = None
+    ) -> PrandtlIshlinskii:
         """count thresholds evenly spaced on [0, max_threshold); weights default to a decay.
 
         Parameters
@@ -102,7 +109,11 @@ class PrandtlIshlinskiiInverse(HysteresisModel):
     _core_params = core.PrandtlIshlinskiiParams
     param_names = ("thresholds", "weights")
 
-    def __init__(self, thresholds=(0.0, 0.05, 0.1, 0.15, 0.2), weights=(0.5, 0.2, 0.15, 0.1, 0.05)):
+    def __init__(
+        self,
+        thresholds: ArrayLike = (0.0, 0.05, 0.1, 0.15, 0.2),
+        weights: ArrayLike = (0.5, 0.2, 0.15, 0.1, 0.05),
+    ):
         super().__init__(thresholds=_vector(thresholds), weights=_vector(weights))
 
     def inverse(self) -> PrandtlIshlinskii:

@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from .._typing import ArrayLike, FloatArray
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel
 
@@ -79,7 +80,7 @@ class Scaled(HysteresisModel):
         """No options of its own: an empty dict."""
         return {}
 
-    def with_params(self, **changes) -> Scaled:
+    def with_params(self, **changes: Any) -> Scaled:
         """A new Scaled model with some parameters changed.
 
         Parameters
@@ -107,7 +108,7 @@ class Scaled(HysteresisModel):
                 raise ValueError(f"Scaled: unknown parameter {key!r}; inner.<name> or {_MAP}")
         return Scaled(self.inner.with_params(**inner), **mapping)
 
-    def to_inner_input(self, x) -> np.ndarray:
+    def to_inner_input(self, x: ArrayLike) -> FloatArray:
         """(x - input_offset) / input_scale.
 
         Parameters
@@ -122,7 +123,7 @@ class Scaled(HysteresisModel):
         """
         return (np.asarray(x, dtype=float) - self.map["input_offset"]) / self.map["input_scale"]
 
-    def from_inner_output(self, u) -> np.ndarray:
+    def from_inner_output(self, u: ArrayLike) -> FloatArray:
         """output_offset + output_gain * u.
 
         Parameters
@@ -152,7 +153,9 @@ class Scaled(HysteresisModel):
         """
         return self.inner.status()
 
-    def simulate(self, t, x, **kwargs):
+    def simulate(
+        self, t: ArrayLike | None, x: ArrayLike, **kwargs: Any
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """The inner model's simulation, in the data's units.
 
         Parameters

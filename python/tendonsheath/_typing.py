@@ -1,0 +1,13 @@
+"""Type aliases of the public signatures."""
+
+from __future__ import annotations
+
+from typing import TypeAlias
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+# an array of samples the package returns
+FloatArray: TypeAlias = NDArray[np.float64]
+
+__all__ = ["ArrayLike", "FloatArray"]
