@@ -3,12 +3,17 @@
 from __future__ import annotations
 
 import platform
+import sys
 import time
 from pathlib import Path
 
 from tendonsheath._atomic import write_json
 
 RESULTS = Path(__file__).resolve().parent / "results"
+# the independent references (tests/reference/) that some benchmarks time or fit against
+TESTS = Path(__file__).resolve().parents[1] / "tests"
+if str(TESTS) not in sys.path:
+    sys.path.append(str(TESTS))
 
 
 def best_time(fn, repeat: int = 3) -> float:

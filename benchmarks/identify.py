@@ -54,6 +54,7 @@ from rich.console import Console
 from rich.table import Table
 from scipy.optimize import differential_evolution
 
+import _common  # noqa: F401 (puts tests/ on sys.path for the reference oscillator)
 import tendonsheath as ts
 from tendonsheath.identify import metrics
 from tendonsheath.identify.data import make_recordings
@@ -222,7 +223,7 @@ def main() -> None:
 def oscillator_draw(i: int, seed: int = 100) -> dict:
     """Parameters of draw i: around the Bouc-Wen benchmark system; even draws softening
     (beta (gamma + delta) < 0), odd draws hardening."""
-    from tendonsheath._reference_oscillator import BENCHMARK
+    from reference.oscillator import BENCHMARK
 
     rng = np.random.default_rng(seed + i)
     p = dict(BENCHMARK)
@@ -238,7 +239,7 @@ def oscillator_draw(i: int, seed: int = 100) -> dict:
 
 def oscillator_case(params: dict, seed: int, period: int = 1024, periods: int = 40) -> dict:
     """One draw: data from the DOP853 reference, identification, validation."""
-    from tendonsheath._reference_oscillator import Multisine, Sweep, simulate_reference
+    from reference.oscillator import Multisine, Sweep, simulate_reference
 
     fs, rms = 750.0, 50.0
     ms = Multisine(fs, period, 5.0, 150.0, rms, seed)

@@ -26,8 +26,9 @@ from pathlib import Path
 
 import numpy as np
 
+import _common  # noqa: F401 (puts tests/ on sys.path for the reference plant)
 import tendonsheath as ts
-from tendonsheath._reference_plant import ReferencePullPull
+from reference.plant import ReferencePullPull
 
 
 def scenario(seconds: float, rate: float = 1000.0):

@@ -15,7 +15,7 @@ runner = CliRunner()
 
 TOML = """
 [run]
-scenario = "example"
+function = "reference.stand_in_study:compensator_study"
 
 [sweep]
 design = "lhs"
@@ -104,7 +104,8 @@ def test_file_format_maps_to_distributions(tmp_path):
     spec = read_sweep_file(write(tmp_path, text))
     assert spec.design.distributions["route_pieces"] == Integers(1, 3)
     assert spec.design.distributions["load"] == Normal(1.0, 0.2)
-    grid = "[run]\nscenario = 'example'\n[sweep]\ndesign = 'grid'\n[parameters]\n"
+    grid = "[run]\nfunction = 'reference.stand_in_study:compensator_study'\n"
+    grid += "[sweep]\ndesign = 'grid'\n[parameters]\n"
     grid += "friction = { linspace = [0.05, 0.15, 3] }\nload = [0.0, 1.0]\nelements = 12\n"
     spec = read_sweep_file(write(tmp_path, grid))
     assert spec.design.size == 6
@@ -117,7 +118,10 @@ def test_file_format_maps_to_distributions(tmp_path):
         (("[0.1, 0.3]", "[0.1, 0.0]"), "friction: Relative: fraction must be > 0"),
         (("[1.5, 4.5]", "[4.5, 4.5]"), "route_angle: Uniform: empty range"),
         (("{ seed = true }", "{ triangular = [0, 1] }"), "unknown distribution 'triangular'"),
-        (('scenario = "example"', 'scenario = "nope"'), "unknown scenario 'nope'"),
+        (
+            ('function = "reference.stand_in_study:compensator_study"', 'scenario = "nope"'),
+            "unknown scenario 'nope'",
+        ),
         (('design = "lhs"', 'design = "sobol"'), "design must be one of"),
         (("n = 6", "n = 0"), "n must be a positive integer"),
         (("seed = 3", "seeed = 3"), "unknown [sweep] key(s) ['seeed']"),

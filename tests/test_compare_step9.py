@@ -9,6 +9,7 @@ from typer.testing import CliRunner
 import tendonsheath as ts
 from tendonsheath import compare, io
 from tendonsheath.cli import app
+from tendonsheath.identify import Identifier
 from tendonsheath.identify.data import make_recordings
 
 FAST = {"maxiter": 10, "popsize": 8}
@@ -18,13 +19,13 @@ def test_held_out_logs_reuse_the_winners_fit(monkeypatch):
     """Issue 18 item 3: with held-out logs the winner was refitted on exactly the data it
     had been fitted on (one more fit of the slowest candidate, same answer)."""
     calls = []
-    real = compare._fit
+    real = Identifier.fit_data
 
-    def counting(cand, recs, options):
-        calls.append(compare.model_name(cand))
-        return real(cand, recs, options)
+    def counting(self, *args, **kwargs):
+        calls.append(compare.model_name(self.model))
+        return real(self, *args, **kwargs)
 
-    monkeypatch.setattr(compare, "_fit", counting)
+    monkeypatch.setattr(Identifier, "fit_data", counting)
     t, x, y = plant_log(n=300)
     t2, x2, y2 = plant_log(n=300, amplitude=0.6)
     cmp = ts.compare_models(

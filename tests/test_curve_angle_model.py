@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import tendonsheath as ts
+from reference import closed_forms as ref
 from tendonsheath.models import CurveAngleModel
 from tendonsheath.physics import backlash_half_width, load_offset, spring_slope
 
@@ -62,7 +63,7 @@ def test_small_angle_series_is_continuous():
     for a in (1e-4 * (1 - 1e-9), 1e-4 * (1 + 1e-9)):
         theta = a / 0.1
         assert m.backlash_half_width(theta) * 5e-3 == pytest.approx(
-            10 * 1.2 / 2.4e4 * np.tanh(a / 2), rel=1e-12
+            ref.backlash_half_width(1.2, 2.4e4, 10.0, a), rel=1e-12
         )
     assert m.backlash_half_width(0.0) == 0.0
     assert load_offset(1.2, 2.4e4, 5.0, 0.1, 0.0) == pytest.approx(5 * 1.2 / 2.4e4 / 2)
@@ -77,7 +78,7 @@ def test_spring_slope_and_straight_sheath():
     y = m.simulate(None, q, curve_angle=theta)
     slope = (y[-1] - y[-500]) / (q[-1] - q[-500])
     assert slope == pytest.approx(c, rel=1e-9)
-    assert c == pytest.approx(1 / (1 + 3e4 * 1.2 * np.tanh(0.05 * np.pi) / (2e3 * 0.1 * np.pi)))
+    assert c == pytest.approx(ref.spring_slope(1.2, 2e3, 3e4, 0.1 * np.pi), rel=1e-14)
     # straight sheath, no load, no spring: output == input
     straight = CurveAngleModel().simulate(None, np.sin(q), curve_angle=0.0)
     assert np.allclose(straight, np.sin(q), atol=1e-15)

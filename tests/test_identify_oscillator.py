@@ -81,7 +81,7 @@ def test_softening_benchmark_system_identified_within_2x_of_its_generating_rmse(
     parameters (ratio 1.34); the criterion is 2x. This short record suffices here because the
     generating rmse (2.4e-7) is large next to the spread the noise leaves in the estimate;
     draws with a smaller one need the benchmark's 40 960 samples."""
-    from tendonsheath._reference_oscillator import BENCHMARK, Multisine, simulate_reference
+    from reference.oscillator import BENCHMARK, Multisine, simulate_reference
 
     ms = Multisine(750.0, 512, 5.0, 150.0, 50.0, 21)
     t, x = ms.samples(3)

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 import tendonsheath as ts
+from reference.oscillator import BENCHMARK, Multisine, simulate_reference
 from tendonsheath import _core as core
-from tendonsheath._reference_oscillator import BENCHMARK, Multisine, simulate_reference
 from tendonsheath.models.hysteretic_oscillator import fft_upsample, is_periodic
 
 

@@ -4,8 +4,9 @@ import numpy as np
 import pytest
 
 import tendonsheath as ts
+from reference import closed_forms as ref
+from reference.plant import ReferencePullPull
 from tendonsheath import physics
-from tendonsheath._reference_plant import ReferencePullPull
 
 
 def ramp(plant, q0, q1, dq):
@@ -69,8 +70,8 @@ def test_pull_pull_offsets_match_A7_uniform(seed):
         elements=200,
         load=ts.loads.ConstantTorque(FL * rd),
     )
-    eb = T0 * L * np.tanh(a / 2) / EA
-    eL = FL * L * np.tanh(a / 2) / (EA * a)
+    eb = ref.backlash_half_width(L, EA, T0, a)
+    eL = ref.load_offset(L, EA, FL, a)
     assert physics.backlash_half_width(L, EA, T0, mu, theta) == pytest.approx(eb)
     assert physics.load_offset(L, EA, FL, mu, theta) == pytest.approx(eL)
     span = 6 * (eb + abs(eL)) / rp

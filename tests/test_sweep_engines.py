@@ -13,8 +13,8 @@ import pandas as pd
 import pytest
 
 import tendonsheath as ts
+from reference.stand_in_study import compensator_study, tracking_mse
 from tendonsheath.sweep import Grid, Relative, Seed, SweepError, Uniform
-from tendonsheath.sweep.example_runs import compensator_study, tracking_mse
 
 distributed = pytest.importorskip("distributed")
 

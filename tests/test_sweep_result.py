@@ -77,11 +77,12 @@ def test_save_writes_tables_summary_and_figures(tmp_path):
 
 
 def test_robustness_study_for_the_report(tmp_path):
+    from reference.stand_in_study import compensator_study
     from tendonsheath.sweep import robustness_section, robustness_study
     from tendonsheath.sweep.studies import robustness_design
 
     design = robustness_design(elements=12, samples=150)
-    res = robustness_study(n=10, seed=1, engine="serial", design=design)
+    res = robustness_study(compensator_study, n=10, seed=1, engine="serial", design=design)
     assert res.n_runs == 10 and res.compensators == ["none", "curve_angle", "inverse_backlash"]
     f = res.table["friction"]
     assert f.between(0.07, 0.13).all() and res.table["route_pieces"].between(1, 4).all()

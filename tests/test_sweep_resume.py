@@ -7,6 +7,7 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pandas as pd
 import pytest
@@ -93,7 +94,7 @@ def test_edited_parameters_in_the_file_are_detected(tmp_path):
 
 TOML = """
 [run]
-scenario = "example"
+function = "reference.stand_in_study:compensator_study"
 
 [sweep]
 design = "random"
@@ -116,7 +117,8 @@ def test_ctrl_c_on_a_local_sweep_keeps_the_finished_runs_and_resumes(tmp_path):
     cfg.write_text(TOML)
     out = tmp_path / "out"
     runs = out / "runs.jsonl"
-    env = {**os.environ, "PYTHONUNBUFFERED": "1"}
+    # PYTHONPATH: the stand-in study (tests/reference/)
+    env = {**os.environ, "PYTHONUNBUFFERED": "1", "PYTHONPATH": str(Path(__file__).parent)}
     cmd = [sys.executable, "-c", "from tendonsheath.cli import main; main()", "sweep", str(cfg),
            "--out", str(out), "--no-figures"]  # fmt: skip
     proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,

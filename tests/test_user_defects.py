@@ -5,6 +5,7 @@ correct result. docs/user-errors.md lists the cases and their messages."""
 
 import json
 import math
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -157,13 +158,13 @@ def test_unguarded_local_sweep_script_says_so_in_one_line(tmp_path):
     script = tmp_path / "my_sweep.py"
     script.write_text(
         "import tendonsheath as ts\n"
-        "from tendonsheath.sweep.example_runs import tracking_mse\n"
+        "from reference.stand_in_study import tracking_mse\n"
         "res = ts.sweep(tracking_mse, {'friction': ts.sweep.Relative(0.1, 0.3)}, n=2,"
         " engine='local', workers=2, progress=False)\n"
     )
-    done = subprocess.run(
-        [sys.executable, str(script)], capture_output=True, text=True, timeout=120, cwd=tmp_path
-    )
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "tests")}  # the stand-in study
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                          timeout=120, cwd=tmp_path, env=env)  # fmt: skip
     assert done.returncode != 0
     last = done.stderr.strip().splitlines()[-1]
     assert 'if __name__ == "__main__":' in last and "my_sweep.py" in last, done.stderr

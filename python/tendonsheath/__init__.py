@@ -4,7 +4,7 @@ from importlib.metadata import version as _version
 
 from . import bench, compensate, io, loads, models, physics, presets
 from .compare import Comparison, compare_models
-from .identify import Fit, IdentifiabilityWarning, identify
+from .identify import Fit, IdentifiabilityWarning, Identifier, identify
 from .models import load_model
 from .motor import Motor
 from .plant import (
@@ -27,6 +27,7 @@ __all__ = [
     "ContinuumPlant",
     "Fit",
     "IdentifiabilityWarning",
+    "Identifier",
     "Motor",
     "PullPullPlant",
     "Route",

@@ -336,56 +336,23 @@ def identify(
     quiet: bool = _quiet_option(),
 ) -> None:
     """Fit MODEL to DATA and save it as JSON; print the fit table and the validation error."""
-    from . import io
     from ._progress import wanted
-    from .identify import identify as run_identify
-    from .identify.core import check_search_options
 
-    _checked(check_output_file, out)
-    if report is not None:
-        _checked(check_image_file, report)
-    _checked(
-        check_search_options, maxiter=maxiter, popsize=15, tol=0.01, workers=None, warmup=warmup
-    )
+    _check_identify_options(out, report, maxiter, warmup)
     candidate = _checked(_model_spec, model)
-    columns = {"time": time_col, "input": input_col, "output": output_col}
-    try:
-        logs = [
-            io.read_log(
-                path, time=time_col, input=input_col, output=output_col, curve_angle=curve_angle
-            )
-            for path in data
-        ]
-        vlog = None
-        if validate is not None:
-            vlog = io.read_log(
-                validate, time=time_col, input=input_col, output=output_col, curve_angle=curve_angle
-            )
-        for log in logs + ([vlog] if vlog is not None else []):  # before the (long) fitting
-            _print_notes(log)
-        with warnings.catch_warnings():  # printed below with the diagnostics
-            warnings.simplefilter("ignore", IdentifiabilityWarning)
-            fit = run_identify(
-                candidate,
-                recordings=logs,
-                warmup=warmup,
-                seed=seed,
-                maxiter=maxiter,
-                progress=wanted(quiet),
-                standard_errors=standard_errors,
-                bootstrap=resamples,
-                time_budget=time_budget,
-            )
-        val = None
-        if vlog is not None:
-            val = fit.validate(vlog.t, vlog.x, vlog.y, vlog.curve_angle)
-    except ValueError as exc:
-        _fail(exc)
-    _check_finite("the fit", {"rmse": fit.rmse, "nrmse": fit.nrmse})
-    if val is not None:
-        _check_finite(f"validation on {validate}", {k: val[k] for k in ("rmse", "nrmse")})
-    _save_fit(out, fit, val, {**columns, "curve_angle": curve_angle})
-    _print_fit(fit, len(logs), output_col)
+    columns = dict(time=time_col, input=input_col, output=output_col, curve_angle=curve_angle)
+    search = {
+        "warmup": warmup,
+        "seed": seed,
+        "maxiter": maxiter,
+        "progress": wanted(quiet),
+        "standard_errors": standard_errors,
+        "bootstrap": resamples,
+        "time_budget": time_budget,
+    }
+    fit, val, n_logs = _checked(_fit_logs, candidate, data, validate, columns, search)
+    _save_fit(out, fit, val, columns)
+    _print_fit(fit, n_logs, output_col)
     if val is not None:
         console.print(
             f"validation on {validate}: rmse {val['rmse']:.4g} ({output_col} units)   "
@@ -394,6 +361,48 @@ def identify(
     if report is not None:
         console.print(f"report: {fit.report(report)}")
     console.print(f"model saved to {out}")
+
+
+def _read_logs(paths, columns: dict, **options) -> list:
+    """``io.read_log`` of each file, with the named ``columns`` (time, input, output and
+    curve_angle) and the other ``options``."""
+    from . import io
+
+    return [io.read_log(path, **columns, **options) for path in paths]
+
+
+def _fit_logs(candidate, data: list[Path], validate: Path | None, columns: dict, search: dict):
+    """Fit ``candidate`` to the recordings in ``data`` (``search``: identify's options) and
+    validate it on ``validate``: (fit, validation metrics or None, number of recordings).
+    A fit or a validation error that is not finite is an error (exit 2)."""
+    from .identify import identify as run_identify
+
+    logs = _read_logs(data, columns)
+    vlog = _read_logs([validate], columns)[0] if validate is not None else None
+    for log in logs + ([vlog] if vlog is not None else []):  # before the (long) fitting
+        _print_notes(log)
+    with warnings.catch_warnings():  # printed below with the diagnostics
+        warnings.simplefilter("ignore", IdentifiabilityWarning)
+        fit = run_identify(candidate, recordings=logs, **search)
+    val = None
+    if vlog is not None:
+        val = fit.validate(vlog.t, vlog.x, vlog.y, vlog.curve_angle)
+    _check_finite("the fit", {"rmse": fit.rmse, "nrmse": fit.nrmse})
+    if val is not None:
+        _check_finite(f"validation on {validate}", {k: val[k] for k in ("rmse", "nrmse")})
+    return fit, val, len(logs)
+
+
+def _check_identify_options(out: Path, report: Path | None, maxiter: int, warmup: int) -> None:
+    """One-line errors for identify's output files and search options, before any work."""
+    from .identify.core import check_search_options
+
+    _checked(check_output_file, out)
+    if report is not None:
+        _checked(check_image_file, report)
+    _checked(
+        check_search_options, maxiter=maxiter, popsize=15, tol=0.01, workers=None, warmup=warmup
+    )
 
 
 def _model_spec(name: str):
@@ -561,14 +570,6 @@ def sweep_command(
 ) -> None:
     """Run a robustness sweep from a TOML file; write the table (CSV, Parquet), a summary
     (quantiles per compensator, fraction within the bound), a sensitivity ranking and figures."""
-    import hashlib
-
-    from rich.markup import escape
-
-    from .sweep import SweepError, sweep
-    from .sweep.toml import read_sweep_file
-
-    err = Console(stderr=True)
     if bound is not None and not (np.isfinite(bound) and bound > 0):
         _fail(f"--bound must be a finite number > 0 (got {bound})")
     if workers is not None and workers < 1:
@@ -576,72 +577,13 @@ def sweep_command(
     if n is not None and n < 1:
         _fail(f"--n must be >= 1 (got {n})")
     _checked(check_output_folder, out)
-    runs_file = out / "runs.jsonl"
-    try:
-        spec = read_sweep_file(config)
-        if not resume:
-            runs_file.unlink(missing_ok=True)
-        engine = scheduler or spec.scheduler or "local"
-        res = sweep(
-            spec.run,
-            spec.design,
-            n=n if n is not None else spec.n,
-            seed=seed if seed is not None else spec.seed,
-            engine=engine,
-            workers=workers if workers is not None else spec.workers,
-            batch_size=spec.batch_size,
-            on_error=spec.on_error,
-            retries=spec.retries,
-            progress=False if quiet else None,  # None: a bar on a terminal only
-            checkpoint=runs_file,
-            checkpoint_tag=hashlib.sha256(config.read_bytes()).hexdigest()[:16],
-        )
-        the_bound = bound if bound is not None else spec.bound
-        written = res.save(out, bound=the_bound, figures=figures)
-    except (ValueError, ConnectionError, SweepError) as exc:
-        err.print(f"[red]error:[/red] {escape(str(exc))}", soft_wrap=True, highlight=False)
-        raise typer.Exit(2) from None
-    except KeyboardInterrupt:
-        err.print(
-            f"interrupted (Ctrl-C): sweep stopped; its finished runs are kept in {runs_file}: "
-            "the same command resumes from them",
-            soft_wrap=True,
-            highlight=False,
-        )
-        raise typer.Exit(130) from None
-
+    overrides = {"n": n, "seed": seed, "workers": workers, "bound": bound}
+    res, the_bound, written = _run_sweep_file(
+        config, out, scheduler, overrides, figures, resume, quiet
+    )
     metric = res.primary_metric()
-    summary = res.summary(the_bound)
-    summary = summary[summary["metric"] == metric]
-    table = Table(title=f"{metric} over {res.n_runs} runs ({res.design}, seed {res.seed})")
-    table.add_column("compensator")
-    for col in ("median", "q95", "max"):
-        table.add_column(col, justify="right")
-    has_bound = "within_bound" in summary
-    if has_bound:
-        table.add_column(f"<= {summary['bound'].iloc[0]:g}", justify="right")
-    for _, row in summary.iterrows():
-        cells = [f"{row[c]:.4g}" for c in ("median", "q95", "max")]
-        if has_bound:
-            cells.append(f"{100 * row['within_bound']:.0f} %")
-        table.add_row(str(row["compensator"]), *cells)
-    console.print(table)
-    try:
-        sens = res.sensitivity(metrics=metric)
-    except ValueError:
-        sens = None
-    if sens is not None and len(sens):
-        value = "ST" if "ST" in sens else "coefficient"
-        for comp, g in sens.groupby("compensator", sort=False):
-            ranking = ", ".join(f"{r['parameter']} ({r[value]:+.2f})" for _, r in g.iterrows())
-            note = ""
-            if "r2" in g and g["r2"].iloc[0] < 0.5:
-                note = (
-                    f" [dim](linear R2 = {g['r2'].iloc[0]:.2f}: effects are non-linear, "
-                    "e.g. error growing both ways from nominal; design = 'saltelli' gives "
-                    "Sobol indices)[/dim]"
-                )
-            console.print(f"most influential on {metric} ({comp}): {ranking}{note}")
+    _print_sweep_summary(res, metric, the_bound)
+    _print_sensitivity(res, metric)
     e = res.engine
     console.print(
         f"{res.n_runs} runs on {e['engine']} ({e['workers']} worker"
@@ -656,6 +598,97 @@ def sweep_command(
     console.print(f"wrote {len(written)} files to {out}:")
     for path in written:
         console.print(f"  {path}", soft_wrap=True, highlight=False)
+
+
+def _run_sweep_file(config: Path, out: Path, scheduler, overrides: dict, figures, resume, quiet):
+    """Run the sweep of ``config`` (``overrides``: the command line's n, seed, workers and
+    bound where given) and save it to ``out``: (result, bound, files written). A bad file
+    or a failed sweep is one line on stderr and exit 2; Ctrl-C keeps the finished runs."""
+    import hashlib
+
+    from rich.markup import escape
+
+    from .sweep import SweepError, sweep
+    from .sweep.toml import read_sweep_file
+
+    err = Console(stderr=True)
+    runs_file = out / "runs.jsonl"
+
+    def given(key, default):
+        return overrides[key] if overrides[key] is not None else default
+
+    try:
+        spec = read_sweep_file(config)
+        if not resume:
+            runs_file.unlink(missing_ok=True)
+        res = sweep(
+            spec.run,
+            spec.design,
+            n=given("n", spec.n),
+            seed=given("seed", spec.seed),
+            engine=scheduler or spec.scheduler or "local",
+            workers=given("workers", spec.workers),
+            batch_size=spec.batch_size,
+            on_error=spec.on_error,
+            retries=spec.retries,
+            progress=False if quiet else None,  # None: a bar on a terminal only
+            checkpoint=runs_file,
+            checkpoint_tag=hashlib.sha256(config.read_bytes()).hexdigest()[:16],
+        )
+        the_bound = given("bound", spec.bound)
+        return res, the_bound, res.save(out, bound=the_bound, figures=figures)
+    except (ValueError, ConnectionError, SweepError) as exc:
+        err.print(f"[red]error:[/red] {escape(str(exc))}", soft_wrap=True, highlight=False)
+        raise typer.Exit(2) from None
+    except KeyboardInterrupt:
+        err.print(
+            f"interrupted (Ctrl-C): sweep stopped; its finished runs are kept in {runs_file}: "
+            "the same command resumes from them",
+            soft_wrap=True,
+            highlight=False,
+        )
+        raise typer.Exit(130) from None
+
+
+def _print_sweep_summary(res, metric: str, bound) -> None:
+    """Median, q95 and max of the primary metric per compensator (and the fraction of runs
+    within the bound)."""
+    summary = res.summary(bound)
+    summary = summary[summary["metric"] == metric]
+    table = Table(title=f"{metric} over {res.n_runs} runs ({res.design}, seed {res.seed})")
+    table.add_column("compensator")
+    for col in ("median", "q95", "max"):
+        table.add_column(col, justify="right")
+    has_bound = "within_bound" in summary
+    if has_bound:
+        table.add_column(f"<= {summary['bound'].iloc[0]:g}", justify="right")
+    for _, row in summary.iterrows():
+        cells = [f"{row[c]:.4g}" for c in ("median", "q95", "max")]
+        if has_bound:
+            cells.append(f"{100 * row['within_bound']:.0f} %")
+        table.add_row(str(row["compensator"]), *cells)
+    console.print(table)
+
+
+def _print_sensitivity(res, metric: str) -> None:
+    """The parameters ranked by their influence on ``metric``, per compensator."""
+    try:
+        sens = res.sensitivity(metrics=metric)
+    except ValueError:
+        return
+    if not len(sens):
+        return
+    value = "ST" if "ST" in sens else "coefficient"
+    for comp, g in sens.groupby("compensator", sort=False):
+        ranking = ", ".join(f"{r['parameter']} ({r[value]:+.2f})" for _, r in g.iterrows())
+        note = ""
+        if "r2" in g and g["r2"].iloc[0] < 0.5:
+            note = (
+                f" [dim](linear R2 = {g['r2'].iloc[0]:.2f}: effects are non-linear, "
+                "e.g. error growing both ways from nominal; design = 'saltelli' gives "
+                "Sobol indices)[/dim]"
+            )
+        console.print(f"most influential on {metric} ({comp}): {ranking}{note}")
 
 
 class _FilesAfterValidate(TyperCommand):
@@ -748,57 +781,66 @@ def compare(
     ),
 ) -> None:
     """Fit candidate models on DATA, rank them on held-out data against y = a x + b."""
-    from . import io
-    from .compare import compare_models
+    _check_split_options(holdout, validate, folds)
+    if report is not None:
+        _checked(check_output_folder, report, "--report")
+    columns = dict(time=time_col, input=input_col, output=output_col, curve_angle=curve_angle)
+    logs = _checked(_read_logs, data, columns, resample=resample)
+    vlogs = _checked(_read_logs, validate, columns, resample=resample) if validate else None
+    _checked(_check_comparable, logs + (vlogs or []), output_col)
+    split = vlogs if vlogs else (holdout if holdout is not None else "cv")
+    options = {"folds": folds, "seed": seed, "maxiter": maxiter, "time_budget": time_budget}
+    result = _checked(_compare_models, logs, models, split, quiet, options)
+    _print_comparison(result, output_col)
+    how = {
+        True: "fitted on all the data",
+        False: "fitted on the training files" if vlogs else "refitted on the whole files",
+    }[holdout is None and not vlogs]
+    console.print(f"winner: {result.winner_name} ({how})")
+    if report is not None:
+        console.print(f"report: {result.report(report)}")
 
+
+def _check_split_options(holdout: float | None, validate, folds: int | None) -> None:
+    """--holdout, --validate and --folds: one way to hold data out."""
     if holdout is not None and not 0.0 < holdout < 1.0:
         _fail(f"--holdout must be in (0, 1) (got {holdout})")
     if holdout is not None and validate:
         _fail("--holdout and --validate exclude each other")
     if folds is not None and (holdout is not None or validate):
         _fail("--folds is for cross-validation: not with --holdout or --validate")
-    if report is not None:
-        _checked(check_output_folder, report, "--report")
-    try:
 
-        def read(path):
-            return io.read_log(
-                path,
-                time=time_col,
-                input=input_col,
-                output=output_col,
-                curve_angle=curve_angle,
-                resample=resample,
+
+def _check_comparable(logs: list, output_col: str) -> None:
+    """A recording whose output is constant has nothing to compare; print the others' notes."""
+    for log in logs:  # before the (long) fitting
+        if np.ptp(log.y) == 0.0:
+            raise ValueError(
+                f"{log.path}: the output {output_col} is constant ({log.y[0]:g}): "
+                "there is nothing to compare"
             )
+        _print_notes(log)
 
-        logs = [read(p) for p in data]
-        vlogs = [read(p) for p in validate] if validate else None
-        for log in logs + (vlogs or []):  # before the (long) fitting
-            if np.ptp(log.y) == 0.0:
-                raise ValueError(
-                    f"{log.path}: the output {output_col} is constant ({log.y[0]:g}): "
-                    "there is nothing to compare"
-                )
-            _print_notes(log)
-        candidates = [m for m in models.split(",") if m.strip()] if models else None
 
-        def done(name, seconds):
-            if not quiet:
-                console.print(f"  fitted {name} ({seconds:.1f} s)", highlight=False)
+def _compare_models(logs: list, models: str | None, validate, quiet: bool, options: dict):
+    """compare_models on ``logs`` with the candidates named in ``models`` (comma-separated;
+    None: the default candidates), printing a line as each candidate is fitted."""
+    from .compare import compare_models
 
-        result = compare_models(
-            logs,
-            models=candidates,
-            validate=vlogs if vlogs else (holdout if holdout is not None else "cv"),
-            folds=folds,
-            seed=seed,
-            maxiter=maxiter,
-            on_fit=done,
-            progress=not quiet,
-            time_budget=time_budget,
-        )
-    except ValueError as exc:
-        _fail(exc)
+    candidates = [m for m in models.split(",") if m.strip()] if models else None
+
+    def done(name, seconds):
+        if not quiet:
+            console.print(f"  fitted {name} ({seconds:.1f} s)", highlight=False)
+
+    return compare_models(
+        logs, models=candidates, validate=validate, on_fit=done, progress=not quiet, **options
+    )
+
+
+def _print_comparison(result, output_col: str) -> None:
+    """The comparison table (a failed candidate's reason above it); a winner whose
+    validation error is not finite is an error."""
     table = Table(title=f"model comparison ({result.mode})")
     table.add_column("model")
     for col in (
@@ -833,13 +875,6 @@ def compare(
             f"winner {result.winner_name}",
             {"val rmse": winner.get("val_rmse"), "val nrmse": winner.get("val_nrmse")},
         )
-    how = {
-        True: "fitted on all the data",
-        False: "fitted on the training files" if vlogs else "refitted on the whole files",
-    }[holdout is None and not vlogs]
-    console.print(f"winner: {result.winner_name} ({how})")
-    if report is not None:
-        console.print(f"report: {result.report(report)}")
 
 
 @app.command("export")

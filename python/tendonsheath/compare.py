@@ -32,11 +32,11 @@ import numpy as np
 
 from ._atomic import save_figure, write_json, write_text
 from ._compare_progress import CompareProgress
-from .identify import identify
 from .identify.core import SEARCH_DEADLINE
+from .identify.cross_validation import estimator_split, evaluate_splits, recording_splits
 from .identify.data import make_recordings
 from .identify.dynamic import is_dynamic_chain
-from .identify.fit import metrics, simulate_model
+from .identify.estimator import Identifier
 from .models import (
     Backlash,
     BoucWenBacklash,
@@ -400,10 +400,6 @@ def _affine(recs) -> np.ndarray:
     return np.linalg.lstsq(A, y, rcond=None)[0]  # [b, a]
 
 
-def _fit(candidate, recs, options: dict):
-    return identify(candidate, recordings=recs, **options)
-
-
 def _piece(r, a: int, b: int):
     return r.take(slice(a, b))
 
@@ -422,16 +418,7 @@ def _folds(recs, folds: int | None) -> tuple[list[tuple[list, list]], str]:
     (its input is known) but counted only after the block's end.
     """
     if len(recs) >= 2:
-        k = len(recs) if len(recs) <= 10 and folds is None else min(folds or 5, len(recs))
-        if k < 2:
-            raise ValueError(f"folds: at least 2 are needed (got {folds})")
-        groups = [list(range(g, len(recs), k)) for g in range(k)]
-        out = []
-        for g in groups:
-            train = [r for i, r in enumerate(recs) if i not in g]
-            out.append((train, [(recs[i], 0, recs[i].n) for i in g]))
-        what = "recording" if k == len(recs) else "group of recordings"
-        return out, f"cross-validation: leave one {what} out ({k} folds)"
+        return recording_splits(recs, folds)
     (r,) = recs
     k = 3 if folds is None else int(folds)
     if k < 2:
@@ -576,12 +563,44 @@ def compare_models(
     ValueError
         Bad logs, models, validation or time budget.
     """
+    _check_time_budget(time_budget)
+    recs = make_recordings(recordings=list(_as_recs(logs)), curve_angle=curve_angle)
+    has_angle = all(r.curve_angle is not None for r in recs)
+    candidates, names = _candidates(models, recs, has_angle)
+    # one estimator per candidate, cloned per fold; one bar for the comparison
+    settings = dict(seed=seed, maxiter=maxiter, popsize=popsize, workers=workers, progress=False)
+    estimators = [Identifier(c, **settings) for c in candidates]
+    splits, mode = _splits(recs, validate, folds, curve_angle)
+    cv = isinstance(validate, str)
+    splits = _without_initial_transients(splits)
+    mode += "; " + SETTLE_NOTE
+    validation = _validation_slots(splits)
+
+    b, a = _affine(recs if not isinstance(validate, int | float) or refit else splits[0][0])
+    final = cv or (refit and isinstance(validate, int | float))
+    run = _Run(splits, validation, time_budget, progress, len(candidates), final)
+    token = SEARCH_DEADLINE.set(run.deadline)
+    try:
+        rows, fits = run.all_candidates(estimators, names, has_angle, on_fit)
+        fits[AFFINE] = Polynomial(coefficients=[b, a])
+    finally:
+        SEARCH_DEADLINE.reset(token)
+    try:
+        winner, winner_fit, best = _winner(rows, fits, estimators, names, recs, run)
+    finally:
+        run.view.close()
+    return Comparison(rows, winner, best, fits, validation, mode, winner_fit)
+
+
+def _check_time_budget(time_budget) -> None:
     if time_budget is not None and not (
         isinstance(time_budget, int | float) and time_budget > 0 and np.isfinite(time_budget)
     ):
         raise ValueError(f"time_budget must be a number of seconds > 0 (got {time_budget!r})")
-    recs = make_recordings(recordings=list(_as_recs(logs)), curve_angle=curve_angle)
-    has_angle = all(r.curve_angle is not None for r in recs)
+
+
+def _candidates(models, recs, has_angle: bool) -> tuple[list, list[str]]:
+    """The candidates (given, or the defaults that the recordings support) and their names."""
     if models:
         candidates = [parse_model(m) for m in models]
     else:
@@ -591,46 +610,49 @@ def compare_models(
     names = [model_name(c) for c in candidates]
     if len(set(names)) != len(names):
         raise ValueError(f"the candidate models must differ (got {names})")
-    options = dict(seed=seed, maxiter=maxiter, popsize=popsize, workers=workers)
-    options["progress"] = False  # one bar for the comparison (CompareProgress)
+    return candidates, names
 
-    # training / validation split(s): a list of (training recordings, scored segments)
+
+def _splits(recs, validate, folds, curve_angle) -> tuple[list, str]:
+    """Training / validation split(s): a list of (training recordings, scored segments), and
+    the mode's description."""
     if isinstance(validate, str):
         if validate != "cv":
             raise ValueError(
                 f"validate: 'cv', a held-out fraction or held-out logs (got {validate!r})"
             )
-        splits, mode = _folds(recs, folds)
-    elif isinstance(validate, int | float) and not isinstance(validate, bool):
-        frac = float(validate)
-        if not 0.0 < frac < 1.0:
-            raise ValueError(f"validate: the held-out fraction must be in (0, 1) (got {frac})")
-        train, evals = [], []
-        for i, r in enumerate(recs):
-            if r.t is not None:
-                cut = r.t[0] + (1.0 - frac) * (r.t[-1] - r.t[0])
-                k = int(np.searchsorted(r.t, cut))
-            else:
-                k = int(round((1.0 - frac) * r.n))
-            if k < 20 or r.n - k < 3:
-                raise ValueError(
-                    f"recording {i}: {r.n} samples are too few to hold out {frac:g} of them"
-                )
-            train.append(_piece(r, 0, k))
-            evals.append((r, k, r.n))
-        splits = [(train, evals)]
-        mode = f"held out: the last {100 * frac:g} % of each recording"
-    else:
-        vrecs = make_recordings(recordings=list(_as_recs(validate)), curve_angle=curve_angle)
-        if not vrecs:
-            raise ValueError("validate: give 'cv', a held-out fraction or held-out logs")
-        splits = [(recs, [(r, 0, r.n) for r in vrecs])]
-        mode = f"held out: {len(vrecs)} validation recording(s)"
-    cv = isinstance(validate, str)
-    splits = _without_initial_transients(splits)
-    mode += "; " + SETTLE_NOTE
+        return _folds(recs, folds)
+    if isinstance(validate, int | float) and not isinstance(validate, bool):
+        return _held_out_fraction(recs, float(validate))
+    vrecs = make_recordings(recordings=list(_as_recs(validate)), curve_angle=curve_angle)
+    if not vrecs:
+        raise ValueError("validate: give 'cv', a held-out fraction or held-out logs")
+    return [(recs, [(r, 0, r.n) for r in vrecs])], f"held out: {len(vrecs)} validation recording(s)"
 
-    validation = [
+
+def _held_out_fraction(recs, frac: float) -> tuple[list, str]:
+    """One split: the last ``frac`` of every recording held out."""
+    if not 0.0 < frac < 1.0:
+        raise ValueError(f"validate: the held-out fraction must be in (0, 1) (got {frac})")
+    train, evals = [], []
+    for i, r in enumerate(recs):
+        if r.t is not None:
+            cut = r.t[0] + (1.0 - frac) * (r.t[-1] - r.t[0])
+            k = int(np.searchsorted(r.t, cut))
+        else:
+            k = int(round((1.0 - frac) * r.n))
+        if k < 20 or r.n - k < 3:
+            raise ValueError(
+                f"recording {i}: {r.n} samples are too few to hold out {frac:g} of them"
+            )
+        train.append(_piece(r, 0, k))
+        evals.append((r, k, r.n))
+    return [(train, evals)], f"held out: the last {100 * frac:g} % of each recording"
+
+
+def _validation_slots(splits) -> list[dict]:
+    """One record per scored segment, for the report's loops and residuals."""
+    return [
         {
             "x": r.x[a:b],
             "y": r.y[a:b],
@@ -642,23 +664,8 @@ def compare_models(
         for r, a, b in evals
     ]
 
-    b, a = _affine(recs if not isinstance(validate, int | float) or refit else splits[0][0])
-    final = cv or (refit and isinstance(validate, int | float))
-    run = _Run(splits, validation, time_budget, progress, len(candidates), final)
-    token = SEARCH_DEADLINE.set(run.deadline)
-    try:
-        rows, fits = run.all_candidates(candidates, names, options, has_angle, on_fit)
-        fits[AFFINE] = Polynomial(coefficients=[b, a])
-    finally:
-        SEARCH_DEADLINE.reset(token)
-    try:
-        winner, winner_fit, best = _winner(rows, fits, candidates, names, recs, options, run)
-    finally:
-        run.view.close()
-    return Comparison(rows, winner, best, fits, validation, mode, winner_fit)
 
-
-def _winner(rows, fits, candidates, names, recs, options, run):
+def _winner(rows, fits, estimators, names, recs, run):
     """Rank the rows; the winner's model and Fit (refitted on all the data where needed)."""
     base = rows[0]["val_rmse"]
     for r in rows:
@@ -674,7 +681,9 @@ def _winner(rows, fits, candidates, names, recs, options, run):
         # part too. The winner is fitted once on all of it (outside the time budget).
         start = time.perf_counter()
         run.view.show(f"{best}: final fit on all the data")
-        winner_fit = _fit(candidates[names.index(best)], recs, options)
+        final_estimator = estimators[names.index(best)].clone()
+        final_estimator.fit(recs)
+        winner_fit = final_estimator.fit_
         run.view.advance()
         rows[0]["final_fit_seconds"] = time.perf_counter() - start
         winner = winner_fit.model
@@ -709,31 +718,29 @@ class _Run:
         (training metrics, held-out metrics, wall s, CPU s); OutOfTime past the deadline
         (``budgeted``; the affine baseline is not)."""
         start, cpu = time.perf_counter(), time.process_time()
-        ys, yh, ts_, th, preds = [], [], [], [], []
-        for k, (train, evals) in enumerate(self.splits):
-            self.view.show(f"{name}: fold {k + 1}/{len(self.splits)}")
-            predict = fit_split(train)
+        n = len(self.splits)
+        done = 0
+
+        def shown(train):
+            nonlocal done
+            self.view.show(f"{name}: fold {done + 1}/{n}")
+            done += 1
+            return fit_split(train)
+
+        def after_fit(k):
             self.view.advance()
             if budgeted and self._late():
                 raise OutOfTime(
                     f"out of time: the {self.budget:g} s budget ran out after {k + 1} of "
-                    f"{len(self.splits)} folds ({time.perf_counter() - start:.1f} s)"
+                    f"{n} folds ({time.perf_counter() - start:.1f} s)"
                 )
-            for r in train:
-                ts_.append(r.y[r.skip :])
-                th.append(predict(r)[r.skip :])
-            for r, a, b in evals:
-                p = predict(r)
-                ys.append(r.y[a:b])
-                yh.append(p[a:b])
-                preds.append(p[a:b])
+
+        tm, vm, preds = evaluate_splits(self.splits, shown, after_fit)
         for slot, p in zip(self.validation, preds, strict=True):
             slot["predictions"][name] = p
-        vm = metrics(np.concatenate(ys), np.concatenate(yh))
-        tm = metrics(np.concatenate(ts_), np.concatenate(th))
         return tm, vm, time.perf_counter() - start, time.process_time() - cpu
 
-    def all_candidates(self, candidates, names, options, has_angle, on_fit):
+    def all_candidates(self, estimators, names, has_angle, on_fit):
         """The table's rows (the affine baseline first) and the fits."""
 
         def affine_split(train):
@@ -744,8 +751,8 @@ class _Run:
         rows, fits = [_row(AFFINE, 2, tm, vm, sec, cpu)], {}
         if on_fit is not None:
             on_fit(AFFINE, sec)
-        for cand, name in zip(candidates, names, strict=True):
-            if getattr(cand, "uses_curve_angle", False) and not has_angle:
+        for estimator, name in zip(estimators, names, strict=True):
+            if getattr(estimator.model, "uses_curve_angle", False) and not has_angle:
                 rows.append({"model": name, "error": "needs a curve angle"})
                 continue
             if self._late():
@@ -753,23 +760,18 @@ class _Run:
                     _out_of_time(name, f"out of time: the {self.budget:g} s budget was spent")
                 )
                 continue
-            fitted = []
-
-            def fit_split(train, cand=cand, fitted=fitted):
-                fit = _fit(cand, train, options)
-                fitted.append(fit)
-                return lambda r, fit=fit: simulate_model(fit.model, r.t, r.x, r.curve_angle)
-
+            fitted: list = []
             try:
-                tm, vm, sec, cpu = self.evaluate(name, fit_split)
+                tm, vm, sec, cpu = self.evaluate(name, estimator_split(estimator, fitted))
             except OutOfTime as exc:
                 rows.append(_out_of_time(name, str(exc)))
                 continue
             except ValueError as exc:
                 rows.append({"model": name, "error": str(exc)})
                 continue
-            fits[name] = fitted[-1] if len(fitted) == 1 else fitted
-            rows.append(_row(name, _count(fitted[-1].model), tm, vm, sec, cpu))
+            fold_fits = [est.fit_ for est in fitted]
+            fits[name] = fold_fits[-1] if len(fold_fits) == 1 else fold_fits
+            rows.append(_row(name, _count(fold_fits[-1].model), tm, vm, sec, cpu))
             if on_fit is not None:
                 on_fit(name, sec)
         return rows, fits

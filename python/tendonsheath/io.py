@@ -581,30 +581,40 @@ def read_log(
         table = _open(path, sheet)
     if input is None:
         raise ValueError(f"{path}: name the input column; columns: {table.names()}")
-    allow = missing != "error"
-    x = table.numbers(input, "input", allow)
+    roles = (time, input, output, curve_angle)
+    log = _log_columns(table, path, roles, allow_missing=missing != "error")
+    if log.t is not None:
+        log = _drop_duplicate_times(log, table, time)
+    if missing != "error":
+        log = _treat_missing(log, table, missing)
+    if log.x.size < MIN_ROWS:
+        raise ValueError(
+            f"{path}: too few {table.row_name}s ({log.x.size}); at least {MIN_ROWS} are needed"
+        )
+    if log.t is not None:
+        log.notes.extend(_timing_notes(log.t, log.rows, table.row_name, gap_factor))
+    if resample is not None:
+        log = _resample(log, resample)
+    if degrees:
+        log = log.to_radians()
+    return log
+
+
+def _log_columns(table: _Table, path: Path, roles, allow_missing: bool) -> Log:
+    """The named columns of ``table`` as a Log (no row dropped yet), with every other clean
+    number column in ``extra``; ``roles`` are the time, input, output and curve angle names."""
+    time, input_, output, curve_angle = roles
+    x = table.numbers(input_, "input", allow_missing)
     n = x.size
     t = table.numbers(time, "time") if time is not None else None
-    y = table.numbers(output, "output", allow) if output is not None else None
+    y = table.numbers(output, "output", allow_missing) if output is not None else None
     theta = None
     if curve_angle is not None:
-        if table.has(curve_angle):
-            theta = table.numbers(curve_angle, "curve angle", allow)
-        else:
-            try:
-                value = float(curve_angle)
-            except (TypeError, ValueError):
-                raise ValueError(
-                    f"{path}: unknown curve angle column {curve_angle!r} (nor a number); "
-                    f"columns: {table.names()}"
-                ) from None
-            if not np.isfinite(value):
-                raise ValueError(f"{path}: curve angle {curve_angle!r} is not finite")
-            theta = np.full(n, value)
+        theta = _curve_angle_values(table, path, curve_angle, n, allow_missing)
     for name, arr in (("time", t), ("output", y), ("curve angle", theta)):
         if arr is not None and arr.size != n:
             raise ValueError(f"{path}: the {name} column has {arr.size} rows, the input has {n}")
-    used = {table.key(c) for c in (time, input, output, curve_angle) if c is not None}
+    used = {table.key(c) for c in roles if c is not None}
     extra = {}
     for name in table.names():
         if name in used:
@@ -613,95 +623,123 @@ def read_log(
         if values is not None and values.shape == (n,):
             extra[name] = values
     rows = table.row_numbers(n)
-    notes: list[str] = list(table.notes)
+    return Log(t, x, y, theta, extra, str(path), table.names(), list(table.notes), rows)
 
-    def keep_rows(keep):
-        nonlocal t, x, y, theta, extra, rows
-        t = t[keep] if t is not None else None
-        x = x[keep]
-        y = y[keep] if y is not None else None
-        theta = theta[keep] if theta is not None else None
-        extra = {k: v[keep] for k, v in extra.items()}
-        rows = rows[keep]
 
-    if t is not None:
-        back = np.flatnonzero(np.diff(t) < 0)
-        if back.size:
-            i = int(back[0]) + 1
-            raise ValueError(
-                f"{path}: column {table.key(time)!r}, row {table.row(i)}: time goes "
-                f"backwards ({t[i]} after {t[i - 1]})"
-            )
-        keep = np.r_[True, np.diff(t) != 0]
-        if not keep.all():
-            notes.append(
-                f"{int((~keep).sum())} {table.row_name}(s) with a duplicate timestamp dropped "
-                f"(first kept): {table.row_name}s {_ranges(rows[~keep])}"
-            )
-            keep_rows(keep)
-    if allow:
-        bad = ~np.isfinite(x)
-        for arr in (y, theta):
-            if arr is not None:
-                bad |= ~np.isfinite(arr)
-        if bad.any():
-            if missing == "drop":
-                notes.append(
-                    f"{int(bad.sum())} {table.row_name}(s) with a missing value dropped: "
-                    f"{table.row_name}s {_ranges(rows[bad])}"
-                )
-                keep_rows(~bad)
-            else:
-                base = t if t is not None else np.arange(x.size, dtype=float)
-                if bad.all():
-                    raise ValueError(f"{path}: every row has a missing value")
-                for arr in (x, y, theta):
-                    if arr is None:
-                        continue
-                    m = ~np.isfinite(arr)
-                    if m.any():
-                        arr[m] = np.interp(base[m], base[~m], arr[~m])
-                notes.append(
-                    f"{int(bad.sum())} {table.row_name}(s) with a missing value interpolated: "
-                    f"{table.row_name}s {_ranges(rows[bad])}"
-                )
-    if x.size < MIN_ROWS:
+def _curve_angle_values(table: _Table, path: Path, curve_angle, n: int, allow_missing: bool):
+    """The curve angle column, or ``n`` copies of a constant curve angle given as a number."""
+    if table.has(curve_angle):
+        return table.numbers(curve_angle, "curve angle", allow_missing)
+    try:
+        value = float(curve_angle)
+    except (TypeError, ValueError):
         raise ValueError(
-            f"{path}: too few {table.row_name}s ({x.size}); at least {MIN_ROWS} are needed"
+            f"{path}: unknown curve angle column {curve_angle!r} (nor a number); "
+            f"columns: {table.names()}"
+        ) from None
+    if not np.isfinite(value):
+        raise ValueError(f"{path}: curve angle {curve_angle!r} is not finite")
+    return np.full(n, value)
+
+
+def _keep_rows(log: Log, keep: np.ndarray) -> Log:
+    """The samples of ``log`` where ``keep`` is True (notes kept as they are)."""
+
+    def f(v):
+        return None if v is None else v[keep]
+
+    return replace(
+        log,
+        t=f(log.t),
+        x=log.x[keep],
+        y=f(log.y),
+        curve_angle=f(log.curve_angle),
+        extra={k: v[keep] for k, v in log.extra.items()},
+        rows=log.rows[keep],
+    )
+
+
+def _drop_duplicate_times(log: Log, table: _Table, time) -> Log:
+    """Raise where time goes backwards; drop samples with a duplicate timestamp (first kept)."""
+    t = log.t
+    back = np.flatnonzero(np.diff(t) < 0)
+    if back.size:
+        i = int(back[0]) + 1
+        raise ValueError(
+            f"{log.path}: column {table.key(time)!r}, row {table.row(i)}: time goes "
+            f"backwards ({t[i]} after {t[i - 1]})"
         )
-    if t is not None:
-        dt = np.diff(t)
-        med = float(np.median(dt))
-        gaps = np.flatnonzero(dt > gap_factor * med)
-        if gaps.size:
-            notes.append(
-                f"{gaps.size} gap(s) in time longer than {gap_factor:g}x the median step "
-                f"({med:.4g}): before {table.row_name}s {_ranges(rows[gaps + 1])} "
-                f"(longest {float(dt.max()):.4g})"
-            )
-        if _irregular(t):
-            notes.append(
-                f"irregular sampling: steps from {float(dt.min()):.4g} to {float(dt.max()):.4g} "
-                f"(median {med:.4g}); consider resample="
-            )
-    log = Log(t, x, y, theta, extra, str(path), table.names(), notes, rows)
-    if resample is not None:
-        if t is None:
-            raise ValueError(f"{path}: resampling needs a time column")
-        if resample == "auto":
-            if log.irregular:
-                log = log.resampled(1.0 / log.sample_time)
-        else:
-            try:
-                rate = float(resample)
-            except (TypeError, ValueError):
-                raise ValueError(
-                    f"{path}: resample must be a rate in Hz or 'auto' (got {resample!r})"
-                ) from None
-            log = log.resampled(rate)
-    if degrees:
-        log = log.to_radians()
+    keep = np.r_[True, np.diff(t) != 0]
+    if keep.all():
+        return log
+    log.notes.append(
+        f"{int((~keep).sum())} {table.row_name}(s) with a duplicate timestamp dropped "
+        f"(first kept): {table.row_name}s {_ranges(log.rows[~keep])}"
+    )
+    return _keep_rows(log, keep)
+
+
+def _treat_missing(log: Log, table: _Table, missing: str) -> Log:
+    """Drop (``missing="drop"``) or fill linearly (``"interpolate"``) the samples where the
+    input, output or curve angle is missing, and say which rows in the notes."""
+    signals = [a for a in (log.x, log.y, log.curve_angle) if a is not None]
+    bad = np.zeros(log.x.size, dtype=bool)
+    for arr in signals:
+        bad |= ~np.isfinite(arr)
+    if not bad.any():
+        return log
+    rows = f"{table.row_name}s {_ranges(log.rows[bad])}"
+    if missing == "drop":
+        log.notes.append(
+            f"{int(bad.sum())} {table.row_name}(s) with a missing value dropped: {rows}"
+        )
+        return _keep_rows(log, ~bad)
+    if bad.all():
+        raise ValueError(f"{log.path}: every row has a missing value")
+    base = log.t if log.t is not None else log.index
+    for arr in signals:
+        m = ~np.isfinite(arr)
+        if m.any():
+            arr[m] = np.interp(base[m], base[~m], arr[~m])
+    log.notes.append(
+        f"{int(bad.sum())} {table.row_name}(s) with a missing value interpolated: {rows}"
+    )
     return log
+
+
+def _timing_notes(t: np.ndarray, rows: np.ndarray, row_name: str, gap_factor: float) -> list:
+    """Notes on gaps in time (steps over ``gap_factor`` x the median) and irregular sampling."""
+    notes = []
+    dt = np.diff(t)
+    med = float(np.median(dt))
+    gaps = np.flatnonzero(dt > gap_factor * med)
+    if gaps.size:
+        notes.append(
+            f"{gaps.size} gap(s) in time longer than {gap_factor:g}x the median step "
+            f"({med:.4g}): before {row_name}s {_ranges(rows[gaps + 1])} "
+            f"(longest {float(dt.max()):.4g})"
+        )
+    if _irregular(t):
+        notes.append(
+            f"irregular sampling: steps from {float(dt.min()):.4g} to {float(dt.max()):.4g} "
+            f"(median {med:.4g}); consider resample="
+        )
+    return notes
+
+
+def _resample(log: Log, resample: float | str) -> Log:
+    """``log`` at a rate in Hz, or with ``"auto"`` at its median rate where it is irregular."""
+    if log.t is None:
+        raise ValueError(f"{log.path}: resampling needs a time column")
+    if resample == "auto":
+        return log.resampled(1.0 / log.sample_time) if log.irregular else log
+    try:
+        rate = float(resample)
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"{log.path}: resample must be a rate in Hz or 'auto' (got {resample!r})"
+        ) from None
+    return log.resampled(rate)
 
 
 def _read_bag(bag: Path, time, input, output, curve_angle, missing) -> _Table:  # noqa: A002

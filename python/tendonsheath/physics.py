@@ -3,18 +3,39 @@
 All functions take the friction coefficient ``mu``, lengths in m, the tendon stiffness ``EA``
 in N and angles in rad, and are safe at mu*Theta -> 0 (series, spec pitfall 7). Rotary
 quantities: divide a tendon displacement by the pulley radius to get an angle.
+
+The closed forms are computed by the C++ core (``physics/pull_pull_statics.hpp``), the one
+source that the real-time models and compensators use too; the uniform-curvature ones take
+NumPy arrays (broadcast together) and loop in C++.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 
 from . import _core as core
-from ._typing import ArrayLike, FloatArray
+from ._typing import ArrayLike, FloatArray, FloatOrArray
 from .route import Route
 
 
-def tanh_half_over(a: ArrayLike) -> FloatArray:
+def _elementwise(kernel: Callable[..., Any], *args: ArrayLike) -> FloatOrArray:
+    """kernel (a C++ loop over equal-length float64 arrays) on the broadcast arguments; a
+    NumPy scalar for scalar arguments, else an array of their broadcast shape."""
+    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=np.float64) for a in args))
+    flat = [np.ascontiguousarray(a).ravel() for a in arrays]
+    out = np.asarray(kernel(*flat)).reshape(arrays[0].shape)
+    return out[()] if out.ndim == 0 else out
+
+
+def _friction_angle(mu: ArrayLike, total_angle: ArrayLike) -> FloatArray:
+    """a = mu Theta, the argument of every uniform closed form."""
+    return np.multiply(np.asarray(mu, dtype=np.float64), np.asarray(total_angle, np.float64))
+
+
+def tanh_half_over(a: ArrayLike) -> FloatOrArray:
     """tanh(a/2)/a, -> 1/2 - a^2/24 as a -> 0.
 
     Parameters
@@ -27,12 +48,10 @@ def tanh_half_over(a: ArrayLike) -> FloatArray:
     numpy.ndarray of float
         tanh(a/2)/a, shaped as a (the series below 1e-4).
     """
-    a = np.asarray(a, dtype=np.float64)
-    safe = np.where(np.abs(a) < 1e-4, 1.0, a)
-    return np.where(np.abs(a) < 1e-4, 0.5 - a * a / 24, np.tanh(safe / 2) / safe)
+    return _elementwise(core.tanh_half_over, a)
 
 
-def capstan_ratio(mu: ArrayLike, total_angle: ArrayLike, direction: ArrayLike = 1.0) -> FloatArray:
+def capstan_ratio(mu: ArrayLike, total_angle: ArrayLike, direction: ArrayLike = 1.0) -> FloatOrArray:
     """Full-slip distal/proximal tension ratio T_d/T_p = exp(-direction mu Theta) (A1).
 
     Parameters
@@ -97,7 +116,7 @@ def shape_integrals(route: Route, mu: float) -> tuple[float, float]:
 
 def backlash_half_width(
     length: ArrayLike, EA: ArrayLike, pretension: ArrayLike, mu: ArrayLike, total_angle: ArrayLike
-) -> FloatArray:
+) -> FloatOrArray:
     """e_b = T0 L tanh(mu Theta/2) / EA: half the pull-pull dead zone, uniform curvature (A7).
 
     Parameters
@@ -118,17 +137,13 @@ def backlash_half_width(
     numpy.ndarray of float
         e_b (m), broadcast over the arguments.
     """
-    return (
-        np.asarray(pretension)
-        * np.asarray(length)
-        * np.tanh(np.asarray(mu) * np.asarray(total_angle) / 2)
-        / np.asarray(EA)
-    )
+    a = _friction_angle(mu, total_angle)
+    return _elementwise(core.uniform_backlash_half_width, length, EA, pretension, a)
 
 
 def load_offset(
     length: ArrayLike, EA: ArrayLike, load_force: ArrayLike, mu: ArrayLike, total_angle: ArrayLike
-) -> FloatArray:
+) -> FloatOrArray:
     """e_L = F_L L tanh(a/2) / (EA a), a = mu Theta: the load shift of both branches (A7).
 
     Parameters
@@ -149,17 +164,13 @@ def load_offset(
     numpy.ndarray of float
         e_L (m), broadcast over the arguments.
     """
-    return (
-        np.asarray(load_force)
-        * np.asarray(length)
-        * tanh_half_over(np.asarray(mu) * np.asarray(total_angle))
-        / np.asarray(EA)
-    )
+    a = _friction_angle(mu, total_angle)
+    return _elementwise(core.uniform_load_offset, length, EA, load_force, a)
 
 
 def load_compliance(
     length: ArrayLike, EA: ArrayLike, mu: ArrayLike, total_angle: ArrayLike
-) -> FloatArray:
+) -> FloatOrArray:
     """C_L = L tanh(a/2) / (EA a) (m/N): output shift per newton of distal load.
 
     Parameters
@@ -178,13 +189,12 @@ def load_compliance(
     numpy.ndarray of float
         C_L (m/N), broadcast over the arguments.
     """
-    a = np.asarray(mu) * np.asarray(total_angle)
-    return np.asarray(length) * tanh_half_over(a) / np.asarray(EA)
+    return _elementwise(core.uniform_load_compliance, length, EA, _friction_angle(mu, total_angle))
 
 
 def spring_slope(
     length: ArrayLike, EA: ArrayLike, mu: ArrayLike, total_angle: ArrayLike, k: ArrayLike
-) -> FloatArray:
+) -> FloatOrArray:
     """Branch slope dx_out/dx_in = 1/(1 + k C_L) with a spring load F_L = k x_out (spec A.4).
 
     Parameters
@@ -205,12 +215,13 @@ def spring_slope(
     numpy.ndarray of float
         The slope (dimensionless, in (0, 1]), broadcast over the arguments.
     """
-    return 1.0 / (1.0 + np.asarray(k) * load_compliance(length, EA, mu, total_angle))
+    a = _friction_angle(mu, total_angle)
+    return _elementwise(core.uniform_spring_slope, length, EA, k, a)
 
 
 def dead_zone_width(
     length: ArrayLike, EA: ArrayLike, pretension: ArrayLike, mu: ArrayLike, total_angle: ArrayLike
-) -> FloatArray:
+) -> FloatOrArray:
     """2 e_b: the input dead zone of a pull-pull pair, uniform curvature (A7).
 
     Parameters
@@ -234,7 +245,7 @@ def dead_zone_width(
     return 2.0 * backlash_half_width(length, EA, pretension, mu, total_angle)
 
 
-def no_slack_limit(pretension: ArrayLike, mu: ArrayLike, total_angle: ArrayLike) -> FloatArray:
+def no_slack_limit(pretension: ArrayLike, mu: ArrayLike, total_angle: ArrayLike) -> FloatOrArray:
     """Largest distal load F_L before the released tendon goes slack: T0 (a/sinh a)(1 + e^-a).
 
     Parameters
@@ -251,10 +262,7 @@ def no_slack_limit(pretension: ArrayLike, mu: ArrayLike, total_angle: ArrayLike)
     numpy.ndarray of float
         The load limit (N), broadcast over the arguments (a -> 0: 2 T0).
     """
-    a = np.asarray(mu) * np.asarray(total_angle)
-    safe = np.where(np.abs(a) < 1e-8, 1.0, a)
-    ratio = np.where(np.abs(a) < 1e-8, 1.0, safe / np.sinh(safe))
-    return np.asarray(pretension) * ratio * (1.0 + np.exp(-a))
+    return _elementwise(core.uniform_no_slack_limit, pretension, _friction_angle(mu, total_angle))
 
 
 def pull_pull_offsets(
@@ -292,20 +300,13 @@ def pull_pull_offsets(
         x_in - x_out on the forward and the backward branch (m).
     """
     route2 = route1 if route2 is None else route2
-    L1, L2 = route1.length, route2.length
-    a1, a2 = mu * route1.total_angle, mu * route2.total_angle
-    g1, G1 = shape_integrals(route1, mu)
-    g2, G2 = shape_integrals(route2, mu)
-    T0, F = pretension, load_force
-    rhs = T0 * (L1 + L2)
-    # forward: tendon 1 pulled (T1p e^{-mu theta1}), tendon 2 released (T2p e^{+mu theta2})
-    A = np.array([[L1 * g1, L2 * G2], [np.exp(-a1), -np.exp(a2)]])
-    t1f, _ = np.linalg.solve(A, [rhs, F])
-    fwd = L1 / EA * (t1f * g1 - T0)
-    # backward: tendon 1 released, tendon 2 pulled
-    B = np.array([[L1 * G1, L2 * g2], [np.exp(a1), -np.exp(-a2)]])
-    t1b, _ = np.linalg.solve(B, [rhs, F])
-    bwd = L1 / EA * (t1b * G1 - T0)
+    statics = core.PullPullStatics()
+    statics.friction = float(mu)
+    statics.compliance = route1.length / EA
+    statics.pretension = float(pretension)
+    shapes = (route_shape(route1, mu), route_shape(route2, mu), route2.length / route1.length)
+    fwd = statics.forward_elongation(*shapes, float(load_force))
+    bwd = statics.backward_elongation(*shapes, float(load_force))
     return float(fwd), float(bwd)
 
 

@@ -7,10 +7,10 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <tendonsheath/batch.hpp>
 #include <tendonsheath/tendonsheath.hpp>
 #include <vector>
 
+#include "../batch/batch.hpp"
 #include "bindings.hpp"
 
 namespace tsbind {

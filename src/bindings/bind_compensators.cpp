@@ -15,12 +15,6 @@ using namespace nb::literals;
 
 namespace {
 
-void check_lengths(std::size_t a, std::size_t b, const char* what, const char* where) {
-  if (a != b)
-    throw std::invalid_argument(std::string(where) + ": " + what + " has " + std::to_string(b) +
-                                " samples, the trajectory has " + std::to_string(a));
-}
-
 // Runs a copy of the compensator over a whole trajectory: y_d[k] at t[k]. Returns the commands,
 // or (commands, per-sample Status flags as uint8) when with_status.
 template <class Comp, class PerStep>
@@ -60,28 +54,6 @@ void bind_limits(nb::module_& m) {
       .def_rw("min", &ts::CommandLimits::min)
       .def_rw("max", &ts::CommandLimits::max)
       .def_rw("max_rate", &ts::CommandLimits::max_rate);
-  nb::class_<ts::ShapeIntegrals>(m, "ShapeIntegrals")
-      .def(nb::init<>())
-      .def_rw("g", &ts::ShapeIntegrals::g)
-      .def_rw("G", &ts::ShapeIntegrals::G)
-      .def_rw("total_angle", &ts::ShapeIntegrals::total_angle);
-  m.def("uniform_shape", &ts::uniform_shape, "friction"_a, "total_angle"_a);
-  m.def(
-      "shape_integrals",
-      [](InArray s, InArray theta, double mu) {
-        check_lengths(s.shape(0), theta.shape(0), "theta", "shape_integrals");
-        return ts::shape_integrals(s.data(), theta.data(), s.shape(0), mu);
-      },
-      "s"_a, "theta"_a, "friction"_a);
-  nb::class_<ts::PullPullStatics>(m, "PullPullStatics")
-      .def(nb::init<>())
-      .def_rw("friction", &ts::PullPullStatics::friction)
-      .def_rw("compliance", &ts::PullPullStatics::compliance)
-      .def_rw("pretension", &ts::PullPullStatics::pretension)
-      .def("forward_elongation", &ts::PullPullStatics::forward_elongation, "shape"_a, "load"_a)
-      .def("backward_elongation", &ts::PullPullStatics::backward_elongation, "shape"_a, "load"_a)
-      .def("backlash_half_width", &ts::PullPullStatics::backlash_half_width, "shape"_a,
-           "load"_a = 0.0);
 }
 
 void bind_inverse(nb::module_& m) {

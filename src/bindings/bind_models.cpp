@@ -13,7 +13,9 @@ namespace tsbind {
 namespace ts = tendonsheath;
 using namespace nb::literals;
 
-void bind_models(nb::module_& m) {
+namespace {
+
+void bind_backlash(nb::module_& m) {
   nb::class_<ts::BacklashParams>(m, "BacklashParams")
       .def(nb::init<>())
       .def_rw("c_r", &ts::BacklashParams::c_r)
@@ -21,7 +23,10 @@ void bind_models(nb::module_& m) {
       .def_rw("B_r", &ts::BacklashParams::B_r)
       .def_rw("B_l", &ts::BacklashParams::B_l);
   bind_model<ts::Backlash>(m, "Backlash").def("set_state", &ts::Backlash::set_state, "x"_a, "y"_a);
+}
 
+// Bouc-Wen backlash and the classic Bouc-Wen model.
+void bind_bouc_wen(nb::module_& m) {
   using BWB = ts::BoucWenBacklashParams;
   nb::class_<BWB>(m, "BoucWenBacklashParams")
       .def(nb::init<>())
@@ -52,7 +57,9 @@ void bind_models(nb::module_& m) {
   bind_model<ts::BoucWen>(m, "BoucWen")
       .def("state", &ts::BoucWen::state)
       .def("z_ultimate", &ts::BoucWen::z_ultimate);
+}
 
+void bind_oscillator(nb::module_& m) {
   using HO = ts::HystereticOscillatorParams;
   nb::class_<HO>(m, "HystereticOscillatorParams")
       .def(nb::init<>())
@@ -102,6 +109,11 @@ void bind_models(nb::module_& m) {
           },
           "dt"_a, "n"_a, "x_fine"_a, "fine"_a,
           "Simulate from an input given on a grid `fine` times finer than the samples.");
+}
+
+// The oscillator's sensitivities and its band-limited input on a finer grid.
+void bind_oscillator_dense(nb::module_& m) {
+  using HO = ts::HystereticOscillatorParams;
   m.def(
       "oscillator_sensitivity_dense",
       [](const HO& params, double dt, std::size_t n, InArray x_fine, int fine) {
@@ -139,7 +151,9 @@ void bind_models(nb::module_& m) {
       "x"_a, "fine"_a, "lookahead"_a,
       "The windowed-sinc reconstruction of x on a grid `fine` times finer (input held at the "
       "ends): the values HystereticOscillator's band-limited step() uses.");
+}
 
+void bind_prandtl_ishlinskii(nb::module_& m) {
   using PI = ts::PrandtlIshlinskiiParams;
   nb::class_<PI>(m, "PrandtlIshlinskiiParams")
       .def(nb::init<>())
@@ -149,6 +163,16 @@ void bind_models(nb::module_& m) {
       .def("play_states", &ts::PrandtlIshlinskii::play_states);
   bind_model<ts::PrandtlIshlinskiiInverse>(m, "PrandtlIshlinskiiInverse")
       .def("input_clamped", &ts::PrandtlIshlinskiiInverse::input_clamped);
+}
+
+}  // namespace
+
+void bind_models(nb::module_& m) {
+  bind_backlash(m);
+  bind_bouc_wen(m);
+  bind_oscillator(m);
+  bind_oscillator_dense(m);
+  bind_prandtl_ishlinskii(m);
 }
 
 }  // namespace tsbind

@@ -136,7 +136,9 @@ void bind_common(Cls& cls, std::size_t rows, const char* name) {
 
 }  // namespace
 
-void bind_plant(nb::module_& m) {
+namespace {
+
+void bind_route(nb::module_& m) {
   nb::class_<ts::Route>(m, "Route")
       .def(nb::init<std::vector<double>, std::vector<double>>(), "s"_a, "theta"_a)
       .def_static("uniform", &ts::Route::uniform, "length"_a, "total_angle"_a)
@@ -190,7 +192,10 @@ void bind_plant(nb::module_& m) {
             return arr;
           },
           "n"_a);
+}
 
+// The plants' parameter structs.
+void bind_plant_params(nb::module_& m) {
   using CO = ts::ChainOptions;
   nb::class_<CO>(m, "ChainOptions")
       .def(nb::init<>())
@@ -254,7 +259,9 @@ void bind_plant(nb::module_& m) {
       .def_rw("friction2", &CP::friction2)
       .def_rw("stiffness2", &CP::stiffness2)
       .def_rw("options", &CP::options);
+}
 
+void bind_motor(nb::module_& m) {
   nb::enum_<ts::MotorKind>(m, "MotorKind")
       .value("Position", ts::MotorKind::Position)
       .value("Torque", ts::MotorKind::Torque);
@@ -285,7 +292,9 @@ void bind_plant(nb::module_& m) {
       .def("status", [](const ts::Motor& m) { return static_cast<unsigned>(m.status()); })
       .def("velocity", &ts::Motor::velocity)
       .def("set_state", &ts::Motor::set_state, "q"_a, "v"_a);
+}
 
+void bind_sensor(nb::module_& m) {
   using SeP = ts::SensorParams;
   nb::class_<SeP>(m, "SensorParams")
       .def(nb::init<>())
@@ -306,7 +315,13 @@ void bind_plant(nb::module_& m) {
             return arr;
           },
           "x"_a);
+}
 
+// The single-tendon, pull-pull and continuum plants.
+void bind_plants(nb::module_& m) {
+  using SP = ts::SingleTendonParams;
+  using PP = ts::PullPullParams;
+  using CP = ts::ContinuumParams;
   nb::class_<ts::SingleTendonPlant> single(m, "SingleTendonPlant");
   single.def(nb::init<const SP&, const ts::Route&>(), "params"_a, "route"_a)
       .def_prop_ro("params", &ts::SingleTendonPlant::params)
@@ -351,6 +366,16 @@ void bind_plant(nb::module_& m) {
       .def("bending_angle", &ts::ContinuumPlant::bending_angle)
       .def("tendon_force", &ts::ContinuumPlant::tendon_force);
   bind_common<ts::ContinuumPlant>(cont, 2, "ContinuumPlant.simulate");
+}
+
+}  // namespace
+
+void bind_plant(nb::module_& m) {
+  bind_route(m);
+  bind_plant_params(m);
+  bind_motor(m);
+  bind_sensor(m);
+  bind_plants(m);
 }
 
 }  // namespace tsbind

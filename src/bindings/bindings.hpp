@@ -26,6 +26,13 @@ using OutMatrix = nb::ndarray<nb::numpy, double, nb::ndim<2>>;
 using InMatrix = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
 using InIndex = nb::ndarray<const std::uint64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
 
+// Two series of one trajectory must have the same number of samples.
+inline void check_lengths(std::size_t a, std::size_t b, const char* what, const char* where) {
+  if (a != b)
+    throw std::invalid_argument(std::string(where) + ": " + what + " has " + std::to_string(b) +
+                                " samples, the trajectory has " + std::to_string(a));
+}
+
 // A fresh NumPy array of n doubles that owns its buffer.
 inline std::pair<OutArray, double*> new_array(std::size_t n) {
   double* data = new double[n > 0 ? n : 1];
@@ -75,6 +82,7 @@ std::decay_t<Cls> bind_copy(Cls&& cls) {
   return std::forward<Cls>(cls);
 }
 
+void bind_statics(nb::module_& m);
 void bind_models(nb::module_& m);
 void bind_compensators(nb::module_& m);
 void bind_models_extended(nb::module_& m);

@@ -2,6 +2,7 @@
 
 NB_MODULE(_core, m) {
   m.doc() = "tendonsheath real-time core (C++17), exposed through nanobind";
+  tsbind::bind_statics(m);
   tsbind::bind_models(m);
   tsbind::bind_compensators(m);
   tsbind::bind_models_extended(m);

@@ -26,21 +26,11 @@
 #include <cmath>
 #include <cstddef>
 
+#include "../physics/pull_pull_statics.hpp"
 #include "../status.hpp"
 #include "../validate.hpp"
 
 namespace tendonsheath {
-
-/// tanh(a/2) and tanh(a/2)/a, with series for small |a| (spec pitfall 7).
-inline double curve_tanh_half(double a) noexcept {
-  if (std::fabs(a) < 1e-4) return 0.5 * a - a * a * a / 24.0;
-  return std::tanh(0.5 * a);
-}
-/// tanh(a/2)/a, with its series for small |a| (-> 1/2 at a = 0).
-inline double curve_tanh_half_over(double a) noexcept {
-  if (std::fabs(a) < 1e-4) return 0.5 - a * a / 24.0;
-  return std::tanh(0.5 * a) / a;
-}
 
 /// Parameters of CurveAngleModel (validated by its constructor); SI units, tendon level.
 struct CurveAngleParams {
@@ -101,21 +91,20 @@ class CurveAngleModel {
     slack_ = step_slack_ = false;
   }
 
-  /// Closed-form terms at a curve angle (linear units, m): the backlash half-width e_b at
-  /// curve angle theta (rad).
+  /// Closed-form terms at a curve angle (linear units, m; physics/pull_pull_statics.hpp): the
+  /// backlash half-width e_b at curve angle theta (rad).
   double backlash_half_width(double theta) const noexcept {
-    return p_.pretension * p_.length / p_.stiffness *
-           curve_tanh_half(p_.friction * std::fabs(theta));
+    return uniform::backlash_half_width(p_.length, p_.stiffness, p_.pretension,
+                                        p_.friction * std::fabs(theta));
   }
   /// The load offset e_L at curve angle theta (rad), m.
   double load_offset(double theta) const noexcept {
-    return p_.load * p_.length / p_.stiffness *
-           curve_tanh_half_over(p_.friction * std::fabs(theta));
+    return uniform::load_offset(p_.length, p_.stiffness, p_.load, p_.friction * std::fabs(theta));
   }
   /// The branch slope c at curve angle theta (rad), in (0, 1].
   double slope(double theta) const noexcept {
-    return 1.0 / (1.0 + p_.spring * p_.length / p_.stiffness *
-                            curve_tanh_half_over(p_.friction * std::fabs(theta)));
+    return uniform::spring_slope(p_.length, p_.stiffness, p_.spring,
+                                 p_.friction * std::fabs(theta));
   }
 
   /// Streaming: proximal angle q_in (rad), curve angle theta (rad) -> distal angle (rad).
@@ -150,8 +139,7 @@ class CurveAngleModel {
     // No-slack condition of spec A.4 on the total distal load.
     const double a = p_.friction * theta_;
     const double force = p_.load + p_.spring * x_out_;
-    const double ratio = a < 1e-4 ? 1.0 - a * a / 6.0 : a / std::sinh(a);
-    step_slack_ = std::fabs(force) >= p_.pretension * ratio * (1.0 + std::exp(-a));
+    step_slack_ = std::fabs(force) >= uniform::no_slack_limit(p_.pretension, a);
     if (step_slack_) slack_ = true;
     y_ = x_out_ / p_.distal_radius;
     return y_;

@@ -16,10 +16,58 @@
 
 namespace tendonsheath {
 
-/// (exp(x) - 1) / x without cancellation near 0.
+/// The closed forms' removable singularities at a = mu Theta = 0 ((e^x - 1)/x, tanh(a/2)/a,
+/// a/sinh a) switch to their Taylor series below one threshold, kSeriesSwitch. Why 1e-4:
+/// the direct forms go through std::expm1, std::tanh and std::sinh, which carry no
+/// cancellation (a few ulp for any x != 0), so the series is needed only near 0/0; each series
+/// below keeps the terms whose truncation error at 1e-4 is under 1e-18 relative, far below
+/// double rounding (1.1e-16), so both branches agree at the switch to rounding. A larger
+/// switch would need more terms (at 1e-3 the a^2 series of tanh(a/2)/a is off by 8e-15).
+constexpr double kSeriesSwitch = 1e-4;
+
+/// (exp(x) - 1) / x; truncation x^4/120 <= 8e-19.
 inline double expm1_over(double x) noexcept {
-  return std::fabs(x) < 1e-8 ? 1.0 + 0.5 * x : std::expm1(x) / x;
+  if (std::fabs(x) < kSeriesSwitch) return 1.0 + x * (0.5 + x * (1.0 / 6.0 + x / 24.0));
+  return std::expm1(x) / x;
 }
+
+/// tanh(a/2) / a; truncation a^4/240 (relative a^4/120 <= 8e-19).
+inline double tanh_half_over(double a) noexcept {
+  if (std::fabs(a) < kSeriesSwitch) return 0.5 - a * a / 24.0;
+  return std::tanh(0.5 * a) / a;
+}
+
+/// a / sinh(a); truncation 7 a^4/360 <= 2e-18.
+inline double a_over_sinh(double a) noexcept {
+  if (std::fabs(a) < kSeriesSwitch) return 1.0 - a * a / 6.0;
+  return a / std::sinh(a);
+}
+
+/// @brief The uniform-curvature closed forms (spec A.4, A.7) at the tendon level (m, N), a = mu Theta;
+/// the Python functions of tendonsheath.physics and the CurveAngleModel call these.
+namespace uniform {
+/// e_b = (T0 L / EA) tanh(a/2): half the dead zone of a pull-pull pair.
+inline double backlash_half_width(double length, double stiffness, double pretension,
+                                  double a) noexcept {
+  return pretension * length / stiffness * std::tanh(0.5 * a);
+}
+/// C_L = (L / EA) tanh(a/2) / a: the output shift per newton of distal load (m/N).
+inline double load_compliance(double length, double stiffness, double a) noexcept {
+  return length / stiffness * tanh_half_over(a);
+}
+/// e_L = (F_L L / EA) tanh(a/2) / a: the load offset of both branches.
+inline double load_offset(double length, double stiffness, double load, double a) noexcept {
+  return load * length / stiffness * tanh_half_over(a);
+}
+/// c = 1 / (1 + k_e C_L): the branch slope with a spring load F_L = k_e x_out.
+inline double spring_slope(double length, double stiffness, double spring, double a) noexcept {
+  return 1.0 / (1.0 + spring * length / stiffness * tanh_half_over(a));
+}
+/// The largest distal load before the released tendon goes slack: T0 (a / sinh a)(1 + e^-a).
+inline double no_slack_limit(double pretension, double a) noexcept {
+  return pretension * a_over_sinh(a) * (1.0 + std::exp(-a));
+}
+}  // namespace uniform
 
 /// The shape of a route as the closed forms need it: the friction-weighted integrals g, G and the
 /// total curve angle (see shape_integrals() and uniform_shape()).
@@ -37,8 +85,7 @@ constexpr double kMaxFrictionAngle = 50.0;
 /// zero once e^{-a} - 1 rounded to -1, at a of about 37.4.)
 inline ShapeIntegrals uniform_shape(double mu, double total_angle) noexcept {
   const double a = mu * total_angle;
-  if (std::fabs(a) < 1e-4) return {expm1_over(-a), expm1_over(a), total_angle};
-  return {-std::expm1(-a) / a, std::expm1(a) / a, total_angle};
+  return {expm1_over(-a), expm1_over(a), total_angle};
 }
 
 /// The largest total angle (rad) a friction mu admits: kMaxFrictionAngle / mu (inf for mu = 0).
@@ -81,20 +128,37 @@ struct PullPullStatics {
   /// @param load F_L, the distal load at the tendon level, N
   /// @return Delta1, m
   double forward_elongation(const ShapeIntegrals& sh, double load) const noexcept {
-    const double a = friction * sh.total_angle;
-    const double ema = std::exp(-a);
-    const double t1p = (2.0 * pretension + load * sh.G * ema) / (sh.g + sh.G * ema * ema);
-    return compliance * (t1p * sh.g - pretension);
+    return forward_elongation(sh, sh, 1.0, load);
   }
   /// Elongation Delta1 of tendon 1 in backward full slip under load F_L.
   /// @param sh the route's shape
   /// @param load F_L, the distal load at the tendon level, N
   /// @return Delta1, m
   double backward_elongation(const ShapeIntegrals& sh, double load) const noexcept {
-    const double a = friction * sh.total_angle;
-    const double ea = std::exp(a);
-    const double t1p = (2.0 * pretension + load * sh.g * ea) / (sh.G + sh.g * ea * ea);
-    return compliance * (t1p * sh.G - pretension);
+    return backward_elongation(sh, sh, 1.0, load);
+  }
+  /// Two sheaths of different shape and length (A5, A6): sh1 and sh2 are the shapes of
+  /// tendon 1's and tendon 2's sheaths, length_ratio = L2 / L1 and compliance = L1 / EA.
+  /// Tension balance L1 g1 T1p + L2 G2 T2p = T0 (L1 + L2) and load e^{-a1} T1p - e^{a2} T2p =
+  /// F_L, solved for T1p (r = 1 gives the single-shape forms bit for bit).
+  double forward_elongation(const ShapeIntegrals& sh1, const ShapeIntegrals& sh2,
+                            double length_ratio, double load) const noexcept {
+    const double r = length_ratio;
+    const double ema1 = std::exp(-friction * sh1.total_angle);
+    const double ema2 = std::exp(-friction * sh2.total_angle);
+    const double t1p = (pretension * (1.0 + r) + load * r * sh2.G * ema2) /
+                       (sh1.g + r * sh2.G * ema1 * ema2);
+    return compliance * (t1p * sh1.g - pretension);
+  }
+  /// Backward: tendon 1 released (e^{+a1}), tendon 2 pulled (e^{-a2}).
+  double backward_elongation(const ShapeIntegrals& sh1, const ShapeIntegrals& sh2,
+                             double length_ratio, double load) const noexcept {
+    const double r = length_ratio;
+    const double ea1 = std::exp(friction * sh1.total_angle);
+    const double ea2 = std::exp(friction * sh2.total_angle);
+    const double t1p = (pretension * (1.0 + r) + load * r * sh2.g * ea2) /
+                       (sh1.G + r * sh2.g * ea1 * ea2);
+    return compliance * (t1p * sh1.G - pretension);
   }
   /// Both elongations are affine in the load: Delta = offset + slope * F_L.
   struct Affine {

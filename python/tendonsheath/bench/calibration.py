@@ -596,19 +596,60 @@ def calibrate(
     Calibration
         The identified models and their provenance.
     """
-    from ..identify import identify
-
     shape = shape or ShapeSensing(seed=seed)
-    budget = dict(budget or {})
     t, command = calibration_input(duration, amplitude)
-    warm = int(round(warmup / (t[1] - t[0])))
     names = list(names) if names is not None else [f"cal{i + 1}" for i in range(len(routes))]
+    experiment = (plant, t, command, sensor, seed)
+    runs, recordings = _calibration_logs(experiment, routes, names, shape, duration)
+    warm = int(round(warmup / (t[1] - t[0])))
+    options = {"warmup": warm, "seed": seed, "budget": dict(budget or {})}
+    cal = Calibration(
+        fits={}, runs=runs, declared=_declared_values(declared), groups={}, shape=shape
+    )
+    if "BoucWenBacklash" in models_:
+        tb, xb, yb, _ = recordings[backlash_route]
+        _add_fit(cal, "BoucWenBacklash", [names[backlash_route]], (tb, xb, yb), {}, **options)
+    if "CurveAngleModel" in models_:
+        _add_curve_angle_fit(cal, recordings, names, spring, declared_friction, options)
+    return cal
+
+
+def _calibration_logs(experiment: tuple, routes, names: list[str], shape, duration: float):
+    """Drive the robot on each calibration route (``experiment``: plant, t, command, distal
+    sensor, seed) and log it: the runs and their (t, encoder, distal reading, sensed curve
+    angle) recordings."""
+    plant, t, command, sensor, seed = experiment
     runs, recordings = [], []
     for i, route in enumerate(routes):
         x, y = _run_experiment(plant, route, t, command, sensor, seed + 101 + i)
         sensed = shape.static_reading(route.total_angle, duration, seed_offset=i)
         runs.append(CalibrationRun(names[i], sensed, duration, int(t.size)))
         recordings.append((t, x, y, sensed))
+    return runs, recordings
+
+
+def _add_curve_angle_fit(cal, recordings, names, spring: bool, declared_friction, options):
+    """The CurveAngleModel on all calibration runs with the declared values held (and
+    friction too where a single curve angle cannot identify it), and its groups."""
+    fixed = {k: d.value for k, d in cal.declared.items()}
+    if len({round(r[3], 3) for r in recordings}) < 2:
+        cal.friction_identified = False
+        fixed["friction"] = (
+            NOMINAL_FRICTION if declared_friction is None else float(declared_friction)
+        )
+    r_d0 = fixed["proximal_radius"] / max(_mean_slope(recordings), 1e-6)
+    search = {
+        "recordings": recordings,
+        "fixed": fixed,
+        "free": ["distal_radius"] + (["spring"] if spring else []),
+        "bounds": {"distal_radius": (0.3 * r_d0, 3.0 * r_d0)},
+    }
+    fit = _add_fit(cal, "CurveAngleModel", names, (), search, **options)
+    cal.groups = _curve_angle_groups(fit, cal.runs, cal.friction_identified, spring)
+
+
+def _declared_values(declared: dict[str, float] | None) -> dict[str, Told]:
+    """The values held at NOMINAL, or at the user's declared design values."""
     user = dict(declared or {})
     decl: dict[str, Told] = {}
     for key, value in NOMINAL.items():
@@ -616,103 +657,84 @@ def calibrate(
             decl[key] = Told(key, float(user[key]), "declared by the user (design value)")
         else:
             decl[key] = Told(key, value, "declared nominal (not identifiable)")
-    fits: dict[str, Any] = {}
-    at_bounds: dict[str, list[str]] = {}
-    groups: dict[str, dict[str, Any]] = {}
-    friction_identified = True
-    if "BoucWenBacklash" in models_:
-        tb, xb, yb, _ = recordings[backlash_route]
-        fit = identify(
-            models.BoucWenBacklash, tb, xb, yb, warmup=warm, seed=seed, progress=False, **budget
-        )
-        fit._calibration_runs = [names[backlash_route]]
-        fits["BoucWenBacklash"] = fit
-        at_bounds["BoucWenBacklash"] = _near_bounds(fit)
-    if "CurveAngleModel" in models_:
-        fixed = {k: d.value for k, d in decl.items()}
-        angles = {round(r[3], 3) for r in recordings}
-        if len(angles) < 2:
-            friction_identified = False
-            fixed["friction"] = (
-                NOMINAL_FRICTION if declared_friction is None else float(declared_friction)
-            )
-        x_all = np.concatenate([r[1] for r in recordings])
-        y_all = np.concatenate([r[2] for r in recordings])
-        xc = x_all - x_all.mean()
-        slope = abs(float(np.dot(xc, y_all - y_all.mean()) / max(np.dot(xc, xc), 1e-300)))
-        r_d0 = fixed["proximal_radius"] / max(slope, 1e-6)  # from the data's mean slope
-        fit = identify(
-            models.CurveAngleModel,
-            recordings=recordings,
-            fixed=fixed,
-            free=["distal_radius"] + (["spring"] if spring else []),
-            bounds={"distal_radius": (0.3 * r_d0, 3.0 * r_d0)},
-            warmup=warm,
-            seed=seed,
-            progress=False,
-            **budget,
-        )
-        fit._calibration_runs = list(names)
-        fits["CurveAngleModel"] = fit
-        at_bounds["CurveAngleModel"] = _near_bounds(fit)
-        p = fit.model.params
-        se = fit.standard_errors
+    return decl
 
-        def rel(*names):  # relative standard error of a product of parameters
-            terms = [(se.get(n) or 0.0) / abs(p[n]) for n in names if n in se and p[n] != 0]
-            return float(math.sqrt(sum(x * x for x in terms))) if terms else None
 
-        src = (
-            fit_source(None, fit)
-            + " (sensed curve angles "
-            + ", ".join(f"{r.sensed_angle:.3f}" for r in runs)
-            + " rad)"
-        )
-        scale = p["length"] / (p["stiffness"] * p["proximal_radius"])
-        groups["mu"] = {
-            "value": p["friction"],
-            "source": src
-            if friction_identified
-            else f"UNIDENTIFIED (one curve angle): declared value {p['friction']:g}",
-            "relative_se": rel("friction"),
-            "identified": friction_identified,
-        }
-        groups["T0 L/(EA r_p)"] = {
-            "value": p["pretension"] * scale,
-            "source": src,
-            "relative_se": rel("stiffness"),
-            "identified": True,
-            "unit": "rad at the motor",
-        }
-        groups["gain r_p/r_d"] = {
-            "value": p["proximal_radius"] / p["distal_radius"],
-            "source": src,
-            "relative_se": rel("distal_radius"),
-            "identified": True,
-        }
-        groups["F_L L/(EA r_p)"] = {
-            "value": p["load"] * scale,
-            "source": src,
-            "relative_se": rel("stiffness", "load"),
-            "identified": True,
-            "unit": "rad at the motor",
-        }
-        if spring:
-            groups["k_e L/EA"] = {
-                "value": p["spring"] * p["length"] / p["stiffness"],
-                "source": src,
-                "relative_se": rel("stiffness", "spring"),
-                "identified": True,
-            }
-    return Calibration(
-        fits=fits,
-        runs=runs,
-        declared=decl,
-        groups=groups,
-        shape=shape,
-        at_bounds=at_bounds,
-        friction_identified=friction_identified,
+def _mean_slope(recordings) -> float:
+    """|least-squares slope| of output on input over all recordings (a scale to search by)."""
+    x_all = np.concatenate([r[1] for r in recordings])
+    y_all = np.concatenate([r[2] for r in recordings])
+    xc = x_all - x_all.mean()
+    return abs(float(np.dot(xc, y_all - y_all.mean()) / max(np.dot(xc, xc), 1e-300)))
+
+
+def _add_fit(cal: Calibration, name: str, run_names, data, search: dict, *, warmup, seed, budget):
+    """Identify model ``name`` from calibration ``data`` (t, x, y; or none, with the
+    recordings in ``search``) and file the fit, its runs and its parameters at bounds."""
+    from ..identify import identify
+
+    model = getattr(models, name)
+    fit = identify(model, *data, **search, warmup=warmup, seed=seed, progress=False, **budget)
+    fit._calibration_runs = list(run_names)
+    cal.fits[name] = fit
+    cal.at_bounds[name] = _near_bounds(fit)
+    return fit
+
+
+def _curve_angle_groups(fit, runs, friction_identified: bool, spring: bool) -> dict:
+    """The identified groups of a CurveAngleModel fit, with their relative standard errors
+    and where they came from."""
+    p = fit.model.params
+    se = fit.standard_errors
+
+    def rel(*names):  # relative standard error of a product of parameters
+        terms = [(se.get(n) or 0.0) / abs(p[n]) for n in names if n in se and p[n] != 0]
+        return float(math.sqrt(sum(x * x for x in terms))) if terms else None
+
+    src = (
+        fit_source(None, fit)
+        + " (sensed curve angles "
+        + ", ".join(f"{r.sensed_angle:.3f}" for r in runs)
+        + " rad)"
     )
+    scale = p["length"] / (p["stiffness"] * p["proximal_radius"])
+    groups = {}
+    groups["mu"] = {
+        "value": p["friction"],
+        "source": src
+        if friction_identified
+        else f"UNIDENTIFIED (one curve angle): declared value {p['friction']:g}",
+        "relative_se": rel("friction"),
+        "identified": friction_identified,
+    }
+    groups["T0 L/(EA r_p)"] = {
+        "value": p["pretension"] * scale,
+        "source": src,
+        "relative_se": rel("stiffness"),
+        "identified": True,
+        "unit": "rad at the motor",
+    }
+    groups["gain r_p/r_d"] = {
+        "value": p["proximal_radius"] / p["distal_radius"],
+        "source": src,
+        "relative_se": rel("distal_radius"),
+        "identified": True,
+    }
+    groups["F_L L/(EA r_p)"] = {
+        "value": p["load"] * scale,
+        "source": src,
+        "relative_se": rel("stiffness", "load"),
+        "identified": True,
+        "unit": "rad at the motor",
+    }
+    if spring:
+        groups["k_e L/EA"] = {
+            "value": p["spring"] * p["length"] / p["stiffness"],
+            "source": src,
+            "relative_se": rel("stiffness", "spring"),
+            "identified": True,
+        }
+    return groups
 
 
 def calibrate_load(

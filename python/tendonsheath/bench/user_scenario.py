@@ -371,64 +371,89 @@ def calibration_angles(sc: UserScenario) -> list[float]:
 def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
     """Calibrate with :func:`bench.calibrate` on calibration shapes that differ from every
     test route (the plant's logs alone), then run every compensator of [compare]."""
-    from .calibration import ShapeSensing, calibrate
-    from .scenarios.common import honesty_panel, kinematic_told
+    from .calibration import ShapeSensing
+    from .scenarios.common import announce, honesty_panel
 
     servo_motor = _servo(sc)
     sensor = Sensor(**sc.sensor)
-    if progress:
-        progress("calibration")
+    announce(progress, "calibration")
     shape = ShapeSensing(
         noise_std=sc.calibration.get("shape_noise", 0.05),
         delay=sc.calibration.get("shape_delay", 0.1),
         seed=sc.seed,
     )
     angles = calibration_angles(sc)
-    length = sc.route["initial"].length
-    cal_routes = [Route.uniform(length, a) for a in angles]
+    cal = _calibration(sc, shape, angles)
+    t, y_d = _reference(sc)
+    routes = None
+    if sc.route_changes:
+        times = [0.0] + [c[0] for c in sc.route_changes]
+        shapes = [sc.route["initial"]] + [c[1] for c in sc.route_changes]
+        routes = piecewise_routes(times, shapes)
+    runs, told = _run_compensators(
+        sc, cal, _plant(sc, servo_motor), t, y_d, routes, sensor, shape, progress
+    )
+    announce(progress, "honesty panel")
+    theta = (
+        np.array([routes(tk).total_angle for tk in t])
+        if routes is not None
+        else sc.route["initial"].total_angle
+    )
+    honesty = honesty_panel(cal, runs, curve_angle=theta, told=told, seed=sc.seed)
+    return _result(sc, cal, runs, honesty, angles, shape)
+
+
+def _calibration(sc: UserScenario, shape, angles: list[float]):
+    """bench.calibrate at the calibration ``angles``, of the models the scenario's
+    compensators need (None when none needs one)."""
+    from .calibration import calibrate
+
     wants = set(sc.compensators)
     model_names = []
     if {"inverse_feedforward", "adaptive"} & wants:
         model_names.append("BoucWenBacklash")
     if "curve_angle_feedforward" in wants:
         model_names.append("CurveAngleModel")
+    if not model_names:
+        return None
     sensed_initial = shape.static_reading(sc.route["initial"].total_angle, 1.0, seed_offset=77)
-    nearest = int(np.argmin([abs(a - sensed_initial) for a in angles]))
-    spring = sc.plant["type"] == "continuum" or bool(
-        sc.load and sc.load.get("type") != "constant_torque"
+    length = sc.route["initial"].length
+    return calibrate(
+        _plant(sc, _servo(sc)),
+        [Route.uniform(length, a) for a in angles],
+        models_=model_names,
+        backlash_route=int(np.argmin([abs(a - sensed_initial) for a in angles])),
+        spring=sc.plant["type"] == "continuum"
+        or bool(sc.load and sc.load.get("type") != "constant_torque"),
+        duration=sc.calibration["duration"],
+        amplitude=sc.calibration["amplitude"],
+        sensor=Sensor(**{**sc.sensor, "seed": sc.seed + 11}),
+        shape=shape,
+        seed=sc.seed,
+        names=[f"curve angle {a:.3f} rad" for a in angles],
     )
-    cal = None
-    if model_names:
-        cal = calibrate(
-            _plant(sc, _servo(sc)),
-            cal_routes,
-            models_=model_names,
-            backlash_route=nearest,
-            spring=spring,
-            duration=sc.calibration["duration"],
-            amplitude=sc.calibration["amplitude"],
-            sensor=Sensor(**{**sc.sensor, "seed": sc.seed + 11}),
-            shape=shape,
-            seed=sc.seed,
-            names=[f"curve angle {a:.3f} rad" for a in angles],
-        )
+
+
+def _reference(sc: UserScenario) -> tuple[np.ndarray, np.ndarray]:
+    """The times and the reference (a sum of sines) of the [reference] table."""
     ref = sc.reference
     t = np.arange(0.0, ref["duration"], 1.0 / ref["rate"])
     y_d = sum(
         float(s[0]) * np.sin(2 * np.pi * float(s[1]) * t + (float(s[2]) if len(s) > 2 else 0.0))
         for s in ref["sines"]
     )
-    routes = None
-    if sc.route_changes:
-        times = [0.0] + [c[0] for c in sc.route_changes]
-        shapes = [sc.route["initial"]] + [c[1] for c in sc.route_changes]
-        routes = piecewise_routes(times, shapes)
+    return t, y_d
+
+
+def _run_compensators(sc: UserScenario, cal, servo, t, y_d, routes, sensor, shape, progress):
+    """Build every compensator of [compare] from the calibration and run it: (name -> run
+    result, name -> what it was told beyond the calibration)."""
+    from .scenarios.common import announce, kinematic_told
+
     runs = {}
-    servo = _plant(sc, servo_motor)
     told: dict[str, dict] = {"none": kinematic_told(servo)}
     for name in sc.compensators:
-        if progress:
-            progress(name)
+        announce(progress, name)
         if name == "none":
             runs[name] = run(servo, None, t, y_d, routes=routes, noise=sensor)
         elif name == "inverse_feedforward":
@@ -457,14 +482,11 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
                 "declared by the user ([sensor])",
             )
             runs["AdaptiveController"] = run(torque, ctrl, t, y_d, routes=routes, noise=sensor)
-    if progress:
-        progress("honesty panel")
-    theta = (
-        np.array([routes(tk).total_angle for tk in t])
-        if routes is not None
-        else sc.route["initial"].total_angle
-    )
-    honesty = honesty_panel(cal, runs, curve_angle=theta, told=told, seed=sc.seed)
+    return runs, told
+
+
+def _result(sc: UserScenario, cal, runs: dict, honesty: dict, angles, shape) -> ScenarioResult:
+    """The user scenario's result: the metrics table, the conditions and the calibration."""
     base = runs["none"].metrics["mse"] if "none" in runs else float("nan")
     table = [
         {
@@ -476,25 +498,14 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
         }
         for k, r in runs.items()
     ]
+    at_angles = ", ".join(f"{a:.3f}" for a in angles)
     shapes = {"initial": sc.route["initial"]}
     shapes.update({f"t = {tc:g} s": r for tc, r in sc.route_changes})
     return ScenarioResult(
         name="user",
         title=sc.title,
         summary=f"User scenario from {sc.source}.",
-        conditions={
-            "plant": ", ".join(f"{k} = {v}" for k, v in sc.plant.items()),
-            "load": str(sc.load or "none"),
-            "motor": ", ".join(f"{k} = {v}" for k, v in sc.motor.items()),
-            "sensor": ", ".join(f"{k} = {v}" for k, v in sc.sensor.items()),
-            "reference": f"{ref['sines']} (amplitude rad, Hz, phase) for {ref['duration']} s "
-            f"at {ref['rate']} Hz",
-            "calibration": f"bench.calibrate: {sc.calibration['duration']} s runs, amplitude "
-            f"{sc.calibration['amplitude']} rad, at curve angles "
-            + ", ".join(f"{a:.3f}" for a in angles)
-            + " rad (no test route takes them), from the motor encoder, the noisy distal "
-            f"sensor and a {shape.describe()}",
-        },
+        conditions=_conditions(sc, at_angles, shape),
         runs=runs,
         table=table,
         table_title="Results",
@@ -504,10 +515,26 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
         + [(tc, r.total_angle) for tc, r in sc.route_changes],
         calibration=cal.to_dict() if cal is not None else {},
         protocol=f"{sc.title}: compensators calibrated by bench.calibrate from the plant's "
-        "logs at curve angles "
-        + ", ".join(f"{a:.3f}" for a in angles)
-        + " rad and judged on the scenario's own routes and reference; the plant's parameters "
-        "are never copied (what each compensator was told is listed below).",
+        f"logs at curve angles {at_angles} rad and judged on the scenario's own routes and "
+        "reference; the plant's parameters are never copied (what each compensator was told "
+        "is listed below).",
         honesty=honesty,
         identified=cal.identified_rows() if cal is not None else [],
     )
+
+
+def _conditions(sc: UserScenario, at_angles: str, shape) -> dict[str, str]:
+    """The report's conditions table: the scenario's tables in words."""
+    ref = sc.reference
+    return {
+        "plant": ", ".join(f"{k} = {v}" for k, v in sc.plant.items()),
+        "load": str(sc.load or "none"),
+        "motor": ", ".join(f"{k} = {v}" for k, v in sc.motor.items()),
+        "sensor": ", ".join(f"{k} = {v}" for k, v in sc.sensor.items()),
+        "reference": f"{ref['sines']} (amplitude rad, Hz, phase) for {ref['duration']} s "
+        f"at {ref['rate']} Hz",
+        "calibration": f"bench.calibrate: {sc.calibration['duration']} s runs, amplitude "
+        f"{sc.calibration['amplitude']} rad, at curve angles {at_angles} rad (no test route "
+        "takes them), from the motor encoder, the noisy distal sensor and a "
+        f"{shape.describe()}",
+    }

@@ -2,11 +2,25 @@
 
 ``identify(model_class, t, x, y, ...) -> Fit`` minimises the simulation error by differential
 evolution (every generation evaluated in one batched, multi-threaded C++ call) followed by
-least-squares refinement. See :func:`identify`.
+least-squares refinement. :class:`Identifier` is the same as an object (settings stored,
+``fit(recordings)``, ``clone()``), and :func:`cross_validate` scores it over recordings. See
+:func:`identify`.
 """
 
 from .core import identify
+from .cross_validation import CrossValidation, cross_validate
 from .diagnostics import Diagnostics, IdentifiabilityWarning
+from .estimator import Identifier, NotFittedError
 from .fit import Fit, metrics
 
-__all__ = ["Diagnostics", "Fit", "IdentifiabilityWarning", "identify", "metrics"]
+__all__ = [
+    "CrossValidation",
+    "Diagnostics",
+    "Fit",
+    "IdentifiabilityWarning",
+    "Identifier",
+    "NotFittedError",
+    "cross_validate",
+    "identify",
+    "metrics",
+]

@@ -146,50 +146,17 @@ def _powers(U: np.ndarray, powers: np.ndarray) -> np.ndarray:
     return B
 
 
-def identify_chain(
-    chain: Chain,
-    recs,
-    *,
-    warmup: int = 0,
-    bounds=None,
-    fixed=None,
-    seed=0,
-    maxiter=100,
-    popsize=15,
-    tol=0.01,
-    workers=None,
-    polish=True,
-    progress=True,
-    standard_errors="linearised",
-    bootstrap=200,
-    bootstrap_block=None,
-    budget=None,
-) -> Fit:
-    """Identify a Chain (see the module docstring); returns a :class:`Fit`."""
+def identify_chain(chain: Chain, recs, *, warmup: int = 0, bounds=None, fixed=None, search) -> Fit:
+    """Identify a Chain (see the module docstring) with the :class:`Search` settings
+    ``search``; returns a :class:`Fit`."""
     from .core import search_and_refine
     from .dynamic import identify_dynamic, is_dynamic_chain
-    from .uncertainty import assess
 
     if is_dynamic_chain(chain):
         if bounds or fixed:
             raise ValueError("Chain with a linear block: bounds and fixed are not supported")
-        return identify_dynamic(
-            chain,
-            recs,
-            warmup=warmup,
-            seed=seed,
-            maxiter=maxiter,
-            popsize=popsize,
-            tol=tol,
-            workers=workers,
-            polish=polish,
-            progress=progress,
-            standard_errors=standard_errors,
-            bootstrap=bootstrap,
-            bootstrap_block=bootstrap_block,
-            budget=budget,
-        )
-    n_workers = 0 if workers is None else int(workers)
+        return identify_dynamic(chain, recs, warmup=warmup, search=search)
+    n_workers = search.n_workers
     problem = ChainProblem(chain, recs, warmup, bounds, fixed, n_workers)
     check_for_fit(recs, warmup, problem.n_params, not problem.first_cls.rate_independent, False)
     space = problem.space
@@ -201,19 +168,9 @@ def identify_chain(
             search_problem = ChainProblem(chain, thin, thin_warmup, bounds, fixed, n_workers)
 
     start = time.perf_counter()
+    label = f"identify Chain({problem.first_cls.__name__}, Polynomial)"
     u_best, res, message = search_and_refine(
-        problem,
-        space,
-        counter,
-        f"identify Chain({problem.first_cls.__name__}, Polynomial)",
-        progress,
-        maxiter=maxiter,
-        popsize=popsize,
-        tol=tol,
-        seed=seed,
-        polish=polish,
-        budget=budget,
-        search_problem=search_problem,
+        problem, space, counter, label, search, search_problem=search_problem
     )
     model = problem.model(space.natural(u_best))
     gauged = gauge.applies(model) and {"B_r", "B_l"} <= set(problem.free)
@@ -222,38 +179,7 @@ def identify_chain(
     seconds = time.perf_counter() - start
     predictions = [simulate_model(model, r.t, r.x) for r in recs]
     quality = fit_quality(recs, predictions, warmup)
-    assessed = assess(
-        cls=Chain,
-        model=model,
-        problem=problem,
-        recs=recs,
-        warmup=warmup,
-        values=problem.values,
-        free_names=problem.free,
-        all_bounds=problem.bounds,
-        spec=None,
-        options={},
-        depends={},
-        workers=n_workers,
-        sse=quality.sse,
-        n_fit=quality.n,
-        u_best=u_best,
-        use_separable=True,
-        method=standard_errors,
-        count=bootstrap,
-        block=bootstrap_block,
-        seed=seed,
-        chain_free=problem.free,
-        generic=(gauge.entry_names(problem.free), []) if gauged else None,
-        canon=gauge.canonical if gauged else None,
-    )
-    if gauged:
-        assessed["diagnostics"].notes.append(
-            "the first model's output shift is undone exactly by re-expanding the polynomial: "
-            "fitted in the gauge B_r = B_l (the polynomial carries the offset); the identified "
-            "quantities are in fit.groups"
-        )
-        assessed["groups"] = gauge.groups(model, assessed["standard_errors"])
+    assessed = _assess(problem, recs, warmup, model, quality, u_best, search, gauged)
     fit = Fit.from_quality(
         model,
         quality,
@@ -270,5 +196,45 @@ def identify_chain(
         recordings=recs,
         predictions=predictions,
     )
-    fit.diagnostics.warn(stacklevel=4)
+    fit.diagnostics.warn()
     return fit
+
+
+def _assess(problem: ChainProblem, recs, warmup, model, quality, u_best, search, gauged) -> dict:
+    """Standard errors and diagnostics of the first model's free parameters and the
+    polynomial's coefficients (the gauge's identifiable groups when it applies)."""
+    from .uncertainty import assess
+
+    assessed = assess(
+        cls=Chain,
+        model=model,
+        problem=problem,
+        recs=recs,
+        warmup=warmup,
+        values=problem.values,
+        free_names=problem.free,
+        all_bounds=problem.bounds,
+        spec=None,
+        options={},
+        depends={},
+        workers=search.n_workers,
+        sse=quality.sse,
+        n_fit=quality.n,
+        u_best=u_best,
+        use_separable=True,
+        method=search.standard_errors,
+        count=search.bootstrap,
+        block=search.bootstrap_block,
+        seed=search.seed,
+        chain_free=problem.free,
+        generic=(gauge.entry_names(problem.free), []) if gauged else None,
+        canon=gauge.canonical if gauged else None,
+    )
+    if gauged:
+        assessed["diagnostics"].notes.append(
+            "the first model's output shift is undone exactly by re-expanding the polynomial: "
+            "fitted in the gauge B_r = B_l (the polynomial carries the offset); the identified "
+            "quantities are in fit.groups"
+        )
+        assessed["groups"] = gauge.groups(model, assessed["standard_errors"])
+    return assessed

@@ -30,6 +30,8 @@ search: they measure the spread of the estimate inside its basin.
 from __future__ import annotations
 
 import math
+import os
+import sys
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -257,7 +259,7 @@ class Diagnostics:
         """
         return list(self.weak)
 
-    def warn(self, stacklevel: int = 3) -> None:
+    def warn(self, stacklevel: int | None = None) -> None:
         """Emit one :class:`IdentifiabilityWarning` per finding.
 
         Parameters
@@ -265,8 +267,9 @@ class Diagnostics:
         stacklevel : int, default 3
             Passed to :func:`warnings.warn`.
         """
+        level = caller_stacklevel() if stacklevel is None else stacklevel
         for message in self.warnings():
-            warnings.warn(message, IdentifiabilityWarning, stacklevel=stacklevel)
+            warnings.warn(message, IdentifiabilityWarning, stacklevel=level)
 
     def lines(self) -> list[str]:
         """Readable lines for a summary.
@@ -561,3 +564,17 @@ def bootstrap(
         raise ValueError(f"bootstrap: {failed} of {count} re-fits failed")
     S = np.vstack(samples)
     return {"samples": S, "se": S.std(axis=0, ddof=1), "failed": failed}
+
+
+_PACKAGE = os.path.dirname(os.path.dirname(os.path.abspath(__file__))) + os.sep
+
+
+def caller_stacklevel() -> int:
+    """The ``stacklevel`` that makes a warning raised by the caller of this function name the
+    first frame outside the tendonsheath package (the user's call, however deep the steps)."""
+    frame = sys._getframe(1)
+    level = 1
+    while frame is not None and frame.f_code.co_filename.startswith(_PACKAGE):
+        frame = frame.f_back
+        level += 1
+    return level

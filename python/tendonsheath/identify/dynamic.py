@@ -172,53 +172,24 @@ class DynamicProblem:
         return Chain(static, block) if self.hammerstein else Chain(block, static)
 
 
-def identify_dynamic(
-    chain: Chain,
-    recs,
-    *,
-    warmup=0,
-    seed=0,
-    maxiter=100,
-    popsize=15,
-    tol=0.01,
-    workers=None,
-    polish=True,
-    progress=True,
-    standard_errors="linearised",
-    bootstrap=200,
-    bootstrap_block=None,
-    budget=None,
-) -> Fit:
-    """Identify a Hammerstein or Wiener chain (see the module docstring). Standard errors
+def identify_dynamic(chain: Chain, recs, *, warmup=0, search) -> Fit:
+    """Identify a Hammerstein or Wiener chain (see the module docstring) with the
+    :class:`~tendonsheath.identify.settings.Search` settings ``search``. Standard errors
     and diagnostics: the Jacobian with respect to the chain's parameters (the operator's and
     the block's), or the bootstrap re-fits of :mod:`tendonsheath.identify.uncertainty`."""
     from .core import search_and_refine
 
-    n_workers = 0 if workers is None else int(workers)
     for i, r in enumerate(recs):
         if r.t is None:
             raise ValueError(f"recording {i}: a linear dynamic block needs the time t")
-    problem = DynamicProblem(chain, recs, warmup, n_workers)
+    problem = DynamicProblem(chain, recs, warmup, search.n_workers)
     check_for_fit(recs, warmup, problem.n_params, True, False)
-    space = problem.space
     counter = {"evaluations": 0}
     kind = "Hammerstein" if problem.hammerstein else "Wiener"
     label = f"identify {kind} ({problem.static_cls.__name__}, {problem.block_cls.__name__})"
     start = time.perf_counter()
-    u_best, res, message = search_and_refine(
-        problem,
-        space,
-        counter,
-        label,
-        progress,
-        maxiter=maxiter,
-        popsize=popsize,
-        tol=tol,
-        seed=seed,
-        polish=polish,
-        budget=budget,
-    )
-    model = problem.model(space.natural(u_best))
+    u_best, res, message = search_and_refine(problem, problem.space, counter, label, search)
+    model = problem.model(problem.space.natural(u_best))
     if problem.pool is not None:
         problem.pool.shutdown()
         problem.pool = None
@@ -232,11 +203,11 @@ def identify_dynamic(
         model,
         quality,
         u_best,
-        n_workers,
-        method=standard_errors,
-        count=bootstrap,
-        block=bootstrap_block,
-        seed=seed,
+        search.n_workers,
+        method=search.standard_errors,
+        count=search.bootstrap,
+        block=search.bootstrap_block,
+        seed=search.seed,
     )
     fit = Fit.from_quality(
         model,
@@ -259,7 +230,7 @@ def identify_dynamic(
         recordings=recs,
         predictions=predictions,
     )
-    fit.diagnostics.warn(stacklevel=5)
+    fit.diagnostics.warn()
     return fit
 
 

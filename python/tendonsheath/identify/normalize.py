@@ -267,14 +267,15 @@ class _NanParams:
         self.params = {k: (v if v is not None else np.nan) for k, v in se.items()}
 
 
-def identify_normalized(identify, model_class, recs: list[Recording], **options) -> Fit:
-    """``identify`` on normalised recordings, the model mapped back (see the module)."""
+def identify_normalized(fit_normalised, model_class, recs: list[Recording]) -> Fit:
+    """``fit_normalised(model_class, recordings)`` (identify with ``normalize=False``) on
+    normalised recordings, the model mapped back (see the module)."""
     m = IOMap.of(recs)
     odd_chain = isinstance(model_class, Chain) and isinstance(model_class.second, Polynomial)
     odd_chain = odd_chain and bool(model_class.second.options["odd"])
     if odd_chain:  # an odd polynomial holds no offset: scale and sign only
         m = dataclasses.replace(m, x_c=0.0, y_c=0.0)
-    fit_n = identify(model_class, recordings=m.recordings(recs), normalize=False, **options)
+    fit_n = fit_normalised(model_class, m.recordings(recs))
     scaled = m.scaled(fit_n.model)
     y = np.concatenate([r.y for r in recs])
     warm = fit_n.warmup

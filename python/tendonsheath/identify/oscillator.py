@@ -408,97 +408,95 @@ def _simulation_problem(recs, per, warmup, start, free_names, se_bounds, options
 
 
 def identify_oscillator(
-    recs,
-    *,
-    warmup: int,
-    bounds,
-    fixed,
-    free,
-    initial,
-    seed,
-    maxiter: int,
-    popsize: int,
-    tol: float,
-    workers,
-    polish: bool,
-    progress: bool,
-    budget: TimeBudget,
-    input_interpolation: str | None,
-    periodic: bool | None,
+    recs, *, warmup: int, bounds, fixed, free, initial, search, input_interpolation, periodic
 ) -> Fit:
+    """The staged identification of a HystereticOscillator (see the module docstring) with the
+    :class:`~tendonsheath.identify.settings.Search` settings ``search``."""
     cls = HystereticOscillator
     options, values, held, free_names = _setup(initial, input_interpolation, fixed, free)
     mode = options["input_interpolation"]
     check_for_fit(recs, warmup, len(free_names), True, False)
-    n_workers = 0 if workers is None else int(workers)
-    stages = _Stages(progress, budget)
+    stages = _Stages(search.progress, search.budget)
     start = time.perf_counter()
     counter = {"evaluations": 0}
-    notes = []
+    notes: list[str] = []
     try:
-        # -- data: periodicity, steady periods --------------------------------------------
-        per = []
-        for r in recs:
-            if mode == "bandlimited" or periodic is not None:
-                uniform_step(r.t, "identify HystereticOscillator")
-            per.append(is_periodic(r.x) if periodic is None else bool(periodic))
-        segments = [_Segment(r.t, r.x, r.y, p) for r, p in zip(recs, per, strict=True)]
-        for i, s in enumerate(segments):
-            if s.periods >= 2:
-                notes.append(f"recording {i}: {s.periods} periods, {s.periods - 1} averaged")
-
+        per, segments = _segments(recs, mode, periodic, notes)
         stages.stage("best linear approximation")
-        m0, ce0, ke0, f_top = _bla(segments)
-        if not (m0 > 0 and ke0 > 0):
-            raise ValueError(
-                f"identify HystereticOscillator: the best linear approximation is not a "
-                f"mass-spring-damper (m = {m0:.4g}, k = {ke0:.4g}): is the output a displacement "
-                "driven by the input force?"
-            )
-        notes.append(f"BLA m {m0:.4g}, c {ce0:.4g}, k+alpha {ke0:.4g}")
-
+        m0, ce0, ke0, f_top = _bla_stage(segments, notes)
         stages.stage("equation error (force balance on the measured displacement)")
-        ee = _EquationError(segments, f_top, n_workers)
-        u_ee, res = _equation_error_stage(ee, held, seed, popsize, maxiter, budget, counter)
+        ee = _EquationError(segments, f_top, search.n_workers)
+        u_ee, res = _equation_error_stage(
+            ee, held, search.seed, search.popsize, search.maxiter, search.budget, counter
+        )
         beta = values["beta"]
         start_values = _start_values(ee.params(u_ee), m0, ce0, beta, held)
         notes.append(
             "equation error: "
             + ", ".join(f"{k} {start_values[k]:.4g}" for k in cls.param_names if k in free_names)
         )
-
         stages.stage("simulation error (least squares)")
         se_bounds = _simulation_bounds(start_values, ce0, beta, bounds)
         problem, note, dense = _simulation_problem(
-            recs, per, warmup, start_values, free_names, se_bounds, options, n_workers
+            recs, per, warmup, start_values, free_names, se_bounds, options, search.n_workers
         )
         notes.append(note)
-        space = problem.space
-        u0 = np.clip(space.search([start_values[n] for n in free_names]), space.lower, space.upper)
-        if polish and not budget.over():
-            u_best, msg = refine(
-                problem,
-                space,
-                u0,
-                counter,
-                budget=budget,
-                jacobian=_jacobian(problem, space, recs, dense),
-                max_nfev=200,
-                xtol=1e-12,
-                gtol=1e-12,
-            )
-        else:
-            u_best, msg = (
-                u0,
-                "skipped (" + ("time budget spent" if polish else "polish=False") + ")",
-            )
-        model = problem.model(space.natural(u_best))
+        model, msg = _simulation_stage(problem, recs, dense, start_values, search, counter)
     finally:
         stages.close()
     seconds = time.perf_counter() - start
     run = dict(recs=recs, per=per, warmup=warmup, held=held, mode=mode, counter=counter)
     message = "; ".join([*notes, f"least squares: {msg}"])
     return _fit(run, model, problem, se_bounds, seconds, int(res.nit), message)
+
+
+def _segments(recs, mode: str, periodic, notes: list[str]):
+    """Data: whether each record is whole periods, and its steady periods (averaged)."""
+    per = []
+    for r in recs:
+        if mode == "bandlimited" or periodic is not None:
+            uniform_step(r.t, "identify HystereticOscillator")
+        per.append(is_periodic(r.x) if periodic is None else bool(periodic))
+    segments = [_Segment(r.t, r.x, r.y, p) for r, p in zip(recs, per, strict=True)]
+    for i, s in enumerate(segments):
+        if s.periods >= 2:
+            notes.append(f"recording {i}: {s.periods} periods, {s.periods - 1} averaged")
+    return per, segments
+
+
+def _bla_stage(segments, notes: list[str]):
+    """The best linear approximation (m, c, k + alpha, and the force's top), checked."""
+    m0, ce0, ke0, f_top = _bla(segments)
+    if not (m0 > 0 and ke0 > 0):
+        raise ValueError(
+            f"identify HystereticOscillator: the best linear approximation is not a "
+            f"mass-spring-damper (m = {m0:.4g}, k = {ke0:.4g}): is the output a displacement "
+            "driven by the input force?"
+        )
+    notes.append(f"BLA m {m0:.4g}, c {ce0:.4g}, k+alpha {ke0:.4g}")
+    return m0, ce0, ke0, f_top
+
+
+def _simulation_stage(problem, recs, dense, start_values, search, counter):
+    """Simulation-error least squares from the equation-error estimate: (model, message)."""
+    space = problem.space
+    u0 = np.clip(space.search([start_values[n] for n in problem.free]), space.lower, space.upper)
+    if search.polish and not search.budget.over():
+        u_best, msg = refine(
+            problem,
+            space,
+            u0,
+            counter,
+            budget=search.budget,
+            jacobian=_jacobian(problem, space, recs, dense),
+            max_nfev=200,
+            xtol=1e-12,
+            gtol=1e-12,
+        )
+    else:
+        why = "time budget spent" if search.polish else "polish=False"
+        u_best, msg = u0, f"skipped ({why})"
+    return problem.model(space.natural(u_best)), msg
 
 
 def _jacobian(problem, space, recs, dense):

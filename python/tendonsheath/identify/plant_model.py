@@ -11,6 +11,7 @@ full plant simulation), then the shared least-squares refinement.
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -94,46 +95,25 @@ class PlantProblem:
             self.pool = None
 
 
-def identify_plant(
-    recs,
-    *,
-    warmup=0,
-    initial=None,
-    seed=0,
-    maxiter=100,
-    popsize=15,
-    tol=0.01,
-    workers=None,
-    polish=True,
-    progress=True,
-    standard_errors="linearised",
-    bootstrap=200,
-    bootstrap_block=None,
-    budget=None,
-) -> Fit:
-    """Identify a :class:`PlantModel` (see the module docstring); returns a :class:`Fit`."""
+def identify_plant(recs, *, warmup=0, initial=None, search) -> Fit:
+    """Identify a :class:`PlantModel` (see the module docstring) with the
+    :class:`~tendonsheath.identify.settings.Search` settings ``search`` (its generations and
+    population capped); returns a :class:`Fit`."""
     from .core import search_and_refine
-    from .uncertainty import assess
 
     elements = (initial or PlantModel()).options["elements"]
-    n_workers = 0 if workers is None else int(workers)
-    problem = PlantProblem(recs, warmup, n_workers, elements)
+    problem = PlantProblem(recs, warmup, search.n_workers, elements)
     check_for_fit(recs, warmup, len(PlantModel.param_names), True, False)
     counter = {"evaluations": 0}
+    capped = dataclasses.replace(
+        search,
+        maxiter=min(search.maxiter, SEARCH_MAXITER),
+        popsize=min(search.popsize, SEARCH_POPSIZE),
+    )
     start = time.perf_counter()
     try:
         u_best, res, message = search_and_refine(
-            problem,
-            problem.space,
-            counter,
-            "identify PlantModel",
-            progress,
-            maxiter=min(maxiter, SEARCH_MAXITER),
-            popsize=min(popsize, SEARCH_POPSIZE),
-            tol=tol,
-            seed=seed,
-            polish=polish,
-            budget=budget,
+            problem, problem.space, counter, "identify PlantModel", capped
         )
         model = problem.model(problem.space.natural(u_best))
     finally:
@@ -141,35 +121,11 @@ def identify_plant(
     seconds = time.perf_counter() - start
     predictions = [simulate_model(model, r.t, r.x) for r in recs]
     quality = fit_quality(recs, predictions, warmup)
-    names = list(PlantModel.param_names)
-    assessed = assess(
-        cls=PlantModel,
-        model=model,
-        problem=problem,
-        recs=recs,
-        warmup=warmup,
-        values={},
-        free_names=[],
-        all_bounds={},
-        spec=None,
-        options={},
-        depends={},
-        workers=n_workers,
-        sse=quality.sse,
-        n_fit=quality.n,
-        u_best=u_best,
-        use_separable=False,
-        method=standard_errors,
-        count=bootstrap,
-        block=bootstrap_block,
-        seed=seed,
-        generic=(names, []),
-    )
     fit = Fit.from_quality(
         model,
         quality,
-        assessed,
-        identified=names,
+        _assess(problem, recs, warmup, model, quality, u_best, search),
+        identified=list(PlantModel.param_names),
         fixed={},
         evaluations=counter["evaluations"],
         seconds=seconds,
@@ -181,5 +137,34 @@ def identify_plant(
         recordings=recs,
         predictions=predictions,
     )
-    fit.diagnostics.warn(stacklevel=4)
+    fit.diagnostics.warn()
     return fit
+
+
+def _assess(problem, recs, warmup, model, quality, u_best, search) -> dict:
+    """Standard errors and diagnostics w.r.t. the plant model's parameters."""
+    from .uncertainty import assess
+
+    return assess(
+        cls=PlantModel,
+        model=model,
+        problem=problem,
+        recs=recs,
+        warmup=warmup,
+        values={},
+        free_names=[],
+        all_bounds={},
+        spec=None,
+        options={},
+        depends={},
+        workers=search.n_workers,
+        sse=quality.sse,
+        n_fit=quality.n,
+        u_best=u_best,
+        use_separable=False,
+        method=search.standard_errors,
+        count=search.bootstrap,
+        block=search.bootstrap_block,
+        seed=search.seed,
+        generic=(list(PlantModel.param_names), []),
+    )

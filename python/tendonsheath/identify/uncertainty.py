@@ -231,44 +231,71 @@ def assess(
     those params (e.g. a Hammerstein chain's "first.rho", "second.time_constant");
     ``label_of`` names the search and linear coordinates like them for the bound checks."""
     notes: list[str] = []
-    # -- layout of the identified quantities
-    if generic is not None:
-        layout = _generic_layout(model, recs, warmup, *generic, canon=canon)
-    elif chain_free is not None or cls in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii):
-        names, scales = _entries_names(cls, model, chain_free)
-        layout = _generic_layout(model, recs, warmup, names, scales)
-    else:
-        if isinstance(problem, DirectProblem):
-            se_problem = problem
-        else:
-            se_problem = DirectProblem(
-                cls,
-                recs,
-                warmup,
-                {**values, **model.params},
-                free_names,
-                all_bounds,
-                spec.log_names,
-                options,
-                None,
-                workers,
-            )
-        layout = _direct_layout(se_problem, model, depends, free_names)
-
+    direct = (values, free_names, all_bounds, spec, options, depends, workers)
+    layout = _layout_for(cls, model, problem, recs, warmup, direct, chain_free, generic, canon)
     try:
         J = layout.jacobian()
     except ValueError as exc:  # pragma: no cover - defensive
         J = None
         notes.append(f"no Jacobian ({exc})")
+    bvalues, bbounds, brefs = _enforced_bounds(
+        cls, problem, u_best, use_separable and chain_free is None, label_of
+    )
+    keep = _free_at_optimum(layout, bvalues, bbounds, brefs, notes)
+    group_fn = _single_angle_groups(angle, free_names, notes)
+    fitted = _Fitted(layout, model, problem, recs, warmup, u_best, use_separable, sse, n_fit)
+    if method == "bootstrap" or method == "bootstrap-recordings":
+        se, g_hat, g_se, extra = _bootstrapped(fitted, group_fn, method, count, block, seed)
+    else:
+        se, g_hat, g_se, extra = _linearised(fitted, group_fn, J, keep, method, free_names)
+    diag = _diagnostics(J, keep, layout, (bvalues, bbounds, brefs), notes)
+    extra["estimate_names"] = list(layout.names)
+    return {
+        "standard_errors": layout.to_dict(se),
+        "diagnostics": diag,
+        "groups": _groups(g_hat, g_se, free_names, angle),
+        "se_method": extra,
+        "estimate": layout.vector(model),
+    }
 
-    # -- bounds actually enforced: the searched coordinates and the solved linear ones
+
+def _layout_for(cls, model, problem, recs, warmup, direct, chain_free, generic, canon) -> Layout:
+    """The identified quantities: the model's params (``generic``, chains and the play
+    operators) or the search problem's coordinates (a DirectProblem, built if needed from
+    ``direct``: values, free names, bounds, spec, options, angle laws, workers)."""
+    values, free_names, all_bounds, spec, options, depends, workers = direct
+    if generic is not None:
+        return _generic_layout(model, recs, warmup, *generic, canon=canon)
+    if chain_free is not None or cls in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii):
+        names, scales = _entries_names(cls, model, chain_free)
+        return _generic_layout(model, recs, warmup, names, scales)
+    se_problem = problem
+    if not isinstance(problem, DirectProblem):
+        se_problem = DirectProblem(
+            cls,
+            recs,
+            warmup,
+            {**values, **model.params},
+            free_names,
+            all_bounds,
+            spec.log_names,
+            options,
+            None,
+            workers,
+        )
+    return _direct_layout(se_problem, model, depends, free_names)
+
+
+def _enforced_bounds(cls, problem, u_best, linear: bool, label_of):
+    """The bounds actually enforced: the searched coordinates and (``linear``) the solved
+    linear ones: (values, bounds, reference magnitudes), named by ``label_of``."""
     space = problem.space
     best = space.natural(u_best) if space.lower.size else np.zeros(0)
     lo_nat, hi_nat = space.natural(space.lower), space.natural(space.upper)
     bvalues = {n: float(v) for n, v in zip(space.names, best, strict=True)}
     bbounds = {n: (float(a), float(b)) for n, a, b in zip(space.names, lo_nat, hi_nat, strict=True)}
     brefs: dict[str, float] = {}
-    if use_separable and hasattr(problem, "linear") and chain_free is None:
+    if linear and hasattr(problem, "linear"):
         theta, _ = problem.linear(u_best if not space.lower.size else best)
         lo, hi = problem.lin_lo, problem.lin_hi
         if cls is PrandtlIshlinskii:
@@ -282,14 +309,17 @@ def assess(
             bvalues[n] = float(v)
             bbounds[n] = (float(a), float(b))
             brefs[n] = ref
-
     if label_of is not None:
         bvalues = {label_of(n): v for n, v in bvalues.items()}
         bbounds = {label_of(n): v for n, v in bbounds.items()}
         brefs = {label_of(n): v for n, v in brefs.items()}
+    return bvalues, bbounds, brefs
 
-    # parameters held at an active one-sided constraint (e.g. a weight at 0) are not free at
-    # the optimum: they are left out of the linearised covariance and the conditioning
+
+def _free_at_optimum(layout, bvalues, bbounds, brefs, notes: list[str]) -> list[int]:
+    """Indices of the estimates not held at an active one-sided constraint (e.g. a weight at
+    0): those are not free at the optimum and are left out of the linearised covariance and
+    the conditioning."""
     active = set()
     for n, (a, b) in bbounds.items():
         if np.isfinite(a) == np.isfinite(b):
@@ -298,100 +328,132 @@ def assess(
             label = n.split(" ")[0]
             if label in layout.names:
                 active.add(label)
-    keep = [i for i, n in enumerate(layout.names) if n not in active]
     if active:
         notes.append(
             f"{', '.join(sorted(active))} at an active constraint: left out of the linearised "
             "covariance and the conditioning (standard error NaN there; "
             'standard_errors="bootstrap" gives one)'
         )
-    J_keep = J[:, keep] if J is not None else None
-    names_keep = [layout.names[i] for i in keep]
+    return [i for i, n in enumerate(layout.names) if n not in active]
 
-    # -- groups (CurveAngleModel at one angle)
-    group_fn = None
-    if angle is not None:
-        group_fn = lambda m: curve_angle_groups(m, angle.angle)  # noqa: E731
-        if angle.friction_held:
-            notes.append(
-                f"!single curve angle ({angle.angle:.4g} rad): friction cannot be separated "
-                f"from the stiffness (EA) there; friction held at {angle.friction:g} and the "
-                "identifiable groups reported in fit.groups (backlash_half_width, load_offset"
-                + (", gain" if _gain_free(free_names) else "")
-                + "); the stiffness and load values are only meaningful with that friction"
+
+def _single_angle_groups(angle: SingleAngle | None, free_names, notes: list[str]):
+    """The groups' function of a CurveAngleModel at one angle (None otherwise), with the
+    note on held friction."""
+    if angle is None:
+        return None
+    if angle.friction_held:
+        notes.append(
+            f"!single curve angle ({angle.angle:.4g} rad): friction cannot be separated "
+            f"from the stiffness (EA) there; friction held at {angle.friction:g} and the "
+            "identifiable groups reported in fit.groups (backlash_half_width, load_offset"
+            + (", gain" if _gain_free(free_names) else "")
+            + "); the stiffness and load values are only meaningful with that friction"
+        )
+    return lambda m: curve_angle_groups(m, angle.angle)
+
+
+@dataclass
+class _Fitted:
+    """What the standard errors are computed from: the estimate and its problem."""
+
+    layout: Layout
+    model: Any
+    problem: Any
+    recs: list
+    warmup: int
+    u_best: np.ndarray
+    use_separable: bool
+    sse: float
+    n_fit: int
+
+
+def _linearised(f: _Fitted, group_fn, J, keep, method: str, free_names):
+    """Standard errors from the Jacobian (``method`` "linearised"), or NaN ("none")."""
+    extra: dict[str, Any] = {"method": method}
+    g_hat = group_fn(f.model) if group_fn else {}
+    se = np.full(len(f.layout.names), np.nan)
+    if method == "none":
+        return se, g_hat, {k: float("nan") for k in g_hat}, extra
+    g_se: dict[str, float] = {}
+    if J is not None:
+        J_keep = J[:, keep]
+        se[keep] = linearised_se(J_keep, f.sse, f.n_fit)
+        if np.all(np.isfinite(J_keep)):
+            cov = np.full((se.size, se.size), np.nan)
+            cov[np.ix_(keep, keep)] = covariance(J_keep, f.sse, f.n_fit)
+            extra["covariance"] = cov  # for mapping the errors to other parameters
+        if group_fn:
+            g_se = _delta_group_se(f.layout, f.model, group_fn, J, f.sse, f.n_fit, free_names)
+    return se, g_hat, g_se, extra
+
+
+def _bootstrapped(f: _Fitted, group_fn, method: str, count: int, block, seed):
+    """Standard errors as the spread of re-fits on resampled residual blocks ("bootstrap")
+    or resampled recordings ("bootstrap-recordings")."""
+    extra: dict[str, Any] = {"method": method}
+    g_hat = group_fn(f.model) if group_fn else {}
+    space, problem, recs = f.problem.space, f.problem, f.recs
+
+    def refit(p2):
+        try:
+            u = _local_refit(p2, space, f.u_best, f.use_separable)
+            m = p2.model(space.natural(u))
+        except (ValueError, np.linalg.LinAlgError):
+            return None
+        vec = f.layout.vector(m)
+        if group_fn:
+            vec = np.r_[vec, list(group_fn(m).values())]
+        return vec
+
+    if method == "bootstrap":
+        y_hat, resid, segments = _residuals(f.model, recs, f.warmup)
+        b = int(block) if block else block_length(resid)
+        extra["block"] = b
+
+        def draw(rng):
+            y_star = y_hat + moving_block_resample(resid, segments, b, rng)
+            return refit(_with_fitted_output(problem, y_star))
+    else:
+        if len(recs) < 2:
+            raise ValueError(
+                'standard_errors="bootstrap-recordings" needs several recordings '
+                f'(got {len(recs)}); use "bootstrap" (residual blocks)'
             )
 
-    # -- standard errors
-    extra: dict[str, Any] = {"method": method}
-    c_hat = layout.vector(model)
-    g_hat = group_fn(model) if group_fn else {}
-    g_se: dict[str, float] = {}
-    if method == "none":
-        se = np.full(len(layout.names), np.nan)
-        g_se = {k: float("nan") for k in g_hat}
-    elif method == "linearised":
-        se = np.full(len(layout.names), np.nan)
-        if J is not None:
-            se[keep] = linearised_se(J_keep, sse, n_fit)
-            if np.all(np.isfinite(J_keep)):
-                cov = np.full((se.size, se.size), np.nan)
-                cov[np.ix_(keep, keep)] = covariance(J_keep, sse, n_fit)
-                extra["covariance"] = cov  # for mapping the errors to other parameters
-        if group_fn and J is not None:
-            g_se = _delta_group_se(layout, model, group_fn, J, sse, n_fit, free_names)
-    else:
+        def draw(rng):
+            idx = rng.integers(0, len(recs), size=len(recs))
+            return refit(_with_recordings(problem, [recs[i] for i in idx], f.warmup))
 
-        def refit(p2):
-            try:
-                u = _local_refit(p2, space, u_best, use_separable)
-                m = p2.model(space.natural(u))
-            except (ValueError, np.linalg.LinAlgError):
-                return None
-            vec = layout.vector(m)
-            if group_fn:
-                vec = np.r_[vec, list(group_fn(m).values())]
-            return vec
+    boot = bootstrap(draw, count, seed)
+    k = len(f.layout.names)
+    g_se = {n: float(s) for n, s in zip(g_hat, boot["se"][k:], strict=True)}
+    extra.update(
+        resamples=int(count),
+        failed=int(boot["failed"]),
+        seed=seed,
+        names=[*f.layout.names, *g_hat],
+        samples=boot["samples"],
+    )
+    return boot["se"][:k], g_hat, g_se, extra
 
-        if method == "bootstrap":
-            y_hat, resid, segments = _residuals(model, recs, warmup)
-            b = int(block) if block else block_length(resid)
-            extra["block"] = b
 
-            def draw(rng):
-                y_star = y_hat + moving_block_resample(resid, segments, b, rng)
-                return refit(_with_fitted_output(problem, y_star))
-        else:
-            if len(recs) < 2:
-                raise ValueError(
-                    'standard_errors="bootstrap-recordings" needs several recordings '
-                    f'(got {len(recs)}); use "bootstrap" (residual blocks)'
-                )
-
-            def draw(rng):
-                idx = rng.integers(0, len(recs), size=len(recs))
-                return refit(_with_recordings(problem, [recs[i] for i in idx], warmup))
-
-        boot = bootstrap(draw, count, seed)
-        k = len(layout.names)
-        se = boot["se"][:k]
-        g_se = {n: float(s) for n, s in zip(g_hat, boot["se"][k:], strict=True)}
-        extra.update(
-            resamples=int(count),
-            failed=int(boot["failed"]),
-            seed=seed,
-            names=[*layout.names, *g_hat],
-            samples=boot["samples"],
-        )
-
-    diag = Diagnostics.from_jacobian(
-        J_keep,
-        names_keep,
-        values=bvalues,
-        bounds=bbounds,
-        refs=brefs,
+def _diagnostics(J, keep, layout, bound_check, notes) -> Diagnostics:
+    """Identifiability diagnostics from the Jacobian's free columns and the bound check
+    ((values, bounds, reference magnitudes) of the enforced coordinates)."""
+    values, bounds, refs = bound_check
+    return Diagnostics.from_jacobian(
+        J[:, keep] if J is not None else None,
+        [layout.names[i] for i in keep],
+        values=values,
+        bounds=bounds,
+        refs=refs,
         source=layout.source,
         notes=notes,
     )
+
+
+def _groups(g_hat: dict, g_se: dict, free_names, angle) -> dict:
     groups = {}
     for name, v in g_hat.items():
         identified = name != "gain" or _gain_free(free_names)
@@ -402,14 +464,7 @@ def assess(
             "curve_angle": angle.angle,
             "identified": identified,
         }
-    extra["estimate_names"] = list(layout.names)
-    return {
-        "standard_errors": layout.to_dict(se),
-        "diagnostics": diag,
-        "groups": groups,
-        "se_method": extra,
-        "estimate": c_hat,
-    }
+    return groups
 
 
 REFIT_NFEV = 30  # least-squares iterations of a bootstrap re-fit (it starts at the estimate)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _core as core
+from .. import physics
 from .._arrays import as_signal, as_time_and_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
 from .base import HysteresisModel
@@ -152,7 +153,9 @@ class CurveAngleModel(HysteresisModel):
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], dt, curve_angle=u[1])
 
-    # closed-form terms, in the rotary units of the model (rad at the motor / at the joint)
+    # closed-form terms, in the rotary units of the model (rad at the motor / at the joint), from
+    # tendonsheath.physics (the C++ closed forms that step() uses); curve_angle: a number or an
+    # array, and |curve_angle| counts, as in step()
     def backlash_half_width(self, curve_angle: float) -> float:
         """Half the dead-zone width at the motor, rad: e_b / r_p.
 
@@ -166,7 +169,11 @@ class CurveAngleModel(HysteresisModel):
         float
             e_b / r_p (rad).
         """
-        return self._engine.backlash_half_width(float(curve_angle)) / self.params["proximal_radius"]
+        p = self.params
+        e_b = physics.backlash_half_width(
+            p["length"], p["stiffness"], p["pretension"], p["friction"], np.abs(curve_angle)
+        )
+        return e_b / p["proximal_radius"]
 
     def load_offset(self, curve_angle: float) -> float:
         """Load offset at the motor, rad: e_L / r_p.
@@ -181,7 +188,11 @@ class CurveAngleModel(HysteresisModel):
         float
             e_L / r_p (rad).
         """
-        return self._engine.load_offset(float(curve_angle)) / self.params["proximal_radius"]
+        p = self.params
+        e_L = physics.load_offset(
+            p["length"], p["stiffness"], p["load"], p["friction"], np.abs(curve_angle)
+        )
+        return e_L / p["proximal_radius"]
 
     def slope(self, curve_angle: float) -> float:
         """Branch slope c of the linear displacements (dimensionless).
@@ -196,7 +207,10 @@ class CurveAngleModel(HysteresisModel):
         float
             c = 1/(1 + k_e L tanh(a/2)/(EA a)), a = mu Theta.
         """
-        return self._engine.slope(float(curve_angle))
+        p = self.params
+        return physics.spring_slope(
+            p["length"], p["stiffness"], p["friction"], np.abs(curve_angle), p["spring"]
+        )
 
 
 def curve_angle_samples(curve_angle, n: int, who: str) -> np.ndarray:

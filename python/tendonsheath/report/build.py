@@ -66,6 +66,53 @@ def _jsonable(value: Any):
     return value
 
 
+class _Section:
+    """The HTML parts of one scenario's section, and the PNG files written beside the
+    report (named after the scenario)."""
+
+    def __init__(self, out: Path, scenario: str) -> None:
+        self.out, self.scenario = out, scenario
+        self.parts: list[str] = []
+        self.written: list[Path] = []
+
+    def figure(self, fig, name: str, caption: str, interactive_div=None) -> None:
+        """The PNG beside the report; in the page, the interactive figure where there is one."""
+        data = figures.png(fig)
+        path = self.out / f"{self.scenario}_{name}.png"
+        write_bytes(path, data)
+        self.written.append(path)
+        if interactive_div is None:
+            self.parts.append(html.figure(data, caption))
+        else:
+            self.parts.append(html.interactive_figure(interactive_div, path.name))
+
+
+# the figures over time of every scenario: (file name, PNG, interactive, title, caption)
+_TIME_FIGURES = (
+    (
+        "tracking",
+        figures.tracking,
+        interactive.tracking,
+        "tracking",
+        "Reference (dashed) and distal output of each compensator, last 12 s.",
+    ),
+    (
+        "error",
+        figures.errors,
+        interactive.errors,
+        "tracking error",
+        "Tracking error over the whole run; metrics exclude the warm-up (dotted line).",
+    ),
+    (
+        "loops",
+        figures.loops,
+        interactive.loops,
+        "output vs reference",
+        "Hysteresis left by each compensator (output against reference).",
+    ),
+)
+
+
 def scenario_section(result, out: Path, angle_unit: str = "deg") -> tuple[str, list[Path]]:
     """HTML for one scenario, and the PNG files written beside the report; every angle in the
     tables in ``angle_unit`` ("deg" or "rad").
@@ -86,36 +133,11 @@ def scenario_section(result, out: Path, angle_unit: str = "deg") -> tuple[str, l
     written : list of Path
         The PNG files written.
     """
-    parts, written = [], []
-
-    def add(fig, name, caption, interactive_div=None):
-        """The PNG beside the report; in the page, the interactive figure where there is one."""
-        data = figures.png(fig)
-        path = out / f"{result.name}_{name}.png"
-        write_bytes(path, data)
-        written.append(path)
-        if interactive_div is None:
-            parts.append(html.figure(data, caption))
-        else:
-            parts.append(html.interactive_figure(interactive_div, path.name))
-
+    section = _Section(out, result.name)
+    parts = section.parts
     parts.append(f"<p>{html.fmt(result.summary)}</p>")
     parts.append("<h3>What was simulated</h3>" + html.conditions(result.conditions))
-    if result.targets:
-        rows = [
-            {
-                "paper's claim": x["claim"],
-                "target": x["target"],
-                "measured": f"{x['measured']:.3g} {x['unit']}".strip(),
-                "verdict": "met" if x["met"] else "NOT met",
-            }
-            for x in result.targets
-        ]
-        parts.append(
-            '<h3>Paper targets</h3><p class="note">Each paper\'s headline, measured here on the '
-            "realistic plant with compensators calibrated from logs alone. A miss is a "
-            "measured figure, not a failure to hide.</p>" + html.table(rows)
-        )
+    parts.append(_targets_table(result.targets))
     parts.append(
         f"<h3>{html.fmt(result.table_title)}</h3>"
         + html.table(rows_in_unit(result.table, angle_unit, result.table_units))
@@ -124,60 +146,29 @@ def scenario_section(result, out: Path, angle_unit: str = "deg") -> tuple[str, l
     if result.paper.get("note"):
         parts.append(f'<p class="note">{html.fmt(result.paper["note"])}</p>')
     if result.name == "do2015":
-        add(
-            figures.bars(
-                {k: convert(r.metrics["mse"], "rad^2", angle_unit) for k, r in result.runs.items()},
-                "MSE under random route changes: this simulation and the paper",
-                f"MSE [{unit_after('rad^2', angle_unit)}]",
-                {k: convert(v, "rad^2", angle_unit) for k, v in result.paper["mse_rad2"].items()},
-            ),
+        section.figure(
+            _mse_bars(result, angle_unit),
             "mse",
             "Mean squared error of the headline runs (the route changing at random; "
             "log scale) beside the paper's.",
         )
-    for name, static, live, title, caption in (
-        (
-            "tracking",
-            figures.tracking,
-            interactive.tracking,
-            "tracking",
-            "Reference (dashed) and distal output of each compensator, last 12 s.",
-        ),
-        (
-            "error",
-            figures.errors,
-            interactive.errors,
-            "tracking error",
-            "Tracking error over the whole run; metrics exclude the warm-up (dotted line).",
-        ),
-        (
-            "loops",
-            figures.loops,
-            interactive.loops,
-            "output vs reference",
-            "Hysteresis left by each compensator (output against reference).",
-        ),
-    ):
+    for name, static, live, title, caption in _TIME_FIGURES:
         title = f"{result.name}: {title}"
-        add(
+        live_caption = caption + " Zoom, pan, hide a trace in the legend."
+        section.figure(
             static(result.runs, title, unit=angle_unit),
             name,
             caption,
-            live(
-                result.runs,
-                title,
-                caption + " Zoom, pan, hide a trace in the legend.",
-                unit=angle_unit,
-            ),
+            live(result.runs, title, live_caption, unit=angle_unit),
         )
     if result.routes:
-        add(
+        section.figure(
             figures.routes(result.routes, f"{result.name}: route shapes"),
             "routes",
             "Accumulated curve angle along the sheath, and the same route drawn flat.",
         )
     if result.frequency:
-        add(
+        section.figure(
             figures.bode(
                 result.frequency,
                 f"{result.name}: frequency response",
@@ -186,22 +177,63 @@ def scenario_section(result, out: Path, angle_unit: str = "deg") -> tuple[str, l
             "bode",
             "Gain, phase and error magnitude of the fundamental, with the paper's bandwidth.",
         )
-        rows = [
-            {
-                "compensator": k,
-                "bandwidth_3db_hz": fr.bandwidth_3db,
-                "bandwidth_error_rise_hz": fr.bandwidth_error,
-                "paper_bandwidth_hz": result.paper.get("bandwidth_hz"),
-            }
-            for k, fr in result.frequency.items()
-        ]
-        parts.append("<h3>Bandwidth</h3>" + html.table(rows))
-    if result.calibration:
-        cal = {
-            k: v for k, v in result.calibration.items() if not isinstance(v, dict | list | tuple)
+        parts.append(_bandwidth_table(result))
+    parts.append(_calibration_tables(result))
+    if result.honesty:
+        parts.append(honesty_section(result.honesty, angle_unit))
+    return "".join(parts), section.written
+
+
+def _targets_table(targets: list[dict]) -> str:
+    """The paper's headline claims, measured here, met or not ("" without any)."""
+    if not targets:
+        return ""
+    rows = [
+        {
+            "paper's claim": x["claim"],
+            "target": x["target"],
+            "measured": f"{x['measured']:.3g} {x['unit']}".strip(),
+            "verdict": "met" if x["met"] else "NOT met",
         }
-        if cal:
-            parts.append("<h3>Calibration (identified on the plant)</h3>" + html.table([cal]))
+        for x in targets
+    ]
+    return (
+        '<h3>Paper targets</h3><p class="note">Each paper\'s headline, measured here on the '
+        "realistic plant with compensators calibrated from logs alone. A miss is a "
+        "measured figure, not a failure to hide.</p>" + html.table(rows)
+    )
+
+
+def _mse_bars(result, angle_unit: str):
+    """The headline runs' MSE beside the paper's (do2015)."""
+    return figures.bars(
+        {k: convert(r.metrics["mse"], "rad^2", angle_unit) for k, r in result.runs.items()},
+        "MSE under random route changes: this simulation and the paper",
+        f"MSE [{unit_after('rad^2', angle_unit)}]",
+        {k: convert(v, "rad^2", angle_unit) for k, v in result.paper["mse_rad2"].items()},
+    )
+
+
+def _bandwidth_table(result) -> str:
+    """The -3 dB and error-rise bandwidths per compensator, beside the paper's."""
+    rows = [
+        {
+            "compensator": k,
+            "bandwidth_3db_hz": fr.bandwidth_3db,
+            "bandwidth_error_rise_hz": fr.bandwidth_error,
+            "paper_bandwidth_hz": result.paper.get("bandwidth_hz"),
+        }
+        for k, fr in result.frequency.items()
+    ]
+    return "<h3>Bandwidth</h3>" + html.table(rows)
+
+
+def _calibration_tables(result) -> str:
+    """The calibration's scalar figures and the identified parameters ("" without any)."""
+    parts = []
+    cal = {k: v for k, v in result.calibration.items() if not isinstance(v, dict | list | tuple)}
+    if cal:
+        parts.append("<h3>Calibration (identified on the plant)</h3>" + html.table([cal]))
     if result.identified:
         parts.append(
             '<h3>Identified parameters</h3><p class="note">From the calibration logs alone '
@@ -209,9 +241,7 @@ def scenario_section(result, out: Path, angle_unit: str = "deg") -> tuple[str, l
             "separated are reported as groups; the rest is held at declared values.</p>"
             + html.table(result.identified)
         )
-    if result.honesty:
-        parts.append(honesty_section(result.honesty, angle_unit))
-    return "".join(parts), written
+    return "".join(parts)
 
 
 def honesty_section(panel: dict, angle_unit: str = "deg") -> str:

@@ -181,87 +181,40 @@ def sweep(
     ConnectionError
         The scheduler could not be reached within ``connect_timeout``.
     """
-    if not callable(run):
-        raise ValueError(f"sweep: run must be callable (got {type(run).__name__})")
-    if on_error not in ("raise", "record"):
-        raise ValueError(f"sweep: on_error must be 'raise' or 'record' (got {on_error!r})")
-    if batch_size is not None and (int(batch_size) != batch_size or batch_size < 1):
-        raise ValueError(f"sweep: batch_size must be a positive integer (got {batch_size!r})")
-    if workers is not None and (int(workers) != workers or workers < 1):
-        raise ValueError(f"sweep: workers must be a positive integer (got {workers!r})")
-    if isinstance(retries, bool) or int(retries) != retries or retries < 0:
-        raise ValueError(f"sweep: retries must be an integer >= 0 (got {retries!r})")
-    if not connect_timeout > 0:
-        raise ValueError(f"sweep: connect_timeout must be > 0 s (got {connect_timeout!r})")
+    _check_options(run, on_error, batch_size, workers, retries, connect_timeout)
     design = as_design(design)
     _check_names(design, declared_parameters(run, parameters))
     plan = make_plan(design, n, seed)
-    stored: dict = {}
-    ck = None
-    if checkpoint is not None:
-        ck = Checkpoint(checkpoint, plan, checkpoint_tag)
-        stored = ck.load()
+    ck = Checkpoint(checkpoint, plan, checkpoint_tag) if checkpoint is not None else None
+    stored: dict = ck.load() if ck is not None else {}
     items = [(i, p) for i, p in enumerate(plan.runs) if i not in stored]
-
-    client, own_client = None, False
-    if isinstance(engine, str) and engine not in ("local", "serial"):
-        if "://" not in engine and ":" not in engine:
-            raise ValueError(
-                f"sweep: engine must be 'local', 'serial', a dask Client or a scheduler "
-                f"address like tcp://host:8786 (got {engine!r})"
-            )
-        client, own_client = connect(engine, connect_timeout), True
-    elif is_dask_client(engine):
-        client = engine
-    elif engine not in ("local", "serial"):
-        raise ValueError(
-            "sweep: engine must be 'local', 'serial', a dask.distributed.Client or a scheduler "
-            f"address (got {type(engine).__name__})"
-        )
-
+    client, own_client = _client(engine, connect_timeout)
     start = time.perf_counter()
     record = None
     if ck is not None:
         ck.open(keep=bool(stored))
         record = ck.record
     try:
-        if not items:  # every run was stored by an earlier, interrupted call
-            results, stats = {}, EngineStats("resumed", 0, 0, 0)
-        elif client is not None:
-            results, stats = run_dask(run, items, client, batch_size, retries, progress, record)
-        elif engine == "serial":
-            results, stats = run_serial(run, items, progress, record)
-        else:
-            results, stats = run_local(run, items, workers, batch_size, progress, record=record)
+        engines = (engine, client, workers, batch_size, retries)
+        results, stats = _run_items(run, items, engines, progress, record)
     finally:
         if own_client:
             client.close()
         if ck is not None:
             ck.close()
     results = {**stored, **results}
-    n_all = len(plan.runs)
-    failed = [(i, results[i][1]) for i in range(n_all) if results[i][1] is not None]
-    if failed and on_error == "raise":
-        i, err = failed[0]
-        raise SweepError(
-            f"run {i} with {plan.runs[i]} failed: {err}"
-            + (f" ({len(failed) - 1} more runs failed)" if len(failed) > 1 else "")
-            + "; pass on_error='record' to keep going"
-        )
-    if len(failed) == n_all:
-        raise SweepError(f"sweep: every run failed; the first: run 0: {failed[0][1]}")
-    table, metrics, compensators = build_table(plan, results)
+    failed = _failed_runs(plan, results, on_error)
+    built = build_table(plan, results)
     info = engine_info(stats)
     info["wall_seconds"] = time.perf_counter() - start
-    info["runs_per_second"] = (
-        len(items) / info["wall_seconds"] if info["wall_seconds"] else math.inf
-    )
-    info["failed_runs"] = len(failed)
-    info["resumed_runs"] = len(stored)
-    # worker-time each run cost beyond its own compute (start-up, transfer, scheduling, idle)
-    if stats.compute_seconds > 0:
-        used = stats.seconds * stats.workers
-        info["overhead_per_run"] = (used - stats.compute_seconds) / stats.compute_seconds
+    info.update(_throughput(stats, info["wall_seconds"], len(items), len(failed), len(stored)))
+    return _sweep_result(plan, built, info)
+
+
+def _sweep_result(plan: Plan, built: tuple, info: dict) -> SweepResult:
+    """The result of ``plan``'s runs: ``built`` is build_table's (table, metrics,
+    compensators) and ``info`` the engine's figures."""
+    table, metrics, compensators = built
     return SweepResult(
         table=table,
         parameters=list(plan.drawn),
@@ -274,6 +227,85 @@ def sweep(
         salib_problem=plan.salib_problem,
         unranked=plan.unranked,
     )
+
+
+def _check_options(run, on_error, batch_size, workers, retries, connect_timeout) -> None:
+    """One-line errors for the options of :func:`sweep`, before any work."""
+    if not callable(run):
+        raise ValueError(f"sweep: run must be callable (got {type(run).__name__})")
+    if on_error not in ("raise", "record"):
+        raise ValueError(f"sweep: on_error must be 'raise' or 'record' (got {on_error!r})")
+    if batch_size is not None and (int(batch_size) != batch_size or batch_size < 1):
+        raise ValueError(f"sweep: batch_size must be a positive integer (got {batch_size!r})")
+    if workers is not None and (int(workers) != workers or workers < 1):
+        raise ValueError(f"sweep: workers must be a positive integer (got {workers!r})")
+    if isinstance(retries, bool) or int(retries) != retries or retries < 0:
+        raise ValueError(f"sweep: retries must be an integer >= 0 (got {retries!r})")
+    if not connect_timeout > 0:
+        raise ValueError(f"sweep: connect_timeout must be > 0 s (got {connect_timeout!r})")
+
+
+def _client(engine, connect_timeout: float):
+    """The Dask client ``engine`` names (None for "local" and "serial"), and whether the
+    sweep opened it (and so closes it)."""
+    if isinstance(engine, str) and engine not in ("local", "serial"):
+        if "://" not in engine and ":" not in engine:
+            raise ValueError(
+                f"sweep: engine must be 'local', 'serial', a dask Client or a scheduler "
+                f"address like tcp://host:8786 (got {engine!r})"
+            )
+        return connect(engine, connect_timeout), True
+    if is_dask_client(engine):
+        return engine, False
+    if engine not in ("local", "serial"):
+        raise ValueError(
+            "sweep: engine must be 'local', 'serial', a dask.distributed.Client or a scheduler "
+            f"address (got {type(engine).__name__})"
+        )
+    return None, False
+
+
+def _run_items(run, items: list, engines: tuple, progress, record):
+    """Run ``items`` (index, parameters) on the engine ``engines`` names (engine, Dask
+    client or None, workers, batch size, retries): (index -> result, EngineStats)."""
+    engine, client, workers, batch_size, retries = engines
+    if not items:  # every run was stored by an earlier, interrupted call
+        return {}, EngineStats("resumed", 0, 0, 0)
+    if client is not None:
+        return run_dask(run, items, client, batch_size, retries, progress, record)
+    if engine == "serial":
+        return run_serial(run, items, progress, record)
+    return run_local(run, items, workers, batch_size, progress, record=record)
+
+
+def _failed_runs(plan: Plan, results: dict, on_error: str) -> list:
+    """(index, error) of every failed run; a SweepError where the sweep cannot go on."""
+    n_all = len(plan.runs)
+    failed = [(i, results[i][1]) for i in range(n_all) if results[i][1] is not None]
+    if failed and on_error == "raise":
+        i, err = failed[0]
+        raise SweepError(
+            f"run {i} with {plan.runs[i]} failed: {err}"
+            + (f" ({len(failed) - 1} more runs failed)" if len(failed) > 1 else "")
+            + "; pass on_error='record' to keep going"
+        )
+    if len(failed) == n_all:
+        raise SweepError(f"sweep: every run failed; the first: run 0: {failed[0][1]}")
+    return failed
+
+
+def _throughput(stats: EngineStats, wall: float, ran: int, failed: int, resumed: int) -> dict:
+    """Runs per second, failed and resumed runs, and the worker-time each run cost beyond
+    its own compute (start-up, transfer, scheduling, idle)."""
+    info = {
+        "runs_per_second": ran / wall if wall else math.inf,
+        "failed_runs": failed,
+        "resumed_runs": resumed,
+    }
+    if stats.compute_seconds > 0:
+        used = stats.seconds * stats.workers
+        info["overhead_per_run"] = (used - stats.compute_seconds) / stats.compute_seconds
+    return info
 
 
 # ``tendonsheath.sweep`` (the attribute) is this function, which shadows the subpackage:

@@ -101,6 +101,27 @@ def build_table(plan, results: dict[int, tuple[Any, str | None]]):
     return table.reset_index(drop=True), metric_names, (compensators if nested else None)
 
 
+def _ranked(block: list[dict], key) -> list[dict]:
+    """``block`` sorted by ``key`` with a 1-based ``rank`` in each row."""
+    block.sort(key=key)
+    for k, r in enumerate(block, 1):
+        r["rank"] = k
+    return block
+
+
+def _standardized_regression(X: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, float]:
+    """Least-squares coefficients of standardized ``y`` on the standardized columns of
+    ``X``, and the r2 of that linear model (zeros and NaN when ``y`` is constant)."""
+    Xs = (X - X.mean(0)) / X.std(0)
+    sy = y.std()
+    if sy == 0:
+        return np.zeros(X.shape[1]), float("nan")
+    ys = (y - y.mean()) / sy
+    coef, *_ = np.linalg.lstsq(Xs, ys, rcond=None)
+    resid = ys - Xs @ coef
+    return coef, float(1.0 - resid @ resid / (ys @ ys))
+
+
 @dataclass
 class SweepResult:
     """What :func:`tendonsheath.sweep` returns.
@@ -292,66 +313,62 @@ class SweepResult:
         if method not in ("src", "srrc", "sobol"):
             raise ValueError(f"sensitivity: method must be auto, src, srrc or sobol ({method!r})")
         metrics = [metrics] if isinstance(metrics, str) else list(metrics or self.metrics)
-        rows = []
         if method == "sobol":
-            if self.salib_problem is None:
-                raise ValueError("sensitivity: Sobol indices need a Saltelli design")
-            from SALib.analyze import sobol
+            return pd.DataFrame(self._sobol_rows(metrics))
+        return pd.DataFrame(self._regression_rows(method, metrics))
 
-            for comp, g in self._groups():
-                g = g.sort_values("run")
-                for m in metrics:
-                    y = g[m].to_numpy(dtype=np.float64)
-                    if not np.all(np.isfinite(y)):
-                        raise ValueError(f"sensitivity: {comp}/{m} has failed runs (NaN)")
-                    res = sobol.analyze(
-                        self.salib_problem,
-                        y,
-                        calc_second_order=False,
-                        print_to_console=False,
-                        seed=self.seed,
-                    )
-                    block = []
-                    for j, name in enumerate(self.salib_problem["names"]):
-                        block.append(
-                            {
-                                "compensator": comp,
-                                "metric": m,
-                                "parameter": name,
-                                "method": "sobol",
-                                "S1": float(res["S1"][j]),
-                                "S1_conf": float(res["S1_conf"][j]),
-                                "ST": float(res["ST"][j]),
-                                "ST_conf": float(res["ST_conf"][j]),
-                            }
-                        )
-                    block.sort(key=lambda r: -np.nan_to_num(r["ST"], nan=-np.inf))
-                    for k, r in enumerate(block, 1):
-                        r["rank"] = k
-                    rows += block
-            return pd.DataFrame(rows)
+    def _sobol_rows(self, metrics: list[str]) -> list[dict]:
+        """First-order and total Sobol indices (SALib), ranked by ST."""
+        if self.salib_problem is None:
+            raise ValueError("sensitivity: Sobol indices need a Saltelli design")
+        from SALib.analyze import sobol
+
+        rows = []
+        for comp, g in self._groups():
+            g = g.sort_values("run")
+            for m in metrics:
+                y = g[m].to_numpy(dtype=np.float64)
+                if not np.all(np.isfinite(y)):
+                    raise ValueError(f"sensitivity: {comp}/{m} has failed runs (NaN)")
+                res = sobol.analyze(
+                    self.salib_problem,
+                    y,
+                    calc_second_order=False,
+                    print_to_console=False,
+                    seed=self.seed,
+                )
+                block = [
+                    {
+                        "compensator": comp,
+                        "metric": m,
+                        "parameter": name,
+                        "method": "sobol",
+                        "S1": float(res["S1"][j]),
+                        "S1_conf": float(res["S1_conf"][j]),
+                        "ST": float(res["ST"][j]),
+                        "ST_conf": float(res["ST_conf"][j]),
+                    }
+                    for j, name in enumerate(self.salib_problem["names"])
+                ]
+                rows += _ranked(block, lambda r: -np.nan_to_num(r["ST"], nan=-np.inf))
+        return rows
+
+    def _regression_rows(self, method: str, metrics: list[str]) -> list[dict]:
+        """Standardized regression coefficients (``"src"``, or on ranks ``"srrc"``) of the
+        numeric parameters, ranked by their magnitude."""
         names = self.numeric_parameters()
         if not names:
             raise ValueError("sensitivity: no numeric parameter varies in this sweep")
+        rows = []
         for comp, g in self._groups():
             for m in metrics:
                 sub = g[[*names, m]].dropna()
                 if len(sub) <= len(names) + 1:
                     continue
-                X = sub[names].to_numpy(dtype=np.float64)
-                y = sub[m].to_numpy(dtype=np.float64)
                 if method == "srrc":
-                    X = sub[names].rank().to_numpy(dtype=np.float64)
-                    y = sub[m].rank().to_numpy(dtype=np.float64)
-                Xs = (X - X.mean(0)) / X.std(0)
-                sy = y.std()
-                if sy == 0:
-                    coef, r2 = np.zeros(len(names)), float("nan")
-                else:
-                    ys = (y - y.mean()) / sy
-                    coef, *_ = np.linalg.lstsq(Xs, ys, rcond=None)
-                    resid = ys - Xs @ coef
-                    r2 = float(1.0 - resid @ resid / (ys @ ys))
+                    sub = sub.rank()
+                X = sub[names].to_numpy(dtype=np.float64)
+                coef, r2 = _standardized_regression(X, sub[m].to_numpy(dtype=np.float64))
                 block = [
                     {
                         "compensator": comp,
@@ -363,11 +380,8 @@ class SweepResult:
                     }
                     for p, c in zip(names, coef, strict=True)
                 ]
-                block.sort(key=lambda r: -abs(r["coefficient"]))
-                for k, r in enumerate(block, 1):
-                    r["rank"] = k
-                rows += block
-        return pd.DataFrame(rows)
+                rows += _ranked(block, lambda r: -abs(r["coefficient"]))
+        return rows
 
     # -- files ---------------------------------------------------------------------------------
     def to_csv(self, path) -> Path:

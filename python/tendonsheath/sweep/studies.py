@@ -3,10 +3,10 @@
 :func:`robustness_study` runs each compensator over 200 draws of friction (+/-30 %),
 pretension (+/-30 %) and route (random arcs: 1 to 4 pieces, a random split of a total
 curve angle drawn within +/-50 % of nominal); :func:`robustness_section` turns the result
-into the report's figure and numbers. The run defaults to the stand-in
-:func:`~tendonsheath.sweep.example_runs.compensator_study`; the bench's do2015 scenario
-plugs in as ``run=`` once it accepts the same parameter names (``friction``,
-``pretension``, ``route_angle``, ``route_pieces``, ``route_seed``).
+into the report's figure and numbers. The run is any sweep run that takes these parameter
+names (``friction``, ``pretension``, ``route_angle``, ``route_pieces``, ``route_seed``): the
+demo passes the do2015 scenario's
+:func:`~tendonsheath.bench.scenarios.do.robustness_run`.
 """
 
 from __future__ import annotations
@@ -18,16 +18,15 @@ import numpy as np
 
 from .._atomic import save_figure
 from .distributions import Integers, MonteCarlo, Relative, Seed
-from .example_runs import NOMINAL, compensator_study
 
 ROBUSTNESS_RUNS = 200
 ROBUSTNESS_SEED = 2015
 
 
 def robustness_design(
-    friction: float = NOMINAL["friction"],
-    pretension: float = NOMINAL["pretension"],
-    route_angle: float = NOMINAL["route_angle"],
+    friction: float = 0.1,
+    pretension: float = 10.0,
+    route_angle: float = math.pi,
     spread: float = 0.3,
     **fixed,
 ) -> MonteCarlo:
@@ -46,7 +45,7 @@ def robustness_design(
 
 
 def robustness_study(
-    run=compensator_study,
+    run,
     n: int = ROBUSTNESS_RUNS,
     seed: int = ROBUSTNESS_SEED,
     engine="local",
@@ -57,8 +56,9 @@ def robustness_study(
 
     Parameters
     ----------
-    run : callable, optional
-        The run (default the built-in compensator study).
+    run : callable
+        The run: perturbed parameters in, each compensator's metrics out (for example
+        :func:`tendonsheath.bench.scenarios.do.robustness_run`).
     n : int, default 200
         Number of perturbed plants.
     seed : int, default 2015

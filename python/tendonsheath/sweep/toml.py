@@ -1,8 +1,8 @@
 """The sweep file of ``tendonsheath sweep sweep.toml``: the scenario plus the distributions.
 
 [run]
-function = "tendonsheath.sweep.example_runs:compensator_study"   # module:function
-# or: scenario = "example"                                         # a name in SCENARIOS
+function = "tendonsheath.bench.scenarios.do:robustness_run"   # module:function
+# or: scenario = "do2015"                                    # a name in SCENARIOS
 
 [sweep]
 design = "random"        # random | lhs | grid | saltelli
@@ -60,8 +60,6 @@ from .result import check_bound
 #: Named runs for ``[run] scenario = NAME``; the bench scenarios (do2015, ...) belong here.
 SCENARIOS: dict[str, str] = {
     "do2015": "tendonsheath.bench.scenarios.do:robustness_run",
-    "example": "tendonsheath.sweep.example_runs:compensator_study",
-    "example-uncompensated": "tendonsheath.sweep.example_runs:tracking_mse",
 }
 
 DESIGNS = {"random": MonteCarlo, "lhs": LatinHypercube, "grid": Grid, "saltelli": Saltelli}

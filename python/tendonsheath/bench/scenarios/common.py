@@ -51,6 +51,31 @@ def first_paragraph(doc: str) -> str:
     return " ".join(doc.strip().split("\n\n")[0].split())
 
 
+def announce(progress: Callable[[str], Any] | None, step: str) -> None:
+    """Tell ``progress`` (a callable, or None for silence) that ``step`` begins."""
+    if progress:
+        progress(step)
+
+
+def calibrated(name: str, calibrate: Callable, scale: float, seed: int, progress=None):
+    """A built-in scenario's calibration protocol ``calibrate(seed, budget)`` run at the
+    identification budget of ``scale``: (calibration, budget)."""
+    announce(progress, f"{name}: calibration")
+    budget = identification_budget(scale)
+    return calibrate(seed, budget), budget
+
+
+def scenario_result(scenario: Callable, cal, **fields) -> ScenarioResult:
+    """A built-in scenario's result: named after its function, summarised by the first
+    paragraph of its docstring, listing the groups ``cal`` identified."""
+    return ScenarioResult(
+        name=scenario.__name__,
+        summary=first_paragraph(scenario.__doc__),
+        identified=cal.identified_rows(),
+        **fields,
+    )
+
+
 def encoder(noise_std: float = 2e-4, resolution: float = 1e-4, seed: int = 1) -> Sensor:
     """The distal sensor of the scenarios: an encoder with Gaussian noise."""
     return Sensor(resolution=resolution, noise_std=noise_std, seed=seed)

@@ -16,13 +16,14 @@ from ..calibration import calibrate as bench_calibrate
 from ..run import run
 from .common import (
     ScenarioResult,
+    announce,
+    calibrated,
     encoder,
-    first_paragraph,
     honesty_panel,
-    identification_budget,
     kinematic_told,
     piecewise_routes,
     ratio,
+    scenario_result,
     target,
 )
 
@@ -158,37 +159,14 @@ def do2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     times, shapes = route_schedule(duration, rng)
     routes = piecewise_routes(times, shapes)
     servo, torque = plants()
-    if progress:
-        progress("do2015: calibration")
-    budget = identification_budget(scale)
-    cal = calibrate(seed, budget)
+    cal, budget = calibrated("do2015", calibrate, scale, seed, progress)
     sensor = encoder(seed=seed + 3)
-    runs = {}
-    if progress:
-        progress("do2015: closed-loop runs")
-    adaptive = AdaptiveController.from_model(
-        cal.backlash_model,
-        inertia=INERTIA,
-        viscous=VISCOUS,
-        bandwidth_hz=8.0,
-        max_torque=5.0,
-        noise_std=sensor.noise_std,
-    )
+    announce(progress, "do2015: closed-loop runs")
+    adaptive = _adaptive_controller(cal.backlash_model, sensor)
     ff = cal.inverse_feedforward(smoothing=0.03)
-
-    def compare(route_schedule):
-        return {
-            "none": run(servo, None, t, y_d, routes=route_schedule, noise=sensor),
-            "InverseFeedforward": run(servo, ff, t, y_d, routes=route_schedule, noise=sensor),
-            "AdaptiveController": run(
-                torque, adaptive, t, y_d, routes=route_schedule, noise=sensor
-            ),
-        }
-
-    runs = compare(routes)  # the headline: the route changes at random
-    fixed = compare(None)  # the nominal route throughout (not the calibration route)
-    if progress:
-        progress("do2015: honesty panel")
+    runs = _compare(servo, torque, ff, adaptive, t, y_d, sensor, routes)  # the headline
+    fixed = _compare(servo, torque, ff, adaptive, t, y_d, sensor)  # the nominal route
+    announce(progress, "do2015: honesty panel")
     honesty = honesty_panel(
         cal,
         runs,
@@ -196,62 +174,82 @@ def do2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
         seed=seed,
         budget=budget,
     )
-    base, fixed_base = runs["none"].metrics["mse"], fixed["none"].metrics["mse"]
-    table = []
-    for name, result in runs.items():
-        table.append(
-            {
-                "compensator": name,
-                "mse, fixed route": fixed[name].metrics["mse"],
-                "improvement, fixed route": ratio(fixed_base, fixed[name].metrics["mse"]),
-                "mse, random routes": result.metrics["mse"],
-                "improvement, random routes": ratio(base, result.metrics["mse"]),
-                "paper_mse": PAPER_MSE[name],
-                "paper_improvement": ratio(PAPER_MSE["none"], PAPER_MSE[name]),
-            }
-        )
-    factor = {k: ratio(base, r.metrics["mse"]) for k, r in runs.items()}
-    targets = [
-        target(
-            "InverseFeedforward MSE reduction, random route changes",
-            ">= 13x",
-            factor["InverseFeedforward"],
-            factor["InverseFeedforward"] >= 13,
-            "x",
-        ),
-        target(
-            "AdaptiveController MSE reduction, random route changes",
-            ">= 190x",
-            factor["AdaptiveController"],
-            factor["AdaptiveController"] >= 190,
-            "x",
-        ),
-    ]
-    return ScenarioResult(
-        targets=targets,
-        name="do2015",
+    fit = cal.fits["BoucWenBacklash"]
+    return scenario_result(
+        do2015,
+        cal,
+        targets=_targets(runs),
         title="Do et al. 2015: feedforward and adaptive control under changing routes",
-        summary=first_paragraph(do2015.__doc__),
         conditions=CONDITIONS,
         runs=runs,
-        table=table,
+        table=_table(runs, fixed),
         paper={"mse_rad2": PAPER_MSE},
         routes={f"t = {tk:.1f} s": r for tk, r in zip(times, shapes, strict=True)},
         route_schedule=[(tk, r.total_angle) for tk, r in zip(times, shapes, strict=True)],
         extra={"fixed_route": {k: r.metrics for k, r in fixed.items()}},
-        calibration={
-            **cal.to_dict(),
-            "rmse": cal.fits["BoucWenBacklash"].rmse,
-            "nrmse": cal.fits["BoucWenBacklash"].nrmse,
-            "seconds": cal.fits["BoucWenBacklash"].seconds,
-        },
+        calibration={**cal.to_dict(), "rmse": fit.rmse, "nrmse": fit.nrmse, "seconds": fit.seconds},
         protocol="do2015: a BoucWenBacklash identified by bench.calibrate from a 20 s run on a "
         "calibration route that no test run takes (motor encoder in, noisy distal encoder "
         "out); the headline is the run with random route changes; the adaptive controller is "
         "also told the torque motor's datasheet values (declared by the user).",
         honesty=honesty,
-        identified=cal.identified_rows(),
     )
+
+
+def _adaptive_controller(model, sensor) -> AdaptiveController:
+    """The adaptive controller started from ``model`` and the torque motor's datasheet."""
+    return AdaptiveController.from_model(
+        model,
+        inertia=INERTIA,
+        viscous=VISCOUS,
+        bandwidth_hz=8.0,
+        max_torque=5.0,
+        noise_std=sensor.noise_std,
+    )
+
+
+def _compare(servo, torque, ff, adaptive, t, y_d, sensor, routes=None) -> dict:
+    """No compensation and the feedforward on the servo-driven plant, the adaptive
+    controller on the torque-driven one, all under the route schedule ``routes``."""
+    return {
+        "none": run(servo, None, t, y_d, routes=routes, noise=sensor),
+        "InverseFeedforward": run(servo, ff, t, y_d, routes=routes, noise=sensor),
+        "AdaptiveController": run(torque, adaptive, t, y_d, routes=routes, noise=sensor),
+    }
+
+
+def _table(runs: dict, fixed: dict) -> list[dict]:
+    """MSE and its reduction per compensator, on the fixed and the random routes, beside
+    the paper's."""
+    base, fixed_base = runs["none"].metrics["mse"], fixed["none"].metrics["mse"]
+    return [
+        {
+            "compensator": name,
+            "mse, fixed route": fixed[name].metrics["mse"],
+            "improvement, fixed route": ratio(fixed_base, fixed[name].metrics["mse"]),
+            "mse, random routes": result.metrics["mse"],
+            "improvement, random routes": ratio(base, result.metrics["mse"]),
+            "paper_mse": PAPER_MSE[name],
+            "paper_improvement": ratio(PAPER_MSE["none"], PAPER_MSE[name]),
+        }
+        for name, result in runs.items()
+    ]
+
+
+def _targets(runs: dict) -> list[dict]:
+    """The paper's MSE reductions under random route changes, checked."""
+    base = runs["none"].metrics["mse"]
+    factor = {k: ratio(base, r.metrics["mse"]) for k, r in runs.items()}
+    return [
+        target(
+            f"{name} MSE reduction, random route changes",
+            f">= {least}x",
+            factor[name],
+            factor[name] >= least,
+            "x",
+        )
+        for name, least in (("InverseFeedforward", 13), ("AdaptiveController", 190))
+    ]
 
 
 # -- robustness: the do2015 comparison over perturbed plants (ts.sweep run function) --------
@@ -276,7 +274,7 @@ def robustness_run(params: dict) -> dict[str, dict[str, float]]:
     """One draw of the robustness study: the plant's friction, pretension and route differ
     from the nominal plant the compensators were calibrated on; 10 s of the do2015 reference
     on a fixed (random-arc) route. Returns compensator -> metrics (a ``ts.sweep`` run)."""
-    from ...sweep.example_runs import random_arcs
+    from .routes import random_arcs
 
     kwargs = physics(
         friction=float(params.get("friction", _COMMON["friction"])),
@@ -293,21 +291,8 @@ def robustness_run(params: dict) -> dict[str, dict[str, float]]:
     servo = PullPullPlant(route=route, motor=servo_motor(), **kwargs)
     torque = PullPullPlant(route=route, motor=torque_motor(), **kwargs)
     sensor = encoder(seed=int(params.get("route_seed", 0)) % 100_000)
-    ctrl = AdaptiveController.from_model(
-        model,
-        inertia=INERTIA,
-        viscous=VISCOUS,
-        bandwidth_hz=8.0,
-        max_torque=5.0,
-        noise_std=sensor.noise_std,
-    )
-    runs = {
-        "none": run(servo, None, t, y_d, noise=sensor),
-        "InverseFeedforward": run(
-            servo, InverseFeedforward(model, smoothing=0.03), t, y_d, noise=sensor
-        ),
-        "AdaptiveController": run(torque, ctrl, t, y_d, noise=sensor),
-    }
+    ff = InverseFeedforward(model, smoothing=0.03)
+    runs = _compare(servo, torque, ff, _adaptive_controller(model, sensor), t, y_d, sensor)
     return {
         name: {k: r.metrics[k] for k in ("mse", "rmse", "max_abs", "percent_error")}
         for name, r in runs.items()

@@ -16,11 +16,12 @@ from ..frequency import frequency_response
 from ..run import run
 from .common import (
     ScenarioResult,
+    announce,
+    calibrated,
     encoder,
-    first_paragraph,
     honesty_panel,
-    identification_budget,
     kinematic_told,
+    scenario_result,
     target,
 )
 
@@ -96,79 +97,33 @@ def lau2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     duration = max(5.0, 12.5 * scale)
     t = np.arange(0.0, duration, 1e-3)
     y_d = math.pi / 2 * np.sin(2 * np.pi * 0.4 * t)
-    if progress:
-        progress("lau2015: calibration")
-    budget = identification_budget(scale)
-    cal = calibrate(seed, budget)
+    cal, budget = calibrated("lau2015", calibrate, scale, seed, progress)
     sensed = cal.shape.static_reading(ROUTE.total_angle, duration, seed_offset=99)
     ffs = {
         mode: cal.continuum_feedforward(sensed, mode=mode, smoothing=0.1)
         for mode in ("published", "exact")
     }
     servo = _plant(_motor(10.0, 0.8))
-    if progress:
-        progress("lau2015: tracking runs")
+    announce(progress, "lau2015: tracking runs")
     runs = {"none": run(servo, None, t, y_d, noise=encoder(seed=seed))}
     for mode, ff in ffs.items():
         runs[f"ContinuumFeedforward ({mode})"] = run(servo, ff, t, y_d, noise=encoder(seed=seed))
-    if progress:
-        progress("lau2015: frequency response")
-    # the paper's motor-limited drive as a 1.2 Hz lag; its servo keeps the stiffness of the
-    # 10 Hz tracking servo (reflected inertia scaled by (10/1.2)^2): the preset's inertia
-    # at 1.2 Hz would leave a servo too soft to overcome its own Coulomb friction
-    slow = _plant(
-        presets.realistic_motor(
-            bandwidth_hz=1.2,
-            damping=0.7,
-            inertia=presets.REALISTIC["motor_inertia"] * (10 / 1.2) ** 2,
-        )
-    )
-    count = 10 if scale >= 1 else 5
-    freqs = np.logspace(np.log10(0.05), np.log10(2.0), count)
-    frequency = {
-        "none": frequency_response(slow, None, freqs, amplitude=math.pi / 2, cycles=2),
-        "ContinuumFeedforward (exact)": frequency_response(
-            slow, ffs["exact"], freqs, amplitude=math.pi / 2, cycles=2
-        ),
-    }
-    if progress:
-        progress("lau2015: honesty panel")
+    announce(progress, "lau2015: frequency response")
+    frequency = _frequency_responses(ffs["exact"], count=10 if scale >= 1 else 5)
+    announce(progress, "lau2015: honesty panel")
     told = {name: {"test curve angle": (sensed, cal.shape.describe())} for name in runs}
     told["none"] = kinematic_told(servo)
     honesty = honesty_panel(
         cal, runs, curve_angle=ROUTE.total_angle, told=told, seed=seed, budget=budget
     )
-    table = [
-        {
-            "compensator": name,
-            "percent_error": r.metrics["percent_error"],
-            "max_percent_error": r.metrics["max_percent_error"],
-            "rmse_deg": math.degrees(r.metrics["rmse"]),
-            "paper_percent_error": PAPER["percent_error"]
-            if "exact" in name or "published" in name
-            else None,
-        }
-        for name, r in runs.items()
-    ]
-    targets = [
-        target(
-            f"{name} mean error, +/-90 deg at 0.4 Hz (identified groups)",
-            "< 5 %",
-            runs[name].metrics["percent_error"],
-            runs[name].metrics["percent_error"] < 5.0,
-            "%",
-        )
-        for name in runs
-        if name != "none"
-    ]
-    return ScenarioResult(
-        targets=targets,
-        name="lau2015",
+    return scenario_result(
+        lau2015,
+        cal,
+        targets=_targets(runs),
         title="Lau et al. 2015: continuum manipulator through a tendon-sheath drive",
-        summary=first_paragraph(lau2015.__doc__),
         conditions=CONDITIONS,
         runs=runs,
-        table=table,
+        table=_table(runs),
         paper=PAPER,
         routes={"semicircle, Theta = pi": ROUTE},
         calibration={
@@ -181,5 +136,57 @@ def lau2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
         "0.4, 0.75 and 1.4 pi and judged at pi; the feedforwards are told the sensed curve "
         "angle of the test route, never the plant's parameters.",
         honesty=honesty,
-        identified=cal.identified_rows(),
     )
+
+
+def _frequency_responses(ff, count: int) -> dict:
+    """The frequency response 0.05-2 Hz (``count`` frequencies) of the paper's motor-limited
+    drive, uncompensated and with the exact-mode feedforward ``ff``."""
+    # the paper's motor-limited drive as a 1.2 Hz lag; its servo keeps the stiffness of the
+    # 10 Hz tracking servo (reflected inertia scaled by (10/1.2)^2): the preset's inertia
+    # at 1.2 Hz would leave a servo too soft to overcome its own Coulomb friction
+    slow = _plant(
+        presets.realistic_motor(
+            bandwidth_hz=1.2,
+            damping=0.7,
+            inertia=presets.REALISTIC["motor_inertia"] * (10 / 1.2) ** 2,
+        )
+    )
+    freqs = np.logspace(np.log10(0.05), np.log10(2.0), count)
+    return {
+        "none": frequency_response(slow, None, freqs, amplitude=math.pi / 2, cycles=2),
+        "ContinuumFeedforward (exact)": frequency_response(
+            slow, ff, freqs, amplitude=math.pi / 2, cycles=2
+        ),
+    }
+
+
+def _table(runs: dict) -> list[dict]:
+    """Percent error and rmse per compensator, beside the paper's percent error."""
+    return [
+        {
+            "compensator": name,
+            "percent_error": r.metrics["percent_error"],
+            "max_percent_error": r.metrics["max_percent_error"],
+            "rmse_deg": math.degrees(r.metrics["rmse"]),
+            "paper_percent_error": PAPER["percent_error"]
+            if "exact" in name or "published" in name
+            else None,
+        }
+        for name, r in runs.items()
+    ]
+
+
+def _targets(runs: dict) -> list[dict]:
+    """The paper's < 5 % mean error, checked for each feedforward."""
+    return [
+        target(
+            f"{name} mean error, +/-90 deg at 0.4 Hz (identified groups)",
+            "< 5 %",
+            runs[name].metrics["percent_error"],
+            runs[name].metrics["percent_error"] < 5.0,
+            "%",
+        )
+        for name in runs
+        if name != "none"
+    ]

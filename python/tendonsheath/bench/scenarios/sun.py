@@ -16,12 +16,13 @@ from ..calibration import calibrate as bench_calibrate
 from ..run import run
 from .common import (
     ScenarioResult,
+    announce,
+    calibrated,
     encoder,
-    first_paragraph,
     honesty_panel,
-    identification_budget,
     kinematic_told,
     piecewise_routes,
+    scenario_result,
     target,
 )
 
@@ -153,62 +154,14 @@ def sun2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     duration = max(6.0, 15.0 * scale)
     t = np.arange(0.0, duration, 1e-3)
     y_d = 0.8 * np.sin(2 * np.pi * 0.2 * t)
-    if progress:
-        progress("sun2015: calibration")
-    budget = identification_budget(scale)
-    cal = calibrate(seed, budget)
+    cal, budget = calibrated("sun2015", calibrate, scale, seed, progress)
     fixed = cal.inverse_feedforward(smoothing=0.02)
-    shape = cal.shape
-    rows, per_condition = [], {}
-    if progress:
-        progress("sun2015: curve angles x loads")
-    for load_kind in ("none", "constant", "spring"):
-        load = _load(load_kind)[0]
-        follow = cal.curve_angle_feedforward(
-            load=None if load_kind == "none" else load_kind, smoothing=0.02
-        )
-        for theta in ANGLES:
-            plant = _plant(theta, load=load)
-            key = f"Theta={theta / math.pi:.1f}pi, load={load_kind}"
-            results = {
-                "none": run(plant, None, t, y_d, noise=encoder(seed=seed)),
-                "fixed feedforward": run(plant, fixed, t, y_d, noise=encoder(seed=seed)),
-                "CurveAngleFeedforward": run(
-                    plant, follow, t, y_d, noise=encoder(seed=seed), shape_sensing=shape
-                ),
-            }
-            per_condition[key] = {k: r.metrics for k, r in results.items()}
-            rows.append({"condition": key, **{k: r.metrics["rmse"] for k, r in results.items()}})
-    if progress:
-        progress("sun2015: feedforwards calibrated at each test angle")
+    announce(progress, "sun2015: curve angles x loads")
+    rows, per_condition = _angles_and_loads(cal, fixed, t, y_d, seed)
+    announce(progress, "sun2015: feedforwards calibrated at each test angle")
     local = local_reference(t, y_d, per_condition, seed, budget)
-    # the headline: the route changes during the run
-    if progress:
-        progress("sun2015: route change run")
-    thirds = [0.0, duration / 3, 2 * duration / 3]
-    shapes = [Route.uniform(LENGTH, a) for a in (math.pi / 2, 2 * math.pi, math.pi)]
-    routes = piecewise_routes(thirds, shapes)
-    plant = _plant(math.pi / 2)
-    # the correction-rate limit in the calibration's units (r_p nominal 1): rad/s at the motor
-    follow = cal.curve_angle_feedforward(load=None, smoothing=0.02, max_correction_rate=2.0)
-    runs = {
-        "none": run(plant, None, t, y_d, routes=routes, noise=encoder(seed=seed)),
-        "fixed feedforward": run(plant, fixed, t, y_d, routes=routes, noise=encoder(seed=seed)),
-        "CurveAngleFeedforward": run(
-            plant, follow, t, y_d, routes=routes, noise=encoder(seed=seed), shape_sensing=shape
-        ),
-    }
-    if progress:
-        progress("sun2015: honesty panel")
-    honesty = honesty_panel(
-        cal,
-        runs,
-        curve_angle=np.array([routes(tk).total_angle for tk in t]),
-        load=None,  # the route-change run carries no load and the feedforward is told none
-        told={"none": kinematic_told(plant)},
-        seed=seed,
-        budget=budget,
-    )
+    announce(progress, "sun2015: route change run")  # the headline
+    runs, honesty, schedule = _route_change(cal, fixed, duration, t, y_d, seed, budget, progress)
     rows.append(
         {
             "condition": "route change pi/2 -> 2 pi -> pi",
@@ -219,21 +172,11 @@ def sun2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
         name: float(np.mean([per_condition[c][name]["rmse"] for c in per_condition]))
         for name in runs
     }
-    targets = [
-        target(
-            "CurveAngleFeedforward at unseen angles (sensed with noise and delay), rmse over "
-            "that of a feedforward calibrated at the angle, worst of 0-2 pi",
-            "<= 2x",
-            local["worst_ratio"],
-            local["met"],
-            "x",
-        )
-    ]
-    return ScenarioResult(
-        targets=targets,
-        name="sun2015",
+    return scenario_result(
+        sun2015,
+        cal,
+        targets=[_local_target(local)],
         title="Sun et al. 2015: curve-angle feedforward without a tip sensor",
-        summary=first_paragraph(sun2015.__doc__),
         conditions=CONDITIONS,
         runs=runs,
         table=rows,
@@ -244,7 +187,7 @@ def sun2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
             "ranking (curve-angle feedforward < fixed feedforward < none)"
         },
         routes={f"Theta = {a / math.pi:.1f} pi": Route.uniform(LENGTH, a) for a in ANGLES},
-        route_schedule=[(tk, r.total_angle) for tk, r in zip(thirds, shapes, strict=True)],
+        route_schedule=[(tk, r.total_angle) for tk, r in schedule],
         calibration={
             **cal.to_dict(),
             "curve_angle_rmse": cal.fits["CurveAngleModel"].rmse,
@@ -258,7 +201,70 @@ def sun2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
         protocol="sun2015: compensators calibrated by bench.calibrate from the robot's logs at "
         "curve angles 0.35, 1.15 and 1.85 pi (plus one run per load at 1.15 pi) and judged "
         "at 0, 0.5, 1, 1.5 and 2 pi and in a route-change run; the curve-angle feedforward "
-        f"is told a {shape.describe()}.",
+        f"is told a {cal.shape.describe()}.",
         honesty=honesty,
-        identified=cal.identified_rows(),
+    )
+
+
+def _route_change(cal, fixed, duration: float, t, y_d, seed: int, budget, progress):
+    """The run whose route changes at thirds of its ``duration`` (pi/2, 2 pi, pi; no load)
+    and its honesty panel: (runs, honesty, [(time, route)])."""
+    thirds = [0.0, duration / 3, 2 * duration / 3]
+    shapes = [Route.uniform(LENGTH, a) for a in (math.pi / 2, 2 * math.pi, math.pi)]
+    routes = piecewise_routes(thirds, shapes)
+    plant = _plant(math.pi / 2)
+    # the correction-rate limit in the calibration's units (r_p nominal 1): rad/s at the motor
+    follow = cal.curve_angle_feedforward(load=None, smoothing=0.02, max_correction_rate=2.0)
+    runs = _compare(plant, fixed, follow, cal.shape, t, y_d, seed, routes)
+    announce(progress, "sun2015: honesty panel")
+    honesty = honesty_panel(
+        cal,
+        runs,
+        curve_angle=np.array([routes(tk).total_angle for tk in t]),
+        load=None,  # the route-change run carries no load and the feedforward is told none
+        told={"none": kinematic_told(plant)},
+        seed=seed,
+        budget=budget,
+    )
+    return runs, honesty, list(zip(thirds, shapes, strict=True))
+
+
+def _compare(plant, fixed, follow, shape, t, y_d, seed: int, routes=None) -> dict:
+    """No compensation, the fixed feedforward and the curve-angle feedforward (told the
+    sensed curve angle) on ``plant``, each with a fresh distal encoder."""
+    return {
+        "none": run(plant, None, t, y_d, routes=routes, noise=encoder(seed=seed)),
+        "fixed feedforward": run(plant, fixed, t, y_d, routes=routes, noise=encoder(seed=seed)),
+        "CurveAngleFeedforward": run(
+            plant, follow, t, y_d, routes=routes, noise=encoder(seed=seed), shape_sensing=shape
+        ),
+    }
+
+
+def _angles_and_loads(cal, fixed, t, y_d, seed: int):
+    """The comparison at every test angle with every load: the table rows (rmse) and
+    condition -> compensator -> metrics."""
+    rows, per_condition = [], {}
+    for load_kind in ("none", "constant", "spring"):
+        load = _load(load_kind)[0]
+        follow = cal.curve_angle_feedforward(
+            load=None if load_kind == "none" else load_kind, smoothing=0.02
+        )
+        for theta in ANGLES:
+            key = f"Theta={theta / math.pi:.1f}pi, load={load_kind}"
+            results = _compare(_plant(theta, load=load), fixed, follow, cal.shape, t, y_d, seed)
+            per_condition[key] = {k: r.metrics for k, r in results.items()}
+            rows.append({"condition": key, **{k: r.metrics["rmse"] for k, r in results.items()}})
+    return rows, per_condition
+
+
+def _local_target(local: dict) -> dict:
+    """The paper's claim checked: within 2x of a feedforward calibrated at the angle."""
+    return target(
+        "CurveAngleFeedforward at unseen angles (sensed with noise and delay), rmse over "
+        "that of a feedforward calibrated at the angle, worst of 0-2 pi",
+        "<= 2x",
+        local["worst_ratio"],
+        local["met"],
+        "x",
     )

@@ -1,5 +1,6 @@
 // Batch evaluation of model populations for identification (NOT real-time:
-// allocates, spawns threads).
+// allocates, spawns threads). It lives beside the bindings, outside the installed
+// real-time tree include/tendonsheath/, and only the Python extension uses it.
 //
 // A population is P parameter vectors; each is evaluated on R recordings, with
 // its own vector per recording (so that a parameter may depend on the
@@ -26,14 +27,14 @@
 #include <utility>
 #include <vector>
 
-#include "models/bouc_wen.hpp"
-#include "models/bouc_wen_backlash.hpp"
-#include "models/curve_angle.hpp"
-#include "models/generalized_prandtl_ishlinskii.hpp"
-#include "models/hysteretic_oscillator.hpp"
-#include "models/prandtl_ishlinskii.hpp"
-#include "models/simulate.hpp"
-#include "validate.hpp"
+#include <tendonsheath/models/bouc_wen.hpp>
+#include <tendonsheath/models/bouc_wen_backlash.hpp>
+#include <tendonsheath/models/curve_angle.hpp>
+#include <tendonsheath/models/generalized_prandtl_ishlinskii.hpp>
+#include <tendonsheath/models/hysteretic_oscillator.hpp>
+#include <tendonsheath/models/prandtl_ishlinskii.hpp>
+#include <tendonsheath/models/simulate.hpp>
+#include <tendonsheath/validate.hpp>
 
 namespace tendonsheath::batch {
 

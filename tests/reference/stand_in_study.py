@@ -1,11 +1,14 @@
-"""A small but real closed-loop study to exercise the sweep engine (a stand-in for the bench).
+"""A light stand-in study that exercises the sweep engine in the tests (not shipped).
+
+It is not an honest comparison of compensators: they are tuned from the nominal plant's own
+parameters, not identified from calibration logs. The package's robustness study is the
+do2015 bench scenario (``tendonsheath.bench.scenarios.do:robustness_run``).
 
 :func:`compensator_study` builds a pull-pull plant with the drawn friction, pretension,
 stiffness and route, drives it with a sine three ways (uncompensated, curve-angle
 feedforward and backlash-inverse feedforward, both tuned for the *nominal* parameters, as
 a lab would tune them once) and returns the tracking error of each. It is a top-level
-function, so it pickles to process pools and Dask workers. The integrator replaces it with
-the bench scenarios (do2015, sun2015, lau2015) once ``ts.bench`` exists.
+function, so it pickles to process pools and Dask workers.
 """
 
 from __future__ import annotations
@@ -14,11 +17,13 @@ import math
 
 import numpy as np
 
-from ..compensate import CurveAngleFeedforward, InverseFeedforward
-from ..loads import ConstantTorque
-from ..models import Backlash
-from ..plant import PullPullPlant
-from ..route import Route
+from tendonsheath.bench.metrics import tracking_metrics
+from tendonsheath.bench.scenarios.routes import random_arcs
+from tendonsheath.compensate import CurveAngleFeedforward, InverseFeedforward
+from tendonsheath.loads import ConstantTorque
+from tendonsheath.models import Backlash
+from tendonsheath.plant import PullPullPlant
+from tendonsheath.route import Route
 
 #: Nominal values the compensators are tuned for (SI, rad).
 NOMINAL = {
@@ -36,29 +41,6 @@ NOMINAL = {
     "elements": 100,
 }
 RADIUS = 5e-3
-
-
-def random_arcs(length: float, total_angle: float, pieces: int, seed: int) -> Route:
-    """A route of ``pieces`` arcs with random lengths and a random share of the total angle
-    each (Dirichlet(1) splits, from ``seed``); ``pieces=1`` is the uniform route."""
-    pieces = int(pieces)
-    if pieces <= 1:
-        return Route.uniform(length, total_angle)
-    rng = np.random.default_rng(int(seed))
-    lengths = rng.dirichlet(np.ones(pieces)) * length
-    angles = rng.dirichlet(np.ones(pieces)) * total_angle
-    return Route.arcs(list(zip(lengths.tolist(), angles.tolist(), strict=True)))
-
-
-def _metrics(y: np.ndarray, y_d: np.ndarray) -> dict[str, float]:
-    e = y - y_d
-    mse = float(np.mean(e**2))
-    return {
-        "mse": mse,
-        "rmse": math.sqrt(mse),
-        "max_abs": float(np.max(np.abs(e))),
-        "percent_error": 100.0 * math.sqrt(mse) / float(np.max(np.abs(y_d))),
-    }
 
 
 def _commands(
@@ -120,7 +102,13 @@ def compensator_study(params: dict) -> dict[str, dict[str, float]]:
         elements=int(p["elements"]),
         load=ConstantTorque(float(p["load"]) * RADIUS) if p["load"] else None,
     )
-    return {name: _metrics(plant.simulate(t, u), y_d) for name, u in commands.items()}
+    return {name: _metrics(y_d, plant.simulate(t, u)) for name, u in commands.items()}
+
+
+def _metrics(y_d: np.ndarray, y: np.ndarray) -> dict[str, float]:
+    """The bench's tracking metrics that a sweep table ranks."""
+    m = tracking_metrics(y_d, y)
+    return {k: m[k] for k in ("mse", "rmse", "max_abs", "percent_error")}
 
 
 compensator_study.parameters = tuple(NOMINAL)

@@ -1,0 +1,19 @@
+"""Random routes for robustness studies."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...route import Route
+
+
+def random_arcs(length: float, total_angle: float, pieces: int, seed: int) -> Route:
+    """A route of ``pieces`` arcs with random lengths and a random share of the total angle
+    each (Dirichlet(1) splits, from ``seed``); ``pieces=1`` is the uniform route."""
+    pieces = int(pieces)
+    if pieces <= 1:
+        return Route.uniform(length, total_angle)
+    rng = np.random.default_rng(int(seed))
+    lengths = rng.dirichlet(np.ones(pieces)) * length
+    angles = rng.dirichlet(np.ones(pieces)) * total_angle
+    return Route.arcs(list(zip(lengths.tolist(), angles.tolist(), strict=True)))

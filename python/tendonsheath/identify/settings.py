@@ -1,0 +1,139 @@
+"""The settings of an identification: the options a user gives (:class:`Options`, stored by
+:class:`~tendonsheath.identify.estimator.Identifier`) and the checked search settings every
+identification path takes (:class:`Search`: one object passed down instead of a dozen keywords).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import inspect
+from typing import Any
+
+import numpy as np
+
+from .refine import TimeBudget
+
+
+@dataclasses.dataclass(frozen=True)
+class Options:
+    """Every option of :func:`~tendonsheath.identify.identify` with its default (documented
+    on :class:`~tendonsheath.identify.estimator.Identifier`)."""
+
+    warmup: int = 0
+    bounds: dict | None = None
+    fixed: dict | None = None
+    free: Any = None
+    initial: Any = None
+    depends_on_angle: dict | None = None
+    seed: int | None = 0
+    maxiter: int = 100
+    popsize: int = 15
+    tol: float = 0.01
+    workers: int | None = None
+    polish: bool = True
+    separable: bool = True
+    progress: bool = True
+    search_samples: int | None = 200_000
+    time_budget: Any = None
+    input_interpolation: str | None = None
+    periodic: bool | None = None
+    strategy: str = "auto"
+    normalize: bool = True
+    standard_errors: str = "linearised"
+    bootstrap: int | None = None
+    bootstrap_block: int | None = None
+
+
+OPTION_NAMES: tuple[str, ...] = tuple(f.name for f in dataclasses.fields(Options))
+DEFAULTS: dict[str, Any] = {f.name: f.default for f in dataclasses.fields(Options)}
+
+
+def with_settings_signature(fn):
+    """``fn`` (taking ``**options``) with a signature that lists every setting as a
+    keyword-only parameter and its default, for help() and editors."""
+    sig = inspect.signature(fn)
+    kept = [p for p in sig.parameters.values() if p.kind is not inspect.Parameter.VAR_KEYWORD]
+    named = [
+        inspect.Parameter(n, inspect.Parameter.KEYWORD_ONLY, default=DEFAULTS[n])
+        for n in OPTION_NAMES
+    ]
+    fn.__signature__ = sig.replace(parameters=kept + named)
+    return fn
+
+
+def check_names(names, owner: str) -> None:
+    """TypeError naming the unknown settings (with the closest known ones)."""
+    unknown = [n for n in names if n not in DEFAULTS]
+    if unknown:
+        hints = [m for n in unknown for m in difflib.get_close_matches(n, OPTION_NAMES, 1)]
+        hint = f" (did you mean {', '.join(hints)}?)" if hints else ""
+        raise TypeError(
+            f"{owner}: unknown setting(s) {', '.join(map(repr, unknown))}{hint}; "
+            f"known: {', '.join(OPTION_NAMES)}"
+        )
+
+
+def check_search_options(*, maxiter, popsize, tol, workers, warmup) -> None:
+    """The global search's settings, checked once with a message naming the option."""
+    counts = (("maxiter", maxiter, 0), ("popsize", popsize, 1), ("warmup", warmup, 0))
+    for name, value, low in counts:
+        if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < low:
+            raise ValueError(f"{name} must be an integer >= {low} (got {value!r})")
+    if workers is not None and (
+        isinstance(workers, bool) or not isinstance(workers, int | np.integer) or workers < 1
+    ):
+        raise ValueError(f"workers must be an integer >= 1 or None (got {workers!r})")
+    if isinstance(tol, bool) or not isinstance(tol, int | float) or not tol >= 0:
+        raise ValueError(f"tol must be a number >= 0 (got {tol!r})")
+
+
+@dataclasses.dataclass(frozen=True)
+class Search:
+    """The global search, refinement and standard-error settings, checked; ``budget`` is the
+    running :class:`TimeBudget` (shared by nested fits)."""
+
+    seed: int | None
+    maxiter: int
+    popsize: int
+    tol: float
+    workers: int | None
+    polish: bool
+    progress: bool
+    standard_errors: str
+    bootstrap: int
+    bootstrap_block: int | None
+    budget: TimeBudget
+
+    @property
+    def n_workers(self) -> int:
+        """The thread count for the batched C++ calls (0: all cores)."""
+        return 0 if self.workers is None else int(self.workers)
+
+    @classmethod
+    def of(cls, options: Options) -> Search:
+        """Check ``options``' search settings (one message naming the option) and start the
+        time budget (a TimeBudget given as ``time_budget`` is shared, not restarted)."""
+        from .uncertainty import check_method
+
+        o = options
+        check_search_options(
+            maxiter=o.maxiter, popsize=o.popsize, tol=o.tol, workers=o.workers, warmup=o.warmup
+        )
+        method, count = check_method(o.standard_errors, o.bootstrap)
+        budget = o.time_budget
+        if not isinstance(budget, TimeBudget):
+            budget = TimeBudget(budget)
+        return cls(
+            seed=o.seed,
+            maxiter=o.maxiter,
+            popsize=o.popsize,
+            tol=o.tol,
+            workers=o.workers,
+            polish=o.polish,
+            progress=o.progress,
+            standard_errors=method,
+            bootstrap=count,
+            bootstrap_block=o.bootstrap_block,
+            budget=budget,
+        )
