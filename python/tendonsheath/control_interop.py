@@ -22,6 +22,7 @@ from __future__ import annotations
 import copy
 import math
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
@@ -69,13 +70,13 @@ class Snapshots:
         fresh = copy.deepcopy(block)
         fresh.reset()
         self.dt = dt
-        self._engines: list[tuple[object, bool]] = [(fresh, False)]
-        self._next: dict[tuple, int] = {}
+        self._engines: list[tuple[Any, bool]] = [(fresh, False)]
+        self._next: dict[tuple, tuple[int, float]] = {}
 
     def __len__(self) -> int:
         return len(self._engines)
 
-    def _at(self, state) -> tuple[object, bool]:
+    def _at(self, state) -> tuple[Any, bool]:
         value = float(np.asarray(state, dtype=float).reshape(-1)[0])
         index = int(value) if math.isfinite(value) else -1
         if index != value or not 0 <= index < len(self._engines):

@@ -238,7 +238,7 @@ def _irregular(t) -> bool:
 def _ranges(rows) -> str:
     """Compact row list: 3, 5-9, 12 (at most 10 ranges, then a count)."""
     rows = [int(r) for r in rows]
-    out, start, prev = [], None, None
+    out, start, prev = [], None, 0
     for r in rows:
         if start is None:
             start = prev = r
@@ -592,6 +592,7 @@ def read_log(
             f"{path}: too few {table.row_name}s ({log.x.size}); at least {MIN_ROWS} are needed"
         )
     if log.t is not None:
+        assert log.rows is not None  # None only once resampled, below
         log.notes.extend(_timing_notes(log.t, log.rows, table.row_name, gap_factor))
     if resample is not None:
         log = _resample(log, resample)
@@ -655,13 +656,14 @@ def _keep_rows(log: Log, keep: np.ndarray) -> Log:
         y=f(log.y),
         curve_angle=f(log.curve_angle),
         extra={k: v[keep] for k, v in log.extra.items()},
-        rows=log.rows[keep],
+        rows=f(log.rows),
     )
 
 
 def _drop_duplicate_times(log: Log, table: _Table, time) -> Log:
     """Raise where time goes backwards; drop samples with a duplicate timestamp (first kept)."""
     t = log.t
+    assert t is not None and log.rows is not None  # a time column, not resampled yet
     back = np.flatnonzero(np.diff(t) < 0)
     if back.size:
         i = int(back[0]) + 1
@@ -688,6 +690,7 @@ def _treat_missing(log: Log, table: _Table, missing: str) -> Log:
         bad |= ~np.isfinite(arr)
     if not bad.any():
         return log
+    assert log.rows is not None  # None only once resampled, after this
     rows = f"{table.row_name}s {_ranges(log.rows[bad])}"
     if missing == "drop":
         log.notes.append(
@@ -732,7 +735,8 @@ def _resample(log: Log, resample: float | str) -> Log:
     if log.t is None:
         raise ValueError(f"{log.path}: resampling needs a time column")
     if resample == "auto":
-        return log.resampled(1.0 / log.sample_time) if log.irregular else log
+        step = log.sample_time
+        return log.resampled(1.0 / step) if log.irregular and step is not None else log
     try:
         rate = float(resample)
     except (TypeError, ValueError):

@@ -51,7 +51,9 @@ def tanh_half_over(a: ArrayLike) -> FloatOrArray:
     return _elementwise(core.tanh_half_over, a)
 
 
-def capstan_ratio(mu: ArrayLike, total_angle: ArrayLike, direction: ArrayLike = 1.0) -> FloatOrArray:
+def capstan_ratio(
+    mu: ArrayLike, total_angle: ArrayLike, direction: ArrayLike = 1.0
+) -> FloatOrArray:
     """Full-slip distal/proximal tension ratio T_d/T_p = exp(-direction mu Theta) (A1).
 
     Parameters

@@ -27,7 +27,7 @@ class Status(IntFlag):
 
 
 # Every flag's name (lower case, as in C++ and in metrics.json), in bit order.
-STATUS_FLAGS: tuple[str, ...] = tuple(f.name.lower() for f in Status if f.value)
+STATUS_FLAGS: tuple[str, ...] = tuple(str(f.name).lower() for f in Status if f.value)
 
 
 def status_counts(flags) -> dict[str, int]:
@@ -53,7 +53,7 @@ def status_counts(flags) -> dict[str, int]:
     if a.size and (not np.issubdtype(a.dtype, np.integer) or a.min() < 0):
         raise ValueError("status_counts: flags must be non-negative integers (Status values)")
     a = a.astype(np.int64, copy=False)
-    return {f.name.lower(): int(np.count_nonzero(a & f.value)) for f in Status if f.value}
+    return {str(f.name).lower(): int(np.count_nonzero(a & f.value)) for f in Status if f.value}
 
 
 __all__ = ["STATUS_FLAGS", "Status", "status_counts"]

@@ -232,12 +232,12 @@ class CurveAngleFeedforward(Feedforward):
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], dt, curve_angle=u[1])
 
-    def command(
+    def command(  # type: ignore[override]  # curve_angle (before status) is its input
         self,
         t: ArrayLike,
         y_desired: ArrayLike,
         curve_angle: ArrayLike | None = None,
-        routes: Callable[[float], object] | None = None,
+        routes: Callable[[float], Route] | None = None,
         status: bool = False,
     ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Motor angles for a whole trajectory; the shape from `curve_angle` (scalar or one

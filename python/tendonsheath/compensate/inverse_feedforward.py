@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from .. import _core as core
@@ -144,7 +146,7 @@ class InverseFeedforward(Feedforward):
         if self._map is None:
             return super().command(t, y_desired, status)
         x_c, x_s, y_c, g = self._map
-        inner = self._inner.command(t, (np.asarray(y_desired, dtype=float) - y_c) / g, status)
+        inner: Any = self._inner.command(t, (np.asarray(y_desired, dtype=float) - y_c) / g, status)
         if status:
             return x_c + x_s * inner[0], inner[1]
         return x_c + x_s * inner

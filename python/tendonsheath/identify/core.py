@@ -40,7 +40,7 @@ class _Progress:
         self.title = title
         self.total = total
         self.start = time.perf_counter()
-        self.bar = None
+        self.bar: StepProgress | None = None
         self.shown = 0  # generations counted on the bar
 
     def update(self, generation: int, best: float) -> None:

@@ -84,6 +84,8 @@ class Identifier:
     Attributes after ``fit``: ``fit_`` (the :class:`Fit`) and ``model_`` (the fitted model).
     """
 
+    warmup: int  # one of the settings (OPTION_NAMES), set by __init__ and set_params
+
     @with_settings_signature
     def __init__(self, model=None, **settings: Any):
         check_names(settings, type(self).__name__)

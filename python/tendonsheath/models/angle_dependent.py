@@ -27,6 +27,7 @@ def law_value(law: str, coefficients, theta, angle_friction: float | None):
     if law == "linear":
         return c[0] + c[1] * np.asarray(theta, dtype=float)
     if law == "tanh":
+        assert angle_friction is not None  # AngleDependent requires it with a tanh law
         return c[0] + c[1] * np.tanh(0.5 * angle_friction * np.abs(np.asarray(theta, dtype=float)))
     raise ValueError(f"unknown angle law {law!r}; expected one of {LAWS}")
 
@@ -190,7 +191,7 @@ class AngleDependent(HysteresisModel):
         return self._base_cls(**self.params_at(curve_angle), **self._base_options)
 
     # -- simulation ------------------------------------------------------------------
-    def simulate(
+    def simulate(  # type: ignore[override]  # curve_angle (before status) is its input
         self,
         t: ArrayLike | None,
         x: ArrayLike,

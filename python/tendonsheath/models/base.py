@@ -6,7 +6,7 @@ import json
 import math
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, Self
 
 import numpy as np
 
@@ -49,13 +49,13 @@ class HysteresisModel:
     _core_params: ClassVar[Any]
     param_names: ClassVar[tuple[str, ...]] = ()
     option_names: ClassVar[tuple[str, ...]] = ()
-    rate_independent: ClassVar[bool] = True
+    rate_independent: bool = True  # per instance for Chain and Scaled (their parts decide)
     # status() and simulate(..., status=True) report each step's Status (false: linear blocks)
     reports_status: ClassVar[bool] = True
     # parameters a saved file may hold as null (all others must be present and not null)
     nullable_params: ClassVar[tuple[str, ...]] = ()
     # signal names of to_control()'s system
-    control_inputs: ClassVar[tuple[str, ...]] = ("x",)
+    control_inputs: tuple[str, ...] = ("x",)  # per instance for Scaled (its inner model's)
     control_output: ClassVar[str] = "y"
 
     def __init_subclass__(cls, **kwargs):
@@ -99,7 +99,7 @@ class HysteresisModel:
         s = self._engine.params
         return {k: _plain(getattr(s, k)) for k in self.option_names}
 
-    def with_params(self, **changes: Any) -> HysteresisModel:
+    def with_params(self, **changes: Any) -> Self:
         """A new model with some parameters changed (options kept).
 
         Parameters

@@ -78,7 +78,7 @@ class Chain(HysteresisModel):
         ValueError
             A name that is not ``first.<name>`` or ``second.<name>``.
         """
-        parts = {"first": {}, "second": {}}
+        parts: dict[str, dict[str, Any]] = {"first": {}, "second": {}}
         for key, value in changes.items():
             part, _, name = key.partition(".")
             if part not in parts or not name:
@@ -111,10 +111,11 @@ class Chain(HysteresisModel):
             Output samples; ``(y, flags)`` with ``status=True``, flags the uint8
             :class:`~tendonsheath.Status` bits of each sample.
         """
-        u = self.first.simulate(t, x, **_with_status(self.first, status))
+        # each part's output, or (output, flags) where it reports its status (_with_status)
+        u: Any = self.first.simulate(t, x, **_with_status(self.first, status))
         t2 = None if self.second.rate_independent else t
-        y = self.second.simulate(t2, u[0] if _reports(self.first, status) else u,
-                                 **_with_status(self.second, status))  # fmt: skip
+        y: Any = self.second.simulate(t2, u[0] if _reports(self.first, status) else u,
+                                      **_with_status(self.second, status))  # fmt: skip
         if not status:
             return y
         flags = np.zeros(np.size(x), dtype=np.uint8)

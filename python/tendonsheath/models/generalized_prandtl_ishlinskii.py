@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -19,8 +20,8 @@ class _GeneralizedBase(HysteresisModel):
 
     def __init__(
         self,
-        rising: ArrayLike = (1.0, 1.0, 0.0, 0.0),
-        falling: ArrayLike = (1.0, 1.0, 0.0, 0.0),
+        rising: Sequence[float] | FloatArray = (1.0, 1.0, 0.0, 0.0),
+        falling: Sequence[float] | FloatArray = (1.0, 1.0, 0.0, 0.0),
         thresholds: ArrayLike = (0.0, 0.05, 0.1, 0.2),
         weights: ArrayLike = (0.6, 0.2, 0.1, 0.1),
         **flat: float,

@@ -167,7 +167,7 @@ class HystereticOscillator(HysteresisModel):
         """
         return float(self._engine.z_bound(float(displacement_range)))
 
-    def simulate(
+    def simulate(  # type: ignore[override]  # periodic (before status) is its own
         self, t: ArrayLike | None, x: ArrayLike, periodic: bool | None = None, status: bool = False
     ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Output for the input samples x at times t, from rest.
@@ -206,6 +206,7 @@ class HystereticOscillator(HysteresisModel):
         if t is None:
             raise ValueError("HystereticOscillator is rate-dependent: t is required")
         ts, xs = as_time_and_signal(t, x)
+        assert ts is not None  # t was given
         try:
             if self.input_interpolation == "bandlimited" and xs.size > 1:
                 dt = uniform_step(ts, "HystereticOscillator (bandlimited input)")

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from scipy.signal import cont2discrete, lfilter, lfilter_zi
@@ -66,11 +66,11 @@ class LinearBlock(HysteresisModel):
     """
 
     rate_independent = False
-    param_names: tuple[str, ...] = ()
-    _limits: dict[str, tuple[float, float]] = {}
+    param_names: ClassVar[tuple[str, ...]] = ()
+    _limits: ClassVar[dict[str, tuple[float, float]]] = {}
 
     def __init__(self, **values: float) -> None:
-        out = {}
+        out: dict[str, float] = {}
         for name in self.param_names:
             raw = values.pop(name)
             if isinstance(raw, bool) or not isinstance(raw, numbers.Real):  # not "1", not None
@@ -125,7 +125,9 @@ class LinearBlock(HysteresisModel):
 
     reports_status = False  # a linear filter in Python: no real-time core, no status
 
-    def simulate(self, t: ArrayLike | None, x: ArrayLike) -> FloatArray:
+    def simulate(  # type: ignore[override]  # a Python filter: no status to report
+        self, t: ArrayLike | None, x: ArrayLike
+    ) -> FloatArray:
         """Output for the input samples x at uniform times t, from rest at x[0].
 
         Parameters
@@ -153,9 +155,9 @@ class LinearBlock(HysteresisModel):
 
     def reset(self) -> None:
         """Forget the streaming state: the next step starts at rest at its input."""
-        self._rest = None  # the first input (the block starts at rest there)
-        self._z = None  # filter state, once the sample time is known
-        self._cache = (None, None, None)
+        self._rest: float | None = None  # the first input (the block starts at rest there)
+        self._z: np.ndarray | None = None  # filter state, once the sample time is known
+        self._cache: tuple[float | None, Any, Any] = (None, None, None)
 
     def step(self, x: float, dt: float = 0.0) -> float:
         """One sample; dt > 0 after the first. A dt that changes re-discretises the block

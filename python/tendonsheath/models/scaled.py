@@ -139,7 +139,7 @@ class Scaled(HysteresisModel):
         return self.map["output_offset"] + self.map["output_gain"] * np.asarray(u, dtype=float)
 
     @property
-    def reports_status(self) -> bool:
+    def reports_status(self) -> bool:  # type: ignore[override]  # the inner model's class flag
         """Whether the inner model reports a Status."""
         return self.inner.reports_status
 
@@ -153,7 +153,7 @@ class Scaled(HysteresisModel):
         """
         return self.inner.status()
 
-    def simulate(
+    def simulate(  # type: ignore[override]  # status and the rest pass through to the inner model
         self, t: ArrayLike | None, x: ArrayLike, **kwargs: Any
     ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """The inner model's simulation, in the data's units.

@@ -368,7 +368,8 @@ class Choice(Distribution):
 def _split(spec: Mapping[str, Any], what: str) -> tuple[dict[str, Distribution], dict[str, Any]]:
     if not isinstance(spec, Mapping):
         raise ValueError(f"{what}: expected a mapping of parameter names (got {type(spec)})")
-    drawn, fixed = {}, {}
+    drawn: dict[str, Distribution] = {}
+    fixed: dict[str, Any] = {}
     for name, value in spec.items():
         if not isinstance(name, str) or not name:
             raise ValueError(f"{what}: parameter names must be non-empty strings (got {name!r})")

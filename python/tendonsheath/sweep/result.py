@@ -482,6 +482,7 @@ class SweepResult:
         with atomic_path(out / "summary.csv") as tmp:
             summary.to_csv(tmp, index=False)
         written.append(out / "summary.csv")
+        sens_note: str | None
         try:
             sens = self.sensitivity()
         except ValueError as exc:
