@@ -186,6 +186,7 @@ def model_name(candidate) -> str:
         if isinstance(candidate.first, LinearBlock):
             return f"{short[type(candidate.first)]}+{type(candidate.second).__name__}"
         p = candidate.second
+        assert isinstance(p, Polynomial)  # a static chain's second part
         kind = "odd" if getattr(p, "options", {}).get("odd") else "poly"
         return f"{type(candidate.first).__name__}+{kind}{p.degree}"
     return candidate.__name__

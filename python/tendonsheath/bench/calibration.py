@@ -469,7 +469,7 @@ class Calibration:
         return rows
 
 
-def fit_source(cal: Calibration, fit) -> str:
+def fit_source(cal: Calibration | None, fit) -> str:
     names = getattr(fit, "_calibration_runs", None) or []
     return "identified from calibration run(s) " + ", ".join(names)
 

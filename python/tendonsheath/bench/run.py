@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -69,7 +70,7 @@ class Result:
     slack: np.ndarray
     fallback: np.ndarray
     warmup: float
-    metrics: dict[str, float] = field(default_factory=dict)
+    metrics: dict[str, Any] = field(default_factory=dict)  # floats, and "status": counts
     status: np.ndarray | None = None
 
     @property
@@ -197,6 +198,8 @@ def run(
     mask = _dropout_mask(dropout, ts)
     args = (ts, ys)
 
+    fn: Callable[..., Any]  # the C++ bench loop of the controller's class
+    engine: Any  # its C++ engine (the open loop: the gain)
     if controller is None:
         gain = plant.distal_radius / plant.proximal_radius
         fn, engine = core.bench_open_loop, gain
@@ -208,6 +211,7 @@ def run(
             angles = np.ascontiguousarray(plant._angles_for(plant.route)[None, :])
             route_at = [plant.route]
         else:
+            assert routes is not None  # idx is the route schedule's
             route_at = [_first(routes(float(ts[int(k)]))) for k in idx]
         shape_rows = [shape_of(r, controller.friction) for r in route_at]
         shapes = np.ascontiguousarray([[s.g, s.G, s.total_angle] for s in shape_rows])
@@ -251,9 +255,11 @@ def run(
         status=status,
     )
     keep = result.scored
-    result.metrics = tracking_metrics(ys[keep], output[keep])
-    result.metrics["slack_samples"] = int(result.slack.sum())
-    result.metrics["status"] = status_counts(status)
+    result.metrics = {
+        **tracking_metrics(ys[keep], output[keep]),
+        "slack_samples": int(result.slack.sum()),
+        "status": status_counts(status),
+    }
     if not math.isfinite(result.metrics["mse"]):
         raise RuntimeError("bench.run: the closed loop produced a non-finite output")
     return result

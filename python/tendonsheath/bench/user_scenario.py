@@ -439,8 +439,11 @@ def _reference(sc: UserScenario) -> tuple[np.ndarray, np.ndarray]:
     ref = sc.reference
     t = np.arange(0.0, ref["duration"], 1.0 / ref["rate"])
     y_d = sum(
-        float(s[0]) * np.sin(2 * np.pi * float(s[1]) * t + (float(s[2]) if len(s) > 2 else 0.0))
-        for s in ref["sines"]
+        (
+            float(s[0]) * np.sin(2 * np.pi * float(s[1]) * t + (float(s[2]) if len(s) > 2 else 0.0))
+            for s in ref["sines"]
+        ),
+        np.zeros_like(t),  # the start: an array, even with no sines
     )
     return t, y_d
 
