@@ -22,14 +22,19 @@ from __future__ import annotations
 import copy
 import math
 from collections.abc import Sequence
-from typing import Any
+from types import ModuleType
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    import control  # python-control ships no types: its systems are Any to mypy
 
 INSTALL_HINT = "pip install 'tendonsheath[control]'"
 
 
-def require_control():
+def require_control() -> ModuleType:
     """The ``control`` module, or an ImportError that says how to install it.
 
     Returns
@@ -51,6 +56,20 @@ def require_control():
     return control
 
 
+class _Block(Protocol):
+    """What a system steps: a model or a compensator (deep-copyable)."""
+
+    @property
+    def control_inputs(self) -> tuple[str, ...]: ...
+
+    @property
+    def control_output(self) -> str: ...
+
+    def reset(self) -> None: ...
+
+    def _control_step(self, u: Sequence[float], dt: float) -> float: ...
+
+
 class Snapshots:
     """Engine snapshots addressed by a float index; index 0 is the engine at rest.
 
@@ -66,7 +85,7 @@ class Snapshots:
         Sample time (s).
     """
 
-    def __init__(self, block, dt: float):
+    def __init__(self, block: _Block, dt: float):
         fresh = copy.deepcopy(block)
         fresh.reset()
         self.dt = dt
@@ -98,7 +117,7 @@ class Snapshots:
             self._next[key] = (len(self._engines) - 1, y)
         return self._next[key]
 
-    def output(self, state, u) -> float:
+    def output(self, state: ArrayLike, u: Sequence[float]) -> float:
         """The block's output for input u from snapshot ``state``.
 
         Parameters
@@ -120,7 +139,7 @@ class Snapshots:
         """
         return self._advance(state, u)[1]
 
-    def update(self, state, u) -> int:
+    def update(self, state: ArrayLike, u: Sequence[float]) -> int:
         """The snapshot index after input u from snapshot ``state``.
 
         Parameters
@@ -144,12 +163,12 @@ class Snapshots:
 
 
 def to_system(
-    block,
+    block: _Block,
     dt: float,
     inputs: Sequence[str] | None = None,
     output: str | None = None,
     name: str | None = None,
-):
+) -> control.NonlinearIOSystem:
     """A ``control.NonlinearIOSystem`` (discrete, sample time dt) stepping ``block``; the
     signal names default to the block's ``control_inputs`` and ``control_output``.
 
@@ -209,7 +228,7 @@ def to_system(
     return system
 
 
-def streaming_delay(block) -> int:
+def streaming_delay(block: _Block) -> int:
     """Samples by which ``block.step`` lags its input (parts of a Chain or Scaled included).
 
     Parameters
@@ -231,7 +250,9 @@ def streaming_delay(block) -> int:
     return lag
 
 
-def frequency_response_data(frequencies_hz, gain_db, phase_deg, name: str | None = None):
+def frequency_response_data(
+    frequencies_hz: ArrayLike, gain_db: ArrayLike, phase_deg: ArrayLike, name: str | None = None
+) -> control.FrequencyResponseData:
     """``control.FrequencyResponseData`` from gains (dB) and phases (deg) at frequencies (Hz).
 
     Parameters

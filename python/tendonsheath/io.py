@@ -38,6 +38,7 @@ import numpy as np
 from ._atomic import atomic_path
 from ._rosbag import TIME_KEY, bag_columns, bag_path, read_bag
 from ._textread import Column, parse_cells, read_text_header, read_text_table
+from ._typing import ArrayLike, FloatArray
 
 MIN_ROWS = 3
 MAX_UPSAMPLING = 10  # resampling may multiply the samples by at most this
@@ -195,7 +196,7 @@ class Log:
         )
 
 
-def deg2rad(values):
+def deg2rad(values: ArrayLike) -> FloatArray:
     """Degrees to radians (arrays or numbers).
 
     Parameters
@@ -211,7 +212,7 @@ def deg2rad(values):
     return np.deg2rad(np.asarray(values, dtype=float))
 
 
-def rad2deg(values):
+def rad2deg(values: ArrayLike) -> FloatArray:
     """Radians to degrees (arrays or numbers).
 
     Parameters
@@ -478,7 +479,7 @@ def _open(path: Path, sheet=None) -> _Table:
     return _read_text(path)
 
 
-def columns(path: str | Path, sheet=None) -> list[str]:
+def columns(path: str | Path, sheet: str | int | None = None) -> list[str]:
     """The column names of a data file (of a text file: from its header alone; of a ROS bag:
     every number its topics hold, as /topic:field).
 
@@ -511,15 +512,15 @@ def columns(path: str | Path, sheet=None) -> list[str]:
 
 def read_log(
     path: str | Path,
-    time=None,
-    input=None,  # noqa: A002 - the natural name of the column role
-    output=None,
-    curve_angle=None,
+    time: str | int | None = None,
+    input: str | int | None = None,  # noqa: A002 - the natural name of the column role
+    output: str | int | None = None,
+    curve_angle: str | int | float | None = None,
     *,
     resample: float | str | None = None,
     missing: str = "error",
     degrees: bool = False,
-    sheet=None,
+    sheet: str | int | None = None,
     gap_factor: float = 3.0,
 ) -> Log:
     """Read one recording. Columns are names (or indices for a 2-D NPY array).

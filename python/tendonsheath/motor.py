@@ -8,6 +8,7 @@ import numpy as np
 
 from . import _core as core
 from ._arrays import as_time_and_signal, checked_dt
+from ._typing import ArrayLike, FloatArray
 from .status import Status
 
 
@@ -40,7 +41,7 @@ class Motor:
         A parameter the C++ core rejects (the message names it).
     """
 
-    def __init__(self, params):
+    def __init__(self, params: core.MotorParams):
         self._params = params
         self._engine = core.Motor(params)  # validates; ValueError names the parameter
 
@@ -198,7 +199,7 @@ class Motor:
         """
         return Status(self._engine.status())
 
-    def simulate(self, t, command) -> np.ndarray:
+    def simulate(self, t: ArrayLike, command: ArrayLike) -> FloatArray:
         """Motor position for a command sequence, unloaded (starts from rest).
 
         Parameters

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _core as core
+from ._typing import ArrayLike, FloatArray
 from .status import Status
 
 
@@ -58,7 +59,7 @@ class Sensor:
         """Restart the noise sequence from its seed."""
         self._engine.reset()
 
-    def measure(self, x):
+    def measure(self, x: ArrayLike) -> float | FloatArray:
         """One reading per value of x (scalar or array), continuing the noise sequence.
 
         Parameters

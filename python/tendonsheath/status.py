@@ -12,6 +12,7 @@ from __future__ import annotations
 from enum import IntFlag
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 
 class Status(IntFlag):
@@ -30,7 +31,7 @@ class Status(IntFlag):
 STATUS_FLAGS: tuple[str, ...] = tuple(str(f.name).lower() for f in Status if f.value)
 
 
-def status_counts(flags) -> dict[str, int]:
+def status_counts(flags: ArrayLike) -> dict[str, int]:
     """How many samples of a per-sample flag array carry each flag, by name (every flag
     listed, 0 when absent).
 

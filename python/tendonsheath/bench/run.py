@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 
@@ -22,6 +22,15 @@ from ..plant import PullPullPlant
 from ..sensor import Sensor
 from ..status import status_counts
 from .metrics import dominant_period, tracking_metrics
+
+if TYPE_CHECKING:
+    from .._typing import ArrayLike
+    from .calibration import ShapeSensing
+
+# what bench.run closes the loop with (None: uncompensated)
+Controller: TypeAlias = (
+    InverseFeedforward | CurveAngleFeedforward | ContinuumFeedforward | AdaptiveController | None
+)
 
 
 @dataclass
@@ -115,14 +124,14 @@ def _dropout_mask(dropout, t):
 
 def run(
     plant: PullPullPlant,
-    controller,
-    t,
-    reference,
+    controller: Controller,
+    t: ArrayLike,
+    reference: ArrayLike,
     routes: Callable | None = None,
-    noise=None,
-    dropout=None,
+    noise: Sensor | float | None = None,
+    dropout: Sequence[tuple[float, float]] | None = None,
     warmup: float | None = None,
-    shape_sensing=None,
+    shape_sensing: ShapeSensing | None = None,
 ) -> Result:
     """Track ``reference`` (distal angle, rad, at times ``t``) with ``controller`` on ``plant``.
 

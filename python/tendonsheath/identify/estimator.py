@@ -6,10 +6,13 @@ one unfitted copy per fold."""
 from __future__ import annotations
 
 import copy
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
+from .._typing import ArrayLike, RecordingLike, Recordings
+from ..models import HysteresisModel
 from .data import make_recordings
 from .fit import Fit, metrics, simulate_model
 from .settings import (
@@ -87,7 +90,9 @@ class Identifier:
     warmup: int  # one of the settings (OPTION_NAMES), set by __init__ and set_params
 
     @with_settings_signature
-    def __init__(self, model=None, **settings: Any):
+    def __init__(
+        self, model: type[HysteresisModel] | HysteresisModel | str | None = None, **settings: Any
+    ):
         check_names(settings, type(self).__name__)
         self.model = model
         for name in OPTION_NAMES:
@@ -126,13 +131,23 @@ class Identifier:
 
     # -- fitting and prediction ------------------------------------------------------------
 
-    def fit(self, recordings, *, curve_angle=None):
+    def fit(
+        self, recordings: Recordings, *, curve_angle: ArrayLike | None = None
+    ) -> HysteresisModel:
         """Identify the model from ``recordings`` (Logs, Recordings or (t, x, y[, curve_angle])
         tuples; ``curve_angle`` applies to those without one); returns the fitted model."""
         self.fit_data(recordings=_as_list(recordings), curve_angle=curve_angle)
         return self.model_
 
-    def fit_data(self, t=None, x=None, y=None, *, recordings=None, curve_angle=None) -> Fit:
+    def fit_data(
+        self,
+        t: ArrayLike | None = None,
+        x: ArrayLike | None = None,
+        y: ArrayLike | None = None,
+        *,
+        recordings: Sequence[RecordingLike] | None = None,
+        curve_angle: ArrayLike | None = None,
+    ) -> Fit:
         """``fit`` with identify()'s two data forms (t, x, y or recordings=); returns the Fit."""
         from .core import run
 
@@ -143,13 +158,13 @@ class Identifier:
         self.model_ = self.fit_.model
         return self.fit_
 
-    def predict(self, recordings) -> list[np.ndarray]:
+    def predict(self, recordings: Recordings) -> list[np.ndarray]:
         """The fitted model's output over each recording's input (Logs, Recordings or
         (t, x[, y[, curve_angle]]) tuples), run from its rest state: one array per recording."""
         model = self._fitted()
         return [simulate_model(model, t, x, angle) for t, x, angle in _inputs(recordings)]
 
-    def score(self, recordings) -> float:
+    def score(self, recordings: Recordings) -> float:
         """Fit percentage, 100 (1 - nrmse), of the prediction over ``recordings`` (higher is
         better; the first ``warmup`` samples and each recording's skip are not counted)."""
         self._fitted()

@@ -8,12 +8,13 @@ from typing import Any, cast
 
 import numpy as np
 
+from .._typing import ArrayLike
 from ..models import HysteresisModel
 from .data import Recording
 from .diagnostics import Diagnostics
 
 
-def metrics(y, y_hat) -> dict[str, float]:
+def metrics(y: ArrayLike, y_hat: ArrayLike) -> dict[str, float]:
     """rmse; nrmse = rmse / (max(y) - min(y)); fit % = 100 (1 - ||y - y_hat|| / ||y - mean(y)||).
 
     Parameters
@@ -175,7 +176,11 @@ class Fit:
 
     @classmethod
     def from_quality(
-        cls, model: HysteresisModel, quality: FitQuality, assessed: dict | None = None, **fields
+        cls,
+        model: HysteresisModel,
+        quality: FitQuality,
+        assessed: dict | None = None,
+        **fields: Any,
     ) -> Fit:
         """The Fit of ``model`` from its :func:`fit_quality` and, where given, its
         ``uncertainty.assess()`` result (standard errors, diagnostics, groups, method);
@@ -238,7 +243,9 @@ class Fit:
         """The fitted model's parameters."""
         return self.model.params
 
-    def predict(self, t, x, curve_angle=None) -> np.ndarray:
+    def predict(
+        self, t: ArrayLike | None, x: ArrayLike, curve_angle: ArrayLike | None = None
+    ) -> np.ndarray:
         """The fitted model's output for a new input.
 
         Parameters
@@ -257,7 +264,14 @@ class Fit:
         """
         return simulate_model(self.model, t, x, curve_angle)
 
-    def validate(self, t, x, y, curve_angle=None, warmup: int | None = None) -> dict[str, float]:
+    def validate(
+        self,
+        t: ArrayLike | None,
+        x: ArrayLike,
+        y: ArrayLike,
+        curve_angle: ArrayLike | None = None,
+        warmup: int | None = None,
+    ) -> dict[str, float]:
         """Metrics of the fitted model on another recording (after the same warm-up).
 
         Parameters
