@@ -65,7 +65,7 @@ def realistic_rows(route, t, q, elements, repeats):
             motor=ts.presets.realistic_motor(bandwidth_hz=60.0, damping=0.8),
             **ts.presets.realistic_plant(),
         )
-        cpp, sim = best_of(lambda p=plant: p.simulate(t, q, full=True), repeats)
+        cpp, sim = best_of(lambda p=plant: p.simulate(t, q), repeats)
         rows.append(
             {
                 "elements": n,

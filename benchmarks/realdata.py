@@ -123,7 +123,7 @@ def plant_log(seed: int, duration: float = 30.0, rate: float = 100.0) -> ts.io.L
     motor friction and backlash), logged in motor steps and negated, offset degrees."""
     rng = np.random.default_rng(seed)
     plant = ts.PullPullPlant(
-        route=ts.Route.uniform(length=1.2, total_angle=2 * np.pi),
+        route=ts.Route.uniform(length=1.2, curve_angle=2 * np.pi),
         pretension=20.0,
         **ts.presets.realistic_plant(),
         motor=ts.presets.realistic_motor(bandwidth_hz=60.0, damping=0.8),

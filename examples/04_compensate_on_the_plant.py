@@ -30,7 +30,7 @@ def main() -> None:
     t = np.arange(0.0, 20.0, 1e-3)
     command = 1.2 * np.sin(2 * np.pi * 0.15 * t) * (1 - 0.6 * np.sin(np.pi * t / 20.0))
     servo = ts.PullPullPlant(**physics, motor=ts.Motor.position(60.0, 0.8), sensor=encoder)
-    calib = servo.simulate(t, command, full=True)
+    calib = servo.simulate(t, command)
     fit = ts.identify(
         ts.models.BoucWenBacklash, t, calib.q_in, calib.measured, warmup=2000, progress=False
     )

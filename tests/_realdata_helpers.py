@@ -13,7 +13,7 @@ def plant_log(n: int = 400, periods: float = 2.0, amplitude: float = 0.8, satura
     t = np.linspace(0.0, 2.0 * periods, n)
     x = amplitude * np.sin(2 * np.pi * 0.5 * t)
     plant = ts.PullPullPlant(
-        route=ts.Route.uniform(length=1.2, total_angle=2 * np.pi),
+        route=ts.Route.uniform(length=1.2, curve_angle=2 * np.pi),
         friction=0.15,
         stiffness=2.0e4,
         pretension=10.0,

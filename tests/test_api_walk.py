@@ -81,6 +81,8 @@ DEPRECATED = {
     "total_angle": ("curve_angle", None),
     "v_eps": ("smoothing", None),
     "a": ("alpha", ("BoucWen",)),  # BoucWen's share of the linear path
+    "sheath_length": ("length", ("ContinuumFeedforward",)),
+    "compliance": ("stiffness", ("CurveAngleFeedforward",)),
 }
 
 

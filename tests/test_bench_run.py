@@ -65,9 +65,7 @@ def test_adaptive_needs_a_torque_motor_and_falls_back_during_dropout():
 
 def test_curve_angle_controller_sees_route_changes():
     plant = _plant(motor=None)
-    ff = ts.compensate.CurveAngleFeedforward(
-        0.1, 1.2 / 2.4e4, 10.0, curve_angle=0.1, smoothing=0.01
-    )
+    ff = ts.compensate.CurveAngleFeedforward(0.1, 2.4e4, 1.2, 10.0, curve_angle=0.1, smoothing=0.01)
 
     def routes(t):
         return ts.Route.uniform(1.2, np.pi if t < 3.0 else 2 * np.pi)
@@ -75,7 +73,7 @@ def test_curve_angle_controller_sees_route_changes():
     result = ts.bench.run(plant, ff, T, Y_D, routes=routes)
     # it was told the true shape (pi, then 2 pi), not its constructor's 0.1 rad
     ff_pi = ts.compensate.CurveAngleFeedforward(
-        0.1, 1.2 / 2.4e4, 10.0, curve_angle=np.pi, smoothing=0.01
+        0.1, 2.4e4, 1.2, 10.0, curve_angle=np.pi, smoothing=0.01
     )
     early = T < 3.0
     np.testing.assert_allclose(
@@ -87,7 +85,7 @@ def test_curve_angle_controller_sees_route_changes():
 def test_bad_input():
     with pytest.raises(ValueError, match="PullPullPlant"):
         ts.bench.run(object(), None, T, Y_D)
-    with pytest.raises(ValueError, match="controller"):
+    with pytest.raises(TypeError, match="has no reset and no step"):
         ts.bench.run(_plant(), object(), T, Y_D)
     with pytest.raises(ValueError, match="not finite"):
         ts.bench.run(_plant(), None, T, np.where(T > 1, np.nan, Y_D))

@@ -117,7 +117,7 @@ def test_two_sheath_offsets_match_the_reference_solve(rng):
     for _ in range(100):
         r1, r2 = random_arcs(rng), random_arcs(rng)
         mu, EA, T0 = rng.uniform(0.02, 0.4), 10 ** rng.uniform(3, 5), rng.uniform(1.0, 30.0)
-        limit = physics.no_slack_limit(T0, mu, min(r1.total_angle, r2.total_angle))
+        limit = physics.no_slack_limit(T0, mu, min(r1.curve_angle, r2.curve_angle))
         F = rng.uniform(-0.5, 0.5) * limit
         got = physics.pull_pull_offsets(r1, EA, T0, mu, F, r2)
         exact = ref.pull_pull_offsets(r1, EA, T0, mu, F, r2)

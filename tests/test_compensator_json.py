@@ -51,7 +51,8 @@ def _random_compensator(rng, k):
     if which == 4:
         return CurveAngleFeedforward(
             friction=rng.uniform(0.05, 0.2),
-            compliance=rng.uniform(1e-5, 1e-3),
+            stiffness=rng.uniform(1e3, 1e5),
+            length=rng.uniform(0.2, 2.0),
             pretension=rng.uniform(5, 30),
             load_force=rng.uniform(0, 2),
             curve_angle=rng.uniform(0, 2 * math.pi),
@@ -61,7 +62,7 @@ def _random_compensator(rng, k):
         )
     return ContinuumFeedforward(
         friction=rng.uniform(0.05, 0.2),
-        total_angle=rng.uniform(0.5, 3.0),
+        curve_angle=rng.uniform(0.5, 3.0),
         mode=str(rng.choice(["exact", "published"])),
         limits=_limits(rng),
     )
@@ -86,7 +87,7 @@ def test_commands_are_equal_after_reload(tmp_path, k):
 
 
 def test_infinite_settings_are_written_as_null_and_read_back():
-    ff = CurveAngleFeedforward(0.1, 1e-4, 10.0, limits={"max": 2.0})
+    ff = CurveAngleFeedforward(0.1, 1e4, 1.0, 10.0, limits={"max": 2.0})
     data = json.loads(ff.to_json())
     assert data["max_correction_rate"] is None
     assert data["limits"] == {"min": None, "max": 2.0, "max_rate": None}

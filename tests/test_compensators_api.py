@@ -21,7 +21,7 @@ FEEDFORWARDS = [
     InverseFeedforward(ts.models.BoucWenBacklash(c_r=1.0, c_l=0.9, B_r=0.1, B_l=0.12)),
     InverseFeedforward(ts.models.Backlash(1.0, 0.9, 0.1, 0.12), smoothing=0.02),
     InverseFeedforward(ts.models.PrandtlIshlinskii([0, 0.05, 0.1], [0.7, 0.2, 0.1])),
-    CurveAngleFeedforward(0.1, 5e-5, 10.0, load_stiffness=500.0, curve_angle=2 * np.pi),
+    CurveAngleFeedforward(0.1, 1 / 5e-5, 1.0, 10.0, load_stiffness=500.0, curve_angle=2 * np.pi),
     ContinuumFeedforward(mode="exact"),
     ContinuumFeedforward(mode="published"),
 ]
@@ -50,7 +50,7 @@ def test_no_nan_and_limits_for_random_finite_input(rng):
     limits = CommandLimits(min=-1.0, max=2.0, max_rate=40.0)
     ffs = [
         InverseFeedforward(ts.models.BoucWenBacklash(), limits=limits),
-        CurveAngleFeedforward(0.1, 5e-5, 10.0, limits=limits),
+        CurveAngleFeedforward(0.1, 1 / 5e-5, 1.0, 10.0, limits=limits),
         ContinuumFeedforward(limits=limits, mode="published"),
     ]
     for _ in range(5):
@@ -70,8 +70,9 @@ def test_curve_angle_feedforward_inverts_the_closed_form_model(rng):
         theta = rng.uniform(0.1, 3 * np.pi)
         r_p, r_d = rng.uniform(3e-3, 8e-3, 2)
         ff = CurveAngleFeedforward(
-            mu, C, T0, proximal_radius=r_p, distal_radius=r_d, curve_angle=theta, smoothing=1e-4
-        )
+            mu, 1 / C, 1.0, T0, proximal_radius=r_p, distal_radius=r_d, curve_angle=theta,
+            smoothing=1e-4,
+        )  # fmt: skip
         t = np.linspace(0, 1, 1001)
         y = 0.3 * t  # rising at 0.3 rad/s
         q = ff.command(t, y)
@@ -87,7 +88,7 @@ def test_curve_angle_feedforward_uses_route_shape():
         s = np.array([0.0, 0.9, 1.0])
         theta = np.array([0.0, 1.0, 3.0])
 
-    ff = CurveAngleFeedforward(0.15, 5e-5, 20.0, curve_angle=3.0, smoothing=1e-4)
+    ff = CurveAngleFeedforward(0.15, 1 / 5e-5, 1.0, 20.0, curve_angle=3.0, smoothing=1e-4)
     uniform = ff._engine.correction(0.0, 1.0)
     ff.set_route(Route)
     shaped = ff._engine.correction(0.0, 1.0)
@@ -112,17 +113,17 @@ def test_continuum_modes_differ_by_the_published_double_counting():
 
 
 def test_bad_parameters_are_named():
-    with pytest.raises(ValueError, match="v_eps"):
+    with pytest.raises(ValueError, match="smoothing"):
         InverseFeedforward(ts.models.Backlash(), smoothing=0.0)
-    with pytest.raises(ValueError, match="compliance"):
-        CurveAngleFeedforward(0.1, -1.0, 10.0)
+    with pytest.raises(ValueError, match="stiffness"):
+        CurveAngleFeedforward(0.1, -1.0, 1.0, 10.0)
     with pytest.raises(ValueError, match="mode"):
         ContinuumFeedforward(mode="fancy")
     with pytest.raises(ValueError, match="min < max"):
-        CurveAngleFeedforward(0.1, 5e-5, 10.0, limits=CommandLimits(min=1.0, max=0.0))
-    with pytest.raises(ValueError, match="supports"):
+        CurveAngleFeedforward(0.1, 1 / 5e-5, 1.0, 10.0, limits=CommandLimits(min=1.0, max=0.0))
+    with pytest.raises(TypeError, match="model must be a Backlash"):
         InverseFeedforward(ts.models.BoucWen())
-    with pytest.raises(ValueError, match="unknown gain"):
+    with pytest.raises(TypeError, match="unknown gain"):
         AdaptiveController(gain=3)
     with pytest.raises(ValueError, match="phi_0"):
         AdaptiveController(phi_0=-1.0)

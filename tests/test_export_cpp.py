@@ -37,11 +37,11 @@ COMPENSATORS = {
         "std::end(P::thresholds)}, {std::begin(P::weights), std::end(P::weights)}}, P::limits);",
     ),
     "curve_angle": (
-        CurveAngleFeedforward(0.11, 3e-4, 12.0, load_stiffness=40.0, curve_angle=2.2),
+        CurveAngleFeedforward(0.11, 1 / 3e-4, 1.0, 12.0, load_stiffness=40.0, curve_angle=2.2),
         "tendonsheath::CurveAngleFeedforward c(P::params);",
     ),
     "continuum": (
-        ContinuumFeedforward(total_angle=2.0, mode="published", limits=(-3.0, 3.0)),
+        ContinuumFeedforward(curve_angle=2.0, mode="published", limits=(-3.0, 3.0)),
         "tendonsheath::ContinuumFeedforward c(P::params);",
     ),
 }

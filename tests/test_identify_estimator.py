@@ -170,3 +170,14 @@ def test_cross_validate_groups_recordings_round_robin(three_logs):
         cross_validate(Identifier(Backlash, **FAST), three_logs[:1])
     with pytest.raises(ValueError, match="folds: at least 2"):
         cross_validate(Identifier(Backlash, **FAST), three_logs, folds=1)
+
+
+def test_cross_validate_rejects_a_fold_count_that_is_not_an_integer_of_at_least_2(three_logs):
+    # folds=0 used to fall back silently to the default split ("folds or 5")
+    est = Identifier(Backlash, **FAST)
+    for bad in (0, -3):
+        with pytest.raises(ValueError, match="folds: at least 2"):
+            cross_validate(est, three_logs, folds=bad)
+    for bad in (2.5, "2", True):
+        with pytest.raises(TypeError, match="folds must be an integer"):
+            cross_validate(est, three_logs, folds=bad)

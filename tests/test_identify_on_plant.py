@@ -24,7 +24,7 @@ def _record(theta, t, command, seed):
         motor=ts.Motor.position(60.0, 0.8),
         sensor=ts.Sensor(resolution=1e-4, noise_std=2e-4, seed=seed),
     )
-    sim = plant.simulate(t, command, full=True)
+    sim = plant.simulate(t, command)
     return getattr(sim, "q_motor", sim.q_in), sim.measured, sim.q_out  # the motor encoder
 
 

@@ -37,7 +37,7 @@ def _fit_and_test(realistic: bool):
     t = np.arange(0.0, 20.0, 1e-3)
     cal = 1.3 * (1 - 2 / 3 * np.sin(np.pi * t / 20)) * np.sin(2 * np.pi * 0.15 * t)
     cal += 0.1 * np.sin(2 * np.pi * 0.9 * t)
-    sim = _plant(realistic, 1).simulate(t, cal, full=True)
+    sim = _plant(realistic, 1).simulate(t, cal)
     fit = ts.identify(
         models.BoucWenBacklash,
         t,
@@ -51,7 +51,7 @@ def _fit_and_test(realistic: bool):
     )
     tt = np.arange(0.0, 12.0, 1e-3)
     test = _plant(realistic, 2).simulate(
-        tt, np.sin(2 * np.pi * 0.25 * tt) + 0.3 * np.sin(2 * np.pi * 0.6 * tt), full=True
+        tt, np.sin(2 * np.pi * 0.25 * tt) + 0.3 * np.sin(2 * np.pi * 0.6 * tt)
     )
     keep = tt >= 4.0
     pred = fit.model.simulate(tt, test.q_motor)

@@ -90,7 +90,7 @@ def test_compare_picks_a_rate_dependent_model_on_a_negative_gain_plant():
     """The realistic plant (its loop widens with the rate) logged negated in motor steps:
     compare_models needs no sign flip and beats the affine map by far (issue 12 item 5)."""
     plant = ts.PullPullPlant(
-        route=ts.Route.uniform(length=1.2, total_angle=2 * np.pi),
+        route=ts.Route.uniform(length=1.2, curve_angle=2 * np.pi),
         pretension=20.0,
         **ts.presets.realistic_plant(),
         motor=ts.presets.realistic_motor(bandwidth_hz=60.0, damping=0.8),

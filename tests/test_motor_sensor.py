@@ -84,14 +84,14 @@ def test_plant_with_position_motor_and_sensor():
     motor = ts.Motor.position(bandwidth_hz=1.2, damping=0.7, max_speed=5.0)
     sensor = ts.Sensor(resolution=1e-4, noise_std=1e-4, seed=1)
     plant = ts.PullPullPlant(route=route, elements=40, motor=motor, sensor=sensor)
-    res = plant.simulate(t, q, full=True)
+    res = plant.simulate(t, q)
     # the command went through the motor: the plant input lags and is attenuated
     assert np.ptp(res.q_in[t > 3]) < 0.9 * np.ptp(q[t > 3])
     np.testing.assert_allclose(res.q_out, bare.simulate(t, res.q_in), atol=1e-12)
     assert np.abs(res.measured - res.q_out).max() < 1e-3
     assert not np.array_equal(res.measured, res.q_out)
     # the same run twice gives the same sensor noise (seeded, reset per simulate)
-    np.testing.assert_array_equal(plant.simulate(t, q, full=True).measured, res.measured)
+    np.testing.assert_array_equal(plant.simulate(t, q).measured, res.measured)
     # streaming goes through the motor too
     plant.reset()
     ys = [plant.step(q[0], 0.0)] + [plant.step(q[k], 1e-3) for k in range(1, len(q))]
@@ -107,8 +107,8 @@ def test_torque_motor_feels_the_tendon_load():
         motor=ts.Motor.torque(0.01, 0.2), load=ts.loads.TorsionalSpring(0.5), **kw
     )
     tau = np.full(t.size, 0.2)
-    q_free = free.simulate(t, tau, full=True).q_in
-    q_loaded = loaded.simulate(t, tau, full=True).q_in
+    q_free = free.simulate(t, tau).q_in
+    q_loaded = loaded.simulate(t, tau).q_in
     # sheath friction alone costs r_p (T1p - T2p) of the torque; the rest drives the motor
     assert 0.2 < q_free[-1] < 0.2 / 0.2 * 2.0
     assert q_loaded[-1] < 0.5 * q_free[-1]  # the spring at the far end holds the motor back

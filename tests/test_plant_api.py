@@ -26,13 +26,23 @@ def sine(n=3000, amp=0.4, f=0.5, dt=1e-3):
         (dict(proximal_radius=-1e-3), "proximal_radius must be > 0"),
         (dict(distal_radius=0.0), "distal_radius must be > 0"),
         (dict(elements=1), "elements must be >= 2"),
+    ],
+)
+def test_pull_pull_rejects_bad_parameters(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        ts.PullPullPlant(route=ROUTE, **kwargs)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
         (dict(elements=2.5), "elements must be an integer"),
         (dict(load=ts.loads.ConstantForce(3.0)), "load must be None, ConstantTorque"),
         (dict(motor="fast"), "motor must be"),
     ],
 )
-def test_pull_pull_rejects_bad_parameters(kwargs, message):
-    with pytest.raises(ValueError, match=message):
+def test_pull_pull_rejects_wrong_types_with_a_type_error(kwargs, message):
+    with pytest.raises(TypeError, match=message):
         ts.PullPullPlant(route=ROUTE, **kwargs)
 
 
@@ -48,12 +58,16 @@ def test_pull_pull_rejects_bad_parameters(kwargs, message):
         (lambda: ts.SingleTendonPlant(ROUTE, elements=0), "elements must be >= 2"),
         (lambda: ts.ContinuumPlant(bending_stiffness=-1.0), "bending_stiffness must be > 0"),
         (lambda: ts.ContinuumPlant(tendon_offset=0.0), "tendon_offset must be > 0"),
-        (lambda: ts.PullPullPlant(route="semicircle"), "must be a tendonsheath.Route"),
     ],
 )
 def test_other_bad_input(make, message):
     with pytest.raises(ValueError, match=message):
         make()
+
+
+def test_a_route_of_the_wrong_type_is_a_type_error():
+    with pytest.raises(TypeError, match="must be a tendonsheath.Route"):
+        ts.PullPullPlant(route="semicircle")
 
 
 def test_non_finite_commands_and_time_are_rejected_in_batch():
@@ -122,15 +136,16 @@ def test_slack_is_flagged_and_warned_with_time():
     t = np.arange(400) * 1e-3
     q = np.linspace(0, 1.0, 400)
     with pytest.warns(ts.SlackWarning, match=r"first at t = 0 s"):
-        res = plant.simulate(t, q, full=True)
+        res = plant.simulate(t, q)
     assert isinstance(res, ts.SimulationResult)
     assert res.any_slack and res.first_slack_index == 0
+    assert not res.success and "slack" in res.message
     assert res.slack.dtype == bool and res.slack.shape == q.shape
     # a load that becomes too large only late: the first slack time is reported
     plant = ts.PullPullPlant(route=ROUTE, elements=30, load=ts.loads.TorsionalSpring(0.05))
     q = np.linspace(0, 3.0, 400)
     with pytest.warns(ts.SlackWarning) as record:
-        res = plant.simulate(t, q, full=True)
+        res = plant.simulate(t, q)
     k = res.first_slack_index
     assert k is not None and k > 0 and not res.slack[:k].any()
     assert f"t = {t[k]:.6g} s" in str(record[0].message)
@@ -140,8 +155,8 @@ def test_no_warning_without_slack():
     plant = ts.PullPullPlant(route=ROUTE, elements=30)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        res = plant.simulate(*sine(1000), full=True)
-    assert not res.any_slack
+        res = plant.simulate(*sine(1000))
+    assert not res.any_slack and res.success and res.message == ""
     assert res.nonconverged == 0
     np.testing.assert_array_equal(res.q_in, res.command)
     np.testing.assert_array_equal(res.measured, res.q_out)
@@ -157,7 +172,7 @@ def test_set_route_changes_the_response_and_checks_length():
     assert np.abs(y_high - q).max() > 2 * np.abs(y_low - q).max()
     with pytest.raises(ValueError, match="may bend, not change length"):
         plant.set_route(ts.Route.uniform(1.0, 1.0))
-    with pytest.raises(ValueError, match="must be a tendonsheath.Route"):
+    with pytest.raises(TypeError, match="must be a tendonsheath.Route"):
         plant.set_route(None)
 
 

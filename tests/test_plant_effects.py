@@ -248,9 +248,7 @@ def test_gear_backlash_is_a_play_between_shaft_and_pulley():
         ts.Route.uniform(1.0, 1.0), motor=ts.Motor.position(40.0, 0.9, gear_backlash=g)
     )
     t = np.arange(0.0, 3.0, 1e-3)
-    sim = plant.simulate(
-        t, 0.1 * np.sin(2 * np.pi * 1.3 * t) + 0.03 * np.sin(2 * np.pi * 7 * t), full=True
-    )
+    sim = plant.simulate(t, 0.1 * np.sin(2 * np.pi * 1.3 * t) + 0.03 * np.sin(2 * np.pi * 7 * t))
     play = np.empty_like(sim.q_motor)
     p = sim.q_motor[0]
     for k, qm in enumerate(sim.q_motor):
@@ -274,7 +272,7 @@ def test_effects_are_validated_with_their_names():
             ts.PullPullPlant(route, **kw)
     with pytest.raises(TypeError, match="sheath_viscosity"):
         ts.PullPullPlant(route, sheath_viscosity="high")
-    with pytest.raises(ValueError, match="reflected_inertia"):
+    with pytest.raises(ValueError, match="Motor.position: .*inertia"):
         ts.Motor.position(10.0, 0.7, coulomb_friction=0.1)
     with pytest.raises(ValueError, match="gear_backlash"):
         ts.Motor.position(10.0, 0.7, gear_backlash=-0.1)
@@ -296,7 +294,7 @@ def test_realistic_preset_is_finite_and_bounded_under_random_input():
     t = np.arange(0.0, 10.0, 1e-3)
     cmd = np.cumsum(rng.normal(0.0, 0.01, t.size)).clip(-1.5, 1.5)
     routes = [ts.Route.uniform(1.5, a) for a in rng.uniform(0.5, 2 * math.pi, 5)]
-    sim = plant.simulate(t, cmd, routes=lambda tk: routes[int(tk // 2)], full=True)
+    sim = plant.simulate(t, cmd, routes=lambda tk: routes[int(tk // 2)])
     assert np.isfinite(sim.q_out).all()
     assert sim.nonconverged == 0
     assert not sim.any_slack

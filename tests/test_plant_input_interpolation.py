@@ -46,7 +46,7 @@ def test_bandlimited_beats_hold_and_linear_on_a_smooth_input(seed):
         ref = plant.simulate(tf, u(tf))[::REF]
         err = {}
         for mode in ("hold", "linear", "bandlimited"):
-            res = plant.simulate(t, u(t), full=True, input_interpolation=mode, periodic=False)
+            res = plant.simulate(t, u(t), input_interpolation=mode, periodic=False)
             e = (res.q_out - ref)[20:-20]  # away from the held ends of the windowed sinc
             err[mode] = float(np.sqrt(np.mean(e**2)) / np.ptp(ref))
             assert res.input_interpolation.startswith(mode)
@@ -78,13 +78,13 @@ def test_periodic_record_uses_fft_and_the_motor_and_routes_follow_the_grid():
     t = np.arange(n) / fs
     x = 0.08 * np.sin(2 * np.pi * np.outer(t, k * fs / n)).sum(axis=1) / 2
     plant = _plant(motor=ts.Motor.position(bandwidth_hz=20.0))
-    res = plant.simulate(t, x, full=True, input_interpolation="bandlimited")
+    res = plant.simulate(t, x, input_interpolation="bandlimited")
     assert res.input_interpolation == "bandlimited (periodic: FFT)"
     assert res.q_out.shape == res.q_motor.shape == res.slack.shape == (n,)
-    hold = plant.simulate(t, x, full=True)
+    hold = plant.simulate(t, x)
     assert np.ptp(res.q_in) > 0.5 * np.ptp(x)  # the motor follows on the finer grid
     assert np.max(np.abs(res.q_in - hold.q_in)) < 0.2 * np.ptp(hold.q_in)
-    linear = plant.simulate(t, x, full=True, input_interpolation="linear")
+    linear = plant.simulate(t, x, input_interpolation="linear")
     assert linear.input_interpolation == "linear"
     # a route change at sample 100 lands at the same time on the finer grid
     bent = ts.Route.uniform(1.0, 1.5 * np.pi)
@@ -117,7 +117,7 @@ def test_continuum_plant_takes_the_same_option():
     plant = ts.ContinuumPlant(elements=20, pretension=30.0, **kw)
     t = np.arange(300) / FS
     x = _sines(np.random.default_rng(4), count=6)(t)
-    res = plant.simulate(t, x, full=True, input_interpolation="bandlimited", periodic=False)
+    res = plant.simulate(t, x, input_interpolation="bandlimited", periodic=False)
     held = plant.simulate(t, x)
     assert res.input_interpolation == "bandlimited (windowed sinc)"
     assert np.all(np.isfinite(res.q_out))

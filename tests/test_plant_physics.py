@@ -39,17 +39,17 @@ def test_full_slip_capstan_ratio_single_tendon(seed):
     plant = ts.SingleTendonPlant(
         route=route, friction=mu, stiffness=EA, elements=60, load=ts.loads.ConstantForce(F)
     )
-    travel = 3 * F * L * np.exp(mu * route.total_angle) / EA
+    travel = 3 * F * L * np.exp(mu * route.curve_angle) / EA
     ramp(plant, 0.0, travel, travel / 200)
     T = plant.tensions()
     # measured over the 30 seeds: worst 2.0e-12 (pull) and 1.0e-11 (release) relative,
     # round-off of the tension solve; 1e-10 is 10x above the worst
-    assert T[-1] / T[0] == pytest.approx(np.exp(-mu * route.total_angle), rel=1e-10)
+    assert T[-1] / T[0] == pytest.approx(np.exp(-mu * route.curve_angle), rel=1e-10)
     assert (plant.slip_state() == 1).all()
     # releasing: the ratio inverts
     ramp(plant, travel, -travel, travel / 100)
     T = plant.tensions()
-    assert T[-1] / T[0] == pytest.approx(np.exp(mu * route.total_angle), rel=1e-10)
+    assert T[-1] / T[0] == pytest.approx(np.exp(mu * route.curve_angle), rel=1e-10)
 
 
 @pytest.mark.parametrize("seed", range(20))
@@ -100,7 +100,7 @@ def test_pull_pull_offsets_match_g_G_nonuniform(seed):
     route1 = random_route(rng, L)
     route2 = random_route(rng, L) if seed % 3 == 0 else route1
     mu, EA, T0 = rng.uniform(0.05, 0.2), rng.uniform(5e3, 5e4), rng.uniform(5, 40)
-    theta = max(route1.total_angle, route2.total_angle)
+    theta = max(route1.curve_angle, route2.curve_angle)
     FL = rng.uniform(-0.5, 0.5) * physics.no_slack_limit(T0, mu, theta)
     # 800 elements: a route with 2/3 of its angle in the distal 10 % (seed 9) puts a
     # discretisation error O(1/N^2) of 3.8e-3 dz on the forward offset at 200 elements,
@@ -246,7 +246,7 @@ def test_memory_effect_raise_holds_lower_creeps():
 
 def test_continuum_plant_spring_slope_and_force():
     plant = ts.ContinuumPlant(elements=100)
-    assert plant.route.total_angle == pytest.approx(np.pi)
+    assert plant.route.curve_angle == pytest.approx(np.pi)
     k = plant.spring_stiffness
     assert k == pytest.approx(4e-4 / (2e-3**2 * 0.03))
     c = physics.spring_slope(1.0, 2.4e4, 0.1, np.pi, k)

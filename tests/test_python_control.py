@@ -194,7 +194,7 @@ def _inverse_feedforwards(rng):
         ts.compensate.InverseFeedforward(_prandtl_ishlinskii(rng)),
         ts.compensate.InverseFeedforward(_scaled(rng)),
         ts.compensate.ContinuumFeedforward(
-            friction=_u(rng, 0.05, 0.2), total_angle=_u(rng, 1, 3), mode="published"
+            friction=_u(rng, 0.05, 0.2), curve_angle=_u(rng, 1, 3), mode="published"
         ),
     ]
 
@@ -208,7 +208,8 @@ def test_compensator_response_equals_command(seed):
         assert sys.input_labels == ["y_d"] and sys.output_labels == ["x"]
         _close(ct.input_output_response(sys, t, y_d).outputs, ff.command(t, y_d))
     ca = ts.compensate.CurveAngleFeedforward(
-        friction=_u(rng, 0.05, 0.2), compliance=_u(rng, 2e-5, 1e-4), pretension=_u(rng, 5, 20),
+        friction=_u(rng, 0.05, 0.2), stiffness=1 / _u(rng, 2e-5, 1e-4), length=1.0,
+        pretension=_u(rng, 5, 20),
         load_force=_u(rng, 0, 3), smoothing=_u(rng, 0.02, 0.2),
     )  # fmt: skip
     theta = _u(rng, 1, 4) + np.sin(2 * np.pi * t / t[-1])

@@ -35,7 +35,7 @@ def test_chain_is_the_composition():
     np.testing.assert_array_equal(chain.simulate(t, x), second.simulate(None, first.simulate(t, x)))
     changed = chain.with_params(**{"first.n": 9.0, "second.coefficients": [0.0, 1.0]})
     assert changed.first.params["n"] == 9.0 and changed.second.degree == 1
-    with pytest.raises(ValueError, match="first.<name>"):
+    with pytest.raises(TypeError, match="first.<name>"):
         chain.with_params(n=3)
 
 

@@ -101,12 +101,12 @@ def test_plant_simulate_reports_held_and_motor_saturation_per_sample():
     q, flags = plant.simulate(T, SINE, status=True)
     np.testing.assert_array_equal(q, q_plain)
     assert not flags.any()  # a clean run flags nothing
-    result = plant.simulate(T, SINE, full=True)
+    result = plant.simulate(T, SINE)
     np.testing.assert_array_equal(result.status, flags)
     slow = ts.PullPullPlant(
         route=ts.Route.uniform(1.0, 2.0), elements=20, motor=ts.Motor.position(max_speed=1.0)
     )
-    counts = status_counts(slow.simulate(T, SINE, full=True).status)
+    counts = status_counts(slow.simulate(T, SINE).status)
     # the sine's peak speed is 0.8 * pi ~ 2.5 rad/s: the 1 rad/s limit cuts part of each cycle
     assert counts["saturated"] > 100
     assert counts["held_nonfinite_input"] == 0

@@ -85,7 +85,7 @@ IDENTIFY = ["--input", "motor", "--output", "tip", "--time", "time", "--maxiter"
 def _feedforwards(limits):
     return [
         InverseFeedforward(ts.models.BoucWenBacklash(), limits=limits),
-        CurveAngleFeedforward(0.1, 5e-5, 10.0, limits=limits),
+        CurveAngleFeedforward(0.1, 1 / 5e-5, 1.0, 10.0, limits=limits),
         ContinuumFeedforward(limits=limits, mode="published"),
     ]
 
@@ -106,7 +106,7 @@ def test_limits_as_tuple_or_dict_saturate_every_feedforward(rng):
 def test_limits_of_any_other_form_are_a_type_error(limits):
     for make in (
         lambda: InverseFeedforward(ts.models.BoucWenBacklash(), limits=limits),
-        lambda: CurveAngleFeedforward(0.1, 5e-5, 10.0, limits=limits),
+        lambda: CurveAngleFeedforward(0.1, 1 / 5e-5, 1.0, 10.0, limits=limits),
         lambda: ContinuumFeedforward(limits=limits),
     ):
         with pytest.raises(TypeError, match="limits"):
@@ -397,7 +397,7 @@ def _tiny_lau(scale, seed, progress):
 def test_smaller_ones():
     with pytest.raises(ValueError, match="rising must be the 4 envelope coefficients"):
         ts.models.GeneralizedPrandtlIshlinskii(rising=(1.0,))
-    ff = CurveAngleFeedforward(0.1, 5e-5, 10.0)
+    ff = CurveAngleFeedforward(0.1, 1 / 5e-5, 1.0, 10.0)
     with pytest.raises(TypeError, match="set_route needs a Route"):
         ff.set_route(None)
     with pytest.raises(TypeError, match="needs a CurveAngleModel"):

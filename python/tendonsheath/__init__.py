@@ -2,7 +2,7 @@
 
 from importlib.metadata import version as _version
 
-from . import bench, compensate, io, loads, models, physics, presets
+from . import bench, compensate, io, loads, models, physics, presets, protocols
 from .compare import Comparison, compare_models
 from .identify import Fit, IdentifiabilityWarning, Identifier, identify
 from .models import load_model
@@ -10,12 +10,13 @@ from .motor import Motor
 from .plant import (
     ContinuumPlant,
     PullPullPlant,
-    SimulationResult,
     SingleTendonPlant,
     SlackWarning,
 )
+from .protocols import Compensator, Plant
 from .route import Route
 from .sensor import Sensor
+from .simulation_result import SimulationResult
 from .status import Status, status_counts
 from .sweep import sweep
 
@@ -24,11 +25,13 @@ __version__ = _version("tendonsheath")
 
 __all__ = [
     "Comparison",
+    "Compensator",
     "ContinuumPlant",
     "Fit",
     "IdentifiabilityWarning",
     "Identifier",
     "Motor",
+    "Plant",
     "PullPullPlant",
     "Route",
     "Sensor",
@@ -46,6 +49,7 @@ __all__ = [
     "models",
     "physics",
     "presets",
+    "protocols",
     "status_counts",
     "sweep",
     "__version__",

@@ -194,7 +194,7 @@ def robustness_section(out: Path, runs: int = 200, seed: int = 0, angle_unit: st
     design = robustness_design(
         friction=_COMMON["friction"],
         pretension=_COMMON["pretension"],
-        route_angle=NOMINAL.total_angle,
+        route_angle=NOMINAL.curve_angle,
     )
     result = robustness_study(
         run=robustness_run, n=runs, seed=2015 + seed, design=design, progress=False

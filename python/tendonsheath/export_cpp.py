@@ -114,12 +114,14 @@ def _compensator_body(ff) -> tuple[str, str]:
         return _inverse_body(ff)
     s = ff.params
     limits = _limits_fields(s.pop("limits"))
+    # Python names -> the C++ fields (docs/vocabulary.md)
+    s["total_angle"], s["v_eps"] = s.pop("curve_angle"), s.pop("smoothing")
     if kind == "CurveAngleFeedforward":
-        s["total_angle"], s["v_eps"] = s.pop("curve_angle"), s.pop("smoothing")
+        s = {"compliance": s.pop("length") / s.pop("stiffness"), **s}
         return "compensators/curve_angle_feedforward.hpp", _struct(
             "CurveAngleFeedforwardParams", {**s, **limits}
         )
-    s["v_eps"] = s.pop("smoothing")
+    s["sheath_length"] = s.pop("length")
     s["mode"] = "tendonsheath::ContinuumMode::" + s["mode"].capitalize()
     return "compensators/continuum_feedforward.hpp", _struct(
         "ContinuumFeedforwardParams", {**s, **limits}

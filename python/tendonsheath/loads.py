@@ -21,9 +21,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from ._args import number
+
 
 def _finite(value, name, cls, minimum=None, strict=False):
-    v = float(value)
+    v = number(cls, name, value)
     if not math.isfinite(v):
         raise ValueError(f"{cls}: {name} must be finite (got {value!r})")
     if minimum is not None and (v < minimum or (strict and v <= minimum)):

@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from . import _core as core
+from ._args import number, python_names
 from ._arrays import as_time_and_signal, checked_dt
 from ._typing import ArrayLike, FloatArray
 from .status import Status
@@ -43,7 +44,9 @@ class Motor:
 
     def __init__(self, params: core.MotorParams):
         self._params = params
-        self._engine = core.Motor(params)  # validates; ValueError names the parameter
+        kind = "position" if params.kind == core.MotorKind.Position else "torque"
+        with python_names(f"Motor.{kind}"):
+            self._engine = core.Motor(params)  # validates, naming the parameter
 
     @classmethod
     def position(
@@ -90,14 +93,15 @@ class Motor:
         """
         p = core.MotorParams()
         p.kind = core.MotorKind.Position
-        p.bandwidth_hz = float(bandwidth_hz)
-        p.damping = float(damping)
-        p.max_speed = float(max_speed)
-        p.max_accel = float(max_accel)
-        p.reflected_inertia = float(inertia)
-        p.coulomb_friction = float(coulomb_friction)
-        p.viscous_friction = float(viscous_friction)
-        p.gear_backlash = float(gear_backlash)
+        who = "Motor.position"
+        p.bandwidth_hz = number(who, "bandwidth_hz", bandwidth_hz)
+        p.damping = number(who, "damping", damping)
+        p.max_speed = number(who, "max_speed", max_speed)
+        p.max_accel = number(who, "max_accel", max_accel)
+        p.reflected_inertia = number(who, "inertia", inertia)
+        p.coulomb_friction = number(who, "coulomb_friction", coulomb_friction)
+        p.viscous_friction = number(who, "viscous_friction", viscous_friction)
+        p.gear_backlash = number(who, "gear_backlash", gear_backlash)
         return cls(p)
 
     @classmethod
@@ -139,12 +143,13 @@ class Motor:
         """
         p = core.MotorParams()
         p.kind = core.MotorKind.Torque
-        p.inertia = float(inertia)
-        p.viscous = float(viscous)
-        p.max_torque = float(max_torque)
-        p.max_speed = float(max_speed)
-        p.coulomb_friction = float(coulomb_friction)
-        p.gear_backlash = float(gear_backlash)
+        who = "Motor.torque"
+        p.inertia = number(who, "inertia", inertia)
+        p.viscous = number(who, "viscous", viscous)
+        p.max_torque = number(who, "max_torque", max_torque)
+        p.max_speed = number(who, "max_speed", max_speed)
+        p.coulomb_friction = number(who, "coulomb_friction", coulomb_friction)
+        p.gear_backlash = number(who, "gear_backlash", gear_backlash)
         return cls(p)
 
     @property

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from . import _core as core
+from ._args import accepts_old_names
 from ._typing import ArrayLike, FloatArray, FloatOrArray
 from .route import Route
 
@@ -30,9 +31,9 @@ def _elementwise(kernel: Callable[..., Any], *args: ArrayLike) -> FloatOrArray:
     return out[()] if out.ndim == 0 else out
 
 
-def _friction_angle(mu: ArrayLike, total_angle: ArrayLike) -> FloatArray:
+def _friction_angle(mu: ArrayLike, curve_angle: ArrayLike) -> FloatArray:
     """a = mu Theta, the argument of every uniform closed form."""
-    return np.multiply(np.asarray(mu, dtype=np.float64), np.asarray(total_angle, np.float64))
+    return np.multiply(np.asarray(mu, dtype=np.float64), np.asarray(curve_angle, np.float64))
 
 
 def tanh_half_over(a: ArrayLike) -> FloatOrArray:
@@ -51,8 +52,9 @@ def tanh_half_over(a: ArrayLike) -> FloatOrArray:
     return _elementwise(core.tanh_half_over, a)
 
 
+@accepts_old_names("physics.capstan_ratio", {"total_angle": "curve_angle"})
 def capstan_ratio(
-    mu: ArrayLike, total_angle: ArrayLike, direction: ArrayLike = 1.0
+    mu: ArrayLike, curve_angle: ArrayLike, direction: ArrayLike = 1.0
 ) -> FloatOrArray:
     """Full-slip distal/proximal tension ratio T_d/T_p = exp(-direction mu Theta) (A1).
 
@@ -60,8 +62,9 @@ def capstan_ratio(
     ----------
     mu : float or array_like
         Friction coefficient mu.
-    total_angle : float or array_like
-        Total curve angle Theta (rad).
+    curve_angle : float or array_like
+        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
+        with a DeprecationWarning).
     direction : float or array_like, default 1.0
         +1 when the tendon is pulled (slides towards the motor), -1 when released.
 
@@ -70,7 +73,7 @@ def capstan_ratio(
     numpy.ndarray of float
         T_d / T_p, broadcast over the arguments.
     """
-    return np.exp(-np.asarray(direction) * np.asarray(mu) * np.asarray(total_angle))
+    return np.exp(-np.asarray(direction) * np.asarray(mu) * np.asarray(curve_angle))
 
 
 def route_shape(route: Route, mu: float) -> core.ShapeIntegrals:
@@ -116,8 +119,9 @@ def shape_integrals(route: Route, mu: float) -> tuple[float, float]:
     return float(shape.g), float(shape.G)
 
 
+@accepts_old_names("physics.backlash_half_width", {"total_angle": "curve_angle"})
 def backlash_half_width(
-    length: ArrayLike, EA: ArrayLike, pretension: ArrayLike, mu: ArrayLike, total_angle: ArrayLike
+    length: ArrayLike, EA: ArrayLike, pretension: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike
 ) -> FloatOrArray:
     """e_b = T0 L tanh(mu Theta/2) / EA: half the pull-pull dead zone, uniform curvature (A7).
 
@@ -131,20 +135,22 @@ def backlash_half_width(
         Pretension T0 (N).
     mu : float or array_like
         Friction coefficient mu.
-    total_angle : float or array_like
-        Total curve angle Theta (rad).
+    curve_angle : float or array_like
+        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
+        with a DeprecationWarning).
 
     Returns
     -------
     numpy.ndarray of float
         e_b (m), broadcast over the arguments.
     """
-    a = _friction_angle(mu, total_angle)
+    a = _friction_angle(mu, curve_angle)
     return _elementwise(core.uniform_backlash_half_width, length, EA, pretension, a)
 
 
+@accepts_old_names("physics.load_offset", {"total_angle": "curve_angle"})
 def load_offset(
-    length: ArrayLike, EA: ArrayLike, load_force: ArrayLike, mu: ArrayLike, total_angle: ArrayLike
+    length: ArrayLike, EA: ArrayLike, load_force: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike
 ) -> FloatOrArray:
     """e_L = F_L L tanh(a/2) / (EA a), a = mu Theta: the load shift of both branches (A7).
 
@@ -158,20 +164,22 @@ def load_offset(
         Distal load F_L (N), positive resisting forward motion.
     mu : float or array_like
         Friction coefficient mu.
-    total_angle : float or array_like
-        Total curve angle Theta (rad).
+    curve_angle : float or array_like
+        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
+        with a DeprecationWarning).
 
     Returns
     -------
     numpy.ndarray of float
         e_L (m), broadcast over the arguments.
     """
-    a = _friction_angle(mu, total_angle)
+    a = _friction_angle(mu, curve_angle)
     return _elementwise(core.uniform_load_offset, length, EA, load_force, a)
 
 
+@accepts_old_names("physics.load_compliance", {"total_angle": "curve_angle"})
 def load_compliance(
-    length: ArrayLike, EA: ArrayLike, mu: ArrayLike, total_angle: ArrayLike
+    length: ArrayLike, EA: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike
 ) -> FloatOrArray:
     """C_L = L tanh(a/2) / (EA a) (m/N): output shift per newton of distal load.
 
@@ -183,19 +191,21 @@ def load_compliance(
         Tendon axial stiffness EA (N).
     mu : float or array_like
         Friction coefficient mu.
-    total_angle : float or array_like
-        Total curve angle Theta (rad).
+    curve_angle : float or array_like
+        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
+        with a DeprecationWarning).
 
     Returns
     -------
     numpy.ndarray of float
         C_L (m/N), broadcast over the arguments.
     """
-    return _elementwise(core.uniform_load_compliance, length, EA, _friction_angle(mu, total_angle))
+    return _elementwise(core.uniform_load_compliance, length, EA, _friction_angle(mu, curve_angle))
 
 
+@accepts_old_names("physics.spring_slope", {"total_angle": "curve_angle"})
 def spring_slope(
-    length: ArrayLike, EA: ArrayLike, mu: ArrayLike, total_angle: ArrayLike, k: ArrayLike
+    length: ArrayLike, EA: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike, k: ArrayLike
 ) -> FloatOrArray:
     """Branch slope dx_out/dx_in = 1/(1 + k C_L) with a spring load F_L = k x_out (spec A.4).
 
@@ -207,8 +217,9 @@ def spring_slope(
         Tendon axial stiffness EA (N).
     mu : float or array_like
         Friction coefficient mu.
-    total_angle : float or array_like
-        Total curve angle Theta (rad).
+    curve_angle : float or array_like
+        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
+        with a DeprecationWarning).
     k : float or array_like
         Stiffness of the spring load (N/m).
 
@@ -217,12 +228,13 @@ def spring_slope(
     numpy.ndarray of float
         The slope (dimensionless, in (0, 1]), broadcast over the arguments.
     """
-    a = _friction_angle(mu, total_angle)
+    a = _friction_angle(mu, curve_angle)
     return _elementwise(core.uniform_spring_slope, length, EA, k, a)
 
 
+@accepts_old_names("physics.dead_zone_width", {"total_angle": "curve_angle"})
 def dead_zone_width(
-    length: ArrayLike, EA: ArrayLike, pretension: ArrayLike, mu: ArrayLike, total_angle: ArrayLike
+    length: ArrayLike, EA: ArrayLike, pretension: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike
 ) -> FloatOrArray:
     """2 e_b: the input dead zone of a pull-pull pair, uniform curvature (A7).
 
@@ -236,18 +248,20 @@ def dead_zone_width(
         Pretension T0 (N).
     mu : float or array_like
         Friction coefficient mu.
-    total_angle : float or array_like
-        Total curve angle Theta (rad).
+    curve_angle : float or array_like
+        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
+        with a DeprecationWarning).
 
     Returns
     -------
     numpy.ndarray of float
         2 e_b (m), broadcast over the arguments.
     """
-    return 2.0 * backlash_half_width(length, EA, pretension, mu, total_angle)
+    return 2.0 * backlash_half_width(length, EA, pretension, mu, curve_angle)
 
 
-def no_slack_limit(pretension: ArrayLike, mu: ArrayLike, total_angle: ArrayLike) -> FloatOrArray:
+@accepts_old_names("physics.no_slack_limit", {"total_angle": "curve_angle"})
+def no_slack_limit(pretension: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike) -> FloatOrArray:
     """Largest distal load F_L before the released tendon goes slack: T0 (a/sinh a)(1 + e^-a).
 
     Parameters
@@ -256,15 +270,16 @@ def no_slack_limit(pretension: ArrayLike, mu: ArrayLike, total_angle: ArrayLike)
         Pretension T0 (N).
     mu : float or array_like
         Friction coefficient mu.
-    total_angle : float or array_like
-        Total curve angle Theta (rad).
+    curve_angle : float or array_like
+        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
+        with a DeprecationWarning).
 
     Returns
     -------
     numpy.ndarray of float
         The load limit (N), broadcast over the arguments (a -> 0: 2 T0).
     """
-    return _elementwise(core.uniform_no_slack_limit, pretension, _friction_angle(mu, total_angle))
+    return _elementwise(core.uniform_no_slack_limit, pretension, _friction_angle(mu, curve_angle))
 
 
 def pull_pull_offsets(
@@ -367,7 +382,7 @@ def single_tendon_dead_zone(route: Route, EA: float, distal_tension: float, mu: 
     float
         The input travel b (m).
     """
-    a = mu * route.total_angle
+    a = mu * route.curve_angle
     g, G = shape_integrals(route, mu)
     Tp0 = distal_tension * np.exp(a)
     return float(route.length / EA * Tp0 * (g - np.exp(-2 * a) * G))

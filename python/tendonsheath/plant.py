@@ -14,18 +14,20 @@ it is flagged per sample in the full result and raises a :class:`SlackWarning`.
 
 from __future__ import annotations
 
+import functools
+import inspect
 import math
 import warnings
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from . import _core as core
 from . import physics, plant_input
+from ._args import integer, number, python_names
 from ._arrays import as_time_and_signal, checked_dt
-from ._typing import ArrayLike, FloatArray
+from ._typing import ArrayLike
 from .loads import (
     ConstantForce,
     ConstantTorque,
@@ -37,6 +39,7 @@ from .loads import (
 from .motor import Motor
 from .route import Route
 from .sensor import Sensor
+from .simulation_result import SimulationResult
 from .status import Status
 
 if TYPE_CHECKING:
@@ -47,74 +50,10 @@ class SlackWarning(RuntimeWarning):
     """A tendon went slack (tension <= 0): the quasi-static model is not valid there."""
 
 
-@dataclass
-class SimulationResult:
-    """Everything a plant simulation produced (``plant.simulate(..., full=True)``).
-
-    ``command`` is what was given, ``q_in`` the plant input after the motor (the proximal
-    pulley angle; equal to the command without a motor), ``q_motor`` the motor shaft angle a
-    motor encoder reads (``q_in`` plus the gear play, when the motor has gear backlash),
-    ``q_out`` the output, ``measured`` the sensor reading of q_out (or
-    q_out without a sensor), ``slack`` a per-sample flag, ``tensions`` the final tensions
-    (rows: tendons, proximal to distal), ``nonconverged`` the count of accepted but
-    unconverged active-set increments (0 in normal use), ``status`` each sample's
-    :class:`~tendonsheath.Status` flags of plant, motor and sensor (uint8; count them with
-    :func:`~tendonsheath.status_counts`).
-
-    Parameters
-    ----------
-    t : numpy.ndarray of float or None
-        Sample times (s).
-    command : numpy.ndarray of float
-        The commands given.
-    q_in : numpy.ndarray of float
-        Plant input after the motor (proximal pulley angle, rad; m for a single tendon).
-    q_out : numpy.ndarray of float
-        The output.
-    measured : numpy.ndarray of float
-        The sensor reading of q_out (q_out without a sensor).
-    slack : numpy.ndarray of bool
-        Per sample: a tendon went slack.
-    tensions : numpy.ndarray of float
-        Final element tensions (N); rows: tendons, proximal to distal.
-    nonconverged : int
-        Accepted but unconverged active-set increments (0 in normal use).
-    q_motor : numpy.ndarray of float, optional
-        Motor shaft angle (rad), with a motor.
-    status : numpy.ndarray of uint8, optional
-        Each sample's Status flags.
-    input_interpolation : str, default "hold"
-        How the command was reconstructed between samples.
-    """
-
-    t: np.ndarray | None
-    command: np.ndarray
-    q_in: np.ndarray
-    q_out: np.ndarray
-    measured: np.ndarray
-    slack: np.ndarray
-    tensions: np.ndarray
-    nonconverged: int
-    q_motor: np.ndarray | None = None
-    status: np.ndarray | None = None
-    input_interpolation: str = "hold"  # how the command was reconstructed between samples
-
-    @property
-    def any_slack(self) -> bool:
-        """Whether a tendon went slack at any sample."""
-        return bool(self.slack.any())
-
-    @property
-    def first_slack_index(self) -> int | None:
-        """Index of the first slack sample (None when there is none)."""
-        idx = np.flatnonzero(self.slack)
-        return int(idx[0]) if idx.size else None
-
-
-def _options(elements, max_increment, fast_path):
+def _options(cls, max_increment, fast_path):
     o = core.ChainOptions()
     if max_increment is not None:
-        o.max_increment = float(max_increment)
+        o.max_increment = number(cls, "max_increment", max_increment)
     o.fast_path = bool(fast_path)
     return o
 
@@ -130,9 +69,22 @@ def _set_effects(p, cls, names, values):
         value = values[name]
         if value is None:
             continue
-        if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
-            raise TypeError(f"{cls}: {name} must be a number (got {type(value).__name__})")
-        setattr(p, name, float(value))
+        setattr(p, name, number(cls, name, value))
+
+
+# The plants' scalar parameters (same names in Python and C++).
+_PAIR_NUMBERS = ("friction", "stiffness", "pretension", "proximal_radius", "distal_radius")
+_CONTINUUM_NUMBERS = (
+    *_PAIR_NUMBERS[:4],
+    "bending_stiffness",
+    "tendon_offset",
+    "backbone_length",
+)
+
+
+def _set_numbers(p, cls, names, values):
+    for name in names:
+        setattr(p, name, number(cls, name, values[name]))
 
 
 def _effects_of(p, names) -> dict:
@@ -140,8 +92,7 @@ def _effects_of(p, names) -> dict:
 
 
 def _check_elements(elements, cls):
-    if isinstance(elements, bool) or not isinstance(elements, int | np.integer):
-        raise ValueError(f"{cls}: elements must be an integer >= 2 (got {elements!r})")
+    elements = integer(cls, "elements", elements)
     if elements < 2:
         raise ValueError(f"{cls}: elements must be >= 2 (got {elements})")
     return int(elements)
@@ -149,8 +100,38 @@ def _check_elements(elements, cls):
 
 def _check_route(route, name, cls):
     if not isinstance(route, Route):
-        raise ValueError(f"{cls}: {name} must be a tendonsheath.Route (got {type(route).__name__})")
+        raise TypeError(f"{cls}: {name} must be a tendonsheath.Route (got {type(route).__name__})")
     return route
+
+
+def _recording_arguments(init):
+    """``init`` that first keeps its bound arguments as ``self._arguments`` (the outermost
+    constructor's, when a subclass's calls its parent's)."""
+    signature = inspect.signature(init)
+
+    @functools.wraps(init)
+    def wrapper(self, *args, **kwargs):
+        if not hasattr(self, "_arguments"):
+            try:
+                bound = signature.bind(self, *args, **kwargs)
+            except TypeError:  # the constructor itself names the bad argument
+                return init(self, *args, **kwargs)
+            bound.apply_defaults()
+            self._arguments = _flat_arguments(signature, bound.arguments)
+        init(self, *args, **kwargs)
+
+    return wrapper
+
+
+def _flat_arguments(signature, arguments: dict) -> dict:
+    """Bound arguments without ``self``, a ``**kwargs`` catch-all spread into its keys."""
+    out = {}
+    for name, value in list(arguments.items())[1:]:
+        if signature.parameters[name].kind is inspect.Parameter.VAR_KEYWORD:
+            out.update(value)
+        else:
+            out[name] = value
+    return out
 
 
 class _Plant:
@@ -162,6 +143,18 @@ class _Plant:
     motor: Motor | None = None
     sensor: Sensor | None = None
     _interpolation = ("hold", plant_input.DEFAULT_SUBSTEPS, plant_input.DEFAULT_LOOKAHEAD)
+
+    _arguments: dict  # the constructor's arguments, kept by _recording_arguments
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if "__init__" in vars(cls):
+            cls.__init__ = _recording_arguments(cls.__init__)
+
+    @property
+    def params(self) -> dict:
+        """The constructor's arguments, defaults filled in (a copy)."""
+        return dict(self._arguments)
 
     def set_input_interpolation(
         self,
@@ -193,14 +186,19 @@ class _Plant:
 
     @property
     def input_interpolation(self) -> str:
-        """The default reconstruction of the command in :meth:`simulate`."""
         return self._interpolation[0]
 
     def _setup_io(self, motor, sensor):
         if motor is not None and not isinstance(motor, Motor):
-            raise ValueError(f"{type(self).__name__}: motor must be a tendonsheath.Motor or None")
+            raise TypeError(
+                f"{type(self).__name__}: motor must be a tendonsheath.Motor or None "
+                f"(got {type(motor).__name__})"
+            )
         if sensor is not None and not isinstance(sensor, Sensor):
-            raise ValueError(f"{type(self).__name__}: sensor must be a tendonsheath.Sensor or None")
+            raise TypeError(
+                f"{type(self).__name__}: sensor must be a tendonsheath.Sensor or None "
+                f"(got {type(sensor).__name__})"
+            )
         self.motor = motor
         self.sensor = sensor
         self._motor_engine = core.Motor(motor._params) if motor is not None else None
@@ -317,17 +315,14 @@ class _Plant:
 
     @property
     def elements(self) -> int:
-        """Elements per sheath."""
         return self._engine.elements
 
     @property
     def friction(self) -> float:
-        """Friction coefficient mu (of sheath 1)."""
         return self._engine.params.friction
 
     @property
     def stiffness(self) -> float:
-        """Tendon axial stiffness EA (N) (of tendon 1)."""
         return self._engine.params.stiffness
 
     def element_positions(self, sheath: int = 1) -> np.ndarray:
@@ -357,7 +352,7 @@ class _Plant:
         input_interpolation: str | None = None,
         periodic: bool | None = None,
         status: bool = False,
-    ) -> FloatArray | tuple[FloatArray, np.ndarray] | SimulationResult:
+    ) -> SimulationResult | tuple[SimulationResult, np.ndarray]:
         """Simulate from rest (on the current route) without touching the streaming state.
 
         ``input_interpolation`` ("hold", "linear", "bandlimited"; default: the plant's, see
@@ -434,23 +429,13 @@ class _Plant:
             ].astype(flags.dtype)
             q_out, q_in, meas = q_out[step], q_in[step], meas[step]
             q_motor = None if q_motor is None or q_motor.size == 0 else q_motor[step]
-        if slack.any():
-            k = int(np.flatnonzero(slack)[0])
-            when = f"t = {ts[k]:.6g} s" if ts is not None else "the start"
-            warnings.warn(
-                f"{type(self).__name__}: a tendon went slack (tension <= 0) first at {when} "
-                f"(sample {k}, {int(slack.sum())} samples in all); the quasi-static model is not "
-                f"valid there: raise the pretension or lower the load",
-                SlackWarning,
-                stacklevel=2,
-            )
-        if not full:
-            return (q_out, flags) if status else q_out
-        return SimulationResult(
+        self._warn_slack(ts, slack)
+        result = SimulationResult(
+            q_out,
             t=ts,
+            input=us,
             command=us,
             q_in=q_in,
-            q_out=q_out,
             measured=meas,
             slack=slack,
             tensions=tens[0] if self._rows == 1 else tens,
@@ -458,6 +443,22 @@ class _Plant:
             q_motor=q_motor,
             status=flags,
             input_interpolation=how,
+        )
+        return (result, flags) if status else result
+
+    def _warn_slack(self, ts, slack) -> None:
+        """A SlackWarning with the time of the first slack sample (pointing at the caller of
+        simulate)."""
+        if not slack.any():
+            return
+        k = int(np.flatnonzero(slack)[0])
+        when = f"t = {ts[k]:.6g} s" if ts is not None else "the start"
+        warnings.warn(
+            f"{type(self).__name__}: a tendon went slack (tension <= 0) first at {when} "
+            f"(sample {k}, {int(slack.sum())} samples in all); the quasi-static model is not "
+            f"valid there: raise the pretension or lower the load",
+            SlackWarning,
+            stacklevel=3,
         )
 
     def _schedule(self, ts, routes):
@@ -572,19 +573,20 @@ class SingleTendonPlant(_Plant):
         self.route = _check_route(route, "route", cls)
         load = ConstantForce(10.0) if load is None else load
         if not isinstance(load, ConstantForce | LinearSpring | SpringPreload):
-            raise ValueError(
+            raise TypeError(
                 f"{cls}: load must be ConstantForce, LinearSpring or SpringPreload "
                 f"(got {type(load).__name__})"
             )
         self.load = load
         p = core.SingleTendonParams()
-        p.friction = float(friction)
-        p.stiffness = float(stiffness)
+        p.friction = number(cls, "friction", friction)
+        p.stiffness = number(cls, "stiffness", stiffness)
         p.elements = _check_elements(elements, cls)
         p.load_force, p.load_stiffness = load.linear()
-        p.options = _options(elements, max_increment, fast_path)
+        p.options = _options(cls, max_increment, fast_path)
         _set_effects(p, cls, _RATE_EFFECTS, effects)
-        self._engine = core.SingleTendonPlant(p, route._core)
+        with python_names(cls):
+            self._engine = core.SingleTendonPlant(p, route._core)
         self._setup_io(motor, sensor)
 
     def _lengths(self) -> tuple[float, ...]:
@@ -619,7 +621,7 @@ class SingleTendonPlant(_Plant):
         """
         F0, _ = self.load.linear()
         return {
-            "capstan_ratio": float(physics.capstan_ratio(self.friction, self.route.total_angle)),
+            "capstan_ratio": float(physics.capstan_ratio(self.friction, self.route.curve_angle)),
             "dead_zone": physics.single_tendon_dead_zone(
                 self.route, self.stiffness, F0, self.friction
             ),
@@ -734,23 +736,20 @@ class PullPullPlant(_Plant):
         if load is not None and not isinstance(
             load, ConstantTorque | TorsionalSpring | SpringDamper
         ):
-            raise ValueError(
+            raise TypeError(
                 f"{cls}: load must be None, ConstantTorque, TorsionalSpring or SpringDamper "
                 f"(got {type(load).__name__})"
             )
         self.load = load
         p = core.PullPullParams()
-        p.friction = float(friction)
-        p.stiffness = float(stiffness)
-        p.pretension = float(pretension)
-        p.proximal_radius = float(proximal_radius)
-        p.distal_radius = float(distal_radius)
+        _set_numbers(p, cls, _PAIR_NUMBERS, locals())
         p.elements = _check_elements(elements, cls)
         if load is not None:
             p.load_torque, p.load_stiffness, p.load_damping = load.rotary()
-        p.options = _options(elements, max_increment, fast_path)
+        p.options = _options(cls, max_increment, fast_path)
         _set_effects(p, cls, _PAIR_EFFECTS, effects)
-        self._engine = self._make_engine(p)
+        with python_names(cls):
+            self._engine = self._make_engine(p)
         self._setup_io(motor, sensor)
 
     def _make_engine(self, p):
@@ -764,17 +763,14 @@ class PullPullPlant(_Plant):
     # parameters
     @property
     def pretension(self) -> float:
-        """Pretension T0 (N)."""
         return self._engine.params.pretension
 
     @property
     def proximal_radius(self) -> float:
-        """Proximal pulley radius r_p (m)."""
         return self._engine.params.proximal_radius
 
     @property
     def distal_radius(self) -> float:
-        """Distal pulley radius r_d (m)."""
         return self._engine.params.distal_radius
 
     def _lengths(self) -> tuple[float, ...]:
@@ -890,7 +886,7 @@ class PullPullPlant(_Plant):
                 physics.no_slack_limit(
                     self.pretension,
                     self.friction,
-                    max(self.route.total_angle, self.route2.total_angle),
+                    max(self.route.curve_angle, self.route2.curve_angle),
                 )
             ),
         }
@@ -988,33 +984,25 @@ class ContinuumPlant(PullPullPlant):
         self.route = _check_route(route, "route", cls)
         self.route2 = _check_route(route if route2 is None else route2, "route2", cls)
         c = core.ContinuumParams()
-        c.friction = float(friction)
-        c.stiffness = float(stiffness)
-        c.pretension = float(pretension)
-        c.proximal_radius = float(proximal_radius)
-        c.bending_stiffness = float(bending_stiffness)
-        c.tendon_offset = float(tendon_offset)
-        c.backbone_length = float(backbone_length)
+        _set_numbers(c, cls, _CONTINUUM_NUMBERS, locals())
         c.elements = _check_elements(elements, cls)
-        c.options = _options(elements, max_increment, fast_path)
+        c.options = _options(cls, max_increment, fast_path)
         _set_effects(c, cls, _PAIR_EFFECTS, effects)
-        self._engine = core.ContinuumPlant(c, self.route._core, self.route2._core)
+        with python_names(cls):
+            self._engine = core.ContinuumPlant(c, self.route._core, self.route2._core)
         self.load = TorsionalSpring(c.bending_stiffness / c.backbone_length)
         self._setup_io(motor, sensor)
 
     @property
     def bending_stiffness(self) -> float:
-        """Backbone bending stiffness EI (N m^2)."""
         return self._engine.continuum_params.bending_stiffness
 
     @property
     def tendon_offset(self) -> float:
-        """Distance r_t of the tendons from the backbone (m)."""
         return self._engine.continuum_params.tendon_offset
 
     @property
     def backbone_length(self) -> float:
-        """Length l of the segment (m)."""
         return self._engine.continuum_params.backbone_length
 
     @property

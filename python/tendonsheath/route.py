@@ -7,12 +7,15 @@ from collections.abc import Iterable, Sequence
 import numpy as np
 
 from . import _core as core
+from ._args import accepts_old_names, number, number_array, python_names, warn_renamed
 from ._arrays import as_signal
 from ._typing import ArrayLike, FloatArray
 
 # 100 full turns: the largest curve angle accepted in measured data (no sheath route comes near
 # it; a larger logged value is a unit or column mistake). The plant itself takes any angle.
 MAX_CURVE_ANGLE = 200 * np.pi
+
+_PIECE = ("Route.arcs", "piece")
 
 
 class Route:
@@ -39,9 +42,10 @@ class Route:
     __slots__ = ("_core",)
 
     def __init__(self, s: ArrayLike, theta: ArrayLike):
-        s_arr = as_signal(s, "s")
-        th_arr = as_signal(theta, "theta")
-        self._core = core.Route(s_arr.tolist(), th_arr.tolist())
+        s_arr = as_signal(number_array("Route", "s", s), "s")
+        th_arr = as_signal(number_array("Route", "theta", theta), "theta")
+        with python_names("Route"):
+            self._core = core.Route(s_arr.tolist(), th_arr.tolist())
 
     @classmethod
     def _wrap(cls, engine) -> Route:
@@ -50,22 +54,27 @@ class Route:
         return obj
 
     @classmethod
-    def uniform(cls, length: float, total_angle: float) -> Route:
-        """Constant curvature: theta(s) = total_angle * s / length.
+    @accepts_old_names("Route.uniform", {"total_angle": "curve_angle"})
+    def uniform(cls, length: float, curve_angle: float) -> Route:
+        """Constant curvature: theta(s) = curve_angle * s / length.
 
         Parameters
         ----------
         length : float
             Sheath length L (m), > 0.
-        total_angle : float
-            Total curve angle Theta (rad), >= 0.
+        curve_angle : float
+            Curve angle Theta (rad), >= 0 (its old name ``total_angle=`` still works for one
+            release, with a DeprecationWarning; docs/vocabulary.md).
 
         Returns
         -------
         Route
             The uniform route.
         """
-        return cls._wrap(core.Route.uniform(float(length), float(total_angle)))
+        length = number("Route.uniform", "length", length)
+        angle = number("Route.uniform", "curve_angle", curve_angle)
+        with python_names("Route.uniform"):
+            return cls._wrap(core.Route.uniform(length, angle))
 
     @classmethod
     def arcs(cls, pieces: Iterable[Sequence[float]]) -> Route:
@@ -89,10 +98,13 @@ class Route:
             pieces that are not (length, angle) pairs, or invalid values.
         """
         try:
-            items = [(float(a), float(b)) for a, b in pieces]
+            items = [(number(*_PIECE, a), number(*_PIECE, b)) for a, b in pieces]
         except (TypeError, ValueError):
-            raise ValueError("Route.arcs: pieces must be (length, angle) pairs") from None
-        return cls._wrap(core.Route.arcs(items))
+            raise TypeError(
+                f"Route.arcs: pieces must be (length, angle) pairs of numbers (got {pieces!r})"
+            ) from None
+        with python_names("Route.arcs"):
+            return cls._wrap(core.Route.arcs(items))
 
     @classmethod
     def from_points(cls, xyz: ArrayLike) -> Route:
@@ -110,10 +122,12 @@ class Route:
 
         Raises
         ------
+        TypeError
+            Points that are not numbers.
         ValueError
             Points not K x 3, or not valid (fewer than two, not finite, repeated).
         """
-        pts = np.ascontiguousarray(np.asarray(xyz, dtype=np.float64))
+        pts = np.ascontiguousarray(number_array("Route.from_points", "xyz", xyz))
         if pts.ndim != 2 or pts.shape[1] != 3:
             raise ValueError(f"Route.from_points: points must be K x 3 (got shape {pts.shape})")
         return cls._wrap(core.Route.from_points(pts))
@@ -136,11 +150,13 @@ class Route:
 
         Raises
         ------
+        TypeError
+            s or kappa that are not numbers.
         ValueError
             s and kappa of different lengths, or invalid samples.
         """
-        s_arr = as_signal(s, "s")
-        k_arr = as_signal(kappa, "kappa")
+        s_arr = as_signal(number_array("Route.from_curvature", "s", s), "s")
+        k_arr = as_signal(number_array("Route.from_curvature", "kappa", kappa), "kappa")
         if s_arr.shape != k_arr.shape:
             raise ValueError(
                 f"Route.from_curvature: s and kappa have different lengths "
@@ -155,9 +171,15 @@ class Route:
         return self._core.length
 
     @property
-    def total_angle(self) -> float:
-        """Total curve angle Theta = theta(L) (rad)."""
+    def curve_angle(self) -> float:
+        """Curve angle Theta = theta(L) (rad)."""
         return self._core.total_angle
+
+    @property
+    def total_angle(self) -> float:
+        """Deprecated: the old name of :attr:`curve_angle`."""
+        warn_renamed("Route", "total_angle", "curve_angle")
+        return self.curve_angle
 
     @property
     def s(self) -> np.ndarray:
@@ -189,7 +211,7 @@ class Route:
         return self._core.angles_at(flat).reshape(arr.shape)
 
     def element_angles(self, n: int) -> np.ndarray:
-        """Angles of n equal elements, proximal to distal (they sum to total_angle).
+        """Angles of n equal elements, proximal to distal (they sum to curve_angle).
 
         Parameters
         ----------
@@ -204,7 +226,7 @@ class Route:
         return self._core.element_angles(int(n))
 
     def node_angles(self, n: int) -> np.ndarray:
-        """Lumped angles of the n-1 interior nodes of an n-element sheath (sum: total_angle).
+        """Lumped angles of the n-1 interior nodes of an n-element sheath (sum: curve_angle).
 
         Parameters
         ----------
@@ -244,7 +266,7 @@ class Route:
         return hash((self.s.tobytes(), self.theta.tobytes()))
 
     def __repr__(self) -> str:
-        return f"Route(length={self.length:.6g} m, total_angle={self.total_angle:.6g} rad)"
+        return f"Route(length={self.length:.6g} m, curve_angle={self.curve_angle:.6g} rad)"
 
 
 def check_curve_angle(value: ArrayLike, what: str = "curve angle") -> None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _core as core
+from ._args import integer, number, python_names
 from ._typing import ArrayLike, FloatArray
 from .status import Status
 
@@ -32,13 +33,14 @@ class Sensor:
 
     def __init__(self, resolution: float = 0.0, noise_std: float = 0.0, seed: int = 0):
         p = core.SensorParams()
-        p.resolution = float(resolution)
-        p.noise_std = float(noise_std)
-        if int(seed) < 0:
+        p.resolution = number("Sensor", "resolution", resolution)
+        p.noise_std = number("Sensor", "noise_std", noise_std)
+        if integer("Sensor", "seed", seed) < 0:
             raise ValueError(f"Sensor: seed must be >= 0 (got {seed})")
         p.seed = int(seed)
         self._params = p
-        self._engine = core.Sensor(p)  # validates
+        with python_names("Sensor"):
+            self._engine = core.Sensor(p)  # validates
 
     @property
     def resolution(self) -> float:

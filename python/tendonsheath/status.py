@@ -3,7 +3,7 @@
 Streaming: ``obj.status()`` right after ``obj.step(...)`` (plants, Motor, Sensor after
 ``measure``, every model, feedforward and controller) returns a :class:`Status`. Batch: the
 per-sample flags come with ``model.simulate(t, x, status=True)``,
-``feedforward.command(t, y_d, status=True)`` and ``plant.simulate(..., full=True).status``, as
+``feedforward.command(t, y_d, status=True)`` and ``plant.simulate(...).status``, as
 a uint8 array; :func:`status_counts` counts each flag.
 """
 

@@ -1,8 +1,13 @@
 // The closed-loop virtual bench: one call runs the whole loop in C++.
 #include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
+#include <nanobind/stl/vector.h>
 
+#include <array>
 #include <optional>
+#include <string>
+#include <tendonsheath/bench/erased_compensator.hpp>
 #include <tendonsheath/tendonsheath.hpp>
 #include <vector>
 
@@ -15,6 +20,55 @@ using namespace nb::literals;
 namespace {
 
 using InMask = nb::ndarray<const std::uint8_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+
+// A compensator written in Python: one call of its step (and status) per cycle, GIL held.
+struct PythonLoop {
+  nb::object self;
+  nb::object step;
+  nb::object status_fn;          // None: no status
+  std::vector<int> inputs;       // 0: y_d, 1: measured, 2: motor (step_inputs order)
+  std::string name;
+  static constexpr bool needs_gil = true;
+
+  void reset() { self.attr("reset")(); }
+  void on_shape(const ts::ShapeIntegrals&) noexcept {}
+  // a property (AdaptiveController.in_fallback) or a method; absent: never in fallback
+  bool in_fallback() const {
+    if (!nb::hasattr(self, "in_fallback")) return false;
+    nb::object v = self.attr("in_fallback");
+    if (PyCallable_Check(v.ptr())) v = v();
+    return PyObject_IsTrue(v.ptr()) == 1;
+  }
+  ts::Status status() const {
+    if (status_fn.is_none()) return ts::Status::ok;
+    nb::object flags = status_fn();
+    if (!PyLong_Check(flags.ptr()))  // tendonsheath.Status is an IntFlag
+      throw nb::type_error(("bench.run: " + name + ".status() must return Status flags (an int), not " +
+                            nb::cast<std::string>(nb::repr(flags))).c_str());
+    return static_cast<ts::Status>(nb::cast<unsigned>(flags));
+  }
+  double command(double y_d, double measured, double motor, double dt) {
+    const std::array<double, 3> v{y_d, measured, motor};
+    nb::object r;
+    switch (inputs.size()) {
+      case 1: r = step(v[inputs[0]], dt); break;
+      case 2: r = step(v[inputs[0]], v[inputs[1]], dt); break;
+      default: r = step(v[inputs[0]], v[inputs[1]], v[inputs[2]], dt); break;
+    }
+    const double u = PyFloat_AsDouble(r.ptr());
+    if (u == -1.0 && PyErr_Occurred()) {
+      PyErr_Clear();
+      throw nb::type_error(("bench.run: " + name + ".step returned " +
+                            nb::cast<std::string>(nb::repr(r)) + ", not a number").c_str());
+    }
+    return u;
+  }
+};
+
+template <class Controller, class = void>
+struct NeedsGil : std::false_type {};
+template <class Controller>
+struct NeedsGil<Controller, std::void_t<decltype(Controller::needs_gil)>> : std::true_type {};
 
 template <class Controller>
 nb::tuple run(const ts::PullPullPlant& plant_in, std::optional<ts::Motor> motor,
@@ -45,11 +99,16 @@ nb::tuple run(const ts::PullPullPlant& plant_in, std::optional<ts::Motor> motor,
   auto [status, pst] = new_bytes(n);
   std::vector<unsigned char> slack(n), fallback(n);
   ts::ClosedLoopTrace trace{po, pm, pc, pq, slack.data(), fallback.data(), pst};
-  {
-    nb::gil_scoped_release release;
+  auto loop = [&] {
     ts::run_closed_loop(plant, motor ? &*motor : nullptr, sensor ? &*sensor : nullptr, controller,
                         t.data(), y_d.data(), n, sched, shape_sched,
                         dropout ? dropout->data() : nullptr, trace, where);
+  };
+  if constexpr (NeedsGil<Controller>::value) {
+    loop();
+  } else {
+    nb::gil_scoped_release release;
+    loop();
   }
   auto [slack_arr, ps] = new_array(n);
   auto [fallback_arr, pf] = new_array(n);
@@ -81,9 +140,64 @@ struct Maker {
   Loop operator()(const Arg& a) const { return Loop{a}; }
 };
 
+// The compensator in a capsule from tendonsheath_bind::bind_compensator (another module).
+ts::ErasedLoop erased_loop(nb::handle capsule) {
+  if (!PyCapsule_IsValid(capsule.ptr(), ts::kCompensatorCapsuleName))
+    throw nb::type_error(
+        "bench.run: _tendonsheath_compensator() must return a capsule named "
+        "'tendonsheath.compensator.v1' (bind the class with tendonsheath_bind/compensator.hpp)");
+  auto* c = static_cast<ts::ErasedCompensator*>(
+      PyCapsule_GetPointer(capsule.ptr(), ts::kCompensatorCapsuleName));
+  if (c->table == nullptr || c->table->version != ts::kCompensatorTableVersion)
+    throw nb::type_error("bench.run: the compensator was built against another tendonsheath "
+                         "version (function table version mismatch): rebuild it");
+  return ts::ErasedLoop{*c};
+}
+
+PythonLoop python_loop(nb::object compensator, const std::vector<int>& inputs) {
+  nb::object status = nb::none();
+  if (nb::hasattr(compensator, "status") && PyCallable_Check(compensator.attr("status").ptr()))
+    status = compensator.attr("status");
+  return PythonLoop{compensator, compensator.attr("step"), status, inputs,
+                    nb::cast<std::string>(nb::type_name(compensator.type()))};
+}
+
+template <class Loop>
+nb::tuple run_any(const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
+                  std::optional<ts::Sensor> sensor, Loop loop, InArray t, InArray y_d,
+                  std::optional<InIndex> sidx, std::optional<InMatrix> sang,
+                  std::optional<InMask> dropout) {
+  return run(plant, motor, sensor, std::move(loop), t, y_d, sidx, sang, std::nullopt, dropout);
+}
+
 }  // namespace
 
 void bind_bench(nb::module_& m) {
+  m.def(
+      "bench_erased",
+      [](const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
+         std::optional<ts::Sensor> sensor, nb::handle capsule, InArray t, InArray y_d,
+         std::optional<InIndex> sidx, std::optional<InMatrix> sang,
+         std::optional<InMask> dropout) {
+        return run_any(plant, motor, sensor, erased_loop(capsule), t, y_d, sidx, sang, dropout);
+      },
+      "plant"_a, "motor"_a.none(), "sensor"_a.none(), "capsule"_a, "t"_a, "y_d"_a,
+      "schedule_index"_a.none(), "schedule_angles"_a.none(), "dropout"_a.none());
+  m.def(
+      "bench_python",
+      [](const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
+         std::optional<ts::Sensor> sensor, nb::object compensator, std::vector<int> inputs,
+         InArray t, InArray y_d, std::optional<InIndex> sidx, std::optional<InMatrix> sang,
+         std::optional<InMask> dropout) {
+        if (inputs.empty() || inputs.size() > 3)
+          throw nb::value_error("bench_python: 1 to 3 step inputs");
+        for (int i : inputs)
+          if (i < 0 || i > 2) throw nb::value_error("bench_python: step input codes are 0, 1, 2");
+        return run_any(plant, motor, sensor, python_loop(compensator, inputs), t, y_d, sidx, sang,
+                       dropout);
+      },
+      "plant"_a, "motor"_a.none(), "sensor"_a.none(), "compensator"_a, "inputs"_a, "t"_a,
+      "y_d"_a, "schedule_index"_a.none(), "schedule_angles"_a.none(), "dropout"_a.none());
   def_run(m, "bench_open_loop", [] {
     struct M {
       using argument_type = double;

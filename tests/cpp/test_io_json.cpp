@@ -28,8 +28,8 @@ json inverse_file(json model, double smoothing = 0.05) {
 
 json curve_angle_file() {
   return {{"format", "tendonsheath.compensator"}, {"version", 1},
-          {"compensator", "CurveAngleFeedforward"}, {"friction", 0.12}, {"compliance", 2e-4},
-          {"pretension", 15.0}, {"load_force", 1.0}, {"load_stiffness", 50.0},
+          {"compensator", "CurveAngleFeedforward"}, {"friction", 0.12}, {"stiffness", 5000.0},
+          {"length", 1.0}, {"pretension", 15.0}, {"load_force", 1.0}, {"load_stiffness", 50.0},
           {"proximal_radius", 6e-3}, {"distal_radius", 4e-3}, {"curve_angle", 2.0},
           {"smoothing", 0.03}, {"max_correction_rate", nullptr},
           {"limits", {{"min", -3.0}, {"max", 3.0}, {"max_rate", 20.0}}}};
@@ -114,6 +114,36 @@ TEST(IoJson, CurveAngleFileFillsEveryField) {
     ASSERT_EQ(loaded.step(std::sin(0.01 * k), 1e-3), direct.step(std::sin(0.01 * k), 1e-3));
 }
 
+// Files written before docs/vocabulary.md renamed the settings load to the same numbers.
+TEST(IoJson, FilesWithTheOldSettingNamesStillLoad) {
+  json old = curve_angle_file();
+  old.erase("stiffness");
+  old.erase("length");
+  old["compliance"] = 2e-4;
+  EXPECT_EQ(ts::io::curve_angle_feedforward_params(old, "f").compliance, 2e-4);
+  EXPECT_EQ(error_of(old), "(no error)");
+  old["length"] = 1.0;  // both the old and a new name: refused
+  EXPECT_NE(error_of(old).find("unknown key 'length'"), std::string::npos) << error_of(old);
+  json now = {{"format", "tendonsheath.compensator"}, {"version", 1},
+              {"compensator", "ContinuumFeedforward"}, {"friction", 0.1}, {"length", 0.9},
+              {"stiffness", 2e4}, {"pretension", 10.0}, {"curve_angle", 2.5},
+              {"bending_stiffness", 4e-4}, {"tendon_offset", 2e-3}, {"backbone_length", 0.03},
+              {"proximal_radius", 5e-3}, {"gap_factor", 1.0}, {"smoothing", 0.1},
+              {"mode", "exact"},
+              {"limits", {{"min", nullptr}, {"max", nullptr}, {"max_rate", nullptr}}}};
+  json before = now;
+  before["sheath_length"] = before["length"];
+  before["total_angle"] = before["curve_angle"];
+  before.erase("length");
+  before.erase("curve_angle");
+  for (const json& f : {now, before}) {
+    const ts::ContinuumFeedforwardParams p = ts::io::continuum_feedforward_params(f, "f");
+    EXPECT_EQ(p.sheath_length, 0.9);
+    EXPECT_EQ(p.total_angle, 2.5);
+    EXPECT_EQ(error_of(f), "(no error)");
+  }
+}
+
 TEST(IoJson, MalformedFilesNameTheKey) {
   json f = curve_angle_file();
   f.erase("pretension");
@@ -125,8 +155,8 @@ TEST(IoJson, MalformedFilesNameTheKey) {
   f["friction"] = true;
   EXPECT_NE(error_of(f).find("'friction' must be a number"), std::string::npos) << error_of(f);
   f = curve_angle_file();
-  f["compliance"] = nullptr;
-  EXPECT_NE(error_of(f).find("'compliance' must be a number"), std::string::npos) << error_of(f);
+  f["stiffness"] = nullptr;
+  EXPECT_NE(error_of(f).find("'stiffness' must be a number"), std::string::npos) << error_of(f);
   f = curve_angle_file();
   f["limits"]["low"] = 0.0;
   EXPECT_NE(error_of(f).find("limits: unknown key 'low'"), std::string::npos) << error_of(f);

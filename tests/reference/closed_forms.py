@@ -112,7 +112,7 @@ def pull_pull_offsets(route1, stiffness, pretension, mu, load=0.0, route2=None):
     linear system for the proximal tensions."""
     route2 = route1 if route2 is None else route2
     L1, L2 = route1.length, route2.length
-    a1, a2 = mu * route1.total_angle, mu * route2.total_angle
+    a1, a2 = mu * route1.curve_angle, mu * route2.curve_angle
     g1, G1 = shape_integrals(route1.s, route1.theta, mu)
     g2, G2 = shape_integrals(route2.s, route2.theta, mu)
     rhs = [pretension * (L1 + L2), load]

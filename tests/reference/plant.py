@@ -50,7 +50,7 @@ class ReferencePullPull:
         self.set_route(route, route2)
         if max_increment is None:
             L = max(route.length, route2.length)
-            th = max(route.total_angle, route2.total_angle)
+            th = max(route.curve_angle, route2.curve_angle)
             e = pretension * L * math.tanh(0.5 * self.mu * th) / stiffness
             max_increment = e / 20 if e > 0 else 0.0
         self.max_increment = max_increment

@@ -51,7 +51,8 @@ def _commands(
     nominal_route = Route.uniform(p["length"], p["route_angle"])
     curve = CurveAngleFeedforward(
         friction=p["friction"],
-        compliance=p["length"] / p["stiffness"],
+        stiffness=p["stiffness"],
+        length=p["length"],
         pretension=p["pretension"],
         load_force=p["load"],
         proximal_radius=RADIUS,
@@ -91,7 +92,7 @@ def compensator_study(params: dict) -> dict[str, dict[str, float]]:
     y_d = p["amplitude"] * np.sin(2 * math.pi * p["frequency"] * t)
     route = random_arcs(p["length"], p["route_angle"], p["route_pieces"], p["route_seed"])
     shared = {k: p[k] for k in ("amplitude", "frequency", "elements", "length")}
-    commands = _commands(NOMINAL | shared, t, y_d, route.total_angle)
+    commands = _commands(NOMINAL | shared, t, y_d, route.curve_angle)
     plant = PullPullPlant(
         route=route,
         friction=float(p["friction"]),

@@ -15,6 +15,7 @@
 #include <string>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -53,6 +54,11 @@ inline void check_keys(const json& obj, const std::set<std::string>& allowed,
   for (const auto& item : obj.items())
     if (!allowed.count(item.key())) fail(where, "unknown key '" + item.key() + "'");
   for (const auto& key : required) member(obj, key, where);
+}
+
+// `now`, or `old` in a file written before the setting was renamed (docs/vocabulary.md)
+inline std::string renamed_key(const json& f, const char* now, const char* old) {
+  return f.is_object() && f.contains(old) ? old : now;
 }
 
 // a number; null means `unbounded` when that is not NaN, else it is an error
@@ -170,7 +176,9 @@ inline CurveAngleFeedforwardParams curve_angle_feedforward_params(const json& f,
   const double inf = std::numeric_limits<double>::infinity();
   CurveAngleFeedforwardParams p;
   p.friction = detail::number(f, "friction", where);
-  p.compliance = detail::number(f, "compliance", where);
+  p.compliance = f.contains("compliance")  // a file written before docs/vocabulary.md
+                     ? detail::number(f, "compliance", where)
+                     : detail::number(f, "length", where) / detail::number(f, "stiffness", where);
   p.pretension = detail::number(f, "pretension", where);
   p.load_force = detail::number(f, "load_force", where);
   p.load_stiffness = detail::number(f, "load_stiffness", where);
@@ -190,10 +198,10 @@ inline ContinuumFeedforwardParams continuum_feedforward_params(const json& f,
                                                                const std::string& where) {
   ContinuumFeedforwardParams p;
   p.friction = detail::number(f, "friction", where);
-  p.sheath_length = detail::number(f, "sheath_length", where);
+  p.sheath_length = detail::number(f, detail::renamed_key(f, "length", "sheath_length"), where);
   p.stiffness = detail::number(f, "stiffness", where);
   p.pretension = detail::number(f, "pretension", where);
-  p.total_angle = detail::number(f, "total_angle", where);
+  p.total_angle = detail::number(f, detail::renamed_key(f, "curve_angle", "total_angle"), where);
   p.bending_stiffness = detail::number(f, "bending_stiffness", where);
   p.tendon_offset = detail::number(f, "tendon_offset", where);
   p.backbone_length = detail::number(f, "backbone_length", where);
@@ -272,13 +280,33 @@ inline LoadedCompensator inverse_from_json(const json& f, const std::string& whe
 }
 
 inline const std::set<std::string> kCurveAngleKeys{
-    "format", "version", "compensator", "friction", "compliance", "pretension", "load_force",
-    "load_stiffness", "proximal_radius", "distal_radius", "curve_angle", "smoothing",
-    "max_correction_rate", "limits"};
+    "format", "version", "compensator", "friction", "stiffness", "length", "pretension",
+    "load_force", "load_stiffness", "proximal_radius", "distal_radius", "curve_angle",
+    "smoothing", "max_correction_rate", "limits"};
 inline const std::set<std::string> kContinuumKeys{
-    "format", "version", "compensator", "friction", "sheath_length", "stiffness", "pretension",
-    "total_angle", "bending_stiffness", "tendon_offset", "backbone_length", "proximal_radius",
+    "format", "version", "compensator", "friction", "length", "stiffness", "pretension",
+    "curve_angle", "bending_stiffness", "tendon_offset", "backbone_length", "proximal_radius",
     "gap_factor", "smoothing", "mode", "limits"};
+
+// Settings renamed in docs/vocabulary.md: a file written before holds `old` instead of `now`.
+struct RenamedKeys {
+  std::vector<std::string> now;
+  std::string old;
+};
+inline const std::vector<RenamedKeys> kCurveAngleRenamed{{{"stiffness", "length"}, "compliance"}};
+inline const std::vector<RenamedKeys> kContinuumRenamed{{{"length"}, "sheath_length"},
+                                                        {{"curve_angle"}, "total_angle"}};
+
+// The keys a file must hold: `keys`, with the old name of each renamed setting it uses.
+inline std::set<std::string> keys_of_file(const json& f, std::set<std::string> keys,
+                                          const std::vector<RenamedKeys>& renames) {
+  for (const auto& r : renames) {
+    if (!f.is_object() || !f.contains(r.old)) continue;
+    for (const auto& k : r.now) keys.erase(k);
+    keys.insert(r.old);
+  }
+  return keys;
+}
 
 }  // namespace detail
 
@@ -288,11 +316,13 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
   const json& kind = detail::member(f, "compensator", where);
   if (kind == "InverseFeedforward") return detail::inverse_from_json(f, where);
   if (kind == "CurveAngleFeedforward") {
-    detail::check_keys(f, detail::kCurveAngleKeys, detail::kCurveAngleKeys, where);
+    const auto keys = detail::keys_of_file(f, detail::kCurveAngleKeys, detail::kCurveAngleRenamed);
+    detail::check_keys(f, keys, keys, where);
     return {"CurveAngleFeedforward", CurveAngleFeedforward(curve_angle_feedforward_params(f, where))};
   }
   if (kind == "ContinuumFeedforward") {
-    detail::check_keys(f, detail::kContinuumKeys, detail::kContinuumKeys, where);
+    const auto keys = detail::keys_of_file(f, detail::kContinuumKeys, detail::kContinuumRenamed);
+    detail::check_keys(f, keys, keys, where);
     return {"ContinuumFeedforward", ContinuumFeedforward(continuum_feedforward_params(f, where))};
   }
   detail::fail(where, "key 'compensator': unknown compensator " + kind.dump() +

@@ -146,7 +146,7 @@ def sensed_schedule(shape: ShapeSensing, t, routes: Callable, friction: float, s
     def angle_at(tk: float) -> float:
         r = routes(tk)
         r = r[0] if isinstance(r, tuple | list) else r
-        return float(r.total_angle)
+        return float(r.curve_angle)
 
     idx, sensed = shape.readings(t, angle_at, seed_offset)
     rows = []
@@ -522,7 +522,7 @@ def _run_experiment(plant, route, t, command, sensor: Sensor | None, seed: int):
     previous = plant.route
     plant.set_route(route)
     try:
-        sim = plant.simulate(t, command, full=True)
+        sim = plant.simulate(t, command)
     finally:
         plant.set_route(previous)
     if sensor is not None:
@@ -634,7 +634,7 @@ def _calibration_logs(experiment: tuple, routes, names: list[str], shape, durati
     runs, recordings = [], []
     for i, route in enumerate(routes):
         x, y = _run_experiment(plant, route, t, command, sensor, seed + 101 + i)
-        sensed = shape.static_reading(route.total_angle, duration, seed_offset=i)
+        sensed = shape.static_reading(route.curve_angle, duration, seed_offset=i)
         runs.append(CalibrationRun(names[i], sensed, duration, int(t.size)))
         recordings.append((t, x, y, sensed))
     return runs, recordings
@@ -796,7 +796,7 @@ def calibrate_load(
     warm = int(round(warmup / (t[1] - t[0])))
     i = len(cal.runs)
     x, y = _run_experiment(plant, route, t, command, sensor, seed + 301 + i)
-    sensed = cal.shape.static_reading(route.total_angle, duration, seed_offset=50 + i)
+    sensed = cal.shape.static_reading(route.curve_angle, duration, seed_offset=50 + i)
     run_name = f"load '{name}'"
     cal.runs.append(CalibrationRun(run_name, sensed, duration, int(t.size)))
     p = dict(cal.curve_model.params)

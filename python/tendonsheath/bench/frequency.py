@@ -8,13 +8,14 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .run import Controller, run
+from .run import run
 
 if TYPE_CHECKING:
     import control  # python-control ships no types: its systems are Any to mypy
 
     from .._typing import ArrayLike
     from ..plant import PullPullPlant
+    from ..protocols import StreamingCompensator
     from ..sensor import Sensor
 
 
@@ -105,7 +106,7 @@ def _first_crossing(f: np.ndarray, values: np.ndarray, level: float, above: bool
 
 def frequency_response(
     plant: PullPullPlant,
-    controller: Controller,
+    controller: StreamingCompensator | None,
     frequencies: ArrayLike | None = None,
     amplitude: float = 0.5,
     cycles: int = 3,

@@ -41,7 +41,7 @@ def hysteresis_loops(
         if not f > 0:
             raise ValueError(f"hysteresis_loops: frequencies must be > 0 (got {f})")
         t = np.arange(0.0, cycles / f, 1.0 / rate)
-        sim = plant.simulate(t, amplitude * np.sin(2 * np.pi * f * t), full=True)
+        sim = plant.simulate(t, amplitude * np.sin(2 * np.pi * f * t))
         last = t >= t[-1] - 1.0 / f
         motor = sim.q_motor if sim.q_motor is not None else sim.q_in
         loops[f] = Loop(f, motor[last], sim.q_out[last], loop_width(motor[last], sim.q_out[last]))

@@ -5,20 +5,15 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, TypeAlias
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .. import _core as core
 from .._arrays import as_time_and_signal
-from ..compensate import (
-    AdaptiveController,
-    ContinuumFeedforward,
-    CurveAngleFeedforward,
-    InverseFeedforward,
-)
 from ..compensate.curve_angle_feedforward import shape_of
 from ..plant import PullPullPlant
+from ..protocols import STEP_SIGNALS, StreamingCompensator, missing_members, step_signals
 from ..sensor import Sensor
 from ..status import status_counts
 from .metrics import dominant_period, tracking_metrics
@@ -27,10 +22,14 @@ if TYPE_CHECKING:
     from .._typing import ArrayLike
     from .calibration import ShapeSensing
 
-# what bench.run closes the loop with (None: uncompensated)
-Controller: TypeAlias = (
-    InverseFeedforward | CurveAngleFeedforward | ContinuumFeedforward | AdaptiveController | None
-)
+# the C++ loop for each shipped compensator's engine (its _bench_engine())
+_ENGINE_LOOPS = {
+    core.BacklashInverseFeedforward: core.bench_inverse,
+    core.PrandtlIshlinskiiFeedforward: core.bench_pi_inverse,
+    core.ContinuumFeedforward: core.bench_continuum,
+    core.AdaptiveController: core.bench_adaptive,
+}
+_NO_SHAPES = object()  # the bench_* function takes no shapes argument
 
 
 @dataclass
@@ -84,7 +83,6 @@ class Result:
 
     @property
     def error(self) -> np.ndarray:
-        """The tracking error output - reference (rad)."""
         return self.output - self.reference
 
     @property
@@ -124,7 +122,7 @@ def _dropout_mask(dropout, t):
 
 def run(
     plant: PullPullPlant,
-    controller: Controller,
+    controller: StreamingCompensator | None,
     t: ArrayLike,
     reference: ArrayLike,
     routes: Callable | None = None,
@@ -185,71 +183,120 @@ def run(
         raise ValueError(
             f"bench.run needs a PullPullPlant or ContinuumPlant (got {type(plant).__name__})"
         )
+    ts, ys = _record(t, reference)
+    warmup = _checked_warmup(warmup, ts)
+    loop = _Loop(plant, ts, ys, routes, noise, dropout)
+    outputs = _run_controller(loop, controller, shape_sensing)
+    if warmup is None:
+        warmup = min(dominant_period(ts, ys), 0.5 * float(ts[-1] - ts[0]))
+    return _result(controller, ts, ys, outputs, warmup)
+
+
+def _record(t, reference):
     ts, ys = as_time_and_signal(t, reference, "reference")
     if ts is None:
         raise ValueError("bench.run needs the time vector t")
     if ts.size < 2:
         raise ValueError(f"bench.run needs at least 2 samples (got {ts.size})")
-    if warmup is not None:
-        warmup = float(warmup)
-        span = float(ts[-1] - ts[0])
-        if not 0.0 <= warmup < span:
-            raise ValueError(
-                f"bench.run: warmup must be in [0, {span:g}) s, the run's length (got {warmup})"
-            )
-    idx = angles = shapes = None
-    if routes is not None:
-        if not callable(routes):
-            raise ValueError("routes must be None or a callable t -> Route")
-        idx, angles = plant._schedule(ts, routes)
-    motor = core.Motor(plant.motor._params) if plant.motor is not None else None
-    sensor = _sensor_engine(noise, plant)
-    mask = _dropout_mask(dropout, ts)
-    args = (ts, ys)
+    return ts, ys
 
-    fn: Callable[..., Any]  # the C++ bench loop of the controller's class
-    engine: Any  # its C++ engine (the open loop: the gain)
-    if controller is None:
-        gain = plant.distal_radius / plant.proximal_radius
-        fn, engine = core.bench_open_loop, gain
-    elif isinstance(controller, CurveAngleFeedforward):
-        # the controller is told the route's shape from the start and at every change
-        # (a route schedule always starts at sample 0)
-        if idx is None:
-            idx = np.array([0], dtype=np.uint64)
-            angles = np.ascontiguousarray(plant._angles_for(plant.route)[None, :])
-            route_at = [plant.route]
-        else:
-            assert routes is not None  # idx is the route schedule's
-            route_at = [_first(routes(float(ts[int(k)]))) for k in idx]
-        shape_rows = [shape_of(r, controller.friction) for r in route_at]
-        shapes = np.ascontiguousarray([[s.g, s.G, s.total_angle] for s in shape_rows])
-        if shape_sensing is not None:
-            idx, angles, shapes = _sensed(plant, ts, routes, shape_sensing, controller, idx)
-        fn, engine = core.bench_curve_angle, controller._engine
-    elif isinstance(controller, InverseFeedforward):
-        engine = controller._engine
-        fn = (
-            core.bench_inverse
-            if isinstance(engine, core.BacklashInverseFeedforward)
-            else core.bench_pi_inverse
-        )
-    elif isinstance(controller, ContinuumFeedforward):
-        fn, engine = core.bench_continuum, controller._engine
-    elif isinstance(controller, AdaptiveController):
-        if plant.motor is None or plant.motor.kind != "torque":
-            raise ValueError(
-                "the AdaptiveController commands torque: give the plant a Motor.torque(...)"
-            )
-        fn, engine = core.bench_adaptive, controller._engine
-    else:
-        raise ValueError(f"bench.run does not know the controller {type(controller).__name__}")
 
-    output, measured, command, motor_pos, slack, fallback, status = fn(
-        plant._engine, motor, sensor, engine, *args, idx, angles, shapes, mask
-    )
+def _checked_warmup(warmup, ts) -> float | None:
     if warmup is None:
-        warmup = min(dominant_period(ts, ys), 0.5 * float(ts[-1] - ts[0]))
+        return None
+    warmup = float(warmup)
+    span = float(ts[-1] - ts[0])
+    if not 0.0 <= warmup < span:
+        raise ValueError(
+            f"bench.run: warmup must be in [0, {span:g}) s, the run's length (got {warmup})"
+        )
+    return warmup
+
+
+class _Loop:
+    """What every closed loop shares: the plant, its motor and sensor, the record, the route
+    schedule and the dropout mask, as the C++ bench functions take them."""
+
+    def __init__(self, plant, ts, ys, routes, noise, dropout):
+        self.plant, self.ts, self.ys, self.routes = plant, ts, ys, routes
+        self.idx = self.angles = None
+        if routes is not None:
+            if not callable(routes):
+                raise ValueError("routes must be None or a callable t -> Route")
+            self.idx, self.angles = plant._schedule(ts, routes)
+        self.motor = core.Motor(plant.motor._params) if plant.motor is not None else None
+        self.sensor = _sensor_engine(noise, plant)
+        self.mask = _dropout_mask(dropout, ts)
+
+    def call(self, fn, controller, *extra, shapes=_NO_SHAPES, idx=None, angles=None):
+        """``fn`` (a ``_core.bench_*`` function) on this loop; the schedule may be replaced."""
+        idx = self.idx if idx is None else idx
+        angles = self.angles if angles is None else angles
+        head = (self.plant._engine, self.motor, self.sensor, controller, *extra, self.ts, self.ys)
+        tail = (idx, angles) if shapes is _NO_SHAPES else (idx, angles, shapes)
+        return fn(*head, *tail, self.mask)
+
+
+def _run_controller(loop: _Loop, controller, shape_sensing):
+    """Run the loop on the fastest path the controller offers (by its capabilities)."""
+    if controller is None:
+        gain = loop.plant.distal_radius / loop.plant.proximal_radius
+        return loop.call(core.bench_open_loop, gain, shapes=None)
+    _check_compensator(controller)
+    _check_motor_kind(loop.plant, controller)
+    compiled = getattr(controller, "_tendonsheath_compensator", None)
+    if callable(compiled):  # a user's C++ compensator (tendonsheath_bind/compensator.hpp)
+        return loop.call(core.bench_erased, compiled())
+    engine_of = getattr(controller, "_bench_engine", None)
+    engine = engine_of() if callable(engine_of) else None
+    if isinstance(engine, core.CurveAngleFeedforward):
+        return _run_curve_angle(loop, controller, engine, shape_sensing)
+    fn = _ENGINE_LOOPS.get(type(engine))
+    if fn is not None:
+        return loop.call(fn, engine, shapes=None)
+    codes = [STEP_SIGNALS.index(s) for s in step_signals(controller)]
+    return loop.call(core.bench_python, controller, codes)
+
+
+def _check_compensator(controller) -> None:
+    missing = missing_members(controller, StreamingCompensator)
+    if missing:
+        raise TypeError(
+            f"bench.run: the controller {type(controller).__name__} has no "
+            f"{' and no '.join(missing)}: a compensator needs reset() and "
+            "step(<step_inputs>, dt) (see tendonsheath.protocols.StreamingCompensator)"
+        )
+
+
+def _check_motor_kind(plant, controller) -> None:
+    if getattr(controller, "control_output", "x") != "torque":
+        return
+    if plant.motor is None or plant.motor.kind != "torque":
+        raise ValueError(
+            f"the {type(controller).__name__} commands torque: give the plant a Motor.torque(...)"
+        )
+
+
+def _run_curve_angle(loop: _Loop, controller, engine, shape_sensing):
+    """The controller is told the route's shape from the start and at every change (a route
+    schedule always starts at sample 0), or the sensed shape with ``shape_sensing``."""
+    plant, ts, routes, idx = loop.plant, loop.ts, loop.routes, loop.idx
+    angles = loop.angles
+    if idx is None:
+        idx = np.array([0], dtype=np.uint64)
+        angles = np.ascontiguousarray(plant._angles_for(plant.route)[None, :])
+        route_at = [plant.route]
+    else:
+        route_at = [_first(routes(float(ts[int(k)]))) for k in idx]
+    shape_rows = [shape_of(r, controller.friction) for r in route_at]
+    shapes = np.ascontiguousarray([[s.g, s.G, s.total_angle] for s in shape_rows])
+    if shape_sensing is not None:
+        idx, angles, shapes = _sensed(plant, ts, routes, shape_sensing, controller, idx)
+    return loop.call(core.bench_curve_angle, engine, shapes=shapes, idx=idx, angles=angles)
+
+
+def _result(controller, ts, ys, outputs, warmup: float) -> Result:
+    output, measured, command, motor_pos, slack, fallback, status = outputs
     result = Result(
         controller=controller_name(controller),
         t=ts,

@@ -58,6 +58,11 @@
     [compare]
     compensators = ["none", "inverse_feedforward", "curve_angle_feedforward", "adaptive"]
 
+    [[compare.user]]                    # optional, repeatable: your own compensator
+    class = "my_package.control:MyCompensator"   # module:Class, or file = "mine.py" and
+    kwargs = { gain = 1.0 }                      #   class = "MyCompensator" (see
+                                                 #   tendonsheath.bench.user_compensators)
+
 Every table and key is checked; an unknown or ill-typed one is named in the error.
 """
 
@@ -80,6 +85,7 @@ from ..route import Route
 from ..sensor import Sensor
 from .run import run
 from .scenarios.common import ScenarioResult, piecewise_routes, ratio
+from .user_compensators import UserCompensator, parse_user_compensators, told_by_user
 
 COMPENSATORS = ("none", "inverse_feedforward", "curve_angle_feedforward", "adaptive")
 
@@ -110,7 +116,7 @@ _KEYS: dict[str, dict[str, type | tuple]] = {
         "shape_noise": float,
         "shape_delay": float,
     },
-    "compare": {"compensators": list},
+    "compare": {"compensators": list, "user": list},
 }
 _TOP = {"title": str, "seed": int, **{k: dict for k in _KEYS}}
 
@@ -134,6 +140,7 @@ class UserScenario:
     seed: int = 0
     source: str = "<scenario>"
     route_changes: list[tuple[float, Route]] = field(default_factory=list)
+    user_compensators: list[UserCompensator] = field(default_factory=list)
 
 
 def _check_type(where: str, key: str, value, kind):
@@ -218,7 +225,8 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
     if any(b[0] <= a[0] for a, b in zip(changes, changes[1:], strict=False)):
         raise ScenarioError(f"{source} [[route.changes]]: times must increase")
     compensators = s["compare"].get("compensators", list(COMPENSATORS))
-    if not compensators:
+    user = _user_compensators(s["compare"], source)
+    if not compensators and not user:
         raise ScenarioError(
             f"{source} [compare]: 'compensators' is empty; name at least one of "
             f"{list(COMPENSATORS)}"
@@ -267,7 +275,33 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         seed=int(data.get("seed", 0)),
         source=source,
         route_changes=changes,
+        user_compensators=user,
     )
+
+
+def _user_compensators(compare: dict, source: str) -> list[UserCompensator]:
+    """The [[compare.user]] entries; a 'file' is relative to the scenario file's folder."""
+    base = Path(source).parent if Path(source).is_file() else Path.cwd()
+    shipped = {"none", "InverseFeedforward", "CurveAngleFeedforward", "AdaptiveController"}
+    try:
+        return parse_user_compensators(
+            compare.get("user", []), f"{source} [compare]", base, shipped
+        )
+    except ValueError as exc:
+        raise ScenarioError(str(exc)) from None
+
+
+def run_user_compensators(sc: UserScenario, t, y_d, routes, sensor) -> tuple[dict, dict]:
+    """Bench runs of the scenario's own compensators and what each was told: on the plant with
+    the torque motor when it commands torque, else on the one with the position servo."""
+    runs, told = {}, {}
+    for user in sc.user_compensators:
+        compensator = user.build()
+        torque = getattr(compensator, "control_output", "x") == "torque"
+        plant = _plant(sc, _torque(sc) if torque else _servo(sc))
+        runs[user.name] = run(plant, compensator, t, y_d, routes=routes, noise=sensor)
+        told[user.name] = told_by_user(user)
+    return runs, told
 
 
 def load(path: str | Path) -> UserScenario:
@@ -341,7 +375,7 @@ def tension_bench_friction(plant) -> float:
     for q in np.linspace(0.0, travel, 400):
         plant.step(float(q))
     tension = plant.tensions()[0]  # row 0: tendon 1, proximal to distal
-    span = float(plant.route.total_angle)
+    span = float(plant.route.curve_angle)
     plant.reset()
     if not span > 0:
         return 0.0
@@ -351,7 +385,7 @@ def tension_bench_friction(plant) -> float:
 def calibration_angles(sc: UserScenario) -> list[float]:
     """The calibration curve angles: [calibration] angles, or 0.4, 1.1 and 1.7 pi, each
     moved off any test route's angle (by at least 0.1 rad)."""
-    tests = [sc.route["initial"].total_angle] + [r.total_angle for _, r in sc.route_changes]
+    tests = [sc.route["initial"].curve_angle] + [r.curve_angle for _, r in sc.route_changes]
     given = sc.calibration.get("angles")
     if given is not None:
         angles = [float(a) for a in given]
@@ -395,11 +429,16 @@ def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
     runs, told = _run_compensators(
         sc, cal, _plant(sc, servo_motor), t, y_d, routes, sensor, shape, progress
     )
+    if sc.user_compensators:
+        announce(progress, "user compensators")
+    user_runs, user_told = run_user_compensators(sc, t, y_d, routes, sensor)
+    runs.update(user_runs)
+    told.update(user_told)
     announce(progress, "honesty panel")
     theta = (
-        np.array([routes(tk).total_angle for tk in t])
+        np.array([routes(tk).curve_angle for tk in t])
         if routes is not None
-        else sc.route["initial"].total_angle
+        else sc.route["initial"].curve_angle
     )
     honesty = honesty_panel(cal, runs, curve_angle=theta, told=told, seed=sc.seed)
     return _result(sc, cal, runs, honesty, angles, shape)
@@ -418,7 +457,7 @@ def _calibration(sc: UserScenario, shape, angles: list[float]):
         model_names.append("CurveAngleModel")
     if not model_names:
         return None
-    sensed_initial = shape.static_reading(sc.route["initial"].total_angle, 1.0, seed_offset=77)
+    sensed_initial = shape.static_reading(sc.route["initial"].curve_angle, 1.0, seed_offset=77)
     length = sc.route["initial"].length
     return calibrate(
         _plant(sc, _servo(sc)),
@@ -516,8 +555,8 @@ def _result(sc: UserScenario, cal, runs: dict, honesty: dict, angles, shape) -> 
         table_title="Results",
         paper={},
         routes=shapes,
-        route_schedule=[(0.0, sc.route["initial"].total_angle)]
-        + [(tc, r.total_angle) for tc, r in sc.route_changes],
+        route_schedule=[(0.0, sc.route["initial"].curve_angle)]
+        + [(tc, r.curve_angle) for tc, r in sc.route_changes],
         calibration=cal.to_dict() if cal is not None else {},
         protocol=f"{sc.title}: compensators calibrated by bench.calibrate from the plant's "
         f"logs at curve angles {at_angles} rad and judged on the scenario's own routes and "

@@ -7,9 +7,11 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from .. import _core as core
+from .._args import number, python_names
 from .._arrays import checked_dt
 from ..models import Backlash, BoucWenBacklash, HysteresisModel
 from ..status import Status
+from . import persistence
 
 if TYPE_CHECKING:
     import control  # python-control ships no types: its systems are Any to mypy
@@ -74,6 +76,8 @@ class AdaptiveController:
     # signal names of to_control()'s system: desired and measured output, motor angle in
     control_inputs = ("y_d", "y", "q")
     control_output = "torque"
+    # what step() takes before dt (tendonsheath.protocols): desired, measured, motor angle
+    step_inputs = ("y_d", "y", "q")
 
     def __init__(
         self,
@@ -81,23 +85,35 @@ class AdaptiveController:
         smoothing: float = 0.05,
         **gains: float,
     ):
+        who = "AdaptiveController"
         unknown = set(gains) - set(_GAINS)
         if unknown:
-            raise ValueError(f"AdaptiveController: unknown gain(s) {sorted(unknown)}")
+            raise TypeError(f"{who}: unknown gain(s) {sorted(unknown)}")
         p = core.AdaptiveControllerParams()
         for key, value in gains.items():
-            setattr(p, key, bool(value) if key == "model_acceleration" else float(value))
+            setattr(p, key, bool(value) if key == "model_acceleration" else number(who, key, value))
         if feedforward_model is not None:
             if not isinstance(feedforward_model, Backlash | BoucWenBacklash):
-                raise ValueError("feedforward_model must be a Backlash or BoucWenBacklash")
+                raise TypeError(
+                    f"{who}: feedforward_model must be a Backlash or BoucWenBacklash "
+                    f"(got {type(feedforward_model).__name__})"
+                )
             ff = core.BacklashInverseParams()
             for key in ("c_r", "c_l", "B_r", "B_l"):
                 setattr(ff, key, feedforward_model.params[key])
-            ff.v_eps = smoothing
+            ff.v_eps = number(who, "smoothing", smoothing)
             p.feedforward = ff
             p.has_feedforward = True
         self.feedforward_model = feedforward_model
-        self._engine = core.AdaptiveController(p)
+        self.smoothing = number(who, "smoothing", smoothing)
+        with python_names(who):
+            self._engine = core.AdaptiveController(p)
+        resolved = self._engine.params
+        self._settings = {
+            "feedforward_model": feedforward_model,
+            "smoothing": self.smoothing,
+            **{key: getattr(resolved, key) for key in _GAINS},
+        }
 
     @classmethod
     def from_model(
@@ -151,6 +167,15 @@ class AdaptiveController:
         ValueError
             inertia or bandwidth_hz not > 0, or an unknown gain.
         """
+        who = "AdaptiveController.from_model"
+        inertia, viscous = number(who, "inertia", inertia), number(who, "viscous", viscous)
+        bandwidth_hz = number(who, "bandwidth_hz", bandwidth_hz)
+        max_torque, noise_std = (
+            number(who, "max_torque", max_torque),
+            number(who, "noise_std", noise_std),
+        )
+        if derivative_cutoff_hz is not None:
+            derivative_cutoff_hz = number(who, "derivative_cutoff_hz", derivative_cutoff_hz)
         if not inertia > 0:
             raise ValueError("AdaptiveController.from_model: inertia must be > 0")
         if not bandwidth_hz > 0:
@@ -271,3 +296,35 @@ class AdaptiveController:
             The flags of the last :meth:`step`.
         """
         return Status(self._engine.status())
+
+    def _bench_engine(self):
+        """The C++ engine ``bench.run`` runs in its C++ loop."""
+        return self._engine
+
+    # -- persistence -----------------------------------------------------------------
+    _saved_settings = ("feedforward_model", "smoothing", *_GAINS)
+
+    @property
+    def params(self) -> dict:
+        """The constructor settings, every gain resolved (a copy)."""
+        return dict(self._settings)
+
+    def to_dict(self) -> dict:
+        """The controller as a dict (format ``tendonsheath.compensator``; the feedforward
+        model as its own dict, or null)."""
+        return persistence.compensator_dict(type(self).__name__, self._settings)
+
+    def to_json(self, path=None) -> str:
+        """The controller as JSON text; also written to `path` when one is given.
+        ``tendonsheath.compensate.load`` reads it (the C++ loader does not: it reads the
+        feedforwards only)."""
+        return persistence.to_json(self.to_dict(), path)
+
+    @classmethod
+    def load(cls, source) -> AdaptiveController:
+        """A controller saved with :meth:`to_json` (a path, JSON text or a dict)."""
+        return persistence.load_as(cls, source)
+
+    @classmethod
+    def _from_saved(cls, values: dict) -> AdaptiveController:
+        return cls(**values)

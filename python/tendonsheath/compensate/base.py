@@ -163,5 +163,15 @@ class Feedforward:
         return persistence.to_json(self.to_dict(), path)
 
     @classmethod
+    def load(cls, source):
+        """A compensator saved with :meth:`to_json` (a path, JSON text or a dict); it must be
+        of this class (``tendonsheath.compensate.load`` reads any)."""
+        return persistence.load_as(cls, source)
+
+    @classmethod
     def _from_saved(cls, values: dict):
         return cls(**values)
+
+    def _bench_engine(self):
+        """The C++ engine ``bench.run`` runs in its C++ loop (None: step it from Python)."""
+        return self._engine

@@ -6,6 +6,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from .. import _core as core
+from .._args import accepts_old_names, number, python_names
 from .base import Feedforward
 from .limits import LimitsLike, as_limits
 
@@ -13,6 +14,24 @@ if TYPE_CHECKING:
     from ..models import CurveAngleModel
 
 _MODES = {"exact": core.ContinuumMode.exact, "published": core.ContinuumMode.published}
+# old argument names -> vocabulary names (docs/vocabulary.md)
+RENAMED = {"sheath_length": "length", "total_angle": "curve_angle"}
+# settings with the same name in Python and in ContinuumFeedforwardParams
+_SAME_NAMES = (
+    "friction",
+    "stiffness",
+    "pretension",
+    "bending_stiffness",
+    "tendon_offset",
+    "backbone_length",
+    "proximal_radius",
+    "gap_factor",
+)
+
+
+def _numbers(arguments: dict) -> dict:
+    """The numeric constructor arguments (all but self, mode, limits and the old names)."""
+    return {k: v for k, v in arguments.items() if k not in ("self", "mode", "limits", "who")}
 
 
 class ContinuumFeedforward(Feedforward):
@@ -27,14 +46,16 @@ class ContinuumFeedforward(Feedforward):
     ----------
     friction : float, default 0.1
         Friction coefficient mu.
-    sheath_length : float, default 1.0
-        Sheath length L (m).
+    length : float, default 1.0
+        Sheath length L (m) (its old name ``sheath_length=`` still works for one release, with
+        a DeprecationWarning; docs/vocabulary.md).
     stiffness : float, default 2.4e4
         Tendon axial stiffness EA (N).
     pretension : float, default 10.0
         Pretension T0 (N).
-    total_angle : float, default pi
-        Curve angle Theta of the sheath (rad).
+    curve_angle : float, default pi
+        Curve angle Theta of the sheath (rad) (its old name ``total_angle=`` still works for
+        one release, with a DeprecationWarning).
     bending_stiffness : float, default 4e-4
         Backbone bending stiffness EI (N m^2).
     tendon_offset : float, default 2e-3
@@ -54,16 +75,18 @@ class ContinuumFeedforward(Feedforward):
 
     Raises
     ------
+    TypeError
+        A value of the wrong type, or an unknown keyword.
     ValueError
-        An unknown mode, or a value the C++ core rejects (the message names it).
+        An unknown mode, or a value out of range (the message names the argument and the value).
     """
 
     _saved_settings = (
         "friction",
-        "sheath_length",
+        "length",
         "stiffness",
         "pretension",
-        "total_angle",
+        "curve_angle",
         "bending_stiffness",
         "tendon_offset",
         "backbone_length",
@@ -74,13 +97,14 @@ class ContinuumFeedforward(Feedforward):
         "limits",
     )
 
+    @accepts_old_names("ContinuumFeedforward", RENAMED)
     def __init__(
         self,
         friction: float = 0.1,
-        sheath_length: float = 1.0,
+        length: float = 1.0,
         stiffness: float = 2.4e4,
         pretension: float = 10.0,
-        total_angle: float = math.pi,
+        curve_angle: float = math.pi,
         bending_stiffness: float = 4e-4,
         tendon_offset: float = 2e-3,
         backbone_length: float = 0.03,
@@ -90,42 +114,32 @@ class ContinuumFeedforward(Feedforward):
         mode: str = "exact",
         limits: LimitsLike = None,
     ):
+        who = type(self).__name__
+        values = _numbers(locals())
+        if not isinstance(mode, str):
+            raise TypeError(f"{who}: mode must be a string (got {type(mode).__name__} {mode!r})")
         if mode not in _MODES:
-            raise ValueError(
-                f"ContinuumFeedforward: mode must be one of {list(_MODES)} (got {mode!r})"
-            )
-        self._settings = {
-            "friction": friction,
-            "sheath_length": sheath_length,
-            "stiffness": stiffness,
-            "pretension": pretension,
-            "total_angle": total_angle,
-            "bending_stiffness": bending_stiffness,
-            "tendon_offset": tendon_offset,
-            "backbone_length": backbone_length,
-            "proximal_radius": proximal_radius,
-            "gap_factor": gap_factor,
-            "smoothing": smoothing,
-            "mode": mode,
-            "limits": as_limits(limits),
-        }
+            raise ValueError(f"{who}: mode must be one of {list(_MODES)} (got {mode!r})")
+        self._settings = {k: number(who, k, v) for k, v in values.items()}
+        self._settings.update(mode=mode, limits=as_limits(limits))
         p = core.ContinuumFeedforwardParams()
-        p.friction, p.sheath_length, p.stiffness = friction, sheath_length, stiffness
-        p.pretension, p.total_angle = pretension, total_angle
-        p.bending_stiffness, p.tendon_offset = bending_stiffness, tendon_offset
-        p.backbone_length, p.proximal_radius = backbone_length, proximal_radius
-        p.gap_factor, p.v_eps, p.mode = gap_factor, smoothing, _MODES[mode]
+        for name in _SAME_NAMES:
+            setattr(p, name, self._settings[name])
+        p.sheath_length, p.total_angle = self._settings["length"], self._settings["curve_angle"]
+        p.v_eps, p.mode = self._settings["smoothing"], _MODES[mode]
         p.limits = self._settings["limits"].to_core()
         self.mode = mode
-        self._engine = core.ContinuumFeedforward(p)
+        with python_names(who):
+            self._engine = core.ContinuumFeedforward(p)
 
     @classmethod
+    @accepts_old_names("ContinuumFeedforward.from_model", {"total_angle": "curve_angle"})
     def from_model(
         cls,
         model: CurveAngleModel,
         tendon_offset: float,
         backbone_length: float,
-        total_angle: float,
+        curve_angle: float,
         mode: str = "exact",
         **options: Any,
     ) -> ContinuumFeedforward:
@@ -142,8 +156,9 @@ class ContinuumFeedforward(Feedforward):
             r_t (m).
         backbone_length : float
             l (m).
-        total_angle : float
-            Curve angle of the sheath (rad).
+        curve_angle : float
+            Curve angle of the sheath (rad) (its old name ``total_angle=`` still works for one
+            release, with a DeprecationWarning).
         mode : {"exact", "published"}, default "exact"
             See the class.
         **options
@@ -171,10 +186,10 @@ class ContinuumFeedforward(Feedforward):
             raise ValueError("ContinuumFeedforward.from_model: the model has no spring (k_e <= 0)")
         return cls(
             friction=p["friction"],
-            sheath_length=p["length"],
+            length=p["length"],
             stiffness=p["stiffness"],
             pretension=p["pretension"],
-            total_angle=total_angle,
+            curve_angle=curve_angle,
             bending_stiffness=k_e * tendon_offset**2 * backbone_length,
             tendon_offset=tendon_offset,
             backbone_length=backbone_length,

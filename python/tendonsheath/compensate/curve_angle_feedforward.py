@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .. import _core as core
+from .._args import accepts_old_names, number, python_names
 from .._arrays import as_signal, as_time_and_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
 from ..physics import route_shape as shape_of
@@ -35,8 +36,12 @@ class CurveAngleFeedforward(Feedforward):
     ----------
     friction : float
         Friction coefficient mu.
-    compliance : float
-        Tendon compliance L/EA (m/N).
+    stiffness : float
+        Tendon axial stiffness EA (N), > 0; only L/EA enters the feedforward (the old
+        ``compliance=`` L/EA still works for one release, with a DeprecationWarning, as
+        stiffness 1/compliance and length 1 m; docs/vocabulary.md).
+    length : float
+        Sheath length L (m), > 0.
     pretension : float
         Pretension T0 (N).
     load_force : float, default 0.0
@@ -58,14 +63,17 @@ class CurveAngleFeedforward(Feedforward):
 
     Raises
     ------
+    TypeError
+        A value of the wrong type, or an unknown keyword.
     ValueError
-        A value the C++ core rejects (the message names it).
+        A value out of range (the message names the argument and the value).
     """
 
     control_inputs = ("y_d", "curve_angle")
     _saved_settings = (
         "friction",
-        "compliance",
+        "stiffness",
+        "length",
         "pretension",
         "load_force",
         "load_stiffness",
@@ -77,10 +85,12 @@ class CurveAngleFeedforward(Feedforward):
         "limits",
     )
 
+    @accepts_old_names("CurveAngleFeedforward", {"compliance": lambda c: _from_compliance(c)})
     def __init__(
         self,
         friction: float,
-        compliance: float,
+        stiffness: float,
+        length: float,
         pretension: float,
         load_force: float = 0.0,
         load_stiffness: float = 0.0,
@@ -91,9 +101,11 @@ class CurveAngleFeedforward(Feedforward):
         max_correction_rate: float = math.inf,
         limits: LimitsLike = None,
     ):
-        self._settings = {
+        who = type(self).__name__
+        values = {
             "friction": friction,
-            "compliance": compliance,
+            "stiffness": stiffness,
+            "length": length,
             "pretension": pretension,
             "load_force": load_force,
             "load_stiffness": load_stiffness,
@@ -102,15 +114,10 @@ class CurveAngleFeedforward(Feedforward):
             "curve_angle": curve_angle,
             "smoothing": smoothing,
             "max_correction_rate": max_correction_rate,
-            "limits": as_limits(limits),
         }
-        p = core.CurveAngleFeedforwardParams()
-        p.friction, p.compliance, p.pretension = friction, compliance, pretension
-        p.load_force, p.load_stiffness = load_force, load_stiffness
-        p.proximal_radius, p.distal_radius = proximal_radius, distal_radius
-        p.total_angle, p.v_eps, p.max_correction_rate = curve_angle, smoothing, max_correction_rate
-        p.limits = self._settings["limits"].to_core()
-        self._engine = core.CurveAngleFeedforward(p)
+        self._settings = {k: number(who, k, v) for k, v in values.items()}
+        self._settings["limits"] = as_limits(limits)
+        self._engine = _engine(who, self._settings)
 
     @classmethod
     def from_model(
@@ -120,7 +127,7 @@ class CurveAngleFeedforward(Feedforward):
         load_stiffness: float | None = None,
         **options: Any,
     ) -> CurveAngleFeedforward:
-        """Built from an identified ``CurveAngleModel``: its friction, compliance L/EA,
+        """Built from an identified ``CurveAngleModel``: its friction, stiffness EA, length L,
         pretension and radii; the distal load defaults to the model's own (``load``,
         ``spring``) and can be replaced by the load expected in use (N, N/m at the tendon).
 
@@ -160,7 +167,8 @@ class CurveAngleFeedforward(Feedforward):
             )
         return cls(
             friction=p["friction"],
-            compliance=p["length"] / p["stiffness"],
+            stiffness=p["stiffness"],
+            length=p["length"],
             pretension=p["pretension"],
             load_force=p.get("load", 0.0) if load_force is None else load_force,
             load_stiffness=p.get("spring", 0.0) if load_stiffness is None else load_stiffness,
@@ -174,15 +182,18 @@ class CurveAngleFeedforward(Feedforward):
         """Friction coefficient mu."""
         return self._engine.params.friction
 
-    def set_curve_angle(self, total_angle: float) -> None:
-        """Uniform curvature with this total curve angle (rad).
+    @accepts_old_names("CurveAngleFeedforward.set_curve_angle", {"total_angle": "curve_angle"})
+    def set_curve_angle(self, curve_angle: float) -> None:
+        """Uniform curvature with this curve angle (rad).
 
         Parameters
         ----------
-        total_angle : float
-            The curve angle Theta (rad), >= 0.
+        curve_angle : float
+            The curve angle Theta (rad), >= 0 (its old name ``total_angle=`` still works for
+            one release, with a DeprecationWarning).
         """
-        self._engine.set_curve_angle(float(total_angle))
+        who = "CurveAngleFeedforward.set_curve_angle"
+        self._engine.set_curve_angle(number(who, "curve_angle", curve_angle))
 
     def set_route(self, route: Route) -> None:
         """Any route: its exact g/G shape integrals are used (spec A.2 warning on Theta-only).
@@ -281,6 +292,36 @@ class CurveAngleFeedforward(Feedforward):
             theta = np.broadcast_to(np.asarray(curve_angle, dtype=np.float64), ys.shape)
             theta = as_signal(theta, "curve_angle")
             if np.any(theta < 0):
-                raise ValueError("curve_angle must be >= 0")
+                bad = theta[np.argmax(theta < 0)]
+                raise ValueError(
+                    f"CurveAngleFeedforward.command: curve_angle must be >= 0 (got {bad:g})"
+                )
             return self._engine.command(ts, ys, None, None, theta, bool(status))
         return self._engine.command(ts, ys, None, None, None, bool(status))
+
+
+def _from_compliance(compliance) -> dict[str, float]:
+    """The deprecated ``compliance=`` (L/EA, docs/vocabulary.md) as EA = 1/compliance, L = 1 m."""
+    compliance = number("CurveAngleFeedforward", "compliance", compliance)
+    if not compliance > 0:
+        raise ValueError(f"CurveAngleFeedforward: compliance must be > 0 (got {compliance:g})")
+    return {"stiffness": 1.0 / compliance, "length": 1.0}
+
+
+def _engine(who: str, v: dict):
+    for name in ("stiffness", "length"):
+        if not v[name] > 0:
+            raise ValueError(f"{who}: {name} must be > 0 (got {v[name]:g})")
+    p = core.CurveAngleFeedforwardParams()
+    p.friction, p.compliance, p.pretension = (
+        v["friction"],
+        v["length"] / v["stiffness"],
+        v["pretension"],
+    )
+    p.load_force, p.load_stiffness = v["load_force"], v["load_stiffness"]
+    p.proximal_radius, p.distal_radius = v["proximal_radius"], v["distal_radius"]
+    p.total_angle, p.v_eps = v["curve_angle"], v["smoothing"]
+    p.max_correction_rate = v["max_correction_rate"]
+    p.limits = v["limits"].to_core()
+    with python_names(who):
+        return core.CurveAngleFeedforward(p)

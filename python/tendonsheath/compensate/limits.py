@@ -8,6 +8,7 @@ from dataclasses import dataclass
 from typing import TypeAlias
 
 from .. import _core as core
+from .._args import number
 
 
 @dataclass(frozen=True)
@@ -27,6 +28,10 @@ class CommandLimits:
     min: float = -math.inf
     max: float = math.inf
     max_rate: float = math.inf
+
+    def __post_init__(self):
+        for name in _FIELDS:  # a number, or a TypeError naming the field
+            object.__setattr__(self, name, number("CommandLimits", name, getattr(self, name)))
 
     def to_core(self) -> core.CommandLimits:
         """The C++ struct the real-time cores take.
@@ -72,6 +77,4 @@ def as_limits(limits: LimitsLike) -> CommandLimits:
 
 
 def _limit_value(name: str, value) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise TypeError(f"limits: {name} must be a number (got {value!r})")
-    return float(value)
+    return number("limits", name, value)

@@ -13,25 +13,31 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .._args import renamed
 from .._atomic import write_text
 from .._json_source import read_json_source
 
 if TYPE_CHECKING:
+    from .adaptive_controller import AdaptiveController
     from .base import Feedforward
 
 FORMAT_NAME = "tendonsheath.compensator"
 FORMAT_VERSION = 1
 
 # settings that may be null (= unbounded) and the value null stands for
-_UNBOUNDED = {"max_correction_rate": math.inf}
+_UNBOUNDED = {"max_correction_rate": math.inf, "max_torque": math.inf}
+# settings saved as a model's own dict (null: no model)
+_MODELS = ("model", "feedforward_model")
+_FLAGS = ("model_acceleration",)
 _LIMIT_UNBOUNDED = {"min": -math.inf, "max": math.inf, "max_rate": math.inf}
 
 
 def compensator_dict(name: str, settings: dict[str, Any]) -> dict[str, Any]:
     """The file contents for compensator class `name` built with `settings`."""
     out = {k: _finite_or_none(v) for k, v in settings.items() if k != "limits"}
-    lim = settings["limits"]
-    out["limits"] = {k: _finite_or_none(getattr(lim, k)) for k in _LIMIT_UNBOUNDED}
+    if "limits" in settings:
+        lim = settings["limits"]
+        out["limits"] = {k: _finite_or_none(getattr(lim, k)) for k in _LIMIT_UNBOUNDED}
     return {"format": FORMAT_NAME, "version": FORMAT_VERSION, "compensator": name, **out}
 
 
@@ -43,23 +49,25 @@ def to_json(data: dict[str, Any], path: str | Path | None) -> str:
 
 
 def _finite_or_none(value):
-    if isinstance(value, str):
+    if value is None or isinstance(value, str | bool):
         return value
+    if hasattr(value, "to_dict"):  # a model
+        return value.to_dict()
     value = float(value)  # numpy scalars too
     return None if math.isinf(value) else value
 
 
-def _registry() -> dict[str, type[Feedforward]]:
+def _registry() -> dict[str, type[Feedforward] | type[AdaptiveController]]:
+    from .adaptive_controller import AdaptiveController
     from .continuum_feedforward import ContinuumFeedforward
     from .curve_angle_feedforward import CurveAngleFeedforward
     from .inverse_feedforward import InverseFeedforward
 
-    return {
-        c.__name__: c for c in (InverseFeedforward, CurveAngleFeedforward, ContinuumFeedforward)
-    }
+    kinds = (InverseFeedforward, CurveAngleFeedforward, ContinuumFeedforward, AdaptiveController)
+    return {c.__name__: c for c in kinds}
 
 
-def compensator_from_dict(data: dict[str, Any]) -> Feedforward:
+def compensator_from_dict(data: dict[str, Any]) -> Feedforward | AdaptiveController:
     """Build the compensator a dict from ``to_dict`` describes; strict: every key checked."""
     if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
         raise ValueError(f"not a tendonsheath compensator file (missing format '{FORMAT_NAME}')")
@@ -74,6 +82,7 @@ def compensator_from_dict(data: dict[str, Any]) -> Feedforward:
         raise ValueError(f"unknown compensator {name!r}; known: {sorted(registry)}")
     cls = registry[name]
     settings = {k: v for k, v in data.items() if k not in ("format", "version", "compensator")}
+    settings = _upgraded(name, settings)
     expected = cls._saved_settings
     unknown = sorted(set(settings) - set(expected))
     if unknown:
@@ -85,13 +94,39 @@ def compensator_from_dict(data: dict[str, Any]) -> Feedforward:
     return cls._from_saved(values)
 
 
+def _upgraded(name: str, settings: dict[str, Any]) -> dict[str, Any]:
+    """Settings of a file written before the vocabulary (docs/vocabulary.md) under their new
+    names; such files load without a warning."""
+    if name == "ContinuumFeedforward":
+        from .continuum_feedforward import RENAMED
+
+        try:
+            return renamed(f"{name} file", settings, RENAMED, warn=False)
+        except TypeError as err:  # both names: a bad file
+            raise ValueError(str(err)) from None
+    if name == "CurveAngleFeedforward" and "compliance" in settings:
+        out = dict(settings)
+        compliance = _number(name, "'compliance'", out.pop("compliance"))
+        if not compliance > 0:
+            raise ValueError(f"{name} file: 'compliance' must be > 0 (got {compliance:g})")
+        if "stiffness" in out or "length" in out:
+            raise ValueError(f"{name} file: give stiffness and length or compliance, not both")
+        return {**out, "stiffness": 1.0 / compliance, "length": 1.0}
+    return settings
+
+
 def _setting(name: str, key: str, value):
     if key == "limits":
         return _limits(name, value)
-    if key == "model":
+    if key in _MODELS:
         from ..models import HysteresisModel
 
-        return HysteresisModel.from_dict(value)
+        return None if value is None else HysteresisModel.from_dict(value)
+    if key in _FLAGS:
+        if not isinstance(value, bool):
+            got = json.dumps(value)
+            raise ValueError(f"{name} file: '{key}' must be true or false (got {got})")
+        return value
     if key == "mode":
         if not isinstance(value, str):
             raise ValueError(f"{name} file: 'mode' must be a string (got {json.dumps(value)})")
@@ -119,7 +154,7 @@ def _number(name: str, what: str, value) -> float:
     return float(value)
 
 
-def load_compensator(source: str | Path | dict) -> Feedforward:
+def load_compensator(source: str | Path | dict) -> Feedforward | AdaptiveController:
     """Load a compensator saved with ``to_json``: a path, a JSON string or a dict.
 
     Parameters
@@ -138,3 +173,14 @@ def load_compensator(source: str | Path | dict) -> Feedforward:
         An unreadable source or an invalid compensator file.
     """
     return compensator_from_dict(read_json_source(source, "compensator"))
+
+
+def load_as(cls: type, source: str | Path | dict):
+    """``cls.load(source)``: a saved compensator, which must be a ``cls``."""
+    compensator = load_compensator(source)
+    if not isinstance(compensator, cls):
+        raise TypeError(
+            f"{cls.__name__}.load: the file holds a {type(compensator).__name__}, "
+            f"not a {cls.__name__} (tendonsheath.compensate.load reads any compensator)"
+        )
+    return compensator

@@ -23,11 +23,31 @@ MAX_LEAVE_ONE_OUT = 10  # more recordings than this are grouped (default 5 group
 
 @dataclass
 class CrossValidation:
-    """Result of :func:`cross_validate`: ``held_out`` and ``train`` metrics (rmse, nrmse,
-    fit_percent, max_abs; held-out pooled over every held-out sample, training over the
-    fitted samples of every fold), ``estimators`` (one fitted clone per fold, its Fit in
-    ``fit_``), ``held_out_indices`` (the recordings each fold held out), ``predictions``
-    (per held-out recording, fold by fold) and ``description``."""
+    """Result of :func:`cross_validate`: the pooled metrics, the fitted clones and the
+    held-out predictions.
+
+    The metrics are those of :func:`~tendonsheath.identify.metrics`: rmse, nrmse,
+    fit_percent and max_abs.
+
+    Parameters
+    ----------
+    held_out : dict of str to float
+        Metrics pooled over every sample of every held-out recording of all folds (each
+        simulated from its fold's model's rest state; no warm-up left out).
+    train : dict of str to float
+        Metrics pooled over each fold's training recordings, simulated by that fold's model
+        (every sample but a Recording's ``skip``: the estimator's ``warmup`` samples count).
+    estimators : list
+        One fitted clone of the estimator per fold, its Fit in ``fit_``.
+    held_out_indices : list of list of int
+        The indices of the recordings each fold held out.
+    predictions : list of numpy.ndarray of float
+        The held-out predictions, one per held-out recording, fold by fold (in the order of
+        ``held_out_indices`` flattened).
+    description : str, default ""
+        How the recordings were split, e.g. "cross-validation: leave one recording out
+        (3 folds)".
+    """
 
     held_out: dict[str, float]
     train: dict[str, float]
@@ -43,9 +63,12 @@ def recording_groups(n: int, folds: int | None = None) -> tuple[list[list[int]],
     5) groups."""
     if n < 2:
         raise ValueError(f"cross-validation over recordings needs at least 2 (got {n})")
+    if folds is not None:
+        if isinstance(folds, bool) or not isinstance(folds, int | np.integer):
+            raise TypeError(f"folds must be an integer (got {folds!r})")
+        if folds < 2:
+            raise ValueError(f"folds: at least 2 are needed (got {folds})")
     k = n if n <= MAX_LEAVE_ONE_OUT and folds is None else min(folds or 5, n)
-    if k < 2:
-        raise ValueError(f"folds: at least 2 are needed (got {folds})")
     groups = [list(range(g, n, k)) for g in range(k)]
     what = "recording" if k == n else "group of recordings"
     return groups, f"cross-validation: leave one {what} out ({k} folds)"
@@ -119,11 +142,39 @@ def cross_validate(
     folds: int | None = None,
     curve_angle: ArrayLike | None = None,
 ) -> CrossValidation:
-    """Cross-validate ``estimator`` (an :class:`~tendonsheath.identify.Identifier`, or any
-    object with ``clone()``, ``fit(recordings)`` and ``model_``) over ``recordings`` (at least
-    two Logs, Recordings or (t, x, y[, curve_angle]) tuples): leave one recording out, or
-    ``folds`` groups of recordings (round-robin). Each fold's clone runs over its held-out
-    recordings from its rest state, every sample scored."""
+    """Cross-validate an estimator over recordings: fit on some, predict the others.
+
+    Each fold holds out one recording (leave one out: ``folds`` None and at most 10
+    recordings) or a group of recordings (round-robin: fold g holds out recordings g, g + k,
+    g + 2k, ... of k folds), fits an unfitted clone of ``estimator`` on the other recordings
+    and simulates its model over the held-out ones from its rest state, every sample scored.
+
+    Parameters
+    ----------
+    estimator : Identifier
+        An unfitted or fitted :class:`~tendonsheath.identify.Identifier`, or any object with
+        ``clone()``, ``fit(recordings)`` and ``model_``; it is not changed.
+    recordings : sequence of Log, Recording or tuple
+        At least two recordings: Logs, Recordings, or (t, x, y) or (t, x, y, curve_angle)
+        tuples.
+    folds : int, optional
+        The number of groups of recordings (at least 2; more than the recordings gives leave
+        one out). Default: leave one out up to 10 recordings, else 5 groups.
+    curve_angle : float or array_like of float, optional
+        The curve angle (rad) of the recordings that carry none, for models that take one.
+
+    Returns
+    -------
+    CrossValidation
+        The held-out and training metrics, the fitted clones, the held-out predictions and
+        a description of the split.
+
+    Raises
+    ------
+    ValueError
+        Fewer than two recordings, ``folds`` below 2, or bad data or settings (the message
+        names them).
+    """
     recs = make_recordings(recordings=list(recordings), curve_angle=curve_angle)
     groups, what = recording_groups(len(recs), folds)
     splits, _ = recording_splits(recs, folds)

@@ -32,59 +32,113 @@ class NotFittedError(ValueError, AttributeError):
 class Identifier:
     """An identification's model and settings; ``fit(recordings)`` runs it.
 
-    ``Identifier(model, **settings)``: ``model`` is a model class (or its name), or a
-    :class:`~tendonsheath.models.Chain` instance, e.g. ``Chain(BoucWenBacklash(),
-    Polynomial(3))``. ``identify(model, t, x, y, **settings)`` is
-    ``Identifier(model, **settings).fit([(t, x, y)])`` with the :class:`Fit` returned. An
-    unknown setting raises TypeError naming it; the values are checked by ``fit``.
+    ``Identifier(model, **settings)`` takes the settings as keywords (listed below);
+    ``identify(model, t, x, y, **settings)`` is
+    ``Identifier(model, **settings).fit_data(t, x, y)`` with the :class:`Fit` returned, and
+    ``fit(recordings)`` returns the fitted model and keeps the Fit in ``fit_``. The settings
+    are stored as attributes of the same names (scikit-learn's
+    convention), which ``get_params``, ``set_params`` and ``clone`` read and copy, so that a
+    comparison or a cross-validation can make one unfitted copy per fold. An unknown setting
+    raises TypeError naming it (and the closest known ones); the values are checked by ``fit``.
+    The settings are those of :func:`~tendonsheath.identify.identify`, whose docstring
+    describes the search in full; their defaults are the fields of
+    :class:`~tendonsheath.identify.settings.Options`.
 
-    Settings (defaults in :class:`~tendonsheath.identify.settings.Options`):
+    Every Fit carries ``diagnostics`` (parameters near their bounds, correlations, condition
+    number) and an :class:`~tendonsheath.identify.IdentifiabilityWarning` names the parameters
+    involved. CurveAngleModel recordings at a single curve angle hold the friction
+    (``initial``'s, 0.1 by default, unless ``fixed``) and report the identifiable groups in
+    ``fit.groups``.
 
-    - ``warmup`` (0): the first samples of every recording are not counted in the cost.
-    - Global search by SciPy's differential evolution: ``popsize`` (15), ``maxiter`` (100),
-      ``tol`` (0.01), ``seed`` (0: seeded and reproducible); each generation is evaluated in
-      one batched C++ call over ``workers`` threads (None: all cores). ``polish`` (True):
-      ``scipy.optimize.least_squares`` refines the best candidate. ``progress`` (True): a bar
-      on a terminal.
-    - ``bounds`` ({name: (low, high)}): otherwise derived from the data's scale, some searched
-      on a log scale. ``fixed`` ({name: value}) holds parameters; some are held by default
-      because input/output data cannot identify them (BoucWen: A; HystereticOscillator: beta;
-      CurveAngleModel: pretension, length, radii and spring); ``free`` releases those.
-      ``initial`` supplies held values and numerical options (PrandtlIshlinskii: the
-      threshold pattern, whose scale is identified; GeneralizedPrandtlIshlinskii: the plays,
-      default 10; PlantModel: its element count).
-    - ``search_samples`` (200 000; None: no limit): above it the global search runs on 8 evenly
-      spaced windows per recording counting that many samples (each from the model's rest
-      state, a fifth of it warm-up); a rate-independent model's search runs on records
-      thinned to about 2 000 samples (every m-th sample, m <= 20, and every turning point).
-      The refinement and everything after use every sample.
-    - ``separable`` (True): linear-in-parameter parts are solved by least squares instead of
-      searched (BoucWenBacklash: c_r, c_l, c_r B_r, c_l B_l; BoucWen: a, (1-a) k;
-      PrandtlIshlinskii: the weights).
-    - ``depends_on_angle`` ({name: "constant" | "linear" | "tanh"}): parameters as functions of
-      the curve angle (one constant angle per recording); the result is an
-      :class:`~tendonsheath.models.AngleDependent` model.
-    - ``strategy`` ("auto"): HystereticOscillator by best linear approximation, equation error,
-      then simulation-error least squares; "search" runs the plain differential evolution.
-      ``input_interpolation`` ("hold", "linear", "bandlimited"; default: ``initial``'s) and
-      ``periodic`` (None: detected) set its input reconstruction.
-    - ``time_budget`` (seconds of wall clock): the search stops after the generation in which
-      it runs out and the least squares at its next evaluation; ``fit.stopped_on_budget``
-      records it. Standard errors and diagnostics come after, outside the budget.
-    - ``normalize`` (True): Backlash, BoucWenBacklash, PrandtlIshlinskii,
-      GeneralizedPrandtlIshlinskii, PlantModel and Chains of a (Bouc-Wen) backlash and a
-      polynomial are fitted on centred, scaled data and mapped back (into the class's own
-      parameters where exact, otherwise a :class:`~tendonsheath.models.Scaled` model); not
-      with ``bounds``, ``fixed`` or ``depends_on_angle``.
-    - ``standard_errors`` ("linearised"; "bootstrap": ``bootstrap`` (200) moving-block
-      resamples of the residuals, blocks of ``bootstrap_block`` samples (default from the
-      residual's autocorrelation); "bootstrap-recordings": resampled recordings; "none"). Every
-      Fit carries ``diagnostics`` (parameters near bounds, correlations, condition number) and
-      an :class:`~tendonsheath.identify.IdentifiabilityWarning` names the parameters involved.
-      CurveAngleModel recordings at a single curve angle hold the friction (``initial``'s, 0.1
-      by default, unless ``fixed``) and report the identifiable groups in ``fit.groups``.
+    Parameters
+    ----------
+    model : type, str or Chain
+        The model class (e.g. ``BoucWenBacklash``) or its name, or a
+        :class:`~tendonsheath.models.Chain` instance, e.g. ``Chain(BoucWenBacklash(),
+        Polynomial(3))``. None (the default, for scikit-learn's protocol) cannot be fitted.
+    warmup : int, default 0
+        Samples at the start of every recording left out of the cost.
+    bounds : dict of str to (float, float), optional
+        Search bounds by parameter (default from the data's scale; some are searched on a log
+        scale).
+    fixed : dict of str to float, optional
+        Parameters held at given values. Some are held by default because input/output data
+        cannot identify them (BoucWen: A; HystereticOscillator: beta; CurveAngleModel:
+        pretension, length, radii and spring).
+    free : iterable of str, optional
+        Parameters held by default that are to be identified.
+    initial : HysteresisModel, optional
+        Values of held parameters and numerical options (PrandtlIshlinskii: the threshold
+        pattern, whose scale is identified; GeneralizedPrandtlIshlinskii: the plays, default
+        10; PlantModel: its element count; CurveAngleModel: the friction held when the
+        recordings cover a single curve angle, 0.1 by default).
+    depends_on_angle : dict of str to str, optional
+        Parameter -> "constant", "linear" or "tanh" law of the curve angle (one constant angle
+        per recording); the result is an :class:`~tendonsheath.models.AngleDependent` model.
+    seed : int or None, default 0
+        Seed of the search (and of the bootstrap): seeded and reproducible.
+    maxiter : int, default 100
+        Generations of differential evolution.
+    popsize : int, default 15
+        Population per parameter.
+    tol : float, default 0.01
+        Relative tolerance of the search.
+    workers : int, optional
+        Threads of the batched simulations (default all cores).
+    polish : bool, default True
+        Refine the search's best candidate by least squares
+        (``scipy.optimize.least_squares``).
+    separable : bool, default True
+        Solve linear-in-parameter parts by least squares (BoucWenBacklash: c_r, c_l, c_r B_r,
+        c_l B_l; BoucWen: a, (1-a) k; PrandtlIshlinskii: the weights).
+    progress : bool, default True
+        Show a progress bar (on a terminal, for a search lasting over a second).
+    search_samples : int or None, default 200000
+        Samples the global search runs on at most (None: no limit). Above it the search runs
+        on 8 evenly spaced windows per recording, each from the model's rest state with a fifth
+        of it warm-up; a rate-independent model's search runs on records thinned to about
+        2 000 samples (every m-th sample, m <= 20, and every turning point). The refinement
+        and everything after use every sample.
+    time_budget : float, optional
+        Seconds of wall clock for the search and the refinement: the search stops after the
+        generation in which it runs out and the least squares at its next evaluation, keeping
+        the best point so far (``fit.stopped_on_budget`` records it). Standard errors and
+        diagnostics come after, outside the budget.
+    input_interpolation : {"hold", "linear", "bandlimited"}, optional
+        The input reconstruction between samples (HystereticOscillator; default:
+        ``initial``'s).
+    periodic : bool, optional
+        Whether the records are whole periods, for the band-limited reconstruction (None:
+        detected).
+    strategy : {"auto", "search"}, default "auto"
+        HystereticOscillator's path: "auto" is best linear approximation, equation error,
+        then simulation-error least squares; "search" the plain differential evolution.
+    normalize : bool, default True
+        Fit on centred, scaled data and map back (Backlash, BoucWenBacklash,
+        PrandtlIshlinskii, GeneralizedPrandtlIshlinskii, PlantModel and Chains of a
+        (Bouc-Wen) backlash and a polynomial): into the class's own parameters where exact,
+        otherwise a :class:`~tendonsheath.models.Scaled` model. Not applied with ``bounds``,
+        ``fixed`` or ``depends_on_angle``.
+    standard_errors : {"linearised", "bootstrap", "bootstrap-recordings", "none"}
+        How the standard errors are obtained (default "linearised": from the Jacobian at the
+        optimum; "bootstrap": moving-block resamples of the residuals; "bootstrap-recordings":
+        resampled recordings).
+    bootstrap : int, optional
+        Bootstrap resamples (default 200).
+    bootstrap_block : int, optional
+        Block length of the residual bootstrap (default from the autocorrelation).
 
-    Attributes after ``fit``: ``fit_`` (the :class:`Fit`) and ``model_`` (the fitted model).
+    Attributes
+    ----------
+    fit_ : Fit
+        After ``fit``: the identification's result (errors, standard errors, diagnostics).
+    model_ : HysteresisModel
+        After ``fit``: the fitted model (``fit_.model``).
+
+    See Also
+    --------
+    tendonsheath.identify.identify : The same identification as one call.
+    tendonsheath.identify.cross_validate : Scores an Identifier over held-out recordings.
     """
 
     warmup: int  # one of the settings (OPTION_NAMES), set by __init__ and set_params
@@ -101,25 +155,78 @@ class Identifier:
     # -- parameters ------------------------------------------------------------------------
 
     def get_params(self, deep: bool = True) -> dict[str, Any]:
-        """The model and every setting, {name: value} (``deep``: accepted for scikit-learn's
-        protocol; the settings hold no nested estimators)."""
+        """The model and every setting, as ``Identifier(**params)`` takes them.
+
+        Parameters
+        ----------
+        deep : bool, default True
+            Accepted for scikit-learn's protocol; the settings hold no nested estimators, so
+            it changes nothing.
+
+        Returns
+        -------
+        dict of str to object
+            ``model`` and every setting by name (the values themselves, not copies).
+        """
         return {"model": self.model, **{n: getattr(self, n) for n in OPTION_NAMES}}
 
     def set_params(self, **params: Any) -> Identifier:
-        """Change settings (or ``model``); returns self. Unknown names raise TypeError."""
+        """Change settings (or ``model``) in place.
+
+        The values are not checked here but by ``fit``; a fit made before keeps its ``fit_``
+        and ``model_`` until the next ``fit``.
+
+        Parameters
+        ----------
+        **params
+            New values by name: ``model`` or any setting of :class:`Identifier` (``warmup``,
+            ``bounds``, ``fixed``, ``free``, ``initial``, ``depends_on_angle``, ``seed``,
+            ``maxiter``, ``popsize``, ``tol``, ``workers``, ``polish``, ``separable``,
+            ``progress``, ``search_samples``, ``time_budget``, ``input_interpolation``,
+            ``periodic``, ``strategy``, ``normalize``, ``standard_errors``, ``bootstrap``,
+            ``bootstrap_block``).
+
+        Returns
+        -------
+        Identifier
+            This estimator, changed.
+
+        Raises
+        ------
+        TypeError
+            An unknown name (the message names it and the closest known ones); nothing is
+            changed then.
+        """
         check_names([n for n in params if n != "model"], type(self).__name__)
         for name, value in params.items():
             setattr(self, name, value)
         return self
 
     def clone(self) -> Identifier:
-        """An unfitted copy with equal settings (containers copied, so editing one's
-        ``bounds`` or ``fixed`` leaves the other's as it was)."""
+        """An unfitted copy with equal settings.
+
+        Dicts, lists, sets and tuples among the settings are deep-copied, so editing one's
+        ``bounds`` or ``fixed`` leaves the other's as it was; the model and other values are
+        shared.
+
+        Returns
+        -------
+        Identifier
+            A new estimator of the same class with the same model and settings, without
+            ``fit_`` or ``model_``.
+        """
         params = {k: _copied(v) for k, v in self.get_params().items()}
         return type(self)(**params)
 
     def options(self) -> Options:
-        """The settings as an :class:`~tendonsheath.identify.settings.Options` record."""
+        """The settings as one record, as the identification takes them.
+
+        Returns
+        -------
+        Options
+            A frozen :class:`~tendonsheath.identify.settings.Options` of the current settings
+            (unchecked: ``fit`` checks them).
+        """
         return Options(**{n: getattr(self, n) for n in OPTION_NAMES})
 
     def __repr__(self) -> str:
@@ -134,8 +241,28 @@ class Identifier:
     def fit(
         self, recordings: Recordings, *, curve_angle: ArrayLike | None = None
     ) -> HysteresisModel:
-        """Identify the model from ``recordings`` (Logs, Recordings or (t, x, y[, curve_angle])
-        tuples; ``curve_angle`` applies to those without one); returns the fitted model."""
+        """Identify the model from recordings; the recordings share the parameters.
+
+        Parameters
+        ----------
+        recordings : Log, Recording, tuple or sequence of them
+            One recording or a list of them: :class:`~tendonsheath.io.Log` objects (with an
+            output column), Recordings, or (t, x, y) or (t, x, y, curve_angle) tuples. ``t``
+            may be None for a rate-independent model.
+        curve_angle : float or array_like of float, optional
+            The curve angle (rad) of the recordings that carry none, for models that take one.
+
+        Returns
+        -------
+        HysteresisModel
+            The fitted model (also kept in ``model_``; the :class:`Fit` in ``fit_``).
+
+        Raises
+        ------
+        ValueError
+            Bad data or settings (the message names them), or a setting the model does not
+            support.
+        """
         self.fit_data(recordings=_as_list(recordings), curve_angle=curve_angle)
         return self.model_
 
@@ -148,7 +275,37 @@ class Identifier:
         recordings: Sequence[RecordingLike] | None = None,
         curve_angle: ArrayLike | None = None,
     ) -> Fit:
-        """``fit`` with identify()'s two data forms (t, x, y or recordings=); returns the Fit."""
+        """``fit`` with :func:`~tendonsheath.identify.identify`'s two data forms.
+
+        Give ``t, x, y`` (one recording) or ``recordings=``, not both.
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), optional
+            Sample times (s); None for a rate-independent model.
+        x : array_like of float, shape (n,), optional
+            Input samples (or give ``recordings``).
+        y : array_like of float, shape (n,), optional
+            Output samples.
+        recordings : sequence of tuple, optional
+            (t, x, y) or (t, x, y, curve_angle) per recording (or Logs, Recordings), instead
+            of t, x, y.
+        curve_angle : float or array_like of float, optional
+            The curve angle (rad) of t, x, y (or of the recordings that carry none), for
+            models that take one.
+
+        Returns
+        -------
+        Fit
+            The identified model, its errors, standard errors and diagnostics (also kept in
+            ``fit_``; the model in ``model_``).
+
+        Raises
+        ------
+        ValueError
+            Bad data or settings (the message names them), or a setting the model does not
+            support.
+        """
         from .core import run
 
         options = self.options()
@@ -159,14 +316,56 @@ class Identifier:
         return self.fit_
 
     def predict(self, recordings: Recordings) -> list[np.ndarray]:
-        """The fitted model's output over each recording's input (Logs, Recordings or
-        (t, x[, y[, curve_angle]]) tuples), run from its rest state: one array per recording."""
+        """The fitted model's output over each recording's input, run from its rest state.
+
+        Parameters
+        ----------
+        recordings : Log, Recording, tuple or sequence of them
+            One recording or a list of them: Logs, Recordings, or (t, x), (t, x, y) or
+            (t, x, y, curve_angle) tuples (the output is not used).
+
+        Returns
+        -------
+        list of numpy.ndarray of float
+            One array per recording, of its input's length.
+
+        Raises
+        ------
+        NotFittedError
+            Called before ``fit``.
+        ValueError
+            A recording of none of the forms above.
+        """
         model = self._fitted()
         return [simulate_model(model, t, x, angle) for t, x, angle in _inputs(recordings)]
 
     def score(self, recordings: Recordings) -> float:
-        """Fit percentage, 100 (1 - nrmse), of the prediction over ``recordings`` (higher is
-        better; the first ``warmup`` samples and each recording's skip are not counted)."""
+        """How well the fitted model predicts recordings: the fit percentage (higher is better).
+
+        The fit percentage of :func:`~tendonsheath.identify.metrics`,
+        100 (1 - ||y - y_hat|| / ||y - mean(y)||), pooled over every recording; the model runs
+        from its rest state over each, and the first ``warmup`` samples of each (and a
+        Recording's ``skip``) are not counted.
+
+        Parameters
+        ----------
+        recordings : Log, Recording, tuple or sequence of them
+            One recording or a list of them, with outputs: Logs, Recordings, or (t, x, y) or
+            (t, x, y, curve_angle) tuples.
+
+        Returns
+        -------
+        float
+            The fit percentage: 100 for a perfect prediction, 0 for predicting the mean,
+            NaN for a constant output.
+
+        Raises
+        ------
+        NotFittedError
+            Called before ``fit``.
+        ValueError
+            Bad data (the message names it).
+        """
         self._fitted()
         recs = make_recordings(recordings=_as_list(recordings))
         preds = self.predict(recs)

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._args import number
 from .._arrays import checked_dt
 from .._typing import ArrayLike, FloatArray
 from ..status import Status
@@ -117,9 +118,11 @@ class AngleDependent(HysteresisModel):
                 raise ValueError(f"AngleDependent: coefficients of {name} must be finite")
             coefs[name] = c
         if any(law == "tanh" for law in laws.values()):
-            if angle_friction is None or not (float(angle_friction) > 0):
+            if angle_friction is None:
                 raise ValueError("AngleDependent: angle_friction must be > 0 with a tanh law")
-            angle_friction = float(angle_friction)
+            angle_friction = number("AngleDependent", "angle_friction", angle_friction)
+            if not angle_friction > 0:
+                raise ValueError("AngleDependent: angle_friction must be > 0 with a tanh law")
         else:
             angle_friction = None
         self._laws = laws

@@ -2,18 +2,23 @@
 
 from __future__ import annotations
 
+import functools
 import json
 import math
-from collections.abc import Sequence
+import numbers
+from collections.abc import Callable, Sequence
+from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar, Self
+from typing import TYPE_CHECKING, Any, ClassVar, Self, TypeVar, cast
 
 import numpy as np
 
+from .._args import python_names
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import read_json_source
 from .._typing import ArrayLike, FloatArray
+from ..simulation_result import SimulationResult
 from ..status import Status
 
 if TYPE_CHECKING:
@@ -23,6 +28,27 @@ FORMAT_NAME = "tendonsheath.model"
 FORMAT_VERSION = 1
 
 _REGISTRY: dict[str, type[HysteresisModel]] = {}
+
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def _returning_result(simulate: _F) -> _F:
+    """``simulate`` that returns a :class:`SimulationResult` (the output with its time and
+    input), or ``(result, flags)`` where it returned ``(y, flags)``."""
+
+    @functools.wraps(simulate)
+    def wrapper(self, t, x, *args, **kwargs):
+        out = simulate(self, t, x, *args, **kwargs)
+        y, flags = out if isinstance(out, tuple) else (out, None)
+        if flags is None and isinstance(y, SimulationResult):
+            flags = y.status
+        # this model's own t and x (a wrapper's inner model saw transformed ones)
+        ts = None if t is None else np.asarray(t, dtype=float)
+        y = SimulationResult(y, t=ts, input=np.asarray(x, dtype=float), status=flags)
+        return (y, flags) if isinstance(out, tuple) else y
+
+    return cast(_F, wrapper)  # the same call; a SimulationResult is an array of the output
 
 
 class HysteresisModel:
@@ -61,11 +87,13 @@ class HysteresisModel:
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         _REGISTRY[cls.__name__] = cls
+        if "simulate" in vars(cls):  # every model's simulate returns a SimulationResult
+            cls.simulate = _returning_result(cls.simulate)
 
     def __init__(self, **values: Any) -> None:
         unknown = set(values) - set(self.param_names) - set(self.option_names)
-        if unknown:
-            raise ValueError(
+        if unknown:  # an unknown keyword: TypeError, as Python says for any function
+            raise TypeError(
                 f"{type(self).__name__}: unknown parameter(s) {sorted(unknown)}; "
                 f"expected {list(self.param_names + self.option_names)}"
             )
@@ -76,10 +104,9 @@ class HysteresisModel:
             try:
                 setattr(struct, key, value)
             except TypeError:
-                raise ValueError(
-                    f"{type(self).__name__}: parameter {key} has the wrong type ({value!r})"
-                ) from None
-        self._engine = self._core(struct)  # validates; raises ValueError naming the parameter
+                raise _field_error(type(self).__name__, key, value) from None
+        with python_names(type(self).__name__):  # the core names the parameter
+            self._engine = self._core(struct)
 
     @classmethod
     def _core_values(cls, values: dict[str, Any]) -> dict[str, Any]:
@@ -95,7 +122,6 @@ class HysteresisModel:
 
     @property
     def options(self) -> dict[str, Any]:
-        """The numerical options (not identified), as a dict (a copy)."""
         s = self._engine.params
         return {k: _plain(getattr(s, k)) for k in self.option_names}
 
@@ -116,6 +142,7 @@ class HysteresisModel:
         return type(self)(**values)
 
     # -- simulation ------------------------------------------------------------------
+    @_returning_result
     def simulate(
         self, t: ArrayLike | None, x: ArrayLike, status: bool = False
     ) -> FloatArray | tuple[FloatArray, np.ndarray]:
@@ -275,14 +302,8 @@ class HysteresisModel:
             return model_cls._from_parts(data)
         if model_cls is not cls and "from_dict" in vars(model_cls):  # e.g. renamed parameters
             return model_cls.from_dict(data)
-        values = {**_saved_params(model_cls, data), **_saved_options(model_cls, data)}
-        known = set(model_cls.param_names) | set(model_cls.option_names)
-        unknown = sorted(set(values) - known)
-        if unknown:
-            raise ValueError(
-                f"{model_cls.__name__}: unknown parameter(s) {unknown}; expected {sorted(known)}"
-            )
-        return model_cls(**values)
+        with _file_error(model_cls.__name__):
+            return _build_saved(model_cls, data)
 
     def to_json(self, path: str | Path | None = None) -> str:
         """The model as JSON text; also written to `path` when one is given.
@@ -305,9 +326,42 @@ class HysteresisModel:
     def __eq__(self, other) -> bool:
         return type(self) is type(other) and self.to_dict() == other.to_dict()
 
+    # A model is a value: equal parameters and options make equal models, whatever the streaming
+    # state (reset/step move only that, never the parameters), so the hash follows to_dict().
+    def __hash__(self) -> int:
+        return hash((type(self).__name__, _frozen(self.to_dict())))
+
     def __repr__(self) -> str:
         inner = ", ".join(f"{k}={_short(v)}" for k, v in self.params.items())
         return f"{type(self).__name__}({inner})"
+
+
+def _field_error(name: str, key: str, value) -> Exception:
+    """What a value the C++ field refused is: an integer too large for it (ValueError) or a
+    value of the wrong type (TypeError)."""
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        return ValueError(f"{name}: {key} = {value} is out of the range of its field")
+    return TypeError(f"{name}: {key} has the wrong type (got {type(value).__name__} {value!r})")
+
+
+def _build_saved(model_cls, data: dict[str, Any]) -> HysteresisModel:
+    values = {**_saved_params(model_cls, data), **_saved_options(model_cls, data)}
+    known = set(model_cls.param_names) | set(model_cls.option_names)
+    unknown = sorted(set(values) - known)
+    if unknown:
+        raise ValueError(
+            f"{model_cls.__name__}: unknown parameter(s) {unknown}; expected {sorted(known)}"
+        )
+    return model_cls(**values)
+
+
+@contextmanager
+def _file_error(name: str):
+    """A value of the wrong type in a saved file is a bad file (ValueError), not a bad call."""
+    try:
+        yield
+    except TypeError as err:
+        raise ValueError(f"{name} file: {err}") from None
 
 
 def model_class_from_dict(data: dict[str, Any]) -> type[HysteresisModel]:
@@ -387,6 +441,15 @@ def load_model(source: str | Path | dict) -> HysteresisModel:
         An unreadable source or an invalid model file (the message says what is wrong).
     """
     return HysteresisModel.from_dict(read_json_source(source, "model"))
+
+
+def _frozen(value):
+    """A hashable copy of a to_dict() value that compares (and hashes) like the original."""
+    if isinstance(value, dict):
+        return tuple(sorted((k, _frozen(v)) for k, v in value.items()))
+    if isinstance(value, list | tuple):
+        return tuple(_frozen(v) for v in value)
+    return value
 
 
 def _plain(value):

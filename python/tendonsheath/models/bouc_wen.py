@@ -2,31 +2,14 @@
 
 from __future__ import annotations
 
-import warnings
 from typing import Any
 
+from .. import _args
 from .. import _core as core
 from .base import HysteresisModel
 
 # Parameters renamed (old name -> new name); the old names still work, with a warning.
 _RENAMED = {"a": "alpha"}
-
-
-def _renamed(values: dict[str, Any], warn: bool) -> dict[str, Any]:
-    for old, new in _RENAMED.items():
-        if old not in values:
-            continue
-        if new in values and values[new] is not None:
-            raise ValueError(f"BoucWen: give {new} or its old name {old}, not both")
-        if warn:
-            warnings.warn(
-                f"BoucWen: the parameter {old!r} is now called {new!r} (the share of the linear "
-                f"path; A is the amplitude); {old!r} will be removed",
-                DeprecationWarning,
-                stacklevel=3,
-            )
-        values[new] = values.pop(old)
-    return values
 
 
 class BoucWen(HysteresisModel):
@@ -90,10 +73,8 @@ class BoucWen(HysteresisModel):
         max_substeps: int = 256,
         **renamed: float,
     ):
-        unknown = sorted(set(renamed) - set(_RENAMED))
-        if unknown:
-            raise TypeError(f"BoucWen: unknown parameter(s) {unknown}")
-        alpha = _renamed({"alpha": alpha, **renamed}, warn=True)["alpha"]
+        _args.reject_unknown("BoucWen", renamed, _RENAMED)
+        alpha = _args.renamed("BoucWen", {"alpha": alpha, **renamed}, _RENAMED)["alpha"]
         super().__init__(
             A=A,
             beta=beta,
@@ -122,4 +103,6 @@ class BoucWen(HysteresisModel):
         params = data.get("params")
         if not isinstance(params, dict):  # the base class names what is wrong
             return super().from_dict(data)
-        return super().from_dict({**data, "params": _renamed(dict(params), warn=False)})
+        return super().from_dict(
+            {**data, "params": _args.renamed(cls.__name__, params, _RENAMED, warn=False)}
+        )

@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import math
-import numbers
 
 from .. import _core as core
+from .._args import number
 from .base import HysteresisModel
 
 
@@ -58,11 +58,7 @@ class BoucWenBacklash(HysteresisModel):
         max_substeps: int = 256,
     ):
         if rho is None:
-            for name, v in (("B_r", B_r), ("B_l", B_l)):
-                if isinstance(v, bool) or not isinstance(v, numbers.Real):
-                    raise ValueError(
-                        f"BoucWenBacklash: parameter {name} has the wrong type ({v!r})"
-                    )
+            B_r, B_l = (number("BoucWenBacklash", k, v) for k, v in (("B_r", B_r), ("B_l", B_l)))
             width = B_r + B_l
             if not width > 0:
                 raise ValueError("BoucWenBacklash: give rho when B_r + B_l is not > 0")

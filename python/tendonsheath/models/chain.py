@@ -42,7 +42,10 @@ class Chain(HysteresisModel):
 
     def __init__(self, first: HysteresisModel, second: HysteresisModel):
         if not isinstance(first, HysteresisModel) or not isinstance(second, HysteresisModel):
-            raise ValueError("Chain: both parts must be tendonsheath models")
+            raise TypeError(
+                "Chain: both parts must be tendonsheath models "
+                f"(got {type(first).__name__} and {type(second).__name__})"
+            )
         if isinstance(first, Chain) or isinstance(second, Chain):
             raise ValueError("Chain: parts cannot themselves be chains")
         self.first, self.second = first, second
@@ -82,9 +85,7 @@ class Chain(HysteresisModel):
         for key, value in changes.items():
             part, _, name = key.partition(".")
             if part not in parts or not name:
-                raise ValueError(
-                    f"Chain: parameter names are first.<name> or second.<name> ({key})"
-                )
+                raise TypeError(f"Chain: parameter names are first.<name> or second.<name> ({key})")
             parts[part][name] = value
         return Chain(
             self.first.with_params(**parts["first"]), self.second.with_params(**parts["second"])

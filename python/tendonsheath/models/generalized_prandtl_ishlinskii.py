@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 
 from .. import _core as core
+from .._args import number_array
 from .._typing import ArrayLike, FloatArray
 from .base import HysteresisModel
 
@@ -34,8 +35,9 @@ class _GeneralizedBase(HysteresisModel):
                 )
         values = dict(zip(_FLAT, [*rising, *falling], strict=True))
         values.update(flat)
-        values["thresholds"] = [float(v) for v in np.asarray(thresholds, dtype=float)]
-        values["weights"] = [float(v) for v in np.asarray(weights, dtype=float)]
+        who = type(self).__name__
+        values["thresholds"] = [float(v) for v in number_array(who, "thresholds", thresholds)]
+        values["weights"] = [float(v) for v in number_array(who, "weights", weights)]
         super().__init__(**values)
 
     @classmethod

@@ -14,12 +14,12 @@ Discretisation: exact for an input linear between samples (first-order hold, Sci
 from __future__ import annotations
 
 import math
-import numbers
 from typing import Any, ClassVar
 
 import numpy as np
 from scipy.signal import cont2discrete, lfilter, lfilter_zi
 
+from .._args import number
 from .._arrays import checked_dt
 from .._typing import ArrayLike, FloatArray
 from .base import HysteresisModel
@@ -72,16 +72,13 @@ class LinearBlock(HysteresisModel):
     def __init__(self, **values: float) -> None:
         out: dict[str, float] = {}
         for name in self.param_names:
-            raw = values.pop(name)
-            if isinstance(raw, bool) or not isinstance(raw, numbers.Real):  # not "1", not None
-                raise ValueError(f"{type(self).__name__}: {name} must be a number (got {raw!r})")
-            v = float(raw)
+            v = number(type(self).__name__, name, values.pop(name))  # not "1", not None
             lo, hi = self._limits[name]
             if not (math.isfinite(v) and lo < v < hi):
                 raise ValueError(f"{type(self).__name__}: {name} must be in ({lo}, {hi}) (got {v})")
             out[name] = v
         if values:
-            raise ValueError(
+            raise TypeError(
                 f"{type(self).__name__}: unknown parameter(s) {sorted(values)}; "
                 f"expected {list(self.param_names)}"
             )

@@ -4,12 +4,12 @@ any plant's parameters."""
 from __future__ import annotations
 
 import math
-import numbers
 import warnings
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._args import integer, number
 from .._typing import ArrayLike, FloatArray
 from ..status import Status
 from .base import HysteresisModel
@@ -91,9 +91,7 @@ class PlantModel(HysteresisModel):
             "offset": offset,
         }
         self._values = {k: _checked(k, v) for k, v in values.items()}
-        if isinstance(elements, bool) or not isinstance(elements, numbers.Integral):
-            raise ValueError(f"PlantModel: elements must be an integer >= 2 (got {elements!r})")
-        if elements < 2:
+        if integer("PlantModel", "elements", elements) < 2:
             raise ValueError(f"PlantModel: elements must be >= 2 (got {elements})")
         self._elements: int = int(elements)
         self._plant: PullPullPlant = self._make_plant()
@@ -107,7 +105,7 @@ class PlantModel(HysteresisModel):
         stiffness = 1.0 / compliance  # EA with L = 1 m, T0 = 1 N, r_p = r_d = 1 m
         viscosity = v["viscous_time"] * stiffness  # c_v = tau EA / L^2
         return PullPullPlant(
-            route=Route.uniform(length=1.0, total_angle=WRAP),
+            route=Route.uniform(length=1.0, curve_angle=WRAP),
             friction=v["friction_angle"] / WRAP,
             stiffness=stiffness,
             pretension=1.0,
@@ -193,9 +191,7 @@ class PlantModel(HysteresisModel):
 
 
 def _checked(name: str, value) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ValueError(f"PlantModel: {name} must be a number (got {value!r})")
-    v = float(value)
+    v = number("PlantModel", name, value)
     lo, hi, closed = _LIMITS[name]
     ok = math.isfinite(v) and (lo <= v if closed else lo < v) and v < hi
     if name == "gain":

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _core as core
+from .._args import integer
 from .._typing import ArrayLike, FloatArray
 from .base import HysteresisModel
 
@@ -39,7 +40,7 @@ class Polynomial(HysteresisModel):
         self, degree: int | None = None, coefficients: ArrayLike | None = None, odd: bool = False
     ):
         if coefficients is None:
-            if degree is None or int(degree) < 1:
+            if degree is None or integer("Polynomial", "degree", degree) < 1:
                 raise ValueError("Polynomial: give a degree >= 1 or the coefficients")
             degree = int(degree)
             count = (degree + 1) // 2 if odd else degree + 1

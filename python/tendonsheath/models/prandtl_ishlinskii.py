@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _core as core
+from .._args import number_array
 from .._typing import ArrayLike
 from .base import HysteresisModel
 
@@ -38,7 +39,10 @@ class PrandtlIshlinskii(HysteresisModel):
         thresholds: ArrayLike = (0.0, 0.05, 0.1, 0.15, 0.2),
         weights: ArrayLike = (0.5, 0.2, 0.15, 0.1, 0.05),
     ):
-        super().__init__(thresholds=_vector(thresholds), weights=_vector(weights))
+        super().__init__(
+            thresholds=_vector(self, "thresholds", thresholds),
+            weights=_vector(self, "weights", weights),
+        )
 
     @classmethod
     def uniform(
@@ -114,7 +118,10 @@ class PrandtlIshlinskiiInverse(HysteresisModel):
         thresholds: ArrayLike = (0.0, 0.05, 0.1, 0.15, 0.2),
         weights: ArrayLike = (0.5, 0.2, 0.15, 0.1, 0.05),
     ):
-        super().__init__(thresholds=_vector(thresholds), weights=_vector(weights))
+        super().__init__(
+            thresholds=_vector(self, "thresholds", thresholds),
+            weights=_vector(self, "weights", weights),
+        )
 
     def inverse(self) -> PrandtlIshlinskii:
         """The forward operator this one inverts.
@@ -128,8 +135,8 @@ class PrandtlIshlinskiiInverse(HysteresisModel):
         return PrandtlIshlinskii(p["thresholds"], p["weights"])
 
 
-def _vector(values) -> list[float]:
-    arr = np.asarray(values, dtype=np.float64)
+def _vector(model, name: str, values) -> list[float]:
+    arr = number_array(type(model).__name__, name, values)
     if arr.ndim != 1:
         raise ValueError(f"PrandtlIshlinskii: thresholds and weights must be 1-D (got {arr.shape})")
     return [float(v) for v in arr]

@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from .._args import number
 from .._typing import ArrayLike, FloatArray
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel
@@ -54,8 +55,16 @@ class Scaled(HysteresisModel):
         output_gain: float = 1.0,
     ):
         if not isinstance(inner, HysteresisModel) or isinstance(inner, Scaled):
-            raise ValueError("Scaled: inner must be a tendonsheath model (not a Scaled one)")
-        values = [float(v) for v in (input_offset, input_scale, output_offset, output_gain)]
+            raise TypeError(
+                "Scaled: inner must be a tendonsheath model, not a Scaled one "
+                f"(got {type(inner).__name__})"
+            )
+        values = [
+            number("Scaled", k, v)
+            for k, v in zip(
+                _MAP, (input_offset, input_scale, output_offset, output_gain), strict=True
+            )
+        ]
         if not all(np.isfinite(values)):
             raise ValueError(f"Scaled: the map values must be finite (got {values})")
         if not values[1] > 0:
@@ -105,7 +114,7 @@ class Scaled(HysteresisModel):
             elif key in mapping:
                 mapping[key] = value
             else:
-                raise ValueError(f"Scaled: unknown parameter {key!r}; inner.<name> or {_MAP}")
+                raise TypeError(f"Scaled: unknown parameter {key!r}; inner.<name> or {_MAP}")
         return Scaled(self.inner.with_params(**inner), **mapping)
 
     def to_inner_input(self, x: ArrayLike) -> FloatArray:

@@ -109,7 +109,7 @@ def honesty_panel(
     panel = {}
     for name, result in runs.items():
         declared = dict((told or {}).get(name, {}))
-        if name == "none":
+        if name == "none" or cal is None:  # cal is None: only user compensators, nothing calibrated
             rows = [{"quantity": k, "value": v, "source": src} for k, (v, src) in declared.items()]
             bounds = []
         else:

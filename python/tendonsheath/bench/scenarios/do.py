@@ -186,7 +186,7 @@ def do2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
         table=_table(runs, fixed),
         paper={"mse_rad2": PAPER_MSE},
         routes={f"t = {tk:.1f} s": r for tk, r in zip(times, shapes, strict=True)},
-        route_schedule=[(tk, r.total_angle) for tk, r in zip(times, shapes, strict=True)],
+        route_schedule=[(tk, r.curve_angle) for tk, r in zip(times, shapes, strict=True)],
         extra={"fixed_route": {k: r.metrics for k, r in fixed.items()}},
         calibration={**cal.to_dict(), "rmse": fit.rmse, "nrmse": fit.nrmse, "seconds": fit.seconds},
         protocol="do2015: a BoucWenBacklash identified by bench.calibrate from a 20 s run on a "
@@ -283,7 +283,7 @@ def robustness_run(params: dict) -> dict[str, dict[str, float]]:
     )
     route = random_arcs(
         NOMINAL.length,
-        float(params.get("route_angle", NOMINAL.total_angle)),
+        float(params.get("route_angle", NOMINAL.curve_angle)),
         int(params.get("route_pieces", 3)),
         int(params.get("route_seed", 0)),
     )

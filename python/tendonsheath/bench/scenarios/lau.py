@@ -98,7 +98,7 @@ def lau2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     t = np.arange(0.0, duration, 1e-3)
     y_d = math.pi / 2 * np.sin(2 * np.pi * 0.4 * t)
     cal, budget = calibrated("lau2015", calibrate, scale, seed, progress)
-    sensed = cal.shape.static_reading(ROUTE.total_angle, duration, seed_offset=99)
+    sensed = cal.shape.static_reading(ROUTE.curve_angle, duration, seed_offset=99)
     ffs = {
         mode: cal.continuum_feedforward(sensed, mode=mode, smoothing=0.1)
         for mode in ("published", "exact")
@@ -114,7 +114,7 @@ def lau2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     told = {name: {"test curve angle": (sensed, cal.shape.describe())} for name in runs}
     told["none"] = kinematic_told(servo)
     honesty = honesty_panel(
-        cal, runs, curve_angle=ROUTE.total_angle, told=told, seed=seed, budget=budget
+        cal, runs, curve_angle=ROUTE.curve_angle, told=told, seed=seed, budget=budget
     )
     return scenario_result(
         lau2015,

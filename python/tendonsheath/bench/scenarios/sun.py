@@ -188,7 +188,7 @@ def sun2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
             "ranking (curve-angle feedforward < fixed feedforward < none)"
         },
         routes={f"Theta = {a / math.pi:.1f} pi": Route.uniform(LENGTH, a) for a in ANGLES},
-        route_schedule=[(tk, r.total_angle) for tk, r in schedule],
+        route_schedule=[(tk, r.curve_angle) for tk, r in schedule],
         calibration={
             **cal.to_dict(),
             "curve_angle_rmse": cal.fits["CurveAngleModel"].rmse,
@@ -221,7 +221,7 @@ def _route_change(cal, fixed, duration: float, t, y_d, seed: int, budget, progre
     honesty = honesty_panel(
         cal,
         runs,
-        curve_angle=np.array([routes(tk).total_angle for tk in t]),
+        curve_angle=np.array([routes(tk).curve_angle for tk in t]),
         load=None,  # the route-change run carries no load and the feedforward is told none
         told={"none": kinematic_told(plant)},
         seed=seed,

@@ -1,0 +1,144 @@
+"""Argument handling shared by the public constructors: renamed keywords, number checks, and the
+C++ core's error messages translated into the Python vocabulary (docs/vocabulary.md)."""
+
+from __future__ import annotations
+
+import functools
+import numbers
+import re
+import warnings
+from collections.abc import Callable, Iterable, Iterator, Mapping
+from contextlib import contextmanager
+from typing import Any
+
+import numpy as np
+
+# C++ parameter fields whose Python argument has another name (docs/vocabulary.md); the core's
+# error messages are translated with this table before they reach a Python user.
+CORE_NAMES = {
+    "v_eps": "smoothing",
+    "total_angle": "curve_angle",
+    "sheath_length": "length",
+    "reflected_inertia": "inertia",
+    "compliance": "length / stiffness",
+}
+
+
+def renamed(
+    who: str,
+    values: dict[str, Any],
+    renames: Mapping[str, str],
+    warn: bool = True,
+    stacklevel: int = 3,
+) -> dict[str, Any]:
+    """`values` with each old keyword of `renames` (old -> new) moved to its new name.
+
+    With ``warn`` each old name found raises a DeprecationWarning naming the new one (saved
+    files are read without one). Giving both names is a TypeError, as Python does for an
+    argument given twice.
+    """
+    out = dict(values)
+    for old, new in renames.items():
+        if old not in out:
+            continue
+        if out.get(new) is not None:
+            raise TypeError(f"{who}: give {new} or its old name {old}, not both")
+        if warn:
+            warn_renamed(who, old, new, stacklevel + 1)
+        out[new] = out.pop(old)
+    return out
+
+
+def warn_renamed(who: str, old: str, new: str, stacklevel: int = 3) -> None:
+    """The DeprecationWarning of an old name (argument or attribute) that names the new one."""
+    warnings.warn(
+        f"{who}: {old!r} is now called {new!r} (docs/vocabulary.md); {old!r} will be removed "
+        "in the next release",
+        DeprecationWarning,
+        stacklevel=stacklevel,
+    )
+
+
+def accepts_old_names(who: str, renames: Mapping[str, str | Callable[[Any], dict[str, Any]]]):
+    """Decorator: the function also takes the old keywords of `renames` for one release, each
+    with a DeprecationWarning that names the new one. A rename maps an old name to its new name,
+    or to a function of the old value that gives the new keywords (one old setting split in
+    two). The signature (``inspect.signature``, the docs) shows only the new names."""
+
+    def wrap(fn):
+        @functools.wraps(fn)
+        def call(*args, **kwargs):
+            for old in sorted(renames.keys() & kwargs.keys()):
+                kwargs = _new_keywords(who, old, renames[old], kwargs)
+            return fn(*args, **kwargs)
+
+        return call
+
+    return wrap
+
+
+def _new_keywords(who: str, old: str, new, kwargs: dict[str, Any]) -> dict[str, Any]:
+    value = kwargs.pop(old)
+    values = new(value) if callable(new) else {new: value}
+    label = " and ".join(values)
+    if set(values) & set(kwargs):
+        raise TypeError(f"{who}: give {label} or its old name {old}, not both")
+    warn_renamed(who, old, label, stacklevel=4)
+    return {**kwargs, **values}
+
+
+def reject_unknown(who: str, extra: Mapping[str, Any], old_names: Iterable[str]) -> None:
+    """A TypeError for keywords that are neither parameters nor `old_names` (a renames map's
+    keys, or a list)."""
+    unknown = sorted(set(extra) - set(old_names))
+    if unknown:
+        raise TypeError(f"{who}: unexpected keyword argument(s) {unknown}")
+
+
+def number(who: str, name: str, value: Any) -> float:
+    """`value` as a float; a TypeError naming the argument and the type when it is no number
+    (bool included: True where a number belongs is a mistake, not 1.0)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{who}: {name} must be a number (got {type(value).__name__} {value!r})")
+    return float(value)
+
+
+def optional_number(who: str, name: str, value: Any) -> float | None:
+    return None if value is None else number(who, name, value)
+
+
+def number_array(who: str, name: str, values: Any) -> np.ndarray:
+    """`values` (numbers, any nesting) as a float array; a TypeError naming the argument when
+    they are not numbers (a string, a dict, text inside)."""
+    if isinstance(values, str | bytes | dict):
+        raise TypeError(f"{who}: {name} must be numbers (got {type(values).__name__} {values!r})")
+    try:
+        return np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError(f"{who}: {name} must be numbers (got {values!r})") from None
+
+
+def integer(who: str, name: str, value: Any) -> int:
+    """`value` as an int; a TypeError naming the argument when it is not an integer."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{who}: {name} must be an integer (got {type(value).__name__} {value!r})")
+    return int(value)
+
+
+def to_python_names(message: str, who: str, names: Mapping[str, str]) -> str:
+    """A core error message ("CoreClass: v_eps must be > 0 (got 0)") in Python words:
+    prefixed by `who` and with each C++ field name replaced by its Python argument."""
+    body = message.split(": ", 1)[1] if re.match(r"^[\w.]+: ", message) else message
+    for cpp, py in names.items():
+        body = re.sub(rf"\b{re.escape(cpp)}\b", py, body)
+    return f"{who}: {body}"
+
+
+@contextmanager
+def python_names(who: str, names: Mapping[str, str] | None = None) -> Iterator[None]:
+    """Re-raise a ValueError of the C++ core (parameter validation) in Python names: those of
+    CORE_NAMES and `names` (C++ -> Python) on top."""
+    try:
+        yield
+    except ValueError as err:
+        raise ValueError(to_python_names(str(err), who, {**CORE_NAMES, **(names or {})})) from None

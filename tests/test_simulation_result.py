@@ -1,0 +1,121 @@
+"""One simulate result type (issue 14 item 2): plants and models return a SimulationResult,
+which is still the output array (np.asarray, indexing, arithmetic) and carries t, input,
+success, message, status and .plot()."""
+
+import pickle
+
+import matplotlib
+import numpy as np
+import pytest
+
+import tendonsheath as ts
+from tendonsheath.models import (
+    Backlash,
+    BoucWen,
+    BoucWenBacklash,
+    Chain,
+    CurveAngleModel,
+    FirstOrderLag,
+    HystereticOscillator,
+    PrandtlIshlinskii,
+    Scaled,
+    SecondOrderLag,
+)
+
+matplotlib.use("Agg")
+
+
+def _models(rng):
+    b = Backlash(c_r=rng.uniform(0.8, 1.2), c_l=rng.uniform(0.8, 1.2), B_r=0.05, B_l=0.04)
+    return [
+        b,
+        BoucWen(),
+        BoucWenBacklash(B_r=rng.uniform(0, 0.1), B_l=rng.uniform(0, 0.1)),
+        PrandtlIshlinskii(thresholds=[0.0, 0.1, 0.2], weights=list(rng.uniform(0.2, 1, 3))),
+        Scaled(b, input_offset=0.1, output_gain=-1.5),
+        Chain(b, FirstOrderLag()),
+        SecondOrderLag(),
+        HystereticOscillator(),
+    ]
+
+
+def _plants():
+    route = ts.Route.uniform(0.8, 2.0)
+    return [
+        ts.PullPullPlant(route, elements=20, motor=ts.Motor.position(60.0, 0.8)),
+        ts.ContinuumPlant(route, elements=20),
+        ts.SingleTendonPlant(route, elements=20),
+    ]
+
+
+def _check_array_access(res, t, x):
+    assert isinstance(res, ts.SimulationResult) and isinstance(res, np.ndarray)
+    y = np.asarray(res)
+    assert type(y) is np.ndarray and y.shape == x.shape
+    np.testing.assert_array_equal(res.output, y)
+    assert type(res[5:]) is np.ndarray and res[3] == y[3]
+    assert type(res - y) is np.ndarray and not np.any(res - y)
+    assert float(np.mean(res)) == float(np.mean(y))
+    np.testing.assert_array_equal(res.t, t)
+    np.testing.assert_array_equal(res.input, x)
+    assert res.success and res.message == ""
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_models_return_the_result_type(seed):
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, 2.0, 1e-3)
+    x = rng.uniform(0.3, 1.0) * np.sin(2 * np.pi * rng.uniform(0.5, 2) * t)
+    for model in _models(rng):
+        res = model.simulate(t, x)
+        _check_array_access(res, t, x)
+        if model.reports_status:
+            again, flags = model.simulate(t, x, status=True)
+            np.testing.assert_array_equal(again, res)
+            assert again.status is flags and flags.dtype == np.uint8
+    curve = CurveAngleModel().simulate(t, x, curve_angle=1.0)
+    _check_array_access(curve, t, x)
+
+
+def test_plants_return_the_result_type_with_their_fields():
+    t = np.arange(0.0, 2.0, 1e-3)
+    for plant in _plants():
+        x = (5e-3 if isinstance(plant, ts.SingleTendonPlant) else 1.0) * np.sin(2 * np.pi * t)
+        res = plant.simulate(t, x)
+        _check_array_access(res, t, x)
+        np.testing.assert_array_equal(res.command, x)
+        np.testing.assert_array_equal(res.q_out, res.output)
+        assert res.q_in.shape == x.shape and res.status.shape == x.shape
+        old = plant.simulate(t, x, full=True)  # the old spelling: the same result
+        np.testing.assert_array_equal(old, res)
+        np.testing.assert_array_equal(old.q_in, res.q_in)
+        again, flags = plant.simulate(t, x, status=True)
+        np.testing.assert_array_equal(flags, res.status)
+
+
+def test_failure_is_reported_and_results_pickle():
+    bad = ts.SimulationResult([0.0, np.nan, 1.0], t=np.arange(3.0), input=np.zeros(3))
+    assert not bad.success and bad.message == "1 non-finite output sample(s)"
+    slack = ts.SimulationResult(np.zeros(4), slack=np.array([0, 0, 1, 1], bool))
+    assert not slack.success and "first at sample 2" in slack.message
+    assert slack.first_slack_index == 2 and slack.any_slack
+    t = np.arange(0.0, 1.0, 1e-3)
+    res = _plants()[0].simulate(t, np.sin(2 * np.pi * t))
+    back = pickle.loads(pickle.dumps(res))
+    np.testing.assert_array_equal(back, res)
+    np.testing.assert_array_equal(back.q_in, res.q_in)
+    assert back.success and back.nonconverged == res.nonconverged
+    with pytest.raises(AttributeError, match="has no attribute 'q_nope'"):
+        _ = res.q_nope
+
+
+def test_plot_draws_input_and_output():
+    t = np.arange(0.0, 1.0, 1e-3)
+    x = np.sin(2 * np.pi * t)
+    res = BoucWenBacklash().simulate(t, x)
+    fig = res.plot()
+    left, right = fig.axes
+    np.testing.assert_array_equal(left.lines[1].get_ydata(), res.output)
+    np.testing.assert_array_equal(right.lines[0].get_xdata(), x)
+    assert left.get_xlabel() == "t (s)"
+    matplotlib.pyplot.close(fig)

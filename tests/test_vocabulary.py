@@ -1,0 +1,490 @@
+"""One vocabulary (docs/vocabulary.md): the public constructors speak the Python names, old
+names warn for one release and behave the same, wrong types are TypeErrors naming the argument,
+and models are hashable values."""
+
+from __future__ import annotations
+
+import ast
+import inspect
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import tendonsheath as ts
+from tendonsheath import _args
+from tendonsheath.compensate import (
+    AdaptiveController,
+    ContinuumFeedforward,
+    CurveAngleFeedforward,
+    InverseFeedforward,
+)
+from tendonsheath.compensate.adaptive_controller import _GAINS
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "python" / "tendonsheath"
+ROUTE = ts.Route.uniform(1.0, np.pi)
+CPP_ONLY = ("v_eps", "total_angle", "sheath_length", "reflected_inertia", "compliance")
+SHEATH = {"friction": 0.1, "stiffness": 2e4, "length": 1.0, "pretension": 10.0}
+
+
+def _models() -> dict[str, tuple]:
+    """Every model class that builds from its defaults alone."""
+    out = {}
+    for name in ts.models.__all__:
+        cls = getattr(ts.models, name)
+        if isinstance(cls, type) and issubclass(cls, ts.models.HysteresisModel) and cls.param_names:
+            try:
+                cls()
+            except (TypeError, ValueError):  # needs more (Chain, Scaled, Polynomial, ...)
+                continue
+            out[name] = (cls, {})
+    return out
+
+
+# every public constructor and what it needs besides the argument under test
+CONSTRUCTORS = {
+    "PullPullPlant": (ts.PullPullPlant, {"route": ROUTE}),
+    "SingleTendonPlant": (ts.SingleTendonPlant, {"route": ROUTE}),
+    "ContinuumPlant": (ts.ContinuumPlant, {}),
+    "Motor.position": (ts.Motor.position, {}),
+    "Motor.torque": (ts.Motor.torque, {}),
+    "Sensor": (ts.Sensor, {}),
+    "Route.uniform": (ts.Route.uniform, {"length": 1.0, "curve_angle": 1.0}),
+    "InverseFeedforward": (InverseFeedforward, {"model": ts.models.Backlash()}),
+    "CurveAngleFeedforward": (CurveAngleFeedforward, dict(SHEATH)),
+    "ContinuumFeedforward": (ContinuumFeedforward, {}),
+    "AdaptiveController": (AdaptiveController, {"feedforward_model": ts.models.Backlash()}),
+    "AdaptiveController.from_model": (
+        AdaptiveController.from_model,
+        {"model": ts.models.Backlash(), "inertia": 1e-3},
+    ),
+    "ConstantTorque": (ts.loads.ConstantTorque, {"tau": 0.1}),
+    "TorsionalSpring": (ts.loads.TorsionalSpring, {"k": 0.1}),
+    "SpringDamper": (ts.loads.SpringDamper, {"k": 0.1, "c": 0.01}),
+    "ConstantForce": (ts.loads.ConstantForce, {"F": 1.0}),
+    "LinearSpring": (ts.loads.LinearSpring, {"k": 10.0}),
+    "SpringPreload": (ts.loads.SpringPreload, {"k": 10.0, "F0": 1.0}),
+    **_models(),
+    "Polynomial": (ts.models.Polynomial, {"degree": 3}),
+    "Scaled": (ts.models.Scaled, {"inner": ts.models.Backlash()}),
+    "AngleDependent": (
+        ts.models.AngleDependent,
+        {
+            "base": "Backlash",
+            "coefficients": {"c_r": [1.0], "c_l": [1.0], "B_r": [0.0, 0.2], "B_l": [0.1]},
+            "laws": {"B_r": "tanh"},
+            "angle_friction": 0.2,
+        },
+    ),
+}  # Chain takes two models and no number
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool)
+
+
+def numeric_arguments(make, base: dict) -> list[str]:
+    """The arguments of `make` that take a number: numeric defaults, numbers in `base`, and the
+    gains of AdaptiveController (keywords outside its signature)."""
+    names = [
+        p.name
+        for p in inspect.signature(make).parameters.values()
+        if _is_number(p.default) or _is_number(base.get(p.name))
+    ]
+    return names + (list(_GAINS[:5]) if make is AdaptiveController else [])
+
+
+def _wrong_values(make) -> list:
+    """A string, a list and None; not None for a model, where None means the parameter's default
+    (docs/bad-inputs.md)."""
+    is_model = isinstance(make, type) and issubclass(make, ts.models.HysteresisModel)
+    return ["high", [1.0]] + ([] if is_model else [None])
+
+
+TYPE_CASES = [
+    pytest.param(name, arg, value, id=f"{name}-{arg}-{type(value).__name__}")
+    for name, (make, base) in CONSTRUCTORS.items()
+    for arg in numeric_arguments(make, base)
+    for value in _wrong_values(make)
+]
+
+
+# models whose parameters are arrays (thresholds, weights), each with an array argument
+ARRAY_MODELS = {
+    "PrandtlIshlinskii": "thresholds",
+    "PrandtlIshlinskiiInverse": "thresholds",
+    "GeneralizedPrandtlIshlinskii": "weights",
+    "GeneralizedPrandtlIshlinskiiInverse": "weights",
+}
+
+
+def test_every_constructor_has_arguments_under_test():
+    """The parametrisations below cover each constructor (a signature change cannot empty it)."""
+    covered = {p.values[0] for p in TYPE_CASES}
+    assert covered == set(CONSTRUCTORS) - set(ARRAY_MODELS)
+    assert set(ARRAY_MODELS) <= set(CONSTRUCTORS)
+    assert len(TYPE_CASES) > 120
+
+
+@pytest.mark.parametrize(("name", "arg"), ARRAY_MODELS.items())
+def test_an_array_parameter_of_the_wrong_type_is_a_type_error(name, arg):
+    make, base = CONSTRUCTORS[name]
+    for value in ("high", ["a", "b"], {"x": 1.0}):
+        with pytest.raises(TypeError, match=rf"\b{arg}\b"):
+            make(**{**base, arg: value})
+
+
+@pytest.mark.parametrize(("name", "arg", "value"), TYPE_CASES)
+def test_a_wrong_type_is_a_type_error_naming_the_argument_and_the_type(name, arg, value):
+    make, base = CONSTRUCTORS[name]
+    with pytest.raises(TypeError) as info:
+        make(**{**base, arg: value})
+    message = str(info.value)
+    assert re.search(rf"\b{arg}\b", message) and "\n" not in message, message
+    if value is not None:  # None can also mean "missing", said so
+        assert type(value).__name__ in message, message
+
+
+# arguments that take an object or an array, each given a string
+OBJECT_CASES = [
+    ("Route", "s", lambda v: ts.Route(v, [0.0, 1.0])),
+    ("Route", "theta", lambda v: ts.Route([0.0, 1.0], v)),
+    ("Route.arcs", "pieces", lambda v: ts.Route.arcs(v)),
+    ("Route.from_points", "xyz", lambda v: ts.Route.from_points(v)),
+    ("Route.from_curvature", "kappa", lambda v: ts.Route.from_curvature([0.0, 1.0], v)),
+    ("CommandLimits", "min", lambda v: ts.compensate.CommandLimits(min=v)),
+    ("CommandLimits", "max_rate", lambda v: ts.compensate.CommandLimits(max_rate=v)),
+    ("InverseFeedforward", "limits", lambda v: InverseFeedforward(ts.models.Backlash(), limits=v)),
+    ("InverseFeedforward", "model", lambda v: InverseFeedforward(v)),
+    ("AdaptiveController", "feedforward_model", lambda v: AdaptiveController(v)),
+    ("Chain", "models", lambda v: ts.models.Chain(v, ts.models.Backlash())),
+    ("Scaled", "inner", lambda v: ts.models.Scaled(v)),
+    ("PullPullPlant", "route", lambda v: ts.PullPullPlant(v)),
+    ("PullPullPlant", "route2", lambda v: ts.PullPullPlant(ROUTE, route2=v)),
+    ("PullPullPlant", "load", lambda v: ts.PullPullPlant(ROUTE, load=v)),
+    ("PullPullPlant", "motor", lambda v: ts.PullPullPlant(ROUTE, motor=v)),
+    ("SingleTendonPlant", "sensor", lambda v: ts.SingleTendonPlant(ROUTE, sensor=v)),
+    ("ContinuumFeedforward", "mode", lambda v: ContinuumFeedforward(mode=3.0)),
+]
+
+
+@pytest.mark.parametrize(
+    ("who", "arg", "make"), OBJECT_CASES, ids=[c[0] + "-" + c[1] for c in OBJECT_CASES]
+)
+def test_an_object_or_array_of_the_wrong_type_is_a_type_error(who, arg, make):
+    with pytest.raises(TypeError) as info:
+        make("high")
+    message = str(info.value)
+    assert "\n" not in message and ("high" in message or "str" in message), message
+    if arg != "models":  # Chain names its two parts together
+        assert re.search(rf"\b{arg}\b", message), message
+
+
+def test_the_issue_examples():
+    with pytest.raises(ValueError, match=r"^InverseFeedforward: smoothing must be > 0 \(got 0\)$"):
+        InverseFeedforward(ts.models.Backlash(), smoothing=0)
+    with pytest.raises(
+        ValueError, match=r"^CurveAngleFeedforward: curve_angle must be >= 0 \(got -1\)$"
+    ):
+        CurveAngleFeedforward(**SHEATH, curve_angle=-1)
+    with pytest.raises(
+        TypeError, match=r"^PullPullPlant: friction must be a number \(got str 'high'\)$"
+    ):
+        ts.PullPullPlant(ROUTE, friction="high")
+
+
+# out-of-range values the C++ core refuses, and the Python argument each message must name
+RANGE_CASES = [
+    (lambda v: InverseFeedforward(ts.models.Backlash(), smoothing=-v), "smoothing"),
+    (lambda v: InverseFeedforward(ts.models.BoucWenBacklash(), smoothing=-v), "smoothing"),
+    (
+        lambda v: InverseFeedforward(
+            ts.models.Scaled(ts.models.Backlash(), output_gain=-2.0), smoothing=-v
+        ),
+        "smoothing",
+    ),  # fmt: skip
+    (lambda v: AdaptiveController(ts.models.Backlash(), smoothing=-v), "smoothing"),
+    (lambda v: CurveAngleFeedforward(**SHEATH, curve_angle=-v), "curve_angle"),
+    (lambda v: CurveAngleFeedforward(**SHEATH, curve_angle=600 + v), "curve_angle"),
+    (lambda v: CurveAngleFeedforward(**SHEATH, smoothing=-v), "smoothing"),
+    (lambda v: CurveAngleFeedforward(**{**SHEATH, "stiffness": -v}), "stiffness"),
+    (lambda v: CurveAngleFeedforward(**{**SHEATH, "length": -v}), "length"),
+    (lambda v: ContinuumFeedforward(curve_angle=-v), "curve_angle"),
+    (lambda v: ContinuumFeedforward(curve_angle=600 + v), "curve_angle"),
+    (lambda v: ContinuumFeedforward(length=-v), "length"),
+    (lambda v: ContinuumFeedforward(smoothing=-v), "smoothing"),
+    (lambda v: ts.Route.uniform(1.0, -v), "curve_angle"),
+    (lambda v: ts.Motor.position(coulomb_friction=v), "inertia"),
+    (lambda v: ts.PullPullPlant(ROUTE, friction=-v), "friction"),
+    (lambda v: ts.Sensor(noise_std=-v), "noise_std"),
+]
+
+
+@pytest.mark.parametrize(("make", "arg"), RANGE_CASES)
+def test_a_value_out_of_range_names_the_python_argument_not_the_cpp_field(make, arg, rng):
+    who = None
+    for v in rng.uniform(0.01, 50.0, 5):
+        with pytest.raises(ValueError) as info:
+            make(float(v))
+        message = str(info.value)
+        assert re.search(rf"\b{re.escape(arg)}\b", message), message
+        for cpp in CPP_ONLY:
+            assert not re.search(rf"\b{cpp}\b", message), message
+        head = message.split(": ", 1)[0]
+        assert who in (None, head) and "\n" not in message  # one prefix: the Python class
+        who = head
+    assert who.split(".")[0] in dir(ts) + dir(ts.compensate) + ["Motor"]
+
+
+# -- deprecated aliases ------------------------------------------------------------------------
+
+
+def _command(ff, rng) -> np.ndarray:
+    t = np.linspace(0.0, 2.0, 401)
+    return ff.command(t, np.cumsum(rng.normal(0.0, 0.02, t.size)))
+
+
+def _route_uniform(old: bool, p: dict):
+    if old:
+        return ts.Route.uniform(p["length"], total_angle=p["angle"])
+    return ts.Route.uniform(p["length"], curve_angle=p["angle"])
+
+
+def _route_attribute(old: bool, p: dict):
+    route = ts.Route.uniform(p["length"], p["angle"])
+    return route.total_angle if old else route.curve_angle
+
+
+def _continuum_angle(old: bool, p: dict):
+    key = "total_angle" if old else "curve_angle"
+    return ContinuumFeedforward(friction=p["mu"], **{key: p["angle"]})
+
+
+def _continuum_length(old: bool, p: dict):
+    key = "sheath_length" if old else "length"
+    return ContinuumFeedforward(friction=p["mu"], **{key: p["length"]})
+
+
+def _continuum_from_model(old: bool, p: dict):
+    model = ts.models.CurveAngleModel(friction=p["mu"], spring=300.0, distal_radius=2e-3)
+    key = "total_angle" if old else "curve_angle"
+    return ContinuumFeedforward.from_model(model, 2e-3, 0.03, **{key: p["angle"]})
+
+
+def _curve_compliance(old: bool, p: dict):
+    if old:
+        return CurveAngleFeedforward(friction=p["mu"], compliance=p["C"], pretension=10.0)
+    return CurveAngleFeedforward(p["mu"], 1.0 / p["C"], 1.0, 10.0)
+
+
+def _curve_set_angle(old: bool, p: dict):
+    ff = CurveAngleFeedforward(**SHEATH)
+    ff.set_curve_angle(**{"total_angle" if old else "curve_angle": p["angle"]})
+    return ff
+
+
+def _bouc_wen(old: bool, p: dict):
+    return ts.models.BoucWen(**{"a" if old else "alpha": p["share"]})
+
+
+ALIASES = [
+    ("Route.uniform", "total_angle", "curve_angle", _route_uniform),
+    ("Route", "total_angle", "curve_angle", _route_attribute),
+    ("ContinuumFeedforward", "total_angle", "curve_angle", _continuum_angle),
+    ("ContinuumFeedforward", "sheath_length", "length", _continuum_length),
+    ("ContinuumFeedforward.from_model", "total_angle", "curve_angle", _continuum_from_model),
+    ("CurveAngleFeedforward", "compliance", "stiffness and length", _curve_compliance),
+    ("CurveAngleFeedforward.set_curve_angle", "total_angle", "curve_angle", _curve_set_angle),
+    ("BoucWen", "a", "alpha", _bouc_wen),
+]
+
+
+def _same_behaviour(old, new, rng) -> None:
+    if hasattr(new, "command"):
+        seed = int(rng.integers(1 << 30))
+        np.testing.assert_array_equal(
+            _command(old, np.random.default_rng(seed)), _command(new, np.random.default_rng(seed))
+        )
+        assert old.params == new.params
+    else:
+        assert old == new
+
+
+@pytest.mark.parametrize(
+    ("who", "old", "new", "build"), ALIASES, ids=[a[1] + "-" + a[0] for a in ALIASES]
+)
+def test_an_old_name_warns_naming_the_new_one_and_behaves_the_same(who, old, new, build, rng):
+    for _ in range(5):
+        p = {
+            "mu": rng.uniform(0.05, 0.2),
+            "angle": rng.uniform(0.1, 3 * np.pi),
+            "length": rng.uniform(0.3, 2.0),
+            "C": rng.uniform(1e-5, 1e-4),
+            "share": rng.uniform(0.0, 1.0),
+        }
+        with pytest.warns(DeprecationWarning) as caught:
+            got_old = build(True, p)
+        assert len(caught) == 1
+        message = str(caught[0].message)
+        assert message.startswith(f"{who}: '{old}' is now called '{new}'"), message
+        assert Path(caught[0].filename).resolve() == Path(__file__).resolve()  # the caller's line
+        _same_behaviour(got_old, build(False, p), rng)
+
+
+def test_the_old_compliance_is_the_ratio_length_over_stiffness(rng):
+    """compliance=C and any (EA, L) with L/EA = C give the same commands (to rounding)."""
+    for _ in range(10):
+        mu, length, ea = rng.uniform(0.05, 0.2), rng.uniform(0.3, 2.0), rng.uniform(5e3, 5e4)
+        new = CurveAngleFeedforward(mu, ea, length, 10.0, load_force=1.0)
+        with pytest.warns(DeprecationWarning):
+            old = CurveAngleFeedforward(mu, compliance=length / ea, pretension=10.0, load_force=1.0)
+        seed = int(rng.integers(1 << 30))
+        np.testing.assert_allclose(
+            _command(old, np.random.default_rng(seed)),
+            _command(new, np.random.default_rng(seed)),
+            rtol=1e-12,
+            atol=1e-15,
+        )
+
+
+@pytest.mark.parametrize(
+    ("make", "message"),
+    [
+        (lambda: ts.Route.uniform(1.0, 1.0, total_angle=1.0), "multiple values .* 'curve_angle'"),
+        (lambda: ContinuumFeedforward(length=1.0, sheath_length=1.0), "length or its old name"),
+        (lambda: CurveAngleFeedforward(0.1, 2e4, 1.0, 10.0, compliance=1e-4), "multiple values"),
+        (
+            lambda: CurveAngleFeedforward(0.1, length=1.0, pretension=10.0, compliance=1e-4),
+            "not both",
+        ),
+        (lambda: CurveAngleFeedforward(0.1, 2e4), "missing 2 .* 'length' and 'pretension'"),
+        (lambda: CurveAngleFeedforward(0.1, 5e-5, 10.0), "missing 1 .* 'pretension'"),
+        (lambda: ts.Route.uniform(1.0, angle=1.0), "unexpected keyword argument 'angle'"),
+        (lambda: ContinuumFeedforward(spring=1.0), "unexpected keyword argument 'spring'"),
+        (lambda: ts.models.BoucWen(b=1.0), r"unexpected keyword argument\(s\) \['b'\]"),
+    ],
+)
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")  # the old names warn: tested above
+def test_old_and_new_name_together_or_unknown_keywords_are_type_errors(make, message):
+    with pytest.raises(TypeError, match=message):
+        make()
+
+
+def test_files_saved_with_the_old_names_still_load_without_a_warning(recwarn):
+    new = ContinuumFeedforward(length=0.8, curve_angle=2.0)
+    data = new.to_dict()
+    assert "curve_angle" in data and "total_angle" not in data
+    data["sheath_length"], data["total_angle"] = data.pop("length"), data.pop("curve_angle")
+    assert ts.compensate.load(data).params == new.params
+    curve = CurveAngleFeedforward(0.1, 1e4, 1.0, 10.0)
+    old = curve.to_dict()
+    del old["stiffness"], old["length"]
+    old["compliance"] = 1e-4
+    np.testing.assert_allclose(
+        ts.compensate.load(old).command(np.arange(50) * 0.01, np.sin(np.arange(50) * 0.1)),
+        curve.command(np.arange(50) * 0.01, np.sin(np.arange(50) * 0.1)),
+        rtol=1e-12,
+    )
+    assert not [w for w in recwarn if issubclass(w.category, DeprecationWarning)]
+
+
+# -- no deprecated name inside the package ------------------------------------------------------
+
+OLD_KEYWORDS = {"total_angle", "sheath_length", "compliance"}
+# objects whose .total_angle is the C++ field (a ShapeIntegrals or a parameter struct)
+CPP_OBJECTS = {"s", "p", "self._core", "shape"}
+
+
+def _old_names_in(path: Path) -> list[str]:
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call):
+            found += [f"{k.arg}=" for k in node.keywords if k.arg in OLD_KEYWORDS]
+        if (
+            isinstance(node, ast.Attribute)
+            and node.attr == "total_angle"
+            and isinstance(node.ctx, ast.Load)
+            and ast.unparse(node.value) not in CPP_OBJECTS
+        ):
+            found.append(ast.unparse(node))
+    return found
+
+
+def test_the_package_uses_no_deprecated_name():
+    found = {
+        str(path.relative_to(ROOT)): hits
+        for path in sorted(PACKAGE.rglob("*.py"))
+        if (hits := _old_names_in(path))
+    }
+    assert found == {}
+
+
+def test_the_scan_finds_an_old_name(tmp_path):
+    """The scan above can fail: it sees an old keyword and a Route's old attribute, not the C++
+    field of a shape."""
+    bad = tmp_path / "bad.py"
+    bad.write_text(
+        "r = Route.uniform(1.0, total_angle=2.0)\nprint(route.total_angle, s.total_angle)\n"
+    )
+    assert _old_names_in(bad) == ["total_angle=", "route.total_angle"]
+
+
+# -- the table in docs/vocabulary.md ---------------------------------------------------------
+
+
+def test_the_documented_cpp_names_are_the_ones_errors_are_translated_with():
+    text = (ROOT / "docs" / "vocabulary.md").read_text(encoding="utf-8")
+    table = text.split("## C++ name and Python name", 1)[1]
+    rows = re.findall(r"^\| `([^`]+)` \| `([^`]+)` \|$", table, re.M)
+    assert dict(rows) == _args.CORE_NAMES
+
+
+# -- models are hashable values ----------------------------------------------------------------
+
+MODELS = {name: cls for name, (cls, _) in _models().items()}
+
+
+def _perturbed(cls, rng):
+    """A model with its scalar parameters scaled at random, built twice from the same values."""
+    base = cls()
+    changes = {
+        k: v * rng.uniform(0.8, 1.2)
+        for k, v in base.params.items()
+        if _is_number(v) and v > 0 and not isinstance(v, int)
+    }
+    try:
+        return base.with_params(**changes), base.with_params(**changes)
+    except ValueError:  # a random change left the valid set (e.g. |gamma| <= beta)
+        return base, cls()
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_equal_models_hash_equal_and_work_as_set_members_and_keys(name, rng):
+    cls = MODELS[name]
+    for _ in range(5):
+        a, b = _perturbed(cls, rng)
+        assert a == b and a is not b
+        assert hash(a) == hash(b)
+        assert len({a, b}) == 1 and {a: "x"}[b] == "x"
+        before = hash(a)
+        t = np.linspace(0.0, 1.0, 50)
+        for k, x in enumerate(np.sin(2 * np.pi * t)):
+            a.step(x, 0.0 if k == 0 else t[1])  # the streaming state moves, the value does not
+        assert hash(a) == before and a == b
+
+
+def test_models_with_other_parameters_are_different_keys():
+    a = ts.models.Backlash(B_r=0.1)
+    b = ts.models.Backlash(B_r=0.2)
+    assert a != b and len({a, b}) == 2
+    assert ts.models.Backlash(B_r=0.0) == ts.models.Backlash(B_r=-0.0)
+    assert hash(ts.models.Backlash(B_r=0.0)) == hash(ts.models.Backlash(B_r=-0.0))
+    chain = ts.models.Chain(ts.models.Backlash(), ts.models.Polynomial(3))
+    assert hash(chain) == hash(ts.models.Chain(ts.models.Backlash(), ts.models.Polynomial(3)))
+    scaled = ts.models.Scaled(ts.models.Backlash(), output_gain=-2.0)
+    assert {scaled: 1}[ts.models.Scaled(ts.models.Backlash(), output_gain=-2.0)] == 1
+    assert math.isfinite(hash(scaled))
