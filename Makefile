@@ -180,4 +180,4 @@ lint: install
 	$(VENV)/bin/mypy
 
 clean:
-	rm -rf build dist $(VENV) $(DEMO_OUT) .pytest_cache .ruff_cache
+	rm -rf build dist $(VENV) $(DEMO_OUT) .pytest_cache .ruff_cache .mypy_cache
