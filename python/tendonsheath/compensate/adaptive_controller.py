@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .. import _core as core
@@ -314,14 +315,14 @@ class AdaptiveController:
         model as its own dict, or null)."""
         return persistence.compensator_dict(type(self).__name__, self._settings)
 
-    def to_json(self, path=None) -> str:
+    def to_json(self, path: str | Path | None = None) -> str:
         """The controller as JSON text; also written to `path` when one is given.
         ``tendonsheath.compensate.load`` reads it (the C++ loader does not: it reads the
         feedforwards only)."""
         return persistence.to_json(self.to_dict(), path)
 
     @classmethod
-    def load(cls, source) -> AdaptiveController:
+    def load(cls, source: str | Path | dict) -> AdaptiveController:
         """A controller saved with :meth:`to_json` (a path, JSON text or a dict)."""
         return persistence.load_as(cls, source)
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Self
 
 import numpy as np
 
@@ -163,7 +163,7 @@ class Feedforward:
         return persistence.to_json(self.to_dict(), path)
 
     @classmethod
-    def load(cls, source):
+    def load(cls, source: str | Path | dict) -> Self:
         """A compensator saved with :meth:`to_json` (a path, JSON text or a dict); it must be
         of this class (``tendonsheath.compensate.load`` reads any)."""
         return persistence.load_as(cls, source)

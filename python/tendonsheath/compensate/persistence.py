@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from .._args import renamed
 from .._atomic import write_text
@@ -175,7 +175,10 @@ def load_compensator(source: str | Path | dict) -> Feedforward | AdaptiveControl
     return compensator_from_dict(read_json_source(source, "compensator"))
 
 
-def load_as(cls: type, source: str | Path | dict):
+_C = TypeVar("_C")
+
+
+def load_as(cls: type[_C], source: str | Path | dict) -> _C:
     """``cls.load(source)``: a saved compensator, which must be a ``cls``."""
     compensator = load_compensator(source)
     if not isinstance(compensator, cls):
