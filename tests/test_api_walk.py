@@ -46,6 +46,7 @@ PUBLIC_MODULES = [
     "tendonsheath.physics",
     "tendonsheath.io",
     "tendonsheath.compensate",
+    "tendonsheath.simulation_result",  # before plant, which re-exports SimulationResult
     "tendonsheath.plant",
     "tendonsheath.sweep",
     "tendonsheath.bench",
@@ -54,6 +55,7 @@ PUBLIC_MODULES = [
     "tendonsheath.compare",
     "tendonsheath.control_interop",
     "tendonsheath.export_cpp",
+    "tendonsheath.protocols",
     "tendonsheath",
 ]
 
@@ -105,6 +107,12 @@ NOT_APPLICABLE = {
         "tendonsheath.bench.calibration.Calibration.told": (
             "its keywords are the user's declared values (name=(value, source)): any name"
         ),
+        # a typing.Protocol is never instantiated: any call raises "Protocols cannot be
+        # instantiated", whatever the keywords (its members are walked)
+        **{
+            f"tendonsheath.protocols.{name}": "a typing.Protocol: it cannot be instantiated"
+            for name in ("Compensator", "FeedforwardCompensator", "Plant", "StreamingCompensator")
+        },
     },
 }
 
@@ -156,6 +164,10 @@ def _private_base(klass) -> bool:
 
 def _is_exception(obj) -> bool:
     return inspect.isclass(obj) and issubclass(obj, BaseException)
+
+
+def _is_protocol(obj) -> bool:
+    return inspect.isclass(obj) and bool(getattr(obj, "_is_protocol", False))
 
 
 def public_objects() -> dict[str, tuple[str, object]]:
@@ -277,9 +289,10 @@ def _docstring_problems(obj) -> list[str]:
             return [f"not numpydoc: {err}"]
     if not doc["Summary"]:
         return ["no summary line"]
-    if isinstance(obj, property) or _is_exception(obj):
+    if isinstance(obj, property) or _is_exception(obj) or _is_protocol(obj):
         # numpydoc: a property is documented by its summary, as an attribute; an exception
-        # or warning takes its message as BaseException does
+        # or warning takes its message as BaseException does; a typing.Protocol has no
+        # constructor (its members' docstrings are checked on their own)
         return []
     problems = []
     wanted = _signature_params(obj)
@@ -470,6 +483,9 @@ MINIMAL_CALLS = {
     "tendonsheath.bench.calibration.Calibration.continuum_feedforward": (
         lambda kw: _calibration().continuum_feedforward(sensed_angle=1.0, **kw)
     ),
+    "tendonsheath.simulation_result.SimulationResult": (
+        lambda kw: ts.SimulationResult(np.zeros(3), **kw)
+    ),
 }
 
 
@@ -507,6 +523,16 @@ def test_unknown_keyword_is_a_type_error(qual):
                 MINIMAL_CALLS[qual]({BOGUS: 1})
             else:
                 _call_with_bogus(qual, obj)
+
+
+def test_the_protocols_left_out_of_the_keyword_check_cannot_be_instantiated():
+    # NOT_APPLICABLE lists them: it must not hide a class that a call could build
+    listed = [q for q in NOT_APPLICABLE["keywords"] if q.startswith("tendonsheath.protocols.")]
+    protocols = sorted(q for q, (_, obj) in PUBLIC.items() if _is_protocol(obj))
+    assert sorted(listed) == protocols and len(protocols) == 4
+    for qual in protocols:
+        with pytest.raises(TypeError, match="Protocols cannot be instantiated"):
+            PUBLIC[qual][1]()
 
 
 @pytest.mark.parametrize("qual", sorted(CALLABLES))

@@ -119,3 +119,40 @@ def test_plot_draws_input_and_output():
     np.testing.assert_array_equal(right.lines[0].get_xdata(), x)
     assert left.get_xlabel() == "t (s)"
     matplotlib.pyplot.close(fig)
+
+
+def test_simulate_binds_its_arguments_and_names_an_unknown_keyword():
+    # t and x by keyword give the same result; an unknown keyword is a TypeError naming it,
+    # before anything is simulated, for a model's and a plant's simulate alike
+    t = np.arange(0.0, 1.0, 1e-3)
+    x = np.sin(2 * np.pi * t)
+    for model in (BoucWenBacklash(), Scaled(Backlash(), output_gain=2.0), FirstOrderLag()):
+        by_name = model.simulate(x=x, t=t)
+        np.testing.assert_array_equal(by_name, model.simulate(t, x))
+        np.testing.assert_array_equal(by_name.t, t)
+        np.testing.assert_array_equal(by_name.input, x)
+        with pytest.raises(TypeError, match="'no_such_keyword'"):
+            model.simulate(t, x, no_such_keyword=1)
+    with pytest.raises(TypeError, match="'no_such_keyword'"):
+        _plants()[0].simulate(t, x, no_such_keyword=1)
+
+
+def test_an_unknown_result_field_is_a_type_error_naming_it():
+    with pytest.raises(TypeError, match="'mesured'.*measured"):
+        ts.SimulationResult(np.zeros(3), mesured=np.zeros(3))
+    ok = ts.SimulationResult(np.zeros(3), measured=np.ones(3))
+    np.testing.assert_array_equal(ok.measured, np.ones(3))
+
+
+def test_motor_simulate_returns_the_result_type_too():
+    t = np.linspace(0.0, 1.0, 201)
+    command = np.sin(2 * np.pi * t)
+    motor = ts.Motor.position(bandwidth_hz=5.0)
+    res = motor.simulate(t, command)
+    assert isinstance(res, ts.SimulationResult) and res.success
+    np.testing.assert_array_equal(res.t, t)
+    np.testing.assert_array_equal(res.input, command)
+    # the same samples as stepping the motor by hand
+    fresh = ts.Motor.position(bandwidth_hz=5.0)
+    by_hand = [fresh.step(u, 0.0 if k == 0 else t[k] - t[k - 1]) for k, u in enumerate(command)]
+    np.testing.assert_allclose(np.asarray(res), by_hand, rtol=0, atol=1e-15)

@@ -9,7 +9,8 @@ import numpy as np
 from . import _core as core
 from ._args import number, python_names
 from ._arrays import as_time_and_signal, checked_dt
-from ._typing import ArrayLike, FloatArray
+from ._typing import ArrayLike
+from .simulation_result import SimulationResult
 from .status import Status
 
 
@@ -204,7 +205,7 @@ class Motor:
         """
         return Status(self._engine.status())
 
-    def simulate(self, t: ArrayLike, command: ArrayLike) -> FloatArray:
+    def simulate(self, t: ArrayLike, command: ArrayLike) -> SimulationResult:
         """Motor position for a command sequence, unloaded (starts from rest).
 
         Parameters
@@ -216,8 +217,9 @@ class Motor:
 
         Returns
         -------
-        numpy.ndarray of float, shape (n,)
-            The pulley angle at each sample (rad).
+        SimulationResult
+            The pulley angle at each sample (rad), shape (n,), as an array; ``t``, ``input``
+            (the command), ``success``/``message`` and ``.plot()`` like every ``simulate``.
 
         Raises
         ------
@@ -231,7 +233,7 @@ class Motor:
         out = np.empty_like(us)
         for k in range(us.size):
             out[k] = m.step(us[k], 0.0 if k == 0 else ts[k] - ts[k - 1], 0.0)
-        return out
+        return SimulationResult(out, t=ts, input=us)
 
     def __repr__(self) -> str:
         inner = ", ".join(f"{k}={v:.6g}" for k, v in self.params.items())

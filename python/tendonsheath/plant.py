@@ -186,6 +186,8 @@ class _Plant:
 
     @property
     def input_interpolation(self) -> str:
+        """The default reconstruction of the command in :meth:`simulate` ("hold", "linear" or
+        "bandlimited"; see :meth:`set_input_interpolation`)."""
         return self._interpolation[0]
 
     def _setup_io(self, motor, sensor):
@@ -315,14 +317,17 @@ class _Plant:
 
     @property
     def elements(self) -> int:
+        """Elements N per sheath."""
         return self._engine.elements
 
     @property
     def friction(self) -> float:
+        """Friction coefficient mu (of sheath 1 for a pair)."""
         return self._engine.params.friction
 
     @property
     def stiffness(self) -> float:
+        """Tendon axial stiffness EA (N) (of tendon 1 for a pair)."""
         return self._engine.params.stiffness
 
     def element_positions(self, sheath: int = 1) -> np.ndarray:
@@ -364,8 +369,8 @@ class _Plant:
         ``t`` (s) may be None only without a motor, a damper and a route schedule. ``routes``
         is None or a callable t -> Route (or a (route1, route2) pair for a pull-pull plant); it
         is evaluated once per sample in Python and only the changes are passed to C++.
-        Returns q_out, or a :class:`SimulationResult` with ``full=True`` (its ``status`` holds
-        each sample's flags), or ``(q_out, flags)`` with ``status=True``. Warns
+        Returns a :class:`SimulationResult` (q_out as an array, with the plant's fields; its
+        ``status`` holds each sample's flags), or ``(result, flags)`` with ``status=True``. Warns
         (:class:`SlackWarning`) with the time of the first slack sample.
 
         Parameters
@@ -377,7 +382,7 @@ class _Plant:
         routes : callable, optional
             t -> Route (or a (route1, route2) pair), evaluated at every sample.
         full : bool, default False
-            Return a :class:`SimulationResult`.
+            Accepted for older code; the result is the same (it always has every field).
         input_interpolation : {"hold", "linear", "bandlimited"}, optional
             The reconstruction of the command (default: the plant's).
         periodic : bool, optional
@@ -387,9 +392,10 @@ class _Plant:
 
         Returns
         -------
-        q_out : numpy.ndarray of float, shape (n,)
-            The output; ``(q_out, flags)`` with ``status=True``, a :class:`SimulationResult`
-            with ``full=True``.
+        result : SimulationResult, shape (n,)
+            The output q_out, with ``command``, ``q_in``, ``q_motor``, ``measured``,
+            ``slack``, ``tensions``, ``nonconverged``, ``status`` and ``input_interpolation``;
+            ``(result, flags)`` with ``status=True``.
 
         Raises
         ------
@@ -763,14 +769,17 @@ class PullPullPlant(_Plant):
     # parameters
     @property
     def pretension(self) -> float:
+        """Pretension T0 of both tendons (N)."""
         return self._engine.params.pretension
 
     @property
     def proximal_radius(self) -> float:
+        """Proximal (motor) pulley radius r_p (m)."""
         return self._engine.params.proximal_radius
 
     @property
     def distal_radius(self) -> float:
+        """Distal pulley radius r_d (m); for a continuum plant, the tendon offset r_t."""
         return self._engine.params.distal_radius
 
     def _lengths(self) -> tuple[float, ...]:
@@ -995,14 +1004,17 @@ class ContinuumPlant(PullPullPlant):
 
     @property
     def bending_stiffness(self) -> float:
+        """Backbone bending stiffness EI (N m^2)."""
         return self._engine.continuum_params.bending_stiffness
 
     @property
     def tendon_offset(self) -> float:
+        """Distance r_t of the tendons from the backbone (m)."""
         return self._engine.continuum_params.tendon_offset
 
     @property
     def backbone_length(self) -> float:
+        """Length l of the continuum segment (m)."""
         return self._engine.continuum_params.backbone_length
 
     @property

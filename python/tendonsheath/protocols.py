@@ -36,50 +36,177 @@ STEP_SIGNALS = ("y_d", "y", "q")
 
 @runtime_checkable
 class StreamingCompensator(Protocol):
-    """One control cycle at a time: ``reset()``, then ``step(<step_inputs>, dt)``."""
+    """One control cycle at a time: ``reset()``, then ``step(<step_inputs>, dt)``.
 
-    def reset(self) -> None: ...
+    A structural protocol: it is never instantiated; ``isinstance`` checks that an object has
+    ``reset`` and ``step``.
+    """
 
-    # (*Any, **Any): any step signature matches (it takes step_inputs, then dt)
-    def step(self, *signals: Any, **options: Any) -> float: ...
+    def reset(self) -> None:
+        """Forget the state: the next :meth:`step` starts a new run.
+
+        Returns
+        -------
+        None
+        """
+
+    def step(self, *signals: float) -> float:
+        """One control cycle.
+
+        Parameters
+        ----------
+        *signals : float
+            The signals named by the compensator's ``step_inputs`` (default ``("y_d",)``: the
+            desired output; ``"y"``: the measured output, NaN in a sensor dropout; ``"q"``:
+            the motor encoder angle), in that order, then dt, the time since the previous
+            cycle (s).
+
+        Returns
+        -------
+        float
+            The command: a motor angle (rad), or a torque (N m) when the compensator's
+            ``control_output`` is ``"torque"``.
+        """
 
 
 @runtime_checkable
 class Compensator(StreamingCompensator, Protocol):
-    """A streaming compensator that can be saved and loaded back."""
+    """A streaming compensator that can be saved and loaded back.
+
+    A structural protocol: it is never instantiated; ``isinstance`` checks that an object has
+    ``reset``, ``step``, ``params``, ``to_json`` and ``load``.
+    """
 
     @property
-    def params(self) -> dict[str, Any]: ...
+    def params(self) -> dict[str, Any]:
+        """The settings it was built with (a copy): what :meth:`to_json` saves."""
 
-    def to_json(self, path: Any = None) -> str: ...
+    def to_json(self, path: Any = None) -> str:
+        """The compensator as JSON text; also written to `path` when one is given.
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            A file to write the JSON to.
+
+        Returns
+        -------
+        str
+            The JSON text, which :meth:`load` reads back.
+        """
 
     @classmethod
-    def load(cls, source: Any) -> Compensator: ...
+    def load(cls, source: Any) -> Compensator:
+        """A compensator saved with :meth:`to_json`.
+
+        Parameters
+        ----------
+        source : str, Path or dict
+            A path to a JSON file, JSON text, or the dict itself.
+
+        Returns
+        -------
+        Compensator
+            The saved compensator, an instance of this class.
+        """
 
 
 @runtime_checkable
 class FeedforwardCompensator(Compensator, Protocol):
-    """A compensator that also maps a whole desired trajectory to motor commands."""
+    """A compensator that also maps a whole desired trajectory to motor commands.
 
-    def command(self, t: Any, y_desired: Any) -> Any: ...
+    A structural protocol: it is never instantiated; ``isinstance`` checks that an object has
+    the members of :class:`Compensator` and ``command``.
+    """
+
+    def command(self, t: Any, y_desired: Any) -> Any:
+        """The motor commands for a whole desired trajectory, from the initial state.
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s).
+        y_desired : array_like of float, shape (n,)
+            The desired output.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (n,)
+            The commands.
+        """
 
 
 @runtime_checkable
 class Plant(Protocol):
-    """A simulated drive: streaming (``reset``/``step``) and whole records (``simulate``)."""
+    """A simulated drive: streaming (``reset``/``step``) and whole records (``simulate``).
+
+    A structural protocol: it is never instantiated; ``isinstance`` checks that an object has
+    ``params``, ``reset``, ``step`` and ``simulate``.
+    """
 
     @property
-    def params(self) -> dict[str, Any]: ...
+    def params(self) -> dict[str, Any]:
+        """The constructor's arguments, defaults filled in (a copy)."""
 
-    def reset(self) -> None: ...
+    def reset(self) -> None:
+        """Back to rest: the next :meth:`step` starts there.
 
-    def step(self, command: float, dt: float = 0.0) -> float: ...
+        Returns
+        -------
+        None
+        """
 
-    def simulate(self, t: Any, command: Any) -> Any: ...
+    def step(self, command: float, dt: float = 0.0) -> float:
+        """One sample.
+
+        Parameters
+        ----------
+        command : float
+            The command (rad at the pulley; m for a single tendon; N m for a torque motor).
+        dt : float, default 0.0
+            Time since the previous sample (s).
+
+        Returns
+        -------
+        float
+            The output after the step.
+        """
+
+    def simulate(self, t: Any, command: Any) -> Any:
+        """A whole record from rest, without touching the streaming state.
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s), increasing.
+        command : array_like of float, shape (n,)
+            The commands.
+
+        Returns
+        -------
+        SimulationResult
+            The output samples, with what produced them.
+        """
 
 
 def missing_members(obj: object, protocol: type) -> list[str]:
-    """The members of ``protocol`` that ``obj`` lacks (or has but cannot call), in order."""
+    """The members of ``protocol`` that ``obj`` lacks (or has but cannot call), in order.
+
+    Unlike ``isinstance(obj, protocol)``, it says which members are missing, for an error
+    message; ``params`` may be any attribute, the other members must be callable.
+
+    Parameters
+    ----------
+    obj : object
+        The candidate compensator or plant.
+    protocol : type
+        One of this module's protocols, e.g. :class:`StreamingCompensator`.
+
+    Returns
+    -------
+    list of str
+        The missing member names, in the protocol's order (empty: ``obj`` has them all).
+    """
     missing = []
     for name in _members(protocol):
         if not hasattr(obj, name):
@@ -90,7 +217,24 @@ def missing_members(obj: object, protocol: type) -> list[str]:
 
 
 def step_signals(compensator: object) -> tuple[str, ...]:
-    """The signals ``compensator.step`` takes before dt: its ``step_inputs`` (checked)."""
+    """The signals ``compensator.step`` takes before dt: its ``step_inputs`` (checked).
+
+    Parameters
+    ----------
+    compensator : object
+        A streaming compensator; without a ``step_inputs`` attribute it takes ``("y_d",)``.
+
+    Returns
+    -------
+    tuple of str
+        The signal names, in the order ``step`` takes them: ``"y_d"`` (desired output),
+        ``"y"`` (measured output) or ``"q"`` (motor encoder angle).
+
+    Raises
+    ------
+    TypeError
+        ``step_inputs`` is empty, repeats a signal, or names one that is not among these.
+    """
     inputs = tuple(getattr(compensator, "step_inputs", ("y_d",)))
     bad = [s for s in inputs if s not in STEP_SIGNALS]
     if bad or len(set(inputs)) != len(inputs) or not inputs:

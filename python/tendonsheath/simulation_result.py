@@ -19,6 +19,21 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure, SubFigure
 
+# the fields a result may carry besides t and input (the last ones are a plant's)
+FIELDS = (
+    "success",
+    "message",
+    "status",
+    "command",
+    "q_in",
+    "q_motor",
+    "measured",
+    "slack",
+    "tensions",
+    "nonconverged",
+    "input_interpolation",
+)
+
 
 class SimulationResult(np.ndarray):
     """The output of a simulation (an array) with what produced it.
@@ -34,11 +49,35 @@ class SimulationResult(np.ndarray):
     sensor reading of q_out), ``slack`` (a per-sample flag), ``tensions`` (the final tensions;
     rows: tendons, proximal to distal), ``nonconverged`` (accepted but unconverged active-set
     increments, 0 in normal use) and ``input_interpolation``.
+
+    Parameters
+    ----------
+    output : array_like of float
+        The output samples.
+    t : array_like of float, optional
+        Sample times (s); None for a rate-independent model simulated without them.
+    input : array_like of float, optional
+        The input samples.
+    **fields
+        The other attributes by name (``success``, ``message``, ``status`` and a plant's
+        fields above); ``success`` and ``message`` default to an assessment of the output,
+        ``slack`` and ``nonconverged``.
+
+    Raises
+    ------
+    TypeError
+        A field name that is none of these (it is named).
     """
 
     _info: dict[str, Any]
 
     def __new__(cls, output, t=None, input=None, **fields: Any) -> SimulationResult:
+        unknown = [name for name in fields if name not in FIELDS]
+        if unknown:
+            raise TypeError(
+                f"SimulationResult() got an unexpected keyword argument {unknown[0]!r} "
+                f"(fields: {', '.join(FIELDS)})"
+            )
         obj = np.asarray(output, dtype=float).view(cls)
         out = obj.view(np.ndarray)
         success, message = _assess(out, fields)
@@ -89,22 +128,37 @@ class SimulationResult(np.ndarray):
 
     @property
     def q_out(self) -> np.ndarray:
+        """The output samples as a plain array (a plant's name for :attr:`output`)."""
         return self.output
 
     @property
     def any_slack(self) -> bool:
+        """Whether a tendon went slack at any sample (False without a ``slack`` field)."""
         slack = self._info.get("slack")
         return bool(slack is not None and np.any(slack))
 
     @property
     def first_slack_index(self) -> int | None:
+        """Index of the first slack sample (None when there is none, or no ``slack`` field)."""
         slack = self._info.get("slack")
         idx = np.flatnonzero(slack) if slack is not None else np.array([], dtype=int)
         return int(idx[0]) if idx.size else None
 
     def plot(self, ax: Sequence[Axes] | None = None) -> Figure | SubFigure:
-        """Input and output against time (or sample) and output against input; returns the
-        matplotlib figure. ``ax``: two axes to draw into (default: a new figure)."""
+        """Input and output against time (or sample), and output against input.
+
+        The figure's title is the message when the result failed.
+
+        Parameters
+        ----------
+        ax : sequence of two matplotlib.axes.Axes, optional
+            The axes to draw into (default: a new figure with two).
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure drawn into.
+        """
         import matplotlib.pyplot as plt
 
         fig: Figure | SubFigure

@@ -20,23 +20,33 @@
 
 namespace tendonsheath {
 
-// Bump when the table's layout changes; the Python capsule's name carries it too.
+/// Layout version of CompensatorTable: bumped when the table's layout changes; the Python
+/// capsule's name carries it too.
 inline constexpr std::uint32_t kCompensatorTableVersion = 1;
+/// Name of the Python capsule that holds an ErasedCompensator.
 inline constexpr const char* kCompensatorCapsuleName = "tendonsheath.compensator.v1";
 
+/// @brief A compensator's operations as plain function pointers, the only thing that crosses
+/// the boundary between a user's module and ours. Every pointer is noexcept and allocates
+/// nothing.
 struct CompensatorTable {
-  std::uint32_t version = kCompensatorTableVersion;
+  std::uint32_t version = kCompensatorTableVersion;  ///< layout version (kCompensatorTableVersion)
+  /// Resets the instance `self` to its initial state.
   void (*reset)(void* self) noexcept = nullptr;
+  /// One cycle: the command (motor angle, rad) for the reference, the measured output (NaN
+  /// during a sensor dropout), the motor encoder's angle and the time step dt (s).
   double (*command)(void* self, double reference, double measured, double motor,
                     double dt) noexcept = nullptr;
+  /// The instance's Status flags of its last cycle, as unsigned.
   unsigned (*status)(const void* self) noexcept = nullptr;
+  /// Whether the instance runs its fallback.
   bool (*in_fallback)(const void* self) noexcept = nullptr;
 };
 
-// One compensator instance and its table (what the capsule points to).
+/// @brief One compensator instance and its table (what the Python capsule points to).
 struct ErasedCompensator {
-  const CompensatorTable* table = nullptr;
-  void* self = nullptr;
+  const CompensatorTable* table = nullptr;  ///< the instance's operations
+  void* self = nullptr;                     ///< the instance, owned by the module that made it
 };
 
 namespace detail {
@@ -72,7 +82,7 @@ struct reports_fallback<C, std::void_t<decltype(std::declval<const C&>().in_fall
 
 }  // namespace detail
 
-// How many signals C's step takes before dt: 1 (reference), 2 (+ measured), 3 (+ motor).
+/// How many signals C's step takes before dt: 1 (reference), 2 (+ measured), 3 (+ motor).
 template <class C>
 constexpr int compensator_step_inputs() noexcept {
   if constexpr (detail::has_motor_step<C>::value) return 3;
@@ -81,6 +91,7 @@ constexpr int compensator_step_inputs() noexcept {
   return 0;
 }
 
+/// CompensatorTable::command for class C: calls the step C has (see the file's comment).
 template <class C>
 double erased_command(void* self, double reference, double measured, double motor,
                       double dt) noexcept {
@@ -97,6 +108,7 @@ double erased_command(void* self, double reference, double measured, double moto
   }
 }
 
+/// CompensatorTable::status for class C: C's status(), or Status::ok when C has none.
 template <class C>
 unsigned erased_status(const void* self) noexcept {
   if constexpr (detail::reports_status<C>::value)
@@ -104,6 +116,7 @@ unsigned erased_status(const void* self) noexcept {
   return static_cast<unsigned>(Status::ok);
 }
 
+/// CompensatorTable::in_fallback for class C: C's in_fallback(), or false when C has none.
 template <class C>
 bool erased_in_fallback(const void* self) noexcept {
   if constexpr (detail::reports_fallback<C>::value)
@@ -111,7 +124,7 @@ bool erased_in_fallback(const void* self) noexcept {
   return false;
 }
 
-// The table for class C (one static instance per C).
+/// The table for class C (one static instance per C).
 template <class C>
 const CompensatorTable& compensator_table() noexcept {
   static_assert(compensator_step_inputs<C>() > 0,
@@ -128,16 +141,21 @@ const CompensatorTable& compensator_table() noexcept {
   return table;
 }
 
-// run_closed_loop's view of an erased compensator (see closed_loop.hpp).
+/// @brief run_closed_loop's view of an erased compensator (see closed_loop.hpp).
 struct ErasedLoop {
-  ErasedCompensator compensator;
+  ErasedCompensator compensator;  ///< the instance and its table
+  /// Resets the compensator.
   void reset() noexcept { compensator.table->reset(compensator.self); }
+  /// A route shape update: an erased compensator takes none (it is told nothing).
   template <class Shape>
   void on_shape(const Shape&) noexcept {}
+  /// Whether the compensator runs its fallback.
   bool in_fallback() const noexcept { return compensator.table->in_fallback(compensator.self); }
+  /// The compensator's Status flags of its last cycle.
   Status status() const noexcept {
     return static_cast<Status>(compensator.table->status(compensator.self));
   }
+  /// One cycle's command (see CompensatorTable::command).
   double command(double y_d, double measured, double motor, double dt) noexcept {
     return compensator.table->command(compensator.self, y_d, measured, motor, dt);
   }

@@ -15,8 +15,8 @@ if TYPE_CHECKING:
 
     from .._typing import ArrayLike
     from ..plant import PullPullPlant
-    from ..protocols import StreamingCompensator
     from ..sensor import Sensor
+    from .run import Controller
 
 
 @dataclass
@@ -106,7 +106,7 @@ def _first_crossing(f: np.ndarray, values: np.ndarray, level: float, above: bool
 
 def frequency_response(
     plant: PullPullPlant,
-    controller: StreamingCompensator | None,
+    controller: Controller,
     frequencies: ArrayLike | None = None,
     amplitude: float = 0.5,
     cycles: int = 3,

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 
@@ -20,7 +20,14 @@ from .metrics import dominant_period, tracking_metrics
 
 if TYPE_CHECKING:
     from .._typing import ArrayLike
+    from ..compensate import AdaptiveController
+    from ..compensate.base import Feedforward
     from .calibration import ShapeSensing
+
+# what bench.run closes the loop with: any StreamingCompensator (None: uncompensated); the
+# shipped ones are named too, their step(y_d, dt) being narrower than the protocol's
+# step(*signals) to a type checker
+Controller: TypeAlias = "StreamingCompensator | Feedforward | AdaptiveController | None"
 
 # the C++ loop for each shipped compensator's engine (its _bench_engine())
 _ENGINE_LOOPS = {
@@ -83,6 +90,7 @@ class Result:
 
     @property
     def error(self) -> np.ndarray:
+        """The tracking error output - reference (rad)."""
         return self.output - self.reference
 
     @property
@@ -122,7 +130,7 @@ def _dropout_mask(dropout, t):
 
 def run(
     plant: PullPullPlant,
-    controller: StreamingCompensator | None,
+    controller: Controller,
     t: ArrayLike,
     reference: ArrayLike,
     routes: Callable | None = None,

@@ -312,18 +312,53 @@ class AdaptiveController:
 
     def to_dict(self) -> dict:
         """The controller as a dict (format ``tendonsheath.compensator``; the feedforward
-        model as its own dict, or null)."""
+        model as its own dict, or null).
+
+        Returns
+        -------
+        dict
+            format, version, compensator and its settings (every gain resolved).
+        """
         return persistence.compensator_dict(type(self).__name__, self._settings)
 
     def to_json(self, path: str | Path | None = None) -> str:
         """The controller as JSON text; also written to `path` when one is given.
         ``tendonsheath.compensate.load`` reads it (the C++ loader does not: it reads the
-        feedforwards only)."""
+        feedforwards only).
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            A file to write the JSON to.
+
+        Returns
+        -------
+        str
+            The JSON text.
+        """
         return persistence.to_json(self.to_dict(), path)
 
     @classmethod
     def load(cls, source: str | Path | dict) -> AdaptiveController:
-        """A controller saved with :meth:`to_json` (a path, JSON text or a dict)."""
+        """A controller saved with :meth:`to_json` (a path, JSON text or a dict).
+
+        Parameters
+        ----------
+        source : str, Path or dict
+            A path to a JSON file, JSON text, or the dict itself.
+
+        Returns
+        -------
+        AdaptiveController
+            The saved controller.
+
+        Raises
+        ------
+        ValueError
+            An unreadable source or an invalid compensator file.
+        TypeError
+            The file holds another kind of compensator.
+        """
         return persistence.load_as(cls, source)
 
     @classmethod

@@ -165,7 +165,25 @@ class Feedforward:
     @classmethod
     def load(cls, source: str | Path | dict) -> Self:
         """A compensator saved with :meth:`to_json` (a path, JSON text or a dict); it must be
-        of this class (``tendonsheath.compensate.load`` reads any)."""
+        of this class (``tendonsheath.compensate.load`` reads any).
+
+        Parameters
+        ----------
+        source : str, Path or dict
+            A path to a JSON file, JSON text, or the dict itself.
+
+        Returns
+        -------
+        Feedforward
+            The saved compensator, an instance of this class.
+
+        Raises
+        ------
+        ValueError
+            An unreadable source or an invalid compensator file.
+        TypeError
+            The file holds another kind of compensator.
+        """
         return persistence.load_as(cls, source)
 
     @classmethod

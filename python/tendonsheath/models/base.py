@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+import inspect
 import json
 import math
 import numbers
@@ -37,9 +38,15 @@ def _returning_result(simulate: _F) -> _F:
     """``simulate`` that returns a :class:`SimulationResult` (the output with its time and
     input), or ``(result, flags)`` where it returned ``(y, flags)``."""
 
+    signature = inspect.signature(simulate)
+
+    # (self, *args, **kwargs), not (self, t, x, ...): the call below binds the arguments, so
+    # an unknown keyword is simulate's own TypeError naming it, even with t or x missing
     @functools.wraps(simulate)
-    def wrapper(self, t, x, *args, **kwargs):
-        out = simulate(self, t, x, *args, **kwargs)
+    def wrapper(self, *args, **kwargs):
+        out = simulate(self, *args, **kwargs)
+        bound = signature.bind(self, *args, **kwargs).arguments
+        t, x = bound["t"], bound["x"]
         y, flags = out if isinstance(out, tuple) else (out, None)
         if flags is None and isinstance(y, SimulationResult):
             flags = y.status
@@ -122,6 +129,7 @@ class HysteresisModel:
 
     @property
     def options(self) -> dict[str, Any]:
+        """The numerical options (not identified), as a dict (a copy)."""
         s = self._engine.params
         return {k: _plain(getattr(s, k)) for k in self.option_names}
 
@@ -161,8 +169,9 @@ class HysteresisModel:
 
         Returns
         -------
-        y : numpy.ndarray of float, shape (n,)
-            Output samples.
+        y : SimulationResult, shape (n,)
+            Output samples (an array), with ``t``, ``input``, ``success``, ``message`` and
+            ``status``.
         flags : numpy.ndarray of uint8, shape (n,)
             Each sample's :class:`~tendonsheath.Status` bits; only with ``status=True``, as
             ``(y, flags)``.
