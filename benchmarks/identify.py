@@ -50,6 +50,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from _python_models import bouc_wen_backlash
 from rich.console import Console
 from rich.table import Table
 from scipy.optimize import differential_evolution
@@ -72,43 +73,6 @@ def reference(duration=20.0, rate=1000.0, amplitude=1.0, freq=0.25):
     x = amplitude * np.sin(2 * np.pi * freq * t) * (1.0 - 0.5 * t / duration)
     x += 0.15 * amplitude * np.sin(2 * np.pi * 2.7 * freq * t)
     return t, x
-
-
-def simulate_python(p, x, max_step=0.05, max_substeps=256):
-    """Pure-Python BoucWenBacklash, the same numerics as the C++ core (RK4 in x)."""
-    c_r, c_l, b_r, b_l, rho, sigma, n = p
-    y = np.empty(len(x))
-    w = 0.0
-    x_prev = float(x[0])
-
-    def f(w, s):
-        a = abs(w)
-        q = a ** (n - 1.0) if a > 0.0 else (1.0 if n == 1.0 else 0.0)
-        return rho * (s - sigma * q * w + (sigma - 1.0) * s * q * a)
-
-    def clamp(v):
-        return 1.0 if v > 1.0 else (-1.0 if v < -1.0 else v)
-
-    for k in range(len(x)):
-        xk = float(x[k])
-        if k > 0:
-            dx = xk - x_prev
-            if dx != 0.0:
-                travel = abs(dx)
-                m = math.ceil(rho * travel / max_step)
-                m = 1 if not m >= 1 else min(m, max_substeps)
-                h = travel / m
-                s = 1.0 if dx > 0 else -1.0
-                for _ in range(m):
-                    k1 = f(w, s)
-                    k2 = f(clamp(w + 0.5 * h * k1), s)
-                    k3 = f(clamp(w + 0.5 * h * k2), s)
-                    k4 = f(clamp(w + h * k3), s)
-                    w = clamp(w + h * (k1 + 2 * k2 + 2 * k3 + k4) / 6.0)
-            x_prev = xk
-        phi = 0.5 * (1.0 + w)
-        y[k] = phi * c_r * (xk - b_r) + (1.0 - phi) * c_l * (xk + b_l)
-    return y
 
 
 def main() -> None:
@@ -140,13 +104,13 @@ def main() -> None:
         return float(np.sum((y - m.simulate(t, x)) ** 2))
 
     def python_objective(p):
-        return float(np.sum((y - simulate_python(p, x)) ** 2))
+        return float(np.sum((y - bouc_wen_backlash(x, *p)) ** 2))
 
     probe = [np.array([TRUTH[k] for k in NAMES])]
     prng = np.random.default_rng(0)
     while len(probe) < BASELINE_TIMED_EVALS:
         probe.append(np.array([prng.uniform(lo, hi) for lo, hi in bounds]))
-    agree = float(np.max(np.abs(simulate_python(probe[0], x) - truth.simulate(t, x))))
+    agree = float(np.max(np.abs(bouc_wen_backlash(x, *probe[0]) - truth.simulate(t, x))))
     start = time.perf_counter()
     for p in probe:
         python_objective(p)

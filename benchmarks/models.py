@@ -9,9 +9,9 @@ shorter input and its rate is compared per sample. Writes benchmarks/results/mod
 from __future__ import annotations
 
 import argparse
-import math
 
 import numpy as np
+from _python_models import bouc_wen_backlash
 
 from _common import best_time, write_results
 from tendonsheath import models
@@ -31,38 +31,6 @@ def py_backlash(x, c_r, c_l, B_r, B_l):
             yk = left
         xp = xk
         y[k] = yk
-    return y
-
-
-def py_bouc_wen_backlash(x, c_r, c_l, B_r, B_l, rho, sigma, n, max_step=0.05):
-    def f(w, s):
-        a = abs(w)
-        p = a ** (n - 1)
-        return rho * (s - sigma * p * w + (sigma - 1) * s * p * a)
-
-    def clamp(w):
-        return 1.0 if w > 1 else (-1.0 if w < -1 else w)
-
-    y = np.empty_like(x)
-    w, xp = 0.0, x[0]
-    for k in range(len(x)):
-        dx = x[k] - xp
-        saturated = (dx > 0 and w >= 1.0) or (dx < 0 and w <= -1.0)  # fixed point: skip
-        if dx != 0.0 and not saturated:
-            s, travel = (1.0 if dx > 0 else -1.0), abs(dx)
-            m = max(1, math.ceil(rho * travel / max_step))
-            h = travel / m
-            for _ in range(m):
-                k1 = f(w, s)
-                k2 = f(clamp(w + 0.5 * h * k1), s)
-                k3 = f(clamp(w + 0.5 * h * k2), s)
-                k4 = f(clamp(w + h * k3), s)
-                w = clamp(w + h * (k1 + 2 * k2 + 2 * k3 + k4) / 6)
-            if 1.0 - abs(w) < 1e-12:  # snap onto the fixed point, as the core does
-                w = 1.0 if w > 0 else -1.0
-        xp = x[k]
-        phi = 0.5 * (1 + w)
-        y[k] = phi * c_r * (xp - B_r) + (1 - phi) * c_l * (xp + B_l)
     return y
 
 
@@ -98,7 +66,7 @@ def main() -> None:
         (
             "BoucWenBacklash",
             models.BoucWenBacklash(**bwb_args),
-            lambda: py_bouc_wen_backlash(xp, **bwb_args),
+            lambda: bouc_wen_backlash(xp, **bwb_args),
         ),
         (
             "PrandtlIshlinskii (8 plays)",

@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 import tendonsheath as ts
-from _common import write_results
+from _common import best_time, write_results
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -42,15 +42,6 @@ def _modules():
     ex09 = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(ex09)
     return cpp, ex09
-
-
-def _cpu_best(fn, repeat: int = 3) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        start = time.process_time()
-        fn()
-        best = min(best, time.process_time() - start)
-    return best
 
 
 def main() -> None:
@@ -77,7 +68,10 @@ def main() -> None:
         "PIFeedforward in C++ (function table)": cpp.PIFeedforward(kp=0.8, ki=6.0),
         "PIFeedforward in Python (step per cycle)": ex09.PIFeedforward(kp=0.8, ki=6.0),
     }
-    cpu = {k: _cpu_best(lambda c=c: ts.bench.run(plant, c, t, y_d)) for k, c in controllers.items()}
+    cpu = {
+        k: best_time(lambda c=c: ts.bench.run(plant, c, t, y_d), clock=time.process_time)
+        for k, c in controllers.items()
+    }
     n = t.size
     rows = {k: 1e6 * v / n for k, v in cpu.items()}
     keys = list(controllers)

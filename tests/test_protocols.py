@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _bench_helpers import Y_D, T, bench_plant
 from test_compensator_json import _random_compensator
 
 import tendonsheath as ts
@@ -162,32 +163,12 @@ class _Delegate:
         return getattr(self.inner, "in_fallback", False)
 
 
-def _bench_plant(motor):
-    route = ts.Route.arcs([(0.5, 0.0), (0.6, 2.0)])
-    return ts.PullPullPlant(
-        route,
-        friction=0.1,
-        stiffness=5e3,
-        pretension=20.0,
-        proximal_radius=0.015,
-        distal_radius=0.015,
-        elements=30,
-        motor=motor,
-        distal_inertia=2e-5,
-        distal_damping=2e-3,
-    )
-
-
-T = np.arange(0.0, 4.0, 1e-3)
-Y_D = 0.8 * np.sin(2 * np.pi * 0.5 * T) + 0.1 * np.sin(2 * np.pi * 1.7 * T)
-
-
 @pytest.mark.parametrize("seed", range(3))
 def test_python_path_equals_the_cpp_loop(seed):
     rng = np.random.default_rng(seed)
     model = BoucWenBacklash(c_r=1.0, c_l=0.95, B_r=rng.uniform(0.02, 0.1), B_l=0.05)
-    servo = _bench_plant(ts.Motor.position(60.0, 0.8))
-    torque = _bench_plant(ts.Motor.torque(inertia=0.01, viscous=0.2, max_torque=5.0))
+    servo = bench_plant(ts.Motor.position(60.0, 0.8))
+    torque = bench_plant(ts.Motor.torque(inertia=0.01, viscous=0.2, max_torque=5.0))
     cases = [
         (servo, ts.compensate.InverseFeedforward(model, smoothing=rng.uniform(0.02, 0.1))),
         (torque, AdaptiveController.from_model(model, inertia=0.01, viscous=0.2, max_torque=5.0)),
@@ -213,7 +194,7 @@ def test_user_compensator_is_what_a_hand_written_loop_gives():
     controller from the last reading, then motor and plant (Plant.step), the sensor reading
     NaN in the dropout window."""
     pi = _example_09().PIFeedforward(gain=1.05, kp=0.8, ki=6.0, integral_limit=0.1)
-    plant = _bench_plant(ts.Motor.position(60.0, 0.8))
+    plant = bench_plant(ts.Motor.position(60.0, 0.8))
     dropout = (1.5, 1.8)
     result = ts.bench.run(plant, pi, T, Y_D, dropout=[dropout])
     plant.reset()
@@ -272,7 +253,7 @@ class _BadInputs(_Wordy):
 
 
 def test_bench_names_what_a_compensator_lacks():
-    plant = _bench_plant(ts.Motor.position(60.0, 0.8))
+    plant = bench_plant(ts.Motor.position(60.0, 0.8))
     with pytest.raises(TypeError, match="_NoStep has no step"):
         ts.bench.run(plant, _NoStep(), T, Y_D)
     with pytest.raises(TypeError, match=r"_Wordy.step returned 'up', not a number"):

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _bench_helpers import Y_D, T, bench_plant
 from typer.testing import CliRunner
 
 import tendonsheath as ts
@@ -55,26 +56,6 @@ def python_twin():
     return _load("example_09", EXAMPLE_09).PIFeedforward
 
 
-def _plant():
-    route = ts.Route.arcs([(0.5, 0.0), (0.6, 2.0)])
-    return ts.PullPullPlant(
-        route,
-        friction=0.1,
-        stiffness=5e3,
-        pretension=20.0,
-        proximal_radius=0.015,
-        distal_radius=0.015,
-        elements=30,
-        motor=ts.Motor.position(60.0, 0.8),
-        distal_inertia=2e-5,
-        distal_damping=2e-3,
-    )
-
-
-T = np.arange(0.0, 4.0, 1e-3)
-Y_D = 0.8 * np.sin(2 * np.pi * 0.5 * T) + 0.1 * np.sin(2 * np.pi * 1.7 * T)
-
-
 def test_the_bound_class_meets_the_protocol_and_steps_like_its_python_twin(cpp, python_twin):
     rng = np.random.default_rng(0)
     for _ in range(20):
@@ -100,8 +81,8 @@ def test_bench_run_in_cpp_equals_the_python_compensator(cpp, python_twin, seed):
     noise = ts.Sensor(noise_std=2e-4, seed=seed)
     dropout = [(1.5, 1.5 + rng.uniform(0.05, 0.3))]
     compiled = cpp.PIFeedforward(**kw)
-    fast = ts.bench.run(_plant(), compiled, T, Y_D, noise=noise, dropout=dropout)
-    slow = ts.bench.run(_plant(), python_twin(**kw), T, Y_D, noise=noise, dropout=dropout)
+    fast = ts.bench.run(bench_plant(), compiled, T, Y_D, noise=noise, dropout=dropout)
+    slow = ts.bench.run(bench_plant(), python_twin(**kw), T, Y_D, noise=noise, dropout=dropout)
     for name in ("output", "measured", "command", "motor"):
         np.testing.assert_allclose(getattr(fast, name), getattr(slow, name), rtol=0, atol=1e-12)
     # the C++ loop ran a copy (the capsule's): the object itself was never stepped, so its

@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 
-def as_signal(values, name: str) -> np.ndarray:
-    """Return `values` as a 1-D contiguous float64 array, or raise ValueError naming it."""
+def as_vector(values, name: str) -> np.ndarray:
+    """Return `values` as a 1-D contiguous float64 array (a number: one sample), or raise
+    ValueError naming it."""
     try:
         arr = np.asarray(values, dtype=np.float64)
     except (TypeError, ValueError) as exc:
@@ -15,9 +16,15 @@ def as_signal(values, name: str) -> np.ndarray:
         arr = arr.reshape(1)
     if arr.ndim != 1:
         raise ValueError(f"{name} must be 1-D (got shape {arr.shape})")
+    return np.ascontiguousarray(arr)
+
+
+def as_signal(values, name: str) -> np.ndarray:
+    """:func:`as_vector`, not empty."""
+    arr = as_vector(values, name)
     if arr.size == 0:
         raise ValueError(f"{name} is empty")
-    return np.ascontiguousarray(arr)
+    return arr
 
 
 def as_time_and_signal(t, x, name: str = "x") -> tuple[np.ndarray | None, np.ndarray]:
@@ -28,6 +35,14 @@ def as_time_and_signal(t, x, name: str = "x") -> tuple[np.ndarray | None, np.nda
     ts = as_signal(t, "t")
     if ts.shape != xs.shape:
         raise ValueError(f"t and {name} have different lengths ({ts.size} and {xs.size})")
+    return ts, xs
+
+
+def as_timed_signal(t, x, name: str, who: str) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`as_time_and_signal` where the time vector is required (`who` names the call)."""
+    ts, xs = as_time_and_signal(t, x, name)
+    if ts is None:
+        raise ValueError(f"{who} needs the time vector t")
     return ts, xs
 
 

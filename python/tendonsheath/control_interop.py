@@ -70,6 +70,12 @@ class _Block(Protocol):
     def _control_step(self, u: Sequence[float], dt: float) -> float: ...
 
 
+class _Stepping(Protocol):
+    """A block's streaming step (its signals, then dt)."""
+
+    def step(self, *signals: Any, **options: Any) -> float: ...
+
+
 class Snapshots:
     """Engine snapshots addressed by a float index; index 0 is the engine at rest.
 
@@ -226,6 +232,48 @@ def to_system(
     )
     system.snapshots = snaps
     return system
+
+
+class _ControlBlock:
+    """What makes a model or a compensator a python-control system: :meth:`to_control`, over
+    its ``step`` and its signal names ``control_inputs`` and ``control_output``."""
+
+    def to_control(
+        self: _Block,
+        dt: float,
+        name: str | None = None,
+        inputs: Sequence[str] | None = None,
+        output: str | None = None,
+    ) -> control.NonlinearIOSystem:
+        """This block as a discrete-time ``control.NonlinearIOSystem`` with sample time dt (s),
+        inputs ``control_inputs`` and output ``control_output``: a model maps ``x`` (and
+        ``curve_angle`` where it takes one) to ``y``; a feedforward maps ``y_d`` to ``x``, the
+        input name of a model's system, so ``control.interconnect`` connects them by name; the
+        AdaptiveController maps ``y_d``, ``y`` (measured output) and ``q`` (motor angle) to
+        ``torque``. One state, the index of an exact snapshot of the engine (see
+        :mod:`tendonsheath.control_interop`). Needs python-control:
+        ``pip install 'tendonsheath[control]'``.
+
+        Parameters
+        ----------
+        dt : float
+            Sample time (s), > 0.
+        name : str, optional
+            The system's name.
+        inputs : str or list of str, optional
+            Input signal names (default ``control_inputs``).
+        output : str, optional
+            Output signal name (default ``control_output``).
+
+        Returns
+        -------
+        control.NonlinearIOSystem
+            The discrete-time system.
+        """
+        return to_system(self, dt, inputs, output, name)
+
+    def _control_step(self: _Stepping, u: Sequence[float], dt: float) -> float:
+        return self.step(u[0], dt)
 
 
 def streaming_delay(block: _Block) -> int:

@@ -8,10 +8,42 @@ import numpy as np
 
 from . import _core as core
 from ._args import number, python_names
-from ._arrays import as_time_and_signal, checked_dt
+from ._arrays import as_timed_signal, checked_dt
 from ._typing import ArrayLike
 from .simulation_result import SimulationResult
 from .status import Status
+
+# a constructor's arguments -> the MotorParams fields they set, by kind (a position motor's
+# ``inertia`` is the reflected inertia; a torque motor's is the rotor's own)
+_MOTOR_FIELDS = {
+    core.MotorKind.Position: {
+        "bandwidth_hz": "bandwidth_hz",
+        "damping": "damping",
+        "max_speed": "max_speed",
+        "max_accel": "max_accel",
+        "inertia": "reflected_inertia",
+        "coulomb_friction": "coulomb_friction",
+        "viscous_friction": "viscous_friction",
+        "gear_backlash": "gear_backlash",
+    },
+    core.MotorKind.Torque: {
+        "inertia": "inertia",
+        "viscous": "viscous",
+        "max_torque": "max_torque",
+        "max_speed": "max_speed",
+        "coulomb_friction": "coulomb_friction",
+        "gear_backlash": "gear_backlash",
+    },
+}
+
+
+def _motor_params(kind, who: str, arguments: dict):
+    """MotorParams of ``kind`` from a constructor's arguments, each checked to be a number."""
+    p = core.MotorParams()
+    p.kind = kind
+    for name, field in _MOTOR_FIELDS[kind].items():
+        setattr(p, field, number(who, name, arguments[name]))
+    return p
 
 
 class Motor:
@@ -92,18 +124,7 @@ class Motor:
         ValueError
             A parameter out of range (the message names it).
         """
-        p = core.MotorParams()
-        p.kind = core.MotorKind.Position
-        who = "Motor.position"
-        p.bandwidth_hz = number(who, "bandwidth_hz", bandwidth_hz)
-        p.damping = number(who, "damping", damping)
-        p.max_speed = number(who, "max_speed", max_speed)
-        p.max_accel = number(who, "max_accel", max_accel)
-        p.reflected_inertia = number(who, "inertia", inertia)
-        p.coulomb_friction = number(who, "coulomb_friction", coulomb_friction)
-        p.viscous_friction = number(who, "viscous_friction", viscous_friction)
-        p.gear_backlash = number(who, "gear_backlash", gear_backlash)
-        return cls(p)
+        return cls(_motor_params(core.MotorKind.Position, "Motor.position", locals()))
 
     @classmethod
     def torque(
@@ -142,16 +163,7 @@ class Motor:
         ValueError
             A parameter out of range (the message names it).
         """
-        p = core.MotorParams()
-        p.kind = core.MotorKind.Torque
-        who = "Motor.torque"
-        p.inertia = number(who, "inertia", inertia)
-        p.viscous = number(who, "viscous", viscous)
-        p.max_torque = number(who, "max_torque", max_torque)
-        p.max_speed = number(who, "max_speed", max_speed)
-        p.coulomb_friction = number(who, "coulomb_friction", coulomb_friction)
-        p.gear_backlash = number(who, "gear_backlash", gear_backlash)
-        return cls(p)
+        return cls(_motor_params(core.MotorKind.Torque, "Motor.torque", locals()))
 
     @property
     def kind(self) -> str:
@@ -226,9 +238,7 @@ class Motor:
         ValueError
             t missing, or samples not finite or of different lengths.
         """
-        ts, us = as_time_and_signal(t, command, "command")
-        if ts is None:
-            raise ValueError("Motor.simulate: t is required")
+        ts, us = as_timed_signal(t, command, "command", "Motor.simulate")
         m = core.Motor(self._params)
         out = np.empty_like(us)
         for k in range(us.size):

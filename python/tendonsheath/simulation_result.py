@@ -58,7 +58,7 @@ class SimulationResult(np.ndarray):
         Sample times (s); None for a rate-independent model simulated without them.
     input : array_like of float, optional
         The input samples.
-    **fields
+    **fields : Any
         The other attributes by name (``success``, ``message``, ``status`` and a plant's
         fields above); ``success`` and ``message`` default to an assessment of the output,
         ``slack`` and ``nonconverged``.

@@ -350,6 +350,13 @@ class FrictionChain {
     if (slack_) s |= Status::slack;
     return s;
   }
+  /// status() for a plant whose last step() returned `updated`: a step that left the state
+  /// unchanged is flagged held when its input was not finite, else not_converged.
+  Status status_after(bool updated) const noexcept {
+    const Status s = status();
+    if (updated || has(s, Status::held_nonfinite_input)) return s;
+    return s | Status::not_converged;
+  }
   /// The last step's input was beyond +-kMaxInput and was clamped to it.
   bool input_clamped() const noexcept { return input_clamped_; }
   /// Every increment of the last step converged (false: the best bounded iterate was kept).

@@ -180,11 +180,7 @@ class SingleTendonPlant {
   /// The last step's status (see status.hpp): read right after step(). A step whose state
   /// the chain did not update (FrictionChain::step returned false) is flagged held when its
   /// input was not finite, else not_converged.
-  Status status() const noexcept {
-    const Status s = chain_.status();
-    if (updated_ || has(s, Status::held_nonfinite_input)) return s;
-    return s | Status::not_converged;
-  }
+  Status status() const noexcept { return chain_.status_after(updated_); }
   /// True when a step depends on dt (sheath viscosity or tendon relaxation).
   bool time_dependent() const noexcept { return chain_.time_dependent(); }
   /// The underlying friction chain.

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 import numpy as np
 
 from .. import _core as core
-from .._arrays import as_time_and_signal
+from .._arrays import as_timed_signal
 from ..compensate.curve_angle_feedforward import shape_of
 from ..plant import PullPullPlant
 from ..protocols import STEP_SIGNALS, StreamingCompensator, missing_members, step_signals
@@ -201,9 +201,7 @@ def run(
 
 
 def _record(t, reference):
-    ts, ys = as_time_and_signal(t, reference, "reference")
-    if ts is None:
-        raise ValueError("bench.run needs the time vector t")
+    ts, ys = as_timed_signal(t, reference, "reference", "bench.run")
     if ts.size < 2:
         raise ValueError(f"bench.run needs at least 2 samples (got {ts.size})")
     return ts, ys

@@ -3,19 +3,16 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .. import _core as core
 from .._args import number, python_names
 from .._arrays import checked_dt
 from ..models import Backlash, BoucWenBacklash, HysteresisModel
-from ..status import Status
-from . import persistence
+from .base import EngineCompensator
 
 if TYPE_CHECKING:
-    import control  # python-control ships no types: its systems are Any to mypy
+    pass  # python-control ships no types: its systems are Any to mypy
 
 _GAINS = (
     "lambda_",
@@ -44,7 +41,7 @@ _GAINS = (
 )
 
 
-class AdaptiveController:
+class AdaptiveController(EngineCompensator):
     """Sliding-surface adaptive controller with a distal sensor; outputs motor torque.
 
     u = -k_s s - psi y' - phi nu_r - D tanh(s/epsilon) with s = e' + lambda e, and online
@@ -253,114 +250,8 @@ class AdaptiveController:
         dt = checked_dt(dt)
         return self._engine.step(float(y_d), float(y_measured), float(motor_position), float(dt))
 
-    def to_control(
-        self,
-        dt: float,
-        name: str | None = None,
-        inputs: Sequence[str] | None = None,
-        output: str | None = None,
-    ) -> control.NonlinearIOSystem:
-        """This controller as a discrete-time ``control.NonlinearIOSystem`` with sample time dt
-        (s): inputs ``y_d``, ``y`` (measured distal output) and ``q`` (motor angle), output
-        ``torque``; one state, the index of an exact snapshot of the engine (see
-        :mod:`tendonsheath.control_interop`).
-
-        Parameters
-        ----------
-        dt : float
-            Sample time (s), > 0.
-        name : str, optional
-            The system's name.
-        inputs : list of str, optional
-            Input signal names (default y_d, y, q).
-        output : str, optional
-            Output signal name (default torque).
-
-        Returns
-        -------
-        control.NonlinearIOSystem
-            The discrete-time system.
-        """
-        from ..control_interop import to_system
-
-        return to_system(self, dt, inputs, output, name)
-
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], u[1], u[2], dt)
 
-    def status(self) -> Status:
-        """The last cycle's :class:`~tendonsheath.Status` (held, fallback, saturated).
-
-        Returns
-        -------
-        Status
-            The flags of the last :meth:`step`.
-        """
-        return Status(self._engine.status())
-
-    def _bench_engine(self):
-        """The C++ engine ``bench.run`` runs in its C++ loop."""
-        return self._engine
-
     # -- persistence -----------------------------------------------------------------
     _saved_settings = ("feedforward_model", "smoothing", *_GAINS)
-
-    @property
-    def params(self) -> dict:
-        """The constructor settings, every gain resolved (a copy)."""
-        return dict(self._settings)
-
-    def to_dict(self) -> dict:
-        """The controller as a dict (format ``tendonsheath.compensator``; the feedforward
-        model as its own dict, or null).
-
-        Returns
-        -------
-        dict
-            format, version, compensator and its settings (every gain resolved).
-        """
-        return persistence.compensator_dict(type(self).__name__, self._settings)
-
-    def to_json(self, path: str | Path | None = None) -> str:
-        """The controller as JSON text; also written to `path` when one is given.
-        ``tendonsheath.compensate.load`` reads it (the C++ loader does not: it reads the
-        feedforwards only).
-
-        Parameters
-        ----------
-        path : str or Path, optional
-            A file to write the JSON to.
-
-        Returns
-        -------
-        str
-            The JSON text.
-        """
-        return persistence.to_json(self.to_dict(), path)
-
-    @classmethod
-    def load(cls, source: str | Path | dict) -> AdaptiveController:
-        """A controller saved with :meth:`to_json` (a path, JSON text or a dict).
-
-        Parameters
-        ----------
-        source : str, Path or dict
-            A path to a JSON file, JSON text, or the dict itself.
-
-        Returns
-        -------
-        AdaptiveController
-            The saved controller.
-
-        Raises
-        ------
-        ValueError
-            An unreadable source or an invalid compensator file.
-        TypeError
-            The file holds another kind of compensator.
-        """
-        return persistence.load_as(cls, source)
-
-    @classmethod
-    def _from_saved(cls, values: dict) -> AdaptiveController:
-        return cls(**values)

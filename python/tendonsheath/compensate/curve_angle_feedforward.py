@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import _core as core
 from .._args import accepts_old_names, number, python_names
-from .._arrays import as_signal, as_time_and_signal, checked_dt
+from .._arrays import as_signal, as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
 from ..physics import route_shape as shape_of
 from .base import Feedforward
@@ -279,9 +279,7 @@ class CurveAngleFeedforward(Feedforward):
         ValueError
             t missing, or samples not finite or of different lengths.
         """
-        ts, ys = as_time_and_signal(t, y_desired, "y_desired")
-        if ts is None:
-            raise ValueError("CurveAngleFeedforward.command needs the time vector t")
+        ts, ys = as_timed_signal(t, y_desired, "y_desired", "CurveAngleFeedforward.command")
         if routes is not None:
             shapes = [shape_of(routes(tk), self.friction) for tk in ts]
             g = np.array([s.g for s in shapes])

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _core as core
+from .._arrays import as_vector
 from ..route import check_curve_angle
 
 MIN_SAMPLES = 20  # fitted samples per fit (after warm-up), at the very least
@@ -46,18 +47,11 @@ class Recording:
 
 
 def _vector(values, what: str) -> np.ndarray:
-    try:
-        arr = np.asarray(values, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{what} must be an array of numbers ({exc})") from None
-    if arr.ndim == 0:
-        arr = arr.reshape(1)
-    if arr.ndim != 1:
-        raise ValueError(f"{what} must be 1-D (got shape {arr.shape})")
+    arr = as_vector(values, what)
     bad = np.flatnonzero(~np.isfinite(arr))
     if bad.size:
         raise ValueError(f"{what} has a non-finite value ({arr[bad[0]]}) at sample {bad[0]}")
-    return np.ascontiguousarray(arr)
+    return arr
 
 
 def _unpack(item, index: int):

@@ -7,7 +7,7 @@ import inspect
 import json
 import math
 import numbers
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Self, TypeVar, cast
@@ -19,11 +19,12 @@ from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import read_json_source
 from .._typing import ArrayLike, FloatArray
+from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
 from ..status import Status
 
 if TYPE_CHECKING:
-    import control  # python-control ships no types: its systems are Any to mypy
+    pass  # python-control ships no types: its systems are Any to mypy
 
 FORMAT_NAME = "tendonsheath.model"
 FORMAT_VERSION = 1
@@ -58,7 +59,7 @@ def _returning_result(simulate: _F) -> _F:
     return cast(_F, wrapper)  # the same call; a SimulationResult is an array of the output
 
 
-class HysteresisModel:
+class HysteresisModel(_ControlBlock):
     """A single-input single-output model backed by a real-time C++ core object.
 
     Subclasses declare ``_core`` (the C++ class), ``_core_params`` (its parameter
@@ -230,42 +231,6 @@ class HysteresisModel:
         if not self.reports_status:
             raise TypeError(f"{type(self).__name__} has no real-time core and reports no status")
         return Status(self._engine.status())
-
-    # -- python-control ---------------------------------------------------------------
-    def to_control(
-        self,
-        dt: float,
-        name: str | None = None,
-        inputs: Sequence[str] | None = None,
-        output: str | None = None,
-    ) -> control.NonlinearIOSystem:
-        """This model as a discrete-time ``control.NonlinearIOSystem`` with sample time dt (s),
-        input ``x`` (and ``curve_angle`` where the model takes one), output ``y`` and one state,
-        the index of an exact snapshot of the engine (see :mod:`tendonsheath.control_interop`).
-        Needs python-control: ``pip install 'tendonsheath[control]'``.
-
-        Parameters
-        ----------
-        dt : float
-            Sample time (s), > 0.
-        name : str, optional
-            The system's name.
-        inputs : str or list of str, optional
-            Input signal names (default ``control_inputs``).
-        output : str, optional
-            Output signal name (default ``control_output``).
-
-        Returns
-        -------
-        control.NonlinearIOSystem
-            The discrete-time system.
-        """
-        from ..control_interop import to_system
-
-        return to_system(self, dt, inputs, output, name)
-
-    def _control_step(self, u, dt: float) -> float:
-        return self.step(u[0], dt)
 
     # -- persistence -----------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:

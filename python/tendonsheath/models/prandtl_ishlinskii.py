@@ -10,7 +10,24 @@ from .._typing import ArrayLike
 from .base import HysteresisModel
 
 
-class PrandtlIshlinskii(HysteresisModel):
+class _PlayOperators(HysteresisModel):
+    """The weighted plays' parameters, shared by the operator and its inverse."""
+
+    _core_params = core.PrandtlIshlinskiiParams
+    param_names = ("thresholds", "weights")
+
+    def __init__(
+        self,
+        thresholds: ArrayLike = (0.0, 0.05, 0.1, 0.15, 0.2),
+        weights: ArrayLike = (0.5, 0.2, 0.15, 0.1, 0.05),
+    ):
+        super().__init__(
+            thresholds=_vector(self, "thresholds", thresholds),
+            weights=_vector(self, "weights", weights),
+        )
+
+
+class PrandtlIshlinskii(_PlayOperators):
     """y = sum_i weights[i] * play_{thresholds[i]}[x].
 
     Thresholds: 0 <= r_0 < r_1 < ...; the partial sums of the weights must be > 0.
@@ -31,18 +48,6 @@ class PrandtlIshlinskii(HysteresisModel):
     """
 
     _core = core.PrandtlIshlinskii
-    _core_params = core.PrandtlIshlinskiiParams
-    param_names = ("thresholds", "weights")
-
-    def __init__(
-        self,
-        thresholds: ArrayLike = (0.0, 0.05, 0.1, 0.15, 0.2),
-        weights: ArrayLike = (0.5, 0.2, 0.15, 0.1, 0.05),
-    ):
-        super().__init__(
-            thresholds=_vector(self, "thresholds", thresholds),
-            weights=_vector(self, "weights", weights),
-        )
 
     @classmethod
     def uniform(
@@ -90,7 +95,7 @@ class PrandtlIshlinskii(HysteresisModel):
         return PrandtlIshlinskiiInverse(p["thresholds"], p["weights"])
 
 
-class PrandtlIshlinskiiInverse(HysteresisModel):
+class PrandtlIshlinskiiInverse(_PlayOperators):
     """Exact inverse of :class:`PrandtlIshlinskii` with the same thresholds and weights.
 
     Each sample solves the piecewise-linear loading curve of the current play states
@@ -110,18 +115,6 @@ class PrandtlIshlinskiiInverse(HysteresisModel):
     """
 
     _core = core.PrandtlIshlinskiiInverse
-    _core_params = core.PrandtlIshlinskiiParams
-    param_names = ("thresholds", "weights")
-
-    def __init__(
-        self,
-        thresholds: ArrayLike = (0.0, 0.05, 0.1, 0.15, 0.2),
-        weights: ArrayLike = (0.5, 0.2, 0.15, 0.1, 0.05),
-    ):
-        super().__init__(
-            thresholds=_vector(self, "thresholds", thresholds),
-            weights=_vector(self, "weights", weights),
-        )
 
     def inverse(self) -> PrandtlIshlinskii:
         """The forward operator this one inverts.

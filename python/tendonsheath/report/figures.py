@@ -32,6 +32,17 @@ def _angle(values, unit: str):
     return np.degrees(values) if unit == "deg" else np.asarray(values)
 
 
+def _labelled(fig, ax, xlabel: str, ylabel: str, title: str, loc="upper right", fontsize=8):
+    """Labels, title, grid and legend, laid out: how the tracking, error and loop figures end."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    ax.legend(loc=loc, fontsize=fontsize)
+    fig.tight_layout()
+    return fig
+
+
 def tracking(runs: dict, title: str, last_seconds: float | None = 12.0, unit: str = "deg"):
     """Reference and outputs over time (the last `last_seconds`), in `unit` (deg or rad)."""
     fig, ax = plt.subplots(figsize=(9, 3.4))
@@ -41,13 +52,7 @@ def tracking(runs: dict, title: str, last_seconds: float | None = 12.0, unit: st
     ax.plot(t[keep], _angle(first.reference[keep], unit), "k--", lw=1.2, label="reference")
     for i, (name, r) in enumerate(runs.items()):
         ax.plot(t[keep], _angle(r.output[keep], unit), lw=1.0, color=_color(name, i), label=name)
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel(f"distal angle [{unit}]")
-    ax.set_title(title)
-    ax.grid(alpha=0.3)
-    ax.legend(loc="upper right", fontsize=8)
-    fig.tight_layout()
-    return fig
+    return _labelled(fig, ax, "time [s]", f"distal angle [{unit}]", title)
 
 
 def errors(runs: dict, title: str, unit: str = "deg"):
@@ -61,13 +66,7 @@ def errors(runs: dict, title: str, unit: str = "deg"):
         ls=":",
         label="end of warm-up",
     )
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel(f"tracking error [{unit}]")
-    ax.set_title(title)
-    ax.grid(alpha=0.3)
-    ax.legend(loc="upper right", fontsize=8)
-    fig.tight_layout()
-    return fig
+    return _labelled(fig, ax, "time [s]", f"tracking error [{unit}]", title)
 
 
 def loops(runs: dict, title: str, unit: str = "deg"):
@@ -84,13 +83,9 @@ def loops(runs: dict, title: str, unit: str = "deg"):
         )
     lim = _angle(np.max(np.abs(next(iter(runs.values())).reference)), unit)
     ax.plot([-lim, lim], [-lim, lim], "k:", lw=0.8)
-    ax.set_xlabel(f"reference [{unit}]")
-    ax.set_ylabel(f"output [{unit}]")
-    ax.set_title(title)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    return fig
+    return _labelled(
+        fig, ax, f"reference [{unit}]", f"output [{unit}]", title, loc="best", fontsize=7
+    )
 
 
 def planar_centreline(route: Route, samples: int = 400):
