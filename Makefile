@@ -173,9 +173,11 @@ results: demo
 readme:
 	$(PYTHON) benchmarks/readme_tables.py
 
+# mypy (configured in pyproject.toml) reads the installed extension's stubs, hence `install`
 lint: install
 	$(VENV)/bin/ruff check python tests benchmarks examples
 	$(VENV)/bin/ruff format --check python tests benchmarks examples
+	$(VENV)/bin/mypy
 
 clean:
-	rm -rf build dist $(VENV) $(DEMO_OUT) .pytest_cache .ruff_cache
+	rm -rf build dist $(VENV) $(DEMO_OUT) .pytest_cache .ruff_cache .mypy_cache

@@ -599,3 +599,64 @@ def test_the_walk_reads_nanobind_signatures():
     assert _signature_params(_core.Route.angle_at) == ["s"]
     with pytest.raises(TypeError, match=REJECTED):
         _call_with_bogus("shape_integrals", _core.shape_integrals)
+
+
+# Modules whose public signatures are not annotated yet: the annotation check does not walk
+# them. Remove a module from here once its signatures are annotated.
+ANNOTATIONS_NOT_YET_WRITTEN: set[str] = set()
+
+
+def _annotation_problems(obj) -> list[str]:
+    """The parameters of a public callable that have no annotation, and a missing return
+    annotation (a class: its constructor's parameters). nanobind writes every type into its
+    signatures (and ``_core.pyi``), so those are annotated by construction."""
+    if isinstance(obj, property):
+        obj = obj.fget
+    if _nanobind_signature(obj) is not None:
+        return []
+    is_class = inspect.isclass(obj)
+    if is_class:
+        obj = obj.__init__
+        if not getattr(obj, "__module__", "").startswith("tendonsheath"):
+            return []  # the constructor of a base outside the package (object, Enum, ...)
+    sig = inspect.signature(obj)
+    params = list(sig.parameters.values())
+    if params and params[0].name in ("self", "cls"):
+        params = params[1:]
+    problems = [
+        f"parameter {p.name!r} has no annotation" for p in params if p.annotation is p.empty
+    ]
+    if not is_class and sig.return_annotation is sig.empty:
+        problems.append("no return annotation")
+    return problems
+
+
+@pytest.mark.parametrize(
+    "qual",
+    sorted(q for q, (m, _) in PUBLIC.items() if m not in ANNOTATIONS_NOT_YET_WRITTEN),
+)
+def test_public_signature_is_annotated(qual):
+    problems = _annotation_problems(PUBLIC[qual][1])
+    assert not problems, f"{qual}: " + "; ".join(problems)
+
+
+def test_the_annotation_check_can_fail():
+    def bare(x, y: int = 1):
+        return x
+
+    class Holder:
+        def __init__(self, x):
+            self.x = x
+
+        @property
+        def value(self):
+            return self.x
+
+    def typed(x: float, *rest: float, **options: object) -> float:
+        return x
+
+    Holder.__init__.__module__ = "tendonsheath.fake"  # as if defined in the package
+    assert _annotation_problems(bare) == ["parameter 'x' has no annotation", "no return annotation"]
+    assert _annotation_problems(Holder) == ["parameter 'x' has no annotation"]
+    assert _annotation_problems(Holder.value) == ["no return annotation"]
+    assert _annotation_problems(typed) == []

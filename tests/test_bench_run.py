@@ -65,9 +65,7 @@ def test_adaptive_needs_a_torque_motor_and_falls_back_during_dropout():
 
 def test_curve_angle_controller_sees_route_changes():
     plant = _plant(motor=None)
-    ff = ts.compensate.CurveAngleFeedforward(
-        0.1, 2.4e4, 1.2, 10.0, curve_angle=0.1, smoothing=0.01
-    )
+    ff = ts.compensate.CurveAngleFeedforward(0.1, 2.4e4, 1.2, 10.0, curve_angle=0.1, smoothing=0.01)
 
     def routes(t):
         return ts.Route.uniform(1.2, np.pi if t < 3.0 else 2 * np.pi)

@@ -23,6 +23,8 @@ EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "scenarios" / "c
         ("[[route.changes]]\nt = 2.0\nwhen = 3\n", r"unknown key 'when'"),
         ("[compare]\ncompensators = ['magic']\n", r"unknown compensator 'magic'"),
         ("[reference]\nsines = [[1.0]]\n", r"sines\[0\]"),
+        # no sines: no reference to track (it once reached the bench as the number 0)
+        ("[reference]\nsines = []\n", r"sines must list at least one sine"),
         ("[reference]\nduration = -1.0\n", r"duration and rate must be > 0"),
         ("[load]\ntype = 'gravity'\n", r"\[load\]: 'type' must be"),
         ("[plnt]\n", r"unknown table or key 'plnt'"),

@@ -41,6 +41,14 @@ assert ts.__version__ == subprocess.run(
     [f"{venv}/venv/bin/tendonsheath", "--version"], capture_output=True, text=True
 ).stdout.split()[1]
 
+# typed (PEP 561): the marker, and the extension's stubs from nanobind's stub generator
+from pathlib import Path
+
+package = Path(ts.__file__).parent
+assert (package / "py.typed").is_file(), "py.typed is not in the wheel"
+stubs = (package / "_core.pyi").read_text()
+assert "class PullPullPlant" in stubs and "def shape_integrals(" in stubs, "_core.pyi incomplete"
+
 # a model: exact backlash on a unit sine peaks at c (1 - B) and -c (1 - B)
 t = np.arange(0.0, 4.0, 1e-3)
 x = np.sin(2 * np.pi * t)

@@ -20,11 +20,11 @@ def atomic_path(path) -> Iterator[Path]:
     """Yields a temporary path beside ``path`` (same suffix) to write to; on success it is
     renamed to ``path``, on any exception (KeyboardInterrupt included) it is removed."""
     path = Path(path)
-    fd, tmp = tempfile.mkstemp(
+    fd, tmp_name = tempfile.mkstemp(
         prefix=f".{path.name}.", suffix=f".tmp{path.suffix}", dir=path.parent
     )
     os.close(fd)
-    tmp = Path(tmp)
+    tmp = Path(tmp_name)
     try:
         yield tmp
         os.chmod(tmp, 0o666 & ~_UMASK)  # mkstemp makes it private; outputs get the usual mode

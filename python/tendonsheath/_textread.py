@@ -233,7 +233,7 @@ def _merge(parts: list[list[Column | None]], n_cols: int) -> list[Column]:
     as its column is joined, so the peak is the data plus one column, not twice the data."""
     merged = []
     for j in range(n_cols):
-        cols = [p[j] for p in parts]
+        cols = [c for c in (p[j] for p in parts) if c is not None]  # None: a joined column
         for p in parts:
             p[j] = None
         values = np.concatenate([c.values for c in cols]) if cols else np.empty(0)
@@ -304,9 +304,12 @@ def read_text_header(path: Path) -> list[str]:
 def read_text_table(path: Path) -> TextTable:
     """Read a delimited text table with a header row (see the module's doc)."""
     with _past_header(path) as (f, names, delimiter, first, notes):
-        parts, row_parts = [], []
+        parts: list[list[Column | None]] = []
+        row_parts = []
         for lines, rows in _data_lines(f, first + 1):
-            parts.append(_parse_chunk(path, lines, rows, names, delimiter))
+            parts.append(
+                list(_parse_chunk(path, lines, rows, names, delimiter))
+            )  # of Column | None
             row_parts.append(rows)
     if not parts:
         raise _fail(path, f"the header names the columns {names} but there are no data rows")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import functools
 import warnings
 from pathlib import Path
+from typing import NoReturn
 
 import numpy as np
 import typer
@@ -23,7 +24,7 @@ def _no_type_for_flags(self, ctx):
     return None if self.is_flag else _display_type(self, ctx)
 
 
-TyperOption.display_type_rich = _no_type_for_flags
+TyperOption.display_type_rich = _no_type_for_flags  # type: ignore[method-assign]  # see above
 
 app = typer.Typer(
     help="Model, identify and compensate tendon-sheath mechanisms.",
@@ -273,7 +274,7 @@ _TIME_HELP = (
 )
 
 
-def _fail(reason) -> None:
+def _fail(reason) -> NoReturn:
     """One-line reason on bad input, and a non-zero exit (2)."""
     from rich.markup import escape
 
@@ -512,7 +513,7 @@ def predict(
     if log.t is not None:
         cols[time_col or "time"] = log.t  # a bag has a time without a time column
     cols[input_col] = log.x
-    if log.y is not None:
+    if log.y is not None and wanted_output is not None:  # an output was read: it was named
         cols[wanted_output] = log.y
     cols["predicted"] = y_hat
     io.write_csv(out, cols)

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import re
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -32,6 +32,7 @@ import numpy as np
 
 from ._atomic import save_figure, write_json, write_text
 from ._compare_progress import CompareProgress
+from ._typing import RecordingLike
 from .identify.core import SEARCH_DEADLINE
 from .identify.cross_validation import estimator_split, evaluate_splits, recording_splits
 from .identify.data import make_recordings
@@ -109,7 +110,7 @@ _ALIASES = {
 _BLOCKS = {"lag1": FirstOrderLag, "lag2": SecondOrderLag}
 
 
-def parse_model(spec) -> Any:
+def parse_model(spec: type[HysteresisModel] | HysteresisModel | str) -> Any:
     """A candidate from a class, a Chain instance or a name: ``BoucWenBacklash``, ``gpi``,
     ``bwb+poly3`` (Chain with a cubic), ``bwb+odd3`` (odd cubic), ``bwb+lag2`` / ``pi+lag1``
     (Hammerstein: then a second- / first-order lag), ``lag1+bwb`` (Wiener), ``plant`` (the
@@ -165,7 +166,7 @@ def parse_model(spec) -> Any:
     return Chain(cls(), Polynomial(degree, odd=m.group(1) == "odd"))
 
 
-def model_name(candidate) -> str:
+def model_name(candidate: type[HysteresisModel] | Chain) -> str:
     """BoucWenBacklash, BoucWenBacklash+poly3, BoucWenBacklash+lag2 (Hammerstein),
     lag1+BoucWenBacklash (Wiener).
 
@@ -186,6 +187,7 @@ def model_name(candidate) -> str:
         if isinstance(candidate.first, LinearBlock):
             return f"{short[type(candidate.first)]}+{type(candidate.second).__name__}"
         p = candidate.second
+        assert isinstance(p, Polynomial)  # a static chain's second part
         kind = "odd" if getattr(p, "options", {}).get("odd") else "poly"
         return f"{type(candidate.first).__name__}+{kind}{p.degree}"
     return candidate.__name__
@@ -485,19 +487,19 @@ def _without_initial_transients(splits):
 
 
 def compare_models(
-    logs,
+    logs: Sequence[RecordingLike],
     models: Sequence | None = None,
     validate: float | str | Sequence | Any = "cv",
     *,
     folds: int | None = None,
-    curve_angle=None,
+    curve_angle: float | None = None,
     seed: int | None = 0,
     maxiter: int = 100,
     popsize: int = 15,
     workers: int | None = None,
     progress: bool = False,
     refit: bool = True,
-    on_fit=None,
+    on_fit: Callable[[str, float], object] | None = None,
     time_budget: float | None = None,
 ) -> Comparison:
     """Fit each candidate on training data and rank them on held-out data.

@@ -22,13 +22,19 @@ from __future__ import annotations
 import copy
 import math
 from collections.abc import Sequence
+from types import ModuleType
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    import control  # python-control ships no types: its systems are Any to mypy
 
 INSTALL_HINT = "pip install 'tendonsheath[control]'"
 
 
-def require_control():
+def require_control() -> ModuleType:
     """The ``control`` module, or an ImportError that says how to install it.
 
     Returns
@@ -50,6 +56,26 @@ def require_control():
     return control
 
 
+class _Block(Protocol):
+    """What a system steps: a model or a compensator (deep-copyable)."""
+
+    @property
+    def control_inputs(self) -> tuple[str, ...]: ...
+
+    @property
+    def control_output(self) -> str: ...
+
+    def reset(self) -> None: ...
+
+    def _control_step(self, u: Sequence[float], dt: float) -> float: ...
+
+
+class _Stepping(Protocol):
+    """A block's streaming step (its signals, then dt)."""
+
+    def step(self, *signals: Any, **options: Any) -> float: ...
+
+
 class Snapshots:
     """Engine snapshots addressed by a float index; index 0 is the engine at rest.
 
@@ -65,17 +91,17 @@ class Snapshots:
         Sample time (s).
     """
 
-    def __init__(self, block, dt: float):
+    def __init__(self, block: _Block, dt: float):
         fresh = copy.deepcopy(block)
         fresh.reset()
         self.dt = dt
-        self._engines: list[tuple[object, bool]] = [(fresh, False)]
-        self._next: dict[tuple, int] = {}
+        self._engines: list[tuple[Any, bool]] = [(fresh, False)]
+        self._next: dict[tuple, tuple[int, float]] = {}
 
     def __len__(self) -> int:
         return len(self._engines)
 
-    def _at(self, state) -> tuple[object, bool]:
+    def _at(self, state) -> tuple[Any, bool]:
         value = float(np.asarray(state, dtype=float).reshape(-1)[0])
         index = int(value) if math.isfinite(value) else -1
         if index != value or not 0 <= index < len(self._engines):
@@ -97,7 +123,7 @@ class Snapshots:
             self._next[key] = (len(self._engines) - 1, y)
         return self._next[key]
 
-    def output(self, state, u) -> float:
+    def output(self, state: ArrayLike, u: Sequence[float]) -> float:
         """The block's output for input u from snapshot ``state``.
 
         Parameters
@@ -119,7 +145,7 @@ class Snapshots:
         """
         return self._advance(state, u)[1]
 
-    def update(self, state, u) -> int:
+    def update(self, state: ArrayLike, u: Sequence[float]) -> int:
         """The snapshot index after input u from snapshot ``state``.
 
         Parameters
@@ -143,12 +169,12 @@ class Snapshots:
 
 
 def to_system(
-    block,
+    block: _Block,
     dt: float,
     inputs: Sequence[str] | None = None,
     output: str | None = None,
     name: str | None = None,
-):
+) -> control.NonlinearIOSystem:
     """A ``control.NonlinearIOSystem`` (discrete, sample time dt) stepping ``block``; the
     signal names default to the block's ``control_inputs`` and ``control_output``.
 
@@ -212,7 +238,13 @@ class _ControlBlock:
     """What makes a model or a compensator a python-control system: :meth:`to_control`, over
     its ``step`` and its signal names ``control_inputs`` and ``control_output``."""
 
-    def to_control(self, dt: float, name: str | None = None, inputs=None, output=None):
+    def to_control(
+        self: _Block,
+        dt: float,
+        name: str | None = None,
+        inputs: Sequence[str] | None = None,
+        output: str | None = None,
+    ) -> control.NonlinearIOSystem:
         """This block as a discrete-time ``control.NonlinearIOSystem`` with sample time dt (s),
         inputs ``control_inputs`` and output ``control_output``: a model maps ``x`` (and
         ``curve_angle`` where it takes one) to ``y``; a feedforward maps ``y_d`` to ``x``, the
@@ -240,11 +272,11 @@ class _ControlBlock:
         """
         return to_system(self, dt, inputs, output, name)
 
-    def _control_step(self, u, dt: float) -> float:
+    def _control_step(self: _Stepping, u: Sequence[float], dt: float) -> float:
         return self.step(u[0], dt)
 
 
-def streaming_delay(block) -> int:
+def streaming_delay(block: _Block) -> int:
     """Samples by which ``block.step`` lags its input (parts of a Chain or Scaled included).
 
     Parameters
@@ -266,7 +298,9 @@ def streaming_delay(block) -> int:
     return lag
 
 
-def frequency_response_data(frequencies_hz, gain_db, phase_deg, name: str | None = None):
+def frequency_response_data(
+    frequencies_hz: ArrayLike, gain_db: ArrayLike, phase_deg: ArrayLike, name: str | None = None
+) -> control.FrequencyResponseData:
     """``control.FrequencyResponseData`` from gains (dB) and phases (deg) at frequencies (Hz).
 
     Parameters

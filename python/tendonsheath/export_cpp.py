@@ -160,6 +160,7 @@ def cpp_header(source: str | Path, namespace: str | None = None) -> str:
         fmt = json.loads(path.read_text(encoding="utf-8-sig")).get("format")
     except (OSError, ValueError, AttributeError) as exc:
         raise ValueError(f"{path}: not a model or compensator JSON file ({exc})") from None
+    obj: object  # a compensator or a model
     if fmt == "tendonsheath.compensator":
         obj = load_compensator(path)
         include, body = _compensator_body(obj)

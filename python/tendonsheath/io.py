@@ -38,6 +38,7 @@ import numpy as np
 from ._atomic import atomic_path
 from ._rosbag import TIME_KEY, bag_columns, bag_path, read_bag
 from ._textread import Column, parse_cells, read_text_header, read_text_table
+from ._typing import ArrayLike, FloatArray
 
 MIN_ROWS = 3
 MAX_UPSAMPLING = 10  # resampling may multiply the samples by at most this
@@ -195,7 +196,7 @@ class Log:
         )
 
 
-def deg2rad(values):
+def deg2rad(values: ArrayLike) -> FloatArray:
     """Degrees to radians (arrays or numbers).
 
     Parameters
@@ -211,7 +212,7 @@ def deg2rad(values):
     return np.deg2rad(np.asarray(values, dtype=float))
 
 
-def rad2deg(values):
+def rad2deg(values: ArrayLike) -> FloatArray:
     """Radians to degrees (arrays or numbers).
 
     Parameters
@@ -238,7 +239,7 @@ def _irregular(t) -> bool:
 def _ranges(rows) -> str:
     """Compact row list: 3, 5-9, 12 (at most 10 ranges, then a count)."""
     rows = [int(r) for r in rows]
-    out, start, prev = [], None, None
+    out, start, prev = [], None, 0
     for r in rows:
         if start is None:
             start = prev = r
@@ -478,7 +479,7 @@ def _open(path: Path, sheet=None) -> _Table:
     return _read_text(path)
 
 
-def columns(path: str | Path, sheet=None) -> list[str]:
+def columns(path: str | Path, sheet: str | int | None = None) -> list[str]:
     """The column names of a data file (of a text file: from its header alone; of a ROS bag:
     every number its topics hold, as /topic:field).
 
@@ -511,15 +512,15 @@ def columns(path: str | Path, sheet=None) -> list[str]:
 
 def read_log(
     path: str | Path,
-    time=None,
-    input=None,  # noqa: A002 - the natural name of the column role
-    output=None,
-    curve_angle=None,
+    time: str | int | None = None,
+    input: str | int | None = None,  # noqa: A002 - the natural name of the column role
+    output: str | int | None = None,
+    curve_angle: str | int | float | None = None,
     *,
     resample: float | str | None = None,
     missing: str = "error",
     degrees: bool = False,
-    sheet=None,
+    sheet: str | int | None = None,
     gap_factor: float = 3.0,
 ) -> Log:
     """Read one recording. Columns are names (or indices for a 2-D NPY array).
@@ -592,6 +593,7 @@ def read_log(
             f"{path}: too few {table.row_name}s ({log.x.size}); at least {MIN_ROWS} are needed"
         )
     if log.t is not None:
+        assert log.rows is not None  # None only once resampled, below
         log.notes.extend(_timing_notes(log.t, log.rows, table.row_name, gap_factor))
     if resample is not None:
         log = _resample(log, resample)
@@ -655,13 +657,14 @@ def _keep_rows(log: Log, keep: np.ndarray) -> Log:
         y=f(log.y),
         curve_angle=f(log.curve_angle),
         extra={k: v[keep] for k, v in log.extra.items()},
-        rows=log.rows[keep],
+        rows=f(log.rows),
     )
 
 
 def _drop_duplicate_times(log: Log, table: _Table, time) -> Log:
     """Raise where time goes backwards; drop samples with a duplicate timestamp (first kept)."""
     t = log.t
+    assert t is not None and log.rows is not None  # a time column, not resampled yet
     back = np.flatnonzero(np.diff(t) < 0)
     if back.size:
         i = int(back[0]) + 1
@@ -688,6 +691,7 @@ def _treat_missing(log: Log, table: _Table, missing: str) -> Log:
         bad |= ~np.isfinite(arr)
     if not bad.any():
         return log
+    assert log.rows is not None  # None only once resampled, after this
     rows = f"{table.row_name}s {_ranges(log.rows[bad])}"
     if missing == "drop":
         log.notes.append(
@@ -732,7 +736,8 @@ def _resample(log: Log, resample: float | str) -> Log:
     if log.t is None:
         raise ValueError(f"{log.path}: resampling needs a time column")
     if resample == "auto":
-        return log.resampled(1.0 / log.sample_time) if log.irregular else log
+        step = log.sample_time
+        return log.resampled(1.0 / step) if log.irregular and step is not None else log
     try:
         rate = float(resample)
     except (TypeError, ValueError):

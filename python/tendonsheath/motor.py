@@ -9,6 +9,7 @@ import numpy as np
 from . import _core as core
 from ._args import number, python_names
 from ._arrays import as_timed_signal, checked_dt
+from ._typing import ArrayLike
 from .simulation_result import SimulationResult
 from .status import Status
 
@@ -74,7 +75,7 @@ class Motor:
         A parameter the C++ core rejects (the message names it).
     """
 
-    def __init__(self, params):
+    def __init__(self, params: core.MotorParams):
         self._params = params
         kind = "position" if params.kind == core.MotorKind.Position else "torque"
         with python_names(f"Motor.{kind}"):
@@ -216,7 +217,7 @@ class Motor:
         """
         return Status(self._engine.status())
 
-    def simulate(self, t, command) -> SimulationResult:
+    def simulate(self, t: ArrayLike, command: ArrayLike) -> SimulationResult:
         """Motor position for a command sequence, unloaded (starts from rest).
 
         Parameters

@@ -11,14 +11,18 @@ NumPy arrays (broadcast together) and loop in C++.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 
 from . import _core as core
 from ._args import accepts_old_names
+from ._typing import ArrayLike, FloatArray, FloatOrArray
 from .route import Route
 
 
-def _elementwise(kernel, *args):
+def _elementwise(kernel: Callable[..., Any], *args: ArrayLike) -> FloatOrArray:
     """kernel (a C++ loop over equal-length float64 arrays) on the broadcast arguments; a
     NumPy scalar for scalar arguments, else an array of their broadcast shape."""
     arrays = np.broadcast_arrays(*(np.asarray(a, dtype=np.float64) for a in args))
@@ -27,12 +31,12 @@ def _elementwise(kernel, *args):
     return out[()] if out.ndim == 0 else out
 
 
-def _friction_angle(mu, curve_angle):
+def _friction_angle(mu: ArrayLike, curve_angle: ArrayLike) -> FloatArray:
     """a = mu Theta, the argument of every uniform closed form."""
     return np.multiply(np.asarray(mu, dtype=np.float64), np.asarray(curve_angle, np.float64))
 
 
-def tanh_half_over(a):
+def tanh_half_over(a: ArrayLike) -> FloatOrArray:
     """tanh(a/2)/a, -> 1/2 - a^2/24 as a -> 0.
 
     Parameters
@@ -49,7 +53,9 @@ def tanh_half_over(a):
 
 
 @accepts_old_names("physics.capstan_ratio", {"total_angle": "curve_angle"})
-def capstan_ratio(mu, curve_angle, direction=1.0):
+def capstan_ratio(
+    mu: ArrayLike, curve_angle: ArrayLike, direction: ArrayLike = 1.0
+) -> FloatOrArray:
     """Full-slip distal/proximal tension ratio T_d/T_p = exp(-direction mu Theta) (A1).
 
     Parameters
@@ -70,7 +76,7 @@ def capstan_ratio(mu, curve_angle, direction=1.0):
     return np.exp(-np.asarray(direction) * np.asarray(mu) * np.asarray(curve_angle))
 
 
-def route_shape(route, mu: float) -> core.ShapeIntegrals:
+def route_shape(route: Route, mu: float) -> core.ShapeIntegrals:
     """g, G and Theta of a route (anything with ``s`` and ``theta`` samples) for friction mu,
     as the C++ core's compensators take them.
 
@@ -114,7 +120,9 @@ def shape_integrals(route: Route, mu: float) -> tuple[float, float]:
 
 
 @accepts_old_names("physics.backlash_half_width", {"total_angle": "curve_angle"})
-def backlash_half_width(length, EA, pretension, mu, curve_angle):
+def backlash_half_width(
+    length: ArrayLike, EA: ArrayLike, pretension: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike
+) -> FloatOrArray:
     """e_b = T0 L tanh(mu Theta/2) / EA: half the pull-pull dead zone, uniform curvature (A7).
 
     Parameters
@@ -141,7 +149,9 @@ def backlash_half_width(length, EA, pretension, mu, curve_angle):
 
 
 @accepts_old_names("physics.load_offset", {"total_angle": "curve_angle"})
-def load_offset(length, EA, load_force, mu, curve_angle):
+def load_offset(
+    length: ArrayLike, EA: ArrayLike, load_force: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike
+) -> FloatOrArray:
     """e_L = F_L L tanh(a/2) / (EA a), a = mu Theta: the load shift of both branches (A7).
 
     Parameters
@@ -168,7 +178,9 @@ def load_offset(length, EA, load_force, mu, curve_angle):
 
 
 @accepts_old_names("physics.load_compliance", {"total_angle": "curve_angle"})
-def load_compliance(length, EA, mu, curve_angle):
+def load_compliance(
+    length: ArrayLike, EA: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike
+) -> FloatOrArray:
     """C_L = L tanh(a/2) / (EA a) (m/N): output shift per newton of distal load.
 
     Parameters
@@ -192,7 +204,9 @@ def load_compliance(length, EA, mu, curve_angle):
 
 
 @accepts_old_names("physics.spring_slope", {"total_angle": "curve_angle"})
-def spring_slope(length, EA, mu, curve_angle, k):
+def spring_slope(
+    length: ArrayLike, EA: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike, k: ArrayLike
+) -> FloatOrArray:
     """Branch slope dx_out/dx_in = 1/(1 + k C_L) with a spring load F_L = k x_out (spec A.4).
 
     Parameters
@@ -219,7 +233,9 @@ def spring_slope(length, EA, mu, curve_angle, k):
 
 
 @accepts_old_names("physics.dead_zone_width", {"total_angle": "curve_angle"})
-def dead_zone_width(length, EA, pretension, mu, curve_angle):
+def dead_zone_width(
+    length: ArrayLike, EA: ArrayLike, pretension: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike
+) -> FloatOrArray:
     """2 e_b: the input dead zone of a pull-pull pair, uniform curvature (A7).
 
     Parameters
@@ -245,7 +261,7 @@ def dead_zone_width(length, EA, pretension, mu, curve_angle):
 
 
 @accepts_old_names("physics.no_slack_limit", {"total_angle": "curve_angle"})
-def no_slack_limit(pretension, mu, curve_angle):
+def no_slack_limit(pretension: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike) -> FloatOrArray:
     """Largest distal load F_L before the released tendon goes slack: T0 (a/sinh a)(1 + e^-a).
 
     Parameters
@@ -311,7 +327,14 @@ def pull_pull_offsets(
     return float(fwd), float(bwd)
 
 
-def pull_pull_dead_zone(route1: Route, EA, pretension, mu, load_force=0.0, route2=None) -> float:
+def pull_pull_dead_zone(
+    route1: Route,
+    EA: float,
+    pretension: float,
+    mu: float,
+    load_force: float = 0.0,
+    route2: Route | None = None,
+) -> float:
     """Input dead-zone width (m) of a pull-pull pair: forward minus backward steady offset.
 
     Parameters
@@ -338,7 +361,7 @@ def pull_pull_dead_zone(route1: Route, EA, pretension, mu, load_force=0.0, route
     return f - b
 
 
-def single_tendon_dead_zone(route: Route, EA, distal_tension, mu) -> float:
+def single_tendon_dead_zone(route: Route, EA: float, distal_tension: float, mu: float) -> float:
     """(A4): input travel to reverse a single tendon pulled at distal tension T_d (m).
 
     b = (L/EA) T_p0 [g - e^{-2a} G] with T_p0 = T_d e^{a}; uniform: 4 T_d L sinh^2(a/2)/(EA a).
@@ -365,7 +388,14 @@ def single_tendon_dead_zone(route: Route, EA, distal_tension, mu) -> float:
     return float(route.length / EA * Tp0 * (g - np.exp(-2 * a) * G))
 
 
-def single_tendon_elongation(route: Route, EA, proximal_tension, mu, reference_tension, sign=1):
+def single_tendon_elongation(
+    route: Route,
+    EA: float,
+    proximal_tension: float,
+    mu: float,
+    reference_tension: float,
+    sign: float = 1,
+) -> float:
     """(A3) in full slip: Delta = (L/EA)(T_p g - T_ref) when pulled (sign +1),
     (L/EA)(T_p G - T_ref) when released (sign -1).
 

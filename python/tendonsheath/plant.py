@@ -19,6 +19,7 @@ import inspect
 import math
 import warnings
 from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -26,6 +27,7 @@ from . import _core as core
 from . import physics, plant_input
 from ._args import integer, number, python_names
 from ._arrays import as_time_and_signal, checked_dt
+from ._typing import ArrayLike
 from .loads import (
     ConstantForce,
     ConstantTorque,
@@ -39,6 +41,9 @@ from .route import Route
 from .sensor import Sensor
 from .simulation_result import SimulationResult
 from .status import Status
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 
 class SlackWarning(RuntimeWarning):
@@ -133,10 +138,13 @@ class _Plant:
     """Shared streaming/batch behaviour; subclasses build ``_engine`` and describe their routes."""
 
     _rows = 1
-    _engine = None
+    # core.SingleTendonPlant, core.PullPullPlant or core.ContinuumPlant, built by the subclass
+    _engine: Any = None
     motor: Motor | None = None
     sensor: Sensor | None = None
     _interpolation = ("hold", plant_input.DEFAULT_SUBSTEPS, plant_input.DEFAULT_LOOKAHEAD)
+
+    _arguments: dict  # the constructor's arguments, kept by _recording_arguments
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -342,14 +350,14 @@ class _Plant:
     # -- batch -----------------------------------------------------------------------
     def simulate(
         self,
-        t,
-        command,
+        t: ArrayLike | None,
+        command: ArrayLike,
         routes: Callable | None = None,
         full: bool = False,
         input_interpolation: str | None = None,
         periodic: bool | None = None,
         status: bool = False,
-    ):
+    ) -> SimulationResult | tuple[SimulationResult, np.ndarray]:
         """Simulate from rest (on the current route) without touching the streaming state.
 
         ``input_interpolation`` ("hold", "linear", "bandlimited"; default: the plant's, see
@@ -403,8 +411,7 @@ class _Plant:
             if not callable(routes):
                 raise ValueError(f"{name}: routes must be None or a callable t -> Route")
             idx, angles = self._schedule(ts, routes)
-        motor = self._motor_engine
-        motor_arg = core.Motor(self.motor._params) if motor is not None else None
+        motor_arg = core.Motor(self.motor._params) if self.motor is not None else None
         sensor_arg = core.Sensor(self.sensor._params) if self.sensor is not None else None
         mode, fine, lookahead = self._interpolation
         mode = mode if input_interpolation is None else input_interpolation
@@ -480,10 +487,13 @@ class _Plant:
             np.ascontiguousarray(np.vstack(rows)),
         )
 
+    def _lengths(self) -> tuple[float, ...]:
+        raise NotImplementedError  # the subclass's sheath lengths
+
     def _needs_time(self) -> bool:
         return self._engine.time_dependent()
 
-    def plot_tensions(self, ax=None):
+    def plot_tensions(self, ax: Axes | None = None) -> Axes:
         """Draw the tension profile along the route(s) (see :func:`tendonsheath.plots`).
 
         Parameters
@@ -551,7 +561,7 @@ class SingleTendonPlant(_Plant):
         friction: float = 0.1,
         stiffness: float = 2.4e4,
         elements: int = 100,
-        load=None,
+        load: ConstantForce | LinearSpring | SpringPreload | None = None,
         motor: Motor | None = None,
         sensor: Sensor | None = None,
         max_increment: float | None = None,
@@ -585,7 +595,7 @@ class SingleTendonPlant(_Plant):
             self._engine = core.SingleTendonPlant(p, route._core)
         self._setup_io(motor, sensor)
 
-    def _lengths(self):
+    def _lengths(self) -> tuple[float, ...]:
         return (self.route.length,)
 
     def set_route(self, route: Route) -> None:
@@ -711,7 +721,7 @@ class PullPullPlant(_Plant):
         proximal_radius: float = 5e-3,
         distal_radius: float = 5e-3,
         elements: int = 100,
-        load=None,
+        load: ConstantTorque | TorsionalSpring | SpringDamper | None = None,
         motor: Motor | None = None,
         route2: Route | None = None,
         sensor: Sensor | None = None,
@@ -772,7 +782,7 @@ class PullPullPlant(_Plant):
         """Distal pulley radius r_d (m); for a continuum plant, the tendon offset r_t."""
         return self._engine.params.distal_radius
 
-    def _lengths(self):
+    def _lengths(self) -> tuple[float, ...]:
         return (self.route.length, self.route2.length)
 
     def set_route(self, route: Route, route2: Route | None = None) -> None:

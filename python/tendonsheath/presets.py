@@ -34,6 +34,7 @@ so a study can vary it. Example::
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from .motor import Motor
 
@@ -53,7 +54,9 @@ REALISTIC = {
 }
 
 
-def realistic_plant(friction: float = 0.1, stiffness: float = 2.4e4, **overrides) -> dict:
+def realistic_plant(
+    friction: float = 0.1, stiffness: float = 2.4e4, **overrides: Any
+) -> dict[str, Any]:
     """Keyword arguments for :class:`~tendonsheath.PullPullPlant` (or ``ContinuumPlant``) that
     turn the realistic effects on: ``friction`` and ``stiffness`` (tendon 1) with sheath 2 and
     tendon 2 off by the preset ratios, distal joint inertia and damping, sheath viscosity and
@@ -100,7 +103,7 @@ def realistic_plant(friction: float = 0.1, stiffness: float = 2.4e4, **overrides
     return kwargs
 
 
-def realistic_motor(kind: str = "position", **kwargs) -> Motor:
+def realistic_motor(kind: str = "position", **kwargs: float) -> Motor:
     """A :class:`~tendonsheath.Motor` with the realistic drive train: Coulomb and viscous
     friction, gear backlash and (position kind) a servo that yields to the tendons' torque.
 

@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
+
 import numpy as np
 
 from . import _core as core
 from ._args import accepts_old_names, number, number_array, python_names, warn_renamed
 from ._arrays import as_signal
+from ._typing import ArrayLike, FloatArray
 
 # 100 full turns: the largest curve angle accepted in measured data (no sheath route comes near
 # it; a larger logged value is a unit or column mistake). The plant itself takes any angle.
@@ -38,7 +41,7 @@ class Route:
 
     __slots__ = ("_core",)
 
-    def __init__(self, s, theta):
+    def __init__(self, s: ArrayLike, theta: ArrayLike):
         s_arr = as_signal(number_array("Route", "s", s), "s")
         th_arr = as_signal(number_array("Route", "theta", theta), "theta")
         with python_names("Route"):
@@ -74,7 +77,7 @@ class Route:
             return cls._wrap(core.Route.uniform(length, angle))
 
     @classmethod
-    def arcs(cls, pieces) -> Route:
+    def arcs(cls, pieces: Iterable[Sequence[float]]) -> Route:
         """Consecutive constant-curvature pieces [(length m, bend angle rad), ...].
 
         A bend to the other side (negative angle) accumulates |angle|.
@@ -104,7 +107,7 @@ class Route:
             return cls._wrap(core.Route.arcs(items))
 
     @classmethod
-    def from_points(cls, xyz) -> Route:
+    def from_points(cls, xyz: ArrayLike) -> Route:
         """A 3-D polyline (K x 3, metres); each corner adds its turning angle.
 
         Parameters
@@ -130,7 +133,7 @@ class Route:
         return cls._wrap(core.Route.from_points(pts))
 
     @classmethod
-    def from_curvature(cls, s, kappa) -> Route:
+    def from_curvature(cls, s: ArrayLike, kappa: ArrayLike) -> Route:
         """A sampled curvature profile |kappa(s)| (1/m); theta is its trapezoidal integral.
 
         Parameters
@@ -188,7 +191,7 @@ class Route:
         """The accumulated curve angle at each sample (rad)."""
         return self._core.theta_samples()
 
-    def angle_at(self, s):
+    def angle_at(self, s: ArrayLike) -> float | FloatArray:
         """theta(s) (rad), vectorised; right-continuous at corners, clamped outside [0, L].
 
         Parameters
@@ -266,7 +269,7 @@ class Route:
         return f"Route(length={self.length:.6g} m, curve_angle={self.curve_angle:.6g} rad)"
 
 
-def check_curve_angle(value, what: str = "curve angle") -> None:
+def check_curve_angle(value: ArrayLike, what: str = "curve angle") -> None:
     """A curve angle (rad, scalar or array) must be finite, >= 0 and at most 100 turns.
 
     Parameters

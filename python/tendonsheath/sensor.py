@@ -6,6 +6,7 @@ import numpy as np
 
 from . import _core as core
 from ._args import integer, number, python_names
+from ._typing import ArrayLike, FloatArray
 from .status import Status
 
 
@@ -60,7 +61,7 @@ class Sensor:
         """Restart the noise sequence from its seed."""
         self._engine.reset()
 
-    def measure(self, x):
+    def measure(self, x: ArrayLike) -> float | FloatArray:
         """One reading per value of x (scalar or array), continuing the noise sequence.
 
         Parameters

@@ -10,9 +10,14 @@ so ``full=True`` is no longer needed (it is still accepted).
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, SubFigure
 
 # the fields a result may carry besides t and input (the last ones are a plant's)
 FIELDS = (
@@ -139,7 +144,7 @@ class SimulationResult(np.ndarray):
         idx = np.flatnonzero(slack) if slack is not None else np.array([], dtype=int)
         return int(idx[0]) if idx.size else None
 
-    def plot(self, ax=None):
+    def plot(self, ax: Sequence[Axes] | None = None) -> Figure | SubFigure:
         """Input and output against time (or sample), and output against input.
 
         The figure's title is the message when the result failed.
@@ -156,6 +161,7 @@ class SimulationResult(np.ndarray):
         """
         import matplotlib.pyplot as plt
 
+        fig: Figure | SubFigure
         if ax is None:
             fig, ax = plt.subplots(1, 2, figsize=(9, 3.5), constrained_layout=True)
         else:

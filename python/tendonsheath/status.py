@@ -12,6 +12,7 @@ from __future__ import annotations
 from enum import IntFlag
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 
 class Status(IntFlag):
@@ -27,10 +28,10 @@ class Status(IntFlag):
 
 
 # Every flag's name (lower case, as in C++ and in metrics.json), in bit order.
-STATUS_FLAGS: tuple[str, ...] = tuple(f.name.lower() for f in Status if f.value)
+STATUS_FLAGS: tuple[str, ...] = tuple(str(f.name).lower() for f in Status if f.value)
 
 
-def status_counts(flags) -> dict[str, int]:
+def status_counts(flags: ArrayLike) -> dict[str, int]:
     """How many samples of a per-sample flag array carry each flag, by name (every flag
     listed, 0 when absent).
 
@@ -53,7 +54,7 @@ def status_counts(flags) -> dict[str, int]:
     if a.size and (not np.issubdtype(a.dtype, np.integer) or a.min() < 0):
         raise ValueError("status_counts: flags must be non-negative integers (Status values)")
     a = a.astype(np.int64, copy=False)
-    return {f.name.lower(): int(np.count_nonzero(a & f.value)) for f in Status if f.value}
+    return {str(f.name).lower(): int(np.count_nonzero(a & f.value)) for f in Status if f.value}
 
 
 __all__ = ["STATUS_FLAGS", "Status", "status_counts"]

@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -33,6 +33,12 @@ from .. import models
 from ..physics import route_shape
 from ..route import Route
 from ..sensor import Sensor
+
+if TYPE_CHECKING:
+    from .._typing import ArrayLike
+    from ..compensate import ContinuumFeedforward, CurveAngleFeedforward, InverseFeedforward
+    from ..plant import PullPullPlant
+    from .run import Result
 
 NOMINAL = {"pretension": 1.0, "length": 1.0, "proximal_radius": 1.0}
 NOMINAL_FRICTION = 0.1  # held when a single curve angle cannot identify it
@@ -223,16 +229,16 @@ class Calibration:
 
     # -- the compensators ------------------------------------------------------------
     @property
-    def backlash_model(self):
+    def backlash_model(self) -> models.BoucWenBacklash:
         """The identified BoucWenBacklash."""
         return self.fits["BoucWenBacklash"].model
 
     @property
-    def curve_model(self):
+    def curve_model(self) -> models.CurveAngleModel:
         """The identified CurveAngleModel."""
         return self.fits["CurveAngleModel"].model
 
-    def curve_model_with_load(self, load: str | None = "calibrated"):
+    def curve_model_with_load(self, load: str | None = "calibrated") -> models.CurveAngleModel:
         """The CurveAngleModel with a load: "calibrated" the load groups identified from the
         calibration runs themselves (what the robot carried then), a name the load of that
         load run (:func:`calibrate_load`), None no load (not told).
@@ -257,7 +263,7 @@ class Calibration:
             p["load_force"], p["load_stiffness"] = told["load_force"], told["load_stiffness"]
         return models.CurveAngleModel(**p)
 
-    def inverse_feedforward(self, **options):
+    def inverse_feedforward(self, **options: Any) -> InverseFeedforward:
         """The InverseFeedforward of the identified BoucWenBacklash.
 
         Parameters
@@ -274,7 +280,9 @@ class Calibration:
 
         return InverseFeedforward(self.backlash_model, **options)
 
-    def curve_angle_feedforward(self, load: str | None = "calibrated", **options):
+    def curve_angle_feedforward(
+        self, load: str | None = "calibrated", **options: Any
+    ) -> CurveAngleFeedforward:
         """The CurveAngleFeedforward of the identified CurveAngleModel.
 
         Parameters
@@ -294,7 +302,9 @@ class Calibration:
 
         return CurveAngleFeedforward.from_model(self.curve_model_with_load(load), **options)
 
-    def continuum_feedforward(self, sensed_angle: float, mode: str = "exact", **options):
+    def continuum_feedforward(
+        self, sensed_angle: float, mode: str = "exact", **options: Any
+    ) -> ContinuumFeedforward:
         """Lau et al.'s feedforward from the identified groups: tendon offset r_t = the
         identified r_d at the nominal r_p; the backbone length cancels (EI = k_e r_t^2 l
         enters only as EI/(r_t l)), so it is held at 1.
@@ -325,7 +335,9 @@ class Calibration:
         g = self.groups[name]
         return Told(name, g["value"], g["source"])
 
-    def told(self, compensator: str, load: str | None = "calibrated", **declared) -> list[dict]:
+    def told(
+        self, compensator: str, load: str | None = "calibrated", **declared: tuple[float, str]
+    ) -> list[dict]:
         """What compensator ``compensator`` is told and where each value came from.
         ``declared``: other values given by the user (name -> (value, source)).
 
@@ -470,7 +482,7 @@ class Calibration:
         return rows
 
 
-def fit_source(cal: Calibration, fit) -> str:
+def fit_source(cal: Calibration | None, fit) -> str:
     names = getattr(fit, "_calibration_runs", None) or []
     return "identified from calibration run(s) " + ", ".join(names)
 
@@ -522,7 +534,7 @@ def _run_experiment(plant, route, t, command, sensor: Sensor | None, seed: int):
 
 
 def calibrate(
-    plant,
+    plant: PullPullPlant,
     routes: Sequence[Route],
     *,
     models_: Sequence[str] = ("BoucWenBacklash", "CurveAngleModel"),
@@ -741,7 +753,7 @@ def _curve_angle_groups(fit, runs, friction_identified: bool, spring: bool) -> d
 def calibrate_load(
     cal: Calibration,
     name: str,
-    plant,
+    plant: PullPullPlant,
     route: Route,
     *,
     duration: float = 10.0,
@@ -836,8 +848,8 @@ def model_class_of(compensator: str) -> str:
 
 def in_class_fit(
     compensator: str,
-    result,
-    curve_angle=None,
+    result: Result,
+    curve_angle: ArrayLike | None = None,
     rate_hz: float = 200.0,
     seed: int = 0,
     budget: dict | None = None,
@@ -916,10 +928,10 @@ def in_class_fit(
 
 def honesty_entry(
     compensator: str,
-    result,
+    result: Result,
     told: list[dict],
     at_bounds: list[str],
-    curve_angle=None,
+    curve_angle: ArrayLike | None = None,
     seed: int = 0,
     budget: dict | None = None,
 ) -> dict[str, Any]:

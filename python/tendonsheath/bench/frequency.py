@@ -4,10 +4,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .run import run
+
+if TYPE_CHECKING:
+    import control  # python-control ships no types: its systems are Any to mypy
+
+    from .._typing import ArrayLike
+    from ..plant import PullPullPlant
+    from ..sensor import Sensor
+    from .run import Controller
 
 
 @dataclass
@@ -58,7 +67,7 @@ class FrequencyResponse:
             "bandwidth_error_hz": self.bandwidth_error,
         }
 
-    def to_control(self, name: str | None = None):
+    def to_control(self, name: str | None = None) -> control.FrequencyResponseData:
         """The gain and phase as a ``control.FrequencyResponseData`` (omega = 2 pi f, rad/s).
         Needs python-control: ``pip install 'tendonsheath[control]'``.
 
@@ -96,14 +105,14 @@ def _first_crossing(f: np.ndarray, values: np.ndarray, level: float, above: bool
 
 
 def frequency_response(
-    plant,
-    controller,
-    frequencies=None,
+    plant: PullPullPlant,
+    controller: Controller,
+    frequencies: ArrayLike | None = None,
     amplitude: float = 0.5,
     cycles: int = 3,
     rate: float = 1000.0,
     min_duration: float = 2.0,
-    noise=None,
+    noise: Sensor | float | None = None,
 ) -> FrequencyResponse:
     """Sine sweep: at each frequency run the bench for ``cycles`` whole periods (at least
     ``min_duration`` s), discard the first period, and fit the fundamentals of the output and

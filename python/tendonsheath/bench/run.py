@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 
@@ -16,6 +17,17 @@ from ..protocols import STEP_SIGNALS, StreamingCompensator, missing_members, ste
 from ..sensor import Sensor
 from ..status import status_counts
 from .metrics import dominant_period, tracking_metrics
+
+if TYPE_CHECKING:
+    from .._typing import ArrayLike
+    from ..compensate import AdaptiveController
+    from ..compensate.base import Feedforward
+    from .calibration import ShapeSensing
+
+# what bench.run closes the loop with: any StreamingCompensator (None: uncompensated); the
+# shipped ones are named too, their step(y_d, dt) being narrower than the protocol's
+# step(*signals) to a type checker
+Controller: TypeAlias = "StreamingCompensator | Feedforward | AdaptiveController | None"
 
 # the C++ loop for each shipped compensator's engine (its _bench_engine())
 _ENGINE_LOOPS = {
@@ -73,7 +85,7 @@ class Result:
     slack: np.ndarray
     fallback: np.ndarray
     warmup: float
-    metrics: dict[str, float] = field(default_factory=dict)
+    metrics: dict[str, Any] = field(default_factory=dict)  # floats, and "status": counts
     status: np.ndarray | None = None
 
     @property
@@ -118,14 +130,14 @@ def _dropout_mask(dropout, t):
 
 def run(
     plant: PullPullPlant,
-    controller,
-    t,
-    reference,
+    controller: Controller,
+    t: ArrayLike,
+    reference: ArrayLike,
     routes: Callable | None = None,
-    noise=None,
-    dropout=None,
+    noise: Sensor | float | None = None,
+    dropout: Sequence[tuple[float, float]] | None = None,
     warmup: float | None = None,
-    shape_sensing=None,
+    shape_sensing: ShapeSensing | None = None,
 ) -> Result:
     """Track ``reference`` (distal angle, rad, at times ``t``) with ``controller`` on ``plant``.
 
@@ -305,9 +317,11 @@ def _result(controller, ts, ys, outputs, warmup: float) -> Result:
         status=status,
     )
     keep = result.scored
-    result.metrics = tracking_metrics(ys[keep], output[keep])
-    result.metrics["slack_samples"] = int(result.slack.sum())
-    result.metrics["status"] = status_counts(status)
+    result.metrics = {
+        **tracking_metrics(ys[keep], output[keep]),
+        "slack_samples": int(result.slack.sum()),
+        "status": status_counts(status),
+    }
     if not math.isfinite(result.metrics["mse"]):
         raise RuntimeError("bench.run: the closed loop produced a non-finite output")
     return result

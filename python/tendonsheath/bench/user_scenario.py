@@ -248,6 +248,8 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
             raise ScenarioError(
                 f"{source} [reference]: sines[{i}] must be [amplitude, frequency, phase?]"
             )
+    if not reference["sines"]:
+        raise ScenarioError(f"{source} [reference]: sines must list at least one sine")
     if not reference["duration"] > 0 or not reference["rate"] > 0:
         raise ScenarioError(f"{source} [reference]: duration and rate must be > 0")
     load = s["load"] or None
@@ -478,8 +480,11 @@ def _reference(sc: UserScenario) -> tuple[np.ndarray, np.ndarray]:
     ref = sc.reference
     t = np.arange(0.0, ref["duration"], 1.0 / ref["rate"])
     y_d = sum(
-        float(s[0]) * np.sin(2 * np.pi * float(s[1]) * t + (float(s[2]) if len(s) > 2 else 0.0))
-        for s in ref["sines"]
+        (
+            float(s[0]) * np.sin(2 * np.pi * float(s[1]) * t + (float(s[2]) if len(s) > 2 else 0.0))
+            for s in ref["sines"]
+        ),
+        np.zeros_like(t),  # the start: the sum is an array
     )
     return t, y_d
 

@@ -3,12 +3,16 @@
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from .. import _core as core
 from .._args import number, python_names
 from .._arrays import checked_dt
-from ..models import Backlash, BoucWenBacklash
+from ..models import Backlash, BoucWenBacklash, HysteresisModel
 from .base import EngineCompensator
+
+if TYPE_CHECKING:
+    pass  # python-control ships no types: its systems are Any to mypy
 
 _GAINS = (
     "lambda_",
@@ -73,7 +77,12 @@ class AdaptiveController(EngineCompensator):
     # what step() takes before dt (tendonsheath.protocols): desired, measured, motor angle
     step_inputs = ("y_d", "y", "q")
 
-    def __init__(self, feedforward_model=None, smoothing: float = 0.05, **gains):
+    def __init__(
+        self,
+        feedforward_model: HysteresisModel | None = None,
+        smoothing: float = 0.05,
+        **gains: float,
+    ):
         who = "AdaptiveController"
         unknown = set(gains) - set(_GAINS)
         if unknown:
@@ -107,14 +116,14 @@ class AdaptiveController(EngineCompensator):
     @classmethod
     def from_model(
         cls,
-        model,
+        model: HysteresisModel,
         inertia: float,
         viscous: float = 0.0,
         bandwidth_hz: float = 5.0,
         derivative_cutoff_hz: float | None = None,
         max_torque: float = math.inf,
         noise_std: float = 0.0,
-        **overrides,
+        **overrides: float,
     ) -> AdaptiveController:
         """Gains scaled to a torque-driven motor (inertia J, viscous b, at the motor shaft)
         and an identified backlash model (its mean slope c).

@@ -2,7 +2,13 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+from typing import Any, Self
+
+import numpy as np
+
 from .._arrays import as_timed_signal, checked_dt
+from .._typing import ArrayLike, FloatArray
 from ..control_interop import _ControlBlock
 from ..status import Status
 from . import persistence
@@ -12,7 +18,7 @@ class EngineCompensator(_ControlBlock):
     """What every compensator built on a C++ engine shares: its status, its constructor
     settings and saving them (``to_json``/``load``), and the engine ``bench.run`` steps."""
 
-    _engine: object
+    _engine: Any  # the C++ compensator the subclass builds (each its own class)
     _settings: dict  # the constructor's settings, saved by to_json
     _saved_settings: tuple[str, ...] = ()  # the keys of a saved file, in order
 
@@ -42,7 +48,7 @@ class EngineCompensator(_ControlBlock):
         """
         return persistence.compensator_dict(type(self).__name__, self._settings)
 
-    def to_json(self, path=None) -> str:
+    def to_json(self, path: str | Path | None = None) -> str:
         """The compensator as JSON text; also written to `path` when one is given.
         ``tendonsheath.compensate.load`` reads it; the C++ ``tendonsheath/io/json.hpp`` reads
         the feedforwards' files (not the AdaptiveController's).
@@ -60,7 +66,7 @@ class EngineCompensator(_ControlBlock):
         return persistence.to_json(self.to_dict(), path)
 
     @classmethod
-    def load(cls, source):
+    def load(cls, source: str | Path | dict) -> Self:
         """A compensator saved with :meth:`to_json` (a path, JSON text or a dict); it must be
         of this class (``tendonsheath.compensate.load`` reads any).
 
@@ -126,7 +132,9 @@ class Feedforward(EngineCompensator):
         dt = checked_dt(dt)
         return self._engine.step(float(y_d), float(dt))
 
-    def command(self, t, y_desired, status: bool = False):
+    def command(
+        self, t: ArrayLike, y_desired: ArrayLike, status: bool = False
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Motor commands for a whole trajectory; with ``status=True`` returns
         ``(commands, flags)``, flags holding each cycle's :class:`Status` (uint8).
 

@@ -3,11 +3,15 @@
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any
 
 from .. import _core as core
 from .._args import accepts_old_names, number, python_names
 from .base import Feedforward
-from .limits import as_limits
+from .limits import LimitsLike, as_limits
+
+if TYPE_CHECKING:
+    from ..models import CurveAngleModel
 
 _MODES = {"exact": core.ContinuumMode.exact, "published": core.ContinuumMode.published}
 # old argument names -> vocabulary names (docs/vocabulary.md)
@@ -108,7 +112,7 @@ class ContinuumFeedforward(Feedforward):
         gap_factor: float = 1.0,
         smoothing: float = 0.1,
         mode: str = "exact",
-        limits=None,
+        limits: LimitsLike = None,
     ):
         who = type(self).__name__
         values = _numbers(locals())
@@ -132,12 +136,12 @@ class ContinuumFeedforward(Feedforward):
     @accepts_old_names("ContinuumFeedforward.from_model", {"total_angle": "curve_angle"})
     def from_model(
         cls,
-        model,
+        model: CurveAngleModel,
         tendon_offset: float,
         backbone_length: float,
         curve_angle: float,
         mode: str = "exact",
-        **options,
+        **options: Any,
     ) -> ContinuumFeedforward:
         """Built from a ``CurveAngleModel`` identified on the continuum drive (motor angle in,
         bending angle out, its ``distal_radius`` = r_t): friction, EA, T0 and L carry over,

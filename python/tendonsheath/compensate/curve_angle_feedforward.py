@@ -4,15 +4,21 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .. import _core as core
 from .._args import accepts_old_names, number, python_names
 from .._arrays import as_signal, as_timed_signal, checked_dt
+from .._typing import ArrayLike, FloatArray
 from ..physics import route_shape as shape_of
 from .base import Feedforward
-from .limits import as_limits
+from .limits import LimitsLike, as_limits
+
+if TYPE_CHECKING:
+    from ..models import CurveAngleModel
+    from ..route import Route
 
 
 class CurveAngleFeedforward(Feedforward):
@@ -93,7 +99,7 @@ class CurveAngleFeedforward(Feedforward):
         curve_angle: float = math.pi,
         smoothing: float = 0.05,
         max_correction_rate: float = math.inf,
-        limits=None,
+        limits: LimitsLike = None,
     ):
         who = type(self).__name__
         values = {
@@ -114,7 +120,13 @@ class CurveAngleFeedforward(Feedforward):
         self._engine = _engine(who, self._settings)
 
     @classmethod
-    def from_model(cls, model, load_force=None, load_stiffness=None, **options):
+    def from_model(
+        cls,
+        model: CurveAngleModel,
+        load_force: float | None = None,
+        load_stiffness: float | None = None,
+        **options: Any,
+    ) -> CurveAngleFeedforward:
         """Built from an identified ``CurveAngleModel``: its friction, stiffness EA, length L,
         pretension and radii; the distal load defaults to the model's own (``load_force``,
         ``load_stiffness``) and can be replaced by the load expected in use (N, N/m at the tendon).
@@ -185,7 +197,7 @@ class CurveAngleFeedforward(Feedforward):
         who = "CurveAngleFeedforward.set_curve_angle"
         self._engine.set_curve_angle(number(who, "curve_angle", curve_angle))
 
-    def set_route(self, route) -> None:
+    def set_route(self, route: Route) -> None:
         """Any route: its exact g/G shape integrals are used (spec A.2 warning on Theta-only).
 
         Parameters
@@ -202,7 +214,9 @@ class CurveAngleFeedforward(Feedforward):
             raise TypeError(f"set_route needs a Route (got {route!r})")
         self._engine.set_shape(shape_of(route, self.friction))
 
-    def step(self, y_d: float, dt: float, curve_angle=None, route=None) -> float:
+    def step(
+        self, y_d: float, dt: float, curve_angle: float | None = None, route: Route | None = None
+    ) -> float:
         """One control cycle, after taking a new route or curve angle when one is given.
 
         Parameters
@@ -231,14 +245,14 @@ class CurveAngleFeedforward(Feedforward):
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], dt, curve_angle=u[1])
 
-    def command(
+    def command(  # type: ignore[override]  # curve_angle (before status) is its input
         self,
-        t,
-        y_desired,
-        curve_angle=None,
-        routes: Callable[[float], object] | None = None,
+        t: ArrayLike,
+        y_desired: ArrayLike,
+        curve_angle: ArrayLike | None = None,
+        routes: Callable[[float], Route] | None = None,
         status: bool = False,
-    ):
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Motor angles for a whole trajectory; the shape from `curve_angle` (scalar or one
         per sample) or `routes` (a callable t -> route), else the constructor's curve angle.
         With ``status=True`` returns ``(commands, flags)`` (each cycle's Status, uint8).

@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from .. import _core as core
 from .._args import number, python_names
 from .._arrays import checked_dt
+from .._typing import ArrayLike, FloatArray
 from ..models import Backlash, BoucWenBacklash, HysteresisModel, PrandtlIshlinskii, Scaled
 from .base import Feedforward
-from .limits import CommandLimits, as_limits
+from .limits import CommandLimits, LimitsLike, as_limits
 
 
 class InverseFeedforward(Feedforward):
@@ -44,7 +47,7 @@ class InverseFeedforward(Feedforward):
 
     _saved_settings = ("model", "smoothing", "limits")
 
-    def __init__(self, model: HysteresisModel, smoothing: float = 0.05, limits=None):
+    def __init__(self, model: HysteresisModel, smoothing: float = 0.05, limits: LimitsLike = None):
         self.model = model
         self.smoothing = number("InverseFeedforward", "smoothing", smoothing)
         self.limits = as_limits(limits)
@@ -118,7 +121,9 @@ class InverseFeedforward(Feedforward):
         x_c, x_s, y_c, g = self._map
         return x_c + x_s * self._engine.step((float(y_d) - y_c) / g, float(dt))
 
-    def command(self, t, y_desired, status: bool = False):
+    def command(
+        self, t: ArrayLike, y_desired: ArrayLike, status: bool = False
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Motor commands for a whole trajectory, from the initial state.
 
         Parameters
@@ -144,7 +149,7 @@ class InverseFeedforward(Feedforward):
         if self._map is None:
             return super().command(t, y_desired, status)
         x_c, x_s, y_c, g = self._map
-        inner = self._inner.command(t, (np.asarray(y_desired, dtype=float) - y_c) / g, status)
+        inner: Any = self._inner.command(t, (np.asarray(y_desired, dtype=float) - y_c) / g, status)
         if status:
             return x_c + x_s * inner[0], inner[1]
         return x_c + x_s * inner

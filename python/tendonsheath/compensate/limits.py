@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import TypeAlias
 
 from .. import _core as core
 from .._args import number
@@ -47,7 +49,11 @@ class CommandLimits:
 _FIELDS = ("min", "max", "max_rate")
 
 
-def as_limits(limits) -> CommandLimits:
+# what a compensator's ``limits`` accepts (see as_limits)
+LimitsLike: TypeAlias = "CommandLimits | Sequence[float] | Mapping[str, float] | None"
+
+
+def as_limits(limits: LimitsLike) -> CommandLimits:
     """Accept None, a CommandLimits, a (min, max[, max_rate]) tuple or list, or a dict with
     min/max/max_rate keys; anything else is a TypeError (a limit is never silently ignored)."""
     if limits is None:

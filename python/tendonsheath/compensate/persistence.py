@@ -11,11 +11,15 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from .._args import renamed
 from .._atomic import write_text
 from .._json_source import read_json_source
+
+if TYPE_CHECKING:
+    from .adaptive_controller import AdaptiveController
+    from .base import Feedforward
 
 FORMAT_NAME = "tendonsheath.compensator"
 FORMAT_VERSION = 1
@@ -53,7 +57,7 @@ def _finite_or_none(value):
     return None if math.isinf(value) else value
 
 
-def _registry() -> dict[str, type]:
+def _registry() -> dict[str, type[Feedforward] | type[AdaptiveController]]:
     from .adaptive_controller import AdaptiveController
     from .continuum_feedforward import ContinuumFeedforward
     from .curve_angle_feedforward import CurveAngleFeedforward
@@ -63,7 +67,7 @@ def _registry() -> dict[str, type]:
     return {c.__name__: c for c in kinds}
 
 
-def compensator_from_dict(data: dict[str, Any]):
+def compensator_from_dict(data: dict[str, Any]) -> Feedforward | AdaptiveController:
     """Build the compensator a dict from ``to_dict`` describes; strict: every key checked."""
     if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
         raise ValueError(f"not a tendonsheath compensator file (missing format '{FORMAT_NAME}')")
@@ -150,7 +154,7 @@ def _number(name: str, what: str, value) -> float:
     return float(value)
 
 
-def load_compensator(source: str | Path | dict):
+def load_compensator(source: str | Path | dict) -> Feedforward | AdaptiveController:
     """Load a compensator saved with ``to_json``: a path, a JSON string or a dict.
 
     Parameters
@@ -171,7 +175,10 @@ def load_compensator(source: str | Path | dict):
     return compensator_from_dict(read_json_source(source, "compensator"))
 
 
-def load_as(cls: type, source: str | Path | dict):
+_C = TypeVar("_C")
+
+
+def load_as(cls: type[_C], source: str | Path | dict) -> _C:
     """``cls.load(source)``: a saved compensator, which must be a ``cls``."""
     compensator = load_compensator(source)
     if not isinstance(compensator, cls):

@@ -8,12 +8,14 @@ import dataclasses
 import time
 from collections.abc import Sequence
 from contextvars import ContextVar
+from typing import Any
 
 import numpy as np
 from scipy.optimize import differential_evolution
 
 from .._progress import StepProgress
-from ..models import Chain, PlantModel
+from .._typing import ArrayLike
+from ..models import Chain, HysteresisModel, PlantModel
 from ..models.base import _REGISTRY
 from .data import Recording, make_recordings
 from .fit import Fit
@@ -46,7 +48,7 @@ class _Progress:
         self.title = title
         self.total = total
         self.start = time.perf_counter()
-        self.bar = None
+        self.bar: StepProgress | None = None
         self.shown = 0  # generations counted on the bar
 
     def update(self, generation: int, best: float) -> None:
@@ -108,14 +110,14 @@ def global_search(problem, space, counter, label, search: Search, *, x0=None):
 
 @with_settings_signature
 def identify(
-    model_class,
-    t=None,
-    x=None,
-    y=None,
+    model_class: type[HysteresisModel] | HysteresisModel | str,
+    t: ArrayLike | None = None,
+    x: ArrayLike | None = None,
+    y: ArrayLike | None = None,
     *,
     recordings: Sequence | None = None,
-    curve_angle=None,
-    **options,
+    curve_angle: ArrayLike | None = None,
+    **options: Any,
 ) -> Fit:
     """Identify a model from input/output recordings by simulation-error minimisation.
 

@@ -5,12 +5,14 @@ held-out ones from their start. :func:`evaluate_splits` is the loop that
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
+from .._typing import ArrayLike, RecordingLike, Recordings
+from ..models import HysteresisModel
 from .data import make_recordings
 from .fit import metrics, simulate_model
 
@@ -108,6 +110,17 @@ def evaluate_splits(
     return train_metrics, metrics(np.concatenate(ys), np.concatenate(yh)), preds
 
 
+class Estimator(Protocol):
+    """What :func:`cross_validate` needs of an estimator (an Identifier, or one of the user's):
+    ``clone()`` an unfitted copy, ``fit(recordings)``, then ``model_`` the fitted model."""
+
+    model_: HysteresisModel
+
+    def clone(self) -> Estimator: ...
+
+    def fit(self, recordings: Recordings) -> Any: ...
+
+
 def estimator_split(estimator, fitted: list):
     """``fit_split`` for :func:`evaluate_splits`: an unfitted clone of ``estimator`` fitted
     on the training recordings (appended to ``fitted``), predicting over a recording."""
@@ -123,7 +136,11 @@ def estimator_split(estimator, fitted: list):
 
 
 def cross_validate(
-    estimator, recordings, *, folds: int | None = None, curve_angle=None
+    estimator: Estimator,
+    recordings: Sequence[RecordingLike],
+    *,
+    folds: int | None = None,
+    curve_angle: ArrayLike | None = None,
 ) -> CrossValidation:
     """Cross-validate an estimator over recordings: fit on some, predict the others.
 

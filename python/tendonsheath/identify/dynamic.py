@@ -42,9 +42,17 @@ def is_dynamic_chain(chain) -> bool:
     )
 
 
+def _times(recs: list[Recording]) -> list[np.ndarray]:
+    """The recordings' times (a dynamic model needs them: DynamicProblem checks first)."""
+    times = [r.t for r in recs if r.t is not None]
+    assert len(times) == len(recs)
+    return times
+
+
 def _block_bounds(block: LinearBlock, recs: list[Recording]) -> dict:
-    dt = float(np.median(np.concatenate([np.diff(r.t) for r in recs])))
-    duration = float(max(r.t[-1] - r.t[0] for r in recs))
+    times = _times(recs)
+    dt = float(np.median(np.concatenate([np.diff(t) for t in times])))
+    duration = float(max(t[-1] - t[0] for t in times))
     if isinstance(block, SecondOrderLag):
         return {"frequency": (2.0 / duration, 0.45 / dt), "damping": (0.05, 3.0)}
     return {"time_constant": (0.2 * dt, 0.5 * duration)}
@@ -58,6 +66,7 @@ class DynamicProblem:
         static, block = (
             (chain.first, chain.second) if self.hammerstein else (chain.second, chain.first)
         )
+        assert isinstance(block, LinearBlock)  # a dynamic chain (is_dynamic_chain)
         self.static_cls = type(static)
         self.block_cls = type(block)
         self.recs = recs
@@ -65,6 +74,7 @@ class DynamicProblem:
         self.workers = workers
         for r in recs:
             sample_time(r.t)  # uniform sampling, or a clear error
+        self.spec: PrandtlIshlinskiiSpec | BoucWenBacklashSpec
         if self.static_cls is PrandtlIshlinskii:
             thr = np.asarray(static.params["thresholds"], dtype=float)
             self.spec = PrandtlIshlinskiiSpec(
@@ -94,7 +104,7 @@ class DynamicProblem:
         self.bounds = {n: (float(v[0]), float(v[1])) for n, v in {**sb, **bb}.items()}
         self.n_params = len(names) + self.lo.size
         self.edges = np.cumsum([0] + [r.n for r in recs])
-        self.dts = [float(np.median(np.diff(r.t))) for r in recs]
+        self.dts = [float(np.median(np.diff(t))) for t in _times(recs)]
         n_threads = workers if workers > 0 else (os.cpu_count() or 1)
         self.pool = ThreadPoolExecutor(n_threads) if n_threads > 1 else None
 

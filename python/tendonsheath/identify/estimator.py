@@ -6,10 +6,13 @@ one unfitted copy per fold."""
 from __future__ import annotations
 
 import copy
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
+from .._typing import ArrayLike, RecordingLike, Recordings
+from ..models import HysteresisModel
 from .data import make_recordings
 from .fit import Fit, metrics, simulate_model
 from .settings import (
@@ -138,8 +141,12 @@ class Identifier:
     tendonsheath.identify.cross_validate : Scores an Identifier over held-out recordings.
     """
 
+    warmup: int  # one of the settings (OPTION_NAMES), set by __init__ and set_params
+
     @with_settings_signature
-    def __init__(self, model=None, **settings: Any):
+    def __init__(
+        self, model: type[HysteresisModel] | HysteresisModel | str | None = None, **settings: Any
+    ):
         check_names(settings, type(self).__name__)
         self.model = model
         for name in OPTION_NAMES:
@@ -231,7 +238,9 @@ class Identifier:
 
     # -- fitting and prediction ------------------------------------------------------------
 
-    def fit(self, recordings, *, curve_angle=None):
+    def fit(
+        self, recordings: Recordings, *, curve_angle: ArrayLike | None = None
+    ) -> HysteresisModel:
         """Identify the model from recordings; the recordings share the parameters.
 
         Parameters
@@ -257,7 +266,15 @@ class Identifier:
         self.fit_data(recordings=_as_list(recordings), curve_angle=curve_angle)
         return self.model_
 
-    def fit_data(self, t=None, x=None, y=None, *, recordings=None, curve_angle=None) -> Fit:
+    def fit_data(
+        self,
+        t: ArrayLike | None = None,
+        x: ArrayLike | None = None,
+        y: ArrayLike | None = None,
+        *,
+        recordings: Sequence[RecordingLike] | None = None,
+        curve_angle: ArrayLike | None = None,
+    ) -> Fit:
         """``fit`` with :func:`~tendonsheath.identify.identify`'s two data forms.
 
         Give ``t, x, y`` (one recording) or ``recordings=``, not both.
@@ -298,7 +315,7 @@ class Identifier:
         self.model_ = self.fit_.model
         return self.fit_
 
-    def predict(self, recordings) -> list[np.ndarray]:
+    def predict(self, recordings: Recordings) -> list[np.ndarray]:
         """The fitted model's output over each recording's input, run from its rest state.
 
         Parameters
@@ -322,7 +339,7 @@ class Identifier:
         model = self._fitted()
         return [simulate_model(model, t, x, angle) for t, x, angle in _inputs(recordings)]
 
-    def score(self, recordings) -> float:
+    def score(self, recordings: Recordings) -> float:
         """How well the fitted model predicts recordings: the fit percentage (higher is better).
 
         The fit percentage of :func:`~tendonsheath.identify.metrics`,

@@ -4,16 +4,17 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
+from .._typing import ArrayLike
 from ..models import HysteresisModel
 from .data import Recording
 from .diagnostics import Diagnostics
 
 
-def metrics(y, y_hat) -> dict[str, float]:
+def metrics(y: ArrayLike, y_hat: ArrayLike) -> dict[str, float]:
     """rmse; nrmse = rmse / (max(y) - min(y)); fit % = 100 (1 - ||y - y_hat|| / ||y - mean(y)||).
 
     Parameters
@@ -71,9 +72,12 @@ def fit_quality(recs, predictions, warmup: int) -> FitQuality:
 
 def simulate_model(model: HysteresisModel, t, x, curve_angle=None) -> np.ndarray:
     """Simulate any model; the curve angle is passed to the models that take one."""
+    # status not asked: the outputs alone
     if getattr(model, "uses_curve_angle", False):
-        return model.simulate(t, x, curve_angle=curve_angle)
-    return model.simulate(t, x)
+        # a model that uses_curve_angle takes it (HysteresisModel.simulate does not)
+        y = model.simulate(t, x, curve_angle=curve_angle)  # type: ignore[call-arg]
+        return cast(np.ndarray, y)
+    return cast(np.ndarray, model.simulate(t, x))
 
 
 @dataclass
@@ -172,7 +176,11 @@ class Fit:
 
     @classmethod
     def from_quality(
-        cls, model: HysteresisModel, quality: FitQuality, assessed: dict | None = None, **fields
+        cls,
+        model: HysteresisModel,
+        quality: FitQuality,
+        assessed: dict | None = None,
+        **fields: Any,
     ) -> Fit:
         """The Fit of ``model`` from its :func:`fit_quality` and, where given, its
         ``uncertainty.assess()`` result (standard errors, diagnostics, groups, method);
@@ -235,7 +243,9 @@ class Fit:
         """The fitted model's parameters."""
         return self.model.params
 
-    def predict(self, t, x, curve_angle=None) -> np.ndarray:
+    def predict(
+        self, t: ArrayLike | None, x: ArrayLike, curve_angle: ArrayLike | None = None
+    ) -> np.ndarray:
         """The fitted model's output for a new input.
 
         Parameters
@@ -254,7 +264,14 @@ class Fit:
         """
         return simulate_model(self.model, t, x, curve_angle)
 
-    def validate(self, t, x, y, curve_angle=None, warmup: int | None = None) -> dict[str, float]:
+    def validate(
+        self,
+        t: ArrayLike | None,
+        x: ArrayLike,
+        y: ArrayLike,
+        curve_angle: ArrayLike | None = None,
+        warmup: int | None = None,
+    ) -> dict[str, float]:
         """Metrics of the fitted model on another recording (after the same warm-up).
 
         Parameters

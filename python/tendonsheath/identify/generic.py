@@ -100,7 +100,7 @@ class ClassSetup:
     """What is identified of ``cls``: the spec, the starting values (held ones included), the
     free parameters, the bounds, the angle laws and the single-curve-angle setup."""
 
-    cls: type
+    cls: type[HysteresisModel]
     spec: Any
     initial: HysteresisModel
     values: dict
@@ -253,7 +253,7 @@ def _problem_maker(s: ClassSetup, opt: Options, search: Search, separable: bool)
         sb = s.spec.search_bounds(s.scale, s.held)
         sb.update({k: v for k, v in s.all_bounds.items() if k in sb and k in (opt.bounds or {})})
 
-        def make(recs_, warmup_):
+        def make_separable(recs_, warmup_):
             return SeparableProblem(
                 s.spec,
                 recs_,
@@ -266,7 +266,7 @@ def _problem_maker(s: ClassSetup, opt: Options, search: Search, separable: bool)
                 s.initial.params,
             )
 
-        return make
+        return make_separable
 
     def make(recs_, warmup_):
         return DirectProblem(
@@ -428,7 +428,11 @@ def laws_from_points(problem: DirectProblem, points: list[dict]) -> np.ndarray:
         if law == "constant":
             c[i] = float(np.mean(v))
             continue
-        basis = theta if law == "linear" else np.tanh(0.5 * mu * np.abs(theta))
+        if law == "linear":
+            basis = theta
+        else:
+            assert mu is not None  # searched above for the tanh laws
+            basis = np.tanh(0.5 * mu * np.abs(theta))
         A = np.column_stack([np.ones_like(theta), basis])
         c[i : i + 2] = np.linalg.lstsq(A, v, rcond=None)[0]
     if problem.tanh:

@@ -145,6 +145,7 @@ def to_raw(model: HysteresisModel, m: IOMap) -> HysteresisModel | None:
             # normalised one, so the polynomial's a_k become g a_k / x_s^k (+ y_c on a_0)
             first = _first_to_raw(model.first, m, m.x_s, 0.0)
             poly = model.second
+            assert isinstance(poly, Polynomial)  # a normalised chain: a play model + polynomial
             odd = bool(poly.options["odd"])
             powers = np.arange(1, poly.degree + 1, 2) if odd else np.arange(poly.degree + 1)
             a = m.g * np.asarray(poly.params["coefficients"], dtype=float) / m.x_s**powers
@@ -225,11 +226,11 @@ def map_uncertainty(fit_n: Fit, raw, m: IOMap) -> tuple[dict, dict]:
     re-solved, the output offset and gain) are taken as exact."""
     u = dict(fit_n.uncertainty)
     if isinstance(raw, Scaled):
-        se = {f"inner.{k}": v for k, v in fit_n.standard_errors.items()}
+        inner_se = {f"inner.{k}": v for k, v in fit_n.standard_errors.items()}
         if "names" in u:
             u["names"] = [f"inner.{k}" for k in u["names"]]
         u["estimate_names"] = [f"inner.{k}" for k in u.get("estimate_names", [])]
-        return se, u
+        return inner_se, u
     labels = u.get("estimate_names", [])
     entries = entries_from_labels(labels)
     fn = _raw_vector(fit_n.model, m, entries, entries)
@@ -286,7 +287,8 @@ def identify_normalized(fit_normalised, model_class, recs: list[Recording]) -> F
         yh = np.concatenate([p[warm + r.skip :] for r, p in zip(recs, preds, strict=True)])
         return float(np.sqrt(np.mean((y_fit - yh) ** 2))), (preds)
 
-    model, (rmse, preds) = scaled, score(scaled)
+    model: HysteresisModel = scaled
+    rmse, preds = score(scaled)
     # The inner model may lack an output offset (PrandtlIshlinskii, Backlash): re-solve the
     # output map's offset and gain by least squares on its prediction; kept if it helps.
     u = np.concatenate([p[warm + r.skip :] for r, p in zip(recs, fit_n.predictions, strict=True)])
@@ -300,7 +302,7 @@ def identify_normalized(fit_normalised, model_class, recs: list[Recording]) -> F
             m = dataclasses.replace(m, y_c=float(b0), g=float(b1))
     raw = to_raw(fit_n.model, m)
     gauged = any(" = " in n for n in fit_n.uncertainty.get("estimate_names", []))
-    if raw is not None and gauged:
+    if isinstance(raw, Chain) and gauged:  # gauged: a chain's play-model parameters
         raw = gauge.canonical(raw)
     if raw is not None:
         r_rmse, r_preds = score(raw)
@@ -317,7 +319,7 @@ def identify_normalized(fit_normalised, model_class, recs: list[Recording]) -> F
     errors, uncertainty = map_uncertainty(fit_n, model, m)
     groups = fit_n.groups
     if gauged:  # in raw units (a Scaled model keeps them inside, in its own units)
-        groups = gauge.groups(model, errors) if model is not scaled else {}
+        groups = gauge.groups(model, errors) if isinstance(model, Chain) else {}
     return dataclasses.replace(
         fit_n,
         model=model,

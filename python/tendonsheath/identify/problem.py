@@ -103,9 +103,10 @@ class DirectProblem:
         self.population_simulate = getattr(core, f"population_simulate_{model_class.__name__}")
         self.y = np.concatenate([r.y for r in recs])
         self.mask = fitted_mask(recs, warmup)
-        self.angles = None
+        self.angles: list[float] | None = None
         # coefficient layout
-        coef_names, coef_bounds = [], {}
+        coef_names: list[str] = []
+        coef_bounds = {}
         self.layout = []  # (param, law, index of first coefficient)
         for p in self.free:
             law = self.depends.get(p, "constant")
@@ -163,6 +164,7 @@ class DirectProblem:
                 if law == "linear":
                     full[:, :, j] = C[:, i : i + 1] + C[:, i + 1 : i + 2] * theta
                 else:
+                    assert mu is not None  # a tanh law: mu is the last coefficient
                     full[:, :, j] = C[:, i : i + 1] + C[:, i + 1 : i + 2] * np.tanh(
                         0.5 * mu[:, None] * np.abs(theta)
                     )

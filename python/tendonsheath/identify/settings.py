@@ -48,6 +48,7 @@ class Options:
 
 OPTION_NAMES: tuple[str, ...] = tuple(f.name for f in dataclasses.fields(Options))
 DEFAULTS: dict[str, Any] = {f.name: f.default for f in dataclasses.fields(Options)}
+TYPES: dict[str, Any] = {f.name: f.type for f in dataclasses.fields(Options)}  # annotations
 
 
 def with_settings_signature(fn):
@@ -56,7 +57,9 @@ def with_settings_signature(fn):
     sig = inspect.signature(fn)
     kept = [p for p in sig.parameters.values() if p.kind is not inspect.Parameter.VAR_KEYWORD]
     named = [
-        inspect.Parameter(n, inspect.Parameter.KEYWORD_ONLY, default=DEFAULTS[n])
+        inspect.Parameter(
+            n, inspect.Parameter.KEYWORD_ONLY, default=DEFAULTS[n], annotation=TYPES[n]
+        )
         for n in OPTION_NAMES
     ]
     fn.__signature__ = sig.replace(parameters=kept + named)

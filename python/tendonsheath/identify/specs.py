@@ -46,9 +46,10 @@ class Scale:
         if not slope > 0:
             slope = yr / xr
         duration = sample_time = None
-        if all(r.t is not None for r in recs):
-            duration = float(max(r.t[-1] - r.t[0] for r in recs))
-            sample_time = float(np.median(np.concatenate([np.diff(r.t) for r in recs])))
+        times = [r.t for r in recs if r.t is not None]
+        if len(times) == len(recs):
+            duration = float(max(t[-1] - t[0] for t in times))
+            sample_time = float(np.median(np.concatenate([np.diff(t) for t in times])))
         return cls(xr, yr, slope, duration, sample_time, float(0.5 * (x.max() + x.min())))
 
 
@@ -59,6 +60,7 @@ class ModelSpec:
     kind: str | None = None  # suffix of the batched C++ functions
     default_fixed: tuple[str, ...] = ()
     log_names: frozenset[str] = frozenset()
+    search_names: tuple[str, ...] = ()
     separable = False
     # numerical options used during the global search only (see HystereticOscillatorSpec)
     search_options: dict = {}
@@ -303,7 +305,14 @@ class GeneralizedPrandtlIshlinskiiSpec(ModelSpec):
     model_class = GeneralizedPrandtlIshlinskii
     kind = "GeneralizedPrandtlIshlinskii"
     separable = True
-    search_names = ("rising_b", "rising_c", "falling_a", "falling_b", "falling_c", "falling_d")
+    search_names: tuple[str, ...] = (
+        "rising_b",
+        "rising_c",
+        "falling_a",
+        "falling_b",
+        "falling_c",
+        "falling_d",
+    )
     log_names = frozenset({"rising_b", "falling_b", "falling_a", "r_frac"})
 
     def __init__(self, pattern: np.ndarray):

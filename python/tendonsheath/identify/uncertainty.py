@@ -265,7 +265,8 @@ def _layout_for(cls, model, problem, recs, warmup, direct, chain_free, generic, 
     ``direct``: values, free names, bounds, spec, options, angle laws, workers)."""
     values, free_names, all_bounds, spec, options, depends, workers = direct
     if generic is not None:
-        return _generic_layout(model, recs, warmup, *generic, canon=canon)
+        names, scales = generic
+        return _generic_layout(model, recs, warmup, names, scales, canon=canon)
     if chain_free is not None or cls in (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii):
         names, scales = _entries_names(cls, model, chain_free)
         return _generic_layout(model, recs, warmup, names, scales)
@@ -555,10 +556,10 @@ def _with_recordings(problem, recs, warmup: int):
         p.dts = [float(np.median(np.diff(r.t))) for r in recs]
         return p
     if isinstance(problem, ChainProblem):
-        p = copy.copy(problem)
-        p.inner = _with_recordings(problem.inner, recs, warmup)
-        p.y = p.inner.y[p.inner.mask]
-        return p
+        chain_p = copy.copy(problem)
+        chain_p.inner = _with_recordings(problem.inner, recs, warmup)
+        chain_p.y = chain_p.inner.y[chain_p.inner.mask]
+        return chain_p
     p = copy.copy(problem)
     p.recs = recs
     p.rs = recording_set(recs, warmup, getattr(problem, "with_angle", False))

@@ -2,15 +2,20 @@
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .._args import number
 from .._arrays import checked_dt
+from .._typing import ArrayLike, FloatArray
 from ..status import Status
 from .base import _REGISTRY, HysteresisModel
 from .curve_angle import curve_angle_samples
+
+if TYPE_CHECKING:
+    import control  # python-control ships no types: its systems are Any to mypy
 
 LAWS = ("constant", "linear", "tanh")
 
@@ -23,6 +28,7 @@ def law_value(law: str, coefficients, theta, angle_friction: float | None):
     if law == "linear":
         return c[0] + c[1] * np.asarray(theta, dtype=float)
     if law == "tanh":
+        assert angle_friction is not None  # AngleDependent requires it with a tanh law
         return c[0] + c[1] * np.tanh(0.5 * angle_friction * np.abs(np.asarray(theta, dtype=float)))
     raise ValueError(f"unknown angle law {law!r}; expected one of {LAWS}")
 
@@ -188,7 +194,13 @@ class AngleDependent(HysteresisModel):
         return self._base_cls(**self.params_at(curve_angle), **self._base_options)
 
     # -- simulation ------------------------------------------------------------------
-    def simulate(self, t, x, curve_angle=None, status: bool = False):
+    def simulate(  # type: ignore[override]  # curve_angle (before status) is its input
+        self,
+        t: ArrayLike | None,
+        x: ArrayLike,
+        curve_angle: ArrayLike | None = None,
+        status: bool = False,
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Output of the base model at one curve angle for the input samples x at times t.
 
         Parameters
@@ -261,8 +273,13 @@ class AngleDependent(HysteresisModel):
         return self._stream.step(x, dt)
 
     def to_control(
-        self, dt: float, name: str | None = None, inputs=None, output=None, curve_angle=None
-    ):
+        self,
+        dt: float,
+        name: str | None = None,
+        inputs: Sequence[str] | None = None,
+        output: str | None = None,
+        curve_angle: float | None = None,
+    ) -> control.NonlinearIOSystem:
         """The base model at one ``curve_angle`` (rad) as a python-control system (a run at one
         curve angle, as :meth:`simulate`); see :meth:`HysteresisModel.to_control`.
 

@@ -7,9 +7,10 @@ import inspect
 import json
 import math
 import numbers
+from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, Self, TypeVar, cast
 
 import numpy as np
 
@@ -17,9 +18,13 @@ from .._args import python_names, renamed
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import read_json_source
+from .._typing import ArrayLike, FloatArray
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
 from ..status import Status
+
+if TYPE_CHECKING:
+    pass  # python-control ships no types: its systems are Any to mypy
 
 FORMAT_NAME = "tendonsheath.model"
 FORMAT_VERSION = 1
@@ -27,7 +32,10 @@ FORMAT_VERSION = 1
 _REGISTRY: dict[str, type[HysteresisModel]] = {}
 
 
-def _returning_result(simulate):
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def _returning_result(simulate: _F) -> _F:
     """``simulate`` that returns a :class:`SimulationResult` (the output with its time and
     input), or ``(result, flags)`` where it returned ``(y, flags)``."""
 
@@ -48,7 +56,7 @@ def _returning_result(simulate):
         y = SimulationResult(y, t=ts, input=np.asarray(x, dtype=float), status=flags)
         return (y, flags) if isinstance(out, tuple) else y
 
-    return wrapper
+    return cast(_F, wrapper)  # the same call; a SimulationResult is an array of the output
 
 
 class HysteresisModel(_ControlBlock):
@@ -75,13 +83,13 @@ class HysteresisModel(_ControlBlock):
     _core_params: ClassVar[Any]
     param_names: ClassVar[tuple[str, ...]] = ()
     option_names: ClassVar[tuple[str, ...]] = ()
-    rate_independent: ClassVar[bool] = True
+    rate_independent: bool = True  # per instance for Chain and Scaled (their parts decide)
     # status() and simulate(..., status=True) report each step's Status (false: linear blocks)
     reports_status: ClassVar[bool] = True
     # parameters a saved file may hold as null (all others must be present and not null)
     nullable_params: ClassVar[tuple[str, ...]] = ()
     # signal names of to_control()'s system
-    control_inputs: ClassVar[tuple[str, ...]] = ("x",)
+    control_inputs: tuple[str, ...] = ("x",)  # per instance for Scaled (its inner model's)
     control_output: ClassVar[str] = "y"
     # parameters renamed (old -> new): with_params takes the old names with a warning for one
     # release, and saved files with them still load (silently)
@@ -95,7 +103,7 @@ class HysteresisModel(_ControlBlock):
         if "simulate" in vars(cls):  # every model's simulate returns a SimulationResult
             cls.simulate = _returning_result(cls.simulate)
 
-    def __init__(self, **values):
+    def __init__(self, **values: Any) -> None:
         unknown = set(values) - set(self.param_names) - set(self.option_names)
         if unknown:  # an unknown keyword: TypeError, as Python says for any function
             raise TypeError(
@@ -137,7 +145,7 @@ class HysteresisModel(_ControlBlock):
         s = self._engine.params
         return {k: _plain(getattr(s, k)) for k in self.option_names}
 
-    def with_params(self, **changes) -> HysteresisModel:
+    def with_params(self, **changes: Any) -> Self:
         """A new model with some parameters changed (options kept).
 
         Parameters
@@ -157,7 +165,9 @@ class HysteresisModel(_ControlBlock):
 
     # -- simulation ------------------------------------------------------------------
     @_returning_result
-    def simulate(self, t, x, status: bool = False):
+    def simulate(
+        self, t: ArrayLike | None, x: ArrayLike, status: bool = False
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Output for the input samples x at times t (t may be None when rate-independent).
 
         Starts from the model's initial state; does not disturb the streaming state.

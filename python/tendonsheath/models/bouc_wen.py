@@ -70,7 +70,7 @@ class BoucWen(HysteresisModel):
         k: float = 1.0,
         max_step: float = 0.05,
         max_substeps: int = 256,
-        **renamed,
+        **renamed: float,
     ):
         _args.reject_unknown("BoucWen", renamed, _RENAMED)
         alpha = _args.renamed("BoucWen", {"alpha": alpha, **renamed}, _RENAMED)["alpha"]

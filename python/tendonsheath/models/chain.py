@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from .._typing import ArrayLike, FloatArray
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel
 
@@ -62,7 +63,7 @@ class Chain(HysteresisModel):
         """No options of its own (each part keeps its own): an empty dict."""
         return {}
 
-    def with_params(self, **changes) -> Chain:
+    def with_params(self, **changes: Any) -> Chain:
         """A new chain with some parameters of its parts changed.
 
         Parameters
@@ -80,7 +81,7 @@ class Chain(HysteresisModel):
         ValueError
             A name that is not ``first.<name>`` or ``second.<name>``.
         """
-        parts = {"first": {}, "second": {}}
+        parts: dict[str, dict[str, Any]] = {"first": {}, "second": {}}
         for key, value in changes.items():
             part, _, name = key.partition(".")
             if part not in parts or not name:
@@ -90,7 +91,9 @@ class Chain(HysteresisModel):
             self.first.with_params(**parts["first"]), self.second.with_params(**parts["second"])
         )
 
-    def simulate(self, t, x, status: bool = False):
+    def simulate(
+        self, t: ArrayLike | None, x: ArrayLike, status: bool = False
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """y = second(first(x)); with ``status=True`` also each sample's Status flags, those of
         both parts together (a part without a status, a linear block, adds none).
 
@@ -109,10 +112,11 @@ class Chain(HysteresisModel):
             Output samples; ``(y, flags)`` with ``status=True``, flags the uint8
             :class:`~tendonsheath.Status` bits of each sample.
         """
-        u = self.first.simulate(t, x, **_with_status(self.first, status))
+        # each part's output, or (output, flags) where it reports its status (_with_status)
+        u: Any = self.first.simulate(t, x, **_with_status(self.first, status))
         t2 = None if self.second.rate_independent else t
-        y = self.second.simulate(t2, u[0] if _reports(self.first, status) else u,
-                                 **_with_status(self.second, status))  # fmt: skip
+        y: Any = self.second.simulate(t2, u[0] if _reports(self.first, status) else u,
+                                      **_with_status(self.second, status))  # fmt: skip
         if not status:
             return y
         flags = np.zeros(np.size(x), dtype=np.uint8)

@@ -8,6 +8,7 @@ from .. import _core as core
 from .. import physics
 from .._args import accepts_old_names
 from .._arrays import as_signal, as_time_and_signal, checked_dt
+from .._typing import ArrayLike, FloatArray, FloatOrArray
 from .base import HysteresisModel
 
 # Parameters renamed (old name -> new name, docs/vocabulary.md); the old names still work for one
@@ -101,7 +102,13 @@ class CurveAngleModel(HysteresisModel):
             distal_radius=distal_radius,
         )
 
-    def simulate(self, t, x, curve_angle=None, status: bool = False):
+    def simulate(  # type: ignore[override]  # curve_angle (before status) is its input
+        self,
+        t: ArrayLike | None,
+        x: ArrayLike,
+        curve_angle: ArrayLike | None = None,
+        status: bool = False,
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Distal angle for motor angles x and curve angle(s) (scalar or per sample); with
         ``status=True`` also each sample's Status flags (held, slack).
 
@@ -158,7 +165,7 @@ class CurveAngleModel(HysteresisModel):
     # closed-form terms, in the rotary units of the model (rad at the motor / at the joint), from
     # tendonsheath.physics (the C++ closed forms that step() uses); curve_angle: a number or an
     # array, and |curve_angle| counts, as in step()
-    def backlash_half_width(self, curve_angle: float) -> float:
+    def backlash_half_width(self, curve_angle: ArrayLike) -> FloatOrArray:
         """Half the dead-zone width at the motor, rad: e_b / r_p.
 
         Parameters
@@ -177,7 +184,7 @@ class CurveAngleModel(HysteresisModel):
         )
         return e_b / p["proximal_radius"]
 
-    def load_offset(self, curve_angle: float) -> float:
+    def load_offset(self, curve_angle: ArrayLike) -> FloatOrArray:
         """Load offset at the motor, rad: e_L / r_p.
 
         Parameters
@@ -196,7 +203,7 @@ class CurveAngleModel(HysteresisModel):
         )
         return e_L / p["proximal_radius"]
 
-    def slope(self, curve_angle: float) -> float:
+    def slope(self, curve_angle: ArrayLike) -> FloatOrArray:
         """Branch slope c of the linear displacements (dimensionless).
 
         Parameters

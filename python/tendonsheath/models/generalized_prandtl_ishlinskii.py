@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
 from .. import _core as core
 from .._args import number_array
+from .._typing import ArrayLike, FloatArray
 from .base import HysteresisModel
 
 _ENVELOPE = ("a", "b", "c", "d")
@@ -19,11 +21,11 @@ class _GeneralizedBase(HysteresisModel):
 
     def __init__(
         self,
-        rising=(1.0, 1.0, 0.0, 0.0),
-        falling=(1.0, 1.0, 0.0, 0.0),
-        thresholds=(0.0, 0.05, 0.1, 0.2),
-        weights=(0.6, 0.2, 0.1, 0.1),
-        **flat,
+        rising: Sequence[float] | FloatArray = (1.0, 1.0, 0.0, 0.0),
+        falling: Sequence[float] | FloatArray = (1.0, 1.0, 0.0, 0.0),
+        thresholds: ArrayLike = (0.0, 0.05, 0.1, 0.2),
+        weights: ArrayLike = (0.6, 0.2, 0.1, 0.1),
+        **flat: float,
     ):
         for side, env in (("rising", rising), ("falling", falling)):
             if np.ndim(env) != 1 or len(env) != len(_ENVELOPE):
@@ -63,7 +65,7 @@ class _GeneralizedBase(HysteresisModel):
         out["weights"] = [float(v) for v in s.weights]
         return out
 
-    def envelopes(self, x) -> tuple[np.ndarray, np.ndarray]:
+    def envelopes(self, x: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """The rising and falling envelope functions evaluated at x.
 
         Parameters

@@ -10,6 +10,7 @@ import numpy as np
 
 from .. import _core as core
 from .._arrays import as_time_and_signal
+from .._typing import ArrayLike, FloatArray
 from .base import HysteresisModel
 
 _INTERPOLATIONS = ("linear", "hold", "bandlimited")
@@ -166,7 +167,9 @@ class HystereticOscillator(HysteresisModel):
         """
         return float(self._engine.z_bound(float(displacement_range)))
 
-    def simulate(self, t, x, periodic: bool | None = None, status: bool = False):
+    def simulate(  # type: ignore[override]  # periodic (before status) is its own
+        self, t: ArrayLike | None, x: ArrayLike, periodic: bool | None = None, status: bool = False
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Output for the input samples x at times t, from rest.
 
         ``periodic`` matters only for ``input_interpolation="bandlimited"``: True upsamples
@@ -203,6 +206,7 @@ class HystereticOscillator(HysteresisModel):
         if t is None:
             raise ValueError("HystereticOscillator is rate-dependent: t is required")
         ts, xs = as_time_and_signal(t, x)
+        assert ts is not None  # t was given
         try:
             if self.input_interpolation == "bandlimited" and xs.size > 1:
                 dt = uniform_step(ts, "HystereticOscillator (bandlimited input)")

@@ -14,13 +14,14 @@ Discretisation: exact for an input linear between samples (first-order hold, Sci
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from scipy.signal import cont2discrete, lfilter, lfilter_zi
 
 from .._args import number
 from .._arrays import checked_dt
+from .._typing import ArrayLike, FloatArray
 from .base import HysteresisModel
 
 _UNIFORM = 1e-3  # relative spread of the sample time accepted as uniform
@@ -65,11 +66,11 @@ class LinearBlock(HysteresisModel):
     """
 
     rate_independent = False
-    param_names: tuple[str, ...] = ()
-    _limits: dict[str, tuple[float, float]] = {}
+    param_names: ClassVar[tuple[str, ...]] = ()
+    _limits: ClassVar[dict[str, tuple[float, float]]] = {}
 
-    def __init__(self, **values):
-        out = {}
+    def __init__(self, **values: float) -> None:
+        out: dict[str, float] = {}
         for name in self.param_names:
             v = number(type(self).__name__, name, values.pop(name))  # not "1", not None
             lo, hi = self._limits[name]
@@ -121,7 +122,9 @@ class LinearBlock(HysteresisModel):
 
     reports_status = False  # a linear filter in Python: no real-time core, no status
 
-    def simulate(self, t, x) -> np.ndarray:
+    def simulate(  # type: ignore[override]  # a Python filter: no status to report
+        self, t: ArrayLike | None, x: ArrayLike
+    ) -> FloatArray:
         """Output for the input samples x at uniform times t, from rest at x[0].
 
         Parameters
@@ -149,9 +152,9 @@ class LinearBlock(HysteresisModel):
 
     def reset(self) -> None:
         """Forget the streaming state: the next step starts at rest at its input."""
-        self._rest = None  # the first input (the block starts at rest there)
-        self._z = None  # filter state, once the sample time is known
-        self._cache = (None, None, None)
+        self._rest: float | None = None  # the first input (the block starts at rest there)
+        self._z: np.ndarray | None = None  # filter state, once the sample time is known
+        self._cache: tuple[float | None, Any, Any] = (None, None, None)
 
     def step(self, x: float, dt: float = 0.0) -> float:
         """One sample; dt > 0 after the first. A dt that changes re-discretises the block
@@ -221,7 +224,7 @@ class FirstOrderLag(LinearBlock):
     def __init__(self, time_constant: float = 0.05):
         super().__init__(time_constant=time_constant)
 
-    def transfer(self):
+    def transfer(self) -> tuple[list[float], list[float]]:
         """1 / (time_constant s + 1).
 
         Returns
@@ -269,7 +272,7 @@ class SecondOrderLag(LinearBlock):
     def __init__(self, frequency: float = 5.0, damping: float = 0.7):
         super().__init__(frequency=frequency, damping=damping)
 
-    def transfer(self):
+    def transfer(self) -> tuple[list[float], list[float]]:
         """w^2 / (s^2 + 2 damping w s + w^2), w = 2 pi frequency.
 
         Returns

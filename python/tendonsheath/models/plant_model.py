@@ -5,13 +5,17 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .._args import integer, number
+from .._typing import ArrayLike, FloatArray
 from ..status import Status
 from .base import HysteresisModel
+
+if TYPE_CHECKING:
+    from ..plant import PullPullPlant
 
 #: wrap angle of the internal uniform route (rad); only friction * wrap angle matters on it
 WRAP = 2.0 * math.pi
@@ -89,10 +93,10 @@ class PlantModel(HysteresisModel):
         self._values = {k: _checked(k, v) for k, v in values.items()}
         if integer("PlantModel", "elements", elements) < 2:
             raise ValueError(f"PlantModel: elements must be >= 2 (got {elements})")
-        self._elements = int(elements)
-        self._plant = self._make_plant()
+        self._elements: int = int(elements)
+        self._plant: PullPullPlant = self._make_plant()
 
-    def _make_plant(self):
+    def _make_plant(self) -> PullPullPlant:
         from ..plant import PullPullPlant
         from ..route import Route
 
@@ -121,7 +125,9 @@ class PlantModel(HysteresisModel):
         """``{"elements": ...}``."""
         return {"elements": self._elements}
 
-    def simulate(self, t, x, status: bool = False):
+    def simulate(
+        self, t: ArrayLike | None, x: ArrayLike, status: bool = False
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """Output for the input samples x at times t (needed), from rest at x[0].
 
         Parameters
@@ -142,7 +148,8 @@ class PlantModel(HysteresisModel):
             raise ValueError("PlantModel is rate-dependent: t is required")
         with warnings.catch_warnings():  # slack: flagged in the status, not warned (above)
             warnings.simplefilter("ignore")
-            out = self._plant.simulate(t, x, status=bool(status))
+            out: Any = self._plant.simulate(t, x, status=bool(status))  # q or (q, flags)
+        flags: Any
         q, flags = out if status else (out, None)
         y = self._values["offset"] + self._values["gain"] * np.asarray(q)
         return (y, flags) if status else y

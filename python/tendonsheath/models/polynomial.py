@@ -6,6 +6,7 @@ import numpy as np
 
 from .. import _core as core
 from .._args import integer
+from .._typing import ArrayLike, FloatArray
 from .base import HysteresisModel
 
 
@@ -35,7 +36,9 @@ class Polynomial(HysteresisModel):
     param_names = ("coefficients",)
     option_names = ("odd",)
 
-    def __init__(self, degree: int | None = None, coefficients=None, odd: bool = False):
+    def __init__(
+        self, degree: int | None = None, coefficients: ArrayLike | None = None, odd: bool = False
+    ):
         if coefficients is None:
             if degree is None or integer("Polynomial", "degree", degree) < 1:
                 raise ValueError("Polynomial: give a degree >= 1 or the coefficients")
@@ -52,7 +55,7 @@ class Polynomial(HysteresisModel):
         n = len(self.params["coefficients"])
         return 2 * n - 1 if self.options["odd"] else n - 1
 
-    def basis(self, u) -> np.ndarray:
+    def basis(self, u: ArrayLike) -> FloatArray:
         """Columns u^k of the powers in use: y = basis(u) @ coefficients.
 
         Parameters

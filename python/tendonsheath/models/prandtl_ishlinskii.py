@@ -6,6 +6,7 @@ import numpy as np
 
 from .. import _core as core
 from .._args import number_array
+from .._typing import ArrayLike
 from .base import HysteresisModel
 
 
@@ -15,7 +16,11 @@ class _PlayOperators(HysteresisModel):
     _core_params = core.PrandtlIshlinskiiParams
     param_names = ("thresholds", "weights")
 
-    def __init__(self, thresholds=(0.0, 0.05, 0.1, 0.15, 0.2), weights=(0.5, 0.2, 0.15, 0.1, 0.05)):
+    def __init__(
+        self,
+        thresholds: ArrayLike = (0.0, 0.05, 0.1, 0.15, 0.2),
+        weights: ArrayLike = (0.5, 0.2, 0.15, 0.1, 0.05),
+    ):
         super().__init__(
             thresholds=_vector(self, "thresholds", thresholds),
             weights=_vector(self, "weights", weights),
@@ -45,7 +50,9 @@ class PrandtlIshlinskii(_PlayOperators):
     _core = core.PrandtlIshlinskii
 
     @classmethod
-    def uniform(cls, max_threshold: float, count: int, weights=None) -> PrandtlIshlinskii:
+    def uniform(
+        cls, max_threshold: float, count: int, weights: ArrayLike | None = None
+    ) -> PrandtlIshlinskii:
         """count thresholds evenly spaced on [0, max_threshold); weights default to a decay.
 
         Parameters

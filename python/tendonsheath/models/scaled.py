@@ -7,6 +7,7 @@ from typing import Any
 import numpy as np
 
 from .._args import number
+from .._typing import ArrayLike, FloatArray
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel
 
@@ -88,7 +89,7 @@ class Scaled(HysteresisModel):
         """No options of its own: an empty dict."""
         return {}
 
-    def with_params(self, **changes) -> Scaled:
+    def with_params(self, **changes: Any) -> Scaled:
         """A new Scaled model with some parameters changed.
 
         Parameters
@@ -116,7 +117,7 @@ class Scaled(HysteresisModel):
                 raise TypeError(f"Scaled: unknown parameter {key!r}; inner.<name> or {_MAP}")
         return Scaled(self.inner.with_params(**inner), **mapping)
 
-    def to_inner_input(self, x) -> np.ndarray:
+    def to_inner_input(self, x: ArrayLike) -> FloatArray:
         """(x - input_offset) / input_scale.
 
         Parameters
@@ -131,7 +132,7 @@ class Scaled(HysteresisModel):
         """
         return (np.asarray(x, dtype=float) - self.map["input_offset"]) / self.map["input_scale"]
 
-    def from_inner_output(self, u) -> np.ndarray:
+    def from_inner_output(self, u: ArrayLike) -> FloatArray:
         """output_offset + output_gain * u.
 
         Parameters
@@ -147,7 +148,7 @@ class Scaled(HysteresisModel):
         return self.map["output_offset"] + self.map["output_gain"] * np.asarray(u, dtype=float)
 
     @property
-    def reports_status(self) -> bool:
+    def reports_status(self) -> bool:  # type: ignore[override]  # the inner model's class flag
         """Whether the inner model reports a Status."""
         return self.inner.reports_status
 
@@ -161,7 +162,9 @@ class Scaled(HysteresisModel):
         """
         return self.inner.status()
 
-    def simulate(self, t, x, **kwargs):
+    def simulate(  # type: ignore[override]  # status and the rest pass through to the inner model
+        self, t: ArrayLike | None, x: ArrayLike, **kwargs: Any
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
         """The inner model's simulation, in the data's units.
 
         Parameters

@@ -22,13 +22,16 @@ from __future__ import annotations
 import math
 from datetime import UTC, datetime
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .._atomic import write_bytes, write_json, write_text
 from . import figures, html, interactive
 from .units import check_angle_unit, convert, rows_in_unit, unit_after
+
+if TYPE_CHECKING:
+    from ..bench.scenarios.common import ScenarioResult
 
 SCHEMA = "tendonsheath.metrics"
 SCHEMA_VERSION = 1
@@ -113,7 +116,9 @@ _TIME_FIGURES = (
 )
 
 
-def scenario_section(result, out: Path, angle_unit: str = "deg") -> tuple[str, list[Path]]:
+def scenario_section(
+    result: ScenarioResult, out: Path, angle_unit: str = "deg"
+) -> tuple[str, list[Path]]:
     """HTML for one scenario, and the PNG files written beside the report; every angle in the
     tables in ``angle_unit`` ("deg" or "rad").
 
@@ -322,7 +327,7 @@ def intro_for(results: list) -> str:
     )
 
 
-def details(result) -> dict:
+def details(result: ScenarioResult) -> dict:
     """A scenario's details for metrics.json: calibration, table, identified values, route
     schedule, frequency responses and the scenario's extra data.
 

@@ -91,7 +91,7 @@ def loops(runs: dict, title: str, unit: str = "deg"):
 def planar_centreline(route: Route, samples: int = 400):
     """A drawing of the route as a planar curve bending one way (x' = cos theta, y' = sin theta)."""
     s = np.linspace(0.0, route.length, samples)
-    theta = route.angle_at(s)
+    theta = np.asarray(route.angle_at(s))
     ds = np.diff(s)
     mid = 0.5 * (theta[1:] + theta[:-1])
     x = np.r_[0.0, np.cumsum(ds * np.cos(mid))]

@@ -19,6 +19,8 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable, Iterable, Mapping
+from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .checkpoint import Checkpoint
 from .distributions import (
@@ -49,6 +51,9 @@ from .engines import (
 from .plan import Plan, make_plan
 from .result import SweepResult, build_table, engine_info
 from .studies import robustness_section, robustness_study
+
+if TYPE_CHECKING:
+    from dask.distributed import Client
 
 __all__ = [
     "Choice",
@@ -99,7 +104,7 @@ def sweep(
     design: Design | Mapping,
     n: int | None = None,
     seed: int | None = None,
-    engine="local",
+    engine: str | Client = "local",
     *,
     workers: int | None = None,
     batch_size: int | None = None,
@@ -108,7 +113,7 @@ def sweep(
     retries: int = 3,
     progress: bool | None = None,
     connect_timeout: float = 5.0,
-    checkpoint=None,
+    checkpoint: str | Path | None = None,
     checkpoint_tag: str | None = None,
 ) -> SweepResult:
     """Evaluate ``run`` over a design and return a :class:`SweepResult` (a tidy table).

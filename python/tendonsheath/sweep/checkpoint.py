@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Any
+from typing import Any, TextIO
 
 import numpy as np
 
@@ -44,7 +44,7 @@ class Checkpoint:
             "runs": len(plan.runs),
             "tag": tag,
         }
-        self._file = None
+        self._file: TextIO | None = None
 
     def load(self) -> dict[int, tuple[Any, None]]:
         """The finished runs stored for this very sweep (empty when there is no file); a
@@ -94,6 +94,7 @@ class Checkpoint:
             self.path.write_bytes(data[: data.rfind(b"\n") + 1])
 
     def _write(self, record: dict) -> None:
+        assert self._file is not None, "open() comes first"
         self._file.write(json.dumps(record, default=_plain) + "\n")
 
     def record(self, outcomes) -> None:

@@ -22,6 +22,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy import stats
 
 _EPS = 1e-12
@@ -59,7 +60,7 @@ class Distribution:
         """
         raise NotImplementedError
 
-    def sample(self, rng: np.random.Generator, size: int | None = None):
+    def sample(self, rng: np.random.Generator, size: int | None = None) -> Any:
         """Independent draws from ``rng``.
 
         Parameters
@@ -107,7 +108,7 @@ class Uniform(Distribution):
         if not self.hi > self.lo:
             raise ValueError(f"Uniform: empty range [{self.lo:g}, {self.hi:g}] (need hi > lo)")
 
-    def ppf(self, u):
+    def ppf(self, u: ArrayLike) -> np.ndarray:
         """lo + (hi - lo) u.
 
         Parameters
@@ -191,7 +192,7 @@ class Normal(Distribution):
                 f"Normal: truncation range [{self.lo:g}, {self.hi:g}] has no probability mass"
             )
 
-    def ppf(self, u):
+    def ppf(self, u: ArrayLike) -> np.ndarray:
         """The (truncated) normal inverse CDF.
 
         Parameters
@@ -239,7 +240,7 @@ class LogNormal(Distribution):
         if not self.sigma > 0:
             raise ValueError(f"LogNormal: sigma must be > 0 (got {self.sigma:g})")
 
-    def ppf(self, u):
+    def ppf(self, u: ArrayLike) -> np.ndarray:
         """median exp(sigma Phi^-1(u)).
 
         Parameters
@@ -282,7 +283,7 @@ class Integers(Distribution):
         if self.hi < self.lo:
             raise ValueError(f"Integers: empty range [{self.lo}, {self.hi}] (need hi >= lo)")
 
-    def ppf(self, u):
+    def ppf(self, u: ArrayLike) -> np.ndarray:
         """The integer of the stratum u falls in.
 
         Parameters
@@ -341,7 +342,7 @@ class Choice(Distribution):
         )
         self.ranked = self.numeric
 
-    def ppf(self, u):
+    def ppf(self, u: ArrayLike) -> np.ndarray:
         """The value of the stratum u falls in.
 
         Parameters
@@ -368,7 +369,8 @@ class Choice(Distribution):
 def _split(spec: Mapping[str, Any], what: str) -> tuple[dict[str, Distribution], dict[str, Any]]:
     if not isinstance(spec, Mapping):
         raise ValueError(f"{what}: expected a mapping of parameter names (got {type(spec)})")
-    drawn, fixed = {}, {}
+    drawn: dict[str, Distribution] = {}
+    fixed: dict[str, Any] = {}
     for name, value in spec.items():
         if not isinstance(name, str) or not name:
             raise ValueError(f"{what}: parameter names must be non-empty strings (got {name!r})")

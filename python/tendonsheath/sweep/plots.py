@@ -59,7 +59,7 @@ def _histogram(result, m: str, groups, out: Path) -> Path:
             bins = np.linspace(finite.min(), finite.max() + 1e-300, 30)
         for comp, g in groups:
             x = g[m].to_numpy(dtype=np.float64)
-            ax.hist(x[np.isfinite(x)], bins=bins, alpha=0.55, label=comp)
+            ax.hist(x[np.isfinite(x)], bins=bins.tolist(), alpha=0.55, label=comp)
     if log:
         ax.set_xscale("log")
     ax.set_xlabel(m)

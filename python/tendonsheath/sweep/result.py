@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import math
 import numbers
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -278,7 +278,9 @@ class SweepResult:
                     out.append(p)
         return out
 
-    def sensitivity(self, method: str = "auto", metrics=None) -> pd.DataFrame:
+    def sensitivity(
+        self, method: str = "auto", metrics: str | Sequence[str] | None = None
+    ) -> pd.DataFrame:
         """Which parameter matters most, per compensator and metric.
 
         * ``"src"``: standardized regression coefficients (least squares on the standardized
@@ -384,7 +386,7 @@ class SweepResult:
         return rows
 
     # -- files ---------------------------------------------------------------------------------
-    def to_csv(self, path) -> Path:
+    def to_csv(self, path: str | Path) -> Path:
         """Write the table as CSV (atomically; folders made as needed).
 
         Parameters
@@ -403,7 +405,7 @@ class SweepResult:
             self.table.to_csv(tmp, index=False)
         return path
 
-    def to_parquet(self, path) -> Path:
+    def to_parquet(self, path: str | Path) -> Path:
         """Write the table as Parquet (mixed-type columns as text; atomically).
 
         Parameters
@@ -456,7 +458,12 @@ class SweepResult:
             },
         }
 
-    def save(self, out_dir, bound=None, figures: bool = True) -> list[Path]:
+    def save(
+        self,
+        out_dir: str | Path,
+        bound: float | Mapping[str, float] | None = None,
+        figures: bool = True,
+    ) -> list[Path]:
         """table.csv, table.parquet, summary.csv, summary.json (summary, sensitivity, how the
         sweep was made) and, with ``figures``, the plots of :meth:`plots`.
 
@@ -482,6 +489,7 @@ class SweepResult:
         with atomic_path(out / "summary.csv") as tmp:
             summary.to_csv(tmp, index=False)
         written.append(out / "summary.csv")
+        sens_note: str | None
         try:
             sens = self.sensitivity()
         except ValueError as exc:
@@ -502,7 +510,7 @@ class SweepResult:
             written += self.plots(out, sensitivity=sens if len(sens) else None)
         return written
 
-    def plots(self, out_dir, sensitivity: pd.DataFrame | None = None) -> list[Path]:
+    def plots(self, out_dir: str | Path, sensitivity: pd.DataFrame | None = None) -> list[Path]:
         """hist_<metric>.png (per compensator), <metric>_vs_parameters.png and
         sensitivity.png (the primary metric's ranking) in ``out_dir``.
 

@@ -12,12 +12,19 @@ demo passes the do2015 scenario's
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .._atomic import save_figure
 from .distributions import Integers, MonteCarlo, Relative, Seed
+
+if TYPE_CHECKING:
+    from dask.distributed import Client
+
+    from .result import SweepResult
 
 ROBUSTNESS_RUNS = 200
 ROBUSTNESS_SEED = 2015
@@ -45,13 +52,13 @@ def robustness_design(
 
 
 def robustness_study(
-    run,
+    run: Callable[[dict], Mapping],
     n: int = ROBUSTNESS_RUNS,
     seed: int = ROBUSTNESS_SEED,
-    engine="local",
+    engine: str | Client = "local",
     design: MonteCarlo | None = None,
-    **sweep_options,
-):
+    **sweep_options: Any,
+) -> SweepResult:
     """Each compensator's metrics over ``n`` perturbed plants (a :class:`SweepResult`).
 
     Parameters
@@ -82,8 +89,8 @@ def robustness_study(
 
 
 def robustness_section(
-    result,
-    out_dir,
+    result: SweepResult,
+    out_dir: str | Path,
     metric: str = "mse",
     bound: float | None = None,
     design: MonteCarlo | None = None,

@@ -70,7 +70,7 @@ def scenario_result(scenario: Callable, cal, **fields) -> ScenarioResult:
     paragraph of its docstring, listing the groups ``cal`` identified."""
     return ScenarioResult(
         name=scenario.__name__,
-        summary=first_paragraph(scenario.__doc__),
+        summary=first_paragraph(scenario.__doc__ or ""),
         identified=cal.identified_rows(),
         **fields,
     )

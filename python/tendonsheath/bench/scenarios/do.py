@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from typing import Any
 
 import numpy as np
 
@@ -52,7 +53,7 @@ CONDITIONS = {
     "rate": "1 kHz; first period excluded from the metrics",
 }
 
-_COMMON = dict(
+_COMMON: dict[str, Any] = dict(
     friction=0.1,
     stiffness=5e3,
     pretension=20.0,
@@ -91,7 +92,7 @@ def reference(duration: float, rate: float = 1000.0):
     return t, 1.0 * np.sin(2 * np.pi * 0.25 * t) + 0.3 * np.sin(2 * np.pi * 0.6 * t)
 
 
-def physics(**changes) -> dict:
+def physics(**changes) -> dict[str, Any]:
     """The plant's keyword arguments: _COMMON with the realistic preset's effects (distal
     dynamics, sheath viscosity, creep, an unequal pair); ``changes`` replace _COMMON values."""
     base = {**_COMMON, **changes}
@@ -299,4 +300,11 @@ def robustness_run(params: dict) -> dict[str, dict[str, float]]:
     }
 
 
-robustness_run.parameters = ("friction", "pretension", "route_angle", "route_pieces", "route_seed")
+# the sweep reads a run's parameter names from this attribute (a function's own attribute)
+robustness_run.parameters = (  # type: ignore[attr-defined]
+    "friction",
+    "pretension",
+    "route_angle",
+    "route_pieces",
+    "route_seed",
+)

@@ -4,6 +4,7 @@ route's curve angle, with no sensor at the tip."""
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -54,7 +55,7 @@ CONDITIONS = {
     "rate": "1 kHz; first period excluded",
 }
 
-_COMMON = dict(
+_COMMON: dict[str, Any] = dict(
     friction=0.1,
     stiffness=5e3,
     pretension=20.0,
