@@ -11,6 +11,7 @@ import sys
 import warnings
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
+from types import FrameType
 from typing import Any
 
 import numpy as np
@@ -68,7 +69,8 @@ def caller_outside_package() -> int:
     """The ``stacklevel`` for :func:`warn_renamed`, called by the caller of this function, that
     points at the first frame outside the package: the user's line, for a warning raised some
     calls deep (identify's settings pass through the estimator first)."""
-    frame, level = sys._getframe(1), 2  # the caller; warn_renamed itself is level 1
+    frame: FrameType | None = sys._getframe(1)  # the caller; warn_renamed itself is level 1
+    level = 2
     while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_DIR):
         frame, level = frame.f_back, level + 1
     return level
