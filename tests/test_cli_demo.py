@@ -26,7 +26,7 @@ def test_demo_writes_report_metrics_and_figures(tmp_path):
     )
     assert result.exit_code == 0, result.output
     metrics = json.loads((tmp_path / "metrics.json").read_text())
-    assert metrics["schema"] == "tendonsheath.metrics" and metrics["version"] == 1
+    assert metrics["schema"] == "tendonsheath.metrics" and metrics["version"] == 2
     assert set(metrics["scenarios"]) == {"lau2015"}
     assert "ContinuumFeedforward (exact)" in metrics["scenarios"]["lau2015"]
     robust = metrics["robustness"]

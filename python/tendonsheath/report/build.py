@@ -1,8 +1,8 @@
 """Turn scenario results into report.html, metrics.json and figure files.
 
-metrics.json (schema "tendonsheath.metrics", version 1):
+metrics.json (schema "tendonsheath.metrics", version 2):
 
-    {"schema": "tendonsheath.metrics", "version": 1, "generated": ISO time,
+    {"schema": "tendonsheath.metrics", "version": 2, "generated": ISO time,
      "scenarios": {scenario: {compensator: {metric: value}}},      # the headline runs
      "paper": {scenario: {...the paper's numbers...}},
      "details": {scenario: {...per-condition metrics, frequency responses, calibration...}},
@@ -34,7 +34,7 @@ if TYPE_CHECKING:
     from ..bench.scenarios.common import ScenarioResult
 
 SCHEMA = "tendonsheath.metrics"
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2  # 2: parameter keys renamed (docs/metrics-json.md)
 
 
 def _status_table(runs) -> str:
