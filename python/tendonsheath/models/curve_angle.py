@@ -170,12 +170,12 @@ class CurveAngleModel(HysteresisModel):
 
         Parameters
         ----------
-        curve_angle : float
-            The curve angle Theta (rad).
+        curve_angle : float or array_like
+            The curve angle Theta (rad); its magnitude counts, as in step().
 
         Returns
         -------
-        float
+        float or numpy.ndarray
             e_b / r_p (rad).
         """
         p = self.params
@@ -189,12 +189,12 @@ class CurveAngleModel(HysteresisModel):
 
         Parameters
         ----------
-        curve_angle : float
-            The curve angle Theta (rad).
+        curve_angle : float or array_like
+            The curve angle Theta (rad); its magnitude counts, as in step().
 
         Returns
         -------
-        float
+        float or numpy.ndarray
             e_L / r_p (rad).
         """
         p = self.params
@@ -208,12 +208,12 @@ class CurveAngleModel(HysteresisModel):
 
         Parameters
         ----------
-        curve_angle : float
-            The curve angle Theta (rad).
+        curve_angle : float or array_like
+            The curve angle Theta (rad); its magnitude counts, as in step().
 
         Returns
         -------
-        float
+        float or numpy.ndarray
             c = 1/(1 + k_e L tanh(a/2)/(EA a)), a = mu Theta.
         """
         p = self.params
