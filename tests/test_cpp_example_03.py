@@ -11,6 +11,7 @@ import pytest
 from tendonsheath.compensate import (
     ContinuumFeedforward,
     CurveAngleFeedforward,
+    EncoderLoop,
     InverseFeedforward,
 )
 from tendonsheath.models import Backlash, BoucWenBacklash, PrandtlIshlinskii, Scaled
@@ -78,6 +79,35 @@ def test_cpp_commands_equal_python(example, tmp_path, name):
     python = ff.command(t, y_d)
     assert cpp.shape == python.shape
     assert np.ptp(python) > 0.5  # the trajectory exercises the compensator
+    np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
+
+
+def test_cpp_encoder_loop_equals_python(example, tmp_path):
+    """An EncoderLoop around an inverse of a Scaled model, given a motor encoder trajectory
+    (with a dropout), gives Python's servo commands to 1e-12 in C++."""
+    inner = InverseFeedforward(
+        Scaled(BoucWenBacklash(B_r=0.08, B_l=0.05), input_offset=0.1, output_gain=1.2), 0.04
+    )
+    loop = EncoderLoop(inner, kp=1.3, ki=420.0, kd=0.002, max_correction=0.3, limits=(-2.0, 2.0))
+    loop.to_json(tmp_path / "loop.json")
+    t = np.arange(0.0, 3.0, 1e-3)
+    y_d = 0.8 * np.sin(2 * np.pi * 0.5 * t)
+    rng = np.random.default_rng(3)
+    q = 0.9 * y_d + 0.05 * np.sin(2 * np.pi * 7.0 * t) + rng.normal(0.0, 1e-3, t.size)
+    q[1500:1510] = np.nan  # an encoder dropout: the loop holds its correction
+    rows = zip(t.tolist(), y_d.tolist(), q.tolist(), strict=True)
+    (tmp_path / "trajectory.csv").write_text("".join(f"{a!r},{b!r},{c!r}\n" for a, b, c in rows))
+    run = subprocess.run(
+        [example, tmp_path / "loop.json", tmp_path / "trajectory.csv", tmp_path / "out.csv"],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 0, run.stderr
+    loop.reset()
+    dts = np.concatenate([[0.0], np.diff(t)])  # as the C++ loop computes them
+    python = np.array([loop.step(a, b, dt) for a, b, dt in zip(y_d, q, dts, strict=True)])
+    cpp = np.loadtxt(tmp_path / "out.csv")
+    assert np.ptp(python - inner.command(t, y_d)) > 0.01  # the loop did correct
     np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
 
 

@@ -16,6 +16,7 @@
 #include "compensators/curve_angle_feedforward.hpp"
 #include "compensators/continuum_feedforward.hpp"
 #include "compensators/adaptive_controller.hpp"
+#include "compensators/encoder_loop.hpp"
 #include "models/polynomial.hpp"
 #include "models/generalized_prandtl_ishlinskii.hpp"
 #include "route.hpp"

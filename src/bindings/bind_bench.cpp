@@ -69,9 +69,11 @@ template <class Controller, class = void>
 struct NeedsGil : std::false_type {};
 template <class Controller>
 struct NeedsGil<Controller, std::void_t<decltype(Controller::needs_gil)>> : std::true_type {};
+template <class Inner>
+struct NeedsGil<ts::WithEncoderLoop<Inner>> : NeedsGil<Inner> {};
 
 template <class Controller>
-nb::tuple run(const ts::PullPullPlant& plant_in, std::optional<ts::Motor> motor,
+nb::tuple run_loop(const ts::PullPullPlant& plant_in, std::optional<ts::Motor> motor,
               std::optional<ts::Sensor> sensor, Controller controller, InArray t, InArray y_d,
               std::optional<InIndex> sidx, std::optional<InMatrix> sang,
               std::optional<InMatrix> shapes, std::optional<InMask> dropout) {
@@ -119,6 +121,20 @@ nb::tuple run(const ts::PullPullPlant& plant_in, std::optional<ts::Motor> motor,
   return nb::make_tuple(output, measured, command, motor_pos, slack_arr, fallback_arr, status);
 }
 
+// The loop, with an EncoderLoop around the controller's command when one is given.
+template <class Controller>
+nb::tuple run(const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
+              std::optional<ts::Sensor> sensor, Controller controller, InArray t, InArray y_d,
+              std::optional<InIndex> sidx, std::optional<InMatrix> sang,
+              std::optional<InMatrix> shapes, std::optional<InMask> dropout,
+              std::optional<ts::EncoderLoop> encoder_loop) {
+  if (encoder_loop)
+    return run_loop(plant, motor, sensor,
+                    ts::WithEncoderLoop<Controller>{std::move(controller), *encoder_loop}, t, y_d,
+                    sidx, sang, shapes, dropout);
+  return run_loop(plant, motor, sensor, std::move(controller), t, y_d, sidx, sang, shapes, dropout);
+}
+
 template <class Make>
 void def_run(nb::module_& m, const char* name, Make make) {
   m.def(
@@ -126,12 +142,14 @@ void def_run(nb::module_& m, const char* name, Make make) {
       [make](const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
              std::optional<ts::Sensor> sensor, const typename Make::argument_type& c, InArray t,
              InArray y_d, std::optional<InIndex> sidx, std::optional<InMatrix> sang,
-             std::optional<InMatrix> shapes, std::optional<InMask> dropout) {
-        return run(plant, motor, sensor, make(c), t, y_d, sidx, sang, shapes, dropout);
+             std::optional<InMatrix> shapes, std::optional<InMask> dropout,
+             std::optional<ts::EncoderLoop> encoder_loop) {
+        return run(plant, motor, sensor, make(c), t, y_d, sidx, sang, shapes, dropout,
+                   encoder_loop);
       },
       "plant"_a, "motor"_a.none(), "sensor"_a.none(), "controller"_a, "t"_a, "y_d"_a,
       "schedule_index"_a.none(), "schedule_angles"_a.none(), "shapes"_a.none(),
-      "dropout"_a.none());
+      "dropout"_a.none(), "encoder_loop"_a.none() = nb::none());
 }
 
 template <class Arg, class Loop>
@@ -166,8 +184,9 @@ template <class Loop>
 nb::tuple run_any(const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
                   std::optional<ts::Sensor> sensor, Loop loop, InArray t, InArray y_d,
                   std::optional<InIndex> sidx, std::optional<InMatrix> sang,
-                  std::optional<InMask> dropout) {
-  return run(plant, motor, sensor, std::move(loop), t, y_d, sidx, sang, std::nullopt, dropout);
+                  std::optional<InMask> dropout, std::optional<ts::EncoderLoop> encoder_loop) {
+  return run(plant, motor, sensor, std::move(loop), t, y_d, sidx, sang, std::nullopt, dropout,
+             encoder_loop);
 }
 
 }  // namespace
@@ -178,26 +197,29 @@ void bind_bench(nb::module_& m) {
       [](const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
          std::optional<ts::Sensor> sensor, nb::handle capsule, InArray t, InArray y_d,
          std::optional<InIndex> sidx, std::optional<InMatrix> sang,
-         std::optional<InMask> dropout) {
-        return run_any(plant, motor, sensor, erased_loop(capsule), t, y_d, sidx, sang, dropout);
+         std::optional<InMask> dropout, std::optional<ts::EncoderLoop> encoder_loop) {
+        return run_any(plant, motor, sensor, erased_loop(capsule), t, y_d, sidx, sang, dropout,
+                       encoder_loop);
       },
       "plant"_a, "motor"_a.none(), "sensor"_a.none(), "capsule"_a, "t"_a, "y_d"_a,
-      "schedule_index"_a.none(), "schedule_angles"_a.none(), "dropout"_a.none());
+      "schedule_index"_a.none(), "schedule_angles"_a.none(), "dropout"_a.none(),
+      "encoder_loop"_a.none() = nb::none());
   m.def(
       "bench_python",
       [](const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
          std::optional<ts::Sensor> sensor, nb::object compensator, std::vector<int> inputs,
          InArray t, InArray y_d, std::optional<InIndex> sidx, std::optional<InMatrix> sang,
-         std::optional<InMask> dropout) {
+         std::optional<InMask> dropout, std::optional<ts::EncoderLoop> encoder_loop) {
         if (inputs.empty() || inputs.size() > 3)
           throw nb::value_error("bench_python: 1 to 3 step inputs");
         for (int i : inputs)
           if (i < 0 || i > 2) throw nb::value_error("bench_python: step input codes are 0, 1, 2");
         return run_any(plant, motor, sensor, python_loop(compensator, inputs), t, y_d, sidx, sang,
-                       dropout);
+                       dropout, encoder_loop);
       },
       "plant"_a, "motor"_a.none(), "sensor"_a.none(), "compensator"_a, "inputs"_a, "t"_a,
-      "y_d"_a, "schedule_index"_a.none(), "schedule_angles"_a.none(), "dropout"_a.none());
+      "y_d"_a, "schedule_index"_a.none(), "schedule_angles"_a.none(), "dropout"_a.none(),
+      "encoder_loop"_a.none() = nb::none());
   def_run(m, "bench_open_loop", [] {
     struct M {
       using argument_type = double;

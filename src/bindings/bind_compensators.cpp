@@ -228,6 +228,28 @@ void bind_adaptive(nb::module_& m) {
       .def("step", &C::step, "y_d"_a, "y_measured"_a, "motor_position"_a, "dt"_a);
 }
 
+void bind_encoder_loop(nb::module_& m) {
+  using P = ts::EncoderLoopParams;
+  nb::class_<P>(m, "EncoderLoopParams")
+      .def(nb::init<>())
+      .def_rw("kp", &P::kp)
+      .def_rw("ki", &P::ki)
+      .def_rw("kd", &P::kd)
+      .def_rw("derivative_cutoff_hz", &P::derivative_cutoff_hz)
+      .def_rw("max_correction", &P::max_correction)
+      .def_rw("limits", &P::limits);
+  using L = ts::EncoderLoop;
+  bind_copy(nb::class_<L>(m, "EncoderLoop"))
+      .def(nb::init<const P&>(), "params"_a)
+      .def_prop_ro("params", &L::params)
+      .def("reset", &L::reset)
+      .def("correct", &L::correct, "target"_a, "encoder"_a, "dt"_a)
+      .def("correction", &L::correction)
+      .def("integral", &L::integral)
+      .def("error", &L::error)
+      .def("status", &status_of<L>);
+}
+
 }  // namespace
 
 void bind_compensators(nb::module_& m) {
@@ -236,6 +258,7 @@ void bind_compensators(nb::module_& m) {
   bind_curve_angle_feedforward(m);
   bind_continuum(m);
   bind_adaptive(m);
+  bind_encoder_loop(m);
 }
 
 }  // namespace tsbind

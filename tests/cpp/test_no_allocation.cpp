@@ -124,14 +124,19 @@ TEST(NoAllocation, CompensatorsStep) {
   ts::CurveAngleFeedforward curve(ts::CurveAngleFeedforwardParams{});
   ts::ContinuumFeedforward continuum(ts::ContinuumFeedforwardParams{});
   ts::AdaptiveController adaptive(ts::AdaptiveControllerParams{});
+  ts::EncoderLoopParams lp;
+  lp.kp = 1.0, lp.kd = 1e-3, lp.limits.max = 0.4;
+  ts::EncoderLooped<ts::CurveAngleFeedforward> looped(curve, ts::EncoderLoop(lp));
   const long n = allocations_in([&] {
     for (int k = 0; k < 1000; ++k) {
       const double y = input(k);
       if (k % 100 == 0) curve.set_curve_angle(0.5 + 0.01 * k);
+      if (k % 150 == 0) looped.set_shape(ts::uniform_shape(0.1, 0.2 + 0.01 * k));
       inverse.step(y, 1e-3);
       curve.step(y, 1e-3);
       continuum.step(y, 1e-3);
       adaptive.step(y, k % 200 == 0 ? NAN : 0.9 * y, 0.8 * y, 1e-3);
+      looped.step(y, k % 250 == 0 ? NAN : 0.7 * y, 1e-3);
     }
   });
   EXPECT_EQ(n, 0);

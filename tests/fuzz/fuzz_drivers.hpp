@@ -259,8 +259,20 @@ inline Failure inverses(const std::uint8_t* data, std::size_t size) {
   return {};
 }
 
+// An encoder loop with gains from the bytes (from 0 to extreme), maybe limited.
+inline EncoderLoop encoder_loop(Bytes& b) {
+  EncoderLoopParams p;
+  p.kp = 10.0 * b.unit() * (b.byte() % 8 == 0 ? 1e6 : 1.0);
+  p.ki = 1e3 * b.unit() * (b.byte() % 8 == 0 ? 1e6 : 1.0);
+  p.kd = 0.01 * b.unit();
+  p.derivative_cutoff_hz = 1.0 + 500.0 * b.unit();
+  if (b.byte() % 2 == 0) p.max_correction = 0.01 + b.unit();
+  if (b.byte() % 2 == 0) p.limits.max = 0.5 + b.unit(), p.limits.min = -p.limits.max;
+  return EncoderLoop(p);
+}
+
 // Every compensator, with measurement dropouts (NaN) for the adaptive controller and curve
-// angle changes for the curve-angle feedforward.
+// angle changes for the curve-angle feedforward; the encoder loop gets a random encoder.
 inline Failure compensators(const std::uint8_t* data, std::size_t size) {
   using namespace detail_fuzz;
   Bytes b(data, size);
@@ -268,10 +280,11 @@ inline Failure compensators(const std::uint8_t* data, std::size_t size) {
   CurveAngleFeedforward curve(CurveAngleFeedforwardParams{});
   ContinuumFeedforward continuum(ContinuumFeedforwardParams{});
   AdaptiveController adaptive(AdaptiveControllerParams{});
+  EncoderLooped<BacklashInverseFeedforward> looped(inverse, encoder_loop(b));
   for (long op = 0; op < kMaxOps && !b.done(); ++op) {
     const std::uint8_t what = b.byte() % 32;
     if (what == 0) {
-      inverse.reset(), curve.reset(), continuum.reset(), adaptive.reset();
+      inverse.reset(), curve.reset(), continuum.reset(), adaptive.reset(), looped.reset();
       continue;
     }
     if (what == 1) curve.set_curve_angle(b.value(10.0));
@@ -282,6 +295,7 @@ inline Failure compensators(const std::uint8_t* data, std::size_t size) {
     if (bad(y, continuum.step(y, dt))) return {"ContinuumFeedforward: non-finite", op};
     if (bad(y, adaptive.step(y, meas, motor_q, dt)))
       return {"AdaptiveController: non-finite torque", op};
+    if (bad(y, looped.step(y, motor_q, dt))) return {"EncoderLoop: non-finite command", op};
   }
   return {};
 }

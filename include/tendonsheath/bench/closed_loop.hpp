@@ -13,6 +13,7 @@
 
 #include "../compensators/adaptive_controller.hpp"
 #include "../compensators/curve_angle_feedforward.hpp"
+#include "../compensators/encoder_loop.hpp"
 #include "../physics/pull_pull_statics.hpp"
 #include "../plant/motor.hpp"
 #include "../plant/sensor.hpp"
@@ -113,6 +114,33 @@ struct AdaptiveLoop {
   /// @return the torque command ctrl.step(y_d, measured, motor, dt)
   double command(double y_d, double measured, double motor, double dt) noexcept {
     return ctrl.step(y_d, measured, motor, dt);
+  }
+};
+
+/// @brief Any of the controllers above with an EncoderLoop around its command: the loop makes the
+/// motor encoder follow the controller's command (a motor angle), no tip sensor involved.
+/// @tparam Inner OpenLoop, FeedforwardLoop, CurveAngleLoop or one with the same members
+template <class Inner>
+struct WithEncoderLoop {
+  /// the controller whose command is the encoder's target
+  Inner inner;
+  /// the loop around the servo
+  EncoderLoop loop;
+  /// Start afresh: the controller and the loop.
+  void reset() noexcept {
+    inner.reset();
+    loop.reset();
+  }
+  /// Passes the route shape to the controller.
+  void on_shape(const ShapeIntegrals& s) noexcept { inner.on_shape(s); }
+  /// The controller's fallback.
+  bool in_fallback() const noexcept { return inner.in_fallback(); }
+  /// The controller's and the loop's flags.
+  Status status() const noexcept { return inner.status() | loop.status(); }
+  /// @return loop.correct(inner.command(...), motor, dt), the servo command
+  double command(double y_d, double measured, double motor,
+                 double dt) noexcept(noexcept(inner.command(y_d, measured, motor, dt))) {
+    return loop.correct(inner.command(y_d, measured, motor, dt), motor, dt);
   }
 };
 

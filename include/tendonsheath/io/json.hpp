@@ -10,6 +10,7 @@
 
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,7 @@
 
 #include "../compensators/continuum_feedforward.hpp"
 #include "../compensators/curve_angle_feedforward.hpp"
+#include "../compensators/encoder_loop.hpp"
 #include "../compensators/inverse_feedforward.hpp"
 
 /// @brief Loading compensators saved by Python's `to_json` into the real-time core (optional
@@ -233,21 +235,40 @@ class LoadedCompensator {
   /// @param y_d the desired output, in the file's (outer) units
   /// @param dt the time since the previous cycle, s
   /// @return the motor command: input_offset + input_scale * engine.step((y_d - output_offset) /
-  /// output_gain, dt)
-  double step(double y_d, double dt) noexcept {
+  /// output_gain, dt); with an encoder loop (an EncoderLoop file) and no encoder reading given,
+  /// the loop holds its correction (status fallback): use step(y_d, q, dt)
+  double step(double y_d, double dt) noexcept { return step(y_d, NAN, dt); }
+  /// @brief One cycle with the motor encoder: the feedforward's command, corrected by the encoder
+  /// loop when the file holds one (an EncoderLoop), else q is not used.
+  /// @param y_d the desired output, in the file's (outer) units
+  /// @param q the motor encoder, rad (NaN: no reading this cycle)
+  /// @param dt the time since the previous cycle, s
+  /// @return the servo command
+  double step(double y_d, double q, double dt) noexcept {
     const double inner_y = (y_d - map_.output_offset) / map_.output_gain;
     const double x = std::visit([&](auto& e) noexcept { return e.step(inner_y, dt); }, engine_);
-    return map_.input_offset + map_.input_scale * x;
+    const double target = map_.input_offset + map_.input_scale * x;
+    return loop_ ? loop_->correct(target, q, dt) : target;
   }
   /// Start afresh from the initial state, as after construction; the parameters (and any route,
   /// shape or curve angle set since) are kept.
   void reset() noexcept {
     std::visit([](auto& e) noexcept { e.reset(); }, engine_);
+    if (loop_) loop_->reset();
   }
   /// The last step's status flags (see Status).
   Status status() const noexcept {
-    return std::visit([](const auto& e) noexcept { return e.status(); }, engine_);
+    const Status s = std::visit([](const auto& e) noexcept { return e.status(); }, engine_);
+    return loop_ ? s | loop_->status() : s;
   }
+  /// Put an encoder loop around the feedforward (what an EncoderLoop file holds); kind() is then
+  /// "EncoderLoop".
+  void set_encoder_loop(const EncoderLoop& loop) {
+    loop_ = loop;
+    kind_ = "EncoderLoop";
+  }
+  /// The encoder loop, when the file holds one (nullptr otherwise).
+  const EncoderLoop* encoder_loop() const noexcept { return loop_ ? &*loop_ : nullptr; }
   const std::string& kind() const noexcept { return kind_; }  ///< the Python class name
   Engine& engine() noexcept { return engine_; }  ///< the feedforward itself, e.g.\ for CurveAngleFeedforward::set_curve_angle
   /// The affine map around the inverse.
@@ -257,6 +278,7 @@ class LoadedCompensator {
   std::string kind_;
   Engine engine_;
   ScaledMap map_;
+  std::optional<EncoderLoop> loop_;
 };
 
 namespace detail {
@@ -310,11 +332,44 @@ inline std::set<std::string> keys_of_file(const json& f, std::set<std::string> k
 
 }  // namespace detail
 
+inline LoadedCompensator compensator_from_json(const json& f, const std::string& where);
+
+namespace detail {
+
+inline const std::set<std::string> kEncoderLoopKeys{
+    "format", "version", "compensator", "feedforward", "kp", "ki", "kd",
+    "derivative_cutoff_hz", "max_correction", "limits"};
+
+// Python's EncoderLoop: its feedforward (a compensator file of its own) and the loop's gains.
+inline LoadedCompensator encoder_loop_from_json(const json& f, const std::string& where) {
+  check_keys(f, kEncoderLoopKeys, kEncoderLoopKeys, where);
+  const json& inner = f.at("feedforward");
+  if (inner.is_object() && inner.contains("compensator") && inner.at("compensator") == "EncoderLoop")
+    fail(where, "key 'feedforward' must be a feedforward, not another EncoderLoop");
+  LoadedCompensator out = compensator_from_json(inner, where + ": feedforward");
+  EncoderLoopParams p;
+  p.kp = number(f, "kp", where);
+  p.ki = number(f, "ki", where);
+  p.kd = number(f, "kd", where);
+  p.derivative_cutoff_hz = number(f, "derivative_cutoff_hz", where);
+  p.max_correction = number(f, "max_correction", where, std::numeric_limits<double>::infinity());
+  p.limits = limits(f, where);
+  try {
+    out.set_encoder_loop(EncoderLoop(p));
+  } catch (const std::invalid_argument& e) {
+    fail(where, e.what());
+  }
+  return out;
+}
+
+}  // namespace detail
+
 /// A compensator from the parsed contents of a "tendonsheath.compensator" file.
 inline LoadedCompensator compensator_from_json(const json& f, const std::string& where = "compensator") {
   detail::check_format(f, "tendonsheath.compensator", where);
   const json& kind = detail::member(f, "compensator", where);
   if (kind == "InverseFeedforward") return detail::inverse_from_json(f, where);
+  if (kind == "EncoderLoop") return detail::encoder_loop_from_json(f, where);
   if (kind == "CurveAngleFeedforward") {
     const auto keys = detail::keys_of_file(f, detail::kCurveAngleKeys, detail::kCurveAngleRenamed);
     detail::check_keys(f, keys, keys, where);
@@ -326,7 +381,8 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
     return {"ContinuumFeedforward", ContinuumFeedforward(continuum_feedforward_params(f, where))};
   }
   detail::fail(where, "key 'compensator': unknown compensator " + kind.dump() +
-                          " (known: ContinuumFeedforward, CurveAngleFeedforward, InverseFeedforward)");
+                          " (known: ContinuumFeedforward, CurveAngleFeedforward, EncoderLoop, "
+                          "InverseFeedforward)");
 }
 
 /// The parsed contents of a JSON file (read with stdio: the library uses no iostreams).

@@ -233,6 +233,7 @@ class _Loop:
         self.motor = core.Motor(plant.motor._params) if plant.motor is not None else None
         self.sensor = _sensor_engine(noise, plant)
         self.mask = _dropout_mask(dropout, ts)
+        self.encoder_loop = None  # a core.EncoderLoop around the controller's command
 
     def call(self, fn, controller, *extra, shapes=_NO_SHAPES, idx=None, angles=None):
         """``fn`` (a ``_core.bench_*`` function) on this loop; the schedule may be replaced."""
@@ -240,16 +241,21 @@ class _Loop:
         angles = self.angles if angles is None else angles
         head = (self.plant._engine, self.motor, self.sensor, controller, *extra, self.ts, self.ys)
         tail = (idx, angles) if shapes is _NO_SHAPES else (idx, angles, shapes)
-        return fn(*head, *tail, self.mask)
+        return fn(*head, *tail, self.mask, self.encoder_loop)
 
 
 def _run_controller(loop: _Loop, controller, shape_sensing):
-    """Run the loop on the fastest path the controller offers (by its capabilities)."""
+    """Run the loop on the fastest path the controller offers (by its capabilities); an
+    EncoderLoop runs its feedforward's path with the encoder loop around it, in C++."""
     if controller is None:
         gain = loop.plant.distal_radius / loop.plant.proximal_radius
         return loop.call(core.bench_open_loop, gain, shapes=None)
     _check_compensator(controller)
     _check_motor_kind(loop.plant, controller)
+    taken_apart = getattr(controller, "_encoder_loop", None)
+    if callable(taken_apart):
+        loop.encoder_loop, controller = taken_apart()
+        _check_compensator(controller)
     compiled = getattr(controller, "_tendonsheath_compensator", None)
     if callable(compiled):  # a user's C++ compensator (tendonsheath_bind/compensator.hpp)
         return loop.call(core.bench_erased, compiled())

@@ -3,6 +3,7 @@
 from .adaptive_controller import AdaptiveController
 from .continuum_feedforward import ContinuumFeedforward
 from .curve_angle_feedforward import CurveAngleFeedforward, shape_of
+from .encoder_loop import EncoderLoop
 from .inverse_feedforward import InverseFeedforward
 from .limits import CommandLimits
 from .persistence import load_compensator
@@ -14,6 +15,7 @@ __all__ = [
     "CommandLimits",
     "ContinuumFeedforward",
     "CurveAngleFeedforward",
+    "EncoderLoop",
     "InverseFeedforward",
     "load",
     "load_compensator",

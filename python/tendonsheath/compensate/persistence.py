@@ -28,6 +28,8 @@ FORMAT_VERSION = 1
 _UNBOUNDED = {"max_correction_rate": math.inf, "max_torque": math.inf}
 # settings saved as a model's own dict (null: no model)
 _MODELS = ("model", "feedforward_model")
+# settings saved as a compensator's own dict (the feedforward inside an EncoderLoop)
+_COMPENSATORS = ("feedforward",)
 _FLAGS = ("model_acceleration",)
 _LIMIT_UNBOUNDED = {"min": -math.inf, "max": math.inf, "max_rate": math.inf}
 
@@ -61,9 +63,16 @@ def _registry() -> dict[str, type[Feedforward] | type[AdaptiveController]]:
     from .adaptive_controller import AdaptiveController
     from .continuum_feedforward import ContinuumFeedforward
     from .curve_angle_feedforward import CurveAngleFeedforward
+    from .encoder_loop import EncoderLoop
     from .inverse_feedforward import InverseFeedforward
 
-    kinds = (InverseFeedforward, CurveAngleFeedforward, ContinuumFeedforward, AdaptiveController)
+    kinds = (
+        InverseFeedforward,
+        CurveAngleFeedforward,
+        ContinuumFeedforward,
+        AdaptiveController,
+        EncoderLoop,
+    )
     return {c.__name__: c for c in kinds}
 
 
@@ -122,6 +131,13 @@ def _setting(name: str, key: str, value):
         from ..models import HysteresisModel
 
         return None if value is None else HysteresisModel.from_dict(value)
+    if key in _COMPENSATORS:
+        if not isinstance(value, dict):
+            raise ValueError(f"{name} file: '{key}' must be a compensator object")
+        inner = compensator_from_dict(value)
+        if not hasattr(inner, "command"):
+            raise ValueError(f"{name} file: '{key}' must hold a feedforward compensator")
+        return inner
     if key in _FLAGS:
         if not isinstance(value, bool):
             got = json.dumps(value)

@@ -1,0 +1,277 @@
+"""A motor-encoder loop around any feedforward: integral action with no tip sensor."""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+from .. import _core as core
+from .._args import number, python_names
+from .._arrays import checked_dt
+from ..status import Status
+from .base import EngineCompensator
+from .limits import LimitsLike, as_limits
+
+if TYPE_CHECKING:
+    from ..identify.servo import ServoFit
+    from ..route import Route
+    from .tuning import EncoderLoopDesign
+
+_GAINS = ("kp", "ki", "kd", "derivative_cutoff_hz", "max_correction")
+
+
+class EncoderLoop(EngineCompensator):
+    """A feedforward's command made real by a PI(D) loop on the motor encoder.
+
+    A feedforward computes the motor angle x_ff its model says gives the desired output. A
+    position servo without integral action yields to the tendons' torque, differently in each
+    direction, so the shaft does not reach x_ff. This compensator closes a loop on the motor's
+    own encoder q (no tip sensor): with e = x_ff(previous cycle) - q,
+
+        u = x_ff + clamp(kp e + ki integral(e) + kd de/dt, +-max_correction)
+
+    shaped to ``limits``; the integral is held while the command is cut in the direction the
+    error pushes (anti-windup), and a NaN encoder reading (a dropout) holds the correction
+    (status ``fallback``). The feedforward's model must then describe the drive from the
+    *encoder* to the output (calibrate it with ``fit_input="encoder"``): its command is where
+    the shaft is made to go. :meth:`from_calibration` chooses the gains from an identified
+    servo (:func:`tendonsheath.identify.identify_servo`) with stated margins.
+
+    Parameters
+    ----------
+    feedforward : compensator
+        Any feedforward with ``reset()``, ``step(y_d, dt)`` and ``status()`` (a shipped
+        InverseFeedforward, CurveAngleFeedforward or ContinuumFeedforward, or your own).
+    kp : float, default 0.0
+        Proportional gain on the encoder error (rad per rad), >= 0.
+    ki : float, default 20.0
+        Integral gain (1/s), >= 0.
+    kd : float, default 0.0
+        Derivative gain (s), >= 0.
+    derivative_cutoff_hz : float, default 50.0
+        Corner of the derivative's first-order low-pass (Hz), > 0.
+    max_correction : float, default inf
+        Largest |correction| (rad), > 0.
+    limits : CommandLimits, tuple, dict or None, optional
+        Saturation of the servo command and its rate (after the correction).
+
+    Raises
+    ------
+    TypeError
+        A feedforward without reset/step, or a setting of the wrong type.
+    ValueError
+        A gain or limit the C++ core rejects (the message names it).
+    """
+
+    control_inputs = ("y_d", "q")
+    control_output = "x"
+    step_inputs = ("y_d", "q")
+    _saved_settings = ("feedforward", *_GAINS, "limits")
+
+    def __init__(
+        self,
+        feedforward: Any,
+        kp: float = 0.0,
+        ki: float = 20.0,
+        kd: float = 0.0,
+        derivative_cutoff_hz: float = 50.0,
+        max_correction: float = math.inf,
+        limits: LimitsLike = None,
+    ):
+        who = "EncoderLoop"
+        missing = [m for m in ("reset", "step") if not callable(getattr(feedforward, m, None))]
+        if missing or isinstance(feedforward, EncoderLoop):
+            raise TypeError(
+                f"{who}: feedforward must be a feedforward compensator with reset() and "
+                f"step(y_d, dt) (got {type(feedforward).__name__})"
+            )
+        values = dict(
+            kp=kp,
+            ki=ki,
+            kd=kd,
+            derivative_cutoff_hz=derivative_cutoff_hz,
+            max_correction=max_correction,
+        )
+        p = core.EncoderLoopParams()
+        for key, value in values.items():
+            setattr(p, key, number(who, key, value))
+        self.limits = as_limits(limits)
+        p.limits = self.limits.to_core()
+        with python_names(who):
+            self._engine = core.EncoderLoop(p)
+        self.feedforward = feedforward
+        self.design: EncoderLoopDesign | None = None
+        self._settings = {**{k: getattr(p, k) for k in _GAINS}, "limits": self.limits}
+
+    @classmethod
+    def from_calibration(
+        cls,
+        feedforward: Any,
+        servo: ServoFit,
+        dt: float = 1e-3,
+        max_sensitivity: float = 1.7,
+        derivative: bool = False,
+        limits: LimitsLike = None,
+    ) -> EncoderLoop:
+        """Gains from an identified servo (motor calibration logs alone): the largest integral
+        gain whose loop keeps the peak sensitivity |1/(1 + C G)| below ``max_sensitivity``
+        (:func:`~tendonsheath.compensate.tuning.tune_encoder_loop`); the design, with its gain
+        and phase margins, is kept in ``design``.
+
+        Parameters
+        ----------
+        feedforward : compensator
+            The feedforward whose command the encoder is to follow.
+        servo : ServoFit
+            The servo identified from a motor calibration run.
+        dt : float, default 1e-3
+            The control cycle (s).
+        max_sensitivity : float, default 1.7
+            The largest allowed peak of the sensitivity function, > 1.
+        derivative : bool, default False
+            Also tune a derivative gain (PID); PI otherwise.
+        limits : CommandLimits, tuple, dict or None, optional
+            Saturation of the servo command.
+
+        Returns
+        -------
+        EncoderLoop
+            The compensator, with ``design`` set.
+
+        Raises
+        ------
+        ValueError
+            No gains make the identified loop stable within ``max_sensitivity``.
+        """
+        from .tuning import tune_encoder_loop
+
+        design = tune_encoder_loop(servo, dt, max_sensitivity, derivative)
+        loop = cls(feedforward, **design.gains(), limits=limits)
+        loop.design = design
+        return loop
+
+    # -- streaming ------------------------------------------------------------------
+    def reset(self) -> None:
+        """Forget the feedforward's and the loop's state."""
+        self.feedforward.reset()
+        self._engine.reset()
+
+    def step(self, y_d: float, q: float, dt: float) -> float:
+        """One control cycle: the servo command.
+
+        Parameters
+        ----------
+        y_d : float
+            Desired output.
+        q : float
+            Motor encoder angle (rad); NaN when there is no reading this cycle.
+        dt : float
+            Time since the previous cycle (s), >= 0.
+
+        Returns
+        -------
+        float
+            The servo command (rad).
+        """
+        dt = checked_dt(dt)
+        x = float(self.feedforward.step(float(y_d), dt))
+        return self._engine.correct(x, float(q), dt)
+
+    def status(self) -> Status:
+        """The last cycle's flags: the feedforward's and the loop's (fallback: no encoder
+        reading; saturated: the command or the correction was cut).
+
+        Returns
+        -------
+        Status
+            The flags of the last :meth:`step`.
+        """
+        own = Status(self._engine.status())
+        inner = getattr(self.feedforward, "status", None)
+        return own | Status(int(inner())) if callable(inner) else own
+
+    @property
+    def correction(self) -> float:
+        """The correction added to the feedforward's last command (rad)."""
+        return self._engine.correction()
+
+    def _control_step(self, u, dt: float) -> float:
+        return self.step(u[0], u[1], dt)
+
+    # -- a feedforward that follows the route ------------------------------------------
+    @property
+    def follows_route(self) -> bool:
+        """Whether the feedforward inside follows the route's shape."""
+        return bool(getattr(self.feedforward, "follows_route", False))
+
+    @property
+    def friction(self) -> float:
+        """The friction the feedforward computes route shapes with.
+
+        Raises
+        ------
+        AttributeError
+            The feedforward does not follow the route.
+        """
+        return self.feedforward.friction
+
+    def set_route(self, route: Route) -> None:
+        """Tell the feedforward the route's shape (when it follows the route).
+
+        Parameters
+        ----------
+        route : Route
+            The route now.
+        """
+        self.feedforward.set_route(route)
+
+    def set_curve_angle(self, curve_angle: float) -> None:
+        """Tell the feedforward the curve angle (when it follows the route).
+
+        Parameters
+        ----------
+        curve_angle : float
+            The total curve angle (rad).
+        """
+        self.feedforward.set_curve_angle(curve_angle)
+
+    # -- the bench and persistence ------------------------------------------------------
+    def _encoder_loop(self):
+        """(the C++ loop, the feedforward) for bench.run's C++ loops."""
+        return core.EncoderLoop(self._engine.params), self.feedforward
+
+    def _bench_engine(self):
+        return None  # bench.run takes the loop apart (_encoder_loop)
+
+    @property
+    def params(self) -> dict:
+        """The gains, limits and the feedforward (a copy)."""
+        return {**super().params, "feedforward": self.feedforward}
+
+    def to_dict(self) -> dict:
+        """The compensator as a dict, its feedforward saved whole.
+
+        Returns
+        -------
+        dict
+            What :func:`~tendonsheath.compensate.load_compensator` reads back.
+
+        Raises
+        ------
+        TypeError
+            The feedforward cannot be saved (it has no ``to_dict``).
+        """
+        inner = getattr(self.feedforward, "to_dict", None)
+        if not callable(inner):
+            raise TypeError(
+                f"EncoderLoop.to_dict: its feedforward {type(self.feedforward).__name__} "
+                "cannot be saved (it has no to_dict)"
+            )
+        return {**super().to_dict(), "feedforward": inner()}
+
+    def __repr__(self) -> str:
+        gains = ", ".join(f"{k}={self._settings[k]:g}" for k in ("kp", "ki", "kd"))
+        return f"EncoderLoop({self.feedforward!r}, {gains})"
+
+
+__all__ = ["EncoderLoop"]

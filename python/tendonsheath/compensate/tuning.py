@@ -1,0 +1,266 @@
+"""Gains of a motor-encoder loop from an identified servo, with their margins stated.
+
+The loop of :class:`~tendonsheath.compensate.EncoderLoop` around an identified servo G(z)
+(:class:`~tendonsheath.identify.servo.ServoFit`) has the loop gain L(z) = C(z) G(z), with the
+discrete PI(D) of the C++ core,
+
+    C(z) = kp + ki dt / (1 - z^-1) + kd a (1 - z^-1) / (dt (1 - (1 - a) z^-1)),
+
+a = dt / (dt + 1 / (2 pi derivative_cutoff_hz)). The design is MIGO (Astrom, Panagopoulos &
+Hagglund, "Design of PI controllers based on non-convex optimization", Automatica 34(5), 1998):
+the largest integral gain ki (the best rejection of a slowly varying load: the tendons' pull on
+the servo) over kp (and kd) such that the closed loop is stable and the peak of the sensitivity
+|1 / (1 + L)| stays below ``max_sensitivity`` Ms. Ms bounds the margins: a gain margin of at
+least Ms / (Ms - 1) and a phase margin of at least 2 asin(1 / (2 Ms)) (Ms = 1.7: 2.4, i.e. 7.7 dB,
+and 34 deg); the achieved margins are computed by python-control and stated.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from ..identify.servo import ServoFit
+
+_KI_MAX = 1e5  # 1/s: far beyond any servo a 1 kHz loop can close around
+_KI_MIN = 1e-3  # 1/s: slower integral action is no loop at all
+
+
+@dataclass(frozen=True)
+class EncoderLoopDesign:
+    """Gains of an encoder loop and the margins of its identified loop.
+
+    Parameters
+    ----------
+    kp : float
+        Proportional gain.
+    ki : float
+        Integral gain (1/s).
+    kd : float
+        Derivative gain (s).
+    derivative_cutoff_hz : float
+        Corner of the derivative filter (Hz).
+    max_sensitivity : float
+        The design's bound on the peak sensitivity.
+    sensitivity_peak : float
+        The achieved peak of |1 / (1 + L)|.
+    gain_margin_db : float
+        Gain margin (dB; inf when the phase never crosses -180 deg).
+    phase_margin_deg : float
+        Phase margin (deg).
+    crossover_hz : float
+        Gain-crossover frequency (Hz).
+    servo : ServoFit
+        The identified servo the design is for.
+    dt : float
+        The control cycle (s).
+    """
+
+    kp: float
+    ki: float
+    kd: float
+    derivative_cutoff_hz: float
+    max_sensitivity: float
+    sensitivity_peak: float
+    gain_margin_db: float
+    phase_margin_deg: float
+    crossover_hz: float
+    servo: ServoFit
+    dt: float
+
+    def gains(self) -> dict[str, float]:
+        """The gains as EncoderLoop keywords.
+
+        Returns
+        -------
+        dict of str to float
+            kp, ki, kd and derivative_cutoff_hz.
+        """
+        return {
+            "kp": self.kp,
+            "ki": self.ki,
+            "kd": self.kd,
+            "derivative_cutoff_hz": self.derivative_cutoff_hz,
+        }
+
+    def as_dict(self) -> dict[str, Any]:
+        """The design as a JSON-ready dict (the servo it was designed from included).
+
+        Returns
+        -------
+        dict
+            Gains, margins and the servo.
+        """
+        out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k != "servo"}
+        return {**out, "servo": self.servo.as_dict()}
+
+    def summary(self) -> str:
+        """One line: the gains and the margins.
+
+        Returns
+        -------
+        str
+            Gains, peak sensitivity, gain and phase margins, crossover.
+        """
+        return (
+            f"encoder loop: kp {self.kp:.3g}, ki {self.ki:.4g} 1/s, kd {self.kd:.3g} s; "
+            f"Ms {self.sensitivity_peak:.3g} (<= {self.max_sensitivity:g}), gain margin "
+            f"{self.gain_margin_db:.3g} dB, phase margin {self.phase_margin_deg:.3g} deg, "
+            f"crossover {self.crossover_hz:.3g} Hz"
+        )
+
+
+def controller_polynomials(kp, ki, kd, derivative_cutoff_hz, dt):
+    """(num, den) of C(z) in z^-1, the discrete PI(D) of the C++ EncoderLoop."""
+    a = dt / (dt + 1.0 / (2.0 * math.pi * derivative_cutoff_hz))
+    # kp + ki dt/(1 - z^-1) + kd a (1 - z^-1)/(dt (1 - b z^-1)), b = 1 - a, over (1-z^-1)(1-b z^-1)
+    b = 1.0 - a
+    one = np.array([1.0, -1.0])
+    pole = np.array([1.0, -b])
+    den = np.polymul(one, pole)
+    num = _padded_sum(_padded_sum(kp * den, ki * dt * pole), (kd * a / dt) * np.polymul(one, one))
+    return num, den
+
+
+class _Loop:
+    """The loop L = C G on a frequency grid, and its closed-loop stability."""
+
+    def __init__(self, servo: ServoFit, dt: float, cutoff: float):
+        self.dt, self.cutoff = dt, cutoff
+        self.g_num, self.g_den = loop_plant(servo, dt)
+        w = np.geomspace(1e-2, math.pi / dt, 800)
+        self.zinv = np.exp(-1j * w * dt)
+        self.G = _evaluate(self.g_num, self.g_den, self.zinv)
+
+    def acceptable(self, kp: float, ki: float, kd: float, ms: float) -> bool:
+        c_num, c_den = controller_polynomials(kp, ki, kd, self.cutoff, self.dt)
+        char = _padded_sum(np.polymul(c_den, self.g_den), np.polymul(c_num, self.g_num))
+        if not _stable(char):
+            return False
+        L = _evaluate(c_num, c_den, self.zinv) * self.G
+        return float(np.max(np.abs(1.0 / (1.0 + L)))) <= ms
+
+
+def loop_plant(servo: ServoFit, dt: float) -> tuple[np.ndarray, np.ndarray]:
+    """The servo as the loop sees it: the encoder read at cycle k shows the command of cycle
+    k - 1 (the servo's q_k = G u_k, one cycle later), so G z^-1, in z^-1."""
+    num, den = servo.discrete(dt)
+    return np.concatenate([[0.0], num]), den
+
+
+def _evaluate(num: np.ndarray, den: np.ndarray, zinv: np.ndarray) -> np.ndarray:
+    """num(z^-1) / den(z^-1) at the points zinv (coefficients in rising powers of z^-1)."""
+    return np.polyval(num[::-1], zinv) / np.polyval(den[::-1], zinv)
+
+
+def _padded_sum(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    n = max(a.size, b.size)
+    return np.pad(a, (0, n - a.size)) + np.pad(b, (0, n - b.size))
+
+
+def _stable(char: np.ndarray) -> bool:
+    """All closed-loop poles inside the unit circle: char(z^-1) = 0 in z^-1 means z = 1/root;
+    as a polynomial in z (coefficients reversed) every root has |z| < 1."""
+    coeffs = np.trim_zeros(char, "b")
+    if coeffs.size <= 1:
+        return True
+    return bool(np.all(np.abs(np.roots(coeffs)) < 1.0 - 1e-12))
+
+
+def _largest_ki(loop: _Loop, kp: float, kd: float, ms: float) -> float:
+    """The largest ki with the loop stable and within ms (bisection; 0 when none)."""
+    lo, hi = _KI_MIN, _KI_MAX
+    if not loop.acceptable(kp, lo, kd, ms):
+        return 0.0
+    while hi / lo > 1.002:  # bisection in log(ki): about 34 steps
+        mid = math.sqrt(lo * hi)
+        if loop.acceptable(kp, mid, kd, ms):
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+def _search(loop: _Loop, servo: ServoFit, ms: float, derivative: bool):
+    """MIGO: the (kp, ki, kd) of largest ki over a grid of kp (and kd)."""
+    g = abs(servo.gain) if servo.gain else 1.0
+    w_n = 2.0 * math.pi * servo.frequency
+    kps = np.linspace(0.0, 3.0 / g, 31)
+    kds = np.linspace(0.0, 4.0 / (g * w_n), 9) if derivative else np.zeros(1)
+    best = (0.0, 0.0, 0.0)
+    for kd in kds:
+        for kp in kps:
+            ki = _largest_ki(loop, float(kp), float(kd), ms)
+            if ki > best[1]:
+                best = (float(kp), ki, float(kd))
+    return best
+
+
+def _margins(servo: ServoFit, dt: float, gains: tuple[float, float, float], cutoff: float):
+    """(gain margin dB, phase margin deg, crossover Hz) of the loop, by python-control."""
+    from ..control_interop import require_control
+
+    ct = require_control()
+    c_num, c_den = controller_polynomials(*gains, cutoff, dt)
+    g_num, g_den = loop_plant(servo, dt)
+    num = np.polymul(c_num, g_num)
+    den = np.polymul(c_den, g_den)
+    n = max(num.size, den.size)  # in z^-1 -> polynomials in z of equal degree
+    L = ct.tf(np.pad(num, (0, n - num.size)), np.pad(den, (0, n - den.size)), dt)
+    gm, pm, _, _, wc, _ = ct.stability_margins(L, method="frd")
+    gm_db = 20.0 * math.log10(gm) if gm and math.isfinite(gm) else math.inf
+    return gm_db, float(pm), float(wc) / (2.0 * math.pi)
+
+
+def tune_encoder_loop(
+    servo: ServoFit, dt: float = 1e-3, max_sensitivity: float = 1.7, derivative: bool = False
+) -> EncoderLoopDesign:
+    """PI(D) gains of an encoder loop around an identified servo (MIGO, see the module).
+
+    Parameters
+    ----------
+    servo : ServoFit
+        The servo identified from a motor calibration run.
+    dt : float, default 1e-3
+        The control cycle (s), > 0.
+    max_sensitivity : float, default 1.7
+        The bound on the peak sensitivity, > 1 (1.4-2 are usual; lower is more robust).
+    derivative : bool, default False
+        Also search a derivative gain (filtered at a tenth of the sample rate).
+
+    Returns
+    -------
+    EncoderLoopDesign
+        The gains and the margins they achieve on the identified servo.
+
+    Raises
+    ------
+    ValueError
+        dt or max_sensitivity out of range, or no gains that keep the loop stable within
+        ``max_sensitivity`` (the identified servo cannot be closed at this cycle time).
+    """
+    dt, ms = float(dt), float(max_sensitivity)
+    if not (math.isfinite(dt) and dt > 0):
+        raise ValueError(f"tune_encoder_loop: dt must be > 0 (got {dt})")
+    if not (math.isfinite(ms) and ms > 1.0):
+        raise ValueError(f"tune_encoder_loop: max_sensitivity must be > 1 (got {ms})")
+    cutoff = 0.1 / dt
+    loop = _Loop(servo, dt, cutoff)
+    kp, ki, kd = _search(loop, servo, ms, derivative)
+    if not ki > 0:
+        raise ValueError(
+            f"tune_encoder_loop: no PI{'D' if derivative else ''} gains keep the loop around the "
+            f"identified servo ({servo.summary()}) stable with a peak sensitivity <= {ms:g} at "
+            f"dt = {dt:g} s; the encoder loop cannot be closed on this drive"
+        )
+    c_num, c_den = controller_polynomials(kp, ki, kd, cutoff, dt)
+    peak = float(np.max(np.abs(1.0 / (1.0 + _evaluate(c_num, c_den, loop.zinv) * loop.G))))
+    gm, pm, fc = _margins(servo, dt, (kp, ki, kd), cutoff)
+    return EncoderLoopDesign(kp, ki, kd, cutoff, ms, peak, gm, pm, fc, servo, dt)
+
+
+__all__ = ["EncoderLoopDesign", "controller_polynomials", "loop_plant", "tune_encoder_loop"]

@@ -1,0 +1,295 @@
+"""The motor's position servo identified from its own logs: command in, motor encoder out.
+
+A motor-encoder loop (:class:`~tendonsheath.compensate.EncoderLoop`) is tuned on the servo it
+closes around. Its plant is the drive as it is, tendons attached: the servo amplifier's own loop,
+the rotor and gear, and the tendons' pull on the pulley. :func:`identify_servo` fits that, from a
+calibration run's command and motor encoder, as
+
+    q = offset + gain * w^2 / (s^2 + 2 damping w s + w^2) * command(t - delay)
+
+(w = 2 pi frequency): the command held over each sample (zero-order hold: what a servo
+receives), ``delay`` whole samples of transport delay. The excitation should move the servo
+over its bandwidth without reversing the tendons (a chirp on a slow ramp,
+:func:`tendonsheath.bench.calibration.motor_calibration_input`).
+
+The dynamics are fitted on both signals high-passed (zero phase) above ``highpass_hz``: the
+tendons' slowly varying pull shifts the encoder by far more than the servo's fast response
+moves it, and a filter applied to both sides keeps the linear relation between them. The
+static gain and offset are then fitted on the raw signals with those dynamics.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from scipy.optimize import least_squares
+from scipy.signal import butter, cont2discrete, lfilter, sosfiltfilt
+
+from .._arrays import as_timed_signal
+
+if TYPE_CHECKING:
+    import control
+
+
+@dataclass(frozen=True)
+class ServoFit:
+    """A position servo identified from a command and a motor encoder (see the module).
+
+    Parameters
+    ----------
+    frequency : float
+        Natural frequency (Hz).
+    damping : float
+        Damping ratio.
+    gain : float
+        Static gain, encoder per command.
+    offset : float
+        Encoder offset (rad).
+    delay : int
+        Transport delay (samples).
+    dt : float
+        Sample time of the logs (s).
+    rmse : float
+        Root-mean-square error of the fit (rad).
+    nrmse : float
+        rmse over the encoder's range.
+    standard_errors : dict of str to float, optional
+        Linearised standard errors of frequency, damping, gain and offset.
+    """
+
+    frequency: float
+    damping: float
+    gain: float
+    offset: float
+    delay: int
+    dt: float
+    rmse: float
+    nrmse: float
+    standard_errors: dict[str, float] = field(default_factory=dict)
+
+    def discrete(self, dt: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """The servo's zero-order-hold transfer function in z^-1 at sample time ``dt`` (default
+        the logs'), the delay included: q_k = G(z) u_k with u_k held over the step ending at k.
+
+        Parameters
+        ----------
+        dt : float, optional
+            Sample time (s), > 0.
+
+        Returns
+        -------
+        num, den : numpy.ndarray of float
+            Coefficients in z^-1 (den[0] = 1).
+        """
+        return servo_filter(self.frequency, self.damping, self.gain, self.delay,
+                            self.dt if dt is None else float(dt))  # fmt: skip
+
+    def to_control(self, dt: float | None = None) -> control.TransferFunction:
+        """The servo as a discrete-time python-control transfer function (input: command,
+        output: encoder), sample time ``dt`` (default the logs').
+
+        Parameters
+        ----------
+        dt : float, optional
+            Sample time (s), > 0.
+
+        Returns
+        -------
+        control.TransferFunction
+            The transfer function in z.
+        """
+        from ..control_interop import require_control
+
+        ct = require_control()
+        step = self.dt if dt is None else float(dt)
+        num, den = self.discrete(step)
+        n = max(num.size, den.size)
+        return ct.tf(np.pad(num, (0, n - num.size)), np.pad(den, (0, n - den.size)), step)
+
+    def as_dict(self) -> dict[str, Any]:
+        """The fit as a JSON-ready dict.
+
+        Returns
+        -------
+        dict
+            Every field.
+        """
+        return {
+            "frequency_hz": self.frequency,
+            "damping": self.damping,
+            "gain": self.gain,
+            "offset": self.offset,
+            "delay_samples": self.delay,
+            "dt": self.dt,
+            "rmse": self.rmse,
+            "nrmse": self.nrmse,
+            "standard_errors": dict(self.standard_errors),
+        }
+
+    def summary(self) -> str:
+        """One line: the identified servo and its fit.
+
+        Returns
+        -------
+        str
+            Natural frequency, damping, gain, delay and the fit's nrmse.
+        """
+        se = self.standard_errors
+        f_se = f" +- {se['frequency']:.2g}" if "frequency" in se else ""
+        return (
+            f"servo: {self.frequency:.4g}{f_se} Hz, damping {self.damping:.3g}, gain "
+            f"{self.gain:.4g}, delay {self.delay} samples ({1e3 * self.delay * self.dt:.3g} ms); "
+            f"nrmse {self.nrmse:.3g}"
+        )
+
+
+def servo_filter(frequency, damping, gain, delay: int, dt: float):
+    """(num, den) in z^-1 of gain w^2/(s^2 + 2 damping w s + w^2), zero-order hold at dt, with
+    the command of a step acting during that step (q_k from u_k held over (t_k-1, t_k]) and
+    ``delay`` samples more."""
+    w = 2.0 * math.pi * frequency
+    num, den, _ = cont2discrete(([gain * w * w], [1.0, 2.0 * damping * w, w * w]), dt, "zoh")
+    num = np.atleast_1d(np.squeeze(num))[1:]  # drop the leading 0: the step's own command acts
+    return np.concatenate([np.zeros(int(delay)), num]), np.asarray(den, dtype=float)
+
+
+def _unit_response(frequency: float, damping: float, u: np.ndarray, delay: int, dt: float):
+    num, den = servo_filter(frequency, damping, 1.0, delay, dt)
+    shifted = u - u[0]  # from rest at the first command
+    return lfilter(num, den, shifted) + u[0]
+
+
+def _affine(s: np.ndarray, q: np.ndarray) -> tuple[float, float, np.ndarray]:
+    """Least-squares gain and offset of q ~ gain * s + offset, and the residual."""
+    A = np.column_stack([s, np.ones_like(s)])
+    (g, c), *_ = np.linalg.lstsq(A, q, rcond=None)
+    return float(g), float(c), q - (g * s + c)
+
+
+def _band(x: np.ndarray, dt: float, highpass_hz: float) -> np.ndarray:
+    if highpass_hz <= 0:
+        return x - x.mean()
+    sos = butter(2, highpass_hz, btype="highpass", fs=1.0 / dt, output="sos")
+    return sosfiltfilt(sos, x)
+
+
+def _fit_at_delay(u, q, delay: int, dt: float, start: tuple[float, float], keep: slice):
+    """(frequency, damping, gain, offset, residual, least_squares result) at one delay, on the
+    samples ``keep``; the gain and offset are solved linearly inside (variable projection)."""
+    nyquist = 0.5 / dt
+
+    def residual(p):
+        f, z = math.exp(p[0]), math.exp(p[1])
+        return _affine(_unit_response(f, z, u, delay, dt)[keep], q[keep])[2]
+
+    lo = [math.log(1e-3), math.log(0.05)]
+    hi = [math.log(0.45 * nyquist * 2), math.log(20.0)]
+    x0 = np.clip(np.log(start), lo, hi)
+    r = least_squares(residual, x0, bounds=(lo, hi), x_scale=1.0)
+    f, z = (float(math.exp(v)) for v in r.x)
+    g, c, res = _affine(_unit_response(f, z, u, delay, dt)[keep], q[keep])
+    return f, z, g, c, res, r
+
+
+def _start(u, q, delay: int, dt: float, keep: slice) -> tuple[float, float]:
+    """The best (frequency, damping) of a coarse grid: a start for the least squares."""
+    best, arg = math.inf, (1.0, 0.7)
+    for f in np.geomspace(0.2, 0.4 / dt, 24):
+        for z in (0.3, 0.8, 2.0, 6.0):
+            response = _unit_response(f, z, u, delay, dt)[keep]
+            sse = float(np.sum(_affine(response, q[keep])[2] ** 2))
+            if sse < best:
+                best, arg = sse, (float(f), z)
+    return arg
+
+
+def _standard_errors(result, residual: np.ndarray, f: float, z: float) -> dict[str, float]:
+    """Linearised standard errors of frequency and damping (the Jacobian is in their logs)."""
+    J = np.asarray(result.jac)
+    dof = max(residual.size - 4, 1)
+    s2 = float(residual @ residual) / dof
+    try:
+        cov = s2 * np.linalg.inv(J.T @ J)
+    except np.linalg.LinAlgError:
+        return {}
+    d = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    return {"frequency": float(f * d[0]), "damping": float(z * d[1])}
+
+
+def identify_servo(t, command, encoder, max_delay: int = 10, highpass_hz: float = 1.0) -> ServoFit:
+    """Identify the position servo from a calibration run: ``command`` in, ``encoder`` out.
+
+    Parameters
+    ----------
+    t : array_like of float, shape (n,)
+        Sample times (s), uniform.
+    command : array_like of float, shape (n,)
+        The commands sent to the servo (rad).
+    encoder : array_like of float, shape (n,)
+        The motor encoder (rad).
+    max_delay : int, default 10
+        The largest transport delay tried (samples), >= 0.
+    highpass_hz : float, default 1.0
+        The dynamics are fitted above this frequency (Hz; 0: the whole record).
+
+    Returns
+    -------
+    ServoFit
+        The servo, with the delay of the best fit.
+
+    Raises
+    ------
+    ValueError
+        Arrays of different lengths, non-finite samples, a non-uniform or too short record,
+        or a command that does not move.
+    """
+    ts, u = as_timed_signal(t, command, "command", "identify_servo")
+    _, q = as_timed_signal(ts, encoder, "encoder", "identify_servo")
+    dt = _uniform_step(ts)
+    if not (np.all(np.isfinite(u)) and np.all(np.isfinite(q))):
+        raise ValueError("identify_servo: command and encoder must be finite")
+    if not np.ptp(u) > 0:
+        raise ValueError("identify_servo: the command does not move")
+    if not (math.isfinite(highpass_hz) and 0 <= highpass_hz < 0.25 / dt):
+        raise ValueError(f"identify_servo: highpass_hz must be in [0, {0.25 / dt:g}) Hz")
+    if not (isinstance(max_delay, int) and 0 <= max_delay < u.size // 4):
+        raise ValueError(f"identify_servo: max_delay must be an int in [0, n/4) (got {max_delay})")
+    u_raw, q_raw = u, q
+    u, q = _band(u, dt, highpass_hz), _band(q, dt, highpass_hz)
+    edge = min(int(round(1.0 / (max(highpass_hz, 1e-9) * dt))), u.size // 8)
+    keep = slice(edge, u.size - edge)
+    fits = []
+    for d in range(max_delay + 1):
+        f, z, g, c, res, r = _fit_at_delay(u, q, d, dt, _start(u, q, d, dt, keep), keep)
+        fits.append((float(res @ res), d, f, z, g, c, res, r))
+    _, d, f, z, _, _, res, r = min(fits, key=lambda item: item[0])
+    g, c, raw = _affine(_unit_response(f, z, u_raw, d, dt), q_raw)
+    rmse = math.sqrt(float(raw @ raw) / u_raw.size)
+    span = float(np.ptp(q_raw))
+    return ServoFit(
+        frequency=f,
+        damping=z,
+        gain=g,
+        offset=c,
+        delay=d,
+        dt=dt,
+        rmse=rmse,
+        nrmse=rmse / span if span > 0 else math.inf,
+        standard_errors=_standard_errors(r, res, f, z),
+    )
+
+
+def _uniform_step(ts: np.ndarray) -> float:
+    if ts.size < 64:
+        raise ValueError(f"identify_servo needs at least 64 samples (got {ts.size})")
+    steps = np.diff(ts)
+    dt = float(np.median(steps))
+    if not dt > 0 or float(np.max(np.abs(steps - dt))) > 1e-3 * dt:
+        raise ValueError("identify_servo needs a uniform, increasing time vector")
+    return dt
+
+
+__all__ = ["ServoFit", "identify_servo", "servo_filter"]
