@@ -419,7 +419,14 @@ def _calibration():
         "BoucWenBacklash": SimpleNamespace(model=ts.models.BoucWenBacklash()),
         "CurveAngleModel": SimpleNamespace(model=_sprung()),
     }
-    return ts.bench.Calibration(fits=fits, runs=[], declared={}, groups={}, shape=None)
+    from tendonsheath.identify import ServoFit
+
+    servo = ts.bench.MotorCalibration(
+        ServoFit(40.0, 0.7, 1.0, 0.0, 0, 1e-3, 0.0, 0.0), *np.zeros((3, 2))
+    )
+    return ts.bench.Calibration(
+        fits=fits, runs=[], declared={}, groups={}, shape=None, servo=servo
+    )
 
 
 def _quality():
@@ -479,6 +486,9 @@ MINIMAL_CALLS = {
     ),
     "tendonsheath.bench.calibration.Calibration.inverse_feedforward": (
         lambda kw: _calibration().inverse_feedforward(**kw)
+    ),
+    "tendonsheath.bench.calibration.Calibration.encoder_loop": (
+        lambda kw: _calibration().encoder_loop(_calibration().inverse_feedforward(), **kw)
     ),
     "tendonsheath.bench.calibration.Calibration.curve_angle_feedforward": (
         lambda kw: _calibration().curve_angle_feedforward(**kw)

@@ -10,6 +10,7 @@ from .calibration import (
 )
 from .frequency import FrequencyResponse, frequency_response
 from .metrics import loop_width, tracking_metrics
+from .motor_calibration import MotorCalibration, calibrate_servo, motor_calibration_input
 from .run import Result, run
 
 __all__ = [
@@ -17,6 +18,9 @@ __all__ = [
     "ShapeSensing",
     "calibrate",
     "calibrate_load",
+    "calibrate_servo",
+    "MotorCalibration",
+    "motor_calibration_input",
     "honesty_entry",
     "in_class_fit",
     "FrequencyResponse",

@@ -33,10 +33,16 @@ from .. import models
 from ..physics import route_shape
 from ..route import Route
 from ..sensor import Sensor
+from .motor_calibration import MotorCalibration, calibrate_servo
 
 if TYPE_CHECKING:
     from .._typing import ArrayLike
-    from ..compensate import ContinuumFeedforward, CurveAngleFeedforward, InverseFeedforward
+    from ..compensate import (
+        ContinuumFeedforward,
+        CurveAngleFeedforward,
+        EncoderLoop,
+        InverseFeedforward,
+    )
     from ..plant import PullPullPlant
     from .run import Result
 
@@ -188,6 +194,38 @@ class CalibrationRun:
     samples: int
 
 
+#: the signals a model can be fitted from, and what each is
+FIT_INPUTS = {
+    "command": "the motor command (what a feedforward sends to the servo)",
+    "encoder": "the motor encoder (what an EncoderLoop makes the shaft follow)",
+}
+
+
+@dataclass
+class CalibrationLog:
+    """What one calibration run logged: the command sent, the motor encoder, the distal
+    sensor's reading and the sensed shape (the curve angle, or a sensed Route)."""
+
+    t: np.ndarray
+    command: np.ndarray
+    encoder: np.ndarray
+    output: np.ndarray
+    sensed: Any
+
+    def recording(self, fit_input: str) -> tuple:
+        """(t, input, output, sensed shape) with the input ``fit_input`` ("command" or
+        "encoder")."""
+        return (self.t, self.command if fit_input == "command" else self.encoder, self.output,
+                self.sensed)  # fmt: skip
+
+
+def checked_fit_input(fit_input: str) -> str:
+    """``fit_input`` if it is one of FIT_INPUTS, else a ValueError naming them."""
+    if fit_input not in FIT_INPUTS:
+        raise ValueError(f"fit_input must be one of {sorted(FIT_INPUTS)} (got {fit_input!r})")
+    return fit_input
+
+
 @dataclass
 class Calibration:
     """Models identified from calibration logs, and where every number came from.
@@ -216,6 +254,14 @@ class Calibration:
         The load groups of each load run (:func:`calibrate_load`).
     friction_identified : bool, default True
         False when one curve angle could not identify friction.
+    fit_input : {"command", "encoder"}, default "command"
+        The signal the models were fitted from (their input).
+    logs : list of CalibrationLog, optional
+        What each calibration run logged (command, encoder, distal reading, sensed shape).
+    servo : MotorCalibration, optional
+        The motor calibration run and its identified servo (``calibrate(..., servo=True)``).
+    settings : dict, optional
+        How the models were identified (what :meth:`refit` repeats).
     """
 
     fits: dict[str, Any]
@@ -226,11 +272,15 @@ class Calibration:
     at_bounds: dict[str, list[str]] = field(default_factory=dict)
     loads: dict[str, dict[str, Any]] = field(default_factory=dict)
     friction_identified: bool = True
+    fit_input: str = "command"
+    logs: list[CalibrationLog] = field(default_factory=list)
+    servo: MotorCalibration | None = None
+    settings: dict[str, Any] = field(default_factory=dict)  # how the fits were made (refit)
 
     # -- the compensators ------------------------------------------------------------
     @property
-    def backlash_model(self) -> models.BoucWenBacklash:
-        """The identified BoucWenBacklash."""
+    def backlash_model(self) -> models.HysteresisModel:
+        """The identified BoucWenBacklash (AngleDependent with ``depends_on_angle``)."""
         return self.fits["BoucWenBacklash"].model
 
     @property
@@ -264,7 +314,9 @@ class Calibration:
         return models.CurveAngleModel(**p)
 
     def inverse_feedforward(self, **options: Any) -> InverseFeedforward:
-        """The InverseFeedforward of the identified BoucWenBacklash.
+        """The InverseFeedforward of the identified BoucWenBacklash (an AngleDependent one,
+        which follows the route, when it was calibrated with ``depends_on_angle``). Its
+        command is the signal the model was fitted from (:attr:`fit_input`).
 
         Parameters
         ----------
@@ -279,6 +331,68 @@ class Calibration:
         from ..compensate import InverseFeedforward
 
         return InverseFeedforward(self.backlash_model, **options)
+
+    def encoder_loop(self, feedforward: Any, **options: Any) -> EncoderLoop:
+        """``feedforward`` inside an EncoderLoop tuned on the identified servo (see
+        ``EncoderLoop.from_calibration``). The feedforward's model should be fitted from the
+        encoder (:meth:`refit`).
+
+        Parameters
+        ----------
+        feedforward : compensator
+            The feedforward whose command the encoder is to follow.
+        **options
+            Other keywords of ``EncoderLoop.from_calibration`` (dt, max_sensitivity,
+            derivative, limits).
+
+        Returns
+        -------
+        EncoderLoop
+            The compensator, with its design (gains and margins).
+
+        Raises
+        ------
+        ValueError
+            No motor calibration run (calibrate with ``servo=True``), or no stable design.
+        """
+        from ..compensate import EncoderLoop
+
+        if self.servo is None:
+            raise ValueError(
+                "Calibration.encoder_loop needs a motor calibration: calibrate(..., servo=True)"
+            )
+        return EncoderLoop.from_calibration(feedforward, self.servo.servo, **options)
+
+    def refit(self, fit_input: str) -> Calibration:
+        """The same calibration with its models fitted from the other logged signal (the same
+        runs, no new experiment).
+
+        Parameters
+        ----------
+        fit_input : {"command", "encoder"}
+            The signal to fit the models from.
+
+        Returns
+        -------
+        Calibration
+            A new calibration sharing the runs, logs, shape sensing and servo.
+        """
+        checked_fit_input(fit_input)
+        if fit_input == self.fit_input:
+            return self
+        cal = Calibration(
+            fits={},
+            runs=list(self.runs),
+            declared=dict(self.declared),
+            groups={},
+            shape=self.shape,
+            fit_input=fit_input,
+            logs=self.logs,
+            servo=self.servo,
+            settings=self.settings,
+        )
+        _identify_models(cal)
+        return cal
 
     def curve_angle_feedforward(
         self, load: str | None = "calibrated", **options: Any
@@ -356,10 +470,12 @@ class Calibration:
             quantity, value and source of each value told.
         """
         rows: list[Told] = []
-        if compensator in ("InverseFeedforward", "AdaptiveController", "fixed feedforward"):
+        if _uses_backlash(compensator):
             fit = self.fits["BoucWenBacklash"]
             for k, v in fit.model.params.items():
                 rows.append(Told(f"BoucWenBacklash {k}", v, fit_source(self, fit)))
+            if self.settings.get("depends_on_angle"):
+                rows.append(Told("route shape", "sensed every cycle", self.shape.describe()))
         elif compensator in ("CurveAngleFeedforward",) or compensator.startswith(
             "ContinuumFeedforward"
         ):
@@ -381,6 +497,11 @@ class Calibration:
             for d in self.declared.values():
                 rows.append(d)
             rows.append(Told("route shape", "curve angle only", self.shape.describe()))
+        if rows:
+            source = f"fitted from {FIT_INPUTS[self.fit_input]}"
+            rows.append(Told("model input", self.fit_input, source))
+        if "EncoderLoop" in compensator and self.servo is not None:
+            rows += _servo_rows(self.servo)
         for name, (value, source) in declared.items():
             rows.append(Told(name, value, source))
         return [r.as_dict() for r in rows]
@@ -398,7 +519,7 @@ class Calibration:
         list of str
             Parameter names (load runs' as "load: NAME PARAM").
         """
-        if compensator in ("InverseFeedforward", "AdaptiveController", "fixed feedforward"):
+        if _uses_backlash(compensator):
             return list(self.at_bounds.get("BoucWenBacklash", []))
         if compensator == "CurveAngleFeedforward" or compensator.startswith("Continuum"):
             out = list(self.at_bounds.get("CurveAngleModel", []))
@@ -424,6 +545,8 @@ class Calibration:
             "friction_identified": self.friction_identified,
             "shape_sensing": vars(self.shape),
             "at_bounds": self.at_bounds,
+            "fit_input": self.fit_input,
+            "servo": None if self.servo is None else self.servo.servo.as_dict(),
             "fits": {
                 name: {
                     "model": fit.model.to_dict(),
@@ -480,6 +603,25 @@ class Calibration:
             rows.append({**d.as_dict(), "relative s.e.": None})
             rows[-1] = {k: rows[-1][k] for k in ("quantity", "value", "relative s.e.", "source")}
         return rows
+
+
+def _uses_backlash(compensator: str) -> bool:
+    """Whether compensator ``compensator`` (a scenario's name for it) is built on the
+    identified BoucWenBacklash."""
+    return compensator.startswith(
+        ("InverseFeedforward", "AdaptiveController", "fixed feedforward")
+    ) or (compensator.startswith("EncoderLoop") and "Continuum" not in compensator)
+
+
+def _servo_rows(motor: MotorCalibration) -> list[Told]:
+    """What an EncoderLoop's gains were designed from: the identified servo."""
+    sv = motor.servo
+    source = "identified from the motor calibration run (command and encoder logs)"
+    return [
+        Told("servo natural frequency (Hz)", sv.frequency, source),
+        Told("servo damping", sv.damping, source),
+        Told("servo delay (samples)", sv.delay, source),
+    ]
 
 
 def fit_source(cal: Calibration | None, fit) -> str:
@@ -550,17 +692,23 @@ def calibrate(
     seed: int = 0,
     budget: dict | None = None,
     names: Sequence[str] | None = None,
+    fit_input: str = "command",
+    depends_on_angle: dict[str, str] | None = None,
+    servo: bool = False,
 ) -> Calibration:
     """Calibrate compensators from experiments on ``plant`` (the robot) alone.
 
     For each route of ``routes`` (the calibration shapes; they must differ from every test
     route) the robot is bent into that shape and driven through its own motor by
-    :func:`calibration_input` (``duration`` s, ``amplitude`` rad); the motor encoder, the
-    distal ``sensor`` (noisy; default the plant's own sensor) and the sensed curve angle
-    (``shape``, with noise) are logged. From those logs:
+    :func:`calibration_input` (``duration`` s, ``amplitude`` rad); the command sent, the motor
+    encoder, the distal ``sensor`` (noisy; default the plant's own sensor) and the sensed
+    shape (``shape``: the curve angle, or the curvature profile with ``segments``, with
+    noise) are logged. From those logs, with the models' input the signal ``fit_input``:
 
     * ``"BoucWenBacklash"`` (for InverseFeedforward and the AdaptiveController) is
-      identified on the run at ``routes[backlash_route]``;
+      identified on the run at ``routes[backlash_route]``; with ``depends_on_angle`` (e.g.
+      ``{"B_r": "tanh", "B_l": "tanh"}``) on every run with its sensed shape, as an
+      :class:`~tendonsheath.models.AngleDependent` model whose inverse follows the route;
     * ``"CurveAngleModel"`` (for CurveAngleFeedforward; with ``spring=True`` the
       environment spring too, for ContinuumFeedforward) on all runs, with their sensed
       angles: mu, T0 L/(EA r_p), gain r_p/r_d (and k_e L/EA) are identified; pretension,
@@ -569,6 +717,12 @@ def calibrate(
       apart from the other groups: it is held at ``declared_friction`` (default 0.1) and
       reported unidentified.
 
+    A compensator inverts the model of the signal it outputs: a feedforward sends commands
+    to the servo (``fit_input="command"``, the default); inside an
+    :class:`~tendonsheath.compensate.EncoderLoop` it sets where the encoder must go
+    (``"encoder"``). :meth:`Calibration.refit` fits the other from the same logs.
+    ``servo=True`` adds a motor calibration run (:func:`calibrate_servo`) on
+    ``routes[backlash_route]`` whose servo :meth:`Calibration.encoder_loop` is tuned on.
     ``budget``: options of :func:`tendonsheath.identify` (maxiter, popsize).
 
     Parameters
@@ -580,7 +734,7 @@ def calibrate(
     models_ : sequence of str, default ("BoucWenBacklash", "CurveAngleModel")
         The models to identify.
     backlash_route : int, default 0
-        The run the BoucWenBacklash is identified on.
+        The run the BoucWenBacklash is identified on (and the servo's run).
     spring : bool, default False
         Also identify the environment spring (for ContinuumFeedforward).
     duration : float, default 15.0
@@ -603,42 +757,92 @@ def calibrate(
         Options of :func:`tendonsheath.identify` (maxiter, popsize).
     names : sequence of str, optional
         Names of the runs (default cal1, cal2, ...).
+    fit_input : {"command", "encoder"}, default "command"
+        The signal the models are fitted from.
+    depends_on_angle : dict of str to str, optional
+        Laws of the BoucWenBacklash parameters over the sensed shape (see above).
+    servo : bool, default False
+        Also run the motor calibration and identify the servo.
 
     Returns
     -------
     Calibration
         The identified models and their provenance.
     """
+    checked_fit_input(fit_input)
     shape = shape or ShapeSensing(seed=seed)
     t, command = calibration_input(duration, amplitude)
     names = list(names) if names is not None else [f"cal{i + 1}" for i in range(len(routes))]
     experiment = (plant, t, command, sensor, seed)
-    runs, recordings = _calibration_logs(experiment, routes, names, shape, duration)
+    runs, logs = _calibration_logs(experiment, routes, names, shape, duration)
     warm = int(round(warmup / (t[1] - t[0])))
-    options = {"warmup": warm, "seed": seed, "budget": dict(budget or {})}
+    settings = {
+        "models": tuple(models_),
+        "backlash_route": backlash_route,
+        "spring": spring,
+        "declared_friction": declared_friction,
+        "depends_on_angle": dict(depends_on_angle or {}),
+        "options": {"warmup": warm, "seed": seed, "budget": dict(budget or {})},
+    }
     cal = Calibration(
-        fits={}, runs=runs, declared=_declared_values(declared), groups={}, shape=shape
+        fits={},
+        runs=runs,
+        declared=_declared_values(declared),
+        groups={},
+        shape=shape,
+        fit_input=fit_input,
+        logs=logs,
+        settings=settings,
     )
-    if "BoucWenBacklash" in models_:
-        tb, xb, yb, _ = recordings[backlash_route]
-        _add_fit(cal, "BoucWenBacklash", [names[backlash_route]], (tb, xb, yb), {}, **options)
-    if "CurveAngleModel" in models_:
-        _add_curve_angle_fit(cal, recordings, names, spring, declared_friction, options)
+    _identify_models(cal)
+    if servo:
+        cal.servo = calibrate_servo(plant, routes[backlash_route])
+        m = cal.servo
+        duration_m = float(m.t[-1] - m.t[0])
+        cal.runs.append(CalibrationRun("motor (chirp on a ramp)", runs[backlash_route].sensed_angle,
+                                       duration_m, int(m.t.size)))  # fmt: skip
     return cal
+
+
+def _identify_models(cal: Calibration) -> None:
+    """The models of ``cal.settings`` identified from ``cal.logs`` with ``cal.fit_input``."""
+    st = cal.settings
+    recordings = [log.recording(cal.fit_input) for log in cal.logs]
+    names = [r.name for r in cal.runs[: len(recordings)]]
+    options = st["options"]
+    if "BoucWenBacklash" in st["models"]:
+        if st["depends_on_angle"]:
+            search = {"recordings": recordings, "depends_on_angle": st["depends_on_angle"]}
+            _add_fit(cal, "BoucWenBacklash", names, (), search, **options)
+        else:
+            tb, xb, yb, _ = recordings[st["backlash_route"]]
+            run = [names[st["backlash_route"]]]
+            _add_fit(cal, "BoucWenBacklash", run, (tb, xb, yb), {}, **options)
+    if "CurveAngleModel" in st["models"]:
+        _add_curve_angle_fit(cal, recordings, names, st["spring"], st["declared_friction"], options)
 
 
 def _calibration_logs(experiment: tuple, routes, names: list[str], shape, duration: float):
     """Drive the robot on each calibration route (``experiment``: plant, t, command, distal
-    sensor, seed) and log it: the runs and their (t, encoder, distal reading, sensed curve
-    angle) recordings."""
+    sensor, seed) and log it: the runs and their logs (command, encoder, distal reading,
+    sensed shape)."""
     plant, t, command, sensor, seed = experiment
-    runs, recordings = [], []
+    runs, logs = [], []
     for i, route in enumerate(routes):
         x, y = _run_experiment(plant, route, t, command, sensor, seed + 101 + i)
-        sensed = shape.static_reading(route.curve_angle, duration, seed_offset=i)
-        runs.append(CalibrationRun(names[i], sensed, duration, int(t.size)))
-        recordings.append((t, x, y, sensed))
-    return runs, recordings
+        sensed = _sensed_shape(shape, route, duration, i)
+        angle = float(sensed if isinstance(sensed, int | float) else sensed.curve_angle)
+        runs.append(CalibrationRun(names[i], angle, duration, int(t.size)))
+        logs.append(CalibrationLog(t, np.asarray(command, dtype=float), x, y, sensed))
+    return runs, logs
+
+
+def _sensed_shape(shape, route, duration: float, i: int):
+    """What the shape sensor records for a calibration shape held still: the sensed Route when
+    it senses the profile (``segments``), else the sensed curve angle."""
+    if getattr(shape, "segments", 0):
+        return shape.static_route(route, duration, seed_offset=i)
+    return shape.static_reading(route.curve_angle, duration, seed_offset=i)
 
 
 def _add_curve_angle_fit(cal, recordings, names, spring: bool, declared_friction, options):
@@ -796,7 +1000,8 @@ def calibrate_load(
     t, command = calibration_input(duration, amplitude)
     warm = int(round(warmup / (t[1] - t[0])))
     i = len(cal.runs)
-    x, y = _run_experiment(plant, route, t, command, sensor, seed + 301 + i)
+    encoder, y = _run_experiment(plant, route, t, command, sensor, seed + 301 + i)
+    x = command if cal.fit_input == "command" else encoder
     sensed = cal.shape.static_reading(route.curve_angle, duration, seed_offset=50 + i)
     run_name = f"load '{name}'"
     cal.runs.append(CalibrationRun(run_name, sensed, duration, int(t.size)))

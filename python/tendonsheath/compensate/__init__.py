@@ -7,6 +7,7 @@ from .encoder_loop import EncoderLoop
 from .inverse_feedforward import InverseFeedforward
 from .limits import CommandLimits
 from .persistence import load_compensator
+from .tuning import EncoderLoopDesign, tune_encoder_loop
 
 load = load_compensator
 
@@ -16,8 +17,10 @@ __all__ = [
     "ContinuumFeedforward",
     "CurveAngleFeedforward",
     "EncoderLoop",
+    "EncoderLoopDesign",
     "InverseFeedforward",
     "load",
     "load_compensator",
     "shape_of",
+    "tune_encoder_loop",
 ]

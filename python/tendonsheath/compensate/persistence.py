@@ -25,7 +25,7 @@ FORMAT_NAME = "tendonsheath.compensator"
 FORMAT_VERSION = 1
 
 # settings that may be null (= unbounded) and the value null stands for
-_UNBOUNDED = {"max_correction_rate": math.inf, "max_torque": math.inf}
+_UNBOUNDED = {"max_correction_rate": math.inf, "max_torque": math.inf, "max_correction": math.inf}
 # settings saved as a model's own dict (null: no model)
 _MODELS = ("model", "feedforward_model")
 # settings saved as a compensator's own dict (the feedforward inside an EncoderLoop)

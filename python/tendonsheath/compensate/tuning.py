@@ -114,15 +114,17 @@ class EncoderLoopDesign:
         )
 
 
-def controller_polynomials(kp, ki, kd, derivative_cutoff_hz, dt):
+def controller_polynomials(
+    kp: float, ki: float, kd: float, derivative_cutoff_hz: float, dt: float
+) -> tuple[np.ndarray, np.ndarray]:
     """(num, den) of C(z) in z^-1, the discrete PI(D) of the C++ EncoderLoop."""
     a = dt / (dt + 1.0 / (2.0 * math.pi * derivative_cutoff_hz))
     # kp + ki dt/(1 - z^-1) + kd a (1 - z^-1)/(dt (1 - b z^-1)), b = 1 - a, over (1-z^-1)(1-b z^-1)
     b = 1.0 - a
     one = np.array([1.0, -1.0])
     pole = np.array([1.0, -b])
-    den = np.polymul(one, pole)
-    num = _padded_sum(_padded_sum(kp * den, ki * dt * pole), (kd * a / dt) * np.polymul(one, one))
+    den = np.convolve(one, pole)
+    num = _padded_sum(_padded_sum(kp * den, ki * dt * pole), (kd * a / dt) * np.convolve(one, one))
     return num, den
 
 
@@ -138,7 +140,7 @@ class _Loop:
 
     def acceptable(self, kp: float, ki: float, kd: float, ms: float) -> bool:
         c_num, c_den = controller_polynomials(kp, ki, kd, self.cutoff, self.dt)
-        char = _padded_sum(np.polymul(c_den, self.g_den), np.polymul(c_num, self.g_num))
+        char = _padded_sum(np.convolve(c_den, self.g_den), np.convolve(c_num, self.g_num))
         if not _stable(char):
             return False
         L = _evaluate(c_num, c_den, self.zinv) * self.G
@@ -207,8 +209,8 @@ def _margins(servo: ServoFit, dt: float, gains: tuple[float, float, float], cuto
     ct = require_control()
     c_num, c_den = controller_polynomials(*gains, cutoff, dt)
     g_num, g_den = loop_plant(servo, dt)
-    num = np.polymul(c_num, g_num)
-    den = np.polymul(c_den, g_den)
+    num = np.convolve(c_num, g_num)
+    den = np.convolve(c_den, g_den)
     n = max(num.size, den.size)  # in z^-1 -> polynomials in z of equal degree
     L = ct.tf(np.pad(num, (0, n - num.size)), np.pad(den, (0, n - den.size)), dt)
     gm, pm, _, _, wc, _ = ct.stability_margins(L, method="frd")

@@ -12,6 +12,7 @@ from .cross_validation import CrossValidation, cross_validate
 from .diagnostics import Diagnostics, IdentifiabilityWarning
 from .estimator import Identifier, NotFittedError
 from .fit import Fit, metrics
+from .servo import ServoFit, identify_servo
 
 __all__ = [
     "CrossValidation",
@@ -19,8 +20,10 @@ __all__ = [
     "Fit",
     "IdentifiabilityWarning",
     "Identifier",
+    "ServoFit",
     "NotFittedError",
     "cross_validate",
     "identify",
+    "identify_servo",
     "metrics",
 ]

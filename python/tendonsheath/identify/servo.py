@@ -29,6 +29,7 @@ from scipy.optimize import least_squares
 from scipy.signal import butter, cont2discrete, lfilter, sosfiltfilt
 
 from .._arrays import as_timed_signal
+from .._typing import ArrayLike
 
 if TYPE_CHECKING:
     import control
@@ -146,7 +147,9 @@ class ServoFit:
         )
 
 
-def servo_filter(frequency, damping, gain, delay: int, dt: float):
+def servo_filter(
+    frequency: float, damping: float, gain: float, delay: int, dt: float
+) -> tuple[np.ndarray, np.ndarray]:
     """(num, den) in z^-1 of gain w^2/(s^2 + 2 damping w s + w^2), zero-order hold at dt, with
     the command of a step acting during that step (q_k from u_k held over (t_k-1, t_k]) and
     ``delay`` samples more."""
@@ -219,7 +222,13 @@ def _standard_errors(result, residual: np.ndarray, f: float, z: float) -> dict[s
     return {"frequency": float(f * d[0]), "damping": float(z * d[1])}
 
 
-def identify_servo(t, command, encoder, max_delay: int = 10, highpass_hz: float = 1.0) -> ServoFit:
+def identify_servo(
+    t: ArrayLike,
+    command: ArrayLike,
+    encoder: ArrayLike,
+    max_delay: int = 10,
+    highpass_hz: float = 1.0,
+) -> ServoFit:
     """Identify the position servo from a calibration run: ``command`` in, ``encoder`` out.
 
     Parameters
@@ -262,8 +271,9 @@ def identify_servo(t, command, encoder, max_delay: int = 10, highpass_hz: float 
     edge = min(int(round(1.0 / (max(highpass_hz, 1e-9) * dt))), u.size // 8)
     keep = slice(edge, u.size - edge)
     fits = []
+    start = _start(u, q, 0, dt, keep)  # a delay of a few samples barely moves the coarse grid
     for d in range(max_delay + 1):
-        f, z, g, c, res, r = _fit_at_delay(u, q, d, dt, _start(u, q, d, dt, keep), keep)
+        f, z, g, c, res, r = _fit_at_delay(u, q, d, dt, start, keep)
         fits.append((float(res @ res), d, f, z, g, c, res, r))
     _, d, f, z, _, _, res, r = min(fits, key=lambda item: item[0])
     g, c, raw = _affine(_unit_response(f, z, u_raw, d, dt), q_raw)
