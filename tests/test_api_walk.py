@@ -424,9 +424,7 @@ def _calibration():
     servo = ts.bench.MotorCalibration(
         ServoFit(40.0, 0.7, 1.0, 0.0, 0, 1e-3, 0.0, 0.0), *np.zeros((3, 2))
     )
-    return ts.bench.Calibration(
-        fits=fits, runs=[], declared={}, groups={}, shape=None, servo=servo
-    )
+    return ts.bench.Calibration(fits=fits, runs=[], declared={}, groups={}, shape=None, servo=servo)
 
 
 def _quality():

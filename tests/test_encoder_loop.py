@@ -52,8 +52,9 @@ FEEDFORWARDS = {
     "bouc_wen_backlash": lambda: InverseFeedforward(BoucWenBacklash(B_r=0.12, B_l=0.1), 0.05),
     "scaled": lambda: InverseFeedforward(Scaled(BoucWenBacklash(), output_gain=-1.0), 0.05),
     "prandtl_ishlinskii": lambda: InverseFeedforward(PrandtlIshlinskii.uniform(0.3, 5)),
-    "curve_angle": lambda: CurveAngleFeedforward(0.1, 5e3, 1.5, 20.0, curve_angle=math.pi,
-                                                 proximal_radius=15e-3, distal_radius=15e-3),  # fmt: skip
+    "curve_angle": lambda: CurveAngleFeedforward(
+        0.1, 5e3, 1.5, 20.0, curve_angle=math.pi, proximal_radius=15e-3, distal_radius=15e-3
+    ),
     "continuum": lambda: ContinuumFeedforward(mode="exact"),
 }
 
@@ -135,7 +136,8 @@ def test_to_control_takes_the_desired_output_and_the_encoder():
 
     resp = ct.input_output_response(sys, t, np.vstack([y_d, q]))
     loop.reset()
-    direct = [loop.step(a, b, 0.0 if k == 0 else 1e-3) for k, (a, b) in enumerate(zip(y_d, q))]
+    dts = np.r_[0.0, np.full(t.size - 1, 1e-3)]
+    direct = [loop.step(a, b, dt) for a, b, dt in zip(y_d, q, dts, strict=True)]
     np.testing.assert_allclose(np.ravel(resp.outputs), direct, rtol=0, atol=1e-12)
 
 

@@ -99,8 +99,9 @@ def test_a_servo_that_cannot_be_closed_is_refused():
         tune_encoder_loop(_servo(40.0, 0.7, gain=-1.0))
 
 
-@pytest.mark.parametrize(("kwargs", "match"), [({"dt": 0.0}, "dt"),
-                                               ({"max_sensitivity": 1.0}, "max_sensitivity")])  # fmt: skip
+@pytest.mark.parametrize(
+    ("kwargs", "match"), [({"dt": 0.0}, "dt"), ({"max_sensitivity": 1.0}, "max_sensitivity")]
+)
 def test_bad_settings_name_themselves(kwargs, match):
     with pytest.raises(ValueError, match=match):
         tune_encoder_loop(SERVOS[0], **kwargs)

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from scipy.signal import csd, lti, lsim, welch
+from scipy.signal import csd, lsim, lti, welch
 
 import tendonsheath as ts
 from tendonsheath.bench.motor_calibration import calibrate_servo, motor_calibration_input
