@@ -363,22 +363,31 @@ class Calibration:
             )
         return EncoderLoop.from_calibration(feedforward, self.servo.servo, **options)
 
-    def refit(self, fit_input: str) -> Calibration:
-        """The same calibration with its models fitted from the other logged signal (the same
-        runs, no new experiment).
+    def refit(
+        self, fit_input: str | None = None, depends_on_angle: dict[str, str] | None = None
+    ) -> Calibration:
+        """The same calibration runs with the models identified again, from the other logged
+        signal or with other laws over the sensed shape (no new experiment).
 
         Parameters
         ----------
-        fit_input : {"command", "encoder"}
-            The signal to fit the models from.
+        fit_input : {"command", "encoder"}, optional
+            The signal to fit the models from (default: as this calibration).
+        depends_on_angle : dict of str to str, optional
+            Laws of the BoucWenBacklash parameters over the sensed shape ({} for none;
+            default: as this calibration).
 
         Returns
         -------
         Calibration
-            A new calibration sharing the runs, logs, shape sensing and servo.
+            A new calibration sharing the runs, logs, shape sensing and servo (this one when
+            nothing changes).
         """
-        checked_fit_input(fit_input)
-        if fit_input == self.fit_input:
+        fit_input = checked_fit_input(self.fit_input if fit_input is None else fit_input)
+        settings = dict(self.settings)
+        if depends_on_angle is not None:
+            settings["depends_on_angle"] = dict(depends_on_angle)
+        if fit_input == self.fit_input and settings == self.settings:
             return self
         cal = Calibration(
             fits={},
@@ -389,7 +398,7 @@ class Calibration:
             fit_input=fit_input,
             logs=self.logs,
             servo=self.servo,
-            settings=self.settings,
+            settings=settings,
         )
         _identify_models(cal)
         return cal

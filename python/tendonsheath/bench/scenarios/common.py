@@ -101,20 +101,23 @@ def honesty_panel(
     told: dict[str, dict[str, tuple[Any, str]]] | None = None,
     seed: int = 0,
     budget: dict | None = None,
+    calibrations: dict[str, Any] | None = None,
 ) -> dict[str, Any]:
     """compensator -> what it was told (and where from), parameters at their bounds, and the
-    best in-class fit on its own test run next to the output range."""
+    best in-class fit on its own test run next to the output range. ``calibrations``: the
+    calibration a compensator was built from, where it is not ``cal``."""
     from ..calibration import honesty_entry
 
     panel = {}
     for name, result in runs.items():
         declared = dict((told or {}).get(name, {}))
-        if name == "none" or cal is None:  # cal is None: only user compensators, nothing calibrated
+        own = (calibrations or {}).get(name, cal)
+        if name == "none" or own is None:  # None: only user compensators, nothing calibrated
             rows = [{"quantity": k, "value": v, "source": src} for k, (v, src) in declared.items()]
             bounds = []
         else:
-            rows = cal.told(name, load=load, **declared)
-            bounds = cal.bounds_of(name)
+            rows = own.told(name, load=load, **declared)
+            bounds = own.bounds_of(name)
         panel[name] = honesty_entry(
             name, result, rows, bounds, curve_angle=curve_angle, seed=seed, budget=budget
         )
