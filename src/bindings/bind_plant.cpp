@@ -280,7 +280,8 @@ void bind_motor(nb::module_& m) {
       .def_rw("reflected_inertia", &MP::reflected_inertia)
       .def_rw("coulomb_friction", &MP::coulomb_friction)
       .def_rw("viscous_friction", &MP::viscous_friction)
-      .def_rw("gear_backlash", &MP::gear_backlash);
+      .def_rw("gear_backlash", &MP::gear_backlash)
+      .def_rw("integral_time", &MP::integral_time);
   nb::class_<ts::Motor>(m, "Motor")
       .def(nb::init<const MP&>(), "params"_a)
       .def_prop_ro("params", &ts::Motor::params)
@@ -291,7 +292,8 @@ void bind_motor(nb::module_& m) {
       .def("clamped", &ts::Motor::clamped)
       .def("status", [](const ts::Motor& m) { return static_cast<unsigned>(m.status()); })
       .def("velocity", &ts::Motor::velocity)
-      .def("set_state", &ts::Motor::set_state, "q"_a, "v"_a);
+      .def("integral", &ts::Motor::integral)
+      .def("set_state", &ts::Motor::set_state, "q"_a, "v"_a, "z"_a = 0.0);
 }
 
 void bind_sensor(nb::module_& m) {
