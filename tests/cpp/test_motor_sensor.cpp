@@ -117,8 +117,8 @@ TEST(PidServo, PdYieldsTauOverJw2AndPidNotAtAll) {
     hold(pid, q_cmd, tau, 250.0 / w + 0.2);
     EXPECT_NEAR(pid.position(), q_cmd, 1e-11 * std::fabs(yield) + 1e-14) << trial;
     // at rest the integral carries the load: w^2 z / T_i = -tau / J_r
-    EXPECT_NEAR(pid.integral(), -yield * p.integral_time, 1e-11 * std::fabs(yield * p.integral_time))
-        << trial;
+    const double z = -yield * p.integral_time;
+    EXPECT_NEAR(pid.integral(), z, 1e-11 * std::fabs(z)) << trial;
   }
 }
 
@@ -219,7 +219,9 @@ struct OldSensor {
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
     return z ^ (z >> 31);
   }
-  double uniform01() { return (static_cast<double>(next() >> 11) + 0.5) * (1.0 / 9007199254740992.0); }
+  double uniform01() {
+    return (static_cast<double>(next() >> 11) + 0.5) * (1.0 / 9007199254740992.0);
+  }
   double gaussian() {
     if (have_spare) {
       have_spare = false;

@@ -72,8 +72,9 @@ struct MotorParams {
 /// Position: a second-order lag q'' = w^2 (q_cmd - q) - 2 zeta w q', w = 2 pi f_n, with
 /// |q''| <= max_accel and |q'| <= max_speed, backward Euler on sub-steps of w h <= 0.1; the first
 /// step after reset() starts at rest at the command. With integral_time T_i > 0 (a PID servo)
-/// q'' gains w^2 z / T_i, z' = q_cmd - q (held while a limit cuts the motion). Torque: J q'' + b q' = sat(tau_cmd,
-/// max_torque) + tau_ext, with tau_ext the tendons' torque on the pulley; it starts at rest at 0.
+/// q'' gains w^2 z / T_i, z' = q_cmd - q (held while a limit cuts the motion). Torque:
+/// J q'' + b q' = sat(tau_cmd, max_torque) + tau_ext, with tau_ext the tendons' torque on the
+/// pulley; it starts at rest at 0.
 /// Optional (off by default): Coulomb and viscous shaft friction (the position servo feels torques
 /// through its reflected inertia J_r) and gear backlash between the shaft (position()) and the
 /// pulley (output()). step() is noexcept, allocates nothing and takes at most max_substeps

@@ -24,7 +24,7 @@ struct SensorParams {
   double resolution = 0.0;  ///< quantisation step (same unit as x), 0 = none
   double noise_std = 0.0;   ///< Gaussian noise standard deviation
   std::uint64_t seed = 0;  ///< seed of the noise generator: a seed gives the same sequence on every platform
-  double delay = 0.0;  ///< latency, s, >= 0: a reading is of the true value delay seconds ago (0 = none)
+  double delay = 0.0;  ///< latency, s, >= 0: a reading is of x delay seconds ago (0 = none)
   int history = 1024;  ///< samples kept for the delay, in [1, 2^24] (allocated at construction)
 };
 
