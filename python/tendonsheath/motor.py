@@ -25,6 +25,7 @@ _MOTOR_FIELDS = {
         "coulomb_friction": "coulomb_friction",
         "viscous_friction": "viscous_friction",
         "gear_backlash": "gear_backlash",
+        "integral_time": "integral_time",
     },
     core.MotorKind.Torque: {
         "inertia": "inertia",
@@ -55,6 +56,11 @@ class Motor:
     ``Motor.torque(...)``: J q'' + b q' = sat(tau_cmd, max_torque) + tau_tendons, for
     controllers that command torque; the plant supplies the tendon torque on the pulley. It
     starts at rest at q = 0.
+
+    With ``integral_time`` T_i > 0 the position servo is a PID loop, as servo amplifiers that
+    cascade a PI velocity loop inside the position loop are:
+    q'' = w^2 [(q_cmd - q) + z / T_i] - 2 zeta w q' with z' = q_cmd - q, so a constant load
+    torque leaves no steady position error (the PD servo, T_i = 0, yields tau / (J w^2)).
 
     Drive-train effects (off by default): ``coulomb_friction`` (N m) and ``viscous_friction``
     (N m s/rad) on the motor shaft, and ``gear_backlash`` (rad, total play) between the shaft
@@ -92,8 +98,14 @@ class Motor:
         coulomb_friction: float = 0.0,
         viscous_friction: float = 0.0,
         gear_backlash: float = 0.0,
+        integral_time: float = 0.0,
     ) -> Motor:
         """A position-controlled motor (a second-order lag on the commanded angle).
+
+        With ``integral_time`` T_i > 0 the loop has integral action (a PID servo):
+        q'' = w^2 [(q_cmd - q) + z / T_i] - 2 zeta w q' + ..., z' = q_cmd - q; the integral is
+        held while the speed or acceleration limit cuts the motion (anti-windup). The loop
+        s^3 + 2 zeta w s^2 + w^2 s + w^2 / T_i is stable for T_i > 1 / (2 zeta w).
 
         Parameters
         ----------
@@ -113,6 +125,9 @@ class Motor:
             Viscous friction on the shaft (N m s/rad), >= 0.
         gear_backlash : float, default 0.0
             Total play between shaft and pulley (rad), >= 0.
+        integral_time : float, default 0.0
+            Integral time T_i of the position loop (s): 0 (no integral action, the PD servo
+            that yields to a load) or > 1 / (2 damping w), w = 2 pi bandwidth_hz.
 
         Returns
         -------
@@ -181,7 +196,15 @@ class Motor:
             keys = ("inertia", "viscous", "max_torque", "max_speed")
             extra = {}
         extra.update(coulomb_friction=p.coulomb_friction, gear_backlash=p.gear_backlash)
+        if self.kind == "position":
+            extra["integral_time"] = p.integral_time
         return {**{k: getattr(p, k) for k in keys}, **extra}
+
+    @property
+    def integral(self) -> float:
+        """The position servo's integral of the error, z = int (q_cmd - q) dt (rad s); 0
+        without integral action."""
+        return self._engine.integral()
 
     def reset(self) -> None:
         """Back to rest: the next step starts afresh."""

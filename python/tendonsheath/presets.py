@@ -20,12 +20,22 @@ unequal pair           sheath 2 friction      two sheaths and two tendons are ne
 motor friction         0.01 N m Coulomb,      geared DC motor (Faulhaber 3863 with a 14:1
                        1e-3 N m s/rad         gearhead, Lau et al.)
 gear backlash          0.5 deg                the gearhead's output play
-servo compliance       reflected inertia      the position loop yields to the tendons' torque
-                       1e-4 kg m^2            (stiffness J w^2, 14 N m/rad at 60 Hz)
+servo compliance       reflected inertia      the position loop feels the tendons' torque
+                       1e-4 kg m^2            through the rotor and gear inertia
+position servo         "pid": integral time   servo amplifiers cascade a PI velocity loop inside
+(default "pid")        T_i = 5 / w_n          the position loop (Faulhaber Motion Controllers,
+                                              Maxon EPOS, Copley): a constant load leaves no
+                                              steady error; G. Ellis, Control System Design
+                                              Guide, puts the integral break well below the
+                                              bandwidth (here a fifth of w_n = 2 pi f_n).
+                       "pd": no integral      the yielding servo: a torque tau deflects it by
+                                              tau / (J w^2) (stiffness 14 N m/rad at 60 Hz)
 =====================  =====================  ==================================================
 
 These values are choices within the ranges of such rigs, not measurements; each is an argument
-so a study can vary it. Example::
+so a study can vary it. The default servo is the PID one because that is what the amplifiers
+of such rigs run (the provenance above), whatever either servo does to a benchmark figure.
+Example::
 
     plant = ts.PullPullPlant(route, pretension=20.0, **presets.realistic_plant(friction=0.1,
                              stiffness=5e3), motor=presets.realistic_motor(bandwidth_hz=60))
@@ -33,7 +43,9 @@ so a study can vary it. Example::
 
 from __future__ import annotations
 
+import inspect
 import math
+import numbers
 from typing import Any
 
 from .motor import Motor
@@ -51,7 +63,11 @@ REALISTIC = {
     "motor_coulomb_friction": 0.01,
     "motor_viscous_friction": 1e-3,
     "gear_backlash": math.radians(0.5),
+    "servo_integral_ratio": 5.0,
 }
+
+#: The position servos :func:`realistic_motor` offers.
+SERVOS = ("pid", "pd")
 
 
 def realistic_plant(
@@ -103,18 +119,23 @@ def realistic_plant(
     return kwargs
 
 
-def realistic_motor(kind: str = "position", **kwargs: float) -> Motor:
+def realistic_motor(kind: str = "position", *, servo: str = "pid", **kwargs: float) -> Motor:
     """A :class:`~tendonsheath.Motor` with the realistic drive train: Coulomb and viscous
-    friction, gear backlash and (position kind) a servo that yields to the tendons' torque.
+    friction, gear backlash and (position kind) a servo that feels the tendons' torque.
 
     ``kind="position"``: the other keywords go to :meth:`Motor.position` (e.g. ``bandwidth_hz``,
-    ``damping``); ``kind="torque"``: to :meth:`Motor.torque` (``inertia``, ``viscous``,
-    ``max_torque``). Keywords given override the preset's.
+    ``damping``); ``servo="pid"`` (the default) gives its loop integral action with
+    ``integral_time = REALISTIC["servo_integral_ratio"] / (2 pi bandwidth_hz)``, ``servo="pd"``
+    none (the servo yields to a load). ``kind="torque"``: the keywords go to
+    :meth:`Motor.torque` (``inertia``, ``viscous``, ``max_torque``); it has no position servo.
+    Keywords given override the preset's (an explicit ``integral_time`` the servo's).
 
     Parameters
     ----------
     kind : {"position", "torque"}, default "position"
         The motor's kind.
+    servo : {"pid", "pd"}, default "pid"
+        The position servo: with integral action (what servo amplifiers run) or without.
     **kwargs
         Keywords of :meth:`Motor.position` or :meth:`Motor.torque`; they override the preset.
 
@@ -126,16 +147,19 @@ def realistic_motor(kind: str = "position", **kwargs: float) -> Motor:
     Raises
     ------
     ValueError
-        An unknown kind or an invalid motor parameter.
+        An unknown kind or servo, or an invalid motor parameter.
     TypeError
         A keyword the chosen kind does not take.
     """
+    if servo not in SERVOS:
+        raise ValueError(f"realistic_motor: servo must be 'pid' or 'pd' (got {servo!r})")
     if kind == "position":
         base = {
             "inertia": REALISTIC["motor_inertia"],
             "coulomb_friction": REALISTIC["motor_coulomb_friction"],
             "viscous_friction": REALISTIC["motor_viscous_friction"],
             "gear_backlash": REALISTIC["gear_backlash"],
+            **_servo_integral(servo, kwargs),
         }
         return Motor.position(**{**base, **kwargs})
     if kind == "torque":
@@ -147,4 +171,32 @@ def realistic_motor(kind: str = "position", **kwargs: float) -> Motor:
     raise ValueError(f"realistic_motor: kind must be 'position' or 'torque' (got {kind!r})")
 
 
-__all__ = ["REALISTIC", "realistic_motor", "realistic_plant"]
+def _servo_integral(servo: str, kwargs: dict[str, Any]) -> dict[str, float]:
+    """``{"integral_time": T_i}`` of the "pid" servo at the bandwidth of ``kwargs`` (that of
+    :meth:`Motor.position` when not given); empty for "pd", with an explicit integral_time, or
+    when the bandwidth is no positive number (Motor.position then names it)."""
+    if servo != "pid" or "integral_time" in kwargs:
+        return {}
+    bandwidth = _given_or_default(kwargs, "bandwidth_hz")
+    damping = _given_or_default(kwargs, "damping")
+    if bandwidth is None or not 0.0 < bandwidth < math.inf:
+        return {}
+    ratio = REALISTIC["servo_integral_ratio"]
+    if damping is not None and 0.0 < damping <= 0.5 / ratio:
+        raise ValueError(
+            f"realistic_motor: servo='pid' (integral time {ratio:g} / w_n) is stable only for "
+            f"damping > {0.5 / ratio:g} (got {damping:g}); use servo='pd' or give integral_time"
+        )
+    return {"integral_time": ratio / (2.0 * math.pi * bandwidth)}
+
+
+def _given_or_default(kwargs: dict[str, Any], name: str) -> float | None:
+    """A :meth:`Motor.position` argument as given in ``kwargs`` or its default; None when it
+    is no number (Motor.position then names it)."""
+    value = kwargs.get(name, inspect.signature(Motor.position).parameters[name].default)
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return None
+    return float(value)
+
+
+__all__ = ["REALISTIC", "SERVOS", "realistic_motor", "realistic_plant"]

@@ -1,4 +1,5 @@
-"""An encoder-like sensor: quantisation and seeded Gaussian noise (C++: plant/sensor.hpp)."""
+"""An encoder-like sensor: latency, quantisation and seeded Gaussian noise (C++:
+plant/sensor.hpp)."""
 
 from __future__ import annotations
 
@@ -6,15 +7,21 @@ import numpy as np
 
 from . import _core as core
 from ._args import integer, number, python_names
+from ._arrays import as_vector, checked_dt
 from ._typing import ArrayLike, FloatArray
 from .status import Status
 
 
 class Sensor:
-    """Reading y = quantise(x + noise): noise ~ N(0, noise_std^2), steps of ``resolution``.
+    """Reading y = quantise(x(t - delay) + noise): noise ~ N(0, noise_std^2), steps of
+    ``resolution``, ``delay`` seconds of latency.
 
     ``resolution`` 0 means no quantisation. The noise sequence is fixed by ``seed`` (the same
-    on every platform); :meth:`reset` restarts it.
+    on every platform); :meth:`reset` restarts it. With ``delay`` > 0 each reading is of the
+    true value ``delay`` seconds before, linearly interpolated between the last ``history``
+    samples (the first sample until there is enough history); a delay longer than the history
+    covers reads the oldest sample kept and flags ``Status.INPUT_CLAMPED``. ``bench.run`` feeds
+    the controller this delayed reading.
 
     Parameters
     ----------
@@ -24,20 +31,38 @@ class Sensor:
         Standard deviation of the Gaussian noise (unit of x), >= 0.
     seed : int, default 0
         Seed of the noise sequence, >= 0.
+    delay : float, default 0.0
+        Latency (s), >= 0; 0 means none.
+    history : int, default 1024
+        Samples kept for the delay, in [1, 2^24]; they must span ``delay`` (at 1 kHz the
+        default covers 1.023 s).
 
     Raises
     ------
     ValueError
-        A negative or non-finite value.
+        A negative or non-finite value, or a history out of range.
     """
 
-    def __init__(self, resolution: float = 0.0, noise_std: float = 0.0, seed: int = 0):
+    def __init__(
+        self,
+        resolution: float = 0.0,
+        noise_std: float = 0.0,
+        seed: int = 0,
+        delay: float = 0.0,
+        history: int = 1024,
+    ):
         p = core.SensorParams()
         p.resolution = number("Sensor", "resolution", resolution)
         p.noise_std = number("Sensor", "noise_std", noise_std)
         if integer("Sensor", "seed", seed) < 0:
             raise ValueError(f"Sensor: seed must be >= 0 (got {seed})")
         p.seed = int(seed)
+        p.delay = number("Sensor", "delay", delay)
+        if not 1 <= integer("Sensor", "history", history) <= core.Sensor.MAX_HISTORY:
+            raise ValueError(
+                f"Sensor: history must be in [1, {core.Sensor.MAX_HISTORY}] samples (got {history})"
+            )
+        p.history = int(history)
         self._params = p
         with python_names("Sensor"):
             self._engine = core.Sensor(p)  # validates
@@ -57,30 +82,81 @@ class Sensor:
         """Seed of the noise sequence."""
         return self._params.seed
 
+    @property
+    def delay(self) -> float:
+        """Latency (s): a reading is of the true value this long before (0: none)."""
+        return self._params.delay
+
+    @property
+    def history(self) -> int:
+        """Samples kept for the delay."""
+        return self._params.history
+
     def reset(self) -> None:
-        """Restart the noise sequence from its seed."""
+        """Restart the noise sequence from its seed and empty the history."""
         self._engine.reset()
 
-    def measure(self, x: ArrayLike) -> float | FloatArray:
-        """One reading per value of x (scalar or array), continuing the noise sequence.
+    def measure(
+        self, x: ArrayLike, t: ArrayLike | None = None, dt: float = 0.0
+    ) -> float | FloatArray:
+        """One reading per value of x (scalar or array), continuing the noise sequence and
+        the history.
+
+        A scalar x is one sample, ``dt`` seconds after the previous call (0: no time passes,
+        and it replaces the previous sample). An array is a sequence of samples at the times
+        ``t`` (required when ``delay`` > 0), its first sample ``dt`` after the previous call.
 
         Parameters
         ----------
         x : float or array_like of float
             True value(s).
+        t : array_like of float, optional
+            The sample times of an array x (s), finite and increasing, shaped as x.
+        dt : float, default 0.0
+            Time since the previous call (s), >= 0: a scalar's, or an array's first sample's.
 
         Returns
         -------
         float or numpy.ndarray of float
             The reading(s), shaped as x.
+
+        Raises
+        ------
+        ValueError
+            t missing for an array when ``delay`` > 0, given for a scalar, or not finite,
+            increasing and shaped as x; a negative or non-finite dt.
         """
         arr = np.asarray(x, dtype=np.float64)
+        step = checked_dt(dt)
         if arr.ndim == 0:
-            return self._engine.measure(float(arr))
-        return self._engine.measure_many(np.ascontiguousarray(arr.ravel())).reshape(arr.shape)
+            if t is not None:
+                raise ValueError("Sensor.measure: t is for an array x; a scalar x takes dt")
+            return self._engine.measure(float(arr), step)
+        times = self._times(t, arr)
+        flat = np.ascontiguousarray(arr.ravel())
+        return self._engine.measure_many(flat, times, step).reshape(arr.shape)
+
+    def _times(self, t: ArrayLike | None, arr: np.ndarray) -> np.ndarray | None:
+        """The checked sample times of an array reading (None when not given and not needed)."""
+        if t is None:
+            if self.delay > 0.0 and arr.size > 1:
+                raise ValueError(
+                    f"Sensor.measure: a sensor with delay {self.delay:g} s needs the sample "
+                    "times t of an array x"
+                )
+            return None
+        times = as_vector(t, "t")
+        if times.size != arr.size:
+            raise ValueError(
+                f"Sensor.measure: t and x have different sizes ({times.size} and {arr.size})"
+            )
+        if not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0.0):
+            raise ValueError("Sensor.measure: t must be finite and strictly increasing")
+        return times
 
     def status(self) -> Status:
-        """The last reading's :class:`~tendonsheath.Status` (held when x was not finite).
+        """The last reading's :class:`~tendonsheath.Status`: held when x was not finite,
+        input_clamped when the history was too short for the delay.
 
         Returns
         -------
@@ -90,7 +166,8 @@ class Sensor:
         return Status(self._engine.status())
 
     def __repr__(self) -> str:
+        extra = f", delay={self.delay:g}, history={self.history}" if self.delay > 0.0 else ""
         return (
             f"Sensor(resolution={self.resolution:g}, noise_std={self.noise_std:g}, "
-            f"seed={self.seed})"
+            f"seed={self.seed}{extra})"
         )

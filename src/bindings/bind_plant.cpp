@@ -280,7 +280,8 @@ void bind_motor(nb::module_& m) {
       .def_rw("reflected_inertia", &MP::reflected_inertia)
       .def_rw("coulomb_friction", &MP::coulomb_friction)
       .def_rw("viscous_friction", &MP::viscous_friction)
-      .def_rw("gear_backlash", &MP::gear_backlash);
+      .def_rw("gear_backlash", &MP::gear_backlash)
+      .def_rw("integral_time", &MP::integral_time);
   nb::class_<ts::Motor>(m, "Motor")
       .def(nb::init<const MP&>(), "params"_a)
       .def_prop_ro("params", &ts::Motor::params)
@@ -291,7 +292,8 @@ void bind_motor(nb::module_& m) {
       .def("clamped", &ts::Motor::clamped)
       .def("status", [](const ts::Motor& m) { return static_cast<unsigned>(m.status()); })
       .def("velocity", &ts::Motor::velocity)
-      .def("set_state", &ts::Motor::set_state, "q"_a, "v"_a);
+      .def("integral", &ts::Motor::integral)
+      .def("set_state", &ts::Motor::set_state, "q"_a, "v"_a, "z"_a = 0.0);
 }
 
 void bind_sensor(nb::module_& m) {
@@ -300,21 +302,31 @@ void bind_sensor(nb::module_& m) {
       .def(nb::init<>())
       .def_rw("resolution", &SeP::resolution)
       .def_rw("noise_std", &SeP::noise_std)
-      .def_rw("seed", &SeP::seed);
+      .def_rw("seed", &SeP::seed)
+      .def_rw("delay", &SeP::delay)
+      .def_rw("history", &SeP::history);
   nb::class_<ts::Sensor>(m, "Sensor")
       .def(nb::init<const SeP&>(), "params"_a)
+      .def_ro_static("MAX_HISTORY", &ts::Sensor::kMaxHistory)
       .def_prop_ro("params", &ts::Sensor::params)
       .def("status", [](const ts::Sensor& s) { return static_cast<unsigned>(s.status()); })
       .def("reset", &ts::Sensor::reset)
-      .def("measure", &ts::Sensor::measure, "x"_a)
+      .def("measure", &ts::Sensor::measure, "x"_a, "dt"_a = 0.0)
       .def(
           "measure_many",
-          [](ts::Sensor& s, InArray x) {
-            auto [arr, p] = new_array(x.shape(0));
-            for (std::size_t i = 0; i < x.shape(0); ++i) p[i] = s.measure(x.data()[i]);
+          [](ts::Sensor& s, InArray x, std::optional<InArray> t, double dt) {
+            const std::size_t n = x.shape(0);
+            if (t && t->shape(0) != n)
+              throw std::invalid_argument("Sensor.measure: t and x differ in length");
+            auto [arr, p] = new_array(n);
+            const double* tp = t ? t->data() : nullptr;
+            for (std::size_t i = 0; i < n; ++i) {
+              const double step = i == 0 ? dt : (tp ? tp[i] - tp[i - 1] : 0.0);
+              p[i] = s.measure(x.data()[i], step);
+            }
             return arr;
           },
-          "x"_a);
+          "x"_a, "t"_a = nb::none(), "dt"_a = 0.0);
 }
 
 // The single-tendon, pull-pull and continuum plants.

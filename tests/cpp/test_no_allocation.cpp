@@ -74,7 +74,15 @@ TEST(NoAllocation, PlantsMotorAndSensorStep) {
   mp.coulomb_friction = 0.01;
   mp.gear_backlash = 0.01;
   ts::Motor motor(mp);
+  mp.integral_time = 0.1;  // the PID servo, speed-limited some of the time
+  mp.max_speed = 3.0;
+  ts::Motor pid(mp);
   ts::Sensor sensor(ts::SensorParams{1e-4, 2e-4, 3});
+  ts::SensorParams delayed_params{1e-4, 2e-4, 3};
+  delayed_params.delay = 0.005;  // a latency in its history, and one beyond it (flagged)
+  ts::Sensor delayed(delayed_params);
+  delayed_params.history = 3;
+  ts::Sensor short_history(delayed_params);
   std::vector<double> angles(pair.n_node_angles(), 0.05);
   const long n = allocations_in([&] {
     for (int k = 0; k < 1000; ++k) {
@@ -83,7 +91,11 @@ TEST(NoAllocation, PlantsMotorAndSensorStep) {
         pair.set_node_angles(angles.data());  // a route change in the loop
       }
       const double q = motor.step(input(k), 1e-3, pair.drive_reaction());
-      sensor.measure(pair.step(q, 1e-3));
+      const double y = pair.step(q, 1e-3);
+      sensor.measure(y);
+      delayed.measure(y, 1e-3);
+      short_history.measure(y, 1e-3);
+      pid.step(input(k), 1e-3, 0.01);
       continuum.step(input(k), 1e-3);
       single.step(1e-3 * input(k), 1e-3);
       (void)pair.status();

@@ -159,8 +159,9 @@ inline Failure plants(const std::uint8_t* data, std::size_t size) {
   }
 }
 
-// The drive: a position motor (ideal, or with reflected inertia, friction and gear backlash)
-// or a torque motor; torques from outside are random too.
+// The drive: a position motor (ideal, or with reflected inertia, friction and gear backlash;
+// PD or, one in two, PID with speed and acceleration limits some of the time) or a torque
+// motor; torques from outside are random too.
 inline Failure motor(const std::uint8_t* data, std::size_t size) {
   using namespace detail_fuzz;
   Bytes b(data, size);
@@ -171,10 +172,20 @@ inline Failure motor(const std::uint8_t* data, std::size_t size) {
     p.coulomb_friction = 0.01 * b.unit();
   } else {
     p.bandwidth_hz = 1.0 + 100.0 * b.unit();
+    p.damping = 0.2 + b.unit();
     if (kind == 1) {
       p.reflected_inertia = 1e-4 * (0.1 + b.unit());
       p.coulomb_friction = 0.01 * b.unit();
       p.viscous_friction = 1e-3 * b.unit();
+    }
+    const std::uint8_t servo = b.byte();
+    if (servo % 2 == 1) {  // integral time from just above the stability bound to 100x it
+      const double bound = 1.0 / (2.0 * p.damping * 2.0 * kPi * p.bandwidth_hz);
+      p.integral_time = bound * (1.0 + 1e-6 + 100.0 * b.unit());
+    }
+    if (servo % 4 == 3) {
+      p.max_speed = 0.1 + 10.0 * b.unit();
+      p.max_accel = 1.0 + 1000.0 * b.unit();
     }
   }
   p.gear_backlash = 0.02 * b.unit();
@@ -192,17 +203,26 @@ inline Failure motor(const std::uint8_t* data, std::size_t size) {
   return {};
 }
 
+// The sensor: noise and quantisation, and half the time a latency (up to 20 ms, sometimes
+// beyond what a short history covers) read at random (and extreme) time steps.
 inline Failure sensor(const std::uint8_t* data, std::size_t size) {
   using namespace detail_fuzz;
   Bytes b(data, size);
-  Sensor s(SensorParams{1e-3 * b.unit(), 1e-3 * b.unit(), b.byte()});
+  SensorParams p{1e-3 * b.unit(), 1e-3 * b.unit(), b.byte()};
+  if (b.byte() % 2 == 1) {
+    p.delay = 0.02 * b.unit();
+    p.history = 1 + b.byte() % 64;
+  }
+  Sensor s(p);
   for (long op = 0; op < kMaxOps && !b.done(); ++op) {
     if (b.byte() % 16 == 0) {
       s.reset();
       continue;
     }
     const double x = b.value(2.0);
-    if (bad(x, s.measure(x))) return {"sensor: non-finite reading of a finite input", op};
+    if (bad(x, s.measure(x, b.dt()))) return {"sensor: non-finite reading of a finite input", op};
+    if (!std::isfinite(x) && !has(s.status(), Status::held_nonfinite_input))
+      return {"sensor: a non-finite input not reported held", op};
   }
   return {};
 }

@@ -150,7 +150,8 @@ struct WithEncoderLoop {
 /// At sample k (dt = t_k - t_{k-1}): the route changes due at k are applied (to the plant, and as
 /// shape integrals to the controller), the controller computes u_k from y_d[k], the last
 /// measurement and the motor position, the motor advances under u_k, the plant under the motor
-/// position, and the sensor reads the new output (NaN where dropout is set). Not real-time as a
+/// position, and the sensor reads the new output (as it was its delay before, when it has one;
+/// NaN where dropout is set). Not real-time as a
 /// whole: it validates its inputs first and throws std::invalid_argument naming the problem.
 /// @tparam Plant SingleTendonPlant, PullPullPlant or ContinuumPlant
 /// @tparam Controller OpenLoop, FeedforwardLoop, CurveAngleLoop, AdaptiveLoop or one with the same
@@ -194,7 +195,7 @@ void run_closed_loop(Plant& plant, Motor* motor, Sensor* sensor, Controller& con
     motor_position = motor ? motor->position() : u;  // what the controller's encoder reads
     const double y = plant.step(pulley, dt);
     const bool lost = dropout && dropout[k];
-    const double reading = sensor ? sensor->measure(y) : y;
+    const double reading = sensor ? sensor->measure(y, dt) : y;  // dt: its latency
     measured = lost ? NAN : reading;
     out.output[k] = y;
     if (out.measured) out.measured[k] = measured;

@@ -5,7 +5,12 @@
 //   q'' = w^2 (q_cmd - q) - 2 zeta w q',   w = 2 pi f_n,
 // with |q''| <= max_accel and |q'| <= max_speed; integrated with backward
 // Euler on sub-steps of w h <= 0.1 (at most max_substeps). The first step
-// after reset() starts at rest at the command.
+// after reset() starts at rest at the command. With integral action
+// (integral_time T_i > 0, a PID servo) it becomes
+//   q'' = w^2 [(q_cmd - q) + z / T_i] - 2 zeta w q' + ...,   z' = q_cmd - q,
+// stable for T_i > 1 / (2 zeta w) (Routh on s^3 + 2 zeta w s^2 + w^2 s + w^2 / T_i);
+// z is integrated by the same backward-Euler sub-steps (z_new = z + h (q_cmd - q_new))
+// and held while the speed or acceleration limit cuts the motion (anti-windup).
 // Torque: J q'' + b q' = sat(tau_cmd, max_torque) + tau_ext, where tau_ext
 // is the torque the tendons exert on the pulley (supplied by the caller);
 // semi-implicit Euler on the same sub-steps (h <= J/b/10 when b > 0). It
@@ -16,7 +21,8 @@
 //   position servo then feels torques through its reflected inertia J_r
 //   (reflected_inertia > 0): q'' = w^2 (q_cmd - q) - 2 zeta w q'
 //   + (tau_ext - b_m q' - tau_c sgn q') / J_r, so the tendons' torque deflects
-//   it and friction leaves a steady error up to tau_c / (J_r w^2). With
+//   it and friction leaves a steady error up to tau_c / (J_r w^2) (a constant
+//   torque tau leaves tau / (J_r w^2); with integral action, none). With
 //   J_r = 0 (default) it is the ideal lag above and ignores torques.
 //   Coulomb friction is implicit at the velocity level: the shaft sticks when
 //   the friction impulse h tau_c / J can stop it within a sub-step, so it
@@ -55,6 +61,9 @@ struct MotorParams {
   double coulomb_friction = 0.0;   ///< tau_c, N m (both; position needs reflected_inertia > 0)
   double viscous_friction = 0.0;   ///< b_m, N m s/rad (position; torque kind: use viscous)
   double gear_backlash = 0.0;      ///< g, rad: total play between shaft and pulley (both)
+  /// T_i, s (position): integral time of a PID servo, q'' gains w^2 z / T_i with z' = q_cmd - q,
+  /// so a constant load leaves no steady error; 0 = none (the PD servo); else > 1/(2 zeta w)
+  double integral_time = 0.0;
 };
 
 /// @brief A motor model that turns a command into the proximal pulley angle (rad), or for a
@@ -62,8 +71,10 @@ struct MotorParams {
 ///
 /// Position: a second-order lag q'' = w^2 (q_cmd - q) - 2 zeta w q', w = 2 pi f_n, with
 /// |q''| <= max_accel and |q'| <= max_speed, backward Euler on sub-steps of w h <= 0.1; the first
-/// step after reset() starts at rest at the command. Torque: J q'' + b q' = sat(tau_cmd,
-/// max_torque) + tau_ext, with tau_ext the tendons' torque on the pulley; it starts at rest at 0.
+/// step after reset() starts at rest at the command. With integral_time T_i > 0 (a PID servo)
+/// q'' gains w^2 z / T_i, z' = q_cmd - q (held while a limit cuts the motion). Torque:
+/// J q'' + b q' = sat(tau_cmd, max_torque) + tau_ext, with tau_ext the tendons' torque on the
+/// pulley; it starts at rest at 0.
 /// Optional (off by default): Coulomb and viscous shaft friction (the position servo feels torques
 /// through its reflected inertia J_r) and gear backlash between the shaft (position()) and the
 /// pulley (output()). step() is noexcept, allocates nothing and takes at most max_substeps
@@ -89,6 +100,11 @@ class Motor {
               p.max_accel, ")");
       require_non_negative(p.reflected_inertia, w, "reflected_inertia");
       require_non_negative(p.viscous_friction, w, "viscous_friction");
+      require_non_negative(p.integral_time, w, "integral_time");
+      const double bound = 1.0 / (2.0 * p.damping * 2.0 * kPi * p.bandwidth_hz);
+      require(p.integral_time == 0.0 || p.integral_time > bound, w,
+              "integral_time must be 0 (no integral action) or > 1 / (2 damping w) = ", bound,
+              " s for a stable loop (got ", p.integral_time, ")");
       require((p.coulomb_friction == 0.0 && p.viscous_friction == 0.0) ||
                   p.reflected_inertia > 0.0,
               w, "coulomb_friction and viscous_friction of a position motor act through its "
@@ -111,6 +127,7 @@ class Motor {
   void reset() noexcept {
     q_ = 0.0;
     v_ = 0.0;
+    z_ = 0.0;
     pulley_ = 0.0;
     initialised_ = false;
   }
@@ -160,33 +177,35 @@ class Motor {
       saturated_ = true;
     }
     const double stick = h * p_.coulomb_friction * inv_J;  // friction impulse per sub-step
+    // integral gain w^2 / T_i (0: none; the PD servo's arithmetic is then untouched)
+    const double ki = position && p_.integral_time > 0.0 ? w * w / p_.integral_time : 0.0;
     for (int i = 0; i < n; ++i) {
       double num, den;
       if (position) {
         num = v_ + h * (w * w * (u - q_) + tau_ext * inv_J);
         den = 1.0 + 2.0 * p_.damping * w * h + w * w * h * h + h * b * inv_J;
+        if (ki > 0.0) {  // backward Euler on z too: z_new = z + h (u - q - h v_new)
+          num += h * ki * (z_ + h * (u - q_));
+          den += ki * h * h * h;
+        }
       } else {
         num = v_ + h * (tau + tau_ext) * inv_J;
         den = 1.0 + h * b * inv_J;
       }
       double v_new = std::fabs(num) <= stick ? 0.0 : (num - std::copysign(stick, num)) / den;
-      if (position) {
-        const double amax = p_.max_accel * h;
-        if (v_new - v_ > amax) v_new = v_ + amax;
-        if (v_new - v_ < -amax) v_new = v_ - amax;
-      }
-      if (std::fabs(v_new) > p_.max_speed) {
-        v_new = std::copysign(p_.max_speed, v_new);
-        saturated_ = true;
-      }
+      const bool limited = limit(v_new, h, position);
       const double q_new = q_ + h * v_new;
-      if (!std::isfinite(v_new) || !std::isfinite(q_new)) {  // hold a finite state
-        v_ = 0.0;
+      // anti-windup: z is held while a limit cuts the motion
+      const double z_new = ki > 0.0 && !limited ? z_ + h * (u - q_new) : z_;
+      if (!std::isfinite(v_new) || !std::isfinite(q_new) || !std::isfinite(z_new)) {
+        v_ = 0.0;  // hold a finite state
+        z_ = 0.0;
         clamped_ = true;
         break;
       }
       v_ = v_new;
       q_ = q_new;
+      z_ = z_new;
     }
     const double half = 0.5 * p_.gear_backlash;
     if (pulley_ < q_ - half) pulley_ = q_ - half;
@@ -196,6 +215,9 @@ class Motor {
 
   /// Motor shaft angle (what a motor encoder reads).
   double position() const noexcept { return q_; }
+  /// The integral of the position error, z = int (q_cmd - q) dt, rad s (0 without integral
+  /// action).
+  double integral() const noexcept { return z_; }
   /// Motor shaft velocity, rad/s.
   double velocity() const noexcept { return v_; }
   /// The last step was longer than the sub-steps can span, or its command would have driven
@@ -212,17 +234,45 @@ class Motor {
   }
   /// Proximal pulley angle (after the gear play), the plant's input.
   double output() const noexcept { return pulley_; }
-  /// Put the shaft (and the pulley) at angle q with velocity v.
-  void set_state(double q, double v) noexcept {
+  /// Put the shaft (and the pulley) at angle q with velocity v, and the integral of the
+  /// position error at z (a snapshot: position(), velocity(), integral()).
+  /// @param q the shaft angle
+  /// @param v the shaft velocity
+  /// @param z the integral of the position error (used with integral action only)
+  void set_state(double q, double v, double z = 0.0) noexcept {
     q_ = q;
     v_ = v;
+    z_ = z;
     pulley_ = q;
     initialised_ = true;
   }
 
  private:
+  // The acceleration (position kind) and speed limits on a sub-step's new velocity; true when
+  // either cut it (the speed limit also flags saturated_).
+  bool limit(double& v_new, double h, bool position) noexcept {
+    bool cut = false;
+    if (position) {
+      const double amax = p_.max_accel * h;
+      if (v_new - v_ > amax) {
+        v_new = v_ + amax;
+        cut = true;
+      }
+      if (v_new - v_ < -amax) {
+        v_new = v_ - amax;
+        cut = true;
+      }
+    }
+    if (std::fabs(v_new) > p_.max_speed) {
+      v_new = std::copysign(p_.max_speed, v_new);
+      saturated_ = true;
+      cut = true;
+    }
+    return cut;
+  }
+
   Params p_;
-  double q_ = 0.0, v_ = 0.0, pulley_ = 0.0;
+  double q_ = 0.0, v_ = 0.0, z_ = 0.0, pulley_ = 0.0;
   bool clamped_ = false;
   bool saturated_ = false;
   bool held_ = false;

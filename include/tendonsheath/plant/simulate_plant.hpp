@@ -71,6 +71,8 @@ void simulate_plant(Plant& plant, Motor* motor, Sensor* sensor, const double* t,
                     const char* where) {
   check_series(t, u, n, where);
   require(motor == nullptr || t != nullptr, where, "a motor needs the time vector t");
+  require(sensor == nullptr || sensor->params().delay == 0.0 || t != nullptr, where,
+          "a sensor with a delay needs the time vector t");
   check_schedule(plant, sched, n, where);
   plant.reset();
   if (motor) motor->reset();
@@ -89,7 +91,7 @@ void simulate_plant(Plant& plant, Motor* motor, Sensor* sensor, const double* t,
     if (out.q_motor) out.q_motor[k] = motor ? motor->position() : qin;
     if (out.slack) out.slack[k] = plant.slack() ? 1 : 0;
     if (out.min_tension) out.min_tension[k] = plant.min_tension();
-    if (out.measured) out.measured[k] = sensor ? sensor->measure(q) : q;
+    if (out.measured) out.measured[k] = sensor ? sensor->measure(q, dt) : q;
     if (out.status) {
       Status s = plant.status();
       if (motor) s |= motor->status();

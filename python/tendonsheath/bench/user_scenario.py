@@ -41,6 +41,7 @@
     [sensor]
     noise_std = 2e-4
     resolution = 1e-4
+    # delay = 0.005                     # latency, s (default 0); history = 1024 samples kept
 
     [reference]                         # sum of sines (amplitude rad, frequency Hz, phase rad)
     duration = 20.0
@@ -107,7 +108,13 @@ _KEYS: dict[str, dict[str, type | tuple]] = {
     "load": {"type": str, "torque": float, "stiffness": float, "preload": float, "damping": float},
     "motor": {"bandwidth_hz": float, "damping": float, "max_speed": float, "max_accel": float},
     "torque_motor": {"inertia": float, "viscous": float, "max_torque": float},
-    "sensor": {"noise_std": float, "resolution": float, "seed": int},
+    "sensor": {
+        "noise_std": float,
+        "resolution": float,
+        "seed": int,
+        "delay": float,
+        "history": int,
+    },
     "reference": {"duration": float, "rate": float, "sines": list},
     "calibration": {
         "duration": float,
@@ -185,6 +192,17 @@ def _check_strain(plant: dict[str, Any], source: str) -> None:
             f"{pretension / stiffness:.3g} times its length (stiffness EA = {stiffness:g} N); "
             "T0 / EA must be < 1"
         )
+
+
+def _sensor_table(table: dict[str, Any], source: str) -> dict[str, Any]:
+    """The [sensor] table over its defaults, checked as the Sensor takes it: a bad value is
+    named in one line."""
+    sensor = {"noise_std": 2e-4, "resolution": 1e-4, "seed": 1, **table}
+    try:
+        Sensor(**sensor)
+    except (TypeError, ValueError) as exc:
+        raise ScenarioError(f"{source} [sensor]: {str(exc).removeprefix('Sensor: ')}") from None
+    return sensor
 
 
 def _route(spec: dict[str, Any], where: str, length: float | None = None) -> Route:
@@ -268,7 +286,7 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         load=load,
         motor={"bandwidth_hz": 60.0, "damping": 0.8, **s["motor"]},
         torque_motor={"inertia": 0.01, "viscous": 0.2, "max_torque": 5.0, **s["torque_motor"]},
-        sensor={"noise_std": 2e-4, "resolution": 1e-4, "seed": 1, **s["sensor"]},
+        sensor=_sensor_table(s["sensor"], source),
         reference=reference,
         calibration={"duration": 20.0, "amplitude": 1.2, **s["calibration"]},
         compensators=list(compensators),
