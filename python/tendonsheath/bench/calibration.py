@@ -678,7 +678,8 @@ def _run_experiment(plant, route, t, command, sensor: Sensor | None, seed: int):
     finally:
         plant.set_route(previous)
     if sensor is not None:
-        reading = Sensor(sensor.resolution, sensor.noise_std, seed).measure(sim.q_out)
+        rig = Sensor(sensor.resolution, sensor.noise_std, seed, sensor.delay, sensor.history)
+        reading = rig.measure(sim.q_out, t=t) if sensor.delay > 0 else rig.measure(sim.q_out)
     else:
         reading = sim.measured
     return _encoder(sim), np.asarray(reading, dtype=float)
