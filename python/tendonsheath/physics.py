@@ -144,7 +144,7 @@ def route_dead_zone_factor(route: Route, mu: ArrayLike) -> FloatOrArray:
 
     Returns
     -------
-    float or numpy.ndarray of float
+    numpy.float64 or numpy.ndarray of float
         F for each mu (tanh(mu Theta/2) for a uniform route), shaped as mu.
     """
     mus = np.asarray(mu, dtype=np.float64)
@@ -153,7 +153,7 @@ def route_dead_zone_factor(route: Route, mu: ArrayLike) -> FloatOrArray:
     for i, m in enumerate(flat):
         shape = route_shape(route, float(m))
         out[i] = dead_zone_factor(shape.g, shape.G, float(m) * shape.total_angle)
-    return float(out[0]) if mus.ndim == 0 else out.reshape(mus.shape)
+    return out[0] if mus.ndim == 0 else out.reshape(mus.shape)
 
 
 def shape_integrals(route: Route, mu: float) -> tuple[float, float]:
