@@ -178,11 +178,13 @@ class CurveAngleModel {
   }
   /// Set the route's shape for the next steps: its integrals g, G computed with this model's
   /// friction (shape_integrals()) and its total angle. The branches are spec A5/A6 with the
-  /// loads (PullPullStatics::affine(shape), written so that no exponential can overflow):
-  /// with u = g e^{a}, v = G e^{-a} and a = mu Theta, e_b = (T0 L/EA) (u - v)/(u + v),
-  /// C_L = (L/EA) g G/(u + v) and e_L = F_L C_L, and the no-slack limit 2 T0 e^{-a}/g (the
+  /// loads (PullPullStatics::affine(shape), written so that nothing overflows): with
+  /// u = g e^{a}, v = G e^{-a} and a = mu Theta, e_b = (T0 L/EA) (u - v)/(u + v),
+  /// C_L = (L/EA) u v/(u + v) and e_L = F_L C_L, and the no-slack limit 2 T0 e^{-a}/g (the
   /// uniform shape gives tanh(a/2), tanh(a/2)/a and T0 (a/sinh a)(1 + e^{-a}) of spec A.7).
-  /// A shape with g or G not finite and > 0, or a total angle not finite and >= 0, is ignored.
+  /// A shape with g or G not finite and > 0, or a total angle not finite and >= 0, is ignored;
+  /// a is capped at kMaxFrictionAngle and g, G are held within what a route of that angle can
+  /// have (e^{-a} <= g <= 1 <= G <= e^{a}), so the terms stay finite for any input.
   /// @param shape the route's shape integrals
   void set_shape(const ShapeIntegrals& shape) noexcept {
     if (!(std::isfinite(shape.g) && std::isfinite(shape.G) && shape.g > 0.0 && shape.G > 0.0 &&
@@ -190,14 +192,16 @@ class CurveAngleModel {
       return;
     uniform_ = false;
     shape_ = shape;
-    const double a = p_.friction * shape.total_angle, ema = std::exp(-a);
+    const double a = std::fmin(p_.friction * shape.total_angle, kMaxFrictionAngle);
+    const double ea = std::exp(a), ema = std::exp(-a);
+    const double u = std::fmin(std::fmax(shape.g, ema), 1.0) * ea;   // in [1, e^a]
+    const double v = std::fmin(std::fmax(shape.G, 1.0), ea) * ema;   // in [e^-a, 1]
     const double compliance = p_.length / p_.stiffness;
-    const double load_compliance =
-        compliance * shape.g * shape.G * ema / (shape.g + shape.G * ema * ema);
-    eb_ = compliance * p_.pretension * std::tanh(a + 0.5 * std::log(shape.g / shape.G));
+    const double load_compliance = compliance * u * v / (u + v);
+    eb_ = compliance * p_.pretension * (u - v) / (u + v);
     eL_ = p_.load * load_compliance;
     c_ = 1.0 / (1.0 + p_.spring * load_compliance);
-    slack_limit_ = 2.0 * p_.pretension * ema / shape.g;
+    slack_limit_ = 2.0 * p_.pretension / u;
   }
   /// True once the distal load exceeded the no-slack limit since reset().
   bool slack() const noexcept { return slack_; }
