@@ -70,8 +70,10 @@ def test_segments_0_reads_bit_for_bit_as_before(seed):
     assert shape.static_route(before, 3.0, seed) == ts.Route.uniform(
         1.2, shape.static_reading(before.curve_angle, 3.0, seed)
     )
-    _, old_sensed, _ = sensed_schedule(shape, t, routes, 0.1, seed_offset=seed)
+    _, old_sensed, old_rows = sensed_schedule(shape, t, routes, 0.1, seed_offset=seed)
     assert np.array_equal(old_sensed, ref)
+    _, _, rows = sensed_route_schedule(shape, t, routes, 0.1, seed_offset=seed)
+    assert np.array_equal(rows, old_rows)
 
 
 def _total_and_arc_errors(segments, seeds=25):

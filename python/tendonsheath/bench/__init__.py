@@ -11,6 +11,7 @@ from .calibration import (
 from .frequency import FrequencyResponse, frequency_response
 from .metrics import loop_width, tracking_metrics
 from .run import Result, run
+from .shape_sensing import sensed_route_schedule
 
 __all__ = [
     "Calibration",
@@ -24,5 +25,6 @@ __all__ = [
     "frequency_response",
     "loop_width",
     "run",
+    "sensed_route_schedule",
     "tracking_metrics",
 ]

@@ -298,7 +298,10 @@ def sensed_route_schedule(
     idx, sensed = shape.route_readings(t, routes, seed_offset)
     rows = []
     for route in sensed:
-        s = route_shape(route, friction)
+        # a uniform reading's g, G do not depend on its length: computed on a unit length, as
+        # calibration.sensed_schedule does, so that segments=0 gives its rows bit for bit
+        of = Route.uniform(1.0, route.curve_angle) if shape.segments == 0 else route
+        s = route_shape(of, friction)
         rows.append([s.g, s.G, s.total_angle])
     return idx, sensed, np.ascontiguousarray(rows, dtype=float).reshape(-1, 3)
 

@@ -295,9 +295,7 @@ class AngleDependent(HysteresisModel):
         self._stream = None
         self._stream_angle = None
 
-    def step(
-        self, x: float, dt: float = 0.0, curve_angle: float | Route | None = None
-    ) -> float:
+    def step(self, x: float, dt: float = 0.0, curve_angle: float | Route | None = None) -> float:
         """Advance one sample (streaming) at the curve angle (or route) fixed by the first step.
 
         Parameters
