@@ -504,7 +504,9 @@ def compare_models(
 ) -> Comparison:
     """Fit each candidate on training data and rank them on held-out data.
 
-    ``logs``: :class:`~tendonsheath.io.Log` objects or (t, x, y[, curve_angle]) tuples.
+    ``logs``: :class:`~tendonsheath.io.Log` objects or (t, x, y[, curve_angle]) tuples (a
+    tuple's curve angle may be a :class:`~tendonsheath.Route`, e.g. a sensed shape: the
+    models that take the curve angle then use its distribution of curvature).
     ``models``: classes, Chain instances or names (see :func:`parse_model`); default
     :func:`default_models`. ``validate``:
 

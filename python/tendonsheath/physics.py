@@ -99,6 +99,63 @@ def route_shape(route: Route, mu: float) -> core.ShapeIntegrals:
     )
 
 
+def dead_zone_factor(g: ArrayLike, G: ArrayLike, a: ArrayLike) -> FloatOrArray:
+    """F = g/(g + G e^{-2a}) - G/(G + g e^{2a}): the pull-pull dead-zone half-width per unit
+    T0 L/EA for a route of shape integrals g, G and friction angle a = mu Theta (spec A5/A6
+    with F_L = 0: 2 e_b = (T0 L/EA) 2 F). It equals tanh(a/2) for uniform curvature.
+
+    Evaluated as tanh(a + ln(g/G)/2) (the same value: with u = g e^{a} and v = G e^{-a},
+    F = (u - v)/(u + v)), which neither overflows for large a nor loses more than a few
+    ulp of the result's scale near a = 0, where the two fractions of the definition cancel.
+
+    Parameters
+    ----------
+    g : float or array_like
+        (1/L) int e^{-mu theta(s)} ds, > 0.
+    G : float or array_like
+        (1/L) int e^{+mu theta(s)} ds, > 0.
+    a : float or array_like
+        The friction angle mu Theta (>= 0).
+
+    Returns
+    -------
+    float or numpy.ndarray of float
+        F, broadcast over the arguments (NaN where g or G is not > 0).
+    """
+    g_arr = np.asarray(g, dtype=np.float64)
+    G_arr = np.asarray(G, dtype=np.float64)
+    a_arr = np.asarray(a, dtype=np.float64)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where((g_arr > 0) & (G_arr > 0), g_arr / G_arr, np.nan)
+        out = np.tanh(a_arr + 0.5 * np.log(ratio))
+    return out[()] if out.ndim == 0 else out
+
+
+def route_dead_zone_factor(route: Route, mu: ArrayLike) -> FloatOrArray:
+    """The dead-zone factor :func:`dead_zone_factor` of a route for friction mu (a number or
+    an array of them): g, G from :func:`route_shape` and a = mu Theta.
+
+    Parameters
+    ----------
+    route : Route
+        The sheath's route.
+    mu : float or array_like of float
+        Friction coefficient(s), >= 0.
+
+    Returns
+    -------
+    numpy.float64 or numpy.ndarray of float
+        F for each mu (tanh(mu Theta/2) for a uniform route), shaped as mu.
+    """
+    mus = np.asarray(mu, dtype=np.float64)
+    flat = mus.ravel()
+    out = np.empty(flat.size)
+    for i, m in enumerate(flat):
+        shape = route_shape(route, float(m))
+        out[i] = dead_zone_factor(shape.g, shape.G, float(m) * shape.total_angle)
+    return out[0] if mus.ndim == 0 else out.reshape(mus.shape)
+
+
 def shape_integrals(route: Route, mu: float) -> tuple[float, float]:
     """g = (1/L) int e^{-mu theta} ds and G = (1/L) int e^{+mu theta} ds (spec A.2), exact for
     the piecewise-linear theta(s) of a route (the C++ core's computation).
@@ -427,12 +484,14 @@ def single_tendon_elongation(
 __all__ = [
     "backlash_half_width",
     "capstan_ratio",
+    "dead_zone_factor",
     "dead_zone_width",
     "load_compliance",
     "load_offset",
     "no_slack_limit",
     "pull_pull_dead_zone",
     "pull_pull_offsets",
+    "route_dead_zone_factor",
     "route_shape",
     "shape_integrals",
     "single_tendon_dead_zone",

@@ -40,11 +40,16 @@ namespace tendonsheath::batch {
 
 // One logged experiment. t may be nullptr (rate-independent models: dt = 1),
 // y may be nullptr (simulate only), theta (curve angle per sample) may be nullptr.
+// A route (route_n samples (s, theta(s)), held over the whole recording) replaces theta
+// for models that take a route's shape (CurveAngleModel: g, G at each member's friction).
 struct Recording {
   const double* t = nullptr;
   const double* x = nullptr;
   const double* y = nullptr;
   const double* theta = nullptr;
+  const double* route_s = nullptr;
+  const double* route_theta = nullptr;
+  std::size_t route_n = 0;
   std::size_t n = 0;
   std::size_t warmup = 0;  // samples excluded from the cost
   // Optional input reconstructed on a grid `fine` times finer (n * fine values, see
@@ -88,6 +93,14 @@ inline double step_model(CurveAngleModel& m, double x, double dt, double theta) 
   return std::isnan(theta) ? m.step(x, dt) : m.step(x, dt, theta);
 }
 
+// Before the first step: a model that takes a route's shape gets the recording's route.
+template <class Model>
+inline void prepare(Model& /*m*/, const Recording& /*r*/) noexcept {}
+inline void prepare(CurveAngleModel& m, const Recording& r) noexcept {
+  if (r.route_n > 0)
+    m.set_shape(shape_integrals(r.route_s, r.route_theta, r.route_n, m.params().friction));
+}
+
 inline double dt_at(const Recording& r, std::size_t k) noexcept {
   if (k == 0) return 0.0;
   return r.t ? r.t[k] - r.t[k - 1] : 1.0;
@@ -124,6 +137,7 @@ template <class Model>
 double simulate_one(const typename Model::Params& p, const Recording& rec, double* yhat) noexcept {
   try {
     Model model(p);
+    detail::prepare(model, rec);
     double sse = 0.0;
     bool dense = false;
     if constexpr (detail::has_step_dense<Model>::value) dense = rec.x_fine != nullptr;
@@ -140,7 +154,9 @@ double simulate_one(const typename Model::Params& p, const Recording& rec, doubl
           yk = model.step(rec.x[kk], dt);
         }
       } else {
-        const double th = rec.theta ? rec.theta[kk] : std::numeric_limits<double>::quiet_NaN();
+        const double th = rec.theta && rec.route_n == 0
+                              ? rec.theta[kk]
+                              : std::numeric_limits<double>::quiet_NaN();
         yk = detail::step_model(model, rec.x[kk], dt, th);
       }
       if (k < D) continue;

@@ -20,13 +20,17 @@ using namespace nb::literals;
 
 using InMatrix = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
 
-// Owns copies of the recordings (concatenated) so that repeated calls pass nothing.
+// Owns copies of the recordings (concatenated) so that repeated calls pass nothing. Routes
+// (optional): route_counts[r] samples of recording r's route (0: none), their arc lengths and
+// angles concatenated in route_s and route_theta.
 class RecordingSet {
  public:
   RecordingSet(std::optional<InArray> t, InArray x, std::optional<InArray> y,
                std::optional<InArray> theta, const std::vector<std::size_t>& lengths,
                const std::vector<std::size_t>& warmups, std::optional<InArray> x_fine = {},
-               int fine = 0) {
+               int fine = 0, std::optional<InArray> route_s = {},
+               std::optional<InArray> route_theta = {},
+               const std::vector<std::size_t>& route_counts = {}) {
     const std::size_t n = x.shape(0);
     std::size_t total = 0;
     for (std::size_t len : lengths) total += len;
@@ -70,6 +74,7 @@ class RecordingSet {
       recs_.push_back(rec);
       off += lengths[r];
     }
+    attach_routes(route_s, route_theta, route_counts);
     tb::check_recordings(recs_, false, "RecordingSet");
   }
   const std::vector<tb::Recording>& recordings() const { return recs_; }
@@ -78,7 +83,32 @@ class RecordingSet {
   bool has_output() const { return !y_.empty(); }
 
  private:
-  std::vector<double> t_, x_, y_, theta_, x_fine_;
+  void attach_routes(const std::optional<InArray>& s, const std::optional<InArray>& theta,
+                     const std::vector<std::size_t>& counts) {
+    if (counts.empty()) return;
+    if (counts.size() != recs_.size() || !s || !theta || s->shape(0) != theta->shape(0))
+      throw std::invalid_argument(
+          "RecordingSet: routes need one count per recording and as many s as theta samples");
+    std::size_t total = 0;
+    for (std::size_t c : counts) total += c;
+    if (total != s->shape(0))
+      throw std::invalid_argument("RecordingSet: route counts add up to " +
+                                  std::to_string(total) + " but route_s has " +
+                                  std::to_string(s->shape(0)) + " samples");
+    route_s_.assign(s->data(), s->data() + total);
+    route_theta_.assign(theta->data(), theta->data() + total);
+    std::size_t off = 0;
+    for (std::size_t r = 0; r < counts.size(); ++r) {
+      if (counts[r] > 0) {
+        recs_[r].route_s = route_s_.data() + off;
+        recs_[r].route_theta = route_theta_.data() + off;
+        recs_[r].route_n = counts[r];
+      }
+      off += counts[r];
+    }
+  }
+
+  std::vector<double> t_, x_, y_, theta_, x_fine_, route_s_, route_theta_;
   std::vector<tb::Recording> recs_;
 };
 
@@ -172,9 +202,13 @@ void bind_batch(nb::module_& m) {
   nb::class_<RecordingSet>(m, "RecordingSet")
       .def(nb::init<std::optional<InArray>, InArray, std::optional<InArray>,
                     std::optional<InArray>, const std::vector<std::size_t>&,
-                    const std::vector<std::size_t>&, std::optional<InArray>, int>(),
+                    const std::vector<std::size_t>&, std::optional<InArray>, int,
+                    std::optional<InArray>, std::optional<InArray>,
+                    const std::vector<std::size_t>&>(),
            "t"_a.none(), "x"_a, "y"_a.none(), "curve_angle"_a.none(), "lengths"_a, "warmups"_a,
-           "x_fine"_a.none() = nb::none(), "fine"_a = 0)
+           "x_fine"_a.none() = nb::none(), "fine"_a = 0, "route_s"_a.none() = nb::none(),
+           "route_theta"_a.none() = nb::none(),
+           "route_counts"_a = std::vector<std::size_t>{})
       .def_prop_ro("total", &RecordingSet::total)
       .def_prop_ro("count", &RecordingSet::count);
   m.def("default_workers", &tb::default_workers);

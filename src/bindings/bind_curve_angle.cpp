@@ -35,6 +35,9 @@ void bind_curve_angle(nb::module_& m) {
       .def("output", &M::output)
       .def("curve_angle", &M::curve_angle)
       .def("set_curve_angle", &M::set_curve_angle, "curve_angle"_a)
+      .def("set_shape", &M::set_shape, "shape"_a)
+      .def("shape", &M::shape)
+      .def("uniform", &M::uniform)
       .def("slack", &M::slack)
       .def("status", [](const M& self) { return static_cast<unsigned>(self.status()); })
       .def("backlash_half_width", &M::backlash_half_width, "curve_angle"_a)
@@ -42,29 +45,31 @@ void bind_curve_angle(nb::module_& m) {
       .def("slope", &M::slope, "curve_angle"_a)
       .def(
           "simulate",
-          [](const M& self, std::optional<InArray> t, InArray x, InArray theta, bool status) {
+          [](const M& self, std::optional<InArray> t, InArray x, std::optional<InArray> theta,
+             bool status) {
             const std::size_t n = x.shape(0);
             if (t && t->shape(0) != n)
               throw std::invalid_argument("CurveAngleModel: t and x have different lengths (" +
                                           std::to_string(t->shape(0)) + " and " +
                                           std::to_string(n) + ")");
-            if (theta.shape(0) != n)
+            if (theta && theta->shape(0) != n)
               throw std::invalid_argument(
                   "CurveAngleModel: curve_angle and x have different lengths (" +
-                  std::to_string(theta.shape(0)) + " and " + std::to_string(n) + ")");
+                  std::to_string(theta->shape(0)) + " and " + std::to_string(n) + ")");
             auto [out, y] = new_array(n);
             auto [flags, fp] = new_bytes(status ? n : 0);
             M model = self;
             const double* tp = t ? t->data() : nullptr;
+            const double* thp = theta ? theta->data() : nullptr;  // None: the model's shape
             {
               nb::gil_scoped_release release;
-              ts::simulate(model, tp, x.data(), theta.data(), y, n, "CurveAngleModel",
+              ts::simulate(model, tp, x.data(), thp, y, n, "CurveAngleModel",
                            status ? fp : nullptr);
             }
             if (status) return nb::object(nb::make_tuple(out, flags));
             return nb::cast(out);
           },
-          "t"_a.none(), "x"_a, "curve_angle"_a, "status"_a = false)
+          "t"_a.none(), "x"_a, "curve_angle"_a.none(), "status"_a = false)
       .def_ro_static("rate_independent", &M::rate_independent);
 }
 

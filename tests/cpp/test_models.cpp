@@ -167,3 +167,46 @@ TEST(HystereticOscillator, SofteningAcceptedDivergenceFlaggedNeverNan) {
     EXPECT_FALSE(osc.diverged());
   }
 }
+
+// CurveAngleModel::set_shape: a uniform shape gives the uniform closed form (A7), any shape
+// the full-slip elongations of PullPullStatics (A5, A6).
+TEST(CurveAngleModel, SetShapeIsUniformClosedFormAndA5A6) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    ts::CurveAngleParams p;
+    p.friction = 0.05 + 0.15 * unit(rng);
+    p.stiffness = 5e3 + 4.5e4 * unit(rng);
+    p.pretension = 2.0 + 38.0 * unit(rng);
+    p.load = -3.0 + 6.0 * unit(rng);
+    const double theta = 4.0 * std::acos(-1.0) * unit(rng);
+    ts::CurveAngleModel by_angle(p), by_shape(p);
+    by_angle.set_curve_angle(theta);
+    by_shape.set_shape(ts::uniform_shape(p.friction, theta));
+    EXPECT_FALSE(by_shape.uniform());
+    const double scale = p.pretension * p.length / p.stiffness / p.proximal_radius;
+    for (int k = 0; k < 200; ++k) {
+      const double q = 20.0 * scale * std::sin(0.05 * k);
+      EXPECT_NEAR(by_shape.step(q), by_angle.step(q), 1e-12 * scale);
+    }
+    // two arcs: the dead zone and the branches are those of spec A5/A6 with the load
+    const double s[] = {0.0, 0.3 * p.length, p.length};
+    const double th[] = {0.0, 0.2 * theta, theta};
+    const ts::ShapeIntegrals sh = ts::shape_integrals(s, th, 3, p.friction);
+    ts::PullPullStatics statics;
+    statics.friction = p.friction;
+    statics.compliance = p.length / p.stiffness;
+    statics.pretension = p.pretension;
+    const double fwd = statics.forward_elongation(sh, p.load);
+    const double bwd = statics.backward_elongation(sh, p.load);
+    ts::CurveAngleModel model(p);
+    model.set_shape(sh);
+    const double top = 10.0 * (std::fabs(fwd) + std::fabs(bwd)) / p.proximal_radius;
+    for (int k = 0; k <= 100; ++k) model.step(top * k / 100.0);
+    EXPECT_NEAR(model.output() * p.distal_radius, top * p.proximal_radius - fwd,
+                1e-12 * (fwd - bwd));
+    for (int k = 100; k >= -100; --k) model.step(top * k / 100.0);
+    EXPECT_NEAR(model.output() * p.distal_radius, -top * p.proximal_radius - bwd,
+                1e-12 * (fwd - bwd));
+  }
+}

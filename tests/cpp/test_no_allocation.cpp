@@ -126,6 +126,8 @@ TEST(NoAllocation, ModelsStep) {
       gpi.step(x);
       gpi_inv.step(0.5 * x);
       curve.step(x, 1e-3, 1.0 + 0.001 * k);
+      curve.set_shape(ts::ShapeIntegrals{0.8, 1.3, 2.0 + 0.001 * k});
+      curve.step(x, 1e-3);
     }
   });
   EXPECT_EQ(n, 0);

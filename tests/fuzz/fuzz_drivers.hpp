@@ -250,6 +250,7 @@ inline Failure models(const std::uint8_t* data, std::size_t size) {
     }
     const double x = b.value(2.0), dt = b.dt();
     if (what == 1) curve.set_curve_angle(b.value(10.0));
+    if (what == 2) curve.set_shape(ShapeIntegrals{b.value(2.0), b.value(2.0), b.value(10.0)});
     if (bad(x, backlash.step(x))) return {"Backlash: non-finite output", op};
     if (bad(x, bwb.step(x, dt))) return {"BoucWenBacklash: non-finite output", op};
     if (bad(x, bw.step(x, dt))) return {"BoucWen: non-finite output", op};

@@ -19,6 +19,11 @@
 // q_out = x_out / r_d, so the input and the output are angles in rad. The
 // model starts in the middle of the band, x_out = c (x_in - e_L).
 //
+// A non-uniform route (set_shape: the shape integrals g, G of spec A.2 at the
+// model's friction) takes the general full-slip elongations (A5)/(A6): with
+// u = g e^{a} and v = G e^{-a}, e_b = (T0 L/EA)(u - v)/(u + v) and
+// e_L = (F_L L/EA) g G/(u + v) (tanh(a/2) and tanh(a/2)/a for uniform curvature).
+//
 // Only the products T0 L / EA, F_L L / EA and k_e L / EA enter the output, so
 // an identification holds T0 and L known and identifies EA, F_L and k_e.
 #pragma once
@@ -61,6 +66,11 @@ struct CurveAngleParams {
 /// input and a changing curve angle at rest (raising Theta widens the band, lowering it lets the
 /// held output creep onto the new branch). Input and output are angles (rad): x_in = r_p q_in,
 /// q_out = x_out / r_d. It starts in the middle of the band, x_out = c (x_in - e_L).
+///
+/// A route of any shape (set_shape(): the shape integrals g, G computed with this model's
+/// friction) replaces tanh(a/2) by the pull-pull dead-zone factor of spec A5/A6,
+/// (u - v)/(u + v) with u = g e^{a}, v = G e^{-a}, and tanh(a/2)/a by g G/(u + v); the terms are
+/// computed when the curve angle or the shape changes, not at every step.
 class CurveAngleModel {
  public:
   /// The parameter struct its constructor takes.
@@ -79,6 +89,7 @@ class CurveAngleModel {
     require_non_negative(p.spring, w, "spring");
     require_positive(p.proximal_radius, w, "proximal_radius");
     require_positive(p.distal_radius, w, "distal_radius");
+    set_curve_angle(0.0);
   }
 
   /// The parameters it was built with.
@@ -109,13 +120,14 @@ class CurveAngleModel {
 
   /// Streaming: proximal angle q_in (rad), curve angle theta (rad) -> distal angle (rad).
   /// @param q_in the proximal angle, rad; a non-finite q_in holds the last output
-  /// @param theta the curve angle, rad (its magnitude is used); a non-finite theta keeps the last
+  /// @param theta the curve angle, rad (its magnitude is used, a uniform route of that angle);
+  /// a non-finite theta keeps the last curve angle or shape
   /// @return the distal angle, rad
   double step(double q_in, double /*dt*/, double theta) noexcept {
-    if (std::isfinite(theta)) theta_ = std::fabs(theta);
+    set_curve_angle(theta);
     return step(q_in);
   }
-  /// Keeps the last curve angle (0, a straight sheath, before any was given).
+  /// Keeps the last curve angle or shape (0, a straight sheath, before any was given).
   /// @param q_in the proximal angle, rad; a non-finite q_in holds the last output
   /// @return the distal angle, rad
   double step(double q_in, double /*dt*/ = 0.0) noexcept {
@@ -125,21 +137,17 @@ class CurveAngleModel {
       return initialised_ ? y_ : 0.0;
     }
     const double x_in = p_.proximal_radius * q_in;
-    const double eb = backlash_half_width(theta_);
-    const double eL = load_offset(theta_);
-    const double c = slope(theta_);
-    const double fwd = c * (x_in - eb - eL);
-    const double bwd = c * (x_in + eb - eL);
+    const double fwd = c_ * (x_in - eb_ - eL_);
+    const double bwd = c_ * (x_in + eb_ - eL_);
     if (!initialised_) {
-      x_out_ = c * (x_in - eL);
+      x_out_ = c_ * (x_in - eL_);
       initialised_ = true;
     } else {
       x_out_ = x_out_ < fwd ? fwd : (x_out_ > bwd ? bwd : x_out_);
     }
     // No-slack condition of spec A.4 on the total distal load.
-    const double a = p_.friction * theta_;
     const double force = p_.load + p_.spring * x_out_;
-    step_slack_ = std::fabs(force) >= uniform::no_slack_limit(p_.pretension, a);
+    step_slack_ = std::fabs(force) >= slack_limit_;
     if (step_slack_) slack_ = true;
     y_ = x_out_ / p_.distal_radius;
     return y_;
@@ -147,11 +155,53 @@ class CurveAngleModel {
 
   /// The distal angle of the last step(), rad.
   double output() const noexcept { return y_; }
-  /// The curve angle in use, rad (>= 0).
-  double curve_angle() const noexcept { return theta_; }
-  /// Set the curve angle |theta| (rad) for the next steps; a non-finite theta is ignored.
+  /// The curve angle in use, rad (>= 0): the last set_curve_angle() or the shape's total angle.
+  double curve_angle() const noexcept { return shape_.total_angle; }
+  /// The route shape in use (g, G with this model's friction, and the total angle); a curve
+  /// angle alone is the uniform route's shape.
+  const ShapeIntegrals& shape() const noexcept { return shape_; }
+  /// True while the terms come from a curve angle (uniform curvature), false after set_shape().
+  bool uniform() const noexcept { return uniform_; }
+  /// Set the curve angle |theta| (rad) for the next steps: a uniform route of that angle,
+  /// the closed forms of spec A.7 (bit for bit those of backlash_half_width(), load_offset()
+  /// and slope()); a non-finite theta is ignored.
   void set_curve_angle(double theta) noexcept {
-    if (std::isfinite(theta)) theta_ = std::fabs(theta);
+    if (!std::isfinite(theta)) return;
+    theta = std::fabs(theta);
+    if (uniform_ && theta == shape_.total_angle) return;
+    uniform_ = true;
+    shape_ = uniform_shape(p_.friction, theta);
+    eb_ = backlash_half_width(theta);
+    eL_ = load_offset(theta);
+    c_ = slope(theta);
+    slack_limit_ = uniform::no_slack_limit(p_.pretension, p_.friction * theta);
+  }
+  /// Set the route's shape for the next steps: its integrals g, G computed with this model's
+  /// friction (shape_integrals()) and its total angle. The branches are spec A5/A6 with the
+  /// loads (PullPullStatics::affine(shape), written so that nothing overflows): with
+  /// u = g e^{a}, v = G e^{-a} and a = mu Theta, e_b = (T0 L/EA) (u - v)/(u + v),
+  /// C_L = (L/EA) u v/(u + v) and e_L = F_L C_L, and the no-slack limit 2 T0 e^{-a}/g (the
+  /// uniform shape gives tanh(a/2), tanh(a/2)/a and T0 (a/sinh a)(1 + e^{-a}) of spec A.7).
+  /// A shape with g or G not finite and > 0, or a total angle not finite and >= 0, is ignored;
+  /// a is capped at kMaxFrictionAngle and g, G are held within what a route of that angle can
+  /// have (e^{-a} <= g <= 1 <= G <= e^{a}), so the terms stay finite for any input.
+  /// @param shape the route's shape integrals
+  void set_shape(const ShapeIntegrals& shape) noexcept {
+    if (!(std::isfinite(shape.g) && std::isfinite(shape.G) && shape.g > 0.0 && shape.G > 0.0 &&
+          std::isfinite(shape.total_angle) && shape.total_angle >= 0.0))
+      return;
+    uniform_ = false;
+    shape_ = shape;
+    const double a = std::fmin(p_.friction * shape.total_angle, kMaxFrictionAngle);
+    const double ea = std::exp(a), ema = std::exp(-a);
+    const double u = std::fmin(std::fmax(shape.g, ema), 1.0) * ea;   // in [1, e^a]
+    const double v = std::fmin(std::fmax(shape.G, 1.0), ea) * ema;   // in [e^-a, 1]
+    const double compliance = p_.length / p_.stiffness;
+    const double load_compliance = compliance * u * v / (u + v);
+    eb_ = compliance * p_.pretension * (u - v) / (u + v);
+    eL_ = p_.load * load_compliance;
+    c_ = 1.0 / (1.0 + p_.spring * load_compliance);
+    slack_limit_ = 2.0 * p_.pretension / u;
   }
   /// True once the distal load exceeded the no-slack limit since reset().
   bool slack() const noexcept { return slack_; }
@@ -164,8 +214,10 @@ class CurveAngleModel {
 
  private:
   Params p_;
-  double theta_ = 0.0, x_out_ = 0.0, y_ = 0.0;
-  bool initialised_ = false, slack_ = false, held_ = false, step_slack_ = false;
+  ShapeIntegrals shape_{};  // the route's shape in use (uniform: of the curve angle)
+  double eb_ = 0.0, eL_ = 0.0, c_ = 1.0, slack_limit_ = 0.0;  // the terms of that shape
+  double x_out_ = 0.0, y_ = 0.0;
+  bool uniform_ = false, initialised_ = false, slack_ = false, held_ = false, step_slack_ = false;
 };
 
 /// Batch simulation with a per-sample curve angle (theta may be nullptr: keep the last);

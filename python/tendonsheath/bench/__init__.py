@@ -12,6 +12,7 @@ from .frequency import FrequencyResponse, frequency_response
 from .metrics import loop_width, tracking_metrics
 from .motor_calibration import MotorCalibration, calibrate_servo, motor_calibration_input
 from .run import Result, run
+from .shape_sensing import sensed_route_schedule
 
 __all__ = [
     "Calibration",
@@ -28,5 +29,6 @@ __all__ = [
     "frequency_response",
     "loop_width",
     "run",
+    "sensed_route_schedule",
     "tracking_metrics",
 ]

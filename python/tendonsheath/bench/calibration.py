@@ -34,6 +34,7 @@ from ..physics import route_shape
 from ..route import Route
 from ..sensor import Sensor
 from .motor_calibration import MotorCalibration, calibrate_servo
+from .shape_sensing import ShapeSensing
 
 if TYPE_CHECKING:
     from .._typing import ArrayLike
@@ -50,99 +51,7 @@ NOMINAL = {"pretension": 1.0, "length": 1.0, "proximal_radius": 1.0}
 NOMINAL_FRICTION = 0.1  # held when a single curve angle cannot identify it
 
 
-# -- shape sensing ------------------------------------------------------------------------
-
-
-@dataclass
-class ShapeSensing:
-    """Shape sensing of the route (e.g. an FBG fibre or bending-knob readings): the sensed
-    total curve angle is the true one ``delay`` seconds ago plus Gaussian noise of
-    ``noise_std`` rad, a new reading every 1/``rate_hz`` s. Only the curve angle is sensed:
-    a compensator that takes a route shape gets a uniform-curvature route of that angle.
-
-    Parameters
-    ----------
-    noise_std : float, default 0.05
-        Standard deviation of the sensed angle (rad).
-    delay : float, default 0.1
-        Delay of the readings (s).
-    rate_hz : float, default 10.0
-        Readings per second.
-    seed : int, default 0
-        Seed of the noise.
-    """
-
-    noise_std: float = 0.05
-    delay: float = 0.1
-    rate_hz: float = 10.0
-    seed: int = 0
-
-    def describe(self) -> str:
-        """One line saying how the angle is sensed (for the provenance records).
-
-        Returns
-        -------
-        str
-            Noise, delay and rate.
-        """
-        return (
-            f"sensed curve angle (noise {self.noise_std:g} rad, delay {self.delay:g} s, "
-            f"{self.rate_hz:g} Hz readings)"
-        )
-
-    def readings(
-        self, t: np.ndarray, angle_at: Callable[[float], float], seed_offset: int = 0
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """(sample index of each reading, sensed angle of each reading) over times t.
-
-        Parameters
-        ----------
-        t : array_like of float
-            The run's sample times (s).
-        angle_at : callable
-            Time (s) -> the true curve angle (rad).
-        seed_offset : int, default 0
-            Added to the seed, so that runs get different noise.
-
-        Returns
-        -------
-        index : numpy.ndarray of int
-            The sample index of each reading.
-        sensed : numpy.ndarray of float
-            The sensed angle of each reading (rad, >= 0).
-        """
-        t = np.asarray(t, dtype=float)
-        period = 1.0 / self.rate_hz
-        times = np.arange(t[0], t[-1] + 0.5 * period, period)
-        idx = np.unique(np.searchsorted(t, times, side="left").clip(0, t.size - 1))
-        rng = np.random.default_rng(10_000 + self.seed + seed_offset)
-        sensed = np.array(
-            [angle_at(max(float(t[k]) - self.delay, float(t[0]))) for k in idx], dtype=float
-        )
-        sensed = sensed + rng.normal(0.0, self.noise_std, sensed.size)
-        return idx, np.maximum(sensed, 0.0)
-
-    def static_reading(self, angle: float, duration: float, seed_offset: int = 0) -> float:
-        """The median of the readings over a run on a route held still: the angle a user
-        records for a calibration shape.
-
-        Parameters
-        ----------
-        angle : float
-            The true curve angle (rad).
-        duration : float
-            Length of the run (s).
-        seed_offset : int, default 0
-            Added to the seed.
-
-        Returns
-        -------
-        float
-            The recorded angle (rad).
-        """
-        t = np.arange(0.0, duration, 1.0 / self.rate_hz)
-        _, sensed = self.readings(t, lambda _t: float(angle), seed_offset)
-        return float(np.median(sensed))
+# -- shape sensing (the sensor itself: shape_sensing.py) ------------------------------------
 
 
 def sensed_schedule(shape: ShapeSensing, t, routes: Callable, friction: float, seed_offset=0):

@@ -123,7 +123,11 @@ def identify(
 
     Data: ``identify(cls, t, x, y)`` (``curve_angle=`` a number or per-sample array for models
     that use it) or ``identify(cls, recordings=[(t, x, y), (t, x, y, curve_angle), ...])``; the
-    recordings share the parameters. ``t`` may be None for rate-independent models.
+    recordings share the parameters. ``t`` may be None for rate-independent models. A
+    recording's curve angle may also be a :class:`~tendonsheath.Route` (e.g. the sensed
+    shape, held over that recording): CurveAngleModel and ``depends_on_angle`` models then use
+    its distribution of curvature (the shape integrals g, G, recomputed for every candidate
+    friction), not its curve angle alone.
 
     The cost is the sum of squared simulation errors (the model runs free from its initial
     state; the first ``warmup`` samples of every recording are not counted). A global search
@@ -219,8 +223,8 @@ def identify(
         Output samples.
     recordings : sequence of tuple, optional
         (t, x, y) or (t, x, y, curve_angle) per recording, instead of t, x, y.
-    curve_angle : float or array_like of float, optional
-        The curve angle (rad) of t, x, y, for models that take one.
+    curve_angle : float, array_like of float, or Route, optional
+        The curve angle (rad) of t, x, y, or its route, for models that take one.
     warmup : int, default 0
         Samples at the start of every recording left out of the cost.
     bounds : dict of str to (float, float), optional

@@ -9,24 +9,32 @@ import numpy as np
 
 from .. import _core as core
 from .._arrays import as_vector
-from ..route import check_curve_angle
+from ..route import Route, check_curve_angle
 
 MIN_SAMPLES = 20  # fitted samples per fit (after warm-up), at the very least
 
 
 @dataclass
 class Recording:
-    """One experiment: times (or None), input, measured output, curve angle per sample (or None)."""
+    """One experiment: times (or None), input, measured output, curve angle per sample (or None)
+    and, when the route's shape was sensed, the route (held over the recording; curve_angle is
+    then its total angle)."""
 
     t: np.ndarray | None
     x: np.ndarray
     y: np.ndarray
     curve_angle: np.ndarray | None = None
     skip: int = 0  # leading samples simulated but not counted (on top of the warm-up)
+    route: Route | None = None
 
     @property
     def n(self) -> int:
         return int(self.x.size)
+
+    @property
+    def angle_input(self) -> Route | np.ndarray | None:
+        """What a model that takes the curve angle is given: the route, else the angles."""
+        return self.route if self.route is not None else self.curve_angle
 
     def take(self, index, skip: int = 0) -> Recording:
         """The samples at ``index`` (a slice or an index array), as a recording of their own."""
@@ -36,10 +44,13 @@ class Recording:
             self.y[index],
             None if self.curve_angle is None else self.curve_angle[index],
             skip,
+            self.route,
         )
 
     def angle(self) -> float | None:
         """The recording's curve angle when it is constant, else None."""
+        if self.route is not None:
+            return float(self.route.curve_angle)
         if self.curve_angle is None:
             return None
         first = float(self.curve_angle[0])
@@ -57,7 +68,9 @@ def _vector(values, what: str) -> np.ndarray:
 def _unpack(item, index: int):
     """(t, x, y[, curve_angle]) or an object with t, x, y[, curve_angle] attributes."""
     if hasattr(item, "x") and hasattr(item, "y"):
-        return item.t, item.x, item.y, getattr(item, "curve_angle", None)
+        route = getattr(item, "route", None)  # a Recording's sensed route, when it has one
+        angle = getattr(item, "curve_angle", None) if route is None else route
+        return item.t, item.x, item.y, angle
     if not isinstance(item, tuple | list) or len(item) not in (3, 4):
         raise ValueError(
             f"recording {index} must be (t, x, y) or (t, x, y, curve_angle), "
@@ -114,23 +127,31 @@ def make_recordings(
                     f"{who}time is not strictly increasing at sample {k} "
                     f"(t[{k}] = {ts[k]} after t[{k - 1}] = {ts[k - 1]})"
                 )
-        theta = None
-        if ai is not None:
-            if np.ndim(ai) == 0:
-                theta = np.full(xs.size, float(ai))
-                if not np.isfinite(theta[0]):
-                    raise ValueError(f"{who}curve angle is not finite ({ai})")
-            else:
-                theta = _vector(ai, f"{who}curve angle")
-                if theta.size != xs.size:
-                    raise ValueError(
-                        f"{who}curve angle and x have different lengths "
-                        f"({theta.size} and {xs.size})"
-                    )
-        if theta is not None:
-            check_curve_angle(theta, f"{who}curve angle")
-        out.append(Recording(ts, xs, ys, theta, skips[i]))
+        theta, route = _angles(ai, xs.size, who)
+        out.append(Recording(ts, xs, ys, theta, skips[i], route))
     return out
+
+
+def _angles(value, n: int, who: str) -> tuple[np.ndarray | None, Route | None]:
+    """(curve angle per sample, route) of a recording's 4th item: None, a number, n numbers,
+    or a Route (the sensed shape, held over the recording: its total angle per sample)."""
+    if value is None:
+        return None, None
+    route = value if isinstance(value, Route) else None
+    if route is not None:
+        theta = np.full(n, float(route.curve_angle))
+    elif np.ndim(value) == 0:
+        theta = np.full(n, float(value))
+        if not np.isfinite(theta[0]):
+            raise ValueError(f"{who}curve angle is not finite ({value})")
+    else:
+        theta = _vector(value, f"{who}curve angle")
+        if theta.size != n:
+            raise ValueError(
+                f"{who}curve angle and x have different lengths ({theta.size} and {n})"
+            )
+    check_curve_angle(theta, f"{who}curve angle")
+    return theta, route
 
 
 # squared errors summed over ~1e6 samples stay normal doubles (1e-308 .. 1e308) in this range
@@ -177,10 +198,17 @@ def check_for_fit(
 
 
 def recording_set(recs: list[Recording], warmup: int, with_angle: bool) -> core.RecordingSet:
-    """Pack recordings for the batched C++ evaluation."""
+    """Pack recordings for the batched C++ evaluation (``with_angle``: the curve angles and
+    the routes of the recordings that have one, for a model that takes them)."""
     has_t = all(r.t is not None for r in recs)
     t = np.concatenate([r.t for r in recs]) if has_t else None
     theta = np.concatenate([r.curve_angle for r in recs]) if with_angle else None
+    routes = [r.route if with_angle else None for r in recs]
+    counts = [0 if r is None else int(r.s.size) for r in routes]
+    route_s = route_theta = None
+    if any(counts):
+        route_s = np.concatenate([r.s for r in routes if r is not None])
+        route_theta = np.concatenate([r.theta for r in routes if r is not None])
     return core.RecordingSet(
         t,
         np.concatenate([r.x for r in recs]),
@@ -188,6 +216,9 @@ def recording_set(recs: list[Recording], warmup: int, with_angle: bool) -> core.
         theta,
         [r.n for r in recs],
         [int(warmup) + r.skip for r in recs],
+        route_s=route_s,
+        route_theta=route_theta,
+        route_counts=counts if any(counts) else [],
     )
 
 

@@ -407,7 +407,9 @@ def _inputs(recordings):
     out = []
     for i, r in enumerate(recordings):
         if hasattr(r, "x"):
-            out.append((getattr(r, "t", None), np.asarray(r.x), getattr(r, "curve_angle", None)))
+            route = getattr(r, "route", None)  # a Recording's sensed route, when it has one
+            angle = getattr(r, "curve_angle", None) if route is None else route
+            out.append((getattr(r, "t", None), np.asarray(r.x), angle))
         elif isinstance(r, tuple | list) and 2 <= len(r) <= 4:
             angle = r[3] if len(r) == 4 else None
             out.append((r[0], np.asarray(r[1], dtype=float), angle))

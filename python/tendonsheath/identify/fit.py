@@ -10,6 +10,7 @@ import numpy as np
 
 from .._typing import ArrayLike
 from ..models import HysteresisModel
+from ..route import Route
 from .data import Recording
 from .diagnostics import Diagnostics
 
@@ -244,7 +245,7 @@ class Fit:
         return self.model.params
 
     def predict(
-        self, t: ArrayLike | None, x: ArrayLike, curve_angle: ArrayLike | None = None
+        self, t: ArrayLike | None, x: ArrayLike, curve_angle: ArrayLike | Route | None = None
     ) -> np.ndarray:
         """The fitted model's output for a new input.
 
@@ -254,8 +255,8 @@ class Fit:
             Sample times (s); None for a rate-independent model.
         x : array_like of float, shape (n,)
             Input samples.
-        curve_angle : float or array_like of float, optional
-            The curve angle (rad), for models that take one.
+        curve_angle : float, array_like of float, or Route, optional
+            The curve angle (rad) or the route, for models that take one.
 
         Returns
         -------
@@ -269,7 +270,7 @@ class Fit:
         t: ArrayLike | None,
         x: ArrayLike,
         y: ArrayLike,
-        curve_angle: ArrayLike | None = None,
+        curve_angle: ArrayLike | Route | None = None,
         warmup: int | None = None,
     ) -> dict[str, float]:
         """Metrics of the fitted model on another recording (after the same warm-up).
@@ -282,8 +283,8 @@ class Fit:
             Input samples.
         y : array_like of float, shape (n,)
             Measured outputs.
-        curve_angle : float or array_like of float, optional
-            The curve angle (rad), for models that take one.
+        curve_angle : float, array_like of float, or Route, optional
+            The curve angle (rad) or the route, for models that take one.
         warmup : int, optional
             Samples left out at the start (default the fit's).
 

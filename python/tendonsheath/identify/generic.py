@@ -357,7 +357,7 @@ def _diagnose(
 ) -> Fit:
     from .uncertainty import assess
 
-    predictions = [simulate_model(model, r.t, r.x, r.curve_angle) for r in recs]
+    predictions = [simulate_model(model, r.t, r.x, r.angle_input) for r in recs]
     quality = fit_quality(recs, predictions, s.warmup)
     assessed = assess(
         cls=s.cls,
@@ -414,7 +414,7 @@ def laws_from_points(problem: DirectProblem, points: list[dict]) -> np.ndarray:
         hi = problem.space.natural(problem.space.upper)[-1]
         best = np.inf
         for m in np.geomspace(max(lo, 1e-3), hi, 60):
-            A = np.column_stack([np.ones_like(theta), np.tanh(0.5 * m * np.abs(theta))])
+            A = np.column_stack([np.ones_like(theta), problem.tanh_basis(m)[0]])
             err = 0.0
             for p in tanh_params:
                 v = values[p]
@@ -432,7 +432,7 @@ def laws_from_points(problem: DirectProblem, points: list[dict]) -> np.ndarray:
             basis = theta
         else:
             assert mu is not None  # searched above for the tanh laws
-            basis = np.tanh(0.5 * mu * np.abs(theta))
+            basis = problem.tanh_basis(mu)[0]
         A = np.column_stack([np.ones_like(theta), basis])
         c[i : i + 2] = np.linalg.lstsq(A, v, rcond=None)[0]
     if problem.tanh:

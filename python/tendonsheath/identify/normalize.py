@@ -90,7 +90,12 @@ class IOMap:
     def recordings(self, recs: list[Recording]) -> list[Recording]:
         return [
             Recording(
-                r.t, (r.x - self.x_c) / self.x_s, (r.y - self.y_c) / self.g, r.curve_angle, r.skip
+                r.t,
+                (r.x - self.x_c) / self.x_s,
+                (r.y - self.y_c) / self.g,
+                r.curve_angle,
+                r.skip,
+                r.route,
             )
             for r in recs
         ]
@@ -283,7 +288,7 @@ def identify_normalized(fit_normalised, model_class, recs: list[Recording]) -> F
     y_fit = np.concatenate([r.y[warm + r.skip :] for r in recs])  # the samples counted
 
     def score(model):
-        preds = [simulate_model(model, r.t, r.x, r.curve_angle) for r in recs]
+        preds = [simulate_model(model, r.t, r.x, r.angle_input) for r in recs]
         yh = np.concatenate([p[warm + r.skip :] for r, p in zip(recs, preds, strict=True)])
         return float(np.sqrt(np.mean((y_fit - yh) ** 2))), (preds)
 

@@ -13,7 +13,7 @@ from scipy.optimize import lsq_linear, nnls
 
 from .. import _core as core
 from ..models import CurveAngleModel, HysteresisModel
-from ..models.angle_dependent import AngleDependent, law_value
+from ..models.angle_dependent import AngleDependent, angle_factor, law_value
 from .data import Recording, fitted_mask, recording_set
 
 
@@ -146,6 +146,18 @@ class DirectProblem:
             self.angles = angles
         return self.angles
 
+    def tanh_basis(self, mu: np.ndarray) -> np.ndarray:
+        """(len(mu), R) basis of the "tanh" laws: tanh(mu |Theta_r|/2) of recording r's curve
+        angle, or the dead-zone factor F(g, G, mu Theta) of its route (g, G recomputed for
+        every candidate friction)."""
+        mu = np.atleast_1d(np.asarray(mu, dtype=float))
+        theta = np.asarray(self._angles())
+        out = np.tanh(0.5 * mu[:, None] * np.abs(theta)[None, :])
+        for j, r in enumerate(self.recs):
+            if r.route is not None:
+                out[:, j] = angle_factor(r.route, mu)
+        return out
+
     # -- coefficients -> per-recording parameter rows ------------------------------------
     def rows(self, C: np.ndarray) -> np.ndarray:
         C = np.atleast_2d(C)
@@ -155,6 +167,7 @@ class DirectProblem:
             if name in self.values and name not in self.free:
                 full[:, :, j] = self.values[name]
         mu = C[:, -1] if self.tanh else None
+        basis = None  # the tanh laws' basis, computed once for all of them
         for p, law, i in self.layout:
             j = self.names.index(p)
             if law == "constant":
@@ -165,9 +178,9 @@ class DirectProblem:
                     full[:, :, j] = C[:, i : i + 1] + C[:, i + 1 : i + 2] * theta
                 else:
                     assert mu is not None  # a tanh law: mu is the last coefficient
-                    full[:, :, j] = C[:, i : i + 1] + C[:, i + 1 : i + 2] * np.tanh(
-                        0.5 * mu[:, None] * np.abs(theta)
-                    )
+                    if basis is None:
+                        basis = self.tanh_basis(mu)
+                    full[:, :, j] = C[:, i : i + 1] + C[:, i + 1 : i + 2] * basis
         return np.ascontiguousarray(full.reshape(P, R * len(self.names)))
 
     def cost(self, C: np.ndarray) -> np.ndarray:

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from ..models import CurveAngleModel, GeneralizedPrandtlIshlinskii, PrandtlIshlinskii
+from ..route import Route
 from .chain import ChainProblem
 from .data import fitted_mask, recording_set
 from .diagnostics import (
@@ -61,17 +62,29 @@ def check_method(standard_errors: str, count: int | None) -> tuple[str, int]:
 
 @dataclass
 class SingleAngle:
-    """The recordings cover one curve angle: friction is held, the groups are reported."""
+    """The recordings cover one curve angle (or one sensed route): friction is held, the groups
+    are reported."""
 
     angle: float
     friction_held: bool
     friction: float
+    route: Route | None = None
+
+    @property
+    def shape(self) -> float | Route:
+        """What the groups are evaluated at: the route, else the curve angle."""
+        return self.angle if self.route is None else self.route
 
 
-def single_angle(cls, recs) -> float | None:
-    """The common curve angle of all recordings if they cover only one, else None."""
+def single_angle(cls, recs) -> float | Route | None:
+    """The common curve angle of all recordings if they cover only one (their common route
+    when they all have the same sensed route), else None."""
     if cls is not CurveAngleModel or any(r.curve_angle is None for r in recs):
         return None
+    routes = [r.route for r in recs]
+    if any(route is not None for route in routes):
+        first = routes[0]
+        return first if all(route == first for route in routes) else None
     theta = np.concatenate([r.curve_angle for r in recs])
     if np.ptp(theta) > 1e-12 * max(1.0, float(np.max(np.abs(theta)))):
         return None
@@ -83,12 +96,14 @@ def setup_single_angle(cls, recs, held, values, user_fixed, user_bounds, all_bou
     curve angle, and widen the load's bounds so that the groups cover what the default
     friction range would reach (e_L/e_b = F_L/(T0 mu Theta)). Edits ``held``, ``values``,
     ``all_bounds`` and ``free_names`` in place; returns a :class:`SingleAngle` or None."""
-    theta = single_angle(cls, recs)
-    if theta is None:
+    shape = single_angle(cls, recs)
+    if shape is None:
         return None
+    route = shape if isinstance(shape, Route) else None
+    theta = float(shape.curve_angle) if isinstance(shape, Route) else float(shape)
     user_fixed = set(user_fixed or {})
     if "friction" in user_fixed:
-        return SingleAngle(theta, False, float(held["friction"]))
+        return SingleAngle(theta, False, float(held["friction"]), route)
     mu0 = float(values["friction"])
     held["friction"] = mu0
     values["friction"] = mu0
@@ -99,12 +114,12 @@ def setup_single_angle(cls, recs, held, values, user_fixed, user_bounds, all_bou
         lo, hi = all_bounds["load_force"]
         f = max(1.0, mu0 / mu_lo)
         all_bounds["load_force"] = (f * lo, f * hi)
-    return SingleAngle(theta, True, mu0)
+    return SingleAngle(theta, True, mu0, route)
 
 
-def curve_angle_groups(model, theta: float) -> dict[str, float]:
-    """The identifiable groups of a CurveAngleModel at one curve angle (spec B): the dead-zone
-    half-width e_b/r_p and the load offset e_L/r_p (rad at the motor), and the gain
+def curve_angle_groups(model, theta: float | Route) -> dict[str, float]:
+    """The identifiable groups of a CurveAngleModel at one curve angle or route (spec B): the
+    dead-zone half-width e_b/r_p and the load offset e_L/r_p (rad at the motor), and the gain
     c r_p/r_d of the branches (distal rad per motor rad)."""
     p = model.params
     return {
@@ -166,7 +181,7 @@ def _generic_layout(model, recs, warmup, names, scales=(), canon=None) -> Layout
     canon = canon or (lambda m: m)
 
     def simulate(m):
-        return np.concatenate([simulate_model(m, r.t, r.x, r.curve_angle)[warmup:] for r in recs])
+        return np.concatenate([simulate_model(m, r.t, r.x, r.angle_input)[warmup:] for r in recs])
 
     return Layout(
         [e.label for e in entries],
@@ -351,7 +366,7 @@ def _single_angle_groups(angle: SingleAngle | None, free_names, notes: list[str]
             + (", gain" if _gain_free(free_names) else "")
             + "); the stiffness and load values are only meaningful with that friction"
         )
-    return lambda m: curve_angle_groups(m, angle.angle)
+    return lambda m: curve_angle_groups(m, angle.shape)
 
 
 @dataclass
@@ -572,6 +587,6 @@ def _with_recordings(problem, recs, warmup: int):
 
 def _residuals(model, recs, warmup):
     """Fitted predictions, residuals and per-recording fitted lengths."""
-    y_hat = np.concatenate([simulate_model(model, r.t, r.x, r.curve_angle)[warmup:] for r in recs])
+    y_hat = np.concatenate([simulate_model(model, r.t, r.x, r.angle_input)[warmup:] for r in recs])
     y = np.concatenate([r.y[warmup:] for r in recs])
     return y_hat, y - y_hat, [r.n - warmup for r in recs]

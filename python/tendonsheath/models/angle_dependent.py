@@ -10,6 +10,8 @@ import numpy as np
 from .._args import number
 from .._arrays import checked_dt
 from .._typing import ArrayLike, FloatArray
+from ..physics import route_dead_zone_factor
+from ..route import Route
 from ..status import Status
 from .base import _REGISTRY, HysteresisModel
 from .curve_angle import curve_angle_samples
@@ -20,17 +22,64 @@ if TYPE_CHECKING:
 LAWS = ("constant", "linear", "tanh")
 
 
+def angle_factor(curve_angle: ArrayLike | Route, mu: ArrayLike) -> float | FloatArray:
+    """The "tanh" law's basis: tanh(mu |Theta|/2) of a curve angle, or the dead-zone factor
+    F(g, G, mu Theta) of a route (g, G at friction mu; :func:`~tendonsheath.physics.
+    dead_zone_factor`), which is tanh(mu Theta/2) for a uniform route.
+
+    Parameters
+    ----------
+    curve_angle : float, array_like of float, or Route
+        The curve angle(s) Theta (rad), or a route.
+    mu : float or array_like of float
+        The friction coefficient(s) (broadcast with the angles; for a route, one F per mu).
+
+    Returns
+    -------
+    float or numpy.ndarray of float
+        The factor(s), in [0, 1).
+    """
+    if isinstance(curve_angle, Route):
+        return route_dead_zone_factor(curve_angle, mu)
+    theta = np.abs(np.asarray(curve_angle, dtype=float))
+    return np.tanh(0.5 * np.asarray(mu, dtype=float) * theta)
+
+
+def total_angle(curve_angle: ArrayLike | Route) -> float | FloatArray:
+    """The curve angle Theta of a number, an array or a route (rad).
+
+    Parameters
+    ----------
+    curve_angle : float, array_like of float, or Route
+        The curve angle(s), or a route.
+
+    Returns
+    -------
+    float or numpy.ndarray of float
+        Theta: the route's total angle, else the values as floats.
+    """
+    if isinstance(curve_angle, Route):
+        return float(curve_angle.curve_angle)
+    return np.asarray(curve_angle, dtype=float)
+
+
 def law_value(law: str, coefficients, theta, angle_friction: float | None):
-    """p(Theta) for one law: constant p0; linear p0 + p1 Theta; tanh p0 + p1 tanh(mu Theta/2)."""
+    """p(Theta) for one law: constant p0; linear p0 + p1 Theta; tanh p0 + p1 tanh(mu Theta/2),
+    or p0 + p1 F(g, G, mu Theta) when ``theta`` is a Route (see :func:`angle_factor`)."""
     c = coefficients
     if law == "constant":
-        return c[0] + 0.0 * np.asarray(theta, dtype=float)
+        return c[0] + 0.0 * total_angle(theta)
     if law == "linear":
-        return c[0] + c[1] * np.asarray(theta, dtype=float)
+        return c[0] + c[1] * total_angle(theta)
     if law == "tanh":
         assert angle_friction is not None  # AngleDependent requires it with a tanh law
-        return c[0] + c[1] * np.tanh(0.5 * angle_friction * np.abs(np.asarray(theta, dtype=float)))
+        return c[0] + c[1] * angle_factor(theta, angle_friction)
     raise ValueError(f"unknown angle law {law!r}; expected one of {LAWS}")
+
+
+def _stream_key(curve_angle: float | Route) -> float | Route:
+    """What a streaming AngleDependent compares to notice a change: the route or the angle."""
+    return curve_angle if isinstance(curve_angle, Route) else float(curve_angle)
 
 
 class AngleDependent(HysteresisModel):
@@ -44,10 +93,16 @@ class AngleDependent(HysteresisModel):
       half-width of spec B (e_b = T0 L/EA tanh(mu Theta/2)); all tanh laws share one
       ``angle_friction`` (the physical friction coefficient mu).
 
+    Wherever it takes a curve angle it also takes a :class:`~tendonsheath.Route` (e.g. a
+    sensed shape): "tanh" is then p0 + p1 F(g, G, mu Theta), the pull-pull dead-zone factor of
+    the route's distribution of curvature (:func:`~tendonsheath.physics.dead_zone_factor`,
+    g and G at mu = ``angle_friction``; tanh(mu Theta/2) again for a uniform route), and
+    "linear" takes the route's curve angle.
+
     ``coefficients`` maps every base parameter to its list of coefficients ([p0] or [p0, p1]).
-    ``simulate(t, x, curve_angle=...)`` takes one curve angle per call (a number, or an array
-    that is constant); :meth:`at` gives the plain base model at an angle. Streaming ``step``
-    works at one angle until ``reset()``.
+    ``simulate(t, x, curve_angle=...)`` takes one curve angle per call (a number, an array
+    that is constant, or a route); :meth:`at` gives the plain base model at an angle. Streaming
+    ``step`` works at one angle until ``reset()``.
 
     Parameters
     ----------
@@ -130,7 +185,7 @@ class AngleDependent(HysteresisModel):
         self._mu = angle_friction
         self._base_options = dict(base_options or {})
         self._stream: HysteresisModel | None = None
-        self._stream_angle: float | None = None
+        self._stream_angle: float | Route | None = None
         self.at(0.0 if angle_friction is None else np.pi)  # validates the base parameters
 
     # -- parameters ------------------------------------------------------------------
@@ -154,32 +209,32 @@ class AngleDependent(HysteresisModel):
         """``{"base_options": ...}``, the base model's options (a copy)."""
         return {"base_options": dict(self._base_options)}
 
-    def params_at(self, curve_angle: float) -> dict[str, float]:
-        """The base model's parameters at one curve angle.
+    def params_at(self, curve_angle: float | Route) -> dict[str, float]:
+        """The base model's parameters at one curve angle or route.
 
         Parameters
         ----------
-        curve_angle : float
-            The route's curve angle Theta (rad).
+        curve_angle : float or Route
+            The route's curve angle Theta (rad), or the route itself (its shape).
 
         Returns
         -------
         dict of str to float
             Each base parameter's value by its law.
         """
-        theta = float(curve_angle)
+        theta = curve_angle if isinstance(curve_angle, Route) else float(curve_angle)
         return {
             k: float(law_value(self._laws[k], self._coefs[k], theta, self._mu))
             for k in self._base_cls.param_names
         }
 
-    def at(self, curve_angle: float) -> HysteresisModel:
-        """The base model at one curve angle.
+    def at(self, curve_angle: float | Route) -> HysteresisModel:
+        """The base model at one curve angle or route.
 
         Parameters
         ----------
-        curve_angle : float
-            The route's curve angle Theta (rad).
+        curve_angle : float or Route
+            The route's curve angle Theta (rad), or the route itself (its shape).
 
         Returns
         -------
@@ -209,8 +264,9 @@ class AngleDependent(HysteresisModel):
             Sample times (s); None when the base model is rate-independent.
         x : array_like of float, shape (n,)
             Input samples.
-        curve_angle : float or array_like of float
-            The curve angle Theta (rad): a number, or an array of n equal values.
+        curve_angle : float, array_like of float, or Route
+            The curve angle Theta (rad): a number, or an array of n equal values; or the route
+            (its shape).
         status : bool, default False
             Also return each sample's :class:`~tendonsheath.Status`.
 
@@ -224,6 +280,8 @@ class AngleDependent(HysteresisModel):
         ValueError
             No curve angle, or one that varies during the run.
         """
+        if isinstance(curve_angle, Route):
+            return self.at(curve_angle).simulate(t, x, **({"status": True} if status else {}))
         theta = curve_angle_samples(curve_angle, np.size(x), "AngleDependent")
         if np.any(theta != theta[0]):
             raise ValueError(
@@ -237,8 +295,8 @@ class AngleDependent(HysteresisModel):
         self._stream = None
         self._stream_angle = None
 
-    def step(self, x: float, dt: float = 0.0, curve_angle: float | None = None) -> float:
-        """Advance one sample (streaming) at the curve angle fixed by the first step.
+    def step(self, x: float, dt: float = 0.0, curve_angle: float | Route | None = None) -> float:
+        """Advance one sample (streaming) at the curve angle (or route) fixed by the first step.
 
         Parameters
         ----------
@@ -246,9 +304,9 @@ class AngleDependent(HysteresisModel):
             The input sample.
         dt : float, default 0.0
             Time since the previous sample (s).
-        curve_angle : float, optional
-            The curve angle (rad): required on the first step after a reset, and unchanged
-            after it.
+        curve_angle : float or Route, optional
+            The curve angle (rad) or the route: required on the first step after a reset,
+            and unchanged after it.
 
         Returns
         -------
@@ -265,8 +323,8 @@ class AngleDependent(HysteresisModel):
             if curve_angle is None:
                 raise ValueError("AngleDependent: the first step() needs curve_angle")
             self._stream = self.at(curve_angle)
-            self._stream_angle = float(curve_angle)
-        elif curve_angle is not None and float(curve_angle) != self._stream_angle:
+            self._stream_angle = _stream_key(curve_angle)
+        elif curve_angle is not None and _stream_key(curve_angle) != self._stream_angle:
             raise ValueError(
                 "AngleDependent: the curve angle changed while streaming; reset() first"
             )
@@ -278,7 +336,7 @@ class AngleDependent(HysteresisModel):
         name: str | None = None,
         inputs: Sequence[str] | None = None,
         output: str | None = None,
-        curve_angle: float | None = None,
+        curve_angle: float | Route | None = None,
     ) -> control.NonlinearIOSystem:
         """The base model at one ``curve_angle`` (rad) as a python-control system (a run at one
         curve angle, as :meth:`simulate`); see :meth:`HysteresisModel.to_control`.
@@ -293,8 +351,8 @@ class AngleDependent(HysteresisModel):
             Input signal names.
         output : str, optional
             Output signal name.
-        curve_angle : float
-            The curve angle (rad); required.
+        curve_angle : float or Route
+            The curve angle (rad) or the route; required.
 
         Returns
         -------

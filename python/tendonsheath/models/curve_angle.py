@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import copy
+
 import numpy as np
 
 from .. import _core as core
@@ -9,6 +11,7 @@ from .. import physics
 from .._args import accepts_old_names
 from .._arrays import as_signal, as_time_and_signal, checked_dt
 from .._typing import ArrayLike, FloatArray, FloatOrArray
+from ..route import Route
 from .base import HysteresisModel
 
 # Parameters renamed (old name -> new name, docs/vocabulary.md); the old names still work for one
@@ -31,6 +34,14 @@ class CurveAngleModel(HysteresisModel):
 
     A change of Theta at rest obeys spec B's memory effect: raising it does not move the
     output, lowering it moves the held output onto the new, narrower branch.
+
+    Wherever it takes a curve angle it also takes a :class:`~tendonsheath.Route` (e.g. a
+    sensed shape, :class:`~tendonsheath.bench.shape_sensing.ShapeSensing`): the terms are then
+    those of spec A5/A6 for that route's distribution of curvature, with the shape integrals
+    g, G computed at the model's own friction (:meth:`route_shape`): tanh(a/2) becomes the
+    dead-zone factor :func:`~tendonsheath.physics.dead_zone_factor` F(g, G, a) and
+    tanh(a/2)/a becomes g G e^{-a}/(g + G e^{-2a}). Only the route's shape counts (g, G are
+    normalised by its length); the model's ``length`` sets T0 L/EA as before.
 
     Parameters
     ----------
@@ -118,8 +129,9 @@ class CurveAngleModel(HysteresisModel):
             Sample times (s); may be None (rate-independent).
         x : array_like of float, shape (n,)
             Motor angles (rad).
-        curve_angle : float or array_like of float, shape (n,)
-            The curve angle Theta (rad), one value or one per sample; required.
+        curve_angle : float, array_like of float, shape (n,), or Route
+            The curve angle Theta (rad), one value or one per sample, or the route (its shape,
+            held over the run); required.
         status : bool, default False
             Also return each sample's Status flags.
 
@@ -134,10 +146,14 @@ class CurveAngleModel(HysteresisModel):
             No curve angle, a non-finite one, or one of another length than x.
         """
         ts, xs = as_time_and_signal(t, x)
+        if isinstance(curve_angle, Route):
+            engine = copy.copy(self._engine)
+            engine.set_shape(self.route_shape(curve_angle))
+            return engine.simulate(ts, xs, None, bool(status))
         theta = curve_angle_samples(curve_angle, xs.size, type(self).__name__)
         return self._engine.simulate(ts, xs, theta, bool(status))
 
-    def step(self, x: float, dt: float = 0.0, curve_angle: float | None = None) -> float:
+    def step(self, x: float, dt: float = 0.0, curve_angle: float | Route | None = None) -> float:
         """One sample; ``curve_angle`` may be omitted after the first call (the last is kept).
 
         Parameters
@@ -146,8 +162,8 @@ class CurveAngleModel(HysteresisModel):
             Motor angle (rad).
         dt : float, default 0.0
             Time since the previous sample (s).
-        curve_angle : float, optional
-            The curve angle (rad); the last one when left out.
+        curve_angle : float or Route, optional
+            The curve angle (rad) or the route (its shape); the last one when left out.
 
         Returns
         -------
@@ -155,9 +171,37 @@ class CurveAngleModel(HysteresisModel):
             Distal angle (rad).
         """
         dt = checked_dt(dt)
+        if isinstance(curve_angle, Route):
+            self._engine.set_shape(self.route_shape(curve_angle))
+            curve_angle = None
         if curve_angle is None:
             return self._engine.step(float(x), float(dt))
         return self._engine.step(float(x), float(dt), float(curve_angle))
+
+    def route_shape(self, route: Route) -> core.ShapeIntegrals:
+        """The route's shape integrals g, G at this model's friction, and its curve angle
+        (:func:`tendonsheath.physics.route_shape`): what the C++ model's ``set_shape`` takes.
+
+        Parameters
+        ----------
+        route : Route
+            The sheath's route.
+
+        Returns
+        -------
+        ShapeIntegrals
+            ``g``, ``G`` and ``total_angle``.
+        """
+        return physics.route_shape(route, self.params["friction"])
+
+    def _route_factors(self, route: Route) -> tuple[float, float]:
+        """(dead-zone factor F, load factor K) of a route, spec A5/A6: F(g, G, a) and
+        g G e^{-a}/(g + G e^{-2a}) (tanh(a/2) and tanh(a/2)/a for uniform curvature)."""
+        sh = self.route_shape(route)
+        a = self.params["friction"] * sh.total_angle
+        ema = np.exp(-a)
+        load = sh.g * sh.G * ema / (sh.g + sh.G * ema * ema)
+        return float(physics.dead_zone_factor(sh.g, sh.G, a)), float(load)
 
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], dt, curve_angle=u[1])
@@ -165,13 +209,13 @@ class CurveAngleModel(HysteresisModel):
     # closed-form terms, in the rotary units of the model (rad at the motor / at the joint), from
     # tendonsheath.physics (the C++ closed forms that step() uses); curve_angle: a number or an
     # array, and |curve_angle| counts, as in step()
-    def backlash_half_width(self, curve_angle: ArrayLike) -> FloatOrArray:
+    def backlash_half_width(self, curve_angle: ArrayLike | Route) -> FloatOrArray:
         """Half the dead-zone width at the motor, rad: e_b / r_p.
 
         Parameters
         ----------
-        curve_angle : float or array_like
-            The curve angle Theta (rad); its magnitude counts, as in step().
+        curve_angle : float, array_like or Route
+            The curve angle Theta (rad; its magnitude counts, as in step()), or a route.
 
         Returns
         -------
@@ -179,18 +223,21 @@ class CurveAngleModel(HysteresisModel):
             e_b / r_p (rad).
         """
         p = self.params
+        if isinstance(curve_angle, Route):
+            factor = self._route_factors(curve_angle)[0]
+            return p["pretension"] * p["length"] / p["stiffness"] * factor / p["proximal_radius"]
         e_b = physics.backlash_half_width(
             p["length"], p["stiffness"], p["pretension"], p["friction"], np.abs(curve_angle)
         )
         return e_b / p["proximal_radius"]
 
-    def load_offset(self, curve_angle: ArrayLike) -> FloatOrArray:
+    def load_offset(self, curve_angle: ArrayLike | Route) -> FloatOrArray:
         """Load offset at the motor, rad: e_L / r_p.
 
         Parameters
         ----------
-        curve_angle : float or array_like
-            The curve angle Theta (rad); its magnitude counts, as in step().
+        curve_angle : float, array_like or Route
+            The curve angle Theta (rad; its magnitude counts, as in step()), or a route.
 
         Returns
         -------
@@ -198,25 +245,32 @@ class CurveAngleModel(HysteresisModel):
             e_L / r_p (rad).
         """
         p = self.params
+        if isinstance(curve_angle, Route):
+            factor = self._route_factors(curve_angle)[1]
+            return p["load_force"] * p["length"] / p["stiffness"] * factor / p["proximal_radius"]
         e_L = physics.load_offset(
             p["length"], p["stiffness"], p["load_force"], p["friction"], np.abs(curve_angle)
         )
         return e_L / p["proximal_radius"]
 
-    def slope(self, curve_angle: ArrayLike) -> FloatOrArray:
+    def slope(self, curve_angle: ArrayLike | Route) -> FloatOrArray:
         """Branch slope c of the linear displacements (dimensionless).
 
         Parameters
         ----------
-        curve_angle : float or array_like
-            The curve angle Theta (rad); its magnitude counts, as in step().
+        curve_angle : float, array_like or Route
+            The curve angle Theta (rad; its magnitude counts, as in step()), or a route.
 
         Returns
         -------
         float or numpy.ndarray
-            c = 1/(1 + k_e L tanh(a/2)/(EA a)), a = mu Theta.
+            c = 1/(1 + k_e L tanh(a/2)/(EA a)), a = mu Theta (a route: g G e^{-a}/(g + G
+            e^{-2a}) in place of tanh(a/2)/a).
         """
         p = self.params
+        if isinstance(curve_angle, Route):
+            factor = self._route_factors(curve_angle)[1]
+            return 1.0 / (1.0 + p["load_stiffness"] * p["length"] / p["stiffness"] * factor)
         return physics.spring_slope(
             p["length"], p["stiffness"], p["friction"], np.abs(curve_angle), p["load_stiffness"]
         )
