@@ -54,7 +54,14 @@ COMPENSATORS = {
         (-2.5, 2.0),
     ),
     "curve_angle": lambda: CurveAngleFeedforward(
-        0.12, 5000.0, 1.0, 15.0, load_force=1.0, curve_angle=2.5, max_correction_rate=0.5
+        0.12,
+        5000.0,
+        1.0,
+        15.0,
+        load_force=1.0,
+        curve_angle=2.5,
+        play=0.02,
+        max_correction_rate=0.5,
     ),
     "continuum": lambda: ContinuumFeedforward(mode="published", limits=(-4.0, 4.0, 30.0)),
 }

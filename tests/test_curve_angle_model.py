@@ -178,3 +178,66 @@ def test_self_class_recovery_angle_dependent_parameters_unseen_angles():
     back = ts.load_model(fit.model.to_json())
     assert back == fit.model
     assert np.array_equal(back.simulate(t, x, curve_angle=3.0), fit.model.simulate(t, x, 3.0))
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_the_play_widens_the_dead_zone_by_itself_at_every_angle(seed):
+    """A motor-side play p in series with the tendons: the input's dead-zone travel is
+    2 e_b + r_p p at any curve angle (p alone on a straight sheath)."""
+    rng = np.random.default_rng(100 + seed)
+    p = _random_params(rng)
+    play = rng.uniform(0.002, 0.05)
+    theta = rng.choice([0.0, rng.uniform(0.5, 4 * np.pi)])
+    model = CurveAngleModel(**p, play=play)
+    r_p = p["proximal_radius"]
+    e_b = backlash_half_width(p["length"], p["stiffness"], p["pretension"], p["friction"], theta)
+    amp = 6 * e_b / r_p + 3 * play + 0.1
+    q = np.r_[np.linspace(0, amp, 4000), np.linspace(amp, -amp, 8000)]
+    y = model.simulate(None, q, curve_angle=theta)
+    held = np.flatnonzero(np.abs(y[4000:] - y[3999]) < 1e-15)
+    travel = r_p * (q[3999] - q[4000 + held[-1]])
+    step = r_p * abs(q[1] - q[0])
+    assert travel == pytest.approx(2 * e_b + r_p * play, abs=2 * step)
+
+
+def test_the_curve_angle_feedforward_inverts_the_play():
+    """CurveAngleFeedforward.from_model of a model with play makes that model track the
+    reference (the inverse's defining property), where ignoring the play leaves an error of
+    half the play at each reversal."""
+    model = CurveAngleModel(friction=0.1, stiffness=5e3, pretension=20.0, length=1.2,
+                            proximal_radius=1e-2, distal_radius=1e-2, play=0.04)  # fmt: skip
+    t = np.arange(0.0, 10.0, 1e-3)
+    y_d = 0.6 * np.sin(2 * np.pi * 0.2 * t)
+    errors = {}
+    for told in (0.0, 0.04):
+        ff = ts.compensate.CurveAngleFeedforward.from_model(
+            model.with_params(play=told), curve_angle=2.0, smoothing=1e-3
+        )
+        y = model.simulate(t, ff.command(t, y_d), curve_angle=2.0)
+        errors[told] = float(np.max(np.abs(y - y_d)[t > 5.0]))
+    assert errors[0.04] < 1e-3  # the smoothing's rounding at reversals only
+    assert errors[0.0] > 0.5 * 0.04 * 0.5  # without the play: about half the play, r_p = r_d
+
+
+def test_identify_recovers_the_play_from_three_angles():
+    """Self-class: curve angles that differ tell the constant play from the tendons' dead zone."""
+    truth = CurveAngleModel(friction=0.12, stiffness=2.0e3, load_force=1.0, play=0.03)
+    t = np.arange(0.0, 8.0, 5e-3)
+    x = 0.6 * np.sin(2 * np.pi * 0.3 * t) + 0.2 * np.sin(2 * np.pi * 0.71 * t)
+    rng = np.random.default_rng(3)
+    recs = [
+        (t, x, truth.simulate(t, x, curve_angle=th) + 0.002 * rng.standard_normal(t.size), th)
+        for th in (0.5 * np.pi, np.pi, 2 * np.pi)
+    ]
+    fit = ts.identify(CurveAngleModel, recordings=recs, free=["play"], progress=False)
+    assert fit.model.params["play"] == pytest.approx(0.03, abs=0.003)
+    assert fit.model.params["friction"] == pytest.approx(0.12, rel=0.05)
+
+
+def test_files_saved_before_the_play_still_load():
+    data = CurveAngleModel(friction=0.12).to_dict()
+    del data["params"]["play"]
+    assert ts.load_model(data) == CurveAngleModel(friction=0.12)
+    ff = ts.compensate.CurveAngleFeedforward(0.1, 5e3, 1.0, 10.0).to_dict()
+    del ff["play"]
+    assert ts.compensate.load(ff).params["play"] == 0.0

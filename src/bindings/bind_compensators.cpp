@@ -109,6 +109,7 @@ void bind_curve_angle_feedforward(nb::module_& m) {
       .def_rw("proximal_radius", &P::proximal_radius)
       .def_rw("distal_radius", &P::distal_radius)
       .def_rw("total_angle", &P::total_angle)
+      .def_rw("play", &P::play)
       .def_rw("v_eps", &P::v_eps)
       .def_rw("max_correction_rate", &P::max_correction_rate)
       .def_rw("limits", &P::limits);

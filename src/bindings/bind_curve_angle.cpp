@@ -22,7 +22,8 @@ void bind_curve_angle(nb::module_& m) {
       .def_rw("load", &P::load)
       .def_rw("spring", &P::spring)
       .def_rw("proximal_radius", &P::proximal_radius)
-      .def_rw("distal_radius", &P::distal_radius);
+      .def_rw("distal_radius", &P::distal_radius)
+      .def_rw("play", &P::play);
 
   using M = ts::CurveAngleModel;
   bind_copy(nb::class_<M>(m, "CurveAngleModel"))

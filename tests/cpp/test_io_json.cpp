@@ -114,6 +114,18 @@ TEST(IoJson, CurveAngleFileFillsEveryField) {
     ASSERT_EQ(loaded.step(std::sin(0.01 * k), 1e-3), direct.step(std::sin(0.01 * k), 1e-3));
 }
 
+// The play (added later) is read when the file has it, and 0 in a file written before it.
+TEST(IoJson, CurveAnglePlayIsOptional) {
+  EXPECT_EQ(ts::io::curve_angle_feedforward_params(curve_angle_file(), "f").play, 0.0);
+  json file = curve_angle_file();
+  file["play"] = 0.02;
+  EXPECT_EQ(ts::io::curve_angle_feedforward_params(file, "f").play, 0.02);
+  file["play"] = "wide";
+  EXPECT_NE(error_of(file).find("play"), std::string::npos);
+  file["play"] = -0.1;
+  EXPECT_NE(error_of(file).find("play"), std::string::npos);
+}
+
 // Files written before docs/vocabulary.md renamed the settings load to the same numbers.
 TEST(IoJson, FilesWithTheOldSettingNamesStillLoad) {
   json old = curve_angle_file();

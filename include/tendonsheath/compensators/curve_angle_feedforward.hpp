@@ -3,7 +3,9 @@
 // with no distal sensor.
 //
 //   x_in = r_d y_d + phi Delta_fwd(shape, F_L) + (1 - phi) Delta_bwd(shape, F_L)
+//          + (2 phi - 1) r_p p / 2
 //   q_in = x_in / r_p,   phi = (1 + tanh(y_d' / v_eps)) / 2,   F_L = F_0 + k_e r_d y_d
+// (p: a motor-side play, e.g. the gearhead's backlash, crossed on each reversal)
 //
 // Delta_fwd/bwd are the full-slip elongations (A5)/(A6) with the g/G shape
 // integrals, so non-uniform routes are handled; the shape (or the curve angle,
@@ -31,6 +33,7 @@ struct CurveAngleFeedforwardParams {
   double proximal_radius = 5e-3;   ///< r_p, m
   double distal_radius = 5e-3;     ///< r_d, m
   double total_angle = 3.141592653589793;  ///< initial Theta (uniform curvature), rad
+  double play = 0.0;               ///< motor-side play (gearhead backlash), total width, rad at the motor
   double v_eps = 0.05;             ///< smoothing speed of the direction switch, rad/s of output
   double max_correction_rate = std::numeric_limits<double>::infinity();  ///< the correction's largest rate of change, m/s at the tendon
   CommandLimits limits{};          ///< the motor command's limits, on the motor angle, rad
@@ -65,6 +68,8 @@ class CurveAngleFeedforward {
             max_total_angle(p.friction), " rad for friction ", p.friction,
             " (friction * total_angle <= 50; got ", p.total_angle, ")");
     require_positive(p.v_eps, w, "v_eps");
+    require_non_negative(p.play, w, "play");
+    require(std::isfinite(p.play), w, "play must be finite");
     require(p.max_correction_rate > 0.0, w, "max_correction_rate must be > 0");
     p.limits.validate(w);
     statics_ = {p.friction, p.compliance, p.pretension};
@@ -146,7 +151,8 @@ class CurveAngleFeedforward {
   double correction(double x_d, double phi) const noexcept {
     const double load = p_.load_force + p_.load_stiffness * x_d;
     return phi * (affine_.forward_offset + affine_.forward_slope * load) +
-           (1.0 - phi) * (affine_.backward_offset + affine_.backward_slope * load);
+           (1.0 - phi) * (affine_.backward_offset + affine_.backward_slope * load) +
+           (2.0 * phi - 1.0) * 0.5 * p_.proximal_radius * p_.play;
   }
 
   /// The tendon-level correction of the last step, m (after its rate limit).

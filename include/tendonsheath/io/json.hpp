@@ -187,6 +187,7 @@ inline CurveAngleFeedforwardParams curve_angle_feedforward_params(const json& f,
   p.proximal_radius = detail::number(f, "proximal_radius", where);
   p.distal_radius = detail::number(f, "distal_radius", where);
   p.total_angle = detail::number(f, "curve_angle", where);
+  if (f.contains("play")) p.play = detail::number(f, "play", where);  // absent in older files
   p.v_eps = detail::number(f, "smoothing", where);
   p.max_correction_rate = detail::number(f, "max_correction_rate", where, inf);
   p.limits = detail::limits(f, where);
@@ -372,7 +373,9 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
   if (kind == "EncoderLoop") return detail::encoder_loop_from_json(f, where);
   if (kind == "CurveAngleFeedforward") {
     const auto keys = detail::keys_of_file(f, detail::kCurveAngleKeys, detail::kCurveAngleRenamed);
-    detail::check_keys(f, keys, keys, where);
+    std::set<std::string> allowed = keys;
+    allowed.insert("play");  // optional: files written before it was a setting lack it
+    detail::check_keys(f, allowed, keys, where);
     return {"CurveAngleFeedforward", CurveAngleFeedforward(curve_angle_feedforward_params(f, where))};
   }
   if (kind == "ContinuumFeedforward") {

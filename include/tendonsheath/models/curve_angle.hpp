@@ -47,13 +47,14 @@ struct CurveAngleParams {
   double spring = 0.0;            ///< k_e, environment spring at tendon level, N/m
   double proximal_radius = 5e-3;  ///< r_p, m
   double distal_radius = 5e-3;    ///< r_d, m
+  double play = 0.0;              ///< motor-side play (the gearhead's backlash), total width, rad at the motor
 
   /// How many identifiable parameters assign() reads.
-  static constexpr std::size_t vector_size = 8;
+  static constexpr std::size_t vector_size = 9;
   /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
   void assign(const double* v) noexcept {
     friction = v[0]; stiffness = v[1]; pretension = v[2]; length = v[3];
-    load = v[4]; spring = v[5]; proximal_radius = v[6]; distal_radius = v[7];
+    load = v[4]; spring = v[5]; proximal_radius = v[6]; distal_radius = v[7]; play = v[8];
   }
 };
 
@@ -65,7 +66,9 @@ struct CurveAngleParams {
 /// x_out <- clamp(x_out, c (x_in - e_b - e_L), c (x_in + e_b - e_L)). The clamp covers a moving
 /// input and a changing curve angle at rest (raising Theta widens the band, lowering it lets the
 /// held output creep onto the new branch). Input and output are angles (rad): x_in = r_p q_in,
-/// q_out = x_out / r_d. It starts in the middle of the band, x_out = c (x_in - e_L).
+/// q_out = x_out / r_d. It starts in the middle of the band, x_out = c (x_in - e_L). A motor-side
+/// play of total width p (a gearhead's backlash between the motor and the pulley) is a dead zone in
+/// series with the tendons': it widens the band by r_p p / 2 on each side, at any curve angle.
 ///
 /// A route of any shape (set_shape(): the shape integrals g, G computed with this model's
 /// friction) replaces tanh(a/2) by the pull-pull dead-zone factor of spec A5/A6,
@@ -89,6 +92,9 @@ class CurveAngleModel {
     require_non_negative(p.spring, w, "spring");
     require_positive(p.proximal_radius, w, "proximal_radius");
     require_positive(p.distal_radius, w, "distal_radius");
+    require_non_negative(p.play, w, "play");
+    require(std::isfinite(p.play), w, "play must be finite");
+    half_play_ = 0.5 * p.proximal_radius * p.play;
     set_curve_angle(0.0);
   }
 
@@ -137,8 +143,8 @@ class CurveAngleModel {
       return initialised_ ? y_ : 0.0;
     }
     const double x_in = p_.proximal_radius * q_in;
-    const double fwd = c_ * (x_in - eb_ - eL_);
-    const double bwd = c_ * (x_in + eb_ - eL_);
+    const double fwd = c_ * (x_in - eb_ - half_play_ - eL_);
+    const double bwd = c_ * (x_in + eb_ + half_play_ - eL_);
     if (!initialised_) {
       x_out_ = c_ * (x_in - eL_);
       initialised_ = true;
@@ -216,6 +222,7 @@ class CurveAngleModel {
   Params p_;
   ShapeIntegrals shape_{};  // the route's shape in use (uniform: of the curve angle)
   double eb_ = 0.0, eL_ = 0.0, c_ = 1.0, slack_limit_ = 0.0;  // the terms of that shape
+  double half_play_ = 0.0;  // r_p play / 2, m at the tendon
   double x_out_ = 0.0, y_ = 0.0;
   bool uniform_ = false, initialised_ = false, slack_ = false, held_ = false, step_slack_ = false;
 };

@@ -397,8 +397,9 @@ class Calibration:
         elif compensator in ("CurveAngleFeedforward",) or compensator.startswith(
             "ContinuumFeedforward"
         ):
-            for name in ("mu", "T0 L/(EA r_p)", "gain r_p/r_d"):
-                rows.append(self._group(name))
+            for name in ("mu", "T0 L/(EA r_p)", "gain r_p/r_d", "play"):
+                if name in self.groups:
+                    rows.append(self._group(name))
             if compensator.startswith("ContinuumFeedforward"):
                 rows.append(self._group("k_e L/EA"))
             else:
@@ -768,20 +769,27 @@ def _add_curve_angle_fit(cal, recordings, names, spring: bool, declared_friction
     """The CurveAngleModel on all calibration runs with the declared values held (and
     friction too where a single curve angle cannot identify it), and its groups."""
     fixed = {k: d.value for k, d in cal.declared.items()}
-    if len({round(r[3], 3) for r in recordings}) < 2:
+    if len({round(_angle_of(r[3]), 3) for r in recordings}) < 2:
         cal.friction_identified = False
         fixed["friction"] = (
             NOMINAL_FRICTION if declared_friction is None else float(declared_friction)
         )
     r_d0 = fixed["proximal_radius"] / max(_mean_slope(recordings), 1e-6)
+    # the motor-side play is the same at every angle: angles that differ tell it apart
+    play = [] if not cal.friction_identified else ["play"]
     search = {
         "recordings": recordings,
         "fixed": fixed,
-        "free": ["distal_radius"] + (["load_stiffness"] if spring else []),
+        "free": ["distal_radius", *play] + (["load_stiffness"] if spring else []),
         "bounds": {"distal_radius": (0.3 * r_d0, 3.0 * r_d0)},
     }
     fit = _add_fit(cal, "CurveAngleModel", names, (), search, **options)
     cal.groups = _curve_angle_groups(fit, cal.runs, cal.friction_identified, spring)
+
+
+def _angle_of(sensed) -> float:
+    """The total curve angle of a sensed shape (a number, or a sensed Route)."""
+    return float(getattr(sensed, "curve_angle", sensed))
 
 
 def _declared_values(declared: dict[str, float] | None) -> dict[str, Told]:
@@ -863,6 +871,14 @@ def _curve_angle_groups(fit, runs, friction_identified: bool, spring: bool) -> d
         "identified": True,
         "unit": "rad at the motor",
     }
+    if friction_identified:
+        groups["play"] = {
+            "value": p["play"],
+            "source": src,
+            "relative_se": rel("play"),
+            "identified": True,
+            "unit": "rad at the motor",
+        }
     if spring:
         groups["k_e L/EA"] = {
             "value": p["load_stiffness"] * p["length"] / p["stiffness"],

@@ -54,6 +54,9 @@ class CurveAngleFeedforward(Feedforward):
         Joint pulley radius r_d (m).
     curve_angle : float, default pi
         Curve angle Theta (rad) until a route or another angle is given.
+    play : float, default 0.0
+        Motor-side play (a gearhead's backlash), total width in rad at the motor, >= 0:
+        crossed at each reversal, r_p play / 2 added in the direction of motion.
     smoothing : float, default 0.05
         Direction-switch speed (rad/s of the distal angle), > 0.
     max_correction_rate : float, default inf
@@ -80,6 +83,7 @@ class CurveAngleFeedforward(Feedforward):
         "proximal_radius",
         "distal_radius",
         "curve_angle",
+        "play",
         "smoothing",
         "max_correction_rate",
         "limits",
@@ -97,6 +101,7 @@ class CurveAngleFeedforward(Feedforward):
         proximal_radius: float = 5e-3,
         distal_radius: float = 5e-3,
         curve_angle: float = math.pi,
+        play: float = 0.0,
         smoothing: float = 0.05,
         max_correction_rate: float = math.inf,
         limits: LimitsLike = None,
@@ -112,6 +117,7 @@ class CurveAngleFeedforward(Feedforward):
             "proximal_radius": proximal_radius,
             "distal_radius": distal_radius,
             "curve_angle": curve_angle,
+            "play": play,
             "smoothing": smoothing,
             "max_correction_rate": max_correction_rate,
         }
@@ -128,7 +134,7 @@ class CurveAngleFeedforward(Feedforward):
         **options: Any,
     ) -> CurveAngleFeedforward:
         """Built from an identified ``CurveAngleModel``: its friction, stiffness EA, length L,
-        pretension and radii; the distal load defaults to the model's own (``load_force``,
+        pretension, radii and play; the distal load defaults to the model's own (``load_force``,
         ``load_stiffness``) and can be replaced by the load expected in use (N, N/m at the tendon).
 
         Parameters
@@ -176,6 +182,7 @@ class CurveAngleFeedforward(Feedforward):
             ),
             proximal_radius=p.get("proximal_radius", 5e-3),
             distal_radius=p.get("distal_radius", 5e-3),
+            play=p.get("play", 0.0),
             **options,
         )
 
@@ -320,7 +327,7 @@ def _engine(who: str, v: dict):
     )
     p.load_force, p.load_stiffness = v["load_force"], v["load_stiffness"]
     p.proximal_radius, p.distal_radius = v["proximal_radius"], v["distal_radius"]
-    p.total_angle, p.v_eps = v["curve_angle"], v["smoothing"]
+    p.total_angle, p.v_eps, p.play = v["curve_angle"], v["smoothing"], v["play"]
     p.max_correction_rate = v["max_correction_rate"]
     p.limits = v["limits"].to_core()
     with python_names(who):

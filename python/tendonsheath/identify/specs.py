@@ -223,7 +223,14 @@ class CurveAngleModelSpec(ModelSpec):
 
     model_class = CurveAngleModel
     kind = "CurveAngleModel"
-    default_fixed = ("pretension", "length", "proximal_radius", "distal_radius", "load_stiffness")
+    default_fixed = (
+        "pretension",
+        "length",
+        "proximal_radius",
+        "distal_radius",
+        "load_stiffness",
+        "play",
+    )
     log_names = frozenset({"stiffness"})
 
     def bounds(self, s, fixed):
@@ -240,6 +247,7 @@ class CurveAngleModelSpec(ModelSpec):
             "load_stiffness": (0.0, 1e5 * ref / length),
             "proximal_radius": (0.1 * r_p, 10.0 * r_p),
             "distal_radius": (0.1 * fixed.get("distal_radius", 5e-3), 10.0 * r_p),
+            "play": (0.0, 0.2 * s.x_range),
         }
 
 

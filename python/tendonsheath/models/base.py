@@ -88,6 +88,8 @@ class HysteresisModel(_ControlBlock):
     reports_status: ClassVar[bool] = True
     # parameters a saved file may hold as null (all others must be present and not null)
     nullable_params: ClassVar[tuple[str, ...]] = ()
+    # parameters added after files were saved: a file without one loads with this value
+    added_params: ClassVar[dict[str, Any]] = {}
     # signal names of to_control()'s system
     control_inputs: tuple[str, ...] = ("x",)  # per instance for Scaled (its inner model's)
     control_output: ClassVar[str] = "y"
@@ -380,6 +382,7 @@ def _saved_params(model_cls, data: dict[str, Any]) -> dict[str, Any]:
         raise ValueError(
             f"{name}: unknown parameter(s) {unknown}; expected {list(model_cls.param_names)}"
         )
+    params = {**model_cls.added_params, **params}
     missing = [k for k in model_cls.param_names if k not in params]
     if missing:
         raise ValueError(f"{name} file: parameter(s) {missing} missing from 'params'")

@@ -62,6 +62,10 @@ class CurveAngleModel(HysteresisModel):
         Motor pulley radius r_p (m).
     distal_radius : float, default 5e-3
         Joint pulley radius r_d (m).
+    play : float, default 0.0
+        Motor-side play (a gearhead's backlash), total width in rad at the motor, >= 0: a dead
+        zone in series with the tendons', the same at every curve angle (held at 0 by
+        ``identify`` unless freed; curve angles that differ tell it from the tendons').
 
     Notes
     -----
@@ -84,8 +88,10 @@ class CurveAngleModel(HysteresisModel):
         "load_stiffness",
         "proximal_radius",
         "distal_radius",
+        "play",
     )
     uses_curve_angle = True
+    added_params = {"play": 0.0}  # files saved before the play was a parameter
     control_inputs = ("x", "curve_angle")
     renamed_params = _RENAMED
     core_names = dict(_RENAMED)  # the C++ fields keep the old names
@@ -101,6 +107,7 @@ class CurveAngleModel(HysteresisModel):
         load_stiffness: float = 0.0,
         proximal_radius: float = 5e-3,
         distal_radius: float = 5e-3,
+        play: float = 0.0,
     ):
         super().__init__(
             friction=friction,
@@ -111,6 +118,7 @@ class CurveAngleModel(HysteresisModel):
             load_stiffness=load_stiffness,
             proximal_radius=proximal_radius,
             distal_radius=distal_radius,
+            play=play,
         )
 
     def simulate(  # type: ignore[override]  # curve_angle (before status) is its input
@@ -197,11 +205,11 @@ class CurveAngleModel(HysteresisModel):
     def _route_factors(self, route: Route) -> tuple[float, float]:
         """(dead-zone factor F, load factor K) of a route, spec A5/A6: F(g, G, a) and
         g G e^{-a}/(g + G e^{-2a}) (tanh(a/2) and tanh(a/2)/a for uniform curvature)."""
-        sh = self.route_shape(route)
-        a = self.params["friction"] * sh.total_angle
+        shape = self.route_shape(route)
+        a = self.params["friction"] * shape.total_angle
         ema = np.exp(-a)
-        load = sh.g * sh.G * ema / (sh.g + sh.G * ema * ema)
-        return float(physics.dead_zone_factor(sh.g, sh.G, a)), float(load)
+        load = shape.g * shape.G * ema / (shape.g + shape.G * ema * ema)
+        return float(physics.dead_zone_factor(shape.g, shape.G, a)), float(load)
 
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], dt, curve_angle=u[1])

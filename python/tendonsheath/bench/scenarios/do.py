@@ -330,8 +330,9 @@ def _result(cals, studies, headline, seed, budget, sensor) -> ScenarioResult:
         routes={f"t = {tk:.1f} s": r for tk, r in zip(times, shapes, strict=True)},
         route_schedule=[(tk, r.curve_angle) for tk, r in zip(times, shapes, strict=True)],
         extra={
-            "fixed_route": {s: {k: r.metrics for k, r in studies[s]["fixed"].items()}
-                            for s in SERVOS},  # fmt: skip
+            "fixed_route": {
+                s: {k: r.metrics for k, r in studies[s]["fixed"].items()} for s in SERVOS
+            },  # fmt: skip
             "servo_summary": summaries,
             "route_seeds": sorted(studies[SERVOS[0]]["random"]),
             "encoder_loop_design": designs,
