@@ -6,6 +6,9 @@
 //                                         the model accepts: every partial sum > 0)
 //   PrandtlIshlinskii (r_0 > 0), GPI, BoucWen, PlantModel, Polynomial, and any of these or a
 //   Backlash / BoucWenBacklash followed by a Polynomial      the root-finding inverse
+//                                         (PlantModel: of its quasi-static plant, its viscous
+//                                         drag inverted as a first-order lag, see
+//                                         plant_viscous_lag)
 //   HystereticOscillator                  OscillatorInverse (filter_hz)
 //   CurveAngleModel                       CurveAngleFeedforward (it follows the route)
 //   AngleDependent over Backlash / BoucWenBacklash, BoucWen, HystereticOscillator: the base's
@@ -56,8 +59,41 @@ inline std::optional<ForwardModel::First> forward_first(const ModelPart& p) {
   if (p.kind == "GeneralizedPrandtlIshlinskii")
     return ForwardModel::First{GeneralizedPrandtlIshlinskii(p.generalized_prandtl_ishlinskii)};
   if (p.kind == "Polynomial") return ForwardModel::First{Polynomial(p.polynomial)};
-  if (p.kind == "PlantModel") return ForwardModel::First{PlantModel(p.plant_model)};
+  if (p.kind == "PlantModel") {  // quasi-static: its viscous drag is inverted by a lag inverse
+    PlantModelParams q = p.plant_model;
+    q.viscous_time = 0.0;
+    return ForwardModel::First{PlantModel(q)};
+  }
   return std::nullopt;
+}
+
+// The first-order lag equivalent to a PlantModel's viscous drag: the delay of its output behind
+// the quasi-static plant's on a steady ramp (the sheath's viscous diffusion seen from the distal
+// pulley), measured once on copies of the two plants: about 0.44 viscous_time at friction angle
+// 0.5, 0.22 at 4 (10 elements). A deadbeat root of the viscous plant itself is not stable: its
+// sampled response from the proximal to the distal pulley has zeros outside the unit circle.
+inline double plant_viscous_lag(const PlantModelParams& p) {
+  PlantModelParams q = p;
+  q.viscous_time = 0.0;
+  PlantModel quasi_static(q), viscous(p);
+  const double tau = p.viscous_time, v = p.backlash / tau, dt = tau / 50.0;
+  const int n = static_cast<int>(std::ceil((2.0 * p.backlash / v + 12.0 * tau) / dt));
+  double ys = quasi_static.step(0.0, 0.0), yv = viscous.step(0.0, 0.0);
+  for (int k = 1; k <= n; ++k) {
+    ys = quasi_static.step(v * k * dt, dt);
+    yv = viscous.step(v * k * dt, dt);
+  }
+  return (ys - yv) / (p.gain * v);
+}
+
+// the lag inverse of a PlantModel's viscous drag (none when it has none)
+inline ModelInverse::Stage plant_lag(const ModelPart& p, const InverseContext& c) {
+  if (p.kind != "PlantModel" || !(p.plant_model.viscous_time > 0.0)) return std::monostate{};
+  LagInverseParams q;
+  q.order = 1;
+  q.time_constant = plant_viscous_lag(p.plant_model);
+  q.filter_hz = c.filter_hz;
+  return LagInverse(q);
 }
 
 // the root search's first step: 1e-4 of the range's span (or of 1 input unit when unbounded)
@@ -166,6 +202,7 @@ inline InversePlan single(const ModelPart& p, const InverseContext& c) {
     plan.core = std::move(inverse);
   } else if (auto first = forward_first(p)) {
     plan.core = root_engine(ForwardModel(std::move(*first)), c);
+    plan.pre = plant_lag(p, c);
   } else if (p.kind == "HystereticOscillator") {
     plan.core = OscillatorInverse(p.hysteretic_oscillator, c.filter_hz);
   } else if (p.kind == "CurveAngleModel") {
@@ -188,6 +225,7 @@ inline InversePlan chain(const ModelPart& a, const ModelPart& b, const InverseCo
     if (auto first = forward_first(a)) {
       InversePlan plan;
       plan.core = root_engine(ForwardModel(std::move(*first), Polynomial(b.polynomial)), c);
+      plan.pre = plant_lag(a, c);  // (its lag taken after the polynomial: an approximation)
       return plan;
     }
     InversePlan plan = single(a, c);
@@ -197,6 +235,8 @@ inline InversePlan chain(const ModelPart& a, const ModelPart& b, const InverseCo
   }
   if (is_lag(b)) {  // Hammerstein
     InversePlan plan = single(a, c);
+    require(plan.pre.index() == 0, c.where, "a PlantModel with viscous_time > 0 followed by a "
+            "lag has no inverse here (two lags in a row: give the chain one lag)");
     plan.pre = lag_inverse(b, c);
     return plan;
   }
