@@ -124,8 +124,10 @@ class PrandtlIshlinskiiFeedforward {
   /// @param dt the time since the previous cycle, s
   /// @return the motor command
   double step(double y_d, double dt) noexcept { return shaper_.apply(inverse_.step(y_d), dt); }
-  /// The inverse's status (held, input_clamped) and the shaper's (saturated).
+  /// The inverse's status (held, input_clamped, out_of_range) and the shaper's (saturated).
   Status status() const noexcept { return inverse_.status() | shaper_.status(); }
+  /// Keep the commands inside `range` before the limits (see PrandtlIshlinskiiInverse::set_range).
+  void set_range(const InputRange& range) { inverse_.set_range(range); }
 
  private:
   PrandtlIshlinskiiInverse inverse_;

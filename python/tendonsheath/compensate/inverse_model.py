@@ -16,6 +16,7 @@ from ..models import (
     FirstOrderLag,
     HysteresisModel,
     PlantModel,
+    Polynomial,
     Scaled,
     SecondOrderLag,
 )
@@ -55,10 +56,25 @@ def describe(model: HysteresisModel) -> Any:
         desc.map = mp
         model = model.inner
     if isinstance(model, Chain):
+        _check_chain(model)
         desc.parts = [part(model.first), part(model.second)]
     else:
         desc.parts = [part(model)]
     return desc
+
+
+def _check_chain(chain: Chain) -> None:
+    """A Chain has an inverse when its second part is a Polynomial or a lag, or its first a lag."""
+    lags = (FirstOrderLag, SecondOrderLag)
+    if isinstance(chain.second, Polynomial | FirstOrderLag | SecondOrderLag):
+        return
+    if isinstance(chain.first, lags):
+        return
+    raise TypeError(
+        "InverseFeedforward: a Chain is inverted when its second part is a Polynomial or a lag "
+        f"(Hammerstein), or its first a lag (Wiener); got {type(chain.first).__name__} then "
+        f"{type(chain.second).__name__}"
+    )
 
 
 def part(model: HysteresisModel) -> Any:
