@@ -2,6 +2,8 @@
 //
 //   example_03_load_and_run COMPENSATOR.json             1 kHz sine, self-check (ctest)
 //   example_03_load_and_run COMPENSATOR.json TRAJ OUT    t,y_d lines in TRAJ -> commands in OUT
+//                                                        (t,y_d,curve_angle lines: the curve
+//                                                        angle set before each step)
 //
 // The file comes from Python (examples/cpp/data/make_inverse_feedforward.py):
 //   ts.compensate.InverseFeedforward(identified_model, ...).to_json("inverse_feedforward.json")
@@ -28,8 +30,12 @@ int run_trajectory(ts::io::LoadedCompensator& ff, const char* in_path, const cha
     if (in) std::fclose(in);
     return 2;
   }
-  double t = 0.0, y_d = 0.0, t_prev = 0.0;
-  for (bool first = true; std::fscanf(in, "%lf,%lf", &t, &y_d) == 2; first = false) {
+  double t = 0.0, y_d = 0.0, theta = 0.0, t_prev = 0.0;
+  char line[256];
+  for (bool first = true; std::fgets(line, sizeof line, in); first = false) {
+    const int fields = std::sscanf(line, "%lf,%lf,%lf", &t, &y_d, &theta);
+    if (fields < 2) break;
+    if (fields == 3) ff.set_curve_angle(theta);  // a compensator that follows the route
     const double dt = first ? 0.0 : t - t_prev;  // as Python's command(): dt 0 on the first cycle
     std::fprintf(out, "%.17g\n", ff.step(y_d, dt));
     t_prev = t;
