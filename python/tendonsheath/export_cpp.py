@@ -109,7 +109,11 @@ def _inner_limits(ff, map_values):
     if map_values is None:
         return {k: getattr(lim, k) for k in ("min", "max", "max_rate")}
     x_c, x_s = map_values[0], map_values[1]
-    return {"min": (lim.min - x_c) / x_s, "max": (lim.max - x_c) / x_s, "max_rate": lim.max_rate / x_s}
+    return {
+        "min": (lim.min - x_c) / x_s,
+        "max": (lim.max - x_c) / x_s,
+        "max_rate": lim.max_rate / x_s,
+    }
 
 
 def _direct_inverse(ff, model, map_values) -> tuple[str, str]:
