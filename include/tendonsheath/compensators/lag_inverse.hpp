@@ -6,7 +6,8 @@
 //   SecondOrderLag w^2/(s^2+2 z w s+w^2) -> (s^2/w^2 + 2 z s/w + 1) / (s/w_f + 1)^2
 //
 // tau_f = 1 / w_f, w_f = 2 pi min(filter_hz, 0.2 / dt), discretised by Tustin at each step's dt
-// (the coefficients are recomputed, in bounded work, when dt changes). The block's output then
+// (the coefficients are recomputed, in bounded work, when dt changes by more than 1e-9 of
+// itself: sample times' rounding does not redesign the filter). The block's output then
 // follows the desired one through 1/(tau_f s + 1) (first order) or 1/(s/w_f + 1)^2 (second).
 // It starts at rest at its first input (output = input), as the blocks do.
 #pragma once
@@ -75,7 +76,7 @@ class LagInverse {
       return y_;
     }
     if (!(dt > 0.0) || !std::isfinite(dt)) return y_;
-    if (dt != dt_) redesign(dt);
+    if (std::fabs(dt - dt_) > 1e-9 * dt) redesign(dt);  // not for a jitter of rounding
     y_ = b_[0] * u + s1_;
     s1_ = b_[1] * u - a_[1] * y_ + s2_;
     s2_ = b_[2] * u - a_[2] * y_;
