@@ -173,6 +173,7 @@ def test_python_control_runs_the_new_inverses():
     """to_control (python-control) of an inverse: a Hammerstein chain, a route-following one
     (its curve angle an input) and a plant's give the commands of streaming it."""
     import control
+
     rng = np.random.default_rng(11)
     models = _every_class(rng)
     t = T[:300]
@@ -217,3 +218,25 @@ def test_tool5_pi_inverse_stays_in_the_identified_range():
         logs[0].t, logs[0].y, status=True
     )
     assert np.max(np.abs(u_free)) > 1e6 and not np.any(flags_free)  # the case it fixes
+
+
+def test_export_cpp_refuses_the_new_inverses_in_one_line(tmp_path):
+    """export --cpp writes the D.2 and exact PI inverses (with their range as two constants);
+    any other inverse is refused with a one-line reason pointing at the JSON loader."""
+    from typer.testing import CliRunner
+
+    from tendonsheath.cli import app
+
+    gpi = ts.models.GeneralizedPrandtlIshlinskii()
+    InverseFeedforward(gpi).to_json(tmp_path / "gpi.json")
+    result = CliRunner().invoke(app, ["export", str(tmp_path / "gpi.json"), "--cpp", "x.hpp"])
+    assert result.exit_code != 0
+    assert "GeneralizedPrandtlIshlinskii" in result.output and "io/json.hpp" in result.output
+    model = Backlash()
+    model.input_range = (-1.0, 1.0)
+    InverseFeedforward(model, range_margin=0.5).to_json(tmp_path / "b.json")
+    out = tmp_path / "b.hpp"
+    result = CliRunner().invoke(app, ["export", str(tmp_path / "b.json"), "--cpp", str(out)])
+    assert result.exit_code == 0, result.output
+    text = out.read_text()
+    assert "input_min = -2.0;" in text and "input_max = 2.0;" in text

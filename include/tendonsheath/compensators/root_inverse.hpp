@@ -37,6 +37,13 @@ struct RootSearchSettings {
   }
 };
 
+namespace detail {
+// a command tried by the root search and its residual forward(x) - y_d
+struct RootProbe {
+  double x, f;
+};
+}  // namespace detail
+
 /// @brief The inverse of a forward model by root finding: each cycle the command x nearest the
 /// previous one with model.step(x, dt) == y_d, inside the input range.
 ///
@@ -95,9 +102,7 @@ class RootInverse {
   int evaluations() const noexcept { return evals_; }
 
  private:
-  struct Probe {
-    double x, f;
-  };
+  using Probe = detail::RootProbe;
 
   double start() const noexcept { return range_.clamp(0.0); }
 

@@ -148,7 +148,9 @@ def run(
     """Track ``reference`` (distal angle, rad, at times ``t``) with ``controller`` on ``plant``.
 
     ``controller``: None (uncompensated: the kinematic motor angle r_d/r_p * y_d), an
-    :class:`InverseFeedforward`, :class:`CurveAngleFeedforward` (it is given the route's shape
+    :class:`InverseFeedforward` (of any model; one that follows the route, of a
+    CurveAngleModel or AngleDependent model, is given the route's shape like the
+    CurveAngleFeedforward), :class:`CurveAngleFeedforward` (it is given the route's shape
     every time the route changes, as from shape sensing), :class:`ContinuumFeedforward` or
     :class:`AdaptiveController` (needs a torque motor on the plant). The plant's own motor
     (``plant.motor``) sits between controller and plant. ``routes``: None or a callable
@@ -156,8 +158,8 @@ def run(
     ``plant.sensor``). ``dropout``: [(start, stop), ...] seconds when the sensor reads NaN.
     ``warmup`` (s): excluded from the metrics; default one period of the reference.
     ``shape_sensing`` (a :class:`~tendonsheath.bench.calibration.ShapeSensing`): the
-    CurveAngleFeedforward is told the sensed curve angle (noise, delay, reading rate)
-    instead of the route's exact shape.
+    CurveAngleFeedforward (or a route-following InverseFeedforward) is told the sensed curve
+    angle (noise, delay, reading rate) instead of the route's exact shape.
 
     Parameters
     ----------

@@ -53,7 +53,9 @@ class InverseFeedforward(Feedforward):
       HystereticOscillator) follow the route (``follows_route``): :meth:`set_curve_angle`,
       :meth:`set_shape`, :meth:`set_route`, or ``command(..., curve_angle=...)``; their
       parameters are re-evaluated at every route (an AngleDependent "tanh" law with the
-      route's shape integrals).
+      route's shape integrals). Give the route before streaming: until then a CurveAngleModel's
+      inverse assumes a straight sheath and an AngleDependent one the curve angle its model
+      is validated at (pi with a "tanh" law, else 0).
     * ``Scaled`` around any of these: x = x_c + x_s inv((y_d - y_c) / g).
 
     ``input_range`` keeps every command inside the range the model was identified on, widened
