@@ -37,7 +37,8 @@ def _curve(model, n):
 
 def _trajectory(path: Path, y_d, theta) -> None:
     cols = [T.tolist(), y_d.tolist()] + ([] if theta is None else [theta.tolist()])
-    path.write_text("".join(",".join(repr(v) for v in row) + "\n" for row in zip(*cols)))
+    rows = zip(*cols, strict=True)
+    path.write_text("".join(",".join(repr(v) for v in row) + "\n" for row in rows))
 
 
 def test_cpp_loader_commands_equal_python_for_every_class(example, tmp_path):  # noqa: F811
