@@ -328,15 +328,19 @@ def test_angle_laws_take_the_route_shape():
         assert abs(factor - math.tanh(0.5 * mu * shape.total_angle)) > 1e-3  # not uniform
 
 
-def test_an_angle_dependent_oscillator_follows_its_filter():
-    """AngleDependent(HystereticOscillator) at a curve angle: the oscillator of the parameters
-    there follows y_d through 1/(s/w_f + 1)^2 (measured 1.2e-4 of the range)."""
-    model = AngleDependent(
+def _angle_oscillator():
+    return AngleDependent(
         "HystereticOscillator",
         coefficients={"m": [1e-3, 1e-4], "c": [0.05], "k": [1.0], "alpha": [0.5, 0.2],
                       "beta": [2.0], "gamma": [0.5], "delta": [0.3], "nu": [1.0]},
         laws={"m": "linear", "alpha": "tanh"}, angle_friction=0.2,
     )  # fmt: skip
+
+
+def test_an_angle_dependent_oscillator_follows_its_filter():
+    """AngleDependent(HystereticOscillator) at a curve angle: the oscillator of the parameters
+    there follows y_d through 1/(s/w_f + 1)^2 (measured 1.2e-4 of the range)."""
+    model = _angle_oscillator()
     y_d = 0.3 * np.sin(2 * np.pi * 0.8 * T) * np.minimum(T / 0.2, 1.0)
     ff = InverseFeedforward(model, filter_hz=30.0)
     for theta in (0.5, 3.0):
@@ -353,6 +357,7 @@ def _every_class(rng):
         "Backlash": Backlash(B_r=0.05, B_l=0.07), "BoucWenBacklash": _bwb(rng),
         "CurveAngleModel": _curve_model(rng), "AngleDependent(Backlash)": _angle_backlash(rng),
         "AngleDependent(BoucWenBacklash)": _angle_backlash(rng, "BoucWenBacklash"),
+        "AngleDependent(HystereticOscillator)": _angle_oscillator(),
         "BoucWenBacklash+lag2": Chain(_bwb(rng), SecondOrderLag(5.0, 0.7)),
         "HystereticOscillator+poly": Chain(_oscillator(rng), _poly(rng)),
         "Scaled(PI)": _scaled(_pi(rng, 0.0), rng),
