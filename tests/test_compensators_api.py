@@ -121,8 +121,10 @@ def test_bad_parameters_are_named():
         ContinuumFeedforward(mode="fancy")
     with pytest.raises(ValueError, match="min < max"):
         CurveAngleFeedforward(0.1, 1 / 5e-5, 1.0, 10.0, limits=CommandLimits(min=1.0, max=0.0))
-    with pytest.raises(TypeError, match="model must be a Backlash"):
-        InverseFeedforward(ts.models.BoucWen())
+    with pytest.raises(TypeError, match="a Chain is inverted when"):
+        InverseFeedforward(ts.models.Chain(ts.models.Backlash(), ts.models.BoucWen()))
+    with pytest.raises(TypeError, match="model must be a tendonsheath model"):
+        InverseFeedforward("Backlash")
     with pytest.raises(TypeError, match="unknown gain"):
         AdaptiveController(gain=3)
     with pytest.raises(ValueError, match="phi_0"):

@@ -35,6 +35,7 @@ def test_status_counts_names_every_flag_and_counts_each_bit():
         "slack": 0,
         "fallback": 0,
         "saturated": 2,
+        "out_of_range": 0,
     }
     with pytest.raises(ValueError, match="non-negative integers"):
         status_counts(np.array([0.5]))

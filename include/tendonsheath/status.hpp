@@ -19,6 +19,9 @@ enum class Status : unsigned {
   slack = 1u << 3,                 ///< a tendon tension is <= 0: the model is not valid there
   fallback = 1u << 4,              ///< a controller ran its fallback (no measurement)
   saturated = 1u << 5,             ///< the command hit its limit
+  out_of_range = 1u << 6,          ///< an inverse's command would have left the input range its
+                                   ///< model was identified on (plus the stated margin): it was
+                                   ///< held at the range's edge (the target is unreachable there)
 };
 
 /// The union of two flag sets.

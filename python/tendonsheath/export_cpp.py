@@ -83,29 +83,79 @@ def _model_body(model) -> tuple[str, str]:
 
 
 def _inverse_body(ff) -> tuple[str, str]:
-    if ff._map is not None:  # a Scaled model: the inner inverse and the map around it
-        include, body = _inverse_body(ff._inner)
-        names = ("input_offset", "input_scale", "output_offset", "output_gain")
-        consts = "".join(
-            f"inline constexpr double {n} = {_number(v)};\n"
-            for n, v in zip(names, ff._map, strict=True)
+    """The direct D.2 and exact PI inverses (and a Scaled map around them) as constexpr params;
+    the input range as two constants. The other inverses: load their JSON with io/json.hpp."""
+    model = ff.model
+    map_values = None
+    if type(model).__name__ == "Scaled":
+        map_values, model = tuple(model.map.values()), model.inner
+    kind = type(model).__name__
+    exact_pi = kind == "PrandtlIshlinskii" and model.params["thresholds"][0] == 0.0
+    if kind not in ("Backlash", "BoucWenBacklash") and not exact_pi:
+        raise ValueError(
+            f"export --cpp writes the InverseFeedforward of a Backlash, BoucWenBacklash or "
+            f"PrandtlIshlinskii (thresholds[0] = 0), or a Scaled one of them (got one of a "
+            f"{kind}): load its JSON with tendonsheath/io/json.hpp instead"
         )
-        note = (
-            "// command = input_offset\n"
-            "//   + input_scale * inverse.step((y_d - output_offset) / output_gain, dt)\n"
-        )
-        return include, body + note + consts
-    kind = type(ff.model).__name__
     if kind in ("Backlash", "BoucWenBacklash"):
-        fields = {k: ff.model.params[k] for k in _BACKLASH_KEYS}
-        fields = {**fields, "v_eps": ff.smoothing, **_limits_fields(ff.limits)}
-        return "compensators/inverse_feedforward.hpp", _struct("BacklashInverseParams", fields)
-    limits = _struct(
-        "CommandLimits", {k: getattr(ff.limits, k) for k in ("min", "max", "max_rate")}
-    )
-    return "compensators/inverse_feedforward.hpp", _pi_arrays(ff.model) + limits.replace(
+        include, body = _direct_inverse(ff, model, map_values)
+    else:
+        include, body = _pi_inverse(ff, model, map_values)
+    return include, body + _range_constants(ff) + _map_constants(map_values)
+
+
+def _inner_limits(ff, map_values):
+    lim = ff.limits
+    if map_values is None:
+        return {k: getattr(lim, k) for k in ("min", "max", "max_rate")}
+    x_c, x_s = map_values[0], map_values[1]
+    return {
+        "min": (lim.min - x_c) / x_s,
+        "max": (lim.max - x_c) / x_s,
+        "max_rate": lim.max_rate / x_s,
+    }
+
+
+def _direct_inverse(ff, model, map_values) -> tuple[str, str]:
+    fields = {k: model.params[k] for k in _BACKLASH_KEYS}
+    smoothing = ff.smoothing if map_values is None else ff.smoothing / abs(map_values[3])
+    limits = {f"limits.{k}": v for k, v in _inner_limits(ff, map_values).items()}
+    fields = {**fields, "v_eps": smoothing, **limits}
+    return "compensators/inverse_feedforward.hpp", _struct("BacklashInverseParams", fields)
+
+
+def _pi_inverse(ff, model, map_values) -> tuple[str, str]:
+    limits = _struct("CommandLimits", _inner_limits(ff, map_values))
+    return "compensators/inverse_feedforward.hpp", _pi_arrays(model) + limits.replace(
         " params =", " limits ="
     )
+
+
+def _range_constants(ff) -> str:
+    lo, hi = ff.command_range
+    return (
+        "// the commands allowed (the identified input range and its margin; +-inf: none):\n"
+        "// hold the command inside [input_min, input_max]; a PrandtlIshlinskiiFeedforward\n"
+        "// takes it before stepping: c.set_range({lo, hi}), in its own (inner) units\n"
+        "// ((input_min - input_offset) / input_scale ... of a Scaled model)\n"
+        f"inline constexpr double input_min = {_number(lo)};\n"
+        f"inline constexpr double input_max = {_number(hi)};\n"
+    )
+
+
+def _map_constants(map_values) -> str:
+    if map_values is None:
+        return ""
+    names = ("input_offset", "input_scale", "output_offset", "output_gain")
+    consts = "".join(
+        f"inline constexpr double {n} = {_number(v)};\n"
+        for n, v in zip(names, map_values, strict=True)
+    )
+    note = (
+        "// command = input_offset\n"
+        "//   + input_scale * inverse.step((y_d - output_offset) / output_gain, dt)\n"
+    )
+    return note + consts
 
 
 def _compensator_body(ff) -> tuple[str, str]:

@@ -25,6 +25,9 @@ class Status(IntFlag):
     SLACK = 1 << 3  # a tendon tension is <= 0: the model is not valid there
     FALLBACK = 1 << 4  # a controller ran its fallback (no measurement)
     SATURATED = 1 << 5  # the command hit its limit
+    # an inverse's command would have left the input range its model was identified on (plus
+    # the stated margin): the command was held at the range's edge (the target is unreachable)
+    OUT_OF_RANGE = 1 << 6
 
 
 # Every flag's name (lower case, as in C++ and in metrics.json), in bit order.

@@ -232,6 +232,7 @@ void bind_bench(nb::module_& m) {
   def_run(m, "bench_pi_inverse", Maker<ts::PrandtlIshlinskiiFeedforward,
                                              ts::FeedforwardLoop<ts::PrandtlIshlinskiiFeedforward>>{});
   def_run(m, "bench_curve_angle", Maker<ts::CurveAngleFeedforward, ts::CurveAngleLoop>{});
+  def_run(m, "bench_model_inverse", Maker<ts::ModelInverse, ts::ModelInverseLoop>{});
   def_run(m, "bench_continuum", Maker<ts::ContinuumFeedforward,
                                             ts::FeedforwardLoop<ts::ContinuumFeedforward>>{});
   def_run(m, "bench_adaptive", Maker<ts::AdaptiveController, ts::AdaptiveLoop>{});

@@ -139,7 +139,9 @@ void bind_common(Cls& cls, std::size_t rows, const char* name) {
 namespace {
 
 void bind_route(nb::module_& m) {
-  nb::class_<ts::Route>(m, "Route")
+  // copyable (an immutable value): models that hold a plant (PlantModel) deep-copy, e.g. for
+  // python-control's snapshots of an InverseFeedforward
+  bind_copy(nb::class_<ts::Route>(m, "Route"))
       .def(nb::init<std::vector<double>, std::vector<double>>(), "s"_a, "theta"_a)
       .def_static("uniform", &ts::Route::uniform, "length"_a, "total_angle"_a)
       .def_static("arcs", &ts::Route::arcs, "pieces"_a)
@@ -351,6 +353,7 @@ void bind_plants(nb::module_& m) {
   bind_common<ts::SingleTendonPlant>(single, 1, "SingleTendonPlant.simulate");
 
   nb::class_<ts::PullPullPlant> pp(m, "PullPullPlant");
+  bind_copy(pp);  // a snapshot (PlantModel's python-control systems deep-copy it)
   pp.def(nb::init<const PP&, const ts::Route&, const ts::Route&>(), "params"_a, "route1"_a,
          "route2"_a)
       .def_prop_ro("params", &ts::PullPullPlant::params)
@@ -372,6 +375,7 @@ void bind_plants(nb::module_& m) {
   bind_common<ts::PullPullPlant>(pp, 2, "PullPullPlant.simulate");
 
   nb::class_<ts::ContinuumPlant, ts::PullPullPlant> cont(m, "ContinuumPlant");
+  bind_copy(cont);  // its own copy, not the base's (no slicing)
   cont.def(nb::init<const CP&, const ts::Route&, const ts::Route&>(), "params"_a, "route1"_a,
            "route2"_a)
       .def_prop_ro("continuum_params", &ts::ContinuumPlant::continuum_params)

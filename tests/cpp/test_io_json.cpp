@@ -89,7 +89,9 @@ TEST(IoJson, PrandtlIshlinskiiAndBoucWenBacklashModelsLoad) {
   const ts::io::InvertibleModel m = ts::io::invertible_model_from_json(pi, "m");
   EXPECT_EQ(m.pi.weights, (std::vector<double>{1.0, 0.4, 0.2}));
   ts::io::LoadedCompensator loaded = ts::io::compensator_from_json(inverse_file(pi));
-  EXPECT_TRUE(std::holds_alternative<ts::PrandtlIshlinskiiFeedforward>(loaded.engine()));
+  ASSERT_TRUE(std::holds_alternative<ts::ModelInverse>(loaded.engine()));
+  const auto& inverse = std::get<ts::ModelInverse>(loaded.engine());
+  EXPECT_TRUE(std::holds_alternative<ts::PrandtlIshlinskiiInverse>(inverse.core()));  // exact
   json bw = backlash_model(1.0, 1.1, 0.1, 0.2);
   bw["model"] = "BoucWenBacklash";
   bw["params"].update({{"rho", 5.0}, {"sigma", 0.5}, {"n", 1.0}});
@@ -189,4 +191,75 @@ TEST(IoJson, MalformedFilesNameTheKey) {
 
 TEST(IoJson, UnreadableFilesAreOneLineErrors) {
   EXPECT_THROW(ts::io::load_compensator_json("/nonexistent/ff.json"), std::invalid_argument);
+}
+
+// The settings of the inverse of every model: input_range ([lo, hi], null, or absent: the
+// model's own), range_margin and filter_hz; the commands stay in the widened range.
+TEST(IoJson, InverseRangeSettings) {
+  json model = backlash_model(1.0, 1.0, 0.1, 0.1);
+  model["input_range"] = {-0.4, 0.6};
+  json file = inverse_file(model);
+  auto widest = [](ts::io::LoadedCompensator c) {
+    double lo = 1e9, hi = -1e9;
+    for (int k = 0; k < 400; ++k) {
+      const double x = c.step(3.0 * std::sin(0.02 * k), 1e-3);
+      lo = std::fmin(lo, x), hi = std::fmax(hi, x);
+    }
+    return std::make_pair(lo, hi);
+  };
+  // absent: the model's range, the default margin 0.1 of its span
+  EXPECT_EQ(widest(ts::io::compensator_from_json(file)), std::make_pair(-0.5, 0.7));
+  file["range_margin"] = 0.0;
+  EXPECT_EQ(widest(ts::io::compensator_from_json(file)), std::make_pair(-0.4, 0.6));
+  file["input_range"] = {-1.0, 1.0};
+  EXPECT_EQ(widest(ts::io::compensator_from_json(file)), std::make_pair(-1.0, 1.0));
+  file["input_range"] = nullptr;  // unbounded
+  EXPECT_GT(widest(ts::io::compensator_from_json(file)).second, 2.0);
+  file["filter_hz"] = nullptr;
+  EXPECT_EQ(error_of(file), "(no error)");
+  file["filter_hz"] = -1.0;
+  EXPECT_NE(error_of(file).find("'filter_hz' must be > 0"), std::string::npos) << error_of(file);
+  file["filter_hz"] = 10.0;
+  file["input_range"] = {1.0};
+  EXPECT_NE(error_of(file).find("'input_range' must be [lo, hi]"), std::string::npos)
+      << error_of(file);
+  file["input_range"] = {-1.0, 1.0};
+  file["range_margin"] = "wide";
+  EXPECT_NE(error_of(file).find("'range_margin' must be a number"), std::string::npos)
+      << error_of(file);
+}
+
+// Every model class the identification returns loads (a Chain, a Scaled one, a lag, a plant,
+// an angle-dependent one), and a bad key inside any of them is named.
+TEST(IoJson, EveryModelClassLoads) {
+  const json lag = {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "SecondOrderLag"},
+                    {"params", {{"frequency", 4.0}, {"damping", 0.7}}}, {"options", json::object()}};
+  const json chain = {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "Chain"},
+                      {"first", backlash_model(1.0, 1.0, 0.1, 0.1)}, {"second", lag}};
+  EXPECT_EQ(error_of(inverse_file(chain)), "(no error)");
+  const json plant = {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "PlantModel"},
+                      {"params", {{"friction_angle", 1.0}, {"backlash", 0.1}, {"viscous_time", 0.0},
+                                  {"gain", 1.0}, {"offset", 0.0}}},
+                      {"options", {{"elements", 10}}}};
+  EXPECT_EQ(error_of(inverse_file(plant)), "(no error)");
+  json angle = {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "AngleDependent"},
+                {"params", {{"base", "Backlash"},
+                            {"laws", {{"c_r", "constant"}, {"c_l", "constant"}, {"B_r", "tanh"},
+                                      {"B_l", "linear"}}},
+                            {"coefficients", {{"c_r", {1.0}}, {"c_l", {1.0}}, {"B_r", {0.05, 0.1}},
+                                              {"B_l", {0.05, 0.01}}}},
+                            {"angle_friction", 0.1}}},
+                {"options", {{"base_options", json::object()}}}};
+  ts::io::LoadedCompensator loaded = ts::io::compensator_from_json(inverse_file(angle));
+  EXPECT_TRUE(std::get<ts::ModelInverse>(loaded.engine()).follows_route());
+  angle["params"]["laws"]["B_r"] = "cubic";
+  EXPECT_NE(error_of(inverse_file(angle)).find("law of 'B_r'"), std::string::npos);
+  json bad = plant;
+  bad["params"]["viscosity"] = 1.0;
+  EXPECT_NE(error_of(inverse_file(bad)).find("unknown key 'viscosity'"), std::string::npos);
+  json chained = chain;
+  chained["second"]["params"].erase("damping");
+  EXPECT_NE(error_of(inverse_file(chained)).find("second: params: key 'damping' is missing"),
+            std::string::npos)
+      << error_of(inverse_file(chained));
 }

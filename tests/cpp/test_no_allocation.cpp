@@ -10,6 +10,8 @@
 #include <tendonsheath/tendonsheath.hpp>
 #include <vector>
 
+#include "model_inverse_cases.hpp"
+
 namespace {
 std::atomic<bool> armed{false};
 std::atomic<long> allocations{0};
@@ -151,6 +153,51 @@ TEST(NoAllocation, CompensatorsStep) {
       continuum.step(y, 1e-3);
       adaptive.step(y, k % 200 == 0 ? NAN : 0.9 * y, 0.8 * y, 1e-3);
       looped.step(y, k % 250 == 0 ? NAN : 0.7 * y, 1e-3);
+    }
+  });
+  EXPECT_EQ(n, 0);
+}
+
+// Every model inverse (each kind of core and stage), with route changes for those that follow
+// it and a bounded input range (the root search's peeks copy-assign the model: no allocation).
+TEST(NoAllocation, ModelInversesStep) {
+  std::vector<ts::ModelInverse> inverses;
+  for (int i = 0; i < ts::cases::kInverseCases; ++i)
+    inverses.push_back(ts::cases::inverse_case(i, i % 2 ? ts::InputRange{-0.8, 0.8} : ts::InputRange{}));
+  const ts::ShapeIntegrals bent = ts::uniform_shape(0.1, 3.0);
+  for (auto& inv : inverses) {
+    const long n = allocations_in([&] {
+      inv.reset();
+      for (int k = 0; k < 1000; ++k) {
+        if (k % 100 == 0) inv.set_curve_angle(0.5 + 0.002 * k);
+        if (k % 100 == 50) inv.set_shape(bent);
+        inv.step(input(k), k % 300 == 7 ? 2e-3 : 1e-3);  // dt changes: the lag filters redesign
+      }
+    });
+    EXPECT_EQ(n, 0) << "core " << inv.core().index();
+  }
+}
+
+// The peek of the root search: copy-assigning a forward model (plays, a plant, a chain with a
+// polynomial) to a scratch one of the same kind and sizes reuses its storage.
+TEST(NoAllocation, ForwardModelCopyAssignment) {
+  ts::PlantModelParams pm;
+  pm.elements = 20;
+  ts::ForwardModel plant{ts::ForwardModel::First{ts::PlantModel(pm)}};
+  ts::ForwardModel pi{ts::ForwardModel::First{ts::PrandtlIshlinskii(ts::PrandtlIshlinskiiParams{})},
+                      ts::Polynomial(ts::PolynomialParams{{0.0, 1.0, 0.2}, false})};
+  ts::ForwardModel gpi{ts::ForwardModel::First{
+      ts::GeneralizedPrandtlIshlinskii(ts::GeneralizedPrandtlIshlinskiiParams{})}};
+  ts::ForwardModel plant_scratch = plant, pi_scratch = pi, gpi_scratch = gpi;
+  const long n = allocations_in([&] {
+    for (int k = 0; k < 200; ++k) {
+      plant.step(input(k), 1e-3);
+      pi.step(input(k), 1e-3);
+      gpi.step(input(k), 1e-3);
+      plant_scratch = plant;
+      pi_scratch = pi;
+      gpi_scratch = gpi;
+      plant_scratch.step(input(k + 1), 1e-3);
     }
   });
   EXPECT_EQ(n, 0);

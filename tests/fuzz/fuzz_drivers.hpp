@@ -19,6 +19,8 @@
 #include <tendonsheath/tendonsheath.hpp>
 #include <vector>
 
+#include "../cpp/model_inverse_cases.hpp"
+
 namespace tendonsheath::fuzz {
 
 struct Failure {
@@ -262,10 +264,47 @@ inline Failure models(const std::uint8_t* data, std::size_t size) {
   return {};
 }
 
+// A route change for a model inverse: a curve angle or a shape (maybe extreme or non-finite).
+inline void route_change(ModelInverse& inv, Bytes& b) {
+  using namespace detail_fuzz;
+  if (b.byte() % 2) {
+    inv.set_curve_angle(b.value(10.0));
+    return;
+  }
+  const double mu = 0.5 * b.unit(), theta = b.value(8.0);
+  ShapeIntegrals s = uniform_shape(mu, std::fabs(theta) < 1e3 ? std::fabs(theta) : 1.0);
+  if (b.byte() % 4 == 0) s.g = b.value(2.0);  // maybe NaN, 0 or negative: ignored
+  inv.set_shape(s);
+}
+
+// One ModelInverse (a kind of core chosen by the bytes), maybe with a bounded input range:
+// a finite y_d gives a finite command, inside the range.
+inline Failure model_inverse(Bytes& b) {
+  using namespace detail_fuzz;
+  const int kind = b.byte() % cases::kInverseCases;
+  const bool ranged = b.byte() % 2;
+  const InputRange range = ranged ? InputRange{-1.0, 1.0} : InputRange{};
+  ModelInverse inv = cases::inverse_case(kind, range);
+  for (long op = 0; op < kMaxOps && !b.done(); ++op) {
+    const std::uint8_t what = b.byte() % 32;
+    if (what == 0) {
+      inv.reset();
+      continue;
+    }
+    if (what == 1) route_change(inv, b);
+    const double y = b.value(1.0), dt = b.dt();
+    const double x = inv.step(y, dt);
+    if (bad(y, x)) return {"ModelInverse: non-finite command", op};
+    if (std::isfinite(x) && !range.contains(x)) return {"ModelInverse: command outside its range", op};
+  }
+  return {};
+}
+
 // The models' inverses (desired output in, input out).
 inline Failure inverses(const std::uint8_t* data, std::size_t size) {
   using namespace detail_fuzz;
   Bytes b(data, size);
+  if (b.byte() % 2) return model_inverse(b);
   PrandtlIshlinskiiInverse pi(PrandtlIshlinskiiParams{{0.0, 0.1, 0.2}, {0.5, 0.3, 0.2}});
   GeneralizedPrandtlIshlinskiiInverse gpi(GeneralizedPrandtlIshlinskiiParams{});
   for (long op = 0; op < kMaxOps && !b.done(); ++op) {

@@ -14,6 +14,7 @@
 #include "../compensators/adaptive_controller.hpp"
 #include "../compensators/curve_angle_feedforward.hpp"
 #include "../compensators/encoder_loop.hpp"
+#include "../compensators/model_inverse.hpp"
 #include "../physics/pull_pull_statics.hpp"
 #include "../plant/motor.hpp"
 #include "../plant/sensor.hpp"
@@ -97,6 +98,24 @@ struct CurveAngleLoop {  // follows the route's shape every cycle (shape sensing
   double command(double y_d, double, double, double dt) noexcept { return ff.step(y_d, dt); }
 };
 
+/// The inverse of an identified model (ModelInverse) in the loop; one that follows the route
+/// (CurveAngleModel, AngleDependent) is given every route shape (set_shape), as from shape sensing.
+struct ModelInverseLoop {
+  /// the compensator
+  ModelInverse ff;
+  /// Start afresh from the initial state, as after construction; the parameters (and any route,
+  /// shape or curve angle set since) are kept.
+  void reset() noexcept { ff.reset(); }
+  /// Passes the new route shape to the inverse (set_shape; ignored when it does not follow it).
+  void on_shape(const ShapeIntegrals& s) noexcept { ff.set_shape(s); }
+  /// Always false: there is no fallback.
+  bool in_fallback() const noexcept { return false; }
+  /// The last step's status flags (see Status).
+  Status status() const noexcept { return ff.status(); }
+  /// @return ff.step(y_d, dt), the motor command
+  double command(double y_d, double, double, double dt) noexcept { return ff.step(y_d, dt); }
+};
+
 /// The adaptive output-feedback controller in the loop: it uses the measurement and the motor
 /// position, and returns a torque (so the loop needs a Motor).
 struct AdaptiveLoop {
@@ -154,8 +173,8 @@ struct WithEncoderLoop {
 /// NaN where dropout is set). Not real-time as a
 /// whole: it validates its inputs first and throws std::invalid_argument naming the problem.
 /// @tparam Plant SingleTendonPlant, PullPullPlant or ContinuumPlant
-/// @tparam Controller OpenLoop, FeedforwardLoop, CurveAngleLoop, AdaptiveLoop or one with the same
-/// members
+/// @tparam Controller OpenLoop, FeedforwardLoop, CurveAngleLoop, ModelInverseLoop, AdaptiveLoop, a
+/// WithEncoderLoop of one of those, or one with the same members
 /// @param plant the plant, reset first
 /// @param motor the motor between command and plant, or nullptr (the command is the pulley angle)
 /// @param sensor the output sensor, or nullptr (exact measurement)

@@ -77,6 +77,20 @@ class BacklashInverseFeedforward {
   /// (saturated: the command was cut to its limits).
   Status status() const noexcept { return shaper_.status(); }
 
+  /// New branches (c_r, c_l, B_r, B_l = values[0..3]: a route that changed them), the rate and
+  /// the shaper kept. False (nothing changed) when c_r or c_l is not > 0 or B_r or B_l not >= 0.
+  bool set_branches(const double* values) noexcept {
+    const double c_r = values[0], c_l = values[1], B_r = values[2], B_l = values[3];
+    const bool ok = std::isfinite(c_r) && c_r > 0.0 && std::isfinite(c_l) && c_l > 0.0 &&
+                    std::isfinite(B_r) && B_r >= 0.0 && std::isfinite(B_l) && B_l >= 0.0;
+    if (!ok) return false;
+    p_.c_r = c_r;
+    p_.c_l = c_l;
+    p_.B_r = B_r;
+    p_.B_l = B_l;
+    return true;
+  }
+
   /// The unshaped inverse x_ff for desired output y_d and direction weight phi in [0, 1].
   double inverse(double y_d, double phi) const noexcept {
     return (y_d + phi * p_.c_r * p_.B_r - (1.0 - phi) * p_.c_l * p_.B_l) /
@@ -110,8 +124,10 @@ class PrandtlIshlinskiiFeedforward {
   /// @param dt the time since the previous cycle, s
   /// @return the motor command
   double step(double y_d, double dt) noexcept { return shaper_.apply(inverse_.step(y_d), dt); }
-  /// The inverse's status (held, input_clamped) and the shaper's (saturated).
+  /// The inverse's status (held, input_clamped, out_of_range) and the shaper's (saturated).
   Status status() const noexcept { return inverse_.status() | shaper_.status(); }
+  /// Keep the commands inside `range` before the limits (see PrandtlIshlinskiiInverse::set_range).
+  void set_range(const InputRange& range) { inverse_.set_range(range); }
 
  private:
   PrandtlIshlinskiiInverse inverse_;

@@ -24,6 +24,8 @@
 #include "../compensators/curve_angle_feedforward.hpp"
 #include "../compensators/encoder_loop.hpp"
 #include "../compensators/inverse_feedforward.hpp"
+#include "../compensators/make_model_inverse.hpp"
+#include "json_models.hpp"
 
 /// @brief Loading compensators saved by Python's `to_json` into the real-time core (optional
 /// header tendonsheath/io/json.hpp, needs nlohmann/json).
@@ -33,55 +35,11 @@
 /// the core's: noexcept, no allocation.
 namespace tendonsheath::io {
 
-/// The JSON value type of nlohmann/json.
-using json = nlohmann::json;
-
 namespace detail {
-
-[[noreturn]] inline void fail(const std::string& where, const std::string& what) {
-  throw std::invalid_argument(where + ": " + what);
-}
-
-inline const json& member(const json& obj, const std::string& key, const std::string& where) {
-  if (!obj.is_object()) fail(where, "must be a JSON object");
-  const auto it = obj.find(key);
-  if (it == obj.end()) fail(where, "key '" + key + "' is missing");
-  return *it;
-}
-
-// every key of obj is one of `allowed` and every one of `required` is there
-inline void check_keys(const json& obj, const std::set<std::string>& allowed,
-                       const std::set<std::string>& required, const std::string& where) {
-  if (!obj.is_object()) fail(where, "must be a JSON object");
-  for (const auto& item : obj.items())
-    if (!allowed.count(item.key())) fail(where, "unknown key '" + item.key() + "'");
-  for (const auto& key : required) member(obj, key, where);
-}
 
 // `now`, or `old` in a file written before the setting was renamed (docs/vocabulary.md)
 inline std::string renamed_key(const json& f, const char* now, const char* old) {
   return f.is_object() && f.contains(old) ? old : now;
-}
-
-// a number; null means `unbounded` when that is not NaN, else it is an error
-inline double number(const json& obj, const std::string& key, const std::string& where,
-                     double unbounded = std::numeric_limits<double>::quiet_NaN()) {
-  const json& v = member(obj, key, where);
-  if (v.is_null() && !std::isnan(unbounded)) return unbounded;
-  if (!v.is_number()) fail(where, "key '" + key + "' must be a number (got " + v.dump() + ")");
-  return v.get<double>();
-}
-
-inline std::vector<double> numbers(const json& obj, const std::string& key,
-                                   const std::string& where) {
-  const json& v = member(obj, key, where);
-  if (!v.is_array()) fail(where, "key '" + key + "' must be an array of numbers");
-  std::vector<double> out;
-  for (const json& e : v) {
-    if (!e.is_number()) fail(where, "key '" + key + "' must hold only numbers (got " + e.dump() + ")");
-    out.push_back(e.get<double>());
-  }
-  return out;
 }
 
 inline CommandLimits limits(const json& file, const std::string& where) {
@@ -96,23 +54,10 @@ inline CommandLimits limits(const json& file, const std::string& where) {
   return out;
 }
 
-inline void check_format(const json& file, const char* format, const std::string& where) {
-  const json& f = member(file, "format", where);
-  if (f != format) fail(where, std::string("key 'format' must be \"") + format + "\" (got " + f.dump() + ")");
-  const json& v = member(file, "version", where);
-  if (v != 1) fail(where, "unsupported 'version' " + v.dump() + " (expected 1)");
-}
-
 }  // namespace detail
 
-/// The affine map of a Python `Scaled` model around the inverted one:
-/// command = input_offset + input_scale * inner((y_d - output_offset) / output_gain).
-struct ScaledMap {
-  double input_offset = 0.0;  ///< added to the inner command
-  double input_scale = 1.0;  ///< scales the inner command, > 0
-  double output_offset = 0.0;  ///< subtracted from the desired output
-  double output_gain = 1.0;  ///< divides the desired output, != 0
-};
+/// The affine map of a Python `Scaled` model (tendonsheath::ScaledMap).
+using ScaledMap = tendonsheath::ScaledMap;
 
 /// A model file ("tendonsheath.model") reduced to what its inverse needs.
 struct InvertibleModel {
@@ -130,7 +75,8 @@ inline InvertibleModel invertible_model_from_json(const json& m, const std::stri
   InvertibleModel out;
   out.name = name.is_string() ? name.get<std::string>() : name.dump();
   if (out.name == "Scaled") {
-    detail::check_keys(m, {"format", "version", "model", "inner", "map"}, {"inner", "map"}, where);
+    detail::check_keys(m, {"format", "version", "model", "inner", "map", "input_range"},
+                       {"inner", "map"}, where);
     const std::string w = where + ": map";
     const json& mp = m.at("map");
     detail::check_keys(mp, {"input_offset", "input_scale", "output_offset", "output_gain"},
@@ -146,7 +92,7 @@ inline InvertibleModel invertible_model_from_json(const json& m, const std::stri
     out.map = map;
     return out;
   }
-  detail::check_keys(m, {"format", "version", "model", "params", "options"}, {"params"}, where);
+  detail::check_keys(m, detail::kPlainKeys, {"params"}, where);
   const json& p = m.at("params");
   const std::string w = where + ": params";
   if (out.name == "Backlash" || out.name == "BoucWenBacklash") {
@@ -220,12 +166,15 @@ inline ContinuumFeedforwardParams continuum_feedforward_params(const json& f,
 }
 
 /// A loaded compensator: one of the core's feedforwards (validated by its constructor), with the
-/// affine map of a Scaled model applied around an inverse. step() is noexcept and allocates nothing.
+/// affine map of a Scaled model applied around a BacklashInverseFeedforward or
+/// PrandtlIshlinskiiFeedforward built by hand (a ModelInverse holds its own map: an
+/// InverseFeedforward file loads as one, with the identity map here). step() is noexcept and
+/// allocates nothing.
 class LoadedCompensator {
  public:
   /// The feedforwards a compensator file can hold.
   using Engine = std::variant<BacklashInverseFeedforward, PrandtlIshlinskiiFeedforward,
-                              CurveAngleFeedforward, ContinuumFeedforward>;
+                              CurveAngleFeedforward, ContinuumFeedforward, ModelInverse>;
 
   /// @param kind the Python class name of the compensator
   /// @param engine the feedforward, built (and validated) from the file
@@ -270,6 +219,17 @@ class LoadedCompensator {
   }
   /// The encoder loop, when the file holds one (nullptr otherwise).
   const EncoderLoop* encoder_loop() const noexcept { return loop_ ? &*loop_ : nullptr; }
+  /// The route's shape for a feedforward that follows it (CurveAngleFeedforward, a ModelInverse
+  /// of a CurveAngleModel or AngleDependent model); ignored by the others.
+  void set_shape(const ShapeIntegrals& s) noexcept {
+    if (auto* c = std::get_if<CurveAngleFeedforward>(&engine_)) c->set_shape(s);
+    if (auto* m = std::get_if<ModelInverse>(&engine_)) m->set_shape(s);
+  }
+  /// Uniform curvature of total angle theta (rad) for a feedforward that follows the route.
+  void set_curve_angle(double theta) noexcept {
+    if (auto* c = std::get_if<CurveAngleFeedforward>(&engine_)) c->set_curve_angle(theta);
+    if (auto* m = std::get_if<ModelInverse>(&engine_)) m->set_curve_angle(theta);
+  }
   const std::string& kind() const noexcept { return kind_; }  ///< the Python class name
   Engine& engine() noexcept { return engine_; }  ///< the feedforward itself, e.g.\ for CurveAngleFeedforward::set_curve_angle
   /// The affine map around the inverse.
@@ -282,24 +242,41 @@ class LoadedCompensator {
   std::optional<EncoderLoop> loop_;
 };
 
+/// The InverseSettings of an InverseFeedforward file: smoothing, limits, and the optional
+/// input_range ([lo, hi] or null; absent: the model's own "input_range", if any), range_margin
+/// (default 0.1) and filter_hz (null or absent: the default). Throws std::invalid_argument naming
+/// a bad key.
+inline InverseSettings inverse_settings(const json& f, const std::string& where) {
+  InverseSettings s;
+  s.smoothing = detail::number(f, "smoothing", where);
+  s.limits = detail::limits(f, where);
+  const double margin = f.contains("range_margin") ? detail::number(f, "range_margin", where) : 0.1;
+  if (!(margin >= 0.0) || !std::isfinite(margin))
+    detail::fail(where, "key 'range_margin' must be >= 0 (got " + f.at("range_margin").dump() + ")");
+  const auto range = f.contains("input_range")
+                         ? model_input_range(f, where)
+                         : model_input_range(detail::member(f, "model", where), where + ": model");
+  if (range) {
+    if (!std::isfinite(range->first) || !std::isfinite(range->second) || !(range->first < range->second))
+      detail::fail(where, "key 'input_range' needs finite lo < hi");
+    s.range = InputRange::identified(range->first, range->second, margin);
+  }
+  if (f.contains("filter_hz") && !f.at("filter_hz").is_null()) {
+    s.filter_hz = detail::number(f, "filter_hz", where);
+    if (!(s.filter_hz > 0.0)) detail::fail(where, "key 'filter_hz' must be > 0 or null");
+  }
+  return s;
+}
+
 namespace detail {
 
-// Python's InverseFeedforward over a Scaled model: the inner inverse in the inner units.
+// Python's InverseFeedforward: a ModelInverse (its Scaled map inside it).
 inline LoadedCompensator inverse_from_json(const json& f, const std::string& where) {
-  check_keys(f, {"format", "version", "compensator", "model", "smoothing", "limits"},
+  check_keys(f, {"format", "version", "compensator", "model", "smoothing", "limits", "input_range",
+                 "range_margin", "filter_hz"},
              {"model", "smoothing", "limits"}, where);
-  const InvertibleModel m = invertible_model_from_json(f.at("model"), where + ": model");
-  const ScaledMap& s = m.map;
-  CommandLimits lim = limits(f, where);
-  lim = CommandLimits{(lim.min - s.input_offset) / s.input_scale,
-                      (lim.max - s.input_offset) / s.input_scale, lim.max_rate / s.input_scale};
-  const double smoothing = number(f, "smoothing", where) / std::fabs(s.output_gain);
-  if (m.name == "PrandtlIshlinskii")
-    return {"InverseFeedforward", PrandtlIshlinskiiFeedforward(m.pi, lim), s};
-  BacklashInverseParams p = m.backlash;
-  p.v_eps = smoothing;
-  p.limits = lim;
-  return {"InverseFeedforward", BacklashInverseFeedforward(p), s};
+  const InverseModel m = inverse_model_from_json(f.at("model"), where + ": model");
+  return {"InverseFeedforward", make_model_inverse(m, inverse_settings(f, where), where)};
 }
 
 inline const std::set<std::string> kCurveAngleKeys{

@@ -64,8 +64,26 @@ class BoucWen {
     require_finite(p.k, w, "k");
     require_positive(p.max_step, w, "max_step");
     require(p.max_substeps >= 1, w, "max_substeps must be >= 1");
-    pow_nm1_ = detail::AbsPower(p.n - 1.0);
-    z_u_ = std::pow(p.A / (p.beta + p.gamma), 1.0 / p.n);
+    derive();
+  }
+
+  /// True when p passes the constructor's checks (no exception, no allocation).
+  static bool valid(const Params& p) noexcept {
+    return std::isfinite(p.A) && p.A > 0.0 && std::isfinite(p.beta) && p.beta > 0.0 &&
+           std::isfinite(p.gamma) && std::fabs(p.gamma) <= p.beta && p.beta + p.gamma > 0.0 &&
+           std::isfinite(p.n) && p.n >= 1.0 && p.alpha >= 0.0 && p.alpha <= 1.0 &&
+           std::isfinite(p.k) && std::isfinite(p.max_step) && p.max_step > 0.0 &&
+           p.max_substeps >= 1;
+  }
+  /// New parameters, the state (input, z) kept: for parameters that follow the route.
+  /// @param p the new parameters
+  /// @return false (and nothing changed) when p is not valid()
+  bool set_params(const Params& p) noexcept {
+    if (!valid(p)) return false;
+    p_ = p;
+    derive();
+    z_ = clamp_z(z_);
+    return true;
   }
 
   /// The parameters it was built with.
@@ -117,6 +135,10 @@ class BoucWen {
     return p_.A * s - p_.beta * q * z - p_.gamma * s * q * az;
   }
   double clamp_z(double z) const noexcept { return z > z_u_ ? z_u_ : (z < -z_u_ ? -z_u_ : z); }
+  void derive() noexcept {
+    pow_nm1_ = detail::AbsPower(p_.n - 1.0);
+    z_u_ = std::pow(p_.A / (p_.beta + p_.gamma), 1.0 / p_.n);
+  }
 
   void integrate(double travel, double s) noexcept {
     const int m = detail::substeps_for(p_.A * travel / z_u_, p_.max_step, p_.max_substeps);

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "../compensators/input_range.hpp"
 #include "../status.hpp"
 #include "../validate.hpp"
 
@@ -197,6 +198,7 @@ class PrandtlIshlinskiiInverse {
                                     : solve_down(y_desired, y_now);
     clamped_ = !(std::fabs(x) <= x_limit_);
     if (clamped_) x = std::isnan(x) ? x_ : std::copysign(x_limit_, x);
+    x = range_.apply(x);  // the plays follow the command actually sent
     for (std::size_t i = 0; i < z_.size(); ++i) z_[i] = detail::clamp_play(z_[i], x, p_.thresholds[i]);
     x_ = x;
     return x;
@@ -205,10 +207,17 @@ class PrandtlIshlinskiiInverse {
   /// The command x of the last step().
   double output() const noexcept { return x_; }
   /// The last step's status: held_nonfinite_input (input not finite), input_clamped (see
-  /// input_clamped()).
+  /// input_clamped()), out_of_range (the command was held at the edge of set_range()'s range).
   Status status() const noexcept {
     Status s = held_ ? Status::held_nonfinite_input : Status::ok;
+    if (!held_) s = s | range_.status();
     return clamped_ ? s | Status::input_clamped : s;
+  }
+  /// Keep the commands inside `range` (validated here; unbounded by default): a command beyond it
+  /// is held at its edge, the plays follow it and status() reports out_of_range.
+  void set_range(const InputRange& range) {
+    range.validate("PrandtlIshlinskiiInverse");
+    range_ = RangeGuard(range);
   }
 
  private:
@@ -253,6 +262,7 @@ class PrandtlIshlinskiiInverse {
 
   Params p_;
   std::vector<double> z_;
+  RangeGuard range_{};
   double x_ = 0.0;
   double x_limit_ = 1e300;
   bool clamped_ = false;

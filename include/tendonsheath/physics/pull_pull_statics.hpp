@@ -88,6 +88,20 @@ inline ShapeIntegrals uniform_shape(double mu, double total_angle) noexcept {
   return {expm1_over(-a), expm1_over(a), total_angle};
 }
 
+/// The pull-pull dead zone's half-width per unit T0 L / EA for a route of shape integrals g, G
+/// (computed with friction mu) and friction angle a = mu Theta (spec A5/A6 with F_L = 0):
+///   F(g, G, a) = g / (g + G e^{-2a}) - G / (G + g e^{2a}) = (g - G e^{-2a}) / (g + G e^{-2a}),
+/// the second form computed (no e^{2a} overflow). Uniform curvature gives tanh(a/2) exactly
+/// (up to rounding); an AngleDependent model's "tanh" law uses it when the route is known.
+/// @param g (1/L) int e^{-mu theta} ds, > 0
+/// @param G (1/L) int e^{+mu theta} ds, > 0
+/// @param a the friction angle mu Theta
+/// @return the factor, in [0, 1) for a >= 0
+inline double shape_dead_zone_factor(double g, double G, double a) noexcept {
+  const double Ge = G * std::exp(-2.0 * a);
+  return (g - Ge) / (g + Ge);
+}
+
 /// The largest total angle (rad) a friction mu admits: kMaxFrictionAngle / mu (inf for mu = 0).
 inline double max_total_angle(double mu) noexcept {
   return mu > 0.0 ? kMaxFrictionAngle / mu : std::numeric_limits<double>::infinity();

@@ -35,6 +35,12 @@ _ENGINE_LOOPS = {
     core.PrandtlIshlinskiiFeedforward: core.bench_pi_inverse,
     core.ContinuumFeedforward: core.bench_continuum,
     core.AdaptiveController: core.bench_adaptive,
+    core.ModelInverse: core.bench_model_inverse,
+}
+# the C++ loop of an engine that follows the route: it is given the route's shapes
+_ROUTE_LOOPS = {
+    core.CurveAngleFeedforward: core.bench_curve_angle,
+    core.ModelInverse: core.bench_model_inverse,
 }
 _NO_SHAPES = object()  # the bench_* function takes no shapes argument
 
@@ -142,7 +148,9 @@ def run(
     """Track ``reference`` (distal angle, rad, at times ``t``) with ``controller`` on ``plant``.
 
     ``controller``: None (uncompensated: the kinematic motor angle r_d/r_p * y_d), an
-    :class:`InverseFeedforward`, :class:`CurveAngleFeedforward` (it is given the route's shape
+    :class:`InverseFeedforward` (of any model; one that follows the route, of a
+    CurveAngleModel or AngleDependent model, is given the route's shape like the
+    CurveAngleFeedforward), :class:`CurveAngleFeedforward` (it is given the route's shape
     every time the route changes, as from shape sensing), :class:`ContinuumFeedforward` or
     :class:`AdaptiveController` (needs a torque motor on the plant). The plant's own motor
     (``plant.motor``) sits between controller and plant. ``routes``: None or a callable
@@ -150,8 +158,8 @@ def run(
     ``plant.sensor``). ``dropout``: [(start, stop), ...] seconds when the sensor reads NaN.
     ``warmup`` (s): excluded from the metrics; default one period of the reference.
     ``shape_sensing`` (a :class:`~tendonsheath.bench.calibration.ShapeSensing`): the
-    CurveAngleFeedforward is told the sensed curve angle (noise, delay, reading rate)
-    instead of the route's exact shape.
+    CurveAngleFeedforward (or a route-following InverseFeedforward) is told the sensed curve
+    angle (noise, delay, reading rate) instead of the route's exact shape.
 
     Parameters
     ----------
@@ -261,7 +269,9 @@ def _run_controller(loop: _Loop, controller, shape_sensing):
         return loop.call(core.bench_erased, compiled())
     engine_of = getattr(controller, "_bench_engine", None)
     engine = engine_of() if callable(engine_of) else None
-    if isinstance(engine, core.CurveAngleFeedforward):
+    if isinstance(engine, core.CurveAngleFeedforward) or (
+        isinstance(engine, core.ModelInverse) and engine.follows_route()
+    ):
         return _run_curve_angle(loop, controller, engine, shape_sensing)
     fn = _ENGINE_LOOPS.get(type(engine))
     if fn is not None:
@@ -304,7 +314,8 @@ def _run_curve_angle(loop: _Loop, controller, engine, shape_sensing):
     shapes = np.ascontiguousarray([[s.g, s.G, s.total_angle] for s in shape_rows])
     if shape_sensing is not None:
         idx, angles, shapes = _sensed(plant, ts, routes, shape_sensing, controller, idx)
-    return loop.call(core.bench_curve_angle, engine, shapes=shapes, idx=idx, angles=angles)
+    fn = _ROUTE_LOOPS[type(engine)]
+    return loop.call(fn, engine, shapes=shapes, idx=idx, angles=angles)
 
 
 def _result(controller, ts, ys, outputs, warmup: float) -> Result:

@@ -1,93 +1,171 @@
-"""Direct inverse feedforward of an identified hysteresis model (seed 002, spec D.2)."""
+"""The real-time inverse of every identified model, as a feedforward (seed 002, spec D.2, and
+the engines of ``tendonsheath/compensators/model_inverse.hpp``)."""
 
 from __future__ import annotations
 
-from typing import Any
+import math
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .. import _core as core
 from .._args import number, python_names
-from .._arrays import checked_dt
+from .._arrays import as_signal, as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
-from ..models import Backlash, BoucWenBacklash, HysteresisModel, PrandtlIshlinskii, Scaled
+from ..models import HysteresisModel
+from ..physics import route_shape as shape_of
 from .base import Feedforward
-from .limits import CommandLimits, LimitsLike, as_limits
+from .inverse_model import describe, follows_route, route_friction
+from .limits import LimitsLike, as_limits
+
+if TYPE_CHECKING:
+    from ..route import Route
+
+RangeLike = str | tuple[float, float] | list[float] | None
 
 
 class InverseFeedforward(Feedforward):
     """Motor command that makes `model` produce the desired output, with no distal sensor.
 
-    * ``Backlash`` and ``BoucWenBacklash``: the direct inverse of spec D.2,
-      x = [y_d + phi c_r B_r - (1 - phi) c_l B_l] / [phi c_r + (1 - phi) c_l] with
-      phi = (1 + tanh(y_d' / smoothing)) / 2; ``smoothing`` (output units per s, about
-      2-5 % of the peak desired speed) sets how sharply the command switches branch at a
-      reversal (-> 0: the exact backlash inverse, a jump of B_r + B_l).
-    * ``PrandtlIshlinskii``: its exact inverse operator (continuous; no smoothing needed).
-    * ``Scaled`` (what ``identify`` returns for a negative gain or offsets) around one of
-      these: the inner model's inverse in its units, x = x_c + x_s inv((y_d - y_c) / g);
-      ``smoothing`` and ``limits`` stay in the raw output and command units.
+    Every model class :func:`~tendonsheath.identify` and ``compare_models`` return has a
+    real-time inverse (C++ ``ModelInverse``: noexcept, no allocation, bounded work):
 
-    ``limits`` (a :class:`CommandLimits`) saturates the command and its rate.
+    * ``Backlash``, ``BoucWenBacklash``: the direct inverse of spec D.2,
+      x = [y_d + phi c_r B_r - (1 - phi) c_l B_l] / [phi c_r + (1 - phi) c_l] with
+      phi = (1 + tanh(y_d' / smoothing)) / 2; ``smoothing`` (output units per s, about 2-5 %
+      of the peak desired speed) sets how sharply the command switches branch at a reversal.
+    * ``PrandtlIshlinskii`` with thresholds[0] = 0: its exact inverse operator (monotone for
+      any signs of weights the model accepts).
+    * ``PrandtlIshlinskii`` (thresholds[0] > 0), ``GeneralizedPrandtlIshlinskii``,
+      ``BoucWen``, ``PlantModel``, ``Polynomial`` and ``Chain(model, Polynomial)``: a root
+      finder, each cycle the command nearest the previous one that makes the model's next
+      output equal y_d (a bracket expanded geometrically both ways, then Brent; at most 160
+      model evaluations a cycle).
+    * ``Chain(model, FirstOrderLag | SecondOrderLag)`` (Hammerstein) and ``Chain(lag, model)``
+      (Wiener): the lag inverted by a filter, (tau s + 1)/(tau_f s + 1) or
+      (s^2/w^2 + 2 zeta s/w + 1)/(s/w_f + 1)^2 (Tustin at each dt), with the model's inverse
+      after (Hammerstein) or before (Wiener) it; the output follows y_d through
+      1/(tau_f s + 1) or 1/(s/w_f + 1)^2.
+    * ``HystereticOscillator``: the force from the desired displacement filtered by
+      1/(s/w_f + 1)^2 and the hysteretic force integrated along it.
+    * ``CurveAngleModel`` and ``AngleDependent`` (over Backlash, BoucWenBacklash, BoucWen or
+      HystereticOscillator) follow the route (``follows_route``): :meth:`set_curve_angle`,
+      :meth:`set_shape`, :meth:`set_route`, or ``command(..., curve_angle=...)``; their
+      parameters are re-evaluated at every route (an AngleDependent "tanh" law with the
+      route's shape integrals). Give the route before streaming: until then a CurveAngleModel's
+      inverse assumes a straight sheath and an AngleDependent one the curve angle its model
+      is validated at (pi with a "tanh" law, else 0).
+    * ``Scaled`` around any of these: x = x_c + x_s inv((y_d - y_c) / g).
+
+    ``input_range`` keeps every command inside the range the model was identified on, widened
+    by ``range_margin`` of its span beyond each end: a command that would leave it is held at
+    its edge and the cycle's status has :attr:`~tendonsheath.Status.OUT_OF_RANGE` (its target is
+    unreachable inside the range). ``limits`` (a :class:`CommandLimits`) then saturates the
+    command and its rate.
 
     Parameters
     ----------
     model : HysteresisModel
-        A Backlash, BoucWenBacklash or PrandtlIshlinskii, or a Scaled one around them.
+        The identified model (any class above).
     smoothing : float, default 0.05
-        Desired-output speed of the branch switch (output units per s), > 0.
+        Desired-output speed of the branch switch (output units per s), > 0 (D.2 and
+        curve-angle inverses).
     limits : CommandLimits, tuple, dict or None, optional
         Saturation of the command and its rate (see :class:`CommandLimits`).
+    input_range : "identified", (float, float) or None, default "identified"
+        The training inputs' range (lo, hi): "identified" takes ``model.input_range`` (None
+        when the model has none: unbounded), None is unbounded.
+    range_margin : float, default 0.1
+        Fraction of the range's span allowed beyond each end, >= 0.
+    filter_hz : float or None, optional
+        Corner (Hz) of the lag and oscillator inverses' filter; None: 5 x the block's corner
+        (natural) frequency. Capped at 0.2 / dt.
 
     Raises
     ------
+    TypeError
+        A model of a class (or in a place) without an inverse.
     ValueError
-        A model of another class, or a smoothing or limit the C++ core rejects.
+        A bad smoothing, limit, range, margin or filter corner, or model parameters the C++
+        core rejects.
     """
 
-    _saved_settings = ("model", "smoothing", "limits")
+    _saved_settings = (
+        "model",
+        "smoothing",
+        "limits",
+        "input_range",
+        "range_margin",
+        "filter_hz",
+    )
+    # settings a file written before them may lack (their defaults then apply)
+    _optional_settings = ("input_range", "range_margin", "filter_hz")
 
-    def __init__(self, model: HysteresisModel, smoothing: float = 0.05, limits: LimitsLike = None):
+    def __init__(
+        self,
+        model: HysteresisModel,
+        smoothing: float = 0.05,
+        limits: LimitsLike = None,
+        input_range: RangeLike = "identified",
+        range_margin: float = 0.1,
+        filter_hz: float | None = None,
+    ):
+        if not isinstance(model, HysteresisModel):
+            raise TypeError(
+                "InverseFeedforward: model must be a tendonsheath model "
+                f"(got {type(model).__name__})"
+            )
         self.model = model
         self.smoothing = number("InverseFeedforward", "smoothing", smoothing)
         self.limits = as_limits(limits)
-        self._settings = {"smoothing": self.smoothing, "limits": self.limits}
-        self._map = None
-        if isinstance(model, Scaled):
-            mp = model.map
-            x_c, x_s, y_c, g = (mp[k] for k in mp)
-            lim = self.limits
-            inner_limits = CommandLimits(
-                (lim.min - x_c) / x_s, (lim.max - x_c) / x_s, lim.max_rate / x_s
-            )
-            self._inner = InverseFeedforward(model.inner, self.smoothing / abs(g), inner_limits)
-            self._engine = self._inner._engine
-            self._map = (x_c, x_s, y_c, g)
-            return
-        if isinstance(model, Backlash | BoucWenBacklash):
-            p = core.BacklashInverseParams()
-            for key in ("c_r", "c_l", "B_r", "B_l"):
-                setattr(p, key, model.params[key])
-            p.v_eps = self.smoothing
-            p.limits = self.limits.to_core()
+        self.input_range = _resolved_range(model, input_range)
+        self.range_margin = _margin(range_margin)
+        self.filter_hz = _filter_hz(filter_hz)
+        self._settings = {
+            "smoothing": self.smoothing,
+            "limits": self.limits,
+            "input_range": None if self.input_range is None else list(self.input_range),
+            "range_margin": self.range_margin,
+            "filter_hz": self.filter_hz,
+        }
+        with python_names("InverseFeedforward"):
+            self._engine = core.ModelInverse(describe(model), self._core_settings())
+        self.follows_route = follows_route(model)
+        if self.follows_route:
+            self.control_inputs = ("y_d", "curve_angle")
+
+    def _core_settings(self):
+        s = core.InverseSettings()
+        s.smoothing = self.smoothing
+        s.limits = self.limits.to_core()
+        if self.input_range is not None:
             with python_names("InverseFeedforward"):
-                self._engine = core.BacklashInverseFeedforward(p)
-        elif isinstance(model, PrandtlIshlinskii):
-            pi = core.PrandtlIshlinskiiParams()
-            pi.thresholds = model.params["thresholds"]
-            pi.weights = model.params["weights"]
-            with python_names("InverseFeedforward"):
-                self._engine = core.PrandtlIshlinskiiFeedforward(pi, self.limits.to_core())
-        else:
-            raise TypeError(
-                "InverseFeedforward: model must be a Backlash, BoucWenBacklash or "
-                f"PrandtlIshlinskii, or a Scaled one of them (got {type(model).__name__})"
-            )
+                s.range = core.InputRange.identified(*self.input_range, self.range_margin)
+        s.filter_hz = 0.0 if self.filter_hz is None else self.filter_hz
+        return s
 
     @property
     def params(self) -> dict:
         """The constructor settings and the model (a copy)."""
         return {**super().params, "model": self.model}
+
+    @property
+    def command_range(self) -> tuple[float, float]:
+        """The commands allowed: ``input_range`` widened by ``range_margin`` ((-inf, inf) when
+        unbounded)."""
+        if self.input_range is None:
+            return (-math.inf, math.inf)
+        lo, hi = self.input_range
+        m = self.range_margin * (hi - lo)
+        return (lo - m, hi + m)
+
+    @property
+    def friction(self) -> float | None:
+        """The friction coefficient of the route's shape integrals (a CurveAngleModel's
+        friction, an AngleDependent's angle_friction, 0 without a tanh law); None when the
+        inverse does not follow the route."""
+        return route_friction(self.model)
 
     def to_dict(self) -> dict:
         """The compensator as a dict, its model saved whole.
@@ -100,8 +178,53 @@ class InverseFeedforward(Feedforward):
         data = super().to_dict()
         return {**data, "model": self.model.to_dict()}
 
-    def step(self, y_d: float, dt: float) -> float:
-        """One control cycle (real-time core, no allocation).
+    def set_curve_angle(self, curve_angle: float) -> None:
+        """Uniform curvature with this curve angle (rad), for an inverse that follows the
+        route (ignored otherwise).
+
+        Parameters
+        ----------
+        curve_angle : float
+            The curve angle Theta (rad).
+        """
+        self._engine.set_curve_angle(
+            number("InverseFeedforward.set_curve_angle", "curve_angle", curve_angle)
+        )
+
+    def set_shape(self, shape: Any) -> None:
+        """A route's shape integrals (``ts.physics.route_shape(route, self.friction)``), for an
+        inverse that follows the route (ignored otherwise).
+
+        Parameters
+        ----------
+        shape : ShapeIntegrals
+            g, G (computed with :attr:`friction`) and the total angle.
+        """
+        self._engine.set_shape(shape)
+
+    def set_route(self, route: Route) -> None:
+        """Any route: its shape integrals with :attr:`friction` (see :meth:`set_shape`).
+
+        Parameters
+        ----------
+        route : Route
+            Or any object with ``s`` and ``theta`` samples.
+
+        Raises
+        ------
+        TypeError
+            route has no ``s`` and ``theta``.
+        """
+        if not (hasattr(route, "s") and hasattr(route, "theta")):
+            raise TypeError(f"set_route needs a Route (got {route!r})")
+        if self.follows_route:
+            self._engine.set_shape(shape_of(route, self.friction or 0.0))
+
+    def step(
+        self, y_d: float, dt: float, curve_angle: float | None = None, route: Route | None = None
+    ) -> float:
+        """One control cycle (real-time core, no allocation), after taking a new route or curve
+        angle when one is given.
 
         Parameters
         ----------
@@ -109,6 +232,10 @@ class InverseFeedforward(Feedforward):
             Desired output (the model's output unit).
         dt : float
             Time since the previous cycle (s), >= 0.
+        curve_angle : float, optional
+            A new curve angle (rad), for an inverse that follows the route.
+        route : Route, optional
+            A new route (takes precedence over curve_angle).
 
         Returns
         -------
@@ -116,15 +243,28 @@ class InverseFeedforward(Feedforward):
             The motor command.
         """
         dt = checked_dt(dt)
-        if self._map is None:
-            return super().step(y_d, dt)
-        x_c, x_s, y_c, g = self._map
-        return x_c + x_s * self._engine.step((float(y_d) - y_c) / g, float(dt))
+        if route is not None:
+            self.set_route(route)
+        elif curve_angle is not None:
+            self.set_curve_angle(curve_angle)
+        return self._engine.step(float(y_d), float(dt))
+
+    def _control_step(self, u, dt: float) -> float:
+        if self.follows_route:
+            return self.step(u[0], dt, curve_angle=u[1])
+        return self.step(u[0], dt)
 
     def command(
-        self, t: ArrayLike, y_desired: ArrayLike, status: bool = False
+        self,
+        t: ArrayLike,
+        y_desired: ArrayLike,
+        status: bool = False,
+        curve_angle: ArrayLike | None = None,
+        routes: Callable[[float], Route] | None = None,
     ) -> FloatArray | tuple[FloatArray, np.ndarray]:
-        """Motor commands for a whole trajectory, from the initial state.
+        """Motor commands for a whole trajectory, from the initial state. An inverse that
+        follows the route takes it from `routes` (a callable t -> route) or `curve_angle`
+        (scalar or one per sample), and needs one of them.
 
         Parameters
         ----------
@@ -134,6 +274,10 @@ class InverseFeedforward(Feedforward):
             Desired outputs.
         status : bool, default False
             Also return each cycle's Status flags.
+        curve_angle : float or array_like of float, optional
+            Curve angle (rad), one value or one per sample (route-following inverses).
+        routes : callable, optional
+            t -> the route at time t (takes precedence over curve_angle).
 
         Returns
         -------
@@ -144,19 +288,68 @@ class InverseFeedforward(Feedforward):
         Raises
         ------
         ValueError
-            t missing, or samples not finite or of different lengths.
+            t missing, samples not finite or of different lengths, or no route for an
+            inverse that follows it.
         """
-        if self._map is None:
-            return super().command(t, y_desired, status)
-        x_c, x_s, y_c, g = self._map
-        inner: Any = self._inner.command(t, (np.asarray(y_desired, dtype=float) - y_c) / g, status)
-        if status:
-            return x_c + x_s * inner[0], inner[1]
-        return x_c + x_s * inner
+        ts, ys = as_timed_signal(t, y_desired, "y_desired", "InverseFeedforward.command")
+        g, G, theta = self._route_samples(ts, ys, curve_angle, routes)
+        return self._engine.command(ts, ys, g, G, theta, bool(status))
 
-    def _bench_engine(self):
-        # the C++ loops know the inner engine only: a Scaled model's map runs in step()
-        return self._engine if self._map is None else None
+    def _route_samples(self, ts, ys, curve_angle, routes):
+        """(g, G, curve angle) per sample for the engine (None where not given)."""
+        if not self.follows_route:
+            return None, None, None
+        if routes is not None:
+            shapes = [shape_of(routes(tk), self.friction or 0.0) for tk in ts]
+            return tuple(
+                np.array([getattr(s, k) for s in shapes]) for k in ("g", "G", "total_angle")
+            )
+        if curve_angle is None:
+            raise ValueError(
+                "InverseFeedforward.command: this inverse follows the route; give curve_angle "
+                "(rad, one value or one per sample) or routes"
+            )
+        theta = np.broadcast_to(np.asarray(curve_angle, dtype=np.float64), ys.shape)
+        return None, None, as_signal(np.ascontiguousarray(theta), "curve_angle")
 
     def __repr__(self) -> str:
         return f"InverseFeedforward({self.model!r}, smoothing={self.smoothing:g})"
+
+
+def _resolved_range(model: HysteresisModel, value: RangeLike) -> tuple[float, float] | None:
+    """The (lo, hi) the commands are held in (before the margin), or None."""
+    if isinstance(value, str):
+        if value != "identified":
+            raise ValueError(
+                f"InverseFeedforward: input_range must be 'identified', (lo, hi) or None "
+                f"(got {value!r})"
+            )
+        value = getattr(model, "input_range", None)
+    if value is None:
+        return None
+    try:
+        lo, hi = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ValueError(
+            "InverseFeedforward: input_range must be 'identified', (lo, hi) or None "
+            f"(got {value!r})"
+        ) from None
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+        raise ValueError(f"InverseFeedforward: input_range needs finite lo < hi (got {value!r})")
+    return (lo, hi)
+
+
+def _margin(value) -> float:
+    m = number("InverseFeedforward", "range_margin", value)
+    if not (math.isfinite(m) and m >= 0.0):
+        raise ValueError(f"InverseFeedforward: range_margin must be >= 0 (got {m})")
+    return m
+
+
+def _filter_hz(value) -> float | None:
+    if value is None:
+        return None
+    f = number("InverseFeedforward", "filter_hz", value)
+    if not (math.isfinite(f) and f > 0.0):
+        raise ValueError(f"InverseFeedforward: filter_hz must be > 0 or None (got {f})")
+    return f

@@ -53,6 +53,8 @@ def to_json(data: dict[str, Any], path: str | Path | None) -> str:
 def _finite_or_none(value):
     if value is None or isinstance(value, str | bool):
         return value
+    if isinstance(value, list | tuple):  # a range [lo, hi]
+        return [_finite_or_none(v) for v in value]
     if hasattr(value, "to_dict"):  # a model
         return value.to_dict()
     value = float(value)  # numpy scalars too
@@ -96,7 +98,8 @@ def compensator_from_dict(data: dict[str, Any]) -> Feedforward | AdaptiveControl
     unknown = sorted(set(settings) - set(expected))
     if unknown:
         raise ValueError(f"{name} file: unknown key(s) {unknown}; expected {list(expected)}")
-    missing = [k for k in expected if k not in settings]
+    optional = getattr(cls, "_optional_settings", ())
+    missing = [k for k in expected if k not in settings and k not in optional]
     if missing:
         raise ValueError(f"{name} file: key(s) {missing} missing")
     values = {k: _setting(name, k, v) for k, v in settings.items()}
@@ -145,6 +148,10 @@ def _setting(name: str, key: str, value):
             got = json.dumps(value)
             raise ValueError(f"{name} file: '{key}' must be true or false (got {got})")
         return value
+    if key == "input_range":
+        return _range(name, value)
+    if key == "filter_hz" and value is None:
+        return None
     if key == "mode":
         if not isinstance(value, str):
             raise ValueError(f"{name} file: 'mode' must be a string (got {json.dumps(value)})")
@@ -152,6 +159,18 @@ def _setting(name: str, key: str, value):
     if value is None and key in _UNBOUNDED:
         return _UNBOUNDED[key]
     return _number(name, f"'{key}'", value)
+
+
+def _range(name: str, value) -> tuple[float, float] | None:
+    """An input range: null (unbounded) or [lo, hi]."""
+    if value is None:
+        return None
+    if not isinstance(value, list) or len(value) != 2:
+        raise ValueError(
+            f"{name} file: 'input_range' must be [lo, hi] or null (got {json.dumps(value)})"
+        )
+    lo, hi = (_number(name, "'input_range'", v) for v in value)
+    return (lo, hi)
 
 
 def _limits(name: str, value) -> dict[str, float]:

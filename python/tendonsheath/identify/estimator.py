@@ -313,6 +313,7 @@ class Identifier:
         recs = make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle)
         self.fit_ = run(self.model, recs, options, search)
         self.model_ = self.fit_.model
+        _record_input_range(self.fit_, recs)
         return self.fit_
 
     def predict(self, recordings: Recordings) -> list[np.ndarray]:
@@ -430,3 +431,11 @@ def _differs(value, name: str) -> bool:
         return bool(value != default)
     except (TypeError, ValueError):
         return True
+
+
+def _record_input_range(fit, recs) -> None:
+    """The training inputs' range (all recordings, data units) on the Fit and its model."""
+    lo = min(float(np.min(r.x)) for r in recs)
+    hi = max(float(np.max(r.x)) for r in recs)
+    fit.input_range = (lo, hi)
+    fit.model.input_range = (lo, hi)

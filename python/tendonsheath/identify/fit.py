@@ -148,6 +148,9 @@ class Fit:
         How the standard errors were obtained.
     stopped_on_budget : bool, default False
         The time budget stopped the search.
+    input_range : (float, float), optional
+        The range (lo, hi) of the training inputs, all recordings, data units (also
+        ``model.input_range``; an inverse keeps its commands inside it).
     """
 
     model: HysteresisModel
@@ -174,6 +177,7 @@ class Fit:
         default_factory=lambda: {"method": "linearised"}, repr=False
     )
     stopped_on_budget: bool = False
+    input_range: tuple[float, float] | None = None
 
     @classmethod
     def from_quality(
@@ -409,6 +413,7 @@ class Fit:
             "method": self.method,
             "message": self.message,
             "stopped_on_budget": self.stopped_on_budget,
+            "input_range": None if self.input_range is None else list(self.input_range),
             "warmup": self.warmup,
             "n_samples": self.n_samples,
             "bounds": {k: [float(a), float(b)] for k, (a, b) in self.bounds.items()},

@@ -98,12 +98,17 @@ class HysteresisModel(_ControlBlock):
     renamed_params: ClassVar[dict[str, str]] = {}
     # C++ struct fields named otherwise in Python (C++ -> Python), on top of _args.CORE_NAMES
     core_names: ClassVar[dict[str, str]] = {}
+    # the range (lo, hi) of the inputs the model was identified on (all recordings, data units),
+    # set by identify; None when unknown. Saved by to_dict as "input_range": [lo, hi].
+    input_range: tuple[float, float] | None = None
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         _REGISTRY[cls.__name__] = cls
         if "simulate" in vars(cls):  # every model's simulate returns a SimulationResult
             cls.simulate = _returning_result(cls.simulate)
+        if "to_dict" in vars(cls):  # every model's file holds its input range
+            cls.to_dict = _with_input_range(cls.to_dict)
 
     def __init__(self, **values: Any) -> None:
         unknown = set(values) - set(self.param_names) - set(self.option_names)
@@ -287,12 +292,17 @@ class HysteresisModel(_ControlBlock):
         model_cls = model_class_from_dict(data)
         if cls is not HysteresisModel and not issubclass(model_cls, cls):
             raise ValueError(f"file holds a {model_cls.__name__}, not a {cls.__name__}")
+        input_range = saved_input_range(model_cls.__name__, data)
         if hasattr(model_cls, "_from_parts"):  # composite models (Chain, ...)
-            return model_cls._from_parts(data)
-        if model_cls is not cls and "from_dict" in vars(model_cls):  # e.g. renamed parameters
-            return model_cls.from_dict(data)
-        with _file_error(model_cls.__name__):
-            return _build_saved(model_cls, data)
+            model = model_cls._from_parts(data)
+        elif model_cls is not cls and "from_dict" in vars(model_cls):  # e.g. renamed parameters
+            model = model_cls.from_dict(data)
+        else:
+            with _file_error(model_cls.__name__):
+                model = _build_saved(model_cls, data)
+        if input_range is not None:
+            model.input_range = input_range
+        return model
 
     def to_json(self, path: str | Path | None = None) -> str:
         """The model as JSON text; also written to `path` when one is given.
@@ -323,6 +333,37 @@ class HysteresisModel(_ControlBlock):
     def __repr__(self) -> str:
         inner = ", ".join(f"{k}={_short(v)}" for k, v in self.params.items())
         return f"{type(self).__name__}({inner})"
+
+
+def _with_input_range(to_dict: _F) -> _F:
+    """``to_dict`` that adds the model's ``input_range`` (when it has one) as [lo, hi]."""
+
+    @functools.wraps(to_dict)
+    def wrapper(self):
+        data = to_dict(self)
+        if self.input_range is not None and "input_range" not in data:
+            data = {**data, "input_range": [float(v) for v in self.input_range]}
+        return data
+
+    return cast(_F, wrapper)
+
+
+HysteresisModel.to_dict = _with_input_range(HysteresisModel.to_dict)  # type: ignore[method-assign]
+
+
+def saved_input_range(name: str, data: dict[str, Any]) -> tuple[float, float] | None:
+    """The optional "input_range" of a saved model: [lo, hi] with finite lo <= hi, or absent
+    (a file written before it: None)."""
+    value = data.get("input_range")
+    if value is None:
+        return None
+    ok = isinstance(value, list) and len(value) == 2
+    ok = ok and all(isinstance(v, int | float) and not isinstance(v, bool) for v in value)
+    if not ok or not (math.isfinite(value[0]) and math.isfinite(value[1]) and value[0] <= value[1]):
+        raise ValueError(
+            f"{name} file: 'input_range' must be [lo, hi] with finite lo <= hi (got {value!r})"
+        )
+    return (float(value[0]), float(value[1]))
 
 
 def _field_error(name: str, key: str, value) -> Exception:

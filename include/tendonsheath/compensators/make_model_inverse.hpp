@@ -1,0 +1,278 @@
+// Building the ModelInverse of a model description (InverseModel): which inverse each model
+// class gets. Construction only (allocates, throws std::invalid_argument naming the problem).
+//
+//   Backlash, BoucWenBacklash            the direct inverse of spec D.2 (smoothing)
+//   PrandtlIshlinskii, thresholds[0] = 0  the exact inverse (monotone for any signs of weights
+//                                         the model accepts: every partial sum > 0)
+//   PrandtlIshlinskii (r_0 > 0), GPI, BoucWen, PlantModel, Polynomial, and any of these or a
+//   Backlash / BoucWenBacklash followed by a Polynomial      the root-finding inverse
+//                                         (PlantModel: of its quasi-static plant, its viscous
+//                                         drag inverted as a first-order lag, see
+//                                         plant_viscous_lag)
+//   HystereticOscillator                  OscillatorInverse (filter_hz)
+//   CurveAngleModel                       CurveAngleFeedforward (it follows the route)
+//   AngleDependent over Backlash / BoucWenBacklash, BoucWen, HystereticOscillator: the base's
+//                                         inverse, its parameters from the laws at each route
+//   Chain(model, lag)  Hammerstein: lag inverse, then the model's inverse
+//   Chain(lag, model)  Wiener: the model's inverse, then the lag inverse
+//   Chain(model, Polynomial) of a model without a forward root engine: the polynomial's
+//                      static root inverse, then the model's inverse
+#pragma once
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "model_inverse.hpp"
+
+namespace tendonsheath {
+
+namespace detail {
+
+// the pieces of a ModelInverse before assembly
+struct InversePlan {
+  ModelInverse::Core core{PassThrough{}};
+  ModelInverse::Stage pre{};
+  std::optional<LagInverse> post{};
+  double friction = 0.0;
+};
+
+struct InverseContext {
+  InputRange range;       // inner units
+  double smoothing;       // inner units
+  double filter_hz;       // 0: the default of each block
+  std::string where;
+};
+
+inline bool is_lag(const ModelPart& p) {
+  return p.kind == "FirstOrderLag" || p.kind == "SecondOrderLag";
+}
+
+// the forward model a root engine runs for part p, if it has one
+inline std::optional<ForwardModel::First> forward_first(const ModelPart& p) {
+  if (p.kind == "Backlash") return ForwardModel::First{Backlash(p.backlash)};
+  if (p.kind == "BoucWenBacklash") return ForwardModel::First{BoucWenBacklash(p.bouc_wen_backlash)};
+  if (p.kind == "BoucWen") return ForwardModel::First{BoucWen(p.bouc_wen)};
+  if (p.kind == "PrandtlIshlinskii")
+    return ForwardModel::First{PrandtlIshlinskii(p.prandtl_ishlinskii)};
+  if (p.kind == "GeneralizedPrandtlIshlinskii")
+    return ForwardModel::First{GeneralizedPrandtlIshlinskii(p.generalized_prandtl_ishlinskii)};
+  if (p.kind == "Polynomial") return ForwardModel::First{Polynomial(p.polynomial)};
+  if (p.kind == "PlantModel") {  // quasi-static: its viscous drag is inverted by a lag inverse
+    PlantModelParams q = p.plant_model;
+    q.viscous_time = 0.0;
+    return ForwardModel::First{PlantModel(q)};
+  }
+  return std::nullopt;
+}
+
+// The first-order lag equivalent to a PlantModel's viscous drag: the delay of its output behind
+// the quasi-static plant's on a steady ramp (the sheath's viscous diffusion seen from the distal
+// pulley), measured once on copies of the two plants: about 0.44 viscous_time at friction angle
+// 0.5, 0.22 at 4 (10 elements). A deadbeat root of the viscous plant itself is not stable: its
+// sampled response from the proximal to the distal pulley has zeros outside the unit circle.
+inline double plant_viscous_lag(const PlantModelParams& p) {
+  PlantModelParams q = p;
+  q.viscous_time = 0.0;
+  PlantModel quasi_static(q), viscous(p);
+  const double tau = p.viscous_time, v = p.backlash / tau, dt = tau / 50.0;
+  const int n = static_cast<int>(std::ceil((2.0 * p.backlash / v + 12.0 * tau) / dt));
+  double ys = quasi_static.step(0.0, 0.0), yv = viscous.step(0.0, 0.0);
+  for (int k = 1; k <= n; ++k) {
+    ys = quasi_static.step(v * k * dt, dt);
+    yv = viscous.step(v * k * dt, dt);
+  }
+  return (ys - yv) / (p.gain * v);
+}
+
+// the lag inverse of a PlantModel's viscous drag (none when it has none)
+inline ModelInverse::Stage plant_lag(const ModelPart& p, const InverseContext& c) {
+  if (p.kind != "PlantModel" || !(p.plant_model.viscous_time > 0.0)) return std::monostate{};
+  LagInverseParams q;
+  q.order = 1;
+  q.time_constant = plant_viscous_lag(p.plant_model);
+  q.filter_hz = c.filter_hz;
+  return LagInverse(q);
+}
+
+// the root search's first step: 1e-4 of the range's span (or of 1 input unit when unbounded)
+inline RootSearchSettings root_settings(const InputRange& r) {
+  RootSearchSettings s;
+  const double span = r.hi - r.lo;
+  s.initial_step = (std::isfinite(span) && span > 0.0) ? 1e-4 * span : 1e-4;
+  return s;
+}
+
+inline RootInverse<ForwardModel> root_engine(ForwardModel model, const InverseContext& c) {
+  return RootInverse<ForwardModel>(model, c.range, root_settings(c.range));
+}
+
+inline BacklashInverseFeedforward direct_inverse(const double* v, const InverseContext& c) {
+  BacklashInverseParams p;
+  p.c_r = v[0];
+  p.c_l = v[1];
+  p.B_r = v[2];
+  p.B_l = v[3];
+  p.v_eps = c.smoothing;
+  return BacklashInverseFeedforward(p);
+}
+
+inline void backlash_values(const ModelPart& p, double* v) {
+  const bool bw = p.kind == "BoucWenBacklash" || p.base == "BoucWenBacklash";
+  v[0] = bw ? p.bouc_wen_backlash.c_r : p.backlash.c_r;
+  v[1] = bw ? p.bouc_wen_backlash.c_l : p.backlash.c_l;
+  v[2] = bw ? p.bouc_wen_backlash.B_r : p.backlash.B_r;
+  v[3] = bw ? p.bouc_wen_backlash.B_l : p.backlash.B_l;
+}
+
+inline CurveAngleFeedforward curve_angle_inverse(const CurveAngleParams& m, const InverseContext& c) {
+  CurveAngleFeedforwardParams p;
+  p.friction = m.friction;
+  p.compliance = m.length / m.stiffness;
+  p.pretension = m.pretension;
+  p.load_force = m.load;
+  p.load_stiffness = m.spring;
+  p.proximal_radius = m.proximal_radius;
+  p.distal_radius = m.distal_radius;
+  p.total_angle = 0.0;
+  p.v_eps = c.smoothing;
+  (void)CurveAngleModel(m);  // the model's own validation
+  return CurveAngleFeedforward(p);
+}
+
+// the curve angle an AngleDependent's engine is built at: pi with a tanh law, else 0 (as Python
+// validates the model)
+inline double initial_angle(const AngleLaws& laws) {
+  for (std::size_t i = 0; i < laws.count; ++i)
+    if (laws.law[i] == AngleLaw::tanh) return 3.14159265358979323846;
+  return 0.0;
+}
+
+inline ModelInverse::Core angle_dependent(const ModelPart& p, const InverseContext& c) {
+  p.laws.validate(c.where.c_str());
+  const double theta = initial_angle(p.laws);
+  double v[AngleLaws::kMaxParams];
+  p.laws.at_angle(theta, v);
+  if (p.base == "Backlash" || p.base == "BoucWenBacklash") {
+    require(p.laws.count == (p.base == "Backlash" ? 4u : 7u), c.where, "AngleDependent ", p.base,
+            " needs one law per base parameter (got ", p.laws.count, ")");
+    return AngleDependentInverse<BacklashInverseFeedforward>(direct_inverse(v, c), p.laws, theta);
+  }
+  if (p.base == "BoucWen") {
+    require(p.laws.count == BoucWenParams::vector_size, c.where,
+            "AngleDependent BoucWen needs 6 laws (got ", p.laws.count, ")");
+    BoucWenParams b = p.bouc_wen;
+    b.assign(v);
+    auto root = root_engine(ForwardModel(ForwardModel::First{BoucWen(b)}), c);
+    return AngleDependentInverse<RootInverse<ForwardModel>>(root, p.laws, theta);
+  }
+  if (p.base == "HystereticOscillator") {
+    require(p.laws.count == HystereticOscillatorParams::vector_size, c.where,
+            "AngleDependent HystereticOscillator needs 8 laws (got ", p.laws.count, ")");
+    HystereticOscillatorParams o = p.hysteretic_oscillator;
+    o.assign(v);
+    return AngleDependentInverse<OscillatorInverse>(OscillatorInverse(o, c.filter_hz), p.laws,
+                                                    theta);
+  }
+  detail::fail(c.where, "the inverse of an AngleDependent model takes a Backlash, "
+               "BoucWenBacklash, BoucWen or HystereticOscillator base (got '", p.base, "')");
+}
+
+inline LagInverse lag_inverse(const ModelPart& p, const InverseContext& c) {
+  LagInverseParams q = p.lag;
+  q.order = p.kind == "FirstOrderLag" ? 1 : 2;
+  q.filter_hz = c.filter_hz;
+  return LagInverse(q);
+}
+
+// the inverse of one plain model
+inline InversePlan single(const ModelPart& p, const InverseContext& c) {
+  InversePlan plan;
+  double v[AngleLaws::kMaxParams];
+  if (p.kind == "Backlash" || p.kind == "BoucWenBacklash") {
+    if (p.kind == "Backlash") (void)Backlash(p.backlash);  // the model's own validation
+    else (void)BoucWenBacklash(p.bouc_wen_backlash);
+    backlash_values(p, v);
+    plan.core = direct_inverse(v, c);
+  } else if (p.kind == "PrandtlIshlinskii" && !p.prandtl_ishlinskii.thresholds.empty() &&
+             p.prandtl_ishlinskii.thresholds.front() == 0.0) {
+    PrandtlIshlinskiiInverse inverse(p.prandtl_ishlinskii);
+    inverse.set_range(c.range);
+    plan.core = std::move(inverse);
+  } else if (auto first = forward_first(p)) {
+    plan.core = root_engine(ForwardModel(std::move(*first)), c);
+    plan.pre = plant_lag(p, c);
+  } else if (p.kind == "HystereticOscillator") {
+    plan.core = OscillatorInverse(p.hysteretic_oscillator, c.filter_hz);
+  } else if (p.kind == "CurveAngleModel") {
+    plan.core = curve_angle_inverse(p.curve_angle_model, c);
+    plan.friction = p.curve_angle_model.friction;
+  } else if (p.kind == "AngleDependent") {
+    plan.core = angle_dependent(p, c);
+    plan.friction = p.laws.angle_friction;
+  } else if (is_lag(p)) {
+    plan.post = lag_inverse(p, c);
+  } else {
+    detail::fail(c.where, "no inverse for a model of kind '", p.kind, "'");
+  }
+  return plan;
+}
+
+// the inverse of Chain(a, b)
+inline InversePlan chain(const ModelPart& a, const ModelPart& b, const InverseContext& c) {
+  if (b.kind == "Polynomial") {
+    if (auto first = forward_first(a)) {
+      InversePlan plan;
+      plan.core = root_engine(ForwardModel(std::move(*first), Polynomial(b.polynomial)), c);
+      plan.pre = plant_lag(a, c);  // (its lag taken after the polynomial: an approximation)
+      return plan;
+    }
+    InversePlan plan = single(a, c);
+    plan.pre = RootInverse<Polynomial>(Polynomial(b.polynomial), InputRange{},
+                                       root_settings(InputRange{}));
+    return plan;
+  }
+  if (is_lag(b)) {  // Hammerstein
+    InversePlan plan = single(a, c);
+    require(plan.pre.index() == 0, c.where, "a PlantModel with viscous_time > 0 followed by a "
+            "lag has no inverse here (two lags in a row: give the chain one lag)");
+    plan.pre = lag_inverse(b, c);
+    return plan;
+  }
+  if (is_lag(a)) {  // Wiener
+    InversePlan plan = single(b, c);
+    plan.post = lag_inverse(a, c);
+    return plan;
+  }
+  detail::fail(c.where, "a Chain is inverted when its second part is a Polynomial or a lag, or "
+               "its first a lag (got ", a.kind, " then ", b.kind, ")");
+}
+
+}  // namespace detail
+
+/// The real-time inverse of model `m` with settings `s` (see the file's comment for which inverse
+/// each class gets). Throws std::invalid_argument, message starting with `where`, naming the
+/// first bad part or setting.
+inline ModelInverse make_model_inverse(const InverseModel& m, const InverseSettings& s,
+                                       const std::string& where = "InverseFeedforward") {
+  require(m.parts.size() == 1 || m.parts.size() == 2, where,
+          "a model has one part, or two for a Chain (got ", m.parts.size(), ")");
+  require_positive(s.smoothing, where.c_str(), "smoothing");
+  require(std::isfinite(s.filter_hz) && s.filter_hz >= 0.0, where,
+          "filter_hz must be > 0, or 0 for the default (got ", s.filter_hz, ")");
+  s.range.validate(where.c_str());
+  const ScaledMap& mp = m.map;
+  require(std::isfinite(mp.input_scale) && mp.input_scale > 0.0, where,
+          "input_scale must be > 0 (got ", mp.input_scale, ")");
+  require(std::isfinite(mp.output_gain) && mp.output_gain != 0.0, where,
+          "output_gain must be finite and not 0 (got ", mp.output_gain, ")");
+  const detail::InverseContext c{s.range.unmapped(mp.input_offset, mp.input_scale),
+                                 s.smoothing / std::fabs(mp.output_gain), s.filter_hz, where};
+  detail::InversePlan plan = m.parts.size() == 1 ? detail::single(m.parts[0], c)
+                                                 : detail::chain(m.parts[0], m.parts[1], c);
+  return ModelInverse(std::move(plan.core), std::move(plan.pre), std::move(plan.post), mp,
+                      s.range, s.limits, plan.friction);
+}
+
+}  // namespace tendonsheath

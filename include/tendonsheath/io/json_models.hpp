@@ -1,0 +1,364 @@
+// Model files ("tendonsheath.model", as Python's `HysteresisModel.to_json` writes them) read
+// into the description a ModelInverse is built from (InverseModel): every model class the
+// identification returns, a Chain of two, a Scaled model around either. Part of the optional
+// tendonsheath/io/json.hpp (needs nlohmann/json); outside the real-time path.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "../compensators/make_model_inverse.hpp"
+
+namespace tendonsheath::io {
+
+/// The JSON value type of nlohmann/json.
+using json = nlohmann::json;
+
+namespace detail {
+
+[[noreturn]] inline void fail(const std::string& where, const std::string& what) {
+  throw std::invalid_argument(where + ": " + what);
+}
+
+inline const json& member(const json& obj, const std::string& key, const std::string& where) {
+  if (!obj.is_object()) fail(where, "must be a JSON object");
+  const auto it = obj.find(key);
+  if (it == obj.end()) fail(where, "key '" + key + "' is missing");
+  return *it;
+}
+
+// every key of obj is one of `allowed` and every one of `required` is there
+inline void check_keys(const json& obj, const std::set<std::string>& allowed,
+                       const std::set<std::string>& required, const std::string& where) {
+  if (!obj.is_object()) fail(where, "must be a JSON object");
+  for (const auto& item : obj.items())
+    if (!allowed.count(item.key())) fail(where, "unknown key '" + item.key() + "'");
+  for (const auto& key : required) member(obj, key, where);
+}
+
+// a number; null means `unbounded` when that is not NaN, else it is an error
+inline double number(const json& obj, const std::string& key, const std::string& where,
+                     double unbounded = std::numeric_limits<double>::quiet_NaN()) {
+  const json& v = member(obj, key, where);
+  if (v.is_null() && !std::isnan(unbounded)) return unbounded;
+  if (!v.is_number()) fail(where, "key '" + key + "' must be a number (got " + v.dump() + ")");
+  return v.get<double>();
+}
+
+inline int integer(const json& obj, const std::string& key, const std::string& where) {
+  const json& v = member(obj, key, where);
+  if (!v.is_number_integer())
+    fail(where, "key '" + key + "' must be an integer (got " + v.dump() + ")");
+  return v.get<int>();
+}
+
+inline std::vector<double> numbers(const json& obj, const std::string& key,
+                                   const std::string& where) {
+  const json& v = member(obj, key, where);
+  if (!v.is_array()) fail(where, "key '" + key + "' must be an array of numbers");
+  std::vector<double> out;
+  for (const json& e : v) {
+    if (!e.is_number()) fail(where, "key '" + key + "' must hold only numbers (got " + e.dump() + ")");
+    out.push_back(e.get<double>());
+  }
+  return out;
+}
+
+inline void check_format(const json& file, const char* format, const std::string& where) {
+  const json& f = member(file, "format", where);
+  if (f != format) fail(where, std::string("key 'format' must be \"") + format + "\" (got " + f.dump() + ")");
+  const json& v = member(file, "version", where);
+  if (v != 1) fail(where, "unsupported 'version' " + v.dump() + " (expected 1)");
+}
+
+// the parameters of a model class, in its Python param_names order (what AngleLaws index)
+inline std::vector<std::string> param_names(const std::string& kind) {
+  if (kind == "Backlash") return {"c_r", "c_l", "B_r", "B_l"};
+  if (kind == "BoucWenBacklash") return {"c_r", "c_l", "B_r", "B_l", "rho", "sigma", "n"};
+  if (kind == "BoucWen") return {"A", "beta", "gamma", "n", "alpha", "k"};
+  if (kind == "HystereticOscillator") return {"m", "c", "k", "alpha", "beta", "gamma", "delta", "nu"};
+  if (kind == "PlantModel") return {"friction_angle", "backlash", "viscous_time", "gain", "offset"};
+  if (kind == "FirstOrderLag") return {"time_constant"};
+  if (kind == "SecondOrderLag") return {"frequency", "damping"};
+  return {};
+}
+
+inline std::set<std::string> set_of(const std::vector<std::string>& v) {
+  return std::set<std::string>(v.begin(), v.end());
+}
+
+// scalar params of `kind` (every one a number), in param_names order
+inline std::vector<double> scalars(const json& p, const std::string& kind, const std::string& w) {
+  const auto names = param_names(kind);
+  check_keys(p, set_of(names), set_of(names), w);
+  std::vector<double> out;
+  for (const auto& k : names) out.push_back(number(p, k, w));
+  return out;
+}
+
+// the options object (absent: {}), its keys among `allowed`
+inline json options(const json& m, const std::set<std::string>& allowed, const std::string& where) {
+  if (!m.contains("options")) return json::object();
+  const json& o = m.at("options");
+  check_keys(o, allowed, {}, where + ": options");
+  return o;
+}
+
+inline void bouc_wen_options(const json& o, double& max_step, int& max_substeps,
+                             const std::string& w) {
+  if (o.contains("max_step")) max_step = number(o, "max_step", w);
+  if (o.contains("max_substeps")) max_substeps = integer(o, "max_substeps", w);
+}
+
+inline void oscillator_options(const json& o, HystereticOscillatorParams& h, const std::string& w) {
+  if (o.contains("substeps")) h.substeps = integer(o, "substeps", w);
+  if (o.contains("max_substeps")) h.max_substeps = integer(o, "max_substeps", w);
+  if (o.contains("lookahead")) h.lookahead = integer(o, "lookahead", w);
+  if (!o.contains("input_interpolation")) return;
+  const json& v = o.at("input_interpolation");
+  if (v == "hold") h.input_reconstruction = kInputHold;
+  else if (v == "linear") h.input_reconstruction = kInputLinear;
+  else if (v == "bandlimited") h.input_reconstruction = kInputBandlimited;
+  else fail(w, "key 'input_interpolation' must be \"linear\", \"hold\" or \"bandlimited\" (got " + v.dump() + ")");
+}
+
+// the base parameters of `kind` from scalars v (its param_names order), into part's member
+inline void assign_base(ModelPart& part, const std::string& kind, const std::vector<double>& v) {
+  if (kind == "Backlash") part.backlash.assign(v.data());
+  else if (kind == "BoucWenBacklash") part.bouc_wen_backlash.assign(v.data());
+  else if (kind == "BoucWen") part.bouc_wen.assign(v.data());
+  else if (kind == "HystereticOscillator") part.hysteretic_oscillator.assign(v.data());
+}
+
+// the options of a base model (BoucWenBacklash, BoucWen, HystereticOscillator) into part
+inline void base_options(ModelPart& part, const std::string& kind, const json& o,
+                         const std::string& w) {
+  if (kind == "BoucWenBacklash") {
+    check_keys(o, {"max_step", "max_substeps"}, {}, w);
+    bouc_wen_options(o, part.bouc_wen_backlash.max_step, part.bouc_wen_backlash.max_substeps, w);
+  } else if (kind == "BoucWen") {
+    check_keys(o, {"max_step", "max_substeps"}, {}, w);
+    bouc_wen_options(o, part.bouc_wen.max_step, part.bouc_wen.max_substeps, w);
+  } else if (kind == "HystereticOscillator") {
+    check_keys(o, {"substeps", "max_substeps", "input_interpolation", "lookahead"}, {}, w);
+    oscillator_options(o, part.hysteretic_oscillator, w);
+  } else {
+    check_keys(o, {}, {}, w);
+  }
+}
+
+inline AngleLaw law_of(const json& v, const std::string& key, const std::string& w) {
+  if (v == "constant") return AngleLaw::constant;
+  if (v == "linear") return AngleLaw::linear;
+  if (v == "tanh") return AngleLaw::tanh;
+  fail(w, "law of '" + key + "' must be \"constant\", \"linear\" or \"tanh\" (got " + v.dump() + ")");
+}
+
+// AngleDependent: base, laws, coefficients, angle_friction; options base_options
+inline void angle_dependent_part(ModelPart& part, const json& m, const std::string& where) {
+  const std::string w = where + ": params";
+  const json& p = member(m, "params", where);
+  check_keys(p, {"base", "laws", "coefficients", "angle_friction"},
+             {"base", "laws", "coefficients", "angle_friction"}, w);
+  const json& base = p.at("base");
+  if (!base.is_string()) fail(w, "key 'base' must be a model class name (got " + base.dump() + ")");
+  part.base = base.get<std::string>();
+  const auto names = param_names(part.base);
+  if (names.empty() || part.base == "PlantModel" || part.base.find("Lag") != std::string::npos)
+    fail(w, "key 'base': the inverse of an AngleDependent model takes a Backlash, "
+            "BoucWenBacklash, BoucWen or HystereticOscillator base (got " + base.dump() + ")");
+  const json& laws = p.at("laws");
+  const json& coefs = p.at("coefficients");
+  check_keys(laws, set_of(names), {}, w + ": laws");
+  check_keys(coefs, set_of(names), set_of(names), w + ": coefficients");
+  AngleLaws out;
+  out.count = names.size();
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    out.law[i] = laws.contains(names[i]) ? law_of(laws.at(names[i]), names[i], w) : AngleLaw::constant;
+    const auto c = numbers(coefs, names[i], w + ": coefficients");
+    const std::size_t want = out.law[i] == AngleLaw::constant ? 1 : 2;
+    if (c.size() != want)
+      fail(w, "coefficients of '" + names[i] + "' must be " + std::to_string(want) + " number(s)");
+    out.c0[i] = c[0];
+    out.c1[i] = want == 2 ? c[1] : 0.0;
+  }
+  out.angle_friction = number(p, "angle_friction", w, 0.0);
+  part.laws = out;
+  const json o = options(m, {"base_options"}, where);
+  if (o.contains("base_options")) base_options(part, part.base, o.at("base_options"), where + ": options: base_options");
+  std::vector<double> v(names.size());
+  out.at_angle(0.0, v.data());
+  assign_base(part, part.base, v);
+}
+
+inline void envelope(Envelope& e, const json& p, const std::string& side, const std::string& w) {
+  e.a = number(p, side + "_a", w);
+  e.b = number(p, side + "_b", w);
+  e.c = number(p, side + "_c", w);
+  e.d = number(p, side + "_d", w);
+}
+
+inline void plays_part(ModelPart& part, const json& m, const std::string& where) {
+  const std::string w = where + ": params";
+  const json& p = member(m, "params", where);
+  options(m, {}, where);
+  if (part.kind == "PrandtlIshlinskii") {
+    check_keys(p, {"thresholds", "weights"}, {"thresholds", "weights"}, w);
+    part.prandtl_ishlinskii.thresholds = numbers(p, "thresholds", w);
+    part.prandtl_ishlinskii.weights = numbers(p, "weights", w);
+    return;
+  }
+  std::set<std::string> keys{"thresholds", "weights"};
+  for (const char* side : {"rising", "falling"})
+    for (const char* k : {"_a", "_b", "_c", "_d"}) keys.insert(std::string(side) + k);
+  check_keys(p, keys, keys, w);
+  auto& g = part.generalized_prandtl_ishlinskii;
+  envelope(g.rising, p, "rising", w);
+  envelope(g.falling, p, "falling", w);
+  g.thresholds = numbers(p, "thresholds", w);
+  g.weights = numbers(p, "weights", w);
+}
+
+inline void polynomial_part(ModelPart& part, const json& m, const std::string& where) {
+  const std::string w = where + ": params";
+  const json& p = member(m, "params", where);
+  check_keys(p, {"coefficients"}, {"coefficients"}, w);
+  part.polynomial.coefficients = numbers(p, "coefficients", w);
+  const json o = options(m, {"odd"}, where);
+  if (o.contains("odd")) {
+    if (!o.at("odd").is_boolean()) fail(where + ": options", "key 'odd' must be true or false");
+    part.polynomial.odd = o.at("odd").get<bool>();
+  }
+}
+
+// CurveAngleModel (load_force / load_stiffness, or the old names load / spring)
+inline void curve_angle_part(ModelPart& part, const json& m, const std::string& where) {
+  const std::string w = where + ": params";
+  const json& p = member(m, "params", where);
+  options(m, {}, where);
+  std::set<std::string> keys{"friction", "stiffness", "pretension", "length", "proximal_radius",
+                             "distal_radius"};
+  const std::string load = p.is_object() && p.contains("load") ? "load" : "load_force";
+  const std::string spring = p.is_object() && p.contains("spring") ? "spring" : "load_stiffness";
+  keys.insert({load, spring});
+  check_keys(p, keys, keys, w);
+  CurveAngleParams& c = part.curve_angle_model;
+  c.friction = number(p, "friction", w);
+  c.stiffness = number(p, "stiffness", w);
+  c.pretension = number(p, "pretension", w);
+  c.length = number(p, "length", w);
+  c.load = number(p, load, w);
+  c.spring = number(p, spring, w);
+  c.proximal_radius = number(p, "proximal_radius", w);
+  c.distal_radius = number(p, "distal_radius", w);
+}
+
+// the models whose params are scalars in param_names order
+inline void scalar_part(ModelPart& part, const json& m, const std::string& where) {
+  const std::string w = where + ": params";
+  const auto v = scalars(member(m, "params", where), part.kind, w);
+  if (part.kind == "PlantModel") {
+    const json o = options(m, {"elements"}, where);
+    PlantModelParams& q = part.plant_model;
+    q.friction_angle = v[0], q.backlash = v[1], q.viscous_time = v[2], q.gain = v[3], q.offset = v[4];
+    if (o.contains("elements")) q.elements = integer(o, "elements", where + ": options");
+  } else if (part.kind == "FirstOrderLag" || part.kind == "SecondOrderLag") {
+    options(m, {}, where);
+    part.lag.order = part.kind == "FirstOrderLag" ? 1 : 2;
+    if (part.lag.order == 1) part.lag.time_constant = v[0];
+    else part.lag.frequency = v[0], part.lag.damping = v[1];
+  } else {
+    assign_base(part, part.kind, v);
+    base_options(part, part.kind, m.contains("options") ? m.at("options") : json::object(),
+                 where + ": options");
+  }
+}
+
+inline const std::set<std::string> kPlainKeys{"format", "version", "model", "params", "options",
+                                              "input_range"};
+
+// one plain model
+inline ModelPart part_from_json(const json& m, const std::string& where) {
+  check_format(m, "tendonsheath.model", where);
+  const json& name = member(m, "model", where);
+  ModelPart part;
+  part.kind = name.is_string() ? name.get<std::string>() : name.dump();
+  check_keys(m, kPlainKeys, {"params"}, where);
+  if (part.kind == "PrandtlIshlinskii" || part.kind == "GeneralizedPrandtlIshlinskii")
+    plays_part(part, m, where);
+  else if (part.kind == "Polynomial") polynomial_part(part, m, where);
+  else if (part.kind == "CurveAngleModel") curve_angle_part(part, m, where);
+  else if (part.kind == "AngleDependent") angle_dependent_part(part, m, where);
+  else if (!param_names(part.kind).empty()) scalar_part(part, m, where);
+  else
+    fail(where, "key 'model': the C++ loader inverts Backlash, BoucWenBacklash, BoucWen, "
+                "PrandtlIshlinskii, GeneralizedPrandtlIshlinskii, Polynomial, PlantModel, "
+                "HystereticOscillator, CurveAngleModel, AngleDependent, FirstOrderLag, "
+                "SecondOrderLag, a Chain of two and a Scaled model around them (got " +
+                    name.dump() + ")");
+  return part;
+}
+
+inline ScaledMap scaled_map(const json& mp, const std::string& w) {
+  check_keys(mp, {"input_offset", "input_scale", "output_offset", "output_gain"},
+             {"input_offset", "input_scale", "output_offset", "output_gain"}, w);
+  const ScaledMap map{number(mp, "input_offset", w), number(mp, "input_scale", w),
+                      number(mp, "output_offset", w), number(mp, "output_gain", w)};
+  if (!(map.input_scale > 0)) fail(w, "key 'input_scale' must be > 0");
+  if (map.output_gain == 0) fail(w, "key 'output_gain' must not be 0");
+  return map;
+}
+
+// a plain model or a Chain of two
+inline std::vector<ModelPart> parts_from_json(const json& m, const std::string& where) {
+  check_format(m, "tendonsheath.model", where);
+  if (member(m, "model", where) != "Chain") return {part_from_json(m, where)};
+  check_keys(m, {"format", "version", "model", "first", "second", "input_range"},
+             {"first", "second"}, where);
+  return {part_from_json(m.at("first"), where + ": first"),
+          part_from_json(m.at("second"), where + ": second")};
+}
+
+}  // namespace detail
+
+/// The saved input range of a model document ([lo, hi], finite, lo <= hi), if it has one.
+/// Throws std::invalid_argument naming the key when it is malformed.
+inline std::optional<std::pair<double, double>> model_input_range(const json& m,
+                                                                  const std::string& where) {
+  if (!m.is_object() || !m.contains("input_range") || m.at("input_range").is_null())
+    return std::nullopt;
+  const json& v = m.at("input_range");
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() ||
+      !(v[0].get<double>() <= v[1].get<double>()))
+    detail::fail(where, "key 'input_range' must be [lo, hi] with lo <= hi (got " + v.dump() + ")");
+  return std::make_pair(v[0].get<double>(), v[1].get<double>());
+}
+
+/// The description of a "tendonsheath.model" document as a ModelInverse takes it: every model
+/// class the identification returns, a Chain of two, and a Scaled model around either. Throws
+/// std::invalid_argument, message starting with `where`, naming the bad key.
+inline InverseModel inverse_model_from_json(const json& m, const std::string& where) {
+  detail::check_format(m, "tendonsheath.model", where);
+  InverseModel out;
+  if (detail::member(m, "model", where) == "Scaled") {
+    detail::check_keys(m, {"format", "version", "model", "inner", "map", "input_range"},
+                       {"inner", "map"}, where);
+    out.map = detail::scaled_map(m.at("map"), where + ": map");
+    const json& inner = m.at("inner");
+    if (inner.is_object() && inner.contains("model") && inner.at("model") == "Scaled")
+      detail::fail(where, "a Scaled model inside a Scaled model is not supported");
+    out.parts = detail::parts_from_json(inner, where + ": inner");
+    return out;
+  }
+  out.parts = detail::parts_from_json(m, where);
+  return out;
+}
+
+}  // namespace tendonsheath::io
