@@ -193,10 +193,27 @@ def model_name(candidate: type[HysteresisModel] | Chain) -> str:
     return candidate.__name__
 
 
+INVERSE_NOTE = (
+    "inv: the held-out input the model's InverseFeedforward would have commanded for the "
+    "recorded output (low-passed; tendonsheath.inverse_error), against the input that produced it"
+)
+
+
+def _percent(value) -> str:
+    return "-" if value is None or not np.isfinite(value) else f"{100 * value:.3f}%"
+
+
+def _plain(value) -> str:
+    return "-" if value is None or not np.isfinite(value) else f"{value:.3f}"
+
+
 @dataclass
 class Comparison:
     """Result of :func:`compare_models`. ``table`` rows: model, n_params, train_rmse,
-    train_nrmse, val_rmse, val_nrmse, val_fit_percent, val_max_abs, ratio_to_affine, seconds
+    train_nrmse, val_rmse, val_nrmse, val_fit_percent, val_max_abs, ratio_to_affine, the
+    offline inverse error inv_rmse, inv_nrmse (over the held-out inputs' range),
+    inv_ratio_to_affine and inv_out_of_range (the share of held-out cycles whose command the
+    identified input range held; :mod:`tendonsheath.inverse_error`), seconds
     and cpu_seconds (fitting and scoring over all folds), error (if the fit failed) and
     status ("out of time" past the time budget); sorted by val_nrmse (failures last).
     ``fits``: each candidate's Fit (a list of one per fold under cross-validation);
@@ -261,6 +278,7 @@ class Comparison:
         """
         lines = [
             f"{'model':<34} {'train rmse':>11} {'val rmse':>11} {'val nrmse':>10} {'/affine':>8}"
+            f" {'inv nrmse':>10} {'/affine':>8}"
         ]
         for r in self.table:
             if r.get("error"):
@@ -268,9 +286,11 @@ class Comparison:
                 continue
             lines.append(
                 f"{r['model']:<34} {r['train_rmse']:>11.4g} {r['val_rmse']:>11.4g} "
-                f"{100 * r['val_nrmse']:>9.3f}% {r['ratio_to_affine']:>8.3f}"
+                f"{100 * r['val_nrmse']:>9.3f}% {r['ratio_to_affine']:>8.3f} "
+                f"{_percent(r.get('inv_nrmse')):>10} {_plain(r.get('inv_ratio_to_affine')):>8}"
             )
         lines.append(f"winner: {self.winner_name} ({self.mode})")
+        lines.append(f"inverse: {INVERSE_NOTE}")
         return "\n".join(lines)
 
     def __str__(self) -> str:
@@ -671,10 +691,12 @@ def _validation_slots(splits) -> list[dict]:
 
 def _winner(rows, fits, estimators, names, recs, run):
     """Rank the rows; the winner's model and Fit (refitted on all the data where needed)."""
-    base = rows[0]["val_rmse"]
+    base, inv_base = rows[0]["val_rmse"], rows[0].get("inv_rmse", float("nan"))
     for r in rows:
         if not r.get("error"):
             r["ratio_to_affine"] = r["val_rmse"] / base if base > 0 else float("nan")
+            inv = r.get("inv_rmse", float("nan"))
+            r["inv_ratio_to_affine"] = inv / inv_base if inv_base > 0 else float("nan")
     rows.sort(key=lambda r: (bool(r.get("error")), r.get("val_nrmse", np.inf)))
     best = rows[0]["model"]
     winner_fit = None
@@ -753,6 +775,8 @@ class _Run:
 
         tm, vm, sec, cpu = self.evaluate(AFFINE, affine_split, budgeted=False)
         rows, fits = [_row(AFFINE, 2, tm, vm, sec, cpu)], {}
+        affines = [Polynomial(coefficients=list(_affine(train))) for train, _ in self.splits]
+        rows[0].update(self.inverse_scores(affines))
         if on_fit is not None:
             on_fit(AFFINE, sec)
         for estimator, name in zip(estimators, names, strict=True):
@@ -776,9 +800,37 @@ class _Run:
             fold_fits = [est.fit_ for est in fitted]
             fits[name] = fold_fits[-1] if len(fold_fits) == 1 else fold_fits
             rows.append(_row(name, _count(fold_fits[-1].model), tm, vm, sec, cpu))
+            rows[-1].update(self.inverse_scores([f.model for f in fold_fits]))
             if on_fit is not None:
                 on_fit(name, sec)
         return rows, fits
+
+    def inverse_scores(self, models: list) -> dict[str, Any]:
+        """The offline inverse error of each split's model over its held-out segments (the
+        inverse run over the whole recording, as the forward model is): inv_rmse, inv_nrmse
+        and inv_out_of_range; an inverse that fails gives NaN and inv_error."""
+        from .inverse_error import offline_inverse
+        from .status import Status
+
+        errors, inputs, flagged = [], [], []
+        try:
+            for (_, evals), model in zip(self.splits, models, strict=True):
+                for r, a, b in evals:
+                    commands, flags = offline_inverse(model, r.t, r.y, r.angle_input)
+                    errors.append(commands[a:b] - r.x[a:b])
+                    inputs.append(r.x[a:b])
+                    flagged.append((flags[a:b] & Status.OUT_OF_RANGE) != 0)
+        except (ValueError, TypeError) as exc:
+            nan = float("nan")
+            return {"inv_rmse": nan, "inv_nrmse": nan, "inv_error": str(exc)}
+        e = np.concatenate(errors)
+        rmse = float(np.sqrt(np.mean(e * e)))
+        span = float(np.ptp(np.concatenate(inputs)))
+        return {
+            "inv_rmse": rmse,
+            "inv_nrmse": rmse / span if span > 0 else float("nan"),
+            "inv_out_of_range": float(np.mean(np.concatenate(flagged))),
+        }
 
 
 def _out_of_time(name: str, message: str) -> dict:

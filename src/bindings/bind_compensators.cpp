@@ -165,6 +165,7 @@ void bind_continuum(nb::module_& m) {
       .def_rw("backbone_length", &P::backbone_length)
       .def_rw("proximal_radius", &P::proximal_radius)
       .def_rw("v_eps", &P::v_eps)
+      .def_rw("play", &P::play)
       .def_rw("mode", &P::mode)
       .def_rw("limits", &P::limits);
   using C = ts::ContinuumFeedforward;

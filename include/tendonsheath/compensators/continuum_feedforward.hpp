@@ -8,7 +8,8 @@
 //   X_in = X_d + S (delta_pull + delta_0) + F L / EA,  S = tanh(theta_d' / v_eps)
 // mode Exact, capstan-consistent and without double counting (spec A.4, C.6):
 //   X_in = X_d + phi Delta_fwd(F) + (1 - phi) Delta_bwd(F),  phi = (1 + S)/2
-// and q_motor = X_in / r_p in both.
+// and q_motor = X_in / r_p in both, plus S r_p p / 2 for a motor-side play p (the gearhead's
+// backlash, crossed at each reversal).
 #pragma once
 
 #include <cmath>
@@ -36,6 +37,7 @@ struct ContinuumFeedforwardParams {
   double backbone_length = 0.03;    ///< l, m
   double proximal_radius = 5e-3;    ///< r_p, m
   double v_eps = 0.1;               ///< smoothing speed of the direction switch, rad/s
+  double play = 0.0;                ///< motor-side play (gearhead backlash), total width, rad at the motor
   ContinuumMode mode = ContinuumMode::Exact;  ///< which equations: the capstan-consistent ones or the paper's
   CommandLimits limits{};           ///< the motor command's limits, on the motor angle, rad
 };
@@ -70,6 +72,8 @@ class ContinuumFeedforward {
     require_positive(p.backbone_length, w, "backbone_length");
     require_positive(p.proximal_radius, w, "proximal_radius");
     require_positive(p.v_eps, w, "v_eps");
+    require_non_negative(p.play, w, "play");
+    require(std::isfinite(p.play), w, "play must be finite");
     require(p.mode == ContinuumMode::Exact || p.mode == ContinuumMode::Published, w,
             "mode must be exact or published");
     require(p.mode == ContinuumMode::Exact || p.friction * p.total_angle > 0.0, w,
@@ -105,7 +109,8 @@ class ContinuumFeedforward {
   double step(double theta_d, double dt) noexcept {
     if (!std::isfinite(theta_d)) return shaper_.apply(NAN, dt);
     const double rate = rate_.update(theta_d, dt);
-    return shaper_.apply(tendon_input(theta_d, std::tanh(rate / p_.v_eps)) / p_.proximal_radius, dt);
+    const double s = std::tanh(rate / p_.v_eps);
+    return shaper_.apply(tendon_input(theta_d, s) / p_.proximal_radius + 0.5 * s * p_.play, dt);
   }
 
   /// The last step's status: held_nonfinite_input (y_d not finite) and the command shaper's

@@ -135,6 +135,7 @@ inline CurveAngleFeedforward curve_angle_inverse(const CurveAngleParams& m, cons
   p.load_stiffness = m.spring;
   p.proximal_radius = m.proximal_radius;
   p.distal_radius = m.distal_radius;
+  p.play = m.play;
   p.total_angle = 0.0;
   p.v_eps = c.smoothing;
   (void)CurveAngleModel(m);  // the model's own validation

@@ -156,6 +156,7 @@ inline ContinuumFeedforwardParams continuum_feedforward_params(const json& f,
   p.backbone_length = detail::number(f, "backbone_length", where);
   p.proximal_radius = detail::number(f, "proximal_radius", where);
   p.gap_factor = detail::number(f, "gap_factor", where);
+  if (f.contains("play")) p.play = detail::number(f, "play", where);  // absent in older files
   p.v_eps = detail::number(f, "smoothing", where);
   const json& mode = detail::member(f, "mode", where);
   if (mode == "exact") p.mode = ContinuumMode::Exact;
@@ -357,7 +358,9 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
   }
   if (kind == "ContinuumFeedforward") {
     const auto keys = detail::keys_of_file(f, detail::kContinuumKeys, detail::kContinuumRenamed);
-    detail::check_keys(f, keys, keys, where);
+    std::set<std::string> allowed = keys;
+    allowed.insert("play");  // optional: files written before it was a setting lack it
+    detail::check_keys(f, allowed, keys, where);
     return {"ContinuumFeedforward", ContinuumFeedforward(continuum_feedforward_params(f, where))};
   }
   detail::fail(where, "key 'compensator': unknown compensator " + kind.dump() +

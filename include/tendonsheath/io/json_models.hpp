@@ -248,7 +248,9 @@ inline void curve_angle_part(ModelPart& part, const json& m, const std::string& 
   const std::string load = p.is_object() && p.contains("load") ? "load" : "load_force";
   const std::string spring = p.is_object() && p.contains("spring") ? "spring" : "load_stiffness";
   keys.insert({load, spring});
-  check_keys(p, keys, keys, w);
+  std::set<std::string> allowed = keys;
+  allowed.insert("play");  // optional: model files written before it was a parameter lack it
+  check_keys(p, allowed, keys, w);
   CurveAngleParams& c = part.curve_angle_model;
   c.friction = number(p, "friction", w);
   c.stiffness = number(p, "stiffness", w);
@@ -258,6 +260,7 @@ inline void curve_angle_part(ModelPart& part, const json& m, const std::string& 
   c.spring = number(p, spring, w);
   c.proximal_radius = number(p, "proximal_radius", w);
   c.distal_radius = number(p, "distal_radius", w);
+  if (p.contains("play")) c.play = number(p, "play", w);
 }
 
 // the models whose params are scalars in param_names order

@@ -74,13 +74,22 @@ def sensed_schedule(shape: ShapeSensing, t, routes: Callable, friction: float, s
 # -- calibration ----------------------------------------------------------------------------
 
 
+#: the calibration excitation's main frequency (Hz)
+CALIBRATION_HZ = 0.25
+
+
 def calibration_input(duration: float, amplitude: float, rate: float = 1000.0):
-    """A calibration excitation unlike the test references: a 0.15 Hz sine whose amplitude
-    sweeps from full to a third and back, plus a 0.9 Hz ripple (nested minor loops)."""
+    """A calibration excitation unlike the test references: a 0.25 Hz sine at full amplitude
+    for its first and last period (both signs: the inverses' identified input range is
+    symmetric) and, between them, an amplitude that sweeps down to a third and back, plus a
+    0.9 Hz ripple (nested minor loops). Runs shorter than three periods shorten the full-
+    amplitude parts to a third of the run each."""
     t = np.arange(0.0, duration, 1.0 / rate)
-    envelope = amplitude * (1.0 - (2.0 / 3.0) * np.sin(np.pi * t / duration))
-    x = envelope * np.sin(2 * np.pi * 0.15 * t) + 0.08 * amplitude * np.sin(2 * np.pi * 0.9 * t)
-    return t, x
+    edge = min(1.0 / CALIBRATION_HZ, duration / 3.0)
+    middle = np.clip((t - edge) / max(duration - 2.0 * edge, 1e-9), 0.0, 1.0)
+    envelope = amplitude * (1.0 - (2.0 / 3.0) * np.sin(np.pi * middle))
+    x = envelope * np.sin(2 * np.pi * CALIBRATION_HZ * t)
+    return t, x + 0.08 * amplitude * np.sin(2 * np.pi * 0.9 * t)
 
 
 @dataclass
@@ -812,13 +821,24 @@ def _mean_slope(recordings) -> float:
     return abs(float(np.dot(xc, y_all - y_all.mean()) / max(np.dot(xc, xc), 1e-300)))
 
 
+#: global searches of a curve-angle model (seeds seed, seed + 1, ...; the best kept): its groups
+#: are strongly correlated (the play with the tendons' dead zone, the load stiffness with the
+#: gain) and one search stops in a local minimum on some drives (lau2015's PID servo: an rmse
+#: 2.2x the best of three)
+RESTARTS = {"CurveAngleModel": 3}
+
+
 def _add_fit(cal: Calibration, name: str, run_names, data, search: dict, *, warmup, seed, budget):
     """Identify model ``name`` from calibration ``data`` (t, x, y; or none, with the
     recordings in ``search``) and file the fit, its runs and its parameters at bounds."""
     from ..identify import identify
 
     model = getattr(models, name)
-    fit = identify(model, *data, **search, warmup=warmup, seed=seed, progress=False, **budget)
+    fits = [
+        identify(model, *data, **search, warmup=warmup, seed=s, progress=False, **budget)
+        for s in range(seed, seed + RESTARTS.get(name, 1))
+    ]
+    fit = min(fits, key=lambda f: f.rmse)
     fit._calibration_runs = list(run_names)
     cal.fits[name] = fit
     cal.at_bounds[name] = _near_bounds(fit)

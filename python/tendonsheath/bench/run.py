@@ -346,8 +346,9 @@ def _result(controller, ts, ys, outputs, warmup: float) -> Result:
 
 def _sensed(plant, ts, routes, shape_sensing, controller, idx):
     """Merge the plant's route changes with the shape sensor's readings: at every index
-    the plant gets its true route and the controller the last sensed (uniform) shape."""
-    from .calibration import sensed_schedule
+    the plant gets its true route and the controller the last sensed shape (the curve angle's
+    uniform route, or the sensed curvature profile)."""
+    from .shape_sensing import sensed_route_schedule
 
     if routes is None:
         route = plant.route
@@ -355,7 +356,7 @@ def _sensed(plant, ts, routes, shape_sensing, controller, idx):
         def routes(_t):
             return route
 
-    r_idx, sensed_rows = sensed_schedule(shape_sensing, ts, routes, controller.friction)[::2]
+    r_idx, _, sensed_rows = sensed_route_schedule(shape_sensing, ts, routes, controller.friction)
     merged = np.union1d(np.asarray(idx, dtype=np.int64), r_idx.astype(np.int64))
     angle_rows, shape_rows = [], []
     for k in merged:

@@ -26,6 +26,7 @@ _SAME_NAMES = (
     "backbone_length",
     "proximal_radius",
     "gap_factor",
+    "play",
 )
 
 
@@ -66,6 +67,9 @@ class ContinuumFeedforward(Feedforward):
         Motor pulley radius (m).
     gap_factor : float, default 1.0
         Kesner and Howe's gamma delta_r: xi = gap_factor mu (1: plain capstan), > 0.
+    play : float, default 0.0
+        Motor-side play (a gearhead's backlash), total width in rad at the motor, >= 0:
+        S play / 2 added to the motor command at the direction S.
     smoothing : float, default 0.1
         Direction-switch speed (rad/s of the bending angle), > 0.
     mode : {"exact", "published"}, default "exact"
@@ -92,6 +96,7 @@ class ContinuumFeedforward(Feedforward):
         "backbone_length",
         "proximal_radius",
         "gap_factor",
+        "play",
         "smoothing",
         "mode",
         "limits",
@@ -110,6 +115,7 @@ class ContinuumFeedforward(Feedforward):
         backbone_length: float = 0.03,
         proximal_radius: float = 5e-3,
         gap_factor: float = 1.0,
+        play: float = 0.0,
         smoothing: float = 0.1,
         mode: str = "exact",
         limits: LimitsLike = None,
@@ -196,6 +202,7 @@ class ContinuumFeedforward(Feedforward):
             tendon_offset=tendon_offset,
             backbone_length=backbone_length,
             proximal_radius=p.get("proximal_radius", 5e-3),
+            play=p.get("play", 0.0),
             mode=mode,
             **options,
         )

@@ -116,8 +116,8 @@ def _upgraded(name: str, settings: dict[str, Any]) -> dict[str, Any]:
             return renamed(f"{name} file", settings, RENAMED, warn=False)
         except TypeError as err:  # both names: a bad file
             raise ValueError(str(err)) from None
-    if name == "CurveAngleFeedforward" and "play" not in settings:  # written before play
-        settings = {**settings, "play": 0.0}
+    if name in ("CurveAngleFeedforward", "ContinuumFeedforward") and "play" not in settings:
+        settings = {**settings, "play": 0.0}  # written before the play was a setting
     if name == "CurveAngleFeedforward" and "compliance" in settings:
         out = dict(settings)
         compliance = _number(name, "'compliance'", out.pop("compliance"))
