@@ -152,25 +152,28 @@ def scenarios(m: Source) -> str:
     """The demo's three seed experiments and the robustness study beside the papers."""
     rows = []
 
-    # do2015: MSE on the nominal route (details) and under random route changes (headline)
-    comps = m.keys("scenarios", "do2015")
-    fixed = [m.num("details", "do2015", "fixed_route", c, "mse") for c in comps]
-    moving = [m.num("scenarios", "do2015", c, "mse") for c in comps]
+    # do2015: the headline compensator's MSE reduction on each servo (the do2015 table: all)
+    servos = m.keys("details", "do2015", "servo_summary")
+    head = "shape-aware InverseFeedforward + EncoderLoop"
+    cells = []
+    for servo in servos:
+        s = ("details", "do2015", "servo_summary", servo, head)
+        cells.append(
+            f"{servo.upper()} servo: {times(m.num(*s, 'factor_fixed'))} fixed route, "
+            f"{times(m.num(*s, 'factor_random', 'median'))} random routes (median; worst "
+            f"{times(m.num(*s, 'factor_random', 'min'))})"
+        )
     paper_comps = m.keys("paper", "do2015", "mse_rad2")
     paper = [m.num("paper", "do2015", "mse_rad2", c) for c in paper_comps]
-
-    def gains(values):
-        return ", ".join(times(values[0] / v) for v in values[1:])
-
     rows.append(
         [
             "`do2015`",
-            "pull-pull pair driving a distal joint; nominal route (not the calibration "
-            "route), and random route changes",
-            " / ".join(comps),
-            f"MSE, nominal route: {slash(fixed)} rad^2 ({gains(fixed)}); "
-            f"random routes: {slash(moving)} ({gains(moving)})",
-            f"{slash(paper, trim=True)} ({gains(paper)})",
+            "pull-pull pair driving a distal joint; a fixed route and random route changes "
+            "(5 seeds), behind a PID and a PD servo",
+            f"{head} (no tip sensor); the others in the do2015 table",
+            "MSE reduction: " + "; ".join(cells),
+            f"{times(paper[0] / paper[1])} (InverseFeedforward), "
+            f"{times(paper[0] / paper[2])} (AdaptiveController)",
         ]
     )
 
@@ -192,10 +195,17 @@ def scenarios(m: Source) -> str:
         ]
     )
 
-    # lau2015: percent error of the range, and the -3 dB bandwidth of the frequency responses
-    comps = m.keys("scenarios", "lau2015")
-    mean = [m.num("scenarios", "lau2015", c, "percent_error") for c in comps]
-    worst = [m.num("scenarios", "lau2015", c, "max_percent_error") for c in comps]
+    # lau2015: the headline's percent error on each servo, and the -3 dB bandwidths
+    servos = m.keys("details", "lau2015", "servo_runs")
+    head = "ContinuumFeedforward (exact) + EncoderLoop"
+    cells = []
+    for servo in servos:
+        r = ("details", "lau2015", "servo_runs", servo)
+        cells.append(
+            f"{servo.upper()} servo: mean error {fmt(m.num(*r, head, 'percent_error'))} % "
+            f"(max {fmt(m.num(*r, head, 'max_percent_error'))} %), uncompensated "
+            f"{fmt(m.num(*r, 'none', 'percent_error'))} %"
+        )
     responses = m.keys("details", "lau2015", "frequency")
     bandwidth = [m.num("details", "lau2015", "frequency", c, "bandwidth_3db_hz") for c in responses]
 
@@ -206,10 +216,11 @@ def scenarios(m: Source) -> str:
     rows.append(
         [
             "`lau2015`",
-            "continuum segment, +/-90 deg at 0.4 Hz, 1 m sheath on a 0.6 m semicircle",
-            " / ".join(short(c) for c in comps),
-            f"mean error {slash(mean)} % of the range (max {slash(worst)} %); "
-            f"-3 dB bandwidth {slash(bandwidth)} Hz ({' / '.join(short(c) for c in responses)}) "
+            "continuum segment, +/-90 deg at 0.4 Hz, 1 m sheath on a 0.6 m semicircle, behind "
+            "a PID and a PD servo",
+            f"{head}; the others in the lau2015 table",
+            "; ".join(cells)
+            + f"; -3 dB bandwidth {slash(bandwidth)} Hz ({' / '.join(short(c) for c in responses)}) "
             "behind a 1.2 Hz motor lag",
             f"< {fmt(m.num('paper', 'lau2015', 'percent_error'), trim=True)} % "
             f"({fmt(m.num('paper', 'lau2015', 'max_percent_error'), trim=True)} % at the "
@@ -234,6 +245,53 @@ def scenarios(m: Source) -> str:
         ]
     )
     header = ["scenario", "conditions", "compensators", "this simulation", "paper"]
+    return md_table(header, rows) + "\n\n" + generated_from(m)
+
+
+def do2015(m: Source) -> str:
+    """Every do2015 compensator on both servos: MSE reduction on the fixed route and under
+    random route changes (median and worst of the route seeds)."""
+    servos = m.keys("details", "do2015", "servo_summary")
+    comps = m.keys("details", "do2015", "servo_summary", servos[0])
+    rows = []
+    for comp in comps:
+        if comp == "none":
+            continue
+        cells = [comp]
+        for servo in servos:
+            s = ("details", "do2015", "servo_summary", servo, comp)
+            cells += [
+                times(m.num(*s, "factor_fixed")),
+                f"{times(m.num(*s, 'factor_random', 'median'))} "
+                f"({times(m.num(*s, 'factor_random', 'min'))})",
+            ]
+        rows.append(cells)
+    header = ["compensator"]
+    for servo in servos:
+        header += [f"{servo.upper()}: fixed route", f"{servo.upper()}: random, median (worst)"]
+    note = (
+        "MSE reduction over each servo's uncompensated run (the AdaptiveController drives a "
+        "torque motor: the same run in both columns, divided into each servo's); random routes: "
+        "the median and the worst of "
+        f"{len(m.items('details', 'do2015', 'route_seeds'))} route-schedule seeds."
+    )
+    return md_table(header, rows) + "\n\n" + note + "\n\n" + generated_from(m)
+
+
+def lau2015(m: Source) -> str:
+    """Every lau2015 compensator on both servos: mean (max) error over the range."""
+    servos = m.keys("details", "lau2015", "servo_runs")
+    comps = m.keys("details", "lau2015", "servo_runs", servos[0])
+    rows = []
+    for comp in comps:
+        cells = [comp]
+        for servo in servos:
+            r = ("details", "lau2015", "servo_runs", servo, comp)
+            cells.append(
+                f"{fmt(m.num(*r, 'percent_error'))} % ({fmt(m.num(*r, 'max_percent_error'))} %)"
+            )
+        rows.append(cells)
+    header = ["compensator", *(f"{s.upper()} servo: mean (max) error" for s in servos)]
     return md_table(header, rows) + "\n\n" + generated_from(m)
 
 
@@ -525,6 +583,8 @@ class Table:
 TABLES = [
     Table("scenarios", ("demo-metrics.json",), scenarios),
     Table("targets", ("demo-metrics.json",), targets),
+    Table("do2015", ("demo-metrics.json",), do2015),
+    Table("lau2015", ("demo-metrics.json",), lau2015),
     Table(
         "performance",
         (

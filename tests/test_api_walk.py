@@ -53,6 +53,7 @@ PUBLIC_MODULES = [
     "tendonsheath.report.build",
     "tendonsheath.identify",
     "tendonsheath.compare",
+    "tendonsheath.inverse_error",
     "tendonsheath.control_interop",
     "tendonsheath.export_cpp",
     "tendonsheath.protocols",

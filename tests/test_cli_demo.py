@@ -26,15 +26,23 @@ def test_demo_writes_report_metrics_and_figures(tmp_path):
     )
     assert result.exit_code == 0, result.output
     metrics = json.loads((tmp_path / "metrics.json").read_text())
-    assert metrics["schema"] == "tendonsheath.metrics" and metrics["version"] == 2
+    assert metrics["schema"] == "tendonsheath.metrics" and metrics["version"] == 3
     assert set(metrics["scenarios"]) == {"lau2015"}
     assert "ContinuumFeedforward (exact)" in metrics["scenarios"]["lau2015"]
     robust = metrics["robustness"]
     assert robust["runs"] == 40 and robust["metric"] == "mse"
-    assert set(robust["compensators"]) == {"none", "InverseFeedforward", "AdaptiveController"}
-    # over perturbed plants both compensators still beat no compensation (median MSE)
+    head = "shape-aware InverseFeedforward + EncoderLoop"
+    assert set(robust["compensators"]) == {
+        "none",
+        "InverseFeedforward",
+        head,
+        "AdaptiveController",
+    }
+    # over perturbed plants every compensator still beats no compensation (median MSE), and
+    # the shape-aware one in its encoder loop the one-shape feedforward
     med = {k: v["median"] for k, v in robust["compensators"].items()}
-    assert med["AdaptiveController"] < med["none"] and med["InverseFeedforward"] < med["none"]
+    assert all(med[k] < med["none"] for k in med if k != "none")
+    assert med[head] < med["InverseFeedforward"]
     assert (tmp_path / "robustness_mse.png").exists()
     names = set(metrics["models"])
     assert {"Backlash", "BoucWenBacklash", "BoucWen", "PrandtlIshlinskii"} <= names

@@ -17,8 +17,8 @@ from tendonsheath.compensate.tuning import controller_polynomials, loop_plant, t
 from tendonsheath.identify.servo import ServoFit
 
 
-def _servo(frequency, damping, gain=1.0, delay=0) -> ServoFit:
-    return ServoFit(frequency, damping, gain, 0.0, delay, 1e-3, 0.0, 0.0)
+def _servo(frequency, damping, gain=1.0, delay=0, integral_time=0.0) -> ServoFit:
+    return ServoFit(frequency, damping, gain, 0.0, delay, 1e-3, 0.0, 0.0, {}, integral_time)
 
 
 def _closed_loop(design):
@@ -33,9 +33,9 @@ def _closed_loop(design):
     return L, ct.feedback(1, L)
 
 
-SERVOS = [_servo(f, z, g, d) for f, z, g, d in
-          [(60, 0.8, 1.0, 0), (14, 2.2, 0.84, 0), (25, 0.3, 1.1, 2), (5, 0.7, 0.9, 5),
-           (120, 1.5, 1.0, 1)]]  # fmt: skip
+SERVOS = [_servo(f, z, g, d, ti) for f, z, g, d, ti in
+          [(60, 0.8, 1.0, 0, 0.0), (14, 2.2, 0.84, 0, 0.0), (25, 0.3, 1.1, 2, 0.0),
+           (5, 0.7, 0.9, 5, 0.0), (120, 1.5, 1.0, 1, 0.0), (69, 1.1, 1.0, 0, 0.0135)]]  # fmt: skip
 
 
 @pytest.mark.parametrize("servo", SERVOS, ids=lambda s: f"{s.frequency}Hz")

@@ -78,10 +78,12 @@ def test_a_missing_key_is_named_with_its_file(tables, tmp_path, capsys):
     results = _copy_results(tables, tmp_path)
     path = results / "demo-metrics.json"
     metrics = json.loads(path.read_text())
-    del metrics["scenarios"]["do2015"]["none"]["mse"]
+    comp = "shape-aware InverseFeedforward + EncoderLoop"
+    del metrics["details"]["do2015"]["servo_summary"]["pid"][comp]["factor_fixed"]
     path.write_text(json.dumps(metrics))
     err = _one_line_error(tables, tmp_path, results, capsys)
-    assert "demo-metrics.json" in err and "'scenarios.do2015.none.mse'" in err
+    key = f"'details.do2015.servo_summary.pid.{comp}.factor_fixed'"
+    assert "demo-metrics.json" in err and key in err
 
 
 def test_a_non_number_is_named(tables, tmp_path, capsys):

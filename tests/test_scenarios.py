@@ -1,85 +1,129 @@
-"""The built-in scenarios at reduced length: the rankings and the seed-level factors."""
+"""The built-in scenarios at reduced length: the rankings and the seed-level factors.
+
+Every figure below was measured at scale 0.25 (do2015 runs of 10 s, sun2015 of 6 s, lau2015 of
+5 s; identification budget 40 x 10), seed 0; thresholds sit at least 15 % below (above for an
+error) and say so. The full-length figures are in README.md (benchmarks/results/demo-metrics.json).
+"""
 
 import math
 
 import numpy as np
 
 
-def test_do2015_ranking_and_factors(scenario_results):
-    # Realistic plant (tendonsheath.presets) and bench.calibrate (calibration route, not a
-    # test route). Measured at scale 0.25, seed 0: random routes feedforward 5.6x, adaptive
-    # 6.1x; nominal route feedforward 8.4x, adaptive 4.0x. Do et al.'s 13x (feedforward) and
-    # 190x (adaptive) are NOT reached, and their ranking (adaptive far ahead) is not either:
-    # motor Coulomb friction and gear play hurt the torque-driven loop most.
+def _factors(r, servo):
+    return r.extra["servo_summary"][servo]
+
+
+def test_do2015_shape_aware_feedforward_beats_the_paper_on_both_servos(scenario_results):
+    # measured, fixed route / random routes median (worst of 5 seeds):
+    #   PID: shape-aware + EncoderLoop 240x / 141x (54.7x); shape-aware alone 317x / 188x (59.7x)
+    #   PD:  shape-aware + EncoderLoop 459x / 252x (87.5x); shape-aware alone 105x / 96.8x (38.2x)
+    #   InverseFeedforward of one calibration shape: 26.0x / 15.9x (4.6x) PID, 27.9x / 13.1x (4.5x) PD
     r = scenario_results["do2015"]
-    mse = {k: v.metrics["mse"] for k, v in r.runs.items()}  # with random route changes
-    assert mse["none"] / mse["InverseFeedforward"] >= 4.5
-    assert mse["none"] / mse["AdaptiveController"] >= 4.5
-    fixed = {k: v["mse"] for k, v in r.extra["fixed_route"].items()}
-    assert fixed["none"] / fixed["InverseFeedforward"] >= 7
-    assert fixed["none"] / fixed["AdaptiveController"] >= 3.3
-    assert len(r.route_schedule) >= 2  # the route did change during the run
+    head = "shape-aware InverseFeedforward + EncoderLoop"
+    for servo, (fixed, median, worst) in {"pid": (200, 120, 45), "pd": (390, 210, 74)}.items():
+        s = _factors(r, servo)[head]
+        assert s["factor_fixed"] >= fixed, servo
+        assert s["factor_random"]["median"] >= median, servo
+        assert s["factor_random"]["min"] >= worst, servo
+        assert s["factor_random"]["seeds"] == 5
+    # the shape is what pays under random routes: the one-shape feedforward stays near 5x worst
+    for servo in ("pid", "pd"):
+        one = _factors(r, servo)["InverseFeedforward"]["factor_random"]["min"]
+        assert _factors(r, servo)[head]["factor_random"]["min"] > 8 * one
+    # the encoder loop is what pays on the yielding PD servo (4.4x on the fixed route here)
+    pd = _factors(r, "pd")
+    assert pd[head]["factor_fixed"] > 3 * pd["shape-aware InverseFeedforward"]["factor_fixed"]
+    assert len(r.route_schedule) >= 2  # the route did change during the headline run
     assert set(r.honesty) == set(r.runs)  # every compensator has its honesty panel row
+
+
+def test_do2015_adaptive_controller_still_misses_its_190x(scenario_results):
+    # measured: 2.92x fixed, 3.82x median (worst 2.92x) against the PID servo's uncompensated
+    # run: Step 14's work; the verdict must say "not met"
+    r = scenario_results["do2015"]
+    adaptive = _factors(r, "pid")["AdaptiveController"]
+    assert 2.4 < adaptive["factor_random"]["median"] < 190
+    (claim,) = [t for t in r.targets if t["claim"].startswith("AdaptiveController")]
+    assert not claim["met"]
 
 
 def test_sun2015_curve_angle_feedforward_follows_the_route(scenario_results):
     r = scenario_results["sun2015"]
     rmse = {k: v.metrics["rmse"] for k, v in r.runs.items()}
+    # measured: route change run 0.0254 / 0.0413 / 0.121 rad (curve-angle / fixed / none)
     assert rmse["CurveAngleFeedforward"] < rmse["fixed feedforward"] < rmse["none"]
     per = r.extra["per_condition"]
     assert len(per) == 15  # five curve angles x three loads
-    # measured (scale 0.25): curve-angle feedforward / none at most 0.95 (Theta = 0, no
-    # load), 0.27-0.40 elsewhere; against the fixed feedforward it is better everywhere but
-    # near the fixed one's calibration angle (1.15 pi) without load (1.08x at pi/2, 1.35x at
-    # pi): the seed's "always better" ranking holds on average only (measured mean 0.58x)
+    # measured: curve-angle feedforward / none at most 0.27 (Theta = 0, no load: the residual
+    # is the drive's own), 0.02-0.06 elsewhere; mean rmse 0.0031 rad against the fixed
+    # feedforward's 0.066
     for condition, m in per.items():
-        assert m["CurveAngleFeedforward"]["rmse"] <= m["none"]["rmse"], condition
+        assert m["CurveAngleFeedforward"]["rmse"] <= 0.35 * m["none"]["rmse"], condition
     mean = r.extra["mean_rmse_over_conditions"]
-    assert mean["CurveAngleFeedforward"] < 0.8 * mean["fixed feedforward"]
+    assert mean["CurveAngleFeedforward"] < 0.1 * mean["fixed feedforward"]
 
 
 def test_sun2015_curve_angle_feedforward_within_2x_of_a_local_calibration(scenario_results):
     """Sun et al.'s claim: at curve angles it was not calibrated at, the curve-angle
     feedforward (told the sensed angle, with noise and delay) does about as well as a
-    feedforward calibrated at that very angle. Target: within 2x at every test angle."""
-    local = scenario_results["sun2015"].extra["local_reference"]
-    ratios = {k: v["ratio"] for k, v in local["angles"].items()}
-    assert len(ratios) == 5
-    # measured (scale 0.25, seed 0): 1.47 at 0 pi (no friction to follow there, the residual
-    # is the drive's own), 0.99-1.07 elsewhere; the 2x target holds with a 1.36x margin
-    assert max(ratios.values()) <= 2.0, ratios
-    assert local["met"]
+    feedforward calibrated at that very angle. Target: within 2x at every test angle, on
+    both servos."""
+    extra = scenario_results["sun2015"].extra
+    for local in (extra["local_reference"], extra["pd_servo"]["local_reference"]):
+        ratios = {k: v["ratio"] for k, v in local["angles"].items()}
+        assert len(ratios) == 5
+        # measured: 1.12-1.39 (PID), 0.97-1.23 (PD): the 2x target holds with a 1.4x margin
+        assert max(ratios.values()) <= 1.65, ratios
+        assert local["met"]
 
 
-def test_lau2015_exact_feedforward_meets_the_papers_claim(scenario_results):
+def test_lau2015_exact_feedforward_in_the_encoder_loop_beats_the_papers_claim(scenario_results):
     r = scenario_results["lau2015"]
-    exact = r.runs["ContinuumFeedforward (exact)"].metrics
-    # measured (scale 0.25, realistic plant, bench.calibrate at 0.4/0.75/1.4 pi): exact 12.6 %,
-    # published 9.5 %, none 15.0 %. Lau et al.'s < 5 % is NOT reached.
-    assert exact["percent_error"] < 0.95 * r.runs["none"].metrics["percent_error"]
+    head = "ContinuumFeedforward (exact) + EncoderLoop"
+    for servo, runs in r.extra["servo_runs"].items():
+        # measured: 0.54 % mean (max 0.94 %) PID, 0.55 % (0.98 %) PD; uncompensated 4.7 % and
+        # 15.0 %; the paper's < 5 % (8 % at the extremes), the issue's < 2 % (max < 5 %)
+        assert runs[head]["percent_error"] < 0.7, servo
+        assert runs[head]["max_percent_error"] < 1.2, servo
+        assert runs[head]["percent_error"] < 0.15 * runs["none"]["percent_error"], servo
     span = np.ptp(r.runs["none"].reference)
     assert math.isclose(span, math.pi, rel_tol=1e-3)  # +/-90 deg
     fr = r.frequency["none"]
     assert fr.frequencies.min() <= 0.05 + 1e-9 and fr.frequencies.max() >= 2.0 - 1e-9
-    # measured (scale 0.25): the uncompensated realistic drive already loses 3.4 dB at
-    # 0.05 Hz (its -3 dB "bandwidth" is the lowest frequency), -12.4 dB at 2 Hz; the exact
-    # feedforward's -3 dB bandwidth is 0.38 Hz: the paper's 0.8 Hz is NOT reached
+    # measured: the uncompensated drive behind the 1.2 Hz lag loses 0.46 dB at 0.05 Hz and
+    # 12.1 dB at 2 Hz; the exact feedforward's -3 dB bandwidth is 0.85 Hz (paper 0.8 Hz)
     assert fr.gain_db[-1] < fr.gain_db[0] - 6.0  # the 1.2 Hz motor lag sets the roll-off
-    assert 0.3 < r.frequency["ContinuumFeedforward (exact)"].bandwidth_3db < 2.0
+    assert 0.5 < r.frequency["ContinuumFeedforward (exact)"].bandwidth_3db < 2.0
 
 
 def test_paper_target_verdicts_follow_the_measured_figures(scenario_results):
     """Each scenario's targets are computed from its own runs, and the verdict from the figure."""
     do = scenario_results["do2015"]
-    mse = {k: v.metrics["mse"] for k, v in do.runs.items()}
-    factors = {t["claim"].split()[0]: t for t in do.targets}
-    for name, bound in (("InverseFeedforward", 13), ("AdaptiveController", 190)):
-        assert factors[name]["measured"] == mse["none"] / mse[name]
-        assert factors[name]["met"] == (factors[name]["measured"] >= bound)
-    (sun,) = scenario_results["sun2015"].targets
-    assert sun["measured"] == scenario_results["sun2015"].extra["local_reference"]["worst_ratio"]
+    head = "shape-aware InverseFeedforward + EncoderLoop"
+    for t in do.targets:
+        if t["claim"].startswith("AdaptiveController"):
+            s = _factors(do, "pid")["AdaptiveController"]["factor_random"]
+            assert t["measured"] == s["median"] and t["met"] == (s["median"] >= 190)
+            continue
+        servo = "pid" if "PID servo" in t["claim"] else "pd"
+        s = _factors(do, servo)[head]
+        if "fixed route" in t["claim"]:
+            expected, bound = s["factor_fixed"], 30
+        elif "worst seed" in t["claim"]:
+            expected, bound = s["factor_random"]["min"], 13
+        else:
+            expected, bound = s["factor_random"]["median"], 30
+        assert t["measured"] == expected and t["met"] == (expected >= bound), t["claim"]
+    sun = scenario_results["sun2015"]
+    pid, pd = sun.targets
+    assert pid["measured"] == sun.extra["local_reference"]["worst_ratio"]
+    assert pd["measured"] == sun.extra["pd_servo"]["local_reference"]["worst_ratio"]
     lau = scenario_results["lau2015"]
     for t in lau.targets:
-        name = t["claim"].split(" mean error")[0]
-        assert t["measured"] == lau.runs[name].metrics["percent_error"]
-        assert t["met"] == (t["measured"] < 5.0)
+        servo = "pid" if "PID servo" in t["claim"] else "pd"
+        name = t["claim"].split(",")[0]
+        key = "max_percent_error" if "max error" in t["claim"] else "percent_error"
+        assert t["measured"] == lau.extra["servo_runs"][servo][name][key]
+        bound = 5.0 if key == "max_percent_error" or "published" in name else 2.0
+        assert t["met"] == (t["measured"] < bound)

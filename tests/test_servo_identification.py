@@ -53,15 +53,31 @@ def test_recovers_the_cpp_motor_lag():
     assert fit.frequency == pytest.approx(40.0, rel=0.02)
     assert fit.damping == pytest.approx(0.7, rel=0.06)
     assert fit.delay == 0
+    assert fit.integral_time == 0.0  # a PD servo: the integral does not pay its parameter
+
+
+@pytest.mark.parametrize("integral_time", [0.01, 0.03])
+def test_recovers_the_integral_time_of_a_pid_servo(integral_time):
+    """A PID servo (integral action) is told from a PD one, and its integral time recovered."""
+    t, u = motor_calibration_input(8.0, 1.0)
+    motor = ts.Motor.position(bandwidth_hz=40.0, damping=0.7, integral_time=integral_time)
+    fit = identify_servo(t, u, motor.simulate(t, u))
+    assert fit.integral_time == pytest.approx(integral_time, rel=0.1)  # measured: within 6 %
+    assert fit.frequency == pytest.approx(40.0, rel=0.03)
+    assert "PID" in fit.summary()
 
 
 def test_the_loaded_drive_matches_its_measured_frequency_response():
-    """On the realistic do2015 drive (tendons attached, friction, gear play) the fit must
-    reproduce the command-to-encoder response where the chirp excites it (Welch estimate)."""
+    """On the realistic do2015 drive (tendons attached, friction, gear play), behind either
+    servo, the fit must reproduce the command-to-encoder response where the chirp excites it
+    (Welch estimate)."""
     from tendonsheath.bench.scenarios import do
 
-    servo = do.plants()[0]
-    motor = calibrate_servo(servo, do.CALIBRATION_ROUTE, duration=20.0)
+    for servo in (do.plants("pid")[0], do.plants("pd")[0]):
+        _check_response(calibrate_servo(servo, do.CALIBRATION_ROUTE, duration=20.0))
+
+
+def _check_response(motor):
     t, u, q = motor.t, motor.command, motor.encoder
     detrend = [x - np.polyval(np.polyfit(t, x, 1), t) for x in (u, q)]
     f, puq = csd(detrend[0], detrend[1], fs=1000.0, nperseg=2048)

@@ -258,7 +258,7 @@ def test_scenario_summaries_are_whole_sentences_and_sun_names_its_metric():
     from tendonsheath.bench.scenarios.do import do2015
 
     summary = first_paragraph(do2015.__doc__)
-    assert summary.endswith("with the route changing at random.")
+    assert summary.endswith("behind a PID servo and a yielding PD servo.")
     source = (ROOT / "python" / "tendonsheath" / "bench" / "scenarios" / "sun.py").read_text()
     assert 'table_title="RMSE of the distal angle per condition' in source
 

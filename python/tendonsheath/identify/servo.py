@@ -7,7 +7,13 @@ calibration run's command and motor encoder, as
 
     q = offset + gain * w^2 / (s^2 + 2 damping w s + w^2) * command(t - delay)
 
-(w = 2 pi frequency): the command held over each sample (zero-order hold: what a servo
+(w = 2 pi frequency; a PD servo, which yields to a load), or, for a servo with integral action
+(a PID servo: no steady error under a constant load), the third-order form
+
+    q = offset + gain * w^2 (s + 1/T_i) / (s^3 + 2 damping w s^2 + w^2 s + w^2/T_i) * command
+
+(``integral_time`` T_i > 0). Both are fitted; the integral is kept when it lowers the Bayesian
+information criterion. The command is held over each sample (zero-order hold: what a servo
 receives), ``delay`` whole samples of transport delay. The excitation should move the servo
 over its bandwidth without reversing the tendons (a chirp on a slow ramp,
 :func:`tendonsheath.bench.calibration.motor_calibration_input`).
@@ -58,7 +64,9 @@ class ServoFit:
     nrmse : float
         rmse over the encoder's range.
     standard_errors : dict of str to float, optional
-        Linearised standard errors of frequency, damping, gain and offset.
+        Linearised standard errors of frequency and damping.
+    integral_time : float, default 0.0
+        The servo's integral time T_i (s); 0: no integral action (a PD servo).
     """
 
     frequency: float
@@ -70,6 +78,7 @@ class ServoFit:
     rmse: float
     nrmse: float
     standard_errors: dict[str, float] = field(default_factory=dict)
+    integral_time: float = 0.0
 
     def discrete(self, dt: float | None = None) -> tuple[np.ndarray, np.ndarray]:
         """The servo's zero-order-hold transfer function in z^-1 at sample time ``dt`` (default
@@ -86,7 +95,7 @@ class ServoFit:
             Coefficients in z^-1 (den[0] = 1).
         """
         return servo_filter(self.frequency, self.damping, self.gain, self.delay,
-                            self.dt if dt is None else float(dt))  # fmt: skip
+                            self.dt if dt is None else float(dt), self.integral_time)  # fmt: skip
 
     def to_control(self, dt: float | None = None) -> control.TransferFunction:
         """The servo as a discrete-time python-control transfer function (input: command,
@@ -124,6 +133,7 @@ class ServoFit:
             "gain": self.gain,
             "offset": self.offset,
             "delay_samples": self.delay,
+            "integral_time": self.integral_time,
             "dt": self.dt,
             "rmse": self.rmse,
             "nrmse": self.nrmse,
@@ -140,27 +150,40 @@ class ServoFit:
         """
         se = self.standard_errors
         f_se = f" +- {se['frequency']:.2g}" if "frequency" in se else ""
+        kind = f"PID (T_i {self.integral_time:.3g} s)" if self.integral_time > 0 else "PD"
         return (
-            f"servo: {self.frequency:.4g}{f_se} Hz, damping {self.damping:.3g}, gain "
+            f"servo ({kind}): {self.frequency:.4g}{f_se} Hz, damping {self.damping:.3g}, gain "
             f"{self.gain:.4g}, delay {self.delay} samples ({1e3 * self.delay * self.dt:.3g} ms); "
             f"nrmse {self.nrmse:.3g}"
         )
 
 
 def servo_filter(
-    frequency: float, damping: float, gain: float, delay: int, dt: float
+    frequency: float,
+    damping: float,
+    gain: float,
+    delay: int,
+    dt: float,
+    integral_time: float = 0.0,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """(num, den) in z^-1 of gain w^2/(s^2 + 2 damping w s + w^2), zero-order hold at dt, with
+    """(num, den) in z^-1 of gain w^2/(s^2 + 2 damping w s + w^2) (with an integral time T_i > 0:
+    gain w^2 (s + 1/T_i)/(s^3 + 2 damping w s^2 + w^2 s + w^2/T_i)), zero-order hold at dt, with
     the command of a step acting during that step (q_k from u_k held over (t_k-1, t_k]) and
     ``delay`` samples more."""
     w = 2.0 * math.pi * frequency
-    num, den, _ = cont2discrete(([gain * w * w], [1.0, 2.0 * damping * w, w * w]), dt, "zoh")
+    if integral_time > 0:
+        wi = 1.0 / integral_time
+        tf = ([gain * w * w, gain * w * w * wi], [1.0, 2.0 * damping * w, w * w, w * w * wi])
+    else:
+        tf = ([gain * w * w], [1.0, 2.0 * damping * w, w * w])
+    num, den, _ = cont2discrete(tf, dt, "zoh")
     num = np.atleast_1d(np.squeeze(num))[1:]  # drop the leading 0: the step's own command acts
     return np.concatenate([np.zeros(int(delay)), num]), np.asarray(den, dtype=float)
 
 
-def _unit_response(frequency: float, damping: float, u: np.ndarray, delay: int, dt: float):
-    num, den = servo_filter(frequency, damping, 1.0, delay, dt)
+def _unit_response(frequency: float, damping: float, u: np.ndarray, delay: int, dt: float,
+                   integral_time: float = 0.0):  # fmt: skip
+    num, den = servo_filter(frequency, damping, 1.0, delay, dt, integral_time)
     shifted = u - u[0]  # from rest at the first command
     return lfilter(num, den, shifted) + u[0]
 
@@ -179,26 +202,36 @@ def _band(x: np.ndarray, dt: float, highpass_hz: float) -> np.ndarray:
     return sosfiltfilt(sos, x)
 
 
-def _fit_at_delay(u, q, delay: int, dt: float, start: tuple[float, float], keep: slice):
-    """(frequency, damping, gain, offset, residual, least_squares result) at one delay, on the
-    samples ``keep``; the gain and offset are solved linearly inside (variable projection)."""
+def _parameters(p: np.ndarray) -> tuple[float, float, float]:
+    """(frequency, damping, integral time) from the search vector: the logs of frequency and
+    damping, and with an integral the log of 1/T_i (rad/s)."""
+    ti = math.exp(-p[2]) if p.size > 2 else 0.0
+    return math.exp(p[0]), math.exp(p[1]), ti
+
+
+def _fit_at_delay(u, q, delay: int, dt: float, start: np.ndarray, keep: slice):
+    """(frequency, damping, integral time, gain, offset, residual, least_squares result) at one
+    delay, on the samples ``keep``; ``start`` has 2 entries (no integral) or 3; the gain and
+    offset are solved linearly inside (variable projection)."""
     nyquist = 0.5 / dt
 
     def residual(p):
-        f, z = math.exp(p[0]), math.exp(p[1])
-        return _affine(_unit_response(f, z, u, delay, dt)[keep], q[keep])[2]
+        f, z, ti = _parameters(p)
+        if ti > 0 and 1.0 / ti >= 2.0 * z * 2.0 * math.pi * f:  # Routh: an unstable servo
+            return np.full(keep.stop - keep.start, 1e3 * (1.0 + float(np.ptp(q))))
+        return _affine(_unit_response(f, z, u, delay, dt, ti)[keep], q[keep])[2]
 
-    lo = [math.log(1e-3), math.log(0.05)]
-    hi = [math.log(0.45 * nyquist * 2), math.log(20.0)]
-    x0 = np.clip(np.log(start), lo, hi)
-    r = least_squares(residual, x0, bounds=(lo, hi), x_scale=1.0)
-    f, z = (float(math.exp(v)) for v in r.x)
-    g, c, res = _affine(_unit_response(f, z, u, delay, dt)[keep], q[keep])
-    return f, z, g, c, res, r
+    lo = [math.log(1e-3), math.log(0.05), math.log(1e-2)][: start.size]
+    hi = [math.log(0.45 * nyquist * 2), math.log(20.0), math.log(2.0 * math.pi * nyquist)]
+    x0 = np.clip(start, lo, hi[: start.size])
+    r = least_squares(residual, x0, bounds=(lo, hi[: start.size]), x_scale=1.0)
+    f, z, ti = _parameters(r.x)
+    g, c, res = _affine(_unit_response(f, z, u, delay, dt, ti)[keep], q[keep])
+    return f, z, ti, g, c, res, r
 
 
-def _start(u, q, delay: int, dt: float, keep: slice) -> tuple[float, float]:
-    """The best (frequency, damping) of a coarse grid: a start for the least squares."""
+def _start(u, q, delay: int, dt: float, keep: slice) -> np.ndarray:
+    """The best log(frequency), log(damping) of a coarse grid: a start for the least squares."""
     best, arg = math.inf, (1.0, 0.7)
     for f in np.geomspace(0.2, 0.4 / dt, 24):
         for z in (0.3, 0.8, 2.0, 6.0):
@@ -206,13 +239,13 @@ def _start(u, q, delay: int, dt: float, keep: slice) -> tuple[float, float]:
             sse = float(np.sum(_affine(response, q[keep])[2] ** 2))
             if sse < best:
                 best, arg = sse, (float(f), z)
-    return arg
+    return np.log(arg)
 
 
 def _standard_errors(result, residual: np.ndarray, f: float, z: float) -> dict[str, float]:
     """Linearised standard errors of frequency and damping (the Jacobian is in their logs)."""
     J = np.asarray(result.jac)
-    dof = max(residual.size - 4, 1)
+    dof = max(residual.size - J.shape[1] - 2, 1)
     s2 = float(residual @ residual) / dof
     try:
         cov = s2 * np.linalg.inv(J.T @ J)
@@ -270,13 +303,9 @@ def identify_servo(
     u, q = _band(u, dt, highpass_hz), _band(q, dt, highpass_hz)
     edge = min(int(round(1.0 / (max(highpass_hz, 1e-9) * dt))), u.size // 8)
     keep = slice(edge, u.size - edge)
-    fits = []
     start = _start(u, q, 0, dt, keep)  # a delay of a few samples barely moves the coarse grid
-    for d in range(max_delay + 1):
-        f, z, g, c, res, r = _fit_at_delay(u, q, d, dt, start, keep)
-        fits.append((float(res @ res), d, f, z, g, c, res, r))
-    _, d, f, z, _, _, res, r = min(fits, key=lambda item: item[0])
-    g, c, raw = _affine(_unit_response(f, z, u_raw, d, dt), q_raw)
+    d, f, z, ti, res, r = _best_structure(u, q, dt, keep, start, max_delay)
+    g, c, raw = _affine(_unit_response(f, z, u_raw, d, dt, ti), q_raw)
     rmse = math.sqrt(float(raw @ raw) / u_raw.size)
     span = float(np.ptp(q_raw))
     return ServoFit(
@@ -289,7 +318,35 @@ def identify_servo(
         rmse=rmse,
         nrmse=rmse / span if span > 0 else math.inf,
         standard_errors=_standard_errors(r, res, f, z),
+        integral_time=ti,
     )
+
+
+def _best_delay(u, q, dt: float, keep: slice, start: np.ndarray, delays):
+    """The fit of the delay (of ``delays``) with the least squared residual: (sse, delay,
+    fit...)."""
+    fits = []
+    for d in delays:
+        f, z, ti, _, _, res, r = _fit_at_delay(u, q, d, dt, start, keep)
+        fits.append((float(res @ res), d, f, z, ti, res, r))
+    return min(fits, key=lambda item: item[0])
+
+
+def _best_structure(u, q, dt: float, keep: slice, start: np.ndarray, max_delay: int):
+    """The PD form, or the PID form when it lowers the Bayesian information criterion
+    n ln(sse / n) + k ln(n) (k: 4 or 5 parameters with the gain and offset); the PID search
+    starts from the PD fit (its delay and the ones beside it) with the integral corner at 5, 20
+    and 50 % of its frequency."""
+    pd = _best_delay(u, q, dt, keep, start, range(max_delay + 1))
+    f_pd, z_pd, near = pd[2], pd[3], range(max(pd[1] - 1, 0), min(pd[1] + 1, max_delay) + 1)
+    w = 2.0 * math.pi * f_pd
+    starts = [np.array([math.log(f_pd), math.log(z_pd), math.log(w * ratio)])
+              for ratio in (0.05, 0.2, 0.5)]  # fmt: skip
+    pid = min((_best_delay(u, q, dt, keep, x0, near) for x0 in starts), key=lambda f: f[0])
+    n = keep.stop - keep.start
+    bic = [n * math.log(max(f[0], 1e-300) / n) + k * math.log(n) for f, k in ((pd, 4), (pid, 5))]
+    _, d, f, z, ti, res, r = pid if bic[1] < bic[0] else pd
+    return d, f, z, ti, res, r
 
 
 def _uniform_step(ts: np.ndarray) -> float:
