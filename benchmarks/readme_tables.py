@@ -219,9 +219,8 @@ def scenarios(m: Source) -> str:
             "continuum segment, +/-90 deg at 0.4 Hz, 1 m sheath on a 0.6 m semicircle, behind "
             "a PID and a PD servo",
             f"{head}; the others in the lau2015 table",
-            "; ".join(cells)
-            + f"; -3 dB bandwidth {slash(bandwidth)} Hz ({' / '.join(short(c) for c in responses)}) "
-            "behind a 1.2 Hz motor lag",
+            "; ".join(cells) + f"; -3 dB bandwidth {slash(bandwidth)} Hz "
+            f"({' / '.join(short(c) for c in responses)}) behind a 1.2 Hz motor lag",
             f"< {fmt(m.num('paper', 'lau2015', 'percent_error'), trim=True)} % "
             f"({fmt(m.num('paper', 'lau2015', 'max_percent_error'), trim=True)} % at the "
             f"extremes); {fmt(m.num('paper', 'lau2015', 'bandwidth_hz'), trim=True)} Hz",

@@ -18,7 +18,8 @@ def test_do2015_shape_aware_feedforward_beats_the_paper_on_both_servos(scenario_
     # measured, fixed route / random routes median (worst of 5 seeds):
     #   PID: shape-aware + EncoderLoop 240x / 141x (54.7x); shape-aware alone 317x / 188x (59.7x)
     #   PD:  shape-aware + EncoderLoop 459x / 252x (87.5x); shape-aware alone 105x / 96.8x (38.2x)
-    #   InverseFeedforward of one calibration shape: 26.0x / 15.9x (4.6x) PID, 27.9x / 13.1x (4.5x) PD
+    #   InverseFeedforward of one calibration shape: 26.0x / 15.9x (4.6x) PID,
+    #   27.9x / 13.1x (4.5x) PD
     r = scenario_results["do2015"]
     head = "shape-aware InverseFeedforward + EncoderLoop"
     for servo, (fixed, median, worst) in {"pid": (200, 120, 45), "pd": (390, 210, 74)}.items():

@@ -34,7 +34,8 @@ if TYPE_CHECKING:
     from ..bench.scenarios.common import ScenarioResult
 
 SCHEMA = "tendonsheath.metrics"
-SCHEMA_VERSION = 3  # 2: parameter keys renamed; 3: do2015's details per servo (docs/metrics-json.md)
+# 2: parameter keys renamed; 3: the scenarios' details per servo (docs/metrics-json.md)
+SCHEMA_VERSION = 3
 
 
 def _status_table(runs) -> str:
