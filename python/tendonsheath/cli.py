@@ -842,6 +842,8 @@ def _compare_models(logs: list, models: str | None, validate, quiet: bool, optio
 def _print_comparison(result, output_col: str) -> None:
     """The comparison table (a failed candidate's reason above it); a winner whose
     validation error is not finite is an error."""
+    from .compare import INVERSE_NOTE
+
     table = Table(title=f"model comparison ({result.mode})")
     table.add_column("model")
     for col in (
@@ -850,6 +852,8 @@ def _print_comparison(result, output_col: str) -> None:
         f"val rmse ({output_col} units)",
         "val nrmse (%)",
         "val rmse / affine's",
+        "inverse nrmse (%)",
+        "inverse / affine's",
         "wall (s)",
         "CPU (s)",
     ):
@@ -857,7 +861,7 @@ def _print_comparison(result, output_col: str) -> None:
     for r in result.table:
         if r.get("error"):
             console.print(f"[yellow]{r['model']}:[/yellow] {r['error']}", highlight=False)
-            table.add_row(r["model"], "", "", r.get("status", "failed"), "", "", "", "")
+            table.add_row(r["model"], "", "", r.get("status", "failed"), "", "", "", "", "", "")
             continue
         table.add_row(
             r["model"],
@@ -866,10 +870,13 @@ def _print_comparison(result, output_col: str) -> None:
             f"{r['val_rmse']:.4g}",
             f"{100 * r['val_nrmse']:.3f}",
             f"{r['ratio_to_affine']:.3f}",
+            f"{100 * r.get('inv_nrmse', float('nan')):.3f}",
+            f"{r.get('inv_ratio_to_affine', float('nan')):.3f}",
             f"{r['seconds']:.1f}",
             f"{r['cpu_seconds']:.1f}",
         )
     console.print(table)
+    console.print(f"inverse: {INVERSE_NOTE}", highlight=False)
     winner = next((r for r in result.table if r["model"] == result.winner_name), None)
     if winner is not None:
         _check_finite(
