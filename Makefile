@@ -158,7 +158,8 @@ bench: install
 
 # Refresh the committed result files (benchmarks/results/*.json) that README.md's tables are
 # generated from, then regenerate the tables: the demo's metrics.json, the benchmark scripts'
-# JSON, and realdata.json when $(REALDATA) is there (~6 min; else the committed one is kept).
+# JSON, and realdata.json when $(REALDATA) is there (~6 min; else the committed one is kept), and
+# inverse.json when the tool-5 recordings are (../shared/data/davinci_tool5; else kept).
 results: demo
 	cp $(DEMO_OUT)/metrics.json benchmarks/results/demo-metrics.json
 	@for f in models plant identify identify_long compensators sweep; do \
@@ -167,6 +168,7 @@ results: demo
 	@if [ -f $(REALDATA)/config_000deg.csv ]; then \
 	  echo "== benchmarks/realdata.py"; $(PY) benchmarks/realdata.py --data $(REALDATA) || exit 1; \
 	else echo "no data in $(REALDATA): benchmarks/results/realdata.json kept"; fi
+	@echo "== benchmarks/inverse.py"; $(PY) benchmarks/inverse.py || exit 1
 	$(MAKE) readme
 
 # README.md's tables from the committed result files (no build needed)

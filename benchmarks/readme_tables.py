@@ -404,14 +404,19 @@ def performance(
         ]
     )
 
-    # compensators.py: per-step latency, feedforwards (ranges) and the adaptive controller
-    ff_median, ff_p999, ad_median, ad_p999 = [], [], [], []
+    # compensators.py: per-step latency, feedforwards (ranges), the root-searching inverses and
+    # the adaptive controller
+    groups: dict[str, tuple[list, list]] = {"ff": ([], []), "root": ([], []), "ad": ([], [])}
     for i, _ in enumerate(compensators.items("rows")):
-        adaptive = str(compensators.get("rows", i, "name")).startswith("Adaptive")
-        (ad_median if adaptive else ff_median).append(compensators.num("rows", i, "median_ns"))
-        (ad_p999 if adaptive else ff_p999).append(compensators.num("rows", i, "p999_ns"))
-    if not ff_median or not ad_median:
-        raise ResultError(f"{compensators.name}: 'rows' lacks a feedforward or an Adaptive row")
+        name = str(compensators.get("rows", i, "name"))
+        key = "ad" if name.startswith("Adaptive") else "root" if "root search" in name else "ff"
+        groups[key][0].append(compensators.num("rows", i, "median_ns"))
+        groups[key][1].append(compensators.num("rows", i, "p999_ns"))
+    (ff_median, ff_p999), (root_median, root_p999), (ad_median, ad_p999) = groups.values()
+    if not ff_median or not ad_median or not root_median:
+        raise ResultError(
+            f"{compensators.name}: 'rows' lacks a feedforward, a root-search or an Adaptive row"
+        )
 
     def span(values):
         lo, hi = min(values), max(values)
@@ -420,8 +425,10 @@ def performance(
     rows.append(
         [
             "compensator step (C++, median / p99.9)",
-            f"feedforwards {span(ff_median)} ns / {span(ff_p999)} ns, "
-            f"adaptive controller {span(ad_median)} ns / {span(ad_p999)} ns",
+            f"feedforwards and the encoder loop {span(ff_median)} ns / {span(ff_p999)} ns, "
+            f"root-searching inverses (GPI, a chain with a polynomial) {span(root_median)} ns / "
+            f"{span(root_p999)} ns, adaptive controller {span(ad_median)} ns / "
+            f"{span(ad_p999)} ns",
             "`benchmarks/compensators.py`",
         ]
     )

@@ -65,6 +65,21 @@ int main(int argc, char** argv) {
   cp.mode = ts::ContinuumMode::Published;
   ts::ContinuumFeedforward continuum_published(cp);
   ts::AdaptiveController adaptive({});
+  ts::EncoderLoopParams lp;
+  lp.kp = 1.3, lp.ki = 440.0;
+  ts::EncoderLooped<ts::BacklashInverseFeedforward> looped{ts::BacklashInverseFeedforward(ip),
+                                                           ts::EncoderLoop(lp)};
+  // root-finding inverses (ModelInverse): a GPI and a Bouc-Wen backlash with a cubic output map
+  ts::InverseModel gpi_model;
+  gpi_model.parts.resize(1);
+  gpi_model.parts[0].kind = "GeneralizedPrandtlIshlinskii";
+  ts::ModelInverse gpi_inverse = ts::make_model_inverse(gpi_model, {});
+  ts::InverseModel chain_model;
+  chain_model.parts.resize(2);
+  chain_model.parts[0].kind = "BoucWenBacklash";
+  chain_model.parts[1].kind = "Polynomial";
+  chain_model.parts[1].polynomial.coefficients = {0.0, 1.0, 0.0, 0.2};
+  ts::ModelInverse chain_inverse = ts::make_model_inverse(chain_model, {});
 
   struct Row {
     std::string name;
@@ -79,6 +94,11 @@ int main(int argc, char** argv) {
                   })});
   rows.push_back({"ContinuumFeedforward (exact)", measure(n, [&](std::size_t k) { return continuum_exact.step(yd[k], dt); })});
   rows.push_back({"ContinuumFeedforward (published)", measure(n, [&](std::size_t k) { return continuum_published.step(yd[k], dt); })});
+  rows.push_back({"EncoderLoop (around the BoucWenBacklash inverse)", measure(n, [&](std::size_t k) {
+                    return looped.step(yd[k], 0.97 * yd[k > 0 ? k - 1 : 0], dt);
+                  })});
+  rows.push_back({"InverseFeedforward (GPI, root search)", measure(n, [&](std::size_t k) { return gpi_inverse.step(yd[k], dt); })});
+  rows.push_back({"InverseFeedforward (BoucWenBacklash+poly3, root search)", measure(n, [&](std::size_t k) { return chain_inverse.step(yd[k], dt); })});
   rows.push_back({"AdaptiveController", measure(n, [&](std::size_t k) {
                     const double y = 0.98 * yd[k > 0 ? k - 1 : 0];
                     return adaptive.step(yd[k], y, yd[k], dt);
