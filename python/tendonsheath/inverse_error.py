@@ -16,7 +16,7 @@ direction switch is smoothed over 3 % of that trajectory's peak rate (spec D.2: 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from scipy.signal import butter, sosfiltfilt
@@ -92,9 +92,10 @@ def offline_inverse(
     smoothing = SMOOTHING_SHARE * peak if peak > 0 else 1.0
     ff = InverseFeedforward(model, smoothing=smoothing)
     angle = _angle_argument(curve_angle, y.size)
-    if getattr(ff, "follows_route", False) and angle is not None:
-        return ff.command(ts, desired, status=True, **angle)
-    return ff.command(ts, desired, status=True)
+    extra = angle if getattr(ff, "follows_route", False) and angle is not None else {}
+    commands, flags = cast(tuple[np.ndarray, np.ndarray],
+                           ff.command(ts, desired, status=True, **extra))  # fmt: skip
+    return commands, flags
 
 
 def _angle_argument(curve_angle: Any, n: int) -> dict[str, Any] | None:

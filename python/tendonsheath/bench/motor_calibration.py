@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -142,7 +142,7 @@ def calibrate_servo(
     if route is not None:
         plant.set_route(route)
     try:
-        sim = plant.simulate(t, command)
+        sim: Any = plant.simulate(t, command)
     finally:
         plant.set_route(previous)
     encoder = np.asarray(getattr(sim, "q_motor", sim.q_in), dtype=float)

@@ -20,6 +20,7 @@ from .._json_source import read_json_source
 if TYPE_CHECKING:
     from .adaptive_controller import AdaptiveController
     from .base import Feedforward
+    from .encoder_loop import EncoderLoop
 
 FORMAT_NAME = "tendonsheath.compensator"
 FORMAT_VERSION = 1
@@ -61,7 +62,7 @@ def _finite_or_none(value):
     return None if math.isinf(value) else value
 
 
-def _registry() -> dict[str, type[Feedforward] | type[AdaptiveController]]:
+def _registry() -> dict[str, type[Feedforward] | type[AdaptiveController] | type[EncoderLoop]]:
     from .adaptive_controller import AdaptiveController
     from .continuum_feedforward import ContinuumFeedforward
     from .curve_angle_feedforward import CurveAngleFeedforward
@@ -78,7 +79,7 @@ def _registry() -> dict[str, type[Feedforward] | type[AdaptiveController]]:
     return {c.__name__: c for c in kinds}
 
 
-def compensator_from_dict(data: dict[str, Any]) -> Feedforward | AdaptiveController:
+def compensator_from_dict(data: dict[str, Any]) -> Feedforward | AdaptiveController | EncoderLoop:
     """Build the compensator a dict from ``to_dict`` describes; strict: every key checked."""
     if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
         raise ValueError(f"not a tendonsheath compensator file (missing format '{FORMAT_NAME}')")
@@ -191,7 +192,7 @@ def _number(name: str, what: str, value) -> float:
     return float(value)
 
 
-def load_compensator(source: str | Path | dict) -> Feedforward | AdaptiveController:
+def load_compensator(source: str | Path | dict) -> Feedforward | AdaptiveController | EncoderLoop:
     """Load a compensator saved with ``to_json``: a path, a JSON string or a dict.
 
     Parameters

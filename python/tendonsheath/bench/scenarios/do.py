@@ -82,7 +82,7 @@ CALIBRATION_ROUTES = (
 )
 INERTIA, VISCOUS = 0.01, 0.2
 SERVOS = ("pid", "pd")  # the preset's default (on provenance) first
-SENSING = {"noise_std": 0.05, "delay": 0.1, "rate_hz": 10.0, "segments": 10}
+SENSING: dict[str, Any] = {"noise_std": 0.05, "delay": 0.1, "rate_hz": 10.0, "segments": 10}
 SHAPE_LAWS = {"B_r": "tanh", "B_l": "tanh"}
 SMOOTHING = 0.03
 FEEDFORWARDS = (
@@ -254,7 +254,7 @@ def _servo_study(servo: str, fits: dict, t, y_d, sensor, seeds) -> dict[str, Any
     return {"fixed": fixed, "random": random, "feedforwards": comps}
 
 
-def _run_all(plant, comps: dict, t, y_d, sensor, routes, shape) -> dict[str, Result]:
+def _run_all(plant, comps: dict, t, y_d, sensor, routes, shape) -> dict[str, Any]:
     """No compensation and every feedforward on ``plant`` under ``routes``; the shape-aware
     ones are told the sensed shape (``shape``), the others nothing."""
     runs = {"none": run(plant, None, t, y_d, routes=routes, noise=sensor)}
