@@ -28,6 +28,8 @@ def test_example_runs(script, tmp_path):
         args += ["--out", str(tmp_path)]
     if "--scale" in text:
         args += ["--scale", "0.2"]
+    if '"--n"' in text:  # a sweep's size: a handful of draws shows it runs
+        args += ["--n", "8"]
     result = subprocess.run(args, capture_output=True, text=True, timeout=300, cwd=tmp_path)
     assert result.returncode == 0, result.stderr[-3000:]
     # every file it announces exists, is not empty, and lies in its output folder; an

@@ -203,3 +203,37 @@ def test_lambdas_and_closures_travel_by_value(reference):
     serial = ts.sweep(lambda p: {"y": scale * p["a"]}, {"a": Uniform(0, 1)}, n=6, seed=2,
                       engine="serial")  # fmt: skip
     pd.testing.assert_frame_equal(res.table, serial.table)
+
+
+def thread_caps(params):
+    """What a run sees of its worker's thread limits."""
+    import threadpoolctl
+
+    blas = [p["num_threads"] for p in threadpoolctl.threadpool_info() if p["user_api"] == "blas"]
+    return {
+        "blas": float(max(blas, default=0)),
+        "ours": float(os.environ.get("TENDONSHEATH_NUM_THREADS", "0")),
+    }
+
+
+def test_local_workers_share_the_cores_out():
+    # a fit inside a run uses the worker's share of the cores, in our batched calls and in
+    # the BLAS: two workers each spinning the BLAS on every core made fits 4x slower
+    cores = os.cpu_count() or 1
+    res = ts.sweep(thread_caps, {"a": Uniform(0, 1)}, n=4, seed=1, workers=2)
+    share = max(1, cores // 2)
+    assert (res.table["ours"] == share).all()
+    assert (res.table["blas"] <= share).all() and (res.table["blas"] >= 1).all()
+
+
+def test_the_thread_setting_is_checked(monkeypatch):
+    from tendonsheath.identify.settings import default_threads
+
+    monkeypatch.setenv("TENDONSHEATH_NUM_THREADS", "3")
+    assert default_threads() == 3
+    monkeypatch.delenv("TENDONSHEATH_NUM_THREADS")
+    assert default_threads() == 0
+    for bad in ("0", "two", "-1"):
+        monkeypatch.setenv("TENDONSHEATH_NUM_THREADS", bad)
+        with pytest.raises(ValueError, match="TENDONSHEATH_NUM_THREADS must be a positive"):
+            default_threads()

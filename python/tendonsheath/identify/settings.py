@@ -8,6 +8,7 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import inspect
+import os
 from typing import Any
 
 import numpy as np
@@ -116,6 +117,22 @@ def check_search_options(*, maxiter, popsize, tol, workers, warmup) -> None:
         raise ValueError(f"tol must be a number >= 0 (got {tol!r})")
 
 
+def default_threads() -> int:
+    """``TENDONSHEATH_NUM_THREADS`` when set to a positive integer, else 0 (all cores)."""
+    value = os.environ.get("TENDONSHEATH_NUM_THREADS", "").strip()
+    if not value:
+        return 0
+    try:
+        n = int(value)
+    except ValueError:
+        raise ValueError(
+            f"TENDONSHEATH_NUM_THREADS must be a positive integer (got {value!r})"
+        ) from None
+    if n < 1:
+        raise ValueError(f"TENDONSHEATH_NUM_THREADS must be a positive integer (got {value!r})")
+    return n
+
+
 @dataclasses.dataclass(frozen=True)
 class Search:
     """The global search, refinement and standard-error settings, checked; ``budget`` is the
@@ -135,8 +152,12 @@ class Search:
 
     @property
     def n_workers(self) -> int:
-        """The thread count for the batched C++ calls (0: all cores)."""
-        return 0 if self.workers is None else int(self.workers)
+        """The thread count for the batched C++ calls: ``workers``, else the environment's
+        ``TENDONSHEATH_NUM_THREADS`` (a sweep's local worker processes set it to their share
+        of the cores), else 0 (all cores)."""
+        if self.workers is not None:
+            return int(self.workers)
+        return default_threads()
 
     @classmethod
     def of(cls, options: Options) -> Search:

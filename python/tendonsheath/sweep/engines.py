@@ -23,6 +23,8 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
+import threadpoolctl
+
 from .._progress import StepProgress
 from .main_guard import ADVICE, in_bootstrapping_worker, unguarded_script
 
@@ -185,15 +187,26 @@ def local_pool(workers: int, method: str, preload: str | None = None) -> Process
         # workers fork from a server that has already imported the package and the run's
         # module (effective when this process starts its fork server, i.e. the first time)
         ctx.set_forkserver_preload(["tendonsheath", *([preload] if preload else [])])
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_ignore_sigint)
+    pool = ProcessPoolExecutor(
+        max_workers=workers,
+        mp_context=ctx,
+        initializer=_start_worker,
+        initargs=(max(1, (os.cpu_count() or 1) // workers),),
+    )
     _POOLS[key] = pool
     return pool
 
 
-def _ignore_sigint() -> None:
+def _start_worker(threads: int) -> None:
     """Workers leave Ctrl-C to the main process (which stops them): a terminal sends SIGINT
-    to every process of the command, and each worker would print its own traceback."""
+    to every process of the command, and each worker would print its own traceback. An
+    identification inside a run uses the worker's share of the cores, not all of them, in
+    tendonsheath's batched calls and in the BLAS (OpenBLAS threads spinning in every worker
+    on every core made a calibration inside a run 4x slower on 2 cores)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    os.environ.setdefault("TENDONSHEATH_NUM_THREADS", str(threads))
+    # the BLAS was loaded by the fork server before any environment variable could cap it
+    threadpoolctl.threadpool_limits(threads)
 
 
 def _stop_pool(key) -> None:
