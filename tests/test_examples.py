@@ -7,6 +7,8 @@ from pathlib import Path
 
 import pytest
 
+# the quickest of the built-in scenarios (tests/test_scenarios.py runs every one)
+EXTRA_ARGS = {"05_virtual_bench_report.py": ["--scenario", "sun2015"]}
 EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "examples").glob("[0-9]*.py"))
 
 
@@ -30,6 +32,7 @@ def test_example_runs(script, tmp_path):
         args += ["--scale", "0.2"]
     if '"--n"' in text:  # a sweep's size: a handful of draws shows it runs
         args += ["--n", "8"]
+    args += EXTRA_ARGS.get(script.name, [])
     result = subprocess.run(args, capture_output=True, text=True, timeout=300, cwd=tmp_path)
     assert result.returncode == 0, result.stderr[-3000:]
     # every file it announces exists, is not empty, and lies in its output folder; an

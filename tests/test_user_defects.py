@@ -362,7 +362,7 @@ def test_read_log_refuses_an_upsampling_typo(data):
 # -- 9. demo --no-robustness ----------------------------------------------------------------------
 
 
-def test_demo_no_robustness_skips_the_study(tmp_path, monkeypatch):
+def test_demo_no_robustness_skips_the_study(tmp_path, monkeypatch, scenario_results):
     import tendonsheath.demo as demo
 
     def forbidden(*args, **kwargs):
@@ -373,7 +373,10 @@ def test_demo_no_robustness_skips_the_study(tmp_path, monkeypatch):
     monkeypatch.setattr(demo, "model_section", lambda out: ("", {}, []))
     from tendonsheath.bench import scenarios
 
-    monkeypatch.setitem(scenarios.SCENARIOS, "lau2015", _tiny_lau)
+    # the session's lau2015 result (tests/test_scenarios.py judges the scenario itself)
+    monkeypatch.setitem(
+        scenarios.SCENARIOS, "lau2015", lambda scale, seed, progress: scenario_results["lau2015"]
+    )
     out = tmp_path / "demo"
     result = runner.invoke(
         app, ["demo", "-s", "lau2015", "--no-robustness", "--angle-unit", "rad", "-o", str(out)]
@@ -383,12 +386,6 @@ def test_demo_no_robustness_skips_the_study(tmp_path, monkeypatch):
     assert "mse (rad^2)" in result.output and "rmse (rad)" in result.output
     report = (out / "report.html").read_text()
     assert "rmse [rad]" in report and "[deg" not in report
-
-
-def _tiny_lau(scale, seed, progress):
-    from tendonsheath.bench.scenarios.lau import lau2015
-
-    return lau2015(scale=0.05, seed=seed, progress=progress)
 
 
 # -- smaller ones -------------------------------------------------------------------------------
