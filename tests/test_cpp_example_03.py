@@ -1,6 +1,7 @@
 """C++ example 03 loads compensators saved by Python and gives Python's commands to 1e-12
 on the same 1 kHz trajectory (issue 15, Done-when line 2)."""
 
+import json
 import shutil
 import subprocess
 from pathlib import Path
@@ -13,6 +14,7 @@ from tendonsheath.compensate import (
     CurveAngleFeedforward,
     EncoderLoop,
     InverseFeedforward,
+    TipLoop,
 )
 from tendonsheath.models import Backlash, BoucWenBacklash, PrandtlIshlinskii, Scaled
 
@@ -118,9 +120,71 @@ def test_cpp_encoder_loop_equals_python(example, tmp_path):
     np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
 
 
+def test_cpp_tip_loop_equals_python(example, tmp_path):
+    """A TipLoop with a gain schedule around an inverse of a Scaled model, given a tip
+    trajectory (with a dropout) and a curve angle that changes, gives Python's servo commands
+    to 1e-12 in C++."""
+    inner = InverseFeedforward(
+        Scaled(BoucWenBacklash(B_r=0.08, B_l=0.05), input_offset=0.1, output_gain=1.2), 0.04
+    )
+    loop = TipLoop(
+        inner,
+        kp=0.8,
+        ki=60.0,
+        kd=0.002,
+        max_correction=0.3,
+        schedule=[(0.5, 0.6), (1.5, 1.0), (3.0, 2.5)],
+        limits=(-2.0, 2.0, 40.0),
+    )
+    loop.to_json(tmp_path / "loop.json")
+    t = np.arange(0.0, 3.0, 1e-3)
+    y_d = 0.8 * np.sin(2 * np.pi * 0.5 * t)
+    rng = np.random.default_rng(5)
+    y = 0.85 * y_d + 0.05 * np.sin(2 * np.pi * 3.0 * t) + rng.normal(0.0, 1e-3, t.size)
+    y[1500:1510] = np.nan  # a tip sensor dropout: back toward the feedforward
+    angle = np.where(t < 1.0, 0.8, np.where(t < 2.0, 2.0, 3.5))  # the curve angle moves
+    rows = zip(t.tolist(), y_d.tolist(), y.tolist(), angle.tolist(), strict=True)
+    (tmp_path / "trajectory.csv").write_text(
+        "".join(f"{a!r},{b!r},{c!r},{d!r}\n" for a, b, c, d in rows)
+    )
+    run = subprocess.run(
+        [example, tmp_path / "loop.json", tmp_path / "trajectory.csv", tmp_path / "out.csv"],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 0, run.stderr
+    loop.reset()
+    dts = np.concatenate([[0.0], np.diff(t)])  # as the C++ loop computes them
+    python = []
+    for a, b, c, d in zip(y_d, y, angle, dts, strict=True):
+        loop.set_curve_angle(c)
+        python.append(loop.step(a, b, d))
+    cpp = np.loadtxt(tmp_path / "out.csv")
+    assert np.ptp(np.array(python) - inner.command(t, y_d)) > 0.01  # the loop did correct
+    np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
+
+
 def test_cpp_rejects_a_bad_file_naming_the_key(example, tmp_path):
     text = InverseFeedforward(Backlash()).to_json().replace('"B_l"', '"B_left"')
     (tmp_path / "ff.json").write_text(text)
     run = subprocess.run([example, tmp_path / "ff.json"], capture_output=True, text=True)
     assert run.returncode == 2
     assert "unknown key 'B_left'" in run.stderr
+
+
+def test_cpp_rejects_a_bad_tip_loop_schedule(example, tmp_path):
+    data = TipLoop(InverseFeedforward(Backlash()), ki=10.0, schedule=[(0.0, 1.0)]).to_dict()
+    for schedule, words in (
+        ([[0.0, 1.0, 2.0]], "entry 0"),
+        ([[1.0, 1.0], [0.5, 2.0]], "increasing"),
+    ):
+        (tmp_path / "loop.json").write_text(json.dumps({**data, "schedule": schedule}))
+        trajectory = tmp_path / "trajectory.csv"
+        trajectory.write_text("0.0,0.1,0.1\n")
+        run = subprocess.run(
+            [example, tmp_path / "loop.json", trajectory, tmp_path / "out.csv"],
+            capture_output=True,
+            text=True,
+        )
+        assert run.returncode == 2
+        assert "schedule" in run.stderr and words in run.stderr

@@ -7,6 +7,7 @@ from .encoder_loop import EncoderLoop
 from .inverse_feedforward import InverseFeedforward
 from .limits import CommandLimits
 from .persistence import load_compensator
+from .tip_loop import TipLoop
 from .tuning import EncoderLoopDesign, tune_encoder_loop
 
 load = load_compensator
@@ -19,6 +20,7 @@ __all__ = [
     "EncoderLoop",
     "EncoderLoopDesign",
     "InverseFeedforward",
+    "TipLoop",
     "load",
     "load_compensator",
     "shape_of",

@@ -21,6 +21,7 @@ if TYPE_CHECKING:
     from .adaptive_controller import AdaptiveController
     from .base import Feedforward
     from .encoder_loop import EncoderLoop
+    from .tip_loop import TipLoop
 
 FORMAT_NAME = "tendonsheath.compensator"
 FORMAT_VERSION = 1
@@ -29,7 +30,7 @@ FORMAT_VERSION = 1
 _UNBOUNDED = {"max_correction_rate": math.inf, "max_torque": math.inf, "max_correction": math.inf}
 # settings saved as a model's own dict (null: no model)
 _MODELS = ("model", "feedforward_model")
-# settings saved as a compensator's own dict (the feedforward inside an EncoderLoop)
+# settings saved as a compensator's own dict (the feedforward inside an EncoderLoop or TipLoop)
 _COMPENSATORS = ("feedforward",)
 _FLAGS = ("model_acceleration",)
 _LIMIT_UNBOUNDED = {"min": -math.inf, "max": math.inf, "max_rate": math.inf}
@@ -62,12 +63,15 @@ def _finite_or_none(value):
     return None if math.isinf(value) else value
 
 
-def _registry() -> dict[str, type[Feedforward] | type[AdaptiveController] | type[EncoderLoop]]:
+def _registry() -> dict[
+    str, type[Feedforward] | type[AdaptiveController] | type[EncoderLoop] | type[TipLoop]
+]:
     from .adaptive_controller import AdaptiveController
     from .continuum_feedforward import ContinuumFeedforward
     from .curve_angle_feedforward import CurveAngleFeedforward
     from .encoder_loop import EncoderLoop
     from .inverse_feedforward import InverseFeedforward
+    from .tip_loop import TipLoop
 
     kinds = (
         InverseFeedforward,
@@ -75,11 +79,14 @@ def _registry() -> dict[str, type[Feedforward] | type[AdaptiveController] | type
         ContinuumFeedforward,
         AdaptiveController,
         EncoderLoop,
+        TipLoop,
     )
     return {c.__name__: c for c in kinds}
 
 
-def compensator_from_dict(data: dict[str, Any]) -> Feedforward | AdaptiveController | EncoderLoop:
+def compensator_from_dict(
+    data: dict[str, Any],
+) -> Feedforward | AdaptiveController | EncoderLoop | TipLoop:
     """Build the compensator a dict from ``to_dict`` describes; strict: every key checked."""
     if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
         raise ValueError(f"not a tendonsheath compensator file (missing format '{FORMAT_NAME}')")
@@ -151,6 +158,8 @@ def _setting(name: str, key: str, value):
         return value
     if key == "input_range":
         return _range(name, value)
+    if key == "schedule":
+        return _schedule(name, value)
     if key == "filter_hz" and value is None:
         return None
     if key == "mode":
@@ -174,6 +183,16 @@ def _range(name: str, value) -> tuple[float, float] | None:
     return (lo, hi)
 
 
+def _schedule(name: str, value) -> list[tuple[float, float]]:
+    """A gain schedule: [[curve_angle, gain], ...]."""
+    if not isinstance(value, list) or not all(isinstance(r, list) and len(r) == 2 for r in value):
+        raise ValueError(
+            f"{name} file: 'schedule' must be a list of [curve_angle, gain] pairs "
+            f"(got {json.dumps(value)})"
+        )
+    return [(_number(name, "'schedule'", a), _number(name, "'schedule'", g)) for a, g in value]
+
+
 def _limits(name: str, value) -> dict[str, float]:
     if not isinstance(value, dict):
         raise ValueError(f"{name} file: 'limits' must be an object (got {json.dumps(value)})")
@@ -192,7 +211,9 @@ def _number(name: str, what: str, value) -> float:
     return float(value)
 
 
-def load_compensator(source: str | Path | dict) -> Feedforward | AdaptiveController | EncoderLoop:
+def load_compensator(
+    source: str | Path | dict,
+) -> Feedforward | AdaptiveController | EncoderLoop | TipLoop:
     """Load a compensator saved with ``to_json``: a path, a JSON string or a dict.
 
     Parameters
@@ -202,7 +223,8 @@ def load_compensator(source: str | Path | dict) -> Feedforward | AdaptiveControl
 
     Returns
     -------
-    InverseFeedforward, CurveAngleFeedforward, ContinuumFeedforward or AdaptiveController
+    InverseFeedforward, CurveAngleFeedforward, ContinuumFeedforward, AdaptiveController,
+    EncoderLoop or TipLoop
         The saved compensator.
 
     Raises
