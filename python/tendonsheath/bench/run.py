@@ -242,7 +242,7 @@ class _Loop:
         self.sensor = _sensor_engine(noise, plant)
         self.mask = _dropout_mask(dropout, ts)
         # a core.EncoderLoop or core.TipLoop around the controller's command
-        self.outer_loop: core.EncoderLoop | core.TipLoop | None = None
+        self.outer_loop = None
 
     @property
     def scheduled(self) -> bool:
