@@ -15,6 +15,11 @@
 // convention: a larger motor command gives a larger tip angle.
 // A non-finite tip reading (a dropout) falls back toward the feedforward: the P and D terms are
 // zeroed, the integral is held, status fallback.
+// A new route shape (set_shape, set_curve_angle) is bumpless: a feedforward that follows the route
+// moves its command at once by what the new shape changes, and the integral has already taken up
+// most of that change from the tip error (shape sensing comes late); the step of the feedforward's
+// command beyond its last cycle's trend is taken out of the integral on the next cycle, so the
+// change is not corrected twice.
 #pragma once
 
 #include <array>
@@ -87,8 +92,10 @@ class TipLoop {
   /// Start afresh from the initial state, as after construction; the parameters and the curve
   /// angle set since are kept.
   void reset() noexcept {
-    primed_ = have_error_ = false;
+    primed_ = have_error_ = shape_changed_ = false;
+    targets_ = 0;
     integral_ = derivative_ = error_ = correction_ = cut_ = 0.0;
+    last_target_ = trend_ = 0.0;
     shaper_.reset();
     held_ = fallback_ = limited_ = angle_flag_ = angle_rejected_ = false;
   }
@@ -100,6 +107,7 @@ class TipLoop {
   bool set_curve_angle(double angle) noexcept {
     angle_rejected_ = !(std::isfinite(angle) && angle >= 0.0);
     if (angle_rejected_) return false;
+    shape_changed_ = shape_changed_ || angle != curve_angle_ || targets_ == 0;
     curve_angle_ = angle;
     scale_ = scale_at(angle);
     return true;
@@ -123,6 +131,7 @@ class TipLoop {
       cut_ = 0.0;
       return shaper_.apply(NAN, dt);
     }
+    transfer_shape_change(target);
     if (fallback_) {
       // toward the feedforward: no P, no D, the integral held
       derivative_ = 0.0;
@@ -166,6 +175,18 @@ class TipLoop {
   }
 
  private:
+  // bumpless shape change: the feedforward's step beyond its trend leaves the integral
+  void transfer_shape_change(double target) noexcept {
+    if (shape_changed_ && targets_ >= 2) {
+      const double jump = (target - last_target_) - trend_;
+      if (std::isfinite(jump)) integral_ = clamp(integral_ - jump);
+      correction_ = integral_;  // recomputed by update() when there is a reading
+    }
+    shape_changed_ = false;
+    if (targets_ >= 1) trend_ = target - last_target_;
+    last_target_ = target;
+    if (targets_ < 2) ++targets_;
+  }
   // the schedule's piecewise-linear factor at curve angle a, clamped at the ends
   double scale_at(double a) const noexcept {
     const std::size_t n = p_.schedule_size;
@@ -209,6 +230,9 @@ class TipLoop {
   double correction_ = 0.0, cut_ = 0.0, curve_angle_ = 0.0, scale_ = 1.0;
   bool primed_ = false, have_error_ = false, held_ = false, fallback_ = false, limited_ = false;
   bool angle_flag_ = false, angle_rejected_ = false;
+  double last_target_ = 0.0, trend_ = 0.0;  // the feedforward's last command and its last step
+  int targets_ = 0;  // targets seen since reset, up to 2
+  bool shape_changed_ = false;  // a new shape since the last cycle
 };
 
 namespace detail {
