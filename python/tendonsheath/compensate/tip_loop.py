@@ -4,7 +4,7 @@ scheduled over the route's curve angle."""
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from .. import _core as core
@@ -201,6 +201,99 @@ class TipLoop(EngineCompensator):
         loop.design = design
         return loop
 
+    @classmethod
+    def from_calibration(
+        cls,
+        model: Any,
+        dynamics: Any,
+        *,
+        curve_angles: Sequence[float] | None = None,
+        dt: float = 1e-3,
+        max_sensitivity: float | Sequence[float] = 1.7,
+        derivative: bool = True,
+        dead_band_scale: float | Sequence[float] = 1.0,
+        trial: Callable[[TipLoop], float] | None = None,
+        refine: bool = False,
+        feedforward_options: dict[str, Any] | None = None,
+        limits: LimitsLike = None,
+    ) -> TipLoop:
+        """The inverse feedforward of ``model`` inside a tip loop whose gains come from the loop
+        dynamics identified on the calibration shapes
+        (:func:`~tendonsheath.compensate.tip_tuning.tune_tip_loop`: robust MIGO, the peak
+        sensitivity bounded on every shape, a gain schedule over their curve angles).
+
+        With several sensitivity bounds or dead-band scales, ``trial`` chooses among them
+        (:func:`~tendonsheath.compensate.tip_tuning.choose_by_trials`): it runs a candidate on
+        the calibration shapes (never a test route) and returns its mean squared tip error.
+
+        Parameters
+        ----------
+        model : HysteresisModel
+            The model the feedforward inverts (fitted from the command: the loop adds to it).
+        dynamics : LoopDynamics or sequence of LoopDynamics
+            The identified loop of each calibration shape (``Calibration.loop_dynamics``).
+        curve_angles : sequence of float, optional
+            The sensed curve angle of each shape (rad), for the gain schedule.
+        dt : float, default 1e-3
+            The control cycle (s).
+        max_sensitivity : float or sequence of float, default 1.7
+            The bound(s) on the peak sensitivity, > 1.
+        derivative : bool, default True
+            PID (True) or PI.
+        dead_band_scale : float or sequence of float, default 1.0
+            Factor(s) on the model's dead band, in (0, 1] (< 1: under-compensated, so the loop
+            never has to cross the band back).
+        trial : callable, optional
+            candidate -> score; needed with more than one bound or scale, or ``refine``.
+        refine : bool, default False
+            Then refine the chosen gains by trials under a robustness test
+            (:func:`~tendonsheath.compensate.tip_tuning.refine_by_trials`).
+        feedforward_options : dict, optional
+            Keywords of the InverseFeedforward (smoothing, limits, ...).
+        limits : CommandLimits, tuple, dict or None, optional
+            Saturation of the servo command.
+
+        Returns
+        -------
+        TipLoop
+            The compensator; ``design`` holds the gains, margins, the dynamics designed from
+            (resonance and delay of each shape) and the trial scores.
+
+        Raises
+        ------
+        ValueError
+            No gains keep the identified loop stable within the bound (the design is refused),
+            several candidates without a ``trial``, or a bad argument.
+        """
+        from dataclasses import replace
+
+        from .inverse_feedforward import InverseFeedforward
+        from .tip_tuning import (
+            choose_by_trials,
+            refine_by_trials,
+            tune_tip_loop,
+            with_dead_band_scaled,
+        )
+
+        bounds = _as_values(max_sensitivity)
+        scales = _as_values(dead_band_scale)
+        options = dict(feedforward_options or {})
+
+        def build(ms: float, scale: float) -> TipLoop:
+            design = tune_tip_loop(dynamics, curve_angles, dt, ms, derivative)
+            ff = InverseFeedforward(with_dead_band_scaled(model, scale), **options)
+            return cls.from_design(ff, replace(design, dead_band_scale=scale), limits=limits)
+
+        if trial is None and (refine or len(bounds) > 1 or len(scales) > 1):
+            raise ValueError(
+                "TipLoop.from_calibration: several sensitivity bounds or dead-band scales, or "
+                "refine, need a trial (a function running a candidate on the calibration shapes)"
+            )
+        if trial is None:
+            return build(bounds[0], scales[0])
+        chosen = choose_by_trials(build, trial, bounds, scales)
+        return refine_by_trials(chosen, trial) if refine else chosen
+
     # -- streaming ------------------------------------------------------------------
     def reset(self) -> None:
         """Forget the feedforward's and the loop's state (the curve angle is kept)."""
@@ -371,6 +464,13 @@ class TipLoop(EngineCompensator):
         gains = ", ".join(f"{k}={self._settings[k]:g}" for k in ("kp", "ki", "kd"))
         sched = f", schedule={list(self.schedule)}" if self.schedule else ""
         return f"TipLoop({self.feedforward!r}, {gains}{sched})"
+
+
+def _as_values(value: float | Sequence[float]) -> list[float]:
+    values = list(value) if isinstance(value, Sequence) else [value]
+    if not values:
+        raise ValueError("TipLoop.from_calibration: an empty list of candidates")
+    return [float(v) for v in values]
 
 
 __all__ = ["TipLoop"]
