@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from .. import _core as core
 from .._args import number, python_names
@@ -106,6 +106,7 @@ class AdaptiveController(EngineCompensator):
         self.smoothing = number(who, "smoothing", smoothing)
         with python_names(who):
             self._engine = core.AdaptiveController(p)
+        self.design: Any = None  # set by from_calibration: what the gains were chosen from
         resolved = self._engine.params
         self._settings = {
             "feedforward_model": feedforward_model,
@@ -212,6 +213,65 @@ class AdaptiveController(EngineCompensator):
         )
         gains.update(overrides)
         return cls(feedforward_model=model, **gains)
+
+    @classmethod
+    def from_calibration(
+        cls,
+        model: HysteresisModel,
+        dynamics: Any,
+        inertia: float,
+        viscous: float = 0.0,
+        max_torque: float = math.inf,
+        noise_std: float = 0.0,
+        trial: Any = None,
+        **overrides: float,
+    ) -> AdaptiveController:
+        """:meth:`from_model` with its bandwidth and derivative filter chosen from the loop
+        dynamics identified on the calibration shapes
+        (:mod:`~tendonsheath.compensate.adaptive_tuning`): the filter's corner at the lowest
+        distal resonance, the bandwidth at most a tenth of it and at most what the sensor's
+        delay allows (15 deg of phase), or the best of three bandwidths by ``trial`` runs on
+        the calibration shapes.
+
+        Parameters
+        ----------
+        model : Backlash or BoucWenBacklash
+            The identified model (also the fallback's feedforward).
+        dynamics : LoopDynamics or sequence of LoopDynamics
+            The identified loop of each calibration shape.
+        inertia : float
+            Motor inertia J at the shaft (kg m^2), > 0 (declared).
+        viscous : float, default 0.0
+            Motor viscous damping b (N m s/rad) (declared).
+        max_torque : float, default inf
+            Saturation of the torque (N m).
+        noise_std : float, default 0.0
+            The tip sensor's noise (rad).
+        trial : callable, optional
+            candidate -> mean squared tip error on the calibration shapes.
+        **overrides
+            Gains that replace the scaled ones.
+
+        Returns
+        -------
+        AdaptiveController
+            The controller; ``design`` holds the resonance and delay it was designed from.
+
+        Raises
+        ------
+        ValueError
+            The identified resonance and delay leave no stable bandwidth (the design is
+            refused), or a bad argument.
+        """
+        from .adaptive_tuning import choose_bandwidth
+
+        dyns = list(dynamics) if isinstance(dynamics, list | tuple) else [dynamics]
+
+        def build(bandwidth_hz: float, cutoff_hz: float) -> AdaptiveController:
+            return cls.from_model(model, inertia, viscous, bandwidth_hz, cutoff_hz, max_torque,
+                                  noise_std, **overrides)  # fmt: skip
+
+        return choose_bandwidth(dyns, build, trial)
 
     @property
     def estimates(self) -> dict[str, float]:
