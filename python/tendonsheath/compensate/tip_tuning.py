@@ -41,6 +41,9 @@ _KI_MIN = 1e-3
 ROBUSTNESS_GAIN = 1.5
 #: ... may raise the trial error at most this many times (a loop near its limit cycle does more)
 ROBUSTNESS_RATIO = 2.0
+#: A refined loop keeps the identified linear loops' peak sensitivity within this many times
+#: the design's bound (2: a gain margin of at least 2.5 dB at a bound of 2)
+REFINED_SENSITIVITY = 2.0
 _STEP = 1.5  # a refinement move multiplies or divides one gain by this
 
 
@@ -459,8 +462,10 @@ def refine_by_trials(
     multiplies or divides kp, ki or kd by 1.5 (kp from 0 to 0.1 first); the move that lowers the
     trial error most (by at least 2 %) is kept if the loop passes the robustness test: with
     every gain x ``ROBUSTNESS_GAIN`` (3.5 dB) the trial error rises at most
-    ``ROBUSTNESS_RATIO`` times and nothing saturates (a loop near a limit cycle fails). The
-    final margins on the identified linear loops are recomputed and stated, whatever they are.
+    ``ROBUSTNESS_RATIO`` times and nothing saturates (a loop near a limit cycle fails). A move
+    must also keep the identified linear loops stable with a peak sensitivity within
+    ``REFINED_SENSITIVITY`` times the design's bound (the dead band lowers the loop gain while
+    the tip sticks, never while it slips). The final margins are recomputed and stated.
 
     Parameters
     ----------
@@ -481,6 +486,9 @@ def refine_by_trials(
     design = loop.design
     build = _rebuilder(loop)
     gains = {"kp": design.kp, "ki": design.ki, "kd": design.kd}
+    plants = [loop_plant(d, design.dt) for d in design.dynamics]
+    rl = _RobustLoop(plants, design.dt, design.derivative_cutoff_hz)
+    ceiling = REFINED_SENSITIVITY * design.max_sensitivity
     score = float(trial(loop))
     moves: list[dict[str, float]] = []
     ratio = None
@@ -490,7 +498,7 @@ def refine_by_trials(
             for factor in (_STEP, 1.0 / _STEP):
                 g = dict(gains)
                 g[key] = g[key] * factor if g[key] > 0 else (0.1 if factor > 1 else 0.0)
-                if g == gains:
+                if g == gains or not rl.acceptable(g["kp"], g["ki"], g["kd"], ceiling):
                     continue
                 tried.append((float(trial(build(g))), g))
         accepted = False
@@ -506,8 +514,6 @@ def refine_by_trials(
             break
     if not moves:
         return loop
-    plants = [loop_plant(d, design.dt) for d in design.dynamics]
-    rl = _RobustLoop(plants, design.dt, design.derivative_cutoff_hz)
     triple = (gains["kp"], gains["ki"], gains["kd"])
     margins = [_margins(p, design.dt, triple, design.derivative_cutoff_hz) for p in plants]
     new = replace(
