@@ -331,6 +331,17 @@ inline EncoderLoop encoder_loop(Bytes& b) {
   return EncoderLoop(p);
 }
 
+// A learned correction table from the bytes (1 to 64 samples of up to +-1e3, maybe limited).
+inline LearnedCorrection learned_correction(Bytes& b) {
+  LearnedFeedforwardParams p;
+  p.table_dt = 1e-4 + 0.1 * b.unit();
+  p.hold_last = b.byte() % 2 == 0;
+  if (b.byte() % 2 == 0) p.limits.max = 0.5 + b.unit(), p.limits.min = -p.limits.max;
+  std::vector<double> table(1 + b.byte() % 64);
+  for (double& c : table) c = (2.0 * b.unit() - 1.0) * (b.byte() % 8 == 0 ? 1e3 : 0.1);
+  return LearnedCorrection(std::move(table), p);
+}
+
 // Every compensator, with measurement dropouts (NaN) for the adaptive controller and curve
 // angle changes for the curve-angle feedforward; the encoder loop gets a random encoder.
 inline Failure compensators(const std::uint8_t* data, std::size_t size) {
@@ -341,10 +352,12 @@ inline Failure compensators(const std::uint8_t* data, std::size_t size) {
   ContinuumFeedforward continuum(ContinuumFeedforwardParams{});
   AdaptiveController adaptive(AdaptiveControllerParams{});
   EncoderLooped<BacklashInverseFeedforward> looped(inverse, encoder_loop(b));
+  LearnedFeedforward<CurveAngleFeedforward> learned(curve, learned_correction(b));
   for (long op = 0; op < kMaxOps && !b.done(); ++op) {
     const std::uint8_t what = b.byte() % 32;
     if (what == 0) {
       inverse.reset(), curve.reset(), continuum.reset(), adaptive.reset(), looped.reset();
+      learned.reset();
       continue;
     }
     if (what == 1) curve.set_curve_angle(b.value(10.0));
@@ -356,6 +369,7 @@ inline Failure compensators(const std::uint8_t* data, std::size_t size) {
     if (bad(y, adaptive.step(y, meas, motor_q, dt)))
       return {"AdaptiveController: non-finite torque", op};
     if (bad(y, looped.step(y, motor_q, dt))) return {"EncoderLoop: non-finite command", op};
+    if (bad(y, learned.step(y, dt))) return {"LearnedFeedforward: non-finite command", op};
   }
   return {};
 }
