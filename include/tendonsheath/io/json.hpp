@@ -24,6 +24,7 @@
 #include "../compensators/curve_angle_feedforward.hpp"
 #include "../compensators/encoder_loop.hpp"
 #include "../compensators/inverse_feedforward.hpp"
+#include "../compensators/learned_feedforward.hpp"
 #include "../compensators/make_model_inverse.hpp"
 #include "json_models.hpp"
 
@@ -186,11 +187,13 @@ class LoadedCompensator {
   /// @param y_d the desired output, in the file's (outer) units
   /// @param dt the time since the previous cycle, s
   /// @return the motor command: input_offset + input_scale * engine.step((y_d - output_offset) /
-  /// output_gain, dt); with an encoder loop (an EncoderLoop file) and no encoder reading given,
+  /// output_gain, dt), plus the learned correction table when the file holds one (a
+  /// LearnedFeedforward); with an encoder loop (an EncoderLoop file) and no encoder reading given,
   /// the loop holds its correction (status fallback): use step(y_d, q, dt)
   double step(double y_d, double dt) noexcept { return step(y_d, NAN, dt); }
-  /// @brief One cycle with the motor encoder: the feedforward's command, corrected by the encoder
-  /// loop when the file holds one (an EncoderLoop), else q is not used.
+  /// @brief One cycle with the motor encoder: the feedforward's command (plus the learned
+  /// correction of a LearnedFeedforward), corrected by the encoder loop when the file holds one
+  /// (an EncoderLoop), else q is not used.
   /// @param y_d the desired output, in the file's (outer) units
   /// @param q the motor encoder, rad (NaN: no reading this cycle)
   /// @param dt the time since the previous cycle, s
@@ -198,18 +201,21 @@ class LoadedCompensator {
   double step(double y_d, double q, double dt) noexcept {
     const double inner_y = (y_d - map_.output_offset) / map_.output_gain;
     const double x = std::visit([&](auto& e) noexcept { return e.step(inner_y, dt); }, engine_);
-    const double target = map_.input_offset + map_.input_scale * x;
+    double target = map_.input_offset + map_.input_scale * x;
+    if (learned_) target = learned_->correct(target, dt);
     return loop_ ? loop_->correct(target, q, dt) : target;
   }
   /// Start afresh from the initial state, as after construction; the parameters (and any route,
   /// shape or curve angle set since) are kept.
   void reset() noexcept {
     std::visit([](auto& e) noexcept { e.reset(); }, engine_);
+    if (learned_) learned_->reset();
     if (loop_) loop_->reset();
   }
   /// The last step's status flags (see Status).
   Status status() const noexcept {
-    const Status s = std::visit([](const auto& e) noexcept { return e.status(); }, engine_);
+    Status s = std::visit([](const auto& e) noexcept { return e.status(); }, engine_);
+    if (learned_) s |= learned_->status();
     return loop_ ? s | loop_->status() : s;
   }
   /// Put an encoder loop around the feedforward (what an EncoderLoop file holds); kind() is then
@@ -220,6 +226,16 @@ class LoadedCompensator {
   }
   /// The encoder loop, when the file holds one (nullptr otherwise).
   const EncoderLoop* encoder_loop() const noexcept { return loop_ ? &*loop_ : nullptr; }
+  /// Add a learned correction table to the feedforward's command (what a LearnedFeedforward file
+  /// holds; inside the encoder loop, if any); kind() is then "LearnedFeedforward".
+  void set_learned_correction(const LearnedCorrection& learned) {
+    learned_ = learned;
+    kind_ = "LearnedFeedforward";
+  }
+  /// The learned correction table, when the file holds one (nullptr otherwise).
+  const LearnedCorrection* learned_correction() const noexcept {
+    return learned_ ? &*learned_ : nullptr;
+  }
   /// The route's shape for a feedforward that follows it (CurveAngleFeedforward, a ModelInverse
   /// of a CurveAngleModel or AngleDependent model); ignored by the others.
   void set_shape(const ShapeIntegrals& s) noexcept {
@@ -240,6 +256,7 @@ class LoadedCompensator {
   std::string kind_;
   Engine engine_;
   ScaledMap map_;
+  std::optional<LearnedCorrection> learned_;
   std::optional<EncoderLoop> loop_;
 };
 
@@ -341,6 +358,33 @@ inline LoadedCompensator encoder_loop_from_json(const json& f, const std::string
   return out;
 }
 
+inline const std::set<std::string> kLearnedKeys{
+    "format", "version", "compensator", "feedforward", "table", "table_dt", "hold_last", "limits"};
+
+// Python's LearnedFeedforward: its feedforward (a compensator file of its own) and the table.
+inline LoadedCompensator learned_from_json(const json& f, const std::string& where) {
+  check_keys(f, kLearnedKeys, kLearnedKeys, where);
+  const json& inner = f.at("feedforward");
+  if (inner.is_object() && inner.contains("compensator") &&
+      (inner.at("compensator") == "EncoderLoop" || inner.at("compensator") == "LearnedFeedforward"))
+    fail(where, "key 'feedforward' must be a feedforward, not an " +
+                    inner.at("compensator").get<std::string>() +
+                    " (put the EncoderLoop around the LearnedFeedforward)");
+  LoadedCompensator out = compensator_from_json(inner, where + ": feedforward");
+  LearnedFeedforwardParams p;
+  p.table_dt = number(f, "table_dt", where);
+  const json& hold = member(f, "hold_last", where);
+  if (!hold.is_boolean()) fail(where, "key 'hold_last' must be true or false (got " + hold.dump() + ")");
+  p.hold_last = hold.get<bool>();
+  p.limits = limits(f, where);
+  try {
+    out.set_learned_correction(LearnedCorrection(numbers(f, "table", where), p));
+  } catch (const std::invalid_argument& e) {
+    fail(where, e.what());
+  }
+  return out;
+}
+
 }  // namespace detail
 
 /// A compensator from the parsed contents of a "tendonsheath.compensator" file.
@@ -349,6 +393,7 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
   const json& kind = detail::member(f, "compensator", where);
   if (kind == "InverseFeedforward") return detail::inverse_from_json(f, where);
   if (kind == "EncoderLoop") return detail::encoder_loop_from_json(f, where);
+  if (kind == "LearnedFeedforward") return detail::learned_from_json(f, where);
   if (kind == "CurveAngleFeedforward") {
     const auto keys = detail::keys_of_file(f, detail::kCurveAngleKeys, detail::kCurveAngleRenamed);
     std::set<std::string> allowed = keys;
@@ -365,7 +410,7 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
   }
   detail::fail(where, "key 'compensator': unknown compensator " + kind.dump() +
                           " (known: ContinuumFeedforward, CurveAngleFeedforward, EncoderLoop, "
-                          "InverseFeedforward)");
+                          "InverseFeedforward, LearnedFeedforward)");
 }
 
 /// The parsed contents of a JSON file (read with stdio: the library uses no iostreams).
