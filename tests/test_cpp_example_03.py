@@ -13,6 +13,7 @@ from tendonsheath.compensate import (
     CurveAngleFeedforward,
     EncoderLoop,
     InverseFeedforward,
+    LearnedFeedforward,
 )
 from tendonsheath.models import Backlash, BoucWenBacklash, PrandtlIshlinskii, Scaled
 
@@ -115,6 +116,55 @@ def test_cpp_encoder_loop_equals_python(example, tmp_path):
     python = np.array([loop.step(a, b, dt) for a, b, dt in zip(y_d, q, dts, strict=True)])
     cpp = np.loadtxt(tmp_path / "out.csv")
     assert np.ptp(python - inner.command(t, y_d)) > 0.01  # the loop did correct
+    np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
+
+
+def _run_example(example, path, rows, tmp_path):
+    (tmp_path / "trajectory.csv").write_text(
+        "".join(",".join(repr(v) for v in row) + "\n" for row in rows)
+    )
+    run = subprocess.run(
+        [example, path, tmp_path / "trajectory.csv", tmp_path / "out.csv"],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 0, run.stderr
+    return np.loadtxt(tmp_path / "out.csv")
+
+
+def test_cpp_learned_feedforward_equals_python(example, tmp_path):
+    """A LearnedFeedforward (a random table, shorter than the trajectory, zero past its end)
+    around an inverse of a Scaled model, and an EncoderLoop around one (the encoder following
+    the corrected command): C++ gives Python's commands to 1e-12."""
+    inner = InverseFeedforward(
+        Scaled(Backlash(B_r=0.08, B_l=0.05), input_offset=0.1, output_gain=1.2), 0.04
+    )
+    rng = np.random.default_rng(5)
+    table = np.cumsum(rng.normal(0.0, 0.005, 1100))  # 2.5 ms apart: to 2.75 s of 3 s
+    learned = LearnedFeedforward(inner, table, 2.5e-3, hold_last=False, limits=(-1.5, 1.5, 30.0))
+    learned.to_json(tmp_path / "learned.json")
+    t = np.arange(0.0, 3.0, 1e-3)
+    y_d = 0.8 * np.sin(2 * np.pi * 0.5 * t)
+    cpp = _run_example(
+        example, tmp_path / "learned.json", zip(t.tolist(), y_d.tolist(), strict=True), tmp_path
+    )
+    python = learned.command(t, y_d)
+    assert np.ptp(python - inner.command(t, y_d)) > 0.05  # the table did correct
+    np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
+
+    loop = EncoderLoop(learned, kp=0.5, ki=200.0, max_correction=0.3)
+    loop.to_json(tmp_path / "loop.json")
+    q = 0.9 * y_d + rng.normal(0.0, 1e-3, t.size)
+    q[700:720] = np.nan
+    cpp = _run_example(
+        example,
+        tmp_path / "loop.json",
+        zip(t.tolist(), y_d.tolist(), q.tolist(), strict=True),
+        tmp_path,
+    )
+    loop.reset()
+    dts = np.concatenate([[0.0], np.diff(t)])
+    python = np.array([loop.step(a, b, dt) for a, b, dt in zip(y_d, q, dts, strict=True)])
     np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
 
 

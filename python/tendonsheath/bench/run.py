@@ -242,6 +242,7 @@ class _Loop:
         self.sensor = _sensor_engine(noise, plant)
         self.mask = _dropout_mask(dropout, ts)
         self.encoder_loop = None  # a core.EncoderLoop around the controller's command
+        self.learned = None  # a core.LearnedCorrection added to it (inside the encoder loop)
 
     def call(self, fn, controller, *extra, shapes=_NO_SHAPES, idx=None, angles=None):
         """``fn`` (a ``_core.bench_*`` function) on this loop; the schedule may be replaced."""
@@ -249,12 +250,13 @@ class _Loop:
         angles = self.angles if angles is None else angles
         head = (self.plant._engine, self.motor, self.sensor, controller, *extra, self.ts, self.ys)
         tail = (idx, angles) if shapes is _NO_SHAPES else (idx, angles, shapes)
-        return fn(*head, *tail, self.mask, self.encoder_loop)
+        return fn(*head, *tail, self.mask, self.encoder_loop, self.learned)
 
 
 def _run_controller(loop: _Loop, controller, shape_sensing):
     """Run the loop on the fastest path the controller offers (by its capabilities); an
-    EncoderLoop runs its feedforward's path with the encoder loop around it, in C++."""
+    EncoderLoop runs its feedforward's path with the encoder loop around it, a
+    LearnedFeedforward its feedforward's path with the correction table added, in C++."""
     if controller is None:
         gain = loop.plant.distal_radius / loop.plant.proximal_radius
         return loop.call(core.bench_open_loop, gain, shapes=None)
@@ -263,6 +265,10 @@ def _run_controller(loop: _Loop, controller, shape_sensing):
     taken_apart = getattr(controller, "_encoder_loop", None)
     if callable(taken_apart):
         loop.encoder_loop, controller = taken_apart()
+        _check_compensator(controller)
+    learned = getattr(controller, "_learned_correction", None)
+    if callable(learned):
+        loop.learned, controller = learned()
         _check_compensator(controller)
     compiled = getattr(controller, "_tendonsheath_compensator", None)
     if callable(compiled):  # a user's C++ compensator (tendonsheath_bind/compensator.hpp)

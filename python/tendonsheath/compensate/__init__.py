@@ -5,6 +5,7 @@ from .continuum_feedforward import ContinuumFeedforward
 from .curve_angle_feedforward import CurveAngleFeedforward, shape_of
 from .encoder_loop import EncoderLoop
 from .inverse_feedforward import InverseFeedforward
+from .learned_feedforward import LearnedFeedforward
 from .limits import CommandLimits
 from .persistence import load_compensator
 from .tuning import EncoderLoopDesign, tune_encoder_loop
@@ -19,6 +20,7 @@ __all__ = [
     "EncoderLoop",
     "EncoderLoopDesign",
     "InverseFeedforward",
+    "LearnedFeedforward",
     "load",
     "load_compensator",
     "shape_of",
