@@ -1,6 +1,7 @@
 """C++ example 03 loads compensators saved by Python and gives Python's commands to 1e-12
 on the same 1 kHz trajectory (issue 15, Done-when line 2)."""
 
+import json
 import shutil
 import subprocess
 from pathlib import Path
@@ -14,6 +15,7 @@ from tendonsheath.compensate import (
     EncoderLoop,
     InverseFeedforward,
     LearnedFeedforward,
+    TipLoop,
 )
 from tendonsheath.models import Backlash, BoucWenBacklash, PrandtlIshlinskii, Scaled
 
@@ -119,6 +121,50 @@ def test_cpp_encoder_loop_equals_python(example, tmp_path):
     np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
 
 
+def test_cpp_tip_loop_equals_python(example, tmp_path):
+    """A TipLoop with a gain schedule around an inverse of a Scaled model, given a tip
+    trajectory (with a dropout) and a curve angle that changes, gives Python's servo commands
+    to 1e-12 in C++."""
+    inner = InverseFeedforward(
+        Scaled(BoucWenBacklash(B_r=0.08, B_l=0.05), input_offset=0.1, output_gain=1.2), 0.04
+    )
+    loop = TipLoop(
+        inner,
+        kp=0.8,
+        ki=60.0,
+        kd=0.002,
+        max_correction=0.3,
+        schedule=[(0.5, 0.6), (1.5, 1.0), (3.0, 2.5)],
+        limits=(-2.0, 2.0, 40.0),
+    )
+    loop.to_json(tmp_path / "loop.json")
+    t = np.arange(0.0, 3.0, 1e-3)
+    y_d = 0.8 * np.sin(2 * np.pi * 0.5 * t)
+    rng = np.random.default_rng(5)
+    y = 0.85 * y_d + 0.05 * np.sin(2 * np.pi * 3.0 * t) + rng.normal(0.0, 1e-3, t.size)
+    y[1500:1510] = np.nan  # a tip sensor dropout: back toward the feedforward
+    angle = np.where(t < 1.0, 0.8, np.where(t < 2.0, 2.0, 3.5))  # the curve angle moves
+    rows = zip(t.tolist(), y_d.tolist(), y.tolist(), angle.tolist(), strict=True)
+    (tmp_path / "trajectory.csv").write_text(
+        "".join(f"{a!r},{b!r},{c!r},{d!r}\n" for a, b, c, d in rows)
+    )
+    run = subprocess.run(
+        [example, tmp_path / "loop.json", tmp_path / "trajectory.csv", tmp_path / "out.csv"],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 0, run.stderr
+    loop.reset()
+    dts = np.concatenate([[0.0], np.diff(t)])  # as the C++ loop computes them
+    python = []
+    for a, b, c, d in zip(y_d, y, angle, dts, strict=True):
+        loop.set_curve_angle(c)
+        python.append(loop.step(a, b, d))
+    cpp = np.loadtxt(tmp_path / "out.csv")
+    assert np.ptp(np.array(python) - inner.command(t, y_d)) > 0.01  # the loop did correct
+    np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
+
+
 def _run_example(example, path, rows, tmp_path):
     (tmp_path / "trajectory.csv").write_text(
         "".join(",".join(repr(v) for v in row) + "\n" for row in rows)
@@ -134,8 +180,8 @@ def _run_example(example, path, rows, tmp_path):
 
 def test_cpp_learned_feedforward_equals_python(example, tmp_path):
     """A LearnedFeedforward (a random table, shorter than the trajectory, zero past its end)
-    around an inverse of a Scaled model, and an EncoderLoop around one (the encoder following
-    the corrected command): C++ gives Python's commands to 1e-12."""
+    around an inverse of a Scaled model, and an EncoderLoop and a TipLoop around one (the loop
+    correcting the corrected command): C++ gives Python's commands to 1e-12."""
     inner = InverseFeedforward(
         Scaled(Backlash(B_r=0.08, B_l=0.05), input_offset=0.1, output_gain=1.2), 0.04
     )
@@ -167,6 +213,20 @@ def test_cpp_learned_feedforward_equals_python(example, tmp_path):
     python = np.array([loop.step(a, b, dt) for a, b, dt in zip(y_d, q, dts, strict=True)])
     np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
 
+    tip = TipLoop(learned, kp=0.5, ki=40.0, schedule=[(0.5, 0.8), (2.0, 1.5)])
+    tip.to_json(tmp_path / "tip.json")
+    y = 0.95 * y_d + rng.normal(0.0, 1e-3, t.size)
+    y[900:910] = np.nan
+    angle = np.where(t < 1.5, 1.0, 2.5)
+    rows = zip(t.tolist(), y_d.tolist(), y.tolist(), angle.tolist(), strict=True)
+    cpp = _run_example(example, tmp_path / "tip.json", rows, tmp_path)
+    tip.reset()
+    python = []
+    for a, b, c, dt in zip(y_d, y, angle, dts, strict=True):
+        tip.set_curve_angle(c)
+        python.append(tip.step(a, b, dt))
+    np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
+
 
 def test_cpp_rejects_a_bad_file_naming_the_key(example, tmp_path):
     text = InverseFeedforward(Backlash()).to_json().replace('"B_l"', '"B_left"')
@@ -174,3 +234,21 @@ def test_cpp_rejects_a_bad_file_naming_the_key(example, tmp_path):
     run = subprocess.run([example, tmp_path / "ff.json"], capture_output=True, text=True)
     assert run.returncode == 2
     assert "unknown key 'B_left'" in run.stderr
+
+
+def test_cpp_rejects_a_bad_tip_loop_schedule(example, tmp_path):
+    data = TipLoop(InverseFeedforward(Backlash()), ki=10.0, schedule=[(0.0, 1.0)]).to_dict()
+    for schedule, words in (
+        ([[0.0, 1.0, 2.0]], "entry 0"),
+        ([[1.0, 1.0], [0.5, 2.0]], "increasing"),
+    ):
+        (tmp_path / "loop.json").write_text(json.dumps({**data, "schedule": schedule}))
+        trajectory = tmp_path / "trajectory.csv"
+        trajectory.write_text("0.0,0.1,0.1\n")
+        run = subprocess.run(
+            [example, tmp_path / "loop.json", trajectory, tmp_path / "out.csv"],
+            capture_output=True,
+            text=True,
+        )
+        assert run.returncode == 2
+        assert "schedule" in run.stderr and words in run.stderr

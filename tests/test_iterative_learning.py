@@ -121,7 +121,7 @@ def test_bad_inputs_give_clear_errors():
         LearnedFeedforward(Passthrough(), [[0.0, 1.0]], DT)
     with pytest.raises(TypeError, match="table must be numbers"):
         LearnedFeedforward(Passthrough(), "zeros", DT)
-    with pytest.raises(TypeError, match="put an EncoderLoop around"):
+    with pytest.raises(TypeError, match="put an EncoderLoop or a TipLoop around"):
         LearnedFeedforward(EncoderLoop(Passthrough()), [0.0], DT)
     with pytest.raises(TypeError, match="feedforward must be"):
         LearnedFeedforward(object(), [0.0], DT)

@@ -3,8 +3,10 @@
 //   example_03_load_and_run COMPENSATOR.json             1 kHz sine, self-check (ctest)
 //   example_03_load_and_run COMPENSATOR.json TRAJ OUT    t,y_d lines in TRAJ -> commands in OUT
 //                                                        (t,y_d,c lines: c is the motor encoder
-//                                                        for an EncoderLoop, else the curve angle
-//                                                        set before each step)
+//                                                        for an EncoderLoop, the tip angle for a
+//                                                        TipLoop, else the curve angle set before
+//                                                        each step; t,y_d,c,a lines: a is the
+//                                                        curve angle set before each step)
 //
 // The file comes from Python (examples/cpp/data/make_inverse_feedforward.py):
 //   ts.compensate.InverseFeedforward(identified_model, ...).to_json("inverse_feedforward.json")
@@ -31,15 +33,16 @@ int run_trajectory(ts::io::LoadedCompensator& ff, const char* in_path, const cha
     if (in) std::fclose(in);
     return 2;
   }
-  double t = 0.0, y_d = 0.0, c = 0.0, t_prev = 0.0;
-  const bool encoder = ff.kind() == "EncoderLoop";
+  double t = 0.0, y_d = 0.0, c = 0.0, a = 0.0, t_prev = 0.0;
+  const bool looped = ff.kind() == "EncoderLoop" || ff.kind() == "TipLoop";
   char line[256];
   for (bool first = true; std::fgets(line, sizeof line, in) != nullptr; first = false) {
-    const int fields = std::sscanf(line, "%lf,%lf,%lf", &t, &y_d, &c);
+    const int fields = std::sscanf(line, "%lf,%lf,%lf,%lf", &t, &y_d, &c, &a);
     if (fields < 2) break;
-    if (fields == 3 && !encoder) ff.set_curve_angle(c);  // a compensator that follows the route
+    if (fields == 3 && !looped) ff.set_curve_angle(c);  // a compensator that follows the route
+    if (fields == 4) ff.set_curve_angle(a);
     const double dt = first ? 0.0 : t - t_prev;  // as Python's command(): dt 0 on the first cycle
-    std::fprintf(out, "%.17g\n", fields == 3 && encoder ? ff.step(y_d, c, dt) : ff.step(y_d, dt));
+    std::fprintf(out, "%.17g\n", fields >= 3 && looped ? ff.step(y_d, c, dt) : ff.step(y_d, dt));
     t_prev = t;
   }
   std::fclose(in);

@@ -27,6 +27,7 @@
 #include "compensators/adaptive_controller.hpp"
 #include "compensators/encoder_loop.hpp"
 #include "compensators/learned_feedforward.hpp"
+#include "compensators/tip_loop.hpp"
 #include "models/polynomial.hpp"
 #include "models/generalized_prandtl_ishlinskii.hpp"
 #include "route.hpp"

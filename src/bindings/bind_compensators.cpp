@@ -253,6 +253,60 @@ void bind_encoder_loop(nb::module_& m) {
       .def("status", &status_of<L>);
 }
 
+void bind_tip_loop(nb::module_& m) {
+  using P = ts::TipLoopParams;
+  nb::class_<P>(m, "TipLoopParams")
+      .def(nb::init<>())
+      .def_rw("kp", &P::kp)
+      .def_rw("ki", &P::ki)
+      .def_rw("kd", &P::kd)
+      .def_rw("derivative_cutoff_hz", &P::derivative_cutoff_hz)
+      .def_rw("max_correction", &P::max_correction)
+      .def_rw("limits", &P::limits)
+      .def_prop_ro("schedule_angles",
+                   [](const P& p) {
+                     return std::vector<double>(p.schedule_angles.begin(),
+                                                p.schedule_angles.begin() + p.schedule_size);
+                   })
+      .def_prop_ro("schedule_gains",
+                   [](const P& p) {
+                     return std::vector<double>(p.schedule_gains.begin(),
+                                                p.schedule_gains.begin() + p.schedule_size);
+                   })
+      .def(
+          "set_schedule",
+          [](P& p, const std::vector<double>& angles, const std::vector<double>& gains) {
+            if (angles.size() != gains.size())
+              throw std::invalid_argument("TipLoop: schedule_angles and schedule_gains differ in size (" +
+                                          std::to_string(angles.size()) + " and " +
+                                          std::to_string(gains.size()) + ")");
+            if (angles.size() > P::kMaxSchedule)
+              throw std::invalid_argument("TipLoop: the schedule holds at most " +
+                                          std::to_string(P::kMaxSchedule) + " points (got " +
+                                          std::to_string(angles.size()) + ")");
+            p.schedule_size = angles.size();
+            for (std::size_t i = 0; i < angles.size(); ++i) {
+              p.schedule_angles[i] = angles[i];
+              p.schedule_gains[i] = gains[i];
+            }
+          },
+          "angles"_a, "gains"_a);
+  using L = ts::TipLoop;
+  bind_copy(nb::class_<L>(m, "TipLoop"))
+      .def(nb::init<const P&>(), "params"_a)
+      .def_prop_ro("params", &L::params)
+      .def("reset", &L::reset)
+      .def("correct", &L::correct, "target"_a, "y_d"_a, "measured"_a, "dt"_a)
+      .def("set_curve_angle", &L::set_curve_angle, "angle"_a)
+      .def("set_shape", &L::set_shape, "shape"_a)
+      .def("correction", &L::correction)
+      .def("integral", &L::integral)
+      .def("error", &L::error)
+      .def("gain_scale", &L::gain_scale)
+      .def("curve_angle", &L::curve_angle)
+      .def("in_fallback", &L::in_fallback)
+      .def("status", &status_of<L>);
+}
 
 void bind_learned_feedforward(nb::module_& m) {
   using P = ts::LearnedFeedforwardParams;
@@ -309,6 +363,7 @@ void bind_compensators(nb::module_& m) {
   bind_adaptive(m);
   bind_encoder_loop(m);
   bind_learned_feedforward(m);
+  bind_tip_loop(m);
 }
 
 }  // namespace tsbind

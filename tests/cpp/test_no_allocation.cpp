@@ -149,6 +149,11 @@ TEST(NoAllocation, CompensatorsStep) {
   for (std::size_t i = 0; i < table.size(); ++i) table[i] = 0.01 * std::sin(0.05 * i);
   ts::LearnedFeedforward<ts::CurveAngleFeedforward> learned(
       curve, ts::LearnedCorrection(table, learned_p));
+  ts::TipLoopParams tp;
+  tp.kp = 0.5, tp.ki = 40.0, tp.kd = 1e-3, tp.limits.max = 0.4, tp.schedule_size = 3;
+  tp.schedule_angles = {0.0, 1.0, 3.0};
+  tp.schedule_gains = {0.5, 1.0, 2.0};
+  ts::TipLooped<ts::CurveAngleFeedforward> tipped(curve, ts::TipLoop(tp));
   const long n = allocations_in([&] {
     for (int k = 0; k < 1000; ++k) {
       const double y = input(k);
@@ -162,6 +167,9 @@ TEST(NoAllocation, CompensatorsStep) {
       if (k % 150 == 0) learned.set_shape(ts::uniform_shape(0.1, 0.2 + 0.01 * k));
       if (k == 500) learned.reset();
       learned.step(y, k % 333 == 0 ? NAN : 1e-3);
+      if (k % 120 == 0) tipped.set_shape(ts::uniform_shape(0.1, 0.01 * k));
+      if (k % 170 == 0) tipped.set_curve_angle(k % 340 == 0 ? NAN : 0.02 * k);
+      tipped.step(y, k % 230 == 0 ? NAN : 0.8 * y, 1e-3);
     }
   });
   EXPECT_EQ(n, 0);

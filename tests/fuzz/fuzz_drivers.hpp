@@ -342,8 +342,28 @@ inline LearnedCorrection learned_correction(Bytes& b) {
   return LearnedCorrection(std::move(table), p);
 }
 
+// A tip loop with gains from the bytes (from 0 to extreme), maybe limited, maybe scheduled.
+inline TipLoop tip_loop(Bytes& b) {
+  TipLoopParams p;
+  p.kp = 10.0 * b.unit() * (b.byte() % 8 == 0 ? 1e6 : 1.0);
+  p.ki = 1e3 * b.unit() * (b.byte() % 8 == 0 ? 1e6 : 1.0);
+  p.kd = 0.01 * b.unit();
+  p.derivative_cutoff_hz = 1.0 + 500.0 * b.unit();
+  if (b.byte() % 2 == 0) p.max_correction = 0.01 + b.unit();
+  if (b.byte() % 2 == 0) p.limits.max = 0.5 + b.unit(), p.limits.min = -p.limits.max;
+  p.schedule_size = b.byte() % (TipLoopParams::kMaxSchedule + 1);
+  double angle = b.unit();
+  for (std::size_t i = 0; i < p.schedule_size; ++i) {
+    p.schedule_angles[i] = angle;
+    p.schedule_gains[i] = 0.01 + 10.0 * b.unit();
+    angle += 0.01 + b.unit();
+  }
+  return TipLoop(p);
+}
+
 // Every compensator, with measurement dropouts (NaN) for the adaptive controller and curve
-// angle changes for the curve-angle feedforward; the encoder loop gets a random encoder.
+// angle changes for the curve-angle feedforward; the encoder loop gets a random encoder, the tip
+// loop a random tip reading (NaN for a dropout) and curve angle.
 inline Failure compensators(const std::uint8_t* data, std::size_t size) {
   using namespace detail_fuzz;
   Bytes b(data, size);
@@ -353,14 +373,16 @@ inline Failure compensators(const std::uint8_t* data, std::size_t size) {
   AdaptiveController adaptive(AdaptiveControllerParams{});
   EncoderLooped<BacklashInverseFeedforward> looped(inverse, encoder_loop(b));
   LearnedFeedforward<CurveAngleFeedforward> learned(curve, learned_correction(b));
+  TipLooped<CurveAngleFeedforward> tipped(curve, tip_loop(b));
   for (long op = 0; op < kMaxOps && !b.done(); ++op) {
     const std::uint8_t what = b.byte() % 32;
     if (what == 0) {
       inverse.reset(), curve.reset(), continuum.reset(), adaptive.reset(), looped.reset();
-      learned.reset();
+      learned.reset(), tipped.reset();
       continue;
     }
     if (what == 1) curve.set_curve_angle(b.value(10.0));
+    if (what == 2) tipped.set_curve_angle(b.value(10.0));
     const double y = b.value(2.0), dt = b.dt();
     const double meas = b.value(2.0), motor_q = b.value(2.0);
     if (bad(y, inverse.step(y, dt))) return {"BacklashInverseFeedforward: non-finite", op};
@@ -370,6 +392,8 @@ inline Failure compensators(const std::uint8_t* data, std::size_t size) {
       return {"AdaptiveController: non-finite torque", op};
     if (bad(y, looped.step(y, motor_q, dt))) return {"EncoderLoop: non-finite command", op};
     if (bad(y, learned.step(y, dt))) return {"LearnedFeedforward: non-finite command", op};
+    const double tip = what == 3 ? NAN : meas;
+    if (bad(y, tipped.step(y, tip, dt))) return {"TipLoop: non-finite command", op};
   }
   return {};
 }

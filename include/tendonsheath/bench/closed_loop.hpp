@@ -16,6 +16,7 @@
 #include "../compensators/encoder_loop.hpp"
 #include "../compensators/learned_feedforward.hpp"
 #include "../compensators/model_inverse.hpp"
+#include "../compensators/tip_loop.hpp"
 #include "../physics/pull_pull_statics.hpp"
 #include "../plant/motor.hpp"
 #include "../plant/sensor.hpp"
@@ -165,8 +166,8 @@ struct WithEncoderLoop {
 };
 
 /// @brief Any of the controllers above with a learned correction table added to its command
-/// (LearnedCorrection, played from the run's start); put a WithEncoderLoop around it to have the
-/// encoder follow the corrected command.
+/// (LearnedCorrection, played from the run's start); put a WithEncoderLoop (or WithTipLoop) around
+/// it to have the encoder (or the tip loop) follow the corrected command.
 /// @tparam Inner OpenLoop, FeedforwardLoop, CurveAngleLoop, ModelInverseLoop or one with the same
 /// members
 template <class Inner>
@@ -193,6 +194,38 @@ struct WithLearnedCorrection {
   }
 };
 
+/// @brief Any of the controllers above with a TipLoop around its command: the loop corrects the
+/// controller's command (a motor angle) from the measured tip angle, its gains scheduled over the
+/// route's curve angle (given by on_shape, as from shape sensing).
+/// @tparam Inner OpenLoop, FeedforwardLoop, CurveAngleLoop, ModelInverseLoop or one with the same
+/// members
+template <class Inner>
+struct WithTipLoop {
+  /// the controller whose command the loop corrects
+  Inner inner;
+  /// the loop on the tip reading
+  TipLoop loop;
+  /// Start afresh: the controller and the loop (the loop keeps its curve angle).
+  void reset() noexcept {
+    inner.reset();
+    loop.reset();
+  }
+  /// Passes the route shape to the controller and its curve angle to the loop's gain schedule.
+  void on_shape(const ShapeIntegrals& s) noexcept {
+    inner.on_shape(s);
+    loop.set_shape(s);
+  }
+  /// The controller's fallback, or the loop's (no tip reading this cycle).
+  bool in_fallback() const noexcept { return inner.in_fallback() || loop.in_fallback(); }
+  /// The controller's and the loop's flags.
+  Status status() const noexcept { return inner.status() | loop.status(); }
+  /// @return loop.correct(inner.command(...), y_d, measured, dt), the servo command
+  double command(double y_d, double measured, double motor,
+                 double dt) noexcept(noexcept(inner.command(y_d, measured, motor, dt))) {
+    return loop.correct(inner.command(y_d, measured, motor, dt), y_d, measured, dt);
+  }
+};
+
 /// @brief The virtual bench: controller -> motor -> plant -> sensor -> controller at the sample
 /// times t, the whole loop in C++.
 ///
@@ -204,8 +237,8 @@ struct WithLearnedCorrection {
 /// whole: it validates its inputs first and throws std::invalid_argument naming the problem.
 /// @tparam Plant SingleTendonPlant, PullPullPlant or ContinuumPlant
 /// @tparam Controller OpenLoop, FeedforwardLoop, CurveAngleLoop, ModelInverseLoop, AdaptiveLoop, a
-/// WithEncoderLoop or WithLearnedCorrection of one of those (or a WithEncoderLoop of a
-/// WithLearnedCorrection), or one with the same members
+/// WithEncoderLoop, WithTipLoop or WithLearnedCorrection of one of those (or a WithEncoderLoop or
+/// WithTipLoop of a WithLearnedCorrection), or one with the same members
 /// @param plant the plant, reset first
 /// @param motor the motor between command and plant, or nullptr (the command is the pulley angle)
 /// @param sensor the output sensor, or nullptr (exact measurement)

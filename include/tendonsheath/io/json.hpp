@@ -26,6 +26,7 @@
 #include "../compensators/inverse_feedforward.hpp"
 #include "../compensators/learned_feedforward.hpp"
 #include "../compensators/make_model_inverse.hpp"
+#include "../compensators/tip_loop.hpp"
 #include "json_models.hpp"
 
 /// @brief Loading compensators saved by Python's `to_json` into the real-time core (optional
@@ -188,22 +189,25 @@ class LoadedCompensator {
   /// @param dt the time since the previous cycle, s
   /// @return the motor command: input_offset + input_scale * engine.step((y_d - output_offset) /
   /// output_gain, dt), plus the learned correction table when the file holds one (a
-  /// LearnedFeedforward); with an encoder loop (an EncoderLoop file) and no encoder reading given,
-  /// the loop holds its correction (status fallback): use step(y_d, q, dt)
+  /// LearnedFeedforward); with a loop (an EncoderLoop or TipLoop file) and no reading given, the
+  /// loop falls back (status fallback): use step(y_d, reading, dt)
   double step(double y_d, double dt) noexcept { return step(y_d, NAN, dt); }
-  /// @brief One cycle with the motor encoder: the feedforward's command (plus the learned
-  /// correction of a LearnedFeedforward), corrected by the encoder loop when the file holds one
-  /// (an EncoderLoop), else q is not used.
+  /// @brief One cycle with the loop's sensor: the feedforward's command (plus the learned
+  /// correction of a LearnedFeedforward), corrected by the loop when the file holds one, else the
+  /// reading is not used.
   /// @param y_d the desired output, in the file's (outer) units
-  /// @param q the motor encoder, rad (NaN: no reading this cycle)
+  /// @param reading the loop's sensor now (NaN: no reading this cycle): the motor encoder, rad,
+  /// for an EncoderLoop; the tip angle, in y_d's units, for a TipLoop
   /// @param dt the time since the previous cycle, s
   /// @return the servo command
-  double step(double y_d, double q, double dt) noexcept {
+  double step(double y_d, double reading, double dt) noexcept {
     const double inner_y = (y_d - map_.output_offset) / map_.output_gain;
     const double x = std::visit([&](auto& e) noexcept { return e.step(inner_y, dt); }, engine_);
     double target = map_.input_offset + map_.input_scale * x;
     if (learned_) target = learned_->correct(target, dt);
-    return loop_ ? loop_->correct(target, q, dt) : target;
+    if (loop_) return loop_->correct(target, reading, dt);
+    if (tip_) return tip_->correct(target, y_d, reading, dt);
+    return target;
   }
   /// Start afresh from the initial state, as after construction; the parameters (and any route,
   /// shape or curve angle set since) are kept.
@@ -211,23 +215,26 @@ class LoadedCompensator {
     std::visit([](auto& e) noexcept { e.reset(); }, engine_);
     if (learned_) learned_->reset();
     if (loop_) loop_->reset();
+    if (tip_) tip_->reset();
   }
   /// The last step's status flags (see Status).
   Status status() const noexcept {
     Status s = std::visit([](const auto& e) noexcept { return e.status(); }, engine_);
     if (learned_) s |= learned_->status();
-    return loop_ ? s | loop_->status() : s;
+    if (loop_) return s | loop_->status();
+    return tip_ ? s | tip_->status() : s;
   }
   /// Put an encoder loop around the feedforward (what an EncoderLoop file holds); kind() is then
   /// "EncoderLoop".
   void set_encoder_loop(const EncoderLoop& loop) {
     loop_ = loop;
+    tip_.reset();
     kind_ = "EncoderLoop";
   }
   /// The encoder loop, when the file holds one (nullptr otherwise).
   const EncoderLoop* encoder_loop() const noexcept { return loop_ ? &*loop_ : nullptr; }
   /// Add a learned correction table to the feedforward's command (what a LearnedFeedforward file
-  /// holds; inside the encoder loop, if any); kind() is then "LearnedFeedforward".
+  /// holds; inside the encoder or tip loop, if any); kind() is then "LearnedFeedforward".
   void set_learned_correction(const LearnedCorrection& learned) {
     learned_ = learned;
     kind_ = "LearnedFeedforward";
@@ -236,16 +243,28 @@ class LoadedCompensator {
   const LearnedCorrection* learned_correction() const noexcept {
     return learned_ ? &*learned_ : nullptr;
   }
+  /// Put a tip loop around the feedforward (what a TipLoop file holds); kind() is then "TipLoop".
+  void set_tip_loop(const TipLoop& loop) {
+    tip_ = loop;
+    loop_.reset();
+    kind_ = "TipLoop";
+  }
+  /// The tip loop, when the file holds one (nullptr otherwise).
+  const TipLoop* tip_loop() const noexcept { return tip_ ? &*tip_ : nullptr; }
   /// The route's shape for a feedforward that follows it (CurveAngleFeedforward, a ModelInverse
-  /// of a CurveAngleModel or AngleDependent model); ignored by the others.
+  /// of a CurveAngleModel or AngleDependent model; ignored by the others), and its curve angle for
+  /// a tip loop's gain schedule.
   void set_shape(const ShapeIntegrals& s) noexcept {
     if (auto* c = std::get_if<CurveAngleFeedforward>(&engine_)) c->set_shape(s);
     if (auto* m = std::get_if<ModelInverse>(&engine_)) m->set_shape(s);
+    if (tip_) tip_->set_shape(s);
   }
-  /// Uniform curvature of total angle theta (rad) for a feedforward that follows the route.
+  /// Uniform curvature of total angle theta (rad) for a feedforward that follows the route, and
+  /// the curve angle of a tip loop's gain schedule.
   void set_curve_angle(double theta) noexcept {
     if (auto* c = std::get_if<CurveAngleFeedforward>(&engine_)) c->set_curve_angle(theta);
     if (auto* m = std::get_if<ModelInverse>(&engine_)) m->set_curve_angle(theta);
+    if (tip_) tip_->set_curve_angle(theta);
   }
   const std::string& kind() const noexcept { return kind_; }  ///< the Python class name
   Engine& engine() noexcept { return engine_; }  ///< the feedforward itself, e.g.\ for CurveAngleFeedforward::set_curve_angle
@@ -258,6 +277,7 @@ class LoadedCompensator {
   ScaledMap map_;
   std::optional<LearnedCorrection> learned_;
   std::optional<EncoderLoop> loop_;
+  std::optional<TipLoop> tip_;
 };
 
 /// The InverseSettings of an InverseFeedforward file: smoothing, limits, and the optional
@@ -366,10 +386,11 @@ inline LoadedCompensator learned_from_json(const json& f, const std::string& whe
   check_keys(f, kLearnedKeys, kLearnedKeys, where);
   const json& inner = f.at("feedforward");
   if (inner.is_object() && inner.contains("compensator") &&
-      (inner.at("compensator") == "EncoderLoop" || inner.at("compensator") == "LearnedFeedforward"))
+      (inner.at("compensator") == "EncoderLoop" || inner.at("compensator") == "TipLoop" ||
+       inner.at("compensator") == "LearnedFeedforward"))
     fail(where, "key 'feedforward' must be a feedforward, not an " +
                     inner.at("compensator").get<std::string>() +
-                    " (put the EncoderLoop around the LearnedFeedforward)");
+                    " (put the loop around the LearnedFeedforward)");
   LoadedCompensator out = compensator_from_json(inner, where + ": feedforward");
   LearnedFeedforwardParams p;
   p.table_dt = number(f, "table_dt", where);
@@ -385,6 +406,46 @@ inline LoadedCompensator learned_from_json(const json& f, const std::string& whe
   return out;
 }
 
+inline const std::set<std::string> kTipLoopKeys{
+    "format", "version", "compensator", "feedforward", "kp", "ki", "kd",
+    "derivative_cutoff_hz", "max_correction", "schedule", "limits"};
+
+// Python's TipLoop: its feedforward (a compensator file of its own), the loop's gains and its gain
+// schedule ([[curve_angle, gain], ...], up to 8 points).
+inline LoadedCompensator tip_loop_from_json(const json& f, const std::string& where) {
+  check_keys(f, kTipLoopKeys, kTipLoopKeys, where);
+  const json& inner = f.at("feedforward");
+  if (inner.is_object() && inner.contains("compensator") &&
+      (inner.at("compensator") == "TipLoop" || inner.at("compensator") == "EncoderLoop"))
+    fail(where, "key 'feedforward' must be a feedforward, not a " + inner.at("compensator").dump());
+  LoadedCompensator out = compensator_from_json(inner, where + ": feedforward");
+  TipLoopParams p;
+  p.kp = number(f, "kp", where);
+  p.ki = number(f, "ki", where);
+  p.kd = number(f, "kd", where);
+  p.derivative_cutoff_hz = number(f, "derivative_cutoff_hz", where);
+  p.max_correction = number(f, "max_correction", where, std::numeric_limits<double>::infinity());
+  const json& schedule = f.at("schedule");
+  if (!schedule.is_array() || schedule.size() > TipLoopParams::kMaxSchedule)
+    fail(where, "key 'schedule' must be a list of at most 8 [curve_angle, gain] pairs");
+  for (std::size_t i = 0; i < schedule.size(); ++i) {
+    const json& row = schedule[i];
+    if (!row.is_array() || row.size() != 2 || !row[0].is_number() || !row[1].is_number())
+      fail(where, "key 'schedule': entry " + std::to_string(i) +
+                      " must be a [curve_angle, gain] pair of numbers (got " + row.dump() + ")");
+    p.schedule_angles[i] = row[0].get<double>();
+    p.schedule_gains[i] = row[1].get<double>();
+  }
+  p.schedule_size = schedule.size();
+  p.limits = limits(f, where);
+  try {
+    out.set_tip_loop(TipLoop(p));
+  } catch (const std::invalid_argument& e) {
+    fail(where, e.what());
+  }
+  return out;
+}
+
 }  // namespace detail
 
 /// A compensator from the parsed contents of a "tendonsheath.compensator" file.
@@ -394,6 +455,7 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
   if (kind == "InverseFeedforward") return detail::inverse_from_json(f, where);
   if (kind == "EncoderLoop") return detail::encoder_loop_from_json(f, where);
   if (kind == "LearnedFeedforward") return detail::learned_from_json(f, where);
+  if (kind == "TipLoop") return detail::tip_loop_from_json(f, where);
   if (kind == "CurveAngleFeedforward") {
     const auto keys = detail::keys_of_file(f, detail::kCurveAngleKeys, detail::kCurveAngleRenamed);
     std::set<std::string> allowed = keys;
@@ -410,7 +472,7 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
   }
   detail::fail(where, "key 'compensator': unknown compensator " + kind.dump() +
                           " (known: ContinuumFeedforward, CurveAngleFeedforward, EncoderLoop, "
-                          "InverseFeedforward, LearnedFeedforward)");
+                          "InverseFeedforward, LearnedFeedforward, TipLoop)");
 }
 
 /// The parsed contents of a JSON file (read with stdio: the library uses no iostreams).

@@ -9,6 +9,7 @@ from .calibration import (
     in_class_fit,
 )
 from .frequency import FrequencyResponse, frequency_response
+from .loop_calibration import LoopCalibration, calibrate_loop, loop_calibration_input
 from .metrics import loop_width, tracking_metrics
 from .motor_calibration import MotorCalibration, calibrate_servo, motor_calibration_input
 from .run import Result, run
@@ -19,6 +20,9 @@ __all__ = [
     "ShapeSensing",
     "calibrate",
     "calibrate_load",
+    "calibrate_loop",
+    "LoopCalibration",
+    "loop_calibration_input",
     "calibrate_servo",
     "MotorCalibration",
     "motor_calibration_input",

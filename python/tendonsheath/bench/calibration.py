@@ -33,7 +33,8 @@ from .. import models
 from ..physics import route_shape
 from ..route import Route
 from ..sensor import Sensor
-from .motor_calibration import MotorCalibration, calibrate_servo
+from .loop_calibration import LoopCalibration, calibrate_loop
+from .motor_calibration import MotorCalibration, calibrate_servo, run_experiment
 from .shape_sensing import ShapeSensing
 
 if TYPE_CHECKING:
@@ -44,6 +45,7 @@ if TYPE_CHECKING:
         EncoderLoop,
         InverseFeedforward,
     )
+    from ..identify.loop_dynamics import LoopDynamics
     from ..plant import PullPullPlant
     from .run import Result
 
@@ -180,6 +182,9 @@ class Calibration:
         The motor calibration run and its identified servo (``calibrate(..., servo=True)``).
     settings : dict, optional
         How the models were identified (what :meth:`refit` repeats).
+    loops : list of LoopCalibration, optional
+        The loop calibration runs, one per calibration shape, and the tip-feedback loop's
+        dynamics identified from each (``calibrate(..., dynamics=True)``).
     """
 
     fits: dict[str, Any]
@@ -194,6 +199,28 @@ class Calibration:
     logs: list[CalibrationLog] = field(default_factory=list)
     servo: MotorCalibration | None = None
     settings: dict[str, Any] = field(default_factory=dict)  # how the fits were made (refit)
+    loops: list[LoopCalibration] = field(default_factory=list)
+
+    @property
+    def loop_dynamics(self) -> list[LoopDynamics]:
+        """The tip-feedback loop's dynamics on each calibration shape (empty unless calibrated
+        with ``dynamics=True``)."""
+        return [loop.dynamics for loop in self.loops]
+
+    def loop_summary(self) -> str:
+        """One line per calibration shape: the loop's identified resonance, damping, delay and
+        bandwidth ("" without loop calibration runs).
+
+        Returns
+        -------
+        str
+            The lines, each prefixed by its run's name.
+        """
+        names = [r.name for r in self.runs]
+        return "\n".join(
+            f"{names[i] if i < len(names) else f'shape {i + 1}'}: {d.summary()}"
+            for i, d in enumerate(self.loop_dynamics)
+        )
 
     # -- the compensators ------------------------------------------------------------
     @property
@@ -317,6 +344,7 @@ class Calibration:
             logs=self.logs,
             servo=self.servo,
             settings=settings,
+            loops=list(self.loops),
         )
         _identify_models(cal)
         return cal
@@ -475,6 +503,7 @@ class Calibration:
             "at_bounds": self.at_bounds,
             "fit_input": self.fit_input,
             "servo": None if self.servo is None else self.servo.servo.as_dict(),
+            "loop_dynamics": [d.as_dict() for d in self.loop_dynamics],
             "fits": {
                 name: {
                     "model": fit.model.to_dict(),
@@ -527,6 +556,7 @@ class Calibration:
                         "source": info["source"],
                     }
                 )
+        rows += _loop_rows(self)
         for d in self.declared.values():
             rows.append({**d.as_dict(), "relative s.e.": None})
             rows[-1] = {k: rows[-1][k] for k in ("quantity", "value", "relative s.e.", "source")}
@@ -550,6 +580,24 @@ def _servo_rows(motor: MotorCalibration) -> list[Told]:
         Told("servo damping", sv.damping, source),
         Told("servo delay (samples)", sv.delay, source),
     ]
+
+
+def _loop_rows(cal: Calibration) -> list[dict[str, Any]]:
+    """Report rows of the loop calibration runs: resonance, damping, delay and bandwidth."""
+    rows = []
+    source = "identified from the loop calibration run (command, encoder and tip logs), shape "
+    for i, d in enumerate(cal.loop_dynamics):
+        se = d.standard_errors
+        for quantity, value, key in (
+            ("distal resonance (Hz)", d.resonance_hz, "resonance_hz"),
+            ("distal damping", d.damping, "damping"),
+            ("tip delay (s)", d.delay, "delay"),
+            ("loop bandwidth, command -> tip (Hz)", d.bandwidth_hz, None),
+        ):
+            rel = abs(se[key] / value) if key in se and value else None
+            rows.append({"quantity": f"shape {i + 1}: {quantity}", "value": value,
+                         "relative s.e.": rel, "source": f"{source}{i + 1}"})  # fmt: skip
+    return rows
 
 
 def fit_source(cal: Calibration | None, fit) -> str:
@@ -581,29 +629,6 @@ def _near_bounds(fit, tol: float = 0.01) -> list[str]:
     return out
 
 
-def _encoder(sim) -> np.ndarray:
-    """The motor encoder: the motor shaft angle (q_motor on plants that model gear play)."""
-    return np.asarray(getattr(sim, "q_motor", sim.q_in), dtype=float)
-
-
-def _run_experiment(plant, route, t, command, sensor: Sensor | None, seed: int):
-    """One calibration experiment on the robot bent into ``route``; returns (encoder,
-    distal reading). The distal reading is the rig's sensor (a fresh copy of ``sensor``
-    with its own seed, or the plant's own sensor)."""
-    previous = plant.route
-    plant.set_route(route)
-    try:
-        sim = plant.simulate(t, command)
-    finally:
-        plant.set_route(previous)
-    if sensor is not None:
-        rig = Sensor(sensor.resolution, sensor.noise_std, seed, sensor.delay, sensor.history)
-        reading = rig.measure(sim.q_out, t=t) if sensor.delay > 0 else rig.measure(sim.q_out)
-    else:
-        reading = sim.measured
-    return _encoder(sim), np.asarray(reading, dtype=float)
-
-
 def calibrate(
     plant: PullPullPlant,
     routes: Sequence[Route],
@@ -624,6 +649,7 @@ def calibrate(
     fit_input: str = "command",
     depends_on_angle: dict[str, str] | None = None,
     servo: bool = False,
+    dynamics: bool = False,
 ) -> Calibration:
     """Calibrate compensators from experiments on ``plant`` (the robot) alone.
 
@@ -652,6 +678,9 @@ def calibrate(
     (``"encoder"``). :meth:`Calibration.refit` fits the other from the same logs.
     ``servo=True`` adds a motor calibration run (:func:`calibrate_servo`) on
     ``routes[backlash_route]`` whose servo :meth:`Calibration.encoder_loop` is tuned on.
+    ``dynamics=True`` adds a loop calibration run (:func:`calibrate_loop`: a chirp on a fast
+    ramp, command, encoder and the distal ``sensor`` logged) on every calibration shape, and
+    identifies the tip-feedback loop's dynamics from each (``Calibration.loop_dynamics``).
     ``budget``: options of :func:`tendonsheath.identify` (maxiter, popsize).
 
     Parameters
@@ -692,6 +721,9 @@ def calibrate(
         Laws of the BoucWenBacklash parameters over the sensed shape (see above).
     servo : bool, default False
         Also run the motor calibration and identify the servo.
+    dynamics : bool, default False
+        Also run a loop calibration on each shape and identify the tip-feedback loop's
+        dynamics (servo, distal resonance, sensor delay).
 
     Returns
     -------
@@ -730,6 +762,13 @@ def calibrate(
         duration_m = float(m.t[-1] - m.t[0])
         cal.runs.append(CalibrationRun("motor (chirp on a ramp)", runs[backlash_route].sensed_angle,
                                        duration_m, int(m.t.size)))  # fmt: skip
+    if dynamics:
+        for i, route in enumerate(routes):
+            loop = calibrate_loop(plant, route, sensor, seed=seed + 401 + i)
+            cal.loops.append(loop)
+            cal.runs.append(CalibrationRun(f"loop (chirp on a fast ramp), shape {i + 1}",
+                                           runs[i].sensed_angle, float(loop.t[-1] - loop.t[0]),
+                                           int(loop.t.size)))  # fmt: skip
     return cal
 
 
@@ -758,7 +797,7 @@ def _calibration_logs(experiment: tuple, routes, names: list[str], shape, durati
     plant, t, command, sensor, seed = experiment
     runs, logs = [], []
     for i, route in enumerate(routes):
-        x, y = _run_experiment(plant, route, t, command, sensor, seed + 101 + i)
+        x, y = run_experiment(plant, route, t, command, sensor, seed + 101 + i)
         sensed = _sensed_shape(shape, route, duration, i)
         angle = float(sensed if isinstance(sensed, int | float) else sensed.curve_angle)
         runs.append(CalibrationRun(names[i], angle, duration, int(t.size)))
@@ -955,7 +994,7 @@ def calibrate_load(
     t, command = calibration_input(duration, amplitude)
     warm = int(round(warmup / (t[1] - t[0])))
     i = len(cal.runs)
-    encoder, y = _run_experiment(plant, route, t, command, sensor, seed + 301 + i)
+    encoder, y = run_experiment(plant, route, t, command, sensor, seed + 301 + i)
     x = command if cal.fit_input == "command" else encoder
     sensed = cal.shape.static_reading(route.curve_angle, duration, seed_offset=50 + i)
     run_name = f"load '{name}'"

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..identify.servo import ServoFit, identify_servo
+from ..sensor import Sensor
 
 if TYPE_CHECKING:
     from ..plant import PullPullPlant
@@ -138,15 +139,46 @@ def calibrate_servo(
     if motor is None or motor.kind != "position":
         raise ValueError("calibrate_servo needs a plant driven by a position motor")
     t, command = motor_calibration_input(duration, span, f_stop=f_stop)
+    encoder = _encoder(_drive(plant, route, t, command))
+    return MotorCalibration(identify_servo(t, command, encoder), t, command, encoder)
+
+
+def _drive(plant: PullPullPlant, route: Route | None, t: np.ndarray, command: np.ndarray) -> Any:
+    """Simulate ``plant`` bent into ``route`` (default its own) driven by ``command``; the
+    plant's route is restored."""
     previous = plant.route
     if route is not None:
         plant.set_route(route)
     try:
-        sim: Any = plant.simulate(t, command)
+        return plant.simulate(t, command)
     finally:
         plant.set_route(previous)
-    encoder = np.asarray(getattr(sim, "q_motor", sim.q_in), dtype=float)
-    return MotorCalibration(identify_servo(t, command, encoder), t, command, encoder)
+
+
+def _encoder(sim: Any) -> np.ndarray:
+    """The motor encoder: the motor shaft angle (q_motor on plants that model gear play)."""
+    return np.asarray(getattr(sim, "q_motor", sim.q_in), dtype=float)
+
+
+def run_experiment(
+    plant: PullPullPlant,
+    route: Route | None,
+    t: np.ndarray,
+    command: np.ndarray,
+    sensor: Sensor | None,
+    seed: int,
+) -> tuple[np.ndarray, np.ndarray]:
+    """One calibration experiment on the robot bent into ``route``; returns (encoder, distal
+    reading). The distal reading is the rig's sensor (a fresh copy of ``sensor`` with its own
+    seed, reading the output with its latency, quantisation and noise), or the plant's own
+    sensor."""
+    sim = _drive(plant, route, t, command)
+    if sensor is not None:
+        rig = Sensor(sensor.resolution, sensor.noise_std, seed, sensor.delay, sensor.history)
+        reading = rig.measure(sim.q_out, t=t) if sensor.delay > 0 else rig.measure(sim.q_out)
+    else:
+        reading = sim.measured
+    return _encoder(sim), np.asarray(reading, dtype=float)
 
 
 __all__ = ["MotorCalibration", "calibrate_servo", "motor_calibration_input"]

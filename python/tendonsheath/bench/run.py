@@ -241,37 +241,63 @@ class _Loop:
         self.motor = core.Motor(plant.motor._params) if plant.motor is not None else None
         self.sensor = _sensor_engine(noise, plant)
         self.mask = _dropout_mask(dropout, ts)
-        self.encoder_loop = None  # a core.EncoderLoop around the controller's command
-        self.learned = None  # a core.LearnedCorrection added to it (inside the encoder loop)
+        # a core.EncoderLoop or core.TipLoop around the controller's command
+        self.outer_loop = None
+        self.learned = None  # a core.LearnedCorrection added to the command (inside the loop)
+
+    @property
+    def scheduled(self) -> bool:
+        """Whether the outer loop is a TipLoop with a gain schedule (it needs the shapes)."""
+        return isinstance(self.outer_loop, core.TipLoop) and bool(
+            self.outer_loop.params.schedule_angles
+        )
 
     def call(self, fn, controller, *extra, shapes=_NO_SHAPES, idx=None, angles=None):
-        """``fn`` (a ``_core.bench_*`` function) on this loop; the schedule may be replaced."""
+        """``fn`` (a ``_core.bench_*`` function) on this loop; the schedule may be replaced.
+        ``fn`` without a positional shapes argument (bench_erased, bench_python) takes shapes
+        given as a keyword (the TipLoop's schedule needs them)."""
         idx = self.idx if idx is None else idx
         angles = self.angles if angles is None else angles
         head = (self.plant._engine, self.motor, self.sensor, controller, *extra, self.ts, self.ys)
         tail = (idx, angles) if shapes is _NO_SHAPES else (idx, angles, shapes)
-        return fn(*head, *tail, self.mask, self.encoder_loop, self.learned)
+        return fn(*head, *tail, self.mask, self.outer_loop, learned=self.learned)
+
+    def call_with_shapes(self, fn, controller, *extra, friction, shape_sensing, positional):
+        """``fn`` given the route's shapes (or the sensed ones) from the start and at every
+        change, for a TipLoop's gain schedule around a feedforward that does not follow the
+        route."""
+        idx, angles, shapes = _route_shapes(self, friction, shape_sensing)
+        if positional:
+            return self.call(fn, controller, *extra, shapes=shapes, idx=idx, angles=angles)
+        head = (self.plant._engine, self.motor, self.sensor, controller, *extra, self.ts, self.ys)
+        return fn(
+            *head, idx, angles, self.mask, self.outer_loop, shapes=shapes, learned=self.learned
+        )
 
 
 def _run_controller(loop: _Loop, controller, shape_sensing):
     """Run the loop on the fastest path the controller offers (by its capabilities); an
-    EncoderLoop runs its feedforward's path with the encoder loop around it, a
-    LearnedFeedforward its feedforward's path with the correction table added, in C++."""
+    EncoderLoop or TipLoop runs its feedforward's path with the loop around it, a
+    LearnedFeedforward its feedforward's path with the correction table added, in C++ (a
+    TipLoop with a gain schedule is given the route's shapes on every path)."""
     if controller is None:
         gain = loop.plant.distal_radius / loop.plant.proximal_radius
         return loop.call(core.bench_open_loop, gain, shapes=None)
     _check_compensator(controller)
     _check_motor_kind(loop.plant, controller)
-    taken_apart = getattr(controller, "_encoder_loop", None)
+    taken_apart = getattr(controller, "_outer_loop", None)
     if callable(taken_apart):
-        loop.encoder_loop, controller = taken_apart()
+        loop.outer_loop, controller = taken_apart()
         _check_compensator(controller)
     learned = getattr(controller, "_learned_correction", None)
     if callable(learned):
         loop.learned, controller = learned()
         _check_compensator(controller)
+    shaped = dict(friction=_friction(controller), shape_sensing=shape_sensing)
     compiled = getattr(controller, "_tendonsheath_compensator", None)
     if callable(compiled):  # a user's C++ compensator (tendonsheath_bind/compensator.hpp)
+        if loop.scheduled:
+            return loop.call_with_shapes(core.bench_erased, compiled(), **shaped, positional=False)
         return loop.call(core.bench_erased, compiled())
     engine_of = getattr(controller, "_bench_engine", None)
     engine = engine_of() if callable(engine_of) else None
@@ -281,9 +307,25 @@ def _run_controller(loop: _Loop, controller, shape_sensing):
         return _run_curve_angle(loop, controller, engine, shape_sensing)
     fn = _ENGINE_LOOPS.get(type(engine))
     if fn is not None:
+        if loop.scheduled:
+            return loop.call_with_shapes(fn, engine, **shaped, positional=True)
         return loop.call(fn, engine, shapes=None)
     codes = [STEP_SIGNALS.index(s) for s in step_signals(controller)]
+    if loop.scheduled:
+        return loop.call_with_shapes(
+            core.bench_python, controller, codes, **shaped, positional=False
+        )
     return loop.call(core.bench_python, controller, codes)
+
+
+def _friction(controller) -> float:
+    """The friction a controller computes route shapes with (0 when it does not follow the
+    route: a TipLoop's schedule uses only the curve angle)."""
+    from ..compensate.tip_loop import _follows_route
+
+    if not _follows_route(controller):
+        return 0.0
+    return float(getattr(controller, "friction", None) or 0.0)
 
 
 def _check_compensator(controller) -> None:
@@ -308,6 +350,14 @@ def _check_motor_kind(plant, controller) -> None:
 def _run_curve_angle(loop: _Loop, controller, engine, shape_sensing):
     """The controller is told the route's shape from the start and at every change (a route
     schedule always starts at sample 0), or the sensed shape with ``shape_sensing``."""
+    idx, angles, shapes = _route_shapes(loop, controller.friction, shape_sensing)
+    fn = _ROUTE_LOOPS[type(engine)]
+    return loop.call(fn, engine, shapes=shapes, idx=idx, angles=angles)
+
+
+def _route_shapes(loop: _Loop, friction: float, shape_sensing):
+    """(schedule index, node angles, (g, G, Theta) rows): the route's shape from the start and
+    at every change, at ``friction``, or the sensed shape with ``shape_sensing``."""
     plant, ts, routes, idx = loop.plant, loop.ts, loop.routes, loop.idx
     angles = loop.angles
     if idx is None:
@@ -316,12 +366,11 @@ def _run_curve_angle(loop: _Loop, controller, engine, shape_sensing):
         route_at = [plant.route]
     else:
         route_at = [_first(routes(float(ts[int(k)]))) for k in idx]
-    shape_rows = [shape_of(r, controller.friction) for r in route_at]
+    shape_rows = [shape_of(r, friction) for r in route_at]
     shapes = np.ascontiguousarray([[s.g, s.G, s.total_angle] for s in shape_rows])
     if shape_sensing is not None:
-        idx, angles, shapes = _sensed(plant, ts, routes, shape_sensing, controller, idx)
-    fn = _ROUTE_LOOPS[type(engine)]
-    return loop.call(fn, engine, shapes=shapes, idx=idx, angles=angles)
+        idx, angles, shapes = _sensed(plant, ts, routes, shape_sensing, friction, idx)
+    return idx, angles, shapes
 
 
 def _result(controller, ts, ys, outputs, warmup: float) -> Result:
@@ -350,7 +399,7 @@ def _result(controller, ts, ys, outputs, warmup: float) -> Result:
     return result
 
 
-def _sensed(plant, ts, routes, shape_sensing, controller, idx):
+def _sensed(plant, ts, routes, shape_sensing, friction, idx):
     """Merge the plant's route changes with the shape sensor's readings: at every index
     the plant gets its true route and the controller the last sensed shape (the curve angle's
     uniform route, or the sensed curvature profile)."""
@@ -362,7 +411,7 @@ def _sensed(plant, ts, routes, shape_sensing, controller, idx):
         def routes(_t):
             return route
 
-    r_idx, _, sensed_rows = sensed_route_schedule(shape_sensing, ts, routes, controller.friction)
+    r_idx, _, sensed_rows = sensed_route_schedule(shape_sensing, ts, routes, friction)
     merged = np.union1d(np.asarray(idx, dtype=np.int64), r_idx.astype(np.int64))
     angle_rows, shape_rows = [], []
     for k in merged:

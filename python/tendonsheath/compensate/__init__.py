@@ -9,6 +9,7 @@ from .iterative_learning import IterativeLearning, LearningDesign, TrialRecord
 from .learned_feedforward import LearnedFeedforward
 from .limits import CommandLimits
 from .persistence import load_compensator
+from .tip_loop import TipLoop
 from .tuning import EncoderLoopDesign, tune_encoder_loop
 
 load = load_compensator
@@ -24,6 +25,7 @@ __all__ = [
     "IterativeLearning",
     "LearnedFeedforward",
     "LearningDesign",
+    "TipLoop",
     "TrialRecord",
     "load",
     "load_compensator",

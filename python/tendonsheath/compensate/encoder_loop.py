@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 from .. import _core as core
 from .._args import number, python_names
 from .._arrays import checked_dt
+from ..protocols import step_signals
 from ..status import Status
 from .base import EngineCompensator
 from .limits import LimitsLike, as_limits
@@ -80,7 +81,7 @@ class EncoderLoop(EngineCompensator):
     ):
         who = "EncoderLoop"
         missing = [m for m in ("reset", "step") if not callable(getattr(feedforward, m, None))]
-        if missing or isinstance(feedforward, EncoderLoop):
+        if missing or isinstance(feedforward, EncoderLoop) or step_signals(feedforward) != ("y_d",):
             raise TypeError(
                 f"{who}: feedforward must be a feedforward compensator with reset() and "
                 f"step(y_d, dt) (got {type(feedforward).__name__})"
@@ -236,12 +237,12 @@ class EncoderLoop(EngineCompensator):
         self.feedforward.set_curve_angle(curve_angle)
 
     # -- the bench and persistence ------------------------------------------------------
-    def _encoder_loop(self):
+    def _outer_loop(self):
         """(the C++ loop, the feedforward) for bench.run's C++ loops."""
         return core.EncoderLoop(self._engine.params), self.feedforward
 
     def _bench_engine(self):
-        return None  # bench.run takes the loop apart (_encoder_loop)
+        return None  # bench.run takes the loop apart (_outer_loop)
 
     @property
     def params(self) -> dict:

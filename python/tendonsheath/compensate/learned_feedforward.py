@@ -32,15 +32,16 @@ class LearnedFeedforward(EngineCompensator):
     a reset plays sample 0) and ``c`` is ``table`` interpolated linearly (sample ``i`` at
     ``t = i * table_dt``). Past the table's end it adds the last sample (``hold_last``) or 0,
     and the status has ``input_clamped``. A NaN command of the feedforward holds the last one.
-    Put an :class:`~tendonsheath.compensate.EncoderLoop` around it to have the motor encoder
-    follow the corrected command.
+    Put an :class:`~tendonsheath.compensate.EncoderLoop` (or a
+    :class:`~tendonsheath.compensate.TipLoop`) around it to have the motor encoder follow (or
+    the tip loop correct) the corrected command.
 
     Parameters
     ----------
     feedforward : compensator
         Any feedforward with ``reset()`` and ``step(y_d, dt)`` (a shipped InverseFeedforward,
-        CurveAngleFeedforward or ContinuumFeedforward, or your own); not an EncoderLoop (put
-        that around this one instead).
+        CurveAngleFeedforward or ContinuumFeedforward, or your own); not an EncoderLoop or a
+        TipLoop (put that around this one instead).
     table : array_like of float, shape (n,)
         The correction (the command's unit, rad) at ``t = 0, table_dt, 2 table_dt, ...``;
         n >= 1, finite.
@@ -77,8 +78,8 @@ class LearnedFeedforward(EngineCompensator):
         if missing or not takes_y_d or isinstance(feedforward, LearnedFeedforward):
             raise TypeError(
                 f"{who}: feedforward must be a feedforward compensator with reset() and "
-                f"step(y_d, dt) (got {type(feedforward).__name__}; put an EncoderLoop around "
-                "the LearnedFeedforward, not inside it)"
+                f"step(y_d, dt) (got {type(feedforward).__name__}; put an EncoderLoop or a "
+                "TipLoop around the LearnedFeedforward, not inside it)"
             )
         values = number_array(who, "table", table)
         if values.ndim != 1:

@@ -22,8 +22,11 @@ if TYPE_CHECKING:
     from .base import Feedforward
     from .encoder_loop import EncoderLoop
     from .learned_feedforward import LearnedFeedforward
+    from .tip_loop import TipLoop
 
-    Compensator: TypeAlias = Feedforward | AdaptiveController | EncoderLoop | LearnedFeedforward
+    Compensator: TypeAlias = (
+        Feedforward | AdaptiveController | EncoderLoop | TipLoop | LearnedFeedforward
+    )
 
 FORMAT_NAME = "tendonsheath.compensator"
 FORMAT_VERSION = 1
@@ -32,8 +35,8 @@ FORMAT_VERSION = 1
 _UNBOUNDED = {"max_correction_rate": math.inf, "max_torque": math.inf, "max_correction": math.inf}
 # settings saved as a model's own dict (null: no model)
 _MODELS = ("model", "feedforward_model")
-# settings saved as a compensator's own dict (the feedforward inside an EncoderLoop or a
-# LearnedFeedforward)
+# settings saved as a compensator's own dict (the feedforward inside an EncoderLoop, a TipLoop
+# or a LearnedFeedforward)
 _COMPENSATORS = ("feedforward",)
 _FLAGS = ("model_acceleration", "hold_last")
 # settings saved as a list of numbers (a LearnedFeedforward's correction table)
@@ -75,6 +78,7 @@ def _registry() -> dict[str, type[Compensator]]:
     from .encoder_loop import EncoderLoop
     from .inverse_feedforward import InverseFeedforward
     from .learned_feedforward import LearnedFeedforward
+    from .tip_loop import TipLoop
 
     kinds = (
         InverseFeedforward,
@@ -83,6 +87,7 @@ def _registry() -> dict[str, type[Compensator]]:
         AdaptiveController,
         EncoderLoop,
         LearnedFeedforward,
+        TipLoop,
     )
     return {c.__name__: c for c in kinds}
 
@@ -166,6 +171,8 @@ def _setting(name: str, key: str, value):
         return value
     if key == "input_range":
         return _range(name, value)
+    if key == "schedule":
+        return _schedule(name, value)
     if key == "filter_hz" and value is None:
         return None
     if key == "mode":
@@ -187,6 +194,16 @@ def _range(name: str, value) -> tuple[float, float] | None:
         )
     lo, hi = (_number(name, "'input_range'", v) for v in value)
     return (lo, hi)
+
+
+def _schedule(name: str, value) -> list[tuple[float, float]]:
+    """A gain schedule: [[curve_angle, gain], ...]."""
+    if not isinstance(value, list) or not all(isinstance(r, list) and len(r) == 2 for r in value):
+        raise ValueError(
+            f"{name} file: 'schedule' must be a list of [curve_angle, gain] pairs "
+            f"(got {json.dumps(value)})"
+        )
+    return [(_number(name, "'schedule'", a), _number(name, "'schedule'", g)) for a, g in value]
 
 
 def _limits(name: str, value) -> dict[str, float]:
@@ -218,7 +235,7 @@ def load_compensator(source: str | Path | dict) -> Compensator:
     Returns
     -------
     InverseFeedforward, CurveAngleFeedforward, ContinuumFeedforward, AdaptiveController,
-    EncoderLoop or LearnedFeedforward
+    EncoderLoop, TipLoop or LearnedFeedforward
         The saved compensator.
 
     Raises

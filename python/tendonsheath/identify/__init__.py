@@ -12,18 +12,28 @@ from .cross_validation import CrossValidation, cross_validate
 from .diagnostics import Diagnostics, IdentifiabilityWarning
 from .estimator import Identifier, NotFittedError
 from .fit import Fit, metrics
+from .loop_dynamics import (
+    EmpiricalResponse,
+    LoopDynamics,
+    empirical_response,
+    identify_loop_dynamics,
+)
 from .servo import ServoFit, identify_servo
 
 __all__ = [
     "CrossValidation",
     "Diagnostics",
+    "EmpiricalResponse",
     "Fit",
     "IdentifiabilityWarning",
     "Identifier",
+    "LoopDynamics",
     "ServoFit",
     "NotFittedError",
     "cross_validate",
+    "empirical_response",
     "identify",
     "identify_servo",
+    "identify_loop_dynamics",
     "metrics",
 ]

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import threadpoolctl
 from scipy.optimize import least_squares
 from scipy.signal import butter, cont2discrete, lfilter, sosfiltfilt
 
@@ -165,25 +166,32 @@ def servo_filter(
     delay: int,
     dt: float,
     integral_time: float = 0.0,
+    hold: str = "zoh",
 ) -> tuple[np.ndarray, np.ndarray]:
     """(num, den) in z^-1 of gain w^2/(s^2 + 2 damping w s + w^2) (with an integral time T_i > 0:
     gain w^2 (s + 1/T_i)/(s^3 + 2 damping w s^2 + w^2 s + w^2/T_i)), zero-order hold at dt, with
     the command of a step acting during that step (q_k from u_k held over (t_k-1, t_k]) and
-    ``delay`` samples more."""
+    ``delay`` samples more. ``hold="foh"``: first-order hold instead (the input a sampled
+    continuous signal, linear between samples: q_k from u_k-1 and u_k), for a stage driven by
+    a measured signal rather than a held command."""
     w = 2.0 * math.pi * frequency
     if integral_time > 0:
         wi = 1.0 / integral_time
         tf = ([gain * w * w, gain * w * w * wi], [1.0, 2.0 * damping * w, w * w, w * w * wi])
     else:
         tf = ([gain * w * w], [1.0, 2.0 * damping * w, w * w])
-    num, den, _ = cont2discrete(tf, dt, "zoh")
-    num = np.atleast_1d(np.squeeze(num))[1:]  # drop the leading 0: the step's own command acts
+    if hold not in ("zoh", "foh"):
+        raise ValueError(f"servo_filter: hold must be 'zoh' or 'foh' (got {hold!r})")
+    num, den, _ = cont2discrete(tf, dt, hold)
+    num = np.atleast_1d(np.squeeze(num))
+    if hold == "zoh":
+        num = num[1:]  # drop the leading 0: the step's own command acts
     return np.concatenate([np.zeros(int(delay)), num]), np.asarray(den, dtype=float)
 
 
 def _unit_response(frequency: float, damping: float, u: np.ndarray, delay: int, dt: float,
-                   integral_time: float = 0.0):  # fmt: skip
-    num, den = servo_filter(frequency, damping, 1.0, delay, dt, integral_time)
+                   integral_time: float = 0.0, hold: str = "zoh"):  # fmt: skip
+    num, den = servo_filter(frequency, damping, 1.0, delay, dt, integral_time, hold)
     shifted = u - u[0]  # from rest at the first command
     return lfilter(num, den, shifted) + u[0]
 
@@ -209,33 +217,36 @@ def _parameters(p: np.ndarray) -> tuple[float, float, float]:
     return math.exp(p[0]), math.exp(p[1]), ti
 
 
-def _fit_at_delay(u, q, delay: int, dt: float, start: np.ndarray, keep: slice):
+def _fit_at_delay(u, q, delay: int, dt: float, start: np.ndarray, keep: slice, *,
+                  hold: str = "zoh", min_damping: float = 0.05):  # fmt: skip
     """(frequency, damping, integral time, gain, offset, residual, least_squares result) at one
     delay, on the samples ``keep``; ``start`` has 2 entries (no integral) or 3; the gain and
-    offset are solved linearly inside (variable projection)."""
+    offset are solved linearly inside (variable projection). ``hold`` and ``min_damping``: the
+    discretisation (see :func:`servo_filter`) and the lower bound of the damping searched."""
     nyquist = 0.5 / dt
 
     def residual(p):
         f, z, ti = _parameters(p)
         if ti > 0 and 1.0 / ti >= 2.0 * z * 2.0 * math.pi * f:  # Routh: an unstable servo
             return np.full(keep.stop - keep.start, 1e3 * (1.0 + float(np.ptp(q))))
-        return _affine(_unit_response(f, z, u, delay, dt, ti)[keep], q[keep])[2]
+        return _affine(_unit_response(f, z, u, delay, dt, ti, hold)[keep], q[keep])[2]
 
-    lo = [math.log(1e-3), math.log(0.05), math.log(1e-2)][: start.size]
+    lo = [math.log(1e-3), math.log(min_damping), math.log(1e-2)][: start.size]
     hi = [math.log(0.45 * nyquist * 2), math.log(20.0), math.log(2.0 * math.pi * nyquist)]
     x0 = np.clip(start, lo, hi[: start.size])
     r = least_squares(residual, x0, bounds=(lo, hi[: start.size]), x_scale=1.0)
     f, z, ti = _parameters(r.x)
-    g, c, res = _affine(_unit_response(f, z, u, delay, dt, ti)[keep], q[keep])
+    g, c, res = _affine(_unit_response(f, z, u, delay, dt, ti, hold)[keep], q[keep])
     return f, z, ti, g, c, res, r
 
 
-def _start(u, q, delay: int, dt: float, keep: slice) -> np.ndarray:
+def _start(u, q, delay: int, dt: float, keep: slice, *, dampings=(0.3, 0.8, 2.0, 6.0),
+           frequencies: int = 24, hold: str = "zoh") -> np.ndarray:  # fmt: skip
     """The best log(frequency), log(damping) of a coarse grid: a start for the least squares."""
     best, arg = math.inf, (1.0, 0.7)
-    for f in np.geomspace(0.2, 0.4 / dt, 24):
-        for z in (0.3, 0.8, 2.0, 6.0):
-            response = _unit_response(f, z, u, delay, dt)[keep]
+    for f in np.geomspace(0.2, 0.4 / dt, frequencies):
+        for z in dampings:
+            response = _unit_response(f, z, u, delay, dt, hold=hold)[keep]
             sse = float(np.sum(_affine(response, q[keep])[2] ** 2))
             if sse < best:
                 best, arg = sse, (float(f), z)
@@ -255,6 +266,12 @@ def _standard_errors(result, residual: np.ndarray, f: float, z: float) -> dict[s
     return {"frequency": float(f * d[0]), "damping": float(z * d[1])}
 
 
+#: The fits multiply 3x3 and 4x4 matrices thousands of times (cont2discrete's expm): BLAS
+#: threads only contend there (5x slower on a loaded two-core machine), so they run on one.
+_one_blas_thread = threadpoolctl.threadpool_limits.wrap(limits=1, user_api="blas")
+
+
+@_one_blas_thread
 def identify_servo(
     t: ArrayLike,
     command: ArrayLike,
@@ -322,12 +339,12 @@ def identify_servo(
     )
 
 
-def _best_delay(u, q, dt: float, keep: slice, start: np.ndarray, delays):
+def _best_delay(u, q, dt: float, keep: slice, start: np.ndarray, delays, **options):
     """The fit of the delay (of ``delays``) with the least squared residual: (sse, delay,
-    fit...)."""
+    fit...); ``options``: hold and min_damping of :func:`_fit_at_delay`."""
     fits = []
     for d in delays:
-        f, z, ti, _, _, res, r = _fit_at_delay(u, q, d, dt, start, keep)
+        f, z, ti, _, _, res, r = _fit_at_delay(u, q, d, dt, start, keep, **options)
         fits.append((float(res @ res), d, f, z, ti, res, r))
     return min(fits, key=lambda item: item[0])
 
@@ -349,13 +366,13 @@ def _best_structure(u, q, dt: float, keep: slice, start: np.ndarray, max_delay: 
     return d, f, z, ti, res, r
 
 
-def _uniform_step(ts: np.ndarray) -> float:
+def _uniform_step(ts: np.ndarray, name: str = "identify_servo") -> float:
     if ts.size < 64:
-        raise ValueError(f"identify_servo needs at least 64 samples (got {ts.size})")
+        raise ValueError(f"{name} needs at least 64 samples (got {ts.size})")
     steps = np.diff(ts)
     dt = float(np.median(steps))
     if not dt > 0 or float(np.max(np.abs(steps - dt))) > 1e-3 * dt:
-        raise ValueError("identify_servo needs a uniform, increasing time vector")
+        raise ValueError(f"{name} needs a uniform, increasing time vector")
     return dt
 
 

@@ -1,0 +1,476 @@
+"""A tip-feedback loop around any feedforward: PI(D) on the measured tip angle, its gains
+scheduled over the route's curve angle."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping, Sequence
+from typing import TYPE_CHECKING, Any
+
+from .. import _core as core
+from .._args import number, python_names
+from .._arrays import checked_dt
+from ..protocols import step_signals
+from ..status import Status
+from .base import EngineCompensator
+from .limits import LimitsLike, as_limits
+
+if TYPE_CHECKING:
+    from ..route import Route
+
+_GAINS = ("kp", "ki", "kd", "derivative_cutoff_hz", "max_correction")
+MAX_SCHEDULE = 8  # TipLoopParams::kMaxSchedule
+
+Schedule = tuple[tuple[float, float], ...]
+
+
+def _schedule(who: str, schedule: Any) -> Schedule:
+    """``schedule`` (None, (angle, gain) pairs or a dict {angle: gain}) as a tuple of pairs;
+    the C++ core checks the values (angles increasing, gains > 0)."""
+    if schedule is None:
+        return ()
+    if isinstance(schedule, Mapping):
+        items = sorted(
+            ((number(who, "schedule angle", a), number(who, "schedule gain", g)))
+            for a, g in schedule.items()
+        )
+        pairs = tuple(items)
+    else:
+        if isinstance(schedule, str | bytes):
+            raise TypeError(f"{who}: schedule must be (curve_angle, gain) pairs (got {schedule!r})")
+        try:
+            rows = list(schedule)
+        except TypeError:
+            raise TypeError(
+                f"{who}: schedule must be None, (curve_angle, gain) pairs or a dict "
+                f"{{curve_angle: gain}} (got {type(schedule).__name__})"
+            ) from None
+        out = []
+        for i, row in enumerate(rows):
+            if isinstance(row, str | bytes) or not hasattr(row, "__len__") or len(row) != 2:
+                raise TypeError(
+                    f"{who}: schedule entry {i} must be a (curve_angle, gain) pair (got {row!r})"
+                )
+            out.append(
+                (number(who, "schedule angle", row[0]), number(who, "schedule gain", row[1]))
+            )
+        pairs = tuple(out)
+    if len(pairs) > MAX_SCHEDULE:
+        raise ValueError(
+            f"{who}: the schedule holds at most {MAX_SCHEDULE} points (got {len(pairs)})"
+        )
+    return pairs
+
+
+def _follows_route(feedforward: Any) -> bool:
+    """Whether a feedforward follows the route: its ``follows_route`` where it says (an
+    InverseFeedforward), else whether it takes one (CurveAngleFeedforward's ``set_route``)."""
+    own = getattr(feedforward, "follows_route", None)
+    if own is None:
+        return callable(getattr(feedforward, "set_route", None))
+    return bool(own)
+
+
+class TipLoop(EngineCompensator):
+    """A feedforward's command corrected by a PI(D) loop on the measured tip angle.
+
+    A feedforward computes the motor command x_ff its model says gives the desired output
+    y_d; whatever the model misses shows at the tip. This compensator reads the tip (an EM
+    tracker, a distal encoder) and, with e = y_d(previous cycle) - y,
+
+        u = x_ff + clamp(s kp e + I + s kd de/dt, +-max_correction),   I += s ki e dt
+
+    shaped to ``limits``. The integral is held while the command is cut in the direction the
+    error pushes (anti-windup); a NaN tip reading (a dropout) falls back toward the
+    feedforward: the P and D terms are zeroed and the integral held (status ``fallback``).
+    ``s`` is the gain schedule: the piecewise-linear interpolation of the schedule's gains at
+    the curve angle now (clamped at its ends; 1 with no schedule), which :meth:`set_route`,
+    :meth:`set_curve_angle` or, in ``bench.run``, the route's (or sensed) shape sets. The
+    sign convention: a larger motor command gives a larger tip angle.
+
+    Parameters
+    ----------
+    feedforward : compensator
+        Any feedforward with ``reset()``, ``step(y_d, dt)`` and ``status()`` (a shipped
+        InverseFeedforward, CurveAngleFeedforward or ContinuumFeedforward, or your own).
+    kp : float, default 0.0
+        Proportional gain (rad of command per rad of tip error), >= 0.
+    ki : float, default 0.0
+        Integral gain (1/s), >= 0.
+    kd : float, default 0.0
+        Derivative gain (s), >= 0.
+    derivative_cutoff_hz : float, default 50.0
+        Corner of the derivative's first-order low-pass (Hz), > 0.
+    max_correction : float, default inf
+        Largest |correction| (rad), > 0.
+    schedule : sequence of (float, float), dict or None, optional
+        Up to 8 (curve_angle, gain) points: curve angles (rad) strictly increasing and
+        finite, gains > 0. A dict {curve_angle: gain} is taken in order of its angles.
+    limits : CommandLimits, tuple, dict or None, optional
+        Saturation of the servo command and its rate (after the correction).
+
+    Raises
+    ------
+    TypeError
+        A feedforward without reset/step(y_d, dt), or a setting of the wrong type.
+    ValueError
+        A gain, schedule point or limit out of range (the message names it).
+    """
+
+    control_inputs = ("y_d", "y")
+    control_output = "x"
+    step_inputs = ("y_d", "y")
+    _saved_settings = ("feedforward", *_GAINS, "schedule", "limits")
+
+    def __init__(
+        self,
+        feedforward: Any,
+        kp: float = 0.0,
+        ki: float = 0.0,
+        kd: float = 0.0,
+        derivative_cutoff_hz: float = 50.0,
+        max_correction: float = math.inf,
+        schedule: Any = None,
+        limits: LimitsLike = None,
+    ):
+        who = "TipLoop"
+        missing = [m for m in ("reset", "step") if not callable(getattr(feedforward, m, None))]
+        if missing or step_signals(feedforward) != ("y_d",):
+            raise TypeError(
+                f"{who}: feedforward must be a feedforward compensator with reset() and "
+                f"step(y_d, dt) (got {type(feedforward).__name__})"
+            )
+        values = dict(
+            kp=kp,
+            ki=ki,
+            kd=kd,
+            derivative_cutoff_hz=derivative_cutoff_hz,
+            max_correction=max_correction,
+        )
+        p = core.TipLoopParams()
+        for key, value in values.items():
+            setattr(p, key, number(who, key, value))
+        pairs = _schedule(who, schedule)
+        self.limits = as_limits(limits)
+        p.limits = self.limits.to_core()
+        with python_names(who):
+            p.set_schedule([a for a, _ in pairs], [g for _, g in pairs])
+            self._engine = core.TipLoop(p)
+        self.feedforward = feedforward
+        self.design: Any = None
+        self._settings = {
+            **{k: getattr(p, k) for k in _GAINS},
+            "schedule": pairs,
+            "limits": self.limits,
+        }
+
+    @classmethod
+    def from_design(cls, feedforward: Any, design: Any, limits: LimitsLike = None) -> TipLoop:
+        """The loop a design (a tuner's result) describes; the design is kept in ``design``.
+
+        Parameters
+        ----------
+        feedforward : compensator
+            The feedforward whose command the loop corrects.
+        design : object
+            Any object with a ``gains()`` method returning a dict of kp, ki, kd and
+            derivative_cutoff_hz (max_correction too, optionally), and optionally a
+            ``schedule`` attribute: a list of (curve_angle, gain) pairs.
+        limits : CommandLimits, tuple, dict or None, optional
+            Saturation of the servo command.
+
+        Returns
+        -------
+        TipLoop
+            The compensator, with ``design`` set.
+
+        Raises
+        ------
+        TypeError
+            The design has no ``gains()`` method, or it returns an unknown setting.
+        """
+        gains = getattr(design, "gains", None)
+        if not callable(gains):
+            raise TypeError(
+                f"TipLoop.from_design: the design must have a gains() method "
+                f"(got {type(design).__name__})"
+            )
+        loop = cls(
+            feedforward, **dict(gains()), schedule=getattr(design, "schedule", None), limits=limits
+        )
+        loop.design = design
+        return loop
+
+    @classmethod
+    def from_calibration(
+        cls,
+        model: Any,
+        dynamics: Any,
+        *,
+        curve_angles: Sequence[float] | None = None,
+        dt: float = 1e-3,
+        max_sensitivity: float | Sequence[float] = 1.7,
+        derivative: bool = True,
+        dead_band_scale: float | Sequence[float] = 1.0,
+        trial: Callable[[TipLoop], float] | None = None,
+        refine: bool = False,
+        feedforward_options: dict[str, Any] | None = None,
+        limits: LimitsLike = None,
+    ) -> TipLoop:
+        """The inverse feedforward of ``model`` inside a tip loop whose gains come from the loop
+        dynamics identified on the calibration shapes
+        (:func:`~tendonsheath.compensate.tip_tuning.tune_tip_loop`: robust MIGO, the peak
+        sensitivity bounded on every shape, a gain schedule over their curve angles).
+
+        With several sensitivity bounds or dead-band scales, ``trial`` chooses among them
+        (:func:`~tendonsheath.compensate.tip_tuning.choose_by_trials`): it runs a candidate on
+        the calibration shapes (never a test route) and returns its mean squared tip error.
+
+        Parameters
+        ----------
+        model : HysteresisModel
+            The model the feedforward inverts (fitted from the command: the loop adds to it).
+        dynamics : LoopDynamics or sequence of LoopDynamics
+            The identified loop of each calibration shape (``Calibration.loop_dynamics``).
+        curve_angles : sequence of float, optional
+            The sensed curve angle of each shape (rad), for the gain schedule.
+        dt : float, default 1e-3
+            The control cycle (s).
+        max_sensitivity : float or sequence of float, default 1.7
+            The bound(s) on the peak sensitivity, > 1.
+        derivative : bool, default True
+            PID (True) or PI.
+        dead_band_scale : float or sequence of float, default 1.0
+            Factor(s) on the model's dead band, in (0, 1] (< 1: under-compensated, so the loop
+            never has to cross the band back).
+        trial : callable, optional
+            candidate -> score; needed with more than one bound or scale, or ``refine``.
+        refine : bool, default False
+            Then refine the chosen gains by trials under a robustness test
+            (:func:`~tendonsheath.compensate.tip_tuning.refine_by_trials`).
+        feedforward_options : dict, optional
+            Keywords of the InverseFeedforward (smoothing, limits, ...).
+        limits : CommandLimits, tuple, dict or None, optional
+            Saturation of the servo command.
+
+        Returns
+        -------
+        TipLoop
+            The compensator; ``design`` holds the gains, margins, the dynamics designed from
+            (resonance and delay of each shape) and the trial scores.
+
+        Raises
+        ------
+        ValueError
+            No gains keep the identified loop stable within the bound (the design is refused),
+            several candidates without a ``trial``, or a bad argument.
+        """
+        from dataclasses import replace
+
+        from .inverse_feedforward import InverseFeedforward
+        from .tip_tuning import (
+            choose_by_trials,
+            refine_by_trials,
+            tune_tip_loop,
+            with_dead_band_scaled,
+        )
+
+        bounds = _as_values(max_sensitivity)
+        scales = _as_values(dead_band_scale)
+        options = dict(feedforward_options or {})
+
+        def build(ms: float, scale: float) -> TipLoop:
+            design = tune_tip_loop(dynamics, curve_angles, dt, ms, derivative)
+            ff = InverseFeedforward(with_dead_band_scaled(model, scale), **options)
+            return cls.from_design(ff, replace(design, dead_band_scale=scale), limits=limits)
+
+        if trial is None and (refine or len(bounds) > 1 or len(scales) > 1):
+            raise ValueError(
+                "TipLoop.from_calibration: several sensitivity bounds or dead-band scales, or "
+                "refine, need a trial (a function running a candidate on the calibration shapes)"
+            )
+        if trial is None:
+            return build(bounds[0], scales[0])
+        chosen = choose_by_trials(build, trial, bounds, scales)
+        return refine_by_trials(chosen, trial) if refine else chosen
+
+    # -- streaming ------------------------------------------------------------------
+    def reset(self) -> None:
+        """Forget the feedforward's and the loop's state (the curve angle is kept)."""
+        self.feedforward.reset()
+        self._engine.reset()
+
+    def step(self, y_d: float, y: float, dt: float) -> float:
+        """One control cycle: the servo command.
+
+        Parameters
+        ----------
+        y_d : float
+            Desired output (rad).
+        y : float
+            The tip reading now (rad); NaN when there is none this cycle.
+        dt : float
+            Time since the previous cycle (s), >= 0.
+
+        Returns
+        -------
+        float
+            The servo command (rad).
+        """
+        dt = checked_dt(dt)
+        y_d = float(y_d)
+        x = float(self.feedforward.step(y_d, dt))
+        return self._engine.correct(x, y_d, float(y), dt)
+
+    def status(self) -> Status:
+        """The last cycle's flags: the feedforward's and the loop's (fallback: no tip
+        reading; saturated: the command or the correction was cut).
+
+        Returns
+        -------
+        Status
+            The flags of the last :meth:`step`.
+        """
+        own = Status(self._engine.status())
+        inner = getattr(self.feedforward, "status", None)
+        return own | Status(int(inner())) if callable(inner) else own
+
+    @property
+    def correction(self) -> float:
+        """The correction added to the feedforward's last command (rad)."""
+        return self._engine.correction()
+
+    @property
+    def gain_scale(self) -> float:
+        """The gain schedule's factor at the curve angle now (1 with no schedule)."""
+        return self._engine.gain_scale()
+
+    @property
+    def schedule(self) -> Schedule:
+        """The gain schedule: (curve_angle, gain) pairs (empty: none)."""
+        return self._settings["schedule"]
+
+    def _control_step(self, u, dt: float) -> float:
+        return self.step(u[0], u[1], dt)
+
+    # -- the route ------------------------------------------------------------------------
+    @property
+    def follows_route(self) -> bool:
+        """Whether the loop wants the route: it has a gain schedule, or its feedforward
+        follows the route's shape."""
+        return bool(self.schedule) or self._feedforward_follows
+
+    @property
+    def _feedforward_follows(self) -> bool:
+        return _follows_route(self.feedforward)
+
+    @property
+    def friction(self) -> float:
+        """The friction route shapes are computed with: the feedforward's when it follows the
+        route, else 0 (the gain schedule uses only the curve angle)."""
+        if self._feedforward_follows:
+            return self.feedforward.friction or 0.0
+        return 0.0
+
+    def set_route(self, route: Route) -> None:
+        """Tell the feedforward the route's shape (when it follows the route) and the gain
+        schedule its curve angle.
+
+        Parameters
+        ----------
+        route : Route
+            The route now.
+        """
+        if self._feedforward_follows:
+            self.feedforward.set_route(route)
+        self._set_angle(route.curve_angle)
+
+    def set_curve_angle(self, curve_angle: float) -> None:
+        """Tell the feedforward the curve angle (when it follows the route) and the gain
+        schedule.
+
+        Parameters
+        ----------
+        curve_angle : float
+            The total curve angle (rad), finite and >= 0.
+
+        Raises
+        ------
+        ValueError
+            A curve angle that is not finite or negative (the C++ core ignores one and says
+            ``input_clamped``; the Python call says so instead).
+        """
+        angle = number("TipLoop.set_curve_angle", "curve_angle", curve_angle)
+        self._check_angle(angle)
+        if self._feedforward_follows:
+            self.feedforward.set_curve_angle(angle)
+        self._set_angle(angle)
+
+    @staticmethod
+    def _check_angle(angle: float) -> None:
+        if not (math.isfinite(angle) and angle >= 0.0):
+            raise ValueError(
+                f"TipLoop.set_curve_angle: curve_angle must be finite and >= 0 (got {angle})"
+            )
+
+    def _set_angle(self, angle: float) -> None:
+        angle = float(angle)
+        self._check_angle(angle)
+        self._engine.set_curve_angle(angle)
+
+    # -- the bench and persistence ------------------------------------------------------
+    def _outer_loop(self):
+        """(the C++ loop, the feedforward) for bench.run's C++ loops."""
+        loop = core.TipLoop(self._engine.params)
+        loop.set_curve_angle(self._engine.curve_angle())
+        return loop, self.feedforward
+
+    def _bench_engine(self):
+        return None  # bench.run takes the loop apart (_outer_loop)
+
+    @property
+    def params(self) -> dict:
+        """The gains, schedule, limits and the feedforward (a copy)."""
+        return {**super().params, "feedforward": self.feedforward}
+
+    @classmethod
+    def _from_saved(cls, values: dict):
+        return cls(**values)
+
+    def to_dict(self) -> dict:
+        """The compensator as a dict, its feedforward saved whole.
+
+        Returns
+        -------
+        dict
+            What :func:`~tendonsheath.compensate.load_compensator` reads back.
+
+        Raises
+        ------
+        TypeError
+            The feedforward cannot be saved (it has no ``to_dict``).
+        """
+        inner = getattr(self.feedforward, "to_dict", None)
+        if not callable(inner):
+            raise TypeError(
+                f"TipLoop.to_dict: its feedforward {type(self.feedforward).__name__} "
+                "cannot be saved (it has no to_dict)"
+            )
+        out = super().to_dict()
+        out["schedule"] = [[a, g] for a, g in self.schedule]
+        return {**out, "feedforward": inner()}
+
+    def __repr__(self) -> str:
+        gains = ", ".join(f"{k}={self._settings[k]:g}" for k in ("kp", "ki", "kd"))
+        sched = f", schedule={list(self.schedule)}" if self.schedule else ""
+        return f"TipLoop({self.feedforward!r}, {gains}{sched})"
+
+
+def _as_values(value: float | Sequence[float]) -> list[float]:
+    values = list(value) if isinstance(value, Sequence) else [value]
+    if not values:
+        raise ValueError("TipLoop.from_calibration: an empty list of candidates")
+    return [float(v) for v in values]
+
+
+__all__ = ["TipLoop"]
