@@ -256,7 +256,7 @@ class IterativeLearning:
         feedforward: Any,
         t: ArrayLike,
         reference: ArrayLike,
-        frequency_response: Callable[[FloatArray], ArrayLike],
+        frequency_response: Callable[[FloatArray], ArrayLike] | Any,
         dt: float,
         rho: float = 0.8,
         max_lead: int = 50,
@@ -286,9 +286,10 @@ class IterativeLearning:
             The trajectory's sample times (s), uniformly spaced by ``dt``.
         reference : array_like of float, shape (n,)
             The desired output.
-        frequency_response : callable
+        frequency_response : callable or LoopDynamics
             f_hz (numpy array, Hz) -> complex array: the response from the correction added
-            to the command to the measured tip (servo, tendons, resonance, sensor delay).
+            to the command to the measured tip (servo, tendons, resonance, sensor delay); or
+            an identified :class:`~tendonsheath.identify.LoopDynamics` (its response at ``dt``).
         dt : float
             The sample time (s).
         rho : float, default 0.8
@@ -531,7 +532,7 @@ class IterativeLearning:
 
 
 def design_learning(
-    frequency_response: Callable[[FloatArray], ArrayLike],
+    frequency_response: Any,
     dt: float,
     rho: float = 0.8,
     max_lead: int = 50,
@@ -545,8 +546,9 @@ def design_learning(
 
     Parameters
     ----------
-    frequency_response : callable
-        f_hz -> complex response from the correction to the measured tip.
+    frequency_response : callable or LoopDynamics
+        f_hz -> complex response from the correction to the measured tip, or an object with
+        ``frequency_response(f_hz, dt=...)`` (an identified LoopDynamics).
     dt : float
         Sample time (s).
     rho : float, default 0.8
@@ -589,14 +591,21 @@ def design_learning(
     min_cutoff_hz = number(who, "min_cutoff_hz", min_cutoff_hz)
     if not 0 < min_cutoff_hz < 0.45 * nyquist:
         raise ValueError(f"{who}: min_cutoff_hz must be in (0, {0.45 * nyquist:g}) Hz")
-    if not callable(frequency_response):
-        raise TypeError(f"{who}: frequency_response must be a callable f_hz -> complex array")
+    identified = getattr(frequency_response, "frequency_response", None)
+    if callable(identified):  # a LoopDynamics: its response sampled at the learning's dt
+        response = lambda f: identified(f, dt=dt)  # noqa: E731
+    elif callable(frequency_response):
+        response = frequency_response
+    else:
+        raise TypeError(
+            f"{who}: frequency_response must be a callable f_hz -> complex array or a LoopDynamics"
+        )
 
     f_lo = min(0.01, 0.1 * min_cutoff_hz)
     freqs = np.unique(
         np.concatenate([np.geomspace(f_lo, nyquist, 1200), np.linspace(f_lo, nyquist, 800)])
     )
-    p = np.asarray(frequency_response(freqs), dtype=np.complex128)
+    p = np.asarray(response(freqs), dtype=np.complex128)
     if p.shape != freqs.shape or not np.all(np.isfinite(p)):
         raise ValueError(
             f"{who}: frequency_response must return one finite complex value per frequency "
