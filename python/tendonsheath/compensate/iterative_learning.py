@@ -457,7 +457,7 @@ class IterativeLearning:
         self, run_trial: Callable[[LearnedFeedforward], ArrayLike], progress: bool = False
     ) -> list[TrialRecord]:
         """Run trials until the stop rule: each ``run_trial(compensator)`` returns the measured
-        tip (e.g. ``lambda c: ts.bench.run(plant, t, y_d, c, noise=sensor).measured``).
+        tip (e.g. ``lambda c: ts.bench.run(plant, c, t, y_d, noise=sensor).measured``).
 
         Parameters
         ----------
