@@ -14,6 +14,7 @@ from tendonsheath.compensate import (
     CurveAngleFeedforward,
     EncoderLoop,
     InverseFeedforward,
+    LearnedFeedforward,
     TipLoop,
 )
 from tendonsheath.models import Backlash, BoucWenBacklash, PrandtlIshlinskii, Scaled
@@ -161,6 +162,69 @@ def test_cpp_tip_loop_equals_python(example, tmp_path):
         python.append(loop.step(a, b, d))
     cpp = np.loadtxt(tmp_path / "out.csv")
     assert np.ptp(np.array(python) - inner.command(t, y_d)) > 0.01  # the loop did correct
+    np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
+
+
+def _run_example(example, path, rows, tmp_path):
+    (tmp_path / "trajectory.csv").write_text(
+        "".join(",".join(repr(v) for v in row) + "\n" for row in rows)
+    )
+    run = subprocess.run(
+        [example, path, tmp_path / "trajectory.csv", tmp_path / "out.csv"],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 0, run.stderr
+    return np.loadtxt(tmp_path / "out.csv")
+
+
+def test_cpp_learned_feedforward_equals_python(example, tmp_path):
+    """A LearnedFeedforward (a random table, shorter than the trajectory, zero past its end)
+    around an inverse of a Scaled model, and an EncoderLoop and a TipLoop around one (the loop
+    correcting the corrected command): C++ gives Python's commands to 1e-12."""
+    inner = InverseFeedforward(
+        Scaled(Backlash(B_r=0.08, B_l=0.05), input_offset=0.1, output_gain=1.2), 0.04
+    )
+    rng = np.random.default_rng(5)
+    table = np.cumsum(rng.normal(0.0, 0.005, 1100))  # 2.5 ms apart: to 2.75 s of 3 s
+    learned = LearnedFeedforward(inner, table, 2.5e-3, hold_last=False, limits=(-1.5, 1.5, 30.0))
+    learned.to_json(tmp_path / "learned.json")
+    t = np.arange(0.0, 3.0, 1e-3)
+    y_d = 0.8 * np.sin(2 * np.pi * 0.5 * t)
+    cpp = _run_example(
+        example, tmp_path / "learned.json", zip(t.tolist(), y_d.tolist(), strict=True), tmp_path
+    )
+    python = learned.command(t, y_d)
+    assert np.ptp(python - inner.command(t, y_d)) > 0.05  # the table did correct
+    np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
+
+    loop = EncoderLoop(learned, kp=0.5, ki=200.0, max_correction=0.3)
+    loop.to_json(tmp_path / "loop.json")
+    q = 0.9 * y_d + rng.normal(0.0, 1e-3, t.size)
+    q[700:720] = np.nan
+    cpp = _run_example(
+        example,
+        tmp_path / "loop.json",
+        zip(t.tolist(), y_d.tolist(), q.tolist(), strict=True),
+        tmp_path,
+    )
+    loop.reset()
+    dts = np.concatenate([[0.0], np.diff(t)])
+    python = np.array([loop.step(a, b, dt) for a, b, dt in zip(y_d, q, dts, strict=True)])
+    np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
+
+    tip = TipLoop(learned, kp=0.5, ki=40.0, schedule=[(0.5, 0.8), (2.0, 1.5)])
+    tip.to_json(tmp_path / "tip.json")
+    y = 0.95 * y_d + rng.normal(0.0, 1e-3, t.size)
+    y[900:910] = np.nan
+    angle = np.where(t < 1.5, 1.0, 2.5)
+    rows = zip(t.tolist(), y_d.tolist(), y.tolist(), angle.tolist(), strict=True)
+    cpp = _run_example(example, tmp_path / "tip.json", rows, tmp_path)
+    tip.reset()
+    python = []
+    for a, b, c, dt in zip(y_d, y, angle, dts, strict=True):
+        tip.set_curve_angle(c)
+        python.append(tip.step(a, b, dt))
     np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12)
 
 

@@ -196,6 +196,9 @@ def _inverse_feedforwards(rng):
         ts.compensate.ContinuumFeedforward(
             friction=_u(rng, 0.05, 0.2), curve_angle=_u(rng, 1, 3), mode="published"
         ),
+        ts.compensate.LearnedFeedforward(
+            ts.compensate.InverseFeedforward(_scaled(rng)), rng.normal(0.0, 0.01, 40), 3e-3
+        ),
     ]
 
 

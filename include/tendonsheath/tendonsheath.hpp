@@ -26,6 +26,7 @@
 #include "compensators/continuum_feedforward.hpp"
 #include "compensators/adaptive_controller.hpp"
 #include "compensators/encoder_loop.hpp"
+#include "compensators/learned_feedforward.hpp"
 #include "compensators/tip_loop.hpp"
 #include "models/polynomial.hpp"
 #include "models/generalized_prandtl_ishlinskii.hpp"

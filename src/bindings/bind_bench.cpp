@@ -76,6 +76,8 @@ struct NeedsGil<Controller, std::void_t<decltype(Controller::needs_gil)>> : std:
 template <class Inner>
 struct NeedsGil<ts::WithEncoderLoop<Inner>> : NeedsGil<Inner> {};
 template <class Inner>
+struct NeedsGil<ts::WithLearnedCorrection<Inner>> : NeedsGil<Inner> {};
+template <class Inner>
 struct NeedsGil<ts::WithTipLoop<Inner>> : NeedsGil<Inner> {};
 
 template <class Controller>
@@ -129,11 +131,11 @@ nb::tuple run_loop(const ts::PullPullPlant& plant_in, std::optional<ts::Motor> m
 
 // The loop, with an EncoderLoop or a TipLoop around the controller's command when one is given.
 template <class Controller>
-nb::tuple run(const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
-              std::optional<ts::Sensor> sensor, Controller controller, InArray t, InArray y_d,
-              std::optional<InIndex> sidx, std::optional<InMatrix> sang,
-              std::optional<InMatrix> shapes, std::optional<InMask> dropout,
-              std::optional<OuterLoop> outer_loop) {
+nb::tuple run_looped(const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
+                     std::optional<ts::Sensor> sensor, Controller controller, InArray t,
+                     InArray y_d, std::optional<InIndex> sidx, std::optional<InMatrix> sang,
+                     std::optional<InMatrix> shapes, std::optional<InMask> dropout,
+                     std::optional<OuterLoop> outer_loop) {
   if (outer_loop) {
     if (const auto* e = std::get_if<ts::EncoderLoop>(&*outer_loop))
       return run_loop(plant, motor, sensor,
@@ -147,6 +149,22 @@ nb::tuple run(const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
   return run_loop(plant, motor, sensor, std::move(controller), t, y_d, sidx, sang, shapes, dropout);
 }
 
+// The loop, with a learned correction table added to the controller's command (inside the
+// encoder or tip loop, whose target it corrects) when one is given.
+template <class Controller>
+nb::tuple run(const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
+              std::optional<ts::Sensor> sensor, Controller controller, InArray t, InArray y_d,
+              std::optional<InIndex> sidx, std::optional<InMatrix> sang,
+              std::optional<InMatrix> shapes, std::optional<InMask> dropout,
+              std::optional<OuterLoop> outer_loop, std::optional<ts::LearnedCorrection> learned) {
+  if (learned)
+    return run_looped(plant, motor, sensor,
+                      ts::WithLearnedCorrection<Controller>{std::move(controller), *learned}, t,
+                      y_d, sidx, sang, shapes, dropout, outer_loop);
+  return run_looped(plant, motor, sensor, std::move(controller), t, y_d, sidx, sang, shapes,
+                    dropout, outer_loop);
+}
+
 template <class Make>
 void def_run(nb::module_& m, const char* name, Make make) {
   m.def(
@@ -155,13 +173,13 @@ void def_run(nb::module_& m, const char* name, Make make) {
              std::optional<ts::Sensor> sensor, const typename Make::argument_type& c, InArray t,
              InArray y_d, std::optional<InIndex> sidx, std::optional<InMatrix> sang,
              std::optional<InMatrix> shapes, std::optional<InMask> dropout,
-             std::optional<OuterLoop> outer_loop) {
+             std::optional<OuterLoop> outer_loop, std::optional<ts::LearnedCorrection> learned) {
         return run(plant, motor, sensor, make(c), t, y_d, sidx, sang, shapes, dropout,
-                   outer_loop);
+                   outer_loop, learned);
       },
       "plant"_a, "motor"_a.none(), "sensor"_a.none(), "controller"_a, "t"_a, "y_d"_a,
       "schedule_index"_a.none(), "schedule_angles"_a.none(), "shapes"_a.none(),
-      "dropout"_a.none(), "outer_loop"_a.none() = nb::none());
+      "dropout"_a.none(), "outer_loop"_a.none() = nb::none(), "learned"_a.none() = nb::none());
 }
 
 template <class Arg, class Loop>
@@ -197,9 +215,9 @@ nb::tuple run_any(const ts::PullPullPlant& plant, std::optional<ts::Motor> motor
                   std::optional<ts::Sensor> sensor, Loop loop, InArray t, InArray y_d,
                   std::optional<InIndex> sidx, std::optional<InMatrix> sang,
                   std::optional<InMask> dropout, std::optional<OuterLoop> outer_loop,
-                  std::optional<InMatrix> shapes) {
+                  std::optional<InMatrix> shapes, std::optional<ts::LearnedCorrection> learned) {
   return run(plant, motor, sensor, std::move(loop), t, y_d, sidx, sang, shapes, dropout,
-             outer_loop);
+             outer_loop, learned);
 }
 
 }  // namespace
@@ -211,30 +229,32 @@ void bind_bench(nb::module_& m) {
          std::optional<ts::Sensor> sensor, nb::handle capsule, InArray t, InArray y_d,
          std::optional<InIndex> sidx, std::optional<InMatrix> sang,
          std::optional<InMask> dropout, std::optional<OuterLoop> outer_loop,
-         std::optional<InMatrix> shapes) {
+         std::optional<InMatrix> shapes, std::optional<ts::LearnedCorrection> learned) {
         return run_any(plant, motor, sensor, erased_loop(capsule), t, y_d, sidx, sang, dropout,
-                       outer_loop, shapes);
+                       outer_loop, shapes, learned);
       },
       "plant"_a, "motor"_a.none(), "sensor"_a.none(), "capsule"_a, "t"_a, "y_d"_a,
       "schedule_index"_a.none(), "schedule_angles"_a.none(), "dropout"_a.none(),
-      "outer_loop"_a.none() = nb::none(), "shapes"_a.none() = nb::none());
+      "outer_loop"_a.none() = nb::none(), "shapes"_a.none() = nb::none(),
+      "learned"_a.none() = nb::none());
   m.def(
       "bench_python",
       [](const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
          std::optional<ts::Sensor> sensor, nb::object compensator, std::vector<int> inputs,
          InArray t, InArray y_d, std::optional<InIndex> sidx, std::optional<InMatrix> sang,
          std::optional<InMask> dropout, std::optional<OuterLoop> outer_loop,
-         std::optional<InMatrix> shapes) {
+         std::optional<InMatrix> shapes, std::optional<ts::LearnedCorrection> learned) {
         if (inputs.empty() || inputs.size() > 3)
           throw nb::value_error("bench_python: 1 to 3 step inputs");
         for (int i : inputs)
           if (i < 0 || i > 2) throw nb::value_error("bench_python: step input codes are 0, 1, 2");
         return run_any(plant, motor, sensor, python_loop(compensator, inputs), t, y_d, sidx, sang,
-                       dropout, outer_loop, shapes);
+                       dropout, outer_loop, shapes, learned);
       },
       "plant"_a, "motor"_a.none(), "sensor"_a.none(), "compensator"_a, "inputs"_a, "t"_a,
       "y_d"_a, "schedule_index"_a.none(), "schedule_angles"_a.none(), "dropout"_a.none(),
-      "outer_loop"_a.none() = nb::none(), "shapes"_a.none() = nb::none());
+      "outer_loop"_a.none() = nb::none(), "shapes"_a.none() = nb::none(),
+      "learned"_a.none() = nb::none());
   def_run(m, "bench_open_loop", [] {
     struct M {
       using argument_type = double;

@@ -1,6 +1,7 @@
 // Compensators: parameter structs, streaming step() and batch command().
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
 #include <optional>
@@ -307,6 +308,51 @@ void bind_tip_loop(nb::module_& m) {
       .def("status", &status_of<L>);
 }
 
+void bind_learned_feedforward(nb::module_& m) {
+  using P = ts::LearnedFeedforwardParams;
+  nb::class_<P>(m, "LearnedFeedforwardParams")
+      .def(nb::init<>())
+      .def_rw("table_dt", &P::table_dt)
+      .def_rw("hold_last", &P::hold_last)
+      .def_rw("limits", &P::limits);
+  using L = ts::LearnedCorrection;
+  bind_copy(nb::class_<L>(m, "LearnedCorrection"))
+      .def(nb::init<std::vector<double>, const P&>(), "table"_a, "params"_a)
+      .def_prop_ro("params", &L::params)
+      .def_prop_ro("table", &L::table)
+      .def("duration", &L::duration)
+      .def("reset", &L::reset)
+      .def("at", &L::at, "t"_a)
+      .def("correct", &L::correct, "target"_a, "dt"_a)
+      .def("time", &L::time)
+      .def("correction", &L::correction)
+      .def("status", &status_of<L>)
+      .def(
+          "play",
+          [](const L& self, InArray t, InArray target) {
+            // a copy from its reset state over a whole series, target[k] at t[k]: the commands
+            // and each cycle's Status flags
+            const char* where = "LearnedCorrection.play";
+            const std::size_t n = target.shape(0);
+            check_lengths(n, t.shape(0), "t", where);
+            auto [out, u] = new_array(n);
+            auto [flags, fp] = new_bytes(n);
+            L copy = self;
+            copy.reset();
+            const double* tp = t.data();
+            const double* xp = target.data();
+            {
+              nb::gil_scoped_release release;
+              for (std::size_t k = 0; k < n; ++k) {
+                u[k] = copy.correct(xp[k], k == 0 ? 0.0 : tp[k] - tp[k - 1]);
+                fp[k] = static_cast<std::uint8_t>(copy.status());
+              }
+            }
+            return nb::make_tuple(out, flags);
+          },
+          "t"_a, "target"_a);
+}
+
 }  // namespace
 
 void bind_compensators(nb::module_& m) {
@@ -316,6 +362,7 @@ void bind_compensators(nb::module_& m) {
   bind_continuum(m);
   bind_adaptive(m);
   bind_encoder_loop(m);
+  bind_learned_feedforward(m);
   bind_tip_loop(m);
 }
 

@@ -263,3 +263,52 @@ TEST(IoJson, EveryModelClassLoads) {
             std::string::npos)
       << error_of(inverse_file(chained));
 }
+
+// A LearnedFeedforward file: the inverse's command plus the table, played in time; an EncoderLoop
+// file may hold one; its malformed keys are named.
+TEST(IoJson, LearnedFeedforwardAddsItsTableAndNamesBadKeys) {
+  auto learned_file = [] {
+    return json{{"format", "tendonsheath.compensator"}, {"version", 1},
+                {"compensator", "LearnedFeedforward"},
+                {"feedforward", inverse_file(backlash_model(1, 1, 0.05, 0.05))},
+                {"table", {0.0, 0.01, 0.03}}, {"table_dt", 2e-3}, {"hold_last", true},
+                {"limits", {{"min", nullptr}, {"max", nullptr}, {"max_rate", nullptr}}}};
+  };
+  ts::io::LoadedCompensator loaded = ts::io::compensator_from_json(learned_file());
+  EXPECT_EQ(loaded.kind(), "LearnedFeedforward");
+  ASSERT_NE(loaded.learned_correction(), nullptr);
+  ts::io::LoadedCompensator plain =
+      ts::io::compensator_from_json(inverse_file(backlash_model(1, 1, 0.05, 0.05)));
+  const double expected[] = {0.0, 0.005, 0.01, 0.02, 0.03, 0.03, 0.03};
+  for (int k = 0; k < 7; ++k) {
+    const double y = 0.3 * std::sin(0.2 * k), dt = k == 0 ? 0.0 : 1e-3;
+    EXPECT_NEAR(loaded.step(y, dt), plain.step(y, dt) + expected[k], 1e-12) << k;
+  }
+  EXPECT_TRUE(ts::has(loaded.status(), ts::Status::input_clamped));
+
+  json f = learned_file();
+  f["table"] = json::array();
+  EXPECT_NE(error_of(f).find("the table is empty"), std::string::npos) << error_of(f);
+  f = learned_file();
+  f["table"] = {0.0, "x"};
+  EXPECT_NE(error_of(f).find("'table' must hold only numbers"), std::string::npos) << error_of(f);
+  f = learned_file();
+  f["table_dt"] = 0.0;
+  EXPECT_NE(error_of(f).find("table_dt must be > 0"), std::string::npos) << error_of(f);
+  f = learned_file();
+  f["hold_last"] = 1;
+  EXPECT_NE(error_of(f).find("'hold_last' must be true or false"), std::string::npos) << error_of(f);
+  f = learned_file();
+  f.erase("table");
+  EXPECT_NE(error_of(f).find("'table' is missing"), std::string::npos) << error_of(f);
+  json loop{{"format", "tendonsheath.compensator"}, {"version", 1}, {"compensator", "EncoderLoop"},
+            {"feedforward", learned_file()}, {"kp", 0.0}, {"ki", 10.0}, {"kd", 0.0},
+            {"derivative_cutoff_hz", 50.0}, {"max_correction", nullptr},
+            {"limits", {{"min", nullptr}, {"max", nullptr}, {"max_rate", nullptr}}}};
+  ts::io::LoadedCompensator looped = ts::io::compensator_from_json(loop);
+  EXPECT_EQ(looped.kind(), "EncoderLoop");
+  EXPECT_NE(looped.learned_correction(), nullptr);
+  f = learned_file();
+  f["feedforward"] = loop;
+  EXPECT_NE(error_of(f).find("not an EncoderLoop"), std::string::npos) << error_of(f);
+}

@@ -143,6 +143,12 @@ TEST(NoAllocation, CompensatorsStep) {
   ts::EncoderLoopParams lp;
   lp.kp = 1.0, lp.kd = 1e-3, lp.limits.max = 0.4;
   ts::EncoderLooped<ts::CurveAngleFeedforward> looped(curve, ts::EncoderLoop(lp));
+  ts::LearnedFeedforwardParams learned_p;
+  learned_p.table_dt = 2e-3, learned_p.limits.max_rate = 50.0;
+  std::vector<double> table(300);  // 0.6 s: the loop below runs past its end
+  for (std::size_t i = 0; i < table.size(); ++i) table[i] = 0.01 * std::sin(0.05 * i);
+  ts::LearnedFeedforward<ts::CurveAngleFeedforward> learned(
+      curve, ts::LearnedCorrection(table, learned_p));
   ts::TipLoopParams tp;
   tp.kp = 0.5, tp.ki = 40.0, tp.kd = 1e-3, tp.limits.max = 0.4, tp.schedule_size = 3;
   tp.schedule_angles = {0.0, 1.0, 3.0};
@@ -158,6 +164,9 @@ TEST(NoAllocation, CompensatorsStep) {
       continuum.step(y, 1e-3);
       adaptive.step(y, k % 200 == 0 ? NAN : 0.9 * y, 0.8 * y, 1e-3);
       looped.step(y, k % 250 == 0 ? NAN : 0.7 * y, 1e-3);
+      if (k % 150 == 0) learned.set_shape(ts::uniform_shape(0.1, 0.2 + 0.01 * k));
+      if (k == 500) learned.reset();
+      learned.step(y, k % 333 == 0 ? NAN : 1e-3);
       if (k % 120 == 0) tipped.set_shape(ts::uniform_shape(0.1, 0.01 * k));
       if (k % 170 == 0) tipped.set_curve_angle(k % 340 == 0 ? NAN : 0.02 * k);
       tipped.step(y, k % 230 == 0 ? NAN : 0.8 * y, 1e-3);

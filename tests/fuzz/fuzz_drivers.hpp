@@ -331,6 +331,17 @@ inline EncoderLoop encoder_loop(Bytes& b) {
   return EncoderLoop(p);
 }
 
+// A learned correction table from the bytes (1 to 64 samples of up to +-1e3, maybe limited).
+inline LearnedCorrection learned_correction(Bytes& b) {
+  LearnedFeedforwardParams p;
+  p.table_dt = 1e-4 + 0.1 * b.unit();
+  p.hold_last = b.byte() % 2 == 0;
+  if (b.byte() % 2 == 0) p.limits.max = 0.5 + b.unit(), p.limits.min = -p.limits.max;
+  std::vector<double> table(1 + b.byte() % 64);
+  for (double& c : table) c = (2.0 * b.unit() - 1.0) * (b.byte() % 8 == 0 ? 1e3 : 0.1);
+  return LearnedCorrection(std::move(table), p);
+}
+
 // A tip loop with gains from the bytes (from 0 to extreme), maybe limited, maybe scheduled.
 inline TipLoop tip_loop(Bytes& b) {
   TipLoopParams p;
@@ -361,12 +372,13 @@ inline Failure compensators(const std::uint8_t* data, std::size_t size) {
   ContinuumFeedforward continuum(ContinuumFeedforwardParams{});
   AdaptiveController adaptive(AdaptiveControllerParams{});
   EncoderLooped<BacklashInverseFeedforward> looped(inverse, encoder_loop(b));
+  LearnedFeedforward<CurveAngleFeedforward> learned(curve, learned_correction(b));
   TipLooped<CurveAngleFeedforward> tipped(curve, tip_loop(b));
   for (long op = 0; op < kMaxOps && !b.done(); ++op) {
     const std::uint8_t what = b.byte() % 32;
     if (what == 0) {
       inverse.reset(), curve.reset(), continuum.reset(), adaptive.reset(), looped.reset();
-      tipped.reset();
+      learned.reset(), tipped.reset();
       continue;
     }
     if (what == 1) curve.set_curve_angle(b.value(10.0));
@@ -379,6 +391,7 @@ inline Failure compensators(const std::uint8_t* data, std::size_t size) {
     if (bad(y, adaptive.step(y, meas, motor_q, dt)))
       return {"AdaptiveController: non-finite torque", op};
     if (bad(y, looped.step(y, motor_q, dt))) return {"EncoderLoop: non-finite command", op};
+    if (bad(y, learned.step(y, dt))) return {"LearnedFeedforward: non-finite command", op};
     const double tip = what == 3 ? NAN : meas;
     if (bad(y, tipped.step(y, tip, dt))) return {"TipLoop: non-finite command", op};
   }

@@ -14,6 +14,7 @@
 #include "../compensators/adaptive_controller.hpp"
 #include "../compensators/curve_angle_feedforward.hpp"
 #include "../compensators/encoder_loop.hpp"
+#include "../compensators/learned_feedforward.hpp"
 #include "../compensators/model_inverse.hpp"
 #include "../compensators/tip_loop.hpp"
 #include "../physics/pull_pull_statics.hpp"
@@ -164,6 +165,35 @@ struct WithEncoderLoop {
   }
 };
 
+/// @brief Any of the controllers above with a learned correction table added to its command
+/// (LearnedCorrection, played from the run's start); put a WithEncoderLoop (or WithTipLoop) around
+/// it to have the encoder (or the tip loop) follow the corrected command.
+/// @tparam Inner OpenLoop, FeedforwardLoop, CurveAngleLoop, ModelInverseLoop or one with the same
+/// members
+template <class Inner>
+struct WithLearnedCorrection {
+  /// the controller whose command is corrected
+  Inner inner;
+  /// the correction table's player
+  LearnedCorrection learned;
+  /// Start afresh: the controller, and the table's time back to 0.
+  void reset() noexcept {
+    inner.reset();
+    learned.reset();
+  }
+  /// Passes the route shape to the controller.
+  void on_shape(const ShapeIntegrals& s) noexcept { inner.on_shape(s); }
+  /// The controller's fallback.
+  bool in_fallback() const noexcept { return inner.in_fallback(); }
+  /// The controller's and the table's flags.
+  Status status() const noexcept { return inner.status() | learned.status(); }
+  /// @return learned.correct(inner.command(...), dt), the corrected command
+  double command(double y_d, double measured, double motor,
+                 double dt) noexcept(noexcept(inner.command(y_d, measured, motor, dt))) {
+    return learned.correct(inner.command(y_d, measured, motor, dt), dt);
+  }
+};
+
 /// @brief Any of the controllers above with a TipLoop around its command: the loop corrects the
 /// controller's command (a motor angle) from the measured tip angle, its gains scheduled over the
 /// route's curve angle (given by on_shape, as from shape sensing).
@@ -207,7 +237,8 @@ struct WithTipLoop {
 /// whole: it validates its inputs first and throws std::invalid_argument naming the problem.
 /// @tparam Plant SingleTendonPlant, PullPullPlant or ContinuumPlant
 /// @tparam Controller OpenLoop, FeedforwardLoop, CurveAngleLoop, ModelInverseLoop, AdaptiveLoop, a
-/// WithEncoderLoop or WithTipLoop of one of those, or one with the same members
+/// WithEncoderLoop, WithTipLoop or WithLearnedCorrection of one of those (or a WithEncoderLoop or
+/// WithTipLoop of a WithLearnedCorrection), or one with the same members
 /// @param plant the plant, reset first
 /// @param motor the motor between command and plant, or nullptr (the command is the pulley angle)
 /// @param sensor the output sensor, or nullptr (exact measurement)

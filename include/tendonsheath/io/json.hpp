@@ -24,6 +24,7 @@
 #include "../compensators/curve_angle_feedforward.hpp"
 #include "../compensators/encoder_loop.hpp"
 #include "../compensators/inverse_feedforward.hpp"
+#include "../compensators/learned_feedforward.hpp"
 #include "../compensators/make_model_inverse.hpp"
 #include "../compensators/tip_loop.hpp"
 #include "json_models.hpp"
@@ -187,11 +188,13 @@ class LoadedCompensator {
   /// @param y_d the desired output, in the file's (outer) units
   /// @param dt the time since the previous cycle, s
   /// @return the motor command: input_offset + input_scale * engine.step((y_d - output_offset) /
-  /// output_gain, dt); with a loop (an EncoderLoop or TipLoop file) and no reading given, the
+  /// output_gain, dt), plus the learned correction table when the file holds one (a
+  /// LearnedFeedforward); with a loop (an EncoderLoop or TipLoop file) and no reading given, the
   /// loop falls back (status fallback): use step(y_d, reading, dt)
   double step(double y_d, double dt) noexcept { return step(y_d, NAN, dt); }
-  /// @brief One cycle with the loop's sensor: the feedforward's command, corrected by the loop
-  /// when the file holds one, else the reading is not used.
+  /// @brief One cycle with the loop's sensor: the feedforward's command (plus the learned
+  /// correction of a LearnedFeedforward), corrected by the loop when the file holds one, else the
+  /// reading is not used.
   /// @param y_d the desired output, in the file's (outer) units
   /// @param reading the loop's sensor now (NaN: no reading this cycle): the motor encoder, rad,
   /// for an EncoderLoop; the tip angle, in y_d's units, for a TipLoop
@@ -200,7 +203,8 @@ class LoadedCompensator {
   double step(double y_d, double reading, double dt) noexcept {
     const double inner_y = (y_d - map_.output_offset) / map_.output_gain;
     const double x = std::visit([&](auto& e) noexcept { return e.step(inner_y, dt); }, engine_);
-    const double target = map_.input_offset + map_.input_scale * x;
+    double target = map_.input_offset + map_.input_scale * x;
+    if (learned_) target = learned_->correct(target, dt);
     if (loop_) return loop_->correct(target, reading, dt);
     if (tip_) return tip_->correct(target, y_d, reading, dt);
     return target;
@@ -209,12 +213,14 @@ class LoadedCompensator {
   /// shape or curve angle set since) are kept.
   void reset() noexcept {
     std::visit([](auto& e) noexcept { e.reset(); }, engine_);
+    if (learned_) learned_->reset();
     if (loop_) loop_->reset();
     if (tip_) tip_->reset();
   }
   /// The last step's status flags (see Status).
   Status status() const noexcept {
-    const Status s = std::visit([](const auto& e) noexcept { return e.status(); }, engine_);
+    Status s = std::visit([](const auto& e) noexcept { return e.status(); }, engine_);
+    if (learned_) s |= learned_->status();
     if (loop_) return s | loop_->status();
     return tip_ ? s | tip_->status() : s;
   }
@@ -227,6 +233,16 @@ class LoadedCompensator {
   }
   /// The encoder loop, when the file holds one (nullptr otherwise).
   const EncoderLoop* encoder_loop() const noexcept { return loop_ ? &*loop_ : nullptr; }
+  /// Add a learned correction table to the feedforward's command (what a LearnedFeedforward file
+  /// holds; inside the encoder or tip loop, if any); kind() is then "LearnedFeedforward".
+  void set_learned_correction(const LearnedCorrection& learned) {
+    learned_ = learned;
+    kind_ = "LearnedFeedforward";
+  }
+  /// The learned correction table, when the file holds one (nullptr otherwise).
+  const LearnedCorrection* learned_correction() const noexcept {
+    return learned_ ? &*learned_ : nullptr;
+  }
   /// Put a tip loop around the feedforward (what a TipLoop file holds); kind() is then "TipLoop".
   void set_tip_loop(const TipLoop& loop) {
     tip_ = loop;
@@ -259,6 +275,7 @@ class LoadedCompensator {
   std::string kind_;
   Engine engine_;
   ScaledMap map_;
+  std::optional<LearnedCorrection> learned_;
   std::optional<EncoderLoop> loop_;
   std::optional<TipLoop> tip_;
 };
@@ -361,6 +378,34 @@ inline LoadedCompensator encoder_loop_from_json(const json& f, const std::string
   return out;
 }
 
+inline const std::set<std::string> kLearnedKeys{
+    "format", "version", "compensator", "feedforward", "table", "table_dt", "hold_last", "limits"};
+
+// Python's LearnedFeedforward: its feedforward (a compensator file of its own) and the table.
+inline LoadedCompensator learned_from_json(const json& f, const std::string& where) {
+  check_keys(f, kLearnedKeys, kLearnedKeys, where);
+  const json& inner = f.at("feedforward");
+  if (inner.is_object() && inner.contains("compensator") &&
+      (inner.at("compensator") == "EncoderLoop" || inner.at("compensator") == "TipLoop" ||
+       inner.at("compensator") == "LearnedFeedforward"))
+    fail(where, "key 'feedforward' must be a feedforward, not an " +
+                    inner.at("compensator").get<std::string>() +
+                    " (put the loop around the LearnedFeedforward)");
+  LoadedCompensator out = compensator_from_json(inner, where + ": feedforward");
+  LearnedFeedforwardParams p;
+  p.table_dt = number(f, "table_dt", where);
+  const json& hold = member(f, "hold_last", where);
+  if (!hold.is_boolean()) fail(where, "key 'hold_last' must be true or false (got " + hold.dump() + ")");
+  p.hold_last = hold.get<bool>();
+  p.limits = limits(f, where);
+  try {
+    out.set_learned_correction(LearnedCorrection(numbers(f, "table", where), p));
+  } catch (const std::invalid_argument& e) {
+    fail(where, e.what());
+  }
+  return out;
+}
+
 inline const std::set<std::string> kTipLoopKeys{
     "format", "version", "compensator", "feedforward", "kp", "ki", "kd",
     "derivative_cutoff_hz", "max_correction", "schedule", "limits"};
@@ -409,6 +454,7 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
   const json& kind = detail::member(f, "compensator", where);
   if (kind == "InverseFeedforward") return detail::inverse_from_json(f, where);
   if (kind == "EncoderLoop") return detail::encoder_loop_from_json(f, where);
+  if (kind == "LearnedFeedforward") return detail::learned_from_json(f, where);
   if (kind == "TipLoop") return detail::tip_loop_from_json(f, where);
   if (kind == "CurveAngleFeedforward") {
     const auto keys = detail::keys_of_file(f, detail::kCurveAngleKeys, detail::kCurveAngleRenamed);
@@ -426,7 +472,7 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
   }
   detail::fail(where, "key 'compensator': unknown compensator " + kind.dump() +
                           " (known: ContinuumFeedforward, CurveAngleFeedforward, EncoderLoop, "
-                          "InverseFeedforward, TipLoop)");
+                          "InverseFeedforward, LearnedFeedforward, TipLoop)");
 }
 
 /// The parsed contents of a JSON file (read with stdio: the library uses no iostreams).

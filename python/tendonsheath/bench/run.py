@@ -243,6 +243,7 @@ class _Loop:
         self.mask = _dropout_mask(dropout, ts)
         # a core.EncoderLoop or core.TipLoop around the controller's command
         self.outer_loop = None
+        self.learned = None  # a core.LearnedCorrection added to the command (inside the loop)
 
     @property
     def scheduled(self) -> bool:
@@ -259,7 +260,7 @@ class _Loop:
         angles = self.angles if angles is None else angles
         head = (self.plant._engine, self.motor, self.sensor, controller, *extra, self.ts, self.ys)
         tail = (idx, angles) if shapes is _NO_SHAPES else (idx, angles, shapes)
-        return fn(*head, *tail, self.mask, self.outer_loop)
+        return fn(*head, *tail, self.mask, self.outer_loop, learned=self.learned)
 
     def call_with_shapes(self, fn, controller, *extra, friction, shape_sensing, positional):
         """``fn`` given the route's shapes (or the sensed ones) from the start and at every
@@ -269,12 +270,15 @@ class _Loop:
         if positional:
             return self.call(fn, controller, *extra, shapes=shapes, idx=idx, angles=angles)
         head = (self.plant._engine, self.motor, self.sensor, controller, *extra, self.ts, self.ys)
-        return fn(*head, idx, angles, self.mask, self.outer_loop, shapes=shapes)
+        return fn(
+            *head, idx, angles, self.mask, self.outer_loop, shapes=shapes, learned=self.learned
+        )
 
 
 def _run_controller(loop: _Loop, controller, shape_sensing):
     """Run the loop on the fastest path the controller offers (by its capabilities); an
-    EncoderLoop or TipLoop runs its feedforward's path with the loop around it, in C++ (a
+    EncoderLoop or TipLoop runs its feedforward's path with the loop around it, a
+    LearnedFeedforward its feedforward's path with the correction table added, in C++ (a
     TipLoop with a gain schedule is given the route's shapes on every path)."""
     if controller is None:
         gain = loop.plant.distal_radius / loop.plant.proximal_radius
@@ -284,6 +288,10 @@ def _run_controller(loop: _Loop, controller, shape_sensing):
     taken_apart = getattr(controller, "_outer_loop", None)
     if callable(taken_apart):
         loop.outer_loop, controller = taken_apart()
+        _check_compensator(controller)
+    learned = getattr(controller, "_learned_correction", None)
+    if callable(learned):
+        loop.learned, controller = learned()
         _check_compensator(controller)
     shaped = dict(friction=_friction(controller), shape_sensing=shape_sensing)
     compiled = getattr(controller, "_tendonsheath_compensator", None)

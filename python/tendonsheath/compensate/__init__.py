@@ -5,6 +5,8 @@ from .continuum_feedforward import ContinuumFeedforward
 from .curve_angle_feedforward import CurveAngleFeedforward, shape_of
 from .encoder_loop import EncoderLoop
 from .inverse_feedforward import InverseFeedforward
+from .iterative_learning import IterativeLearning, LearningDesign, TrialRecord
+from .learned_feedforward import LearnedFeedforward
 from .limits import CommandLimits
 from .persistence import load_compensator
 from .tip_loop import TipLoop
@@ -20,7 +22,11 @@ __all__ = [
     "EncoderLoop",
     "EncoderLoopDesign",
     "InverseFeedforward",
+    "IterativeLearning",
+    "LearnedFeedforward",
+    "LearningDesign",
     "TipLoop",
+    "TrialRecord",
     "load",
     "load_compensator",
     "shape_of",

@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeAlias, TypeVar
 
 from .._args import renamed
 from .._atomic import write_text
@@ -21,7 +21,12 @@ if TYPE_CHECKING:
     from .adaptive_controller import AdaptiveController
     from .base import Feedforward
     from .encoder_loop import EncoderLoop
+    from .learned_feedforward import LearnedFeedforward
     from .tip_loop import TipLoop
+
+    Compensator: TypeAlias = (
+        Feedforward | AdaptiveController | EncoderLoop | TipLoop | LearnedFeedforward
+    )
 
 FORMAT_NAME = "tendonsheath.compensator"
 FORMAT_VERSION = 1
@@ -30,9 +35,12 @@ FORMAT_VERSION = 1
 _UNBOUNDED = {"max_correction_rate": math.inf, "max_torque": math.inf, "max_correction": math.inf}
 # settings saved as a model's own dict (null: no model)
 _MODELS = ("model", "feedforward_model")
-# settings saved as a compensator's own dict (the feedforward inside an EncoderLoop or TipLoop)
+# settings saved as a compensator's own dict (the feedforward inside an EncoderLoop, a TipLoop
+# or a LearnedFeedforward)
 _COMPENSATORS = ("feedforward",)
-_FLAGS = ("model_acceleration",)
+_FLAGS = ("model_acceleration", "hold_last")
+# settings saved as a list of numbers (a LearnedFeedforward's correction table)
+_NUMBER_LISTS = ("table",)
 _LIMIT_UNBOUNDED = {"min": -math.inf, "max": math.inf, "max_rate": math.inf}
 
 
@@ -63,14 +71,13 @@ def _finite_or_none(value):
     return None if math.isinf(value) else value
 
 
-def _registry() -> dict[
-    str, type[Feedforward] | type[AdaptiveController] | type[EncoderLoop] | type[TipLoop]
-]:
+def _registry() -> dict[str, type[Compensator]]:
     from .adaptive_controller import AdaptiveController
     from .continuum_feedforward import ContinuumFeedforward
     from .curve_angle_feedforward import CurveAngleFeedforward
     from .encoder_loop import EncoderLoop
     from .inverse_feedforward import InverseFeedforward
+    from .learned_feedforward import LearnedFeedforward
     from .tip_loop import TipLoop
 
     kinds = (
@@ -79,14 +86,13 @@ def _registry() -> dict[
         ContinuumFeedforward,
         AdaptiveController,
         EncoderLoop,
+        LearnedFeedforward,
         TipLoop,
     )
     return {c.__name__: c for c in kinds}
 
 
-def compensator_from_dict(
-    data: dict[str, Any],
-) -> Feedforward | AdaptiveController | EncoderLoop | TipLoop:
+def compensator_from_dict(data: dict[str, Any]) -> Compensator:
     """Build the compensator a dict from ``to_dict`` describes; strict: every key checked."""
     if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
         raise ValueError(f"not a tendonsheath compensator file (missing format '{FORMAT_NAME}')")
@@ -151,6 +157,13 @@ def _setting(name: str, key: str, value):
         if not hasattr(inner, "command"):
             raise ValueError(f"{name} file: '{key}' must hold a feedforward compensator")
         return inner
+    if key in _NUMBER_LISTS:
+        if not isinstance(value, list) or not value:
+            got = json.dumps(value)[:60]
+            raise ValueError(
+                f"{name} file: '{key}' must be a non-empty list of numbers (got {got})"
+            )
+        return [_number(name, f"'{key}[{i}]'", v) for i, v in enumerate(value)]
     if key in _FLAGS:
         if not isinstance(value, bool):
             got = json.dumps(value)
@@ -211,9 +224,7 @@ def _number(name: str, what: str, value) -> float:
     return float(value)
 
 
-def load_compensator(
-    source: str | Path | dict,
-) -> Feedforward | AdaptiveController | EncoderLoop | TipLoop:
+def load_compensator(source: str | Path | dict) -> Compensator:
     """Load a compensator saved with ``to_json``: a path, a JSON string or a dict.
 
     Parameters
@@ -224,7 +235,7 @@ def load_compensator(
     Returns
     -------
     InverseFeedforward, CurveAngleFeedforward, ContinuumFeedforward, AdaptiveController,
-    EncoderLoop or TipLoop
+    EncoderLoop, TipLoop or LearnedFeedforward
         The saved compensator.
 
     Raises

@@ -1,0 +1,336 @@
+"""A learned correction table added to any feedforward's command (iterative learning control)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .. import _core as core
+from .._args import number, number_array, python_names
+from .._arrays import as_timed_signal, checked_dt
+from .._typing import ArrayLike, FloatArray
+from ..status import Status
+from .base import EngineCompensator
+from .limits import LimitsLike, as_limits
+
+if TYPE_CHECKING:
+    from ..route import Route
+
+
+class LearnedFeedforward(EngineCompensator):
+    """A feedforward's command plus a correction learned over repeated trials, played in time.
+
+    Iterative learning (:class:`~tendonsheath.compensate.IterativeLearning`) learns, from the tip
+    error of repeated runs of the same motion, a correction ``c(t)`` for each time ``t`` of the
+    motion; this compensator plays it back in real time (C++ ``LearnedCorrection``), with or
+    without the tip sensor::
+
+        u = shape(feedforward(y_d) + c(t))
+
+    where ``t`` is the time since :meth:`reset` (the sum of the steps' dt; the first step after
+    a reset plays sample 0) and ``c`` is ``table`` interpolated linearly (sample ``i`` at
+    ``t = i * table_dt``). Past the table's end it adds the last sample (``hold_last``) or 0,
+    and the status has ``input_clamped``. A NaN command of the feedforward holds the last one.
+    Put an :class:`~tendonsheath.compensate.EncoderLoop` (or a
+    :class:`~tendonsheath.compensate.TipLoop`) around it to have the motor encoder follow (or
+    the tip loop correct) the corrected command.
+
+    Parameters
+    ----------
+    feedforward : compensator
+        Any feedforward with ``reset()`` and ``step(y_d, dt)`` (a shipped InverseFeedforward,
+        CurveAngleFeedforward or ContinuumFeedforward, or your own); not an EncoderLoop or a
+        TipLoop (put that around this one instead).
+    table : array_like of float, shape (n,)
+        The correction (the command's unit, rad) at ``t = 0, table_dt, 2 table_dt, ...``;
+        n >= 1, finite.
+    table_dt : float
+        Time between the table's samples (s), > 0.
+    hold_last : bool, default True
+        Past the table's end: add its last sample (True) or nothing (False).
+    limits : CommandLimits, tuple, dict or None, optional
+        Saturation of the corrected command and its rate.
+
+    Raises
+    ------
+    TypeError
+        A feedforward without reset/step, or a setting of the wrong type.
+    ValueError
+        An empty table, a non-finite entry (its index named), table_dt <= 0, or bad limits.
+    """
+
+    control_inputs = ("y_d",)
+    control_output = "x"
+    _saved_settings = ("feedforward", "table", "table_dt", "hold_last", "limits")
+
+    def __init__(
+        self,
+        feedforward: Any,
+        table: ArrayLike,
+        table_dt: float,
+        hold_last: bool = True,
+        limits: LimitsLike = None,
+    ):
+        who = "LearnedFeedforward"
+        missing = [m for m in ("reset", "step") if not callable(getattr(feedforward, m, None))]
+        takes_y_d = tuple(getattr(feedforward, "step_inputs", ("y_d",))) == ("y_d",)
+        if missing or not takes_y_d or isinstance(feedforward, LearnedFeedforward):
+            raise TypeError(
+                f"{who}: feedforward must be a feedforward compensator with reset() and "
+                f"step(y_d, dt) (got {type(feedforward).__name__}; put an EncoderLoop or a "
+                "TipLoop around the LearnedFeedforward, not inside it)"
+            )
+        values = number_array(who, "table", table)
+        if values.ndim != 1:
+            raise ValueError(f"{who}: table must be one-dimensional (got shape {values.shape})")
+        if not isinstance(hold_last, bool | np.bool_):
+            raise TypeError(f"{who}: hold_last must be True or False (got {hold_last!r})")
+        p = core.LearnedFeedforwardParams()
+        p.table_dt = number(who, "table_dt", table_dt)
+        p.hold_last = bool(hold_last)
+        self.limits = as_limits(limits)
+        p.limits = self.limits.to_core()
+        with python_names(who):
+            self._engine = core.LearnedCorrection(values.tolist(), p)
+        self.feedforward = feedforward
+        self._settings = {
+            "table": values.tolist(),
+            "table_dt": p.table_dt,
+            "hold_last": p.hold_last,
+            "limits": self.limits,
+        }
+
+    def with_table(self, table: ArrayLike) -> LearnedFeedforward:
+        """The same feedforward and settings with another correction table.
+
+        Parameters
+        ----------
+        table : array_like of float, shape (m,)
+            The new correction table.
+
+        Returns
+        -------
+        LearnedFeedforward
+            A new compensator (the feedforward object is shared).
+        """
+        return LearnedFeedforward(
+            self.feedforward, table, self.table_dt, self.hold_last, limits=self.limits
+        )
+
+    # -- streaming ------------------------------------------------------------------
+    def reset(self) -> None:
+        """Forget the feedforward's state; the table's time back to 0."""
+        self.feedforward.reset()
+        self._engine.reset()
+
+    def step(self, y_d: float, dt: float) -> float:
+        """One control cycle: the feedforward's command plus the table at the time since reset.
+
+        Parameters
+        ----------
+        y_d : float
+            Desired output.
+        dt : float
+            Time since the previous cycle (s), >= 0.
+
+        Returns
+        -------
+        float
+            The corrected command (rad).
+        """
+        dt = checked_dt(dt)
+        x = float(self.feedforward.step(float(y_d), dt))
+        return self._engine.correct(x, dt)
+
+    def command(
+        self, t: ArrayLike, y_desired: ArrayLike, status: bool = False
+    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
+        """Corrected commands for a whole trajectory, from the initial state (the streaming
+        state is left untouched); the feedforward must have ``command(t, y_d)``.
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,)
+            Sample times (s), increasing.
+        y_desired : array_like of float, shape (n,)
+            Desired outputs.
+        status : bool, default False
+            Also return each cycle's Status flags (the feedforward's and the table's).
+
+        Returns
+        -------
+        commands : numpy.ndarray of float, shape (n,)
+            The commands; ``(commands, flags)`` with ``status=True``.
+
+        Raises
+        ------
+        TypeError
+            The feedforward has no ``command``.
+        """
+        inner = getattr(self.feedforward, "command", None)
+        if not callable(inner):
+            raise TypeError(
+                f"LearnedFeedforward.command: its feedforward {type(self.feedforward).__name__} "
+                "has no command(t, y_d)"
+            )
+        ts, ys = as_timed_signal(t, y_desired, "y_desired", "LearnedFeedforward.command")
+        if status:
+            x, inner_flags = inner(ts, ys, status=True)
+        else:
+            x, inner_flags = inner(ts, ys), None
+        u, flags = self._engine.play(ts, np.ascontiguousarray(x, dtype=np.float64))
+        if status:
+            return u, (flags | np.asarray(inner_flags, dtype=np.uint8)).astype(np.uint8)
+        return u
+
+    def status(self) -> Status:
+        """The last cycle's flags: the feedforward's and the table's (input_clamped: past the
+        table's end; held_nonfinite_input; saturated).
+
+        Returns
+        -------
+        Status
+            The flags of the last :meth:`step`.
+        """
+        own = Status(self._engine.status())
+        inner = getattr(self.feedforward, "status", None)
+        return own | Status(int(inner())) if callable(inner) else own
+
+    @property
+    def table(self) -> FloatArray:
+        """The correction table (a copy)."""
+        return np.array(self._settings["table"], dtype=np.float64)
+
+    @property
+    def table_dt(self) -> float:
+        """Time between the table's samples (s)."""
+        return float(self._settings["table_dt"])
+
+    @property
+    def hold_last(self) -> bool:
+        """Whether the last sample is held past the table's end (else 0 is added)."""
+        return bool(self._settings["hold_last"])
+
+    @property
+    def correction(self) -> float:
+        """The correction added in the last step."""
+        return self._engine.correction()
+
+    @property
+    def time(self) -> float:
+        """The time since reset (s) the table was read at in the last step."""
+        return self._engine.time()
+
+    def at(self, t: ArrayLike) -> FloatArray:
+        """The table interpolated at times ``t`` (s; past the end the last sample or 0).
+
+        Parameters
+        ----------
+        t : array_like of float
+            Times since the start (s).
+
+        Returns
+        -------
+        numpy.ndarray of float
+            The corrections.
+        """
+        times = np.asarray(t, dtype=np.float64)
+        return np.array([self._engine.at(float(v)) for v in times.ravel()]).reshape(times.shape)
+
+    def _control_step(self, u, dt: float) -> float:
+        return self.step(u[0], dt)
+
+    # -- a feedforward that follows the route ------------------------------------------
+    @property
+    def follows_route(self) -> bool:
+        """Whether the feedforward inside follows the route's shape (its ``follows_route``; one
+        without that attribute, e.g. a CurveAngleFeedforward, when it has ``set_route``)."""
+        ff = self.feedforward
+        return bool(getattr(ff, "follows_route", callable(getattr(ff, "set_route", None))))
+
+    @property
+    def friction(self) -> float:
+        """The friction the feedforward computes route shapes with.
+
+        Raises
+        ------
+        AttributeError
+            The feedforward does not follow the route.
+        """
+        return self.feedforward.friction
+
+    def set_route(self, route: Route) -> None:
+        """Tell the feedforward the route's shape (when it follows the route).
+
+        Parameters
+        ----------
+        route : Route
+            The route now.
+        """
+        self.feedforward.set_route(route)
+
+    def set_curve_angle(self, curve_angle: float) -> None:
+        """Tell the feedforward the curve angle (when it follows the route).
+
+        Parameters
+        ----------
+        curve_angle : float
+            The total curve angle (rad).
+        """
+        self.feedforward.set_curve_angle(curve_angle)
+
+    # -- the bench and persistence ------------------------------------------------------
+    @classmethod
+    def _from_saved(cls, values: dict):
+        try:
+            return cls(**values)
+        except TypeError as err:  # a file whose feedforward cannot be inside: a bad file
+            raise ValueError(f"LearnedFeedforward file: {err}") from None
+
+    def _learned_correction(self):
+        """(the C++ table player, the feedforward) for bench.run's C++ loops."""
+        return core.LearnedCorrection(
+            self._settings["table"], self._engine.params
+        ), self.feedforward
+
+    def _bench_engine(self):
+        return None  # bench.run takes it apart (_learned_correction)
+
+    @property
+    def params(self) -> dict:
+        """The table, its settings, the limits and the feedforward (a copy)."""
+        return {**super().params, "feedforward": self.feedforward}
+
+    def to_dict(self) -> dict:
+        """The compensator as a dict, its feedforward saved whole and the table in full.
+
+        Returns
+        -------
+        dict
+            What :func:`~tendonsheath.compensate.load_compensator` (and the C++ loader) reads.
+
+        Raises
+        ------
+        TypeError
+            The feedforward cannot be saved (it has no ``to_dict``).
+        """
+        inner = getattr(self.feedforward, "to_dict", None)
+        if not callable(inner):
+            raise TypeError(
+                f"LearnedFeedforward.to_dict: its feedforward {type(self.feedforward).__name__} "
+                "cannot be saved (it has no to_dict)"
+            )
+        return {**super().to_dict(), "feedforward": inner()}
+
+    def __repr__(self) -> str:
+        n = len(self._settings["table"])
+        span = (n - 1) * self.table_dt
+        peak = max((abs(v) for v in self._settings["table"]), default=0.0)
+        return (
+            f"LearnedFeedforward({self.feedforward!r}, {n} samples over {span:g} s, "
+            f"peak {peak:.3g}{'' if self.hold_last else ', zero past the end'})"
+        )
+
+
+__all__ = ["LearnedFeedforward"]
