@@ -433,6 +433,14 @@ def _quality():
     return SimpleNamespace(overall=overall, per_recording=[], n=1)
 
 
+def _loop_dynamics():
+    from tendonsheath.identify.loop_dynamics import LoopDynamics
+    from tendonsheath.identify.servo import ServoFit
+
+    servo = ServoFit(60.0, 0.9, 1.0, 0.0, 0, 1e-3, 0.0, 0.0)
+    return LoopDynamics(servo, 40.0, 0.3, 1.0, 1, 1e-3, 40.0, 0.0, 0.0)
+
+
 MINIMAL_CALLS = {
     "tendonsheath.identify.core.identify": (
         lambda kw: ts.identify(ts.models.Backlash, *_log(), **kw)
@@ -467,6 +475,11 @@ MINIMAL_CALLS = {
     "tendonsheath.presets.realistic_plant": lambda kw: ts.presets.realistic_plant(**kw),
     "tendonsheath.compensate.adaptive_controller.AdaptiveController": (
         lambda kw: ts.compensate.AdaptiveController(**kw)
+    ),
+    "tendonsheath.compensate.adaptive_controller.AdaptiveController.from_calibration": (
+        lambda kw: ts.compensate.AdaptiveController.from_calibration(
+            _model(), _loop_dynamics(), inertia=1e-4, **kw
+        )
     ),
     "tendonsheath.compensate.adaptive_controller.AdaptiveController.from_model": (
         lambda kw: ts.compensate.AdaptiveController.from_model(_model(), inertia=1e-4, **kw)

@@ -227,12 +227,18 @@ def _largest_ki(loop: _RobustLoop, kp: float, kd: float, ms: float) -> float:
     return lo
 
 
-def _margins(plant: tuple[np.ndarray, np.ndarray], dt: float, gains, cutoff: float):
+def _margins(
+    plant: tuple[np.ndarray, np.ndarray],
+    dt: float,
+    gains: tuple[float, float, float],
+    cutoff: float,
+):
     """(gain margin dB, phase margin deg, crossover Hz) of one shape's loop, by python-control."""
     from ..control_interop import require_control
 
     ct = require_control()
-    c_num, c_den = controller_polynomials(*gains, cutoff, dt)
+    kp, ki, kd = gains
+    c_num, c_den = controller_polynomials(kp, ki, kd, cutoff, dt)
     num, den = np.convolve(c_num, plant[0]), np.convolve(c_den, plant[1])
     n = max(num.size, den.size)
     L = ct.tf(np.pad(num, (0, n - num.size)), np.pad(den, (0, n - den.size)), dt)

@@ -17,7 +17,7 @@ from ...route import Route
 from ..calibration import calibrate as bench_calibrate
 from ..run import Result, run
 from ..shape_sensing import ShapeSensing
-from . import do_tip
+from . import do_ilc, do_tip
 from .common import (
     ScenarioResult,
     announce,
@@ -69,6 +69,11 @@ CONDITIONS = {
     "designs",
     "test routes": "fixed route: the nominal route throughout (the paper's setting); random "
     "routes: the nominal route, then random route changes; neither is a calibration shape",
+    "iterative learning": "the paper's reference repeated on the fixed route: the "
+    "InverseFeedforward of the first calibration shape plus a correction table learned over at "
+    "most 10 trials from the tip sensor (1 ms latency, noise drawn anew each trial), the law "
+    "designed from the loop dynamics identified on the first calibration shape; the learned "
+    "table then run without the sensor, and on a shifted route (both arcs at 0.7 pi)",
     "rate": "1 kHz; first period excluded from the metrics",
 }
 
@@ -250,9 +255,12 @@ def do2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     tip = do_tip.study(sys.modules[__name__], cals[SERVOS[0]], t, y_d, seeds, baseline, seed,
                        scale)  # fmt: skip
     _add_tip(studies, tip[TIP_HEADLINE_MS]["runs"])
+    announce(progress, "do2015: iterative learning (10 trials), the learned table without sensor")
+    ilc = do_ilc.study(sys.modules[__name__], cals[SERVOS[0]], t, y_d, tip,
+                       baseline["fixed"].metrics["mse"], seed)  # fmt: skip
     headline = studies[SERVOS[0]]["random"][seeds[0]]
     announce(progress, "do2015: honesty panel")
-    return _result(cals, studies, headline, seed, budget, sensor, tip)
+    return _result(cals, studies, headline, seed, budget, sensor, tip, do_ilc.as_record(ilc))
 
 
 def _servo_study(servo: str, fits: dict, t, y_d, sensor, seeds) -> dict[str, Any]:
@@ -314,7 +322,7 @@ def _summary(study: dict) -> dict[str, Any]:
     }
 
 
-def _result(cals, studies, headline, seed, budget, sensor, tip) -> ScenarioResult:
+def _result(cals, studies, headline, seed, budget, sensor, tip, ilc) -> ScenarioResult:
     summaries = {servo: _summary(studies[servo]) for servo in SERVOS}
     runs = _runs_only(headline)
     times, shapes = headline["_schedule"]
@@ -333,7 +341,7 @@ def _result(cals, studies, headline, seed, budget, sensor, tip) -> ScenarioResul
     return scenario_result(
         do2015,
         first["shape command"],
-        targets=_targets(summaries) + do_tip.targets(tip, target),
+        targets=_targets(summaries) + do_tip.targets(tip, target) + do_ilc.targets(ilc, target),
         title="Do et al. 2015: feedforward and adaptive control under changing routes",
         conditions=CONDITIONS,
         runs=runs,
@@ -351,6 +359,7 @@ def _result(cals, studies, headline, seed, budget, sensor, tip) -> ScenarioResul
             "headline_servo": SERVOS[0],
             "tip_sensor": do_tip.as_record(tip),
             "tip_headline_ms": TIP_HEADLINE_MS,
+            "ilc": ilc,
         },
         calibration=_calibration_record(first),
         protocol="do2015: every model identified by bench.calibrate from runs on three "
