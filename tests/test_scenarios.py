@@ -82,7 +82,7 @@ def test_do2015_iterative_learning_reaches_1000x_and_holds_on_a_shifted_route(sc
     assert ilc["trials"] <= 10
     assert ilc["factor_learned_no_sensor"] >= 3000
     by_trial = ilc["factor_by_trial"]
-    assert by_trial[0] < 100 < 1000 < max(by_trial)  # learned, not given: trial 0 is the ff
+    assert by_trial[0] < 100 and max(by_trial) > 1000  # learned, not given: trial 0 is the ff
     shifted = ilc["shifted_route_factor"]
     assert shifted["learned"] > 1.5 * shifted["InverseFeedforward"]
     assert "lead" in ilc["designed_from"] and ilc["design"]["rho"] < 1
