@@ -235,6 +235,23 @@ def test_adaptive_controller_equals_its_streaming_steps():
 
 
 @pytest.mark.parametrize("seed", SEEDS)
+def test_tip_loop_equals_its_streaming_steps(seed):
+    rng = np.random.default_rng(seed)
+    loop = ts.compensate.TipLoop(
+        ts.compensate.InverseFeedforward(_backlash(rng)), kp=_u(rng, 0.1, 1.0),
+        ki=_u(rng, 5, 80), kd=_u(rng, 0, 0.005), max_correction=_u(rng, 0.1, 0.5),
+    )  # fmt: skip
+    dt, t, y_d = _signal(rng)
+    y = 0.9 * y_d + rng.normal(0, 0.01, t.size)
+    sys = loop.to_control(dt)
+    assert sys.input_labels == ["y_d", "y"] and sys.output_labels == ["x"]
+    out = ct.input_output_response(sys, t, [y_d, y]).outputs
+    loop.reset()
+    ref = [loop.step(a, b, dt if k else 0.0) for k, (a, b) in enumerate(zip(y_d, y, strict=True))]
+    _close(out, np.array(ref))
+
+
+@pytest.mark.parametrize("seed", SEEDS)
 def test_interconnection_equals_manual_composition(seed):
     """Feedforward of an identified model in series with a plant model outside its class."""
     rng = np.random.default_rng(seed)

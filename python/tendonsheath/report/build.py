@@ -150,6 +150,7 @@ def scenario_section(
     )
     parts.append(_status_table(result.runs))
     parts.append(_tip_sensor_table(result.extra.get("tip_sensor")))
+    parts.append(_learning_table(result.extra.get("ilc")))
     if result.paper.get("note"):
         parts.append(f'<p class="note">{html.fmt(result.paper["note"])}</p>')
     if result.name == "do2015":
@@ -222,6 +223,30 @@ def _tip_sensor_table(tip: dict | None) -> str:
         "trial runs on those shapes; judged on the fixed route and 5 route seeds. A controller "
         "that saturated is shown with its saturated cycles, whatever its MSE.</p>"
         + html.table(rows)
+    )
+
+
+def _learning_table(ilc: dict | None) -> str:
+    """Iterative learning: the factor after each trial, the learned table without the sensor
+    and on a shifted route, and what the law was designed from ("" without one)."""
+    if not ilc:
+        return ""
+    row = {
+        "trials": ilc["trials"],
+        "improvement by trial": ", ".join(f"{f:.3g}" for f in ilc["factor_by_trial"]),
+        "learned table, no sensor": ilc["factor_learned_no_sensor"],
+        "shifted route: learned / feedforward alone": (
+            f"{ilc['shifted_route_factor']['learned']:.3g} / "
+            f"{ilc['shifted_route_factor']['InverseFeedforward']:.3g}"
+        ),
+        "resonance Hz": ilc["resonance_hz"],
+        "delay ms": 1e3 * ilc["delay_s"],
+        "design": ilc["designed_from"],
+    }
+    return (
+        '<h3>Repeated motion: iterative learning</h3><p class="note">MSE reduction over the '
+        f"uncompensated run, trial after trial (tip sensor {ilc['latency_ms']:g} ms, new noise "
+        "each trial), then the learned table run without the sensor.</p>" + html.table([row])
     )
 
 

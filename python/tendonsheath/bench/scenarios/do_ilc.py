@@ -55,7 +55,7 @@ def study(do: Any, fits: dict, t, y_d, tip: dict, none_fixed: float, seed: int) 
         "learned": run(shifted_plant, learned, t, y_d),
     }
     return {"ilc": ilc, "factors": factors, "sensorless": sensorless, "shifted": shifted,
-            "none_fixed": none_fixed}  # fmt: skip
+            "none_fixed": none_fixed, "dynamics": loops[0].dynamics}  # fmt: skip
 
 
 def as_record(s: dict) -> dict[str, Any]:
@@ -63,7 +63,10 @@ def as_record(s: dict) -> dict[str, Any]:
     shifted = {k: r.metrics["mse"] for k, r in s["shifted"].items()}
     return {
         "design": s["ilc"].design.as_dict(),
-        "designed_from": s["ilc"].design.summary(),
+        "designed_from": f"{s['ilc'].design.summary()}; from the loop identified on "
+        f"calibration shape 1: {s['dynamics'].summary()}",
+        "resonance_hz": s["dynamics"].resonance_hz,
+        "delay_s": s["dynamics"].delay,
         "latency_ms": LATENCY_MS,
         "factor_by_trial": s["factors"],
         "trials": len(s["factors"]) - 1,
