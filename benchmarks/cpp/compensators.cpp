@@ -69,6 +69,17 @@ int main(int argc, char** argv) {
   lp.kp = 1.3, lp.ki = 440.0;
   ts::EncoderLooped<ts::BacklashInverseFeedforward> looped{ts::BacklashInverseFeedforward(ip),
                                                            ts::EncoderLoop(lp)};
+  ts::TipLoopParams tp;
+  tp.kp = 0.45, tp.ki = 100.0, tp.kd = 0.0028, tp.derivative_cutoff_hz = 100.0;
+  tp.schedule_size = 3;
+  tp.schedule_angles = {1.7, 2.8, 5.7};
+  tp.schedule_gains = {1.0, 1.0, 0.99};
+  ts::TipLooped<ts::BacklashInverseFeedforward> tipped{ts::BacklashInverseFeedforward(ip),
+                                                       ts::TipLoop(tp)};
+  std::vector<double> table(n);  // a learned correction as long as the run
+  for (std::size_t k = 0; k < n; ++k) table[k] = 0.01 * std::sin(2 * pi * 0.5 * k * dt);
+  ts::LearnedFeedforward<ts::BacklashInverseFeedforward> learned{
+      ts::BacklashInverseFeedforward(ip), ts::LearnedCorrection(table, {})};
   // root-finding inverses (ModelInverse): a GPI and a Bouc-Wen backlash with a cubic output map
   ts::InverseModel gpi_model;
   gpi_model.parts.resize(1);
@@ -97,6 +108,12 @@ int main(int argc, char** argv) {
   rows.push_back({"EncoderLoop (around the BoucWenBacklash inverse)", measure(n, [&](std::size_t k) {
                     return looped.step(yd[k], 0.97 * yd[k > 0 ? k - 1 : 0], dt);
                   })});
+  rows.push_back({"TipLoop (around the BoucWenBacklash inverse, gains scheduled)", measure(n, [&](std::size_t k) {
+                    if (k % 100 == 0) tipped.set_curve_angle(3.0 + std::sin(1e-3 * k));
+                    return tipped.step(yd[k], 0.97 * yd[k > 0 ? k - 1 : 0], dt);
+                  })});
+  rows.push_back({"LearnedFeedforward (a 1e6-sample table around the BoucWenBacklash inverse)",
+                  measure(n, [&](std::size_t k) { return learned.step(yd[k], dt); })});
   rows.push_back({"InverseFeedforward (GPI, root search)", measure(n, [&](std::size_t k) { return gpi_inverse.step(yd[k], dt); })});
   rows.push_back({"InverseFeedforward (BoucWenBacklash+poly3, root search)", measure(n, [&](std::size_t k) { return chain_inverse.step(yd[k], dt); })});
   rows.push_back({"AdaptiveController", measure(n, [&](std::size_t k) {
