@@ -22,12 +22,15 @@ if TYPE_CHECKING:
     from .._typing import ArrayLike
     from ..compensate import AdaptiveController
     from ..compensate.base import Feedforward
+    from ..compensate.learned_feedforward import LearnedFeedforward
     from .calibration import ShapeSensing
 
 # what bench.run closes the loop with: any StreamingCompensator (None: uncompensated); the
 # shipped ones are named too, their step(y_d, dt) being narrower than the protocol's
 # step(*signals) to a type checker
-Controller: TypeAlias = "StreamingCompensator | Feedforward | AdaptiveController | None"
+Controller: TypeAlias = (
+    "StreamingCompensator | Feedforward | LearnedFeedforward | AdaptiveController | None"
+)
 
 # the C++ loop for each shipped compensator's engine (its _bench_engine())
 _ENGINE_LOOPS = {

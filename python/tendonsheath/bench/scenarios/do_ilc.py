@@ -40,7 +40,7 @@ def study(do: Any, fits: dict, t, y_d, tip: dict, none_fixed: float, seed: int) 
     ilc = IterativeLearning.from_dynamics(
         feedforward, t, y_d, loops[0].dynamics, dt, max_trials=MAX_TRIALS
     )
-    factors = []
+    factors: list[float] = []
     while not ilc.stopped:
         sensor = tip_sensor(LATENCY_MS * 1e-3, seed + 700 + len(factors))
         r = run(plant, ilc.compensator(), t, y_d, noise=sensor)
