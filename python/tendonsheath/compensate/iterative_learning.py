@@ -591,16 +591,7 @@ def design_learning(
     min_cutoff_hz = number(who, "min_cutoff_hz", min_cutoff_hz)
     if not 0 < min_cutoff_hz < 0.45 * nyquist:
         raise ValueError(f"{who}: min_cutoff_hz must be in (0, {0.45 * nyquist:g}) Hz")
-    identified = getattr(frequency_response, "frequency_response", None)
-    if callable(identified):  # a LoopDynamics: its response sampled at the learning's dt
-        response = lambda f: identified(f, dt=dt)  # noqa: E731
-    elif callable(frequency_response):
-        response = frequency_response
-    else:
-        raise TypeError(
-            f"{who}: frequency_response must be a callable f_hz -> complex array or a LoopDynamics"
-        )
-
+    response = _response_of(who, frequency_response, dt)
     f_lo = min(0.01, 0.1 * min_cutoff_hz)
     freqs = np.unique(
         np.concatenate([np.geomspace(f_lo, nyquist, 1200), np.linspace(f_lo, nyquist, 800)])
@@ -623,29 +614,7 @@ def design_learning(
         sos = signal.butter(order, fc, fs=1.0 / dt, output="sos")
         _, h = signal.sosfreqz(sos, worN=freqs, fs=1.0 / dt)
         q_mag[i] = np.abs(h) ** 2  # forward and backward
-    best: tuple | None = None  # (cutoff index, -rho, lead, gain, rho, contraction)
-    for lead in range(max_lead + 1):
-        lp = np.exp(2j * np.pi * freqs * lead * dt) * p  # (F,)
-        m = np.abs(1.0 - gain_grid[:, None] * lp[None, :])  # (G, F)
-        # rho below each cutoff: the running max of m up to the cutoff
-        running = np.maximum.accumulate(m, axis=1)
-        idx = np.searchsorted(freqs, cutoffs, side="right") - 1  # last f <= cutoff
-        pass_rho = running[:, np.maximum(idx, 0)]  # (G, C)
-        whole = np.max(q_mag[None, :, :] * m[:, None, :], axis=2)  # (G, C)
-        ok = (pass_rho <= rho) & (whole <= rho)
-        if not ok.any():
-            continue
-        for g_i, c_i in zip(*np.nonzero(ok), strict=True):
-            key = (c_i, -pass_rho[g_i, c_i])
-            if best is None or key > best[:2]:
-                best = (
-                    c_i,
-                    -pass_rho[g_i, c_i],
-                    lead,
-                    gain_grid[g_i],
-                    pass_rho[g_i, c_i],
-                    whole[g_i, c_i],
-                )
+    best = _best_lead_and_gain(freqs, p, gain_grid, cutoffs, q_mag, max_lead, dt, rho)
     if best is None:
         raise ValueError(
             f"{who}: refused: no lead in 0..{max_lead} samples and gain makes the learning "
@@ -665,6 +634,40 @@ def design_learning(
         dt=dt,
         order=int(order),
     )
+
+
+def _response_of(who: str, frequency_response: Any, dt: float) -> Callable:
+    """f_hz -> complex response: a callable, or a LoopDynamics sampled at the learning's dt."""
+    identified = getattr(frequency_response, "frequency_response", None)
+    if callable(identified):
+        return lambda f: identified(f, dt=dt)
+    if callable(frequency_response):
+        return frequency_response
+    raise TypeError(
+        f"{who}: frequency_response must be a callable f_hz -> complex array or a LoopDynamics"
+    )
+
+
+def _best_lead_and_gain(freqs, p, gain_grid, cutoffs, q_mag, max_lead: int, dt: float,
+                        rho: float) -> tuple | None:  # fmt: skip
+    """(cutoff index, -rho, lead, gain, rho, contraction) of the highest convergent cutoff
+    (then the least rho) over every lead and gain, or None."""
+    best: tuple | None = None
+    idx = np.searchsorted(freqs, cutoffs, side="right") - 1  # last f <= cutoff
+    for lead in range(max_lead + 1):
+        lp = np.exp(2j * np.pi * freqs * lead * dt) * p  # (F,)
+        m = np.abs(1.0 - gain_grid[:, None] * lp[None, :])  # (G, F)
+        # rho below each cutoff: the running max of m up to the cutoff
+        running = np.maximum.accumulate(m, axis=1)
+        pass_rho = running[:, np.maximum(idx, 0)]  # (G, C)
+        whole = np.max(q_mag[None, :, :] * m[:, None, :], axis=2)  # (G, C)
+        ok = (pass_rho <= rho) & (whole <= rho)
+        for g_i, c_i in zip(*np.nonzero(ok), strict=True):
+            key = (c_i, -pass_rho[g_i, c_i])
+            if best is None or key > best[:2]:
+                best = (c_i, -pass_rho[g_i, c_i], lead, gain_grid[g_i], pass_rho[g_i, c_i],
+                        whole[g_i, c_i])  # fmt: skip
+    return best
 
 
 __all__ = ["IterativeLearning", "LearningDesign", "TrialRecord", "design_learning"]
