@@ -324,9 +324,9 @@ def _run_controller(loop: _Loop, controller, shape_sensing):
 def _friction(controller) -> float:
     """The friction a controller computes route shapes with (0 when it does not follow the
     route: a TipLoop's schedule uses only the curve angle)."""
-    from ..compensate.tip_loop import _follows_route
+    from ..compensate.around import follows_route
 
-    if not _follows_route(controller):
+    if not follows_route(controller):
         return 0.0
     return float(getattr(controller, "friction", None) or 0.0)
 

@@ -9,19 +9,17 @@ from .. import _core as core
 from .._args import number, python_names
 from .._arrays import checked_dt
 from ..protocols import step_signals
-from ..status import Status
-from .base import EngineCompensator
+from .around import AroundFeedforward
 from .limits import LimitsLike, as_limits
 
 if TYPE_CHECKING:
     from ..identify.servo import ServoFit
-    from ..route import Route
     from .tuning import EncoderLoopDesign
 
 _GAINS = ("kp", "ki", "kd", "derivative_cutoff_hz", "max_correction")
 
 
-class EncoderLoop(EngineCompensator):
+class EncoderLoop(AroundFeedforward):
     """A feedforward's command made real by a PI(D) loop on the motor encoder.
 
     A feedforward computes the motor angle x_ff its model says gives the desired output. A
@@ -178,19 +176,6 @@ class EncoderLoop(EngineCompensator):
         x = float(self.feedforward.step(float(y_d), dt))
         return self._engine.correct(x, float(q), dt)
 
-    def status(self) -> Status:
-        """The last cycle's flags: the feedforward's and the loop's (fallback: no encoder
-        reading; saturated: the command or the correction was cut).
-
-        Returns
-        -------
-        Status
-            The flags of the last :meth:`step`.
-        """
-        own = Status(self._engine.status())
-        inner = getattr(self.feedforward, "status", None)
-        return own | Status(int(inner())) if callable(inner) else own
-
     @property
     def correction(self) -> float:
         """The correction added to the feedforward's last command (rad)."""
@@ -199,43 +184,6 @@ class EncoderLoop(EngineCompensator):
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], u[1], dt)
 
-    # -- a feedforward that follows the route ------------------------------------------
-    @property
-    def follows_route(self) -> bool:
-        """Whether the feedforward inside follows the route's shape."""
-        return bool(getattr(self.feedforward, "follows_route", False))
-
-    @property
-    def friction(self) -> float:
-        """The friction the feedforward computes route shapes with.
-
-        Raises
-        ------
-        AttributeError
-            The feedforward does not follow the route.
-        """
-        return self.feedforward.friction
-
-    def set_route(self, route: Route) -> None:
-        """Tell the feedforward the route's shape (when it follows the route).
-
-        Parameters
-        ----------
-        route : Route
-            The route now.
-        """
-        self.feedforward.set_route(route)
-
-    def set_curve_angle(self, curve_angle: float) -> None:
-        """Tell the feedforward the curve angle (when it follows the route).
-
-        Parameters
-        ----------
-        curve_angle : float
-            The total curve angle (rad).
-        """
-        self.feedforward.set_curve_angle(curve_angle)
-
     # -- the bench and persistence ------------------------------------------------------
     def _outer_loop(self):
         """(the C++ loop, the feedforward) for bench.run's C++ loops."""
@@ -243,32 +191,6 @@ class EncoderLoop(EngineCompensator):
 
     def _bench_engine(self):
         return None  # bench.run takes the loop apart (_outer_loop)
-
-    @property
-    def params(self) -> dict:
-        """The gains, limits and the feedforward (a copy)."""
-        return {**super().params, "feedforward": self.feedforward}
-
-    def to_dict(self) -> dict:
-        """The compensator as a dict, its feedforward saved whole.
-
-        Returns
-        -------
-        dict
-            What :func:`~tendonsheath.compensate.load_compensator` reads back.
-
-        Raises
-        ------
-        TypeError
-            The feedforward cannot be saved (it has no ``to_dict``).
-        """
-        inner = getattr(self.feedforward, "to_dict", None)
-        if not callable(inner):
-            raise TypeError(
-                f"EncoderLoop.to_dict: its feedforward {type(self.feedforward).__name__} "
-                "cannot be saved (it has no to_dict)"
-            )
-        return {**super().to_dict(), "feedforward": inner()}
 
     def __repr__(self) -> str:
         gains = ", ".join(f"{k}={self._settings[k]:g}" for k in ("kp", "ki", "kd"))

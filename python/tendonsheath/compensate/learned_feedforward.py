@@ -10,15 +10,14 @@ from .. import _core as core
 from .._args import number, number_array, python_names
 from .._arrays import as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
-from ..status import Status
-from .base import EngineCompensator
+from .around import AroundFeedforward
 from .limits import LimitsLike, as_limits
 
 if TYPE_CHECKING:
-    from ..route import Route
+    pass
 
 
-class LearnedFeedforward(EngineCompensator):
+class LearnedFeedforward(AroundFeedforward):
     """A feedforward's command plus a correction learned over repeated trials, played in time.
 
     Iterative learning (:class:`~tendonsheath.compensate.IterativeLearning`) learns, from the tip
@@ -184,19 +183,6 @@ class LearnedFeedforward(EngineCompensator):
             return u, (flags | np.asarray(inner_flags, dtype=np.uint8)).astype(np.uint8)
         return u
 
-    def status(self) -> Status:
-        """The last cycle's flags: the feedforward's and the table's (input_clamped: past the
-        table's end; held_nonfinite_input; saturated).
-
-        Returns
-        -------
-        Status
-            The flags of the last :meth:`step`.
-        """
-        own = Status(self._engine.status())
-        inner = getattr(self.feedforward, "status", None)
-        return own | Status(int(inner())) if callable(inner) else own
-
     @property
     def table(self) -> FloatArray:
         """The correction table (a copy)."""
@@ -241,45 +227,6 @@ class LearnedFeedforward(EngineCompensator):
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], dt)
 
-    # -- a feedforward that follows the route ------------------------------------------
-    @property
-    def follows_route(self) -> bool:
-        """Whether the feedforward inside follows the route's shape (its ``follows_route``; one
-        without that attribute, e.g. a CurveAngleFeedforward, when it has ``set_route``)."""
-        ff = self.feedforward
-        return bool(getattr(ff, "follows_route", callable(getattr(ff, "set_route", None))))
-
-    @property
-    def friction(self) -> float:
-        """The friction the feedforward computes route shapes with.
-
-        Raises
-        ------
-        AttributeError
-            The feedforward does not follow the route.
-        """
-        return self.feedforward.friction
-
-    def set_route(self, route: Route) -> None:
-        """Tell the feedforward the route's shape (when it follows the route).
-
-        Parameters
-        ----------
-        route : Route
-            The route now.
-        """
-        self.feedforward.set_route(route)
-
-    def set_curve_angle(self, curve_angle: float) -> None:
-        """Tell the feedforward the curve angle (when it follows the route).
-
-        Parameters
-        ----------
-        curve_angle : float
-            The total curve angle (rad).
-        """
-        self.feedforward.set_curve_angle(curve_angle)
-
     # -- the bench and persistence ------------------------------------------------------
     @classmethod
     def _from_saved(cls, values: dict):
@@ -296,32 +243,6 @@ class LearnedFeedforward(EngineCompensator):
 
     def _bench_engine(self):
         return None  # bench.run takes it apart (_learned_correction)
-
-    @property
-    def params(self) -> dict:
-        """The table, its settings, the limits and the feedforward (a copy)."""
-        return {**super().params, "feedforward": self.feedforward}
-
-    def to_dict(self) -> dict:
-        """The compensator as a dict, its feedforward saved whole and the table in full.
-
-        Returns
-        -------
-        dict
-            What :func:`~tendonsheath.compensate.load_compensator` (and the C++ loader) reads.
-
-        Raises
-        ------
-        TypeError
-            The feedforward cannot be saved (it has no ``to_dict``).
-        """
-        inner = getattr(self.feedforward, "to_dict", None)
-        if not callable(inner):
-            raise TypeError(
-                f"LearnedFeedforward.to_dict: its feedforward {type(self.feedforward).__name__} "
-                "cannot be saved (it has no to_dict)"
-            )
-        return {**super().to_dict(), "feedforward": inner()}
 
     def __repr__(self) -> str:
         n = len(self._settings["table"])

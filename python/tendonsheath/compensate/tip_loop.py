@@ -11,8 +11,7 @@ from .. import _core as core
 from .._args import number, python_names
 from .._arrays import checked_dt
 from ..protocols import step_signals
-from ..status import Status
-from .base import EngineCompensator
+from .around import AroundFeedforward, follows_route
 from .limits import LimitsLike, as_limits
 
 if TYPE_CHECKING:
@@ -62,16 +61,7 @@ def _schedule(who: str, schedule: Any) -> Schedule:
     return pairs
 
 
-def _follows_route(feedforward: Any) -> bool:
-    """Whether a feedforward follows the route: its ``follows_route`` where it says (an
-    InverseFeedforward), else whether it takes one (CurveAngleFeedforward's ``set_route``)."""
-    own = getattr(feedforward, "follows_route", None)
-    if own is None:
-        return callable(getattr(feedforward, "set_route", None))
-    return bool(own)
-
-
-class TipLoop(EngineCompensator):
+class TipLoop(AroundFeedforward):
     """A feedforward's command corrected by a PI(D) loop on the measured tip angle.
 
     A feedforward computes the motor command x_ff its model says gives the desired output
@@ -322,19 +312,6 @@ class TipLoop(EngineCompensator):
         x = float(self.feedforward.step(y_d, dt))
         return self._engine.correct(x, y_d, float(y), dt)
 
-    def status(self) -> Status:
-        """The last cycle's flags: the feedforward's and the loop's (fallback: no tip
-        reading; saturated: the command or the correction was cut).
-
-        Returns
-        -------
-        Status
-            The flags of the last :meth:`step`.
-        """
-        own = Status(self._engine.status())
-        inner = getattr(self.feedforward, "status", None)
-        return own | Status(int(inner())) if callable(inner) else own
-
     @property
     def correction(self) -> float:
         """The correction added to the feedforward's last command (rad)."""
@@ -362,7 +339,7 @@ class TipLoop(EngineCompensator):
 
     @property
     def _feedforward_follows(self) -> bool:
-        return _follows_route(self.feedforward)
+        return follows_route(self.feedforward)
 
     @property
     def friction(self) -> float:
@@ -428,37 +405,21 @@ class TipLoop(EngineCompensator):
     def _bench_engine(self):
         return None  # bench.run takes the loop apart (_outer_loop)
 
-    @property
-    def params(self) -> dict:
-        """The gains, schedule, limits and the feedforward (a copy)."""
-        return {**super().params, "feedforward": self.feedforward}
-
     @classmethod
     def _from_saved(cls, values: dict):
         return cls(**values)
 
     def to_dict(self) -> dict:
-        """The compensator as a dict, its feedforward saved whole.
+        """The compensator as a dict, its feedforward saved whole and its schedule as pairs.
 
         Returns
         -------
         dict
             What :func:`~tendonsheath.compensate.load_compensator` reads back.
-
-        Raises
-        ------
-        TypeError
-            The feedforward cannot be saved (it has no ``to_dict``).
         """
-        inner = getattr(self.feedforward, "to_dict", None)
-        if not callable(inner):
-            raise TypeError(
-                f"TipLoop.to_dict: its feedforward {type(self.feedforward).__name__} "
-                "cannot be saved (it has no to_dict)"
-            )
         out = super().to_dict()
         out["schedule"] = [[a, g] for a, g in self.schedule]
-        return {**out, "feedforward": inner()}
+        return out
 
     def __repr__(self) -> str:
         gains = ", ".join(f"{k}={self._settings[k]:g}" for k in ("kp", "ki", "kd"))
