@@ -30,13 +30,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .tuning import _evaluate, _padded_sum, _stable, controller_polynomials
+from .tuning import RobustLoop, _evaluate, controller_polynomials, largest_ki, loop_margins
 
 if TYPE_CHECKING:
     from ..identify.loop_dynamics import LoopDynamics
 
-_KI_MAX = 1e5
-_KI_MIN = 1e-3
 #: The robustness test of a refined design: every gain times this (3.5 dB) ...
 ROBUSTNESS_GAIN = 1.5
 #: ... may raise the trial error at most this many times (a loop near its limit cycle does more)
@@ -180,27 +178,11 @@ def loop_plant(dynamics: LoopDynamics, dt: float) -> tuple[np.ndarray, np.ndarra
     return np.concatenate([[0.0], num]), np.asarray(den, dtype=float)
 
 
-class _RobustLoop:
-    """L_i = C P_i on a frequency grid for every shape, and the closed loops' stability."""
+class _RobustLoop(RobustLoop):
+    """The shared robust loop on the tip loop's grid, with the band criterion."""
 
     def __init__(self, plants: list[tuple[np.ndarray, np.ndarray]], dt: float, cutoff: float):
-        self.dt, self.cutoff, self.plants = dt, cutoff, plants
-        w = np.geomspace(1e-2, math.pi / dt, 600)
-        self.zinv = np.exp(-1j * w * dt)
-        self.P = [_evaluate(num, den, self.zinv) for num, den in plants]
-
-    def peaks(self, kp: float, ki: float, kd: float) -> list[float]:
-        """The peak sensitivity on each shape (inf where the closed loop is unstable)."""
-        c_num, c_den = controller_polynomials(kp, ki, kd, self.cutoff, self.dt)
-        C = _evaluate(c_num, c_den, self.zinv)
-        out = []
-        for (g_num, g_den), P in zip(self.plants, self.P, strict=True):
-            char = _padded_sum(np.convolve(c_den, g_den), np.convolve(c_num, g_num))
-            out.append(float(np.max(np.abs(1.0 / (1.0 + C * P)))) if _stable(char) else math.inf)
-        return out
-
-    def acceptable(self, kp: float, ki: float, kd: float, ms: float) -> bool:
-        return max(self.peaks(kp, ki, kd)) <= ms
+        super().__init__(plants, dt, cutoff, points=600)
 
     def band_sensitivity(self, kp: float, ki: float, kd: float, f_hz: np.ndarray) -> float:
         """The mean |S| over the frequencies ``f_hz``, worst shape: the rejection of what the
@@ -214,37 +196,11 @@ class _RobustLoop:
         )
 
 
-def _largest_ki(loop: _RobustLoop, kp: float, kd: float, ms: float) -> float:
-    lo, hi = _KI_MIN, _KI_MAX
-    if not loop.acceptable(kp, lo, kd, ms):
-        return 0.0
-    while hi / lo > 1.01:
-        mid = math.sqrt(lo * hi)
-        if loop.acceptable(kp, mid, kd, ms):
-            lo = mid
-        else:
-            hi = mid
-    return lo
+def _largest_ki(loop: RobustLoop, kp: float, kd: float, ms: float) -> float:
+    return largest_ki(loop, kp, kd, ms, tolerance=1.01)
 
 
-def _margins(
-    plant: tuple[np.ndarray, np.ndarray],
-    dt: float,
-    gains: tuple[float, float, float],
-    cutoff: float,
-):
-    """(gain margin dB, phase margin deg, crossover Hz) of one shape's loop, by python-control."""
-    from ..control_interop import require_control
-
-    ct = require_control()
-    kp, ki, kd = gains
-    c_num, c_den = controller_polynomials(kp, ki, kd, cutoff, dt)
-    num, den = np.convolve(c_num, plant[0]), np.convolve(c_den, plant[1])
-    n = max(num.size, den.size)
-    L = ct.tf(np.pad(num, (0, n - num.size)), np.pad(den, (0, n - den.size)), dt)
-    gm, pm, _, _, wc, _ = ct.stability_margins(L, method="frd")
-    gm_db = 20.0 * math.log10(gm) if gm and math.isfinite(gm) else math.inf
-    return gm_db, float(pm), float(wc) / (2.0 * math.pi)
+_margins = loop_margins
 
 
 def _schedule(dynamics: Sequence[LoopDynamics], angles: Sequence[float] | None):

@@ -128,23 +128,32 @@ def controller_polynomials(
     return num, den
 
 
-class _Loop:
-    """The loop L = C G on a frequency grid, and its closed-loop stability."""
+class RobustLoop:
+    """L_i = C P_i on a frequency grid for every plant P_i (in z^-1), and the closed loops'
+    stability: one plant for an encoder loop, one per calibration shape for a tip loop."""
 
-    def __init__(self, servo: ServoFit, dt: float, cutoff: float):
-        self.dt, self.cutoff = dt, cutoff
-        self.g_num, self.g_den = loop_plant(servo, dt)
-        w = np.geomspace(1e-2, math.pi / dt, 800)
+    def __init__(
+        self, plants: list[tuple[np.ndarray, np.ndarray]], dt: float, cutoff: float,
+        points: int = 800,
+    ):  # fmt: skip
+        self.dt, self.cutoff, self.plants = dt, cutoff, plants
+        w = np.geomspace(1e-2, math.pi / dt, points)
         self.zinv = np.exp(-1j * w * dt)
-        self.G = _evaluate(self.g_num, self.g_den, self.zinv)
+        self.P = [_evaluate(num, den, self.zinv) for num, den in plants]
+
+    def peaks(self, kp: float, ki: float, kd: float) -> list[float]:
+        """The peak sensitivity on each plant (inf where the closed loop is unstable)."""
+        c_num, c_den = controller_polynomials(kp, ki, kd, self.cutoff, self.dt)
+        C = _evaluate(c_num, c_den, self.zinv)
+        out = []
+        for (g_num, g_den), P in zip(self.plants, self.P, strict=True):
+            char = _padded_sum(np.convolve(c_den, g_den), np.convolve(c_num, g_num))
+            out.append(float(np.max(np.abs(1.0 / (1.0 + C * P)))) if _stable(char) else math.inf)
+        return out
 
     def acceptable(self, kp: float, ki: float, kd: float, ms: float) -> bool:
-        c_num, c_den = controller_polynomials(kp, ki, kd, self.cutoff, self.dt)
-        char = _padded_sum(np.convolve(c_den, self.g_den), np.convolve(c_num, self.g_num))
-        if not _stable(char):
-            return False
-        L = _evaluate(c_num, c_den, self.zinv) * self.G
-        return float(np.max(np.abs(1.0 / (1.0 + L)))) <= ms
+        """Stable on every plant, with every peak sensitivity <= ms."""
+        return max(self.peaks(kp, ki, kd)) <= ms
 
 
 def loop_plant(servo: ServoFit, dt: float) -> tuple[np.ndarray, np.ndarray]:
@@ -173,12 +182,15 @@ def _stable(char: np.ndarray) -> bool:
     return bool(np.all(np.abs(np.roots(coeffs)) < 1.0 - 1e-12))
 
 
-def _largest_ki(loop: _Loop, kp: float, kd: float, ms: float) -> float:
-    """The largest ki with the loop stable and within ms (bisection; 0 when none)."""
+def largest_ki(
+    loop: RobustLoop, kp: float, kd: float, ms: float, tolerance: float = 1.002
+) -> float:
+    """The largest ki with the loop stable and within ms (bisection in log(ki) down to the
+    ratio ``tolerance``; 0 when none)."""
     lo, hi = _KI_MIN, _KI_MAX
     if not loop.acceptable(kp, lo, kd, ms):
         return 0.0
-    while hi / lo > 1.002:  # bisection in log(ki): about 34 steps
+    while hi / lo > tolerance:
         mid = math.sqrt(lo * hi)
         if loop.acceptable(kp, mid, kd, ms):
             lo = mid
@@ -187,7 +199,7 @@ def _largest_ki(loop: _Loop, kp: float, kd: float, ms: float) -> float:
     return lo
 
 
-def _search(loop: _Loop, servo: ServoFit, ms: float, derivative: bool):
+def _search(loop: RobustLoop, servo: ServoFit, ms: float, derivative: bool):
     """MIGO: the (kp, ki, kd) of largest ki over a grid of kp (and kd)."""
     g = abs(servo.gain) if servo.gain else 1.0
     w_n = 2.0 * math.pi * servo.frequency
@@ -196,21 +208,26 @@ def _search(loop: _Loop, servo: ServoFit, ms: float, derivative: bool):
     best = (0.0, 0.0, 0.0)
     for kd in kds:
         for kp in kps:
-            ki = _largest_ki(loop, float(kp), float(kd), ms)
+            ki = largest_ki(loop, float(kp), float(kd), ms)
             if ki > best[1]:
                 best = (float(kp), ki, float(kd))
     return best
 
 
-def _margins(servo: ServoFit, dt: float, gains: tuple[float, float, float], cutoff: float):
-    """(gain margin dB, phase margin deg, crossover Hz) of the loop, by python-control."""
+def loop_margins(
+    plant: tuple[np.ndarray, np.ndarray],
+    dt: float,
+    gains: tuple[float, float, float],
+    cutoff: float,
+) -> tuple[float, float, float]:
+    """(gain margin dB, phase margin deg, crossover Hz) of C P (P in z^-1), by python-control."""
     from ..control_interop import require_control
 
     ct = require_control()
-    c_num, c_den = controller_polynomials(*gains, cutoff, dt)
-    g_num, g_den = loop_plant(servo, dt)
-    num = np.convolve(c_num, g_num)
-    den = np.convolve(c_den, g_den)
+    kp, ki, kd = gains
+    c_num, c_den = controller_polynomials(kp, ki, kd, cutoff, dt)
+    num = np.convolve(c_num, plant[0])
+    den = np.convolve(c_den, plant[1])
     n = max(num.size, den.size)  # in z^-1 -> polynomials in z of equal degree
     L = ct.tf(np.pad(num, (0, n - num.size)), np.pad(den, (0, n - den.size)), dt)
     gm, pm, _, _, wc, _ = ct.stability_margins(L, method="frd")
@@ -251,7 +268,8 @@ def tune_encoder_loop(
     if not (math.isfinite(ms) and ms > 1.0):
         raise ValueError(f"tune_encoder_loop: max_sensitivity must be > 1 (got {ms})")
     cutoff = 0.1 / dt
-    loop = _Loop(servo, dt, cutoff)
+    plant = loop_plant(servo, dt)
+    loop = RobustLoop([plant], dt, cutoff)
     kp, ki, kd = _search(loop, servo, ms, derivative)
     if not ki > 0:
         raise ValueError(
@@ -259,10 +277,17 @@ def tune_encoder_loop(
             f"identified servo ({servo.summary()}) stable with a peak sensitivity <= {ms:g} at "
             f"dt = {dt:g} s; the encoder loop cannot be closed on this drive"
         )
-    c_num, c_den = controller_polynomials(kp, ki, kd, cutoff, dt)
-    peak = float(np.max(np.abs(1.0 / (1.0 + _evaluate(c_num, c_den, loop.zinv) * loop.G))))
-    gm, pm, fc = _margins(servo, dt, (kp, ki, kd), cutoff)
+    (peak,) = loop.peaks(kp, ki, kd)
+    gm, pm, fc = loop_margins(plant, dt, (kp, ki, kd), cutoff)
     return EncoderLoopDesign(kp, ki, kd, cutoff, ms, peak, gm, pm, fc, servo, dt)
 
 
-__all__ = ["EncoderLoopDesign", "controller_polynomials", "loop_plant", "tune_encoder_loop"]
+__all__ = [
+    "EncoderLoopDesign",
+    "RobustLoop",
+    "controller_polynomials",
+    "largest_ki",
+    "loop_margins",
+    "loop_plant",
+    "tune_encoder_loop",
+]
