@@ -4,6 +4,7 @@ from importlib.metadata import version as _version
 
 from . import bench, compensate, io, loads, models, physics, presets, protocols
 from .compare import Comparison, compare_models
+from .coupled_plant import CoupledPlant, CoupledSimulation
 from .identify import Fit, IdentifiabilityWarning, Identifier, identify
 from .models import load_model
 from .motor import Motor
@@ -27,6 +28,8 @@ __all__ = [
     "Comparison",
     "Compensator",
     "ContinuumPlant",
+    "CoupledPlant",
+    "CoupledSimulation",
     "Fit",
     "IdentifiabilityWarning",
     "Identifier",
