@@ -5,7 +5,7 @@ from importlib.metadata import version as _version
 from . import bench, compensate, io, loads, models, physics, presets, protocols
 from .compare import Comparison, compare_models
 from .coupled_plant import CoupledPlant, CoupledSimulation
-from .identify import Fit, IdentifiabilityWarning, Identifier, identify
+from .identify import Fit, IdentifiabilityWarning, Identifier, identify, identify_coupled
 from .models import load_model
 from .motor import Motor
 from .plant import (
@@ -46,6 +46,7 @@ __all__ = [
     "compare_models",
     "compensate",
     "identify",
+    "identify_coupled",
     "io",
     "load_model",
     "loads",
