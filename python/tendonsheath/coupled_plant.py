@@ -58,7 +58,7 @@ def joint_matrix(values: ArrayLike, joints: int, name: str, owner: str) -> Float
 class CoupledSimulation:
     """A run of a :class:`CoupledPlant`: arrays of shape (n, joints).
 
-    Attributes
+    Parameters
     ----------
     t : numpy.ndarray
         Sample times (s), shape (n,).
@@ -133,8 +133,18 @@ class CoupledPlant:
         return len(self.plants)
 
     def joint_angles(self, drive: ArrayLike) -> FloatArray:
-        """The joint angles y = (I - K)^-1 q of the drives' outputs q (shape (joints,) or
-        (n, joints))."""
+        """The joint angles y = (I - K)^-1 q of the drives' outputs q.
+
+        Parameters
+        ----------
+        drive : array_like of float, shape (joints,) or (n, joints)
+            The drives' own outputs q.
+
+        Returns
+        -------
+        numpy.ndarray of float
+            The joint angles, shaped as drive.
+        """
         q = np.asarray(drive, dtype=np.float64)
         return q @ self._solve.T
 

@@ -105,7 +105,13 @@ class CoupledFeedforward:
         return np.array([ff.step(float(h[i]), dt) for i, ff in enumerate(self.joints)])
 
     def status(self) -> Status:
-        """The last cycle's :class:`~tendonsheath.Status`, all joints' flags together."""
+        """The last cycle's :class:`~tendonsheath.Status`, all joints' flags together.
+
+        Returns
+        -------
+        Status
+            The union of the joints' flags.
+        """
         s = Status(0)
         for ff in self.joints:
             s |= ff.status()

@@ -33,7 +33,7 @@ from .fit import Fit
 class CoupledFit:
     """The result of :func:`identify_coupled`.
 
-    Attributes
+    Parameters
     ----------
     model : Coupled
         The identified model.

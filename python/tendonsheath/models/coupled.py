@@ -125,7 +125,18 @@ class Coupled:
         return self.own(t, x) + ys @ self._coupling.T
 
     def with_coupling(self, coupling: ArrayLike) -> Coupled:
-        """The same joint models with another coupling matrix."""
+        """The same joint models with another coupling matrix.
+
+        Parameters
+        ----------
+        coupling : array_like, shape (J, J)
+            The new C (zero diagonal).
+
+        Returns
+        -------
+        Coupled
+            A new model; this one is unchanged.
+        """
         return Coupled(self.models, coupling)
 
     # -- saving ----------------------------------------------------------------------
@@ -148,6 +159,16 @@ class Coupled:
     def from_dict(cls, data: dict[str, Any]) -> Coupled:
         """The model saved by :meth:`to_dict`.
 
+        Parameters
+        ----------
+        data : dict
+            A saved coupled model.
+
+        Returns
+        -------
+        Coupled
+            The saved model.
+
         Raises
         ------
         ValueError
@@ -163,7 +184,18 @@ class Coupled:
         return cls([load_model(m) for m in data["models"]], data["coupling"])
 
     def to_json(self, path: str | Path | None = None) -> str:
-        """The model as JSON text; also written to `path` when one is given."""
+        """The model as JSON text; also written to `path` when one is given.
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            A file to write the JSON to (atomically).
+
+        Returns
+        -------
+        str
+            The JSON text.
+        """
         text = json.dumps(self.to_dict(), indent=2)
         if path is not None:
             write_text(Path(path), text)
@@ -171,7 +203,23 @@ class Coupled:
 
     @classmethod
     def load(cls, source: str | Path | dict) -> Coupled:
-        """A model saved with :meth:`to_json` (a path, JSON text or the dict)."""
+        """A model saved with :meth:`to_json`.
+
+        Parameters
+        ----------
+        source : str, Path or dict
+            A path to a JSON file, JSON text, or the dict itself.
+
+        Returns
+        -------
+        Coupled
+            The saved model.
+
+        Raises
+        ------
+        ValueError
+            An unreadable source or not a saved coupled model.
+        """
         data = source if isinstance(source, dict) else read_json_source(source, "coupled model")
         return cls.from_dict(data)
 
