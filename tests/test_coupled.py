@@ -189,8 +189,13 @@ def test_round_trip_and_bad_inputs(tmp_path):
         identify_coupled([Backlash], t, np.zeros((100, 2)), np.zeros((100, 2)))
     with pytest.raises(TypeError, match="Coupled"):
         CoupledFeedforward(Backlash())
-    with pytest.raises(ValueError, match="2 finite angles"):
-        CoupledFeedforward(model).step([0.0, math.nan], 1e-3)
+    with pytest.raises(ValueError, match="2 angles"):
+        CoupledFeedforward(model).step([0.0, 0.1, 0.2], 1e-3)
+    ff = CoupledFeedforward(model)
+    held = [ff.step([0.1 * k, -0.05 * k], 1e-3)[0] for k in range(5)][-1]
+    u = ff.step([math.nan, 0.3], 1e-3)  # a non-finite angle holds its joint only
+    assert u[0] == held and math.isfinite(u[1])
+    assert ff.status() & ts.Status.HELD_NONFINITE_INPUT
     with pytest.raises(TypeError, match="Sensor"):
         ts.CoupledPlant([ts.PullPullPlant(r, **RIG) for r in ROUTES], np.zeros((2, 2)), [1, 2])
     assert isinstance(CoupledFeedforward(model).joints[0], InverseFeedforward)

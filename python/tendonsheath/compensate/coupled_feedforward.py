@@ -1,5 +1,6 @@
 """The inverse of a :class:`~tendonsheath.models.Coupled` model, as a feedforward for coupled
-joints (one motor command per joint each cycle, no distal sensor)."""
+joints (one motor command per joint each cycle, no distal sensor; C++ ``CoupledFeedforward``
+of ``tendonsheath/compensators/coupled_feedforward.hpp``)."""
 
 from __future__ import annotations
 
@@ -7,7 +8,8 @@ from typing import Any
 
 import numpy as np
 
-from .._arrays import checked_dt
+from .. import _core as core
+from .._arrays import as_vector, checked_dt
 from .._typing import ArrayLike, FloatArray
 from ..coupled_plant import joint_matrix
 from ..models import Coupled
@@ -25,6 +27,10 @@ class CoupledFeedforward:
     coupling acts through the other joints' angles (their cables' idlers turn with them), so
     it is taken from the desired angles, not from the other joints' commands (which jump by a
     backlash at every reversal that the joints do not make).
+
+    It runs in the real-time C++ core (``step`` is noexcept and allocates nothing; a
+    non-finite desired angle holds its joint's command, and the other joints' coupling terms
+    use its last finite value).
 
     Parameters
     ----------
@@ -50,8 +56,13 @@ class CoupledFeedforward:
             )
         self.model = model
         self.settings = dict(settings)
+        # each joint's inverse, as built from its model and the settings (the engine steps
+        # copies of their engines)
         self.joints = [InverseFeedforward(m, **settings) for m in model.models]
         self._coupling = model.coupling
+        self._engine = core.CoupledFeedforward(
+            [ff._engine for ff in self.joints], self._coupling.ravel().tolist()
+        )
 
     def own_targets(self, y_desired: ArrayLike) -> FloatArray:
         """What each joint's own model must output: y_d - C y_d (shape as y_desired).
@@ -71,8 +82,7 @@ class CoupledFeedforward:
 
     def reset(self) -> None:
         """Every joint's inverse back to its initial state."""
-        for ff in self.joints:
-            ff.reset()
+        self._engine.reset()
 
     def step(self, y_d: ArrayLike, dt: float) -> FloatArray:
         """One control cycle: one command per joint.
@@ -80,7 +90,7 @@ class CoupledFeedforward:
         Parameters
         ----------
         y_d : array_like of float, shape (J,)
-            Desired joint angles.
+            Desired joint angles (a non-finite one holds its joint's command).
         dt : float
             Time since the previous cycle (s), >= 0.
 
@@ -92,17 +102,16 @@ class CoupledFeedforward:
         Raises
         ------
         ValueError
-            y_d of the wrong size or not finite, or a bad dt.
+            y_d of the wrong size, or a bad dt.
         """
         dt = checked_dt(dt)
-        yd = np.asarray(y_d, dtype=np.float64).reshape(-1)
-        if yd.size != len(self.joints) or not np.all(np.isfinite(yd)):
+        yd = np.ascontiguousarray(np.asarray(y_d, dtype=np.float64).reshape(-1))
+        if yd.size != len(self.joints):
             raise ValueError(
-                f"CoupledFeedforward.step: y_d must be {len(self.joints)} finite angles "
-                f"(got {y_d!r})"
+                f"CoupledFeedforward.step: y_d must hold {len(self.joints)} angles, one per "
+                f"joint (got {yd.size})"
             )
-        h = self.own_targets(yd)
-        return np.array([ff.step(float(h[i]), dt) for i, ff in enumerate(self.joints)])
+        return self._engine.step(yd, dt)
 
     def status(self) -> Status:
         """The last cycle's :class:`~tendonsheath.Status`, all joints' flags together.
@@ -112,10 +121,7 @@ class CoupledFeedforward:
         Status
             The union of the joints' flags.
         """
-        s = Status(0)
-        for ff in self.joints:
-            s |= ff.status()
-        return s
+        return Status(self._engine.status())
 
     def command(self, t: ArrayLike, y_desired: ArrayLike) -> FloatArray:
         """Motor commands for whole trajectories, from the initial state (the streaming
@@ -139,9 +145,8 @@ class CoupledFeedforward:
             Desired angles of the wrong shape or not finite, or a bad t.
         """
         yd = joint_matrix(y_desired, len(self.joints), "y_desired", "CoupledFeedforward.command")
-        h = self.own_targets(yd)
-        cols = [np.asarray(ff.command(t, h[:, i])) for i, ff in enumerate(self.joints)]
-        return np.column_stack(cols)
+        ts = np.ascontiguousarray(as_vector(t, "t"))
+        return self._engine.command(ts, yd)
 
     def __repr__(self) -> str:
         return f"CoupledFeedforward({self.model!r})"
