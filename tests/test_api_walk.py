@@ -441,7 +441,21 @@ def _loop_dynamics():
     return LoopDynamics(servo, 40.0, 0.3, 1.0, 1, 1e-3, 40.0, 0.0, 0.0)
 
 
+def _coupled_log():
+    """_log() on two joints (the second reversed in time)."""
+    t, x, y = _log()
+    return t, np.column_stack([x, x[::-1]]), np.column_stack([y, y[::-1]])
+
+
 MINIMAL_CALLS = {
+    "tendonsheath.identify.coupled.identify_coupled": (
+        lambda kw: ts.identify_coupled(ts.models.Backlash, *_coupled_log(), **kw)
+    ),
+    "tendonsheath.compensate.coupled_feedforward.CoupledFeedforward": (
+        lambda kw: ts.compensate.CoupledFeedforward(
+            ts.models.Coupled([_model(), _model()], np.zeros((2, 2))), **kw
+        )
+    ),
     "tendonsheath.identify.core.identify": (
         lambda kw: ts.identify(ts.models.Backlash, *_log(), **kw)
     ),

@@ -19,6 +19,7 @@
 #include "compensators/root_inverse.hpp"
 #include "compensators/model_inverse.hpp"
 #include "compensators/make_model_inverse.hpp"
+#include "compensators/coupled_feedforward.hpp"
 #include "models/angle_laws.hpp"
 #include "models/forward_model.hpp"
 #include "models/plant_model.hpp"

@@ -4,7 +4,8 @@ from importlib.metadata import version as _version
 
 from . import bench, compensate, io, loads, models, physics, presets, protocols
 from .compare import Comparison, compare_models
-from .identify import Fit, IdentifiabilityWarning, Identifier, identify
+from .coupled_plant import CoupledPlant, CoupledSimulation
+from .identify import Fit, IdentifiabilityWarning, Identifier, identify, identify_coupled
 from .models import load_model
 from .motor import Motor
 from .plant import (
@@ -27,6 +28,8 @@ __all__ = [
     "Comparison",
     "Compensator",
     "ContinuumPlant",
+    "CoupledPlant",
+    "CoupledSimulation",
     "Fit",
     "IdentifiabilityWarning",
     "Identifier",
@@ -43,6 +46,7 @@ __all__ = [
     "compare_models",
     "compensate",
     "identify",
+    "identify_coupled",
     "io",
     "load_model",
     "loads",

@@ -92,5 +92,6 @@ void bind_bench(nb::module_& m);
 void bind_curve_angle(nb::module_& m);
 void bind_batch(nb::module_& m);
 void bind_model_inverse(nb::module_& m);
+void bind_coupled(nb::module_& m);
 
 }  // namespace tsbind

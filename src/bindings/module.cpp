@@ -12,4 +12,5 @@ NB_MODULE(_core, m) {
   tsbind::bind_curve_angle(m);
   tsbind::bind_batch(m);
   tsbind::bind_model_inverse(m);
+  tsbind::bind_coupled(m);
 }

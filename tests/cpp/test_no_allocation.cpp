@@ -195,6 +195,22 @@ TEST(NoAllocation, ModelInversesStep) {
   }
 }
 
+// Coupled joints: every joint's inverse (a root-searching one among them) and the coupling.
+TEST(NoAllocation, CoupledFeedforwardStep) {
+  std::vector<ts::ModelInverse> joints;
+  for (int i = 0; i < 3; ++i) joints.push_back(ts::cases::inverse_case(i, ts::InputRange{}));
+  ts::CoupledFeedforward ff(joints, {0.0, 0.0, 0.0, 0.25, 0.0, 0.0, -0.1, 0.2, 0.0});
+  const long n = allocations_in([&] {
+    ff.reset();
+    double u[3];
+    for (int k = 0; k < 1000; ++k) {
+      const double y_d[3] = {input(k), 0.5 * input(k + 50), 0.3 * input(k + 120)};
+      ff.step(y_d, u, 1e-3);
+    }
+  });
+  EXPECT_EQ(n, 0);
+}
+
 // The peek of the root search: copy-assigning a forward model (plays, a plant, a chain with a
 // polynomial) to a scratch one of the same kind and sizes reuses its storage.
 TEST(NoAllocation, ForwardModelCopyAssignment) {

@@ -2,6 +2,7 @@
 
 from .adaptive_controller import AdaptiveController
 from .continuum_feedforward import ContinuumFeedforward
+from .coupled_feedforward import CoupledFeedforward
 from .curve_angle_feedforward import CurveAngleFeedforward, shape_of
 from .encoder_loop import EncoderLoop
 from .inverse_feedforward import InverseFeedforward
@@ -18,6 +19,7 @@ __all__ = [
     "AdaptiveController",
     "CommandLimits",
     "ContinuumFeedforward",
+    "CoupledFeedforward",
     "CurveAngleFeedforward",
     "EncoderLoop",
     "EncoderLoopDesign",

@@ -8,6 +8,7 @@ least-squares refinement. :class:`Identifier` is the same as an object (settings
 """
 
 from .core import identify
+from .coupled import CoupledFit, identify_coupled
 from .cross_validation import CrossValidation, cross_validate
 from .diagnostics import Diagnostics, IdentifiabilityWarning
 from .estimator import Identifier, NotFittedError
@@ -21,6 +22,7 @@ from .loop_dynamics import (
 from .servo import ServoFit, identify_servo
 
 __all__ = [
+    "CoupledFit",
     "CrossValidation",
     "Diagnostics",
     "EmpiricalResponse",
@@ -33,6 +35,7 @@ __all__ = [
     "cross_validate",
     "empirical_response",
     "identify",
+    "identify_coupled",
     "identify_servo",
     "identify_loop_dynamics",
     "metrics",

@@ -6,6 +6,7 @@ from .base import HysteresisModel, load_model
 from .bouc_wen import BoucWen
 from .bouc_wen_backlash import BoucWenBacklash
 from .chain import Chain
+from .coupled import Coupled
 from .curve_angle import CurveAngleModel
 from .generalized_prandtl_ishlinskii import (
     GeneralizedPrandtlIshlinskii,
@@ -24,6 +25,7 @@ __all__ = [
     "BoucWen",
     "BoucWenBacklash",
     "Chain",
+    "Coupled",
     "GeneralizedPrandtlIshlinskii",
     "GeneralizedPrandtlIshlinskiiInverse",
     "CurveAngleModel",

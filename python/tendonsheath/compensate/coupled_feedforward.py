@@ -1,0 +1,152 @@
+"""The inverse of a :class:`~tendonsheath.models.Coupled` model, as a feedforward for coupled
+joints (one motor command per joint each cycle, no distal sensor; C++ ``CoupledFeedforward``
+of ``tendonsheath/compensators/coupled_feedforward.hpp``)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .. import _core as core
+from .._arrays import as_vector, checked_dt
+from .._typing import ArrayLike, FloatArray
+from ..coupled_plant import joint_matrix
+from ..models import Coupled
+from ..status import Status
+from .inverse_feedforward import InverseFeedforward
+
+
+class CoupledFeedforward:
+    """Motor commands that make a :class:`~tendonsheath.models.Coupled` model's joints follow
+    their desired angles.
+
+    Joint i's angle is H_i(x_i) + sum_j C[i, j] y_j: with every joint on its desired angle,
+    joint i's own model must give h_i = y_d,i - sum_j C[i, j] y_d,j, so each cycle
+    x_i = H_i^-1(h_i), each H_i^-1 an :class:`InverseFeedforward` of joint i's model. The
+    coupling acts through the other joints' angles (their cables' idlers turn with them), so
+    it is taken from the desired angles, not from the other joints' commands (which jump by a
+    backlash at every reversal that the joints do not make).
+
+    It runs in the real-time C++ core (``step`` is noexcept and allocates nothing; a
+    non-finite desired angle holds its joint's command, and the other joints' coupling terms
+    use its last finite value).
+
+    Parameters
+    ----------
+    model : Coupled
+        The identified coupled model.
+    **settings
+        :class:`InverseFeedforward` settings (``smoothing``, ``limits``, ``input_range``, ...),
+        the same for every joint.
+
+    Raises
+    ------
+    TypeError
+        A model that is not a Coupled model, or a joint model without an inverse.
+    ValueError
+        A bad setting (as InverseFeedforward says).
+    """
+
+    def __init__(self, model: Coupled, **settings: Any):
+        if not isinstance(model, Coupled):
+            raise TypeError(
+                f"CoupledFeedforward: model must be a tendonsheath.models.Coupled "
+                f"(got {type(model).__name__})"
+            )
+        self.model = model
+        self.settings = dict(settings)
+        # each joint's inverse, as built from its model and the settings (the engine steps
+        # copies of their engines)
+        self.joints = [InverseFeedforward(m, **settings) for m in model.models]
+        self._coupling = model.coupling
+        self._engine = core.CoupledFeedforward(
+            [ff._engine for ff in self.joints], self._coupling.ravel().tolist()
+        )
+
+    def own_targets(self, y_desired: ArrayLike) -> FloatArray:
+        """What each joint's own model must output: y_d - C y_d (shape as y_desired).
+
+        Parameters
+        ----------
+        y_desired : array_like of float, shape (J,) or (n, J)
+            Desired joint angles.
+
+        Returns
+        -------
+        numpy.ndarray of float
+            The joints' own targets h.
+        """
+        yd = np.asarray(y_desired, dtype=np.float64)
+        return yd - yd @ self._coupling.T
+
+    def reset(self) -> None:
+        """Every joint's inverse back to its initial state."""
+        self._engine.reset()
+
+    def step(self, y_d: ArrayLike, dt: float) -> FloatArray:
+        """One control cycle: one command per joint.
+
+        Parameters
+        ----------
+        y_d : array_like of float, shape (J,)
+            Desired joint angles (a non-finite one holds its joint's command).
+        dt : float
+            Time since the previous cycle (s), >= 0.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (J,)
+            The motor commands.
+
+        Raises
+        ------
+        ValueError
+            y_d of the wrong size, or a bad dt.
+        """
+        dt = checked_dt(dt)
+        yd = np.ascontiguousarray(np.asarray(y_d, dtype=np.float64).reshape(-1))
+        if yd.size != len(self.joints):
+            raise ValueError(
+                f"CoupledFeedforward.step: y_d must hold {len(self.joints)} angles, one per "
+                f"joint (got {yd.size})"
+            )
+        return self._engine.step(yd, dt)
+
+    def status(self) -> Status:
+        """The last cycle's :class:`~tendonsheath.Status`, all joints' flags together.
+
+        Returns
+        -------
+        Status
+            The union of the joints' flags.
+        """
+        return Status(self._engine.status())
+
+    def command(self, t: ArrayLike, y_desired: ArrayLike) -> FloatArray:
+        """Motor commands for whole trajectories, from the initial state (the streaming
+        state is not touched).
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,)
+            Sample times (s), increasing.
+        y_desired : array_like of float, shape (n, J)
+            Desired joint angles, one column per joint.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (n, J)
+            The motor commands.
+
+        Raises
+        ------
+        ValueError
+            Desired angles of the wrong shape or not finite, or a bad t.
+        """
+        yd = joint_matrix(y_desired, len(self.joints), "y_desired", "CoupledFeedforward.command")
+        ts = np.ascontiguousarray(as_vector(t, "t"))
+        return self._engine.command(ts, yd)
+
+    def __repr__(self) -> str:
+        return f"CoupledFeedforward({self.model!r})"

@@ -1,0 +1,228 @@
+"""Coupled joints: each joint's own hysteresis model of its own input, plus terms linear in the
+other joints' positions (cables that run over other joints' pulleys, as in a wrist)."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._atomic import write_text
+from .._json_source import read_json_source
+from .._typing import ArrayLike, FloatArray
+from ..coupled_plant import coupling_matrix, joint_matrix
+from .base import HysteresisModel, load_model
+
+FORMAT_NAME = "tendonsheath.coupled_model"
+FORMAT_VERSION = 1
+
+
+class Coupled:
+    """A multi-input model of J coupled joints: y_i = H_i(x_i) + sum_j C[i, j] y_j.
+
+    ``H_i`` is joint i's own single-input model (any :class:`HysteresisModel`) of its own input
+    x_i (its motor angle); ``C`` (zero diagonal) is the coupling: how much joint i turns per
+    radian of joint j. The joints' angles are then y = (I - C)^-1 h with h_i = H_i(x_i).
+
+    Parameters
+    ----------
+    models : sequence of HysteresisModel
+        One model per joint.
+    coupling : array_like, shape (J, J)
+        C[i, j]: joint i's angle per radian of joint j (zero diagonal, I - C invertible).
+
+    Raises
+    ------
+    TypeError
+        A joint model that is not a tendonsheath model.
+    ValueError
+        No models, or a coupling of the wrong shape, not finite, with a non-zero diagonal or
+        with I - C singular.
+    """
+
+    def __init__(self, models: Sequence[HysteresisModel], coupling: ArrayLike):
+        self.models = list(models)
+        if not self.models:
+            raise ValueError("Coupled: give at least one joint model")
+        for i, m in enumerate(self.models):
+            if not isinstance(m, HysteresisModel):
+                raise TypeError(
+                    f"Coupled: joint {i}'s model must be a tendonsheath model "
+                    f"(got {type(m).__name__})"
+                )
+        self._coupling = coupling_matrix(coupling, len(self.models), "Coupled")
+        self._solve = np.linalg.inv(np.eye(self.joints) - self._coupling)
+
+    @property
+    def joints(self) -> int:
+        """The number of joints J."""
+        return len(self.models)
+
+    @property
+    def coupling(self) -> FloatArray:
+        """The coupling matrix C (a copy)."""
+        return self._coupling.copy()
+
+    def own(self, t: ArrayLike | None, x: ArrayLike) -> FloatArray:
+        """Each joint's own model on its own input, h_i = H_i(x_i) (no coupling).
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s); None for rate-independent joint models.
+        x : array_like of float, shape (n, J)
+            One column of inputs per joint.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (n, J)
+            The joints' own outputs.
+        """
+        xs = joint_matrix(x, self.joints, "x", "Coupled")
+        cols = [np.asarray(m.simulate(t, xs[:, i])) for i, m in enumerate(self.models)]
+        return np.column_stack(cols)
+
+    def simulate(self, t: ArrayLike | None, x: ArrayLike) -> FloatArray:
+        """The joints' angles from their inputs alone: y = (I - C)^-1 h.
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s); None for rate-independent joint models.
+        x : array_like of float, shape (n, J)
+            One column of inputs per joint.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (n, J)
+            The joints' angles.
+        """
+        return self.own(t, x) @ self._solve.T
+
+    def predict(self, t: ArrayLike | None, x: ArrayLike, y: ArrayLike) -> FloatArray:
+        """Each joint's angle from its own input and the other joints' measured angles,
+        H_i(x_i) + sum_j C[i, j] y_j (what :func:`~tendonsheath.identify.identify_coupled`
+        fits).
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s).
+        x : array_like of float, shape (n, J)
+            The joints' inputs.
+        y : array_like of float, shape (n, J)
+            The joints' measured angles.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (n, J)
+            The predicted angles.
+        """
+        ys = joint_matrix(y, self.joints, "y", "Coupled.predict")
+        return self.own(t, x) + ys @ self._coupling.T
+
+    def with_coupling(self, coupling: ArrayLike) -> Coupled:
+        """The same joint models with another coupling matrix.
+
+        Parameters
+        ----------
+        coupling : array_like, shape (J, J)
+            The new C (zero diagonal).
+
+        Returns
+        -------
+        Coupled
+            A new model; this one is unchanged.
+        """
+        return Coupled(self.models, coupling)
+
+    # -- saving ----------------------------------------------------------------------
+    def to_dict(self) -> dict[str, Any]:
+        """The model as a JSON-ready dict (each joint's model saved whole).
+
+        Returns
+        -------
+        dict
+            What :meth:`from_dict` reads back.
+        """
+        return {
+            "format": FORMAT_NAME,
+            "version": FORMAT_VERSION,
+            "models": [m.to_dict() for m in self.models],
+            "coupling": self._coupling.tolist(),
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Coupled:
+        """The model saved by :meth:`to_dict`.
+
+        Parameters
+        ----------
+        data : dict
+            A saved coupled model.
+
+        Returns
+        -------
+        Coupled
+            The saved model.
+
+        Raises
+        ------
+        ValueError
+            Not a saved coupled model.
+        """
+        if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
+            raise ValueError(f"Coupled.from_dict: not a {FORMAT_NAME!r} file")
+        if data.get("version") != FORMAT_VERSION:
+            raise ValueError(
+                f"Coupled.from_dict: version {data.get('version')!r} is not supported "
+                f"(expected {FORMAT_VERSION})"
+            )
+        return cls([load_model(m) for m in data["models"]], data["coupling"])
+
+    def to_json(self, path: str | Path | None = None) -> str:
+        """The model as JSON text; also written to `path` when one is given.
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            A file to write the JSON to (atomically).
+
+        Returns
+        -------
+        str
+            The JSON text.
+        """
+        text = json.dumps(self.to_dict(), indent=2)
+        if path is not None:
+            write_text(Path(path), text)
+        return text
+
+    @classmethod
+    def load(cls, source: str | Path | dict) -> Coupled:
+        """A model saved with :meth:`to_json`.
+
+        Parameters
+        ----------
+        source : str, Path or dict
+            A path to a JSON file, JSON text, or the dict itself.
+
+        Returns
+        -------
+        Coupled
+            The saved model.
+
+        Raises
+        ------
+        ValueError
+            An unreadable source or not a saved coupled model.
+        """
+        data = source if isinstance(source, dict) else read_json_source(source, "coupled model")
+        return cls.from_dict(data)
+
+    def __repr__(self) -> str:
+        names = ", ".join(type(m).__name__ for m in self.models)
+        return f"Coupled([{names}], coupling={self._coupling.tolist()})"
