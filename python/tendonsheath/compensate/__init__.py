@@ -8,6 +8,7 @@ from .inverse_feedforward import InverseFeedforward
 from .iterative_learning import IterativeLearning, LearningDesign, TrialRecord
 from .learned_feedforward import LearnedFeedforward
 from .limits import CommandLimits
+from .load_compensated import LoadCompensated
 from .persistence import load_compensator
 from .tip_loop import TipLoop
 from .tuning import EncoderLoopDesign, tune_encoder_loop
@@ -25,6 +26,7 @@ __all__ = [
     "IterativeLearning",
     "LearnedFeedforward",
     "LearningDesign",
+    "LoadCompensated",
     "TipLoop",
     "TrialRecord",
     "load",
