@@ -31,12 +31,18 @@ _SEARCHED = ("slack", "slack_load", "friction")
 
 
 def _base_vector(base: HysteresisModel) -> tuple[list[str], np.ndarray]:
-    """The base's scalar float parameters (names, values): what the refinement moves."""
+    """The base's scalar float parameters that it accepts changed (names, values): what the
+    refinement moves (an integer exponent or a discrete setting stays as identified)."""
     names, values = [], []
     for k, v in base.params.items():
-        if isinstance(v, float) and np.isfinite(v):
-            names.append(k)
-            values.append(v)
+        if not isinstance(v, float) or not np.isfinite(v):
+            continue
+        try:
+            base.with_params(**{k: v * (1.0 + 1e-6) + 1e-9})
+        except (ValueError, TypeError):
+            continue
+        names.append(k)
+        values.append(v)
     return names, np.asarray(values, dtype=float)
 
 
@@ -102,26 +108,24 @@ class _Problem:
         return Loaded(base, gain=self.gain(u), **terms)
 
 
-def _starts(problem: _Problem) -> list[np.ndarray]:
-    """Starting points: the base as identified alone, the play closed (slack and friction
-    small) and slack_load at 0.3, 1 and 3 times the median |load|."""
+def _starts(problem: _Problem, keep: int = 3) -> list[np.ndarray]:
+    """The ``keep`` best of a grid of starting points: the base as identified alone, the
+    play's slack at 1 % and 4 % of the input span, slack_load at 0.3, 1 and 3 times the median
+    |load| and friction 0 or 2 % of the span per median |load|."""
     scale = float(np.median(np.abs(problem.load_all))) or 1.0
     x_span = float(np.ptp(np.concatenate([r.x for r in problem.recs]))) or 1.0
-    starts = []
-    for factor in (0.3, 1.0, 3.0):
-        p = list(problem.base_values)
-        for k in problem.free:
-            p.append(
-                {
-                    "slack": 0.02 * x_span,
-                    "slack_load": np.log(factor * scale),
-                    "friction": 0.01 * x_span / scale,
-                }[k]
-            )
-        starts.append(np.asarray(p, dtype=float))
-        if "slack_load" not in problem.free:
-            break
-    return starts
+    grid = {
+        "slack": (0.01 * x_span, 0.04 * x_span),
+        "slack_load": tuple(np.log(f * scale) for f in (0.3, 1.0, 3.0)),
+        "friction": (0.0, 0.02 * x_span / scale),
+    }
+    combos: list[list[float]] = [[]]
+    for k in problem.free:
+        combos = [c + [v] for c in combos for v in grid[k]]
+    starts = [np.asarray([*problem.base_values, *c], dtype=float) for c in combos]
+    costs = [float(np.sum(problem.residual(p) ** 2)) for p in starts]
+    order = np.argsort(costs)[:keep]
+    return [starts[i] for i in order]
 
 
 def identify_loaded(
@@ -132,7 +136,7 @@ def identify_loaded(
     warmup: int = 0,
     fixed: dict[str, float] | None = None,
     base_options: dict[str, Any] | None = None,
-    max_nfev: int = 60,
+    max_nfev: int = 40,
 ) -> Fit:
     """Identify ``template``'s base and load terms from recordings with a measured load.
 
@@ -150,8 +154,8 @@ def identify_loaded(
         Load terms held at given values (gain, slack, slack_load, friction).
     base_options : dict, optional
         Options of the base's own identification (seed, maxiter, ...).
-    max_nfev : int, default 60
-        Residual evaluations of every least-squares start (times the parameters + 1).
+    max_nfev : int, default 40
+        Least-squares iterations of every start (each also estimates the Jacobian).
 
     Returns
     -------
@@ -189,8 +193,8 @@ def identify_loaded(
         base0 = identify(base_cls, recordings=[(r.t, r.x, r.y) for r in recs], **options).model
     problem = _Problem(base0, recs, arrays, warmup, fixed)
     best = None
-    for p0 in _starts(problem):
-        res = least_squares(problem.residual, p0, max_nfev=max_nfev * (p0.size + 1), x_scale="jac")
+    for p0 in _starts(problem, keep=2):
+        res = least_squares(problem.residual, p0, max_nfev=max_nfev, x_scale="jac")
         if best is None or res.cost < best.cost:
             best = res
     assert best is not None
