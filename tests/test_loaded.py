@@ -180,3 +180,33 @@ def test_load_compensated_commands_make_the_model_follow(seed):
     np.testing.assert_allclose(streamed, u, atol=1e-9)
     with pytest.raises(TypeError, match="needs a Loaded model"):
         ts.compensate.LoadCompensated(ts.models.Backlash())
+
+
+def test_cli_identify_and_predict_with_a_load_column(tmp_path):
+    """`identify --load` fits Loaded(MODEL) and saves the load column; `predict` reads it
+    back and its rmse is the Loaded model's own (a wrong load column would change it)."""
+    from typer.testing import CliRunner
+
+    from tendonsheath.cli import app
+
+    truth, logs = _truth_logs(1)
+    paths = []
+    for i, g in enumerate(logs):
+        cols = {"t": g.t, "u": g.x, "y": g.y, "tau": g.load, "zero": np.zeros_like(g.t)}
+        paths.append(str(ts.io.write_csv(tmp_path / f"r{i}.csv", cols)))
+    runner = CliRunner()
+    model = tmp_path / "m.json"
+    args = ["identify", *paths, "-m", "Backlash", "--input", "u", "--output", "y", "--time", "t"]
+    result = runner.invoke(app, [*args, "--load", "tau", "-o", str(model), "--quiet"])
+    assert result.exit_code == 0, result.output
+    fitted = ts.load_model(model)
+    assert isinstance(fitted, ts.models.Loaded)
+    out = tmp_path / "p.csv"
+    result = runner.invoke(app, ["predict", str(model), paths[2], "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    pred = ts.io.read_log(out, input="u", output="predicted", load="tau")
+    expected = fitted.simulate(logs[2].t, logs[2].x, load=logs[2].load)
+    np.testing.assert_allclose(pred.y, expected, atol=1e-8)
+    zero = runner.invoke(app, ["predict", str(model), paths[2], "--load", "zero", "-o", str(out)])
+    assert zero.exit_code == 0
+    assert not np.allclose(ts.io.read_log(out, input="u", output="predicted").y, expected)

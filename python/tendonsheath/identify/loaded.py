@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 from scipy.optimize import least_squares
 
-from ..models import HysteresisModel
+from ..models import Chain, HysteresisModel
 from ..models.loaded import Loaded, play, play_radius
 from .fit import Fit, fit_quality
 
@@ -128,6 +128,22 @@ def _starts(problem: _Problem, keep: int = 3) -> list[np.ndarray]:
     return [starts[i] for i in order]
 
 
+def _linearised_errors(problem: _Problem, best, model: Loaded) -> dict[str, float]:
+    """Standard errors from the refinement's Jacobian (the gain's given the others)."""
+    jac = np.asarray(best.jac, dtype=float)
+    dof = max(problem.y.size - jac.shape[1] - 1, 1)
+    sigma2 = 2.0 * float(best.cost) / dof
+    cov = sigma2 * np.linalg.pinv(jac.T @ jac)
+    se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    out = {f"base.{k}": float(v) for k, v in zip(problem.base_names, se, strict=False)}
+    for k, v in zip(problem.free, se[len(problem.base_names) :], strict=True):
+        out[k] = float(v * model.terms[k]) if k == "slack_load" else float(v)
+    if "gain" not in problem.fixed:
+        den = float(problem.load_all @ problem.load_all)
+        out["gain"] = float(np.sqrt(sigma2 / den)) if den > 0 else float("nan")
+    return out
+
+
 def identify_loaded(
     template: Loaded,
     recordings: Sequence,
@@ -188,9 +204,10 @@ def identify_loaded(
         arrays.append(arr)
     options = {"progress": False, **(base_options or {})}
     base_cls = type(template.base)
+    spec = template.base if isinstance(template.base, Chain) else base_cls  # a Chain: itself
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        base0 = identify(base_cls, recordings=[(r.t, r.x, r.y) for r in recs], **options).model
+        base0 = identify(spec, recordings=[(r.t, r.x, r.y) for r in recs], **options).model
     problem = _Problem(base0, recs, arrays, warmup, fixed)
     best = None
     for p0 in _starts(problem, keep=2):
@@ -209,12 +226,13 @@ def identify_loaded(
     names = [f"base.{k}" for k in problem.base_names] + problem.free
     if "gain" not in fixed:
         names.append("gain")
+    ses = _linearised_errors(problem, best, model)
     return Fit.from_quality(
         model,
         fit_quality(recs, predictions, warmup),
         identified=names,
         fixed=fixed,
-        standard_errors={},
+        standard_errors=ses,
         evaluations=int(best.nfev),
         seconds=time.perf_counter() - start,
         generations=0,
