@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import _core as core
 from .._args import number
 from .._arrays import as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
@@ -62,17 +63,18 @@ class LoadCompensated:
         if not (math.isfinite(self.switch) and self.switch > 0):
             raise ValueError(f"LoadCompensated: switch must be > 0 (got {self.switch})")
         self.inverse = InverseFeedforward(model.base, **inverse_options)
+        terms = core.LoadTerms()
+        for key, value in model.terms.items():
+            setattr(terms, key, value)
+        terms.switch_travel = self.switch
+        self._play = core.LoadPlayInverse(terms)  # the real-time core (C++)
         self.reset()
 
     def reset(self) -> None:
         """Forget the streaming state (the base inverse's and the play's)."""
         self.inverse.reset()
-        self._z: float | None = None
-        self._d = 0.0
+        self._play.reset()
         self._load = 0.0
-
-    def _unplay(self, z: float, load: float) -> float:
-        return z + float(self.model.radius(load)) * self._direction(z)
 
     def step(self, y_d: float, dt: float, load: float = 0.0) -> float:
         """One control cycle.
@@ -97,7 +99,7 @@ class LoadCompensated:
             load = self._load
         self._load = load
         z = self.inverse.step(float(y_d) - self.model.terms["gain"] * load, dt)
-        return self._unplay(float(z), load)
+        return float(self._play.step(float(z), load))
 
     def command(self, t: ArrayLike, y_desired: ArrayLike, load: ArrayLike) -> FloatArray:
         """Commands for a whole trajectory under its measured load, from the initial state.
@@ -125,20 +127,9 @@ class LoadCompensated:
         loads = np.broadcast_to(np.asarray(load, dtype=float), ys.shape)
         if not np.all(np.isfinite(loads)):
             raise ValueError("LoadCompensated.command: the load must be finite")
-        self.reset()
+        loads = np.ascontiguousarray(loads)
         z = np.asarray(self.inverse.command(ts, ys - self.model.terms["gain"] * loads))
-        r = self.model.radius(loads)
-        out = np.empty_like(z)
-        for k in range(z.size):
-            out[k] = z[k] + r[k] * self._direction(float(z[k]))
-        self.reset()
-        return out
-
-    def _direction(self, z: float) -> float:
-        if self._z is not None:
-            self._d = min(1.0, max(-1.0, self._d + (z - self._z) / self.switch))
-        self._z = z
-        return self._d
+        return np.asarray(self._play.command(np.ascontiguousarray(z, dtype=float), loads))
 
     def __repr__(self) -> str:
         return f"LoadCompensated({self.model!r}, switch={self.switch:g})"

@@ -31,19 +31,38 @@ _SEARCHED = ("slack", "slack_load", "friction")
 
 
 def _base_vector(base: HysteresisModel) -> tuple[list[str], np.ndarray]:
-    """The base's scalar float parameters that it accepts changed (names, values): what the
-    refinement moves (an integer exponent or a discrete setting stays as identified)."""
+    """The base's float parameters that it accepts changed (names, values; a list parameter
+    item by item as ``name[i]``): what the refinement moves (an integer exponent or a
+    discrete setting stays as identified)."""
     names, values = [], []
     for k, v in base.params.items():
-        if not isinstance(v, float) or not np.isfinite(v):
-            continue
-        try:
-            base.with_params(**{k: v * (1.0 + 1e-6) + 1e-9})
-        except (ValueError, TypeError):
-            continue
-        names.append(k)
-        values.append(v)
+        items = list(enumerate(v)) if isinstance(v, list) else [(None, v)]
+        for i, vi in items:
+            if not isinstance(vi, float) or not np.isfinite(vi):
+                continue
+            name = k if i is None else f"{k}[{i}]"
+            try:
+                _with_values(base, [name], [vi * (1.0 + 1e-6) + 1e-9])
+            except (ValueError, TypeError):
+                continue
+            names.append(name)
+            values.append(vi)
     return names, np.asarray(values, dtype=float)
+
+
+def _with_values(base: HysteresisModel, names: list[str], values) -> HysteresisModel:
+    """``base`` with the named parameters (``name`` or ``name[i]``) set to ``values``."""
+    if not names:
+        return base
+    params = base.params
+    changes: dict = {}
+    for name, value in zip(names, values, strict=True):
+        if name.endswith("]"):
+            key, index = name[:-1].split("[")
+            changes.setdefault(key, list(params[key]))[int(index)] = float(value)
+        else:
+            changes[name] = float(value)
+    return base.with_params(**changes)
 
 
 class _Problem:
@@ -73,7 +92,7 @@ class _Problem:
         """(the base's output over the plays, the play terms), or None for an invalid base."""
         terms = self.terms(p)
         try:
-            base = self.base.with_params(**dict(zip(self.base_names, p, strict=False)))
+            base = _with_values(self.base, self.base_names, p[: len(self.base_names)])
         except (ValueError, TypeError):
             return None, terms
         parts = []
@@ -104,7 +123,7 @@ class _Problem:
         u, terms = self.base_output(p)
         if u is None:
             raise ValueError("identification failed: the base model rejects the best point")
-        base = self.base.with_params(**dict(zip(self.base_names, p, strict=False)))
+        base = _with_values(self.base, self.base_names, p[: len(self.base_names)])
         return Loaded(base, gain=self.gain(u), **terms)
 
 
@@ -135,7 +154,14 @@ def _linearised_errors(problem: _Problem, best, model: Loaded) -> dict[str, floa
     sigma2 = 2.0 * float(best.cost) / dof
     cov = sigma2 * np.linalg.pinv(jac.T @ jac)
     se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
-    out = {f"base.{k}": float(v) for k, v in zip(problem.base_names, se, strict=False)}
+    out: dict = {}
+    for k, v in zip(problem.base_names, se, strict=False):
+        if k.endswith("]"):  # a list parameter's item: the errors as a list, NaN where held
+            key, index = k[:-1].split("[")
+            size = len(problem.base.params[key])
+            out.setdefault(f"base.{key}", [float("nan")] * size)[int(index)] = float(v)
+        else:
+            out[f"base.{k}"] = float(v)
     for k, v in zip(problem.free, se[len(problem.base_names) :], strict=True):
         out[k] = float(v * model.terms[k]) if k == "slack_load" else float(v)
     if "gain" not in problem.fixed:
@@ -223,7 +249,7 @@ def identify_loaded(
         np.asarray(model.simulate(r.t, r.x, load=a), dtype=float)
         for r, a in zip(recs, arrays, strict=True)
     ]
-    names = [f"base.{k}" for k in problem.base_names] + problem.free
+    names = sorted({f"base.{k.split('[')[0]}" for k in problem.base_names}) + problem.free
     if "gain" not in fixed:
         names.append("gain")
     ses = _linearised_errors(problem, best, model)
