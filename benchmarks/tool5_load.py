@@ -45,7 +45,8 @@ spindle: x - mean(x + spindle) + the training runs' mean of it; reads the spindl
 jaw) and ``spindle`` (the tool's input spindle, negated: the input after the gearbox).
 
 Item 5 (rate and load together): the chosen model's per-run ratio to the affine map, as a
-table of frequency by load, for the main input.
+table of frequency by load, for the main input; and another split, trained at one rate only
+(0.1 Hz at 10, 50 and 100 %), its median ratio per frequency.
 
 Writes benchmarks/results/tool5_load.json; without the data it says so and keeps the old one.
 """
@@ -170,10 +171,11 @@ class Identified:
         return np.asarray(InverseFeedforward(self.model, smoothing=smoothing).command(t, y_d))
 
 
-def fit_candidates(logs, xs) -> tuple[dict, dict]:
-    """The candidates fitted on the training runs, and each fit's seconds."""
-    tr = [logs[k] for k in TRAIN]
-    txs = [xs[k] for k in TRAIN]
+def fit_candidates(logs, xs, train=TRAIN, only=None) -> tuple[dict, dict]:
+    """The candidates (``only``: those named) fitted on the training runs, and each fit's
+    seconds."""
+    tr = [logs[k] for k in train]
+    txs = [xs[k] for k in train]
     recs = [(lg.t, x, lg.y) for lg, x in zip(tr, txs, strict=True)]
     loads = [lg.load for lg in tr]
     out, seconds = {}, {}
@@ -190,6 +192,8 @@ def fit_candidates(logs, xs) -> tuple[dict, dict]:
         "Loaded(Backlash)": (ts.models.Loaded(ts.models.Backlash), {"load": loads}),
     }
     for name, (cls, kw) in jobs.items():
+        if only is not None and name not in only:
+            continue
         start = time.perf_counter()
         fit = ts.identify(cls, recordings=recs, seed=0, progress=False, **kw)
         seconds[name] = time.perf_counter() - start
@@ -207,11 +211,11 @@ def rmse(e: np.ndarray, zero_free: bool) -> float:
     return float(np.sqrt(np.mean(e * e)))
 
 
-def score(logs, xs, models) -> dict:
+def score(logs, xs, models, train=TRAIN) -> dict:
     """Per held-out run and model: forward and inverse rmse, abs and zero-free."""
     rows = {}
     for key, log in logs.items():
-        if key in TRAIN:
+        if key in train:
             continue
         x, load = xs[key], log.load
         desired = desired_from_record(log.t, log.y)
@@ -279,6 +283,35 @@ def print_summary(kind: str, summ: dict) -> None:
         print(f"{name:26s}{cells}")
 
 
+ONE_RATE = ("f0.10Hz_load010", "f0.10Hz_load050", "f0.10Hz_load100")
+
+
+def one_rate_split(logs, xs) -> dict:
+    """Item 5, another split: trained at one rate (0.1 Hz, loads 10, 50, 100 %), the chosen
+    model's median ratio to the affine map (fitted on the same runs) per frequency."""
+    models, _ = fit_candidates(logs, xs, train=ONE_RATE, only=(CHOSEN,))
+    rows = score(logs, xs, {k: models[k] for k in ("affine", CHOSEN)}, train=ONE_RATE)
+    out = {}
+    for fig in ("forward_zero_free", "forward_abs", "inverse_zero_free", "inverse_abs"):
+        out[fig] = {
+            f"{f:.1f}": float(
+                np.median(
+                    [
+                        r[CHOSEN][fig] / r["affine"][fig]
+                        for k, r in rows.items()
+                        if k.startswith(f"f{f:.2f}Hz")
+                    ]
+                )
+            )
+            for f in FREQS
+        }
+    print(f"\nitem 5: trained at 0.1 Hz only ({', '.join(ONE_RATE)}): median {CHOSEN} / affine")
+    print("  figure              " + "".join(f"{f:>7.1f}" for f in FREQS) + "  Hz")
+    for fig, by_f in out.items():
+        print(f"  {fig:20s}" + "".join(f"{v:7.2f}" for v in by_f.values()))
+    return {"train": list(ONE_RATE), "median_ratio_by_frequency": out}
+
+
 def print_grid(table, title: str) -> None:
     print(f"\n{title}")
     print("  Hz \\ load %" + "".join(f"{p:>6d}" for p in LOADS))
@@ -322,6 +355,7 @@ def main() -> int:
             "grid_inverse_zero_free": grid(rows, CHOSEN, "inverse_zero_free"),
         }
         if kind == MAIN_INPUT:
+            results[kind]["one_rate"] = one_rate_split(logs, xs)
             for fig in ("forward_zero_free", "forward_abs", "inverse_zero_free"):
                 print_grid(
                     results[kind][f"grid_{fig}"],
