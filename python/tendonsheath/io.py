@@ -534,8 +534,8 @@ def read_log(
     ``load`` names a measured signal besides the input (a load: the jaw torque, a tendon
     tension, the motor's current), read into ``Log.load`` and checked like the input;
     ``extra={name: column}`` reads other signals into ``Log.extra[name]`` (in a ROS bag,
-    "/topic:field" signals interpolated at the samples like the input). Without ``extra``,
-    a file's other clean numeric columns are in ``Log.extra`` under their own names.
+    "/topic:field" signals interpolated at the samples like the input). A file's other clean
+    numeric columns are in ``Log.extra`` under their own names as well (not a bag's).
 
     ``curve_angle`` is a column name or a number (a constant curve angle, in the unit of the
     data: rad, or degrees with ``degrees=True``). ``output`` may be None (prediction only).

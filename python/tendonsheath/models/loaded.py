@@ -279,7 +279,7 @@ class Loaded(HysteresisModel):
         self._z = None
         self._load = 0.0
 
-    def step(self, x: float, dt: float = 0.0, load: float = 0.0) -> float:  # type: ignore[override]
+    def step(self, x: float, dt: float = 0.0, load: float = 0.0) -> float:
         """Advance one sample (streaming) under the measured load.
 
         Parameters
