@@ -336,11 +336,34 @@ def _identify_loaded(template, t, x, y, recordings, load, options: dict) -> Fit:
     )
 
 
+def _run_loaded(template, recs: list[Recording], opt: Options, search: Search) -> Fit:
+    from .loaded import identify_loaded
+
+    missing = [i for i, r in enumerate(recs) if r.load is None]
+    if missing:
+        raise ValueError(
+            f"recording(s) {missing} have no load: read them with read_log(..., load=)"
+        )
+    base = {"seed": search.seed, "maxiter": search.maxiter, "popsize": search.popsize}
+    return identify_loaded(
+        template,
+        recs,
+        [r.load for r in recs],
+        warmup=int(opt.warmup),
+        fixed=opt.fixed,
+        base_options={**base, "workers": search.workers},
+    )
+
+
 def run(model_class, recs: list[Recording], options: Options, search: Search) -> Fit:
     """One identification on checked recordings: normalised data, a chain, the grey-box
     plant or one model class (see :mod:`tendonsheath.identify.generic`)."""
     if isinstance(model_class, str) and model_class in _REGISTRY:
         model_class = _REGISTRY[model_class]
+    from ..models import Loaded
+
+    if isinstance(model_class, Loaded):  # recordings that carry their load (Logs read with it)
+        return _stamp(search.budget, _run_loaded(model_class, recs, options, search))
     options = with_new_names(model_class, options)
     return _stamp(search.budget, _dispatch(model_class, recs, options, search))
 

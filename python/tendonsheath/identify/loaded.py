@@ -76,8 +76,9 @@ class _Problem:
         self.fixed = fixed
         self.base_names, self.base_values = _base_vector(base)
         self.free = [k for k in _SEARCHED if k not in fixed]
-        self.y = np.concatenate([r.y[self.warmup :] for r in recs])
-        self.load_all = np.concatenate([lo[self.warmup :] for lo in loads])
+        self.firsts = [self.warmup + r.skip for r in recs]  # the first sample counted
+        self.y = np.concatenate([r.y[k:] for r, k in zip(recs, self.firsts, strict=True)])
+        self.load_all = np.concatenate([lo[k:] for lo, k in zip(loads, self.firsts, strict=True)])
 
     def terms(self, p: np.ndarray) -> dict[str, float]:
         out = dict(self.fixed)
@@ -96,13 +97,13 @@ class _Problem:
         except (ValueError, TypeError):
             return None, terms
         parts = []
-        for r, lo in zip(self.recs, self.loads, strict=True):
+        for r, lo, k in zip(self.recs, self.loads, self.firsts, strict=True):
             radius = play_radius(lo, terms["slack"], terms["slack_load"], terms["friction"])
             try:
                 out = np.asarray(base.simulate(r.t, play(r.x, radius)), dtype=float)
             except ValueError:
                 return None, terms
-            parts.append(out[self.warmup :])
+            parts.append(out[k:])
         u = np.concatenate(parts)
         return (u if np.all(np.isfinite(u)) else None), terms
 
@@ -217,9 +218,7 @@ def identify_loaded(
     unknown = set(fixed) - {"gain", *_SEARCHED}
     if unknown:
         raise ValueError(f"Loaded: unknown fixed term(s) {sorted(unknown)}")
-    recs = make_recordings(
-        recordings=[(r.t, r.x, r.y) if hasattr(r, "x") else r for r in recordings]
-    )
+    recs = make_recordings(recordings=list(recordings))
     if len(loads) != len(recs):
         raise ValueError(f"{len(loads)} loads for {len(recs)} recordings: give one per recording")
     arrays = []
