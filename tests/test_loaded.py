@@ -210,6 +210,10 @@ def test_cli_identify_and_predict_with_a_load_column(tmp_path):
     zero = runner.invoke(app, ["predict", str(model), paths[2], "--load", "zero", "-o", str(out)])
     assert zero.exit_code == 0
     assert not np.allclose(ts.io.read_log(out, input="u", output="predicted").y, expected)
+    cols = ["--input", "u", "--output", "y", "--time", "t", "--load", "tau"]
+    compared = runner.invoke(app, ["compare", *paths, *cols, "--models", "backlash+load", "-q"])
+    assert compared.exit_code == 0, compared.output
+    assert "winner: Loaded(Backlash)" in compared.output
 
 
 def test_compare_models_takes_logs_with_their_load():

@@ -798,7 +798,13 @@ def compare(
         None,
         "--models",
         help="Comma-separated candidates, e.g. backlash,bwb,pi,gpi,bwb+poly3 "
-        "(default: all of these, and CurveAngleModel with a curve angle).",
+        "(default: all of these, and CurveAngleModel with a curve angle); NAME+load (e.g. "
+        "backlash+load) takes the --load column.",
+    ),
+    load_col: str | None = typer.Option(
+        None,
+        "--load",
+        help="Measured load column (in a ROS bag /topic:field), for the NAME+load candidates.",
     ),
     resample: float | None = typer.Option(
         None, "--resample", help="Resample every file to this rate (Hz) first."
@@ -823,6 +829,8 @@ def compare(
     if report is not None:
         _checked(check_output_folder, report, "--report")
     columns = dict(time=time_col, input=input_col, output=output_col, curve_angle=curve_angle)
+    if load_col is not None:
+        columns["load"] = load_col
     logs = _checked(_read_logs, data, columns, resample=resample)
     vlogs = _checked(_read_logs, validate, columns, resample=resample) if validate else None
     _checked(_check_comparable, logs + (vlogs or []), output_col)
