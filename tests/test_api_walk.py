@@ -485,6 +485,15 @@ MINIMAL_CALLS = {
     "tendonsheath.models.scaled.Scaled.simulate": (
         lambda kw: ts.models.Scaled(_model()).simulate(np.arange(3.0), np.zeros(3), **kw)
     ),
+    "tendonsheath.models.loaded.Loaded.with_params": (
+        lambda kw: ts.models.Loaded(_model()).with_params(**kw)
+    ),
+    "tendonsheath.models.loaded.Loaded.simulate": (
+        lambda kw: ts.models.Loaded(_model()).simulate(np.arange(3.0), np.zeros(3), **kw)
+    ),
+    "tendonsheath.compensate.load_compensated.LoadCompensated": (
+        lambda kw: ts.compensate.LoadCompensated(ts.models.Loaded(_model()), **kw)
+    ),
     "tendonsheath.presets.realistic_motor": lambda kw: ts.presets.realistic_motor(**kw),
     "tendonsheath.presets.realistic_plant": lambda kw: ts.presets.realistic_plant(**kw),
     "tendonsheath.compensate.adaptive_controller.AdaptiveController": (

@@ -29,6 +29,7 @@
 #include "compensators/encoder_loop.hpp"
 #include "compensators/learned_feedforward.hpp"
 #include "compensators/tip_loop.hpp"
+#include "compensators/load_compensated.hpp"
 #include "models/polynomial.hpp"
 #include "models/generalized_prandtl_ishlinskii.hpp"
 #include "route.hpp"

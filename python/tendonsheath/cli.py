@@ -311,6 +311,12 @@ def identify(
     curve_angle: str | None = typer.Option(
         None, "--curve-angle", help="Curve-angle column, or a number (rad)."
     ),
+    load_col: str | None = typer.Option(
+        None,
+        "--load",
+        help="Measured load column (e.g. a jaw torque; in a ROS bag /topic:field): the model "
+        "becomes Loaded(MODEL), its load terms identified with it.",
+    ),
     validate: Path | None = typer.Option(None, "--validate", help="Data file to validate on."),
     out: Path = typer.Option(Path("model.json"), "--out", "-o", help="Where to save the model."),
     warmup: int = typer.Option(0, "--warmup", help="Samples per recording not fitted."),
@@ -342,6 +348,9 @@ def identify(
     _check_identify_options(out, report, maxiter, warmup)
     candidate = _checked(_model_spec, model)
     columns = dict(time=time_col, input=input_col, output=output_col, curve_angle=curve_angle)
+    if load_col is not None:
+        candidate = _checked(_loaded_spec, candidate)
+        columns["load"] = load_col
     search = {
         "warmup": warmup,
         "seed": seed,
@@ -386,7 +395,11 @@ def _fit_logs(candidate, data: list[Path], validate: Path | None, columns: dict,
         warnings.simplefilter("ignore", IdentifiabilityWarning)
         fit = run_identify(candidate, recordings=logs, **search)
     val = None
-    if vlog is not None:
+    if vlog is not None and vlog.load is not None:
+        from .identify.fit import metrics
+
+        val = metrics(vlog.y, fit.model.simulate(vlog.t, vlog.x, load=vlog.load))
+    elif vlog is not None:
         val = fit.validate(vlog.t, vlog.x, vlog.y, vlog.curve_angle)
     _check_finite("the fit", {"rmse": fit.rmse, "nrmse": fit.nrmse})
     if val is not None:
@@ -404,6 +417,18 @@ def _check_identify_options(out: Path, report: Path | None, maxiter: int, warmup
     _checked(
         check_search_options, maxiter=maxiter, popsize=15, tol=0.01, workers=None, warmup=warmup
     )
+
+
+def _loaded_spec(candidate):
+    """Loaded(candidate): a class name, a class or a Chain as the base."""
+    from .models import Loaded
+    from .models.base import _REGISTRY
+
+    if isinstance(candidate, str):
+        candidate = _REGISTRY[candidate]
+    if isinstance(candidate, Loaded) or candidate is Loaded:
+        raise ValueError("--load makes the model Loaded(MODEL): name the base model alone")
+    return Loaded(candidate)
 
 
 def _model_spec(name: str):
@@ -469,12 +494,15 @@ def predict(
     curve_angle: str | None = typer.Option(
         None, "--curve-angle", help="Curve-angle column or number (default: as fitted)."
     ),
+    load_col: str | None = typer.Option(
+        None, "--load", help="Measured load column, for a Loaded model (default: as fitted)."
+    ),
     warmup: int = typer.Option(0, "--warmup", help="Samples left out of the rmse."),
 ) -> None:
     """Predict the output of a saved model for DATA; print the rmse if the output is there."""
     from . import io
     from .identify.fit import metrics, simulate_model
-    from .models import load_model
+    from .models import Loaded, load_model
 
     if warmup < 0:
         _fail(f"--warmup must be >= 0 (got {warmup})")
@@ -486,8 +514,11 @@ def predict(
         time_col = time_col or saved.get("time")
         curve_angle = curve_angle or saved.get("curve_angle")
         wanted_output = output_col or saved.get("output")
+        load_col = load_col or saved.get("load")
         if input_col is None:
             raise ValueError("name the input column with --input")
+        if isinstance(model, Loaded) and load_col is None:
+            raise ValueError("a Loaded model needs the measured load: name its column with --load")
         table_columns = io.columns(data)
         has_output = wanted_output is not None and (
             wanted_output in table_columns or output_col is not None
@@ -498,11 +529,15 @@ def predict(
             input=input_col,
             output=wanted_output if has_output else None,
             curve_angle=curve_angle,
+            load=load_col if isinstance(model, Loaded) else None,
         )
         _print_notes(log)
         if log.y is not None and warmup >= log.x.size:
             raise ValueError(f"--warmup {warmup} leaves none of the {log.x.size} samples")
-        y_hat = simulate_model(model, log.t, log.x, log.curve_angle)
+        if isinstance(model, Loaded):
+            y_hat = np.asarray(model.simulate(log.t, log.x, load=log.load), dtype=float)
+        else:
+            y_hat = simulate_model(model, log.t, log.x, log.curve_angle)
     except ValueError as exc:
         _fail(exc)
     with np.errstate(over="ignore", invalid="ignore"):  # a non-finite metric: error below
@@ -513,6 +548,8 @@ def predict(
     if log.t is not None:
         cols[time_col or "time"] = log.t  # a bag has a time without a time column
     cols[input_col] = log.x
+    if log.load is not None and load_col is not None:
+        cols[load_col] = log.load
     if log.y is not None and wanted_output is not None:  # an output was read: it was named
         cols[wanted_output] = log.y
     cols["predicted"] = y_hat
@@ -761,7 +798,13 @@ def compare(
         None,
         "--models",
         help="Comma-separated candidates, e.g. backlash,bwb,pi,gpi,bwb+poly3 "
-        "(default: all of these, and CurveAngleModel with a curve angle).",
+        "(default: all of these, and CurveAngleModel with a curve angle); NAME+load (e.g. "
+        "backlash+load) takes the --load column.",
+    ),
+    load_col: str | None = typer.Option(
+        None,
+        "--load",
+        help="Measured load column (in a ROS bag /topic:field), for the NAME+load candidates.",
     ),
     resample: float | None = typer.Option(
         None, "--resample", help="Resample every file to this rate (Hz) first."
@@ -786,6 +829,8 @@ def compare(
     if report is not None:
         _checked(check_output_folder, report, "--report")
     columns = dict(time=time_col, input=input_col, output=output_col, curve_angle=curve_angle)
+    if load_col is not None:
+        columns["load"] = load_col
     logs = _checked(_read_logs, data, columns, resample=resample)
     vlogs = _checked(_read_logs, validate, columns, resample=resample) if validate else None
     _checked(_check_comparable, logs + (vlogs or []), output_col)

@@ -14,6 +14,10 @@ held-out data against the affine baseline y = a x + b:
 - ``validate`` a list of logs (or one): held-out recordings, simulated from their start; the
   winner is the fit on the training logs (not refitted: it already saw all of them).
 
+A candidate ``Loaded(cls)`` (or the name ``"bwb+load"``, ``"backlash+load"``, ...) takes
+the measured load the logs carry (``read_log(..., load=COLUMN)``): its load terms are fitted
+with it, its predictions and its inverse (``LoadCompensated``) are given each log's load.
+
 The result is a :class:`Comparison`: ``.table`` (rows sorted by validation nrmse, the affine
 baseline included, with each candidate's seconds), ``.winner`` (the affine baseline is a
 ``Polynomial(1)``), ``.fits`` and ``.report(dir)`` (loops and residuals).
@@ -47,6 +51,7 @@ from .models import (
     GeneralizedPrandtlIshlinskii,
     HysteresisModel,
     LinearBlock,
+    Loaded,
     Polynomial,
     PrandtlIshlinskii,
     SecondOrderLag,
@@ -131,11 +136,15 @@ def parse_model(spec: type[HysteresisModel] | HysteresisModel | str) -> Any:
     ValueError
         Not a class, a Chain or a known name.
     """
-    if isinstance(spec, Chain) or (isinstance(spec, type) and issubclass(spec, HysteresisModel)):
+    if isinstance(spec, Chain | Loaded) or (
+        isinstance(spec, type) and issubclass(spec, HysteresisModel)
+    ):
         return spec
     if not isinstance(spec, str):
         raise ValueError(f"a model is a class, a Chain or a name (got {spec!r})")
     text = spec.strip()
+    if text.lower().endswith("+load"):  # the measured load's terms around a model
+        return Loaded(parse_model(text[: -len("+load")]))
     base, _, tail = text.partition("+")
 
     def cls_of(name):
@@ -180,6 +189,9 @@ def model_name(candidate: type[HysteresisModel] | Chain) -> str:
     str
         Its name in the comparison table.
     """
+    if isinstance(candidate, Loaded):
+        base = candidate.base
+        return f"Loaded({model_name(base if isinstance(base, Chain) else type(base))})"
     if isinstance(candidate, Chain):
         short = {FirstOrderLag: "lag1", SecondOrderLag: "lag2"}
         if isinstance(candidate.second, LinearBlock):
@@ -816,7 +828,8 @@ class _Run:
         try:
             for (_, evals), model in zip(self.splits, models, strict=True):
                 for r, a, b in evals:
-                    commands, flags = offline_inverse(model, r.t, r.y, r.angle_input)
+                    load = getattr(r, "load", None)
+                    commands, flags = offline_inverse(model, r.t, r.y, r.angle_input, load)
                     errors.append(commands[a:b] - r.x[a:b])
                     inputs.append(r.x[a:b])
                     flagged.append((flags[a:b] & Status.OUT_OF_RANGE) != 0)

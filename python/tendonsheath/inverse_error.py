@@ -59,7 +59,7 @@ def desired_from_record(t: np.ndarray, y: np.ndarray) -> np.ndarray:
 
 
 def offline_inverse(
-    model: HysteresisModel, t: Any, y: Any, curve_angle: Any = None
+    model: HysteresisModel, t: Any, y: Any, curve_angle: Any = None, load: Any = None
 ) -> tuple[np.ndarray, np.ndarray]:
     """The commands ``model``'s inverse sends for the recorded output y (see the module), and
     each cycle's status flags.
@@ -74,6 +74,9 @@ def offline_inverse(
         The recorded output.
     curve_angle : float, array_like of float or Route, optional
         The recording's curve angle or shape, for a model that follows the route.
+    load : array_like of float, optional
+        The recording's measured load, for a :class:`~tendonsheath.models.Loaded` model (its
+        inverse is :class:`~tendonsheath.compensate.LoadCompensated`; no status flags: 0).
 
     Returns
     -------
@@ -90,6 +93,15 @@ def offline_inverse(
     rate = np.abs(np.diff(desired)) / np.diff(ts) if y.size > 1 else np.zeros(1)
     peak = float(np.max(rate)) if rate.size else 0.0
     smoothing = SMOOTHING_SHARE * peak if peak > 0 else 1.0
+    from .models import Loaded
+
+    if isinstance(model, Loaded):
+        from .compensate import LoadCompensated
+
+        if load is None:
+            raise ValueError("a Loaded model's inverse needs the recording's measured load")
+        u = LoadCompensated(model, smoothing=smoothing).command(ts, desired, load)
+        return u, np.zeros(u.size, dtype=np.uint8)
     ff = InverseFeedforward(model, smoothing=smoothing)
     angle = _angle_argument(curve_angle, y.size)
     extra = angle if getattr(ff, "follows_route", False) and angle is not None else {}

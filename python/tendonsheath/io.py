@@ -69,6 +69,8 @@ class Log:
         Findings of the reader (dropped or filled rows, gaps, resampling, ...).
     rows : numpy.ndarray of int, optional
         The file row (bag: message number) of every sample; None once resampled.
+    load : numpy.ndarray of float, optional
+        A measured load per sample (the ``load=`` column: e.g. the jaw torque, N m), or None.
     """
 
     t: np.ndarray | None
@@ -80,6 +82,7 @@ class Log:
     columns: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     rows: np.ndarray | None = None  # the file row (bag: message) of every sample; None resampled
+    load: np.ndarray | None = None  # the measured load of every sample (read_log's load=)
 
     def __len__(self) -> int:
         return int(self.x.size)
@@ -190,6 +193,7 @@ class Log:
             x=f(self.x),
             y=f(self.y),
             curve_angle=f(self.curve_angle),
+            load=f(self.load),
             extra={k: f(v) for k, v in self.extra.items()},
             notes=[*self.notes, f"resampled to {rate:g} Hz ({self.x.size} -> {n} samples)"],
             rows=None,
@@ -522,8 +526,16 @@ def read_log(
     degrees: bool = False,
     sheet: str | int | None = None,
     gap_factor: float = 3.0,
+    load: str | int | None = None,
+    extra: dict[str, str | int] | None = None,
 ) -> Log:
     """Read one recording. Columns are names (or indices for a 2-D NPY array).
+
+    ``load`` names a measured signal besides the input (a load: the jaw torque, a tendon
+    tension, the motor's current), read into ``Log.load`` and checked like the input;
+    ``extra={name: column}`` reads other signals into ``Log.extra[name]`` (in a ROS bag,
+    "/topic:field" signals interpolated at the samples like the input). A file's other clean
+    numeric columns are in ``Log.extra`` under their own names as well (not a bag's).
 
     ``curve_angle`` is a column name or a number (a constant curve angle, in the unit of the
     data: rad, or degrees with ``degrees=True``). ``output`` may be None (prediction only).
@@ -560,6 +572,10 @@ def read_log(
         The Excel sheet (default the first).
     gap_factor : float, default 3.0
         A time step above this many median steps is reported as a gap.
+    load : str or int, optional
+        The measured load column (a ROS bag: "/topic:field"), into ``Log.load``.
+    extra : dict of str to str or int, optional
+        Other signals to read, by the name they get in ``Log.extra``.
 
     Returns
     -------
@@ -574,9 +590,10 @@ def read_log(
     if missing not in ("error", "drop", "interpolate"):
         raise ValueError(f"missing must be 'error', 'drop' or 'interpolate' (got {missing!r})")
     path = Path(path)
+    extra = _checked_extra(path, extra)
     bag = bag_path(path)
     if bag is not None:
-        table = _read_bag(bag, time, input, output, curve_angle, missing)
+        table = _read_bag(bag, time, input, output, curve_angle, missing, load, extra)
         time = TIME_KEY
     else:
         table = _open(path, sheet)
@@ -584,6 +601,8 @@ def read_log(
         raise ValueError(f"{path}: name the input column; columns: {table.names()}")
     roles = (time, input, output, curve_angle)
     log = _log_columns(table, path, roles, allow_missing=missing != "error")
+    if load is not None or extra:
+        log = _with_measured(log, table, load, extra, allow_missing=missing != "error")
     if log.t is not None:
         log = _drop_duplicate_times(log, table, time)
     if missing != "error":
@@ -628,6 +647,40 @@ def _log_columns(table: _Table, path: Path, roles, allow_missing: bool) -> Log:
     return Log(t, x, y, theta, extra, str(path), table.names(), list(table.notes), rows)
 
 
+def _checked_extra(path: Path, extra) -> dict | None:
+    """``extra`` as {name: column}, or an error naming what is wrong with it."""
+    if extra is None:
+        return None
+    if not isinstance(extra, dict):
+        raise ValueError(
+            f"{path}: extra must be a dict {{name: column}} (got {type(extra).__name__})"
+        )
+    for name, column in extra.items():
+        if not isinstance(name, str) or not name:
+            raise ValueError(f"{path}: extra's names must be non-empty strings (got {name!r})")
+        if column is None:
+            raise ValueError(f"{path}: extra {name!r} names no column")
+    return dict(extra)
+
+
+def _with_measured(log: Log, table: _Table, load, extra, allow_missing: bool) -> Log:
+    """``log`` with its load (``load=``) and the named extra signals (``extra=``) read."""
+    n = log.x.size
+    values = None
+    if load is not None:
+        values = table.numbers(load, "load", allow_missing)
+        if values.size != n:
+            raise ValueError(f"{log.path}: the load column has {values.size} rows, the input {n}")
+        log.extra.pop(str(table.key(load)), None)
+    named = {}
+    for name, column in (extra or {}).items():
+        arr = table.numbers(column, f"extra {name!r}")
+        if arr.size != n:
+            raise ValueError(f"{log.path}: extra {name!r} has {arr.size} rows, the input {n}")
+        named[name] = arr
+    return replace(log, load=values, extra={**log.extra, **named})
+
+
 def _curve_angle_values(table: _Table, path: Path, curve_angle, n: int, allow_missing: bool):
     """The curve angle column, or ``n`` copies of a constant curve angle given as a number."""
     if table.has(curve_angle):
@@ -656,6 +709,7 @@ def _keep_rows(log: Log, keep: np.ndarray) -> Log:
         x=log.x[keep],
         y=f(log.y),
         curve_angle=f(log.curve_angle),
+        load=f(log.load),
         extra={k: v[keep] for k, v in log.extra.items()},
         rows=f(log.rows),
     )
@@ -684,8 +738,8 @@ def _drop_duplicate_times(log: Log, table: _Table, time) -> Log:
 
 def _treat_missing(log: Log, table: _Table, missing: str) -> Log:
     """Drop (``missing="drop"``) or fill linearly (``"interpolate"``) the samples where the
-    input, output or curve angle is missing, and say which rows in the notes."""
-    signals = [a for a in (log.x, log.y, log.curve_angle) if a is not None]
+    input, output, curve angle or load is missing, and say which rows in the notes."""
+    signals = [a for a in (log.x, log.y, log.curve_angle, log.load) if a is not None]
     bad = np.zeros(log.x.size, dtype=bool)
     for arr in signals:
         bad |= ~np.isfinite(arr)
@@ -747,11 +801,24 @@ def _resample(log: Log, resample: float | str) -> Log:
     return log.resampled(rate)
 
 
-def _read_bag(bag: Path, time, input, output, curve_angle, missing) -> _Table:  # noqa: A002
+def _read_bag(  # noqa: PLR0913 - the roles of a bag's signals
+    bag: Path,
+    time,
+    input,
+    output,
+    curve_angle,
+    missing,
+    load=None,
+    extra=None,  # noqa: A002
+) -> _Table:
     """A ROS bag's named signals, aligned (``_rosbag``), as a table of columns."""
     specs = {"input": input, "output": output}
     if curve_angle is not None and not _is_number(curve_angle):
         specs["curve angle"] = curve_angle
+    if load is not None:
+        specs["load"] = load
+    for name, spec in (extra or {}).items():
+        specs[f"extra {name}"] = spec
     data = read_bag(bag, time, specs, missing)
     return _Table(bag, data.columns, 1, rows=data.rows, notes=data.notes, row_name="message")
 

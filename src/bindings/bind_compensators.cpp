@@ -353,6 +353,38 @@ void bind_learned_feedforward(nb::module_& m) {
           "t"_a, "target"_a);
 }
 
+void bind_load_play_inverse(nb::module_& m) {
+  nb::class_<ts::LoadTerms>(m, "LoadTerms")
+      .def(nb::init<>())
+      .def_rw("gain", &ts::LoadTerms::gain)
+      .def_rw("slack", &ts::LoadTerms::slack)
+      .def_rw("slack_load", &ts::LoadTerms::slack_load)
+      .def_rw("friction", &ts::LoadTerms::friction)
+      .def_rw("switch_travel", &ts::LoadTerms::switch_travel)
+      .def("radius", &ts::LoadTerms::radius, "load"_a);
+  nb::class_<ts::LoadPlayInverse>(m, "LoadPlayInverse")
+      .def(nb::init<const ts::LoadTerms&>(), "terms"_a)
+      .def("reset", &ts::LoadPlayInverse::reset)
+      .def("step", &ts::LoadPlayInverse::step, "z"_a, "load"_a)
+      .def(
+          "command",
+          [](const ts::LoadPlayInverse& self, InArray z, InArray load) {
+            const std::size_t n = z.shape(0);
+            check_lengths(n, load.shape(0), "load", "LoadPlayInverse.command");
+            auto [out, u] = new_array(n);
+            ts::LoadPlayInverse copy = self;
+            copy.reset();
+            const double* zp = z.data();
+            const double* lp = load.data();
+            {
+              nb::gil_scoped_release release;
+              for (std::size_t k = 0; k < n; ++k) u[k] = copy.step(zp[k], lp[k]);
+            }
+            return out;
+          },
+          "z"_a, "load"_a);
+}
+
 }  // namespace
 
 void bind_compensators(nb::module_& m) {
@@ -364,6 +396,7 @@ void bind_compensators(nb::module_& m) {
   bind_encoder_loop(m);
   bind_learned_feedforward(m);
   bind_tip_loop(m);
+  bind_load_play_inverse(m);
 }
 
 }  // namespace tsbind

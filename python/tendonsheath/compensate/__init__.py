@@ -9,6 +9,7 @@ from .inverse_feedforward import InverseFeedforward
 from .iterative_learning import IterativeLearning, LearningDesign, TrialRecord
 from .learned_feedforward import LearnedFeedforward
 from .limits import CommandLimits
+from .load_compensated import LoadCompensated
 from .persistence import load_compensator
 from .tip_loop import TipLoop
 from .tuning import EncoderLoopDesign, tune_encoder_loop
@@ -27,6 +28,7 @@ __all__ = [
     "IterativeLearning",
     "LearnedFeedforward",
     "LearningDesign",
+    "LoadCompensated",
     "TipLoop",
     "TrialRecord",
     "load",

@@ -117,6 +117,7 @@ def identify(
     *,
     recordings: Sequence | None = None,
     curve_angle: ArrayLike | None = None,
+    load: Any = None,
     **options: Any,
 ) -> Fit:
     """Identify a model from input/output recordings by simulation-error minimisation.
@@ -198,6 +199,13 @@ def identify(
     where exact, otherwise as a :class:`~tendonsheath.models.Scaled` model (e.g. a negative
     gain). Not applied with ``bounds``, ``fixed`` or ``depends_on_angle`` (raw units).
 
+    A measured load (``load=``: per-sample array of t, x, y, or one array per recording;
+    recordings that are :class:`~tendonsheath.io.Log` objects bring their own ``Log.load``)
+    is taken by a :class:`~tendonsheath.models.Loaded` model, e.g.
+    ``identify(Loaded(BoucWenBacklash), recordings=logs)``: the base is identified alone,
+    then the base and the load terms jointly (see :mod:`tendonsheath.identify.loaded`;
+    ``fixed`` may hold load terms; the other settings go to the base's identification).
+
     Uncertainty and identifiability (:mod:`tendonsheath.identify.diagnostics`): every Fit
     carries ``standard_errors`` (``standard_errors="linearised"``: from the Jacobian at the
     optimum; ``"bootstrap"``: the spread of ``bootstrap`` (default 200) moving-block
@@ -225,6 +233,8 @@ def identify(
         (t, x, y) or (t, x, y, curve_angle) per recording, instead of t, x, y.
     curve_angle : float, array_like of float, or Route, optional
         The curve angle (rad) of t, x, y, or its route, for models that take one.
+    load : array_like of float, or sequence of them, optional
+        The measured load of t, x, y (or one per recording), for a Loaded model.
     warmup : int, default 0
         Samples at the start of every recording left out of the cost.
     bounds : dict of str to (float, float), optional
@@ -283,6 +293,14 @@ def identify(
         Bad data or arguments (the message names them), or an option the model does not
         support.
     """
+    from ..models import Loaded
+
+    if isinstance(model_class, Loaded):
+        return _identify_loaded(model_class, t, x, y, recordings, load, options)
+    if load is not None:
+        raise ValueError(
+            "a measured load is taken by a Loaded model: identify(Loaded(BaseClass), ..., load=...)"
+        )
     from .estimator import Identifier
 
     estimator = Identifier(model_class, **options)
@@ -290,11 +308,62 @@ def identify(
     return estimator.fit_
 
 
+def _identify_loaded(template, t, x, y, recordings, load, options: dict) -> Fit:
+    """identify() of a Loaded model: the recordings and their loads, then identify_loaded."""
+    from .loaded import identify_loaded
+
+    if recordings is None:
+        if x is None or y is None or load is None:
+            raise ValueError("a Loaded model needs t, x, y and load=, or recordings with loads")
+        recordings, loads = [(t, x, y)], [load]
+    else:
+        recordings = list(recordings)
+        if load is None:
+            loads = [getattr(r, "load", None) for r in recordings]
+            missing = [i for i, lo in enumerate(loads) if lo is None]
+            if missing:
+                raise ValueError(
+                    f"recording(s) {missing} have no load: read them with read_log(..., load=) "
+                    "or give load=[...] (one per recording)"
+                )
+        else:
+            one = len(recordings) == 1 and not (isinstance(load, list | tuple) and len(load) == 1)
+            loads = [load] if one else list(load)
+    fixed = options.pop("fixed", None)
+    warmup = int(options.pop("warmup", 0))
+    return identify_loaded(
+        template, recordings, loads, warmup=warmup, fixed=fixed, base_options=options
+    )
+
+
+def _run_loaded(template, recs: list[Recording], opt: Options, search: Search) -> Fit:
+    from .loaded import identify_loaded
+
+    missing = [i for i, r in enumerate(recs) if r.load is None]
+    if missing:
+        raise ValueError(
+            f"recording(s) {missing} have no load: read them with read_log(..., load=)"
+        )
+    base = {"seed": search.seed, "maxiter": search.maxiter, "popsize": search.popsize}
+    return identify_loaded(
+        template,
+        recs,
+        [r.load for r in recs],
+        warmup=int(opt.warmup),
+        fixed=opt.fixed,
+        base_options={**base, "workers": search.workers},
+    )
+
+
 def run(model_class, recs: list[Recording], options: Options, search: Search) -> Fit:
     """One identification on checked recordings: normalised data, a chain, the grey-box
     plant or one model class (see :mod:`tendonsheath.identify.generic`)."""
     if isinstance(model_class, str) and model_class in _REGISTRY:
         model_class = _REGISTRY[model_class]
+    from ..models import Loaded
+
+    if isinstance(model_class, Loaded):  # recordings that carry their load (Logs read with it)
+        return _stamp(search.budget, _run_loaded(model_class, recs, options, search))
     options = with_new_names(model_class, options)
     return _stamp(search.budget, _dispatch(model_class, recs, options, search))
 

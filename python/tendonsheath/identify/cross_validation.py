@@ -130,7 +130,7 @@ def estimator_split(estimator, fitted: list):
         est.fit(train)
         fitted.append(est)
         model = est.model_
-        return lambda r: simulate_model(model, r.t, r.x, r.angle_input)
+        return lambda r: simulate_model(model, r.t, r.x, r.angle_input, getattr(r, "load", None))
 
     return fit_split
 

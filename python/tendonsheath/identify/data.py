@@ -26,6 +26,7 @@ class Recording:
     curve_angle: np.ndarray | None = None
     skip: int = 0  # leading samples simulated but not counted (on top of the warm-up)
     route: Route | None = None
+    load: np.ndarray | None = None  # the measured load of every sample (a Loaded model's)
 
     @property
     def n(self) -> int:
@@ -45,6 +46,7 @@ class Recording:
             None if self.curve_angle is None else self.curve_angle[index],
             skip,
             self.route,
+            None if self.load is None else self.load[index],
         )
 
     def angle(self) -> float | None:
@@ -99,12 +101,13 @@ def make_recordings(
             recordings = [recordings]
         items = [_unpack(item, i) for i, item in enumerate(recordings)]
         skips = [int(getattr(item, "skip", 0)) for item in recordings]
+        loads = [getattr(item, "load", None) for item in recordings]
         if curve_angle is not None:
             items = [(a, b, c, curve_angle if d is None else d) for a, b, c, d in items]
     if not items:
         raise ValueError("no recordings given")
     if recordings is None:
-        skips = [0]
+        skips, loads = [0], [None]
     out = []
     for i, (ti, xi, yi, ai) in enumerate(items):
         who = "" if len(items) == 1 else f"recording {i}: "
@@ -128,7 +131,12 @@ def make_recordings(
                     f"(t[{k}] = {ts[k]} after t[{k - 1}] = {ts[k - 1]})"
                 )
         theta, route = _angles(ai, xs.size, who)
-        out.append(Recording(ts, xs, ys, theta, skips[i], route))
+        load = None
+        if loads[i] is not None:
+            load = _vector(loads[i], f"{who}load")
+            if load.size != xs.size:
+                raise ValueError(f"{who}load and x have different lengths ({load.size}, {xs.size})")
+        out.append(Recording(ts, xs, ys, theta, skips[i], route, load))
     return out
 
 

@@ -71,8 +71,15 @@ def fit_quality(recs, predictions, warmup: int) -> FitQuality:
     )
 
 
-def simulate_model(model: HysteresisModel, t, x, curve_angle=None) -> np.ndarray:
-    """Simulate any model; the curve angle is passed to the models that take one."""
+def simulate_model(model: HysteresisModel, t, x, curve_angle=None, load=None) -> np.ndarray:
+    """Simulate any model; the curve angle is passed to the models that take one, the
+    measured load to a Loaded model (which needs it)."""
+    from ..models.loaded import Loaded
+
+    if isinstance(model, Loaded):
+        if load is None:
+            raise ValueError("a Loaded model needs the recording's measured load")
+        return cast(np.ndarray, model.simulate(t, x, load=load))
     # status not asked: the outputs alone
     if getattr(model, "uses_curve_angle", False):
         # a model that uses_curve_angle takes it (HysteresisModel.simulate does not)

@@ -14,6 +14,7 @@ from .generalized_prandtl_ishlinskii import (
 )
 from .hysteretic_oscillator import HystereticOscillator
 from .linear_block import FirstOrderLag, LinearBlock, SecondOrderLag
+from .loaded import Loaded
 from .plant_model import PlantModel
 from .polynomial import Polynomial
 from .prandtl_ishlinskii import PrandtlIshlinskii, PrandtlIshlinskiiInverse
@@ -31,6 +32,7 @@ __all__ = [
     "CurveAngleModel",
     "FirstOrderLag",
     "LinearBlock",
+    "Loaded",
     "PlantModel",
     "SecondOrderLag",
     "HysteresisModel",
