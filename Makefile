@@ -141,7 +141,7 @@ docs: $(DOCS_TOOLS) doxygen
 	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/mkdocs build --strict
 
 test-python: install chromium doxygen
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q -n $(JOBS) --dist loadgroup
 
 # wheel-test before pytest so that pytest's summary closes the output; it adds ~40 s wall
 # (~22 s CPU) on a clean clone: the wheel reuses the extension `make install` compiled in build/,

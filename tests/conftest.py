@@ -13,3 +13,13 @@ def scenario_results():
     from tendonsheath.bench.scenarios import SCENARIOS
 
     return {name: run(scale=0.25, seed=0) for name, run in SCENARIOS.items()}
+
+
+def pytest_collection_modifyitems(items):
+    """Under pytest-xdist (``make test``: ``-n auto --dist loadgroup``) a file's tests share a
+    worker, so a module's fixtures are built once, and every test of the session's scenario
+    results shares one worker, so the scenarios run once."""
+    for item in items:
+        uses_scenarios = "scenario_results" in getattr(item, "fixturenames", ())
+        group = "scenarios" if uses_scenarios else item.nodeid.split("::")[0]
+        item.add_marker(pytest.mark.xdist_group(group))
