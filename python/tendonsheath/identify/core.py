@@ -18,6 +18,7 @@ from .._typing import ArrayLike
 from ..models import Chain, HysteresisModel, PlantModel
 from ..models.base import _REGISTRY
 from .data import Recording, make_recordings
+from .extrapolation import with_training_range
 from .fit import Fit
 from .refine import TimeBudget, refine
 from .settings import (
@@ -296,7 +297,8 @@ def run(model_class, recs: list[Recording], options: Options, search: Search) ->
     if isinstance(model_class, str) and model_class in _REGISTRY:
         model_class = _REGISTRY[model_class]
     options = with_new_names(model_class, options)
-    return _stamp(search.budget, _dispatch(model_class, recs, options, search))
+    fit = _dispatch(model_class, recs, options, search)
+    return _stamp(search.budget, with_training_range(fit, recs))
 
 
 def _dispatch(model_class, recs, opt: Options, search: Search) -> Fit:
