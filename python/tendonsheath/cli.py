@@ -907,6 +907,8 @@ def _print_comparison(result, output_col: str) -> None:
     console.print(f"inverse: {INVERSE_NOTE}", highlight=False)
     if any(r.get("excluded") for r in result.table):
         console.print("(x): cannot win (the reason is above)", highlight=False)
+    if getattr(result, "rule", ""):
+        console.print(f"choice: {result.rule}", highlight=False)
     winner = next((r for r in result.table if r["model"] == result.winner_name), None)
     if winner is not None:
         _check_finite(

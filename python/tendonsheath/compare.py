@@ -251,6 +251,8 @@ class Comparison:
     objective : str, default "prediction"
         What ranked the candidates: "prediction" (the held-out forward error) or
         "compensation" (the offline inverse error).
+    rule : str, default ""
+        The ranking and who could not win, in words.
     """
 
     table: list[dict[str, Any]]
@@ -261,6 +263,7 @@ class Comparison:
     mode: str = ""
     winner_fit: Any = field(default=None, repr=False)
     objective: str = "prediction"
+    rule: str = ""
 
     def row(self, name: str) -> dict[str, Any]:
         """The table's row of one candidate.
@@ -315,6 +318,8 @@ class Comparison:
         for k, r in enumerate(excluded, start=1):
             lines.append(f"[x{k}] {r['model']} cannot win: {r['excluded']}")
         lines.append(f"winner: {self.winner_name} ({self.mode})")
+        if self.rule:
+            lines.append(f"choice: {self.rule}")
         lines.append(f"inverse: {INVERSE_NOTE}")
         return "\n".join(lines)
 
@@ -342,6 +347,7 @@ class Comparison:
         return {
             "mode": self.mode,
             "objective": self.objective,
+            "rule": self.rule,
             "table": self.table,
             "winner": self.winner_name,
             "winner_model": self.winner.to_dict(),
@@ -426,6 +432,7 @@ class Comparison:
             "<style>img{max-width:100%;height:auto}</style>"  # fits a 1280 px window
             "</head><body><h1>Model comparison</h1>"
             f"<p>{html_escape(self.mode)}; winner: <b>{self.winner_name}</b></p>"
+            f"<p>{html_escape(self.rule)}</p>"
             f"<table border='1' cellpadding='4'><tr>{head}</tr>{body}</table>"
             "<h2>Validation loops</h2><img src='loops.png'>"
             "<h2>Validation residuals</h2><img src='residuals.png'></body></html>"
@@ -680,8 +687,9 @@ def compare_models(
         winner, winner_fit, best = _winner(rows, fits, estimators, names, recs, run, objective)
     finally:
         run.view.close()
-    mode += f"; ranked by {objective}; " + eligibility_note
-    return Comparison(rows, winner, best, fits, validation, mode, winner_fit, objective)
+    return Comparison(
+        rows, winner, best, fits, validation, mode, winner_fit, objective, eligibility_note
+    )
 
 
 def _judge(rows, validation, objective: str, margin: float) -> str:
@@ -692,7 +700,7 @@ def _judge(rows, validation, objective: str, margin: float) -> str:
             r["val_rmse_parts"] = eligibility.part_rmse(validation, r["model"])
     eligibility.judge(rows, validation, objective, margin)
     what = "inverse error" if objective == "compensation" else "held-out error"
-    rule = f"a candidate whose {what} exceeds the affine map's on any held-out part"
+    rule = f"ranked by {objective}: a candidate whose {what} exceeds the affine map's on any held-out part"
     if np.isfinite(margin):
         rule += (
             f", or whose prediction leaves the outputs' range by more than {100 * margin:g} % "

@@ -178,7 +178,7 @@ def to_raw(model: HysteresisModel, m: IOMap) -> HysteresisModel | None:
                 new[f"{side}_b"] = p[f"{side}_b"] / m.x_s
                 new[f"{side}_c"] = m.x_c + m.x_s * p[f"{side}_c"]
                 new[f"{side}_d"] = p[f"{side}_d"] + shift
-            span = model.options["envelope_range"]
+            span = model.options.get("envelope_range")
             if span is not None:  # the tanh's input range, in raw input units
                 new["envelope_range"] = [m.x_c + m.x_s * v for v in span]
             return model.with_params(**new)

@@ -61,10 +61,12 @@ class _GeneralizedBase(HysteresisModel):
     @property
     def options(self) -> dict[str, Any]:
         """``envelope_range``: the envelopes' tanh input range [lo, hi] (beyond it, their
-        tangent lines), or None (the tanh everywhere)."""
+        tangent lines); left out when there is none (the tanh everywhere: saved files stay
+        as before)."""
         env = self._engine.params.rising
-        bounded = np.isfinite(env.lo) and np.isfinite(env.hi)
-        return {"envelope_range": [float(env.lo), float(env.hi)] if bounded else None}
+        if not (np.isfinite(env.lo) and np.isfinite(env.hi)):
+            return {}
+        return {"envelope_range": [float(env.lo), float(env.hi)]}
 
     @property
     def params(self) -> dict[str, Any]:
@@ -94,7 +96,7 @@ class _GeneralizedBase(HysteresisModel):
         """
         p = self.params
         x = np.asarray(x, dtype=float)
-        span = self.options["envelope_range"]
+        span = self.options.get("envelope_range")
         lo, hi = (-np.inf, np.inf) if span is None else span
         up, down = (
             _envelope(x, *(p[f"{side}_{k}"] for k in _ENVELOPE), lo, hi)
