@@ -700,7 +700,10 @@ def _judge(rows, validation, objective: str, margin: float) -> str:
             r["val_rmse_parts"] = eligibility.part_rmse(validation, r["model"])
     eligibility.judge(rows, validation, objective, margin)
     what = "inverse error" if objective == "compensation" else "held-out error"
-    rule = f"ranked by {objective}: a candidate whose {what} exceeds the affine map's on any held-out part"
+    rule = (
+        f"ranked by {objective}: a candidate whose {what} exceeds the affine map's on any "
+        "held-out part"
+    )
     if np.isfinite(margin):
         rule += (
             f", or whose prediction leaves the outputs' range by more than {100 * margin:g} % "
