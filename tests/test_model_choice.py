@@ -64,7 +64,7 @@ def test_compensation_judges_the_inverse_error(four_loops_and_a_line):
         four_loops_and_a_line, models=["backlash"], maxiter=20, objective="compensation"
     )
     bl = cmp.row("Backlash")
-    assert cmp.rule.startswith("ranked by compensation: a candidate whose inverse error")
+    assert cmp.rule.startswith("ranked by compensation: a candidate whose held-out or inverse")
     assert cmp.winner_name == "affine"
     assert "inverse error" in bl["excluded"] and "run9.csv" in bl["excluded"]
     cmp = ts.compare_models(
@@ -144,16 +144,31 @@ def test_compensation_ranks_by_the_inverse_error():
         row("sharp", 0.1, 0.25, [2.5, 2.5]),
         row("gentle", 0.2, 0.15, [1.5, 1.5]),
         row("bad inverse", 0.05, 0.01, [0.1, 9.0]),  # best pooled, 3x worse on part 2
+        row("bad forward", 0.25, 0.05, [0.5, 0.5]),  # a fine inverse, a forward error ...
     ]
+    rows[-1]["val_rmse_parts"] = [1.0, 4.0]  # ... worse than the affine map's on part 2
     y = np.zeros(3)
     slots = [_slot(y, (-1.0, 1.0), **{r["model"]: y for r in rows}) for _ in range(2)]
     eligibility.judge(rows, slots, "compensation", 0.1)
     ranked = sorted(rows, key=eligibility.sort_key("compensation"))
-    assert [r["model"] for r in ranked] == ["gentle", "sharp", "affine", "bad inverse"]
+    assert [r["model"] for r in ranked] == [
+        "gentle",
+        "sharp",
+        "affine",
+        "bad inverse",  # the excluded ones last, by their inverse error too
+        "bad forward",
+    ]
     assert "inverse error 3.00x the affine map's" in rows[3]["excluded"]
+    assert rows[4]["excluded"] == "held-out error 1.33x the affine map's on run A"
     eligibility.judge(rows, slots, "prediction", 0.1)
     ranked = sorted(rows, key=eligibility.sort_key("prediction"))
-    assert [r["model"] for r in ranked] == ["bad inverse", "sharp", "gentle", "affine"]
+    assert [r["model"] for r in ranked] == [
+        "bad inverse",
+        "sharp",
+        "gentle",
+        "affine",
+        "bad forward",
+    ]
 
 
 def test_bad_settings_are_named():

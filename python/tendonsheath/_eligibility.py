@@ -7,9 +7,10 @@ hides it, and on the robot that run is the one that matters. A candidate is ther
 eligible* (it stays in the table, marked, with the reason) when
 
 - its held-out error on any held-out part (a held-out recording, or a held-out block of one
-  recording) exceeds the affine map's on that part: the forward error (``objective=
-  "prediction"``) or the offline inverse error (``objective="compensation"``), or it has no
-  inverse error at all under that objective;
+  recording) exceeds the affine map's on that part: the forward error, and under
+  ``objective="compensation"`` the offline inverse error as well (a model that predicts a run
+  worse than the affine map gives no ground to trust its inverse there), or it has no inverse
+  error at all under that objective;
 - its prediction on a held-out part leaves the outputs' range by more than ``range_margin``
   times that range's span. The range is the one the part's training outputs reached, widened
   to the affine map's own prediction on the part (the baseline's extrapolation: a candidate is
@@ -91,33 +92,17 @@ def judge(rows: list[dict], validation: list[dict], objective: str, range_margin
     (its largest held-out error on one part over the affine map's there, by the objective's
     error) and ``range_excess`` (its prediction's largest excursion past the allowed output
     range, as a share of that range's span). Rows that failed are left as they are."""
-    key = "inv_rmse_parts" if objective == "compensation" else "val_rmse_parts"
     base_row = next(r for r in rows if r["model"] == AFFINE)
-    base = base_row.get(key) or []
+    # compensation: the inverse error, and the forward one too (a model that predicts a run
+    # worse than the affine map is no ground for trusting its inverse there)
+    keys = ["val_rmse_parts"] + (["inv_rmse_parts"] if objective == "compensation" else [])
     for r in rows:
         if r.get("error"):
             r["eligible"] = False
             continue
-        reasons = []
-        parts = r.get(key) or []
-        if len(parts) != len(base):  # no error of this kind (a failed inverse)
-            parts = [float("nan")] * len(base)
-        ratios = [
-            c / b if b > 0 else (np.inf if c > b else 1.0) for c, b in zip(parts, base, strict=True)
-        ]
-        finite = [q for q in ratios if np.isfinite(q)] or [float("nan")]
-        r["worst_part_ratio"] = float(max(finite)) if r["model"] != AFFINE else 1.0
-        if r["model"] != AFFINE:
-            what = "inverse error" if objective == "compensation" else "held-out error"
-            missing = [k for k, c in enumerate(parts) if not np.isfinite(c)]
-            if missing and objective == "compensation":
-                reasons.append(f"no {what} ({r.get('inv_error', 'the inverse failed')})")
-            worse = [(k, q) for k, q in enumerate(ratios) if np.isfinite(parts[k]) and q > 1.0]
-            if worse:
-                k, q = max(worse, key=lambda kq: kq[1])
-                where = _describe_part(validation[k], k) if k < len(validation) else f"part {k}"
-                more = f" (and {len(worse) - 1} more)" if len(worse) > 1 else ""
-                reasons.append(f"{what} {q:.2f}x the affine map's on {where}{more}")
+        reasons: list[str] = []
+        for key in keys:  # the last one is the objective's error
+            r["worst_part_ratio"] = _worse_than_affine(r, base_row, key, validation, reasons)
         excess = [_range_excess(slot, r["model"]) for slot in validation]
         r["range_excess"] = float(max(excess)) if excess else 0.0
         if r["model"] != AFFINE and r["range_excess"] > range_margin:
@@ -128,6 +113,31 @@ def judge(rows: list[dict], validation: list[dict], objective: str, range_margin
             )
         r["eligible"] = not reasons
         r["excluded"] = "; ".join(reasons) if reasons else None
+
+
+def _worse_than_affine(r: dict, base_row: dict, key: str, validation, reasons: list) -> float:
+    """Append to ``reasons`` where row ``r``'s error ``key`` (per held-out part) exceeds the
+    affine map's; returns its largest ratio to the affine map's (NaN without one)."""
+    if r["model"] == AFFINE:
+        return 1.0
+    base = base_row.get(key) or []
+    parts = r.get(key) or []
+    if len(parts) != len(base):  # no error of this kind (a failed inverse)
+        parts = [float("nan")] * len(base)
+    ratios = [
+        c / b if b > 0 else (np.inf if c > b else 1.0) for c, b in zip(parts, base, strict=True)
+    ]
+    what = "inverse error" if key == "inv_rmse_parts" else "held-out error"
+    if any(not np.isfinite(c) for c in parts) and key == "inv_rmse_parts":
+        reasons.append(f"no {what} ({r.get('inv_error', 'the inverse failed')})")
+    worse = [(k, q) for k, q in enumerate(ratios) if np.isfinite(parts[k]) and q > 1.0]
+    if worse:
+        k, q = max(worse, key=lambda kq: kq[1])
+        where = _describe_part(validation[k], k) if k < len(validation) else f"part {k + 1}"
+        more = f" (and {len(worse) - 1} more)" if len(worse) > 1 else ""
+        reasons.append(f"{what} {q:.2f}x the affine map's on {where}{more}")
+    finite = [q for q in ratios if np.isfinite(q)]
+    return float(max(finite)) if finite else float("nan")
 
 
 def _share(v: float) -> str:

@@ -15,8 +15,8 @@ held-out data against the affine baseline y = a x + b:
   winner is the fit on the training logs (not refitted: it already saw all of them).
 
 The winner is never worse than the affine map on any held-out part: a candidate that is (by
-the objective's error: ``objective="prediction"``, the forward one, or ``"compensation"``, the
-offline inverse error), or whose prediction leaves the outputs' range by more than
+the forward error; with ``objective="compensation"``, by the offline inverse error too), or
+whose prediction leaves the outputs' range by more than
 ``range_margin`` of its span, cannot win and is shown with the reason
 (:mod:`tendonsheath._eligibility`).
 
@@ -596,8 +596,9 @@ def compare_models(
     elapsed time and ETA) on a terminal. Each row's ``seconds`` (wall) and ``cpu_seconds``
     are the candidate's fitting and scoring time over all folds.
 
-    A model choice that never misleads: a candidate whose error (the objective's) on any
-    held-out part (a held-out recording or block) exceeds the affine map's, or whose
+    A model choice that never misleads: a candidate whose held-out error (and, for
+    "compensation", its inverse error) on any held-out part (a held-out recording or block)
+    exceeds the affine map's, or whose
     prediction leaves the outputs' range by more than ``range_margin``, cannot win; it stays
     in the table, marked with the reason (``row["excluded"]``, :meth:`Comparison.excluded`).
     ``objective="compensation"`` ranks by the offline inverse error instead of the forward
@@ -699,7 +700,7 @@ def _judge(rows, validation, objective: str, margin: float) -> str:
         if not r.get("error"):
             r["val_rmse_parts"] = eligibility.part_rmse(validation, r["model"])
     eligibility.judge(rows, validation, objective, margin)
-    what = "inverse error" if objective == "compensation" else "held-out error"
+    what = "held-out or inverse error" if objective == "compensation" else "held-out error"
     rule = (
         f"ranked by {objective}: a candidate whose {what} exceeds the affine map's on any "
         "held-out part"
