@@ -99,14 +99,15 @@ class _GeneralizedBase(HysteresisModel):
         span = self.options.get("envelope_range")
         lo, hi = (-np.inf, np.inf) if span is None else span
         up, down = (
-            _envelope(x, *(p[f"{side}_{k}"] for k in _ENVELOPE), lo, hi)
+            _envelope(x, [p[f"{side}_{k}"] for k in _ENVELOPE], lo, hi)
             for side in ("rising", "falling")
         )
         return up, down
 
 
-def _envelope(x: FloatArray, a: float, b: float, c: float, d: float, lo: float, hi: float):
+def _envelope(x: FloatArray, coefficients: list[float], lo: float, hi: float) -> FloatArray:
     """a tanh(b (x - c)) + d inside [lo, hi], its tangent line beyond (as the C++ Envelope)."""
+    a, b, c, d = coefficients
 
     def tanh(u):
         return a * np.tanh(b * (u - c)) + d
