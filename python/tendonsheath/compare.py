@@ -16,9 +16,8 @@ held-out data against the affine baseline y = a x + b:
 
 The winner is never worse than the affine map on any held-out part: a candidate that is (by
 the forward error; with ``objective="compensation"``, by the offline inverse error too), or
-whose prediction leaves the outputs' range by more than
-``range_margin`` of its span, cannot win and is shown with the reason
-(:mod:`tendonsheath._eligibility`).
+whose prediction leaves the outputs' range by more than ``range_margin`` of its span, cannot
+win and is shown with the reason (``tendonsheath._eligibility``).
 
 The result is a :class:`Comparison`: ``.table`` (the eligible rows first, sorted by the
 objective's nrmse, the affine baseline included, with each candidate's seconds), ``.winner``
@@ -226,7 +225,7 @@ class Comparison:
     and cpu_seconds (fitting and scoring over all folds), error (if the fit failed) and
     status ("out of time" past the time budget); per held-out part (a held-out recording or
     block) val_rmse_parts and inv_rmse_parts; eligible, excluded (why a candidate cannot win,
-    or None), worst_part_ratio and range_excess (:mod:`tendonsheath._eligibility`). Sorted
+    or None), worst_part_ratio and range_excess (``tendonsheath._eligibility``). Sorted
     with the eligible rows first, each group by the objective's error (val_nrmse, or
     inv_nrmse for "compensation"); failures last.
     ``fits``: each candidate's Fit (a list of one per fold under cross-validation);
@@ -329,7 +328,7 @@ class Comparison:
         Returns
         -------
         dict of str to str
-            Model name -> why it was excluded (see :mod:`tendonsheath._eligibility`).
+            Model name -> why it was excluded (see ``tendonsheath._eligibility``).
         """
         return {r["model"]: r["excluded"] for r in self.table if r.get("excluded")}
 
