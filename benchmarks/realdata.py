@@ -21,7 +21,10 @@ README for how the columns were decoded.
    the library defaults (seed 0); nothing is tuned on the held-out parts. ``seconds`` is
    the whole compare_models call on the file (all candidates, all folds, the winner's
    final fit), on this machine; ``cpu_seconds`` its CPU time (all threads) and
-   ``load_average`` the machine's load when it ended.
+   ``load_average`` the machine's load when it ended. A candidate worse than the affine map on
+   any held-out block (or leaving the outputs' range) cannot win: each row records the
+   winner's error over the affine map's on every held-out block (``winner_part_ratios``),
+   whether it is worse on any, and the candidates excluded with the reason.
 2. Across configurations: the configuration label (deg) is used as the curve angle, in rad
    (it is an inferred label, not a measured bend). Input and output are converted to rad.
    Models with configuration-dependent parameters are fitted on some configurations (whole
@@ -31,7 +34,9 @@ README for how the columns were decoded.
    Split A (interpolation): train 0/90/180/270, predict 30/60/120/150/210/240.
    Split B (extrapolation): train 0/30/60/90, predict 120..270 (error vs distance).
 3. Amplitude: train on conf0_amp60 (whole file), predict conf0_amp50, conf0_amp70 and the
-   repeat conf0_amp60_run2 (``compare_models(..., validate=[...])``).
+   repeat conf0_amp60_run2 (``compare_models(..., validate=[...])``); whether the winner is
+   worse than the affine map on the held-out file (it cannot be: such a candidate cannot win;
+   see benchmarks/model_choice.py for runs that the choice never saw).
 4. Plant data with a negative gain and a rate-dependent drive (``--plant``, on by default):
    a ``PullPullPlant`` with ``presets.realistic_plant()`` and ``presets.realistic_motor()``
    (its loops widen with the rate) driven by a random-phase sum of sines from 0.1 to 2 Hz,
@@ -91,6 +96,7 @@ def _compare_row(name: str, log, out: Path, maxiter: int, rate) -> dict:
     print(f"\n== {name} ({len(log)} samples, {seconds:.1f} s wall, {cpu_seconds:.1f} s CPU)")
     print(cmp.text())
     return {
+        **held_out_check(cmp),
         "file": name,
         "samples": len(log),
         "validation": cmp.mode,
@@ -106,6 +112,19 @@ def _compare_row(name: str, log, out: Path, maxiter: int, rate) -> dict:
         "load_average": list(os.getloadavg()),
         "seconds_per_candidate": {r["model"]: r.get("seconds") for r in cmp.table},
         "winner_final_fit_seconds": best.get("final_fit_seconds"),
+    }
+
+
+def held_out_check(cmp) -> dict:
+    """Whether the winner is worse than the affine map on any held-out part (a held-out block
+    or file), its largest ratio there, and the candidates that could not win (why)."""
+    best, affine = cmp.row(cmp.winner_name), cmp.row("affine")
+    ratios = [c / a for c, a in zip(best["val_rmse_parts"], affine["val_rmse_parts"], strict=True)]
+    return {
+        "winner": cmp.winner_name,
+        "winner_part_ratios": ratios,
+        "winner_worse_than_affine_on_any_part": bool(max(ratios) > 1.0),
+        "excluded": cmp.excluded(),
     }
 
 
@@ -235,7 +254,7 @@ def amplitude(data: Path, out: Path, maxiter: int) -> dict:
         val = read(data, name, CONF_RATE)
         cmp = ts.compare_models([train], validate=[val], maxiter=maxiter, refit=False)
         cmp.report(out / f"amplitude_{name}")
-        result[name] = cmp.table
+        result[name] = {"table": cmp.table, **held_out_check(cmp)}
         print(f"\n== amplitude: train conf0_amp60, predict {name}")
         print(cmp.text())
     return result
@@ -260,8 +279,10 @@ def markdown(per: list[dict], cross: dict, amp: dict) -> str:
         "of the selected model's held-out rmse to the affine baseline's (target <= 0.333); "
         "s: wall seconds for the file (CPU seconds in the JSON).",
         "",
-        "| file | affine | " + " | ".join(short[n] for n in names) + " | best | best/affine | s |",
-        "|---|---:|" + "---:|" * len(names) + "---|---:|---:|",
+        "| file | affine | "
+        + " | ".join(short[n] for n in names)
+        + " | best | best/affine | worst block/affine | s |",
+        "|---|---:|" + "---:|" * len(names) + "---|---:|---:|---:|",
     ]
     for p in per:
         by = {r["model"]: r for r in p["table"]}
@@ -275,7 +296,8 @@ def markdown(per: list[dict], cross: dict, amp: dict) -> str:
         lines.append(
             f"| {p['file']} | "
             + " | ".join(cells)
-            + f" | {short.get(p['best'], p['best'])} | {p['ratio']:.3f} | {p['seconds']:.0f} |"
+            + f" | {short.get(p['best'], p['best'])} | {p['ratio']:.3f} | "
+            f"{max(p['winner_part_ratios']):.3f} | {p['seconds']:.0f} |"
         )
     for key, title in (("interpolation", "A"), ("extrapolation", "B")):
         c = cross[key]
@@ -300,8 +322,8 @@ def markdown(per: list[dict], cross: dict, amp: dict) -> str:
         "| predicted file | affine | " + " | ".join(short[n] for n in names) + " |",
         "|---|---:|" + "---:|" * len(names),
     ]
-    for name, table in amp.items():
-        by = {r["model"]: r for r in table}
+    for name, split in amp.items():
+        by = {r["model"]: r for r in split["table"]}
         cells = [
             "failed" if by.get(n, {}).get("error") or n not in by else f"{by[n]['val_rmse']:.2f}"
             for n in ["affine", *names]
@@ -349,7 +371,10 @@ def main() -> int:
     print(md)
     (args.out / "summary.md").write_text(md)
     met = all(p["target_met"] for p in per)
+    worse = [p["file"] for p in per + plant if p["winner_worse_than_affine_on_any_part"]]
+    worse += [f"amplitude {n}" for n, a in amp.items() if a["winner_worse_than_affine_on_any_part"]]
     payload = {
+        "winners_worse_than_affine_on_a_held_out_part": worse,
         "data": str(args.data),
         "seconds": time.perf_counter() - start,
         "target": "best held-out rmse <= affine held-out rmse / 3 on every file, in under 60 s",
@@ -364,6 +389,7 @@ def main() -> int:
     }
     path = write_results("realdata", json.loads(json.dumps(payload, default=float)))
     print(f"target met on every file: {met}; on the plant data: {payload['plant_target_met']}")
+    print(f"winners worse than the affine map on a held-out block or file: {worse or 'none'}")
     print(
         f"slowest file: {payload['slowest_file_seconds']:.1f} s wall, "
         f"{payload['slowest_file_cpu_seconds']:.1f} s CPU"

@@ -820,11 +820,28 @@ def compare(
         help="Seconds for the candidates' fits; a candidate that runs out is reported as "
         "out of time.",
     ),
+    objective: str = typer.Option(
+        "prediction",
+        "--objective",
+        help="What ranks the candidates: prediction (held-out error) or compensation "
+        "(the inverse's error).",
+    ),
+    range_margin: float = typer.Option(
+        0.1,
+        "--range-margin",
+        help="A candidate whose held-out prediction leaves the outputs' range by more than "
+        "this share of its span cannot win.",
+    ),
     quiet: bool = typer.Option(
         False, "--quiet", "-q", help="No progress bar or per-candidate lines."
     ),
 ) -> None:
-    """Fit candidate models on DATA, rank them on held-out data against y = a x + b."""
+    """Fit candidate models on DATA, rank them on held-out data against y = a x + b; a
+    candidate worse than y = a x + b on any held-out part cannot win."""
+    if objective not in ("prediction", "compensation"):
+        _fail(f"--objective must be prediction or compensation (got {objective!r})")
+    if not (np.isfinite(range_margin) and range_margin >= 0):
+        _fail(f"--range-margin must be a number >= 0 (got {range_margin})")
     _check_split_options(holdout, validate, folds)
     if report is not None:
         _checked(check_output_folder, report, "--report")
@@ -835,7 +852,14 @@ def compare(
     vlogs = _checked(_read_logs, validate, columns, resample=resample) if validate else None
     _checked(_check_comparable, logs + (vlogs or []), output_col)
     split = vlogs if vlogs else (holdout if holdout is not None else "cv")
-    options = {"folds": folds, "seed": seed, "maxiter": maxiter, "time_budget": time_budget}
+    options = {
+        "folds": folds,
+        "seed": seed,
+        "maxiter": maxiter,
+        "time_budget": time_budget,
+        "objective": objective,
+        "range_margin": range_margin,
+    }
     result = _checked(_compare_models, logs, models, split, quiet, options)
     _print_comparison(result, output_col)
     how = {
@@ -908,8 +932,12 @@ def _print_comparison(result, output_col: str) -> None:
             console.print(f"[yellow]{r['model']}:[/yellow] {r['error']}", highlight=False)
             table.add_row(r["model"], "", "", r.get("status", "failed"), "", "", "", "", "", "")
             continue
+        if r.get("excluded"):
+            console.print(
+                f"[yellow]{r['model']} cannot win:[/yellow] {r['excluded']}", highlight=False
+            )
         table.add_row(
-            r["model"],
+            r["model"] + (" (x)" if r.get("excluded") else ""),
             str(r["n_params"]),
             f"{r['train_rmse']:.4g}",
             f"{r['val_rmse']:.4g}",
@@ -922,6 +950,10 @@ def _print_comparison(result, output_col: str) -> None:
         )
     console.print(table)
     console.print(f"inverse: {INVERSE_NOTE}", highlight=False)
+    if any(r.get("excluded") for r in result.table):
+        console.print("(x): cannot win (the reason is above)", highlight=False)
+    if getattr(result, "rule", ""):
+        console.print(f"choice: {result.rule}", highlight=False)
     winner = next((r for r in result.table if r["model"] == result.winner_name), None)
     if winner is not None:
         _check_finite(

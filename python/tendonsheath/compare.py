@@ -18,9 +18,15 @@ A candidate ``Loaded(cls)`` (or the name ``"bwb+load"``, ``"backlash+load"``, ..
 the measured load the logs carry (``read_log(..., load=COLUMN)``): its load terms are fitted
 with it, its predictions and its inverse (``LoadCompensated``) are given each log's load.
 
-The result is a :class:`Comparison`: ``.table`` (rows sorted by validation nrmse, the affine
-baseline included, with each candidate's seconds), ``.winner`` (the affine baseline is a
-``Polynomial(1)``), ``.fits`` and ``.report(dir)`` (loops and residuals).
+The winner is never worse than the affine map on any held-out part: a candidate that is (by
+the forward error; with ``objective="compensation"``, by the offline inverse error too), or
+whose prediction leaves the outputs' range by more than ``range_margin`` of its span, cannot
+win and is shown with the reason (``tendonsheath._eligibility``).
+
+The result is a :class:`Comparison`: ``.table`` (the eligible rows first, sorted by the
+objective's nrmse, the affine baseline included, with each candidate's seconds), ``.winner``
+(the affine baseline is a ``Polynomial(1)``), ``.fits`` and ``.report(dir)`` (loops and
+residuals).
 """
 
 from __future__ import annotations
@@ -29,11 +35,13 @@ import re
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
+from html import escape as html_escape
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from . import _eligibility as eligibility
 from ._atomic import save_figure, write_json, write_text
 from ._compare_progress import CompareProgress
 from ._typing import RecordingLike
@@ -227,7 +235,11 @@ class Comparison:
     inv_ratio_to_affine and inv_out_of_range (the share of held-out cycles whose command the
     identified input range held; :mod:`tendonsheath.inverse_error`), seconds
     and cpu_seconds (fitting and scoring over all folds), error (if the fit failed) and
-    status ("out of time" past the time budget); sorted by val_nrmse (failures last).
+    status ("out of time" past the time budget); per held-out part (a held-out recording or
+    block) val_rmse_parts and inv_rmse_parts; eligible, excluded (why a candidate cannot win,
+    or None), worst_part_ratio and range_excess (``tendonsheath._eligibility``). Sorted
+    with the eligible rows first, each group by the objective's error (val_nrmse, or
+    inv_nrmse for "compensation"); failures last.
     ``fits``: each candidate's Fit (a list of one per fold under cross-validation);
     ``winner_fit``: the Fit of ``winner`` (None for the affine map).
 
@@ -247,6 +259,11 @@ class Comparison:
         How the models were validated.
     winner_fit : Fit, optional
         The winner's Fit.
+    objective : str, default "prediction"
+        What ranked the candidates: "prediction" (the held-out forward error) or
+        "compensation" (the offline inverse error).
+    rule : str, default ""
+        The ranking and who could not win, in words.
     """
 
     table: list[dict[str, Any]]
@@ -256,6 +273,8 @@ class Comparison:
     validation: list[dict[str, Any]] = field(default_factory=list, repr=False)
     mode: str = ""
     winner_fit: Any = field(default=None, repr=False)
+    objective: str = "prediction"
+    rule: str = ""
 
     def row(self, name: str) -> dict[str, Any]:
         """The table's row of one candidate.
@@ -292,18 +311,38 @@ class Comparison:
             f"{'model':<34} {'train rmse':>11} {'val rmse':>11} {'val nrmse':>10} {'/affine':>8}"
             f" {'inv nrmse':>10} {'/affine':>8}"
         ]
+        excluded = []
         for r in self.table:
             if r.get("error"):
                 lines.append(f"{r['model']:<34} {r.get('status', 'failed')}: {r['error']}")
                 continue
+            mark = ""
+            if r.get("excluded"):
+                excluded.append(r)
+                mark = f" [x{len(excluded)}]"
             lines.append(
                 f"{r['model']:<34} {r['train_rmse']:>11.4g} {r['val_rmse']:>11.4g} "
                 f"{100 * r['val_nrmse']:>9.3f}% {r['ratio_to_affine']:>8.3f} "
                 f"{_percent(r.get('inv_nrmse')):>10} {_plain(r.get('inv_ratio_to_affine')):>8}"
+                + mark
             )
+        for k, r in enumerate(excluded, start=1):
+            lines.append(f"[x{k}] {r['model']} cannot win: {r['excluded']}")
         lines.append(f"winner: {self.winner_name} ({self.mode})")
+        if self.rule:
+            lines.append(f"choice: {self.rule}")
         lines.append(f"inverse: {INVERSE_NOTE}")
         return "\n".join(lines)
+
+    def excluded(self) -> dict[str, str]:
+        """The candidates that could not win, with the reason.
+
+        Returns
+        -------
+        dict of str to str
+            Model name -> why it was excluded (see ``tendonsheath._eligibility``).
+        """
+        return {r["model"]: r["excluded"] for r in self.table if r.get("excluded")}
 
     def __str__(self) -> str:
         return self.text()
@@ -318,6 +357,8 @@ class Comparison:
         """
         return {
             "mode": self.mode,
+            "objective": self.objective,
+            "rule": self.rule,
             "table": self.table,
             "winner": self.winner_name,
             "winner_model": self.winner.to_dict(),
@@ -384,11 +425,15 @@ class Comparison:
                 "val rmse [output units]",
                 "val nrmse [%]",
                 "val rmse / affine's",
+                "inverse nrmse [%]",
+                "cannot win because",
             )
         )
         body = "".join(
             f"<tr><td>{r['model']}</td><td>{r['train_rmse']:.4g}</td><td>{r['val_rmse']:.4g}"
-            f"</td><td>{100 * r['val_nrmse']:.3f}</td><td>{r['ratio_to_affine']:.3f}</td></tr>"
+            f"</td><td>{100 * r['val_nrmse']:.3f}</td><td>{r['ratio_to_affine']:.3f}</td>"
+            f"<td>{_percent(r.get('inv_nrmse')).rstrip('%')}</td>"
+            f"<td>{html_escape(r.get('excluded') or '')}</td></tr>"
             for r in self.table
             if not r.get("error")
         )
@@ -397,7 +442,8 @@ class Comparison:
             "<meta name='viewport' content='width=device-width, initial-scale=1'>"
             "<style>img{max-width:100%;height:auto}</style>"  # fits a 1280 px window
             "</head><body><h1>Model comparison</h1>"
-            f"<p>{self.mode}; winner: <b>{self.winner_name}</b></p>"
+            f"<p>{html_escape(self.mode)}; winner: <b>{self.winner_name}</b></p>"
+            f"<p>{html_escape(self.rule)}</p>"
             f"<table border='1' cellpadding='4'><tr>{head}</tr>{body}</table>"
             "<h2>Validation loops</h2><img src='loops.png'>"
             "<h2>Validation residuals</h2><img src='residuals.png'></body></html>"
@@ -407,14 +453,20 @@ class Comparison:
         return page
 
 
-def _as_recs(logs) -> list:
+def _as_items(logs) -> list:
+    """The recordings given: one (a Log, a tuple) or a sequence of them, as a list."""
     if logs is None:
         return []
     if isinstance(logs, tuple) and len(logs) in (3, 4) and not hasattr(logs[0], "x"):
         logs = [logs]
     if hasattr(logs, "x") and hasattr(logs, "y"):
         logs = [logs]
-    return make_recordings(recordings=list(logs))
+    return list(logs)
+
+
+def _as_recs(logs) -> list:
+    items = _as_items(logs)
+    return make_recordings(recordings=items) if items else []
 
 
 def _uniform(recs) -> bool:
@@ -533,6 +585,8 @@ def compare_models(
     refit: bool = True,
     on_fit: Callable[[str, float], object] | None = None,
     time_budget: float | None = None,
+    objective: str = "prediction",
+    range_margin: float | None = eligibility.RANGE_MARGIN,
 ) -> Comparison:
     """Fit each candidate on training data and rank them on held-out data.
 
@@ -552,6 +606,14 @@ def compare_models(
     is called after each candidate. ``progress``: a bar over the fits (candidate, fold,
     elapsed time and ETA) on a terminal. Each row's ``seconds`` (wall) and ``cpu_seconds``
     are the candidate's fitting and scoring time over all folds.
+
+    A model choice that never misleads: a candidate whose held-out error (and, for
+    "compensation", its inverse error) on any held-out part (a held-out recording or block)
+    exceeds the affine map's, or whose
+    prediction leaves the outputs' range by more than ``range_margin``, cannot win; it stays
+    in the table, marked with the reason (``row["excluded"]``, :meth:`Comparison.excluded`).
+    ``objective="compensation"`` ranks by the offline inverse error instead of the forward
+    one (:mod:`tendonsheath.inverse_error`).
 
     ``time_budget`` (seconds of wall clock for the candidates' cross-validation): a global
     search running at the deadline stops after its generation; a candidate whose folds end
@@ -588,6 +650,13 @@ def compare_models(
         Called as on_fit(name, seconds) after each candidate.
     time_budget : float, optional
         Seconds of wall clock for the candidates' cross-validation.
+    objective : {"prediction", "compensation"}, default "prediction"
+        What ranks the candidates: the held-out forward error (val_nrmse), or the offline
+        inverse error (inv_nrmse: how well the model's inverse would compensate).
+    range_margin : float or None, default 0.1
+        How far (a share of the outputs' span) a candidate's held-out prediction may leave
+        the range the training outputs (or the affine map's prediction) reached before it is
+        excluded; None: no range check.
 
     Returns
     -------
@@ -600,6 +669,8 @@ def compare_models(
         Bad logs, models, validation or time budget.
     """
     _check_time_budget(time_budget)
+    objective = eligibility.check_objective(objective)
+    margin = eligibility.check_range_margin(range_margin)
     recs = make_recordings(recordings=list(_as_recs(logs)), curve_angle=curve_angle)
     has_angle = all(r.curve_angle is not None for r in recs)
     candidates, names = _candidates(models, recs, has_angle)
@@ -608,9 +679,11 @@ def compare_models(
     estimators = [Identifier(c, **settings) for c in candidates]
     splits, mode = _splits(recs, validate, folds, curve_angle)
     cv = isinstance(validate, str)
+    whole_runs = (cv and len(recs) >= 2) or not isinstance(validate, str | int | float)
     splits = _without_initial_transients(splits)
+    labels = _part_labels(splits, recs, logs, validate, whole_runs)
     mode += "; " + SETTLE_NOTE
-    validation = _validation_slots(splits)
+    validation = _validation_slots(splits, labels)
 
     b, a = _affine(recs if not isinstance(validate, int | float) or refit else splits[0][0])
     final = cv or (refit and isinstance(validate, int | float))
@@ -622,10 +695,35 @@ def compare_models(
     finally:
         SEARCH_DEADLINE.reset(token)
     try:
-        winner, winner_fit, best = _winner(rows, fits, estimators, names, recs, run)
+        eligibility_note = _judge(rows, validation, objective, margin)
+        winner, winner_fit, best = _winner(rows, fits, estimators, names, recs, run, objective)
     finally:
         run.view.close()
-    return Comparison(rows, winner, best, fits, validation, mode, winner_fit)
+    return Comparison(
+        rows, winner, best, fits, validation, mode, winner_fit, objective, eligibility_note
+    )
+
+
+def _judge(rows, validation, objective: str, margin: float) -> str:
+    """Each row's held-out error per part and its eligibility (see tendonsheath._eligibility);
+    the rule in words."""
+    for r in rows:
+        if not r.get("error"):
+            r["val_rmse_parts"] = eligibility.part_rmse(validation, r["model"])
+    eligibility.judge(rows, validation, objective, margin)
+    what = "held-out or inverse error" if objective == "compensation" else "held-out error"
+    rule = (
+        f"ranked by {objective}: a candidate whose {what} exceeds the affine map's on any "
+        "held-out part"
+    )
+    if np.isfinite(margin):
+        rule += (
+            f", or whose prediction leaves the outputs' range by more than {100 * margin:g} % "
+            "of its span, cannot win"
+        )
+    else:
+        rule += " cannot win"
+    return rule
 
 
 def _check_time_budget(time_budget) -> None:
@@ -686,30 +784,70 @@ def _held_out_fraction(recs, frac: float) -> tuple[list, str]:
     return [(train, evals)], f"held out: the last {100 * frac:g} % of each recording"
 
 
-def _validation_slots(splits) -> list[dict]:
-    """One record per scored segment, for the report's loops and residuals."""
-    return [
+def _validation_slots(splits, labels: list[str]) -> list[dict]:
+    """One record per scored segment (a held-out part), for the report's loops and residuals
+    and the candidates' eligibility: its fold, label and the training outputs' range."""
+    slots = [
         {
             "x": r.x[a:b],
             "y": r.y[a:b],
             "s": (r.t[a:b] if r.t is not None else np.arange(a, b)),
             "has_t": r.t is not None,
             "predictions": {},
+            "fold": k,
+            "train_range": _output_range(train),
         }
+        for k, (train, evals) in enumerate(splits)
+        for r, a, b in evals
+    ]
+    for slot, label in zip(slots, labels, strict=True):
+        slot["label"] = label
+    return slots
+
+
+def _output_range(train) -> tuple[float, float]:
+    """The range of the training outputs a fold's models were fitted on (counted samples)."""
+    ys = [r.y[r.skip :] for r in train if r.n > r.skip]
+    if not ys:
+        return (float("nan"), float("nan"))
+    y = np.concatenate(ys)
+    return float(np.min(y)), float(np.max(y))
+
+
+def _names(items: list, what: str) -> list[str]:
+    """A file's name for each recording that has one (a Log's path), else "what i"."""
+    out = []
+    for i, item in enumerate(items):
+        path = getattr(item, "path", "") if not isinstance(item, tuple) else ""
+        out.append(Path(str(path)).name if path else f"{what} {i + 1}")
+    return out
+
+
+def _part_labels(splits, recs, logs, validate, whole_runs: bool) -> list[str]:
+    """A label per held-out part, in the order of the splits' scored segments: the held-out
+    recording's name, with the sample range where only part of it is held out."""
+    names = {id(r): n for r, n in zip(recs, _names(_as_items(logs), "recording"), strict=True)}
+    if not isinstance(validate, str | int | float):
+        held = [r for r, _, _ in splits[0][1]]
+        vnames = _names(_as_items(validate), "validation recording")
+        names.update({id(r): n for r, n in zip(held, vnames, strict=True)})
+    return [
+        names.get(id(r), "recording") + ("" if whole_runs else f" [{a}:{b}]")
         for _, evals in splits
         for r, a, b in evals
     ]
 
 
-def _winner(rows, fits, estimators, names, recs, run):
-    """Rank the rows; the winner's model and Fit (refitted on all the data where needed)."""
+def _winner(rows, fits, estimators, names, recs, run, objective: str = "prediction"):
+    """Rank the rows (eligible ones first, by the objective's error); the winner's model and
+    Fit (refitted on all the data where needed)."""
     base, inv_base = rows[0]["val_rmse"], rows[0].get("inv_rmse", float("nan"))
     for r in rows:
         if not r.get("error"):
             r["ratio_to_affine"] = r["val_rmse"] / base if base > 0 else float("nan")
             inv = r.get("inv_rmse", float("nan"))
             r["inv_ratio_to_affine"] = inv / inv_base if inv_base > 0 else float("nan")
-    rows.sort(key=lambda r: (bool(r.get("error")), r.get("val_nrmse", np.inf)))
+    rows.sort(key=eligibility.sort_key(objective))
     best = rows[0]["model"]
     winner_fit = None
     if best == AFFINE:
@@ -843,6 +981,7 @@ class _Run:
             "inv_rmse": rmse,
             "inv_nrmse": rmse / span if span > 0 else float("nan"),
             "inv_out_of_range": float(np.mean(np.concatenate(flagged))),
+            "inv_rmse_parts": [float(np.sqrt(np.mean(p * p))) for p in errors],
         }
 
 

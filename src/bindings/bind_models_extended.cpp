@@ -26,7 +26,12 @@ void bind_models_extended(nb::module_& m) {
       .def_rw("a", &ts::Envelope::a)
       .def_rw("b", &ts::Envelope::b)
       .def_rw("c", &ts::Envelope::c)
-      .def_rw("d", &ts::Envelope::d);
+      .def_rw("d", &ts::Envelope::d)
+      .def_rw("lo", &ts::Envelope::lo)
+      .def_rw("hi", &ts::Envelope::hi)
+      .def("__call__", &ts::Envelope::operator(), nb::arg("x"))
+      .def("slope_at", &ts::Envelope::slope_at, nb::arg("x"))
+      .def("inverse", &ts::Envelope::inverse, nb::arg("g"));
   using G = ts::GeneralizedPrandtlIshlinskiiParams;
   nb::class_<G>(m, "GeneralizedPrandtlIshlinskiiParams")
       .def(nb::init<>())

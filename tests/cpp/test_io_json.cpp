@@ -312,3 +312,33 @@ TEST(IoJson, LearnedFeedforwardAddsItsTableAndNamesBadKeys) {
   f["feedforward"] = loop;
   EXPECT_NE(error_of(f).find("not an EncoderLoop"), std::string::npos) << error_of(f);
 }
+
+// A GeneralizedPrandtlIshlinskii file's options.envelope_range (as Python writes it) sets both
+// envelopes' tanh input range; absent or null leaves them unbounded; a bad one is named.
+TEST(IoJson, GeneralizedPIEnvelopeRangeLoads) {
+  json gpi = {{"format", "tendonsheath.model"}, {"version", 1},
+              {"model", "GeneralizedPrandtlIshlinskii"},
+              {"params", {{"rising_a", 1.0}, {"rising_b", 2.0}, {"rising_c", 0.1}, {"rising_d", 0.0},
+                          {"falling_a", 1.2}, {"falling_b", 1.5}, {"falling_c", -0.1},
+                          {"falling_d", 0.05}, {"thresholds", {0.0, 0.1}}, {"weights", {1.0, 0.5}}}},
+              {"options", {{"envelope_range", {-0.5, 0.7}}}}};
+  const ts::ModelPart part = ts::io::detail::part_from_json(gpi, "m");
+  const auto& g = part.generalized_prandtl_ishlinskii;
+  EXPECT_EQ(g.rising.lo, -0.5);
+  EXPECT_EQ(g.rising.hi, 0.7);
+  EXPECT_EQ(g.falling.lo, -0.5);
+  EXPECT_EQ(g.falling.hi, 0.7);
+  EXPECT_EQ(error_of(inverse_file(gpi)), "(no error)");
+  json open = gpi;
+  open["options"]["envelope_range"] = nullptr;
+  EXPECT_TRUE(std::isinf(ts::io::detail::part_from_json(open, "m").generalized_prandtl_ishlinskii.rising.hi));
+  open["options"] = json::object();
+  EXPECT_TRUE(std::isinf(ts::io::detail::part_from_json(open, "m").generalized_prandtl_ishlinskii.falling.lo));
+  json bad = gpi;
+  bad["options"]["envelope_range"] = {0.7, -0.5};
+  EXPECT_NE(error_of(inverse_file(bad)).find("'envelope_range' must be null or [lo, hi]"),
+            std::string::npos)
+      << error_of(inverse_file(bad));
+  bad["options"] = {{"range", {0.0, 1.0}}};
+  EXPECT_NE(error_of(inverse_file(bad)).find("unknown key 'range'"), std::string::npos);
+}

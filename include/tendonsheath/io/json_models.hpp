@@ -205,11 +205,24 @@ inline void envelope(Envelope& e, const json& p, const std::string& side, const 
   e.d = number(p, side + "_d", w);
 }
 
+// options.envelope_range: null (the tanh everywhere) or [lo, hi], both envelopes' tanh input range
+inline void envelope_range(GeneralizedPrandtlIshlinskiiParams& g, const json& o, const std::string& w) {
+  if (!o.contains("envelope_range") || o.at("envelope_range").is_null()) return;
+  const std::vector<double> r = numbers(o, "envelope_range", w);
+  if (r.size() != 2 || !std::isfinite(r[0]) || !std::isfinite(r[1]) || !(r[0] < r[1]))
+    fail(w, "'envelope_range' must be null or [lo, hi] with finite lo < hi (got " +
+                o.at("envelope_range").dump() + ")");
+  for (Envelope* e : {&g.rising, &g.falling}) {
+    e->lo = r[0];
+    e->hi = r[1];
+  }
+}
+
 inline void plays_part(ModelPart& part, const json& m, const std::string& where) {
   const std::string w = where + ": params";
   const json& p = member(m, "params", where);
-  options(m, {}, where);
   if (part.kind == "PrandtlIshlinskii") {
+    options(m, {}, where);
     check_keys(p, {"thresholds", "weights"}, {"thresholds", "weights"}, w);
     part.prandtl_ishlinskii.thresholds = numbers(p, "thresholds", w);
     part.prandtl_ishlinskii.weights = numbers(p, "weights", w);
@@ -224,6 +237,7 @@ inline void plays_part(ModelPart& part, const json& m, const std::string& where)
   envelope(g.falling, p, "falling", w);
   g.thresholds = numbers(p, "thresholds", w);
   g.weights = numbers(p, "weights", w);
+  envelope_range(g, options(m, {"envelope_range"}, where), where + ": options");
 }
 
 inline void polynomial_part(ModelPart& part, const json& m, const std::string& where) {

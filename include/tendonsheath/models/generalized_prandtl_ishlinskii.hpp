@@ -9,11 +9,16 @@
 //
 // with 0 = r_0 < r_1 < ..., p_0 > 0 and p_i >= 0, so that y grows with x along
 // any monotone input and the inverse exists inside the envelopes' range.
+// Beyond an envelope's input range [lo, hi] (set by identification to the
+// training inputs' range) it continues along its tangent line instead of
+// saturating: past the data, the model extrapolates the slope it saw last.
 // The inverse solves that monotone equation each step by safeguarded
 // bisection on a bracket (at most 200 iterations, bounded work).
 #pragma once
 
 #include <cmath>
+#include <initializer_list>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -23,19 +28,50 @@
 namespace tendonsheath {
 
 /// A saturating envelope gamma(x) = a tanh(b (x - c)) + d of the generalized play operators.
+///
+/// Inside [lo, hi] (the input range it was identified on; unbounded by default) it is the tanh;
+/// beyond it, the tangent line at lo or hi: continuous, with a continuous slope, and still
+/// increasing. The tanh alone would flatten out past the data and predict a saturation that the
+/// data never showed.
 struct Envelope {
   double a = 1.0;  ///< amplitude (> 0): the envelope saturates at d +- a
   double b = 1.0;  ///< input gain (> 0): initial slope a*b
   double c = 0.0;  ///< input shift
   double d = 0.0;  ///< output shift
-  /// The envelope at x.
-  double operator()(double x) const noexcept { return a * std::tanh(b * (x - c)) + d; }
-  /// Inverse, clipped to the open range (d - a, d + a).
+  double lo = -std::numeric_limits<double>::infinity();  ///< the tanh's input range: lower end
+  double hi = std::numeric_limits<double>::infinity();  ///< the tanh's input range: upper end
+  /// The tanh a tanh(b (x - c)) + d, whatever the range.
+  double tanh_at(double x) const noexcept { return a * std::tanh(b * (x - c)) + d; }
+  /// The tanh's slope a b / cosh^2(b (x - c)) (0 once cosh overflows).
+  double slope_at(double x) const noexcept {
+    const double ch = std::cosh(b * (x - c));
+    return a * b / (ch * ch);
+  }
+  /// The envelope at x: the tanh inside [lo, hi], its tangent line beyond.
+  double operator()(double x) const noexcept {
+    if (x > hi) return past(hi, x);
+    if (x < lo) return past(lo, x);
+    return tanh_at(x);
+  }
+  /// Inverse: along the tangent lines beyond [lo, hi]; inside, the tanh's, clipped to its open
+  /// range (d - a, d + a).
   double inverse(double g) const noexcept {
+    if (std::isfinite(hi) && g > tanh_at(hi) && slope_at(hi) > 0.0)
+      return hi + (g - tanh_at(hi)) / slope_at(hi);
+    if (std::isfinite(lo) && g < tanh_at(lo) && slope_at(lo) > 0.0)
+      return lo + (g - tanh_at(lo)) / slope_at(lo);
     double u = (g - d) / a;
     const double lim = 1.0 - 1e-15;
     u = u > lim ? lim : (u < -lim ? -lim : u);
-    return c + std::atanh(u) / b;
+    double x = c + std::atanh(u) / b;
+    x = x > hi ? hi : x;  // a flat tangent (slope 0 in double): the range's end
+    return x < lo ? lo : x;
+  }
+
+ private:
+  double past(double end, double x) const noexcept {
+    const double s = slope_at(end);
+    return s > 0.0 ? tanh_at(end) + s * (x - end) : tanh_at(end);
   }
 };
 
@@ -69,6 +105,8 @@ inline void validate_gpi(const GeneralizedPrandtlIshlinskiiParams& p, const char
     require(std::fabs(env[e]->c) <= kMaxEnvelopeShift, w, n, ".c must be within +-",
             kMaxEnvelopeShift, " (got ", env[e]->c, ")");
     require_finite(env[e]->d, w, (n + ".d").c_str());
+    require(env[e]->lo < env[e]->hi, w, n, ".lo must be < ", n, ".hi (the tanh's input range; got [",
+            env[e]->lo, ", ", env[e]->hi, "])");
   }
   require(!p.thresholds.empty(), w, "thresholds must not be empty");
   require(p.thresholds.size() == p.weights.size(), w,
@@ -196,6 +234,11 @@ class GeneralizedPrandtlIshlinskiiInverse {
     const double gain = std::fmin(p.rising.b, p.falling.b);
     x_min_ = std::fmin(p.rising.c, p.falling.c) - 2.0 * kEnvelopeSpan / gain;
     x_max_ = std::fmax(p.rising.c, p.falling.c) + 2.0 * kEnvelopeSpan / gain;
+    // never narrower than the tanh's input ranges
+    for (const Envelope* e : {&p.rising, &p.falling}) {
+      if (std::isfinite(e->lo)) x_min_ = std::fmin(x_min_, e->lo);
+      if (std::isfinite(e->hi)) x_max_ = std::fmax(x_max_, e->hi);
+    }
   }
   /// The last target was out of reach: the command sits at the end of the envelopes' input
   /// range, [c_min - 40/b, c_max + 40/b], past which the output no longer changes.

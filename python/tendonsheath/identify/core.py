@@ -18,6 +18,7 @@ from .._typing import ArrayLike
 from ..models import Chain, HysteresisModel, PlantModel
 from ..models.base import _REGISTRY
 from .data import Recording, make_recordings
+from .extrapolation import with_training_range
 from .fit import Fit
 from .refine import TimeBudget, refine
 from .settings import (
@@ -365,7 +366,8 @@ def run(model_class, recs: list[Recording], options: Options, search: Search) ->
     if isinstance(model_class, Loaded):  # recordings that carry their load (Logs read with it)
         return _stamp(search.budget, _run_loaded(model_class, recs, options, search))
     options = with_new_names(model_class, options)
-    return _stamp(search.budget, _dispatch(model_class, recs, options, search))
+    fit = _dispatch(model_class, recs, options, search)
+    return _stamp(search.budget, with_training_range(fit, recs))
 
 
 def _dispatch(model_class, recs, opt: Options, search: Search) -> Fit:

@@ -165,6 +165,9 @@ def _initial(cls, opt: Options) -> HysteresisModel:
         initial = cls()
     elif type(initial) is not cls:
         raise ValueError(f"initial must be a {cls.__name__} (got {type(initial).__name__})")
+    if initial.options.get("envelope_range") is not None:
+        # fitted on the tanh alone; the training range is set afterwards (identify.extrapolation)
+        initial = initial.with_params(envelope_range=None)
     return initial
 
 

@@ -178,6 +178,9 @@ def to_raw(model: HysteresisModel, m: IOMap) -> HysteresisModel | None:
                 new[f"{side}_b"] = p[f"{side}_b"] / m.x_s
                 new[f"{side}_c"] = m.x_c + m.x_s * p[f"{side}_c"]
                 new[f"{side}_d"] = p[f"{side}_d"] + shift
+            span = model.options.get("envelope_range")
+            if span is not None:  # the tanh's input range, in raw input units
+                new["envelope_range"] = [m.x_c + m.x_s * v for v in span]
             return model.with_params(**new)
     except ValueError:  # e.g. a dead band that would be < 0 in raw units
         return None
