@@ -27,6 +27,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._typing import ArrayLike
+
 TOP_BAND = 0.4  # fraction of the sampling rate above which a band-limited input is empty
 MARGIN = 0.1  # the tail must be below this fraction of linear interpolation's error
 FLAT_FRACTION = 0.4  # smallest fraction of vanishing steps (hold) or second differences
@@ -69,7 +71,7 @@ def _flat(d: np.ndarray, tol: float) -> float:
     return float(np.mean(np.abs(d) <= tol)) if d.size else 0.0
 
 
-def detect_input_interpolation(x, periodic: bool = False) -> str:
+def detect_input_interpolation(x: ArrayLike, periodic: bool = False) -> str:
     """ "hold", "bandlimited" or "linear" for the uniformly sampled input x (see the module
     docstring).
 
