@@ -203,7 +203,8 @@ def main() -> None:
     console.print(f"held-out period 5 (fit on 1-4): rmse {r5:.3g} at noise {noise:.3g}")
 
     sweeps = {}
-    for name, (f0, f1) in {"dop853_0_to_150Hz": (0.0, 150.0), "dop853_150_to_0Hz": (150.0, 0.0)}:
+    dop853 = {"dop853_0_to_150Hz": (0.0, 150.0), "dop853_150_to_0Hz": (150.0, 0.0)}
+    for name, (f0, f1) in dop853.items():
         sw = Sweep(FS, 15_000, f0, f1, 50.0)
         ts_, xs = sw.samples()
         sweeps[name] = judge(model, ts_, xs, simulate_reference(TRUE, sw, ts_))

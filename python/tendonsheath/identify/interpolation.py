@@ -105,8 +105,11 @@ def detect_input_interpolation(x: ArrayLike, periodic: bool = False) -> str:
 
 
 def is_uniform(t, rtol: float = 1e-6) -> bool:
-    """Whether the times t are uniformly spaced (the band-limited reconstruction needs it)."""
-    d = np.diff(np.asarray(t, dtype=float))
+    """Whether the times t are uniformly spaced (the band-limited reconstruction needs it);
+    False when there are none."""
+    if t is None:
+        return False
+    d = np.diff(np.asarray(t, dtype=float).ravel())
     if d.size == 0:
         return False
     step = float(np.median(d))
