@@ -116,14 +116,18 @@ def is_uniform(t, rtol: float = 1e-6) -> bool:
     return step > 0 and float(np.max(np.abs(d - step))) <= rtol * step
 
 
-def detect_for_recordings(recs) -> tuple[str, str]:
+def detect_for_recordings(recs, periodic: bool | None = None) -> tuple[str, str]:
     """The reconstruction for all recordings together and a note saying why: one that every
-    uniformly sampled recording agrees on, else "linear"."""
+    uniformly sampled recording agrees on, else "linear". ``periodic``: whether the records
+    are whole periods (None: detected by :func:`~tendonsheath.models.hysteretic_oscillator.
+    is_periodic`)."""
     from ..models.hysteretic_oscillator import is_periodic
 
+    def whole(x):
+        return is_periodic(x) if periodic is None else bool(periodic)
+
     found = {
-        detect_input_interpolation(r.x, is_periodic(r.x)) if is_uniform(r.t) else "linear"
-        for r in recs
+        detect_input_interpolation(r.x, whole(r.x)) if is_uniform(r.t) else "linear" for r in recs
     }
     mode = found.pop() if len(found) == 1 else "linear"
     why = {

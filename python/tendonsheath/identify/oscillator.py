@@ -421,7 +421,7 @@ def identify_oscillator(
     cls = HystereticOscillator
     notes: list[str] = []
     if input_interpolation is None and initial is None:
-        input_interpolation, why = detect_for_recordings(recs)
+        input_interpolation, why = detect_for_recordings(recs, periodic)
         notes.append(why)
     options, values, held, free_names = _setup(initial, input_interpolation, fixed, free)
     mode = options["input_interpolation"]
