@@ -4,7 +4,8 @@
 evolution (every generation evaluated in one batched, multi-threaded C++ call) followed by
 least-squares refinement. :class:`Identifier` is the same as an object (settings stored,
 ``fit(recordings)``, ``clone()``), and :func:`cross_validate` scores it over recordings. See
-:func:`identify`.
+:func:`identify`. :func:`detect_input_interpolation` says which input reconstruction between
+samples (band-limited, held, linear) identify() picks for a HystereticOscillator by default.
 """
 
 from .core import identify
@@ -13,6 +14,7 @@ from .cross_validation import CrossValidation, cross_validate
 from .diagnostics import Diagnostics, IdentifiabilityWarning
 from .estimator import Identifier, NotFittedError
 from .fit import Fit, metrics
+from .interpolation import detect_input_interpolation
 from .loop_dynamics import (
     EmpiricalResponse,
     LoopDynamics,
@@ -33,6 +35,7 @@ __all__ = [
     "ServoFit",
     "NotFittedError",
     "cross_validate",
+    "detect_input_interpolation",
     "empirical_response",
     "identify",
     "identify_coupled",

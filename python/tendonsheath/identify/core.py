@@ -173,7 +173,9 @@ def identify(
     equation-error stage, then simulation-error least squares (see
     :mod:`tendonsheath.identify.oscillator`); ``strategy="search"`` runs the plain
     differential evolution instead. ``input_interpolation`` ("hold", "linear",
-    "bandlimited"; default: ``initial``'s) is the input reconstruction between samples,
+    "bandlimited"; default: detected from the input when no ``initial`` is given, see
+    :mod:`tendonsheath.identify.interpolation`, else ``initial``'s) is the input
+    reconstruction between samples,
     recorded in the fitted model's options and the Fit's method; ``periodic`` says whether
     the records are whole periods (None: detected) for the band-limited reconstruction;
     ``time_budget`` (seconds of wall clock, every model and chain): the global search stops
@@ -269,7 +271,8 @@ def identify(
     time_budget : float, optional
         Seconds of wall clock for the search and the refinement.
     input_interpolation : {"hold", "linear", "bandlimited"}, optional
-        The input reconstruction between samples.
+        The input reconstruction between samples (None: detected from the input, or
+        ``initial``'s when given).
     periodic : bool, optional
         Whether the records are whole periods (None: detected).
     strategy : {"auto", "search"}, default "auto"

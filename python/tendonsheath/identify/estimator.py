@@ -106,7 +106,7 @@ class Identifier:
         diagnostics come after, outside the budget.
     input_interpolation : {"hold", "linear", "bandlimited"}, optional
         The input reconstruction between samples (HystereticOscillator; default:
-        ``initial``'s).
+        detected from the input when no ``initial`` is given, else ``initial``'s).
     periodic : bool, optional
         Whether the records are whole periods, for the band-limited reconstruction (None:
         detected).

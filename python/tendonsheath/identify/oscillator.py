@@ -27,6 +27,11 @@ parameter spread adds is about noise * sqrt(7 / N) for N samples: ~2e-7 m at N =
 than the model's own discretisation error (~5e-8 to 3e-7 m); benchmarks/identify.py
 --oscillator prints the ratio expected from the bound next to the one measured.
 
+The input reconstruction between samples, when neither ``input_interpolation`` nor
+``initial`` is given, is read from the input (:mod:`~tendonsheath.identify.interpolation`):
+band-limited for a multisine or a sweep (the Bouc-Wen benchmark's floor needs it), held for a
+staircase, linear otherwise; ``input_interpolation`` overrides it.
+
 Multi-period records (an input that repeats exactly) are detected: stages 1 and 2 use the
 average of the steady-state periods (the first period, the transient, is dropped); stage 3
 simulates the whole record from rest, as the data was taken.
@@ -45,6 +50,7 @@ from ..models import HystereticOscillator
 from ..models.hysteretic_oscillator import fft_upsample, is_periodic, uniform_step
 from .data import check_for_fit
 from .fit import Fit, fit_quality
+from .interpolation import detect_for_recordings
 from .problem import DirectProblem
 from .refine import TimeBudget, forward_jacobian, refine
 
@@ -413,13 +419,16 @@ def identify_oscillator(
     """The staged identification of a HystereticOscillator (see the module docstring) with the
     :class:`~tendonsheath.identify.settings.Search` settings ``search``."""
     cls = HystereticOscillator
+    notes: list[str] = []
+    if input_interpolation is None and initial is None:
+        input_interpolation, why = detect_for_recordings(recs, periodic)
+        notes.append(why)
     options, values, held, free_names = _setup(initial, input_interpolation, fixed, free)
     mode = options["input_interpolation"]
     check_for_fit(recs, warmup, len(free_names), True, False)
     stages = _Stages(search.progress, search.budget)
     start = time.perf_counter()
     counter = {"evaluations": 0}
-    notes: list[str] = []
     try:
         per, segments = _segments(recs, mode, periodic, notes)
         stages.stage("best linear approximation")
