@@ -48,6 +48,7 @@ PUBLIC_MODULES = [
     "tendonsheath.compensate",
     "tendonsheath.simulation_result",  # before plant, which re-exports SimulationResult
     "tendonsheath.plant",
+    "tendonsheath.coupled_plant",
     "tendonsheath.sweep",
     "tendonsheath.bench",
     "tendonsheath.report.build",

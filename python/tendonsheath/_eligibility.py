@@ -14,7 +14,9 @@ eligible* (it stays in the table, marked, with the reason) when
 - its prediction on a held-out part leaves the outputs' range by more than ``range_margin``
   times that range's span. The range is the one the part's training outputs reached, widened
   to the affine map's own prediction on the part (the baseline's extrapolation: a candidate is
-  not blamed for following the input where the affine map does too).
+  not blamed for following the input where the affine map does too) and, where the logs carry
+  a measured load, to the affine map in the input and the load (a load beyond the training
+  loads moves the whole loop).
 
 The affine map is always eligible: the winner is never worse than it on any held-out part.
 """
@@ -66,11 +68,12 @@ def part_rmse(validation: list[dict], name: str) -> list[float]:
 
 def _range_excess(slot: dict, name: str) -> float:
     """How far (a share of the allowed range's span) ``name``'s prediction on the part leaves
-    the training outputs' range widened to the affine map's prediction; 0 inside it."""
+    the training outputs' range widened to the affine map's prediction (and, where the logs
+    carry a load, to the affine map in the input and the load: ``load_affine``); 0 inside it."""
     lo, hi = slot["train_range"]
-    affine = slot["predictions"].get(AFFINE)
-    if affine is not None and len(affine):
-        lo, hi = min(lo, float(np.min(affine))), max(hi, float(np.max(affine)))
+    for baseline in (slot["predictions"].get(AFFINE), slot.get("load_affine")):
+        if baseline is not None and len(baseline):
+            lo, hi = min(lo, float(np.min(baseline))), max(hi, float(np.max(baseline)))
     span = hi - lo
     pred = np.asarray(slot["predictions"].get(name, ()), dtype=float)
     if pred.size == 0:

@@ -363,14 +363,19 @@ def identify(
     fit, val, n_logs = _checked(_fit_logs, candidate, data, validate, columns, search)
     _save_fit(out, fit, val, columns)
     _print_fit(fit, n_logs, output_col)
+    _print_validation(val, validate, output_col)
+    if report is not None:
+        console.print(f"report: {fit.report(report)}")
+    console.print(f"model saved to {out}")
+
+
+def _print_validation(val: dict | None, validate: Path | None, output_col: str) -> None:
+    """The validation line of ``identify`` (nothing without --validate)."""
     if val is not None:
         console.print(
             f"validation on {validate}: rmse {val['rmse']:.4g} ({output_col} units)   "
             f"nrmse {100 * val['nrmse']:.3f} %   fit {val['fit_percent']:.2f} %"
         )
-    if report is not None:
-        console.print(f"report: {fit.report(report)}")
-    console.print(f"model saved to {out}")
 
 
 def _read_logs(paths, columns: dict, **options) -> list:
@@ -763,6 +768,33 @@ def _cli_note(note: str) -> str:
     return note.replace("consider resample=", "consider --resample RATE (Hz)")
 
 
+# the long options of `compare`, kept out of its signature
+_COMPARE_MODELS_OPTION = typer.Option(
+    None,
+    "--models",
+    help="Comma-separated candidates, e.g. backlash,bwb,pi,gpi,bwb+poly3 "
+    "(default: all of these, and CurveAngleModel with a curve angle); NAME+load (e.g. "
+    "backlash+load) takes the --load column.",
+)
+_COMPARE_LOAD_OPTION = typer.Option(
+    None,
+    "--load",
+    help="Measured load column (in a ROS bag /topic:field), for the NAME+load candidates.",
+)
+_OBJECTIVE_OPTION = typer.Option(
+    "prediction",
+    "--objective",
+    help="What ranks the candidates: prediction (held-out error) or compensation "
+    "(the inverse's error).",
+)
+_RANGE_MARGIN_OPTION = typer.Option(
+    0.1,
+    "--range-margin",
+    help="A candidate whose held-out prediction leaves the outputs' range by more than "
+    "this share of its span cannot win.",
+)
+
+
 @app.command(cls=_FilesAfterValidate)
 @_one_paragraph
 @_stops_on_ctrl_c
@@ -794,18 +826,8 @@ def compare(
         "--folds",
         help="Cross-validation folds (default: leave one file out; 3 blocks for one file).",
     ),
-    models: str | None = typer.Option(
-        None,
-        "--models",
-        help="Comma-separated candidates, e.g. backlash,bwb,pi,gpi,bwb+poly3 "
-        "(default: all of these, and CurveAngleModel with a curve angle); NAME+load (e.g. "
-        "backlash+load) takes the --load column.",
-    ),
-    load_col: str | None = typer.Option(
-        None,
-        "--load",
-        help="Measured load column (in a ROS bag /topic:field), for the NAME+load candidates.",
-    ),
+    models: str | None = _COMPARE_MODELS_OPTION,
+    load_col: str | None = _COMPARE_LOAD_OPTION,
     resample: float | None = typer.Option(
         None, "--resample", help="Resample every file to this rate (Hz) first."
     ),
@@ -820,28 +842,15 @@ def compare(
         help="Seconds for the candidates' fits; a candidate that runs out is reported as "
         "out of time.",
     ),
-    objective: str = typer.Option(
-        "prediction",
-        "--objective",
-        help="What ranks the candidates: prediction (held-out error) or compensation "
-        "(the inverse's error).",
-    ),
-    range_margin: float = typer.Option(
-        0.1,
-        "--range-margin",
-        help="A candidate whose held-out prediction leaves the outputs' range by more than "
-        "this share of its span cannot win.",
-    ),
+    objective: str = _OBJECTIVE_OPTION,
+    range_margin: float = _RANGE_MARGIN_OPTION,
     quiet: bool = typer.Option(
         False, "--quiet", "-q", help="No progress bar or per-candidate lines."
     ),
 ) -> None:
     """Fit candidate models on DATA, rank them on held-out data against y = a x + b; a
     candidate worse than y = a x + b on any held-out part cannot win."""
-    if objective not in ("prediction", "compensation"):
-        _fail(f"--objective must be prediction or compensation (got {objective!r})")
-    if not (np.isfinite(range_margin) and range_margin >= 0):
-        _fail(f"--range-margin must be a number >= 0 (got {range_margin})")
+    _check_choice_options(objective, range_margin)
     _check_split_options(holdout, validate, folds)
     if report is not None:
         _checked(check_output_folder, report, "--report")
@@ -862,13 +871,26 @@ def compare(
     }
     result = _checked(_compare_models, logs, models, split, quiet, options)
     _print_comparison(result, output_col)
-    how = {
-        True: "fitted on all the data",
-        False: "fitted on the training files" if vlogs else "refitted on the whole files",
-    }[holdout is None and not vlogs]
-    console.print(f"winner: {result.winner_name} ({how})")
+    _print_winner(result, holdout is None and not vlogs, bool(vlogs))
     if report is not None:
         console.print(f"report: {result.report(report)}")
+
+
+def _check_choice_options(objective: str, range_margin: float) -> None:
+    """--objective and --range-margin of ``compare``."""
+    if objective not in ("prediction", "compensation"):
+        _fail(f"--objective must be prediction or compensation (got {objective!r})")
+    if not (np.isfinite(range_margin) and range_margin >= 0):
+        _fail(f"--range-margin must be a number >= 0 (got {range_margin})")
+
+
+def _print_winner(result, on_all_data: bool, held_out_files: bool) -> None:
+    """The winner line of ``compare``: what it was fitted on."""
+    if on_all_data:
+        how = "fitted on all the data"
+    else:
+        how = "fitted on the training files" if held_out_files else "refitted on the whole files"
+    console.print(f"winner: {result.winner_name} ({how})")
 
 
 def _check_split_options(holdout: float | None, validate, folds: int | None) -> None:

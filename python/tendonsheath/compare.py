@@ -796,6 +796,7 @@ def _validation_slots(splits, labels: list[str]) -> list[dict]:
             "predictions": {},
             "fold": k,
             "train_range": _output_range(train),
+            "load_affine": _load_affine(train, r, a, b),
         }
         for k, (train, evals) in enumerate(splits)
         for r, a, b in evals
@@ -812,6 +813,21 @@ def _output_range(train) -> tuple[float, float]:
         return (float("nan"), float("nan"))
     y = np.concatenate(ys)
     return float(np.min(y)), float(np.max(y))
+
+
+def _load_affine(train, r, a: int, b: int) -> np.ndarray | None:
+    """Where a measured load alone moves the output on a held-out part: the affine map in the
+    input and the load (least squares on the training recordings) over the part, which widens
+    the outputs' allowed range (a load beyond the training loads moves the whole loop); None
+    where a recording carries no load."""
+    if any(getattr(p, "load", None) is None for p in [*train, r]):
+        return None
+    x = np.concatenate([p.x for p in train])
+    load = np.concatenate([p.load for p in train])
+    y = np.concatenate([p.y for p in train])
+    A = np.column_stack([np.ones_like(x), x, load])
+    c = np.linalg.lstsq(A, y, rcond=None)[0]
+    return c[0] + c[1] * r.x[a:b] + c[2] * r.load[a:b]
 
 
 def _names(items: list, what: str) -> list[str]:

@@ -24,7 +24,7 @@ from ._typing import ArrayLike, FloatArray
 from .sensor import Sensor
 
 
-def coupling_matrix(ratios: ArrayLike, joints: int, owner: str) -> FloatArray:
+def _coupling_matrix(ratios: ArrayLike, joints: int, owner: str) -> FloatArray:
     """A checked (joints x joints) coupling matrix: finite, zero diagonal, I - K invertible."""
     k = np.array(ratios, dtype=np.float64)
     if k.shape != (joints, joints):
@@ -42,7 +42,7 @@ def coupling_matrix(ratios: ArrayLike, joints: int, owner: str) -> FloatArray:
     return k
 
 
-def joint_matrix(values: ArrayLike, joints: int, name: str, owner: str) -> FloatArray:
+def _joint_matrix(values: ArrayLike, joints: int, name: str, owner: str) -> FloatArray:
     """Samples of ``joints`` signals as an (n, joints) float array (checked finite)."""
     a = np.asarray(values, dtype=np.float64)
     if a.ndim != 2 or a.shape[1] != joints:
@@ -115,7 +115,7 @@ class CoupledPlant:
         if not self.plants:
             raise ValueError("CoupledPlant: give at least one plant")
         n = len(self.plants)
-        self.coupling = coupling_matrix(coupling, n, "CoupledPlant")
+        self.coupling = _coupling_matrix(coupling, n, "CoupledPlant")
         self.sensors = [None] * n if sensors is None else list(sensors)
         if len(self.sensors) != n:
             raise ValueError(f"CoupledPlant: {n} plants but {len(self.sensors)} sensors")
@@ -170,7 +170,7 @@ class CoupledPlant:
             Commands of the wrong shape or not finite, or what a plant's simulate rejects.
         """
         ts = np.asarray(t, dtype=np.float64)
-        u = joint_matrix(command, self.joints, "command", "CoupledPlant.simulate")
+        u = _joint_matrix(command, self.joints, "command", "CoupledPlant.simulate")
         if ts.shape != (u.shape[0],):
             raise ValueError(
                 f"CoupledPlant.simulate: t has {ts.size} samples, the commands {u.shape[0]}"

@@ -11,7 +11,7 @@ import numpy as np
 from .. import _core as core
 from .._arrays import as_vector, checked_dt
 from .._typing import ArrayLike, FloatArray
-from ..coupled_plant import joint_matrix
+from ..coupled_plant import _joint_matrix
 from ..models import Coupled
 from ..status import Status
 from .inverse_feedforward import InverseFeedforward
@@ -144,7 +144,7 @@ class CoupledFeedforward:
         ValueError
             Desired angles of the wrong shape or not finite, or a bad t.
         """
-        yd = joint_matrix(y_desired, len(self.joints), "y_desired", "CoupledFeedforward.command")
+        yd = _joint_matrix(y_desired, len(self.joints), "y_desired", "CoupledFeedforward.command")
         ts = np.ascontiguousarray(as_vector(t, "t"))
         return self._engine.command(ts, yd)
 

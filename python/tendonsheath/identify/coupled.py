@@ -23,7 +23,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from .._typing import ArrayLike, FloatArray
-from ..coupled_plant import joint_matrix
+from ..coupled_plant import _joint_matrix
 from ..models import Coupled, HysteresisModel
 from .core import identify
 from .fit import Fit
@@ -125,9 +125,9 @@ def identify_coupled(
         samples after the warm-up.
     """
     start = time.perf_counter()
-    xs = joint_matrix(x, _joints(x), "x", "identify_coupled")
+    xs = _joint_matrix(x, _joints(x), "x", "identify_coupled")
     n, joints = xs.shape
-    ys = joint_matrix(y, joints, "y", "identify_coupled")
+    ys = _joint_matrix(y, joints, "y", "identify_coupled")
     if ys.shape[0] != n:
         raise ValueError(f"identify_coupled: x has {n} samples, y {ys.shape[0]}")
     classes = _classes(model_class, joints)

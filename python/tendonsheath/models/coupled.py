@@ -13,7 +13,7 @@ import numpy as np
 from .._atomic import write_text
 from .._json_source import read_json_source
 from .._typing import ArrayLike, FloatArray
-from ..coupled_plant import coupling_matrix, joint_matrix
+from ..coupled_plant import _coupling_matrix, _joint_matrix
 from .base import HysteresisModel, load_model
 
 FORMAT_NAME = "tendonsheath.coupled_model"
@@ -53,7 +53,7 @@ class Coupled:
                     f"Coupled: joint {i}'s model must be a tendonsheath model "
                     f"(got {type(m).__name__})"
                 )
-        self._coupling = coupling_matrix(coupling, len(self.models), "Coupled")
+        self._coupling = _coupling_matrix(coupling, len(self.models), "Coupled")
         self._solve = np.linalg.inv(np.eye(self.joints) - self._coupling)
 
     @property
@@ -81,7 +81,7 @@ class Coupled:
         numpy.ndarray of float, shape (n, J)
             The joints' own outputs.
         """
-        xs = joint_matrix(x, self.joints, "x", "Coupled")
+        xs = _joint_matrix(x, self.joints, "x", "Coupled")
         cols = [np.asarray(m.simulate(t, xs[:, i])) for i, m in enumerate(self.models)]
         return np.column_stack(cols)
 
@@ -121,7 +121,7 @@ class Coupled:
         numpy.ndarray of float, shape (n, J)
             The predicted angles.
         """
-        ys = joint_matrix(y, self.joints, "y", "Coupled.predict")
+        ys = _joint_matrix(y, self.joints, "y", "Coupled.predict")
         return self.own(t, x) + ys @ self._coupling.T
 
     def with_coupling(self, coupling: ArrayLike) -> Coupled:
