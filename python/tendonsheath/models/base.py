@@ -335,6 +335,23 @@ class HysteresisModel(_ControlBlock):
         return f"{type(self).__name__}({inner})"
 
 
+def split_wrapped_changes(
+    changes: dict[str, Any], prefix: str, own: dict[str, Any], owner: str
+) -> tuple[dict[str, Any], dict[str, Any]]:
+    """``with_params`` of a model around another (Scaled, Loaded): the changes named
+    ``<prefix>.<name>`` for the wrapped model, and ``own`` updated with the others (TypeError
+    naming an unknown one)."""
+    inner, mine = {}, dict(own)
+    for key, value in changes.items():
+        if key.startswith(prefix + "."):
+            inner[key.removeprefix(prefix + ".")] = value
+        elif key in mine:
+            mine[key] = value
+        else:
+            raise TypeError(f"{owner}: unknown parameter {key!r}; {prefix}.<name> or {tuple(own)}")
+    return inner, mine
+
+
 def _with_input_range(to_dict: _F) -> _F:
     """``to_dict`` that adds the model's ``input_range`` (when it has one) as [lo, hi]."""
 

@@ -32,7 +32,7 @@ import numpy as np
 from .._args import number
 from .._typing import ArrayLike, FloatArray
 from ..status import Status
-from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel
+from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel, split_wrapped_changes
 
 #: the load terms, in the order of Loaded's parameters
 LOAD_TERMS = ("gain", "slack", "slack_load", "friction")
@@ -183,14 +183,7 @@ class Loaded(HysteresisModel):
         TypeError
             An unknown name.
         """
-        base, terms = {}, dict(self.terms)
-        for key, value in changes.items():
-            if key.startswith("base."):
-                base[key.removeprefix("base.")] = value
-            elif key in terms:
-                terms[key] = value
-            else:
-                raise TypeError(f"Loaded: unknown parameter {key!r}; base.<name> or {LOAD_TERMS}")
+        base, terms = split_wrapped_changes(changes, "base", self.terms, "Loaded")
         new_base = self.base.with_params(**base) if base else self.base
         model = Loaded(new_base, **terms)
         model.input_range = self.input_range

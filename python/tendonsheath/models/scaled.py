@@ -9,7 +9,7 @@ import numpy as np
 from .._args import number
 from .._typing import ArrayLike, FloatArray
 from ..status import Status
-from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel
+from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel, split_wrapped_changes
 
 _MAP = ("input_offset", "input_scale", "output_offset", "output_gain")
 
@@ -107,14 +107,7 @@ class Scaled(HysteresisModel):
         ValueError
             An unknown name.
         """
-        inner, mapping = {}, dict(self.map)
-        for key, value in changes.items():
-            if key.startswith("inner."):
-                inner[key.removeprefix("inner.")] = value
-            elif key in mapping:
-                mapping[key] = value
-            else:
-                raise TypeError(f"Scaled: unknown parameter {key!r}; inner.<name> or {_MAP}")
+        inner, mapping = split_wrapped_changes(changes, "inner", self.map, "Scaled")
         return Scaled(self.inner.with_params(**inner), **mapping)
 
     def to_inner_input(self, x: ArrayLike) -> FloatArray:
