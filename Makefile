@@ -7,6 +7,8 @@ STAMP := $(VENV)/.deps-stamp
 CPP_BUILD := build/cpp
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 DEMO_OUT ?= demo-out
+# the system packages the tests need are apt-installed when absent: as root, or with sudo
+SUDO := $(shell if [ "$$(id -u)" != 0 ] && command -v sudo > /dev/null; then echo sudo; fi)
 # the real robot's recordings for benchmarks/realdata.py (not in this repository)
 REALDATA ?= ../shared/data/nhoyh_vio_com
 
@@ -34,21 +36,21 @@ demo: install
 gtest:
 	@if [ ! -f /usr/include/gtest/gtest.h ] && [ ! -f /usr/local/include/gtest/gtest.h ]; then \
 	  echo "GoogleTest not found: installing libgtest-dev with apt-get"; \
-	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libgtest-dev googletest; \
+	  $(SUDO) apt-get update -qq && $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libgtest-dev googletest; \
 	fi
 
 # nlohmann/json for the optional tendonsheath/io/json.hpp, its test and C++ example 03
 nlohmann-json:
 	@if [ ! -f /usr/include/nlohmann/json.hpp ] && [ ! -f /usr/local/include/nlohmann/json.hpp ]; then \
 	  echo "nlohmann/json not found: installing nlohmann-json3-dev with apt-get"; \
-	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nlohmann-json3-dev; \
+	  $(SUDO) apt-get update -qq && $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nlohmann-json3-dev; \
 	fi
 
 # The report test renders report.html in headless Chromium (Debian's package).
 chromium:
 	@if ! command -v chromium > /dev/null && ! command -v chromium-browser > /dev/null; then \
 	  echo "Chromium not found: installing Debian's chromium package with apt-get"; \
-	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium > /dev/null; \
+	  $(SUDO) apt-get update -qq && $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium > /dev/null; \
 	fi
 
 # The long fuzz campaign: one libFuzzer target per real-time class family
@@ -69,7 +71,7 @@ clang:
 	@if ! command -v clang++ > /dev/null || \
 	    ! ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a > /dev/null 2>&1; then \
 	  echo "clang/libFuzzer not found: installing clang and libfuzzer-14-dev with apt-get"; \
-	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq clang libfuzzer-14-dev > /dev/null; \
+	  $(SUDO) apt-get update -qq && $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq clang libfuzzer-14-dev > /dev/null; \
 	fi
 
 fuzz-build: clang
@@ -131,7 +133,7 @@ $(DOCS_TOOLS): $(STAMP) pyproject.toml
 doxygen:
 	@if ! command -v doxygen > /dev/null; then \
 	  echo "Doxygen not found: installing Debian's doxygen package with apt-get"; \
-	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq doxygen > /dev/null; \
+	  $(SUDO) apt-get update -qq && $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq doxygen > /dev/null; \
 	fi
 
 docs: $(DOCS_TOOLS) doxygen

@@ -133,7 +133,16 @@ def _sweep(_ns, folder):
     assert any((folder / "sweep-out").iterdir())
 
 
+def _real_drives(ns, _folder):
+    # the stretch gain -1.5 found within 1 % (measured -1.4975); the coupling 0.25 within 3
+    # standard errors (measured 0.249977 +- 3.5e-5)
+    assert abs(ns["fit"].model.terms["gain"] + 1.5) < 0.05
+    assert abs(ns["coupled"].coupling[1, 0] - 0.25) < 3 * ns["coupled"].coupling_se[1, 0]
+    assert "Loaded(Backlash)" in ns["cmp"].excluded() and np.all(np.isfinite(ns["u"]))
+
+
 CHECKS = {
+    "tutorials/real-drives.md": _real_drives,
     "tutorials/simulate.md": _simulate,
     "tutorials/identify.md": _identify,
     "tutorials/compensate.md": _compensate,
