@@ -255,3 +255,53 @@ def test_time_budget_through_the_command(tmp_path):
     assert json.loads(out.read_text())["fit"]["stopped_on_budget"] is True
     bad = runner.invoke(app, [*args, "--time", "time", "--time-budget", "0", "-o", str(out)])
     assert bad.exit_code == 2 and "time_budget" in bad.output
+
+
+def _backlash_logs(tmp_path, n=2):
+    """n noisy runs of a Backlash drive at different amplitudes (CSV)."""
+    truth = ts.models.Backlash(B_r=0.1, B_l=0.1)
+    rng = np.random.default_rng(3)
+    t = np.arange(0.0, 5.0, 1e-2)
+    paths = []
+    for k in range(n):
+        x = (0.6 + 0.3 * k) * np.sin(2 * np.pi * 0.5 * t)
+        y = truth.simulate(t, x) + 0.002 * rng.standard_normal(t.size)
+        _write(tmp_path / f"run{k}.csv", t, x, y)
+        paths.append(str(tmp_path / f"run{k}.csv"))
+    return paths
+
+
+def test_bounds_option_reaches_the_search_and_bad_ones_are_one_line(tmp_path):
+    """--bounds NAME=LO:HI bounds the search: B_r, truly 0.1, held in [0.2, 0.3] ends in it;
+    a malformed or empty range is a one-line error naming the option."""
+    paths = _backlash_logs(tmp_path, 1)
+    cols = ["--input", "motor", "--output", "tip", "--time", "time", "-q"]
+    out = tmp_path / "m.json"
+    args = ["identify", paths[0], "-m", "Backlash", *cols, "-o", str(out), "--maxiter", "10"]
+    result = runner.invoke(app, [*args, "--bounds", "B_r=0.2:0.3"])
+    assert result.exit_code == 0, result.output
+    assert 0.2 <= ts.load_model(out).params["B_r"] <= 0.3
+    for bad in ("B_r=0.3:0.2", "B_r=a:b", "B_r", "=0:1"):
+        result = runner.invoke(app, [*args, "--bounds", bad])
+        assert result.exit_code == 2 and "--bounds" in result.output, (bad, result.output)
+        assert "Traceback" not in result.output
+
+
+def test_compare_report_saves_the_winner_that_predict_reads_and_shows_full_names(tmp_path):
+    """compare --report DIR writes DIR/winner.json, a model file predict reads; off a terminal
+    the table keeps whole model names (rich would cut them at 80 columns)."""
+    paths = _backlash_logs(tmp_path, 2)
+    cols = ["--input", "motor", "--output", "tip", "--time", "time", "-q"]
+    report = tmp_path / "cmp"
+    models = "backlash,bwb+poly3"
+    result = runner.invoke(
+        app, ["compare", *paths, *cols, "--models", models, "--report", str(report)]
+    )
+    assert result.exit_code == 0, result.output
+    assert "BoucWenBacklash+poly3" in result.output  # not "BoucWen…"
+    winner = ts.load_model(report / "winner.json")
+    assert type(winner).__name__ in result.output.split("winner: ")[1].split()[0]
+    out = str(tmp_path / "p.csv")
+    cols = cols[:-1]  # predict has no --quiet
+    pred = runner.invoke(app, ["predict", str(report / "winner.json"), paths[1], *cols, "-o", out])
+    assert pred.exit_code == 0, pred.output

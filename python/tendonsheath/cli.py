@@ -189,7 +189,7 @@ def _print_demo_tables(written: dict, unit: str) -> None:
                 f"{_in_unit(m['rmse'], unit):.4g}",
                 f"{m['percent_error']:.2f}",
             )
-        console.print(table)
+        _print_table(table)
     if "robustness" in data:
         runs = data["robustness"]["runs"]
         table = Table(title=f"robustness: mse ({unit}^2) over {runs} perturbed plants")
@@ -202,7 +202,7 @@ def _print_demo_tables(written: dict, unit: str) -> None:
                 f"{_in_unit(q['q95'], unit, squared=True):.3e}",
                 f"{100 * q.get('within_bound', float('nan')):.0f}",
             )
-        console.print(table)
+        _print_table(table)
 
 
 def _checked(check, *args, **kwargs):
@@ -264,7 +264,7 @@ def bench(
             f"{row['percent_error']:.2f}",
             f"{row['improvement']:.1f}",
         )
-    console.print(table)
+    _print_table(table)
     console.print(f"wrote {written['report']} and {written['metrics']}")
 
 
@@ -274,6 +274,15 @@ _TIME_HELP = (
 )
 
 
+def _print_table(table: Table) -> None:
+    """A table on stdout; off a terminal (a log, a pipe) 160 columns wide, where rich would fit
+    80 and cut the names."""
+    if console.is_terminal:
+        console.print(table)
+    else:
+        Console(file=console.file, width=160).print(table)
+
+
 def _fail(reason) -> NoReturn:
     """One-line reason on bad input, and a non-zero exit (2)."""
     from rich.markup import escape
@@ -281,6 +290,36 @@ def _fail(reason) -> NoReturn:
     # escaped: "[plant]" or "[deg]" in a reason is text, not rich markup
     console.print(f"[red]error:[/red] {escape(str(reason))}", soft_wrap=True, highlight=False)
     raise typer.Exit(code=2)
+
+
+# the long options of `identify`, kept out of its signature
+_IDENTIFY_LOAD_OPTION = typer.Option(
+    None,
+    "--load",
+    help="Measured load column (e.g. a jaw torque; in a ROS bag /topic:field): the model "
+    "becomes Loaded(MODEL), its load terms identified with it.",
+)
+_BOUNDS_OPTION = typer.Option(
+    None,
+    "--bounds",
+    help="A parameter's search bounds, NAME=LO:HI (repeat for several), e.g. --bounds n=0.5:20.",
+)
+
+
+def _parsed_bounds(items: list[str]) -> dict[str, tuple[float, float]]:
+    """--bounds NAME=LO:HI ... as identify's ``bounds`` (a one-line error otherwise)."""
+    out = {}
+    for item in items:
+        name, _, rng = item.partition("=")
+        lo, _, hi = rng.partition(":")
+        try:
+            low, high = float(lo), float(hi)
+        except ValueError:
+            _fail(f"--bounds: expected NAME=LO:HI with numbers, e.g. n=0.5:20 (got {item!r})")
+        if not name.strip() or not (np.isfinite(low) and np.isfinite(high) and low < high):
+            _fail(f"--bounds: expected NAME=LO:HI with finite LO < HI (got {item!r})")
+        out[name.strip()] = (low, high)
+    return out
 
 
 @app.command()
@@ -311,12 +350,8 @@ def identify(
     curve_angle: str | None = typer.Option(
         None, "--curve-angle", help="Curve-angle column, or a number (rad)."
     ),
-    load_col: str | None = typer.Option(
-        None,
-        "--load",
-        help="Measured load column (e.g. a jaw torque; in a ROS bag /topic:field): the model "
-        "becomes Loaded(MODEL), its load terms identified with it.",
-    ),
+    load_col: str | None = _IDENTIFY_LOAD_OPTION,
+    bounds: list[str] = _BOUNDS_OPTION,
     validate: Path | None = typer.Option(None, "--validate", help="Data file to validate on."),
     out: Path = typer.Option(Path("model.json"), "--out", "-o", help="Where to save the model."),
     warmup: int = typer.Option(0, "--warmup", help="Samples per recording not fitted."),
@@ -360,6 +395,8 @@ def identify(
         "bootstrap": resamples,
         "time_budget": time_budget,
     }
+    if bounds:
+        search["bounds"] = _parsed_bounds(bounds)
     fit, val, n_logs = _checked(_fit_logs, candidate, data, validate, columns, search)
     _save_fit(out, fit, val, columns)
     _print_fit(fit, n_logs, output_col)
@@ -464,7 +501,7 @@ def _print_fit(fit, n_logs: int, output_col: str) -> None:
     table.add_column("std. error", justify="right")
     for row in fit.table():
         table.add_row(*row)
-    console.print(table)
+    _print_table(table)
     console.print(
         f"rmse {fit.rmse:.4g} ({output_col} units)   nrmse {100 * fit.nrmse:.3f} %   "
         f"fit {fit.fit_percent:.2f} %   ({fit.evaluations} evaluations, {fit.seconds:.2f} s)"
@@ -710,7 +747,7 @@ def _print_sweep_summary(res, metric: str, bound) -> None:
         if has_bound:
             cells.append(f"{100 * row['within_bound']:.0f} %")
         table.add_row(str(row["compensator"]), *cells)
-    console.print(table)
+    _print_table(table)
 
 
 def _print_sensitivity(res, metric: str) -> None:
@@ -834,7 +871,10 @@ def compare(
     seed: int = typer.Option(0, "--seed", help="Seed of the global searches."),
     maxiter: int = typer.Option(100, "--maxiter", help="Generations of each global search."),
     report: Path | None = typer.Option(
-        None, "--report", help="Folder for report.html, loops, residuals and JSON."
+        None,
+        "--report",
+        help="Folder for report.html, loops, residuals, comparison.json and winner.json (the "
+        "winner's model file).",
     ),
     time_budget: float | None = typer.Option(
         None,
@@ -873,7 +913,16 @@ def compare(
     _print_comparison(result, output_col)
     _print_winner(result, holdout is None and not vlogs, bool(vlogs))
     if report is not None:
-        console.print(f"report: {result.report(report)}")
+        _write_comparison(result, report)
+
+
+def _write_comparison(result, report: Path) -> None:
+    """compare --report DIR: the report, and where the winner's model file is."""
+    console.print(f"report: {result.report(report)}", soft_wrap=True)
+    console.print(
+        f"winner's model file (tendonsheath predict reads it): {report}/winner.json",
+        soft_wrap=True,
+    )
 
 
 def _check_choice_options(objective: str, range_margin: float) -> None:
@@ -936,7 +985,8 @@ def _print_comparison(result, output_col: str) -> None:
     from .compare import INVERSE_NOTE
 
     table = Table(title=f"model comparison ({result.mode})")
-    table.add_column("model")
+    longest = max(len(r["model"]) for r in result.table) + 4  # and " (x)"
+    table.add_column("model", no_wrap=True, min_width=longest)
     for col in (
         "params",
         f"train rmse ({output_col} units)",
@@ -970,7 +1020,7 @@ def _print_comparison(result, output_col: str) -> None:
             f"{r['seconds']:.1f}",
             f"{r['cpu_seconds']:.1f}",
         )
-    console.print(table)
+    _print_table(table)
     console.print(f"inverse: {INVERSE_NOTE}", highlight=False)
     if any(r.get("excluded") for r in result.table):
         console.print("(x): cannot win (the reason is above)", highlight=False)

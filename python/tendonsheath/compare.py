@@ -365,8 +365,10 @@ class Comparison:
         }
 
     def report(self, path: str | Path) -> Path:
-        """Write DIR/comparison.json, DIR/loops.png, DIR/residuals.png and DIR/report.html
-        (validation loops and residuals of every model); returns the HTML path.
+        """Write DIR/comparison.json, DIR/winner.json (the winner's model file, which
+        ``load_model`` and ``tendonsheath predict`` read), DIR/loops.png, DIR/residuals.png
+        and DIR/report.html (validation loops and residuals of every model); returns the HTML
+        path.
 
         Parameters
         ----------
@@ -386,6 +388,7 @@ class Comparison:
         out = Path(path)
         out.mkdir(parents=True, exist_ok=True)
         write_json(out / "comparison.json", self.to_dict())
+        self.winner.to_json(out / "winner.json")
         names = [r["model"] for r in self.table if not r.get("error")]
         cols = min(3, len(names))
         rows = int(np.ceil(len(names) / cols))
