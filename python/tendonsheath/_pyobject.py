@@ -42,7 +42,7 @@ def _opening(init: Callable) -> Callable:
     return wrapper
 
 
-def from_state(cls: type, state: dict[str, Any]) -> Any:
+def from_state(cls: type[Any], state: dict[str, Any]) -> Any:
     """An instance of ``cls`` with the attributes ``state`` (its pickled ``__dict__``).
 
     Parameters
@@ -57,7 +57,7 @@ def from_state(cls: type, state: dict[str, Any]) -> Any:
     object
         The instance (its ``__init__`` not run).
     """
-    obj = cls.__new__(cls)
+    obj = object.__new__(cls)
     vars(obj).update(state)
     return obj
 
@@ -73,7 +73,7 @@ class PythonObject:
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         if "__init__" in vars(cls):
-            cls.__init__ = _opening(cls.__init__)  # type: ignore[method-assign]
+            cls.__init__ = _opening(cls.__init__)
 
     def _recipe(self) -> tuple[Callable, tuple]:
         return from_state, (type(self), dict(vars(self)))
