@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._arrays import checked_dt
+from ._pyobject import PythonObject
 from ._typing import ArrayLike, FloatArray
 from .sensor import Sensor
 
@@ -82,7 +83,7 @@ class CoupledSimulation:
     measured: FloatArray
 
 
-class CoupledPlant:
+class CoupledPlant(PythonObject):
     """Joints driven by their own physics plants, coupled through their cables' idlers.
 
     Parameters

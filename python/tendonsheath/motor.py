@@ -9,6 +9,7 @@ import numpy as np
 from . import _core as core
 from ._args import number, python_names
 from ._arrays import as_timed_signal, checked_dt
+from ._pyobject import PythonObject
 from ._typing import ArrayLike
 from .simulation_result import SimulationResult
 from .status import Status
@@ -47,7 +48,23 @@ def _motor_params(kind, who: str, arguments: dict):
     return p
 
 
-class Motor:
+def _motor_from_fields(fields: dict) -> Motor:
+    """A motor whose parameter struct has ``fields``."""
+    p = core.MotorParams()
+    for key, value in fields.items():
+        setattr(p, key, value)
+    return Motor(p)
+
+
+# the fields of core.MotorParams (its readable and writable properties)
+_FIELDS = tuple(
+    name
+    for name, d in vars(core.MotorParams).items()
+    if isinstance(d, property) and d.fset is not None
+)
+
+
+class Motor(PythonObject):
     """A drive between the controller and the proximal pulley.
 
     ``Motor.position(...)``: a position-controlled motor seen as a second-order lag
@@ -86,6 +103,11 @@ class Motor:
         kind = "position" if params.kind == core.MotorKind.Position else "torque"
         with python_names(f"Motor.{kind}"):
             self._engine = core.Motor(params)  # validates, naming the parameter
+
+    def _recipe(self):
+        # pickled as its parameters: an equal motor at rest (tendonsheath._pyobject)
+        fields = {k: getattr(self._params, k) for k in _FIELDS if hasattr(self._params, k)}
+        return _motor_from_fields, (fields,)
 
     @classmethod
     def position(

@@ -27,6 +27,7 @@ from . import _core as core
 from . import physics, plant_input
 from ._args import integer, number, python_names
 from ._arrays import as_time_and_signal, checked_dt
+from ._pyobject import PythonObject
 from ._typing import ArrayLike
 from .loads import (
     ConstantForce,
@@ -134,7 +135,14 @@ def _flat_arguments(signature, arguments: dict) -> dict:
     return out
 
 
-class _Plant:
+def _rebuilt_plant(cls, arguments: dict, interpolation: tuple) -> _Plant:
+    """A plant of class ``cls`` built with ``arguments``, its input interpolation set."""
+    plant = cls(**arguments)
+    plant.set_input_interpolation(*interpolation)
+    return plant
+
+
+class _Plant(PythonObject):
     """Shared streaming/batch behaviour; subclasses build ``_engine`` and describe their routes."""
 
     _rows = 1
@@ -155,6 +163,10 @@ class _Plant:
     def params(self) -> dict:
         """The constructor's arguments, defaults filled in (a copy)."""
         return dict(self._arguments)
+
+    def _recipe(self):
+        # pickled as its constructor's arguments: an equal plant at rest (tendonsheath._pyobject)
+        return _rebuilt_plant, (type(self), self._arguments, self._interpolation)
 
     def set_input_interpolation(
         self,

@@ -265,6 +265,9 @@ class Route:
     def __hash__(self):
         return hash((self.s.tobytes(), self.theta.tobytes()))
 
+    def __reduce__(self):  # pickled as its samples (a route is immutable)
+        return Route, (self.s, self.theta)
+
     def __repr__(self) -> str:
         return f"Route(length={self.length:.6g} m, curve_angle={self.curve_angle:.6g} rad)"
 

@@ -3,16 +3,19 @@ plant/sensor.hpp)."""
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from . import _core as core
 from ._args import integer, number, python_names
 from ._arrays import as_vector, checked_dt
+from ._pyobject import PythonObject
 from ._typing import ArrayLike, FloatArray
 from .status import Status
 
 
-class Sensor:
+class Sensor(PythonObject):
     """Reading y = quantise(x(t - delay) + noise): noise ~ N(0, noise_std^2), steps of
     ``resolution``, ``delay`` seconds of latency.
 
@@ -66,6 +69,12 @@ class Sensor:
         self._params = p
         with python_names("Sensor"):
             self._engine = core.Sensor(p)  # validates
+
+    def _recipe(self):
+        # pickled as its settings: an equal sensor at rest (tendonsheath._pyobject)
+        names = ("resolution", "noise_std", "seed", "delay", "history")
+        settings = {k: getattr(self._params, k) for k in names}
+        return functools.partial(Sensor, **settings), ()
 
     @property
     def resolution(self) -> float:

@@ -354,7 +354,7 @@ void bind_learned_feedforward(nb::module_& m) {
 }
 
 void bind_load_play_inverse(nb::module_& m) {
-  nb::class_<ts::LoadTerms>(m, "LoadTerms")
+  bind_copy(nb::class_<ts::LoadTerms>(m, "LoadTerms"))
       .def(nb::init<>())
       .def_rw("gain", &ts::LoadTerms::gain)
       .def_rw("slack", &ts::LoadTerms::slack)
@@ -362,7 +362,7 @@ void bind_load_play_inverse(nb::module_& m) {
       .def_rw("friction", &ts::LoadTerms::friction)
       .def_rw("switch_travel", &ts::LoadTerms::switch_travel)
       .def("radius", &ts::LoadTerms::radius, "load"_a);
-  nb::class_<ts::LoadPlayInverse>(m, "LoadPlayInverse")
+  bind_copy(nb::class_<ts::LoadPlayInverse>(m, "LoadPlayInverse"))
       .def(nb::init<const ts::LoadTerms&>(), "terms"_a)
       .def("reset", &ts::LoadPlayInverse::reset)
       .def("step", &ts::LoadPlayInverse::step, "z"_a, "load"_a)

@@ -268,7 +268,7 @@ void bind_motor(nb::module_& m) {
       .value("Position", ts::MotorKind::Position)
       .value("Torque", ts::MotorKind::Torque);
   using MP = ts::MotorParams;
-  nb::class_<MP>(m, "MotorParams")
+  bind_copy(nb::class_<MP>(m, "MotorParams"))
       .def(nb::init<>())
       .def_rw("kind", &MP::kind)
       .def_rw("bandwidth_hz", &MP::bandwidth_hz)
@@ -284,7 +284,7 @@ void bind_motor(nb::module_& m) {
       .def_rw("viscous_friction", &MP::viscous_friction)
       .def_rw("gear_backlash", &MP::gear_backlash)
       .def_rw("integral_time", &MP::integral_time);
-  nb::class_<ts::Motor>(m, "Motor")
+  bind_copy(nb::class_<ts::Motor>(m, "Motor"))
       .def(nb::init<const MP&>(), "params"_a)
       .def_prop_ro("params", &ts::Motor::params)
       .def("reset", &ts::Motor::reset)
@@ -300,14 +300,14 @@ void bind_motor(nb::module_& m) {
 
 void bind_sensor(nb::module_& m) {
   using SeP = ts::SensorParams;
-  nb::class_<SeP>(m, "SensorParams")
+  bind_copy(nb::class_<SeP>(m, "SensorParams"))
       .def(nb::init<>())
       .def_rw("resolution", &SeP::resolution)
       .def_rw("noise_std", &SeP::noise_std)
       .def_rw("seed", &SeP::seed)
       .def_rw("delay", &SeP::delay)
       .def_rw("history", &SeP::history);
-  nb::class_<ts::Sensor>(m, "Sensor")
+  bind_copy(nb::class_<ts::Sensor>(m, "Sensor"))
       .def(nb::init<const SeP&>(), "params"_a)
       .def_ro_static("MAX_HISTORY", &ts::Sensor::kMaxHistory)
       .def_prop_ro("params", &ts::Sensor::params)
@@ -337,6 +337,7 @@ void bind_plants(nb::module_& m) {
   using PP = ts::PullPullParams;
   using CP = ts::ContinuumParams;
   nb::class_<ts::SingleTendonPlant> single(m, "SingleTendonPlant");
+  bind_copy(single);  // copy.copy/deepcopy of a plant: an exact snapshot
   single.def(nb::init<const SP&, const ts::Route&>(), "params"_a, "route"_a)
       .def_prop_ro("params", &ts::SingleTendonPlant::params)
       .def_prop_ro("length", &ts::SingleTendonPlant::length)

@@ -8,13 +8,14 @@ from typing import Any, Self
 import numpy as np
 
 from .._arrays import as_timed_signal, checked_dt
+from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from ..control_interop import _ControlBlock
 from ..status import Status
 from . import persistence
 
 
-class EngineCompensator(_ControlBlock):
+class EngineCompensator(PythonObject, _ControlBlock):
     """What every compensator built on a C++ engine shares: its status, its constructor
     settings and saving them (``to_json``/``load``), and the engine ``bench.run`` steps."""
 
@@ -88,6 +89,12 @@ class EngineCompensator(_ControlBlock):
             The file holds another kind of compensator.
         """
         return persistence.load_as(cls, source)
+
+    def _recipe(self):
+        # pickled as its saved file: an equal compensator at rest (tendonsheath._pyobject)
+        # (with its design, where a tuning chose its gains: not part of the file)
+        extra = {k: v for k, v in vars(self).items() if k == "design"}
+        return persistence.load_compensator, (self.to_dict(),), extra
 
     @classmethod
     def _from_saved(cls, values: dict):

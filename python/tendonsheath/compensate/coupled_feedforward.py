@@ -4,12 +4,14 @@ of ``tendonsheath/compensators/coupled_feedforward.hpp``)."""
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
 
 from .. import _core as core
 from .._arrays import as_vector, checked_dt
+from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from ..coupled_plant import _joint_matrix
 from ..models import Coupled
@@ -17,7 +19,7 @@ from ..status import Status
 from .inverse_feedforward import InverseFeedforward
 
 
-class CoupledFeedforward:
+class CoupledFeedforward(PythonObject):
     """Motor commands that make a :class:`~tendonsheath.models.Coupled` model's joints follow
     their desired angles.
 
@@ -63,6 +65,10 @@ class CoupledFeedforward:
         self._engine = core.CoupledFeedforward(
             [ff._engine for ff in self.joints], self._coupling.ravel().tolist()
         )
+
+    def _recipe(self):
+        # pickled as its model and settings: an equal compensator at rest (tendonsheath._pyobject)
+        return functools.partial(CoupledFeedforward, self.model, **self.settings), ()
 
     def own_targets(self, y_desired: ArrayLike) -> FloatArray:
         """What each joint's own model must output: y_d - C y_d (shape as y_desired).

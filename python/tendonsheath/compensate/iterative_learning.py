@@ -30,6 +30,7 @@ import numpy as np
 from scipy import signal
 
 from .._args import integer, number
+from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from .learned_feedforward import LearnedFeedforward
 from .limits import LimitsLike
@@ -134,7 +135,7 @@ class LearningDesign:
         )
 
 
-class IterativeLearning:
+class IterativeLearning(PythonObject):
     """Learns a feedforward correction table over repeated trials of one trajectory.
 
     Parameters

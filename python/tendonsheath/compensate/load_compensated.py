@@ -15,6 +15,7 @@ with, so an estimate must be mapped into that unit first.
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
@@ -23,12 +24,13 @@ import numpy as np
 from .. import _core as core
 from .._args import number
 from .._arrays import as_timed_signal, checked_dt
+from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from ..models.loaded import Loaded
 from .inverse_feedforward import InverseFeedforward
 
 
-class LoadCompensated:
+class LoadCompensated(PythonObject):
     """Commands for a desired output under a measured load, from a Loaded model's inverse.
 
     Parameters
@@ -63,12 +65,18 @@ class LoadCompensated:
         if not (math.isfinite(self.switch) and self.switch > 0):
             raise ValueError(f"LoadCompensated: switch must be > 0 (got {self.switch})")
         self.inverse = InverseFeedforward(model.base, **inverse_options)
+        self._inverse_options = dict(inverse_options)
         terms = core.LoadTerms()
         for key, value in model.terms.items():
             setattr(terms, key, value)
         terms.switch_travel = self.switch
         self._play = core.LoadPlayInverse(terms)  # the real-time core (C++)
         self.reset()
+
+    def _recipe(self):
+        # pickled as its settings: an equal compensator at rest (tendonsheath._pyobject)
+        options = self._inverse_options
+        return functools.partial(LoadCompensated, self.model, self.switch, **options), ()
 
     def reset(self) -> None:
         """Forget the streaming state (the base inverse's and the play's)."""

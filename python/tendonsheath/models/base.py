@@ -18,6 +18,7 @@ from .._args import python_names, renamed
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import read_json_source
+from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
@@ -59,7 +60,7 @@ def _returning_result(simulate: _F) -> _F:
     return cast(_F, wrapper)  # the same call; a SimulationResult is an array of the output
 
 
-class HysteresisModel(_ControlBlock):
+class HysteresisModel(PythonObject, _ControlBlock):
     """A single-input single-output model backed by a real-time C++ core object.
 
     Subclasses declare ``_core`` (the C++ class), ``_core_params`` (its parameter
@@ -321,6 +322,10 @@ class HysteresisModel(_ControlBlock):
         if path is not None:
             write_text(path, text + "\n")
         return text
+
+    def _recipe(self):
+        # pickled as its saved file: an equal model at rest (tendonsheath._pyobject)
+        return load_model, (self.to_dict(),)
 
     def __eq__(self, other) -> bool:
         return type(self) is type(other) and self.to_dict() == other.to_dict()

@@ -12,6 +12,7 @@ import numpy as np
 
 from .._atomic import write_text
 from .._json_source import read_json_source
+from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from ..coupled_plant import _coupling_matrix, _joint_matrix
 from .base import HysteresisModel, load_model
@@ -20,7 +21,7 @@ FORMAT_NAME = "tendonsheath.coupled_model"
 FORMAT_VERSION = 1
 
 
-class Coupled:
+class Coupled(PythonObject):
     """A multi-input model of J coupled joints: y_i = H_i(x_i) + sum_j C[i, j] y_j.
 
     ``H_i`` is joint i's own single-input model (any :class:`HysteresisModel`) of its own input

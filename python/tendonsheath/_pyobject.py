@@ -1,0 +1,111 @@
+"""Models, compensators and plants behave like Python objects: copies, pickles, attributes.
+
+Their streaming state lives in C++ engines (the ``_engine`` attribute and its kin), which
+copy exactly but do not serialise. So:
+
+* ``copy.deepcopy`` and ``copy.copy`` give an independent object with the exact streaming
+  state of the original (each engine is a C++ copy): stepping the copy continues as the
+  original would, and leaves the original unchanged. ``copy.copy`` is a deep copy, since a
+  shallow one would share the C++ engine with the original.
+* ``pickle`` (and with it multiprocessing, joblib, caches) saves the configuration, the same
+  as the object's saved file (``to_dict``) or its constructor's arguments, and loads an equal
+  object *at rest*, as after ``reset()``: the streaming state of a running engine is not
+  pickled. Outputs of ``simulate``/``command`` (which start at rest) and any ``step`` sequence
+  from rest are identical to the original's.
+* Setting an attribute the class does not declare (``model.B_r = 0.5``) raises
+  AttributeError naming the parameters, instead of adding an attribute nothing reads.
+"""
+
+from __future__ import annotations
+
+import copy
+import functools
+from collections.abc import Callable
+from typing import Any
+
+_OPEN = "_initialising"  # set on an instance while its outermost __init__ runs
+
+
+def _opening(init: Callable) -> Callable:
+    """``init`` during which the instance takes new public attributes (its own settings)."""
+
+    @functools.wraps(init)
+    def wrapper(self, *args, **kwargs):
+        if _OPEN in vars(self):  # a subclass's __init__ calling its parent's
+            return init(self, *args, **kwargs)
+        object.__setattr__(self, _OPEN, True)
+        try:
+            return init(self, *args, **kwargs)
+        finally:
+            object.__delattr__(self, _OPEN)
+
+    return wrapper
+
+
+def from_state(cls: type[Any], state: dict[str, Any]) -> Any:
+    """An instance of ``cls`` with the attributes ``state`` (its pickled ``__dict__``).
+
+    Parameters
+    ----------
+    cls : type
+        The class.
+    state : dict
+        The attributes.
+
+    Returns
+    -------
+    object
+        The instance (its ``__init__`` not run).
+    """
+    obj = object.__new__(cls)
+    vars(obj).update(state)
+    return obj
+
+
+class PythonObject:
+    """Copies that do not share the C++ engine, pickling through the configuration, and no
+    silent attribute for a misspelt or unknown name (see :mod:`tendonsheath._pyobject`).
+
+    A subclass whose state holds C++ engines defines ``_recipe()``: a picklable
+    ``(callable, args)`` that builds an equal object at rest. Without one, the instance's
+    attributes are pickled as they are (each must pickle)."""
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if "__init__" in vars(cls):
+            cls.__init__ = _opening(cls.__init__)
+
+    def _recipe(self) -> tuple[Callable, tuple]:
+        return from_state, (type(self), dict(vars(self)))
+
+    def __reduce__(self):
+        return self._recipe()
+
+    def __deepcopy__(self, memo: dict) -> Any:
+        new = type(self).__new__(type(self))
+        memo[id(self)] = new
+        vars(new).update(copy.deepcopy(vars(self), memo))  # engines: exact C++ copies
+        return new
+
+    def __copy__(self) -> Any:
+        return copy.deepcopy(self)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        known = name.startswith("_") or name in vars(self) or hasattr(type(self), name)
+        if not (known or _OPEN in vars(self)):
+            raise AttributeError(
+                f"{type(self).__name__} has no attribute {name!r} to set; its parameters are "
+                f"{self._parameter_names()}" + self._how_to_change()
+            )
+        object.__setattr__(self, name, value)
+
+    def _parameter_names(self) -> list[str]:
+        try:
+            return list(self.params)  # type: ignore[attr-defined]
+        except AttributeError:
+            return sorted(k for k in vars(self) if not k.startswith("_"))
+
+    def _how_to_change(self) -> str:
+        if hasattr(self, "with_params"):
+            return " (with_params(...) makes a copy with new values)"
+        return " (set at construction)"
