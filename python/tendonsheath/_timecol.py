@@ -17,8 +17,9 @@ The rules (``read_log``'s doc states them for users):
   recording would be a jump); offsets on some rows only are refused; time starts at 0;
 - the resolution is the step of the stamps as written: 10^-d for d decimals of text, the
   float spacing of a binary float column (float32 epoch seconds: 128 s), 1 unit for
-  integers, the last written field of an ISO time. ``read_log`` refuses duplicate stamps
-  when the resolution is above half the mean step (rounding, not repeated rows).
+  integers, the last written field of an ISO time. ``read_log`` refuses repeated stamps
+  (at three or more stamps, or in half the rows) when the resolution is above the mean
+  step (more rows than distinct stamps: rounding, not rows logged twice).
 """
 
 from __future__ import annotations

@@ -577,11 +577,13 @@ def read_log(
     ISO-8601 text (2024-05-01T12:00:00.125, with an optional Z or +02:00) starts at 0 too:
     with an offset on every row the times are converted to UTC (a daylight-saving change is
     no jump); with none, they are read as written (a clock change would be a jump); an
-    offset on some rows only is refused. Repeated stamps are dropped (first kept) only
-    when the stamps are written finely enough: when their resolution (10^-d for d
-    decimals, a float column's spacing: 128 s for float32 epoch seconds) is above half the
-    mean step, the repeats come from rounding and are refused, naming the column and the
-    resolution. Steps that differ by no more than the resolution are noted as rounded.
+    offset on some rows only is refused. A repeated stamp is dropped (first kept) as a row
+    logged twice, unless the stamps are too coarse for the rows: when their resolution
+    (10^-d for d decimals, a float column's spacing: 128 s for float32 epoch seconds) is
+    above the mean step, the file holds more rows than distinct stamps, and repeats at
+    three or more stamps, or in half the rows, are rounding's: refused, naming the column
+    and the resolution. Steps that differ by no more than the resolution are noted as
+    rounded.
 
     Parameters
     ----------
@@ -785,11 +787,17 @@ def _drop_duplicate_times(log: Log, table: _Table, time, timecol: TimeColumn | N
 
 def _refuse_rounded(log: Log, timecol: TimeColumn, repeats: int) -> None:
     """A ValueError when repeated stamps come from rounding: the stamps' resolution above
-    half the mean step (a repeated row in a finer time base is only dropped)."""
+    the mean step, so that the rows outnumber the distinct stamps, and repeats throughout
+    (at three or more stamps, or in half the rows). A stamp or two repeated, or repeats in
+    a finer time base, are rows logged twice: only dropped."""
     assert log.t is not None
+    same = np.diff(log.t) == 0
+    stamps = int(np.count_nonzero(same[1:] & ~same[:-1])) + int(same[0])  # repeated ones
+    if stamps < 3 and 2 * repeats < log.t.size:
+        return
     resolution = timecol.resolution()
     mean = float(log.t[-1] - log.t[0]) / (log.t.size - 1)
-    if resolution is None or resolution[0] <= mean / 2:
+    if resolution is None or resolution[0] <= mean:
         return
     step, what = resolution
     raise ValueError(
