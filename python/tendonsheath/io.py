@@ -628,18 +628,18 @@ def read_log(
     if missing not in ("error", "drop", "interpolate"):
         raise ValueError(f"missing must be 'error', 'drop' or 'interpolate' (got {missing!r})")
     path = Path(path)
-    time_unit = check_unit(time_unit)
+    unit: str | None = check_unit(time_unit)
     extra = _checked_extra(path, extra)
     bag = bag_path(path)
     if bag is not None:
         table = _read_bag(bag, time, (input, output, curve_angle), missing, load, extra, time_unit)
-        time, time_unit = TIME_KEY, None  # a bag's time is in seconds already
+        time, unit = TIME_KEY, None  # a bag's time is in seconds already
     else:
         table = _open(path, sheet)
     if input is None:
         raise ValueError(f"{path}: name the input column; columns: {table.names()}")
     roles = (time, input, output, curve_angle)
-    log, timecol = _log_columns(table, path, roles, missing != "error", time_unit)
+    log, timecol = _log_columns(table, path, roles, missing != "error", unit)
     if load is not None or extra:
         log = _with_measured(log, table, load, extra, allow_missing=missing != "error")
     if log.t is not None:
