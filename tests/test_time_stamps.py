@@ -173,7 +173,8 @@ def test_iso_refusals_name_the_row_and_the_reason(tmp_path):
 
 
 def test_excel_datetime_cells_are_iso_times(tmp_path):
-    openpyxl = pytest.importorskip("openpyxl")
+    import openpyxl  # a dependency of the package (Excel files)
+
     book = openpyxl.Workbook()
     sheet = book.active
     sheet.append(["t", "x"])
