@@ -40,6 +40,21 @@ FILES = [
     ("a short row", "run.csv", b"t,x,y\n0,1,2\n1,2\n2,3,4\n"),
     ("wrong delimiter, one column", "run.csv", b"t:x:y\n0:1:2\n1:2:3\n2:3:4\n"),
     ("time going backwards", "run.csv", b"t,x,y\n0,1,2\n2,2,3\n1,3,4\n"),
+    (
+        "epoch nanoseconds read as seconds",
+        "run.csv",
+        b"t,x,y\n1700000000000000000,1,2\n1700000000001000000,2,3\n1700000000002000000,3,4\n",
+    ),
+    (
+        "epoch seconds rounded coarser than the sampling",
+        "run.csv",
+        b"t,x,y\n1700000000.1,1,2\n1700000000.1,2,3\n1700000000.1,3,4\n1700000000.2,4,5\n",
+    ),
+    (
+        "ISO-8601 times, an offset on some rows only",
+        "run.csv",
+        b"t,x,y\n2024-05-01T12:00:00+02:00,1,2\n2024-05-01T12:00:01,2,3\n2024-05-01T12:00:02,3,4\n",
+    ),
     ("two data rows", "run.csv", b"t,x,y\n0,1,2\n1,2,3\n"),
     ("Cyrillic in cp1251 (not UTF-8)", "run.csv", "t,x,y,Время\n0,1,2,3\n".encode("cp1251")),
     ("UTF-16 without a byte-order mark", "run.csv", GOOD.encode("utf-16-le")),
@@ -64,6 +79,17 @@ WORKS = [
     ("whitespace-separated", "run.txt", GOOD.replace(",", " ").encode()),
     ("blank lines between rows", "run.csv", b"t,x,y\n0,1,2\n\n1,2,3\n\n2,3,4\n"),
     ("Windows line ends", "run.csv", GOOD.replace("\n", "\r\n").encode()),
+    (
+        "epoch seconds with six decimals",
+        "run.csv",
+        b"t,x,y\n1700000000.000001,1,2\n1700000000.001002,2,3\n1700000000.002003,3,4\n",
+    ),
+    (
+        "ISO-8601 times with a UTC offset",
+        "run.csv",
+        b"t,x,y\n2024-05-01T12:00:00.000+02:00,1,2\n2024-05-01T12:00:00.010+02:00,2,3\n"
+        b"2024-05-01T12:00:00.020+02:00,3,4\n",
+    ),
 ]
 
 

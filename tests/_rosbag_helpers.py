@@ -38,12 +38,13 @@ def float64(kind, value: float):
     return _store(kind).types["std_msgs/msg/Float64"](data=float(value))
 
 
-def joint_state(kind, ns: int, positions):
+def joint_state(kind, ns: int, positions, names=None):
+    """A JointState stamped ``ns``; its joints are j0, j1, ... unless ``names`` are given."""
     types = _store(kind).types
     positions = np.asarray(positions, dtype=float)
     return types["sensor_msgs/msg/JointState"](
         header=header(kind, ns),
-        name=[f"j{i}" for i in range(positions.size)],
+        name=list(names) if names is not None else [f"j{i}" for i in range(positions.size)],
         position=positions,
         velocity=np.zeros(0),
         effort=np.zeros(0),

@@ -292,3 +292,86 @@ def test_constant_curve_angle_and_a_curve_angle_topic(tmp_path):
     np.testing.assert_array_equal(io.read_log(path, input="/x", curve_angle=1.5).curve_angle, 1.5)
     log = io.read_log(path, input="/x", curve_angle="/theta")
     np.testing.assert_allclose(log.curve_angle, 0.5 + np.arange(5.0))
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_joint_state_fields_selected_by_joint_name_follow_a_reordering(tmp_path, kind):
+    """position[bend] is the item at the place of 'bend' in each message's name list: the
+    publisher swaps its joints' order every other message, the values stay the bend's."""
+    rng = np.random.default_rng(11)
+    ns = EPOCH_NS + np.arange(12) * 10_000_000
+    bend, roll = rng.normal(size=12), rng.normal(size=12)
+    msgs = []
+    for k, s in enumerate(ns):
+        if k % 2:
+            msgs.append((s, joint_state(kind, s, [roll[k], bend[k]], names=["roll", "bend"])))
+        else:
+            msgs.append((s, joint_state(kind, s, [bend[k], roll[k]], names=["bend", "roll"])))
+    path = _bag(tmp_path, kind, {"/joint_states": msgs})
+    log = io.read_log(
+        path, input="/joint_states:position[bend]", output="/joint_states:position[roll]"
+    )
+    np.testing.assert_array_equal(log.x, bend)
+    np.testing.assert_array_equal(log.y, roll)
+    with pytest.raises(
+        ValueError,
+        match=r"no input field 'position\[pitch\]' \(position\[pitch\] has no name 'pitch'; "
+        r"names: 'bend', 'roll'\)",
+    ):
+        io.read_log(path, input="/joint_states:position[pitch]")
+    with pytest.raises(
+        ValueError, match=r"\(velocity\[bend\] has 0 item\(s\), none for 'bend' \(name 1\)\)"
+    ):
+        io.read_log(path, input="/joint_states:velocity[bend]")
+
+
+def test_a_joint_name_missing_from_a_later_message_names_the_message(tmp_path):
+    ns = EPOCH_NS + np.arange(5) * 10_000_000
+    names = [["bend", "roll"]] * 3 + [["roll", "wrist"]] + [["bend", "roll"]]
+    msgs = [
+        (s, joint_state("ros1", s, [1.0, 2.0], names=n)) for s, n in zip(ns, names, strict=True)
+    ]
+    with pytest.raises(
+        ValueError,
+        match=r"topic /js, message 4: position\[bend\] has no name 'bend'; "
+        r"names: 'roll', 'wrist'$",
+    ):
+        io.read_log(_bag(tmp_path, "ros1", {"/js": msgs}), input="/js:position[bend]")
+    topics = {"/p": [(s, point_stamped("ros1", s, 1.0)) for s in ns]}
+    with pytest.raises(ValueError, match=r"cannot be selected by name: no list of names"):
+        io.read_log(_bag(tmp_path, "ros1", topics, name="p"), input="/p:point[x]")
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_header_stamps_against_receive_times_are_noted_with_the_latency(tmp_path, kind):
+    """The input stamped by its header, the output (no header) by its receive time: the
+    note names both and the input's median latency (receive - header), 2.5 ms here."""
+    stamps = EPOCH_NS + np.arange(20) * 10_000_000
+    latency = 2_500_000 + np.arange(20) % 3 * 100_000  # 2.5, 2.6, 2.7 ms: median 2.6
+    topics = {
+        "/js": [
+            (s + d, joint_state(kind, s, [0.1 * k]))
+            for k, (s, d) in enumerate(zip(stamps, latency, strict=True))
+        ],
+        "/tip": [(s + 5_000_000, float64(kind, k)) for k, s in enumerate(stamps)],
+    }
+    path = _bag(tmp_path, kind, topics)
+    log = io.read_log(path, input="/js:position[0]", output="/tip")
+    text = " | ".join(log.notes)
+    assert (
+        "mixed time bases: /js by header stamps (when measured), /tip by the bag's receive "
+        "time (when recorded)" in text
+    )
+    assert f"median receive - header: /js {np.median(latency) * 1e-6:.3g} ms" in text
+    alike = io.read_log(path, input="/js:position[0]", output="/tip", time="receive")
+    assert not any("mixed time bases" in n for n in alike.notes)
+    with pytest.raises(ValueError, match=r"time_unit 'ms' applies to a /topic:field time"):
+        io.read_log(path, input="/js:position[0]", output="/tip", time_unit="ms")
+
+
+def test_a_numeric_time_field_in_a_time_unit(tmp_path):
+    ns = EPOCH_NS + np.arange(6) * 10_000_000
+    msgs = [(s, joint_state("ros1", s, [k, 4.0 * k])) for k, s in enumerate(ns)]
+    path = _bag(tmp_path, "ros1", {"/js": msgs})
+    log = io.read_log(path, input="/js:position[0]", time="/js:position[1]", time_unit="ms")
+    np.testing.assert_allclose(log.t, 0.004 * np.arange(6), rtol=0, atol=1e-12)

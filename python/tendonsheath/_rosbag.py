@@ -9,7 +9,9 @@ Time of a message (``time=``):
   "header" / "receive"  that one for every topic (no header: an error);
   "/topic:field"  a field of the input or output topic (a builtin_interfaces/msg/Time, or a
         number in seconds) times that topic's messages.
-A topic whose stamps are out of order is sorted by stamp (noted).
+A topic whose stamps are out of order is sorted by stamp (noted). When some topics are
+timed by header stamps and others by receive times, a note says so, with the median latency
+(receive - header) of the header-stamped ones: the two bases differ by it.
 
 Alignment of topics at different rates: the output topic's messages are the samples (with
 no output, the input's); the input and a curve-angle topic are linearly interpolated at
@@ -39,6 +41,7 @@ from ._rosfields import (
     stamp_ns,
     value_of,
 )
+from ._timecol import UNIT_NS
 
 SUFFIXES = (".bag", ".db3", ".mcap")
 INSTALL = "pip install 'tendonsheath[ros]'"
@@ -101,6 +104,7 @@ class _Topic:
     msgtype: str
     signals: dict[str, Signal]  # role -> signal
     time_field: Signal | None = None
+    time_unit_ns: int = 1_000_000_000  # a time field that is a number: ns per its unit
     receive: list[int] = field(default_factory=list)
     header: list[int | None] = field(default_factory=list)
     stamps: list[int] = field(default_factory=list)  # from time_field
@@ -128,7 +132,7 @@ def _collect(reader, path: Path, topics: dict[str, _Topic]) -> None:
             for role, signal in topic.signals.items():
                 topic.values[role].append(value_of(signal, msg, number))
             if topic.time_field is not None:
-                topic.stamps.append(_time_value(topic.time_field, msg, number))
+                topic.stamps.append(_time_value(topic.time_field, msg, number, topic.time_unit_ns))
         except ValueError as exc:
             raise ValueError(f"{path}: {exc}") from None
     for topic in topics.values():
@@ -142,13 +146,14 @@ def _resolve(topic: _Topic, msg, path: Path) -> None:
             topic.signals[role] = check_signal(signal, msg, topic.msgtype, role)
             topic.values[role] = []
         if topic.time_field is not None:
-            _time_value(topic.time_field, msg, 1)
+            _time_value(topic.time_field, msg, 1, topic.time_unit_ns)
     except ValueError as exc:
         raise ValueError(f"{path}: {exc}") from None
 
 
-def _time_value(signal: Signal, msg, number: int) -> int:
-    """A time field in nanoseconds: a builtin_interfaces/msg/Time, or a number of seconds."""
+def _time_value(signal: Signal, msg, number: int, unit_ns: int = 1_000_000_000) -> int:
+    """A time field in nanoseconds: a builtin_interfaces/msg/Time, or a number of units
+    (``unit_ns`` ns each: seconds by default)."""
     value, failed, why = field_value(msg, signal.steps)
     if failed is not None:
         raise ValueError(f"topic {signal.topic}, message {number}: time field {signal.field} {why}")
@@ -164,7 +169,7 @@ def _time_value(signal: Signal, msg, number: int) -> int:
         ) from None
     if not np.isfinite(seconds):
         raise ValueError(f"topic {signal.topic}, message {number}: time {seconds} is not finite")
-    return int(round(seconds * 1e9))
+    return int(round(seconds * unit_ns))
 
 
 def _time_mode(time) -> tuple[str, Signal | None]:
@@ -183,17 +188,18 @@ def _time_mode(time) -> tuple[str, Signal | None]:
     return "field", signal
 
 
-def _stamps(topic: _Topic, mode: str, notes: list[str]) -> np.ndarray:
-    """The topic's message times (ns) by the rule in the module's doc."""
+def _stamps(topic: _Topic, mode: str, notes: list[str]) -> tuple[np.ndarray, str]:
+    """The topic's message times (ns) by the rule in the module's doc, and their source
+    ("field", "header" or "receive")."""
     if topic.time_field is not None:
         notes.append(f"time of {topic.name}: its field {topic.time_field.field}")
-        return np.asarray(topic.stamps, dtype=np.int64)
+        return np.asarray(topic.stamps, dtype=np.int64), "field"
     receive = np.asarray(topic.receive, dtype=np.int64)
     has_header = all(h is not None for h in topic.header)
     set_ = has_header and all(h != 0 for h in topic.header)
     if mode == "receive":
         notes.append(f"time of {topic.name}: the bag's receive time")
-        return receive
+        return receive, "receive"
     if mode == "header" and not set_:
         why = "set in every message" if has_header else "in its type"
         raise ValueError(
@@ -202,10 +208,31 @@ def _stamps(topic: _Topic, mode: str, notes: list[str]) -> np.ndarray:
         )
     if set_:
         notes.append(f"time of {topic.name}: its header stamps (header.stamp)")
-        return np.asarray(topic.header, dtype=np.int64)
+        return np.asarray(topic.header, dtype=np.int64), "header"
     why = "its header stamps are zero" if has_header else "no header"
     notes.append(f"time of {topic.name}: the bag's receive time ({why})")
-    return receive
+    return receive, "receive"
+
+
+def _mixed_note(topics: dict[str, _Topic], sources: dict[str, str]) -> str | None:
+    """A note when some topics are timed by their header stamps (when measured) and others
+    by the bag's receive time (when recorded): the latency between the two shifts them."""
+    header = [n for n, s in sources.items() if s == "header"]
+    receive = [n for n, s in sources.items() if s == "receive"]
+    if not header or not receive:
+        return None
+    lags = []
+    for name in header:
+        lag = np.asarray(topics[name].receive, dtype=np.int64) - np.asarray(
+            topics[name].header, dtype=np.int64
+        )
+        lags.append(f"{name} {np.median(lag) * 1e-6:.3g} ms")
+    return (
+        f"mixed time bases: {', '.join(header)} by header stamps (when measured), "
+        f"{', '.join(receive)} by the bag's receive time (when recorded); the transport "
+        f"latency shifts one against the other (median receive - header: {', '.join(lags)}); "
+        "time='receive' (--time receive) times every topic alike"
+    )
 
 
 def _sorted(name: str, stamps: np.ndarray, notes: list[str]) -> np.ndarray:
@@ -256,20 +283,28 @@ def _plan(reader, path: Path, specs: dict, time_signal: Signal | None) -> dict[s
     return topics
 
 
-def read_bag(path: Path, time, specs: dict, missing: str) -> BagTable:
+def read_bag(path: Path, time, specs: dict, missing: str, time_unit: str = "s") -> BagTable:
     """Read and align the named signals (``specs``: role -> "/topic:field"; roles "input",
-    "output", "curve angle") by the rules in the module's doc."""
+    "output", "curve angle") by the rules in the module's doc; ``time_unit`` is the unit of
+    a /topic:field time that is a number (stamps carry their own)."""
     with _opened(path) as reader:
         try:
             mode, time_signal = _time_mode(time)
         except ValueError as exc:
             raise ValueError(f"{path}: {exc}") from None
+        if time_unit != "s" and time_signal is None:
+            raise ValueError(
+                f"{path}: time_unit {time_unit!r} applies to a /topic:field time that is a "
+                "number; a bag's header and receive stamps carry their unit"
+            )
         if specs.get("input") is None:
             raise ValueError(
                 f"{path}: name the input as /topic:field; topics: {_topic_list(reader)}"
             )
         specs = {role: spec for role, spec in specs.items() if spec is not None}
         topics = _plan(reader, path, specs, time_signal)
+        for topic in topics.values():
+            topic.time_unit_ns = UNIT_NS[time_unit]
         _collect(reader, path, topics)
     if missing == "error":
         _check_finite(path, topics)
@@ -295,7 +330,11 @@ def _align(topics: dict[str, _Topic], specs: dict, mode: str) -> BagTable:
     notes: list[str] = []
     base_role = "output" if "output" in specs else "input"
     base = topics[parse_signal(specs[base_role], base_role).topic]
-    stamps = {name: _stamps(topic, mode, notes) for name, topic in topics.items()}
+    timed = {name: _stamps(topic, mode, notes) for name, topic in topics.items()}
+    stamps = {name: s for name, (s, _) in timed.items()}
+    mixed = _mixed_note(topics, {name: source for name, (_, source) in timed.items()})
+    if mixed is not None:
+        notes.append(mixed)
     order = _sorted(base.name, stamps[base.name], notes)
     t_ns = stamps[base.name][order]
     rows = order + 1

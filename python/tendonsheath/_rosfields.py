@@ -3,6 +3,11 @@ or "/tip/pose:pose.position.x" (attributes joined by dots, list indices in brack
 indices count from the end). A topic whose messages hold one number (std_msgs/msg/Float64)
 may be named alone ("/setpoint").
 
+A name in brackets selects by name, as sensor_msgs/JointState lays its arrays out:
+"/joint_states:position[bend]" is the item of ``position`` at the place of "bend" in the
+``name`` list beside it, looked up in every message (a publisher may reorder its joints);
+a message without that name is an error listing the names it has.
+
 Messages are those the rosbags library deserializes: dataclasses, with NumPy arrays for
 numeric arrays and lists for arrays of messages.
 """
@@ -15,10 +20,23 @@ from dataclasses import dataclass
 
 import numpy as np
 
-_FIELD = re.compile(r"[A-Za-z_]\w*(\[-?\d+\])*(\.[A-Za-z_]\w*(\[-?\d+\])*)*")
-_STEP = re.compile(r"\.?([A-Za-z_]\w*)|\[(-?\d+)\]")
+_INDEX = r"(\[(-?\d+|[^\[\]\s][^\[\]]*)\])*"  # [0], [-1] or [a joint name]
+_FIELD = re.compile(rf"[A-Za-z_]\w*{_INDEX}(\.[A-Za-z_]\w*{_INDEX})*")
+_STEP = re.compile(r"\.?([A-Za-z_]\w*)|\[([^\[\]]+)\]")
 MAX_LISTED = 40  # fields named in an error message
 MAX_ITEMS = 64  # items listed of one array (an image's pixels are not fields to list)
+
+
+@dataclass(frozen=True)
+class ByName:
+    """A step that selects an array's item by the place of ``label`` in the ``name`` list
+    beside the array (sensor_msgs/JointState)."""
+
+    label: str
+
+
+def _step(text: str):
+    return int(text) if re.fullmatch(r"-?\d+", text) else ByName(text)
 
 
 @dataclass(frozen=True)
@@ -27,7 +45,7 @@ class Signal:
 
     topic: str
     field: str | None
-    steps: tuple = ()  # ("pose", "position", "x") or ("position", 0)
+    steps: tuple = ()  # ("pose", "position", "x"), ("position", 0), ("position", ByName("bend"))
 
     @property
     def text(self) -> str:
@@ -50,7 +68,7 @@ def parse_signal(spec, role: str) -> Signal:
             f"the {role} field {field!r} is not a field path (e.g. data, position[0], "
             "pose.position.x)"
         )
-    steps = tuple(int(m[2]) if m[2] is not None else m[1] for m in _STEP.finditer(field))
+    steps = tuple(_step(m[2]) if m[2] is not None else m[1] for m in _STEP.finditer(field))
     return Signal(topic, field, steps)
 
 
@@ -105,19 +123,38 @@ def only_number(msg) -> str | None:
 
 def field_value(msg, steps: tuple):
     """The value at a field path, or (None, the step that failed, why)."""
-    value = msg
+    value, holder = msg, None  # holder: the message whose field value is (for ByName)
     for k, step in enumerate(steps):
+        if isinstance(step, ByName):
+            place, why = _named_index(holder, step.label)
+            if not why and isinstance(value, np.ndarray | list | tuple) and place >= len(value):
+                why = f"has {len(value)} item(s), none for {step.label!r} (name {place + 1})"
+            if why:
+                return None, k, why
+            step = place
         if isinstance(step, int):
             if not isinstance(value, np.ndarray | list | tuple):
                 return None, k, "is not an array"
             if not -len(value) <= step < len(value):
                 return None, k, f"has {len(value)} item(s), no index {step}"
-            value = value[step]
+            value, holder = value[step], None
         else:
             if not _is_message(value) or step not in _fields(value):
                 return None, k, "has no such field"
-            value = getattr(value, step)
+            value, holder = getattr(value, step), value
     return value, None, ""
+
+
+def _named_index(holder, label: str) -> tuple[int, str]:
+    """The place of ``label`` in the ``name`` list of the message ``holder``, or (0, why)."""
+    names = getattr(holder, "name", None) if holder is not None else None
+    if not isinstance(names, list | tuple) or not all(isinstance(n, str) for n in names):
+        return 0, "cannot be selected by name: no list of names ('name') beside it"
+    places = [i for i, n in enumerate(names) if n == label]
+    if len(places) != 1:
+        how = "no" if not places else f"{len(places)} times the"
+        return 0, f"has {how} name {label!r}; names: {', '.join(map(repr, names)) or 'none'}"
+    return places[0], ""
 
 
 def check_signal(signal: Signal, msg, msgtype: str, role: str) -> Signal:
@@ -150,7 +187,10 @@ def check_signal(signal: Signal, msg, msgtype: str, role: str) -> Signal:
 def _prefix(steps: tuple, upto: int) -> str:
     text = ""
     for step in steps[: upto + 1]:
-        text += f"[{step}]" if isinstance(step, int) else (f".{step}" if text else step)
+        if isinstance(step, ByName):
+            text += f"[{step.label}]"
+        else:
+            text += f"[{step}]" if isinstance(step, int) else (f".{step}" if text else step)
     return text
 
 

@@ -320,3 +320,14 @@ def read_text_table(path: Path) -> TextTable:
         notes.append(f"columns separated by {shown}, not the {suffix} file's usual one")
     columns = dict(zip(names, _merge(parts, len(names)), strict=True))
     return TextTable(columns, _join_rows(row_parts), int(row_parts[0][0]), notes)
+
+
+def read_text_cells(path: Path, name: str) -> list[str]:
+    """The cells of one column as written, in the order of ``read_text_table``'s rows (for
+    the time column: its exact digits and its ISO-8601 text)."""
+    with _past_header(path) as (f, names, delimiter, first, _notes):
+        j = names.index(name)
+        out: list[str] = []
+        for lines, _rows in _data_lines(f, first + 1):
+            out.extend(cells[j] for cells in _cells(lines, delimiter))
+    return out

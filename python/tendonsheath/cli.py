@@ -283,6 +283,34 @@ def _print_table(table: Table) -> None:
         Console(file=console.file, width=160).print(table)
 
 
+_TIME_UNIT_HELP = (
+    "Unit of a numeric time column: s, ms, us or ns (integer epoch nanoseconds: ns). Times "
+    "are converted to seconds, so a dynamic model's time constants are in seconds."
+)
+_TIME_UNIT_OPTION = typer.Option("s", "--time-unit", help=_TIME_UNIT_HELP)
+_PREDICT_TIME_UNIT_OPTION = typer.Option(
+    None, "--time-unit", help="Unit of a numeric time column: s, ms, us or ns (default: as fitted)."
+)
+_PREDICT_INPUT_OPTION = typer.Option(None, "--input", help="Input column (default: as fitted).")
+_PREDICT_OUTPUT_OPTION = typer.Option(
+    None, "--output", help="Measured output column, if any (default: as fitted)."
+)
+_STANDARD_ERRORS_OPTION = typer.Option(
+    "linearised",
+    "--standard-errors",
+    help="linearised, bootstrap (residual blocks) or bootstrap-recordings (one resample "
+    "draws whole recordings).",
+)
+
+
+def _data_columns(time_col, time_unit: str, **columns) -> dict:
+    """read_log's column arguments: the named columns, and the time unit where not seconds."""
+    out = dict(time=time_col, **columns)
+    if time_unit != "s":
+        out["time_unit"] = time_unit
+    return out
+
+
 def _fail(reason) -> NoReturn:
     """One-line reason on bad input, and a non-zero exit (2)."""
     from rich.markup import escape
@@ -347,6 +375,7 @@ def identify(
         ..., "--output", help="Output column (tip position); in a ROS bag /topic:field."
     ),
     time_col: str | None = typer.Option(None, "--time", help=_TIME_HELP),
+    time_unit: str = _TIME_UNIT_OPTION,
     curve_angle: str | None = typer.Option(
         None, "--curve-angle", help="Curve-angle column, or a number (rad)."
     ),
@@ -360,12 +389,7 @@ def identify(
     report: Path | None = typer.Option(
         None, "--report", help="Write a figure of the fit here (.png, .pdf, .svg, ...)."
     ),
-    standard_errors: str = typer.Option(
-        "linearised",
-        "--standard-errors",
-        help="linearised, bootstrap (residual blocks) or bootstrap-recordings (one resample "
-        "draws whole recordings).",
-    ),
+    standard_errors: str = _STANDARD_ERRORS_OPTION,
     resamples: int | None = typer.Option(
         None, "--resamples", help="Bootstrap resamples (default 200)."
     ),
@@ -382,7 +406,9 @@ def identify(
 
     _check_identify_options(out, report, maxiter, warmup)
     candidate = _checked(_model_spec, model)
-    columns = dict(time=time_col, input=input_col, output=output_col, curve_angle=curve_angle)
+    columns = _data_columns(
+        time_col, time_unit, input=input_col, output=output_col, curve_angle=curve_angle
+    )
     if load_col is not None:
         candidate = _checked(_loaded_spec, candidate)
         columns["load"] = load_col
@@ -526,13 +552,10 @@ def predict(
     model_file: Path = typer.Argument(..., help="Model JSON written by `identify`."),
     data: Path = typer.Argument(..., help="Data file with the input column."),
     out: Path = typer.Option(Path("pred.csv"), "--out", "-o", help="CSV of predictions."),
-    input_col: str | None = typer.Option(
-        None, "--input", help="Input column (default: as fitted)."
-    ),
-    output_col: str | None = typer.Option(
-        None, "--output", help="Measured output column, if any (default: as fitted)."
-    ),
+    input_col: str | None = _PREDICT_INPUT_OPTION,
+    output_col: str | None = _PREDICT_OUTPUT_OPTION,
     time_col: str | None = typer.Option(None, "--time", help="Time column (default: as fitted)."),
+    time_unit: str | None = _PREDICT_TIME_UNIT_OPTION,
     curve_angle: str | None = typer.Option(
         None, "--curve-angle", help="Curve-angle column or number (default: as fitted)."
     ),
@@ -554,6 +577,7 @@ def predict(
         saved = _saved_columns(model_file)
         input_col = input_col or saved.get("input")
         time_col = time_col or saved.get("time")
+        time_unit = time_unit or saved.get("time_unit") or "s"
         curve_angle = curve_angle or saved.get("curve_angle")
         wanted_output = output_col or saved.get("output")
         load_col = load_col or saved.get("load")
@@ -572,6 +596,7 @@ def predict(
             output=wanted_output if has_output else None,
             curve_angle=curve_angle,
             load=load_col if isinstance(model, Loaded) else None,
+            time_unit=time_unit,
         )
         _print_notes(log)
         if log.y is not None and warmup >= log.x.size:
@@ -846,6 +871,7 @@ def compare(
         ..., "--output", help="Output column; in a ROS bag /topic:field."
     ),
     time_col: str | None = typer.Option(None, "--time", help=_TIME_HELP),
+    time_unit: str = _TIME_UNIT_OPTION,
     curve_angle: str | None = typer.Option(
         None, "--curve-angle", help="Curve-angle column, or a number."
     ),
@@ -894,7 +920,9 @@ def compare(
     _check_split_options(holdout, validate, folds)
     if report is not None:
         _checked(check_output_folder, report, "--report")
-    columns = dict(time=time_col, input=input_col, output=output_col, curve_angle=curve_angle)
+    columns = _data_columns(
+        time_col, time_unit, input=input_col, output=output_col, curve_angle=curve_angle
+    )
     if load_col is not None:
         columns["load"] = load_col
     logs = _checked(_read_logs, data, columns, resample=resample)

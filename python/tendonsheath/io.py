@@ -5,7 +5,10 @@ ROS bags (ROS 1 .bag; ROS 2 .db3, .mcap or a bag folder; the ``ros`` extra).
 with the named columns as float arrays. Every problem raises ValueError naming the file,
 and where it applies the column and the row: unknown column, text in a number column,
 NaN or empty cells, too few rows, time that goes backwards. Rows with a duplicate
-timestamp are dropped, keeping the first (their row numbers are in ``Log.notes``).
+timestamp are dropped, keeping the first (their row numbers are in ``Log.notes``), unless
+the stamps are written too coarsely for the sampling: rounding made them equal, an error.
+The time column may be in s, ms, us or ns (``time_unit``), absolute epoch stamps (kept
+exact, time from 0 at the first row) or ISO-8601 text (see ``read_log`` and ``_timecol``).
 
 Missing values (NaN or empty cells) are an error by default; ``missing="drop"`` drops those
 rows and ``missing="interpolate"`` fills them linearly, and either way ``Log.notes`` lists
@@ -37,7 +40,8 @@ import numpy as np
 
 from ._atomic import atomic_path
 from ._rosbag import TIME_KEY, bag_columns, bag_path, read_bag
-from ._textread import Column, parse_cells, read_text_header, read_text_table
+from ._textread import Column, parse_cells, read_text_cells, read_text_header, read_text_table
+from ._timecol import TimeColumn, check_unit, read_time
 from ._typing import ArrayLike, FloatArray
 
 MIN_ROWS = 3
@@ -267,6 +271,7 @@ class _Table:
         self, path: Path, columns: dict, first_row: int, rows=None, notes=(), row_name="row"
     ):
         self.path = path
+        self.text_cells: dict[str, list[str]] | None = None  # an Excel sheet's cells
         self.row_name = row_name  # "message" in a ROS bag
         self.columns = columns
         self.first_row = first_row
@@ -286,6 +291,14 @@ class _Table:
         s = str(name)
         if s in self.columns:
             return s
+        return None
+
+    def cells(self, key) -> list[str] | None:
+        """A column's cells as written (text files and Excel sheets), else None."""
+        if self.text_cells is not None:
+            return self.text_cells.get(key)
+        if isinstance(self.columns.get(key), Column) and self.row_name == "row":
+            return read_text_cells(self.path, key)
         return None
 
     def row(self, i: int) -> int:
@@ -445,7 +458,9 @@ def _read_excel(path: Path, sheet=None) -> _Table:
     if not numbers:
         raise ValueError(f"{path}: the header names the columns {names} but there are no data rows")
     columns = {h: parse_cells(v, row_array) for h, v in cells.items()}
-    return _Table(path, columns, 2, rows=row_array)
+    table = _Table(path, columns, 2, rows=row_array)
+    table.text_cells = cells
+    return table
 
 
 _BINARY_SUFFIXES = (".xlsx", ".xlsm", ".xls", ".npy", ".npz", ".h5", ".hdf5", ".hdf")
@@ -528,6 +543,7 @@ def read_log(
     gap_factor: float = 3.0,
     load: str | int | None = None,
     extra: dict[str, str | int] | None = None,
+    time_unit: str = "s",
 ) -> Log:
     """Read one recording. Columns are names (or indices for a 2-D NPY array).
 
@@ -549,6 +565,25 @@ def read_log(
     timestamps, missing values, gaps, irregular sampling) are listed in ``Log.notes``.
     A ROS bag (.bag, .db3, .mcap, a bag folder): signals are "/topic:field" and ``time`` is
     None, "header", "receive" or "/topic:field" (see the module's doc).
+
+    Time is read as it is meant or refused with the reason, never made into duplicates or
+    jitter. ``time_unit`` ("s", "ms", "us" or "ns") is the unit of a numeric time column;
+    ``Log.t`` is in seconds either way, so a dynamic model's time constants come out in
+    seconds. A stamp past the year 5000 in that unit is refused, naming the unit it would
+    be an epoch time in (1.7e18 read as seconds: "epoch time in ns? give time_unit='ns'").
+    An absolute (epoch) time, 1e8 s or more, starts at 0 at the first row (its UTC date in
+    the notes); its text is read exactly, the first stamp subtracted before the conversion
+    to float, so integer nanoseconds and nine-decimal epoch seconds keep every digit.
+    ISO-8601 text (2024-05-01T12:00:00.125, with an optional Z or +02:00) starts at 0 too:
+    with an offset on every row the times are converted to UTC (a daylight-saving change is
+    no jump); with none, they are read as written (a clock change would be a jump); an
+    offset on some rows only is refused. A repeated stamp is dropped (first kept) as a row
+    logged twice, unless the stamps are too coarse for the rows: when their resolution
+    (10^-d for d decimals, a float column's spacing: 128 s for float32 epoch seconds) is
+    above the mean step, the file holds more rows than distinct stamps, and repeats at
+    three or more stamps, or in half the rows, are rounding's: refused, naming the column
+    and the resolution. Steps that differ by no more than the resolution are noted as
+    rounded.
 
     Parameters
     ----------
@@ -576,6 +611,9 @@ def read_log(
         The measured load column (a ROS bag: "/topic:field"), into ``Log.load``.
     extra : dict of str to str or int, optional
         Other signals to read, by the name they get in ``Log.extra``.
+    time_unit : {"s", "ms", "us", "ns"}, default "s"
+        The unit of a numeric time column (in a ROS bag: of a /topic:field time that is a
+        number; stamps carry their own).
 
     Returns
     -------
@@ -590,21 +628,22 @@ def read_log(
     if missing not in ("error", "drop", "interpolate"):
         raise ValueError(f"missing must be 'error', 'drop' or 'interpolate' (got {missing!r})")
     path = Path(path)
+    unit: str | None = check_unit(time_unit)
     extra = _checked_extra(path, extra)
     bag = bag_path(path)
     if bag is not None:
-        table = _read_bag(bag, time, input, output, curve_angle, missing, load, extra)
-        time = TIME_KEY
+        table = _read_bag(bag, time, (input, output, curve_angle), missing, load, extra, time_unit)
+        time, unit = TIME_KEY, None  # a bag's time is in seconds already
     else:
         table = _open(path, sheet)
     if input is None:
         raise ValueError(f"{path}: name the input column; columns: {table.names()}")
     roles = (time, input, output, curve_angle)
-    log = _log_columns(table, path, roles, allow_missing=missing != "error")
+    log, timecol = _log_columns(table, path, roles, missing != "error", unit)
     if load is not None or extra:
         log = _with_measured(log, table, load, extra, allow_missing=missing != "error")
     if log.t is not None:
-        log = _drop_duplicate_times(log, table, time)
+        log = _drop_duplicate_times(log, table, time, timecol)
     if missing != "error":
         log = _treat_missing(log, table, missing)
     if log.x.size < MIN_ROWS:
@@ -613,7 +652,7 @@ def read_log(
         )
     if log.t is not None:
         assert log.rows is not None  # None only once resampled, below
-        log.notes.extend(_timing_notes(log.t, log.rows, table.row_name, gap_factor))
+        log.notes.extend(_timing_notes(log.t, log.rows, table.row_name, gap_factor, timecol))
     if resample is not None:
         log = _resample(log, resample)
     if degrees:
@@ -621,13 +660,19 @@ def read_log(
     return log
 
 
-def _log_columns(table: _Table, path: Path, roles, allow_missing: bool) -> Log:
+def _log_columns(
+    table: _Table, path: Path, roles, allow_missing: bool, time_unit: str | None
+) -> tuple[Log, TimeColumn | None]:
     """The named columns of ``table`` as a Log (no row dropped yet), with every other clean
-    number column in ``extra``; ``roles`` are the time, input, output and curve angle names."""
+    number column in ``extra``; ``roles`` are the time, input, output and curve angle names;
+    the time column as read (``_timecol``; None for a bag's, in seconds already)."""
     time, input_, output, curve_angle = roles
     x = table.numbers(input_, "input", allow_missing)
     n = x.size
-    t = table.numbers(time, "time") if time is not None else None
+    timecol = read_time(table, time, time_unit) if time is not None and time_unit else None
+    t = timecol.seconds if timecol is not None else None
+    if time is not None and timecol is None:
+        t = table.numbers(time, "time")
     y = table.numbers(output, "output", allow_missing) if output is not None else None
     theta = None
     if curve_angle is not None:
@@ -644,7 +689,8 @@ def _log_columns(table: _Table, path: Path, roles, allow_missing: bool) -> Log:
         if values is not None and values.shape == (n,):
             extra[name] = values
     rows = table.row_numbers(n)
-    return Log(t, x, y, theta, extra, str(path), table.names(), list(table.notes), rows)
+    notes = list(table.notes) + (timecol.notes if timecol is not None else [])
+    return Log(t, x, y, theta, extra, str(path), table.names(), notes, rows), timecol
 
 
 def _checked_extra(path: Path, extra) -> dict | None:
@@ -715,8 +761,9 @@ def _keep_rows(log: Log, keep: np.ndarray) -> Log:
     )
 
 
-def _drop_duplicate_times(log: Log, table: _Table, time) -> Log:
-    """Raise where time goes backwards; drop samples with a duplicate timestamp (first kept)."""
+def _drop_duplicate_times(log: Log, table: _Table, time, timecol: TimeColumn | None) -> Log:
+    """Raise where time goes backwards; drop samples with a duplicate timestamp (first kept),
+    unless the stamps are rounded too coarsely for the sampling (then raise, saying so)."""
     t = log.t
     assert t is not None and log.rows is not None  # a time column, not resampled yet
     back = np.flatnonzero(np.diff(t) < 0)
@@ -729,11 +776,36 @@ def _drop_duplicate_times(log: Log, table: _Table, time) -> Log:
     keep = np.r_[True, np.diff(t) != 0]
     if keep.all():
         return log
+    if timecol is not None:
+        _refuse_rounded(log, timecol, int((~keep).sum()))
     log.notes.append(
         f"{int((~keep).sum())} {table.row_name}(s) with a duplicate timestamp dropped "
         f"(first kept): {table.row_name}s {_ranges(log.rows[~keep])}"
     )
     return _keep_rows(log, keep)
+
+
+def _refuse_rounded(log: Log, timecol: TimeColumn, repeats: int) -> None:
+    """A ValueError when repeated stamps come from rounding: the stamps' resolution above
+    the mean step, so that the rows outnumber the distinct stamps, and repeats throughout
+    (at three or more stamps, or in half the rows). A stamp or two repeated, or repeats in
+    a finer time base, are rows logged twice: only dropped."""
+    assert log.t is not None
+    same = np.diff(log.t) == 0
+    stamps = int(np.count_nonzero(same[1:] & ~same[:-1])) + int(same[0])  # repeated ones
+    if stamps < 3 and 2 * repeats < log.t.size:
+        return
+    resolution = timecol.resolution()
+    mean = float(log.t[-1] - log.t[0]) / (log.t.size - 1)
+    if resolution is None or resolution[0] <= mean:
+        return
+    step, what = resolution
+    raise ValueError(
+        f"{log.path}: column {timecol.key!r}: {repeats} row(s) repeat the time before them: "
+        f"the stamps are written to {step:.3g} s ({what}), coarser than the sampling "
+        f"({mean:.3g} s a row on average), so rounding made them equal; write the time "
+        "with more digits, or read without a time column (a rate-independent model)"
+    )
 
 
 def _treat_missing(log: Log, table: _Table, missing: str) -> Log:
@@ -765,8 +837,11 @@ def _treat_missing(log: Log, table: _Table, missing: str) -> Log:
     return log
 
 
-def _timing_notes(t: np.ndarray, rows: np.ndarray, row_name: str, gap_factor: float) -> list:
-    """Notes on gaps in time (steps over ``gap_factor`` x the median) and irregular sampling."""
+def _timing_notes(
+    t: np.ndarray, rows: np.ndarray, row_name: str, gap_factor: float, timecol=None
+) -> list[str]:
+    """Notes on gaps in time (steps over ``gap_factor`` x the median) and irregular sampling
+    (said to be rounding where the steps differ by no more than the stamps' resolution)."""
     notes = []
     dt = np.diff(t)
     med = float(np.median(dt))
@@ -782,7 +857,22 @@ def _timing_notes(t: np.ndarray, rows: np.ndarray, row_name: str, gap_factor: fl
             f"irregular sampling: steps from {float(dt.min()):.4g} to {float(dt.max()):.4g} "
             f"(median {med:.4g}); consider resample="
         )
+        if timecol is not None and not gaps.size:
+            notes.extend(_rounding_note(dt, timecol))
     return notes
+
+
+def _rounding_note(dt: np.ndarray, timecol: TimeColumn) -> list[str]:
+    """A note when irregular steps differ by no more than the stamps' resolution."""
+    resolution = timecol.resolution()
+    if resolution is None or dt.max() - dt.min() > 1.5 * resolution[0]:
+        return []
+    step, what = resolution
+    return [
+        f"the steps differ by the stamps' resolution ({step:.3g} s, {what}): rounded "
+        f"stamps, jitter of up to {step:.3g} s that the recording may not have; "
+        "consider resample="
+    ]
 
 
 def _resample(log: Log, resample: float | str) -> Log:
@@ -802,24 +892,19 @@ def _resample(log: Log, resample: float | str) -> Log:
 
 
 def _read_bag(  # noqa: PLR0913 - the roles of a bag's signals
-    bag: Path,
-    time,
-    input,
-    output,
-    curve_angle,
-    missing,
-    load=None,
-    extra=None,  # noqa: A002
+    bag: Path, time, roles, missing, load=None, extra=None, time_unit: str = "s"
 ) -> _Table:
-    """A ROS bag's named signals, aligned (``_rosbag``), as a table of columns."""
-    specs = {"input": input, "output": output}
+    """A ROS bag's named signals (``roles``: input, output, curve angle), aligned
+    (``_rosbag``), as a table of columns."""
+    input_, output, curve_angle = roles
+    specs = {"input": input_, "output": output}
     if curve_angle is not None and not _is_number(curve_angle):
         specs["curve angle"] = curve_angle
     if load is not None:
         specs["load"] = load
     for name, spec in (extra or {}).items():
         specs[f"extra {name}"] = spec
-    data = read_bag(bag, time, specs, missing)
+    data = read_bag(bag, time, specs, missing, time_unit)
     return _Table(bag, data.columns, 1, rows=data.rows, notes=data.notes, row_name="message")
 
 
