@@ -350,7 +350,7 @@ def test_scenario_angles_in_degrees_warn_and_extrapolation_is_noted():
     sines = SCENARIO.replace("[reference]\n", "[reference]\nsines = [[45.0, 0.5, 0.0]]\n")
     with pytest.warns(ts.UnitWarning, match=r"sines\[0\] amplitude 45 rad .*45 deg = 0\.7854"):
         user_scenario.parse(sines, "s.toml")
-    with pytest.warns(ts.UnitWarning, match="route.*did you give degrees"):
+    with pytest.warns(ts.UnitWarning, match=r"Route.uniform: curve_angle 180 rad .*degrees"):
         user_scenario.parse(SCENARIO + "[route]\ntotal_angle = 180.0\n", "s.toml")
     far = SCENARIO + "[calibration]\nangles = [10.0]\n"
     with pytest.warns(UserWarning, match=r"lie outside the calibration angles .*extrapolate"):

@@ -79,11 +79,12 @@ from typing import Any
 import numpy as np
 
 from .. import loads, presets
+from .._angles import PLAUSIBLE_JOINT_ANGLE, warn_if_degrees
 from .._textread import read_config_text
 from ..compensate import AdaptiveController
 from ..motor import Motor
 from ..plant import ContinuumPlant, PullPullPlant
-from ..route import PLAUSIBLE_JOINT_ANGLE, Route, warn_if_degrees
+from ..route import Route
 from ..sensor import Sensor
 from .run import run
 from .scenarios.common import ScenarioResult, piecewise_routes, ratio

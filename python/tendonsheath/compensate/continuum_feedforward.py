@@ -6,8 +6,8 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from .. import _core as core
+from .._angles import warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, number, python_names
-from ..route import warn_if_curve_angle_in_degrees
 from .base import Feedforward
 from .limits import LimitsLike, as_limits
 

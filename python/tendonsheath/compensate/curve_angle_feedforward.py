@@ -9,11 +9,11 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .. import _core as core
+from .._angles import checked_curve_angle, warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, number, python_names
 from .._arrays import as_signal, as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
 from ..physics import route_shape as shape_of
-from ..route import warn_if_curve_angle_in_degrees
 from .base import Feedforward
 from .limits import LimitsLike, as_limits
 
@@ -210,10 +210,9 @@ class CurveAngleFeedforward(Feedforward):
             reports ``input_clamped``; the Python call says so instead).
         """
         who = "CurveAngleFeedforward.set_curve_angle"
-        angle = number(who, "curve_angle", curve_angle)
-        if not (math.isfinite(angle) and angle >= 0):
-            raise ValueError(f"{who}: curve_angle must be finite and >= 0 (got {angle:g})")
-        self._engine.set_curve_angle(angle)
+        self._engine.set_curve_angle(
+            checked_curve_angle(who, number(who, "curve_angle", curve_angle))
+        )
 
     def set_route(self, route: Route) -> None:
         """Any route: its exact g/G shape integrals are used (spec A.2 warning on Theta-only).
