@@ -235,20 +235,7 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         changes.append((t, _route(change, where, route.length)))
     if any(b[0] <= a[0] for a, b in zip(changes, changes[1:], strict=False)):
         raise ScenarioError(f"{source} [[route.changes]]: times must increase")
-    compensators = s["compare"].get("compensators", list(COMPENSATORS))
-    user = _user_compensators(s["compare"], source)
-    if not compensators and not user:
-        raise ScenarioError(
-            f"{source} [compare]: 'compensators' is empty; name at least one of "
-            f"{list(COMPENSATORS)}"
-        )
-    for name in compensators:
-        if name not in COMPENSATORS:
-            raise ScenarioError(
-                f"{source} [compare]: unknown compensator '{name}' (known: {list(COMPENSATORS)})"
-            )
-    if plant_type == "continuum" and "curve_angle_feedforward" in compensators:
-        pass  # allowed: the curve-angle model then includes the backbone spring
+    compensators, user = _compare_table(s["compare"], source)
     reference = {"duration": 20.0, "rate": 1000.0, "sines": [[1.0, 0.25, 0.0]], **s["reference"]}
     for i, sine in enumerate(reference["sines"]):
         if (
@@ -290,6 +277,23 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
             user_compensators=user,
         )
     )
+
+
+def _compare_table(compare: dict, source: str) -> tuple[list[str], list[UserCompensator]]:
+    """The [compare] table's shipped compensators (each known) and the user's own; not none."""
+    compensators = compare.get("compensators", list(COMPENSATORS))
+    user = _user_compensators(compare, source)
+    if not compensators and not user:
+        raise ScenarioError(
+            f"{source} [compare]: 'compensators' is empty; name at least one of "
+            f"{list(COMPENSATORS)}"
+        )
+    for name in compensators:
+        if name not in COMPENSATORS:
+            raise ScenarioError(
+                f"{source} [compare]: unknown compensator '{name}' (known: {list(COMPENSATORS)})"
+            )
+    return compensators, user
 
 
 def _checked(sc: UserScenario) -> UserScenario:
