@@ -375,3 +375,40 @@ def test_the_message_is_one_line_and_names_the_field():
     ]
     assert all("\n" not in m and "friction must be >= 0 (got -1)" in m for m in msgs)
     assert np.isfinite(ROUTE.curve_angle)
+
+
+@pytest.mark.parametrize(
+    "kind, key, build",
+    [
+        ("constant_torque", "torque", lambda v: ts.loads.ConstantTorque(v)),
+        ("torsional_spring", "stiffness", lambda v: ts.loads.TorsionalSpring(v)),
+        ("torsional_spring", "preload", lambda v: ts.loads.TorsionalSpring(0.0, v)),
+        ("spring_damper", "stiffness", lambda v: ts.loads.SpringDamper(v, 0.0)),
+        ("spring_damper", "damping", lambda v: ts.loads.SpringDamper(0.0, v)),
+    ],
+)
+@pytest.mark.parametrize("bad", [-1.0, 0.0])
+def test_load_table_gives_the_load_class_message_with_its_key(kind, key, build, bad):
+    """[load] refuses what the load class refuses, at parse time, in the table's words."""
+    python = _outcome(lambda: build(bad))
+    text = f'[plant]\nrealistic = false\n[load]\ntype = "{kind}"\n{key} = {bad!r}\n'
+    toml = _outcome(lambda: user_scenario.parse(text, "s.toml"))
+    if python is None:
+        assert toml is None, toml
+        return
+    assert toml is not None and toml[1].startswith("s.toml [load]: ") and f"'{key}'" in toml[1]
+    assert toml[1].endswith(_body(python[1]).split(" must ", 1)[1])
+
+
+@pytest.mark.parametrize("key", ["length", "total_angle"])
+@pytest.mark.parametrize("bad", [-1.0, 0.0])
+def test_route_table_gives_the_route_message(key, bad):
+    """[route] length and total_angle refuse what Route.uniform refuses, with its message."""
+    args = {
+        "length": 1.2,
+        "curve_angle": math.pi,
+        {"total_angle": "curve_angle"}.get(key, key): bad,
+    }
+    python = _outcome(lambda: ts.Route.uniform(**args))
+    toml = _outcome(lambda: user_scenario.parse(f"[route]\n{key} = {bad!r}\n", "s.toml"))
+    assert _agrees(python, toml), (python, toml)

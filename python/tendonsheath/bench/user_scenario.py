@@ -70,6 +70,7 @@ Every table and key is checked; an unknown or ill-typed one is named in the erro
 from __future__ import annotations
 
 import math
+import re
 import tomllib
 import warnings
 from dataclasses import dataclass, field
@@ -301,6 +302,7 @@ def _checked(sc: UserScenario) -> UserScenario:
     takes it (the plant, the motors, the shape sensing, the routes: one rule, the same message
     as from Python), the route changes fall inside the run, and the angles look like radians."""
     src = sc.source
+    _check_load(sc)
     _plant(sc, None)  # ScenarioError "[plant]: <the plant's message>"
     for table, build in (("motor", _servo), ("torque_motor", _torque)):
         try:
@@ -317,6 +319,22 @@ def _checked(sc: UserScenario) -> UserScenario:
     _check_sines(sc.reference["sines"], src)
     _check_calibration(sc)
     return sc
+
+
+# the [load] keys under the names the load classes give their arguments (tendonsheath.loads)
+_LOAD_ARGUMENTS = {"tau": "torque", "k": "stiffness", "c": "damping"}
+
+
+def _check_load(sc: UserScenario) -> None:
+    """The [load] table as its load class takes it; the class's message with the table's key
+    named (the classes call the stiffness k, the damping c and the torque tau)."""
+    try:
+        _load_object(sc.load)
+    except (TypeError, ValueError) as exc:
+        message = str(exc)
+        for arg, key in _LOAD_ARGUMENTS.items():
+            message = re.sub(rf"\b{arg} must\b", f"'{key}' ({arg}) must", message)
+        raise ScenarioError(f"{sc.source} [load]: {message}") from None
 
 
 def _check_sines(sines: list, src: str) -> None:
