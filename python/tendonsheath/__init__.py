@@ -15,7 +15,7 @@ from .plant import (
     SlackWarning,
 )
 from .protocols import Compensator, Plant
-from .route import Route
+from .route import Route, UnitWarning
 from .sensor import Sensor
 from .simulation_result import SimulationResult
 from .status import Status, status_counts
@@ -42,6 +42,7 @@ __all__ = [
     "SingleTendonPlant",
     "SlackWarning",
     "Status",
+    "UnitWarning",
     "bench",
     "compare_models",
     "compensate",

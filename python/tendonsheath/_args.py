@@ -120,6 +120,12 @@ def number(who: str, name: str, value: Any) -> float:
     return float(value)
 
 
+def is_format_version(value: Any, expected: int) -> bool:
+    """Whether a saved file's ``"version"`` is the integer `expected`: JSON ``true`` is not 1
+    (Python's ``True == 1`` would let it through), nor is ``1.0`` or ``"1"``."""
+    return isinstance(value, int) and not isinstance(value, bool) and value == expected
+
+
 def optional_number(who: str, name: str, value: Any) -> float | None:
     return None if value is None else number(who, name, value)
 

@@ -7,6 +7,8 @@ from collections.abc import Iterable, Sequence
 import numpy as np
 
 from . import _core as core
+from ._angles import UnitWarning as UnitWarning
+from ._angles import warn_if_curve_angle_in_degrees
 from ._args import accepts_old_names, number, number_array, python_names, warn_renamed
 from ._arrays import as_signal
 from ._typing import ArrayLike, FloatArray
@@ -46,6 +48,7 @@ class Route:
         th_arr = as_signal(number_array("Route", "theta", theta), "theta")
         with python_names("Route"):
             self._core = core.Route(s_arr.tolist(), th_arr.tolist())
+        warn_if_curve_angle_in_degrees(self._core.total_angle, "Route", "theta[-1]")
 
     @classmethod
     def _wrap(cls, engine) -> Route:
@@ -74,7 +77,9 @@ class Route:
         length = number("Route.uniform", "length", length)
         angle = number("Route.uniform", "curve_angle", curve_angle)
         with python_names("Route.uniform"):
-            return cls._wrap(core.Route.uniform(length, angle))
+            route = cls._wrap(core.Route.uniform(length, angle))
+        warn_if_curve_angle_in_degrees(angle, "Route.uniform")
+        return route
 
     @classmethod
     def arcs(cls, pieces: Iterable[Sequence[float]]) -> Route:
@@ -104,7 +109,9 @@ class Route:
                 f"Route.arcs: pieces must be (length, angle) pairs of numbers (got {pieces!r})"
             ) from None
         with python_names("Route.arcs"):
-            return cls._wrap(core.Route.arcs(items))
+            route = cls._wrap(core.Route.arcs(items))
+        warn_if_curve_angle_in_degrees(route.curve_angle, "Route.arcs", "the pieces' total angle")
+        return route
 
     @classmethod
     def from_points(cls, xyz: ArrayLike) -> Route:

@@ -122,6 +122,7 @@ void bind_curve_angle_feedforward(nb::module_& m) {
       .def("reset", &C::reset)
       .def("set_curve_angle", &C::set_curve_angle, "total_angle"_a)
       .def("angle_clamped", &C::angle_clamped)
+      .def("angle_rejected", &C::angle_rejected)
       .def("status", [](const C& c) { return static_cast<unsigned>(c.status()); })
       .def("set_shape", &C::set_shape, "shape"_a)
       .def("step", &C::step, "y_d"_a, "dt"_a)

@@ -342,3 +342,16 @@ TEST(IoJson, GeneralizedPIEnvelopeRangeLoads) {
   bad["options"] = {{"range", {0.0, 1.0}}};
   EXPECT_NE(error_of(inverse_file(bad)).find("unknown key 'range'"), std::string::npos);
 }
+
+// "version" is the integer 1: JSON true (Python's True == 1) and 1.0 are refused, as in Python.
+TEST(IoJson, TheVersionMustBeTheInteger) {
+  for (const json& version : {json(true), json(1.0), json("1"), json(2)}) {
+    json f = curve_angle_file();
+    f["version"] = version;
+    EXPECT_NE(error_of(f).find("unsupported 'version'"), std::string::npos) << error_of(f);
+    json inv = inverse_file(backlash_model(1, 1, 0.1, 0.1));
+    inv["model"]["version"] = version;
+    EXPECT_NE(error_of(inv).find("unsupported 'version'"), std::string::npos) << error_of(inv);
+  }
+  EXPECT_EQ(error_of(curve_angle_file()), "(no error)");
+}

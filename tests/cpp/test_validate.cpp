@@ -60,3 +60,28 @@ TEST(Validate, ARouteOfTheWrongLengthIsNamed) {
               "(a route may bend, not change length)");
   }
 }
+
+// A rest tension that strains the tendon by 5 % or more breaks it (spec A.2 is small-strain).
+TEST(Validate, APretensionThatWouldBreakTheTendonIsRefused) {
+  EXPECT_EQ(message_of([] {
+              ts::PullPullParams p;
+              p.stiffness = 5.0;
+              p.pretension = 20.0;
+              ts::PullPullPlant plant(p, ts::Route::uniform(1.0, 1.0));
+            }),
+            "PullPullPlant: pretension / EA must be < 0.05 (got 20 N / 5 N = 4): a tendon breaks "
+            "near 2-4 % strain and the model (spec A.2) is small-strain");
+  EXPECT_NE(message_of([] {
+              ts::SingleTendonParams p;
+              p.stiffness = 100.0;
+              p.load_force = 10.0;
+              ts::SingleTendonPlant plant(p, ts::Route::uniform(1.0, 1.0));
+            }).find("load_force / EA must be < 0.05"),
+            std::string::npos);
+  EXPECT_NO_THROW({
+    ts::PullPullParams p;
+    p.stiffness = 5e3;
+    p.pretension = 40.0;  // the spec's extremes: T0 / EA = 8e-3
+    ts::PullPullPlant plant(p, ts::Route::uniform(1.0, 1.0));
+  });
+}

@@ -91,24 +91,36 @@ class CurveAngleFeedforward {
     correction_primed_ = false;
   }
 
-  /// Uniform curvature with total angle theta (rad); non-finite or negative is ignored, and an
-  /// angle beyond max_total_angle(friction) is clamped to it (angle_clamped() tells).
-  void set_curve_angle(double theta) noexcept {
+  /// Uniform curvature with total angle theta (rad); an angle beyond max_total_angle(friction) is
+  /// clamped to it (angle_clamped() tells). A non-finite or negative one changes nothing and is
+  /// rejected: status() reports input_clamped until an angle or shape is taken (angle_rejected()).
+  /// @return whether the angle was taken
+  bool set_curve_angle(double theta) noexcept {
+    angle_rejected_ = !(std::isfinite(theta) && theta >= 0.0);
+    if (angle_rejected_) return false;
     angle_clamped_ = theta > max_total_angle(p_.friction);
     if (angle_clamped_) theta = max_total_angle(p_.friction);
-    if (std::isfinite(theta) && theta >= 0.0 && !(uniform_ && theta == shape_.total_angle)) {
+    if (!(uniform_ && theta == shape_.total_angle)) {
       update_shape(uniform_shape(p_.friction, theta));
       uniform_ = true;
     }
+    return true;
   }
-  /// Any route: its shape integrals g, G (see shape_integrals) and total angle.
-  void set_shape(const ShapeIntegrals& shape) noexcept {
-    if (std::isfinite(shape.g) && std::isfinite(shape.G) && shape.g > 0.0 && shape.G > 0.0 &&
-        std::isfinite(shape.total_angle) && shape.total_angle >= 0.0) {
-      update_shape(shape);
-      uniform_ = false;
-    }
+  /// Any route: its shape integrals g, G (see shape_integrals) and total angle. A shape with a
+  /// non-finite or non-positive integral or a negative angle changes nothing and is rejected as
+  /// set_curve_angle() rejects an angle.
+  /// @return whether the shape was taken
+  bool set_shape(const ShapeIntegrals& shape) noexcept {
+    angle_rejected_ = !(std::isfinite(shape.g) && std::isfinite(shape.G) && shape.g > 0.0 &&
+                        shape.G > 0.0 && std::isfinite(shape.total_angle) &&
+                        shape.total_angle >= 0.0);
+    if (angle_rejected_) return false;
+    update_shape(shape);
+    uniform_ = false;
+    return true;
   }
+  /// True when the last set_curve_angle() or set_shape() was rejected (non-finite or negative).
+  bool angle_rejected() const noexcept { return angle_rejected_; }
 
   /// @param y_d the desired distal angle, rad; a non-finite one holds the last command
   /// @param dt the time since the previous cycle, s (the desired rate is y_d's backward difference)
@@ -120,11 +132,11 @@ class CurveAngleFeedforward {
   }
 
   /// The last step's status: held (non-finite y_d), input_clamped (the curve angle in force
-  /// was clamped to max_total_angle), saturated (the command was cut to its limits).
+  /// was clamped to max_total_angle, or the last one given was rejected), saturated (the command was cut to its limits).
   Status status() const noexcept {
     Status s = shaper_.status();
     if (held_) s |= Status::held_nonfinite_input;
-    if (angle_clamped_) s |= Status::input_clamped;
+    if (angle_clamped_ || angle_rejected_) s |= Status::input_clamped;
     return s;
   }
 
@@ -169,6 +181,7 @@ class CurveAngleFeedforward {
   ShapeIntegrals shape_{};
   PullPullStatics::Affine affine_{};
   bool angle_clamped_ = false;
+  bool angle_rejected_ = false;
   bool held_ = false;
   bool uniform_ = true;
   RateEstimator rate_{};

@@ -75,7 +75,9 @@ inline void check_format(const json& file, const char* format, const std::string
   const json& f = member(file, "format", where);
   if (f != format) fail(where, std::string("key 'format' must be \"") + format + "\" (got " + f.dump() + ")");
   const json& v = member(file, "version", where);
-  if (v != 1) fail(where, "unsupported 'version' " + v.dump() + " (expected 1)");
+  // the integer 1: neither true nor 1.0 (Python's loaders refuse them too)
+  if (!v.is_number_integer() || v != 1)
+    fail(where, "unsupported 'version' " + v.dump() + " (expected 1)");
 }
 
 // the parameters of a model class, in its Python param_names order (what AngleLaws index)

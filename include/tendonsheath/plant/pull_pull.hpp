@@ -105,6 +105,8 @@ class PullPullPlant {
     require(p.stiffness2 == -1.0 || (p.stiffness2 > 0.0 && std::isfinite(p.stiffness2)), w,
             "stiffness2 must be finite and > 0, or -1 for the same as stiffness (got ",
             p.stiffness2, ")");
+    detail::validate_rest_strain(p.pretension, std::fmin(p.stiffness, detail::stiffness2_of(p)), w,
+                                 "pretension");
     validate_chain_options(p.options, w);
     const std::size_t M = 2 * N_;
     chain_ = FrictionChain(M);

@@ -40,6 +40,19 @@ inline void validate_tendon(double mu, double EA, int N, const char* w) {
   require(N <= 1000000, w, "elements must be <= 1000000 (got ", N, ")");
 }
 
+/// The largest rest strain T / EA a plant accepts. The model is linear and small-strain (spec A.2:
+/// eps = T / EA, the geometry unchanged by the stretch); spec section 1 puts T0 / EA at 8e-3 at most
+/// (T0 <= 40 N, EA >= 5e3 N), and a steel rope breaks near 2 % strain, a polymer (UHMWPE) one near
+/// 3.5 %: at 5 % the tendon has broken and the model means nothing.
+constexpr double kMaxRestStrain = 0.05;
+
+// The tension a tendon carries at rest must stretch it by less than kMaxRestStrain.
+inline void validate_rest_strain(double T, double EA, const char* w, const char* name) {
+  require(!(T / EA >= kMaxRestStrain), w, name, " / EA must be < 0.05 (got ", T, " N / ", EA,
+          " N = ", T / EA, "): a tendon breaks near 2-4 % strain and the model (spec A.2) is "
+          "small-strain");
+}
+
 // Default sub-increment: 1/20 of the backlash half-width T L tanh(a/2)/EA;
 // 0 (no limit) without friction.
 inline double default_increment(double T, double L, double EA, double a) noexcept {
@@ -83,6 +96,7 @@ class SingleTendonPlant {
     require_non_negative(p.load_stiffness, w, "load_stiffness");
     require(p.load_force > 0.0 || p.load_stiffness > 0.0, w,
             "the load must pull the tendon: load_force > 0 or load_stiffness > 0");
+    detail::validate_rest_strain(p.load_force, p.stiffness, w, "load_force");
     detail::validate_rate_effects(p.sheath_viscosity, p.relaxation_fraction, p.relaxation_time, w);
     validate_chain_options(p.options, w);
     chain_ = FrictionChain(N_);

@@ -70,7 +70,9 @@ Every table and key is checked; an unknown or ill-typed one is named in the erro
 from __future__ import annotations
 
 import math
+import re
 import tomllib
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -78,6 +80,7 @@ from typing import Any
 import numpy as np
 
 from .. import loads, presets
+from .._angles import PLAUSIBLE_JOINT_ANGLE, warn_if_degrees
 from .._textread import read_config_text
 from ..compensate import AdaptiveController
 from ..motor import Motor
@@ -181,19 +184,6 @@ def _section(data: dict, name: str, source: str) -> dict[str, Any]:
     return out
 
 
-def _check_strain(plant: dict[str, Any], source: str) -> None:
-    """The pretension must stretch the tendon by less than its length (T0 / EA < 1): beyond it
-    the elastic model means nothing and the bench would report garbage."""
-    stiffness = plant.get("stiffness", 2.4e4)  # the plants' default EA
-    pretension = plant.get("pretension")
-    if pretension is not None and stiffness and stiffness > 0 and pretension / stiffness >= 1:
-        raise ScenarioError(
-            f"{source} [plant]: pretension {pretension:g} N would stretch the tendon by "
-            f"{pretension / stiffness:.3g} times its length (stiffness EA = {stiffness:g} N); "
-            "T0 / EA must be < 1"
-        )
-
-
 def _sensor_table(table: dict[str, Any], source: str) -> dict[str, Any]:
     """The [sensor] table over its defaults, checked as the Sensor takes it: a bad value is
     named in one line."""
@@ -224,9 +214,13 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         if key not in _TOP:
             raise ScenarioError(f"{source}: unknown table or key '{key}' (known: {sorted(_TOP)})")
         _check_type(source, key, value, _TOP[key])
+    if not data:
+        raise ScenarioError(
+            f"{source}: the scenario is empty (no table or key); give at least a [plant] or "
+            "[route] table, or a title to run every default"
+        )
     s = {name: _section(data, name, source) for name in _KEYS}
     plant_type = s["plant"].get("type", "pull_pull")
-    _check_strain(s["plant"], source)
     if plant_type not in ("pull_pull", "continuum"):
         raise ScenarioError(f"{source} [plant]: 'type' must be 'pull_pull' or 'continuum'")
     route = _route(s["route"], f"{source} [route]")
@@ -242,20 +236,7 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         changes.append((t, _route(change, where, route.length)))
     if any(b[0] <= a[0] for a, b in zip(changes, changes[1:], strict=False)):
         raise ScenarioError(f"{source} [[route.changes]]: times must increase")
-    compensators = s["compare"].get("compensators", list(COMPENSATORS))
-    user = _user_compensators(s["compare"], source)
-    if not compensators and not user:
-        raise ScenarioError(
-            f"{source} [compare]: 'compensators' is empty; name at least one of "
-            f"{list(COMPENSATORS)}"
-        )
-    for name in compensators:
-        if name not in COMPENSATORS:
-            raise ScenarioError(
-                f"{source} [compare]: unknown compensator '{name}' (known: {list(COMPENSATORS)})"
-            )
-    if plant_type == "continuum" and "curve_angle_feedforward" in compensators:
-        pass  # allowed: the curve-angle model then includes the backbone spring
+    compensators, user = _compare_table(s["compare"], source)
     reference = {"duration": 20.0, "rate": 1000.0, "sines": [[1.0, 0.25, 0.0]], **s["reference"]}
     for i, sine in enumerate(reference["sines"]):
         if (
@@ -279,22 +260,138 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         raise ScenarioError(
             f"{source} [load]: 'type' must be constant_torque, torsional_spring or spring_damper"
         )
-    return UserScenario(
-        title=data.get("title", "user scenario"),
-        plant={"type": plant_type, **s["plant"]},
-        route={"initial": route},
-        load=load,
-        motor={"bandwidth_hz": 60.0, "damping": 0.8, **s["motor"]},
-        torque_motor={"inertia": 0.01, "viscous": 0.2, "max_torque": 5.0, **s["torque_motor"]},
-        sensor=_sensor_table(s["sensor"], source),
-        reference=reference,
-        calibration={"duration": 20.0, "amplitude": 1.2, **s["calibration"]},
-        compensators=list(compensators),
-        seed=int(data.get("seed", 0)),
-        source=source,
-        route_changes=changes,
-        user_compensators=user,
+    return _checked(
+        UserScenario(
+            title=data.get("title", "user scenario"),
+            plant={"type": plant_type, **s["plant"]},
+            route={"initial": route},
+            load=load,
+            motor={"bandwidth_hz": 60.0, "damping": 0.8, **s["motor"]},
+            torque_motor={"inertia": 0.01, "viscous": 0.2, "max_torque": 5.0, **s["torque_motor"]},
+            sensor=_sensor_table(s["sensor"], source),
+            reference=reference,
+            calibration={"duration": 20.0, "amplitude": 1.2, **s["calibration"]},
+            compensators=list(compensators),
+            seed=int(data.get("seed", 0)),
+            source=source,
+            route_changes=changes,
+            user_compensators=user,
+        )
     )
+
+
+def _compare_table(compare: dict, source: str) -> tuple[list[str], list[UserCompensator]]:
+    """The [compare] table's shipped compensators (each known) and the user's own; not none."""
+    compensators = compare.get("compensators", list(COMPENSATORS))
+    user = _user_compensators(compare, source)
+    if not compensators and not user:
+        raise ScenarioError(
+            f"{source} [compare]: 'compensators' is empty; name at least one of "
+            f"{list(COMPENSATORS)}"
+        )
+    for name in compensators:
+        if name not in COMPENSATORS:
+            raise ScenarioError(
+                f"{source} [compare]: unknown compensator '{name}' (known: {list(COMPENSATORS)})"
+            )
+    return compensators, user
+
+
+def _checked(sc: UserScenario) -> UserScenario:
+    """The scenario, once every value it runs with has passed the check of the class that
+    takes it (the plant, the motors, the shape sensing, the routes: one rule, the same message
+    as from Python), the route changes fall inside the run, and the angles look like radians."""
+    src = sc.source
+    _check_load(sc)
+    _plant(sc, None)  # ScenarioError "[plant]: <the plant's message>"
+    for table, build in (("motor", _servo), ("torque_motor", _torque)):
+        try:
+            build(sc)
+        except (TypeError, ValueError) as exc:
+            raise ScenarioError(f"{src} [{table}]: {exc}") from None
+    duration = sc.reference["duration"]
+    for t, _ in sc.route_changes:
+        if not 0 < t < duration:
+            raise ScenarioError(
+                f"{src} [[route.changes]]: a change at t = {t:g} s is outside the run (0, "
+                f"{duration:g}) s ([reference] duration): it would never happen"
+            )
+    _check_sines(sc.reference["sines"], src)
+    _check_calibration(sc)
+    return sc
+
+
+# the [load] keys under the names the load classes give their arguments (tendonsheath.loads)
+_LOAD_ARGUMENTS = {"tau": "torque", "k": "stiffness", "c": "damping"}
+
+
+def _check_load(sc: UserScenario) -> None:
+    """The [load] table as its load class takes it; the class's message with the table's key
+    named (the classes call the stiffness k, the damping c and the torque tau)."""
+    try:
+        _load_object(sc.load)
+    except (TypeError, ValueError) as exc:
+        message = str(exc)
+        for arg, key in _LOAD_ARGUMENTS.items():
+            message = re.sub(rf"\b{arg} must\b", f"'{key}' ({arg}) must", message)
+        raise ScenarioError(f"{sc.source} [load]: {message}") from None
+
+
+def _check_sines(sines: list, src: str) -> None:
+    """Each sine finite, its frequency >= 0; an amplitude past a full turn of the joint warns."""
+    for i, sine in enumerate(sines):
+        if not all(math.isfinite(v) for v in sine) or sine[1] < 0:
+            raise ScenarioError(
+                f"{src} [reference]: sines[{i}] must be finite with a frequency >= 0 (got {sine})"
+            )
+        warn_if_degrees(
+            sine[0],
+            f"{src} [reference]",
+            f"sines[{i}] amplitude",
+            PLAUSIBLE_JOINT_ANGLE,
+            "a full turn: a distal joint turns less",
+            stacklevel=5,
+        )
+
+
+def _check_calibration(sc: UserScenario) -> None:
+    """The calibration runs as [calibration] describes them: duration > 0, the shape sensing
+    valid, each angle a valid route's; a note when the test routes' angles lie outside the
+    calibration angles (the curve-angle dependence is then extrapolated)."""
+    src, cal = sc.source, sc.calibration
+    if not cal["duration"] > 0 or not cal["amplitude"] > 0:
+        raise ScenarioError(f"{src} [calibration]: duration and amplitude must be > 0")
+    warn_if_degrees(
+        cal["amplitude"],
+        f"{src} [calibration]",
+        "amplitude",
+        PLAUSIBLE_JOINT_ANGLE,
+        "a full turn: a distal joint turns less",
+        stacklevel=5,
+    )
+    from .shape_sensing import ShapeSensing
+
+    try:
+        ShapeSensing(noise_std=cal.get("shape_noise", 0.05), delay=cal.get("shape_delay", 0.1))
+    except (TypeError, ValueError) as exc:
+        raise ScenarioError(f"{src} [calibration]: {exc}") from None
+    given = cal.get("angles")
+    if given is None:
+        return
+    if not given or not all(isinstance(a, int | float) and not isinstance(a, bool) for a in given):
+        raise ScenarioError(f"{src} [calibration]: angles must be a non-empty list of numbers")
+    length = sc.route["initial"].length
+    for a in given:
+        _route({"total_angle": a}, f"{src} [calibration] angles", length)
+    tests = [sc.route["initial"].curve_angle] + [r.curve_angle for _, r in sc.route_changes]
+    if min(tests) < min(given) or max(tests) > max(given):
+        warnings.warn(
+            f"{src} [calibration]: the test routes' curve angles ({min(tests):.3g} to "
+            f"{max(tests):.3g} rad) lie outside the calibration angles ({min(given):.3g} to "
+            f"{max(given):.3g} rad): the curve-angle models extrapolate",
+            UserWarning,
+            stacklevel=4,
+        )
 
 
 def _user_compensators(compare: dict, source: str) -> list[UserCompensator]:

@@ -104,6 +104,8 @@ class AdaptiveController(EngineCompensator):
             p.has_feedforward = True
         self.feedforward_model = feedforward_model
         self.smoothing = number(who, "smoothing", smoothing)
+        if not (math.isfinite(self.smoothing) and self.smoothing > 0):  # with a model or not
+            raise ValueError(f"{who}: smoothing must be > 0 (got {self.smoothing:g})")
         with python_names(who):
             self._engine = core.AdaptiveController(p)
         self.design: Any = None  # set by from_calibration: what the gains were chosen from

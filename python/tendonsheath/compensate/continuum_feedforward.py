@@ -6,6 +6,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from .. import _core as core
+from .._angles import warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, number, python_names
 from .base import Feedforward
 from .limits import LimitsLike, as_limits
@@ -137,6 +138,7 @@ class ContinuumFeedforward(Feedforward):
         self.mode = mode
         with python_names(who):
             self._engine = core.ContinuumFeedforward(p)
+        warn_if_curve_angle_in_degrees(self._settings["curve_angle"], who)
 
     @classmethod
     @accepts_old_names("ContinuumFeedforward.from_model", {"total_angle": "curve_angle"})

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .. import _core as core
+from .._angles import checked_curve_angle, warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, number, python_names
 from .._arrays import as_signal, as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
@@ -124,6 +125,7 @@ class CurveAngleFeedforward(Feedforward):
         self._settings = {k: number(who, k, v) for k, v in values.items()}
         self._settings["limits"] = as_limits(limits)
         self._engine = _engine(who, self._settings)
+        warn_if_curve_angle_in_degrees(self._settings["curve_angle"], who)
 
     @classmethod
     def from_model(
@@ -198,11 +200,19 @@ class CurveAngleFeedforward(Feedforward):
         Parameters
         ----------
         curve_angle : float
-            The curve angle Theta (rad), >= 0 (its old name ``total_angle=`` still works for
-            one release, with a DeprecationWarning).
+            The curve angle Theta (rad), finite and >= 0 (its old name ``total_angle=`` still
+            works for one release, with a DeprecationWarning).
+
+        Raises
+        ------
+        ValueError
+            A curve angle that is not finite or negative (the C++ core keeps the last angle and
+            reports ``input_clamped``; the Python call says so instead).
         """
         who = "CurveAngleFeedforward.set_curve_angle"
-        self._engine.set_curve_angle(number(who, "curve_angle", curve_angle))
+        self._engine.set_curve_angle(
+            checked_curve_angle(who, number(who, "curve_angle", curve_angle))
+        )
 
     def set_route(self, route: Route) -> None:
         """Any route: its exact g/G shape integrals are used (spec A.2 warning on Theta-only).

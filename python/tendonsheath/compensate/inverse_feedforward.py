@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .. import _core as core
+from .._angles import checked_curve_angle
 from .._args import number, python_names
 from .._arrays import as_signal, as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
@@ -185,10 +186,16 @@ class InverseFeedforward(Feedforward):
         Parameters
         ----------
         curve_angle : float
-            The curve angle Theta (rad).
+            The curve angle Theta (rad), finite and >= 0.
+
+        Raises
+        ------
+        ValueError
+            A curve angle that is not finite or negative (the C++ core would ignore it).
         """
+        who = "InverseFeedforward.set_curve_angle"
         self._engine.set_curve_angle(
-            number("InverseFeedforward.set_curve_angle", "curve_angle", curve_angle)
+            checked_curve_angle(who, number(who, "curve_angle", curve_angle))
         )
 
     def set_shape(self, shape: Any) -> None:

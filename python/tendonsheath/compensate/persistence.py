@@ -13,7 +13,7 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeAlias, TypeVar
 
-from .._args import renamed
+from .._args import is_format_version, renamed
 from .._atomic import write_text
 from .._json_source import read_json_source
 
@@ -96,7 +96,7 @@ def compensator_from_dict(data: dict[str, Any]) -> Compensator:
     """Build the compensator a dict from ``to_dict`` describes; strict: every key checked."""
     if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
         raise ValueError(f"not a tendonsheath compensator file (missing format '{FORMAT_NAME}')")
-    if data.get("version") != FORMAT_VERSION:
+    if not is_format_version(data.get("version"), FORMAT_VERSION):
         raise ValueError(
             f"unsupported compensator file version {data.get('version')!r} "
             f"(expected {FORMAT_VERSION})"

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, Self, TypeVar, cast
 
 import numpy as np
 
-from .._args import python_names, renamed
+from .._args import is_format_version, python_names, renamed
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import read_json_source
@@ -420,7 +420,7 @@ def model_class_from_dict(data: dict[str, Any]) -> type[HysteresisModel]:
     if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
         raise ValueError(f"not a tendonsheath model file (missing format '{FORMAT_NAME}')")
     version = data.get("version")
-    if version != FORMAT_VERSION:
+    if not is_format_version(version, FORMAT_VERSION):
         raise ValueError(f"unsupported model file version {version!r} (expected {FORMAT_VERSION})")
     name = data.get("model")
     if name not in _REGISTRY:

@@ -58,16 +58,7 @@ class BoucWenBacklash(HysteresisModel):
         max_substeps: int = 256,
     ):
         if rho is None:
-            B_r, B_l = (number("BoucWenBacklash", k, v) for k, v in (("B_r", B_r), ("B_l", B_l)))
-            width = B_r + B_l
-            if not width > 0:
-                raise ValueError("BoucWenBacklash: give rho when B_r + B_l is not > 0")
-            rho = 2.0 / width
-            if not math.isfinite(rho):
-                raise ValueError(
-                    f"BoucWenBacklash: B_r + B_l = {width:g} is too small to derive "
-                    "rho = 2 / (B_r + B_l); give rho"
-                )
+            rho = _default_rho(B_r, B_l)
         super().__init__(
             c_r=c_r,
             c_l=c_l,
@@ -79,3 +70,21 @@ class BoucWenBacklash(HysteresisModel):
             max_step=max_step,
             max_substeps=max_substeps,
         )
+
+
+def _default_rho(B_r, B_l) -> float | None:
+    """rho = 2 / (B_r + B_l); None (the core's default) when B_r or B_l is out of range, so
+    that the core names the bad one, as it does for a saved file that gives rho."""
+    B_r, B_l = (number("BoucWenBacklash", k, v) for k, v in (("B_r", B_r), ("B_l", B_l)))
+    if not all(math.isfinite(b) and b >= 0 for b in (B_r, B_l)):
+        return None
+    width = B_r + B_l
+    if not width > 0:
+        raise ValueError("BoucWenBacklash: give rho when B_r + B_l is not > 0")
+    rho = 2.0 / width
+    if not math.isfinite(rho):
+        raise ValueError(
+            f"BoucWenBacklash: B_r + B_l = {width:g} is too small to derive "
+            "rho = 2 / (B_r + B_l); give rho"
+        )
+    return rho

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from .._args import is_format_version
 from .._atomic import write_text
 from .._json_source import read_json_source
 from .._pyobject import PythonObject
@@ -177,7 +178,7 @@ class Coupled(PythonObject):
         """
         if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
             raise ValueError(f"Coupled.from_dict: not a {FORMAT_NAME!r} file")
-        if data.get("version") != FORMAT_VERSION:
+        if not is_format_version(data.get("version"), FORMAT_VERSION):
             raise ValueError(
                 f"Coupled.from_dict: version {data.get('version')!r} is not supported "
                 f"(expected {FORMAT_VERSION})"

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from typing import Any
 
@@ -41,7 +42,12 @@ class _GeneralizedBase(HysteresisModel):
         values["thresholds"] = [float(v) for v in number_array(who, "thresholds", thresholds)]
         values["weights"] = [float(v) for v in number_array(who, "weights", weights)]
         values["envelope_range"] = _checked_range(who, envelope_range)
-        super().__init__(**values)
+        try:
+            super().__init__(**values)
+        except ValueError as err:  # the core's rising.a is the Python rising_a
+            raise ValueError(
+                re.sub(r"\b(rising|falling)\.([abcd])\b", r"\1_\2", str(err))
+            ) from None
 
     @classmethod
     def _core_values(cls, values: dict[str, Any]) -> dict[str, Any]:

@@ -102,15 +102,18 @@ class PlantModel(HysteresisModel):
 
         v = self._values
         compliance = v["backlash"] / math.tanh(0.5 * v["friction_angle"])  # L/EA at T0 = 1
-        stiffness = 1.0 / compliance  # EA with L = 1 m, T0 = 1 N, r_p = r_d = 1 m
+        # the pulleys' radius r is a free scale (e_b = T0 L tanh(a/2) / (EA r)), chosen so that
+        # the rest strain T0 / EA = compliance r stays <= 1e-3 (the plant's bound: < 0.05)
+        radius = min(1.0, 1e-3 / compliance)
+        stiffness = 1.0 / (compliance * radius)  # EA with L = 1 m, T0 = 1 N
         viscosity = v["viscous_time"] * stiffness  # c_v = tau EA / L^2
         return PullPullPlant(
             route=Route.uniform(length=1.0, curve_angle=WRAP),
             friction=v["friction_angle"] / WRAP,
             stiffness=stiffness,
             pretension=1.0,
-            proximal_radius=1.0,
-            distal_radius=1.0,
+            proximal_radius=radius,
+            distal_radius=radius,
             elements=self._elements,
             sheath_viscosity=viscosity if viscosity > 0 else None,
         )

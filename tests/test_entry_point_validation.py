@@ -1,0 +1,414 @@
+"""One validation for every entry point (issue 27, step 17 item 1).
+
+A value gets the same rule, and the same one-line message, whether it comes from the Python API,
+a saved JSON file (``to_dict`` with the field replaced, then ``from_dict``) or a scenario TOML
+(``tendonsheath bench FILE.toml``). The table is built by walking the public constructors'
+numeric fields (the plants' and motors' signatures, every model's ``param_names`` and
+``option_names``, every saved compensator's numeric settings), not written by hand; each field
+gets nan, +-inf, a negative number and zero through each entry point that reaches it.
+
+Two invariants hold for every field: nan is refused by a ValueError naming the field (nowhere is
+nan a setting), and every entry point agrees with the Python constructor: it refuses the same
+values with the Python message (a file's or a scenario's prefix added), and takes the others.
+The silent cases of the issue each have their own test below.
+"""
+
+from __future__ import annotations
+
+import inspect
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import tendonsheath as ts
+from tendonsheath.bench import user_scenario
+from tendonsheath.compensate.persistence import compensator_from_dict
+from tendonsheath.models import HysteresisModel
+
+BAD = (math.nan, math.inf, -math.inf, -1.0, 0.0)
+BAD_INT = (0, -1, 1)
+
+
+def _outcome(build):
+    """(error type, message) of build(), or None when it builds (warnings silenced: a unit
+    warning is not a refusal)."""
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            build()
+    except (ValueError, TypeError) as exc:
+        return type(exc), str(exc)
+    return None
+
+
+def _body(message: str) -> str:
+    """A message without its "Where: " prefix (the class, a file or a scenario's table)."""
+    return message.split(": ", 1)[1] if ": " in message else message
+
+
+def _agrees(python, other) -> bool:
+    """Another entry point gives the Python outcome: both take the value, or both refuse it
+    with a ValueError whose message ends with the Python message's body."""
+    if python is None or other is None:
+        return python is other
+    both = python[0] is ValueError and issubclass(other[0], ValueError)
+    return both and other[1].endswith(_body(python[1]))
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, float | int) and not isinstance(value, bool)
+
+
+# -- the walk -------------------------------------------------------------------------------------
+ROUTE = ts.Route.uniform(1.0, math.pi)
+PLANTS = (ts.PullPullPlant, ts.SingleTendonPlant, ts.ContinuumPlant)
+# keywords that are numbers but given as None by default (an effect left off)
+EFFECTS = {
+    "max_increment",
+    "distal_inertia",
+    "distal_damping",
+    "sheath_viscosity",
+    "relaxation_fraction",
+    "relaxation_time",
+    "friction2",
+    "stiffness2",
+}
+
+
+def _numeric_keywords(fn) -> list[str]:
+    """The keywords of fn whose default is a number, or None for a numeric effect."""
+    params = inspect.signature(fn).parameters.values()
+    return [
+        p.name for p in params if _is_number(p.default) or (p.default is None and p.name in EFFECTS)
+    ]
+
+
+def _plant_rows():
+    return [
+        (cls, name, bad)
+        for cls in PLANTS
+        for name in _numeric_keywords(cls.__init__)
+        for bad in (BAD_INT if name == "elements" else BAD)
+    ]
+
+
+def _sample_model(cls):
+    try:
+        return cls()
+    except (TypeError, ValueError):  # a composite (Chain, Scaled, ...): built from its parts
+        return None
+
+
+def _model_rows():
+    rows = []
+    for name in ts.models.__all__:
+        cls = getattr(ts.models, name)
+        if not (isinstance(cls, type) and issubclass(cls, HysteresisModel)):
+            continue
+        if cls is HysteresisModel or cls.__name__.endswith("Inverse"):
+            continue  # the base class; an inverse is built from its model
+        model = _sample_model(cls)
+        if model is None:
+            continue
+        saved = model.to_dict()
+        for section in ("params", "options"):
+            for field, value in saved.get(section, {}).items():
+                if _is_number(value):
+                    bads = BAD_INT if isinstance(value, int) else BAD
+                    rows += [(cls, section, field, bad) for bad in bads]
+    return rows
+
+
+def _compensators():
+    """One of each saved compensator with numeric settings, and its constructor's keywords."""
+    model = ts.models.BoucWenBacklash()
+    sheath = {"friction": 0.1, "stiffness": 2e4, "length": 1.0, "pretension": 10.0}
+    return [
+        (ts.compensate.CurveAngleFeedforward, sheath),
+        (ts.compensate.ContinuumFeedforward, {}),
+        (ts.compensate.InverseFeedforward, {"model": model}),
+        (ts.compensate.AdaptiveController, {}),
+    ]
+
+
+def _compensator_rows():
+    rows = []
+    for cls, kwargs in _compensators():
+        saved = cls(**kwargs).to_dict()
+        for field, value in saved.items():
+            if field in ("format", "version", "compensator") or not _is_number(value):
+                continue
+            if field not in inspect.signature(cls.__init__).parameters:
+                continue
+            rows += [(cls, kwargs, field, bad) for bad in BAD]
+    return rows
+
+
+PLANT_ROWS = _plant_rows()
+MODEL_ROWS = _model_rows()
+COMPENSATOR_ROWS = _compensator_rows()
+
+
+def test_the_walk_covers_every_public_numeric_field():
+    """The table is not empty where it should not be: every plant's physical keyword, every
+    model with a default, the compensators; and every numeric TOML key of [plant] is a plant
+    keyword (so the scenario path of each is walked)."""
+    walked = {(cls.__name__, name) for cls, name, _ in PLANT_ROWS}
+    for name in ("friction", "stiffness", "pretension", "proximal_radius", "elements"):
+        assert ("PullPullPlant", name) in walked
+    assert ("ContinuumPlant", "backbone_length") in walked
+    assert len({(cls, field) for cls, _, field, _ in MODEL_ROWS}) >= 40
+    assert {cls for cls, *_ in COMPENSATOR_ROWS} == {c for c, _ in _compensators()}
+    toml_numbers = [k for k, kind in user_scenario._KEYS["plant"].items() if kind in (int, float)]
+    plant_keywords = {name for _, name, _ in PLANT_ROWS}
+    assert set(toml_numbers) <= plant_keywords
+
+
+def _plant_kwargs(cls, name, bad):
+    kwargs = {"route": ROUTE, "elements": 10, name: bad}
+    return kwargs
+
+
+@pytest.mark.parametrize("cls, name, bad", PLANT_ROWS, ids=str)
+def test_plant_fields_python_and_toml(cls, name, bad):
+    python = _outcome(lambda: cls(**_plant_kwargs(cls, name, bad)))
+    if isinstance(bad, float) and math.isnan(bad):
+        assert python is not None and python[0] is ValueError and name in python[1]
+    if python is not None:
+        assert "\n" not in python[1] and name in python[1]
+    toml_type = {ts.PullPullPlant: "pull_pull", ts.ContinuumPlant: "continuum"}.get(cls)
+    if toml_type is None or name not in user_scenario._KEYS["plant"]:
+        return
+    literal = {math.inf: "inf", -math.inf: "-inf"}.get(bad, "nan" if bad != bad else repr(bad))
+    text = (
+        f'[plant]\ntype = "{toml_type}"\nrealistic = false\nelements = 10\n{name} = {literal}\n'
+        if name != "elements"
+        else f'[plant]\ntype = "{toml_type}"\nrealistic = false\nelements = {bad}\n'
+    )
+    toml = _outcome(lambda: user_scenario.parse(text, "s.toml"))
+    if isinstance(bad, float) and not math.isfinite(bad):  # TOML's own guard, naming the key
+        assert toml is not None and f"'{name}' must be a finite number" in toml[1]
+    else:
+        assert _agrees(python, toml), (python, toml)
+
+
+@pytest.mark.parametrize("cls, section, field, bad", MODEL_ROWS, ids=str)
+def test_model_fields_python_and_json(cls, section, field, bad):
+    python = _outcome(lambda: cls(**{field: bad}))
+    if isinstance(bad, float) and math.isnan(bad):
+        assert python is not None and python[0] is ValueError and field in python[1]
+    saved = cls().to_dict()
+    saved[section][field] = bad
+    json_file = _outcome(lambda: HysteresisModel.from_dict(saved))
+    assert _agrees(python, json_file), (python, json_file)
+
+
+@pytest.mark.parametrize("cls, kwargs, field, bad", COMPENSATOR_ROWS, ids=str)
+def test_compensator_fields_python_and_json(cls, kwargs, field, bad):
+    python = _outcome(lambda: cls(**{**kwargs, field: bad}))
+    if isinstance(bad, float) and math.isnan(bad):
+        assert python is not None and python[0] is ValueError and field in python[1]
+    saved = cls(**kwargs).to_dict()
+    saved[field] = bad
+    json_file = _outcome(lambda: compensator_from_dict(saved))
+    assert _agrees(python, json_file), (python, json_file)
+
+
+# each table's defaults in a scenario (user_scenario.parse), so both paths see the same values
+MOTOR_TABLES = (
+    ("motor", ts.Motor.position, {"bandwidth_hz": 60.0, "damping": 0.8}),
+    ("torque_motor", ts.Motor.torque, {"inertia": 0.01, "viscous": 0.2, "max_torque": 5.0}),
+    ("sensor", ts.Sensor, {"noise_std": 2e-4, "resolution": 1e-4, "seed": 1}),
+)
+
+
+@pytest.mark.parametrize(
+    "table, build, base, key, bad",
+    [
+        (table, build, base, key, bad)
+        for table, build, base in MOTOR_TABLES
+        for key, kind in user_scenario._KEYS[table].items()
+        if kind is float
+        for bad in (-1.0, 0.0)
+    ],
+    ids=str,
+)
+def test_motor_and_sensor_tables_give_the_python_message(table, build, base, key, bad):
+    """[motor], [torque_motor] and [sensor] of a scenario refuse what the Python constructors
+    refuse, with their message, at parse time (before any run)."""
+    python = _outcome(lambda: build(**{**base, key: bad}))
+    text = f"[plant]\nrealistic = false\n[{table}]\n{key} = {bad!r}\n"
+    toml = _outcome(lambda: user_scenario.parse(text, "s.toml"))
+    if python is None:
+        assert toml is None, toml
+    else:
+        assert toml is not None and toml[1].endswith(_body(python[1])), (python, toml)
+
+
+# -- the silent cases of the issue, each with its class ------------------------------------------
+def test_a_pretension_that_would_break_the_tendon_is_refused_everywhere():
+    """T0 / EA = 4 ran with output 0 and success; now every plant (and the scenario, through
+    the same C++ rule) says T0 / EA must be < 0.05, with the values."""
+    for cls in (ts.PullPullPlant, ts.ContinuumPlant):
+        with pytest.raises(ValueError, match=r"pretension / EA must be < 0\.05 \(got 20 N / 5 N"):
+            cls(ROUTE, stiffness=5, pretension=20, elements=10)
+    with pytest.raises(ValueError, match="pretension / EA must be < 0.05"):
+        ts.PullPullPlant(ROUTE, stiffness=2e4, stiffness2=100, pretension=10, elements=10)
+    with pytest.raises(ValueError, match="load_force / EA must be < 0.05"):
+        ts.SingleTendonPlant(ROUTE, stiffness=100, load=ts.loads.ConstantForce(10), elements=10)
+    text = "[plant]\nstiffness = 5.0\npretension = 20.0\n"
+    with pytest.raises(user_scenario.ScenarioError, match=r"\[plant\]: .*pretension / EA must"):
+        user_scenario.parse(text, "s.toml")
+    # the spec's ranges (T0 <= 40 N, EA >= 5e3 N: T0 / EA <= 8e-3) all build
+    ts.PullPullPlant(ROUTE, stiffness=5e3, pretension=40.0, elements=10)
+
+
+@pytest.mark.parametrize(
+    "build",
+    [
+        lambda: ts.Route.uniform(1.5, 180),
+        lambda: ts.Route.arcs([(0.5, 90), (1.0, 90)]),
+        lambda: ts.Route([0.0, 1.0], [0.0, 360.0]),
+        lambda: ts.compensate.CurveAngleFeedforward(0.1, 2e4, 1.0, 10.0, curve_angle=180),
+    ],
+)
+def test_curve_angles_in_degrees_warn_naming_the_mistake(build):
+    with pytest.warns(ts.UnitWarning, match=r"above 12\.57 rad .*did you give degrees\? "):
+        build()
+
+
+def test_plausible_curve_angles_do_not_warn():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ts.UnitWarning)
+        ts.Route.uniform(1.2, 4 * math.pi)  # two full coils: the spec's largest
+        ts.Route.arcs([(0.5, -math.pi), (0.5, math.pi)])
+        ts.compensate.CurveAngleFeedforward(0.1, 2e4, 1.0, 10.0, curve_angle=2 * math.pi)
+
+
+@pytest.mark.parametrize("angle", [-1.0, math.nan, math.inf])
+def test_a_bad_curve_angle_is_refused_not_ignored(angle):
+    """set_curve_angle(-1) and (nan) did nothing and said OK. The Python call (outside real
+    time) raises; the C++ engine keeps the last angle and reports input_clamped."""
+    ff = ts.compensate.CurveAngleFeedforward(0.1, 2e4, 1.0, 10.0, curve_angle=1.0)
+    before = ff.step(0.3, 0.0)
+    with pytest.raises(ValueError, match="curve_angle must be finite and >= 0"):
+        ff.set_curve_angle(angle)
+    with pytest.raises(ValueError, match="curve_angle must be finite and >= 0"):
+        ff.step(0.3, 0.0, curve_angle=angle)
+    inverse = ts.compensate.InverseFeedforward(ts.models.Backlash())
+    with pytest.raises(ValueError, match="curve_angle must be finite and >= 0"):
+        inverse.set_curve_angle(angle)
+    engine = ff._engine
+    assert engine.set_curve_angle(angle) is False
+    assert engine.angle_rejected()
+    assert ts.Status.INPUT_CLAMPED in ts.Status(engine.status())
+    assert engine.shape.total_angle == 1.0  # unchanged
+    ff.reset()
+    assert ff.step(0.3, 0.0) == before
+    assert engine.set_curve_angle(2.0) and ts.Status(engine.status()) == ts.Status.OK
+
+
+@pytest.mark.parametrize("version", [True, 1.0, "1"])
+def test_a_file_version_must_be_the_integer(version):
+    """JSON "version": true loaded (True == 1 in Python); 1.0 and "1" neither."""
+    model = ts.models.Backlash().to_dict()
+    ff = ts.compensate.InverseFeedforward(ts.models.Backlash()).to_dict()
+    for saved, load in ((model, HysteresisModel.from_dict), (ff, compensator_from_dict)):
+        with pytest.raises(ValueError, match="version"):
+            load({**saved, "version": version})
+
+
+SCENARIO = "[plant]\nrealistic = false\nelements = 10\n[reference]\nduration = 10.0\n"
+
+
+@pytest.mark.parametrize(
+    "extra, needle",
+    [
+        ("[[route.changes]]\nt = 12.0\ntotal_angle = 1.0\n", "outside the run"),
+        ("[[route.changes]]\nt = -1.0\ntotal_angle = 1.0\n", "outside the run"),
+        ("[calibration]\nangles = [-1.0, 2.0]\n", "curve_angle must be >= 0"),
+        ("[calibration]\nangles = []\n", "non-empty list"),
+        ("[calibration]\nshape_noise = -1.0\n", "noise_std out of range"),
+        ("[calibration]\nduration = 0.0\n", "must be > 0"),
+        ("[reference]\nsines = [[1.0, -0.5, 0.0]]\n", "frequency >= 0"),
+        ("[reference]\nsines = [[nan, 0.5, 0.0]]\n", "must be finite"),
+    ],
+)
+def test_scenarios_that_cannot_run_as_written_are_refused(extra, needle):
+    text = SCENARIO.replace("[reference]\nduration = 10.0\n", "") + extra
+    if "[reference]" not in extra:
+        text += "[reference]\nduration = 10.0\n"
+    else:
+        text = text.replace("[reference]\n", "[reference]\nduration = 10.0\n")
+    with pytest.raises(user_scenario.ScenarioError, match=needle):
+        user_scenario.parse(text, "s.toml")
+
+
+def test_an_empty_scenario_is_refused_and_a_titled_one_runs_the_defaults():
+    for text in ("", "# only a comment\n"):
+        with pytest.raises(user_scenario.ScenarioError, match="empty"):
+            user_scenario.parse(text, "s.toml")
+    assert user_scenario.parse('title = "defaults"\n', "s.toml").title == "defaults"
+
+
+def test_scenario_angles_in_degrees_warn_and_extrapolation_is_noted():
+    sines = SCENARIO.replace("[reference]\n", "[reference]\nsines = [[45.0, 0.5, 0.0]]\n")
+    with pytest.warns(ts.UnitWarning, match=r"sines\[0\] amplitude 45 rad .*45 deg = 0\.7854"):
+        user_scenario.parse(sines, "s.toml")
+    with pytest.warns(ts.UnitWarning, match=r"Route.uniform: curve_angle 180 rad .*degrees"):
+        user_scenario.parse(SCENARIO + "[route]\ntotal_angle = 180.0\n", "s.toml")
+    far = SCENARIO + "[calibration]\nangles = [10.0]\n"
+    with pytest.warns(UserWarning, match=r"lie outside the calibration angles .*extrapolate"):
+        user_scenario.parse(far, "s.toml")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        user_scenario.parse(SCENARIO + "[calibration]\nangles = [1.0, 5.0]\n", "s.toml")
+
+
+def test_the_message_is_one_line_and_names_the_field():
+    """Spot check of the table's message on a value each path refuses."""
+    msgs = [
+        _outcome(lambda: ts.PullPullPlant(ROUTE, friction=-1.0))[1],
+        _outcome(lambda: user_scenario.parse("[plant]\nfriction = -1.0\n", "s.toml"))[1],
+    ]
+    assert all("\n" not in m and "friction must be >= 0 (got -1)" in m for m in msgs)
+    assert np.isfinite(ROUTE.curve_angle)
+
+
+@pytest.mark.parametrize(
+    "kind, key, build",
+    [
+        ("constant_torque", "torque", lambda v: ts.loads.ConstantTorque(v)),
+        ("torsional_spring", "stiffness", lambda v: ts.loads.TorsionalSpring(v)),
+        ("torsional_spring", "preload", lambda v: ts.loads.TorsionalSpring(0.0, v)),
+        ("spring_damper", "stiffness", lambda v: ts.loads.SpringDamper(v, 0.0)),
+        ("spring_damper", "damping", lambda v: ts.loads.SpringDamper(0.0, v)),
+    ],
+)
+@pytest.mark.parametrize("bad", [-1.0, 0.0])
+def test_load_table_gives_the_load_class_message_with_its_key(kind, key, build, bad):
+    """[load] refuses what the load class refuses, at parse time, in the table's words."""
+    python = _outcome(lambda: build(bad))
+    text = f'[plant]\nrealistic = false\n[load]\ntype = "{kind}"\n{key} = {bad!r}\n'
+    toml = _outcome(lambda: user_scenario.parse(text, "s.toml"))
+    if python is None:
+        assert toml is None, toml
+        return
+    assert toml is not None and toml[1].startswith("s.toml [load]: ") and f"'{key}'" in toml[1]
+    assert toml[1].endswith(_body(python[1]).split(" must ", 1)[1])
+
+
+@pytest.mark.parametrize("key", ["length", "total_angle"])
+@pytest.mark.parametrize("bad", [-1.0, 0.0])
+def test_route_table_gives_the_route_message(key, bad):
+    """[route] length and total_angle refuse what Route.uniform refuses, with its message."""
+    args = {
+        "length": 1.2,
+        "curve_angle": math.pi,
+        {"total_angle": "curve_angle"}.get(key, key): bad,
+    }
+    python = _outcome(lambda: ts.Route.uniform(**args))
+    toml = _outcome(lambda: user_scenario.parse(f"[route]\n{key} = {bad!r}\n", "s.toml"))
+    assert _agrees(python, toml), (python, toml)
