@@ -69,23 +69,47 @@ def _check_finite(what: str, values: dict) -> None:
         _fail(f"{what}: {listed} is not finite (data too small, too large or constant?)")
 
 
-def _stops_on_ctrl_c(command):
-    """Ctrl-C: one line and exit code 130 (128 + SIGINT), no traceback. Outputs are written
-    atomically, so none is left half-written."""
+def _no_traceback(command):
+    """Every way a command ends is one line, never a traceback. Ctrl-C: exit code 130
+    (128 + SIGINT); outputs are written atomically, so none is left half-written. A
+    ValueError, OverflowError or OSError no check caught earlier is bad input or a file the
+    system refused: "error: ..." and exit 2. Anything else is a bug: its type and message on
+    one line, said to be a bug, and exit 1."""
+    import click
 
     @functools.wraps(command)
     def run(*args, **kwargs):
+        name = command.__name__.removesuffix("_command")
         try:
             return command(*args, **kwargs)
         except KeyboardInterrupt:
             Console(stderr=True).print(
-                f"interrupted (Ctrl-C): {command.__name__.removesuffix('_command')} stopped; "
-                "no output file is left half-written",
+                f"interrupted (Ctrl-C): {name} stopped; no output file is left half-written",
                 highlight=False,
             )
             raise typer.Exit(130) from None
+        except (typer.Exit, typer.Abort, click.exceptions.Exit, click.Abort, click.ClickException):
+            raise  # typer's and click's own ends: an exit code, a usage error
+        except (ValueError, OverflowError, OSError) as exc:
+            _fail(exc)
+        except Exception as exc:  # a bug: said so in one line, not hidden
+            _fail_bug(name, exc)
 
     return run
+
+
+def _fail_bug(command: str, exc: Exception) -> NoReturn:
+    """The last resort: an exception no check expected, in one line, and exit 1."""
+    from rich.markup import escape
+
+    console.print(
+        f"[red]error:[/red] {escape(type(exc).__name__)}: {escape(str(exc))} -- a bug in "
+        f"`tendonsheath {command}` (an input it should have checked, or worse): please report "
+        "it with the command line and its input files",
+        soft_wrap=True,
+        highlight=False,
+    )
+    raise typer.Exit(code=1)
 
 
 def _print_notes(log) -> None:
@@ -117,7 +141,7 @@ def _root(
 
 @app.command()
 @_one_paragraph
-@_stops_on_ctrl_c
+@_no_traceback
 def demo(
     out: Path = typer.Option(Path("demo-out"), "--out", "-o", help="Folder for the results."),
     scale: float = typer.Option(1.0, help="Run length factor (below 1: a quicker, shorter run)."),
@@ -213,9 +237,55 @@ def _checked(check, *args, **kwargs):
         _fail(exc)
 
 
+def _same_file(a: Path, b: Path) -> bool:
+    """``a`` and ``b`` name one file (the same path, a link or a hard link to it)."""
+    import os
+
+    if a.resolve() == b.resolve():
+        return True
+    try:
+        return a.exists() and b.exists() and os.path.samefile(a, b)
+    except OSError:
+        return False
+
+
+def _refuse_overwriting(out: Path, what: str, inputs: dict) -> None:
+    """``out`` (option ``what``) must not be one of the ``inputs`` (role -> path): writing
+    it would destroy what the command reads."""
+    for role, path in inputs.items():
+        if path is not None and _same_file(out, Path(path)):
+            _fail(f"{what} {out} is the {role}: writing it would destroy it; give another name")
+
+
+def _note(text: str) -> None:
+    """A suspicious but legal run: said once, in yellow, and the command goes on."""
+    console.print(f"[yellow]note:[/yellow] {text}", soft_wrap=True, highlight=False)
+
+
+def _note_suspicious(data: list[Path], validate: list[Path], input_col, output_col) -> None:
+    """Notes for the same file twice, validating on a training file, and the input and the
+    output the same column."""
+    seen: list[Path] = []
+    for path in data:
+        if any(_same_file(path, p) for p in seen):
+            _note(f"{path} is given twice: its recording counts twice")
+        seen.append(path)
+    for path in validate:
+        if any(_same_file(path, p) for p in data):
+            _note(
+                f"validating on {path}, a training file: its validation error is not a "
+                "held-out error"
+            )
+    if input_col is not None and input_col == output_col:
+        _note(
+            f"--input and --output are the same column '{input_col}': the model maps the "
+            "signal to itself"
+        )
+
+
 @app.command()
 @_one_paragraph
-@_stops_on_ctrl_c
+@_no_traceback
 def bench(
     scenario: Path = typer.Argument(
         ...,
@@ -285,7 +355,7 @@ def _fail(reason) -> NoReturn:
 
 @app.command()
 @_one_paragraph
-@_stops_on_ctrl_c
+@_no_traceback
 def identify(
     data: list[Path] = typer.Argument(
         ...,
@@ -346,6 +416,7 @@ def identify(
     from ._progress import wanted
 
     _check_identify_options(out, report, maxiter, warmup)
+    _note_suspicious(data, [validate] if validate else [], input_col, output_col)
     candidate = _checked(_model_spec, model)
     columns = dict(time=time_col, input=input_col, output=output_col, curve_angle=curve_angle)
     if load_col is not None:
@@ -416,7 +487,7 @@ def _check_identify_options(out: Path, report: Path | None, maxiter: int, warmup
     """One-line errors for identify's output files and search options, before any work."""
     from .identify.core import check_search_options
 
-    _checked(check_output_file, out)
+    _checked(check_output_file, out, suffixes={"json"})
     if report is not None:
         _checked(check_image_file, report)
     _checked(
@@ -484,7 +555,7 @@ def _print_fit(fit, n_logs: int, output_col: str) -> None:
 
 @app.command()
 @_one_paragraph
-@_stops_on_ctrl_c
+@_no_traceback
 def predict(
     model_file: Path = typer.Argument(..., help="Model JSON written by `identify`."),
     data: Path = typer.Argument(..., help="Data file with the input column."),
@@ -512,6 +583,7 @@ def predict(
     if warmup < 0:
         _fail(f"--warmup must be >= 0 (got {warmup})")
     _checked(check_output_file, out, suffixes={"csv", "txt"})
+    _refuse_overwriting(out, "--out", {"data file": data, "model file": model_file})
     try:
         model = load_model(model_file)
         saved = _saved_columns(model_file)
@@ -522,6 +594,7 @@ def predict(
         load_col = load_col or saved.get("load")
         if input_col is None:
             raise ValueError("name the input column with --input")
+        _note_suspicious([], [], input_col, wanted_output)
         if isinstance(model, Loaded) and load_col is None:
             raise ValueError("a Loaded model needs the measured load: name its column with --load")
         table_columns = io.columns(data)
@@ -587,7 +660,7 @@ def _saved_columns(model_file: Path) -> dict:
 
 @app.command("sweep")
 @_one_paragraph
-@_stops_on_ctrl_c
+@_no_traceback
 def sweep_command(
     config: Path = typer.Argument(..., help="The sweep file (TOML): run, design, parameters."),
     out: Path = typer.Option(Path("sweep-out"), "--out", "-o", help="Folder for the results."),
@@ -797,7 +870,7 @@ _RANGE_MARGIN_OPTION = typer.Option(
 
 @app.command(cls=_FilesAfterValidate)
 @_one_paragraph
-@_stops_on_ctrl_c
+@_no_traceback
 def compare(
     data: list[Path] = typer.Argument(
         ...,
@@ -852,6 +925,7 @@ def compare(
     candidate worse than y = a x + b on any held-out part cannot win."""
     _check_choice_options(objective, range_margin)
     _check_split_options(holdout, validate, folds)
+    _note_suspicious(data, validate or [], input_col, output_col)
     if report is not None:
         _checked(check_output_folder, report, "--report")
     columns = dict(time=time_col, input=input_col, output=output_col, curve_angle=curve_angle)
@@ -986,6 +1060,7 @@ def _print_comparison(result, output_col: str) -> None:
 
 @app.command("export")
 @_one_paragraph
+@_no_traceback
 def export_command(
     source: Path = typer.Argument(..., help="Model or compensator JSON (from to_json)."),
     cpp: Path = typer.Option(..., "--cpp", help="C++ header to write."),
@@ -1002,6 +1077,7 @@ def export_command(
         if not source.is_file():
             raise ValueError(f"file not found: {source}")
         check_output_file(cpp, "--cpp")
+        _refuse_overwriting(cpp, "--cpp", {"source file": source})
         write_text(cpp, cpp_header(source, namespace))
     except ValueError as exc:
         _fail(exc)

@@ -127,6 +127,25 @@ _KEYS: dict[str, dict[str, type | tuple]] = {
 }
 _TOP = {"title": str, "seed": int, **{k: dict for k in _KEYS}}
 
+# (table, key) -> (bound, strict): the values the bench runs with are above the bound (">")
+# or at least it (">="); checked at parse, so a bad value is one line naming the key, not a
+# failure minutes into the calibration
+_LOWER_BOUNDS: dict[tuple[str, str], tuple[float, bool]] = {
+    ("motor", "bandwidth_hz"): (0.0, True),
+    ("motor", "damping"): (0.0, True),
+    ("motor", "max_speed"): (0.0, True),
+    ("motor", "max_accel"): (0.0, True),
+    ("torque_motor", "inertia"): (0.0, True),
+    ("torque_motor", "viscous"): (0.0, False),
+    ("torque_motor", "max_torque"): (0.0, True),
+    ("sensor", "noise_std"): (0.0, False),
+    ("sensor", "resolution"): (0.0, False),
+    ("sensor", "delay"): (0.0, False),
+    ("calibration", "amplitude"): (0.0, True),
+    ("calibration", "shape_noise"): (0.0, False),
+    ("calibration", "shape_delay"): (0.0, False),
+}
+
 
 class ScenarioError(ValueError):
     """A scenario file that cannot be run; the message names the file and the bad key."""
@@ -178,7 +197,20 @@ def _section(data: dict, name: str, source: str) -> dict[str, Any]:
         if key not in _KEYS[name]:
             raise ScenarioError(f"{where}: unknown key '{key}' (known: {sorted(_KEYS[name])})")
         out[key] = _check_type(where, key, value, _KEYS[name][key])
+        _check_bound(where, name, key, out[key])
     return out
+
+
+def _check_bound(where: str, table: str, key: str, value) -> None:
+    """A value below the bound of ``_LOWER_BOUNDS`` is named in one line."""
+    if (table, key) not in _LOWER_BOUNDS:
+        return
+    bound, strict = _LOWER_BOUNDS[table, key]
+    if value > bound if strict else value >= bound:
+        return
+    raise ScenarioError(
+        f"{where}: '{key}' must be {'>' if strict else '>='} {bound:g} (got {value!r})"
+    )
 
 
 def _check_strain(plant: dict[str, Any], source: str) -> None:
@@ -224,6 +256,8 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         if key not in _TOP:
             raise ScenarioError(f"{source}: unknown table or key '{key}' (known: {sorted(_TOP)})")
         _check_type(source, key, value, _TOP[key])
+    if not 0 <= data.get("seed", 0) < 2**32:
+        raise ScenarioError(f"{source}: 'seed' must be in [0, 2**32) (got {data['seed']})")
     s = {name: _section(data, name, source) for name in _KEYS}
     plant_type = s["plant"].get("type", "pull_pull")
     _check_strain(s["plant"], source)
@@ -256,20 +290,8 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
             )
     if plant_type == "continuum" and "curve_angle_feedforward" in compensators:
         pass  # allowed: the curve-angle model then includes the backbone spring
-    reference = {"duration": 20.0, "rate": 1000.0, "sines": [[1.0, 0.25, 0.0]], **s["reference"]}
-    for i, sine in enumerate(reference["sines"]):
-        if (
-            not isinstance(sine, list)
-            or len(sine) not in (2, 3)
-            or not all(isinstance(v, int | float) for v in sine)
-        ):
-            raise ScenarioError(
-                f"{source} [reference]: sines[{i}] must be [amplitude, frequency, phase?]"
-            )
-    if not reference["sines"]:
-        raise ScenarioError(f"{source} [reference]: sines must list at least one sine")
-    if not reference["duration"] > 0 or not reference["rate"] > 0:
-        raise ScenarioError(f"{source} [reference]: duration and rate must be > 0")
+    motor = {"bandwidth_hz": 60.0, "damping": 0.8, **s["motor"]}
+    reference = _reference_table(s["reference"], motor["bandwidth_hz"], source)
     load = s["load"] or None
     if load is not None and load.get("type") not in (
         "constant_torque",
@@ -279,12 +301,12 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         raise ScenarioError(
             f"{source} [load]: 'type' must be constant_torque, torsional_spring or spring_damper"
         )
-    return UserScenario(
+    sc = UserScenario(
         title=data.get("title", "user scenario"),
         plant={"type": plant_type, **s["plant"]},
         route={"initial": route},
         load=load,
-        motor={"bandwidth_hz": 60.0, "damping": 0.8, **s["motor"]},
+        motor=motor,
         torque_motor={"inertia": 0.01, "viscous": 0.2, "max_torque": 5.0, **s["torque_motor"]},
         sensor=_sensor_table(s["sensor"], source),
         reference=reference,
@@ -295,6 +317,125 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         route_changes=changes,
         user_compensators=user,
     )
+    _check_runnable(sc)
+    return sc
+
+
+# the honesty panel refits a BoucWenBacklash (7 parameters, 3 samples each at the least) to
+# every run, after its warm-up, decimated to at most this rate
+_HONESTY_FIT_SAMPLES = 21
+_HONESTY_FIT_RATE_HZ = 200.0
+
+
+def _reference_table(table: dict[str, Any], bandwidth_hz: float, source: str) -> dict[str, Any]:
+    """The [reference] table over its defaults, checked: sines of [amplitude, frequency,
+    phase?] below half the rate, a rate at least twice the servo's bandwidth (the control
+    loop runs at it), and enough samples after the warm-up for the honesty panel."""
+    where = f"{source} [reference]"
+    reference = {"duration": 20.0, "rate": 1000.0, "sines": [[1.0, 0.25, 0.0]], **table}
+    for i, sine in enumerate(reference["sines"]):
+        if (
+            not isinstance(sine, list)
+            or len(sine) not in (2, 3)
+            or not all(isinstance(v, int | float) and math.isfinite(v) for v in sine)
+        ):
+            raise ScenarioError(f"{where}: sines[{i}] must be [amplitude, frequency, phase?]")
+    if not reference["sines"]:
+        raise ScenarioError(f"{where}: sines must list at least one sine")
+    duration, rate = reference["duration"], reference["rate"]
+    if not duration > 0 or not rate > 0:
+        raise ScenarioError(f"{where}: duration and rate must be > 0")
+    if rate < 2 * bandwidth_hz:
+        raise ScenarioError(
+            f"{where}: 'rate' {rate:g} Hz is below twice the servo's bandwidth ([motor] "
+            f"bandwidth_hz = {bandwidth_hz:g} Hz): the control loop runs at this rate and "
+            f"would not sample its own servo (give at least {2 * bandwidth_hz:g} Hz)"
+        )
+    for i, sine in enumerate(reference["sines"]):
+        if abs(sine[1]) >= rate / 2:
+            raise ScenarioError(
+                f"{where}: sines[{i}] frequency {sine[1]:g} Hz is not below half the 'rate' "
+                f"({rate / 2:g} Hz)"
+            )
+    _check_reference_samples(reference, where)
+    return reference
+
+
+def _check_reference_samples(reference: dict[str, Any], where: str) -> None:
+    """Enough samples after the bench's warm-up (the reference's dominant period, at most
+    half the run) for the honesty panel's refits."""
+    from .metrics import dominant_period
+
+    duration, rate = reference["duration"], reference["rate"]
+    if duration * rate > 1e8:
+        raise ScenarioError(
+            f"{where}: {duration:g} s at {rate:g} Hz is {duration * rate:.3g} samples: too many"
+        )
+    t, y_d = _reference_signal(reference)
+    if t.size < 4:
+        kept = 0
+    else:
+        warmup = min(dominant_period(t, y_d), 0.5 * float(t[-1] - t[0]))
+        step = max(1, round(rate / _HONESTY_FIT_RATE_HZ))
+        kept = int(np.count_nonzero(t >= t[0] + warmup)) // step
+    if kept < _HONESTY_FIT_SAMPLES:
+        raise ScenarioError(
+            f"{where}: {duration:g} s at {rate:g} Hz leaves {kept} samples after the warm-up "
+            f"(at most {_HONESTY_FIT_RATE_HZ:g} Hz); the bench needs {_HONESTY_FIT_SAMPLES}: "
+            "a longer 'duration' or a higher 'rate'"
+        )
+
+
+def _check_runnable(sc: UserScenario) -> None:
+    """Build what the run builds (motors, plant, shape sensing, calibration routes) once, so a
+    value they refuse is one line naming its table now, not minutes into the run."""
+    from .calibration import ShapeSensing
+
+    for table, build in (("motor", _servo), ("torque_motor", _torque)):
+        try:
+            build(sc)
+        except (TypeError, ValueError) as exc:
+            raise ScenarioError(f"{sc.source} [{table}]: {exc}") from None
+    _plant(sc, None)
+    where = f"{sc.source} [calibration]"
+    try:
+        ShapeSensing(
+            noise_std=sc.calibration.get("shape_noise", 0.05),
+            delay=sc.calibration.get("shape_delay", 0.1),
+            seed=sc.seed,
+        )
+    except (TypeError, ValueError) as exc:
+        raise ScenarioError(f"{where}: {exc}") from None
+    _check_calibration(sc, where)
+
+
+def _check_calibration(sc: UserScenario, where: str) -> None:
+    """The [calibration] duration (longer than twice the calibration's warm-up) and angles
+    (a non-empty array of curve angles, each a route)."""
+    import inspect
+
+    from .calibration import calibrate
+
+    warmup = inspect.signature(calibrate).parameters["warmup"].default
+    duration = sc.calibration["duration"]
+    if not duration >= 2 * warmup:
+        raise ScenarioError(
+            f"{where}: 'duration' must be >= {2 * warmup:g} s (got {duration:g}): the "
+            f"calibration leaves out its first {warmup:g} s and fits at least as much"
+        )
+    angles = sc.calibration.get("angles")
+    if angles is None:
+        return
+    if not angles:
+        raise ScenarioError(f"{where}: 'angles' must list at least one curve angle (rad)")
+    for i, angle in enumerate(angles):
+        if isinstance(angle, bool) or not isinstance(angle, int | float):
+            raise ScenarioError(f"{where}: angles[{i}] must be a number (got {angle!r})")
+        try:
+            Route.uniform(sc.route["initial"].length, float(angle))
+        except (TypeError, ValueError) as exc:
+            raise ScenarioError(f"{where}: angles[{i}]: {exc}") from None
+    calibration_angles(sc)  # none is a test route's angle
 
 
 def _user_compensators(compare: dict, source: str) -> list[UserCompensator]:
@@ -495,7 +636,11 @@ def _calibration(sc: UserScenario, shape, angles: list[float]):
 
 def _reference(sc: UserScenario) -> tuple[np.ndarray, np.ndarray]:
     """The times and the reference (a sum of sines) of the [reference] table."""
-    ref = sc.reference
+    return _reference_signal(sc.reference)
+
+
+def _reference_signal(ref: dict[str, Any]) -> tuple[np.ndarray, np.ndarray]:
+    """The times and the sum of sines of a [reference] table."""
     t = np.arange(0.0, ref["duration"], 1.0 / ref["rate"])
     y_d = sum(
         (
