@@ -76,6 +76,7 @@ CASES = [
     (["demo", "--scenario", "nope"], "unknown scenario"),
     (["demo", "--angle-unit", "grad"], "--angle-unit must be"),
     (["demo", "-o", "{d}/a_file"], "is a file, not a folder"),
+    (["demo", "--seed", "-1"], "--seed must be in [0, 2**32)"),
     # bench
     (["bench", "{d}/missing.toml"], "scenario file not found"),
     (["bench", "{d}/rate.toml"], "[reference]: 'rate'"),
@@ -92,9 +93,10 @@ CASES = [
     # identify
     (["identify", "{d}/missing.csv", "-m", "Backlash", *COLS], "missing.csv"),
     (["identify", "{d}/data.csv", "-m", "nope", *COLS], "nope"),
-    (["identify", "{d}/data.csv", "-m", "Backlash", *COLS, "-o", "{d}/m.csv"], "unknown file type"),
+    (["identify", "{d}/data.csv", "-m", "Backlash", *COLS, "-o", "{d}/m.csv"], "give a .json name"),
     (["identify", "{d}/data.csv", "-m", "Backlash", *COLS, "--maxiter", "-1"], "maxiter"),
     (["identify", "{d}/data.csv", "-m", "Backlash", *COLS, "--warmup", "-1"], "warmup"),
+    (["identify", "{d}/data.csv", "-m", "Backlash", *COLS, "--seed", "-1"], "--seed must"),
     (["identify", "{d}/data.csv", "-m", "Backlash", *COLS, "--report", "{d}/r.xyz"], ".xyz"),
     (["identify", "{d}/data.csv", "-m", "Backlash", "--input", "x", "--output", "z"], "'z'"),
     # predict
@@ -113,10 +115,12 @@ CASES = [
     (["compare", "{d}/data.csv", *COLS, "--range-margin", "-1"], "--range-margin"),
     (["compare", "{d}/data.csv", *COLS, "--models", "nope"], "nope"),
     (["compare", "{d}/missing.csv", *COLS], "missing.csv"),
+    (["compare", "{d}/data.csv", *COLS, "--seed", "-3"], "--seed must be"),
     # sweep
     (["sweep", "{d}/missing.toml"], "missing.toml"),
     (["sweep", "{d}/sweep.toml", "--n", "0"], "--n must be"),
     (["sweep", "{d}/sweep.toml", "--bound", "-1"], "--bound must be"),
+    (["sweep", "{d}/sweep.toml", "--seed", "-1"], "--seed must be"),
     (["sweep", "{d}/sweep.toml", "-o", "{d}/a_file"], "is a file, not a folder"),
     # export
     (["export", "{d}/adaptive.json", "--cpp", "{d}/a.hpp"], "(got AdaptiveController)"),
@@ -129,7 +133,14 @@ CASES = [
 ]
 
 
-@pytest.mark.parametrize(("args", "expected"), CASES, ids=lambda v: " ".join(v)[:60])
+def _case_id(value) -> str:
+    if not isinstance(value, list):
+        return "-"
+    text = " ".join(value).replace("{d}/", "").replace("--input x --output y --time t", "COLS")
+    return text[:70]
+
+
+@pytest.mark.parametrize(("args", "expected"), CASES, ids=_case_id)
 def test_every_command_fails_on_bad_input_in_one_line(files, args, expected, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)  # a default output (model.json, pred.csv) lands here
     args = [a.replace("{d}", str(files)) for a in args]

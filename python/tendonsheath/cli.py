@@ -56,6 +56,12 @@ def _angle_unit(unit: str) -> str:
     return unit
 
 
+def _check_seed(seed: int | None) -> None:
+    """--seed: what numpy's generators take, checked before any work."""
+    if seed is not None and not 0 <= seed < 2**32:
+        _fail(f"--seed must be in [0, 2**32) (got {seed})")
+
+
 def _in_unit(value_rad: float, unit: str, squared: bool = False) -> float:
     factor = (180 / np.pi if unit == "deg" else 1.0) ** (2 if squared else 1)
     return value_rad * factor
@@ -166,6 +172,7 @@ def demo(
     if not scale > 0 or not np.isfinite(scale):
         _fail(f"--scale must be a finite number > 0 (got {scale})")
     unit = _angle_unit(angle_unit)
+    _check_seed(seed)
     unknown = [n for n in scenario or [] if n not in SCENARIOS]
     if unknown:
         _fail(f"unknown scenario(s) {unknown}; known: {list(SCENARIOS)}")
@@ -416,6 +423,7 @@ def identify(
     from ._progress import wanted
 
     _check_identify_options(out, report, maxiter, warmup)
+    _check_seed(seed)
     _note_suspicious(data, [validate] if validate else [], input_col, output_col)
     candidate = _checked(_model_spec, model)
     columns = dict(time=time_col, input=input_col, output=output_col, curve_angle=curve_angle)
@@ -487,7 +495,9 @@ def _check_identify_options(out: Path, report: Path | None, maxiter: int, warmup
     """One-line errors for identify's output files and search options, before any work."""
     from .identify.core import check_search_options
 
-    _checked(check_output_file, out, suffixes={"json"})
+    _checked(check_output_file, out)
+    if out.suffix and out.suffix.lower() != ".json":  # model.csv would hold JSON
+        _fail(f"--out {out}: a model is saved as JSON: give a .json name (got {out.suffix!r})")
     if report is not None:
         _checked(check_image_file, report)
     _checked(
@@ -692,6 +702,7 @@ def sweep_command(
         _fail(f"--workers must be >= 1 (got {workers})")
     if n is not None and n < 1:
         _fail(f"--n must be >= 1 (got {n})")
+    _check_seed(seed)
     _checked(check_output_folder, out)
     overrides = {"n": n, "seed": seed, "workers": workers, "bound": bound}
     res, the_bound, written = _run_sweep_file(
@@ -925,6 +936,7 @@ def compare(
     candidate worse than y = a x + b on any held-out part cannot win."""
     _check_choice_options(objective, range_margin)
     _check_split_options(holdout, validate, folds)
+    _check_seed(seed)
     _note_suspicious(data, validate or [], input_col, output_col)
     if report is not None:
         _checked(check_output_folder, report, "--report")
