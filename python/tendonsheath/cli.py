@@ -422,9 +422,7 @@ def identify(
     """Fit MODEL to DATA and save it as JSON; print the fit table and the validation error."""
     from ._progress import wanted
 
-    _check_identify_options(out, report, maxiter, warmup)
-    _check_seed(seed)
-    _note_suspicious(data, [validate] if validate else [], input_col, output_col)
+    _check_identify_options(out, report, maxiter, warmup, seed)
     candidate = _checked(_model_spec, model)
     columns = dict(time=time_col, input=input_col, output=output_col, curve_angle=curve_angle)
     if load_col is not None:
@@ -471,6 +469,7 @@ def _fit_logs(candidate, data: list[Path], validate: Path | None, columns: dict,
     A fit or a validation error that is not finite is an error (exit 2)."""
     from .identify import identify as run_identify
 
+    _note_suspicious(data, [validate] if validate else [], columns["input"], columns["output"])
     logs = _read_logs(data, columns)
     vlog = _read_logs([validate], columns)[0] if validate is not None else None
     for log in logs + ([vlog] if vlog is not None else []):  # before the (long) fitting
@@ -491,10 +490,13 @@ def _fit_logs(candidate, data: list[Path], validate: Path | None, columns: dict,
     return fit, val, len(logs)
 
 
-def _check_identify_options(out: Path, report: Path | None, maxiter: int, warmup: int) -> None:
+def _check_identify_options(
+    out: Path, report: Path | None, maxiter: int, warmup: int, seed: int
+) -> None:
     """One-line errors for identify's output files and search options, before any work."""
     from .identify.core import check_search_options
 
+    _check_seed(seed)
     _checked(check_output_file, out)
     if out.suffix and out.suffix.lower() != ".json":  # model.csv would hold JSON
         _fail(f"--out {out}: a model is saved as JSON: give a .json name (got {out.suffix!r})")
@@ -590,10 +592,7 @@ def predict(
     from .identify.fit import metrics, simulate_model
     from .models import Loaded, load_model
 
-    if warmup < 0:
-        _fail(f"--warmup must be >= 0 (got {warmup})")
-    _checked(check_output_file, out, suffixes={"csv", "txt"})
-    _refuse_overwriting(out, "--out", {"data file": data, "model file": model_file})
+    _check_predict_options(out, data, model_file, warmup)
     try:
         model = load_model(model_file)
         saved = _saved_columns(model_file)
@@ -648,6 +647,14 @@ def predict(
             f"rmse {m['rmse']:.4g} ({wanted_output} units)   nrmse {100 * m['nrmse']:.3f} %   "
             f"fit {m['fit_percent']:.2f} %"
         )
+
+
+def _check_predict_options(out: Path, data: Path, model_file: Path, warmup: int) -> None:
+    """--warmup and --out of ``predict``: a CSV that is neither of its inputs."""
+    if warmup < 0:
+        _fail(f"--warmup must be >= 0 (got {warmup})")
+    _checked(check_output_file, out, suffixes={"csv", "txt"})
+    _refuse_overwriting(out, "--out", {"data file": data, "model file": model_file})
 
 
 def _saved_columns(model_file: Path) -> dict:
