@@ -4,6 +4,7 @@ full disk) leaves the old file or none, never a half-written one."""
 
 from __future__ import annotations
 
+import errno
 import json
 import os
 import tempfile
@@ -20,6 +21,7 @@ def atomic_path(path) -> Iterator[Path]:
     """Yields a temporary path beside ``path`` (same suffix) to write to; on success it is
     renamed to ``path``, on any exception (KeyboardInterrupt included) it is removed."""
     path = Path(path)
+    _check_folder(path)
     fd, tmp_name = tempfile.mkstemp(
         prefix=f".{path.name}.", suffix=f".tmp{path.suffix}", dir=path.parent
     )
@@ -32,6 +34,19 @@ def atomic_path(path) -> Iterator[Path]:
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise
+
+
+def _check_folder(path: Path) -> None:
+    """The folder ``path`` goes in exists: else the error names it (mkstemp's own would name
+    the hidden temporary file)."""
+    folder = path.parent
+    if folder.is_dir():
+        return
+    if folder.exists():
+        raise NotADirectoryError(
+            errno.ENOTDIR, f"cannot write {path.name}: not a folder", str(folder)
+        )
+    raise FileNotFoundError(errno.ENOENT, f"cannot write {path.name}: no such folder", str(folder))
 
 
 def write_bytes(path, data: bytes) -> Path:

@@ -56,6 +56,12 @@ def _angle_unit(unit: str) -> str:
     return unit
 
 
+def _check_seed(seed: int | None) -> None:
+    """--seed: what numpy's generators take, checked before any work."""
+    if seed is not None and not 0 <= seed < 2**32:
+        _fail(f"--seed must be in [0, 2**32) (got {seed})")
+
+
 def _in_unit(value_rad: float, unit: str, squared: bool = False) -> float:
     factor = (180 / np.pi if unit == "deg" else 1.0) ** (2 if squared else 1)
     return value_rad * factor
@@ -69,23 +75,47 @@ def _check_finite(what: str, values: dict) -> None:
         _fail(f"{what}: {listed} is not finite (data too small, too large or constant?)")
 
 
-def _stops_on_ctrl_c(command):
-    """Ctrl-C: one line and exit code 130 (128 + SIGINT), no traceback. Outputs are written
-    atomically, so none is left half-written."""
+def _no_traceback(command):
+    """Every way a command ends is one line, never a traceback. Ctrl-C: exit code 130
+    (128 + SIGINT); outputs are written atomically, so none is left half-written. A
+    ValueError, OverflowError or OSError no check caught earlier is bad input or a file the
+    system refused: "error: ..." and exit 2. Anything else is a bug: its type and message on
+    one line, said to be a bug, and exit 1."""
+    import click
 
     @functools.wraps(command)
     def run(*args, **kwargs):
+        name = command.__name__.removesuffix("_command")
         try:
             return command(*args, **kwargs)
         except KeyboardInterrupt:
             Console(stderr=True).print(
-                f"interrupted (Ctrl-C): {command.__name__.removesuffix('_command')} stopped; "
-                "no output file is left half-written",
+                f"interrupted (Ctrl-C): {name} stopped; no output file is left half-written",
                 highlight=False,
             )
             raise typer.Exit(130) from None
+        except (typer.Exit, typer.Abort, click.exceptions.Exit, click.Abort, click.ClickException):
+            raise  # typer's and click's own ends: an exit code, a usage error
+        except (ValueError, OverflowError, OSError) as exc:
+            _fail(exc)
+        except Exception as exc:  # a bug: said so in one line, not hidden
+            _fail_bug(name, exc)
 
     return run
+
+
+def _fail_bug(command: str, exc: Exception) -> NoReturn:
+    """The last resort: an exception no check expected, in one line, and exit 1."""
+    from rich.markup import escape
+
+    console.print(
+        f"[red]error:[/red] {escape(type(exc).__name__)}: {escape(str(exc))} -- a bug in "
+        f"`tendonsheath {command}` (an input it should have checked, or worse): please report "
+        "it with the command line and its input files",
+        soft_wrap=True,
+        highlight=False,
+    )
+    raise typer.Exit(code=1)
 
 
 def _print_notes(log) -> None:
@@ -117,7 +147,7 @@ def _root(
 
 @app.command()
 @_one_paragraph
-@_stops_on_ctrl_c
+@_no_traceback
 def demo(
     out: Path = typer.Option(Path("demo-out"), "--out", "-o", help="Folder for the results."),
     scale: float = typer.Option(1.0, help="Run length factor (below 1: a quicker, shorter run)."),
@@ -142,6 +172,7 @@ def demo(
     if not scale > 0 or not np.isfinite(scale):
         _fail(f"--scale must be a finite number > 0 (got {scale})")
     unit = _angle_unit(angle_unit)
+    _check_seed(seed)
     unknown = [n for n in scenario or [] if n not in SCENARIOS]
     if unknown:
         _fail(f"unknown scenario(s) {unknown}; known: {list(SCENARIOS)}")
@@ -213,9 +244,55 @@ def _checked(check, *args, **kwargs):
         _fail(exc)
 
 
+def _same_file(a: Path, b: Path) -> bool:
+    """``a`` and ``b`` name one file (the same path, a link or a hard link to it)."""
+    import os
+
+    if a.resolve() == b.resolve():
+        return True
+    try:
+        return a.exists() and b.exists() and os.path.samefile(a, b)
+    except OSError:
+        return False
+
+
+def _refuse_overwriting(out: Path, what: str, inputs: dict) -> None:
+    """``out`` (option ``what``) must not be one of the ``inputs`` (role -> path): writing
+    it would destroy what the command reads."""
+    for role, path in inputs.items():
+        if path is not None and _same_file(out, Path(path)):
+            _fail(f"{what} {out} is the {role}: writing it would destroy it; give another name")
+
+
+def _note(text: str) -> None:
+    """A suspicious but legal run: said once, in yellow, and the command goes on."""
+    console.print(f"[yellow]note:[/yellow] {text}", soft_wrap=True, highlight=False)
+
+
+def _note_suspicious(data: list[Path], validate: list[Path], input_col, output_col) -> None:
+    """Notes for the same file twice, validating on a training file, and the input and the
+    output the same column."""
+    seen: list[Path] = []
+    for path in data:
+        if any(_same_file(path, p) for p in seen):
+            _note(f"{path} is given twice: its recording counts twice")
+        seen.append(path)
+    for path in validate:
+        if any(_same_file(path, p) for p in data):
+            _note(
+                f"validating on {path}, a training file: its validation error is not a "
+                "held-out error"
+            )
+    if input_col is not None and input_col == output_col:
+        _note(
+            f"--input and --output are the same column '{input_col}': the model maps the "
+            "signal to itself"
+        )
+
+
 @app.command()
 @_one_paragraph
-@_stops_on_ctrl_c
+@_no_traceback
 def bench(
     scenario: Path = typer.Argument(
         ...,
@@ -352,7 +429,7 @@ def _parsed_bounds(items: list[str]) -> dict[str, tuple[float, float]]:
 
 @app.command()
 @_one_paragraph
-@_stops_on_ctrl_c
+@_no_traceback
 def identify(
     data: list[Path] = typer.Argument(
         ...,
@@ -404,7 +481,7 @@ def identify(
     """Fit MODEL to DATA and save it as JSON; print the fit table and the validation error."""
     from ._progress import wanted
 
-    _check_identify_options(out, report, maxiter, warmup)
+    _check_identify_options(out, report, maxiter, warmup, seed)
     candidate = _checked(_model_spec, model)
     columns = _data_columns(
         time_col, time_unit, input=input_col, output=output_col, curve_angle=curve_angle
@@ -455,6 +532,7 @@ def _fit_logs(candidate, data: list[Path], validate: Path | None, columns: dict,
     A fit or a validation error that is not finite is an error (exit 2)."""
     from .identify import identify as run_identify
 
+    _note_suspicious(data, [validate] if validate else [], columns["input"], columns["output"])
     logs = _read_logs(data, columns)
     vlog = _read_logs([validate], columns)[0] if validate is not None else None
     for log in logs + ([vlog] if vlog is not None else []):  # before the (long) fitting
@@ -475,11 +553,16 @@ def _fit_logs(candidate, data: list[Path], validate: Path | None, columns: dict,
     return fit, val, len(logs)
 
 
-def _check_identify_options(out: Path, report: Path | None, maxiter: int, warmup: int) -> None:
+def _check_identify_options(
+    out: Path, report: Path | None, maxiter: int, warmup: int, seed: int
+) -> None:
     """One-line errors for identify's output files and search options, before any work."""
     from .identify.core import check_search_options
 
+    _check_seed(seed)
     _checked(check_output_file, out)
+    if out.suffix and out.suffix.lower() != ".json":  # model.csv would hold JSON
+        _fail(f"--out {out}: a model is saved as JSON: give a .json name (got {out.suffix!r})")
     if report is not None:
         _checked(check_image_file, report)
     _checked(
@@ -547,7 +630,7 @@ def _print_fit(fit, n_logs: int, output_col: str) -> None:
 
 @app.command()
 @_one_paragraph
-@_stops_on_ctrl_c
+@_no_traceback
 def predict(
     model_file: Path = typer.Argument(..., help="Model JSON written by `identify`."),
     data: Path = typer.Argument(..., help="Data file with the input column."),
@@ -569,9 +652,7 @@ def predict(
     from .identify.fit import metrics, simulate_model
     from .models import Loaded, load_model
 
-    if warmup < 0:
-        _fail(f"--warmup must be >= 0 (got {warmup})")
-    _checked(check_output_file, out, suffixes={"csv", "txt"})
+    _check_predict_options(out, data, model_file, warmup)
     try:
         model = load_model(model_file)
         saved = _saved_columns(model_file)
@@ -583,6 +664,7 @@ def predict(
         load_col = load_col or saved.get("load")
         if input_col is None:
             raise ValueError("name the input column with --input")
+        _note_suspicious([], [], input_col, wanted_output)
         if isinstance(model, Loaded) and load_col is None:
             raise ValueError("a Loaded model needs the measured load: name its column with --load")
         table_columns = io.columns(data)
@@ -629,6 +711,14 @@ def predict(
         )
 
 
+def _check_predict_options(out: Path, data: Path, model_file: Path, warmup: int) -> None:
+    """--warmup and --out of ``predict``: a CSV that is neither of its inputs."""
+    if warmup < 0:
+        _fail(f"--warmup must be >= 0 (got {warmup})")
+    _checked(check_output_file, out, suffixes={"csv", "txt"})
+    _refuse_overwriting(out, "--out", {"data file": data, "model file": model_file})
+
+
 def _saved_columns(model_file: Path) -> dict:
     """The column names `identify` saved beside the model ("data"), if any."""
     import json
@@ -649,7 +739,7 @@ def _saved_columns(model_file: Path) -> dict:
 
 @app.command("sweep")
 @_one_paragraph
-@_stops_on_ctrl_c
+@_no_traceback
 def sweep_command(
     config: Path = typer.Argument(..., help="The sweep file (TOML): run, design, parameters."),
     out: Path = typer.Option(Path("sweep-out"), "--out", "-o", help="Folder for the results."),
@@ -681,6 +771,7 @@ def sweep_command(
         _fail(f"--workers must be >= 1 (got {workers})")
     if n is not None and n < 1:
         _fail(f"--n must be >= 1 (got {n})")
+    _check_seed(seed)
     _checked(check_output_folder, out)
     overrides = {"n": n, "seed": seed, "workers": workers, "bound": bound}
     res, the_bound, written = _run_sweep_file(
@@ -831,6 +922,18 @@ def _cli_note(note: str) -> str:
 
 
 # the long options of `compare`, kept out of its signature
+_COMPARE_VALIDATE_OPTION = typer.Option(
+    None,
+    "--validate",
+    help="Held-out data file(s): every file after --validate (put the training files "
+    "first). Default: cross-validation.",
+)
+_COMPARE_REPORT_OPTION = typer.Option(
+    None,
+    "--report",
+    help="Folder for report.html, loops, residuals, comparison.json and winner.json (the "
+    "winner's model file).",
+)
 _COMPARE_MODELS_OPTION = typer.Option(
     None,
     "--models",
@@ -859,7 +962,7 @@ _RANGE_MARGIN_OPTION = typer.Option(
 
 @app.command(cls=_FilesAfterValidate)
 @_one_paragraph
-@_stops_on_ctrl_c
+@_no_traceback
 def compare(
     data: list[Path] = typer.Argument(
         ...,
@@ -875,12 +978,7 @@ def compare(
     curve_angle: str | None = typer.Option(
         None, "--curve-angle", help="Curve-angle column, or a number."
     ),
-    validate: list[Path] = typer.Option(
-        None,
-        "--validate",
-        help="Held-out data file(s): every file after --validate (put the training files "
-        "first). Default: cross-validation.",
-    ),
+    validate: list[Path] = _COMPARE_VALIDATE_OPTION,
     holdout: float | None = typer.Option(
         None, "--holdout", help="One split: this fraction at the end of each recording held out."
     ),
@@ -896,12 +994,7 @@ def compare(
     ),
     seed: int = typer.Option(0, "--seed", help="Seed of the global searches."),
     maxiter: int = typer.Option(100, "--maxiter", help="Generations of each global search."),
-    report: Path | None = typer.Option(
-        None,
-        "--report",
-        help="Folder for report.html, loops, residuals, comparison.json and winner.json (the "
-        "winner's model file).",
-    ),
+    report: Path | None = _COMPARE_REPORT_OPTION,
     time_budget: float | None = typer.Option(
         None,
         "--time-budget",
@@ -918,6 +1011,8 @@ def compare(
     candidate worse than y = a x + b on any held-out part cannot win."""
     _check_choice_options(objective, range_margin)
     _check_split_options(holdout, validate, folds)
+    _check_seed(seed)
+    _note_suspicious(data, validate or [], input_col, output_col)
     if report is not None:
         _checked(check_output_folder, report, "--report")
     columns = _data_columns(
@@ -1064,6 +1159,7 @@ def _print_comparison(result, output_col: str) -> None:
 
 @app.command("export")
 @_one_paragraph
+@_no_traceback
 def export_command(
     source: Path = typer.Argument(..., help="Model or compensator JSON (from to_json)."),
     cpp: Path = typer.Option(..., "--cpp", help="C++ header to write."),
@@ -1080,6 +1176,7 @@ def export_command(
         if not source.is_file():
             raise ValueError(f"file not found: {source}")
         check_output_file(cpp, "--cpp")
+        _refuse_overwriting(cpp, "--cpp", {"source file": source})
         write_text(cpp, cpp_header(source, namespace))
     except ValueError as exc:
         _fail(exc)

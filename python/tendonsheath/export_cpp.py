@@ -17,6 +17,20 @@ from pathlib import Path
 
 _INF = "std::numeric_limits<double>::infinity()"
 _BACKLASH_KEYS = ("c_r", "c_l", "B_r", "B_l")
+# C++ keywords and alternative tokens (C++20's too: a header outlives its standard), and the
+# namespaces a header must not open
+_CPP_RESERVED = frozenset(
+    """alignas alignof and and_eq asm auto bitand bitor bool break case catch char char8_t
+    char16_t char32_t class compl concept const consteval constexpr constinit const_cast
+    continue co_await co_return co_yield decltype default delete do double dynamic_cast else
+    enum explicit export extern false float for friend goto if inline int long mutable
+    namespace new noexcept not not_eq nullptr operator or or_eq private protected public
+    register reinterpret_cast requires return short signed sizeof static static_assert
+    static_cast struct switch template this thread_local throw true try typedef typeid
+    typename union unsigned using virtual void volatile wchar_t while xor xor_eq std
+    tendonsheath""".split()
+)
+_EXPORTED_COMPENSATORS = ("InverseFeedforward", "CurveAngleFeedforward", "ContinuumFeedforward")
 
 
 def _number(value: float) -> str:
@@ -158,8 +172,20 @@ def _map_constants(map_values) -> str:
     return note + consts
 
 
+# the compensators tendonsheath/io/json.hpp reads from their JSON file instead
+_JSON_LOADER_NOTE = {
+    k: ": load its JSON with tendonsheath/io/json.hpp instead"
+    for k in ("EncoderLoop", "TipLoop", "LearnedFeedforward")
+}
+
+
 def _compensator_body(ff) -> tuple[str, str]:
     kind = type(ff).__name__
+    if kind not in _EXPORTED_COMPENSATORS:
+        raise ValueError(
+            "export --cpp writes the InverseFeedforward, CurveAngleFeedforward and "
+            f"ContinuumFeedforward compensators (got {kind})" + _JSON_LOADER_NOTE.get(kind, "")
+        )
     if kind == "InverseFeedforward":
         return _inverse_body(ff)
     s = ff.params
@@ -176,6 +202,25 @@ def _compensator_body(ff) -> tuple[str, str]:
     return "compensators/continuum_feedforward.hpp", _struct(
         "ContinuumFeedforwardParams", {**s, **limits}
     )
+
+
+def _check_namespace(given: str | None, path: Path) -> None:
+    """A C++ namespace name: an identifier, not a keyword nor a reserved one ("__", "_X");
+    without ``given``, the one made of the file's stem."""
+    name = given or re.sub(r"\W", "_", path.stem)
+    how = "" if given else f" (made of the file name {path.name}: give --namespace NAME)"
+    if not re.fullmatch(r"[A-Za-z_]\w*", name):
+        raise ValueError(f"export --cpp: {name!r} is not a C++ namespace name{how}")
+    if name in _CPP_RESERVED:
+        raise ValueError(
+            f"export --cpp: {name!r} is a C++ keyword or a reserved namespace, not a free "
+            f"namespace name{how}"
+        )
+    if "__" in name or re.match(r"_[A-Z]", name):
+        raise ValueError(
+            f"export --cpp: {name!r} is reserved to the C++ implementation (a double "
+            f"underscore, or an underscore and a capital letter at the start){how}"
+        )
 
 
 def cpp_header(source: str | Path, namespace: str | None = None) -> str:
@@ -203,9 +248,8 @@ def cpp_header(source: str | Path, namespace: str | None = None) -> str:
     from .models import load_model
 
     path = Path(source)
+    _check_namespace(namespace, path)
     namespace = namespace or re.sub(r"\W", "_", path.stem)
-    if not re.fullmatch(r"[A-Za-z_]\w*", namespace):
-        raise ValueError(f"export --cpp: {namespace!r} is not a C++ namespace name")
     try:
         fmt = json.loads(path.read_text(encoding="utf-8-sig")).get("format")
     except (OSError, ValueError, AttributeError) as exc:

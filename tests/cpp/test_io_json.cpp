@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <random>
 #include <string>
@@ -191,6 +193,50 @@ TEST(IoJson, MalformedFilesNameTheKey) {
 
 TEST(IoJson, UnreadableFilesAreOneLineErrors) {
   EXPECT_THROW(ts::io::load_compensator_json("/nonexistent/ff.json"), std::invalid_argument);
+}
+
+// The error of loading `text` from a file (empty: it loaded).
+std::string file_error_of(const std::string& text) {
+  const std::string path = ::testing::TempDir() + "ts_io_json_huge.json";
+  std::FILE* out = std::fopen(path.c_str(), "wb");
+  std::fwrite(text.data(), 1, text.size(), out);
+  std::fclose(out);
+  try {
+    ts::io::load_compensator_json(path);
+  } catch (const std::invalid_argument& e) {  // anything else fails the test
+    std::remove(path.c_str());
+    return e.what();
+  }
+  std::remove(path.c_str());
+  return "";
+}
+
+// A number beyond a double's range (an integer of 400 digits, 1e999) is nlohmann's
+// out_of_range: it comes out as an invalid_argument naming the file and the key.
+TEST(IoJson, NumbersBeyondADoubleNameTheFileAndTheKey) {
+  const std::string huge(400, '9');
+  json f = curve_angle_file();
+  std::string text = f.dump();
+  const std::string good = "\"max_rate\":20.0";
+  ASSERT_NE(text.find(good), std::string::npos) << text;
+  for (const std::string& number : {huge, std::string("-1e999")}) {
+    std::string bad = text;
+    bad.replace(bad.find(good), good.size(), "\"max_rate\":" + number);
+    const std::string e = file_error_of(bad);
+    EXPECT_NE(e.find("ts_io_json_huge.json: key 'limits.max_rate' is out of range"),
+              std::string::npos)
+        << e;
+  }
+  EXPECT_EQ(file_error_of(text), "");
+  // an integer setting beyond an int is named too (get<int> would wrap it round)
+  json bw = backlash_model(1.0, 1.1, 0.1, 0.2);
+  bw["model"] = "BoucWenBacklash";
+  bw["params"].update({{"rho", 5.0}, {"sigma", 0.5}, {"n", 1.0}});
+  bw["options"] = {{"max_step", 0.01}, {"max_substeps", 100}};
+  EXPECT_EQ(error_of(inverse_file(bw)), "(no error)");
+  bw["options"]["max_substeps"] = std::int64_t{1} << 40;
+  const std::string e = error_of(inverse_file(bw));
+  EXPECT_NE(e.find("'max_substeps' is out of the range of an int"), std::string::npos) << e;
 }
 
 // The settings of the inverse of every model: input_range ([lo, hi], null, or absent: the

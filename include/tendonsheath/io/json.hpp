@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <set>
@@ -475,7 +476,33 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
                           "InverseFeedforward, LearnedFeedforward, TipLoop)");
 }
 
-/// The parsed contents of a JSON file (read with stdio: the library uses no iostreams).
+namespace detail {
+
+// The keys leading to the value being parsed ("limits.max"), kept by a parser callback: a
+// number too large for a double is an error nlohmann raises with no key to name.
+class KeyPath {
+ public:
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start) keys_.emplace_back();
+    if (event == json::parse_event_t::object_end && !keys_.empty()) keys_.pop_back();
+    if (event == json::parse_event_t::key && !keys_.empty()) keys_.back() = parsed.get<std::string>();
+    return true;
+  }
+  std::string str() const {
+    std::string out;
+    for (const auto& k : keys_) out += (out.empty() ? "" : ".") + k;
+    return out;
+  }
+
+ private:
+  std::vector<std::string> keys_;
+};
+
+}  // namespace detail
+
+/// The parsed contents of a JSON file (read with stdio: the library uses no iostreams). An
+/// unreadable file, invalid JSON or a number beyond a double's range is a
+/// std::invalid_argument naming the file (and the key of the number).
 inline json read_json_file(const std::string& path) {
   std::FILE* in = std::fopen(path.c_str(), "rb");
   if (!in) throw std::invalid_argument(path + ": cannot open the file");
@@ -483,10 +510,15 @@ inline json read_json_file(const std::string& path) {
   char buffer[4096];
   for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, in)) > 0;) text.append(buffer, n);
   std::fclose(in);
+  detail::KeyPath keys;
   try {
-    return json::parse(text);
+    return json::parse(text, std::ref(keys));
   } catch (const json::parse_error& e) {
     throw std::invalid_argument(path + ": not valid JSON (" + e.what() + ")");
+  } catch (const json::exception& e) {  // out_of_range.406: a number overflows a double
+    const std::string key = keys.str();
+    throw std::invalid_argument(path + ": " + (key.empty() ? "a value" : "key '" + key + "'") +
+                                " is out of range (" + e.what() + ")");
   }
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <set>
@@ -56,6 +57,12 @@ inline int integer(const json& obj, const std::string& key, const std::string& w
   const json& v = member(obj, key, where);
   if (!v.is_number_integer())
     fail(where, "key '" + key + "' must be an integer (got " + v.dump() + ")");
+  // get<int> would wrap a larger integer round silently
+  const bool fits = v.is_number_unsigned()
+                        ? v.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<int>::max())
+                        : v.get<std::int64_t>() >= std::numeric_limits<int>::min() &&
+                              v.get<std::int64_t>() <= std::numeric_limits<int>::max();
+  if (!fits) fail(where, "key '" + key + "' is out of the range of an int (got " + v.dump() + ")");
   return v.get<int>();
 }
 

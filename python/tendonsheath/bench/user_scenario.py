@@ -130,6 +130,10 @@ _KEYS: dict[str, dict[str, type | tuple]] = {
 }
 _TOP = {"title": str, "seed": int, **{k: dict for k in _KEYS}}
 
+# (table, key) -> (bound, strict): the values the bench runs with are above the bound (">")
+# or at least it (">="); checked at parse, so a bad value is one line naming the key, not a
+# failure minutes into the calibration
+
 
 class ScenarioError(ValueError):
     """A scenario file that cannot be run; the message names the file and the bad key."""
@@ -219,6 +223,8 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
             f"{source}: the scenario is empty (no table or key); give at least a [plant] or "
             "[route] table, or a title to run every default"
         )
+    if not 0 <= data.get("seed", 0) < 2**32:
+        raise ScenarioError(f"{source}: 'seed' must be in [0, 2**32) (got {data['seed']})")
     s = {name: _section(data, name, source) for name in _KEYS}
     plant_type = s["plant"].get("type", "pull_pull")
     if plant_type not in ("pull_pull", "continuum"):
@@ -237,20 +243,8 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
     if any(b[0] <= a[0] for a, b in zip(changes, changes[1:], strict=False)):
         raise ScenarioError(f"{source} [[route.changes]]: times must increase")
     compensators, user = _compare_table(s["compare"], source)
-    reference = {"duration": 20.0, "rate": 1000.0, "sines": [[1.0, 0.25, 0.0]], **s["reference"]}
-    for i, sine in enumerate(reference["sines"]):
-        if (
-            not isinstance(sine, list)
-            or len(sine) not in (2, 3)
-            or not all(isinstance(v, int | float) for v in sine)
-        ):
-            raise ScenarioError(
-                f"{source} [reference]: sines[{i}] must be [amplitude, frequency, phase?]"
-            )
-    if not reference["sines"]:
-        raise ScenarioError(f"{source} [reference]: sines must list at least one sine")
-    if not reference["duration"] > 0 or not reference["rate"] > 0:
-        raise ScenarioError(f"{source} [reference]: duration and rate must be > 0")
+    motor = {"bandwidth_hz": 60.0, "damping": 0.8, **s["motor"]}
+    reference = _reference_table(s["reference"], motor["bandwidth_hz"], source)
     load = s["load"] or None
     if load is not None and load.get("type") not in (
         "constant_torque",
@@ -260,24 +254,122 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         raise ScenarioError(
             f"{source} [load]: 'type' must be constant_torque, torsional_spring or spring_damper"
         )
-    return _checked(
-        UserScenario(
-            title=data.get("title", "user scenario"),
-            plant={"type": plant_type, **s["plant"]},
-            route={"initial": route},
-            load=load,
-            motor={"bandwidth_hz": 60.0, "damping": 0.8, **s["motor"]},
-            torque_motor={"inertia": 0.01, "viscous": 0.2, "max_torque": 5.0, **s["torque_motor"]},
-            sensor=_sensor_table(s["sensor"], source),
-            reference=reference,
-            calibration={"duration": 20.0, "amplitude": 1.2, **s["calibration"]},
-            compensators=list(compensators),
-            seed=int(data.get("seed", 0)),
-            source=source,
-            route_changes=changes,
-            user_compensators=user,
-        )
+    sc = UserScenario(
+        title=data.get("title", "user scenario"),
+        plant={"type": plant_type, **s["plant"]},
+        route={"initial": route},
+        load=load,
+        motor=motor,
+        torque_motor={"inertia": 0.01, "viscous": 0.2, "max_torque": 5.0, **s["torque_motor"]},
+        sensor=_sensor_table(s["sensor"], source),
+        reference=reference,
+        calibration={"duration": 20.0, "amplitude": 1.2, **s["calibration"]},
+        compensators=list(compensators),
+        seed=int(data.get("seed", 0)),
+        source=source,
+        route_changes=changes,
+        user_compensators=user,
     )
+    _check_calibration(sc, f"{source} [calibration]")
+    return _checked(sc)
+
+
+# the honesty panel refits a BoucWenBacklash (7 parameters, 3 samples each at the least) to
+# every run, after its warm-up, decimated to at most this rate
+_HONESTY_FIT_SAMPLES = 21
+_HONESTY_FIT_RATE_HZ = 200.0
+
+
+def _reference_table(table: dict[str, Any], bandwidth_hz: float, source: str) -> dict[str, Any]:
+    """The [reference] table over its defaults, checked: sines of [amplitude, frequency,
+    phase?] below half the rate, a rate at least twice the servo's bandwidth (the control
+    loop runs at it), and enough samples after the warm-up for the honesty panel."""
+    where = f"{source} [reference]"
+    reference = {"duration": 20.0, "rate": 1000.0, "sines": [[1.0, 0.25, 0.0]], **table}
+    for i, sine in enumerate(reference["sines"]):
+        if (
+            not isinstance(sine, list)
+            or len(sine) not in (2, 3)
+            or not all(isinstance(v, int | float) and not isinstance(v, bool) for v in sine)
+        ):
+            raise ScenarioError(f"{where}: sines[{i}] must be [amplitude, frequency, phase?]")
+        if not all(math.isfinite(v) for v in sine) or sine[1] < 0:
+            raise ScenarioError(
+                f"{where}: sines[{i}] must be finite with a frequency >= 0 (got {sine})"
+            )
+    if not reference["sines"]:
+        raise ScenarioError(f"{where}: sines must list at least one sine")
+    duration, rate = reference["duration"], reference["rate"]
+    if not duration > 0 or not rate > 0:
+        raise ScenarioError(f"{where}: duration and rate must be > 0")
+    if rate < 2 * bandwidth_hz:
+        raise ScenarioError(
+            f"{where}: 'rate' {rate:g} Hz is below twice the servo's bandwidth ([motor] "
+            f"bandwidth_hz = {bandwidth_hz:g} Hz): the control loop runs at this rate and "
+            f"would not sample its own servo (give at least {2 * bandwidth_hz:g} Hz)"
+        )
+    for i, sine in enumerate(reference["sines"]):
+        if abs(sine[1]) >= rate / 2:
+            raise ScenarioError(
+                f"{where}: sines[{i}] frequency {sine[1]:g} Hz is not below half the 'rate' "
+                f"({rate / 2:g} Hz)"
+            )
+    _check_reference_samples(reference, where)
+    return reference
+
+
+def _check_reference_samples(reference: dict[str, Any], where: str) -> None:
+    """Enough samples after the bench's warm-up (the reference's dominant period, at most
+    half the run) for the honesty panel's refits."""
+    from .metrics import dominant_period
+
+    duration, rate = reference["duration"], reference["rate"]
+    if duration * rate > 1e8:
+        raise ScenarioError(
+            f"{where}: {duration:g} s at {rate:g} Hz is {duration * rate:.3g} samples: too many"
+        )
+    t, y_d = _reference_signal(reference)
+    if t.size < 4:
+        kept = 0
+    else:
+        warmup = min(dominant_period(t, y_d), 0.5 * float(t[-1] - t[0]))
+        step = max(1, round(rate / _HONESTY_FIT_RATE_HZ))
+        kept = int(np.count_nonzero(t >= t[0] + warmup)) // step
+    if kept < _HONESTY_FIT_SAMPLES:
+        raise ScenarioError(
+            f"{where}: {duration:g} s at {rate:g} Hz leaves {kept} samples after the warm-up "
+            f"(at most {_HONESTY_FIT_RATE_HZ:g} Hz); the bench needs {_HONESTY_FIT_SAMPLES}: "
+            "a longer 'duration' or a higher 'rate'"
+        )
+
+
+def _check_calibration(sc: UserScenario, where: str) -> None:
+    """The [calibration] duration (longer than twice the calibration's warm-up) and angles
+    (a non-empty array of curve angles, each a route)."""
+    import inspect
+
+    from .calibration import calibrate
+
+    warmup = inspect.signature(calibrate).parameters["warmup"].default
+    duration = sc.calibration["duration"]
+    if not duration >= 2 * warmup:
+        raise ScenarioError(
+            f"{where}: 'duration' must be >= {2 * warmup:g} s (got {duration:g}): the "
+            f"calibration leaves out its first {warmup:g} s and fits at least as much"
+        )
+    angles = sc.calibration.get("angles")
+    if angles is None:
+        return
+    if not angles:
+        raise ScenarioError(f"{where}: 'angles' must list at least one curve angle (rad)")
+    for i, angle in enumerate(angles):
+        if isinstance(angle, bool) or not isinstance(angle, int | float):
+            raise ScenarioError(f"{where}: angles[{i}] must be a number (got {angle!r})")
+        try:
+            Route.uniform(sc.route["initial"].length, float(angle))
+        except (TypeError, ValueError) as exc:
+            raise ScenarioError(f"{where}: angles[{i}]: {exc}") from None
+    calibration_angles(sc)  # none is a test route's angle
 
 
 def _compare_table(compare: dict, source: str) -> tuple[list[str], list[UserCompensator]]:
@@ -317,7 +409,7 @@ def _checked(sc: UserScenario) -> UserScenario:
                 f"{duration:g}) s ([reference] duration): it would never happen"
             )
     _check_sines(sc.reference["sines"], src)
-    _check_calibration(sc)
+    _check_calibration_runs(sc)
     return sc
 
 
@@ -338,12 +430,8 @@ def _check_load(sc: UserScenario) -> None:
 
 
 def _check_sines(sines: list, src: str) -> None:
-    """Each sine finite, its frequency >= 0; an amplitude past a full turn of the joint warns."""
+    """An amplitude past a full turn of the joint warns (each sine was checked at parse)."""
     for i, sine in enumerate(sines):
-        if not all(math.isfinite(v) for v in sine) or sine[1] < 0:
-            raise ScenarioError(
-                f"{src} [reference]: sines[{i}] must be finite with a frequency >= 0 (got {sine})"
-            )
         warn_if_degrees(
             sine[0],
             f"{src} [reference]",
@@ -354,7 +442,7 @@ def _check_sines(sines: list, src: str) -> None:
         )
 
 
-def _check_calibration(sc: UserScenario) -> None:
+def _check_calibration_runs(sc: UserScenario) -> None:
     """The calibration runs as [calibration] describes them: duration > 0, the shape sensing
     valid, each angle a valid route's; a note when the test routes' angles lie outside the
     calibration angles (the curve-angle dependence is then extrapolated)."""
@@ -374,15 +462,13 @@ def _check_calibration(sc: UserScenario) -> None:
     try:
         ShapeSensing(noise_std=cal.get("shape_noise", 0.05), delay=cal.get("shape_delay", 0.1))
     except (TypeError, ValueError) as exc:
-        raise ScenarioError(f"{src} [calibration]: {exc}") from None
+        message = str(exc).removeprefix("ShapeSensing: ")
+        for arg, key in (("noise_std", "shape_noise"), ("delay", "shape_delay")):
+            message = re.sub(rf"^{arg}\b", f"'{key}' (ShapeSensing {arg})", message)
+        raise ScenarioError(f"{src} [calibration]: {message}") from None
     given = cal.get("angles")
     if given is None:
-        return
-    if not given or not all(isinstance(a, int | float) and not isinstance(a, bool) for a in given):
-        raise ScenarioError(f"{src} [calibration]: angles must be a non-empty list of numbers")
-    length = sc.route["initial"].length
-    for a in given:
-        _route({"total_angle": a}, f"{src} [calibration] angles", length)
+        return  # each angle was checked by _check_calibration
     tests = [sc.route["initial"].curve_angle] + [r.curve_angle for _, r in sc.route_changes]
     if min(tests) < min(given) or max(tests) > max(given):
         warnings.warn(
@@ -592,7 +678,11 @@ def _calibration(sc: UserScenario, shape, angles: list[float]):
 
 def _reference(sc: UserScenario) -> tuple[np.ndarray, np.ndarray]:
     """The times and the reference (a sum of sines) of the [reference] table."""
-    ref = sc.reference
+    return _reference_signal(sc.reference)
+
+
+def _reference_signal(ref: dict[str, Any]) -> tuple[np.ndarray, np.ndarray]:
+    """The times and the sum of sines of a [reference] table."""
     t = np.arange(0.0, ref["duration"], 1.0 / ref["rate"])
     y_d = sum(
         (

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any, TypeAlias, TypeVar
 
 from .._args import is_format_version, renamed
 from .._atomic import write_text
-from .._json_source import read_json_source
+from .._json_source import naming_the_file, read_json_source
 
 if TYPE_CHECKING:
     from .adaptive_controller import AdaptiveController
@@ -221,7 +221,12 @@ def _limits(name: str, value) -> dict[str, float]:
 def _number(name: str, what: str, value) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise ValueError(f"{name} file: {what} must be a number (got {json.dumps(value)})")
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:  # an integer beyond a double's range
+        raise ValueError(
+            f"{name} file: {what} is too large for a number (beyond 1.8e308)"
+        ) from None
 
 
 def load_compensator(source: str | Path | dict) -> Compensator:
@@ -243,7 +248,9 @@ def load_compensator(source: str | Path | dict) -> Compensator:
     ValueError
         An unreadable source or an invalid compensator file.
     """
-    return compensator_from_dict(read_json_source(source, "compensator"))
+    data = read_json_source(source, "compensator")
+    with naming_the_file(source):
+        return compensator_from_dict(data)
 
 
 _C = TypeVar("_C")

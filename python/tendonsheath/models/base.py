@@ -17,7 +17,7 @@ import numpy as np
 from .._args import is_format_version, python_names, renamed
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
-from .._json_source import read_json_source
+from .._json_source import naming_the_file, read_json_source
 from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from ..control_interop import _ControlBlock
@@ -392,7 +392,9 @@ def _field_error(name: str, key: str, value) -> Exception:
     """What a value the C++ field refused is: an integer too large for it (ValueError) or a
     value of the wrong type (TypeError)."""
     if isinstance(value, numbers.Integral) and not isinstance(value, bool):
-        return ValueError(f"{name}: {key} = {value} is out of the range of its field")
+        digits = int(int(value).bit_length() * math.log10(2)) + 1
+        shown = str(value) if digits <= 24 else f"an integer of about {digits} digits"
+        return ValueError(f"{name}: {key} = {shown} is out of the range of its field")
     return TypeError(f"{name}: {key} has the wrong type (got {type(value).__name__} {value!r})")
 
 
@@ -409,11 +411,14 @@ def _build_saved(model_cls, data: dict[str, Any]) -> HysteresisModel:
 
 @contextmanager
 def _file_error(name: str):
-    """A value of the wrong type in a saved file is a bad file (ValueError), not a bad call."""
+    """A value of the wrong type in a saved file is a bad file (ValueError), not a bad call;
+    so is an integer too large for a float (OverflowError)."""
     try:
         yield
     except TypeError as err:
         raise ValueError(f"{name} file: {err}") from None
+    except OverflowError as err:
+        raise ValueError(f"{name} file: a number is too large ({err})") from None
 
 
 def model_class_from_dict(data: dict[str, Any]) -> type[HysteresisModel]:
@@ -497,7 +502,9 @@ def load_model(source: str | Path | dict) -> HysteresisModel:
     ValueError
         An unreadable source or an invalid model file (the message says what is wrong).
     """
-    return HysteresisModel.from_dict(read_json_source(source, "model"))
+    data = read_json_source(source, "model")
+    with naming_the_file(source):
+        return HysteresisModel.from_dict(data)
 
 
 def _frozen(value):
