@@ -32,7 +32,6 @@ def renamed(
     values: dict[str, Any],
     renames: Mapping[str, str],
     warn: bool = True,
-    stacklevel: int = 3,
 ) -> dict[str, Any]:
     """`values` with each old keyword of `renames` (old -> new) moved to its new name.
 
@@ -47,13 +46,16 @@ def renamed(
         if out.get(new) is not None:
             raise TypeError(f"{who}: give {new} or its old name {old}, not both")
         if warn:
-            warn_renamed(who, old, new, stacklevel + 1)
+            warn_renamed(who, old, new, caller_outside_package())
         out[new] = out.pop(old)
     return out
 
 
-def warn_renamed(who: str, old: str, new: str, stacklevel: int = 3) -> None:
-    """The DeprecationWarning of an old name (argument or attribute) that names the new one."""
+def warn_renamed(who: str, old: str, new: str, stacklevel: int | None = None) -> None:
+    """The DeprecationWarning of an old name (argument or attribute) that names the new one,
+    pointing at the user's line: the first frame outside the package unless `stacklevel` says."""
+    if stacklevel is None:
+        stacklevel = caller_outside_package() - 1  # counted from this function, not its caller
     warnings.warn(
         f"{who}: {old!r} is now called {new!r} (docs/vocabulary.md); {old!r} will be removed "
         "in the next release",
@@ -100,7 +102,7 @@ def _new_keywords(who: str, old: str, new, kwargs: dict[str, Any]) -> dict[str, 
     label = " and ".join(values)
     if set(values) & set(kwargs):
         raise TypeError(f"{who}: give {label} or its old name {old}, not both")
-    warn_renamed(who, old, label, stacklevel=4)
+    warn_renamed(who, old, label, caller_outside_package())
     return {**kwargs, **values}
 
 
