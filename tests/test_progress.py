@@ -3,7 +3,6 @@
 import io
 import sys
 
-import click
 import pytest
 import typer
 from typer.testing import CliRunner
@@ -29,7 +28,7 @@ def _run_bar(enabled, **kwargs):
 @pytest.mark.parametrize("command", LONG_COMMANDS)
 def test_every_long_command_accepts_quiet(command):
     group = typer.main.get_command(app)
-    sub = group.get_command(click.Context(group), command)
+    sub = group.get_command(group.context_class(group), command)  # typer's own click
     flags = {opt for p in sub.params for opt in getattr(p, "opts", [])}
     assert {"--quiet", "-q"} <= flags, flags
 

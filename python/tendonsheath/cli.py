@@ -75,13 +75,17 @@ def _check_finite(what: str, values: dict) -> None:
         _fail(f"{what}: {listed} is not finite (data too small, too large or constant?)")
 
 
+# click's usage errors (typer.BadParameter and its kin); typer >= 0.20 vendors click, so the
+# class is found through typer rather than imported from a click that may not be installed
+_CLICK_ERROR = next(c for c in typer.BadParameter.__mro__ if c.__name__ == "ClickException")
+
+
 def _no_traceback(command):
     """Every way a command ends is one line, never a traceback. Ctrl-C: exit code 130
     (128 + SIGINT); outputs are written atomically, so none is left half-written. A
     ValueError, OverflowError or OSError no check caught earlier is bad input or a file the
     system refused: "error: ..." and exit 2. Anything else is a bug: its type and message on
     one line, said to be a bug, and exit 1."""
-    import click
 
     @functools.wraps(command)
     def run(*args, **kwargs):
@@ -94,8 +98,8 @@ def _no_traceback(command):
                 highlight=False,
             )
             raise typer.Exit(130) from None
-        except (typer.Exit, typer.Abort, click.exceptions.Exit, click.Abort, click.ClickException):
-            raise  # typer's and click's own ends: an exit code, a usage error
+        except (typer.Exit, typer.Abort, _CLICK_ERROR):
+            raise  # typer's own ends: an exit code, a usage error
         except (ValueError, OverflowError, OSError) as exc:
             _fail(exc)
         except Exception as exc:  # a bug: said so in one line, not hidden
