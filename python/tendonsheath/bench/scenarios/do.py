@@ -491,7 +491,7 @@ def robustness_run(params: dict) -> dict[str, dict[str, float]]:
     """One draw of the robustness study: the plant's friction, pretension and route differ
     from the nominal plant the compensators were calibrated on; 10 s of the do2015 reference
     on a fixed (random-arc) route, behind the PID servo. Returns compensator -> metrics (a
-    ``ts.sweep`` run)."""
+    ``ts.sweep`` run; ``limit_cycle`` is 1 when the tip oscillated on its own)."""
     from .routes import random_arcs
 
     kwargs = physics(
@@ -519,7 +519,10 @@ def robustness_run(params: dict) -> dict[str, dict[str, float]]:
     adaptive = _adaptive_controller(fits["single encoder"].backlash_model, sensor)
     runs["AdaptiveController"] = run(torque, adaptive, t, y_d, noise=sensor)
     return {
-        name: {k: r.metrics[k] for k in ("mse", "rmse", "max_abs", "percent_error")}
+        name: {
+            **{k: r.metrics[k] for k in ("mse", "rmse", "max_abs", "percent_error")},
+            "limit_cycle": float(r.metrics["limit_cycle"]["detected"]),
+        }
         for name, r in runs.items()
     }
 
