@@ -353,9 +353,10 @@ def targets(m: Source) -> str:
                     str(m.get("targets", scenario, i, "target")),
                     f"{fmt(m.num('targets', scenario, i, 'measured'))} {unit}".strip(),
                     "met" if m.get("targets", scenario, i, "met") else "**not met**",
+                    str(m.get("targets", scenario, i, "seen")) or "-",
                 ]
             )
-    header = ["scenario", "paper's claim", "target", "measured", "verdict"]
+    header = ["scenario", "paper's claim", "target", "measured", "verdict", "also seen"]
     return md_table(header, rows) + "\n\n" + generated_from(m)
 
 

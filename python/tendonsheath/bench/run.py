@@ -16,6 +16,7 @@ from ..plant import PullPullPlant
 from ..protocols import STEP_SIGNALS, StreamingCompensator, missing_members, step_signals
 from ..sensor import Sensor
 from ..status import status_counts
+from .limit_cycle import limit_cycle
 from .metrics import dominant_period, tracking_metrics
 
 if TYPE_CHECKING:
@@ -79,7 +80,8 @@ class Result:
     warmup : float
         Seconds at the start left out of the metrics.
     metrics : dict, optional
-        The tracking metrics (:func:`tracking_metrics`), slack_samples and status counts.
+        The tracking metrics (:func:`tracking_metrics`), slack_samples, status counts and
+        the limit-cycle test (:func:`~tendonsheath.bench.limit_cycle.limit_cycle`).
     status : numpy.ndarray of uint8, optional
         Each cycle's Status flags.
     """
@@ -396,6 +398,7 @@ def _result(controller, ts, ys, outputs, warmup: float) -> Result:
         **tracking_metrics(ys[keep], output[keep]),
         "slack_samples": int(result.slack.sum()),
         "status": status_counts(status),
+        "limit_cycle": limit_cycle(ts[keep], ys[keep], output[keep]),
     }
     if not math.isfinite(result.metrics["mse"]):
         raise RuntimeError("bench.run: the closed loop produced a non-finite output")

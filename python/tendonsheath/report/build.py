@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._atomic import write_bytes, write_json, write_text
+from ..bench.limit_cycle import describe as describe_limit_cycle
 from . import figures, html, interactive
 from .units import check_angle_unit, convert, rows_in_unit, unit_after
 
@@ -42,7 +43,11 @@ def _status_table(runs) -> str:
     """Cycles flagged with each status, per compensator (the loop's controller, motor, plant
     and sensor together; metrics.json: scenarios.<scenario>.<compensator>.status)."""
     rows = [
-        {"compensator": name, **r.metrics["status"]}
+        {
+            "compensator": name,
+            **r.metrics["status"],
+            "limit cycle": describe_limit_cycle(r.metrics.get("limit_cycle", {})) or "none",
+        }
         for name, r in runs.items()
         if isinstance(r.metrics.get("status"), dict)
     ]
@@ -52,7 +57,9 @@ def _status_table(runs) -> str:
         '<h3>Status per cycle</h3><p class="note">Control cycles in which the real-time loop '
         "flagged each status (whole run): a held non-finite input, a clamped input, a solve "
         "that did not converge, a slack tendon, a controller fallback (no measurement), a "
-        "saturated command (controller limits, motor torque or speed limit).</p>" + html.table(rows)
+        "saturated command (controller limits, motor torque or speed limit); and whether the "
+        "tip oscillated on its own (a limit cycle: many more tip reversals than the "
+        "reference's).</p>" + html.table(rows)
     )
 
 
@@ -260,13 +267,16 @@ def _targets_table(targets: list[dict]) -> str:
             "target": x["target"],
             "measured": f"{x['measured']:.3g} {x['unit']}".strip(),
             "verdict": "met" if x["met"] else "NOT met",
+            "also seen": x.get("seen") or "-",
         }
         for x in targets
     ]
     return (
         '<h3>Paper targets</h3><p class="note">Each paper\'s headline, measured here on the '
         "realistic plant with compensators calibrated from logs alone. A miss is a "
-        "measured figure, not a failure to hide.</p>" + html.table(rows)
+        "measured figure, not a failure to hide. A loop with a limit cycle in any of its runs "
+        "meets no claim; its limit cycles and saturated cycles are named beside the "
+        "verdict.</p>" + html.table(rows)
     )
 
 

@@ -164,11 +164,23 @@ def robustness_section(
         "bound": bound,
         "compensators": {
             row["compensator"]: {
-                k: clean(float(row[k]))
-                for k in ("median", "q05", "q95", "max", "within_bound")
-                if k in row
+                **{
+                    k: clean(float(row[k]))
+                    for k in ("median", "q05", "q95", "max", "within_bound")
+                    if k in row
+                },
+                **_limit_cycle_share(groups, row["compensator"]),
             }
             for _, row in summary.iterrows()
         },
         "figure": str(path),
     }
+
+
+def _limit_cycle_share(groups: list, compensator: str) -> dict[str, float]:
+    """The share of a compensator's runs with a limit cycle, where the run reports one (the
+    ``limit_cycle`` metric, 1 or 0)."""
+    for name, g in groups:
+        if name == compensator and "limit_cycle" in g:
+            return {"limit_cycle_share": float(g["limit_cycle"].mean())}
+    return {}

@@ -12,6 +12,7 @@ from ...route import Route
 from ...sensor import Sensor
 from ..calibration import calibration_input  # noqa: F401 (re-exported)
 from ..frequency import FrequencyResponse
+from ..limit_cycle import describe
 from ..run import Result
 
 
@@ -81,15 +82,34 @@ def encoder(noise_std: float = 2e-4, resolution: float = 1e-4, seed: int = 1) ->
     return Sensor(resolution=resolution, noise_std=noise_std, seed=seed)
 
 
-def target(claim: str, target: str, measured: float, met: bool, unit: str = "") -> dict:
-    """One paper claim checked on this run (a row of the report's "Paper targets" table)."""
+def target(
+    claim: str, target: str, measured: float, met: bool, unit: str = "", seen: str = ""
+) -> dict:
+    """One paper claim checked on this run (a row of the report's "Paper targets" table);
+    ``seen``: what the runs also show that the figure does not (a limit cycle, saturation)."""
     return {
         "claim": claim,
         "target": target,
         "measured": float(measured),
         "unit": unit,
         "met": bool(met),
+        "seen": seen,
     }
+
+
+def runs_seen(runs: list) -> tuple[str, bool]:
+    """What a controller's runs show besides their error: its limit cycles (the strongest
+    named) and saturated cycles, as one phrase; and whether any run had a limit cycle."""
+    cycles = [r.metrics["limit_cycle"] for r in runs if r.metrics["limit_cycle"]["detected"]]
+    saturated = sum(r.metrics["status"]["saturated"] for r in runs)
+    parts = []
+    if cycles:
+        worst = max(cycles, key=lambda c: c["output_reversals"])
+        parts.append(f"{describe(worst)} in {len(cycles)} of {len(runs)} runs")
+    if saturated:
+        cycles_total = sum(r.t.size for r in runs)
+        parts.append(f"command saturated on {saturated} of {cycles_total} cycles")
+    return "; ".join(parts), bool(cycles)
 
 
 def honesty_panel(
