@@ -7,6 +7,9 @@
 //                                                        TipLoop, else the curve angle set before
 //                                                        each step; t,y_d,c,a lines: a is the
 //                                                        curve angle set before each step)
+//   example_03_load_and_run LOAD_COMPENSATED.json TRAJ OUT      t,y_d,load lines -> commands
+//   example_03_load_and_run COUPLED_FEEDFORWARD.json TRAJ OUT   t,y_1,...,y_J lines -> lines of
+//                                                        J commands (io/json_multi_input.hpp)
 //
 // The file comes from Python (examples/cpp/data/make_inverse_feedforward.py):
 //   ts.compensate.InverseFeedforward(identified_model, ...).to_json("inverse_feedforward.json")
@@ -17,8 +20,10 @@
 // compensator the error is the dead band, ~10 %).
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
-#include <tendonsheath/io/json.hpp>
+#include <tendonsheath/io/json_multi_input.hpp>
+#include <vector>
 #include <tendonsheath/tendonsheath.hpp>
 
 namespace ts = tendonsheath;
@@ -43,6 +48,53 @@ int run_trajectory(ts::io::LoadedCompensator& ff, const char* in_path, const cha
     if (fields == 4) ff.set_curve_angle(a);
     const double dt = first ? 0.0 : t - t_prev;  // as Python's command(): dt 0 on the first cycle
     std::fprintf(out, "%.17g\n", fields >= 3 && looped ? ff.step(y_d, c, dt) : ff.step(y_d, dt));
+    t_prev = t;
+  }
+  std::fclose(in);
+  std::fclose(out);
+  return 0;
+}
+
+// TRAJ and OUT opened together (false, with a message, when either cannot be)
+bool open_files(const char* in_path, const char* out_path, std::FILE*& in, std::FILE*& out) {
+  in = std::fopen(in_path, "r");
+  out = in ? std::fopen(out_path, "w") : nullptr;
+  if (out) return true;
+  std::fprintf(stderr, "cannot open %s or %s\n", in_path, out_path);
+  if (in) std::fclose(in);
+  return false;
+}
+
+// t,y_d,load lines: the load measured each cycle (a LoadCompensated file)
+int run_loaded(ts::io::LoadCompensatedInverse& c, const char* in_path, const char* out_path) {
+  std::FILE *in = nullptr, *out = nullptr;
+  if (!open_files(in_path, out_path, in, out)) return 2;
+  double t = 0.0, y_d = 0.0, load = 0.0, t_prev = 0.0;
+  char line[256];
+  for (bool first = true; std::fgets(line, sizeof line, in) != nullptr; first = false) {
+    if (std::sscanf(line, "%lf,%lf,%lf", &t, &y_d, &load) != 3) break;
+    std::fprintf(out, "%.17g\n", c.step(y_d, first ? 0.0 : t - t_prev, load));
+    t_prev = t;
+  }
+  std::fclose(in);
+  std::fclose(out);
+  return 0;
+}
+
+// t,y_1,...,y_J lines: every joint's desired angle each cycle (a CoupledFeedforward file)
+int run_coupled(ts::CoupledFeedforward& c, const char* in_path, const char* out_path) {
+  std::FILE *in = nullptr, *out = nullptr;
+  if (!open_files(in_path, out_path, in, out)) return 2;
+  const std::size_t n = c.joints();
+  std::vector<double> y_d(n), u(n);  // sized before the loop: step() allocates nothing
+  double t_prev = 0.0;
+  char line[4096];
+  for (bool first = true; std::fgets(line, sizeof line, in) != nullptr; first = false) {
+    char* p = line;
+    const double t = std::strtod(p, &p);
+    for (std::size_t j = 0; j < n && *p == ','; ++j) y_d[j] = std::strtod(p + 1, &p);
+    c.step(y_d.data(), u.data(), first ? 0.0 : t - t_prev);
+    for (std::size_t j = 0; j < n; ++j) std::fprintf(out, j + 1 < n ? "%.17g," : "%.17g\n", u[j]);
     t_prev = t;
   }
   std::fclose(in);
@@ -86,7 +138,23 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    ts::io::LoadedCompensator ff = ts::io::load_compensator_json(argv[1]);
+    const ts::io::json file = ts::io::read_json_file(argv[1]);
+    const bool multi = file.is_object() && file.contains("compensator") &&
+                       (file.at("compensator") == "LoadCompensated" ||
+                        file.at("compensator") == "CoupledFeedforward");
+    if (multi && argc != 4) {
+      std::fprintf(stderr, "%s: give TRAJ OUT (the self-check runs an InverseFeedforward)\n", argv[1]);
+      return 2;
+    }
+    if (multi && file.at("compensator") == "LoadCompensated") {
+      ts::io::LoadCompensatedInverse c = ts::io::load_compensated_from_json(file, argv[1]);
+      return run_loaded(c, argv[2], argv[3]);
+    }
+    if (multi) {
+      ts::CoupledFeedforward c = ts::io::coupled_feedforward_from_json(file, argv[1]);
+      return run_coupled(c, argv[2], argv[3]);
+    }
+    ts::io::LoadedCompensator ff = ts::io::compensator_from_json(file, argv[1]);
     return argc == 4 ? run_trajectory(ff, argv[2], argv[3]) : self_check(ff, argv[1]);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -92,7 +92,7 @@ def _model_body(model) -> tuple[str, str]:
     raise ValueError(
         "export --cpp writes Backlash, BoucWenBacklash and PrandtlIshlinskii models and the "
         "InverseFeedforward, CurveAngleFeedforward and ContinuumFeedforward compensators "
-        f"(got {kind})"
+        f"(got {kind})" + _MODEL_NOTE.get(kind, "")
     )
 
 
@@ -177,6 +177,23 @@ _JSON_LOADER_NOTE = {
     k: ": load its JSON with tendonsheath/io/json.hpp instead"
     for k in ("EncoderLoop", "TipLoop", "LearnedFeedforward")
 }
+# those whose step takes more than (y_d, dt): tendonsheath/io/json_multi_input.hpp reads them
+_MULTI_INPUT = "tendonsheath/io/json_multi_input.hpp"
+_JSON_LOADER_NOTE["LoadCompensated"] = (
+    f": it takes the measured load each cycle; load its JSON with {_MULTI_INPUT} "
+    "(io::load_load_compensated_json) instead"
+)
+_JSON_LOADER_NOTE["CoupledFeedforward"] = (
+    f": it steps all joints together; load its JSON with {_MULTI_INPUT} "
+    "(io::load_coupled_feedforward_json) instead"
+)
+# the models whose inverse is one of those: save that compensator instead
+_MODEL_NOTE = {
+    "Loaded": ": its inverse takes the measured load each cycle; save "
+    "ts.compensate.LoadCompensated(model).to_json(...) and load that JSON with " + _MULTI_INPUT,
+    "Coupled": ": its inverse steps all joints together; save "
+    "ts.compensate.CoupledFeedforward(model).to_json(...) and load that JSON with " + _MULTI_INPUT,
+}
 
 
 def _compensator_body(ff) -> tuple[str, str]:
@@ -258,6 +275,10 @@ def cpp_header(source: str | Path, namespace: str | None = None) -> str:
     if fmt == "tendonsheath.compensator":
         obj = load_compensator(path)
         include, body = _compensator_body(obj)
+    elif fmt == "tendonsheath.coupled_model":
+        raise ValueError(
+            f"export --cpp: {path.name} holds a Coupled model" + _MODEL_NOTE["Coupled"]
+        )
     else:
         obj = load_model(path)
         include, body = _model_body(obj)

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../status.hpp"
 #include "../validate.hpp"
 
 namespace tendonsheath {
@@ -101,6 +102,10 @@ class LoadCompensated {
     inverse_.reset();
     play_.reset();
   }
+
+  /// The last step's status: the base inverse's (an Inverse with ``Status status() const
+  /// noexcept``; e.g. a ModelInverse's out_of_range or saturated).
+  Status status() const noexcept { return inverse_.status(); }
 
   /// One control cycle: the command for the desired output y_d under the load measured now.
   double step(double y_d, double dt, double load) noexcept {

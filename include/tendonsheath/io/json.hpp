@@ -471,6 +471,13 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
     detail::check_keys(f, allowed, keys, where);
     return {"ContinuumFeedforward", ContinuumFeedforward(continuum_feedforward_params(f, where))};
   }
+  if (kind == "LoadCompensated" || kind == "CoupledFeedforward")  // their step takes more inputs
+    detail::fail(where, "key 'compensator': a " + kind.get<std::string>() + " steps with " +
+                            (kind == "LoadCompensated" ? "the measured load each cycle: load it "
+                                                         "with io::load_compensated_from_json"
+                                                       : "every joint each cycle: load it with "
+                                                         "io::coupled_feedforward_from_json") +
+                            " (tendonsheath/io/json_multi_input.hpp)");
   detail::fail(where, "key 'compensator': unknown compensator " + kind.dump() +
                           " (known: ContinuumFeedforward, CurveAngleFeedforward, EncoderLoop, "
                           "InverseFeedforward, LearnedFeedforward, TipLoop)");

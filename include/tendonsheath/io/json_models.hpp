@@ -1,7 +1,9 @@
 // Model files ("tendonsheath.model", as Python's `HysteresisModel.to_json` writes them) read
 // into the description a ModelInverse is built from (InverseModel): every model class the
-// identification returns, a Chain of two, a Scaled model around either. Part of the optional
-// tendonsheath/io/json.hpp (needs nlohmann/json); outside the real-time path.
+// identification returns, a Chain of two, a Scaled model around either; a Loaded model (a base
+// and its load terms, LoadedModel) and a Coupled model file ("tendonsheath.coupled_model",
+// CoupledModel). Part of the optional tendonsheath/io/json.hpp (needs nlohmann/json); outside the
+// real-time path.
 #pragma once
 
 #include <cmath>
@@ -15,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../compensators/load_compensated.hpp"
 #include "../compensators/make_model_inverse.hpp"
 
 namespace tendonsheath::io {
@@ -323,6 +326,10 @@ inline ModelPart part_from_json(const json& m, const std::string& where) {
   else if (part.kind == "CurveAngleModel") curve_angle_part(part, m, where);
   else if (part.kind == "AngleDependent") angle_dependent_part(part, m, where);
   else if (!param_names(part.kind).empty()) scalar_part(part, m, where);
+  else if (part.kind == "Loaded")
+    fail(where, "key 'model': a Loaded model's inverse takes the measured load each cycle: save a "
+                "LoadCompensated and load it with io::load_load_compensated_json "
+                "(tendonsheath/io/json_multi_input.hpp)");
   else
     fail(where, "key 'model': the C++ loader inverts Backlash, BoucWenBacklash, BoucWen, "
                 "PrandtlIshlinskii, GeneralizedPrandtlIshlinskii, Polynomial, PlantModel, "
@@ -384,6 +391,73 @@ inline InverseModel inverse_model_from_json(const json& m, const std::string& wh
     return out;
   }
   out.parts = detail::parts_from_json(m, where);
+  return out;
+}
+
+/// A Loaded model file (Python's models.Loaded: y = base(play_r(L)(x)) + gain L) as
+/// LoadCompensated takes it: the base's description and the four load terms.
+struct LoadedModel {
+  InverseModel base;  ///< the unloaded drive's model (any model inverse_model_from_json reads)
+  LoadTerms terms;    ///< gain, slack, slack_load, friction; switch_travel is the compensator's
+};
+
+/// The Loaded model of a "tendonsheath.model" document (model "Loaded": base, terms, and an
+/// optional input_range). Throws std::invalid_argument, message starting with `where`, naming a
+/// missing, unknown, mistyped or out-of-range key.
+inline LoadedModel loaded_model_from_json(const json& m, const std::string& where) {
+  detail::check_format(m, "tendonsheath.model", where);
+  const json& name = detail::member(m, "model", where);
+  if (name != "Loaded") detail::fail(where, "key 'model' must be \"Loaded\" (got " + name.dump() + ")");
+  detail::check_keys(m, {"format", "version", "model", "base", "terms", "input_range"},
+                     {"base", "terms"}, where);
+  model_input_range(m, where);  // a malformed one is an error, though the inverse takes its own
+  LoadedModel out;
+  out.base = inverse_model_from_json(m.at("base"), where + ": base");
+  const std::string w = where + ": terms";
+  const json& t = m.at("terms");
+  const std::set<std::string> keys{"gain", "slack", "slack_load", "friction"};
+  detail::check_keys(t, keys, keys, w);
+  out.terms.gain = detail::number(t, "gain", w);
+  out.terms.slack = detail::number(t, "slack", w);
+  out.terms.slack_load = detail::number(t, "slack_load", w);
+  out.terms.friction = detail::number(t, "friction", w);
+  out.terms.validate(w.c_str());
+  return out;
+}
+
+/// A Coupled model file (Python's models.Coupled: y_i = H_i(x_i) + sum_j C[i][j] y_j).
+struct CoupledModel {
+  std::vector<InverseModel> joints;  ///< H_i, one description per joint
+  std::vector<double> coupling;      ///< C, row-major J x J (validated by CoupledFeedforward)
+};
+
+/// The Coupled model of a "tendonsheath.coupled_model" document (models: one model document per
+/// joint; coupling: J rows of J numbers). Throws std::invalid_argument, message starting with
+/// `where`, naming a missing, unknown or mistyped key.
+inline CoupledModel coupled_model_from_json(const json& m, const std::string& where) {
+  detail::check_format(m, "tendonsheath.coupled_model", where);
+  detail::check_keys(m, {"format", "version", "models", "coupling"}, {"models", "coupling"}, where);
+  const json& models = m.at("models");
+  if (!models.is_array() || models.empty())
+    detail::fail(where, "key 'models' must be a non-empty array of model objects");
+  CoupledModel out;
+  for (std::size_t i = 0; i < models.size(); ++i)
+    out.joints.push_back(
+        inverse_model_from_json(models[i], where + ": models[" + std::to_string(i) + "]"));
+  const std::size_t n = models.size();
+  const json& c = m.at("coupling");
+  const std::string shape = std::to_string(n) + " rows of " + std::to_string(n) + " numbers";
+  if (!c.is_array() || c.size() != n)
+    detail::fail(where, "key 'coupling' must be " + shape + " (got " + c.dump() + ")");
+  for (const json& row : c) {
+    if (!row.is_array() || row.size() != n)
+      detail::fail(where, "key 'coupling' must be " + shape + " (got the row " + row.dump() + ")");
+    for (const json& v : row) {
+      if (!v.is_number())
+        detail::fail(where, "key 'coupling' must hold only numbers (got " + v.dump() + ")");
+      out.coupling.push_back(v.get<double>());
+    }
+  }
   return out;
 }
 

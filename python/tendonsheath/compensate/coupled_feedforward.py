@@ -5,6 +5,7 @@ of ``tendonsheath/compensators/coupled_feedforward.hpp``)."""
 from __future__ import annotations
 
 import functools
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -16,6 +17,7 @@ from .._typing import ArrayLike, FloatArray
 from ..coupled_plant import _joint_matrix
 from ..models import Coupled
 from ..status import Status
+from . import persistence
 from .inverse_feedforward import InverseFeedforward
 
 
@@ -49,6 +51,12 @@ class CoupledFeedforward(PythonObject):
     ValueError
         A bad setting (as InverseFeedforward says).
     """
+
+    # the keys of a saved file (to_json): the Coupled model whole and the joints' settings,
+    # defaults resolved; tendonsheath/io/json_multi_input.hpp reads it
+    _saved_settings = ("model", "smoothing", "limits", "input_range", "range_margin", "filter_hz")
+    # absent input_range: each joint's own model's range (InverseFeedforward's "identified")
+    _optional_settings = ("input_range",)
 
     def __init__(self, model: Coupled, **settings: Any):
         if not isinstance(model, Coupled):
@@ -153,6 +161,66 @@ class CoupledFeedforward(PythonObject):
         yd = _joint_matrix(y_desired, len(self.joints), "y_desired", "CoupledFeedforward.command")
         ts = np.ascontiguousarray(as_vector(t, "t"))
         return self._engine.command(ts, yd)
+
+    # -- persistence -----------------------------------------------------------------
+    def to_dict(self) -> dict:
+        """The compensator as a dict (format ``tendonsheath.compensator``): the Coupled model
+        whole and the joints' settings, defaults resolved; ``input_range`` only when one was
+        given (else each joint takes its own model's range).
+
+        Returns
+        -------
+        dict
+            What :func:`~tendonsheath.compensate.load_compensator` reads back.
+        """
+        settings = {k: v for k, v in self.joints[0].params.items() if k != "model"}
+        if isinstance(self.settings.get("input_range", "identified"), str):
+            del settings["input_range"]  # "identified": each joint's own, saved in its model
+        return persistence.compensator_dict("CoupledFeedforward", {"model": self.model, **settings})
+
+    def to_json(self, path: str | Path | None = None) -> str:
+        """The compensator as JSON text; also written to `path` when one is given. The C++
+        ``tendonsheath/io/json_multi_input.hpp`` reads it (``load_coupled_feedforward_json``).
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            A file to write the JSON to.
+
+        Returns
+        -------
+        str
+            The JSON text.
+        """
+        return persistence.to_json(self.to_dict(), path)
+
+    @classmethod
+    def load(cls, source: str | Path | dict) -> CoupledFeedforward:
+        """A CoupledFeedforward saved with :meth:`to_json` (a path, JSON text or a dict).
+
+        Parameters
+        ----------
+        source : str, Path or dict
+            A path to a JSON file, JSON text, or the dict itself.
+
+        Returns
+        -------
+        CoupledFeedforward
+            The saved compensator.
+
+        Raises
+        ------
+        ValueError
+            An unreadable source or an invalid compensator file.
+        TypeError
+            The file holds another kind of compensator.
+        """
+        return persistence.load_as(cls, source)
+
+    @classmethod
+    def _from_saved(cls, values: dict) -> CoupledFeedforward:
+        settings = dict(values)
+        return cls(settings.pop("model"), **settings)
 
     def __repr__(self) -> str:
         return f"CoupledFeedforward({self.model!r})"

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import functools
 import math
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -27,6 +28,7 @@ from .._arrays import as_timed_signal, checked_dt
 from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from ..models.loaded import Loaded
+from . import persistence
 from .inverse_feedforward import InverseFeedforward
 
 
@@ -51,6 +53,18 @@ class LoadCompensated(PythonObject):
     ValueError
         switch not > 0.
     """
+
+    # the keys of a saved file (to_json), in order: the model whole, the switch and the base
+    # inverse's settings (defaults resolved); tendonsheath/io/json_multi_input.hpp reads it
+    _saved_settings = (
+        "model",
+        "switch",
+        "smoothing",
+        "limits",
+        "input_range",
+        "range_margin",
+        "filter_hz",
+    )
 
     def __init__(self, model: Loaded, switch: float | None = None, **inverse_options: Any):
         if not isinstance(model, Loaded):
@@ -138,6 +152,69 @@ class LoadCompensated(PythonObject):
         loads = np.ascontiguousarray(loads)
         z = np.asarray(self.inverse.command(ts, ys - self.model.terms["gain"] * loads))
         return np.asarray(self._play.command(np.ascontiguousarray(z, dtype=float), loads))
+
+    # -- persistence -----------------------------------------------------------------
+    def to_dict(self) -> dict:
+        """The compensator as a dict (format ``tendonsheath.compensator``): the Loaded model
+        whole, the switch and the base inverse's settings, defaults resolved.
+
+        Returns
+        -------
+        dict
+            What :func:`~tendonsheath.compensate.load_compensator` reads back.
+        """
+        inverse = {k: v for k, v in self.inverse.params.items() if k != "model"}  # its base
+        settings = {"model": self.model, "switch": self.switch, **inverse}
+        return persistence.compensator_dict("LoadCompensated", settings)
+
+    def to_json(self, path: str | Path | None = None) -> str:
+        """The compensator as JSON text; also written to `path` when one is given. The C++
+        ``tendonsheath/io/json_multi_input.hpp`` reads it (``load_load_compensated_json``).
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            A file to write the JSON to.
+
+        Returns
+        -------
+        str
+            The JSON text.
+        """
+        return persistence.to_json(self.to_dict(), path)
+
+    @classmethod
+    def load(cls, source: str | Path | dict) -> LoadCompensated:
+        """A LoadCompensated saved with :meth:`to_json` (a path, JSON text or a dict).
+
+        Parameters
+        ----------
+        source : str, Path or dict
+            A path to a JSON file, JSON text, or the dict itself.
+
+        Returns
+        -------
+        LoadCompensated
+            The saved compensator.
+
+        Raises
+        ------
+        ValueError
+            An unreadable source or an invalid compensator file.
+        TypeError
+            The file holds another kind of compensator.
+        """
+        return persistence.load_as(cls, source)
+
+    @classmethod
+    def _from_saved(cls, values: dict) -> LoadCompensated:
+        settings = dict(values)
+        model = settings.pop("model")
+        if not isinstance(model, Loaded):
+            raise ValueError(
+                f"LoadCompensated file: 'model' must be a Loaded model (got {type(model).__name__})"
+            )
+        return cls(model, **settings)
 
     def __repr__(self) -> str:
         return f"LoadCompensated({self.model!r}, switch={self.switch:g})"

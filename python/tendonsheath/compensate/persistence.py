@@ -1,9 +1,11 @@
 """Compensators saved as JSON and loaded back, like models (format ``tendonsheath.compensator``).
 
 A file holds the compensator's class name and its constructor settings; an
-``InverseFeedforward`` embeds its model's own dict. Unbounded settings (infinite limits,
-``max_correction_rate``) are written as ``null``, since JSON has no infinity and the C++ loader
-(``tendonsheath/io/json.hpp``) reads the same files.
+``InverseFeedforward`` (and a ``LoadCompensated``) embeds its model's own dict, a
+``CoupledFeedforward`` its Coupled model's (format ``tendonsheath.coupled_model``). Unbounded
+settings (infinite limits, ``max_correction_rate``) are written as ``null``, since JSON has no
+infinity and the C++ loaders (``tendonsheath/io/json.hpp``, ``io/json_multi_input.hpp``) read
+the same files.
 """
 
 from __future__ import annotations
@@ -20,12 +22,20 @@ from .._json_source import naming_the_file, read_json_source
 if TYPE_CHECKING:
     from .adaptive_controller import AdaptiveController
     from .base import Feedforward
+    from .coupled_feedforward import CoupledFeedforward
     from .encoder_loop import EncoderLoop
     from .learned_feedforward import LearnedFeedforward
+    from .load_compensated import LoadCompensated
     from .tip_loop import TipLoop
 
     Compensator: TypeAlias = (
-        Feedforward | AdaptiveController | EncoderLoop | TipLoop | LearnedFeedforward
+        Feedforward
+        | AdaptiveController
+        | EncoderLoop
+        | TipLoop
+        | LearnedFeedforward
+        | LoadCompensated
+        | CoupledFeedforward
     )
 
 FORMAT_NAME = "tendonsheath.compensator"
@@ -74,10 +84,12 @@ def _finite_or_none(value):
 def _registry() -> dict[str, type[Compensator]]:
     from .adaptive_controller import AdaptiveController
     from .continuum_feedforward import ContinuumFeedforward
+    from .coupled_feedforward import CoupledFeedforward
     from .curve_angle_feedforward import CurveAngleFeedforward
     from .encoder_loop import EncoderLoop
     from .inverse_feedforward import InverseFeedforward
     from .learned_feedforward import LearnedFeedforward
+    from .load_compensated import LoadCompensated
     from .tip_loop import TipLoop
 
     kinds = (
@@ -88,6 +100,8 @@ def _registry() -> dict[str, type[Compensator]]:
         EncoderLoop,
         LearnedFeedforward,
         TipLoop,
+        LoadCompensated,
+        CoupledFeedforward,
     )
     return {c.__name__: c for c in kinds}
 
@@ -147,8 +161,10 @@ def _setting(name: str, key: str, value):
     if key == "limits":
         return _limits(name, value)
     if key in _MODELS:
-        from ..models import HysteresisModel
+        from ..models import Coupled, HysteresisModel
 
+        if name == "CoupledFeedforward":  # the joints' models and their coupling
+            return Coupled.from_dict(value)
         return None if value is None else HysteresisModel.from_dict(value)
     if key in _COMPENSATORS:
         if not isinstance(value, dict):
@@ -240,7 +256,7 @@ def load_compensator(source: str | Path | dict) -> Compensator:
     Returns
     -------
     InverseFeedforward, CurveAngleFeedforward, ContinuumFeedforward, AdaptiveController,
-    EncoderLoop, TipLoop or LearnedFeedforward
+    EncoderLoop, TipLoop, LearnedFeedforward, LoadCompensated or CoupledFeedforward
         The saved compensator.
 
     Raises

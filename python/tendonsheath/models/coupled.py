@@ -174,7 +174,8 @@ class Coupled(PythonObject):
         Raises
         ------
         ValueError
-            Not a saved coupled model.
+            Not a saved coupled model: a missing or unknown key, models not a list of model
+            objects, or coupling not rows of numbers.
         """
         if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
             raise ValueError(f"Coupled.from_dict: not a {FORMAT_NAME!r} file")
@@ -183,6 +184,7 @@ class Coupled(PythonObject):
                 f"Coupled.from_dict: version {data.get('version')!r} is not supported "
                 f"(expected {FORMAT_VERSION})"
             )
+        _check_saved_keys(data)
         return cls([load_model(m) for m in data["models"]], data["coupling"])
 
     def to_json(self, path: str | Path | None = None) -> str:
@@ -228,3 +230,28 @@ class Coupled(PythonObject):
     def __repr__(self) -> str:
         names = ", ".join(type(m).__name__ for m in self.models)
         return f"Coupled([{names}], coupling={self._coupling.tolist()})"
+
+
+_SAVED_KEYS = ("format", "version", "models", "coupling")
+
+
+def _check_saved_keys(data: dict[str, Any]) -> None:
+    """Strict, like the C++ loader: every key known and present, models a non-empty list of
+    objects, coupling a list of rows of numbers (not booleans)."""
+    unknown = sorted(set(data) - set(_SAVED_KEYS))
+    if unknown:
+        raise ValueError(f"Coupled file: unknown key(s) {unknown}; expected {list(_SAVED_KEYS)}")
+    missing = [k for k in _SAVED_KEYS if k not in data]
+    if missing:
+        raise ValueError(f"Coupled file: key(s) {missing} missing")
+    models = data["models"]
+    if not isinstance(models, list) or not models or not all(isinstance(m, dict) for m in models):
+        raise ValueError("Coupled file: 'models' must be a non-empty list of model objects")
+    rows = data["coupling"]
+    if not isinstance(rows, list) or not all(
+        isinstance(r, list)
+        and all(isinstance(v, int | float) and not isinstance(v, bool) for v in r)
+        for r in rows
+    ):
+        got = json.dumps(rows)[:60]
+        raise ValueError(f"Coupled file: 'coupling' must be a list of rows of numbers (got {got})")

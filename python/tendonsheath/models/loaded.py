@@ -345,6 +345,9 @@ class Loaded(HysteresisModel):
         unknown = set(terms) - set(LOAD_TERMS)
         if unknown:
             raise ValueError(f"Loaded: unknown term(s) {sorted(unknown)}; expected {LOAD_TERMS}")
+        missing = [k for k in LOAD_TERMS if k not in terms]
+        if missing:  # strict, like the C++ loader (to_dict writes all four)
+            raise ValueError(f"Loaded file: term(s) {missing} missing from 'terms'")
         for key, value in terms.items():
             if isinstance(value, bool) or not isinstance(value, int | float):
                 raise ValueError(f"Loaded file: term '{key}' must be a number (got {value!r})")
