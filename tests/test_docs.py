@@ -9,8 +9,10 @@ warnings as errors is ``make docs``, which ``make test`` runs.
 import importlib
 import importlib.util
 import inspect
+import os
 import re
 import subprocess
+import sys
 import tomllib
 from pathlib import Path
 from xml.etree import ElementTree
@@ -21,22 +23,87 @@ from _snippets import MAIN_GUARD, python_blocks, run_as_script
 
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
-PAGES = ["index.md", *sorted(p.relative_to(DOCS).as_posix() for p in DOCS.glob("tutorials/*.md"))]
+SHARED_DATA = ROOT.parent / "shared" / "data"
+# the pages whose blocks run: the tutorials and the guides that hold code
+PAGES = [
+    "index.md",
+    "scenario-toml.md",
+    *sorted(p.relative_to(DOCS).as_posix() for p in DOCS.glob("tutorials/*.md")),
+]
 # the only edits: run lengths (a sweep of 4 draws takes the same code path as 200)
 SHORTER = {"n=200": "n=4"}
+# the pages whose commands (```bash blocks) run too, in order with their Python blocks; the
+# others' commands are installation steps (make demo, make test)
+SHELL_PAGES = {
+    "scenario-toml.md",
+    "tutorials/compare-real-data.md",
+    "tutorials/deploy.md",
+    "tutorials/ros-bags.md",
+}
+# the only edits of a page's blocks: where this checkout's headers and the shared data are (the
+# pages run from the repository's root, the test in a temporary folder); each must be used
+EDITS = {
+    "tutorials/deploy.md": {"-Iinclude": f"-I{ROOT / 'include'}", "build/cpp": f"{ROOT}/build/cpp"},
+    "tutorials/compare-real-data.md": {"../shared/data": str(SHARED_DATA)},
+}
+FENCE = re.compile(r"^```(\w+)\n(.*?)^```", flags=re.S | re.M)
+# a C++ or TOML block that a page tells the reader to save: its first line names the file
+SAVED_AS = re.compile(r"\A(?://|#) file: (\S+)\n")
 
 
 def page_blocks(page: str) -> list[str]:
     return python_blocks((DOCS / page).read_text())
 
 
+def fenced_blocks(page: str) -> list[tuple[str, str]]:
+    """(language, code) of every fenced block of ``page``, in order, with the page's EDITS."""
+    edits = EDITS.get(page, {})
+    text = (DOCS / page).read_text()
+    for old in edits:
+        assert old in text, f"docs/{page} no longer holds {old!r}"
+    blocks = []
+    for lang, code in FENCE.findall(text):
+        for old, new in edits.items():
+            code = code.replace(old, new)
+        blocks.append((lang, code))
+    return blocks
+
+
+def run_commands(code: str, folder: Path, source: str) -> str:
+    """A page's shell block run by bash in ``folder`` (stopping at the first failing command),
+    with this interpreter's scripts (``tendonsheath``) first on the PATH; its output."""
+    env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}")
+    done = subprocess.run(
+        ["bash", "-e", "-o", "pipefail", "-c", code],
+        cwd=folder,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert done.returncode == 0, f"{source}:\n{code}\n{done.stdout[-2000:]}{done.stderr[-3000:]}"
+    return done.stdout + done.stderr
+
+
 def run_page(page: str, folder: Path) -> dict:
-    namespace: dict = {"__name__": "docs_page"}
-    for i, code in enumerate(page_blocks(page)):
-        if MAIN_GUARD in code:
+    """Every block of ``page`` in order: Python blocks in one namespace (a script with a main
+    guard in a fresh interpreter), a C++ or TOML block whose first line is ``// file: NAME``
+    (``# file: NAME``) saved as NAME,
+    and the commands of SHELL_PAGES (their output in the namespace's ``_shell`` list)."""
+    namespace: dict = {"__name__": "docs_page", "_shell": []}
+    setup = SETUP.get(page)
+    if setup is not None:
+        setup(folder)
+    for i, (lang, code) in enumerate(fenced_blocks(page)):
+        where = f"docs/{page} block {i + 1}"
+        if lang == "python" and MAIN_GUARD in code:
             run_as_script(code, folder / f"block_{i}.py", SHORTER, f"docs/{page}")
-        else:
-            exec(compile(code, f"docs/{page} python block {i + 1}", "exec"), namespace)
+        elif lang == "python":
+            exec(compile(code, where, "exec"), namespace)
+        elif lang in ("cpp", "toml") and SAVED_AS.match(code):
+            (folder / SAVED_AS.match(code)[1]).write_text(code)
+        elif lang == "bash" and page in SHELL_PAGES:
+            namespace["_shell"].append(run_commands(code, folder, where))
     return namespace
 
 
@@ -48,7 +115,9 @@ def test_the_four_tutorials_are_there_with_code():
         "tutorials/compensate.md",
         "tutorials/sweep.md",
     }
-    assert all(page_blocks(page) for page in PAGES)
+    runs = {page for page in PAGES if page_blocks(page)}
+    runs |= {p for p in SHELL_PAGES if any(lang == "bash" for lang, _ in fenced_blocks(p))}
+    assert runs == set(PAGES)
 
 
 def test_every_page_is_in_the_site_navigation():
@@ -141,12 +210,74 @@ def _real_drives(ns, _folder):
     assert "Loaded(Backlash)" in ns["cmp"].excluded() and np.all(np.isfinite(ns["u"]))
 
 
+NUMBER = re.compile(r"-?\d+\.\d+(?:e-?\d+)?")
+
+
+def _to_6_digits(text: str) -> str:
+    return NUMBER.sub(lambda m: f"{float(m[0]):.6g}", text)
+
+
+def _deploy(ns, folder):
+    # the C++ commands, from the JSON loader (example 03) and from the generated header, are
+    # Python's (measured: 0 difference; example 03 prints 17 digits)
+    assert np.max(np.abs(ns["u_cpp"] - ns["u_python"])) < 1e-12
+    assert np.max(np.abs(ns["u_params"] - ns["u_python"])) < 1e-12
+    import tendonsheath as ts
+
+    # the line the program prints, as the page quotes it, with Python's count of the cycles cut
+    saturated = ts.status_counts(ns["flags"])["saturated"]
+    printed = f"0 cycles held at the range's edge, {saturated} saturated"
+    assert printed in ns["_shell"][-1] and printed in (DOCS / "tutorials/deploy.md").read_text()
+    # the header the page shows is the one the command wrote (to 6 digits: the identified
+    # parameters may differ in their last digits on another machine)
+    shown = [code for lang, code in fenced_blocks("tutorials/deploy.md") if "// Generated" in code]
+    assert [_to_6_digits(c) for c in shown] == [_to_6_digits((folder / "ff_params.hpp").read_text())]
+
+
+def _ros_bags_written(folder: Path) -> None:
+    """What docs/tutorials/ros-bags.md reads: run.bag (ROS 1), run_db3/ and run_mcap/ (ROS 2),
+    10 s at 100 Hz of /joint_states (JointState: joints roll and bend, header stamps set,
+    received 1 ms later; the publisher swaps their order half-way) and /tip/angle (Float64, no
+    header: received 4 ms after the tip was measured)."""
+    from _rosbag_helpers import EPOCH_NS, float64, joint_state, write_bag
+
+    import tendonsheath as ts
+
+    t = np.arange(0.0, 10.0, 0.01)
+    bend, roll = 0.6 * np.sin(2 * np.pi * 0.3 * t), 0.2 * np.sin(2 * np.pi * 0.1 * t)
+    tip = ts.models.Backlash(B_r=0.05, B_l=0.05).simulate(t, bend)
+    stamps = EPOCH_NS + np.round(t * 1e9).astype(np.int64)
+    for kind, path in (("ros1", "run"), ("sqlite3", "run_db3"), ("mcap", "run_mcap")):
+        states = [
+            (s + 1_000_000, joint_state(kind, s, [r, b], names=["roll", "bend"]))
+            if k < t.size // 2
+            else (s + 1_000_000, joint_state(kind, s, [b, r], names=["bend", "roll"]))
+            for k, (s, r, b) in enumerate(zip(stamps, roll, bend, strict=True))
+        ]
+        tips = [(s + 4_000_000, float64(kind, y)) for s, y in zip(stamps, tip, strict=True)]
+        write_bag(folder / path, kind, {"/joint_states": states, "/tip/angle": tips})
+
+
+def _ros_bags(ns, folder):
+    log = ns["log"]
+    # the bend joint read by name across the swap: its amplitude (0.6, not roll's 0.2) and no
+    # jump at the swap (a 0.3 Hz sine moves at most 0.012 rad in 10 ms)
+    assert np.ptp(log.x) > 1.0 and np.max(np.abs(np.diff(log.x))) < 0.02
+    assert any("mixed time bases" in note for note in log.notes)
+    assert (folder / "bag_pred.csv").is_file()
+
+
+SETUP = {"tutorials/ros-bags.md": _ros_bags_written}
+
+
 CHECKS = {
     "tutorials/real-drives.md": _real_drives,
     "tutorials/simulate.md": _simulate,
     "tutorials/identify.md": _identify,
     "tutorials/compensate.md": _compensate,
     "tutorials/sweep.md": _sweep,
+    "tutorials/ros-bags.md": _ros_bags,
+    "tutorials/deploy.md": _deploy,
 }
 
 
@@ -206,3 +337,119 @@ def test_every_public_class_has_a_page_in_the_cpp_reference(doxygen_html):
     documented = {name.rsplit("::", 1)[-1] for name, page in pages.items() if page.is_file()}
     assert sorted(public_classes() - documented) == []
     assert [name for name in pages if "::detail::" in name] == []
+
+
+# --- the scenario file's keys (docs/scenario-toml.md) ------------------------------------
+
+SCENARIO_PAGE = DOCS / "scenario-toml.md"
+TYPE_WORDS = {str: "string", float: "number", int: "integer", bool: "boolean", list: "array"}
+# keys whose default is not one value: the calibration angles follow the test routes'
+DEFAULT_IN_WORDS = {("calibration", "angles")}
+
+
+def scenario_key_table() -> dict[tuple[str, str], tuple[str, str, str]]:
+    """(table, key) -> (type, default, allowed) of the page's key table; "" is the top level."""
+    rows = {}
+    for line in SCENARIO_PAGE.read_text().splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) != 5 or not cells[1].startswith("`"):
+            continue
+        table = cells[0].strip("`[]") if cells[0] != "(top)" else ""
+        rows[(table, cells[1].strip("`"))] = (cells[2], cells[3].strip("`"), cells[4])
+    return rows
+
+
+def scenario_defaults() -> dict[tuple[str, str], object]:
+    """Every key's default as the code has it: the tables of a scenario that gives none, the
+    classes' signatures, and the literal defaults in tendonsheath/bench/user_scenario.py."""
+    import tendonsheath as ts
+    from tendonsheath.bench import user_scenario as us
+
+    sc = us.parse('title = "user scenario"')
+    source = inspect.getsource(us)
+    literal = {
+        key: eval(value, {"math": __import__("math")})
+        for key, value in re.findall(r'\.get\("(\w+)", ([\w."]+)\)', source)
+    }
+    pair = inspect.signature(ts.PullPullPlant.__init__).parameters
+    continuum = inspect.signature(ts.ContinuumPlant.__init__).parameters
+    motor = inspect.signature(ts.Motor.position).parameters
+    sensor = inspect.signature(ts.Sensor.__init__).parameters
+    out = {("", "title"): sc.title, ("", "seed"): sc.seed}
+    for key in us._KEYS["plant"]:
+        given = sc.plant.get(key, literal.get(key) if key in ("realistic",) else None)
+        params = continuum if key in continuum and key not in pair else pair
+        out[("plant", key)] = given if given is not None else params[key].default
+    initial = sc.route["initial"]
+    out.update({("route", "length"): initial.length, ("route", "total_angle"): initial.curve_angle})
+    out.update({("route", "arcs"): None, ("route", "changes"): None})
+    out.update({("load", k): literal[k] if k != "type" else None for k in us._KEYS["load"]})
+    for table, params in (("motor", motor), ("sensor", sensor)):
+        values = getattr(sc, table)
+        out.update({(table, k): values.get(k, params[k].default) for k in us._KEYS[table]})
+    for table in ("torque_motor", "reference", "calibration"):
+        values = getattr(sc, table)
+        out.update({(table, k): values.get(k, literal.get(k)) for k in us._KEYS[table]})
+    out.update({("compare", "compensators"): sc.compensators, ("compare", "user"): None})
+    return out
+
+
+def _same_default(cell: str, value) -> bool:
+    if value is None or value == float("inf"):
+        return cell.startswith("none")
+    parsed = tomllib.loads(f"v = {cell}")["v"]
+    if isinstance(value, float):
+        return isinstance(parsed, int | float) and np.isclose(parsed, value, rtol=1e-4)
+    return parsed == value
+
+
+def test_the_scenario_page_lists_every_key_with_its_type_and_default():
+    from tendonsheath.bench import user_scenario as us
+
+    rows = scenario_key_table()
+    keys = {("", k) for k in us._TOP if us._TOP[k] is not dict}
+    keys |= {(table, key) for table, known in us._KEYS.items() for key in known}
+    assert sorted(rows) == sorted(keys)
+    types = {("", k): v for k, v in us._TOP.items()}
+    types.update({(t, k): v for t, known in us._KEYS.items() for k, v in known.items()})
+    assert {k: rows[k][0] for k in rows} == {k: TYPE_WORDS[types[k]] for k in rows}
+    defaults = scenario_defaults()
+    wrong = {
+        k: (rows[k][1], defaults[k])
+        for k in rows
+        if k not in DEFAULT_IN_WORDS and not _same_default(rows[k][1], defaults[k])
+    }
+    assert wrong == {}
+
+
+BOUND = re.compile(r"^(>=|>|<) (-?[0-9.e+-]+)(?: \(.*\))?$")
+
+
+def _scenario_with(table: str, key: str, value) -> str:
+    line = f"{key} = {str(value).lower() if isinstance(value, bool) else repr(value)}"
+    return f'title = "probe"\n{line}\n' if table == "" else f"[{table}]\n{line}\n"
+
+
+def test_the_scenario_page_bounds_are_the_checks():
+    """Each bound the page states (> B, >= B) is where the parser starts refusing: the bound
+    itself (> B) or just below it (>= B) is an error naming the key's table, and a value just
+    inside passes."""
+    from tendonsheath.bench import user_scenario as us
+
+    probed = 0
+    for (table, key), (kind, _default, allowed) in scenario_key_table().items():
+        m = BOUND.match(allowed.replace("`", ""))
+        if m is None:
+            continue
+        op, bound = m[1], float(m[2])
+        step = 1 if kind == "integer" else 1e-3 * max(1.0, abs(bound))
+        bad, good = (bound, bound + step) if op == ">" else (bound - step, bound)
+        if op == "<":
+            bad, good = bound, bound - step
+        if kind == "integer":
+            bad, good = int(bad), int(good)
+        with pytest.raises(us.ScenarioError, match=re.escape(f"[{table}]") if table else key):
+            us.parse(_scenario_with(table, key, bad))
+        us.parse(_scenario_with(table, key, good))
+        probed += 1
+    assert probed >= 20
