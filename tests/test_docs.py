@@ -12,7 +12,6 @@ import inspect
 import os
 import re
 import subprocess
-import sys
 import tomllib
 from pathlib import Path
 from xml.etree import ElementTree
@@ -69,6 +68,11 @@ def fenced_blocks(page: str) -> list[tuple[str, str]]:
     return blocks
 
 
+def text_blocks(page: str) -> list[str]:
+    """The ```text blocks of ``page``: what its code prints, as the page shows it."""
+    return [code for lang, code in fenced_blocks(page) if lang == "text"]
+
+
 def _command_lines(code: str) -> list[str]:
     """A shell block's commands: continued lines joined, comments and blank lines left out."""
     joined = re.sub(r"\\\n\s*", "", code)
@@ -107,7 +111,8 @@ def run_commands(code: str, folder: Path, source: str) -> str:
                 text=True,
                 timeout=600,
             )
-            assert run.returncode == 0, f"{source}: {line}\n{run.stdout[-2000:]}{run.stderr[-3000:]}"
+            why = f"{source}: {line}\n{run.stdout[-2000:]}{run.stderr[-3000:]}"
+            assert run.returncode == 0, why
             out.append(run.stdout)
     return "".join(out)
 
@@ -201,6 +206,29 @@ def test_no_public_function_is_hidden_behind_its_submodule(module):
     assert [n for n in shadowed if f"{module}.{n}.{n}" not in directives] == []
 
 
+def test_the_site_loads_nothing_from_the_network():
+    """The site is read from disk, offline: the theme's fonts are the system's (Material would
+    load Roboto from Google Fonts), no script or style sheet comes from a URL, and no math
+    engine is loaded (the equations are Unicode text)."""
+    config = (ROOT / "mkdocs.yml").read_text()
+    assert re.search(r"^theme:\n(?:  .*\n)*?  font: false$", config, flags=re.M)
+    assert not re.search(r"^extra_(?:javascript|css):", config, flags=re.M)
+    assert "arithmatex" not in config and "mathjax" not in config.lower()
+
+
+SNIPPET = re.compile(r'^--8<-- "([^":]+):(\d+):(\d+)"$', flags=re.M)
+
+
+@pytest.mark.parametrize("page", sorted(SHELL_PAGES))
+def test_quoted_line_ranges_are_whole_functions(page):
+    """A page that quotes lines of a file quotes a whole function: the first line opens it
+    and the last closes it (lines moved in the file would cut it)."""
+    for path, first, last in SNIPPET.findall((DOCS / page).read_text()):
+        lines = (ROOT / path).read_text().splitlines()[int(first) - 1 : int(last)]
+        assert re.match(r"^\w[\w:&<> ]* \w+\(.*\{$", lines[0]), (path, first, lines[0])
+        assert lines[-1] == "}", (path, last, lines[-1])
+
+
 @pytest.mark.parametrize("page", PAGES)
 def test_every_python_block_runs_as_written(page, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
@@ -257,8 +285,9 @@ def _deploy(ns, folder):
     assert printed in ns["_shell"][-1] and printed in (DOCS / "tutorials/deploy.md").read_text()
     # the header the page shows is the one the command wrote (to 6 digits: the identified
     # parameters may differ in their last digits on another machine)
-    shown = [code for lang, code in fenced_blocks("tutorials/deploy.md") if "// Generated" in code]
-    assert [_to_6_digits(c) for c in shown] == [_to_6_digits((folder / "ff_params.hpp").read_text())]
+    shown = [code for _, code in fenced_blocks("tutorials/deploy.md") if "// Generated" in code]
+    written = (folder / "ff_params.hpp").read_text()
+    assert [_to_6_digits(c) for c in shown] == [_to_6_digits(written)]
 
 
 def _ros_bags_written(folder: Path) -> None:
@@ -291,7 +320,7 @@ def _ros_bags(ns, folder):
     # jump at the swap (a 0.3 Hz sine of 0.6 rad moves at most 0.023 rad in 20 ms)
     assert np.ptp(log.x) > 1.0 and np.max(np.abs(np.diff(log.x))) < 0.03
     # the notes the page shows are the ones read
-    shown = [c for lang, c in fenced_blocks("tutorials/ros-bags.md") if lang == "text"]
+    shown = text_blocks("tutorials/ros-bags.md")
     assert shown[0].splitlines() == [f"- {note}" for note in log.notes]
     assert all("receive time" in n for n in ns["same_base"].notes if n.startswith("time of"))
     assert (folder / "bag_pred.csv").is_file()
@@ -306,14 +335,14 @@ def _masked(text: str) -> list[str]:
 def _compare_real_data(ns, folder):
     # the table, the candidates that cannot win and why, the winner, and predict's lines: the
     # page shows what the commands print (numbers masked: the timings vary)
-    shown = [code for lang, code in fenced_blocks("tutorials/compare-real-data.md") if lang == "text"]
+    shown = text_blocks("tutorials/compare-real-data.md")
     assert [_masked(c) for c in shown] == [_masked(out) for out in ns["_shell"]]
     assert ns["comparison"]["winner"] == "Backlash" and (folder / "pred.csv").is_file()
 
 
 def _scenario_toml(ns, folder):
     # the page shows what the command prints (numbers masked), and what it writes is there
-    shown = [code for lang, code in fenced_blocks("scenario-toml.md") if lang == "text"]
+    shown = text_blocks("scenario-toml.md")
     assert [_masked(c) for c in shown] == [_masked(out) for out in ns["_shell"]]
     assert (folder / "bench-out" / "report.html").is_file()
 
