@@ -214,6 +214,7 @@ def test_the_site_loads_nothing_from_the_network():
     assert re.search(r"^theme:\n(?:  .*\n)*?  font: false$", config, flags=re.M)
     assert not re.search(r"^extra_(?:javascript|css):", config, flags=re.M)
     assert "arithmatex" not in config and "mathjax" not in config.lower()
+    assert not re.search(r"^USE_MATHJAX\s*=\s*YES", (ROOT / "Doxyfile").read_text(), re.M)
 
 
 SNIPPET = re.compile(r'^--8<-- "([^":]+):(\d+):(\d+)"$', flags=re.M)
@@ -502,6 +503,23 @@ def test_the_scenario_page_lists_every_key_with_its_type_and_default():
         if k not in DEFAULT_IN_WORDS and not _same_default(rows[k][1], defaults[k])
     }
     assert wrong == {}
+
+
+def test_the_scenario_page_lists_the_keys_of_its_arrays_of_tables():
+    from tendonsheath.bench import user_compensators, user_scenario
+
+    rows = {}
+    for line in SCENARIO_PAGE.read_text().splitlines():
+        cells = [c.strip().strip("`") for c in line.strip().strip("|").split("|")]
+        if len(cells) == 4 and cells[0].startswith("[["):
+            rows.setdefault(cells[0].strip("[]"), set()).add(cells[1])
+    # the keys a route change takes, as parse() checks them
+    change = re.search(r"set\(change\) - \{([^}]*)\}", inspect.getsource(user_scenario))
+    assert change is not None
+    assert rows == {
+        "route.changes": set(re.findall(r'"(\w+)"', change[1])),
+        "compare.user": set(user_compensators._ENTRY_KEYS),
+    }
 
 
 BOUND = re.compile(r"^`(>=|>) (-?[0-9.e+-]+)`(.*)$")
