@@ -1,9 +1,12 @@
-"""The documentation site's tutorials run as written (issue 14, item 5).
+"""The documentation site's tutorials run as written (issue 14, item 5; issue 17, item 10).
 
 Each page's Python blocks run in order in one namespace, in a temporary folder, as a reader
 would paste them; a block with an ``if __name__ == "__main__":`` block is a script of its own and
-runs as one, in a fresh interpreter (as in ``test_readme_snippets.py``). Building the site with
-warnings as errors is ``make docs``, which ``make test`` runs.
+runs as one, in a fresh interpreter (as in ``test_readme_snippets.py``). On the pages of
+SHELL_PAGES the commands run too, in order with the Python blocks, and a C++ or TOML block the
+page tells the reader to save is saved; what a page shows a command print (its ```text blocks)
+is what it printed. The scenario page's key table is checked against the parser. Building the
+site with warnings as errors is ``make docs``, which ``make test`` runs.
 """
 
 import importlib
