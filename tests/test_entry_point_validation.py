@@ -337,6 +337,11 @@ SCENARIO = "[plant]\nrealistic = false\nelements = 10\n[reference]\nduration = 1
         ("[calibration]\nduration = 0.0\n", "'duration' must be >= 3 s"),
         ("[reference]\nsines = [[1.0, -0.5, 0.0]]\n", "frequency >= 0"),
         ("[reference]\nsines = [[nan, 0.5, 0.0]]\n", "must be finite"),
+        ("[sensor]\nhistory = 4294967296\n", r"'history' must be below 2\*\*31"),
+        (
+            '[load]\ntype = "constant_torque"\ntorque = 0.1\nstiffness = 2.0\n',
+            r"a constant_torque load takes \['torque'\], not \['stiffness'\]",
+        ),
     ],
 )
 def test_scenarios_that_cannot_run_as_written_are_refused(extra, needle):
@@ -415,3 +420,15 @@ def test_route_table_gives_the_route_message(key, bad):
     python = _outcome(lambda: ts.Route.uniform(**args))
     toml = _outcome(lambda: user_scenario.parse(f"[route]\n{key} = {bad!r}\n", "s.toml"))
     assert _agrees(python, toml), (python, toml)
+
+
+def test_a_load_on_the_continuum_plant_is_refused_not_ignored():
+    text = '[plant]\ntype = "continuum"\n[load]\ntype = "constant_torque"\ntorque = 0.1\n'
+    with pytest.raises(user_scenario.ScenarioError, match="continuum plant takes no distal load"):
+        user_scenario.parse(text, "s.toml")
+    user_scenario.parse(text.split("[load]")[0], "s.toml")  # the same plant without it runs
+
+
+def test_the_plant_element_count_beyond_a_c_int_is_one_line():
+    with pytest.raises(user_scenario.ScenarioError, match=r"\[plant\]: 'elements' must be below"):
+        user_scenario.parse("[plant]\nelements = 4294967296\n", "s.toml")

@@ -130,10 +130,6 @@ _KEYS: dict[str, dict[str, type | tuple]] = {
 }
 _TOP = {"title": str, "seed": int, **{k: dict for k in _KEYS}}
 
-# (table, key) -> (bound, strict): the values the bench runs with are above the bound (">")
-# or at least it (">="); checked at parse, so a bad value is one line naming the key, not a
-# failure minutes into the calibration
-
 
 class ScenarioError(ValueError):
     """A scenario file that cannot be run; the message names the file and the bad key."""
@@ -163,6 +159,8 @@ def _check_type(where: str, key: str, value, kind):
             raise ScenarioError(f"{where}: '{key}' must be a finite number (got {value!r})")
         return float(value)
     if kind is int and isinstance(value, int) and not isinstance(value, bool):
+        if abs(value) >= 2**31 and key != "seed":  # counts are C ints; seeds are checked apart
+            raise ScenarioError(f"{where}: '{key}' must be below 2**31 in size (got {value})")
         return value
     if kind not in (float, int) and isinstance(value, kind):
         return value
@@ -413,13 +411,33 @@ def _checked(sc: UserScenario) -> UserScenario:
     return sc
 
 
+# the [load] keys each load type takes
+_LOAD_KEYS = {
+    "constant_torque": {"torque"},
+    "torsional_spring": {"stiffness", "preload"},
+    "spring_damper": {"stiffness", "damping"},
+}
 # the [load] keys under the names the load classes give their arguments (tendonsheath.loads)
 _LOAD_ARGUMENTS = {"tau": "torque", "k": "stiffness", "c": "damping"}
 
 
 def _check_load(sc: UserScenario) -> None:
     """The [load] table as its load class takes it; the class's message with the table's key
-    named (the classes call the stiffness k, the damping c and the torque tau)."""
+    named (the classes call the stiffness k, the damping c and the torque tau). The continuum
+    plant takes no load: a [load] table there is refused rather than ignored."""
+    if sc.load is not None and sc.plant["type"] == "continuum":
+        raise ScenarioError(
+            f"{sc.source} [load]: the continuum plant takes no distal load (a [load] table "
+            "applies to type = 'pull_pull'); remove the table or change the plant type"
+        )
+    if sc.load is not None:
+        takes = _LOAD_KEYS.get(sc.load.get("type"), set())
+        other = sorted(set(sc.load) - takes - {"type"})
+        if takes and other:
+            raise ScenarioError(
+                f"{sc.source} [load]: a {sc.load['type']} load takes {sorted(takes)}, not "
+                f"{other} (a key another load type takes would be ignored)"
+            )
     try:
         _load_object(sc.load)
     except (TypeError, ValueError) as exc:
