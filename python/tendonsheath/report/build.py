@@ -29,6 +29,7 @@ import numpy as np
 from .._atomic import write_bytes, write_json, write_text
 from ..bench.limit_cycle import describe as describe_limit_cycle
 from . import figures, html, interactive
+from .summary import executive_summary
 from .units import check_angle_unit, convert, rows_in_unit, unit_after
 
 if TYPE_CHECKING:
@@ -478,7 +479,7 @@ def write(
     for anchor, heading, body, data in extra_sections or []:
         sections.append((anchor, heading, body))
         metrics[anchor] = data
-    intro = intro_for(scenario_results)
+    intro = executive_summary(scenario_results, extra_sections) + intro_for(scenario_results)
     report = out / "report.html"
     write_text(report, html.page(title, intro, sections))
     metrics_path = out / "metrics.json"
