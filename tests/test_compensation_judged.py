@@ -121,6 +121,12 @@ def test_curve_angle_feedforward_holds_its_accuracy_away_from_its_calibration_an
     # only the gain is checked against the design (tests/test_identify_on_plant.py checks
     # the groups on the ideal plant)
     assert cal.groups["gain r_p/r_d"]["value"] == pytest.approx(1.0, rel=0.02)
+    # the declared scale is one row that says it is not a measurement, beside the groups
+    scale = [r for r in cal.told("CurveAngleFeedforward") if "pretension" in r["quantity"]]
+    assert [r["quantity"] for r in scale] == ["pretension, length, proximal_radius"]
+    assert scale[0]["source"].startswith("not measured: a scale")
+    identified = [r["quantity"] for r in cal.identified_rows()]
+    assert identified.count("pretension, length, proximal_radius") == 1
     t = np.arange(0.0, 10.0, 1e-3)
     y_d = 0.8 * np.sin(2 * np.pi * 0.2 * t)
     shape = cal.shape  # the feedforward is told the sensed curve angle (noise, delay)

@@ -199,4 +199,5 @@ def test_calibrate_attaches_one_loop_per_shape(do_plant):
     assert len(cal.to_dict()["loop_dynamics"]) == len(routes)
     rows = [r["quantity"] for r in cal.identified_rows()]
     assert "shape 3: distal resonance (Hz)" in rows
+    assert not any("pretension" in r for r in rows)  # no groups: no scale to declare
     assert sum("loop (chirp" in r.name for r in cal.runs) == len(routes)

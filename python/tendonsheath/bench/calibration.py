@@ -450,8 +450,7 @@ class Calibration:
                     info = self.loads[load]
                     rows.append(Told("F_L L/(EA r_p)", info["F_L L/(EA r_p)"], info["source"]))
                     rows.append(Told("k_e L/EA", info["k_e L/EA"], info["source"]))
-            for d in self.declared.values():
-                rows.append(d)
+            rows += _declared_rows(self.declared)
             rows.append(Told("route shape", "curve angle only", self.shape.describe()))
         if rows:
             source = f"fitted from {FIT_INPUTS[self.fit_input]}"
@@ -557,9 +556,10 @@ class Calibration:
                     }
                 )
         rows += _loop_rows(self)
-        for d in self.declared.values():
-            rows.append({**d.as_dict(), "relative s.e.": None})
-            rows[-1] = {k: rows[-1][k] for k in ("quantity", "value", "relative s.e.", "source")}
+        # the declared values fix the scale of the groups: shown only beside them
+        for d in _declared_rows(self.declared) if self.groups else []:
+            rows.append({"quantity": d.quantity, "value": d.value, "relative s.e.": None,
+                         "source": d.source})  # fmt: skip
         return rows
 
 
@@ -848,8 +848,27 @@ def _declared_values(declared: dict[str, float] | None) -> dict[str, Told]:
         if key in user:
             decl[key] = Told(key, float(user[key]), "declared by the user (design value)")
         else:
-            decl[key] = Told(key, value, "declared nominal (not identifiable)")
+            decl[key] = Told(key, value, "declared nominal (a scale, not identifiable)")
     return decl
+
+
+_SCALE_SOURCE = (
+    "not measured: a scale. A position log identifies only the groups these enter "
+    "(T0 L/(EA r_p), gain r_p/r_d, F_L L/(EA r_p), k_e L/EA), given with their standard "
+    "errors; each is held at 1 (declare design values to change the scale)"
+)
+
+
+def _declared_rows(declared: dict[str, Told]) -> list[Told]:
+    """The declared values as a report shows them: a user's design value on its own row, the
+    nominal ones together in one row, for they are a scale, not a measurement."""
+    user = [d for d in declared.values() if d.source.startswith("declared by the user")]
+    nominal = [d for d in declared.values() if d not in user]
+    rows = list(user)
+    if nominal:
+        values = ", ".join(f"{d.value:g}" for d in nominal)
+        rows.append(Told(", ".join(d.quantity for d in nominal), values, _SCALE_SOURCE))
+    return rows
 
 
 def _mean_slope(recordings) -> float:
