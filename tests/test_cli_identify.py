@@ -213,6 +213,7 @@ def test_self_class_bootstrap_standard_errors_through_the_command(tmp_path):
         assert f"standard errors: {method.replace('-recordings', ' over recordings')}" in text
         assert f"{count} resamples" in text and "seed 4" in text
         assert "condition number" in text  # printed with the diagnostics
+        assert "given the model class: not how far the drive lies from it" in text
         saved = json.loads(out.read_text())["fit"]
         assert saved["uncertainty"]["method"] == method
         assert saved["uncertainty"]["resamples"] == count

@@ -14,6 +14,7 @@ from rich.table import Table
 from typer.core import TyperCommand, TyperOption
 
 from .identify.diagnostics import IdentifiabilityWarning
+from .identify.fit import GIVEN_CLASS
 from .outputs import check_image_file, check_output_file, check_output_folder
 
 _display_type = TyperOption.display_type_rich
@@ -619,7 +620,7 @@ def _print_fit(fit, n_logs: int, output_col: str) -> None:
         f"rmse {fit.rmse:.4g} ({output_col} units)   nrmse {100 * fit.nrmse:.3f} %   "
         f"fit {fit.fit_percent:.2f} %   ({fit.evaluations} evaluations, {fit.seconds:.2f} s)"
     )
-    console.print(f"standard errors: {fit.se_description()}")
+    console.print(f"standard errors: {fit.se_description()}, {GIVEN_CLASS}")
     if fit.stopped_on_budget:
         console.print("stopped by the time budget: the best model found by then")
     for name, g in fit.groups.items():  # identified groups (e.g. CurveAngleModel, one angle)

@@ -51,6 +51,8 @@ if TYPE_CHECKING:
 
 NOMINAL = {"pretension": 1.0, "length": 1.0, "proximal_radius": 1.0}
 NOMINAL_FRICTION = 0.1  # held when a single curve angle cannot identify it
+# the report's column of relative standard errors: the spread were the data made by the class
+_SE = "relative s.e. (given the model class)"
 
 
 # -- shape sensing (the sensor itself: shape_sensing.py) ------------------------------------
@@ -521,13 +523,13 @@ class Calibration:
         Returns
         -------
         list of dict
-            quantity, value, relative s.e. and source.
+            quantity, value, relative s.e. (given the model class) and source.
         """
         rows = [
             {
                 "quantity": k,
                 "value": g["value"],
-                "relative s.e.": g.get("relative_se"),
+                _SE: g.get("relative_se"),
                 "source": g["source"],
             }
             for k, g in self.groups.items()
@@ -541,7 +543,7 @@ class Calibration:
                     {
                         "quantity": f"BoucWenBacklash {k}",
                         "value": v,
-                        "relative s.e.": abs(se / v) if se is not None and v else None,
+                        _SE: abs(se / v) if se is not None and v else None,
                         "source": fit_source(self, fit),
                     }
                 )
@@ -551,14 +553,14 @@ class Calibration:
                     {
                         "quantity": f"{name}: {k}",
                         "value": info[k],
-                        "relative s.e.": None,
+                        _SE: None,
                         "source": info["source"],
                     }
                 )
         rows += _loop_rows(self)
         # the declared values fix the scale of the groups: shown only beside them
         for d in _declared_rows(self.declared) if self.groups else []:
-            rows.append({"quantity": d.quantity, "value": d.value, "relative s.e.": None,
+            rows.append({"quantity": d.quantity, "value": d.value, _SE: None,
                          "source": d.source})  # fmt: skip
         return rows
 
@@ -596,7 +598,7 @@ def _loop_rows(cal: Calibration) -> list[dict[str, Any]]:
         ):
             rel = abs(se[key] / value) if key in se and value else None
             rows.append({"quantity": f"shape {i + 1}: {quantity}", "value": value,
-                         "relative s.e.": rel, "source": f"{source}{i + 1}"})  # fmt: skip
+                         _SE: rel, "source": f"{source}{i + 1}"})  # fmt: skip
     return rows
 
 

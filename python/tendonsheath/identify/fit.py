@@ -14,6 +14,10 @@ from ..route import Route
 from .data import Recording
 from .diagnostics import Diagnostics
 
+#: what every standard error here is: the spread of the estimates were the data made by the
+#: model class, not a measure of how far a real drive lies from it
+GIVEN_CLASS = "given the model class: not how far the drive lies from it"
+
 
 def metrics(y: ArrayLike, y_hat: ArrayLike) -> dict[str, float]:
     """rmse; nrmse = rmse / (max(y) - min(y)); fit % = 100 (1 - ||y - y_hat|| / ||y - mean(y)||).
@@ -382,7 +386,7 @@ class Fit:
         if self.stopped_on_budget:
             lines.append("stopped by the time budget: the best model found by then")
         width = max(len(r[0]) for r in self.table())
-        lines.append(f"parameters (+- standard error, {self.se_description()}):")
+        lines.append(f"parameters (+- standard error, {self.se_description()}; {GIVEN_CLASS}):")
         for name, value, se in self.table():
             lines.append(f"  {name:<{width}}  {value:>12}  +- {se}")
         if self.groups:
