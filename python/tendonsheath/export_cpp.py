@@ -73,25 +73,26 @@ def _array(name: str, values) -> str:
 
 # the PrandtlIshlinskiiParams the exported arrays hold (vectors: they allocate, once)
 _PI_PARAMS = (
-    "tendonsheath::PrandtlIshlinskiiParams{{std::begin(thresholds), std::end(thresholds)},\n"
-    "                                                 {std::begin(weights), std::end(weights)}}"
+    "  tendonsheath::PrandtlIshlinskiiParams p{{std::begin(thresholds), std::end(thresholds)},\n"
+    "                                         {std::begin(weights), std::end(weights)}};\n"
 )
 
 
-def _builder(role: str, cpp_class: str, args: str) -> str:
+def _builder(role: str, cpp_class: str, args: str, setup: str = "") -> str:
     """The class to build (``role``: Model or Compensator, an alias of ``cpp_class``) and the
-    function that builds it with or without exceptions, from the constants above it."""
+    function that builds it with or without exceptions from the constants above it: ``setup``
+    then ``make<role>(args)``."""
     make = f"make_{role.lower()}"
     return (
-        f"\n// The class to build: {role} (tendonsheath::{cpp_class}). {make}() builds it, with or\n"
-        "// without C++ exceptions (g++ -fno-exceptions): a bad parameter comes back as an error\n"
-        "// value, not a throw (tendonsheath/result.hpp):\n"
+        f"\n// The class to build: {role} (tendonsheath::{cpp_class}). {make}() builds it,\n"
+        "// with or without C++ exceptions (g++ -fno-exceptions): a bad parameter comes back as\n"
+        "// an error value, not a throw (tendonsheath/result.hpp):\n"
         f"//   auto built = {make}();\n"
         '//   if (!built.ok()) { /* built.error(): "<class>: <what>" */ }\n'
         f"//   {role}& obj = built.value();\n"
         f"using {role} = tendonsheath::{cpp_class};\n"
         f"inline tendonsheath::Result<{role}> {make}() {{\n"
-        f"  return tendonsheath::make<{role}>({args});\n}}\n"
+        f"{setup}  return tendonsheath::make<{role}>({args});\n}}\n"
     )
 
 
@@ -117,7 +118,7 @@ def _model_body(model) -> tuple[str, str]:
         body = _struct("BoucWenBacklashParams", {**model.params, **options})
         return "models/bouc_wen_backlash.hpp", body + _builder("Model", "BoucWenBacklash", "params")
     if kind == "PrandtlIshlinskii":
-        body = _pi_arrays(model) + _builder("Model", "PrandtlIshlinskii", _PI_PARAMS)
+        body = _pi_arrays(model) + _builder("Model", "PrandtlIshlinskii", "p", _PI_PARAMS)
         return "models/prandtl_ishlinskii.hpp", body
     raise ValueError(
         "export --cpp writes Backlash, BoucWenBacklash and PrandtlIshlinskii models and the "
@@ -146,7 +147,7 @@ def _inverse_body(ff) -> tuple[str, str]:
         build = _builder("Compensator", "BacklashInverseFeedforward", "params")
     else:
         include, body = _pi_inverse(ff, model, map_values)
-        build = _builder("Compensator", "PrandtlIshlinskiiFeedforward", f"{_PI_PARAMS}, limits")
+        build = _builder("Compensator", "PrandtlIshlinskiiFeedforward", "p, limits", _PI_PARAMS)
     return include, body + _range_constants(ff) + _map_constants(map_values) + build
 
 

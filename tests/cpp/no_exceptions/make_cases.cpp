@@ -154,7 +154,7 @@ int main() {
 #if !TENDONSHEATH_EXCEPTIONS
   handler_checks();
 #endif
-  // of the 183 make() calls 161 refuse (measured; a spoiled field can still be valid, e.g. a
+  // of the 184 make() calls 161 refuse (measured; a spoiled field can still be valid, e.g. a
   // dead band B_r = 0); 130 leaves a margin and still fails if the spoiling stopped biting
   check(refused >= 130, "only " + std::to_string(refused) + " make() calls refused");
   std::fprintf(stderr, "%d refused, %d failures\n", refused, failures);
