@@ -84,9 +84,9 @@ def _builder(role: str, cpp_class: str, args: str, setup: str = "") -> str:
     then ``make<role>(args)``."""
     make = f"make_{role.lower()}"
     return (
-        f"\n// The class to build: {role} (tendonsheath::{cpp_class}). {make}() builds it,\n"
-        "// with or without C++ exceptions (g++ -fno-exceptions): a bad parameter comes back as\n"
-        "// an error value, not a throw (tendonsheath/result.hpp):\n"
+        f"\n// The class to build: {role}, that is tendonsheath::{cpp_class}.\n"
+        f"// {make}() builds it with or without C++ exceptions (g++ -fno-exceptions): a bad\n"
+        "// parameter comes back as an error value, not a throw (tendonsheath/result.hpp):\n"
         f"//   auto built = {make}();\n"
         '//   if (!built.ok()) { /* built.error(): "<class>: <what>" */ }\n'
         f"//   {role}& obj = built.value();\n"
