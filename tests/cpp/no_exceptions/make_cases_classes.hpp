@@ -183,6 +183,39 @@ void structural() {
   built<ts::AdaptiveController>("AdaptiveController feedforward NaN", adaptive);
 }
 
+// the classes built from other objects: a bad setting, a coupling of the wrong size, more
+// angle laws than their arrays hold
+void composed(Rng& rng) {
+  ts::ModelPart part;
+  part.kind = "Backlash";
+  ts::InverseModel model;
+  model.parts = {part};
+  const ts::ModelInverse joint = ts::make_model_inverse(model, ts::InverseSettings{});
+  const std::vector<ts::ModelInverse> joints{joint, joint};
+  built<ts::CoupledFeedforward>("CoupledFeedforward 3 couplings", joints,
+                                std::vector<double>{0.0, 0.1, 0.2});
+  for (int trial = 0; trial < 4; ++trial) {
+    std::vector<double> coupling{0.0, 0.2, 0.1, 0.0};
+    coupling[rng.below(4)] = kBad[rng.below(3)];
+    built<ts::CoupledFeedforward>("CoupledFeedforward #" + std::to_string(trial), joints,
+                                  coupling);
+  }
+  const ts::Backlash backlash{ts::BacklashParams{}};
+  built<ts::RootInverse<ts::Backlash>>("RootInverse range", backlash, ts::InputRange{1.0, -1.0},
+                                       ts::RootSearchSettings{});
+  ts::RootSearchSettings search;
+  search.max_evaluations = 2;
+  built<ts::RootInverse<ts::Backlash>>("RootInverse settings", backlash, ts::InputRange{}, search);
+  ts::LoadTerms terms;
+  terms.slack_load = kNaN;
+  built<ts::LoadPlayInverse>("LoadPlayInverse", terms);
+  ts::AngleLaws laws;
+  laws.count = 100;
+  const ts::BacklashInverseFeedforward engine{ts::BacklashInverseParams{}};
+  built<ts::AngleDependentInverse<ts::BacklashInverseFeedforward>>("AngleDependentInverse 100 laws",
+                                                                   engine, laws, 0.0);
+}
+
 #if !TENDONSHEATH_EXCEPTIONS
 // Runs f in a child process, its stderr into a pipe: (how it ended, what it wrote there).
 std::pair<int, std::string> in_child(void (*f)()) {
