@@ -94,6 +94,13 @@ test-cpp: gtest nlohmann-json
 	cmake --install $(CPP_BUILD) --prefix build/cpp-install > /dev/null
 	cmake -S examples/cpp -B build/cpp-consumer -DCMAKE_PREFIX_PATH=$(CURDIR)/build/cpp-install > /dev/null
 	cmake --build build/cpp-consumer -j $(JOBS)
+	@# the examples again with g++ -fno-exceptions, as embedded targets build, and run (03 loads
+	@# JSON, which needs exceptions: left out there); ctest above ran tests/cpp/no_exceptions,
+	@# the core's make<T>() compared in both modes (docs/cpp-without-exceptions.md)
+	cmake -S examples/cpp -B build/cpp-noexcept -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=Release \
+	  -DCMAKE_CXX_FLAGS=-fno-exceptions -DCMAKE_PREFIX_PATH=$(CURDIR)/build/cpp-install > /dev/null
+	cmake --build build/cpp-noexcept -j $(JOBS)
+	ctest --test-dir build/cpp-noexcept --output-on-failure
 
 # A manylinux wheel in dist/: built by scikit-build-core in the venv (no build isolation, so it
 # reuses the CMake cache in build/ that `make install` filled), then repaired by auditwheel

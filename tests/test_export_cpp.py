@@ -142,8 +142,16 @@ def test_exported_models_hold_pythons_numbers_bit_for_bit(tmp_path, compiler):
             prints += [
                 f'std::printf("{ns} {k} %.17g\\n", double({ns}::params.{k}));' for k in names
             ]
-    source = "#include <cstdio>\n" + "".join(f'#include "{ns}.hpp"\n' for ns in models)
-    source += "int main() {\n" + "\n".join(prints) + "\n}\n"
+    source = "#include <cstdio>\n#include <type_traits>\n"
+    source += "".join(f'#include "{ns}.hpp"\n' for ns in models)
+    # each header names the class its parameters build, and builds it
+    classes = {"bl": "Backlash", "bw": "BoucWenBacklash", "pi": "PrandtlIshlinskii"}
+    source += "".join(
+        f"static_assert(std::is_same_v<{ns}::Model, tendonsheath::{c}>);\n"
+        for ns, c in classes.items()
+    )
+    built = " || ".join(f"!{ns}::make_model().ok()" for ns in models)
+    source += f"int main() {{\n  if ({built}) return 1;\n" + "\n".join(prints) + "\n}\n"
     (tmp_path / "models.cpp").write_text(source)
     exe = tmp_path / "models"
     cmd = [
@@ -179,3 +187,81 @@ def test_unsupported_models_are_one_line_errors(tmp_path):
         app, ["export", str(tmp_path / "none.json"), "--cpp", str(tmp_path / "p.hpp")]
     )
     assert result.exit_code == 2 and "file not found" in result.output
+
+
+# namespace -> (the class its header names, a field to spoil): the header builds it with
+# make_compensator() without exceptions too
+WITHOUT_EXCEPTIONS = {
+    "inv_backlash": ("BacklashInverseFeedforward", "v_eps"),
+    "inv_bw": ("BacklashInverseFeedforward", "v_eps"),
+    "inv_pi": ("PrandtlIshlinskiiFeedforward", None),
+    "curve_angle": ("CurveAngleFeedforward", "v_eps"),
+    "continuum": ("ContinuumFeedforward", "v_eps"),
+}
+
+
+def _no_exceptions_check(ns: str, cpp_class: str, field: str | None) -> str:
+    spoiled = (
+        f"""
+    auto bad = {ns}::params;
+    bad.{field} = -1.0;
+    const auto refused = tendonsheath::make<{ns}::Compensator>(bad);
+    std::printf("%s\\n", refused.ok() ? "ok" : refused.error().c_str());"""
+        if field
+        else ""
+    )
+    return f"""
+  {{
+    static_assert(std::is_same_v<{ns}::Compensator, tendonsheath::{cpp_class}>);
+    auto built = {ns}::make_compensator();
+    if (!built.ok()) return 1;
+    {ns}::Compensator& c = built.value();
+    for (std::size_t k = 0; k < n; ++k)
+      std::printf("%.17g\\n", c.step(y[k], k == 0 ? 0.0 : t[k] - t[k - 1]));{spoiled}
+  }}"""
+
+
+def test_exported_headers_build_without_exceptions(tmp_path, compiler):
+    """Each exported compensator header names its class and builds it with make_compensator()
+    under g++ -fno-exceptions: Python's commands to 1e-12 on a 1 kHz trajectory, and a bad
+    parameter comes back as the error message, not a throw (docs/cpp-without-exceptions.md)."""
+    t = np.arange(0.0, 2.0, 1e-3)
+    y_d = 0.8 * np.sin(2 * np.pi * 0.5 * t) + 0.1 * np.sin(2 * np.pi * 3.1 * t)
+    rows = ",\n".join(f"{{{a!r}, {b!r}}}" for a, b in zip(t.tolist(), y_d.tolist(), strict=True))
+    source = "#include <cstdio>\n#include <type_traits>\n"
+    checks = []
+    for ns, (cpp_class, field) in WITHOUT_EXCEPTIONS.items():
+        COMPENSATORS[ns][0].to_json(tmp_path / f"{ns}.json")
+        _export(tmp_path / f"{ns}.json", tmp_path / f"{ns}.hpp")
+        source += f'#include "{ns}.hpp"\n'
+        checks.append(_no_exceptions_check(ns, cpp_class, field))
+    source += f"const double trajectory[][2] = {{\n{rows}}};\n"
+    source += (
+        "int main() {\n  const std::size_t n = sizeof trajectory / sizeof trajectory[0];\n"
+        "  double t[sizeof trajectory / sizeof trajectory[0]], y[sizeof t / sizeof t[0]];\n"
+        "  for (std::size_t k = 0; k < n; ++k) t[k] = trajectory[k][0], y[k] = trajectory[k][1];"
+        + "".join(checks)
+        + "\n  return 0;\n}\n"
+    )
+    (tmp_path / "noexc.cpp").write_text(source)
+    exe = tmp_path / "noexc"
+    flags = ["-std=c++17", "-O1", "-fno-exceptions", "-Wall", "-Wextra", "-Werror"]
+    include = [f"-I{ROOT / 'include'}", f"-I{tmp_path}"]
+    build = subprocess.run(
+        [compiler, *flags, *include, str(tmp_path / "noexc.cpp"), "-o", str(exe)],
+        capture_output=True,
+        text=True,
+    )
+    assert build.returncode == 0, build.stderr[-3000:]
+    lines = subprocess.run([exe], capture_output=True, text=True, check=True).stdout.split("\n")
+    at = 0
+    for ns, (cpp_class, field) in WITHOUT_EXCEPTIONS.items():
+        cpp = np.array([float(v) for v in lines[at : at + t.size]])
+        at += t.size
+        python = COMPENSATORS[ns][0].command(t, y_d)
+        assert np.ptp(python) > 0.5, ns  # the trajectory exercises the compensator
+        np.testing.assert_allclose(cpp, python, rtol=0, atol=1e-12, err_msg=ns)
+        if field:
+            assert lines[at] == f"{cpp_class}: {field} must be > 0 (got -1)", lines[at]
+            at += 1
+    assert lines[at:] == [""]

@@ -37,6 +37,7 @@ class Route {
     require(s_.size() == th_.size(), w, "s and theta have different lengths (", s_.size(), " and ",
             th_.size(), ")");
     require(s_.size() >= 2, w, "at least two samples are needed");
+    if (detail::failed()) return;  // without exceptions, in make(): the samples are not indexed
     for (std::size_t i = 0; i < s_.size(); ++i) {
       require(std::isfinite(s_[i]), w, "s[", i, "] is not finite (", s_[i], ")");
       require(std::isfinite(th_[i]), w, "theta[", i, "] is not finite (", th_[i], ")");

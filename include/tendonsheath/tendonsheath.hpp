@@ -1,6 +1,9 @@
 // tendonsheath: real-time core (header-only, C++17).
 #pragma once
 
+#include "config.hpp"
+#include "error_handler.hpp"
+#include "result.hpp"
 #include "validate.hpp"
 #include "status.hpp"
 #include "models/backlash.hpp"
@@ -53,5 +56,7 @@
 /// compensators and the closed-loop bench.
 ///
 /// Every class validates its parameters once, in its constructor (std::invalid_argument naming
-/// the class and the parameter). After that, step() is noexcept, allocates nothing, does bounded
+/// the class and the parameter; make<T>() returns that message in a Result instead, and is the
+/// way to build one when the core is compiled without exceptions: see result.hpp and
+/// error_handler.hpp). After that, step() is noexcept, allocates nothing, does bounded
 /// work and never returns NaN for finite input; status() tells what the last step did.

@@ -1,6 +1,10 @@
 // Parameter and input validation. Used only at construction and in batch
 // (non-real-time) entry points; step() never throws.
 //
+// A failed check throws std::invalid_argument "<where>: <what>" when exceptions are on; built
+// without them (-fno-exceptions) it goes where error_handler.hpp says: collected by make()
+// (result.hpp) or handed to the error handler, then std::abort().
+//
 // A check costs a comparison when it passes: its message is given as parts (text, numbers)
 // that are formatted only when the check fails (std::to_chars: no locale, no iostreams), so
 // a passing check allocates nothing, e.g. require(n >= 2, where, "n must be >= 2 (got ", n, ")").
@@ -9,10 +13,11 @@
 #include <charconv>
 #include <cmath>
 #include <cstddef>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
+
+#include "error_handler.hpp"
 
 namespace tendonsheath {
 
@@ -34,21 +39,35 @@ void append_part(std::string& s, I v) {
   s.append(buf, end);
 }
 
-// "<where>: <parts...>", built only here, on failure.
+// "<where>: <parts...>", built only on failure.
 template <class... Parts>
-[[noreturn]] void fail(std::string_view where, const Parts&... parts) {
+std::string message(std::string_view where, const Parts&... parts) {
   std::string msg(where);
   msg.append(": ");
   (append_part(msg, parts), ...);
-  throw std::invalid_argument(msg);
+  return msg;
+}
+
+// A failure no caller goes on from: thrown, or (without exceptions) handed to the error handler.
+template <class... Parts>
+[[noreturn]] void fail(std::string_view where, const Parts&... parts) {
+  raise_error(message(where, parts...));
+}
+
+// A failed check: thrown, or (without exceptions) collected by make() when one is running on
+// this thread (then it returns: the constructor goes on to its detail::failed() guard).
+template <class... Parts>
+void check_failed(std::string_view where, const Parts&... parts) {
+  report_error(message(where, parts...));
 }
 }  // namespace detail
 
 /// Throws std::invalid_argument with "<where>: <parts...>" when cond is false; the parts
-/// (text, floating-point and integer values) are formatted only then.
+/// (text, floating-point and integer values) are formatted only then. Built without exceptions,
+/// the message goes to make() or to the error handler instead (error_handler.hpp).
 template <class... Parts>
 inline void require(bool cond, std::string_view where, const Parts&... parts) {
-  if (!cond) detail::fail(where, parts...);
+  if (!cond) detail::check_failed(where, parts...);
 }
 
 /// Throws std::invalid_argument "<where>: <name> must be finite (got v)" unless v is finite.

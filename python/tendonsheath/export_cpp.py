@@ -6,6 +6,11 @@ constexpr lambda: C++17 has no designated initialisers); a Prandtl-Ishlinskii op
 thresholds and weights become constexpr arrays, from which the user fills the params struct (its
 vectors allocate, once, at construction). Numbers are written with Python's shortest round-trip
 repr, so the C++ doubles equal Python's bit for bit.
+
+The header names the class to build (``Model`` or ``Compensator``, an alias of the core's class)
+and builds it with ``make_model()`` or ``make_compensator()``: a ``tendonsheath::Result`` holding
+the object or the message of a bad parameter, with or without C++ exceptions (``-fno-exceptions``,
+docs/cpp-without-exceptions.md).
 """
 
 from __future__ import annotations
@@ -66,6 +71,31 @@ def _array(name: str, values) -> str:
     return f"inline constexpr double {name}[] = {{{', '.join(_number(v) for v in values)}}};\n"
 
 
+# the PrandtlIshlinskiiParams the exported arrays hold (vectors: they allocate, once)
+_PI_PARAMS = (
+    "  tendonsheath::PrandtlIshlinskiiParams p{{std::begin(thresholds), std::end(thresholds)},\n"
+    "                                         {std::begin(weights), std::end(weights)}};\n"
+)
+
+
+def _builder(role: str, cpp_class: str, args: str, setup: str = "") -> str:
+    """The class to build (``role``: Model or Compensator, an alias of ``cpp_class``) and the
+    function that builds it with or without exceptions from the constants above it: ``setup``
+    then ``make<role>(args)``."""
+    make = f"make_{role.lower()}"
+    return (
+        f"\n// The class to build: {role}, that is tendonsheath::{cpp_class}.\n"
+        f"// {make}() builds it with or without C++ exceptions (g++ -fno-exceptions): a bad\n"
+        "// parameter comes back as an error value, not a throw (tendonsheath/result.hpp):\n"
+        f"//   auto built = {make}();\n"
+        '//   if (!built.ok()) { /* built.error(): "<class>: <what>" */ }\n'
+        f"//   {role}& obj = built.value();\n"
+        f"using {role} = tendonsheath::{cpp_class};\n"
+        f"inline tendonsheath::Result<{role}> {make}() {{\n"
+        f"{setup}  return tendonsheath::make<{role}>({args});\n}}\n"
+    )
+
+
 def _pi_arrays(model) -> str:
     p = model.params
     return (
@@ -80,15 +110,16 @@ def _model_body(model) -> tuple[str, str]:
     """(header to include, declarations) for a model."""
     kind = type(model).__name__
     if kind == "Backlash":
-        return "models/backlash.hpp", _struct("BacklashParams", model.params)
+        body = _struct("BacklashParams", model.params)
+        return "models/backlash.hpp", body + _builder("Model", "Backlash", "params")
     if kind == "BoucWenBacklash":
         options = {"max_step": model.options["max_step"]}
         options["max_substeps"] = int(model.options["max_substeps"])
-        return "models/bouc_wen_backlash.hpp", _struct(
-            "BoucWenBacklashParams", {**model.params, **options}
-        )
+        body = _struct("BoucWenBacklashParams", {**model.params, **options})
+        return "models/bouc_wen_backlash.hpp", body + _builder("Model", "BoucWenBacklash", "params")
     if kind == "PrandtlIshlinskii":
-        return "models/prandtl_ishlinskii.hpp", _pi_arrays(model)
+        body = _pi_arrays(model) + _builder("Model", "PrandtlIshlinskii", "p", _PI_PARAMS)
+        return "models/prandtl_ishlinskii.hpp", body
     raise ValueError(
         "export --cpp writes Backlash, BoucWenBacklash and PrandtlIshlinskii models and the "
         "InverseFeedforward, CurveAngleFeedforward and ContinuumFeedforward compensators "
@@ -113,9 +144,11 @@ def _inverse_body(ff) -> tuple[str, str]:
         )
     if kind in ("Backlash", "BoucWenBacklash"):
         include, body = _direct_inverse(ff, model, map_values)
+        build = _builder("Compensator", "BacklashInverseFeedforward", "params")
     else:
         include, body = _pi_inverse(ff, model, map_values)
-    return include, body + _range_constants(ff) + _map_constants(map_values)
+        build = _builder("Compensator", "PrandtlIshlinskiiFeedforward", "p, limits", _PI_PARAMS)
+    return include, body + _range_constants(ff) + _map_constants(map_values) + build
 
 
 def _inner_limits(ff, map_values):
@@ -211,14 +244,14 @@ def _compensator_body(ff) -> tuple[str, str]:
     s["total_angle"], s["v_eps"] = s.pop("curve_angle"), s.pop("smoothing")
     if kind == "CurveAngleFeedforward":
         s = {"compliance": s.pop("length") / s.pop("stiffness"), **s}
-        return "compensators/curve_angle_feedforward.hpp", _struct(
-            "CurveAngleFeedforwardParams", {**s, **limits}
-        )
+        body = _struct("CurveAngleFeedforwardParams", {**s, **limits})
+        build = _builder("Compensator", "CurveAngleFeedforward", "params")
+        return "compensators/curve_angle_feedforward.hpp", body + build
     s["sheath_length"] = s.pop("length")
     s["mode"] = "tendonsheath::ContinuumMode::" + s["mode"].capitalize()
-    return "compensators/continuum_feedforward.hpp", _struct(
-        "ContinuumFeedforwardParams", {**s, **limits}
-    )
+    body = _struct("ContinuumFeedforwardParams", {**s, **limits})
+    build = _builder("Compensator", "ContinuumFeedforward", "params")
+    return "compensators/continuum_feedforward.hpp", body + build
 
 
 def _check_namespace(given: str | None, path: Path) -> None:
@@ -285,6 +318,7 @@ def cpp_header(source: str | Path, namespace: str | None = None) -> str:
     kind = type(obj).__name__
     return (
         f"// Generated by `tendonsheath export {path.name} --cpp`: {kind}. Do not edit.\n"
-        f"#pragma once\n\n#include <limits>\n#include <tendonsheath/{include}>\n\n"
+        "#pragma once\n\n#include <iterator>\n#include <limits>\n"
+        f"#include <tendonsheath/{include}>\n#include <tendonsheath/result.hpp>\n\n"
         f"namespace {namespace} {{\n\n{body}\n}}  // namespace {namespace}\n"
     )

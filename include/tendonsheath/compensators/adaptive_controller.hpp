@@ -114,6 +114,7 @@ class AdaptiveController {
     require(p.max_torque > 0.0, w, "max_torque must be > 0");
     require_non_negative(p.fallback_kp, w, "fallback_kp");
     require_non_negative(p.fallback_kd, w, "fallback_kd");
+    if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     reset();
   }
 

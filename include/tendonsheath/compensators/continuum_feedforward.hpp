@@ -79,6 +79,7 @@ class ContinuumFeedforward {
     require(p.mode == ContinuumMode::Exact || p.friction * p.total_angle > 0.0, w,
             "published mode needs friction * total_angle > 0 (its equations divide by xi)");
     p.limits.validate(w);
+    if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     const double xi = p.gap_factor * p.friction;
     statics_ = {xi, p.sheath_length / p.stiffness, p.pretension};
     affine_ = statics_.affine(uniform_shape(xi, p.total_angle));

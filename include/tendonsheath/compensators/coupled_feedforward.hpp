@@ -32,6 +32,7 @@ class CoupledFeedforward {
     require(n > 0, "CoupledFeedforward", "give at least one joint");
     require(coupling_.size() == n * n, "CoupledFeedforward", "the coupling must hold ", n * n,
             " values (", n, " x ", n, ", row-major; got ", coupling_.size(), ")");
+    if (detail::failed()) return;  // without exceptions, in make(): the coupling is not indexed
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t j = 0; j < n; ++j) {
         const double c = coupling_[i * n + j];
@@ -41,6 +42,7 @@ class CoupledFeedforward {
                 " (a joint's own gain is its model's; got coupling[", i, "][", i, "] = ", c, ")");
       }
     }
+    if (detail::failed()) return;  // without exceptions, in make(): no solve with bad values
     require(!singular(coupling_, n), "CoupledFeedforward",
             "I - coupling is singular (the joints' angles are undefined)");
     targets_.assign(n, 0.0);

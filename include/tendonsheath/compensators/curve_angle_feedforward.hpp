@@ -72,6 +72,7 @@ class CurveAngleFeedforward {
     require(std::isfinite(p.play), w, "play must be finite");
     require(p.max_correction_rate > 0.0, w, "max_correction_rate must be > 0");
     p.limits.validate(w);
+    if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     statics_ = {p.friction, p.compliance, p.pretension};
     update_shape(uniform_shape(p.friction, p.total_angle));
   }

@@ -51,6 +51,7 @@ class LagInverse {
     }
     require(std::isfinite(p.filter_hz) && p.filter_hz >= 0.0, w,
             "filter_hz must be > 0, or 0 for the default (got ", p.filter_hz, ")");
+    if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     if (p_.filter_hz == 0.0) p_.filter_hz = 5.0 * p_.corner_hz();
   }
 

@@ -34,6 +34,7 @@ class OscillatorInverse {
     (void)HystereticOscillator(p);  // the oscillator's own validation
     require(std::isfinite(filter_hz) && filter_hz >= 0.0, "OscillatorInverse",
             "filter_hz must be > 0, or 0 for the default (got ", filter_hz, ")");
+    if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     filter_hz_ = filter_hz > 0.0 ? filter_hz : 5.0 * natural_hz(p);
     derive();
   }

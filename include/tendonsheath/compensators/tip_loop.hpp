@@ -73,6 +73,7 @@ class TipLoop {
     require(p.max_correction > 0.0, w, "max_correction must be > 0 (got ", p.max_correction, ")");
     require(p.schedule_size <= Params::kMaxSchedule, w, "schedule_size must be <= ",
             Params::kMaxSchedule, " (got ", p.schedule_size, ")");
+    if (detail::failed()) return;  // without exceptions, in make(): no entry read past the arrays
     for (std::size_t i = 0; i < p.schedule_size; ++i) {
       require(std::isfinite(p.schedule_angles[i]), w, "schedule_angles[", i, "] must be finite (got ",
               p.schedule_angles[i], ")");
@@ -83,6 +84,7 @@ class TipLoop {
               i, "] must be > 0 and finite (got ", p.schedule_gains[i], ")");
     }
     p.limits.validate(w);
+    if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     scale_ = scale_at(0.0);
   }
 

@@ -38,6 +38,7 @@ struct AngleLaws {
   /// Throws std::invalid_argument (message starting with `where`) naming a bad law.
   void validate(const char* where) const {
     require(count <= kMaxParams, where, "at most ", kMaxParams, " angle laws (got ", count, ")");
+    if (detail::failed()) return;  // without exceptions, in make(): no law read past the arrays
     bool any_tanh = false;
     for (std::size_t i = 0; i < count; ++i) {
       require(std::isfinite(c0[i]) && std::isfinite(c1[i]), where,

@@ -57,6 +57,7 @@ class SincKernel {
   explicit SincKernel(int half_width) : L_(half_width) {
     require(half_width >= 1 && half_width <= kMaxHalfWidth, "SincKernel",
             "the look-ahead (half-width) must be in [1, 64] samples (got ", half_width, ")");
+    if (detail::failed()) return;  // without exceptions, in make(): no table of a bad size
     beta_ = 0.6 * L_ + 2.5;
     const int n = L_ * kPhases + 1;
     table_.resize(static_cast<std::size_t>(n) + 1, 0.0);

@@ -64,6 +64,7 @@ class BoucWen {
     require_finite(p.k, w, "k");
     require_positive(p.max_step, w, "max_step");
     require(p.max_substeps >= 1, w, "max_substeps must be >= 1");
+    if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     derive();
   }
 

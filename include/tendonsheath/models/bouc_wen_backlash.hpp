@@ -116,6 +116,7 @@ class BoucWenBacklash {
     require_at_least(p.n, 1.0, w, "n");
     require_positive(p.max_step, w, "max_step");
     require(p.max_substeps >= 1, w, "max_substeps must be >= 1");
+    if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     f_ = detail::NormalisedBoucWen<detail::AbsPower>{p.rho, p.sigma, detail::AbsPower(p.n - 1.0)};
     const double e = p.n - 1.0;
     int_exponent_ = (e == std::round(e) && e >= 0.0 && e <= 11.0) ? static_cast<int>(e) : -1;

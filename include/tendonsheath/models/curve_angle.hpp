@@ -94,6 +94,7 @@ class CurveAngleModel {
     require_positive(p.distal_radius, w, "distal_radius");
     require_non_negative(p.play, w, "play");
     require(std::isfinite(p.play), w, "play must be finite");
+    if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     half_play_ = 0.5 * p.proximal_radius * p.play;
     set_curve_angle(0.0);
   }
@@ -245,9 +246,7 @@ inline void simulate(CurveAngleModel& model, const double* t, const double* x,
   if (theta != nullptr) {
     for (std::size_t k = 0; k < n; ++k)
       if (!std::isfinite(theta[k]))
-        throw std::invalid_argument(std::string(where) + ": curve angle sample [" +
-                                    std::to_string(k) + "] is not finite (" +
-                                    detail::format_value(theta[k]) + ")");
+        detail::fail(where, "curve angle sample [", k, "] is not finite (", theta[k], ")");
   }
   model.reset();
   for (std::size_t k = 0; k < n; ++k) {

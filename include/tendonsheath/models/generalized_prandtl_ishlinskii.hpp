@@ -111,6 +111,7 @@ inline void validate_gpi(const GeneralizedPrandtlIshlinskiiParams& p, const char
   require(!p.thresholds.empty(), w, "thresholds must not be empty");
   require(p.thresholds.size() == p.weights.size(), w,
           "thresholds and weights must have the same length");
+  if (detail::failed()) return;  // without exceptions, in make(): the vectors are not indexed
   require(p.thresholds[0] == 0.0, w, "thresholds[0] must be 0");
   require_positive(p.weights[0], w, "weights[0]");
   for (std::size_t i = 1; i < p.thresholds.size(); ++i) {
@@ -231,6 +232,7 @@ class GeneralizedPrandtlIshlinskiiInverse {
 
   /// @param p the forward model's parameters; throws std::invalid_argument naming the first bad one.
   explicit GeneralizedPrandtlIshlinskiiInverse(const Params& p) : model_(p) {
+    if (detail::failed()) return;  // without exceptions, in make(): the model's check failed
     const double gain = std::fmin(p.rising.b, p.falling.b);
     x_min_ = std::fmin(p.rising.c, p.falling.c) - 2.0 * kEnvelopeSpan / gain;
     x_max_ = std::fmax(p.rising.c, p.falling.c) + 2.0 * kEnvelopeSpan / gain;

@@ -128,6 +128,7 @@ class HystereticOscillator {
     if (p.input_reconstruction == kInputBandlimited) {
       require(p.lookahead >= 1 && p.lookahead <= SincKernel::kMaxHalfWidth, w,
               "lookahead must be in [1, 64] samples (got ", p.lookahead, ")");
+      if (detail::failed()) return;  // without exceptions, in make(): no buffers of a bad size
       kernel_ = SincKernel(p.lookahead);
       const std::size_t taps = static_cast<std::size_t>(2 * p.lookahead);
       history_.assign(2 * taps, 0.0);

@@ -37,6 +37,7 @@ inline void validate_pi(const PrandtlIshlinskiiParams& p, const char* w, bool in
   require(p.thresholds.size() == p.weights.size(), w,
           "thresholds and weights must have the same length (got ", p.thresholds.size(), " and ",
           p.weights.size(), ")");
+  if (detail::failed()) return;  // without exceptions, in make(): the vectors are not indexed
   if (invertible)
     require(p.thresholds.front() == 0.0, w,
             "thresholds[0] must be 0 for an invertible operator (a play with threshold 0 makes the "
@@ -86,6 +87,7 @@ class PrandtlIshlinskii {
   /// @param p the thresholds and weights; throws std::invalid_argument naming the first bad entry.
   explicit PrandtlIshlinskii(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
     detail::validate_pi(p, "PrandtlIshlinskii", false);
+    if (detail::failed()) return;  // without exceptions, in make(): thresholds may be empty
     x_limit_ = detail::pi_input_limit(p_);
   }
   /// The last step's input was beyond +-input_limit() and was clamped to it.
@@ -162,6 +164,7 @@ class PrandtlIshlinskiiInverse {
   /// first bad entry.
   explicit PrandtlIshlinskiiInverse(const Params& p) : p_(p), z_(p.thresholds.size(), 0.0) {
     detail::validate_pi(p, "PrandtlIshlinskiiInverse", true);
+    if (detail::failed()) return;  // without exceptions, in make(): thresholds may be empty
     x_limit_ = detail::pi_input_limit(p_);
   }
   /// The last command was beyond +-input_limit() (or its target unreachable) and was clamped.

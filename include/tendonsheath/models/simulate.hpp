@@ -96,9 +96,7 @@ void simulate(Model& model, const double* t, const double* x, double* y, std::si
   if constexpr (detail::has_divergence<Model>::value) {
     if (model.diverged()) {
       const long at = model.diverged_at() - static_cast<long>(D);
-      throw std::invalid_argument(std::string(where) +
-                                  ": the state diverged (overflowed) at sample " +
-                                  std::to_string(at > 0 ? at : 0) + " of " + std::to_string(n));
+      detail::fail(where, "the state diverged (overflowed) at sample ", at > 0 ? at : 0, " of ", n);
     }
   }
 }

@@ -108,6 +108,7 @@ class PullPullPlant {
     detail::validate_rest_strain(p.pretension, std::fmin(p.stiffness, detail::stiffness2_of(p)), w,
                                  "pretension");
     validate_chain_options(p.options, w);
+    if (detail::failed()) return;  // without exceptions, in make(): no chain of a bad size
     const std::size_t M = 2 * N_;
     chain_ = FrictionChain(M);
     const double k2 = detail::stiffness2_of(p) * static_cast<double>(N_) / L2_;

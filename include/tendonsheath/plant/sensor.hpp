@@ -55,6 +55,7 @@ class Sensor {
     require_non_negative(p.delay, "Sensor", "delay");
     require(p.history >= 1 && p.history <= kMaxHistory, "Sensor", "history must be in [1, ",
             kMaxHistory, "] samples (got ", p.history, ")");
+    if (detail::failed()) return;  // without exceptions, in make(): no history of a bad size
     if (p.delay > 0.0) {
       times_.resize(static_cast<std::size_t>(p.history));
       values_.resize(static_cast<std::size_t>(p.history));

@@ -99,6 +99,7 @@ class SingleTendonPlant {
     detail::validate_rest_strain(p.load_force, p.stiffness, w, "load_force");
     detail::validate_rate_effects(p.sheath_viscosity, p.relaxation_fraction, p.relaxation_time, w);
     validate_chain_options(p.options, w);
+    if (detail::failed()) return;  // without exceptions, in make(): no chain of a bad size
     chain_ = FrictionChain(N_);
     const double k = p.stiffness * static_cast<double>(N_) / L_;
     for (std::size_t e = 1; e <= N_; ++e) chain_.set_element(e, k, p.load_force);
