@@ -52,6 +52,7 @@ PUBLIC_MODULES = [
     "tendonsheath.sweep",
     "tendonsheath.bench",
     "tendonsheath.report.build",
+    "tendonsheath.report.summary",
     "tendonsheath.identify",
     "tendonsheath.compare",
     "tendonsheath.inverse_error",

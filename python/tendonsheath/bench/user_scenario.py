@@ -431,7 +431,7 @@ def _check_load(sc: UserScenario) -> None:
             "applies to type = 'pull_pull'); remove the table or change the plant type"
         )
     if sc.load is not None:
-        takes = _LOAD_KEYS.get(sc.load.get("type"), set())
+        takes = _LOAD_KEYS.get(str(sc.load.get("type")), set())
         other = sorted(set(sc.load) - takes - {"type"})
         if takes and other:
             raise ScenarioError(
