@@ -15,7 +15,65 @@ from ..status import Status
 from . import persistence
 
 
-class EngineCompensator(PythonObject, _ControlBlock):
+class SavedAsJson:
+    """Saving a compensator as its JSON file (``to_json``) and reading one back (``load``);
+    the class gives ``to_dict``."""
+
+    def to_dict(self) -> dict:
+        """The compensator as a dict (format ``tendonsheath.compensator``): each class its own.
+
+        Returns
+        -------
+        dict
+            format, version, compensator and its settings.
+        """
+        raise NotImplementedError(f"{type(self).__name__} does not define to_dict")
+
+    def to_json(self, path: str | Path | None = None) -> str:
+        """The compensator as JSON text; also written to `path` when one is given.
+        ``tendonsheath.compensate.load`` reads it; the C++ ``tendonsheath/io/json.hpp`` reads
+        the feedforwards' files (not the AdaptiveController's), and
+        ``tendonsheath/io/json_multi_input.hpp`` the LoadCompensated's and the
+        CoupledFeedforward's.
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            A file to write the JSON to.
+
+        Returns
+        -------
+        str
+            The JSON text.
+        """
+        return persistence.to_json(self.to_dict(), path)
+
+    @classmethod
+    def load(cls, source: str | Path | dict) -> Self:
+        """A compensator saved with :meth:`to_json` (a path, JSON text or a dict); it must be
+        of this class (``tendonsheath.compensate.load`` reads any).
+
+        Parameters
+        ----------
+        source : str, Path or dict
+            A path to a JSON file, JSON text, or the dict itself.
+
+        Returns
+        -------
+        SavedAsJson
+            The saved compensator, an instance of this class.
+
+        Raises
+        ------
+        ValueError
+            An unreadable source or an invalid compensator file.
+        TypeError
+            The file holds another kind of compensator.
+        """
+        return persistence.load_as(cls, source)
+
+
+class EngineCompensator(PythonObject, SavedAsJson, _ControlBlock):
     """What every compensator built on a C++ engine shares: its status, its constructor
     settings and saving them (``to_json``/``load``), and the engine ``bench.run`` steps."""
 
@@ -48,47 +106,6 @@ class EngineCompensator(PythonObject, _ControlBlock):
             format, version, compensator and its settings.
         """
         return persistence.compensator_dict(type(self).__name__, self._settings)
-
-    def to_json(self, path: str | Path | None = None) -> str:
-        """The compensator as JSON text; also written to `path` when one is given.
-        ``tendonsheath.compensate.load`` reads it; the C++ ``tendonsheath/io/json.hpp`` reads
-        the feedforwards' files (not the AdaptiveController's).
-
-        Parameters
-        ----------
-        path : str or Path, optional
-            A file to write the JSON to.
-
-        Returns
-        -------
-        str
-            The JSON text.
-        """
-        return persistence.to_json(self.to_dict(), path)
-
-    @classmethod
-    def load(cls, source: str | Path | dict) -> Self:
-        """A compensator saved with :meth:`to_json` (a path, JSON text or a dict); it must be
-        of this class (``tendonsheath.compensate.load`` reads any).
-
-        Parameters
-        ----------
-        source : str, Path or dict
-            A path to a JSON file, JSON text, or the dict itself.
-
-        Returns
-        -------
-        EngineCompensator
-            The saved compensator, an instance of this class.
-
-        Raises
-        ------
-        ValueError
-            An unreadable source or an invalid compensator file.
-        TypeError
-            The file holds another kind of compensator.
-        """
-        return persistence.load_as(cls, source)
 
     def _recipe(self):
         # pickled as its saved file: an equal compensator at rest (tendonsheath._pyobject)

@@ -5,7 +5,6 @@ of ``tendonsheath/compensators/coupled_feedforward.hpp``)."""
 from __future__ import annotations
 
 import functools
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -18,10 +17,11 @@ from ..coupled_plant import _joint_matrix
 from ..models import Coupled
 from ..status import Status
 from . import persistence
+from .base import SavedAsJson
 from .inverse_feedforward import InverseFeedforward
 
 
-class CoupledFeedforward(PythonObject):
+class CoupledFeedforward(PythonObject, SavedAsJson):
     """Motor commands that make a :class:`~tendonsheath.models.Coupled` model's joints follow
     their desired angles.
 
@@ -177,45 +177,6 @@ class CoupledFeedforward(PythonObject):
         if isinstance(self.settings.get("input_range", "identified"), str):
             del settings["input_range"]  # "identified": each joint's own, saved in its model
         return persistence.compensator_dict("CoupledFeedforward", {"model": self.model, **settings})
-
-    def to_json(self, path: str | Path | None = None) -> str:
-        """The compensator as JSON text; also written to `path` when one is given. The C++
-        ``tendonsheath/io/json_multi_input.hpp`` reads it (``load_coupled_feedforward_json``).
-
-        Parameters
-        ----------
-        path : str or Path, optional
-            A file to write the JSON to.
-
-        Returns
-        -------
-        str
-            The JSON text.
-        """
-        return persistence.to_json(self.to_dict(), path)
-
-    @classmethod
-    def load(cls, source: str | Path | dict) -> CoupledFeedforward:
-        """A CoupledFeedforward saved with :meth:`to_json` (a path, JSON text or a dict).
-
-        Parameters
-        ----------
-        source : str, Path or dict
-            A path to a JSON file, JSON text, or the dict itself.
-
-        Returns
-        -------
-        CoupledFeedforward
-            The saved compensator.
-
-        Raises
-        ------
-        ValueError
-            An unreadable source or an invalid compensator file.
-        TypeError
-            The file holds another kind of compensator.
-        """
-        return persistence.load_as(cls, source)
 
     @classmethod
     def _from_saved(cls, values: dict) -> CoupledFeedforward:

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import functools
 import math
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -29,10 +28,11 @@ from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from ..models.loaded import Loaded
 from . import persistence
+from .base import SavedAsJson
 from .inverse_feedforward import InverseFeedforward
 
 
-class LoadCompensated(PythonObject):
+class LoadCompensated(PythonObject, SavedAsJson):
     """Commands for a desired output under a measured load, from a Loaded model's inverse.
 
     Parameters
@@ -166,45 +166,6 @@ class LoadCompensated(PythonObject):
         inverse = {k: v for k, v in self.inverse.params.items() if k != "model"}  # its base
         settings = {"model": self.model, "switch": self.switch, **inverse}
         return persistence.compensator_dict("LoadCompensated", settings)
-
-    def to_json(self, path: str | Path | None = None) -> str:
-        """The compensator as JSON text; also written to `path` when one is given. The C++
-        ``tendonsheath/io/json_multi_input.hpp`` reads it (``load_load_compensated_json``).
-
-        Parameters
-        ----------
-        path : str or Path, optional
-            A file to write the JSON to.
-
-        Returns
-        -------
-        str
-            The JSON text.
-        """
-        return persistence.to_json(self.to_dict(), path)
-
-    @classmethod
-    def load(cls, source: str | Path | dict) -> LoadCompensated:
-        """A LoadCompensated saved with :meth:`to_json` (a path, JSON text or a dict).
-
-        Parameters
-        ----------
-        source : str, Path or dict
-            A path to a JSON file, JSON text, or the dict itself.
-
-        Returns
-        -------
-        LoadCompensated
-            The saved compensator.
-
-        Raises
-        ------
-        ValueError
-            An unreadable source or an invalid compensator file.
-        TypeError
-            The file holds another kind of compensator.
-        """
-        return persistence.load_as(cls, source)
 
     @classmethod
     def _from_saved(cls, values: dict) -> LoadCompensated:
