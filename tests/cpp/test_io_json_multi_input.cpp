@@ -15,23 +15,7 @@
 #include <tendonsheath/io/json_multi_input.hpp>
 #include <vector>
 
-namespace {
-std::atomic<bool> armed{false};
-std::atomic<long> allocations{0};
-}  // namespace
-
-// Allocations counted while armed (as tests/cpp/test_no_allocation.cpp); GCC's
-// -Wmismatched-new-delete cannot see that the inlined pair matches.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-void* operator new(std::size_t n) {
-  if (armed.load(std::memory_order_relaxed)) allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "counting_new.hpp"  // counts allocations while armed
 
 namespace ts = tendonsheath;
 using ts::io::json;

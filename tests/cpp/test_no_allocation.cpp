@@ -10,26 +10,8 @@
 #include <tendonsheath/tendonsheath.hpp>
 #include <vector>
 
+#include "counting_new.hpp"  // counts allocations while armed
 #include "model_inverse_cases.hpp"
-
-namespace {
-std::atomic<bool> armed{false};
-std::atomic<long> allocations{0};
-}  // namespace
-
-// The replacement pair is new -> malloc, delete -> free; GCC's -Wmismatched-new-delete
-// cannot see that they match once inlined.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-
-void* operator new(std::size_t n) {
-  if (armed.load(std::memory_order_relaxed)) allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace ts = tendonsheath;
 

@@ -8,15 +8,7 @@
 // std::invalid_argument naming the key. null stands for an unbounded limit (JSON has no inf).
 #pragma once
 
-#include "../config.hpp"
-
-#if !TENDONSHEATH_EXCEPTIONS
-#error "tendonsheath/io/json.hpp needs C++ exceptions: it reports a bad file by throwing \
-std::invalid_argument, and nlohmann/json reports parse and type errors by throwing. Without \
-exceptions, export the compensator to a header of constexpr parameters on a host \
-(tendonsheath export FILE --cpp OUT.hpp) and build it with that header's make_compensator(), \
-which returns a tendonsheath::Result (docs/cpp-without-exceptions.md)."
-#endif
+#include "requires_exceptions.hpp"
 
 #include <cstdio>
 #include <functional>
