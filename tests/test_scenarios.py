@@ -176,3 +176,15 @@ def test_paper_target_verdicts_follow_the_measured_figures(scenario_results):
         assert t["measured"] == lau.extra["servo_runs"][servo][name][key]
         bound = 5.0 if key == "max_percent_error" or "published" in name else 2.0
         assert t["met"] == (t["measured"] < bound)
+
+
+def test_sun2015_shows_the_plants_own_groups_beside_the_identified_ones(scenario_results):
+    from tendonsheath.bench.scenarios.common import PLANT_VALUE
+
+    rows = {r["quantity"]: r for r in scenario_results["sun2015"].identified}
+    assert rows["mu"][PLANT_VALUE] == "0.1 / 0.115 (sheaths 1 / 2)"
+    assert rows["gain r_p/r_d"][PLANT_VALUE] == "1"
+    # T0 L / (EA r_p) = 20 N * 1.2 m / (5000 N * 10 mm), and for the second sheath's EA -10 %
+    assert rows["T0 L/(EA r_p)"][PLANT_VALUE].startswith("0.48 / 0.5333 rad")
+    outside = [r for q, r in rows.items() if q.startswith("BoucWenBacklash ")]
+    assert outside and all(r[PLANT_VALUE].startswith("none: the plant is outside") for r in outside)

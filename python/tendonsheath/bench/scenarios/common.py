@@ -66,15 +66,37 @@ def calibrated(name: str, calibrate: Callable, scale: float, seed: int, progress
     return calibrate(seed, budget), budget
 
 
-def scenario_result(scenario: Callable, cal, **fields) -> ScenarioResult:
+#: the identified table's column of the simulated plant's own values
+PLANT_VALUE = "the plant's value (never told)"
+
+
+def scenario_result(
+    scenario: Callable, cal, plant_values: dict[str, str] | None = None, **fields
+) -> ScenarioResult:
     """A built-in scenario's result: named after its function, summarised by the first
-    paragraph of its docstring, listing the groups ``cal`` identified."""
+    paragraph of its docstring, listing the groups ``cal`` identified; with ``plant_values``
+    (group -> the simulated plant's value, as text) beside each group, and a model class's
+    parameters marked as having none (the plant lies outside every model class). Only the
+    report shows them: no compensator is built from them."""
+    rows = cal.identified_rows()
+    if plant_values:
+        for row in rows:
+            quantity = row["quantity"]
+            row[PLANT_VALUE] = plant_values.get(quantity) or (
+                "none: the plant is outside the model class" if quantity in cal_model_rows(cal)
+                else "-"
+            )  # fmt: skip
     return ScenarioResult(
         name=scenario.__name__,
         summary=first_paragraph(scenario.__doc__ or ""),
-        identified=cal.identified_rows(),
+        identified=rows,
         **fields,
     )
+
+
+def cal_model_rows(cal) -> set[str]:
+    """The identified table's rows that are a model class's parameters (no plant value)."""
+    return {f"{name} {k}" for name, fit in cal.fits.items() for k in fit.model.params}
 
 
 def encoder(noise_std: float = 2e-4, resolution: float = 1e-4, seed: int = 1) -> Sensor:

@@ -82,6 +82,22 @@ def _plant(theta: float, load=None, sensor=None, servo: str = "pid") -> PullPull
     )
 
 
+def plant_groups() -> dict[str, str]:
+    """The groups the calibration identifies, as the simulated plant has them (sheath 1 /
+    sheath 2 of the unequal pair): for the report only, never told to a compensator."""
+    sheaths = presets.realistic_plant(friction=_COMMON["friction"], stiffness=_COMMON["stiffness"])
+    r_p = _COMMON["proximal_radius"]
+    t0 = [f"{_COMMON['pretension'] * LENGTH / (sheaths[k] * r_p):.4g}" for k in ("stiffness",
+          "stiffness2")]  # fmt: skip
+    play = presets.REALISTIC["gear_backlash"]
+    return {
+        "mu": f"{sheaths['friction']:.4g} / {sheaths['friction2']:.4g} (sheaths 1 / 2)",
+        "T0 L/(EA r_p)": f"{t0[0]} / {t0[1]} rad (sheaths 1 / 2)",
+        "gain r_p/r_d": f"{_COMMON['proximal_radius'] / _COMMON['distal_radius']:.4g}",
+        "play": f"gear backlash {play:.3g} rad, with the motor's friction",
+    }
+
+
 def calibrate(seed: int = 0, budget: dict | None = None, servo: str = "pid", loads: bool = True):
     """The calibration protocol (bench.calibrate) on the robot: CurveAngleModel groups from
     three calibration angles, a BoucWenBacklash at 1.15 pi, and one run per load."""
@@ -184,6 +200,7 @@ def sun2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     return scenario_result(
         sun2015,
         cal,
+        plant_values=plant_groups(),
         targets=[_local_target(local, "PID"), _local_target(local_pd, "PD")],
         title="Sun et al. 2015: curve-angle feedforward without a tip sensor",
         conditions=CONDITIONS,
