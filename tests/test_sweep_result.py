@@ -76,7 +76,7 @@ def test_save_writes_tables_summary_and_figures(tmp_path):
         res.summary(bound={"nope": 1.0})
 
 
-def test_robustness_study_for_the_report(tmp_path):
+def test_robustness_study_for_the_report(tmp_path, monkeypatch):
     from reference.stand_in_study import compensator_study
     from tendonsheath.sweep import robustness_section, robustness_study
     from tendonsheath.sweep.studies import robustness_design
@@ -99,3 +99,14 @@ def test_robustness_study_for_the_report(tmp_path):
         assert numbers["within_bound"] == np.count_nonzero(mse <= 1e-4) / 10
     assert (tmp_path / "robustness_mse.png").read_bytes()[:4] == b"\x89PNG"
     json.dumps(section)
+    # in a report in degrees the figure's axis and bound are in deg^2, the numbers in rad^2
+    from tendonsheath.sweep import studies
+
+    drawn = []
+    monkeypatch.setattr(studies, "save_figure", lambda fig, path, **kw: drawn.append(fig))
+    in_deg = robustness_section(res, tmp_path, bound=1e-4, angle_unit="deg")
+    assert in_deg["compensators"] == section["compensators"]
+    ax = drawn[0].axes[0]
+    assert ax.get_ylabel() == "mse [deg^2]"
+    bound_line = [ln for ln in ax.lines if ln.get_label().startswith("bound")][0]
+    assert bound_line.get_ydata()[0] == pytest.approx(1e-4 * (180 / np.pi) ** 2, rel=1e-12)

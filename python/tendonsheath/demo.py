@@ -187,7 +187,7 @@ def robustness_section(out: Path, runs: int = 200, seed: int = 0, angle_unit: st
     the nominal plant: robustness, not one lucky run."""
     from .bench.scenarios.do import _COMMON, NOMINAL, robustness_run
     from .report import html
-    from .report.units import rows_in_unit
+    from .report.units import convert, rows_in_unit, unit_after
     from .sweep.studies import robustness_design, robustness_study
     from .sweep.studies import robustness_section as study_figure
 
@@ -199,8 +199,11 @@ def robustness_section(out: Path, runs: int = 200, seed: int = 0, angle_unit: st
     result = robustness_study(
         run=robustness_run, n=runs, seed=2015 + seed, design=design, progress=False
     )
-    numbers = study_figure(result, out, metric="mse", bound=1e-4, design=design)
-    within = "share with MSE <= 1e-4 rad^2"
+    numbers = study_figure(
+        result, out, metric="mse", bound=1e-4, design=design, angle_unit=angle_unit
+    )
+    bound = convert(1e-4, "rad^2", angle_unit)
+    within = f"share with MSE <= {bound:.3g} {unit_after('rad^2', angle_unit)}"
     rows = [
         {
             "compensator": k,

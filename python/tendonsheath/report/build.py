@@ -194,7 +194,7 @@ def scenario_section(
             "Gain, phase and error magnitude of the fundamental, with the paper's bandwidth.",
         )
         parts.append(_bandwidth_table(result))
-    parts.append(_calibration_tables(result))
+    parts.append(_calibration_tables(result, angle_unit))
     if result.honesty:
         parts.append(honesty_section(result.honesty, angle_unit))
     return "".join(parts), section.written
@@ -305,12 +305,16 @@ def _bandwidth_table(result) -> str:
     return "<h3>Bandwidth</h3>" + html.table(rows)
 
 
-def _calibration_tables(result) -> str:
-    """The calibration's scalar figures and the identified parameters ("" without any)."""
+def _calibration_tables(result, angle_unit: str = "deg") -> str:
+    """The calibration's scalar figures (angles in the report's unit) and the identified
+    parameters ("" without any)."""
     parts = []
     cal = {k: v for k, v in result.calibration.items() if not isinstance(v, dict | list | tuple)}
     if cal:
-        parts.append("<h3>Calibration (identified on the plant)</h3>" + html.table([cal]))
+        parts.append(
+            "<h3>Calibration (identified on the plant)</h3>"
+            + html.table(rows_in_unit([cal], angle_unit))
+        )
     if result.identified:
         parts.append(
             '<h3>Identified parameters</h3><p class="note">From the calibration logs alone '

@@ -15,6 +15,7 @@ _KEY_UNITS = (
     ("improvement", "x"),
     ("ratio", "x"),
     ("_hz", "Hz"),
+    ("nrmse", ""),  # a share of the output's range: no unit
     ("rmse", "rad"),
     ("mse", "rad^2"),
     ("max_abs", "rad"),

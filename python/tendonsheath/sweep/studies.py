@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._atomic import save_figure
+from ..report.units import check_angle_unit, convert, header, unit_after, unit_of_key
 from .distributions import Integers, MonteCarlo, Relative, Seed
 
 if TYPE_CHECKING:
@@ -94,6 +95,7 @@ def robustness_section(
     metric: str = "mse",
     bound: float | None = None,
     design: MonteCarlo | None = None,
+    angle_unit: str = "rad",
 ) -> dict:
     """The report's robustness figure (robustness_<metric>.png: the spread of ``metric`` per
     compensator, log scale) and numbers: quantiles per compensator and, with ``bound``, the
@@ -112,6 +114,8 @@ def robustness_section(
         A bound on the metric, drawn and counted.
     design : MonteCarlo, optional
         The design that ran.
+    angle_unit : {"rad", "deg"}, default "rad"
+        The figure's unit for an angle metric (the numbers returned stay in radians).
 
     Returns
     -------
@@ -123,22 +127,26 @@ def robustness_section(
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    check_angle_unit(angle_unit)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     summary = result.summary({metric: bound} if bound is not None else None)
     summary = summary[summary["metric"] == metric]
     groups = list(result._groups())
     fig, ax = plt.subplots(figsize=(6.5, 3.8))
-    data = [g[metric].dropna().to_numpy() for _, g in groups]
+    unit = unit_of_key(metric)
+    factor = convert(1.0, unit, angle_unit)  # radians to the report's unit (1 for others)
+    data = [factor * g[metric].dropna().to_numpy() for _, g in groups]
     ax.boxplot(data, whis=(5, 95), showfliers=True, flierprops={"markersize": 2})
     ax.set_xticks(range(1, len(groups) + 1), [c for c, _ in groups])
     positive = all(d.size and np.all(d > 0) for d in data)
     if positive:
         ax.set_yscale("log")
     if bound is not None:
-        ax.axhline(bound, color="r", ls="--", lw=1, label=f"bound {bound:g}")
+        shown = factor * bound
+        ax.axhline(shown, color="r", ls="--", lw=1, label=f"bound {shown:.3g}")
         ax.legend(fontsize="small")
-    ax.set_ylabel(metric)
+    ax.set_ylabel(header(metric, unit_after(unit, angle_unit)))
     ax.set_title(
         f"{metric} over {result.n_runs} perturbed plants (box: quartiles, whiskers: 5-95 %)",
         fontsize="medium",
