@@ -236,7 +236,7 @@ class _JointData:
             np.concatenate([o[keep] for o in self.others]),
         )
 
-    def recordings(self, c: FloatArray) -> list[tuple]:
+    def recordings(self, c: np.ndarray) -> list[tuple]:
         """(t, x, y - others @ c) per recording: joint i's own model's data."""
         return [
             (t, x, y - o @ c)
