@@ -8,7 +8,9 @@ y_i minus that coupling; (3) ``scipy.optimize.least_squares`` refines theta_i an
 together. The residuals of a hysteresis model fitted to a real drive are autocorrelated (the
 misfit repeats over each cycle), so the standard errors are heteroscedasticity and
 autocorrelation consistent: the Newey-West sandwich with a Bartlett kernel, its bandwidth by
-Andrews' AR(1) plug-in rule on the coupling's scores (or ``lags``).
+Andrews' AR(1) plug-in rule on the coupling's scores (or ``lags``). Several recordings
+(sessions) share the parameters; each is simulated from rest and is an independent block of
+the covariance: its autocovariances never pair samples of two recordings.
 """
 
 from __future__ import annotations
@@ -23,10 +25,11 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from .._typing import ArrayLike, FloatArray
-from ..coupled_plant import _joint_matrix
 from ..models import Coupled, HysteresisModel
 from .core import identify
+from .coupled_data import CoupledRecording, coupled_recordings
 from .fit import Fit
+from .newey_west import newey_west as _newey_west
 
 
 @dataclass
@@ -79,10 +82,11 @@ class CoupledFit:
 
 def identify_coupled(
     model_class: type[HysteresisModel] | Sequence[type[HysteresisModel]],
-    t: ArrayLike | None,
-    x: ArrayLike,
-    y: ArrayLike,
+    t: ArrayLike | None = None,
+    x: ArrayLike | None = None,
+    y: ArrayLike | None = None,
     *,
+    recordings: Sequence | None = None,
     warmup: int = 0,
     couple: ArrayLike | None = None,
     lags: int | None = None,
@@ -90,6 +94,11 @@ def identify_coupled(
 ) -> CoupledFit:
     """Identify coupled joints from logs of all of them (see the module's description).
 
+    Call it as ``identify_coupled(cls, t, x, y)`` (one log) or ``identify_coupled(cls,
+    recordings=[(t1, x1, y1), (t2, x2, y2), ...])`` (several sessions, each at its own rate).
+    The recordings share the parameters and the coupling; each starts from the models' rest
+    state (no state carries over a gap), loses its own ``warmup`` samples, and is an
+    independent block of the Newey-West covariance (no lag pairs samples of two recordings).
     The joints should be excited independently (different signals): a coupling is told apart
     from a joint's own hysteresis only by what the other joints do.
 
@@ -98,13 +107,16 @@ def identify_coupled(
     model_class : type or sequence of type
         Each joint's own model class (one for all, or one per joint).
     t : array_like of float, shape (n,), or None
-        Sample times (s); None for rate-independent models.
+        Sample times (s), strictly increasing; None for rate-independent models.
     x : array_like of float, shape (n, J)
-        The joints' inputs (motor angles), one column per joint.
+        The joints' inputs (motor angles), one column per joint (or give ``recordings``).
     y : array_like of float, shape (n, J)
         The joints' measured angles.
+    recordings : sequence of tuple, optional
+        (t, x, y) per recording (or objects with ``t``, ``x``, ``y``), x and y of shape
+        (n_r, J) with the same J in all; t None in all of them or in none. Not with t, x, y.
     warmup : int, default 0
-        Samples at the start left out of every fit.
+        Samples at the start of each recording left out of every fit.
     couple : array_like of bool, shape (J, J), optional
         True where C[i, j] is identified (default every pair i != j); the others are 0.
     lags : int, optional
@@ -120,21 +132,20 @@ def identify_coupled(
 
     Raises
     ------
+    TypeError
+        Both t, x, y and ``recordings`` given, or neither.
     ValueError
-        Signals of different shapes, not finite, a bad ``couple`` or ``lags``, or too few
-        samples after the warm-up.
+        Signals of the wrong shape, not finite, times not increasing, recordings with
+        different numbers of joints, a bad ``couple`` or ``lags``, or too few samples after
+        the warm-up.
     """
     start = time.perf_counter()
-    xs = _joint_matrix(x, _joints(x), "x", "identify_coupled")
-    n, joints = xs.shape
-    ys = _joint_matrix(y, joints, "y", "identify_coupled")
-    if ys.shape[0] != n:
-        raise ValueError(f"identify_coupled: x has {n} samples, y {ys.shape[0]}")
+    recs = coupled_recordings(t, x, y, recordings)
+    joints = recs[0].x.shape[1]
     classes = _classes(model_class, joints)
     mask = _mask(couple, joints)
-    warmup = int(warmup)
-    if not 0 <= warmup < n - 10 * joints:
-        raise ValueError(f"identify_coupled: warmup {warmup} leaves too few of the {n} samples")
+    blocks = _blocks(recs, warmup, joints)
+    n = sum(blocks)
     if lags is not None and not (isinstance(lags, int | np.integer) and 0 <= lags < n):
         raise ValueError(f"identify_coupled: lags must be an integer in [0, n) (got {lags!r})")
     options = {"progress": False, "standard_errors": "none", **options, "normalize": False}
@@ -143,8 +154,8 @@ def identify_coupled(
     used_lags, rmse = [], np.zeros(joints)
     for i in range(joints):
         others = np.flatnonzero(mask[i])
-        joint = _fit_joint(classes[i], t, xs[:, i], ys[:, i], ys[:, others], warmup, options)
-        c_se, lag = _newey_west(joint.jac, joint.residual, len(others), lags)
+        joint = _fit_joint(classes[i], _JointData(recs, i, others), int(warmup), options)
+        c_se, lag = _newey_west(joint.jac, joint.residual, len(others), lags, blocks)
         models.append(joint.model)
         fits.append(joint.fit)
         coupling[i, others] = joint.coefficients
@@ -155,11 +166,23 @@ def identify_coupled(
     return CoupledFit(model, coupling, se, used_lags, rmse, fits, time.perf_counter() - start)
 
 
-def _joints(x: ArrayLike) -> int:
-    a = np.asarray(x)
-    if a.ndim != 2:
-        raise ValueError(f"identify_coupled: x must have shape (n, J) (got {a.shape})")
-    return int(a.shape[1])
+def _blocks(recs: list[CoupledRecording], warmup, joints: int) -> list[int]:
+    """The fitted samples of each recording, checked against the warm-up."""
+    if isinstance(warmup, bool) or int(warmup) != warmup or warmup < 0:
+        raise ValueError(f"identify_coupled: warmup must be a number of samples >= 0 ({warmup})")
+    for i, r in enumerate(recs):
+        if r.n <= warmup + 1:
+            who = "" if len(recs) == 1 else f"recording {i}: "
+            raise ValueError(
+                f"identify_coupled: {who}warmup {int(warmup)} leaves too few of its {r.n} samples"
+            )
+    blocks = [r.n - int(warmup) for r in recs]
+    if sum(blocks) <= 10 * joints:
+        raise ValueError(
+            f"identify_coupled: warmup {int(warmup)} leaves too few of the {sum(r.n for r in recs)}"
+            f" samples ({sum(blocks)} fitted, more than {10 * joints} needed)"
+        )
+    return blocks
 
 
 def _classes(model_class, joints: int) -> list:
@@ -193,13 +216,49 @@ class _Joint:
     residual: FloatArray
 
 
-def _fit_joint(cls, t, x, y, others, warmup: int, options: dict) -> _Joint:
+class _JointData:
+    """Joint i's signals in every recording: its times, input and angle, and the angles of
+    the joints coupled into it (columns ``others``)."""
+
+    def __init__(self, recs: list[CoupledRecording], i: int, others: np.ndarray):
+        self.t = [r.t for r in recs]
+        self.x = [r.x[:, i] for r in recs]
+        self.y = [r.y[:, i] for r in recs]
+        self.others = [r.y[:, others] for r in recs]
+        self.k = int(others.size)
+
+    def stacked(self, warmup: int) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """(input, angle, others' angles) of the fitted samples of all recordings."""
+        keep = slice(warmup, None)
+        return (
+            np.concatenate([x[keep] for x in self.x]),
+            np.concatenate([y[keep] for y in self.y]),
+            np.concatenate([o[keep] for o in self.others]),
+        )
+
+    def recordings(self, c: np.ndarray) -> list[tuple]:
+        """(t, x, y - others @ c) per recording: joint i's own model's data."""
+        return [
+            (t, x, y - o @ c)
+            for t, x, y, o in zip(self.t, self.x, self.y, self.others, strict=True)
+        ]
+
+    def residual(self, model: HysteresisModel, c: FloatArray, warmup: int) -> FloatArray:
+        """The fitted samples' prediction errors, each recording simulated from rest."""
+        parts = [
+            (np.asarray(model.simulate(t, x)) + o @ c - y)[warmup:]
+            for t, x, y, o in zip(self.t, self.x, self.y, self.others, strict=True)
+        ]
+        return np.concatenate(parts)
+
+
+def _fit_joint(cls, data: _JointData, warmup: int, options: dict) -> _Joint:
     """Stages (1) to (3) for one joint: linear start, its own model, joint refinement."""
-    keep = slice(warmup, None)
-    k = others.shape[1]
-    a = np.column_stack([x, np.ones_like(x), others])[keep]
-    c0 = np.linalg.lstsq(a, y[keep], rcond=None)[0][2:] if k else np.zeros(0)
-    fit = identify(cls, t, x, y - others @ c0, warmup=warmup, **options)
+    k = data.k
+    x, y, others = data.stacked(warmup)
+    a = np.column_stack([x, np.ones_like(x), others])
+    c0 = np.linalg.lstsq(a, y, rcond=None)[0][2:] if k else np.zeros(0)
+    fit = identify(cls, recordings=data.recordings(c0), warmup=warmup, **options)
     names = list(fit.identified)
     theta0 = np.array([fit.model.params[name] for name in names], dtype=float)
     lo, hi = _bounds(fit, names, theta0)
@@ -208,9 +267,8 @@ def _fit_joint(cls, t, x, y, others, warmup: int, options: dict) -> _Joint:
         try:
             model = fit.model.with_params(**dict(zip(names, p[: len(names)], strict=True)))
         except ValueError:  # an invalid step: a large residual makes the solver step back
-            return np.full(y.size - warmup, 1e3)
-        pred = np.asarray(model.simulate(t, x)) + others @ p[len(names) :]
-        return (pred - y)[keep]
+            return np.full(y.size, 1e3)
+        return data.residual(model, p[len(names) :], warmup)
 
     p0 = np.r_[theta0, c0]
     res = least_squares(
@@ -229,37 +287,3 @@ def _bounds(fit: Fit, names: list[str], theta0: FloatArray) -> tuple[FloatArray,
     lo = np.array([bounds.get(k, (-np.inf, np.inf))[0] for k in names], dtype=float)
     hi = np.array([bounds.get(k, (-np.inf, np.inf))[1] for k in names], dtype=float)
     return np.minimum(lo, theta0), np.maximum(hi, theta0)
-
-
-def _newey_west(jac: FloatArray, r: FloatArray, k: int, lags: int | None) -> tuple[FloatArray, int]:
-    """Standard errors of the last k parameters: (J'J)^-1 S (J'J)^-1, S the Bartlett-weighted
-    sum of the scores' autocovariances up to ``lags`` (None: Andrews' AR(1) rule)."""
-    if k == 0:
-        return np.zeros(0), 0
-    scores = jac * r[:, None]
-    lag = _andrews_lags(scores[:, -k:]) if lags is None else int(lags)
-    s = scores.T @ scores
-    for ell in range(1, lag + 1):
-        gamma = scores[ell:].T @ scores[:-ell]
-        s += (1.0 - ell / (lag + 1.0)) * (gamma + gamma.T)
-    bread = np.linalg.pinv(jac.T @ jac)
-    cov = bread @ s @ bread
-    return np.sqrt(np.clip(np.diag(cov)[-k:], 0.0, None)), lag
-
-
-def _andrews_lags(scores: FloatArray) -> int:
-    """Andrews (1991) Bartlett bandwidth 1.1447 (alpha n)^(1/3), alpha from an AR(1) fit to
-    each score column (weighted equally), at most n - 1."""
-    n = scores.shape[0]
-    num = den = 0.0
-    for g in scores.T:
-        g = g - g.mean()
-        denom = float(g[:-1] @ g[:-1])
-        if denom <= 0.0:
-            continue
-        rho = float(np.clip(g[1:] @ g[:-1] / denom, -0.999, 0.999))
-        var = float(np.mean((g[1:] - rho * g[:-1]) ** 2))
-        num += 4 * rho**2 * var**2 / ((1 - rho) ** 6 * (1 + rho) ** 2)
-        den += var**2 / (1 - rho) ** 4
-    alpha = num / den if den > 0 else 0.0
-    return int(min(n - 1, math.ceil(1.1447 * (alpha * n) ** (1.0 / 3.0))))
