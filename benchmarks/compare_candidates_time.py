@@ -3,14 +3,15 @@ three runs of MRDLab's da Vinci tool 5 (issue 17 item 7: the slowest default can
 budgeted).
 
     python benchmarks/compare_candidates_time.py [--tool5 ../shared/data/davinci_tool5]
-                                                 [--full-search] [--out FILE]
+                                                 [--before] [--out FILE]
 
 Leave-one-run-out cross-validation of the default candidates (seed 0, default settings) on
 f0.10Hz_load010, f0.30Hz_load050 and f0.50Hz_load100 (motor in, jaw out, rad; 4000 samples
 each at 200 Hz; ODbL/DbCL, read from its folder, never copied). Prints each candidate's wall
 and CPU seconds over its three folds and its pooled held-out rmse over the affine map's.
-``--full-search``: the dynamic chains' global search on every sample (no decimation:
-identify.data.MAX_DECIMATION = 1), the figures before the decimation.
+``--before``: the settings before that item: the dynamic chains' global search on every
+sample (identify.data.MAX_DECIMATION = 1) and the full least-squares polish in every fold
+(compare.FOLD_REFINE_EVALUATIONS = None).
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ import time
 from pathlib import Path
 
 import tendonsheath as ts
+from tendonsheath import compare
 from tendonsheath.identify import data as identify_data
 
 RUNS = ("f0.10Hz_load010.csv", "f0.30Hz_load050.csv", "f0.50Hz_load100.csv")
@@ -30,11 +32,12 @@ def main() -> None:
     here = Path(__file__).resolve().parent
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--tool5", type=Path, default=here.parents[1] / "shared/data/davinci_tool5")
-    parser.add_argument("--full-search", action="store_true")
+    parser.add_argument("--before", action="store_true")
     parser.add_argument("--out", type=Path, default=None)
     args = parser.parse_args()
-    if args.full_search:
+    if args.before:
         identify_data.MAX_DECIMATION = 1
+        compare.FOLD_REFINE_EVALUATIONS = None
     logs = [
         ts.io.read_log(args.tool5 / name, time="t", input="motor", output="jaw") for name in RUNS
     ]
@@ -62,7 +65,7 @@ def main() -> None:
         )
     print(f"winner: {cmp.winner_name}; total {total:.1f} s (final fit included)")
     if args.out is not None:
-        result = {"full_search": args.full_search, "total_seconds": total, "rows": rows}
+        result = {"before": args.before, "total_seconds": total, "rows": rows}
         args.out.write_text(json.dumps(result, indent=2))
 
 

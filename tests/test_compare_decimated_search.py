@@ -1,13 +1,16 @@
-"""The dynamic chains' global search on decimated records (issue 17 item 7: the slowest default
-candidate of compare_models, BoucWenBacklash+lag2, made cheaper): every m-th sample keeps the
-time step uniform, the counted samples map to the kept ones, and the fit refined on every
-sample is as good as the one searched on every sample."""
+"""compare_models' default candidates made cheaper (issue 17 item 7): the dynamic chains'
+global search on decimated records (every m-th sample keeps the time step uniform, the counted
+samples map to the kept ones, and the fit refined on every sample is as good as the one
+searched on every sample), and a shorter least-squares polish in the cross-validation folds
+(the winner's final fit keeps the full one)."""
 
 import numpy as np
 from _realdata_helpers import plant_log
 
 import tendonsheath as ts
+from tendonsheath import compare
 from tendonsheath.identify import data
+from tendonsheath.identify import refine as refine_module
 from tendonsheath.identify.data import make_recordings
 from tendonsheath.models import BoucWenBacklash, Chain, SecondOrderLag
 
@@ -66,3 +69,28 @@ def test_short_records_are_searched_whole():
     recs = make_recordings(recordings=[(t, x, y)])
     out, w = data.decimate_for_search(recs, 5)
     assert out is recs and w == 5
+
+
+def test_cross_validation_folds_polish_less_but_the_final_fit_fully(monkeypatch):
+    """compare_models caps the least-squares polish of the folds whose fits only rank the
+    candidates (FOLD_REFINE_EVALUATIONS); the winner's final fit on all the data, and a fit
+    on training logs that is itself the winner (held-out logs), have the full polish."""
+    calls = []
+    original = refine_module.least_squares
+
+    def spy(*args, **kwargs):
+        calls.append(kwargs["max_nfev"])
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(refine_module, "least_squares", spy)
+    t, x, y = plant_log(n=300)
+    fast = {"maxiter": 8, "popsize": 6}
+    cmp = ts.compare_models([(t, x, y)], models=["bwb+poly3"], validate=0.4, **fast)
+    assert cmp.winner_name == "BoucWenBacklash+poly3"  # measured ratio to affine 0.16
+    # one fold (capped), then the final fit (the chain's full polish: 200 evaluations)
+    assert calls == [compare.FOLD_REFINE_EVALUATIONS, 200]
+    assert refine_module.REFINE_LIMIT.get() is None  # reset after the folds
+    calls.clear()
+    t2, x2, y2 = plant_log(n=300, amplitude=0.6)
+    ts.compare_models([(t, x, y)], models=["bwb+poly3"], validate=[(t2, x2, y2)], **fast)
+    assert calls == [200]
