@@ -11,7 +11,7 @@ from _realdata_helpers import plant_log
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath import _parsimony, io
+from tendonsheath import _parsimony, compare, io
 from tendonsheath.cli import app
 
 FAST = {"maxiter": 10, "popsize": 8}
@@ -166,3 +166,33 @@ def test_cli_prints_the_parts_and_the_parsimony_choice(tmp_path):
     assert data["parsimony"] == 100 and data["winner"] == "affine"
     bad = runner.invoke(app, [*args, "--parsimony", "-1"])
     assert bad.exit_code == 2 and "--parsimony must be a number >= 0" in bad.output
+
+
+def test_a_ratio_that_rounds_to_one_shows_which_side_of_one_it_is_on():
+    assert compare._ratio_cell(1.0002, True) == "1.00020*"
+    assert compare._ratio_cell(0.9998, False) == "0.99980"
+    assert compare._ratio_cell(1.0, False) == "1.000"
+    assert compare._ratio_cell(1.25, True) == "1.250*"
+    assert compare._ratio_cell(float("nan"), False) == "-"
+
+
+def test_cli_parts_past_twelve_show_each_candidates_best_and_worst(capsys):
+    from tendonsheath import cli
+
+    k = cli.MAX_PART_COLUMNS + 1
+    ratios = np.array([np.ones(k), np.linspace(0.5, 1.1, k)])
+
+    class Result:  # what _print_parts reads of a Comparison
+        def parts(self):
+            return {
+                "labels": [f"run{j}.csv" for j in range(k)],
+                "models": ["affine", "Backlash"],
+                "ratio_to_affine": ratios,
+                "worse_than_affine": ratios > 1,
+            }
+
+    cli._print_parts(Result())
+    out = capsys.readouterr().out
+    assert "best part" in out and "worst part" in out and f"part {k}" not in out
+    assert "0.500 (1)" in out and f"1.100* ({k})" in out
+    assert f"{k} = run{k - 1}.csv" in out

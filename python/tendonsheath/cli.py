@@ -1072,27 +1072,34 @@ def _check_choice_options(objective: str, range_margin: float, parsimony: float)
         _fail(f"--parsimony must be a number >= 0, e.g. 0.05 for 5 % (got {parsimony})")
 
 
+MAX_PART_COLUMNS = 12  # compare's per-part table: one column per part up to this many
+
+
 def _print_parts(result) -> None:
     """compare's second table: each candidate's held-out rmse on each held-out part over the
     affine map's there (a * where it exceeds 1: that part keeps it from winning). Printed
     with two parts or more (with one, the ratio is the first table's); a column per part,
-    numbered, the parts' names below, so ten held-out files still fit a terminal."""
+    numbered, the parts' names below, so ten held-out files still fit a terminal. Past
+    MAX_PART_COLUMNS parts: the best and worst part of each candidate (all of them are in
+    comparison.json's val_rmse_parts and Comparison.parts())."""
+    from .compare import _ratio_cell
+
     parts = result.parts()
     labels = parts["labels"]
     if len(labels) < 2:
         return
     table = Table(title="held-out rmse on each held-out part / the affine map's there")
     table.add_column("model", no_wrap=True)
-    for j in range(len(labels)):
-        table.add_column(f"part {j + 1}", justify="right")
+    wide = len(labels) > MAX_PART_COLUMNS
+    for head in (
+        ["best part", "worst part"] if wide else [f"part {j + 1}" for j in range(len(labels))]
+    ):
+        table.add_column(head, justify="right")
     for name, ratios, worse in zip(
         parts["models"], parts["ratio_to_affine"], parts["worse_than_affine"], strict=True
     ):
-        cells = [
-            ("-" if not np.isfinite(q) else f"{q:.3f}") + ("*" if w else "")
-            for q, w in zip(ratios, worse, strict=True)
-        ]
-        table.add_row(name, *cells)
+        cells = [_ratio_cell(q, w) for q, w in zip(ratios, worse, strict=True)]
+        table.add_row(name, *(_best_and_worst(cells, ratios) if wide else cells))
     _print_table(table)
     names = ", ".join(f"{j + 1} = {label}" for j, label in enumerate(labels))
     console.print(f"parts: {names}", highlight=False, soft_wrap=True)
@@ -1101,6 +1108,14 @@ def _print_parts(result) -> None:
             "*: worse than the affine map on that part: the candidate cannot win",
             highlight=False,
         )
+
+
+def _best_and_worst(cells: list[str], ratios: np.ndarray) -> list[str]:
+    """The best and the worst of a candidate's per-part cells, each with its part's number."""
+    if not np.isfinite(ratios).any():
+        return ["-", "-"]
+    lo, hi = int(np.nanargmin(ratios)), int(np.nanargmax(ratios))
+    return [f"{cells[lo]} ({lo + 1})", f"{cells[hi]} ({hi + 1})"]
 
 
 def _print_winner(result, on_all_data: bool, held_out_files: bool) -> None:

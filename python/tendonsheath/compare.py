@@ -236,6 +236,16 @@ def _plain(value) -> str:
     return "-" if value is None or not np.isfinite(value) else f"{value:.3f}"
 
 
+def _ratio_cell(ratio: float, worse: bool) -> str:
+    """A ratio to the affine map's error in the per-part table: 3 decimals, 5 where 3 would
+    round it to 1.000 (which side of 1 it is on decides eligibility), ``*`` where it is
+    worse than the affine map's."""
+    if ratio is None or not np.isfinite(ratio):
+        return "-"
+    close = ratio != 1.0 and abs(ratio - 1.0) < 5e-4
+    return (f"{ratio:.5f}" if close else f"{ratio:.3f}") + ("*" if worse else "")
+
+
 @dataclass
 class Comparison:
     """Result of :func:`compare_models`. ``table`` rows: model, n_params, train_rmse,
@@ -413,14 +423,12 @@ class Comparison:
         k = len(p["labels"])
         if k < 2:
             return []
-        head = f"{'held-out rmse / affine':<34}" + "".join(f"{j + 1:>8}" for j in range(k))
+        head = f"{'held-out rmse / affine':<34}" + "".join(f" {j + 1:>8}" for j in range(k))
         lines = [head]
         for name, ratios, worse in zip(
             p["models"], p["ratio_to_affine"], p["worse_than_affine"], strict=True
         ):
-            cells = "".join(
-                f"{_plain(q) + ('*' if w else ' '):>8}" for q, w in zip(ratios, worse, strict=True)
-            )
+            cells = "".join(f" {_ratio_cell(q, w):>8}" for q, w in zip(ratios, worse, strict=True))
             lines.append(f"{name:<34}{cells}")
         lines.append("parts: " + ", ".join(f"{j + 1} = {n}" for j, n in enumerate(p["labels"])))
         lines.append("*: worse than the affine map on that part (the candidate cannot win)")
