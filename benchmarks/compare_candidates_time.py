@@ -3,7 +3,8 @@ three runs of MRDLab's da Vinci tool 5 (issue 17 item 7: the slowest default can
 budgeted).
 
     python benchmarks/compare_candidates_time.py [--tool5 ../shared/data/davinci_tool5]
-                                                 [--before] [--out FILE]
+                                                 [--before] [--resample HZ]
+                                                 [--models bwb+lag2,...] [--out FILE]
 
 Leave-one-run-out cross-validation of the default candidates (seed 0, default settings) on
 f0.10Hz_load010, f0.30Hz_load050 and f0.50Hz_load100 (motor in, jaw out, rad; 4000 samples
@@ -11,7 +12,8 @@ each at 200 Hz; ODbL/DbCL, read from its folder, never copied). Prints each cand
 and CPU seconds over its three folds and its pooled held-out rmse over the affine map's.
 ``--before``: the settings before that item: the dynamic chains' global search on every
 sample (identify.data.MAX_DECIMATION = 1) and the full least-squares polish in every fold
-(compare.FOLD_REFINE_EVALUATIONS = None).
+(compare.FOLD_REFINE_EVALUATIONS = None). ``--resample 750``: the runs resampled to 750 Hz
+(15k samples each, as long recordings); ``--models``: these candidates only.
 """
 
 from __future__ import annotations
@@ -33,16 +35,18 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--tool5", type=Path, default=here.parents[1] / "shared/data/davinci_tool5")
     parser.add_argument("--before", action="store_true")
+    parser.add_argument("--resample", type=float, default=None)
+    parser.add_argument("--models", default=None)
     parser.add_argument("--out", type=Path, default=None)
     args = parser.parse_args()
     if args.before:
         identify_data.MAX_DECIMATION = 1
         compare.FOLD_REFINE_EVALUATIONS = None
-    logs = [
-        ts.io.read_log(args.tool5 / name, time="t", input="motor", output="jaw") for name in RUNS
-    ]
+    columns = {"time": "t", "input": "motor", "output": "jaw", "resample": args.resample}
+    logs = [ts.io.read_log(args.tool5 / name, **columns) for name in RUNS]
+    models = args.models.split(",") if args.models else None
     start = time.perf_counter()
-    cmp = ts.compare_models(logs)
+    cmp = ts.compare_models(logs, models=models)
     total = time.perf_counter() - start
     rows = [
         {
@@ -65,7 +69,12 @@ def main() -> None:
         )
     print(f"winner: {cmp.winner_name}; total {total:.1f} s (final fit included)")
     if args.out is not None:
-        result = {"before": args.before, "total_seconds": total, "rows": rows}
+        result = {
+            "before": args.before,
+            "resample": args.resample,
+            "total_seconds": total,
+            "rows": rows,
+        }
         args.out.write_text(json.dumps(result, indent=2))
 
 
