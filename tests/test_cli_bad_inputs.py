@@ -116,6 +116,7 @@ CASES = [
     (["compare", "{d}/data.csv", *COLS, "--holdout", "2"], "--holdout must be"),
     (["compare", "{d}/data.csv", *COLS, "--objective", "speed"], "--objective must be"),
     (["compare", "{d}/data.csv", *COLS, "--range-margin", "-1"], "--range-margin"),
+    (["compare", "{d}/data.csv", *COLS, "--parsimony", "-0.05"], "--parsimony must be"),
     (["compare", "{d}/data.csv", *COLS, "--models", "nope"], "nope"),
     (["compare", "{d}/missing.csv", *COLS], "missing.csv"),
     (["compare", "{d}/data.csv", *COLS, "--seed", "-3"], "--seed must be"),

@@ -957,6 +957,12 @@ _OBJECTIVE_OPTION = typer.Option(
     help="What ranks the candidates: prediction (held-out error) or compensation "
     "(the inverse's error).",
 )
+_PARSIMONY_OPTION = typer.Option(
+    0.0,
+    "--parsimony",
+    help="A candidate with more parameters wins only by this share of error: the winner is "
+    "the one with the fewest parameters within (1 + this) of the best (e.g. 0.05).",
+)
 _RANGE_MARGIN_OPTION = typer.Option(
     0.1,
     "--range-margin",
@@ -1008,13 +1014,14 @@ def compare(
     ),
     objective: str = _OBJECTIVE_OPTION,
     range_margin: float = _RANGE_MARGIN_OPTION,
+    parsimony: float = _PARSIMONY_OPTION,
     quiet: bool = typer.Option(
         False, "--quiet", "-q", help="No progress bar or per-candidate lines."
     ),
 ) -> None:
     """Fit candidate models on DATA, rank them on held-out data against y = a x + b; a
     candidate worse than y = a x + b on any held-out part cannot win."""
-    _check_choice_options(objective, range_margin)
+    _check_choice_options(objective, range_margin, parsimony)
     _check_split_options(holdout, validate, folds)
     _check_seed(seed)
     _note_suspicious(data, validate or [], input_col, output_col)
@@ -1036,9 +1043,11 @@ def compare(
         "time_budget": time_budget,
         "objective": objective,
         "range_margin": range_margin,
+        "parsimony": parsimony,
     }
     result = _checked(_compare_models, logs, models, split, quiet, options)
     _print_comparison(result, output_col)
+    _print_parts(result)
     _print_winner(result, holdout is None and not vlogs, bool(vlogs))
     if report is not None:
         _write_comparison(result, report)
@@ -1053,12 +1062,60 @@ def _write_comparison(result, report: Path) -> None:
     )
 
 
-def _check_choice_options(objective: str, range_margin: float) -> None:
-    """--objective and --range-margin of ``compare``."""
+def _check_choice_options(objective: str, range_margin: float, parsimony: float) -> None:
+    """--objective, --range-margin and --parsimony of ``compare``."""
     if objective not in ("prediction", "compensation"):
         _fail(f"--objective must be prediction or compensation (got {objective!r})")
     if not (np.isfinite(range_margin) and range_margin >= 0):
         _fail(f"--range-margin must be a number >= 0 (got {range_margin})")
+    if not (np.isfinite(parsimony) and parsimony >= 0):
+        _fail(f"--parsimony must be a number >= 0, e.g. 0.05 for 5 % (got {parsimony})")
+
+
+MAX_PART_COLUMNS = 12  # compare's per-part table: one column per part up to this many
+
+
+def _print_parts(result) -> None:
+    """compare's second table: each candidate's held-out rmse on each held-out part over the
+    affine map's there (a * where it exceeds 1: that part keeps it from winning). Printed
+    with two parts or more (with one, the ratio is the first table's); a column per part,
+    numbered, the parts' names below, so ten held-out files still fit a terminal. Past
+    MAX_PART_COLUMNS parts: the best and worst part of each candidate (all of them are in
+    comparison.json's val_rmse_parts and Comparison.parts())."""
+    from .compare import _ratio_cell
+
+    parts = result.parts()
+    labels = parts["labels"]
+    if len(labels) < 2:
+        return
+    table = Table(title="held-out rmse on each held-out part / the affine map's there")
+    table.add_column("model", no_wrap=True)
+    wide = len(labels) > MAX_PART_COLUMNS
+    for head in (
+        ["best part", "worst part"] if wide else [f"part {j + 1}" for j in range(len(labels))]
+    ):
+        table.add_column(head, justify="right")
+    for name, ratios, worse in zip(
+        parts["models"], parts["ratio_to_affine"], parts["worse_than_affine"], strict=True
+    ):
+        cells = [_ratio_cell(q, w) for q, w in zip(ratios, worse, strict=True)]
+        table.add_row(name, *(_best_and_worst(cells, ratios) if wide else cells))
+    _print_table(table)
+    names = ", ".join(f"{j + 1} = {label}" for j, label in enumerate(labels))
+    console.print(f"parts: {names}", highlight=False, soft_wrap=True)
+    if parts["worse_than_affine"].any():
+        console.print(
+            "*: worse than the affine map on that part: the candidate cannot win",
+            highlight=False,
+        )
+
+
+def _best_and_worst(cells: list[str], ratios: np.ndarray) -> list[str]:
+    """The best and the worst of a candidate's per-part cells, each with its part's number."""
+    if not np.isfinite(ratios).any():
+        return ["-", "-"]
+    lo, hi = int(np.nanargmin(ratios)), int(np.nanargmax(ratios))
+    return [f"{cells[lo]} ({lo + 1})", f"{cells[hi]} ({hi + 1})"]
 
 
 def _print_winner(result, on_all_data: bool, held_out_files: bool) -> None:
@@ -1068,6 +1125,8 @@ def _print_winner(result, on_all_data: bool, held_out_files: bool) -> None:
     else:
         how = "fitted on the training files" if held_out_files else "refitted on the whole files"
     console.print(f"winner: {result.winner_name} ({how})")
+    if getattr(result, "choice", ""):
+        console.print(result.choice, highlight=False, soft_wrap=True)
 
 
 def _check_split_options(holdout: float | None, validate, folds: int | None) -> None:

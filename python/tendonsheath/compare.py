@@ -21,12 +21,14 @@ with it, its predictions and its inverse (``LoadCompensated``) are given each lo
 The winner is never worse than the affine map on any held-out part: a candidate that is (by
 the forward error; with ``objective="compensation"``, by the offline inverse error too), or
 whose prediction leaves the outputs' range by more than ``range_margin`` of its span, cannot
-win and is shown with the reason (``tendonsheath._eligibility``).
+win and is shown with the reason (``tendonsheath._eligibility``). With ``parsimony`` p > 0, a
+candidate with more parameters wins only if its error is more than p below that of every
+eligible candidate with fewer (``tendonsheath._parsimony``).
 
 The result is a :class:`Comparison`: ``.table`` (the eligible rows first, sorted by the
 objective's nrmse, the affine baseline included, with each candidate's seconds), ``.winner``
-(the affine baseline is a ``Polynomial(1)``), ``.fits`` and ``.report(dir)`` (loops and
-residuals).
+(the affine baseline is a ``Polynomial(1)``), ``.fits``, ``.parts()`` (each candidate's error per
+held-out part, over the affine map's there) and ``.report(dir)`` (loops and residuals).
 """
 
 from __future__ import annotations
@@ -42,6 +44,7 @@ from typing import Any
 import numpy as np
 
 from . import _eligibility as eligibility
+from . import _parsimony as parsimony_rule
 from ._atomic import save_figure, write_json, write_text
 from ._compare_progress import CompareProgress
 from ._typing import RecordingLike
@@ -50,6 +53,7 @@ from .identify.cross_validation import estimator_split, evaluate_splits, recordi
 from .identify.data import make_recordings
 from .identify.dynamic import is_dynamic_chain
 from .identify.estimator import Identifier
+from .identify.refine import REFINE_LIMIT
 from .models import (
     Backlash,
     BoucWenBacklash,
@@ -68,6 +72,11 @@ from .models.base import _REGISTRY
 from .models.linear_block import sample_time
 
 AFFINE = "affine"
+#: the least-squares polish's evaluations in each cross-validation fold (the fits that rank
+#: the candidates; the winner's final fit has the full polish): measured on three tool-5 runs,
+#: GeneralizedPrandtlIshlinskii's folds 48.7 s -> 24.1 s, its held-out rmse 0.14403 -> 0.14398
+#: (benchmarks/compare_candidates_time.py)
+FOLD_REFINE_EVALUATIONS = 40
 
 
 def default_models(curve_angle: bool = False) -> list:
@@ -227,6 +236,16 @@ def _plain(value) -> str:
     return "-" if value is None or not np.isfinite(value) else f"{value:.3f}"
 
 
+def _ratio_cell(ratio: float, worse: bool) -> str:
+    """A ratio to the affine map's error in the per-part table: 3 decimals, 5 where 3 would
+    round it to 1.000 (which side of 1 it is on decides eligibility), ``*`` where it is
+    worse than the affine map's."""
+    if ratio is None or not np.isfinite(ratio):
+        return "-"
+    close = ratio != 1.0 and abs(ratio - 1.0) < 5e-4
+    return (f"{ratio:.5f}" if close else f"{ratio:.3f}") + ("*" if worse else "")
+
+
 @dataclass
 class Comparison:
     """Result of :func:`compare_models`. ``table`` rows: model, n_params, train_rmse,
@@ -264,6 +283,13 @@ class Comparison:
         "compensation" (the offline inverse error).
     rule : str, default ""
         The ranking and who could not win, in words.
+    parsimony : float, default 0.0
+        The parsimony rule's margin (``tendonsheath._parsimony``): a candidate with more
+        parameters won only if its error was more than this share below every smaller
+        eligible candidate's.
+    choice : str, default ""
+        Why the winner won where the parsimony rule chose it over a lower error, or which
+        smaller candidate came close ("" otherwise).
     """
 
     table: list[dict[str, Any]]
@@ -275,6 +301,8 @@ class Comparison:
     winner_fit: Any = field(default=None, repr=False)
     objective: str = "prediction"
     rule: str = ""
+    parsimony: float = 0.0
+    choice: str = ""
 
     def row(self, name: str) -> dict[str, Any]:
         """The table's row of one candidate.
@@ -329,10 +357,82 @@ class Comparison:
         for k, r in enumerate(excluded, start=1):
             lines.append(f"[x{k}] {r['model']} cannot win: {r['excluded']}")
         lines.append(f"winner: {self.winner_name} ({self.mode})")
+        if self.choice:
+            lines.append(self.choice)
         if self.rule:
             lines.append(f"choice: {self.rule}")
         lines.append(f"inverse: {INVERSE_NOTE}")
-        return "\n".join(lines)
+        return "\n".join(lines + self.parts_text())
+
+    def parts(self) -> dict[str, Any]:
+        """Each candidate's held-out error on each held-out part (a held-out recording, or a
+        held-out block of one), against the affine map's there: the figures behind the
+        eligibility rule, as plain NumPy arrays.
+
+        Returns
+        -------
+        dict
+            ``labels``: a name per held-out part (k of them); ``models``: the candidates in
+            the table's order, the failed ones left out (m of them); ``rmse``: (m, k) array
+            of the held-out rmse (output units); ``ratio_to_affine``: (m, k) array, each over
+            the affine map's rmse on that part; ``worse_than_affine``: (m, k) bool array,
+            True where the ratio exceeds 1 (a part that keeps the candidate from winning);
+            ``inv_rmse`` and ``inv_ratio_to_affine``: the same for the offline inverse error
+            (NaN where a candidate has none).
+        """
+        rows = [r for r in self.table if not r.get("error")]
+        base = next((r for r in rows if r["model"] == AFFINE), None)
+        k = len(base["val_rmse_parts"]) if base and base.get("val_rmse_parts") else 0
+        labels = [v.get("label", "") for v in self.validation] if self.validation else []
+        if len(labels) != k:
+            labels = [f"part {j + 1}" for j in range(k)]
+
+        def matrix(key: str) -> tuple[np.ndarray, np.ndarray]:
+            out = np.full((len(rows), k), np.nan)
+            for i, r in enumerate(rows):
+                values = r.get(key) or []
+                if len(values) == k:
+                    out[i] = values
+            ref = out[rows.index(base)] if base is not None else np.full(k, np.nan)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return out, out / ref
+
+        rmse, ratio = matrix("val_rmse_parts")
+        inv, inv_ratio = matrix("inv_rmse_parts")
+        return {
+            "labels": labels,
+            "models": [r["model"] for r in rows],
+            "rmse": rmse,
+            "ratio_to_affine": ratio,
+            "worse_than_affine": np.nan_to_num(ratio, nan=0.0) > 1.0,
+            "inv_rmse": inv,
+            "inv_ratio_to_affine": inv_ratio,
+        }
+
+    def parts_text(self) -> list[str]:
+        """The held-out error per held-out part over the affine map's, one line per candidate
+        (a ``*`` where it exceeds 1: that part keeps the candidate from winning); no lines
+        with fewer than two parts (the table's ratio is then the part's).
+
+        Returns
+        -------
+        list of str
+            The lines.
+        """
+        p = self.parts()
+        k = len(p["labels"])
+        if k < 2:
+            return []
+        head = f"{'held-out rmse / affine':<34}" + "".join(f" {j + 1:>8}" for j in range(k))
+        lines = [head]
+        for name, ratios, worse in zip(
+            p["models"], p["ratio_to_affine"], p["worse_than_affine"], strict=True
+        ):
+            cells = "".join(f" {_ratio_cell(q, w):>8}" for q, w in zip(ratios, worse, strict=True))
+            lines.append(f"{name:<34}{cells}")
+        lines.append("parts: " + ", ".join(f"{j + 1} = {n}" for j, n in enumerate(p["labels"])))
+        lines.append("*: worse than the affine map on that part (the candidate cannot win)")
+        return lines
 
     def excluded(self) -> dict[str, str]:
         """The candidates that could not win, with the reason.
@@ -359,6 +459,9 @@ class Comparison:
             "mode": self.mode,
             "objective": self.objective,
             "rule": self.rule,
+            "parsimony": self.parsimony,
+            "choice": self.choice,
+            "part_labels": self.parts()["labels"],
             "table": self.table,
             "winner": self.winner_name,
             "winner_model": self.winner.to_dict(),
@@ -590,6 +693,7 @@ def compare_models(
     time_budget: float | None = None,
     objective: str = "prediction",
     range_margin: float | None = eligibility.RANGE_MARGIN,
+    parsimony: float = 0.0,
 ) -> Comparison:
     """Fit each candidate on training data and rank them on held-out data.
 
@@ -622,7 +726,9 @@ def compare_models(
     search running at the deadline stops after its generation; a candidate whose folds end
     past it, or that was not started, gets a row with ``status`` "out of time" and an
     ``error`` saying so (never ranked, never dropped). The winner's final fit on all the
-    data comes after the budget (about one fold's time).
+    data comes after the budget (about one fold's time). Where the winner is refitted on all
+    the data, the folds' fits only rank the candidates: their least-squares polish stops
+    after :data:`FOLD_REFINE_EVALUATIONS` evaluations (the final fit has the full polish).
 
     Parameters
     ----------
@@ -660,6 +766,10 @@ def compare_models(
         How far (a share of the outputs' span) a candidate's held-out prediction may leave
         the range the training outputs (or the affine map's prediction) reached before it is
         excluded; None: no range check.
+    parsimony : float, default 0.0
+        A candidate with more parameters wins only by this margin: the winner is the eligible
+        candidate with the fewest parameters whose error is within (1 + parsimony) of the
+        best one's (``tendonsheath._parsimony``; 0: the lowest error wins).
 
     Returns
     -------
@@ -669,9 +779,10 @@ def compare_models(
     Raises
     ------
     ValueError
-        Bad logs, models, validation or time budget.
+        Bad logs, models, validation, time budget or parsimony.
     """
     _check_time_budget(time_budget)
+    margin_of_parsimony = parsimony_rule.check_parsimony(parsimony)
     objective = eligibility.check_objective(objective)
     margin = eligibility.check_range_margin(range_margin)
     recs = make_recordings(recordings=list(_as_recs(logs)), curve_angle=curve_angle)
@@ -692,19 +803,23 @@ def compare_models(
     final = cv or (refit and isinstance(validate, int | float))
     run = _Run(splits, validation, time_budget, progress, len(candidates), final)
     token = SEARCH_DEADLINE.set(run.deadline)
+    # folds whose fits only rank (the winner is refitted on all the data): a shorter polish
+    capped = REFINE_LIMIT.set(FOLD_REFINE_EVALUATIONS if final else None)
     try:
         rows, fits = run.all_candidates(estimators, names, has_angle, on_fit)
         fits[AFFINE] = Polynomial(coefficients=[b, a])
     finally:
+        REFINE_LIMIT.reset(capped)
         SEARCH_DEADLINE.reset(token)
     try:
         eligibility_note = _judge(rows, validation, objective, margin)
-        winner, winner_fit, best = _winner(rows, fits, estimators, names, recs, run, objective)
+        winner, winner_fit, best, choice = _winner(
+            rows, fits, (estimators, names, recs), run, objective, margin_of_parsimony
+        )
     finally:
         run.view.close()
-    return Comparison(
-        rows, winner, best, fits, validation, mode, winner_fit, objective, eligibility_note
-    )
+    found = Comparison(rows, winner, best, fits, validation, mode, winner_fit, objective)
+    return replace(found, rule=eligibility_note, parsimony=margin_of_parsimony, choice=choice)
 
 
 def _judge(rows, validation, objective: str, margin: float) -> str:
@@ -857,9 +972,11 @@ def _part_labels(splits, recs, logs, validate, whole_runs: bool) -> list[str]:
     ]
 
 
-def _winner(rows, fits, estimators, names, recs, run, objective: str = "prediction"):
-    """Rank the rows (eligible ones first, by the objective's error); the winner's model and
-    Fit (refitted on all the data where needed)."""
+def _winner(rows, fits, candidates, run, objective: str, parsimony: float):
+    """Rank the rows (eligible ones first, by the objective's error) and choose the winner
+    (``tendonsheath._parsimony``); the winner's model, Fit (refitted on all the data where
+    needed), name and the choice in words. ``candidates``: (estimators, names, recordings)."""
+    estimators, names, recs = candidates
     base, inv_base = rows[0]["val_rmse"], rows[0].get("inv_rmse", float("nan"))
     for r in rows:
         if not r.get("error"):
@@ -867,7 +984,8 @@ def _winner(rows, fits, estimators, names, recs, run, objective: str = "predicti
             inv = r.get("inv_rmse", float("nan"))
             r["inv_ratio_to_affine"] = inv / inv_base if inv_base > 0 else float("nan")
     rows.sort(key=eligibility.sort_key(objective))
-    best = rows[0]["model"]
+    index, choice = parsimony_rule.choose(rows, objective, parsimony)
+    best = rows[index]["model"]
     winner_fit = None
     if best == AFFINE:
         winner = fits[AFFINE]
@@ -880,12 +998,12 @@ def _winner(rows, fits, estimators, names, recs, run, objective: str = "predicti
         final_estimator.fit(recs)
         winner_fit = final_estimator.fit_
         run.view.advance()
-        rows[0]["final_fit_seconds"] = time.perf_counter() - start
+        rows[index]["final_fit_seconds"] = time.perf_counter() - start
         winner = winner_fit.model
     else:
         winner_fit = fits[best]  # held-out logs: fitted on all the training data already
         winner = winner_fit.model
-    return winner, winner_fit, best
+    return winner, winner_fit, best, choice
 
 
 class OutOfTime(Exception):

@@ -277,6 +277,33 @@ def _kept(x: np.ndarray, step: int, first_counted: int) -> np.ndarray:
     return np.flatnonzero(keep)
 
 
+#: samples the global search of a dynamic chain runs on (see decimate_for_search)
+DYNAMIC_SEARCH_SAMPLES = 4000
+#: at most every this-many-th sample (the lag's discretisation on the coarser step)
+MAX_DECIMATION = 4
+
+
+def decimate_for_search(
+    recs: list[Recording], warmup: int, budget: int | None = None
+) -> tuple[list[Recording], int]:
+    """Recordings decimated for the global search of a dynamic chain: every m-th sample
+    (m <= MAX_DECIMATION), about ``budget`` samples in all, so the time step stays uniform
+    (a linear block needs one; thin_for_search's turning points would break it). The search
+    needs the basin; the refinement runs on every sample. Warm-up and skipped samples map to
+    the kept ones (returned warm-up 0, per-recording skip); records within the budget come
+    back whole (``budget`` default DYNAMIC_SEARCH_SAMPLES)."""
+    total = sum(r.n for r in recs)
+    budget = DYNAMIC_SEARCH_SAMPLES if budget is None else budget
+    step = min(int(np.ceil(total / max(budget, 1))), MAX_DECIMATION)
+    if step <= 1:
+        return recs, warmup
+    out = []
+    for r in recs:
+        first = int(warmup) + r.skip
+        out.append(r.take(slice(0, None, step), int(np.ceil(first / step))))
+    return out, 0
+
+
 def thin_for_search(
     recs: list[Recording], warmup: int, budget: int | None = None
 ) -> tuple[list[Recording], int]:

@@ -24,7 +24,7 @@ import numpy as np
 from .. import _core as core
 from ..models import BoucWenBacklash, Chain, LinearBlock, PrandtlIshlinskii, SecondOrderLag
 from ..models.linear_block import apply_filter, sample_time
-from .data import Recording, check_for_fit, fitted_mask, recording_set
+from .data import Recording, check_for_fit, decimate_for_search, fitted_mask, recording_set
 from .fit import Fit, fit_quality, simulate_model
 from .problem import Space, _base_struct, _search_base, bounded_lsq
 from .specs import BoucWenBacklashSpec, PrandtlIshlinskiiSpec, Scale
@@ -194,11 +194,19 @@ def identify_dynamic(chain: Chain, recs, *, warmup=0, search) -> Fit:
             raise ValueError(f"recording {i}: a linear dynamic block needs the time t")
     problem = DynamicProblem(chain, recs, warmup, search.n_workers)
     check_for_fit(recs, warmup, problem.n_params, True, False)
+    search_problem = None  # the search needs the basin: every m-th sample suffices
+    coarse, coarse_warmup = decimate_for_search(recs, warmup)
+    if coarse is not recs:
+        search_problem = DynamicProblem(chain, coarse, coarse_warmup, search.n_workers)
     counter = {"evaluations": 0}
     kind = "Hammerstein" if problem.hammerstein else "Wiener"
     label = f"identify {kind} ({problem.static_cls.__name__}, {problem.block_cls.__name__})"
     start = time.perf_counter()
-    u_best, res, message = search_and_refine(problem, problem.space, counter, label, search)
+    u_best, res, message = search_and_refine(
+        problem, problem.space, counter, label, search, search_problem=search_problem
+    )
+    if search_problem is not None and search_problem.pool is not None:
+        search_problem.pool.shutdown()
     model = problem.model(problem.space.natural(u_best))
     if problem.pool is not None:
         problem.pool.shutdown()

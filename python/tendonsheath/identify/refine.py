@@ -4,6 +4,7 @@ wall-clock budget (``identify(..., time_budget=)``) that the search and this sta
 from __future__ import annotations
 
 import time
+from contextvars import ContextVar
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -49,6 +50,12 @@ def forward_jacobian(problem, space, u: np.ndarray, h: np.ndarray) -> np.ndarray
     return J.T
 
 
+#: a cap on each refinement's evaluations while it is set (compare_models sets it for its
+#: cross-validation folds, the fits that only rank the candidates; the winner's final fit on
+#: all the data is not capped). None: the caller's ``max_nfev``.
+REFINE_LIMIT: ContextVar[int | None] = ContextVar("REFINE_LIMIT", default=None)
+
+
 def refine(
     problem,
     space,
@@ -69,8 +76,12 @@ def refine(
     2-point Jacobian), else ``problem.residuals`` of one candidate with ``jacobian(u)`` (default:
     batched forward differences, steps 1e-6 of the bounds' span). A non-finite residual
     becomes a large constant one. Keeps ``u0`` when nothing improved on it; when ``budget``
-    runs out it stops and returns the best point evaluated so far.
+    runs out it stops and returns the best point evaluated so far. At most REFINE_LIMIT
+    evaluations while that is set.
     """
+    limit = REFINE_LIMIT.get()
+    if limit is not None:
+        max_nfev = min(max_nfev, int(limit))
     span = space.upper - space.lower
     u0 = np.clip(u0, space.lower + 1e-9 * span, space.upper - 1e-9 * span)
     best = {"u": np.array(u0, dtype=float), "cost": np.inf}
