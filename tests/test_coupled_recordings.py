@@ -3,35 +3,17 @@ rest, at their own rates, fitted together; Newey-West blocks that never cross a 
 
 from __future__ import annotations
 
-import math
 import warnings
 
 import numpy as np
 import pytest
+from test_coupled import C10, wrist  # the same physics-plant wrist
 
 import tendonsheath as ts
 from tendonsheath.identify import coupled as coupled_module
 from tendonsheath.identify import identify_coupled
 from tendonsheath.identify.newey_west import newey_west
 from tendonsheath.models import Backlash
-
-C10 = 0.25  # the idler on joint 0's axis over joint 1's distal pulley radius
-RIG = dict(pretension=20.0, proximal_radius=15e-3, distal_radius=15e-3, elements=40)
-ROUTES = (
-    ts.Route.arcs([(0.5, 0.0), (0.5, math.pi / 2)]),
-    ts.Route.arcs([(0.4, 0.0), (0.6, 3 * math.pi / 4)]),
-)
-
-
-def wrist(seed: int) -> ts.CoupledPlant:
-    """tests/test_coupled.py's wrist: two realistic pull-pull drives (outside every model
-    class), joint 1's cable over an idler on joint 0's axis, noisy quantised encoders."""
-    plants = [
-        ts.PullPullPlant(r, **RIG, **ts.presets.realistic_plant(friction=0.1, stiffness=5e3))
-        for r in ROUTES
-    ]
-    sensors = [ts.Sensor(resolution=1e-4, noise_std=2e-4, seed=seed + k) for k in range(2)]
-    return ts.CoupledPlant(plants, [[0.0, 0.0], [C10, 0.0]], sensors=sensors)
 
 
 def commands(t: np.ndarray, f0: float, f1: float, a0: float, a1: float) -> np.ndarray:
