@@ -283,6 +283,13 @@ DYNAMIC_SEARCH_SAMPLES = 4000
 MAX_DECIMATION = 4
 
 
+def _search_step(recs: list[Recording], budget: int, most: int) -> int:
+    """Every how many samples a global search keeps to see about ``budget`` of them (at most
+    every ``most``-th; 1: all)."""
+    total = sum(r.n for r in recs)
+    return min(int(np.ceil(total / max(budget, 1))), most)
+
+
 def decimate_for_search(
     recs: list[Recording], warmup: int, budget: int | None = None
 ) -> tuple[list[Recording], int]:
@@ -292,9 +299,7 @@ def decimate_for_search(
     needs the basin; the refinement runs on every sample. Warm-up and skipped samples map to
     the kept ones (returned warm-up 0, per-recording skip); records within the budget come
     back whole (``budget`` default DYNAMIC_SEARCH_SAMPLES)."""
-    total = sum(r.n for r in recs)
-    budget = DYNAMIC_SEARCH_SAMPLES if budget is None else budget
-    step = min(int(np.ceil(total / max(budget, 1))), MAX_DECIMATION)
+    step = _search_step(recs, DYNAMIC_SEARCH_SAMPLES if budget is None else budget, MAX_DECIMATION)
     if step <= 1:
         return recs, warmup
     out = []
@@ -315,8 +320,7 @@ def thin_for_search(
     per-recording skip). Records within the budget, or of which more than 3/4 would be
     kept (turning points everywhere: a noisy input), come back whole."""
     total = sum(r.n for r in recs)
-    budget = SEARCH_THIN if budget is None else budget
-    step = min(int(np.ceil(total / max(budget, 1))), MAX_THIN_STEP)
+    step = _search_step(recs, SEARCH_THIN if budget is None else budget, MAX_THIN_STEP)
     if step <= 1:
         return recs, warmup
     out = []

@@ -119,11 +119,13 @@ def target(
     }
 
 
-def runs_seen(runs: list) -> tuple[str, bool]:
-    """What a controller's runs show besides their error: its limit cycles (the strongest
-    named) and saturated cycles, as one phrase; and whether any run had a limit cycle."""
+def runs_seen(runs: list) -> dict[str, Any]:
+    """What a controller's runs show besides their error: ``seen``, its limit cycles (the
+    strongest named) and saturated cycles as one phrase; ``limit_cycle``, whether any run had
+    one; ``limit_cycle_runs`` and ``runs``, how many had one of how many; and
+    ``saturated_cycles``, their saturated cycles together."""
     cycles = [r.metrics["limit_cycle"] for r in runs if r.metrics["limit_cycle"]["detected"]]
-    saturated = sum(r.metrics["status"]["saturated"] for r in runs)
+    saturated = int(sum(r.metrics["status"]["saturated"] for r in runs))
     parts = []
     if cycles:
         worst = max(cycles, key=lambda c: c["output_reversals"])
@@ -131,7 +133,13 @@ def runs_seen(runs: list) -> tuple[str, bool]:
     if saturated:
         cycles_total = sum(r.t.size for r in runs)
         parts.append(f"command saturated on {saturated} of {cycles_total} cycles")
-    return "; ".join(parts), bool(cycles)
+    return {
+        "seen": "; ".join(parts),
+        "limit_cycle": bool(cycles),
+        "limit_cycle_runs": len(cycles),
+        "runs": len(runs),
+        "saturated_cycles": saturated,
+    }
 
 
 def honesty_panel(

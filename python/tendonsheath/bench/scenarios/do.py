@@ -326,13 +326,10 @@ def _summary(study: dict) -> dict[str, Any]:
 
 
 def _seen(runs: list) -> dict[str, Any]:
-    """What a compensator's runs show besides their error (common.runs_seen)."""
-    seen, cycling = runs_seen(runs)
-    return {
-        "seen": seen,
-        "limit_cycle": cycling,
-        "saturated_cycles": int(sum(r.metrics["status"]["saturated"] for r in runs)),
-    }
+    """What a compensator's runs show besides their error (common.runs_seen; the keys the
+    servo summary has always carried)."""
+    seen = runs_seen(runs)
+    return {k: seen[k] for k in ("seen", "limit_cycle", "saturated_cycles")}
 
 
 def _result(cals, studies, headline, seed, budget, sensor, tip, ilc) -> ScenarioResult:

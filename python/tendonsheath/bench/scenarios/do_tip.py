@@ -147,16 +147,11 @@ def summary(runs: dict, baseline: dict) -> dict[str, Any]:
             for s, r in runs["random"].items()
         ]
         every = [fixed] + [r[name] for r in runs["random"].values()]
-        seen, cycling = runs_seen(every)
         out[name] = {
             "mse_fixed": fixed.metrics["mse"],
             "factor_fixed": ratio(base_fixed, fixed.metrics["mse"]),
             "factor_random": spread(by_seed),
-            "saturated_cycles": int(sum(r.metrics["status"]["saturated"] for r in every)),
-            "limit_cycle_runs": int(sum(r.metrics["limit_cycle"]["detected"] for r in every)),
-            "runs": len(every),
-            "seen": seen,
-            "limit_cycle": cycling,
+            **runs_seen(every),
         }
     return out
 
