@@ -131,7 +131,7 @@ wheel-test: wheel
 DOCS_TOOLS := $(VENV)/.docs-tools-stamp
 
 $(DOCS_TOOLS): $(STAMP) pyproject.toml
-	$(PY) -m pip install --quiet "mkdocs>=1.6" "mkdocs-material>=9.5" "mkdocstrings[python]>=0.26"
+	$(PY) -m pip install --quiet "mkdocs>=1.6" "mkdocs-material>=9.5" "mkdocstrings[python]>=0.26" "latex2mathml>=3.81"
 	touch $(DOCS_TOOLS)
 
 # Doxygen (Debian's package) renders the C++ headers' comments into build/doxygen/html (Doxyfile:
