@@ -164,6 +164,10 @@ def test_cli_prints_the_parts_and_the_parsimony_choice(tmp_path):
     )
     data = json.loads((tmp_path / "r" / "comparison.json").read_text())
     assert data["parsimony"] == 100 and data["winner"] == "affine"
+    # --report: the page has the parts table too, and comparison.json its figures
+    page = (tmp_path / "r" / "report.html").read_text()
+    assert "<figcaption>Held-out rmse of each candidate on each held-out part" in page
+    assert "1 = a.csv [" in page and data["parts"]["labels"][1].startswith("b.csv [")
     bad = runner.invoke(app, [*args, "--parsimony", "-1"])
     assert bad.exit_code == 2 and "--parsimony must be a number >= 0" in bad.output
 
@@ -208,7 +212,7 @@ def test_the_report_shows_the_parts_table_and_comparison_json_holds_it(linear_pa
     _, cmp = linear_pair
     page = cmp.report(tmp_path / "r").read_text()
 
-    class Tables(HTMLParser):  # the cells and caption of each <table>, as text
+    class Tables(HTMLParser):  # the cells of each <table> and the caption below it, as text
         def __init__(self):
             super().__init__()
             self.tables, self.cell = [], None
@@ -218,15 +222,15 @@ def test_the_report_shows_the_parts_table_and_comparison_json_holds_it(linear_pa
                 self.tables.append({"rows": [], "caption": ""})
             elif tag == "tr":
                 self.tables[-1]["rows"].append([])
-            elif tag in ("td", "th", "caption"):
+            elif tag in ("td", "th", "figcaption"):
                 self.cell = tag
 
         def handle_endtag(self, tag):
-            if tag in ("td", "th", "caption"):
+            if tag in ("td", "th", "figcaption"):
                 self.cell = None
 
         def handle_data(self, data):
-            if self.cell == "caption":
+            if self.cell == "figcaption":
                 self.tables[-1]["caption"] += data
             elif self.cell:
                 self.tables[-1]["rows"][-1].append(data)

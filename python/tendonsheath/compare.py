@@ -274,9 +274,9 @@ def _parts_html(parts: dict[str, Any]) -> str:
     )
     return (
         "<h2>Held-out rmse on each held-out part / the affine map's there</h2>"
-        f"<table class='parts' border='1' cellpadding='4'>"
-        f"<caption>{PARTS_CAPTION.format(names=names)}</caption>"
-        f"<tr>{head}</tr>{body}</table>"
+        # a figure's caption, not the table's: that one would be as narrow as the table
+        f"<figure><table class='parts' border='1' cellpadding='4'><tr>{head}</tr>{body}</table>"
+        f"<figcaption>{PARTS_CAPTION.format(names=names)}</figcaption></figure>"
     )
 
 
@@ -599,7 +599,7 @@ class Comparison:
         html = (
             "<!doctype html><html><head><meta charset='utf-8'><title>model comparison</title>"
             "<meta name='viewport' content='width=device-width, initial-scale=1'>"
-            "<style>img{max-width:100%;height:auto}</style>"  # fits a 1280 px window
+            "<style>img{max-width:100%;height:auto}figure{margin:1em 0}</style>"  # 1280 px
             "</head><body><h1>Model comparison</h1>"
             f"<p>{html_escape(self.mode)}; winner: <b>{self.winner_name}</b></p>"
             f"<p>{html_escape(self.rule)}</p>"
