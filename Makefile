@@ -149,7 +149,8 @@ docs: $(DOCS_TOOLS) doxygen
 	doxygen Doxyfile
 	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/mkdocs build --strict
 
-test-python: install chromium doxygen
+# the docs tools too: tests/test_docs.py builds the pages with formulas (MkDocs, latex2mathml)
+test-python: install chromium doxygen $(DOCS_TOOLS)
 	$(PY) -m pytest -q -n $(JOBS) --dist loadgroup
 
 # wheel-test before pytest so that pytest's summary closes the output; it adds ~40 s wall
