@@ -131,7 +131,7 @@ wheel-test: wheel
 DOCS_TOOLS := $(VENV)/.docs-tools-stamp
 
 $(DOCS_TOOLS): $(STAMP) pyproject.toml
-	$(PY) -m pip install --quiet "mkdocs>=1.6" "mkdocs-material>=9.5" "mkdocstrings[python]>=0.26"
+	$(PY) -m pip install --quiet "mkdocs>=1.6" "mkdocs-material>=9.5" "mkdocstrings[python]>=0.26" "latex2mathml>=3.81"
 	touch $(DOCS_TOOLS)
 
 # Doxygen (Debian's package) renders the C++ headers' comments into build/doxygen/html (Doxyfile:
@@ -149,7 +149,8 @@ docs: $(DOCS_TOOLS) doxygen
 	doxygen Doxyfile
 	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/mkdocs build --strict
 
-test-python: install chromium doxygen
+# the docs tools too: tests/test_docs.py builds the pages with formulas (MkDocs, latex2mathml)
+test-python: install chromium doxygen $(DOCS_TOOLS)
 	$(PY) -m pytest -q -n $(JOBS) --dist loadgroup
 
 # wheel-test before pytest so that pytest's summary closes the output; it adds ~40 s wall

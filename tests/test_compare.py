@@ -67,6 +67,8 @@ def test_held_out_logs_and_report(tmp_path):
     assert cmp.row("Backlash")["val_rmse"] == pytest.approx(val, rel=1e-9)
     page = cmp.report(tmp_path / "rep")
     assert page.is_file() and (tmp_path / "rep" / "loops.png").stat().st_size > 1000
+    # one held-out part: no per-part table (the table's ratio is the part's)
+    assert "on each held-out part" not in page.read_text()
     data = json.loads((tmp_path / "rep" / "comparison.json").read_text())
     assert {r["model"] for r in data["table"]} == {"affine", "Backlash"}
 

@@ -212,12 +212,108 @@ def test_no_public_function_is_hidden_behind_its_submodule(module):
 def test_the_site_loads_nothing_from_the_network():
     """The site is read from disk, offline: the theme's fonts are the system's (Material would
     load Roboto from Google Fonts), no script or style sheet comes from a URL, and no math
-    engine is loaded (the equations are Unicode text)."""
+    engine is loaded: arithmatex only marks the formulas (generic mode, no MathJax or KaTeX)
+    and the hook docs/hooks/mathml.py writes them as MathML when the site is built."""
     config = (ROOT / "mkdocs.yml").read_text()
     assert re.search(r"^theme:\n(?:  .*\n)*?  font: false$", config, flags=re.M)
     assert not re.search(r"^extra_(?:javascript|css):", config, flags=re.M)
-    assert "arithmatex" not in config and "mathjax" not in config.lower()
+    assert re.search(r"^  - pymdownx\.arithmatex:\n      generic: true$", config, flags=re.M)
+    assert re.search(r"^hooks:\n(?:  .*\n)*?  - docs/hooks/mathml\.py$", config, flags=re.M)
+    assert "mathjax" not in config.lower() and "katex" not in config.lower()
     assert not re.search(r"^USE_MATHJAX\s*=\s*YES", (ROOT / "Doxyfile").read_text(), re.M)
+
+
+# a formula on a page: \( ... \) inline, \[ ... \] displayed (mkdocs.yml's arithmatex syntax)
+FORMULA = re.compile(r"\\\((.+?)\\\)|\\\[(.+?)\\\]", flags=re.S)
+MATH_ELEMENT = re.compile(r"<math\b.*?</math>", flags=re.S)
+# what would load from the network: a script, style sheet, font or image from a URL
+REMOTE = re.compile(r"<(?:script|link|img|iframe)\b[^>]*\b(?:src|href)=\"(?:https?:)?//", re.I)
+
+
+def math_pages() -> list[str]:
+    """The pages that hold a formula."""
+    return sorted(
+        p.relative_to(DOCS).as_posix() for p in DOCS.rglob("*.md") if FORMULA.search(p.read_text())
+    )
+
+
+def mkdocs_or_fail():
+    try:
+        import latex2mathml  # noqa: F401
+        from mkdocs.commands.build import build
+        from mkdocs.config import load_config
+    except ImportError:
+        pytest.fail("mkdocs or latex2mathml not found: `make docs` installs the docs extra")
+    return build, load_config
+
+
+@pytest.fixture(scope="module")
+def built_math_pages(tmp_path_factory) -> dict[str, str]:
+    """The pages with formulas built as `make docs` builds them (mkdocs.yml's theme, Markdown
+    extensions and math hook), without the API reference and C++ reference: page -> HTML."""
+    build, load_config = mkdocs_or_fail()
+    folder = tmp_path_factory.mktemp("site")
+    pages = math_pages()
+    for page in pages:
+        (folder / "docs" / page).parent.mkdir(parents=True, exist_ok=True)
+        (folder / "docs" / page).write_text((DOCS / page).read_text())
+    here = os.getcwd()
+    os.chdir(ROOT)  # pymdownx.snippets reads the quoted files from the repository's root
+    try:
+        config = load_config(
+            config_file=str(ROOT / "mkdocs.yml"),
+            docs_dir=str(folder / "docs"),
+            site_dir=str(folder / "site"),
+            nav=pages,
+            plugins=["search"],
+            hooks=[str(DOCS / "hooks" / "mathml.py")],
+            strict=False,  # the links into the pages left out are broken here
+        )
+        build(config)
+    finally:
+        os.chdir(here)
+    return {p: (folder / "site" / p.replace(".md", ".html")).read_text() for p in pages}
+
+
+def test_the_equations_page_and_the_others_with_formulas_hold_mathml(built_math_pages):
+    """Every formula of a page is a <math> element in the built page (well-formed XML, none
+    left as LaTeX), and the pages load nothing from the network."""
+    assert {"equations.md", "tutorials/real-drives.md", "vocabulary.md"} <= set(built_math_pages)
+    for page, html in built_math_pages.items():
+        source = (DOCS / page).read_text()
+        elements = MATH_ELEMENT.findall(html)
+        assert len(elements) == len(FORMULA.findall(source)), page
+        for element in elements:
+            ElementTree.fromstring(element)  # raises on a malformed element
+        shown = re.sub(r"<(pre|code)\b.*?</\1>", "", MATH_ELEMENT.sub("", html), flags=re.S)
+        assert not re.search(r"\\[(\[]|arithmatex", shown), page
+        assert not REMOTE.search(html), (page, REMOTE.search(html))
+    equations = built_math_pages["equations.md"]
+    # the displayed ones are blocks: the capstan law A1, the pull-pull pair's A7, D2's inverse
+    assert equations.count('display="block"') >= 12
+    assert "<mi>&#x003B8;</mi>" in equations  # theta, a MathML identifier
+
+
+def test_a_formula_latex2mathml_cannot_convert_stops_the_build():
+    mkdocs_or_fail()
+    from mkdocs.exceptions import PluginError
+
+    spec = importlib.util.spec_from_file_location("mathml_hook", DOCS / "hooks" / "mathml.py")
+    hook = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(hook)
+
+    class Page:  # what the hook reads of mkdocs' page
+        class file:
+            src_uri = "equations.md"
+
+    ok = hook.on_page_content(
+        '<p><span class="arithmatex">\\(a &lt; b\\)</span></p>', Page, None, None
+    )
+    assert ok.startswith('<p><math xmlns="http://www.w3.org/1998/Math/MathML" display="inline">')
+    # the < that arithmatex escaped is MathML's operator
+    assert "<mo>&#x0003C;</mo>" in ok and "arithmatex" not in ok
+    with pytest.raises(PluginError, match=r"equations\.md: '\\\\nosuch x' is not MathML"):
+        hook.on_page_content('<div class="arithmatex">\\[\\nosuch x\\]</div>', Page, None, None)
 
 
 SNIPPET = re.compile(r'^--8<-- "([^":]+):(\d+):(\d+)"$', flags=re.M)

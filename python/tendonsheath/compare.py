@@ -246,6 +246,58 @@ def _ratio_cell(ratio: float, worse: bool) -> str:
     return (f"{ratio:.5f}" if close else f"{ratio:.3f}") + ("*" if worse else "")
 
 
+PARTS_CAPTION = (
+    "Held-out rmse of each candidate on each held-out part, over the affine map's on that "
+    "part. A part is one held-out recording, or one held-out block of a recording: {names}. "
+    "*: worse than the affine map on that part (the candidate cannot win)."
+)
+
+
+def _parts_html(parts: dict[str, Any]) -> str:
+    """The per-part table of report.html (Comparison.parts() as the CLI prints it: the ratios
+    to the affine map's rmse, ``*`` where worse); empty with fewer than two parts (the main
+    table's ratio is then the part's)."""
+    labels = parts["labels"]
+    if len(labels) < 2:
+        return ""
+    names = ", ".join(f"{j + 1} = {html_escape(n)}" for j, n in enumerate(labels))
+    head = "<th>model</th>" + "".join(
+        f"<th title='{html_escape(n, quote=True)}'>part {j + 1}</th>" for j, n in enumerate(labels)
+    )
+    body = "".join(
+        f"<tr><td>{html_escape(name)}</td>"
+        + "".join(f"<td>{_ratio_cell(q, w)}</td>" for q, w in zip(ratios, worse, strict=True))
+        + "</tr>"
+        for name, ratios, worse in zip(
+            parts["models"], parts["ratio_to_affine"], parts["worse_than_affine"], strict=True
+        )
+    )
+    return (
+        "<h2>Held-out rmse on each held-out part / the affine map's there</h2>"
+        # a figure's caption, not the table's: that one would be as narrow as the table
+        f"<figure><table class='parts' border='1' cellpadding='4'><tr>{head}</tr>{body}</table>"
+        f"<figcaption>{PARTS_CAPTION.format(names=names)}</figcaption></figure>"
+    )
+
+
+def _parts_json(parts: dict[str, Any]) -> dict[str, Any]:
+    """Comparison.parts() for comparison.json: lists, a missing figure as null (JSON has no
+    NaN)."""
+
+    def plain(a: np.ndarray) -> list:
+        return [[float(v) if np.isfinite(v) else None for v in row] for row in a]
+
+    return {
+        "labels": parts["labels"],
+        "models": parts["models"],
+        "rmse": plain(parts["rmse"]),
+        "ratio_to_affine": plain(parts["ratio_to_affine"]),
+        "worse_than_affine": parts["worse_than_affine"].tolist(),
+        "inv_rmse": plain(parts["inv_rmse"]),
+        "inv_ratio_to_affine": plain(parts["inv_ratio_to_affine"]),
+    }
+
+
 @dataclass
 class Comparison:
     """Result of :func:`compare_models`. ``table`` rows: model, n_params, train_rmse,
@@ -462,6 +514,7 @@ class Comparison:
             "parsimony": self.parsimony,
             "choice": self.choice,
             "part_labels": self.parts()["labels"],
+            "parts": _parts_json(self.parts()),
             "table": self.table,
             "winner": self.winner_name,
             "winner_model": self.winner.to_dict(),
@@ -546,12 +599,13 @@ class Comparison:
         html = (
             "<!doctype html><html><head><meta charset='utf-8'><title>model comparison</title>"
             "<meta name='viewport' content='width=device-width, initial-scale=1'>"
-            "<style>img{max-width:100%;height:auto}</style>"  # fits a 1280 px window
+            "<style>img{max-width:100%;height:auto}figure{margin:1em 0}</style>"  # 1280 px
             "</head><body><h1>Model comparison</h1>"
             f"<p>{html_escape(self.mode)}; winner: <b>{self.winner_name}</b></p>"
             f"<p>{html_escape(self.rule)}</p>"
             f"<table border='1' cellpadding='4'><tr>{head}</tr>{body}</table>"
-            "<h2>Validation loops</h2><img src='loops.png'>"
+            + _parts_html(self.parts())
+            + "<h2>Validation loops</h2><img src='loops.png'>"
             "<h2>Validation residuals</h2><img src='residuals.png'></body></html>"
         )
         page = out / "report.html"
