@@ -95,62 +95,70 @@ def _number(v: float) -> str:
     return repr(float(v))
 
 
-def test_exported_multi_input_headers_give_pythons_commands(tmp_path, compiler):  # noqa: F811
-    cases, source, checks, stdin = {}, "#include <cstdio>\n#include <type_traits>\n", [], []
-    for k in LC_CASES:
-        cases[f"lc{k}"] = _load_compensated(k)
-    for k in CF_CASES:
-        cases[f"cf{k}"] = _coupled(k)
-    for k in range(2):
-        cases[f"cf_root{k}"] = _extra_coupled(k)
-    expected = {}
+def _inputs(ns: str, ff, rng) -> tuple[list[str], np.ndarray, str]:
+    """(stdin lines, Python's streamed commands, the C++ block) of one case: a LoadCompensated
+    under a load with dropouts, or coupled joints whose desired angles have dropouts."""
+    ff.reset()
+    if ns.startswith("lc"):
+        y_d = _desired(rng)
+        load = 0.3 * np.sin(2 * np.pi * rng.uniform(0.2, 1.0) * T + 1.0)
+        load[rng.integers(0, T.size, 5)] = np.nan  # lost load samples: the last one held
+        rows = list(zip(y_d, DTS, load, strict=True))
+        python = np.array([ff.step(a, dt, b) for a, dt, b in rows])
+        return [" ".join(map(_number, row)) + "\n" for row in rows], python, _lc_case(ns)
+    y_d = _desired(rng, ff.model.joints)
+    y_d[rng.integers(0, T.size, 4), rng.integers(0, ff.model.joints, 4)] = np.nan
+    python = np.array([ff.step(y, dt) for y, dt in zip(y_d, DTS, strict=True)])
+    lines = [" ".join(map(_number, [dt, *y])) + "\n" for y, dt in zip(y_d, DTS, strict=True)]
+    return lines, python, _cf_case(ns)
+
+
+def run_exported(cases: dict, folder: Path, cxx: str, extra: str = "") -> tuple:
+    """Export every case (namespace "lc..." a LoadCompensated, "cf..." a CoupledFeedforward)
+    into ``folder``, build one program of them all (g++ -fno-exceptions; ``extra``: C++ run
+    after them) and run it over random inputs: ({ns: Python's commands}, {ns: C++'s}, the
+    lines ``extra`` printed). benchmarks/cpp_multi_input_json.py --export runs it too."""
+    source, checks, stdin, expected = "#include <cstdio>\n#include <type_traits>\n", [], [], {}
     for index, (ns, ff) in enumerate(cases.items()):
-        ff.to_json(tmp_path / f"{ns}.json")
-        _export(tmp_path / f"{ns}.json", tmp_path / f"{ns}.hpp")
+        ff.to_json(folder / f"{ns}.json")
+        _export(folder / f"{ns}.json", folder / f"{ns}.hpp")
         source += f'#include "{ns}.hpp"\n'
-        rng = np.random.default_rng(300 + index)
-        ff.reset()
-        if ns.startswith("lc"):
-            y_d = _desired(rng)
-            load = 0.3 * np.sin(2 * np.pi * rng.uniform(0.2, 1.0) * T + 1.0)
-            load[rng.integers(0, T.size, 5)] = np.nan  # lost load samples: the last one held
-            rows = list(zip(y_d, DTS, load, strict=True))
-            expected[ns] = np.array([ff.step(a, dt, b) for a, dt, b in rows])
-            stdin += [f"{_number(a)} {_number(dt)} {_number(b)}\n" for a, dt, b in rows]
-            checks.append(_lc_case(ns))
-        else:
-            y_d = _desired(rng, ff.model.joints)
-            y_d[rng.integers(0, T.size, 4), rng.integers(0, ff.model.joints, 4)] = np.nan
-            expected[ns] = np.array([ff.step(y, dt) for y, dt in zip(y_d, DTS, strict=True)])
-            stdin += [
-                " ".join(map(_number, [dt, *y])) + "\n" for y, dt in zip(y_d, DTS, strict=True)
-            ]
-            checks.append(_cf_case(ns))
+        lines, expected[ns], check = _inputs(ns, ff, np.random.default_rng(300 + index))
+        stdin += lines
+        checks.append(check)
     source += (
-        f"int main() {{\n  const std::size_t n = {T.size};" + "".join(checks) + SPOILED + "\n}\n"
+        f"int main() {{\n  const std::size_t n = {T.size};" + "".join(checks) + extra + "\n}\n"
     )
-    (tmp_path / "multi.cpp").write_text(source)
-    exe = tmp_path / "multi"
+    (folder / "multi.cpp").write_text(source)
+    exe = folder / "multi"
     # -O0: the slowest part of the test is this compile (x86-64 doubles: the same bits as -O1)
     flags = ["-std=c++17", "-O0", "-fno-exceptions", "-Wall", "-Wextra", "-Werror"]
-    include = [f"-I{ROOT / 'include'}", f"-I{tmp_path}"]
+    include = [f"-I{ROOT / 'include'}", f"-I{folder}"]
     build = subprocess.run(
-        [compiler, *flags, *include, str(tmp_path / "multi.cpp"), "-o", str(exe)],
+        [cxx, *flags, *include, str(folder / "multi.cpp"), "-o", str(exe)],
         capture_output=True,
         text=True,
     )
     assert build.returncode == 0, build.stderr[-3000:]
     run = subprocess.run([exe], input="".join(stdin), capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
-    lines = run.stdout.split("\n")
-    at = 0
+    out, cpp = run.stdout.split("\n"), {}
+    for at, (ns, python) in enumerate(expected.items()):
+        rows = out[at * T.size : (at + 1) * T.size]
+        cpp[ns] = np.array([[float(v) for v in row.split()] for row in rows]).reshape(python.shape)
+    return expected, cpp, out[len(expected) * T.size :]
+
+
+def test_exported_multi_input_headers_give_pythons_commands(tmp_path, compiler):  # noqa: F811
+    cases = {f"lc{k}": _load_compensated(k) for k in LC_CASES}
+    cases.update({f"cf{k}": _coupled(k) for k in CF_CASES})
+    cases.update({f"cf_root{k}": _extra_coupled(k) for k in range(2)})
+    expected, cpp, rest = run_exported(cases, tmp_path, compiler, SPOILED)
     for ns, python in expected.items():
-        cpp = np.array([[float(v) for v in line.split()] for line in lines[at : at + T.size]])
-        at += T.size
         assert np.all(np.isfinite(python)) and np.ptp(python) > 0.1, ns  # exercised
-        np.testing.assert_array_equal(cpp.reshape(python.shape), python, err_msg=ns)
-    assert lines[at] == "LoadPlayInverse: switch_travel must be > 0 (got -1)", lines[at]
-    assert "the coupling's diagonal must be zero" in lines[at + 1], lines[at + 1]
+        np.testing.assert_array_equal(cpp[ns], python, err_msg=ns)  # measured: bit for bit
+    assert rest[0] == "LoadPlayInverse: switch_travel must be > 0 (got -1)", rest[0]
+    assert "the coupling's diagonal must be zero" in rest[1], rest[1]
 
 
 def test_the_headers_name_the_class_and_its_step(tmp_path):

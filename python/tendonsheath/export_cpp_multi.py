@@ -132,8 +132,8 @@ _INVERSE_NOTE = (
 
 def _builder(cpp_class: str, args: str, step: str) -> str:
     return (
-        f"\n// The class to build: Compensator, that is tendonsheath::{cpp_class}; its step:\n"
-        f"//   {step}\n"
+        "\n// The class to build: Compensator, that is\n"
+        f"//   tendonsheath::{cpp_class}\n// its step:\n//   {step}\n"
         "// make_compensator() builds it with or without C++ exceptions (g++ -fno-exceptions):\n"
         "//   auto built = make_compensator();\n"
         '//   if (!built.ok()) { /* built.error(): "<class>: <what>" */ }\n'
