@@ -46,7 +46,7 @@ def _number(value: float) -> str:
 
 def _fields(obj) -> list[str]:
     """The read-write fields of a bound parameter struct (its properties), in name order."""
-    names = set()
+    names: set[str] = set()
     for cls in type(obj).__mro__:
         names.update(k for k, v in vars(cls).items() if isinstance(v, property))
     return sorted(names)

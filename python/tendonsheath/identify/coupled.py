@@ -48,14 +48,14 @@ class CoupledFit:
         Newey-West standard error of each identified C[i, j] (NaN where not identified).
     lags : list of list of int
         The Bartlett bandwidth of each joint's covariance, in lags (samples) of each recording.
-    lag_s : list of float
-        The same bandwidth of each joint in seconds (NaN without times, or with ``lags``).
     rmse : numpy.ndarray, shape (J,)
         Each joint's RMS prediction error (its own input, the others' measured angles).
     fits : list of Fit
         Each joint's own model fitted at stage (2), before the joint refinement.
     seconds : float
         Wall-clock time.
+    lag_s : list of float
+        The same bandwidth of each joint in seconds (NaN without times, or with ``lags``).
     """
 
     model: Coupled
@@ -208,7 +208,7 @@ def _periods(recs: list[CoupledRecording], nw_lag_s, lags) -> list[float] | None
             )
     if recs[0].t is None:
         return None
-    return [float(np.median(np.diff(r.t))) for r in recs]
+    return [float(np.median(np.diff(r.t))) for r in recs if r.t is not None]
 
 
 def _blocks(recs: list[CoupledRecording], warmup, joints: int) -> list[int]:
