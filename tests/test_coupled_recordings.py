@@ -171,8 +171,8 @@ def test_two_sessions_at_different_rates_agree_and_pool(monkeypatch):
             assert both.coupling_se[i, j] < one.coupling_se[i, j], (both.report(), one.report())
     # measured: C[1,0] 0.24999 +/- 0.000523 (A), 0.25001 +/- 0.00083 (B), 0.24989 +/-
     # 0.000508 (both); C[0,1] +0.00024 +/- 0.00018, -0.00012 +/- 0.00021, +0.00011 +/-
-    # 0.00017. The pooled SE is only 3% below A's for C[1,0] (the bandwidth in seconds, 0.35 s
-    # for C[1,0]: 354 lags of A, 142 of B; with one count of lags for both it was 0.00048),
+    # 0.00017. The pooled SE is only 3% below A's for C[1,0] (the bandwidth in seconds, 0.91 s
+    # for C[1,0]: 906 lags of A, 363 of B; with one count of lags for both it was 0.00048),
     # and not always below: with B at 0.29/0.53 Hz and 0.7/0.6 rad, C[0,1]'s came out 0.00023
     # for A's 0.00018 (the one model's misfit differs between the sessions;
     # benchmarks/coupled_recordings.py prints both designs)
