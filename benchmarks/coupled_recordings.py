@@ -8,6 +8,10 @@ drives, outside every model class, noisy quantised encoders).
   amplitudes), each alone and both together (warm-up 400 samples per session); B is given
   twice: 0.45/0.71 Hz at 0.9/1.0 rad (the test's) and 0.29/0.53 Hz at 0.7/0.6 rad.
 
+The Newey-West bandwidth is a time (Andrews' rule pooled over the sessions in seconds), given
+in lags of each session at its own rate; each line ends with joint 1's and joint 0's (the rows
+of C[1,0] and C[0,1]).
+
     .venv/bin/python benchmarks/coupled_recordings.py [--seeds 6]
 """
 
@@ -55,7 +59,8 @@ def line(name: str, f) -> str:
     )
     return (
         f"{name:10s} C[1,0] {c10:.5f} +/- {s10:.5f} ({(c10 - C10) / s10:+.2f} SE)   "
-        f"C[0,1] {c01:+.5f} +/- {s01:.5f} ({c01 / s01:+.2f} SE)   {f.seconds:.1f} s"
+        f"C[0,1] {c01:+.5f} +/- {s01:.5f} ({c01 / s01:+.2f} SE)   {f.seconds:.1f} s   "
+        f"NW bandwidth {f.lag_s[1]:.2f} / {f.lag_s[0]:.2f} s"
     )
 
 

@@ -7,7 +7,11 @@ the file's, desired angles with dropouts), over more seeds: each file saved by P
 C++ example 03 over a 2 s, 1 kHz trajectory, and compared with Python's streamed commands. The
 test asserts 1e-12; this reports the figure.
 
-    .venv/bin/python benchmarks/cpp_multi_input_json.py [--seeds 24]
+With --export the same cases go through `tendonsheath export --cpp` instead of the JSON loader:
+each file's header, all of them built into one program with g++ -fno-exceptions
+(tests/test_export_cpp_multi.py's run_exported, whose test asserts bit for bit).
+
+    .venv/bin/python benchmarks/cpp_multi_input_json.py [--seeds 24] [--export]
 
 (it builds example 03 into build/cpp with CMake first when it is not there).
 """
@@ -15,6 +19,7 @@ test asserts 1e-12; this reports the figure.
 from __future__ import annotations
 
 import argparse
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -27,6 +32,7 @@ from _common import write_results
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 import test_cpp_multi_input_json as cases  # noqa: E402  (the test's random cases)
+import test_export_cpp_multi as exported  # noqa: E402  (the exported headers' program)
 
 EXAMPLE = ROOT / "build" / "cpp" / "examples" / "cpp" / "example_03_load_and_run"
 
@@ -69,11 +75,35 @@ def build_example() -> None:
     subprocess.run(["cmake", "--build", str(build), *target], check=True)
 
 
+def export_gaps(seeds: int) -> tuple[float, float]:
+    """max |C++ - Python| of the exported headers of the seeds' cases (one program)."""
+    items = {f"lc{k}": cases._load_compensated(k) for k in range(seeds)}
+    items.update({f"cf{k}": cases._coupled(k) for k in range(seeds)})
+    cxx = shutil.which("c++") or shutil.which("g++")
+    if cxx is None:
+        raise SystemExit("--export needs a C++ compiler")
+    with tempfile.TemporaryDirectory() as d:
+        python, cpp, _ = exported.run_exported(items, Path(d), cxx)
+    gaps = {ns: float(np.max(np.abs(cpp[ns] - python[ns]))) for ns in python}
+    lc = max(v for ns, v in gaps.items() if ns.startswith("lc"))
+    return lc, max(v for ns, v in gaps.items() if ns.startswith("cf"))
+
+
 def main() -> None:
-    """Run the cases and write benchmarks/results/cpp_multi_input_json.json."""
+    """Run the cases and write benchmarks/results/cpp_multi_input_json.json (with --export:
+    cpp_multi_input_export.json)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=24)
-    seeds = parser.parse_args().seeds
+    parser.add_argument("--export", action="store_true", help="the exported headers instead")
+    args = parser.parse_args()
+    seeds = args.seeds
+    if args.export:
+        lc, cf = export_gaps(seeds)
+        print(f"exported headers, {seeds} cases each, 2000 cycles: max |C++ - Python| "
+              f"LoadCompensated {lc:.3g}, CoupledFeedforward {cf:.3g}")  # fmt: skip
+        result = {"seeds": seeds, "cycles": int(cases.T.size), "load_compensated": lc}
+        write_results("cpp_multi_input_export", {**result, "coupled": cf})
+        return
     if not EXAMPLE.is_file():
         build_example()
     with tempfile.TemporaryDirectory() as d:

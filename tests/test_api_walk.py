@@ -66,6 +66,7 @@ PUBLIC_MODULES = [
 # none is exported by tendonsheath.__all__ or a subpackage's __all__).
 NOT_WALKED = {
     "tendonsheath.cli": "the `tendonsheath` command (typer): documented by its --help",
+    "tendonsheath.export_cpp_multi": "the multi-input compensators of export_cpp (walked)",
     "tendonsheath.demo": "the `tendonsheath demo` job, run by the command",
     "tendonsheath.outputs": "output-path checks of the commands",
     "tendonsheath.plots": "the figure behind the plants' plot_tensions() (walked there)",

@@ -1,7 +1,7 @@
 """LoadCompensated and CoupledFeedforward saved by Python load in C++
 (tendonsheath/io/json_multi_input.hpp, run by example 03) and give Python's commands to 1e-12 over
 random models, loads (with dropouts) and coupled joints; in Python the files round-trip bit for
-bit and load strictly; ``export --cpp`` points them to the JSON loader in one line."""
+bit and load strictly; ``export --cpp`` writes their headers, and points their models to them."""
 
 from __future__ import annotations
 
@@ -182,22 +182,26 @@ def test_strict_loading_names_the_key(make, change, message):
         load_compensator(data)
 
 
-def test_export_cpp_points_these_files_to_the_json_loader(tmp_path):
-    """export --cpp cannot write a step that takes a load or J joints: one line naming the
-    loader to use instead (and the compensator to save, for their models)."""
+def test_export_cpp_writes_these_files_and_points_their_models_to_them(tmp_path):
+    """export --cpp writes a header for both compensator files (tests/test_export_cpp_multi.py
+    runs them); a Loaded or Coupled model file is one line naming the compensator to save."""
     lc, cf = _load_compensated(0), _coupled(0)
     lc.to_json(tmp_path / "lc.json")
     cf.to_json(tmp_path / "cf.json")
     lc.model.to_json(tmp_path / "loaded.json")
     cf.model.to_json(tmp_path / "coupled.json")
+    for name in ("lc.json", "cf.json"):
+        result = CliRunner().invoke(
+            app, ["export", str(tmp_path / name), "--cpp", str(tmp_path / f"{name}.hpp")]
+        )
+        assert result.exit_code == 0, result.output
+        assert "make_compensator()" in (tmp_path / f"{name}.hpp").read_text()
     expected = {
-        "lc.json": "io::load_load_compensated_json",
-        "cf.json": "io::load_coupled_feedforward_json",
         "loaded.json": "LoadCompensated(model).to_json",
         "coupled.json": "CoupledFeedforward(model).to_json",
     }
     for name, words in expected.items():
-        with pytest.raises(ValueError, match=r"json_multi_input\.hpp") as err:
+        with pytest.raises(ValueError, match=r"and export that file") as err:
             cpp_header(tmp_path / name)
         assert words in str(err.value) and "\n" not in str(err.value), name
         result = CliRunner().invoke(

@@ -8,9 +8,11 @@ y_i minus that coupling; (3) ``scipy.optimize.least_squares`` refines theta_i an
 together. The residuals of a hysteresis model fitted to a real drive are autocorrelated (the
 misfit repeats over each cycle), so the standard errors are heteroscedasticity and
 autocorrelation consistent: the Newey-West sandwich with a Bartlett kernel, its bandwidth by
-Andrews' AR(1) plug-in rule on the coupling's scores (or ``lags``). Several recordings
-(sessions) share the parameters; each is simulated from rest and is an independent block of
-the covariance: its autocovariances never pair samples of two recordings.
+Andrews' AR(1) plug-in rule on the coupling's scores (or ``nw_lag_s``, or ``lags``). Several
+recordings (sessions) share the parameters; each is simulated from rest and is an independent
+block of the covariance: its autocovariances never pair samples of two recordings. With times,
+the bandwidth is a time (the residuals are correlated over a time of the drive), converted to
+lags in each recording at its own rate (identify/newey_west.py).
 """
 
 from __future__ import annotations
@@ -44,23 +46,26 @@ class CoupledFit:
         Its coupling matrix C (0 where not identified).
     coupling_se : numpy.ndarray, shape (J, J)
         Newey-West standard error of each identified C[i, j] (NaN where not identified).
-    lags : list of int
-        The Bartlett bandwidth (lags) of each joint's covariance.
+    lags : list of list of int
+        The Bartlett bandwidth of each joint's covariance, in lags (samples) of each recording.
     rmse : numpy.ndarray, shape (J,)
         Each joint's RMS prediction error (its own input, the others' measured angles).
     fits : list of Fit
         Each joint's own model fitted at stage (2), before the joint refinement.
     seconds : float
         Wall-clock time.
+    lag_s : list of float
+        The same bandwidth of each joint in seconds (NaN without times, or with ``lags``).
     """
 
     model: Coupled
     coupling: FloatArray
     coupling_se: FloatArray
-    lags: list[int]
+    lags: list[list[int]]
     rmse: FloatArray
     fits: list[Fit] = field(repr=False)
     seconds: float = 0.0
+    lag_s: list[float] = field(default_factory=list)
 
     def report(self) -> str:
         """A short text summary: each coupling coefficient with its standard error.
@@ -72,7 +77,10 @@ class CoupledFit:
         """
         lines = [f"Coupled model of {self.model.joints} joints ({self.seconds:.1f} s)"]
         for i, m in enumerate(self.model.models):
-            lines.append(f"  joint {i}: {m!r}  rmse {self.rmse[i]:.3e}  lags {self.lags[i]}")
+            lags = "/".join(str(v) for v in self.lags[i])
+            if self.lag_s and math.isfinite(self.lag_s[i]):
+                lags += f" ({self.lag_s[i]:.3g} s)"
+            lines.append(f"  joint {i}: {m!r}  rmse {self.rmse[i]:.3e}  lags {lags}")
         for i, j in zip(*np.nonzero(np.isfinite(self.coupling_se)), strict=True):
             lines.append(
                 f"  C[{i},{j}] = {self.coupling[i, j]:+.5f} +/- {self.coupling_se[i, j]:.5f}"
@@ -90,6 +98,7 @@ def identify_coupled(
     warmup: int = 0,
     couple: ArrayLike | None = None,
     lags: int | None = None,
+    nw_lag_s: float | None = None,
     **options: Any,
 ) -> CoupledFit:
     """Identify coupled joints from logs of all of them (see the module's description).
@@ -120,7 +129,13 @@ def identify_coupled(
     couple : array_like of bool, shape (J, J), optional
         True where C[i, j] is identified (default every pair i != j); the others are 0.
     lags : int, optional
-        Bartlett bandwidth of the Newey-West covariance (default: Andrews' rule).
+        Bartlett bandwidth of the Newey-West covariance in samples, the same number in every
+        recording (default: ``nw_lag_s``'s rule). Not with ``nw_lag_s``.
+    nw_lag_s : float, optional
+        Bartlett bandwidth in seconds (finite, > 0; needs times t), converted to lags in each
+        recording at its own sample period (the median of its time steps): ceil(nw_lag_s /
+        period), at most its samples less one. Default (None): Andrews' AR(1) rule, pooled
+        over the recordings in seconds (in samples without times).
     **options
         Passed to :func:`identify` for each joint's own model (``seed``, ``maxiter``, ...);
         ``normalize`` is off (the joint refinement moves the class's own parameters).
@@ -136,8 +151,8 @@ def identify_coupled(
         Both t, x, y and ``recordings`` given, or neither.
     ValueError
         Signals of the wrong shape, not finite, times not increasing, recordings with
-        different numbers of joints, a bad ``couple`` or ``lags``, or too few samples after
-        the warm-up.
+        different numbers of joints, a bad ``couple``, ``lags`` or ``nw_lag_s`` (or both of
+        them), or too few samples after the warm-up.
     """
     start = time.perf_counter()
     recs = coupled_recordings(t, x, y, recordings)
@@ -148,22 +163,52 @@ def identify_coupled(
     n = sum(blocks)
     if lags is not None and not (isinstance(lags, int | np.integer) and 0 <= lags < n):
         raise ValueError(f"identify_coupled: lags must be an integer in [0, n) (got {lags!r})")
+    periods = _periods(recs, nw_lag_s, lags)
     options = {"progress": False, "standard_errors": "none", **options, "normalize": False}
     models, fits, coupling = [], [], np.zeros((joints, joints))
     se = np.full((joints, joints), np.nan)
-    used_lags, rmse = [], np.zeros(joints)
+    used_lags, lag_s, rmse = [], [], np.zeros(joints)
     for i in range(joints):
         others = np.flatnonzero(mask[i])
         joint = _fit_joint(classes[i], _JointData(recs, i, others), int(warmup), options)
-        c_se, lag = _newey_west(joint.jac, joint.residual, len(others), lags, blocks)
+        c_se, lag, seconds = _newey_west(
+            joint.jac, joint.residual, len(others), lags, blocks, periods, nw_lag_s
+        )
         models.append(joint.model)
         fits.append(joint.fit)
         coupling[i, others] = joint.coefficients
         se[i, others] = c_se
         used_lags.append(lag)
+        lag_s.append(seconds)
         rmse[i] = math.sqrt(float(np.mean(joint.residual**2)))
     model = Coupled(models, coupling)
-    return CoupledFit(model, coupling, se, used_lags, rmse, fits, time.perf_counter() - start)
+    seconds = time.perf_counter() - start
+    return CoupledFit(model, coupling, se, used_lags, rmse, fits, seconds, lag_s)
+
+
+def _periods(recs: list[CoupledRecording], nw_lag_s, lags) -> list[float] | None:
+    """Each recording's sample period (the median time step; None without times), with
+    ``nw_lag_s`` checked."""
+    if nw_lag_s is not None:
+        bad = isinstance(nw_lag_s, bool) or not isinstance(nw_lag_s, int | float | np.number)
+        if bad or not (math.isfinite(nw_lag_s) and nw_lag_s > 0):
+            raise ValueError(
+                f"identify_coupled: nw_lag_s must be a finite number of seconds > 0 "
+                f"(got {nw_lag_s!r})"
+            )
+        if lags is not None:
+            raise ValueError(
+                "identify_coupled: give the Newey-West bandwidth as lags (samples) or as "
+                "nw_lag_s (seconds), not both"
+            )
+        if recs[0].t is None:
+            raise ValueError(
+                "identify_coupled: nw_lag_s (seconds) needs the sample times t of the "
+                "recordings (or give lags in samples)"
+            )
+    if recs[0].t is None:
+        return None
+    return [float(np.median(np.diff(r.t))) for r in recs if r.t is not None]
 
 
 def _blocks(recs: list[CoupledRecording], warmup, joints: int) -> list[int]:

@@ -1,6 +1,12 @@
 """Newey-West (Bartlett kernel) standard errors of least-squares parameters, for residuals
 stacked from independent recordings: the autocovariances are summed within each recording
-only, so no lag pairs the end of one recording with the start of the next."""
+only, so no lag pairs the end of one recording with the start of the next.
+
+The bandwidth is a time when the recordings' sample periods are known: the residuals of a
+drive are correlated over a time (the misfit repeats over each cycle, the encoder noise is
+filtered over a time constant), not over a number of samples, so one lag in samples would
+cover 2.5 times longer at 400 Hz than at 1 kHz. It is converted to each recording's lags with
+that recording's own period."""
 
 from __future__ import annotations
 
@@ -27,24 +33,58 @@ def newey_west(
     k: int,
     lags: int | None,
     blocks: Sequence[int] | None = None,
-) -> tuple[FloatArray, int]:
+    periods: Sequence[float] | None = None,
+    lag_s: float | None = None,
+) -> tuple[FloatArray, list[int], float]:
     """Standard errors of the last k parameters: (J'J)^-1 S (J'J)^-1, S the Bartlett-weighted
-    sum of the scores' autocovariances up to ``lags`` (None: Andrews' AR(1) rule) within each
-    block of ``blocks`` (row counts of the independent recordings, in order; None: one)."""
+    sum of the scores' autocovariances within each block of ``blocks`` (row counts of the
+    independent recordings, in order; None: one).
+
+    The bandwidth: ``lags`` samples in every block when given; else, with the blocks' sample
+    ``periods`` (s), ``lag_s`` seconds (None: Andrews' AR(1) rule pooled in seconds,
+    :func:`andrews_seconds`), ceil(lag_s / period) lags in each block; without periods,
+    Andrews' rule in samples, shared. Returns (the k errors, each block's lags, the bandwidth
+    in seconds: NaN without periods or with ``lags``)."""
+    spans = _starts(jac.shape[0], blocks)
     if k == 0:
-        return np.zeros(0), 0
+        return np.zeros(0), [0] * len(spans), math.nan
     scores = jac * r[:, None]
-    spans = _starts(scores.shape[0], blocks)
-    lag = andrews_lags(scores[:, -k:], spans) if lags is None else int(lags)
+    seconds = math.nan
+    if lags is not None:
+        per_block = [int(lags)] * len(spans)
+    elif periods is None:
+        per_block = [andrews_lags(scores[:, -k:], spans)] * len(spans)
+    else:
+        seconds = andrews_seconds(scores[:, -k:], spans, periods) if lag_s is None else lag_s
+        per_block = [
+            int(min(b - a - 1, math.ceil(seconds / p)))
+            for (a, b), p in zip(spans, periods, strict=True)
+        ]
     s = scores.T @ scores
-    for a, b in spans:
+    for (a, b), lag in zip(spans, per_block, strict=True):
         g = scores[a:b]
         for ell in range(1, min(lag, b - a - 1) + 1):
             gamma = g[ell:].T @ g[:-ell]
             s += (1.0 - ell / (lag + 1.0)) * (gamma + gamma.T)
     bread = np.linalg.pinv(jac.T @ jac)
     cov = bread @ s @ bread
-    return np.sqrt(np.clip(np.diag(cov)[-k:], 0.0, None)), lag
+    return np.sqrt(np.clip(np.diag(cov)[-k:], 0.0, None)), per_block, seconds
+
+
+def _ar1_terms(g: FloatArray, spans: list[tuple[int, int]]) -> tuple[float, float] | None:
+    """Andrews' (numerator, denominator) of one score column's AR(1) fit over the pairs of
+    consecutive rows within the spans (in samples^2 of those spans' rate); None if constant."""
+    head = np.concatenate([g[a : b - 1] for a, b in spans])
+    tail = np.concatenate([g[a + 1 : b] for a, b in spans])
+    denom = float(head @ head)
+    if denom <= 0.0:
+        return None
+    rho = float(np.clip(tail @ head / denom, -0.999, 0.999))
+    var = float(np.mean((tail - rho * head) ** 2))
+    return (
+        4 * rho**2 * var**2 / ((1 - rho) ** 6 * (1 + rho) ** 2),
+        var**2 / (1 - rho) ** 4,
+    )
 
 
 def andrews_lags(scores: FloatArray, spans: list[tuple[int, int]] | None = None) -> int:
@@ -55,16 +95,35 @@ def andrews_lags(scores: FloatArray, spans: list[tuple[int, int]] | None = None)
     spans = [(0, n)] if spans is None else spans
     num = den = 0.0
     for g in scores.T:
-        g = g - g.mean()
-        head = np.concatenate([g[a : b - 1] for a, b in spans])
-        tail = np.concatenate([g[a + 1 : b] for a, b in spans])
-        denom = float(head @ head)
-        if denom <= 0.0:
-            continue
-        rho = float(np.clip(tail @ head / denom, -0.999, 0.999))
-        var = float(np.mean((tail - rho * head) ** 2))
-        num += 4 * rho**2 * var**2 / ((1 - rho) ** 6 * (1 + rho) ** 2)
-        den += var**2 / (1 - rho) ** 4
+        terms = _ar1_terms(g - g.mean(), spans)
+        if terms is not None:
+            num, den = num + terms[0], den + terms[1]
     alpha = num / den if den > 0 else 0.0
     longest = max(b - a for a, b in spans)
     return int(min(longest - 1, math.ceil(1.1447 * (alpha * n) ** (1.0 / 3.0))))
+
+
+def andrews_seconds(
+    scores: FloatArray, spans: list[tuple[int, int]], periods: Sequence[float]
+) -> float:
+    """Andrews' Bartlett bandwidth in seconds, pooled over recordings sampled at different
+    periods: 1.1447 (alpha T)^(1/3), T the total duration and alpha (s^2) each recording's
+    AR(1) alpha (samples^2, its own pairs of consecutive rows) times its period squared,
+    weighted by its duration.
+
+    Pooled rather than one bandwidth per recording: the scores' correlation time is the
+    drive's, the same in every session, so every recording's pairs estimate it (a short
+    recording's own AR(1) fit is noisy), and the bandwidth trades the bias and the variance
+    of the one covariance summed over all of them, whose size is the total duration (Andrews'
+    n^(1/3) in samples is (T / period)^(1/3): for one recording this is his rule exactly)."""
+    total = sum((b - a) * p for (a, b), p in zip(spans, periods, strict=True))
+    alpha = 0.0
+    for (a, b), p in zip(spans, periods, strict=True):
+        num = den = 0.0
+        for g in scores.T:
+            terms = _ar1_terms(g - g.mean(), [(a, b)]) if b - a > 1 else None
+            if terms is not None:
+                num, den = num + terms[0], den + terms[1]
+        if den > 0:
+            alpha += (b - a) * p / total * (num / den) * p**2
+    return 1.1447 * (alpha * total) ** (1.0 / 3.0)
