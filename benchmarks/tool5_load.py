@@ -31,6 +31,12 @@ Figures per held-out run, as the median and the worst over the 47:
   direction-switch smoothing (a share of the peak rate, 0.03-0.4) and the play's switch
   travel (0.25-3 times its zero-load half-width) are chosen per model on the three training
   runs (the settings that best reproduce their inputs);
+- the inverse's rmse split: where the recorded jaw moves (``inverse_moving``: its desired
+  rate above 15 % of the peak) and where it stands still (``inverse_still``: mostly where the
+  motor crosses the play at a reversal; the jaw's record does not say where the motor was
+  then, so no inverse of it can);
+- the forward error's signed mean per run (``forward_offset`` in ``per_run``), which shows the
+  jaw encoder's zero jumping in blocks of runs;
 - each as the ratio to the affine map's (without load): the printed and ``target_met`` ratio
   is the median of the model's rmse over the median of the affine map's
   (``median_ratio_to_affine``); the JSON also holds the median and worst per-run ratio.
@@ -257,6 +263,20 @@ def fit_candidates(logs, xs, train=TRAIN, only=None) -> tuple[dict, dict]:
     return out, seconds
 
 
+# the summarised figures; the inverse split where the recorded jaw moves (its desired rate
+# above MOVING_SHARE of the peak) and where it stands still, which is mostly where the motor
+# crosses the play at a reversal: no jaw record says where the motor was then
+FIGURES = (
+    "forward_abs",
+    "forward_zero_free",
+    "inverse_abs",
+    "inverse_zero_free",
+    "inverse_moving",
+    "inverse_still",
+)
+MOVING_SHARE = 0.15
+
+
 def rmse(e: np.ndarray, zero_free: bool) -> float:
     e = e - np.mean(e) if zero_free else e
     return float(np.sqrt(np.mean(e * e)))
@@ -271,6 +291,8 @@ def score(logs, xs, models, train=TRAIN) -> dict:
             continue
         x, load = xs[key], log.load
         desired = desired_from_record(log.t, log.y)
+        rate = np.abs(np.gradient(desired, log.t))
+        moving = rate > MOVING_SHARE * float(np.max(rate))
         row = {}
         for name, m in models.items():
             used = estimate(log, x) if getattr(m, "estimated", False) else load
@@ -281,6 +303,9 @@ def score(logs, xs, models, train=TRAIN) -> dict:
                 "forward_zero_free": float(f"{rmse(ef, True):.4g}"),
                 "inverse_abs": float(f"{rmse(ei, False):.4g}"),
                 "inverse_zero_free": float(f"{rmse(ei, True):.4g}"),
+                "inverse_moving": float(f"{rmse(ei[moving], False):.4g}"),
+                "inverse_still": float(f"{rmse(ei[~moving], False):.4g}"),
+                "forward_offset": float(f"{np.mean(ef):.4g}"),
             }
         rows[key] = row
     return rows
@@ -291,7 +316,7 @@ def summary(rows: dict, names) -> dict:
     out = {}
     for name in names:
         entry = {}
-        for fig in ("forward_abs", "forward_zero_free", "inverse_abs", "inverse_zero_free"):
+        for fig in FIGURES:
             vals = np.array([r[name][fig] for r in rows.values()])
             ratios = np.array([r[name][fig] / r["affine"][fig] for r in rows.values()])
             entry[fig] = {
@@ -322,14 +347,10 @@ def print_summary(kind: str, summ: dict) -> None:
     print(
         f"\n== input {kind}: median (worst) rmse over the 47 held-out runs, mrad; ratio to affine"
     )
-    head = f"{'model':34s}" + "".join(
-        f"{h:>22s}"
-        for h in ("forward abs", "forward zero-free", "inverse abs", "inverse zero-free")
-    )
-    print(head)
+    print(f"{'model':34s}" + "".join(f"{h.replace('_', ' '):>22s}" for h in FIGURES))
     for name, e in summ.items():
         cells = ""
-        for fig in ("forward_abs", "forward_zero_free", "inverse_abs", "inverse_zero_free"):
+        for fig in FIGURES:
             v = e[fig]
             ratio = v["median_ratio_to_affine"]
             cells += f"{1e3 * v['median']:7.1f} ({1e3 * v['worst']:5.1f}) {ratio:5.2f}"
