@@ -11,6 +11,12 @@ Two invariants hold for every field: nan is refused by a ValueError naming the f
 nan a setting), and every entry point agrees with the Python constructor: it refuses the same
 values with the Python message (a file's or a scenario's prefix added), and takes the others.
 The silent cases of the issue each have their own test below.
+
+The walk reaches every class ``ts.compensate.load`` reads (EncoderLoop, TipLoop,
+LearnedFeedforward, LoadCompensated and CoupledFeedforward among them), the composite models
+(Scaled's map, Loaded's terms, AngleDependent's angle_friction, a Chain's parts, a Coupled
+coupling), and every keyword of the motors and the sensor with its own bound. The C++ loader's
+rows are in test_entry_point_validation_cpp.py.
 """
 
 from __future__ import annotations
