@@ -11,6 +11,12 @@ Two invariants hold for every field: nan is refused by a ValueError naming the f
 nan a setting), and every entry point agrees with the Python constructor: it refuses the same
 values with the Python message (a file's or a scenario's prefix added), and takes the others.
 The silent cases of the issue each have their own test below.
+
+The walk reaches every class ``ts.compensate.load`` reads (EncoderLoop, TipLoop,
+LearnedFeedforward, LoadCompensated and CoupledFeedforward among them), the composite models
+(Scaled's map, Loaded's terms, AngleDependent's angle_friction, a Chain's parts, a Coupled
+coupling), and every keyword of the motors and the sensor with its own bound. The C++ loader's
+rows are in test_entry_point_validation_cpp.py.
 """
 
 from __future__ import annotations
@@ -122,15 +128,36 @@ def _model_rows():
 
 
 def _compensators():
-    """One of each saved compensator with numeric settings, and its constructor's keywords."""
+    """One of each saved compensator with numeric settings, and its constructor's keywords:
+    every class ts.compensate.load reads (test_the_walk_covers_every_saved_compensator)."""
     model = ts.models.BoucWenBacklash()
     sheath = {"friction": 0.1, "stiffness": 2e4, "length": 1.0, "pretension": 10.0}
+    inverse = ts.compensate.InverseFeedforward(ts.models.Backlash(B_r=0.05, B_l=0.04))
+    loaded = ts.models.Loaded(ts.models.Backlash(), gain=0.1, slack=0.01, slack_load=0.2)
+    coupled = ts.models.Coupled([ts.models.Backlash(), ts.models.Backlash()], [[0, 0.1], [0.1, 0]])
     return [
         (ts.compensate.CurveAngleFeedforward, sheath),
         (ts.compensate.ContinuumFeedforward, {}),
         (ts.compensate.InverseFeedforward, {"model": model}),
         (ts.compensate.AdaptiveController, {}),
+        (ts.compensate.EncoderLoop, {"feedforward": inverse, "max_correction": 0.5}),
+        (ts.compensate.TipLoop, {"feedforward": inverse, "max_correction": 0.5}),
+        (
+            ts.compensate.LearnedFeedforward,
+            {"feedforward": inverse, "table": [0.0, 0.1], "table_dt": 0.01},
+        ),
+        (ts.compensate.LoadCompensated, {"model": loaded, "filter_hz": 30.0}),
+        (ts.compensate.CoupledFeedforward, {"model": coupled, "filter_hz": 30.0}),
     ]
+
+
+def _takes(cls, field: str) -> bool:
+    """Whether cls's constructor takes field: a keyword of its own, or of the inverse its
+    **settings go to (LoadCompensated, CoupledFeedforward)."""
+    params = inspect.signature(cls.__init__).parameters
+    forwards = any(p.kind is inspect.Parameter.VAR_KEYWORD for p in params.values())
+    inverse = inspect.signature(ts.compensate.InverseFeedforward.__init__).parameters
+    return field in params or (forwards and field in inverse)
 
 
 def _compensator_rows():
@@ -140,15 +167,41 @@ def _compensator_rows():
         for field, value in saved.items():
             if field in ("format", "version", "compensator") or not _is_number(value):
                 continue
-            if field not in inspect.signature(cls.__init__).parameters:
-                continue
-            rows += [(cls, kwargs, field, bad) for bad in BAD]
+            if _takes(cls, field):
+                rows += [(cls, kwargs, field, bad) for bad in BAD]
+    return rows
+
+
+# -- the composite models: built around other models, their own numbers in a section of the file
+COEFFICIENTS = {"c_r": 1.0, "c_l": 1.0, "B_r": [0.05, 0.01], "B_l": 0.05}
+COMPOSITES = {
+    "Scaled": (lambda **kw: ts.models.Scaled(ts.models.Backlash(), **kw), "map"),
+    "Loaded": (lambda **kw: ts.models.Loaded(ts.models.Backlash(), **kw), "terms"),
+    "AngleDependent": (
+        lambda **kw: ts.models.AngleDependent(
+            "Backlash", COEFFICIENTS, laws={"B_r": "tanh"}, **{"angle_friction": 0.2, **kw}
+        ),
+        "params",
+    ),
+}
+# composites whose numbers are not keywords: their parts' (Chain) or a matrix (Coupled), each
+# with its own test below
+OTHER_COMPOSITES = {"Chain", "Coupled"}
+
+
+def _composite_rows():
+    rows = []
+    for name, (build, section) in COMPOSITES.items():
+        for field, value in build().to_dict()[section].items():
+            if _is_number(value):
+                rows += [(name, field, bad) for bad in BAD]
     return rows
 
 
 PLANT_ROWS = _plant_rows()
 MODEL_ROWS = _model_rows()
 COMPENSATOR_ROWS = _compensator_rows()
+COMPOSITE_ROWS = _composite_rows()
 
 
 def test_the_walk_covers_every_public_numeric_field():
@@ -164,6 +217,32 @@ def test_the_walk_covers_every_public_numeric_field():
     toml_numbers = [k for k, kind in user_scenario._KEYS["plant"].items() if kind in (int, float)]
     plant_keywords = {name for _, name, _ in PLANT_ROWS}
     assert set(toml_numbers) <= plant_keywords
+
+
+def test_the_walk_covers_every_saved_compensator_and_composite_model():
+    """Every class ts.compensate.load reads is walked, and every model class that cannot be
+    built without parts (a composite) has rows here."""
+    from tendonsheath.compensate.persistence import _registry
+
+    assert {cls.__name__ for cls, _ in _compensators()} == set(_registry())
+    walked = {(cls.__name__, field) for cls, _, field, _ in COMPENSATOR_ROWS}
+    for name in ("EncoderLoop", "TipLoop"):
+        assert {(name, k) for k in ("kp", "ki", "kd", "max_correction")} <= walked
+    assert {("LoadCompensated", "switch"), ("CoupledFeedforward", "filter_hz")} <= walked
+    assert ("LearnedFeedforward", "table_dt") in walked
+    needs_parts = {
+        name
+        for name in ts.models.__all__
+        if isinstance(getattr(ts.models, name), type)
+        and issubclass(getattr(ts.models, name), HysteresisModel)
+        and not name.endswith("Inverse")
+        and getattr(ts.models, name) is not HysteresisModel
+        and _sample_model(getattr(ts.models, name)) is None
+    }
+    # Polynomial needs a degree, not parts (its numbers are a list); Coupled is no
+    # HysteresisModel (J joints), walked all the same
+    assert needs_parts - {"Polynomial"} == set(COMPOSITES) | {"Chain"}
+    assert {name for name, *_ in COMPOSITE_ROWS} == set(COMPOSITES)
 
 
 def _plant_kwargs(cls, name, bad):
@@ -216,6 +295,72 @@ def test_compensator_fields_python_and_json(cls, kwargs, field, bad):
     assert _agrees(python, json_file), (python, json_file)
 
 
+@pytest.mark.parametrize("name, field, bad", COMPOSITE_ROWS, ids=str)
+def test_composite_model_fields_python_and_json(name, field, bad):
+    """Scaled's map, Loaded's terms and AngleDependent's angle_friction: the constructor and the
+    saved file (the section holding them) agree; nan names the field."""
+    build, section = COMPOSITES[name]
+    python = _outcome(lambda: build(**{field: bad}))
+    if isinstance(bad, float) and not math.isfinite(bad):  # no setting is nan or infinite here
+        assert python is not None and python[0] is ValueError and field in python[1], python
+    saved = build().to_dict()
+    saved[section][field] = bad
+    json_file = _outcome(lambda: HysteresisModel.from_dict(saved))
+    assert _agrees(python, json_file), (python, json_file)
+
+
+CHAIN_PARTS = (ts.models.Backlash(B_r=0.05, B_l=0.04), ts.models.FirstOrderLag(time_constant=0.01))
+
+
+@pytest.mark.parametrize(
+    "part, field, bad",
+    [
+        (i, field, bad)
+        for i, model in enumerate(CHAIN_PARTS)
+        for field in model.param_names
+        for bad in BAD
+    ],
+    ids=str,
+)
+def test_a_chain_parts_fields_python_and_json(part, field, bad):
+    """A part's number inside a saved Chain gets the part's own rule and message."""
+    parts = list(CHAIN_PARTS)
+    python = _outcome(
+        lambda: ts.models.Chain(
+            *[p.with_params(**{field: bad}) if i == part else p for i, p in enumerate(parts)]
+        )
+    )
+    saved = ts.models.Chain(*parts).to_dict()
+    saved[("first", "second")[part]]["params"][field] = bad
+    json_file = _outcome(lambda: HysteresisModel.from_dict(saved))
+    assert _agrees(python, json_file), (python, json_file)
+    if isinstance(bad, float) and math.isnan(bad):
+        assert python is not None and field in python[1]
+
+
+@pytest.mark.parametrize("where", ["off_diagonal", "diagonal"])
+@pytest.mark.parametrize("bad", BAD)
+def test_coupled_coupling_entries_python_and_json(where, bad):
+    """A coupling entry: not finite (named by its index), on the diagonal, or making I - C
+    singular (-1 off the diagonal of two joints) is refused by the constructor and the file
+    alike, with the C++ CoupledFeedforward's message."""
+    c = [[0.0, bad], [bad, 0.0]] if where == "off_diagonal" else [[bad, 0.1], [0.1, 0.0]]
+    joints = [ts.models.Backlash(), ts.models.Backlash()]
+    python = _outcome(lambda: ts.models.Coupled(joints, c))
+    saved = ts.models.Coupled(joints, [[0.0, 0.1], [0.1, 0.0]]).to_dict()
+    saved["coupling"] = c
+    json_file = _outcome(lambda: ts.models.Coupled.from_dict(saved))
+    assert _agrees(python, json_file), (python, json_file)
+    if not math.isfinite(bad):
+        assert "coupling[0][" in python[1] and f"must be finite (got {bad:g})" in python[1]
+    elif where == "diagonal" and bad != 0:
+        assert python[1].endswith("got coupling[0][0] = -1)")
+    elif bad == -1.0:
+        assert "I - coupling is singular" in python[1]
+    else:
+        assert python is None
+
+
 # each table's defaults in a scenario (user_scenario.parse), so both paths see the same values
 MOTOR_TABLES = (
     ("motor", ts.Motor.position, {"bandwidth_hz": 60.0, "damping": 0.8}),
@@ -224,27 +369,95 @@ MOTOR_TABLES = (
 )
 
 
+# each key's own bound, past it: a history beyond the sensor's buffer, a negative seed
+INTEGER_BAD = {"seed": (-1, 0), "history": (0, -1, 2**24 + 1)}
+
+
+def _toml_literal(bad) -> str:
+    return {math.inf: "inf", -math.inf: "-inf"}.get(bad, "nan" if bad != bad else repr(bad))
+
+
 @pytest.mark.parametrize(
     "table, build, base, key, bad",
     [
         (table, build, base, key, bad)
         for table, build, base in MOTOR_TABLES
         for key, kind in user_scenario._KEYS[table].items()
-        if kind is float
-        for bad in (-1.0, 0.0)
+        for bad in (BAD if kind is float else INTEGER_BAD[key])
     ],
     ids=str,
 )
 def test_motor_and_sensor_tables_give_the_python_message(table, build, base, key, bad):
     """[motor], [torque_motor] and [sensor] of a scenario refuse what the Python constructors
-    refuse, with their message, at parse time (before any run)."""
+    refuse, with their message, at parse time (before any run); nan and +-inf, which the
+    constructors refuse naming the field (or take as "unlimited": max_speed = inf), TOML
+    refuses naming the key (omit a limit to leave it off)."""
     python = _outcome(lambda: build(**{**base, key: bad}))
-    text = f"[plant]\nrealistic = false\n[{table}]\n{key} = {bad!r}\n"
+    text = f"[plant]\nrealistic = false\n[{table}]\n{key} = {_toml_literal(bad)}\n"
     toml = _outcome(lambda: user_scenario.parse(text, "s.toml"))
-    if python is None:
+    if isinstance(bad, float) and not math.isfinite(bad):
+        assert toml is not None and f"'{key}' must be a finite number" in toml[1], toml
+        if python is not None or math.isnan(bad):
+            assert python is not None and f"{key} must be" in python[1], python
+    elif python is None:
         assert toml is None, toml
     else:
         assert toml is not None and toml[1].endswith(_body(python[1])), (python, toml)
+
+
+def _motor_and_sensor_rows():
+    """Every numeric keyword of the motors and the sensor, with the generic bad values and
+    each one's own bound."""
+    rows = []
+    for build in (ts.Motor.position, ts.Motor.torque, ts.Sensor):
+        for name in _numeric_keywords(build):
+            bads = INTEGER_BAD.get(name, BAD)
+            rows += [(build, name, bad) for bad in bads]
+    return rows
+
+
+@pytest.mark.parametrize("build, name, bad", _motor_and_sensor_rows(), ids=str)
+def test_motor_and_sensor_keywords_refuse_nan_and_their_bounds(build, name, bad):
+    """nan is refused naming the keyword; a refusal is one line naming it; a keyword the
+    scenario reads gives the same outcome there (test above)."""
+    python = _outcome(lambda: build(**{name: bad}))
+    if isinstance(bad, float) and math.isnan(bad):
+        assert python is not None and python[0] is ValueError
+    if python is not None:
+        assert "\n" not in python[1] and name in python[1], python
+    if name in INTEGER_BAD and bad in (-1, 2**24 + 1):
+        assert python is not None  # past the bound
+
+
+@pytest.mark.parametrize(
+    "text, python, needle",
+    [
+        (  # the loop runs at the reference rate: it must sample the servo
+            "[motor]\nbandwidth_hz = 600.0\n",
+            None,
+            r"'rate' 1000 Hz is below twice the servo's bandwidth .*bandwidth_hz = 600 Hz",
+        ),
+        (  # the realistic preset's PID servo is stable only above damping 0.1
+            "[plant]\nrealistic = true\n[motor]\ndamping = 0.05\n",
+            lambda: ts.presets.realistic_motor(damping=0.05),
+            r"stable only for damping > 0\.1 \(got 0\.05\)",
+        ),
+        (  # the PID's integral time below 1 / (2 damping w): an unstable loop
+            None,
+            lambda: ts.Motor.position(bandwidth_hz=10.0, integral_time=1e-4),
+            "integral_time",
+        ),
+    ],
+)
+def test_motor_bounds_that_depend_on_another_value(text, python, needle):
+    """A bound set by another key: refused at parse time (or by the constructor), naming both."""
+    if python is not None:
+        with pytest.raises(ValueError, match=needle):
+            python()
+    if text is not None:
+        text = text if text.startswith("[plant]") else "[plant]\nrealistic = false\n" + text
+        with pytest.raises(user_scenario.ScenarioError, match=needle):
+            user_scenario.parse(text, "s.toml")
 
 
 # -- the silent cases of the issue, each with its class ------------------------------------------

@@ -115,7 +115,7 @@ def test_scaled_model_validation_and_json():
     inner = ts.models.Backlash(c_r=1.0, c_l=1.0, B_r=0.1, B_l=0.1)
     with pytest.raises(ValueError, match="input_scale must be > 0"):
         ts.models.Scaled(inner, input_scale=0.0)
-    with pytest.raises(ValueError, match="output_gain must not be 0"):
+    with pytest.raises(ValueError, match="output_gain must be finite and not 0"):
         ts.models.Scaled(inner, output_gain=0.0)
     m = ts.models.Scaled(inner, 10.0, 2.0, 5.0, -3.0)
     x = np.linspace(6.0, 14.0, 50)

@@ -47,7 +47,7 @@ def test_blocks_stream_save_and_need_a_uniform_time():
         assert ts.load_model(block.to_json()) == block
     with pytest.raises(ValueError, match="uniform sample time: resample"):
         FirstOrderLag(0.2).simulate(t * (1 + 0.1 * t), x)
-    with pytest.raises(ValueError, match="time_constant must be in"):
+    with pytest.raises(ValueError, match=r"time_constant must be > 0 \(got -1\)"):
         FirstOrderLag(-1.0)
 
 

@@ -295,3 +295,24 @@ def test_a_fit_pickles_and_deep_copies():
     np.testing.assert_array_equal(
         _stream(twin.model, _single, 30), _stream(running.model, _single, 30)
     )
+
+
+def test_a_fit_refuses_an_unknown_attribute_naming_its_fields():
+    """fit.paramz = 1 added an attribute nothing reads; now it names the fields, and the
+    fields (and private names) stay settable; a guarded Fit still pickles and copies."""
+    fit = _a_fit()
+    with pytest.raises(
+        AttributeError, match=r"Fit has no attribute 'paramz' to set; its attributes are \['model'"
+    ) as err:
+        fit.paramz = 1
+    assert "'rmse'" in str(err.value) and "'input_range'" in str(err.value)
+    assert "paramz" not in vars(fit)
+    with pytest.raises(AttributeError, match="'summary'"):
+        fit.summary = "a method is not a field"
+    fit.stopped_on_budget = True  # a field
+    fit._calibration_runs = ["run"]  # the package's own private use
+    again = pickle.loads(pickle.dumps(fit))
+    assert again.stopped_on_budget and again._calibration_runs == ["run"]
+    assert copy.deepcopy(fit).rmse == fit.rmse
+    with pytest.raises(AttributeError, match="Fit has no attribute 'paramz'"):
+        again.paramz = 1

@@ -14,6 +14,7 @@ backlash, creep, distal dynamics) is its own plant's. The joints' angles are rea
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -32,12 +33,14 @@ def _coupling_matrix(ratios: ArrayLike, joints: int, owner: str) -> FloatArray:
         raise ValueError(
             f"{owner}: the coupling must be a {joints} x {joints} matrix (got shape {k.shape})"
         )
-    if not np.all(np.isfinite(k)):
-        raise ValueError(f"{owner}: the coupling must be finite")
-    if np.any(np.diag(k) != 0.0):
-        raise ValueError(
-            f"{owner}: the coupling's diagonal must be zero (a joint's own gain is its model's)"
-        )
+    for (i, j), c in np.ndenumerate(k):  # the C++ CoupledFeedforward's rule and messages
+        if not math.isfinite(c):
+            raise ValueError(f"{owner}: coupling[{i}][{j}] must be finite (got {c:g})")
+        if i == j and c != 0.0:
+            raise ValueError(
+                f"{owner}: the coupling's diagonal must be zero (a joint's own gain is its "
+                f"model's; got coupling[{i}][{i}] = {c:g})"
+            )
     if abs(np.linalg.det(np.eye(joints) - k)) < 1e-9:
         raise ValueError(f"{owner}: I - coupling is singular (the joints' angles are undefined)")
     return k

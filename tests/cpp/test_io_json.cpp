@@ -264,7 +264,7 @@ TEST(IoJson, InverseRangeSettings) {
   file["filter_hz"] = nullptr;
   EXPECT_EQ(error_of(file), "(no error)");
   file["filter_hz"] = -1.0;
-  EXPECT_NE(error_of(file).find("'filter_hz' must be > 0"), std::string::npos) << error_of(file);
+  EXPECT_NE(error_of(file).find("filter_hz must be > 0"), std::string::npos) << error_of(file);
   file["filter_hz"] = 10.0;
   file["input_range"] = {1.0};
   EXPECT_NE(error_of(file).find("'input_range' must be [lo, hi]"), std::string::npos)

@@ -174,7 +174,7 @@ TEST(IoJsonMultiInput, MalformedLoadCompensatedFilesNameTheKey) {
       {[](json& f) { f.erase("switch"); }, "key 'switch' is missing"},
       {[](json& f) { f["extra"] = 1; }, "unknown key 'extra'"},
       {[](json& f) { f["switch"] = "0.1"; }, "key 'switch' must be a number"},
-      {[](json& f) { f["switch"] = 0.0; }, "key 'switch' must be > 0"},
+      {[](json& f) { f["switch"] = 0.0; }, "switch must be > 0"},
       {[](json& f) { f["smoothing"] = nullptr; }, "key 'smoothing' must be a number"},
       {[](json& f) { f.erase("input_range"); }, "key 'input_range' is missing"},
       {[](json& f) { f["limits"]["max"] = true; }, "key 'max' must be a number"},

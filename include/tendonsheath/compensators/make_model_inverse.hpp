@@ -264,10 +264,7 @@ inline ModelInverse make_model_inverse(const InverseModel& m, const InverseSetti
           "filter_hz must be > 0, or 0 for the default (got ", s.filter_hz, ")");
   s.range.validate(where.c_str());
   const ScaledMap& mp = m.map;
-  require(std::isfinite(mp.input_scale) && mp.input_scale > 0.0, where,
-          "input_scale must be > 0 (got ", mp.input_scale, ")");
-  require(std::isfinite(mp.output_gain) && mp.output_gain != 0.0, where,
-          "output_gain must be finite and not 0 (got ", mp.output_gain, ")");
+  mp.validate(where.c_str());
   const detail::InverseContext c{s.range.unmapped(mp.input_offset, mp.input_scale),
                                  s.smoothing / std::fabs(mp.output_gain), s.filter_hz, where};
   detail::InversePlan plan = m.parts.size() == 1 ? detail::single(m.parts[0], c)

@@ -46,6 +46,16 @@ struct ScaledMap {
   double input_scale = 1.0;  ///< scales the inner command, > 0
   double output_offset = 0.0;  ///< subtracted from the desired output
   double output_gain = 1.0;  ///< divides the desired output, != 0
+
+  /// Throws std::invalid_argument "<where>: <name> must be ..." naming the first bad value (the
+  /// rule of Python's `Scaled`, with its message).
+  void validate(const char* where) const {
+    require_finite(input_offset, where, "input_offset");
+    require_positive(input_scale, where, "input_scale");
+    require_finite(output_offset, where, "output_offset");
+    require(std::isfinite(output_gain) && output_gain != 0.0, where,
+            "output_gain must be finite and not 0 (got ", output_gain, ")");
+  }
 };
 
 /// @brief One plain model of the library, reduced to what its inverse needs: `kind` (the Python

@@ -59,6 +59,28 @@ inline CommandLimits limits(const json& file, const std::string& where) {
   return out;
 }
 
+// The file's (Python's) names of the core's fields, for the core's messages (Python's CORE_NAMES)
+inline const std::vector<std::pair<std::string, std::string>> kFileNames{
+    {"v_eps", "smoothing"}, {"total_angle", "curve_angle"}, {"sheath_length", "length"}};
+
+// build(), a core's constructor; its std::invalid_argument rethrown naming the file (`where`) and
+// each field by the file's name ("CurveAngleFeedforward: smoothing must be > 0 (got 0)"), as
+// Python's loader says it
+template <class Build>
+auto with_file_names(const std::string& where, Build build) -> decltype(build()) {
+  try {
+    return build();
+  } catch (const std::invalid_argument& e) {
+    std::string m = e.what();
+    for (const auto& [core, file] : kFileNames) {
+      const std::string key = ": " + core + " ";
+      for (auto at = m.find(key); at != std::string::npos; at = m.find(key, at + file.size()))
+        m.replace(at + 2, core.size(), file);
+    }
+    fail(where, m);
+  }
+}
+
 }  // namespace detail
 
 /// The affine map of a Python `Scaled` model (tendonsheath::ScaledMap).
@@ -88,8 +110,7 @@ inline InvertibleModel invertible_model_from_json(const json& m, const std::stri
                        {"input_offset", "input_scale", "output_offset", "output_gain"}, w);
     const ScaledMap map{detail::number(mp, "input_offset", w), detail::number(mp, "input_scale", w),
                         detail::number(mp, "output_offset", w), detail::number(mp, "output_gain", w)};
-    if (!(map.input_scale > 0)) detail::fail(w, "key 'input_scale' must be > 0");
-    if (map.output_gain == 0) detail::fail(w, "key 'output_gain' must not be 0");
+    map.validate(w.c_str());
     out = invertible_model_from_json(m.at("inner"), where + ": inner");
     if (out.map.input_scale != 1.0 || out.map.output_gain != 1.0 || out.map.input_offset != 0.0 ||
         out.map.output_offset != 0.0)
@@ -129,9 +150,15 @@ inline CurveAngleFeedforwardParams curve_angle_feedforward_params(const json& f,
   const double inf = std::numeric_limits<double>::infinity();
   CurveAngleFeedforwardParams p;
   p.friction = detail::number(f, "friction", where);
-  p.compliance = f.contains("compliance")  // a file written before docs/vocabulary.md
-                     ? detail::number(f, "compliance", where)
-                     : detail::number(f, "length", where) / detail::number(f, "stiffness", where);
+  if (f.contains("compliance")) {  // a file written before docs/vocabulary.md
+    p.compliance = detail::number(f, "compliance", where);
+  } else {  // each checked as Python checks it, before their ratio is
+    const double stiffness = detail::number(f, "stiffness", where);
+    const double length = detail::number(f, "length", where);
+    require_positive(stiffness, where.c_str(), "CurveAngleFeedforward: stiffness");
+    require_positive(length, where.c_str(), "CurveAngleFeedforward: length");
+    p.compliance = length / stiffness;
+  }
   p.pretension = detail::number(f, "pretension", where);
   p.load_force = detail::number(f, "load_force", where);
   p.load_stiffness = detail::number(f, "load_stiffness", where);
@@ -292,19 +319,21 @@ inline InverseSettings inverse_settings(const json& f, const std::string& where)
   s.smoothing = detail::number(f, "smoothing", where);
   s.limits = detail::limits(f, where);
   const double margin = f.contains("range_margin") ? detail::number(f, "range_margin", where) : 0.1;
-  if (!(margin >= 0.0) || !std::isfinite(margin))
-    detail::fail(where, "key 'range_margin' must be >= 0 (got " + f.at("range_margin").dump() + ")");
+  require_non_negative(margin, where.c_str(), "range_margin");  // Python's rule and message
   const auto range = f.contains("input_range")
                          ? model_input_range(f, where)
                          : model_input_range(detail::member(f, "model", where), where + ": model");
   if (range) {
-    if (!std::isfinite(range->first) || !std::isfinite(range->second) || !(range->first < range->second))
-      detail::fail(where, "key 'input_range' needs finite lo < hi");
+    require(std::isfinite(range->first) && std::isfinite(range->second) &&
+                range->first < range->second,
+            where, "input_range needs finite lo < hi (got lo=", range->first, ", hi=", range->second,
+            ")");  // Python's message
     s.range = InputRange::identified(range->first, range->second, margin);
   }
   if (f.contains("filter_hz") && !f.at("filter_hz").is_null()) {
     s.filter_hz = detail::number(f, "filter_hz", where);
-    if (!(s.filter_hz > 0.0)) detail::fail(where, "key 'filter_hz' must be > 0 or null");
+    require(std::isfinite(s.filter_hz) && s.filter_hz > 0.0, where,
+            "filter_hz must be > 0 or None/null (got ", s.filter_hz, ")");  // Python's message
   }
   return s;
 }
@@ -464,14 +493,18 @@ inline LoadedCompensator compensator_from_json(const json& f, const std::string&
     std::set<std::string> allowed = keys;
     allowed.insert("play");  // optional: files written before it was a setting lack it
     detail::check_keys(f, allowed, keys, where);
-    return {"CurveAngleFeedforward", CurveAngleFeedforward(curve_angle_feedforward_params(f, where))};
+    const CurveAngleFeedforwardParams p = curve_angle_feedforward_params(f, where);
+    return {"CurveAngleFeedforward",
+            detail::with_file_names(where, [&] { return CurveAngleFeedforward(p); })};
   }
   if (kind == "ContinuumFeedforward") {
     const auto keys = detail::keys_of_file(f, detail::kContinuumKeys, detail::kContinuumRenamed);
     std::set<std::string> allowed = keys;
     allowed.insert("play");  // optional: files written before it was a setting lack it
     detail::check_keys(f, allowed, keys, where);
-    return {"ContinuumFeedforward", ContinuumFeedforward(continuum_feedforward_params(f, where))};
+    const ContinuumFeedforwardParams p = continuum_feedforward_params(f, where);
+    return {"ContinuumFeedforward",
+            detail::with_file_names(where, [&] { return ContinuumFeedforward(p); })};
   }
   if (kind == "LoadCompensated" || kind == "CoupledFeedforward")  // their step takes more inputs
     detail::fail(where, "key 'compensator': a " + kind.get<std::string>() + " steps with " +

@@ -346,8 +346,7 @@ inline ScaledMap scaled_map(const json& mp, const std::string& w) {
              {"input_offset", "input_scale", "output_offset", "output_gain"}, w);
   const ScaledMap map{number(mp, "input_offset", w), number(mp, "input_scale", w),
                       number(mp, "output_offset", w), number(mp, "output_gain", w)};
-  if (!(map.input_scale > 0)) fail(w, "key 'input_scale' must be > 0");
-  if (map.output_gain == 0) fail(w, "key 'output_gain' must not be 0");
+  map.validate(w.c_str());
   return map;
 }
 

@@ -80,8 +80,7 @@ inline LoadCompensatedInverse load_compensated_from_json(const json& f,
   const LoadedModel m = loaded_model_from_json(f.at("model"), where + ": model");
   LoadTerms terms = m.terms;
   terms.switch_travel = detail::number(f, "switch", where);
-  if (!(terms.switch_travel > 0.0))
-    detail::fail(where, "key 'switch' must be > 0 (got " + f.at("switch").dump() + ")");
+  require_positive(terms.switch_travel, where.c_str(), "switch");  // Python's rule and message
   const InverseSettings s = inverse_settings(f, where);  // input_range is the file's (required)
   return LoadCompensatedInverse(make_model_inverse(m.base, s, where), terms);
 }

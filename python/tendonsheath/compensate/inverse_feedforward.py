@@ -342,14 +342,16 @@ def _resolved_range(model: HysteresisModel, value: RangeLike) -> tuple[float, fl
             f"(got {value!r})"
         ) from None
     if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
-        raise ValueError(f"InverseFeedforward: input_range needs finite lo < hi (got {value!r})")
+        raise ValueError(
+            f"InverseFeedforward: input_range needs finite lo < hi (got lo={lo:g}, hi={hi:g})"
+        )
     return (lo, hi)
 
 
 def _margin(value) -> float:
     m = number("InverseFeedforward", "range_margin", value)
     if not (math.isfinite(m) and m >= 0.0):
-        raise ValueError(f"InverseFeedforward: range_margin must be >= 0 (got {m})")
+        raise ValueError(f"InverseFeedforward: range_margin must be >= 0 (got {m:g})")
     return m
 
 
@@ -358,5 +360,5 @@ def _filter_hz(value) -> float | None:
         return None
     f = number("InverseFeedforward", "filter_hz", value)
     if not (math.isfinite(f) and f > 0.0):
-        raise ValueError(f"InverseFeedforward: filter_hz must be > 0 or None (got {f})")
+        raise ValueError(f"InverseFeedforward: filter_hz must be > 0 or None/null (got {f:g})")
     return f

@@ -77,7 +77,7 @@ class LoadCompensated(PythonObject, SavedAsJson):
             switch = max(0.25 * float(model.radius(0.0)), 1e-6 * span)
         self.switch = number("LoadCompensated", "switch", switch)
         if not (math.isfinite(self.switch) and self.switch > 0):
-            raise ValueError(f"LoadCompensated: switch must be > 0 (got {self.switch})")
+            raise ValueError(f"LoadCompensated: switch must be > 0 (got {self.switch:g})")
         self.inverse = InverseFeedforward(model.base, **inverse_options)
         self._inverse_options = dict(inverse_options)
         terms = core.LoadTerms()

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from dataclasses import fields as dataclass_fields
 from pathlib import Path
 from typing import Any, cast
 
@@ -240,6 +241,15 @@ class Fit:
             **fields,
         )
 
+    def __setattr__(self, name: str, value: Any) -> None:
+        """Set a field; a misspelt or unknown name raises instead of adding an attribute
+        nothing reads (as the models and compensators do)."""
+        if not (name.startswith("_") or name in _field_names()):
+            raise AttributeError(
+                f"Fit has no attribute {name!r} to set; its attributes are {_field_names()}"
+            )
+        object.__setattr__(self, name, value)
+
     def warnings(self) -> list[str]:
         """The identifiability warnings of this fit (empty when there are none).
 
@@ -463,3 +473,8 @@ def _fmt(v) -> str:
     except (TypeError, ValueError):
         return str(v)
     return f"{v:.6g}"
+
+
+def _field_names() -> list[str]:
+    """The fields of :class:`Fit`, in order (what may be set on one)."""
+    return [f.name for f in dataclass_fields(Fit)]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -176,8 +177,10 @@ class AngleDependent(HysteresisModel):
             if angle_friction is None:
                 raise ValueError("AngleDependent: angle_friction must be > 0 with a tanh law")
             angle_friction = number("AngleDependent", "angle_friction", angle_friction)
-            if not angle_friction > 0:
-                raise ValueError("AngleDependent: angle_friction must be > 0 with a tanh law")
+            if not (math.isfinite(angle_friction) and angle_friction > 0):  # C++ AngleLaws' rule
+                raise ValueError(
+                    f"AngleDependent: angle_friction must be > 0 (got {angle_friction:g})"
+                )
         else:
             angle_friction = None
         self._laws = laws

@@ -74,8 +74,9 @@ class LinearBlock(HysteresisModel):
         for name in self.param_names:
             v = number(type(self).__name__, name, values.pop(name))  # not "1", not None
             lo, hi = self._limits[name]
-            if not (math.isfinite(v) and lo < v < hi):
-                raise ValueError(f"{type(self).__name__}: {name} must be in ({lo}, {hi}) (got {v})")
+            if not (math.isfinite(v) and lo < v < hi):  # as the C++ LagInverse says it
+                bound = f"> {lo:g}" if math.isinf(hi) else f"in ({lo:g}, {hi:g})"
+                raise ValueError(f"{type(self).__name__}: {name} must be {bound} (got {v:g})")
             out[name] = v
         if values:
             raise TypeError(

@@ -136,15 +136,7 @@ class Loaded(HysteresisModel):
             number("Loaded", k, v)
             for k, v in zip(LOAD_TERMS, (gain, slack, slack_load, friction), strict=True)
         ]
-        for name, v in zip(LOAD_TERMS, values, strict=True):
-            if not math.isfinite(v):
-                raise ValueError(f"Loaded: {name} must be finite (got {v})")
-        if values[1] < 0 or values[3] < 0:
-            raise ValueError(
-                f"Loaded: slack and friction must be >= 0 (got {values[1]}, {values[3]})"
-            )
-        if not values[2] > 0:
-            raise ValueError(f"Loaded: slack_load must be > 0 (got {values[2]})")
+        _check_terms(dict(zip(LOAD_TERMS, values, strict=True)))
         self.base = base
         self.terms = dict(zip(LOAD_TERMS, values, strict=True))
         self.rate_independent = base.rate_independent
@@ -356,3 +348,16 @@ class Loaded(HysteresisModel):
     def __repr__(self) -> str:
         m = ", ".join(f"{k}={v:.6g}" for k, v in self.terms.items())
         return f"Loaded({self.base!r}, {m})"
+
+
+def _check_terms(terms: dict[str, float]) -> None:
+    """The rule of the C++ ``LoadTerms::validate``, with its messages (one per term)."""
+    for name, v in terms.items():
+        if name == "gain":
+            ok, bound = math.isfinite(v), "finite"
+        elif name == "slack_load":
+            ok, bound = math.isfinite(v) and v > 0, "> 0"
+        else:  # slack, friction
+            ok, bound = math.isfinite(v) and v >= 0, ">= 0"
+        if not ok:
+            raise ValueError(f"Loaded: {name} must be {bound} (got {v:g})")

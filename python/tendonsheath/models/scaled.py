@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -65,12 +66,7 @@ class Scaled(HysteresisModel):
                 _MAP, (input_offset, input_scale, output_offset, output_gain), strict=True
             )
         ]
-        if not all(np.isfinite(values)):
-            raise ValueError(f"Scaled: the map values must be finite (got {values})")
-        if not values[1] > 0:
-            raise ValueError(f"Scaled: input_scale must be > 0 (got {values[1]})")
-        if values[3] == 0:
-            raise ValueError("Scaled: output_gain must not be 0")
+        _check_map(dict(zip(_MAP, values, strict=True)))
         self.inner = inner
         self.map = dict(zip(_MAP, values, strict=True))
         self.rate_independent = inner.rate_independent
@@ -236,3 +232,15 @@ class Scaled(HysteresisModel):
     def __repr__(self) -> str:
         m = ", ".join(f"{k}={v:.6g}" for k, v in self.map.items())
         return f"Scaled({self.inner!r}, {m})"
+
+
+def _check_map(values: dict[str, float]) -> None:
+    """The rule of the C++ ``ScaledMap::validate``, with its messages (one per value)."""
+    for name in ("input_offset", "output_offset"):
+        if not math.isfinite(values[name]):
+            raise ValueError(f"Scaled: {name} must be finite (got {values[name]:g})")
+    if not (math.isfinite(values["input_scale"]) and values["input_scale"] > 0):
+        raise ValueError(f"Scaled: input_scale must be > 0 (got {values['input_scale']:g})")
+    gain = values["output_gain"]
+    if not (math.isfinite(gain) and gain != 0):
+        raise ValueError(f"Scaled: output_gain must be finite and not 0 (got {gain:g})")
