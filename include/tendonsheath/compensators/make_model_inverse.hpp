@@ -267,7 +267,9 @@ inline ModelInverse unused_inverse() {
 
 /// The real-time inverse of model `m` with settings `s` (see the file's comment for which inverse
 /// each class gets). Throws std::invalid_argument, message starting with `where`, naming the
-/// first bad part or setting.
+/// first bad part or setting. Without exceptions, inside a Result being built (the io loaders'
+/// try_ forms), the message goes to that Result and the inverse returned is never to be used;
+/// outside one, the error handler is called, then std::abort().
 inline ModelInverse make_model_inverse(const InverseModel& m, const InverseSettings& s,
                                        const std::string& where = "InverseFeedforward") {
   require(m.parts.size() == 1 || m.parts.size() == 2, where,

@@ -128,7 +128,8 @@ inline void check_format(const json& file, const char* format, const std::string
   const json& f = member(file, "format", where);
   if (failed()) return;
   if (f != format)
-    return fail(where, std::string("key 'format' must be \"") + format + "\" (got " + shown(f) + ")");
+    return fail(where,
+                std::string("key 'format' must be \"") + format + "\" (got " + shown(f) + ")");
   const json& v = member(file, "version", where);
   if (failed()) return;
   // the integer 1: neither true nor 1.0 (Python's loaders refuse them too)
@@ -234,7 +235,8 @@ inline void angle_dependent_part(ModelPart& part, const json& m, const std::stri
   const auto names = param_names(part.base);
   if (names.empty() || part.base == "PlantModel" || part.base.find("Lag") != std::string::npos)
     return fail(w, "key 'base': the inverse of an AngleDependent model takes a Backlash, "
-                   "BoucWenBacklash, BoucWen or HystereticOscillator base (got " + shown(base) + ")");
+                   "BoucWenBacklash, BoucWen or HystereticOscillator base (got " +
+                       shown(base) + ")");
   const json& laws = member(p, "laws", w);
   const json& coefs = member(p, "coefficients", w);
   check_keys(laws, set_of(names), {}, w + ": laws");
@@ -258,7 +260,8 @@ inline void angle_dependent_part(ModelPart& part, const json& m, const std::stri
   part.laws = out;
   const json o = options(m, {"base_options"}, where);
   if (o.contains("base_options"))
-    base_options(part, part.base, member(o, "base_options", where), where + ": options: base_options");
+    base_options(part, part.base, member(o, "base_options", where),
+                 where + ": options: base_options");
   if (failed()) return;
   std::vector<double> v(names.size());
   out.at_angle(0.0, v.data());
@@ -362,7 +365,8 @@ inline void scalar_part(ModelPart& part, const json& m, const std::string& where
     else part.lag.frequency = v[0], part.lag.damping = v[1];
   } else {
     assign_base(part, part.kind, v);
-    base_options(part, part.kind, m.contains("options") ? member(m, "options", where) : json::object(),
+    const json none = json::object();
+    base_options(part, part.kind, m.contains("options") ? member(m, "options", where) : none,
                  where + ": options");
   }
 }
@@ -432,7 +436,8 @@ inline std::optional<std::pair<double, double>> model_input_range(const json& m,
   const json& v = m["input_range"];  // (const operator[]: the key is there)
   if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() ||
       !(v[0].get<double>() <= v[1].get<double>())) {
-    detail::fail(where, "key 'input_range' must be [lo, hi] with lo <= hi (got " + detail::shown(v) + ")");
+    detail::fail(where,
+                 "key 'input_range' must be [lo, hi] with lo <= hi (got " + detail::shown(v) + ")");
     return std::nullopt;
   }
   return std::make_pair(v[0].get<double>(), v[1].get<double>());
@@ -479,7 +484,8 @@ inline LoadedModel loaded_model_from_json(const json& m, const std::string& wher
   if (detail::failed()) return out;
   const json& name = detail::member(m, "model", where);
   if (name != "Loaded")
-    return detail::fail(where, "key 'model' must be \"Loaded\" (got " + detail::shown(name) + ")"), out;
+    return detail::fail(where, "key 'model' must be \"Loaded\" (got " + detail::shown(name) + ")"),
+           out;
   detail::check_keys(m, {"format", "version", "model", "base", "terms", "input_range"},
                      {"base", "terms"}, where);
   if (detail::failed()) return out;
@@ -527,15 +533,19 @@ inline CoupledModel coupled_model_from_json(const json& m, const std::string& wh
   const json& c = detail::member(m, "coupling", where);
   const std::string shape = std::to_string(n) + " rows of " + std::to_string(n) + " numbers";
   if (!c.is_array() || c.size() != n)
-    return detail::fail(where, "key 'coupling' must be " + shape + " (got " + detail::shown(c) + ")"), out;
+    return detail::fail(where, "key 'coupling' must be " + shape + " (got " + detail::shown(c) + ")"),
+           out;
   for (const json& row : c) {
     if (!row.is_array() || row.size() != n) {
-      detail::fail(where, "key 'coupling' must be " + shape + " (got the row " + detail::shown(row) + ")");
+      detail::fail(where,
+                   "key 'coupling' must be " + shape + " (got the row " + detail::shown(row) + ")");
       return out;
     }
     for (const json& v : row) {
       if (!v.is_number())
-        return detail::fail(where, "key 'coupling' must hold only numbers (got " + detail::shown(v) + ")"), out;
+        return detail::fail(where,
+                            "key 'coupling' must hold only numbers (got " + detail::shown(v) + ")"),
+               out;
       out.coupling.push_back(v.get<double>());
     }
   }
