@@ -94,9 +94,9 @@ test-cpp: gtest nlohmann-json
 	cmake --install $(CPP_BUILD) --prefix build/cpp-install > /dev/null
 	cmake -S examples/cpp -B build/cpp-consumer -DCMAKE_PREFIX_PATH=$(CURDIR)/build/cpp-install > /dev/null
 	cmake --build build/cpp-consumer -j $(JOBS)
-	@# the examples again with g++ -fno-exceptions, as embedded targets build, and run (03 loads
-	@# JSON, which needs exceptions: left out there); ctest above ran tests/cpp/no_exceptions,
-	@# the core's make<T>() compared in both modes (docs/cpp-without-exceptions.md)
+	@# the examples again with g++ -fno-exceptions, as embedded targets build, and run (03 too: its
+	@# JSON loaders return a Result); ctest above ran tests/cpp/no_exceptions, the core's make<T>()
+	@# and the JSON loaders compared in both modes (docs/cpp-without-exceptions.md)
 	cmake -S examples/cpp -B build/cpp-noexcept -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=Release \
 	  -DCMAKE_CXX_FLAGS=-fno-exceptions -DCMAKE_PREFIX_PATH=$(CURDIR)/build/cpp-install > /dev/null
 	cmake --build build/cpp-noexcept -j $(JOBS)

@@ -13,15 +13,18 @@
 //
 // The file comes from Python (examples/cpp/data/make_inverse_feedforward.py):
 //   ts.compensate.InverseFeedforward(identified_model, ...).to_json("inverse_feedforward.json")
-// Loading (tendonsheath/io/json.hpp, needs nlohmann/json) allocates and may throw, so it happens
-// once before the loop; the loop's step() is the real-time core's. The self-check drives the
+// Loading (tendonsheath/io/json.hpp, needs nlohmann/json) allocates, so it happens once before the
+// loop; the loop's step() is the real-time core's. The try_ loaders return a tendonsheath::Result
+// (the compensator, or the message naming the file and the bad key), so this example builds and
+// runs the same with C++ exceptions or without them (g++ -fno-exceptions, as `make test-cpp`
+// builds it too; docs/cpp-without-exceptions.md). The self-check drives the
 // identified backlash with the commands and exits 0 when it tracks the sine to 2 % of its
 // amplitude (measured: 0.16 %, the smoothing's rounding at each reversal; without the
 // compensator the error is the dead band, ~10 %).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <exception>
+#include <string>
 #include <tendonsheath/io/json_multi_input.hpp>
 #include <vector>
 #include <tendonsheath/tendonsheath.hpp>
@@ -29,6 +32,18 @@
 namespace ts = tendonsheath;
 
 namespace {
+
+// f's member `key` (null when f is not an object or has no such key: the loaders say what is wrong)
+const ts::io::json& member(const ts::io::json& f, const char* key) {
+  static const ts::io::json none;
+  return f.is_object() && f.contains(key) ? f[key] : none;
+}
+
+// a file that did not load: its message (naming the file and the key), exit status 2
+int failed(const std::string& message) {
+  std::fprintf(stderr, "%s\n", message.c_str());
+  return 2;
+}
 
 int run_trajectory(ts::io::LoadedCompensator& ff, const char* in_path, const char* out_path) {
   std::FILE* in = std::fopen(in_path, "r");
@@ -109,8 +124,12 @@ int self_check(ts::io::LoadedCompensator& ff, const std::string& path) {
                  ff.kind().c_str());
     return 2;
   }
-  const ts::io::json file = ts::io::read_json_file(path);
-  const ts::io::InvertibleModel m = ts::io::invertible_model_from_json(file.at("model"), path);
+  const ts::Result<ts::io::json> file = ts::io::try_read_json_file(path);
+  if (!file.ok()) return failed(file.error());
+  const ts::Result<ts::io::InvertibleModel> model =
+      ts::io::try_invertible_model_from_json(member(file.value(), "model"), path);
+  if (!model.ok()) return failed(model.error());
+  const ts::io::InvertibleModel& m = model.value();
   if (m.name != "Backlash" || m.map.input_scale != 1.0 || m.map.output_gain != 1.0) {
     std::fprintf(stderr, "the self-check drives a Backlash model (got %s): give TRAJ OUT\n",
                  m.name.c_str());
@@ -137,27 +156,24 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s COMPENSATOR.json [TRAJECTORY.csv OUT.csv]\n", argv[0]);
     return 2;
   }
-  try {
-    const ts::io::json file = ts::io::read_json_file(argv[1]);
-    const bool multi = file.is_object() && file.contains("compensator") &&
-                       (file.at("compensator") == "LoadCompensated" ||
-                        file.at("compensator") == "CoupledFeedforward");
-    if (multi && argc != 4) {
-      std::fprintf(stderr, "%s: give TRAJ OUT (the self-check runs an InverseFeedforward)\n", argv[1]);
-      return 2;
-    }
-    if (multi && file.at("compensator") == "LoadCompensated") {
-      ts::io::LoadCompensatedInverse c = ts::io::load_compensated_from_json(file, argv[1]);
-      return run_loaded(c, argv[2], argv[3]);
-    }
-    if (multi) {
-      ts::CoupledFeedforward c = ts::io::coupled_feedforward_from_json(file, argv[1]);
-      return run_coupled(c, argv[2], argv[3]);
-    }
-    ts::io::LoadedCompensator ff = ts::io::compensator_from_json(file, argv[1]);
-    return argc == 4 ? run_trajectory(ff, argv[2], argv[3]) : self_check(ff, argv[1]);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+  const ts::Result<ts::io::json> file = ts::io::try_read_json_file(argv[1]);
+  if (!file.ok()) return failed(file.error());
+  const ts::io::json& f = file.value();
+  const ts::io::json& kind = member(f, "compensator");
+  const bool multi = kind == "LoadCompensated" || kind == "CoupledFeedforward";
+  if (multi && argc != 4) {
+    std::fprintf(stderr, "%s: give TRAJ OUT (the self-check runs an InverseFeedforward)\n", argv[1]);
     return 2;
   }
+  if (kind == "LoadCompensated") {
+    auto c = ts::io::try_load_compensated_from_json(f, argv[1]);
+    return c.ok() ? run_loaded(c.value(), argv[2], argv[3]) : failed(c.error());
+  }
+  if (multi) {
+    auto c = ts::io::try_coupled_feedforward_from_json(f, argv[1]);
+    return c.ok() ? run_coupled(c.value(), argv[2], argv[3]) : failed(c.error());
+  }
+  auto ff = ts::io::try_compensator_from_json(f, argv[1]);
+  if (!ff.ok()) return failed(ff.error());
+  return argc == 4 ? run_trajectory(ff.value(), argv[2], argv[3]) : self_check(ff.value(), argv[1]);
 }

@@ -32,6 +32,11 @@ class Result;
 template <class T, class... Args>
 Result<T> make(Args&&... args);
 
+namespace detail {
+template <class T, class Build>
+Result<T> result_of(Build&& build);
+}  // namespace detail
+
 /// @brief An object of the core, or why it could not be built: what make<T>() returns.
 /// @tparam T the class built
 template <class T>
@@ -63,6 +68,8 @@ class Result {
  private:
   template <class U, class... Args>
   friend Result<U> make(Args&&... args);
+  template <class U, class Build>
+  friend Result<U> detail::result_of(Build&& build);
 
   std::optional<T> value_;
   std::string error_;
@@ -93,5 +100,35 @@ Result<T> make(Args&&... args) {
 #endif
   return out;
 }
+
+namespace detail {
+
+// What make() does for a constructor, for a function that builds a T in steps (the JSON loaders,
+// io/json.hpp): build() returns std::optional<T> and reports a failed check through
+// report_error() (a throw with exceptions; without them the first message is collected here,
+// and build() returns at its next guard, failed(), with std::nullopt or an object never used).
+// The Result holds what build() returned, or the first failed check's message.
+template <class T, class Build>
+Result<T> result_of(Build&& build) {
+  Result<T> out;
+#if TENDONSHEATH_EXCEPTIONS
+  try {
+    std::optional<T> built = build();
+    if (built) out.value_.emplace(std::move(*built));
+  } catch (const std::invalid_argument& e) {
+    out.value_.reset();
+    out.error_ = e.what();
+  }
+#else
+  CaptureScope scope;
+  std::optional<T> built = build();
+  if (scope.capture().failed) out.error_ = std::move(scope.capture().message);
+  else if (built) out.value_.emplace(std::move(*built));
+#endif
+  if (!out.ok() && out.error_.empty()) out.error_ = "nothing was built and no check failed";
+  return out;
+}
+
+}  // namespace detail
 
 }  // namespace tendonsheath

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "counting_new.hpp"  // counts allocations while armed
+#include "json_malformed_cases.hpp"  // the malformed files, shared with no_exceptions/json_cases.cpp
 
 namespace ts = tendonsheath;
 using ts::io::json;
@@ -25,39 +26,11 @@ static_assert(noexcept(std::declval<ts::CoupledFeedforward&>().step(nullptr, nul
 
 namespace {
 
-// a Backlash of slope c and half-width B on both sides (c = 1, B = 0: the identity)
-json backlash_model(double c = 1.0, double B = 0.0) {
-  return {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "Backlash"},
-          {"params", {{"c_r", c}, {"c_l", c}, {"B_r", B}, {"B_l", B}}},
-          {"options", json::object()}};
-}
-
-json unbounded() { return {{"min", nullptr}, {"max", nullptr}, {"max_rate", nullptr}}; }
-
-json load_compensated_file(double gain, double slack, double slack_load, double friction,
-                           double switch_travel = 1e-3) {
-  const json model = {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "Loaded"},
-                      {"base", backlash_model()},
-                      {"terms", {{"gain", gain}, {"slack", slack}, {"slack_load", slack_load},
-                                 {"friction", friction}}}};
-  return {{"format", "tendonsheath.compensator"}, {"version", 1},
-          {"compensator", "LoadCompensated"}, {"model", model}, {"switch", switch_travel},
-          {"smoothing", 0.05}, {"limits", unbounded()}, {"input_range", nullptr},
-          {"range_margin", 0.1}, {"filter_hz", nullptr}};
-}
-
-json coupled_file(const std::vector<json>& models, const std::vector<std::vector<double>>& c) {
-  const json model = {{"format", "tendonsheath.coupled_model"}, {"version", 1},
-                      {"models", models}, {"coupling", c}};
-  return {{"format", "tendonsheath.compensator"}, {"version", 1},
-          {"compensator", "CoupledFeedforward"}, {"model", model}, {"smoothing", 0.05},
-          {"limits", unbounded()}, {"range_margin", 0.1}, {"filter_hz", nullptr}};
-}
-
-json three_joints() {
-  return coupled_file({backlash_model(), backlash_model(), backlash_model()},
-                      {{0.0, 0.2, -0.1}, {0.05, 0.0, 0.3}, {-0.25, 0.15, 0.0}});
-}
+using malformed_json::backlash_model;
+using malformed_json::BadCase;
+using malformed_json::coupled_file;
+using malformed_json::load_compensated_file;
+using malformed_json::three_joints;
 
 // the loader's message for `file` ("(no error)" when it loads)
 std::string error_of(const std::function<void(const json&)>& load, const json& file) {
@@ -71,11 +44,6 @@ std::string error_of(const std::function<void(const json&)>& load, const json& f
 
 void load_lc(const json& f) { ts::io::load_compensated_from_json(f, "f.json"); }
 void load_cf(const json& f) { ts::io::coupled_feedforward_from_json(f, "f.json"); }
-
-struct BadCase {
-  std::function<void(json&)> change;
-  std::string words;  // what the message must say (besides the file's name)
-};
 
 void expect_named(const std::function<void(const json&)>& load, const json& good,
                   const std::vector<BadCase>& cases) {
@@ -170,47 +138,13 @@ TEST(IoJsonMultiInput, CoupledJointsTakeTheirOwnModelsRangeUnlessTheFileGivesOne
 TEST(IoJsonMultiInput, MalformedLoadCompensatedFilesNameTheKey) {
   const json good = load_compensated_file(0.3, 0.02, 0.1, 0.05);
   ASSERT_EQ(error_of(load_lc, good), "(no error)");
-  expect_named(load_lc, good, {
-      {[](json& f) { f.erase("switch"); }, "key 'switch' is missing"},
-      {[](json& f) { f["extra"] = 1; }, "unknown key 'extra'"},
-      {[](json& f) { f["switch"] = "0.1"; }, "key 'switch' must be a number"},
-      {[](json& f) { f["switch"] = 0.0; }, "switch must be > 0"},
-      {[](json& f) { f["smoothing"] = nullptr; }, "key 'smoothing' must be a number"},
-      {[](json& f) { f.erase("input_range"); }, "key 'input_range' is missing"},
-      {[](json& f) { f["limits"]["max"] = true; }, "key 'max' must be a number"},
-      {[](json& f) { f["version"] = 2; }, "unsupported 'version' 2"},
-      {[](json& f) { f["version"] = 1.0; }, "unsupported 'version' 1.0"},
-      {[](json& f) { f["version"] = true; }, "unsupported 'version' true"},
-      {[](json& f) { f["compensator"] = "InverseFeedforward"; }, "key 'compensator' must be"},
-      {[](json& f) { f["model"]["model"] = "Backlash"; }, "model: key 'model' must be \"Loaded\""},
-      {[](json& f) { f["model"]["terms"].erase("gain"); }, "model: terms: key 'gain' is missing"},
-      {[](json& f) { f["model"]["terms"]["stiction"] = 0.1; }, "terms: unknown key 'stiction'"},
-      {[](json& f) { f["model"]["terms"]["slack_load"] = 0.0; }, "terms: slack_load must be > 0"},
-      {[](json& f) { f["model"]["terms"]["friction"] = "x"; }, "key 'friction' must be a number"},
-      {[](json& f) { f["model"]["base"]["params"].erase("B_l"); }, "base: params: key 'B_l'"},
-      {[](json& f) { f["model"]["input_range"] = {1.0, 0.0}; }, "key 'input_range'"},
-  });
+  expect_named(load_lc, good, malformed_json::load_compensated_cases());
 }
 
 TEST(IoJsonMultiInput, MalformedCoupledFeedforwardFilesNameTheKey) {
   const json good = three_joints();
   ASSERT_EQ(error_of(load_cf, good), "(no error)");
-  expect_named(load_cf, good, {
-      {[](json& f) { f.erase("smoothing"); }, "key 'smoothing' is missing"},
-      {[](json& f) { f["gains"] = 1; }, "unknown key 'gains'"},
-      {[](json& f) { f["range_margin"] = "0.1"; }, "key 'range_margin' must be a number"},
-      {[](json& f) { f["version"] = 1.0; }, "unsupported 'version' 1.0"},
-      {[](json& f) { f["model"]["version"] = 2; }, "model: unsupported 'version' 2"},
-      {[](json& f) { f["model"]["format"] = "tendonsheath.model"; }, "model: key 'format'"},
-      {[](json& f) { f["model"]["extra"] = 0; }, "model: unknown key 'extra'"},
-      {[](json& f) { f["model"]["models"] = json::array(); }, "model: key 'models'"},
-      {[](json& f) { f["model"]["models"][1]["params"].erase("c_r"); }, "models[1]: params: key 'c_r'"},
-      {[](json& f) { f["model"]["models"][2]["input_range"] = {1.0, 0.0}; }, "models[2]: key 'input_range'"},
-      {[](json& f) { f["model"]["coupling"][1] = {0.0, 0.0}; }, "model: key 'coupling' must be 3 rows"},
-      {[](json& f) { f["model"]["coupling"][0][1] = "x"; }, "key 'coupling' must hold only numbers"},
-      {[](json& f) { f["model"]["coupling"][0][0] = 0.1; }, "key 'coupling'"},
-      {[](json& f) { f["model"].erase("coupling"); }, "model: key 'coupling' is missing"},
-  });
+  expect_named(load_cf, good, malformed_json::coupled_feedforward_cases());
   json singular = coupled_file({backlash_model(), backlash_model()}, {{0.0, 1.0}, {1.0, 0.0}});
   EXPECT_NE(error_of(load_cf, singular).find("singular"), std::string::npos);
 }

@@ -76,6 +76,7 @@ inline double plant_viscous_lag(const PlantModelParams& p) {
   PlantModelParams q = p;
   q.viscous_time = 0.0;
   PlantModel quasi_static(q), viscous(p);
+  if (detail::failed()) return 0.0;  // without exceptions: the plants are not stepped
   const double tau = p.viscous_time, v = p.backlash / tau, dt = tau / 50.0;
   const int n = static_cast<int>(std::ceil((2.0 * p.backlash / v + 12.0 * tau) / dt));
   double ys = quasi_static.step(0.0, 0.0), yv = viscous.step(0.0, 0.0);
@@ -152,6 +153,7 @@ inline double initial_angle(const AngleLaws& laws) {
 
 inline ModelInverse::Core angle_dependent(const ModelPart& p, const InverseContext& c) {
   p.laws.validate(c.where.c_str());
+  if (detail::failed()) return PassThrough{};  // without exceptions: no law read past the arrays
   const double theta = initial_angle(p.laws);
   double v[AngleLaws::kMaxParams];
   p.laws.at_angle(theta, v);
@@ -176,8 +178,9 @@ inline ModelInverse::Core angle_dependent(const ModelPart& p, const InverseConte
     return AngleDependentInverse<OscillatorInverse>(OscillatorInverse(o, c.filter_hz), p.laws,
                                                     theta);
   }
-  detail::fail(c.where, "the inverse of an AngleDependent model takes a Backlash, "
-               "BoucWenBacklash, BoucWen or HystereticOscillator base (got '", p.base, "')");
+  detail::check_failed(c.where, "the inverse of an AngleDependent model takes a Backlash, "
+                       "BoucWenBacklash, BoucWen or HystereticOscillator base (got '", p.base, "')");
+  return PassThrough{};  // (without exceptions: never used, the check has failed)
 }
 
 inline LagInverse lag_inverse(const ModelPart& p, const InverseContext& c) {
@@ -199,9 +202,11 @@ inline InversePlan single(const ModelPart& p, const InverseContext& c) {
   } else if (p.kind == "PrandtlIshlinskii" && !p.prandtl_ishlinskii.thresholds.empty() &&
              p.prandtl_ishlinskii.thresholds.front() == 0.0) {
     PrandtlIshlinskiiInverse inverse(p.prandtl_ishlinskii);
+    if (detail::failed()) return plan;  // without exceptions: a half-built inverse is not used
     inverse.set_range(c.range);
     plan.core = std::move(inverse);
   } else if (auto first = forward_first(p)) {
+    if (detail::failed()) return plan;  // without exceptions: a half-built model is not used
     plan.core = root_engine(ForwardModel(std::move(*first)), c);
     plan.pre = plant_lag(p, c);
   } else if (p.kind == "HystereticOscillator") {
@@ -215,7 +220,7 @@ inline InversePlan single(const ModelPart& p, const InverseContext& c) {
   } else if (is_lag(p)) {
     plan.post = lag_inverse(p, c);
   } else {
-    detail::fail(c.where, "no inverse for a model of kind '", p.kind, "'");
+    detail::check_failed(c.where, "no inverse for a model of kind '", p.kind, "'");
   }
   return plan;
 }
@@ -225,6 +230,7 @@ inline InversePlan chain(const ModelPart& a, const ModelPart& b, const InverseCo
   if (b.kind == "Polynomial") {
     if (auto first = forward_first(a)) {
       InversePlan plan;
+      if (detail::failed()) return plan;  // without exceptions: a half-built model is not used
       plan.core = root_engine(ForwardModel(std::move(*first), Polynomial(b.polynomial)), c);
       plan.pre = plant_lag(a, c);  // (its lag taken after the polynomial: an approximation)
       return plan;
@@ -246,15 +252,24 @@ inline InversePlan chain(const ModelPart& a, const ModelPart& b, const InverseCo
     plan.post = lag_inverse(a, c);
     return plan;
   }
-  detail::fail(c.where, "a Chain is inverted when its second part is a Polynomial or a lag, or "
-               "its first a lag (got ", a.kind, " then ", b.kind, ")");
+  detail::check_failed(c.where, "a Chain is inverted when its second part is a Polynomial or a "
+                       "lag, or its first a lag (got ", a.kind, " then ", b.kind, ")");
+  return {};  // (without exceptions: never used, the check has failed)
+}
+
+// what make_model_inverse returns without exceptions once a check has failed: never stepped
+inline ModelInverse unused_inverse() {
+  return ModelInverse(PassThrough{}, std::monostate{}, std::nullopt, ScaledMap{}, InputRange{},
+                      CommandLimits{});
 }
 
 }  // namespace detail
 
 /// The real-time inverse of model `m` with settings `s` (see the file's comment for which inverse
 /// each class gets). Throws std::invalid_argument, message starting with `where`, naming the
-/// first bad part or setting.
+/// first bad part or setting. Without exceptions, inside a Result being built (the io loaders'
+/// try_ forms), the message goes to that Result and the inverse returned is never to be used;
+/// outside one, the error handler is called, then std::abort().
 inline ModelInverse make_model_inverse(const InverseModel& m, const InverseSettings& s,
                                        const std::string& where = "InverseFeedforward") {
   require(m.parts.size() == 1 || m.parts.size() == 2, where,
@@ -265,10 +280,12 @@ inline ModelInverse make_model_inverse(const InverseModel& m, const InverseSetti
   s.range.validate(where.c_str());
   const ScaledMap& mp = m.map;
   mp.validate(where.c_str());
+  if (detail::failed()) return detail::unused_inverse();  // without exceptions, in a Result
   const detail::InverseContext c{s.range.unmapped(mp.input_offset, mp.input_scale),
                                  s.smoothing / std::fabs(mp.output_gain), s.filter_hz, where};
   detail::InversePlan plan = m.parts.size() == 1 ? detail::single(m.parts[0], c)
                                                  : detail::chain(m.parts[0], m.parts[1], c);
+  if (detail::failed()) return detail::unused_inverse();  // its parts are not used
   return ModelInverse(std::move(plan.core), std::move(plan.pre), std::move(plan.post), mp,
                       s.range, s.limits, plan.friction);
 }

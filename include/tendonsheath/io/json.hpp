@@ -4,19 +4,23 @@
 // OPTIONAL and OUTSIDE the real-time path: it needs nlohmann/json (Debian's
 // nlohmann-json3-dev, CMake target nlohmann_json::nlohmann_json), reads files and allocates.
 // Load once at start-up; the returned LoadedCompensator's step() is the core's: noexcept,
-// no allocation. Strict, like Python's loader: a missing, unknown, null or mistyped key is a
-// std::invalid_argument naming the key. null stands for an unbounded limit (JSON has no inf).
+// no allocation. Strict, like Python's loader: a missing, unknown, null or mistyped key is an
+// error naming the key. null stands for an unbounded limit (JSON has no inf).
+//
+// With or without C++ exceptions (docs/cpp-without-exceptions.md): each loader has a try_ form
+// that returns a tendonsheath::Result (the compensator, or the message naming the file and the
+// key), e.g. try_load_compensator_json(path); the plain form returns the object and throws
+// std::invalid_argument with that message (without exceptions: the error handler, then
+// std::abort(), as a constructor called directly does).
 #pragma once
 
-#include "requires_exceptions.hpp"
-
 #include <cstdio>
-#include <functional>
 #include <limits>
 #include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -35,8 +39,9 @@
 /// @brief Loading compensators saved by Python's `to_json` into the real-time core (optional
 /// header tendonsheath/io/json.hpp, needs nlohmann/json).
 ///
-/// Outside the real-time path: it reads files, allocates and throws std::invalid_argument naming a
-/// missing, unknown, null or mistyped key. Load once at start-up; the LoadedCompensator's step() is
+/// Outside the real-time path: it reads files, allocates, and names a missing, unknown, null or
+/// mistyped key in its error: a Result from the try_ loaders (with or without exceptions), a
+/// std::invalid_argument from the others. Load once at start-up; the LoadedCompensator's step() is
 /// the core's: noexcept, no allocation.
 namespace tendonsheath::io {
 
@@ -59,28 +64,6 @@ inline CommandLimits limits(const json& file, const std::string& where) {
   return out;
 }
 
-// The file's (Python's) names of the core's fields, for the core's messages (Python's CORE_NAMES)
-inline const std::vector<std::pair<std::string, std::string>> kFileNames{
-    {"v_eps", "smoothing"}, {"total_angle", "curve_angle"}, {"sheath_length", "length"}};
-
-// build(), a core's constructor; its std::invalid_argument rethrown naming the file (`where`) and
-// each field by the file's name ("CurveAngleFeedforward: smoothing must be > 0 (got 0)"), as
-// Python's loader says it
-template <class Build>
-auto with_file_names(const std::string& where, Build build) -> decltype(build()) {
-  try {
-    return build();
-  } catch (const std::invalid_argument& e) {
-    std::string m = e.what();
-    for (const auto& [core, file] : kFileNames) {
-      const std::string key = ": " + core + " ";
-      for (auto at = m.find(key); at != std::string::npos; at = m.find(key, at + file.size()))
-        m.replace(at + 2, core.size(), file);
-    }
-    fail(where, m);
-  }
-}
-
 }  // namespace detail
 
 /// The affine map of a Python `Scaled` model (tendonsheath::ScaledMap).
@@ -94,52 +77,68 @@ struct InvertibleModel {
   ScaledMap map{};                   ///< identity unless the file held a Scaled model
 };
 
-/// The model of a "tendonsheath.model" document (a Scaled model around an invertible one, or an
-/// invertible one). Throws std::invalid_argument, message starting with `where`, naming the bad key.
-inline InvertibleModel invertible_model_from_json(const json& m, const std::string& where) {
-  detail::check_format(m, "tendonsheath.model", where);
-  const json& name = detail::member(m, "model", where);
+namespace detail {
+
+// the model of a "tendonsheath.model" document (what invertible_model_from_json returns)
+inline InvertibleModel invertible_model(const json& m, const std::string& where) {
   InvertibleModel out;
-  out.name = name.is_string() ? name.get<std::string>() : name.dump();
+  check_format(m, "tendonsheath.model", where);
+  if (failed()) return out;
+  const json& name = member(m, "model", where);
+  out.name = name.is_string() ? name.get<std::string>() : shown(name);
   if (out.name == "Scaled") {
-    detail::check_keys(m, {"format", "version", "model", "inner", "map", "input_range"},
-                       {"inner", "map"}, where);
-    const std::string w = where + ": map";
-    const json& mp = m.at("map");
-    detail::check_keys(mp, {"input_offset", "input_scale", "output_offset", "output_gain"},
-                       {"input_offset", "input_scale", "output_offset", "output_gain"}, w);
-    const ScaledMap map{detail::number(mp, "input_offset", w), detail::number(mp, "input_scale", w),
-                        detail::number(mp, "output_offset", w), detail::number(mp, "output_gain", w)};
-    map.validate(w.c_str());
-    out = invertible_model_from_json(m.at("inner"), where + ": inner");
+    check_keys(m, {"format", "version", "model", "inner", "map", "input_range"}, {"inner", "map"},
+               where);
+    if (failed()) return out;
+    const ScaledMap map = scaled_map(member(m, "map", where), where + ": map");
+    if (failed()) return out;
+    out = invertible_model(member(m, "inner", where), where + ": inner");
+    if (failed()) return out;
     if (out.map.input_scale != 1.0 || out.map.output_gain != 1.0 || out.map.input_offset != 0.0 ||
         out.map.output_offset != 0.0)
-      detail::fail(where, "a Scaled model inside a Scaled model is not supported");
+      fail(where, "a Scaled model inside a Scaled model is not supported");
     out.map = map;
     return out;
   }
-  detail::check_keys(m, detail::kPlainKeys, {"params"}, where);
-  const json& p = m.at("params");
+  check_keys(m, kPlainKeys, {"params"}, where);
+  if (failed()) return out;
+  const json& p = member(m, "params", where);
   const std::string w = where + ": params";
   if (out.name == "Backlash" || out.name == "BoucWenBacklash") {
     const bool bw = out.name == "BoucWenBacklash";
     std::set<std::string> keys{"c_r", "c_l", "B_r", "B_l"};
     if (bw) keys.insert({"rho", "sigma", "n"});
-    detail::check_keys(p, keys, keys, w);
-    for (const auto& k : keys) detail::number(p, k, w);  // every one a number, used or not
-    out.backlash.c_r = detail::number(p, "c_r", w);
-    out.backlash.c_l = detail::number(p, "c_l", w);
-    out.backlash.B_r = detail::number(p, "B_r", w);
-    out.backlash.B_l = detail::number(p, "B_l", w);
+    check_keys(p, keys, keys, w);
+    for (const auto& k : keys) number(p, k, w);  // every one a number, used or not
+    out.backlash.c_r = number(p, "c_r", w);
+    out.backlash.c_l = number(p, "c_l", w);
+    out.backlash.B_r = number(p, "B_r", w);
+    out.backlash.B_l = number(p, "B_l", w);
   } else if (out.name == "PrandtlIshlinskii") {
-    detail::check_keys(p, {"thresholds", "weights"}, {"thresholds", "weights"}, w);
-    out.pi.thresholds = detail::numbers(p, "thresholds", w);
-    out.pi.weights = detail::numbers(p, "weights", w);
+    check_keys(p, {"thresholds", "weights"}, {"thresholds", "weights"}, w);
+    out.pi.thresholds = numbers(p, "thresholds", w);
+    out.pi.weights = numbers(p, "weights", w);
   } else {
-    detail::fail(where, "key 'model': the C++ loader inverts Backlash, BoucWenBacklash, "
-                        "PrandtlIshlinskii and Scaled around them (got " + name.dump() + ")");
+    fail(where, "key 'model': the C++ loader inverts Backlash, BoucWenBacklash, "
+                "PrandtlIshlinskii and Scaled around them (got " + shown(name) + ")");
   }
   return out;
+}
+
+}  // namespace detail
+
+/// The model of a "tendonsheath.model" document (a Scaled model around an invertible one, or an
+/// invertible one), or the message, starting with `where`, naming the bad key.
+inline Result<InvertibleModel> try_invertible_model_from_json(const json& m,
+                                                              const std::string& where) {
+  return tendonsheath::detail::result_of<InvertibleModel>(
+      [&] { return std::optional<InvertibleModel>(detail::invertible_model(m, where)); });
+}
+
+/// The model of a "tendonsheath.model" document (a Scaled model around an invertible one, or an
+/// invertible one). Throws std::invalid_argument, message starting with `where`, naming the bad key.
+inline InvertibleModel invertible_model_from_json(const json& m, const std::string& where) {
+  return try_invertible_model_from_json(m, where).value();
 }
 
 /// The CurveAngleFeedforward parameters of a "tendonsheath.compensator" document (Python's names:
@@ -193,7 +192,7 @@ inline ContinuumFeedforwardParams continuum_feedforward_params(const json& f,
   const json& mode = detail::member(f, "mode", where);
   if (mode == "exact") p.mode = ContinuumMode::Exact;
   else if (mode == "published") p.mode = ContinuumMode::Published;
-  else detail::fail(where, "key 'mode' must be \"exact\" or \"published\" (got " + mode.dump() + ")");
+  else detail::fail(where, "key 'mode' must be \"exact\" or \"published\" (got " + detail::shown(mode) + ")");
   p.limits = detail::limits(f, where);
   return p;
 }
@@ -313,24 +312,27 @@ class LoadedCompensator {
 /// The InverseSettings of an InverseFeedforward file: smoothing, limits, and the optional
 /// input_range ([lo, hi] or null; absent: the model's own "input_range", if any), range_margin
 /// (default 0.1) and filter_hz (null or absent: the default). Throws std::invalid_argument naming
-/// a bad key.
+/// a bad key (without exceptions, inside a try_ loader: that loader's Result holds the message).
 inline InverseSettings inverse_settings(const json& f, const std::string& where) {
   InverseSettings s;
   s.smoothing = detail::number(f, "smoothing", where);
   s.limits = detail::limits(f, where);
   const double margin = f.contains("range_margin") ? detail::number(f, "range_margin", where) : 0.1;
   require_non_negative(margin, where.c_str(), "range_margin");  // Python's rule and message
+  if (detail::failed()) return s;
   const auto range = f.contains("input_range")
                          ? model_input_range(f, where)
                          : model_input_range(detail::member(f, "model", where), where + ": model");
+  if (detail::failed()) return s;
   if (range) {
     require(std::isfinite(range->first) && std::isfinite(range->second) &&
                 range->first < range->second,
             where, "input_range needs finite lo < hi (got lo=", range->first, ", hi=", range->second,
             ")");  // Python's message
+    if (detail::failed()) return s;
     s.range = InputRange::identified(range->first, range->second, margin);
   }
-  if (f.contains("filter_hz") && !f.at("filter_hz").is_null()) {
+  if (f.contains("filter_hz") && !detail::member(f, "filter_hz", where).is_null()) {
     s.filter_hz = detail::number(f, "filter_hz", where);
     require(std::isfinite(s.filter_hz) && s.filter_hz > 0.0, where,
             "filter_hz must be > 0 or None/null (got ", s.filter_hz, ")");  // Python's message
@@ -340,13 +342,49 @@ inline InverseSettings inverse_settings(const json& f, const std::string& where)
 
 namespace detail {
 
+// T built by make<T>(args...): its failed check reported as "<prefix>: <message>" (the message
+// alone when prefix is empty), as the constructor's exception would have been (std::nullopt then)
+template <class T, class... Args>
+std::optional<T> built(const std::string& prefix, Args&&... args) {
+  Result<T> r = tendonsheath::make<T>(std::forward<Args>(args)...);
+  if (r.ok()) return std::optional<T>(std::move(r).value());
+  tendonsheath::detail::report_error(prefix.empty() ? r.error() : prefix + ": " + r.error());
+  return std::nullopt;
+}
+
+// The file's (Python's) names of the core's fields, for the core's messages (Python's CORE_NAMES)
+inline const std::vector<std::pair<std::string, std::string>> kFileNames{
+    {"v_eps", "smoothing"}, {"total_angle", "curve_angle"}, {"sheath_length", "length"}};
+
+// built<T>, its message naming the file (`where`) and each field by the file's name
+// ("CurveAngleFeedforward: smoothing must be > 0 (got 0)"), as Python's loader says it
+template <class T, class... Args>
+std::optional<T> built_with_file_names(const std::string& where, Args&&... args) {
+  Result<T> r = tendonsheath::make<T>(std::forward<Args>(args)...);
+  if (r.ok()) return std::optional<T>(std::move(r).value());
+  std::string m = r.error();
+  for (const auto& [core, file] : kFileNames) {
+    const std::string key = ": " + core + " ";
+    for (auto at = m.find(key); at != std::string::npos; at = m.find(key, at + file.size()))
+      m.replace(at + 2, core.size(), file);
+  }
+  fail(where, m);
+  return std::nullopt;
+}
+
 // Python's InverseFeedforward: a ModelInverse (its Scaled map inside it).
-inline LoadedCompensator inverse_from_json(const json& f, const std::string& where) {
+inline std::optional<LoadedCompensator> inverse_from_json(const json& f, const std::string& where) {
   check_keys(f, {"format", "version", "compensator", "model", "smoothing", "limits", "input_range",
                  "range_margin", "filter_hz"},
              {"model", "smoothing", "limits"}, where);
-  const InverseModel m = inverse_model_from_json(f.at("model"), where + ": model");
-  return {"InverseFeedforward", make_model_inverse(m, inverse_settings(f, where), where)};
+  if (failed()) return std::nullopt;
+  const InverseModel m = inverse_model_from_json(member(f, "model", where), where + ": model");
+  if (failed()) return std::nullopt;
+  const InverseSettings s = inverse_settings(f, where);
+  if (failed()) return std::nullopt;
+  ModelInverse inverse = make_model_inverse(m, s, where);
+  if (failed()) return std::nullopt;
+  return LoadedCompensator("InverseFeedforward", std::move(inverse));
 }
 
 inline const std::set<std::string> kCurveAngleKeys{
@@ -378,23 +416,33 @@ inline std::set<std::string> keys_of_file(const json& f, std::set<std::string> k
   return keys;
 }
 
-}  // namespace detail
+// the keys of a feedforward's file (those `keys_of_file` gives, and the optional play) checked
+inline void check_feedforward_keys(const json& f, const std::set<std::string>& all,
+                                   const std::vector<RenamedKeys>& renames,
+                                   const std::string& where) {
+  const auto keys = keys_of_file(f, all, renames);
+  std::set<std::string> allowed = keys;
+  allowed.insert("play");  // optional: files written before it was a setting lack it
+  check_keys(f, allowed, keys, where);
+}
 
-inline LoadedCompensator compensator_from_json(const json& f, const std::string& where);
-
-namespace detail {
+inline std::optional<LoadedCompensator> compensator(const json& f, const std::string& where);
 
 inline const std::set<std::string> kEncoderLoopKeys{
     "format", "version", "compensator", "feedforward", "kp", "ki", "kd",
     "derivative_cutoff_hz", "max_correction", "limits"};
 
 // Python's EncoderLoop: its feedforward (a compensator file of its own) and the loop's gains.
-inline LoadedCompensator encoder_loop_from_json(const json& f, const std::string& where) {
+inline std::optional<LoadedCompensator> encoder_loop_from_json(const json& f,
+                                                               const std::string& where) {
   check_keys(f, kEncoderLoopKeys, kEncoderLoopKeys, where);
-  const json& inner = f.at("feedforward");
-  if (inner.is_object() && inner.contains("compensator") && inner.at("compensator") == "EncoderLoop")
-    fail(where, "key 'feedforward' must be a feedforward, not another EncoderLoop");
-  LoadedCompensator out = compensator_from_json(inner, where + ": feedforward");
+  if (failed()) return std::nullopt;
+  const json& inner = member(f, "feedforward", where);
+  if (inner.is_object() && inner.contains("compensator") && inner["compensator"] == "EncoderLoop")
+    return fail(where, "key 'feedforward' must be a feedforward, not another EncoderLoop"),
+           std::nullopt;
+  std::optional<LoadedCompensator> out = compensator(inner, where + ": feedforward");
+  if (failed() || !out) return std::nullopt;
   EncoderLoopParams p;
   p.kp = number(f, "kp", where);
   p.ki = number(f, "ki", where);
@@ -402,11 +450,10 @@ inline LoadedCompensator encoder_loop_from_json(const json& f, const std::string
   p.derivative_cutoff_hz = number(f, "derivative_cutoff_hz", where);
   p.max_correction = number(f, "max_correction", where, std::numeric_limits<double>::infinity());
   p.limits = limits(f, where);
-  try {
-    out.set_encoder_loop(EncoderLoop(p));
-  } catch (const std::invalid_argument& e) {
-    fail(where, e.what());
-  }
+  if (failed()) return std::nullopt;
+  const auto loop = built<EncoderLoop>(where, p);
+  if (!loop) return std::nullopt;
+  out->set_encoder_loop(*loop);
   return out;
 }
 
@@ -414,27 +461,33 @@ inline const std::set<std::string> kLearnedKeys{
     "format", "version", "compensator", "feedforward", "table", "table_dt", "hold_last", "limits"};
 
 // Python's LearnedFeedforward: its feedforward (a compensator file of its own) and the table.
-inline LoadedCompensator learned_from_json(const json& f, const std::string& where) {
+inline std::optional<LoadedCompensator> learned_from_json(const json& f, const std::string& where) {
   check_keys(f, kLearnedKeys, kLearnedKeys, where);
-  const json& inner = f.at("feedforward");
-  if (inner.is_object() && inner.contains("compensator") &&
-      (inner.at("compensator") == "EncoderLoop" || inner.at("compensator") == "TipLoop" ||
-       inner.at("compensator") == "LearnedFeedforward"))
-    fail(where, "key 'feedforward' must be a feedforward, not an " +
-                    inner.at("compensator").get<std::string>() +
-                    " (put the loop around the LearnedFeedforward)");
-  LoadedCompensator out = compensator_from_json(inner, where + ": feedforward");
+  if (failed()) return std::nullopt;
+  const json& inner = member(f, "feedforward", where);
+  if (inner.is_object() && inner.contains("compensator")) {
+    const json& k = inner["compensator"];
+    if (k == "EncoderLoop" || k == "TipLoop" || k == "LearnedFeedforward")
+      return fail(where, "key 'feedforward' must be a feedforward, not an " +
+                             k.get<std::string>() + " (put the loop around the LearnedFeedforward)"),
+             std::nullopt;
+  }
+  std::optional<LoadedCompensator> out = compensator(inner, where + ": feedforward");
+  if (failed() || !out) return std::nullopt;
   LearnedFeedforwardParams p;
   p.table_dt = number(f, "table_dt", where);
   const json& hold = member(f, "hold_last", where);
-  if (!hold.is_boolean()) fail(where, "key 'hold_last' must be true or false (got " + hold.dump() + ")");
+  if (failed()) return std::nullopt;
+  if (!hold.is_boolean())
+    return fail(where, "key 'hold_last' must be true or false (got " + shown(hold) + ")"),
+           std::nullopt;
   p.hold_last = hold.get<bool>();
   p.limits = limits(f, where);
-  try {
-    out.set_learned_correction(LearnedCorrection(numbers(f, "table", where), p));
-  } catch (const std::invalid_argument& e) {
-    fail(where, e.what());
-  }
+  std::vector<double> table = numbers(f, "table", where);
+  if (failed()) return std::nullopt;
+  const auto learned = built<LearnedCorrection>(where, std::move(table), p);
+  if (!learned) return std::nullopt;
+  out->set_learned_correction(*learned);
   return out;
 }
 
@@ -442,131 +495,234 @@ inline const std::set<std::string> kTipLoopKeys{
     "format", "version", "compensator", "feedforward", "kp", "ki", "kd",
     "derivative_cutoff_hz", "max_correction", "schedule", "limits"};
 
+// the tip loop's gain schedule, [[curve_angle, gain], ...] (up to 8 points), into p
+inline void tip_schedule(const json& f, TipLoopParams& p, const std::string& where) {
+  const json& schedule = member(f, "schedule", where);
+  if (!schedule.is_array() || schedule.size() > TipLoopParams::kMaxSchedule)
+    return fail(where, "key 'schedule' must be a list of at most 8 [curve_angle, gain] pairs");
+  for (std::size_t i = 0; i < schedule.size(); ++i) {
+    const json& row = schedule[i];
+    if (!row.is_array() || row.size() != 2 || !row[0].is_number() || !row[1].is_number())
+      return fail(where, "key 'schedule': entry " + std::to_string(i) +
+                             " must be a [curve_angle, gain] pair of numbers (got " + shown(row) +
+                             ")");
+    p.schedule_angles[i] = row[0].get<double>();
+    p.schedule_gains[i] = row[1].get<double>();
+  }
+  p.schedule_size = schedule.size();
+}
+
 // Python's TipLoop: its feedforward (a compensator file of its own), the loop's gains and its gain
 // schedule ([[curve_angle, gain], ...], up to 8 points).
-inline LoadedCompensator tip_loop_from_json(const json& f, const std::string& where) {
+inline std::optional<LoadedCompensator> tip_loop_from_json(const json& f, const std::string& where) {
   check_keys(f, kTipLoopKeys, kTipLoopKeys, where);
-  const json& inner = f.at("feedforward");
+  if (failed()) return std::nullopt;
+  const json& inner = member(f, "feedforward", where);
   if (inner.is_object() && inner.contains("compensator") &&
-      (inner.at("compensator") == "TipLoop" || inner.at("compensator") == "EncoderLoop"))
-    fail(where, "key 'feedforward' must be a feedforward, not a " + inner.at("compensator").dump());
-  LoadedCompensator out = compensator_from_json(inner, where + ": feedforward");
+      (inner["compensator"] == "TipLoop" || inner["compensator"] == "EncoderLoop"))
+    return fail(where, "key 'feedforward' must be a feedforward, not a " +
+                           shown(inner["compensator"])),
+           std::nullopt;
+  std::optional<LoadedCompensator> out = compensator(inner, where + ": feedforward");
+  if (failed() || !out) return std::nullopt;
   TipLoopParams p;
   p.kp = number(f, "kp", where);
   p.ki = number(f, "ki", where);
   p.kd = number(f, "kd", where);
   p.derivative_cutoff_hz = number(f, "derivative_cutoff_hz", where);
   p.max_correction = number(f, "max_correction", where, std::numeric_limits<double>::infinity());
-  const json& schedule = f.at("schedule");
-  if (!schedule.is_array() || schedule.size() > TipLoopParams::kMaxSchedule)
-    fail(where, "key 'schedule' must be a list of at most 8 [curve_angle, gain] pairs");
-  for (std::size_t i = 0; i < schedule.size(); ++i) {
-    const json& row = schedule[i];
-    if (!row.is_array() || row.size() != 2 || !row[0].is_number() || !row[1].is_number())
-      fail(where, "key 'schedule': entry " + std::to_string(i) +
-                      " must be a [curve_angle, gain] pair of numbers (got " + row.dump() + ")");
-    p.schedule_angles[i] = row[0].get<double>();
-    p.schedule_gains[i] = row[1].get<double>();
-  }
-  p.schedule_size = schedule.size();
+  if (failed()) return std::nullopt;
+  tip_schedule(f, p, where);
   p.limits = limits(f, where);
-  try {
-    out.set_tip_loop(TipLoop(p));
-  } catch (const std::invalid_argument& e) {
-    fail(where, e.what());
-  }
+  if (failed()) return std::nullopt;
+  const auto loop = built<TipLoop>(where, p);
+  if (!loop) return std::nullopt;
+  out->set_tip_loop(*loop);
   return out;
+}
+
+// a compensator file (what compensator_from_json loads); std::nullopt once a check has failed
+inline std::optional<LoadedCompensator> compensator(const json& f, const std::string& where) {
+  check_format(f, "tendonsheath.compensator", where);
+  if (failed()) return std::nullopt;
+  const json& kind = member(f, "compensator", where);
+  if (kind == "InverseFeedforward") return inverse_from_json(f, where);
+  if (kind == "EncoderLoop") return encoder_loop_from_json(f, where);
+  if (kind == "LearnedFeedforward") return learned_from_json(f, where);
+  if (kind == "TipLoop") return tip_loop_from_json(f, where);
+  if (kind == "CurveAngleFeedforward") {
+    check_feedforward_keys(f, kCurveAngleKeys, kCurveAngleRenamed, where);
+    if (failed()) return std::nullopt;
+    const CurveAngleFeedforwardParams p = curve_angle_feedforward_params(f, where);
+    if (failed()) return std::nullopt;
+    auto engine = built_with_file_names<CurveAngleFeedforward>(where, p);
+    if (!engine) return std::nullopt;
+    return LoadedCompensator("CurveAngleFeedforward", std::move(*engine));
+  }
+  if (kind == "ContinuumFeedforward") {
+    check_feedforward_keys(f, kContinuumKeys, kContinuumRenamed, where);
+    if (failed()) return std::nullopt;
+    const ContinuumFeedforwardParams p = continuum_feedforward_params(f, where);
+    if (failed()) return std::nullopt;
+    auto engine = built_with_file_names<ContinuumFeedforward>(where, p);
+    if (!engine) return std::nullopt;
+    return LoadedCompensator("ContinuumFeedforward", std::move(*engine));
+  }
+  if (kind == "LoadCompensated" || kind == "CoupledFeedforward") {  // their step takes more inputs
+    fail(where, "key 'compensator': a " + kind.get<std::string>() + " steps with " +
+                    (kind == "LoadCompensated" ? "the measured load each cycle: load it "
+                                                 "with io::load_compensated_from_json"
+                                               : "every joint each cycle: load it with "
+                                                 "io::coupled_feedforward_from_json") +
+                    " (tendonsheath/io/json_multi_input.hpp)");
+    return std::nullopt;
+  }
+  fail(where, "key 'compensator': unknown compensator " + shown(kind) +
+                  " (known: ContinuumFeedforward, CurveAngleFeedforward, EncoderLoop, "
+                  "InverseFeedforward, LearnedFeedforward, TipLoop)");
+  return std::nullopt;
 }
 
 }  // namespace detail
 
-/// A compensator from the parsed contents of a "tendonsheath.compensator" file.
+/// A compensator from the parsed contents of a "tendonsheath.compensator" file, or the message,
+/// starting with `where`, naming the bad key (with or without exceptions).
+inline Result<LoadedCompensator> try_compensator_from_json(const json& f,
+                                                           const std::string& where = "compensator") {
+  return tendonsheath::detail::result_of<LoadedCompensator>(
+      [&] { return detail::compensator(f, where); });
+}
+
+/// A compensator from the parsed contents of a "tendonsheath.compensator" file. Throws
+/// std::invalid_argument, message starting with `where`, naming the bad key.
 inline LoadedCompensator compensator_from_json(const json& f, const std::string& where = "compensator") {
-  detail::check_format(f, "tendonsheath.compensator", where);
-  const json& kind = detail::member(f, "compensator", where);
-  if (kind == "InverseFeedforward") return detail::inverse_from_json(f, where);
-  if (kind == "EncoderLoop") return detail::encoder_loop_from_json(f, where);
-  if (kind == "LearnedFeedforward") return detail::learned_from_json(f, where);
-  if (kind == "TipLoop") return detail::tip_loop_from_json(f, where);
-  if (kind == "CurveAngleFeedforward") {
-    const auto keys = detail::keys_of_file(f, detail::kCurveAngleKeys, detail::kCurveAngleRenamed);
-    std::set<std::string> allowed = keys;
-    allowed.insert("play");  // optional: files written before it was a setting lack it
-    detail::check_keys(f, allowed, keys, where);
-    const CurveAngleFeedforwardParams p = curve_angle_feedforward_params(f, where);
-    return {"CurveAngleFeedforward",
-            detail::with_file_names(where, [&] { return CurveAngleFeedforward(p); })};
-  }
-  if (kind == "ContinuumFeedforward") {
-    const auto keys = detail::keys_of_file(f, detail::kContinuumKeys, detail::kContinuumRenamed);
-    std::set<std::string> allowed = keys;
-    allowed.insert("play");  // optional: files written before it was a setting lack it
-    detail::check_keys(f, allowed, keys, where);
-    const ContinuumFeedforwardParams p = continuum_feedforward_params(f, where);
-    return {"ContinuumFeedforward",
-            detail::with_file_names(where, [&] { return ContinuumFeedforward(p); })};
-  }
-  if (kind == "LoadCompensated" || kind == "CoupledFeedforward")  // their step takes more inputs
-    detail::fail(where, "key 'compensator': a " + kind.get<std::string>() + " steps with " +
-                            (kind == "LoadCompensated" ? "the measured load each cycle: load it "
-                                                         "with io::load_compensated_from_json"
-                                                       : "every joint each cycle: load it with "
-                                                         "io::coupled_feedforward_from_json") +
-                            " (tendonsheath/io/json_multi_input.hpp)");
-  detail::fail(where, "key 'compensator': unknown compensator " + kind.dump() +
-                          " (known: ContinuumFeedforward, CurveAngleFeedforward, EncoderLoop, "
-                          "InverseFeedforward, LearnedFeedforward, TipLoop)");
+  return try_compensator_from_json(f, where).value();
 }
 
 namespace detail {
 
-// The keys leading to the value being parsed ("limits.max"), kept by a parser callback: a
-// number too large for a double is an error nlohmann raises with no key to name.
-class KeyPath {
+// nlohmann/json's SAX events into a document, keeping the keys leading to the value being read
+// ("limits.max"): a number too large for a double is an error nlohmann reports with no key to
+// name. Its parse_error() keeps the message instead of throwing, so reading a file throws
+// nothing (with or without exceptions) and says the same either way.
+class JsonReader {
  public:
-  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
-    if (event == json::parse_event_t::object_start) keys_.emplace_back();
-    if (event == json::parse_event_t::object_end && !keys_.empty()) keys_.pop_back();
-    if (event == json::parse_event_t::key && !keys_.empty()) keys_.back() = parsed.get<std::string>();
+  bool null() { return put(json(nullptr)); }
+  bool boolean(bool v) { return put(json(v)); }
+  bool number_integer(json::number_integer_t v) { return put(json(v)); }
+  bool number_unsigned(json::number_unsigned_t v) { return put(json(v)); }
+  bool number_float(json::number_float_t v, const json::string_t& /*text*/) { return put(json(v)); }
+  bool string(json::string_t& v) { return put(json(std::move(v))); }
+  bool binary(json::binary_t& v) { return put(json::binary(std::move(v))); }
+  bool start_object(std::size_t /*elements*/) {
+    open_.push_back(place(json::object()));
+    keys_.emplace_back();
     return true;
   }
-  std::string str() const {
-    std::string out;
-    for (const auto& k : keys_) out += (out.empty() ? "" : ".") + k;
-    return out;
+  bool key(json::string_t& k) {
+    keys_.back() = k;
+    slot_ = &(*open_.back())[k];  // (an object: operator[] inserts, never throws)
+    return true;
   }
+  bool end_object() {
+    open_.pop_back();
+    keys_.pop_back();
+    return true;
+  }
+  bool start_array(std::size_t /*elements*/) {
+    open_.push_back(place(json::array()));
+    return true;
+  }
+  bool end_array() {
+    open_.pop_back();
+    return true;
+  }
+  // a syntax error (json::parse_error), or a number beyond a double (json::out_of_range)
+  template <class Error>
+  bool parse_error(std::size_t /*position*/, const std::string& /*token*/, const Error& e) {
+    if (std::is_same<Error, json::parse_error>::value) {
+      error_ = std::string("not valid JSON (") + e.what() + ")";
+    } else {
+      std::string key;
+      for (const auto& k : keys_) key += (key.empty() ? "" : ".") + k;
+      error_ = (key.empty() ? std::string("a value") : "key '" + key + "'") + " is out of range (" +
+               e.what() + ")";
+    }
+    return false;
+  }
+  /// What was wrong with the text (empty: it parsed).
+  const std::string& error() const noexcept { return error_; }
+  /// The document read.
+  json& document() noexcept { return root_; }
 
  private:
+  // v put where the next value goes: the root, the end of the open array, or the key just read
+  json* place(json v) {
+    if (open_.empty()) {
+      root_ = std::move(v);
+      return &root_;
+    }
+    json& parent = *open_.back();
+    if (parent.is_array()) {
+      parent.push_back(std::move(v));  // (an open array's element is its last: never moved)
+      return &parent.back();
+    }
+    *slot_ = std::move(v);
+    return slot_;
+  }
+  bool put(json v) {
+    place(std::move(v));
+    return true;
+  }
+
+  json root_;
+  std::vector<json*> open_;
+  json* slot_ = nullptr;
   std::vector<std::string> keys_;
+  std::string error_;
 };
 
-}  // namespace detail
-
-/// The parsed contents of a JSON file (read with stdio: the library uses no iostreams). An
-/// unreadable file, invalid JSON or a number beyond a double's range is a
-/// std::invalid_argument naming the file (and the key of the number).
-inline json read_json_file(const std::string& path) {
+// the parsed contents of the file at path (what read_json_file returns)
+inline std::optional<json> json_file(const std::string& path) {
   std::FILE* in = std::fopen(path.c_str(), "rb");
-  if (!in) throw std::invalid_argument(path + ": cannot open the file");
+  if (!in) return fail(path, "cannot open the file"), std::nullopt;
   std::string text;
   char buffer[4096];
   for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, in)) > 0;) text.append(buffer, n);
   std::fclose(in);
-  detail::KeyPath keys;
-  try {
-    return json::parse(text, std::ref(keys));
-  } catch (const json::parse_error& e) {
-    throw std::invalid_argument(path + ": not valid JSON (" + e.what() + ")");
-  } catch (const json::exception& e) {  // out_of_range.406: a number overflows a double
-    const std::string key = keys.str();
-    throw std::invalid_argument(path + ": " + (key.empty() ? "a value" : "key '" + key + "'") +
-                                " is out of range (" + e.what() + ")");
-  }
+  JsonReader reader;
+  if (!json::sax_parse(text, &reader)) return fail(path, reader.error()), std::nullopt;
+  return std::move(reader.document());
 }
 
-/// A compensator from a file written by Python's `to_json(path)`.
+}  // namespace detail
+
+/// The parsed contents of a JSON file (read with stdio: the library uses no iostreams), or the
+/// message naming the file (and the key of a number beyond a double's range) when it is
+/// unreadable, not valid JSON, or holds such a number. With or without exceptions.
+inline Result<json> try_read_json_file(const std::string& path) {
+  return tendonsheath::detail::result_of<json>([&] { return detail::json_file(path); });
+}
+
+/// The parsed contents of a JSON file (read with stdio: the library uses no iostreams). An
+/// unreadable file, invalid JSON or a number beyond a double's range is a
+/// std::invalid_argument naming the file (and the key of the number).
+inline json read_json_file(const std::string& path) { return try_read_json_file(path).value(); }
+
+/// A compensator from a file written by Python's `to_json(path)`, or the message naming the file
+/// and the bad key (with or without exceptions).
+inline Result<LoadedCompensator> try_load_compensator_json(const std::string& path) {
+  return tendonsheath::detail::result_of<LoadedCompensator>([&]() -> std::optional<LoadedCompensator> {
+    const std::optional<json> file = detail::json_file(path);
+    if (detail::failed() || !file) return std::nullopt;
+    return detail::compensator(*file, path);
+  });
+}
+
+/// A compensator from a file written by Python's `to_json(path)`. Throws std::invalid_argument
+/// naming the file and the bad key.
 inline LoadedCompensator load_compensator_json(const std::string& path) {
-  return compensator_from_json(read_json_file(path), path);
+  return try_load_compensator_json(path).value();
 }
 
 }  // namespace tendonsheath::io

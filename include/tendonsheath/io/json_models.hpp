@@ -4,9 +4,14 @@
 // and its load terms, LoadedModel) and a Coupled model file ("tendonsheath.coupled_model",
 // CoupledModel). Part of the optional tendonsheath/io/json.hpp (needs nlohmann/json); outside the
 // real-time path.
+//
+// With or without C++ exceptions: a bad key is reported through detail::fail(), which throws
+// std::invalid_argument with exceptions; without them (-fno-exceptions) the message is collected
+// by the Result being built (result.hpp, detail::result_of) and each function returns at its
+// next guard (failed()) before it reads what the check refused. No nlohmann call here can throw:
+// every value's type (and size, and range before narrowing) is checked before it is read, and
+// values are shown with shown() (never a throwing dump()).
 #pragma once
-
-#include "requires_exceptions.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -21,6 +26,7 @@
 
 #include "../compensators/load_compensated.hpp"
 #include "../compensators/make_model_inverse.hpp"
+#include "../result.hpp"
 
 namespace tendonsheath::io {
 
@@ -29,55 +35,90 @@ using json = nlohmann::json;
 
 namespace detail {
 
-[[noreturn]] inline void fail(const std::string& where, const std::string& what) {
-  throw std::invalid_argument(where + ": " + what);
+// A bad file: "<where>: <what>" thrown as std::invalid_argument with exceptions; without them
+// collected by the Result being built (or, outside one, the error handler, then std::abort()).
+// Without exceptions it returns: the caller returns at its next guard.
+inline void fail(const std::string& where, const std::string& what) {
+  tendonsheath::detail::report_error(where + ": " + what);
+}
+
+// True once a check has failed (only ever without exceptions: with them the check has thrown).
+inline bool failed() noexcept { return tendonsheath::detail::failed(); }
+
+// A value as JSON text, for a message (never throws: a string that is not UTF-8, possible only in
+// a json built in code, is shown with U+FFFD where a parsed file could not have it).
+inline std::string shown(const json& v) {
+  return v.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+// the null a failed member() returns (without exceptions): every check on it fails quietly
+inline const json& absent() {
+  static const json none;
+  return none;
 }
 
 inline const json& member(const json& obj, const std::string& key, const std::string& where) {
-  if (!obj.is_object()) fail(where, "must be a JSON object");
+  if (!obj.is_object()) return fail(where, "must be a JSON object"), absent();
   const auto it = obj.find(key);
-  if (it == obj.end()) fail(where, "key '" + key + "' is missing");
+  if (it == obj.end()) return fail(where, "key '" + key + "' is missing"), absent();
   return *it;
 }
 
 // every key of obj is one of `allowed` and every one of `required` is there
 inline void check_keys(const json& obj, const std::set<std::string>& allowed,
                        const std::set<std::string>& required, const std::string& where) {
-  if (!obj.is_object()) fail(where, "must be a JSON object");
+  if (!obj.is_object()) return fail(where, "must be a JSON object");
   for (const auto& item : obj.items())
-    if (!allowed.count(item.key())) fail(where, "unknown key '" + item.key() + "'");
+    if (!allowed.count(item.key())) return fail(where, "unknown key '" + item.key() + "'");
   for (const auto& key : required) member(obj, key, where);
 }
 
-// a number; null means `unbounded` when that is not NaN, else it is an error
+// a number; null means `unbounded` when that is not NaN, else it is an error (NaN once failed)
 inline double number(const json& obj, const std::string& key, const std::string& where,
                      double unbounded = std::numeric_limits<double>::quiet_NaN()) {
   const json& v = member(obj, key, where);
+  if (failed()) return std::numeric_limits<double>::quiet_NaN();
   if (v.is_null() && !std::isnan(unbounded)) return unbounded;
-  if (!v.is_number()) fail(where, "key '" + key + "' must be a number (got " + v.dump() + ")");
+  if (!v.is_number()) {
+    fail(where, "key '" + key + "' must be a number (got " + shown(v) + ")");
+    return std::numeric_limits<double>::quiet_NaN();
+  }
   return v.get<double>();
 }
 
+// an integer within an int's range (0 once failed)
 inline int integer(const json& obj, const std::string& key, const std::string& where) {
   const json& v = member(obj, key, where);
+  if (failed()) return 0;
   if (!v.is_number_integer())
-    fail(where, "key '" + key + "' must be an integer (got " + v.dump() + ")");
+    return fail(where, "key '" + key + "' must be an integer (got " + shown(v) + ")"), 0;
   // get<int> would wrap a larger integer round silently
   const bool fits = v.is_number_unsigned()
                         ? v.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<int>::max())
                         : v.get<std::int64_t>() >= std::numeric_limits<int>::min() &&
                               v.get<std::int64_t>() <= std::numeric_limits<int>::max();
-  if (!fits) fail(where, "key '" + key + "' is out of the range of an int (got " + v.dump() + ")");
+  if (!fits) {
+    fail(where, "key '" + key + "' is out of the range of an int (got " + shown(v) + ")");
+    return 0;
+  }
   return v.get<int>();
 }
 
+// an array of numbers (empty once failed)
 inline std::vector<double> numbers(const json& obj, const std::string& key,
                                    const std::string& where) {
   const json& v = member(obj, key, where);
-  if (!v.is_array()) fail(where, "key '" + key + "' must be an array of numbers");
+  if (failed()) return {};
+  if (!v.is_array()) {
+    fail(where, "key '" + key + "' must be an array of numbers");
+    return {};
+  }
   std::vector<double> out;
   for (const json& e : v) {
-    if (!e.is_number()) fail(where, "key '" + key + "' must hold only numbers (got " + e.dump() + ")");
+    if (!e.is_number()) {
+      fail(where, "key '" + key + "' must hold only numbers (got " + shown(e) + ")");
+      return {};
+    }
     out.push_back(e.get<double>());
   }
   return out;
@@ -85,11 +126,15 @@ inline std::vector<double> numbers(const json& obj, const std::string& key,
 
 inline void check_format(const json& file, const char* format, const std::string& where) {
   const json& f = member(file, "format", where);
-  if (f != format) fail(where, std::string("key 'format' must be \"") + format + "\" (got " + f.dump() + ")");
+  if (failed()) return;
+  if (f != format)
+    return fail(where,
+                std::string("key 'format' must be \"") + format + "\" (got " + shown(f) + ")");
   const json& v = member(file, "version", where);
+  if (failed()) return;
   // the integer 1: neither true nor 1.0 (Python's loaders refuse them too)
   if (!v.is_number_integer() || v != 1)
-    fail(where, "unsupported 'version' " + v.dump() + " (expected 1)");
+    fail(where, "unsupported 'version' " + shown(v) + " (expected 1)");
 }
 
 // the parameters of a model class, in its Python param_names order (what AngleLaws index)
@@ -120,7 +165,7 @@ inline std::vector<double> scalars(const json& p, const std::string& kind, const
 // the options object (absent: {}), its keys among `allowed`
 inline json options(const json& m, const std::set<std::string>& allowed, const std::string& where) {
   if (!m.contains("options")) return json::object();
-  const json& o = m.at("options");
+  const json& o = member(m, "options", where);
   check_keys(o, allowed, {}, where + ": options");
   return o;
 }
@@ -136,11 +181,11 @@ inline void oscillator_options(const json& o, HystereticOscillatorParams& h, con
   if (o.contains("max_substeps")) h.max_substeps = integer(o, "max_substeps", w);
   if (o.contains("lookahead")) h.lookahead = integer(o, "lookahead", w);
   if (!o.contains("input_interpolation")) return;
-  const json& v = o.at("input_interpolation");
+  const json& v = member(o, "input_interpolation", w);
   if (v == "hold") h.input_reconstruction = kInputHold;
   else if (v == "linear") h.input_reconstruction = kInputLinear;
   else if (v == "bandlimited") h.input_reconstruction = kInputBandlimited;
-  else fail(w, "key 'input_interpolation' must be \"linear\", \"hold\" or \"bandlimited\" (got " + v.dump() + ")");
+  else fail(w, "key 'input_interpolation' must be \"linear\", \"hold\" or \"bandlimited\" (got " + shown(v) + ")");
 }
 
 // the base parameters of `kind` from scalars v (its param_names order), into part's member
@@ -172,7 +217,8 @@ inline AngleLaw law_of(const json& v, const std::string& key, const std::string&
   if (v == "constant") return AngleLaw::constant;
   if (v == "linear") return AngleLaw::linear;
   if (v == "tanh") return AngleLaw::tanh;
-  fail(w, "law of '" + key + "' must be \"constant\", \"linear\" or \"tanh\" (got " + v.dump() + ")");
+  fail(w, "law of '" + key + "' must be \"constant\", \"linear\" or \"tanh\" (got " + shown(v) + ")");
+  return AngleLaw::constant;  // (without exceptions: never used, the check has failed)
 }
 
 // AngleDependent: base, laws, coefficients, angle_friction; options base_options
@@ -181,32 +227,42 @@ inline void angle_dependent_part(ModelPart& part, const json& m, const std::stri
   const json& p = member(m, "params", where);
   check_keys(p, {"base", "laws", "coefficients", "angle_friction"},
              {"base", "laws", "coefficients", "angle_friction"}, w);
-  const json& base = p.at("base");
-  if (!base.is_string()) fail(w, "key 'base' must be a model class name (got " + base.dump() + ")");
+  if (failed()) return;
+  const json& base = member(p, "base", w);
+  if (!base.is_string())
+    return fail(w, "key 'base' must be a model class name (got " + shown(base) + ")");
   part.base = base.get<std::string>();
   const auto names = param_names(part.base);
   if (names.empty() || part.base == "PlantModel" || part.base.find("Lag") != std::string::npos)
-    fail(w, "key 'base': the inverse of an AngleDependent model takes a Backlash, "
-            "BoucWenBacklash, BoucWen or HystereticOscillator base (got " + base.dump() + ")");
-  const json& laws = p.at("laws");
-  const json& coefs = p.at("coefficients");
+    return fail(w, "key 'base': the inverse of an AngleDependent model takes a Backlash, "
+                   "BoucWenBacklash, BoucWen or HystereticOscillator base (got " +
+                       shown(base) + ")");
+  const json& laws = member(p, "laws", w);
+  const json& coefs = member(p, "coefficients", w);
   check_keys(laws, set_of(names), {}, w + ": laws");
   check_keys(coefs, set_of(names), set_of(names), w + ": coefficients");
+  if (failed()) return;
   AngleLaws out;
   out.count = names.size();
   for (std::size_t i = 0; i < names.size(); ++i) {
-    out.law[i] = laws.contains(names[i]) ? law_of(laws.at(names[i]), names[i], w) : AngleLaw::constant;
+    out.law[i] = laws.contains(names[i]) ? law_of(member(laws, names[i], w), names[i], w)
+                                         : AngleLaw::constant;
     const auto c = numbers(coefs, names[i], w + ": coefficients");
+    if (failed()) return;
     const std::size_t want = out.law[i] == AngleLaw::constant ? 1 : 2;
     if (c.size() != want)
-      fail(w, "coefficients of '" + names[i] + "' must be " + std::to_string(want) + " number(s)");
+      return fail(w, "coefficients of '" + names[i] + "' must be " + std::to_string(want) +
+                         " number(s)");
     out.c0[i] = c[0];
     out.c1[i] = want == 2 ? c[1] : 0.0;
   }
   out.angle_friction = number(p, "angle_friction", w, 0.0);
   part.laws = out;
   const json o = options(m, {"base_options"}, where);
-  if (o.contains("base_options")) base_options(part, part.base, o.at("base_options"), where + ": options: base_options");
+  if (o.contains("base_options"))
+    base_options(part, part.base, member(o, "base_options", where),
+                 where + ": options: base_options");
+  if (failed()) return;
   std::vector<double> v(names.size());
   out.at_angle(0.0, v.data());
   assign_base(part, part.base, v);
@@ -221,11 +277,12 @@ inline void envelope(Envelope& e, const json& p, const std::string& side, const 
 
 // options.envelope_range: null (the tanh everywhere) or [lo, hi], both envelopes' tanh input range
 inline void envelope_range(GeneralizedPrandtlIshlinskiiParams& g, const json& o, const std::string& w) {
-  if (!o.contains("envelope_range") || o.at("envelope_range").is_null()) return;
+  if (!o.contains("envelope_range") || member(o, "envelope_range", w).is_null()) return;
   const std::vector<double> r = numbers(o, "envelope_range", w);
+  if (failed()) return;
   if (r.size() != 2 || !std::isfinite(r[0]) || !std::isfinite(r[1]) || !(r[0] < r[1]))
-    fail(w, "'envelope_range' must be null or [lo, hi] with finite lo < hi (got " +
-                o.at("envelope_range").dump() + ")");
+    return fail(w, "'envelope_range' must be null or [lo, hi] with finite lo < hi (got " +
+                       shown(member(o, "envelope_range", w)) + ")");
   for (Envelope* e : {&g.rising, &g.falling}) {
     e->lo = r[0];
     e->hi = r[1];
@@ -261,8 +318,9 @@ inline void polynomial_part(ModelPart& part, const json& m, const std::string& w
   part.polynomial.coefficients = numbers(p, "coefficients", w);
   const json o = options(m, {"odd"}, where);
   if (o.contains("odd")) {
-    if (!o.at("odd").is_boolean()) fail(where + ": options", "key 'odd' must be true or false");
-    part.polynomial.odd = o.at("odd").get<bool>();
+    const json& odd = member(o, "odd", where + ": options");
+    if (!odd.is_boolean()) return fail(where + ": options", "key 'odd' must be true or false");
+    part.polynomial.odd = odd.get<bool>();
   }
 }
 
@@ -307,7 +365,8 @@ inline void scalar_part(ModelPart& part, const json& m, const std::string& where
     else part.lag.frequency = v[0], part.lag.damping = v[1];
   } else {
     assign_base(part, part.kind, v);
-    base_options(part, part.kind, m.contains("options") ? m.at("options") : json::object(),
+    const json none = json::object();
+    base_options(part, part.kind, m.contains("options") ? member(m, "options", where) : none,
                  where + ": options");
   }
 }
@@ -320,8 +379,9 @@ inline ModelPart part_from_json(const json& m, const std::string& where) {
   check_format(m, "tendonsheath.model", where);
   const json& name = member(m, "model", where);
   ModelPart part;
-  part.kind = name.is_string() ? name.get<std::string>() : name.dump();
+  part.kind = name.is_string() ? name.get<std::string>() : shown(name);
   check_keys(m, kPlainKeys, {"params"}, where);
+  if (failed()) return part;
   if (part.kind == "PrandtlIshlinskii" || part.kind == "GeneralizedPrandtlIshlinskii")
     plays_part(part, m, where);
   else if (part.kind == "Polynomial") polynomial_part(part, m, where);
@@ -337,7 +397,7 @@ inline ModelPart part_from_json(const json& m, const std::string& where) {
                 "PrandtlIshlinskii, GeneralizedPrandtlIshlinskii, Polynomial, PlantModel, "
                 "HystereticOscillator, CurveAngleModel, AngleDependent, FirstOrderLag, "
                 "SecondOrderLag, a Chain of two and a Scaled model around them (got " +
-                    name.dump() + ")");
+                    shown(name) + ")");
   return part;
 }
 
@@ -353,11 +413,15 @@ inline ScaledMap scaled_map(const json& mp, const std::string& w) {
 // a plain model or a Chain of two
 inline std::vector<ModelPart> parts_from_json(const json& m, const std::string& where) {
   check_format(m, "tendonsheath.model", where);
+  if (failed()) return {};
   if (member(m, "model", where) != "Chain") return {part_from_json(m, where)};
   check_keys(m, {"format", "version", "model", "first", "second", "input_range"},
              {"first", "second"}, where);
-  return {part_from_json(m.at("first"), where + ": first"),
-          part_from_json(m.at("second"), where + ": second")};
+  if (failed()) return {};
+  std::vector<ModelPart> parts{part_from_json(member(m, "first", where), where + ": first")};
+  if (failed()) return {};  // (the first part's error, as a throw would have left it)
+  parts.push_back(part_from_json(member(m, "second", where), where + ": second"));
+  return parts;
 }
 
 }  // namespace detail
@@ -366,12 +430,15 @@ inline std::vector<ModelPart> parts_from_json(const json& m, const std::string& 
 /// Throws std::invalid_argument naming the key when it is malformed.
 inline std::optional<std::pair<double, double>> model_input_range(const json& m,
                                                                   const std::string& where) {
-  if (!m.is_object() || !m.contains("input_range") || m.at("input_range").is_null())
+  if (!m.is_object() || !m.contains("input_range") || m["input_range"].is_null())
     return std::nullopt;
-  const json& v = m.at("input_range");
+  const json& v = m["input_range"];  // (const operator[]: the key is there)
   if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() ||
-      !(v[0].get<double>() <= v[1].get<double>()))
-    detail::fail(where, "key 'input_range' must be [lo, hi] with lo <= hi (got " + v.dump() + ")");
+      !(v[0].get<double>() <= v[1].get<double>())) {
+    detail::fail(where,
+                 "key 'input_range' must be [lo, hi] with lo <= hi (got " + detail::shown(v) + ")");
+    return std::nullopt;
+  }
   return std::make_pair(v[0].get<double>(), v[1].get<double>());
 }
 
@@ -381,13 +448,18 @@ inline std::optional<std::pair<double, double>> model_input_range(const json& m,
 inline InverseModel inverse_model_from_json(const json& m, const std::string& where) {
   detail::check_format(m, "tendonsheath.model", where);
   InverseModel out;
+  if (detail::failed()) return out;
   if (detail::member(m, "model", where) == "Scaled") {
     detail::check_keys(m, {"format", "version", "model", "inner", "map", "input_range"},
                        {"inner", "map"}, where);
-    out.map = detail::scaled_map(m.at("map"), where + ": map");
-    const json& inner = m.at("inner");
-    if (inner.is_object() && inner.contains("model") && inner.at("model") == "Scaled")
+    if (detail::failed()) return out;
+    out.map = detail::scaled_map(detail::member(m, "map", where), where + ": map");
+    const json& inner = detail::member(m, "inner", where);
+    if (inner.is_object() && inner.contains("model") && inner["model"] == "Scaled") {
       detail::fail(where, "a Scaled model inside a Scaled model is not supported");
+      return out;
+    }
+    if (detail::failed()) return out;
     out.parts = detail::parts_from_json(inner, where + ": inner");
     return out;
   }
@@ -406,18 +478,25 @@ struct LoadedModel {
 /// optional input_range). Throws std::invalid_argument, message starting with `where`, naming a
 /// missing, unknown, mistyped or out-of-range key.
 inline LoadedModel loaded_model_from_json(const json& m, const std::string& where) {
+  LoadedModel out;
   detail::check_format(m, "tendonsheath.model", where);
+  if (detail::failed()) return out;
   const json& name = detail::member(m, "model", where);
-  if (name != "Loaded") detail::fail(where, "key 'model' must be \"Loaded\" (got " + name.dump() + ")");
+  if (name != "Loaded")
+    return detail::fail(where, "key 'model' must be \"Loaded\" (got " + detail::shown(name) + ")"),
+           out;
   detail::check_keys(m, {"format", "version", "model", "base", "terms", "input_range"},
                      {"base", "terms"}, where);
+  if (detail::failed()) return out;
   model_input_range(m, where);  // a malformed one is an error, though the inverse takes its own
-  LoadedModel out;
-  out.base = inverse_model_from_json(m.at("base"), where + ": base");
+  if (detail::failed()) return out;
+  out.base = inverse_model_from_json(detail::member(m, "base", where), where + ": base");
+  if (detail::failed()) return out;
   const std::string w = where + ": terms";
-  const json& t = m.at("terms");
+  const json& t = detail::member(m, "terms", where);
   const std::set<std::string> keys{"gain", "slack", "slack_load", "friction"};
   detail::check_keys(t, keys, keys, w);
+  if (detail::failed()) return out;
   out.terms.gain = detail::number(t, "gain", w);
   out.terms.slack = detail::number(t, "slack", w);
   out.terms.slack_load = detail::number(t, "slack_load", w);
@@ -436,26 +515,36 @@ struct CoupledModel {
 /// joint; coupling: J rows of J numbers). Throws std::invalid_argument, message starting with
 /// `where`, naming a missing, unknown or mistyped key.
 inline CoupledModel coupled_model_from_json(const json& m, const std::string& where) {
-  detail::check_format(m, "tendonsheath.coupled_model", where);
-  detail::check_keys(m, {"format", "version", "models", "coupling"}, {"models", "coupling"}, where);
-  const json& models = m.at("models");
-  if (!models.is_array() || models.empty())
-    detail::fail(where, "key 'models' must be a non-empty array of model objects");
   CoupledModel out;
-  for (std::size_t i = 0; i < models.size(); ++i)
+  detail::check_format(m, "tendonsheath.coupled_model", where);
+  if (detail::failed()) return out;
+  detail::check_keys(m, {"format", "version", "models", "coupling"}, {"models", "coupling"}, where);
+  if (detail::failed()) return out;
+  const json& models = detail::member(m, "models", where);
+  if (!models.is_array() || models.empty())
+    return detail::fail(where, "key 'models' must be a non-empty array of model objects"), out;
+  for (std::size_t i = 0; i < models.size(); ++i) {
     out.joints.push_back(
         inverse_model_from_json(models[i], where + ": models[" + std::to_string(i) + "]"));
+    if (detail::failed()) return out;
+  }
   const std::size_t n = models.size();
-  const json& c = m.at("coupling");
+  const json& c = detail::member(m, "coupling", where);
   const std::string shape = std::to_string(n) + " rows of " + std::to_string(n) + " numbers";
   if (!c.is_array() || c.size() != n)
-    detail::fail(where, "key 'coupling' must be " + shape + " (got " + c.dump() + ")");
+    return detail::fail(where, "key 'coupling' must be " + shape + " (got " + detail::shown(c) + ")"),
+           out;
   for (const json& row : c) {
-    if (!row.is_array() || row.size() != n)
-      detail::fail(where, "key 'coupling' must be " + shape + " (got the row " + row.dump() + ")");
+    if (!row.is_array() || row.size() != n) {
+      detail::fail(where,
+                   "key 'coupling' must be " + shape + " (got the row " + detail::shown(row) + ")");
+      return out;
+    }
     for (const json& v : row) {
       if (!v.is_number())
-        detail::fail(where, "key 'coupling' must hold only numbers (got " + v.dump() + ")");
+        return detail::fail(where,
+                            "key 'coupling' must hold only numbers (got " + detail::shown(v) + ")"),
+               out;
       out.coupling.push_back(v.get<double>());
     }
   }

@@ -14,11 +14,13 @@
 // angles. LoadedCompensator refuses these files, pointing here.
 //
 // OPTIONAL and OUTSIDE the real-time path, like io/json.hpp (needs nlohmann/json): load once at
-// start-up. Strict like Python's loader: a missing, unknown, null or mistyped key is a
-// std::invalid_argument naming the file and the key.
+// start-up. Strict like Python's loader: a missing, unknown, null or mistyped key is an error
+// naming the file and the key: a Result from the try_ loaders (with or without C++ exceptions),
+// a std::invalid_argument from the others.
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -47,10 +49,12 @@ inline const std::set<std::string> kCoupledKeys{
 inline void check_compensator(const json& f, const char* kind, const std::set<std::string>& allowed,
                               const std::set<std::string>& required, const std::string& where) {
   check_format(f, "tendonsheath.compensator", where);
+  if (failed()) return;
   const json& k = member(f, "compensator", where);
   if (k != kind)
-    fail(where, std::string("key 'compensator' must be \"") + kind + "\" (got " + k.dump() +
-                    "; io::compensator_from_json loads the single-input compensators)");
+    return fail(where, std::string("key 'compensator' must be \"") + kind + "\" (got " +
+                           shown(k) + "; io::compensator_from_json loads the single-input "
+                           "compensators)");
   check_keys(f, allowed, required, where);
 }
 
@@ -61,13 +65,66 @@ inline InverseSettings joint_settings(const json& f, const InverseSettings& shar
   InverseSettings s = shared;
   if (f.contains("input_range")) return s;
   if (const auto r = model_input_range(model, where)) {
-    if (!(r->first < r->second)) fail(where, "key 'input_range' needs lo < hi for the inverse");
+    if (!(r->first < r->second))
+      return fail(where, "key 'input_range' needs lo < hi for the inverse"), s;
     s.range = InputRange::identified(r->first, r->second, number(f, "range_margin", where));
   }
   return s;
 }
 
+// the LoadCompensated of a file (what load_compensated_from_json returns)
+inline std::optional<LoadCompensatedInverse> load_compensated(const json& f,
+                                                              const std::string& where) {
+  check_compensator(f, "LoadCompensated", kLoadCompensatedKeys, kLoadCompensatedKeys, where);
+  if (failed()) return std::nullopt;
+  const LoadedModel m = loaded_model_from_json(member(f, "model", where), where + ": model");
+  if (failed()) return std::nullopt;
+  LoadTerms terms = m.terms;
+  terms.switch_travel = number(f, "switch", where);
+  if (failed()) return std::nullopt;
+  require_positive(terms.switch_travel, where.c_str(), "switch");  // Python's rule and message
+  if (failed()) return std::nullopt;
+  const InverseSettings s = inverse_settings(f, where);  // input_range is the file's (required)
+  if (failed()) return std::nullopt;
+  const ModelInverse inverse = make_model_inverse(m.base, s, where);
+  if (failed()) return std::nullopt;
+  return built<LoadCompensatedInverse>("", inverse, terms);
+}
+
+// the CoupledFeedforward of a file (what coupled_feedforward_from_json returns)
+inline std::optional<CoupledFeedforward> coupled_feedforward(const json& f,
+                                                             const std::string& where) {
+  std::set<std::string> required = kCoupledKeys;
+  required.erase("input_range");
+  check_compensator(f, "CoupledFeedforward", kCoupledKeys, required, where);
+  if (failed()) return std::nullopt;
+  const std::string wm = where + ": model";
+  const json& model = member(f, "model", where);
+  const CoupledModel m = coupled_model_from_json(model, wm);
+  if (failed()) return std::nullopt;
+  const InverseSettings shared = inverse_settings(f, where);  // the coupled model has no range
+  if (failed()) return std::nullopt;
+  std::vector<ModelInverse> joints;
+  for (std::size_t i = 0; i < m.joints.size(); ++i) {
+    const std::string wi = wm + ": models[" + std::to_string(i) + "]";
+    const InverseSettings s = joint_settings(f, shared, member(model, "models", wm)[i], wi);
+    if (failed()) return std::nullopt;
+    joints.push_back(make_model_inverse(m.joints[i], s, where + ": joint " + std::to_string(i)));
+    if (failed()) return std::nullopt;
+  }
+  // a coupling with a diagonal, or I - C singular, is named as the file's key
+  return built<CoupledFeedforward>(wm + ": key 'coupling'", std::move(joints), m.coupling);
+}
+
 }  // namespace detail
+
+/// A LoadCompensated from the parsed contents of its file, or the message, starting with
+/// `where`, naming the bad key (with or without exceptions); see load_compensated_from_json.
+inline Result<LoadCompensatedInverse> try_load_compensated_from_json(
+    const json& f, const std::string& where = "compensator") {
+  return tendonsheath::detail::result_of<LoadCompensatedInverse>(
+      [&] { return detail::load_compensated(f, where); });
+}
 
 /// A LoadCompensated from the parsed contents of its file: model (a Loaded model), switch (the
 /// play's switch travel, > 0) and the base inverse's settings (smoothing, limits, input_range,
@@ -75,14 +132,15 @@ inline InverseSettings joint_settings(const json& f, const InverseSettings& shar
 /// message starting with `where`, naming the bad key.
 inline LoadCompensatedInverse load_compensated_from_json(const json& f,
                                                          const std::string& where = "compensator") {
-  detail::check_compensator(f, "LoadCompensated", detail::kLoadCompensatedKeys,
-                            detail::kLoadCompensatedKeys, where);
-  const LoadedModel m = loaded_model_from_json(f.at("model"), where + ": model");
-  LoadTerms terms = m.terms;
-  terms.switch_travel = detail::number(f, "switch", where);
-  require_positive(terms.switch_travel, where.c_str(), "switch");  // Python's rule and message
-  const InverseSettings s = inverse_settings(f, where);  // input_range is the file's (required)
-  return LoadCompensatedInverse(make_model_inverse(m.base, s, where), terms);
+  return try_load_compensated_from_json(f, where).value();
+}
+
+/// A CoupledFeedforward from the parsed contents of its file, or the message, starting with
+/// `where`, naming the bad key (with or without exceptions); see coupled_feedforward_from_json.
+inline Result<CoupledFeedforward> try_coupled_feedforward_from_json(
+    const json& f, const std::string& where = "compensator") {
+  return tendonsheath::detail::result_of<CoupledFeedforward>(
+      [&] { return detail::coupled_feedforward(f, where); });
 }
 
 /// A CoupledFeedforward from the parsed contents of its file: model (a Coupled model document)
@@ -91,34 +149,39 @@ inline LoadCompensatedInverse load_compensated_from_json(const json& f,
 /// std::invalid_argument, message starting with `where`, naming the bad key.
 inline CoupledFeedforward coupled_feedforward_from_json(const json& f,
                                                         const std::string& where = "compensator") {
-  std::set<std::string> required = detail::kCoupledKeys;
-  required.erase("input_range");
-  detail::check_compensator(f, "CoupledFeedforward", detail::kCoupledKeys, required, where);
-  const std::string wm = where + ": model";
-  const CoupledModel m = coupled_model_from_json(f.at("model"), wm);
-  const InverseSettings shared = inverse_settings(f, where);  // the coupled model has no range
-  std::vector<ModelInverse> joints;
-  for (std::size_t i = 0; i < m.joints.size(); ++i) {
-    const std::string wi = wm + ": models[" + std::to_string(i) + "]";
-    const json& model = f.at("model").at("models")[i];
-    const InverseSettings s = detail::joint_settings(f, shared, model, wi);
-    joints.push_back(make_model_inverse(m.joints[i], s, where + ": joint " + std::to_string(i)));
-  }
-  try {
-    return CoupledFeedforward(std::move(joints), m.coupling);
-  } catch (const std::invalid_argument& e) {  // a coupling with a diagonal, or I - C singular
-    detail::fail(wm + ": key 'coupling'", e.what());
-  }
+  return try_coupled_feedforward_from_json(f, where).value();
+}
+
+/// A LoadCompensated from a file written by Python's `LoadCompensated.to_json(path)`, or the
+/// message naming the file and the bad key (with or without exceptions).
+inline Result<LoadCompensatedInverse> try_load_load_compensated_json(const std::string& path) {
+  return tendonsheath::detail::result_of<LoadCompensatedInverse>(
+      [&]() -> std::optional<LoadCompensatedInverse> {
+        const std::optional<json> file = detail::json_file(path);
+        if (detail::failed() || !file) return std::nullopt;
+        return detail::load_compensated(*file, path);
+      });
 }
 
 /// A LoadCompensated from a file written by Python's `LoadCompensated.to_json(path)`.
 inline LoadCompensatedInverse load_load_compensated_json(const std::string& path) {
-  return load_compensated_from_json(read_json_file(path), path);
+  return try_load_load_compensated_json(path).value();
+}
+
+/// A CoupledFeedforward from a file written by Python's `CoupledFeedforward.to_json(path)`, or
+/// the message naming the file and the bad key (with or without exceptions).
+inline Result<CoupledFeedforward> try_load_coupled_feedforward_json(const std::string& path) {
+  return tendonsheath::detail::result_of<CoupledFeedforward>(
+      [&]() -> std::optional<CoupledFeedforward> {
+        const std::optional<json> file = detail::json_file(path);
+        if (detail::failed() || !file) return std::nullopt;
+        return detail::coupled_feedforward(*file, path);
+      });
 }
 
 /// A CoupledFeedforward from a file written by Python's `CoupledFeedforward.to_json(path)`.
 inline CoupledFeedforward load_coupled_feedforward_json(const std::string& path) {
-  return coupled_feedforward_from_json(read_json_file(path), path);
+  return try_load_coupled_feedforward_json(path).value();
 }
 
 }  // namespace tendonsheath::io

@@ -1,5 +1,6 @@
 # cmake -DWITH=<built with exceptions> -DWITHOUT=<built without> -P compare.cmake: both must
-# exit 0 and print the same lines (make() results and step hashes, make_cases.cpp).
+# exit 0 and print the same lines (make() results and step hashes, make_cases.cpp; the JSON
+# loaders' messages and step hashes, json_cases.cpp).
 foreach(which WITH WITHOUT)
   execute_process(COMMAND ${${which}} OUTPUT_VARIABLE out_${which} ERROR_VARIABLE err_${which}
                   RESULT_VARIABLE rc_${which})
