@@ -224,6 +224,11 @@ class WithEstimate:
         return self.model.invert(t, y_d, load)
 
 
+#: the extra bases' identification options: the hysteretic oscillator is force-driven, its
+#: staged path refuses a position input, so its plain search is used
+OPTIONS = {"HystereticOscillator": {"strategy": "search"}}
+
+
 class ForwardOnly:
     """An extra base's model (``--bases``): scored forward only, its inverse NaN."""
 
@@ -250,6 +255,7 @@ def extra_bases(recs, loads, bases) -> tuple[dict, dict]:
             (base, cls, {}),
         ):
             start = time.perf_counter()
+            kw = {**kw, **OPTIONS.get(base, {})}
             fit = ts.identify(spec, recordings=recs, seed=0, progress=False, **kw)
             seconds[name] = time.perf_counter() - start
             out[name] = ForwardOnly(fit.model)
