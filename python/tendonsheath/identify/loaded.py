@@ -28,10 +28,13 @@ from typing import Any
 import numpy as np
 from scipy.optimize import least_squares
 
-from ..models import Chain
+from ..models import BoucWen, Chain, HystereticOscillator
 from ..models.loaded import Loaded, play
 from .fit import Fit, fit_quality
 from .loaded_problem import SEARCHED, Problem
+
+#: base classes with no output offset that identify does not normalise: fitted on centred data
+_NO_OFFSET = (BoucWen, HystereticOscillator)
 
 #: the play half-widths of the first regression's hysteresis regressors (share of the span)
 _STRETCH_PLAYS = (0.0, 0.02, 0.05, 0.1, 0.2)
@@ -50,6 +53,25 @@ def load_stretch(recs, loads, warmup: int) -> float:
         target.append(r.y[k:])
     coef = np.linalg.lstsq(np.vstack(rows), np.concatenate(target), rcond=None)[0]
     return float(coef[-1])
+
+
+def _base_alone(spec, unloaded: list, options: dict):
+    """Stage 2: the base identified on the data without the stretch. A class that ``identify``
+    does not normalise and that has no output offset of its own (BoucWen, the hysteretic
+    oscillator) is fitted on centred data and put in a Scaled map holding the means (its
+    output offset then solved with the rest); given bounds or an initial model, raw units."""
+    from ..models import Scaled
+    from .core import identify
+
+    raw = any(options.get(k) is not None for k in ("bounds", "initial", "depends_on_angle"))
+    centre = spec in _NO_OFFSET and not raw and options.get("normalize") is not False
+    xc = float(np.mean(np.concatenate([x for _, x, _ in unloaded]))) if centre else 0.0
+    yc = float(np.mean(np.concatenate([y for _, _, y in unloaded]))) if centre else 0.0
+    recs = [(t, x - xc, y - yc) for t, x, y in unloaded]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        base = identify(spec, recordings=recs, **options).model
+    return Scaled(base, input_offset=xc, output_offset=yc) if centre else base
 
 
 def _starts(problem: Problem, x_span: float, scale: float, keep: int) -> list[np.ndarray]:
@@ -166,7 +188,6 @@ def identify_loaded(
     ValueError
         A load of another length than its recording, not finite, or an unknown fixed term.
     """
-    from .core import identify
     from .data import make_recordings
 
     start = time.perf_counter()
@@ -188,9 +209,7 @@ def identify_loaded(
     spec = template.base if isinstance(template.base, Chain) else base_cls  # a Chain: itself
     stretch = float(fixed["gain"]) if "gain" in fixed else load_stretch(recs, arrays, warmup)
     unloaded = [(r.t, r.x, r.y - stretch * a) for r, a in zip(recs, arrays, strict=True)]
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        base0 = identify(spec, recordings=unloaded, **options).model
+    base0 = _base_alone(spec, unloaded, options)
     model, problem, best = _staged(base0, recs, arrays, warmup, fixed, max_nfev)
     lo = min(float(r.x.min()) for r in recs)
     hi = max(float(r.x.max()) for r in recs)
