@@ -82,3 +82,37 @@ def test_the_load_term_improves_every_base_on_held_out_loads(runs, name):
         assert base.params["weights"][0] > 0.0
         ts.compensate.LoadCompensated(m)  # the inverse exists
     assert _fit(runs, name, loaded=True).model == m  # deterministic
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_weights_offset_and_gain_solved_exactly_for_a_weighted_base(seed):
+    """On a Loaded(Scaled(PrandtlIshlinskii)) of drawn non-negative weights (one of them 0),
+    the linear stage recovers the weights, the output offset and the stretch gain to 1e-6
+    (the regressors are exact: the output is linear in them), whatever weights it starts from."""
+    from importlib import import_module
+
+    problem_module = import_module("tendonsheath.identify.loaded_problem")
+    make_recordings = import_module("tendonsheath.identify.data").make_recordings
+    rng = np.random.default_rng(seed)
+    weights = rng.uniform(0.1, 1.0, 5)
+    weights[rng.integers(1, 5)] = 0.0
+    pi = ts.models.PrandtlIshlinskii(np.linspace(0.0, 0.4, 5), weights)
+    truth = ts.models.Loaded(
+        ts.models.Scaled(pi, output_offset=rng.uniform(-1, 1), output_gain=-2.0),
+        gain=rng.uniform(-3, 3),
+        slack=0.05,
+        slack_load=0.5,
+        friction=0.1,
+    )
+    t = np.arange(400) * 0.01
+    x = np.sin(2 * np.pi * 0.7 * t) + 0.3 * np.sin(2 * np.pi * 2.1 * t)
+    load = rng.uniform(-1, 1) + 0.5 * np.sin(2 * np.pi * 0.3 * t)
+    y = np.asarray(truth.simulate(t, x, load=load))
+    start = truth.base.with_params(**{"inner.weights": [1.0] * 5, "output_offset": 0.0})
+    recs = make_recordings(recordings=[(t, x, y)])
+    problem = problem_module.Problem(start, recs, [load], 0, {}, joint=False)
+    model = problem.model(problem.start(truth.terms))
+    # the normal equations square the condition: 1e-8 measured, 1e-6 leaves a margin
+    np.testing.assert_allclose(model.base.params["inner.weights"], weights, atol=1e-6)
+    assert model.base.params["output_offset"] == pytest.approx(truth.base.params["output_offset"])
+    assert model.terms["gain"] == pytest.approx(truth.terms["gain"])
