@@ -125,7 +125,7 @@ class LinearPart:
         if self.weighted:
             self.size = len(base.params[f"{prefix(base)}weights"])
 
-    def outputs(self, base, run) -> list[np.ndarray] | None:
+    def outputs(self, base, run) -> list[np.ndarray]:
         """The base's output(s) over one recording's played input: one array, or for a
         weighted base the output at unit weights and its change per unit weight."""
         if not self.weighted:
@@ -168,15 +168,14 @@ class LinearPart:
 
     def apply(self, base: HysteresisModel, coef: np.ndarray) -> tuple[HysteresisModel, float]:
         """The base with the solved weights and offset, and the load's gain."""
-        coef = list(coef)
+        rest = [float(c) for c in coef]
         changes: dict = {}
         if self.weighted:
-            weights = [max(float(c), 0.0) for c in coef[: self.size]]
-            changes[f"{prefix(base)}weights"] = weights
-            coef = coef[self.size :]
+            changes[f"{prefix(base)}weights"] = [max(c, 0.0) for c in rest[: self.size]]
+            rest = rest[self.size :]
         if self.offset:
-            changes["output_offset"] = float(base.params["output_offset"]) + float(coef.pop(0))
-        gain = float(coef.pop(0)) if self.fixed_gain is None else float(self.fixed_gain)
+            changes["output_offset"] = float(base.params["output_offset"]) + rest.pop(0)
+        gain = rest.pop(0) if self.fixed_gain is None else float(self.fixed_gain)
         return (base.with_params(**changes) if changes else base), gain
 
 
@@ -187,8 +186,8 @@ class Problem:
         self.base = as_weighted(base)
         self.recs, self.loads = recs, loads
         self.fixed = fixed
-        self.base_names, self.base_values = base_vector(self.base) if joint else ([], [])
-        self.base_values = np.asarray(self.base_values, dtype=float)
+        names, values = base_vector(self.base) if joint else ([], np.zeros(0))
+        self.base_names, self.base_values = names, np.asarray(values, dtype=float)
         self.free = [k for k in SEARCHED if k not in fixed]
         self.firsts = [int(warmup) + r.skip for r in recs]  # the first sample counted
         self.y = np.concatenate([r.y[k:] for r, k in zip(recs, self.firsts, strict=True)])
