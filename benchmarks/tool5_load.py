@@ -59,6 +59,10 @@ Inputs (``--inputs``): ``motor`` (raw), ``motor0`` (the motor with its zero take
 spindle: x - mean(x + spindle) + the training runs' mean of it; reads the spindle, never the
 jaw) and ``spindle`` (the tool's input spindle, negated: the input after the gearbox).
 
+Other bases (``--bases BoucWen PrandtlIshlinskii ...``, default none): ``Loaded(<base>)`` and
+``<base>`` are added to the candidates, scored forward only (their inverse figures are NaN);
+the chosen model stays ``Loaded(Backlash)``; written to tool5_load_bases.json instead.
+
 Item 5 (rate and load together): the chosen model's per-run ratio to the affine map, as a
 table of frequency by load, for the main input; and another split, trained at one rate only
 (0.1 Hz at 10, 50 and 100 %), its median ratio per frequency.
@@ -226,9 +230,48 @@ class WithEstimate:
         return self.model.invert(t, y_d, load)
 
 
-def fit_candidates(logs, xs, train=TRAIN, only=None) -> tuple[dict, dict]:
-    """The candidates (``only``: those named) fitted on the training runs, and each fit's
-    seconds."""
+#: the extra bases' identification options: the hysteretic oscillator is force-driven, its
+#: staged path refuses a position input, so its plain search is used
+OPTIONS = {"HystereticOscillator": {"strategy": "search"}}
+
+
+class ForwardOnly:
+    """An extra base's model (``--bases``): scored forward only, its inverse NaN."""
+
+    def __init__(self, model):
+        self.model = model
+
+    def predict(self, t, x, load):
+        if isinstance(self.model, ts.models.Loaded):
+            return np.asarray(self.model.simulate(t, x, load=load))
+        return np.asarray(self.model.simulate(t, x))
+
+    def invert(self, t, y_d, load):
+        return np.full_like(np.asarray(y_d, dtype=float), np.nan)
+
+
+def extra_bases(recs, loads, bases) -> tuple[dict, dict]:
+    """``Loaded(<base>)`` and ``<base>`` for every extra base named, fitted on the training
+    runs (forward only), and each fit's seconds."""
+    out, seconds = {}, {}
+    for base in bases:
+        cls = getattr(ts.models, base)
+        for name, spec, kw in (
+            (f"Loaded({base})", ts.models.Loaded(cls), {"load": loads}),
+            (base, cls, {}),
+        ):
+            start = time.perf_counter()
+            kw = {**kw, **OPTIONS.get(base, {})}
+            fit = ts.identify(spec, recordings=recs, seed=0, progress=False, **kw)
+            seconds[name] = time.perf_counter() - start
+            out[name] = ForwardOnly(fit.model)
+            print(f"  {name}: train rmse {fit.rmse:.4g} rad ({seconds[name]:.1f} s): {fit.model!r}")
+    return out, seconds
+
+
+def fit_candidates(logs, xs, train=TRAIN, only=None, bases=()) -> tuple[dict, dict]:
+    """The candidates (``only``: those named; ``bases``: extra bases, forward only) fitted on
+    the training runs, and each fit's seconds."""
     tr = [logs[k] for k in train]
     txs = [xs[k] for k in train]
     recs = [(lg.t, x, lg.y) for lg, x in zip(tr, txs, strict=True)]
@@ -254,6 +297,10 @@ def fit_candidates(logs, xs, train=TRAIN, only=None) -> tuple[dict, dict]:
         seconds[name] = time.perf_counter() - start
         out[name] = Identified(fit.model)
         out[name].calibrate(list(zip(tr, txs, strict=True)))
+    if bases and only is None:
+        extra, extra_seconds = extra_bases(recs, loads, [b for b in bases if b != "Backlash"])
+        out.update(extra)
+        seconds.update(extra_seconds)
     if only is None:
         out[ESTIMATED] = WithEstimate(out[CHOSEN])
         print(
@@ -397,6 +444,8 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--data", type=Path, default=DEFAULT)
     ap.add_argument("--inputs", nargs="+", choices=INPUTS, default=list(INPUTS))
+    ap.add_argument("--bases", nargs="*", default=[], help="extra Loaded bases, forward only")
+    ap.add_argument("--no-one-rate", action="store_true", help="skip item 5's one-rate split")
     args = ap.parse_args()
     if not all((args.data / f"{k}.csv").is_file() for k in TRAIN):
         print(f"no tool-5 data in {args.data}: benchmarks/results/tool5_load.json kept")
@@ -407,7 +456,7 @@ def main() -> int:
     for kind in args.inputs:
         print(f"\n-- input {kind}: fitting on {', '.join(TRAIN)}")
         xs = inputs_of(logs, kind)
-        models, seconds = fit_candidates(logs, xs)
+        models, seconds = fit_candidates(logs, xs, bases=args.bases)
         rows = score(logs, xs, models)
         summ = summary(rows, list(models))
         print_summary(kind, summ)
@@ -417,7 +466,7 @@ def main() -> int:
             "models": {
                 k: (m.model.to_dict() if isinstance(m, Identified) else [float(c) for c in m.coef])
                 for k, m in models.items()
-                if not isinstance(m, WithEstimate)
+                if not isinstance(m, WithEstimate | ForwardOnly)
             },
             "inverse_settings": {
                 k: {"share": m.share, "switch": m.switch}
@@ -429,7 +478,7 @@ def main() -> int:
             "grid_forward_abs": grid(rows, CHOSEN, "forward_abs"),
             "grid_inverse_zero_free": grid(rows, CHOSEN, "inverse_zero_free"),
         }
-        if kind == MAIN_INPUT:
+        if kind == MAIN_INPUT and not args.no_one_rate:
             results[kind]["one_rate"] = one_rate_split(logs, xs)
             for fig in ("forward_zero_free", "forward_abs", "inverse_zero_free"):
                 print_grid(
@@ -445,7 +494,7 @@ def main() -> int:
         f"\ntarget (median <= 1/4 of the affine map's) with {CHOSEN}, input {MAIN_INPUT}: {target}"
     )
     path = write_results(
-        "tool5_load",
+        "tool5_load_bases" if args.bases else "tool5_load",
         {
             "data": "davinci_tool5 (50 runs); train: " + ", ".join(TRAIN),
             "chosen": CHOSEN,

@@ -205,9 +205,11 @@ def identify(
     A measured load (``load=``: per-sample array of t, x, y, or one array per recording;
     recordings that are :class:`~tendonsheath.io.Log` objects bring their own ``Log.load``)
     is taken by a :class:`~tendonsheath.models.Loaded` model, e.g.
-    ``identify(Loaded(BoucWenBacklash), recordings=logs)``: the base is identified alone,
-    then the base and the load terms jointly (see :mod:`tendonsheath.identify.loaded`;
-    ``fixed`` may hold load terms; the other settings go to the base's identification).
+    ``identify(Loaded(BoucWenBacklash), recordings=logs)``, staged: the tendon's stretch by a
+    linear regression, the base alone on the data without it, the load's play terms with the
+    base held, then everything jointly; a (generalized) Prandtl-Ishlinskii base's weights are
+    kept >= 0 (see :mod:`tendonsheath.identify.loaded`; ``fixed`` may hold load terms; the
+    other settings go to the base's identification).
 
     Uncertainty and identifiability (:mod:`tendonsheath.identify.diagnostics`): every Fit
     carries ``standard_errors`` (``standard_errors="linearised"``: from the Jacobian at the

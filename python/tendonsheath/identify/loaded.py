@@ -1,12 +1,18 @@
-"""Identifying a :class:`~tendonsheath.models.Loaded` model: the base and the load terms jointly.
+"""Identifying a :class:`~tendonsheath.models.Loaded` model: the base and the load terms, staged.
 
-1. The base is identified alone (``identify`` of the base class on the same recordings, with
-   the caller's search settings) to give a starting point.
-2. Simulation-error least squares over the base's parameters and the play's three terms
-   (slack, slack_load on a log scale, friction), from a few starts of slack_load spread over
-   the measured loads; the compliance ``gain`` is linear in the output and solved by least
-   squares for every candidate (separable). ``fixed`` holds load terms (e.g.
-   ``{"slack": 0, "friction": 0}``: the additive offset alone).
+1. The tendon's stretch: the gain g of the load in a linear regression of the output on the
+   load, an offset and a few plays of the input (:func:`load_stretch`).
+2. The base alone (``identify`` of the base class, with the caller's search settings) on the
+   recordings with the stretch taken off (y - g load).
+3. The play's terms (slack, slack_load on a log scale, friction) with the base held: least
+   squares from the best two of a small grid of starts.
+4. Everything jointly from there (kept where it lowers the cost).
+
+In every stage the parts linear in the output are solved by least squares for each candidate
+(separable): the stretch ``gain``, a Scaled base's output offset and a (generalized)
+Prandtl-Ishlinskii base's weights, those kept >= 0 so that the fitted operator stays
+invertible (see :mod:`tendonsheath.identify.loaded_problem`). ``fixed`` holds load terms (e.g.
+``{"slack": 0, "friction": 0}``: the additive offset alone).
 
 The cost counts every sample after ``warmup`` of every recording; the play starts in the
 middle of its band at each recording's first sample.
@@ -22,134 +28,89 @@ from typing import Any
 import numpy as np
 from scipy.optimize import least_squares
 
-from ..models import Chain, HysteresisModel
-from ..models.loaded import Loaded, play, play_radius
+from ..models import BoucWen, Chain, HystereticOscillator
+from ..models.loaded import Loaded, play
 from .fit import Fit, fit_quality
+from .loaded_problem import SEARCHED, Problem
 
-#: the play's terms searched by least squares (gain is solved in closed form)
-_SEARCHED = ("slack", "slack_load", "friction")
+#: base classes with no output offset that identify does not normalise: fitted on centred data
+_NO_OFFSET = (BoucWen, HystereticOscillator)
 
-
-def _base_vector(base: HysteresisModel) -> tuple[list[str], np.ndarray]:
-    """The base's float parameters that it accepts changed (names, values; a list parameter
-    item by item as ``name[i]``): what the refinement moves (an integer exponent or a
-    discrete setting stays as identified)."""
-    names, values = [], []
-    for k, v in base.params.items():
-        items = list(enumerate(v)) if isinstance(v, list) else [(None, v)]
-        for i, vi in items:
-            if not isinstance(vi, float) or not np.isfinite(vi):
-                continue
-            name = k if i is None else f"{k}[{i}]"
-            try:
-                _with_values(base, [name], [vi * (1.0 + 1e-6) + 1e-9])
-            except (ValueError, TypeError):
-                continue
-            names.append(name)
-            values.append(vi)
-    return names, np.asarray(values, dtype=float)
+#: the play half-widths of the first regression's hysteresis regressors (share of the span)
+_STRETCH_PLAYS = (0.0, 0.02, 0.05, 0.1, 0.2)
 
 
-def _with_values(base: HysteresisModel, names: list[str], values) -> HysteresisModel:
-    """``base`` with the named parameters (``name`` or ``name[i]``) set to ``values``."""
-    if not names:
-        return base
-    params = base.params
-    changes: dict = {}
-    for name, value in zip(names, values, strict=True):
-        if name.endswith("]"):
-            key, index = name[:-1].split("[")
-            changes.setdefault(key, list(params[key]))[int(index)] = float(value)
-        else:
-            changes[name] = float(value)
-    return base.with_params(**changes)
+def load_stretch(recs, loads, warmup: int) -> float:
+    """Stage 1: the stretch gain g of y ~ sum_j c_j play_{r_j}(x) + b + g load, by linear least
+    squares over every recording (a few plays of fixed half-widths stand in for any base's
+    loop, so that the loop's width is not read as a load effect)."""
+    span = float(np.ptp(np.concatenate([r.x for r in recs]))) or 1.0
+    rows, target = [], []
+    for r, lo in zip(recs, loads, strict=True):
+        k = int(warmup) + r.skip
+        cols = [play(r.x, f * span)[k:] for f in _STRETCH_PLAYS]
+        rows.append(np.column_stack([*cols, np.ones(r.x.size - k), lo[k:]]))
+        target.append(r.y[k:])
+    coef = np.linalg.lstsq(np.vstack(rows), np.concatenate(target), rcond=None)[0]
+    return float(coef[-1])
 
 
-class _Problem:
-    """The joint residual: base parameters and play terms in, simulation errors out."""
+def _base_alone(spec, unloaded: list, options: dict):
+    """Stage 2: the base identified on the data without the stretch. A class that ``identify``
+    does not normalise and that has no output offset of its own (BoucWen, the hysteretic
+    oscillator) is fitted on centred data and put in a Scaled map holding the means (its
+    output offset then solved with the rest); given bounds or an initial model, raw units."""
+    from ..models import Scaled
+    from .core import identify
 
-    def __init__(self, base, recs, loads, warmup: int, fixed: dict[str, float]):
-        self.base = base
-        self.recs = recs
-        self.loads = loads
-        self.warmup = int(warmup)
-        self.fixed = fixed
-        self.base_names, self.base_values = _base_vector(base)
-        self.free = [k for k in _SEARCHED if k not in fixed]
-        self.firsts = [self.warmup + r.skip for r in recs]  # the first sample counted
-        self.y = np.concatenate([r.y[k:] for r, k in zip(recs, self.firsts, strict=True)])
-        self.load_all = np.concatenate([lo[k:] for lo, k in zip(loads, self.firsts, strict=True)])
-
-    def terms(self, p: np.ndarray) -> dict[str, float]:
-        out = dict(self.fixed)
-        for k, v in zip(self.free, p[len(self.base_names) :], strict=True):
-            out[k] = float(np.exp(v)) if k == "slack_load" else float(abs(v))
-        out.setdefault("slack", 0.0)
-        out.setdefault("slack_load", 1.0)
-        out.setdefault("friction", 0.0)
-        return out
-
-    def base_output(self, p: np.ndarray):
-        """(the base's output over the plays, the play terms), or None for an invalid base."""
-        terms = self.terms(p)
-        try:
-            base = _with_values(self.base, self.base_names, p[: len(self.base_names)])
-        except (ValueError, TypeError):
-            return None, terms
-        parts = []
-        for r, lo, k in zip(self.recs, self.loads, self.firsts, strict=True):
-            radius = play_radius(lo, terms["slack"], terms["slack_load"], terms["friction"])
-            try:
-                out = np.asarray(base.simulate(r.t, play(r.x, radius)), dtype=float)
-            except ValueError:
-                return None, terms
-            parts.append(out[k:])
-        u = np.concatenate(parts)
-        return (u if np.all(np.isfinite(u)) else None), terms
-
-    def gain(self, u: np.ndarray) -> float:
-        if "gain" in self.fixed:
-            return float(self.fixed["gain"])
-        d = self.load_all
-        den = float(d @ d)
-        return float(d @ (self.y - u) / den) if den > 0 else 0.0
-
-    def residual(self, p: np.ndarray) -> np.ndarray:
-        u, _ = self.base_output(p)
-        if u is None:
-            return np.full(self.y.size, 1e3 * (np.ptp(self.y) + 1.0))
-        return u + self.gain(u) * self.load_all - self.y
-
-    def model(self, p: np.ndarray) -> Loaded:
-        u, terms = self.base_output(p)
-        if u is None:
-            raise ValueError("identification failed: the base model rejects the best point")
-        base = _with_values(self.base, self.base_names, p[: len(self.base_names)])
-        return Loaded(base, gain=self.gain(u), **terms)
+    raw = any(options.get(k) is not None for k in ("bounds", "initial", "depends_on_angle"))
+    centre = spec in _NO_OFFSET and not raw and options.get("normalize") is not False
+    xc = float(np.mean(np.concatenate([x for _, x, _ in unloaded]))) if centre else 0.0
+    yc = float(np.mean(np.concatenate([y for _, _, y in unloaded]))) if centre else 0.0
+    recs = [(t, x - xc, y - yc) for t, x, y in unloaded]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        base = identify(spec, recordings=recs, **options).model
+    return Scaled(base, input_offset=xc, output_offset=yc) if centre else base
 
 
-def _starts(problem: _Problem, keep: int = 3) -> list[np.ndarray]:
-    """The ``keep`` best of a grid of starting points: the base as identified alone, the
-    play's slack at 1 % and 4 % of the input span, slack_load at 0.3, 1 and 3 times the median
-    |load| and friction 0 or 2 % of the span per median |load|."""
-    scale = float(np.median(np.abs(problem.load_all))) or 1.0
-    x_span = float(np.ptp(np.concatenate([r.x for r in problem.recs]))) or 1.0
+def _starts(problem: Problem, x_span: float, scale: float, keep: int) -> list[np.ndarray]:
+    """The ``keep`` best of a grid of play terms: slack 0, 1 % or 4 % of the input span,
+    slack_load 0.3, 1 or 3 times the median |load|, friction 0 or 2 % of the span per median
+    |load| (the base as it is)."""
     grid = {
-        "slack": (0.01 * x_span, 0.04 * x_span),
-        "slack_load": tuple(np.log(f * scale) for f in (0.3, 1.0, 3.0)),
+        "slack": (0.0, 0.01 * x_span, 0.04 * x_span),
+        "slack_load": tuple(f * scale for f in (0.3, 1.0, 3.0)),
         "friction": (0.0, 0.02 * x_span / scale),
     }
-    combos: list[list[float]] = [[]]
+    combos: list[dict] = [{}]
     for k in problem.free:
-        combos = [c + [v] for c in combos for v in grid[k]]
-    starts = [np.asarray([*problem.base_values, *c], dtype=float) for c in combos]
+        combos = [{**c, k: v} for c in combos for v in grid[k]]
+    starts = [
+        problem.start({"slack": 0.0, "slack_load": scale, "friction": 0.0, **c}) for c in combos
+    ]
     costs = [float(np.sum(problem.residual(p) ** 2)) for p in starts]
-    order = np.argsort(costs)[:keep]
-    return [starts[i] for i in order]
+    return [starts[i] for i in np.argsort(costs)[:keep]]
 
 
-def _linearised_errors(problem: _Problem, best, model: Loaded) -> dict[str, float]:
-    """Standard errors from the refinement's Jacobian (the gain's given the others)."""
+def _refine(problem: Problem, starts, box, max_nfev: int):
+    """The best least-squares result over the starts (inside the box)."""
+    best = None
+    lo, hi = box
+    for p0 in starts:
+        p0 = np.clip(p0, lo, hi)
+        res = least_squares(
+            problem.residual, p0, bounds=box, max_nfev=max_nfev, x_scale="jac", method="trf"
+        )
+        if best is None or res.cost < best.cost:
+            best = res
+    assert best is not None
+    return best
+
+
+def _linearised_errors(problem: Problem, best, model: Loaded) -> dict[str, float]:
+    """Standard errors from the refinement's Jacobian (the gain's given the others; the
+    parameters solved linearly, a weighted base's weights and offset, have none)."""
     jac = np.asarray(best.jac, dtype=float)
     dof = max(problem.y.size - jac.shape[1] - 1, 1)
     sigma2 = 2.0 * float(best.cost) / dof
@@ -161,7 +122,7 @@ def _linearised_errors(problem: _Problem, best, model: Loaded) -> dict[str, floa
             key, index = k[:-1].split("[")
             size = len(problem.base.params[key])
             out.setdefault(f"base.{key}", [float("nan")] * size)[int(index)] = float(v)
-        else:
+        elif not k.endswith("*"):
             out[f"base.{k}"] = float(v)
     for k, v in zip(problem.free, se[len(problem.base_names) :], strict=True):
         out[k] = float(v * model.terms[k]) if k == "slack_load" else float(v)
@@ -169,6 +130,23 @@ def _linearised_errors(problem: _Problem, best, model: Loaded) -> dict[str, floa
         den = float(problem.load_all @ problem.load_all)
         out["gain"] = float(np.sqrt(sigma2 / den)) if den > 0 else float("nan")
     return out
+
+
+def _staged(base0, recs, loads, warmup, fixed, max_nfev):
+    """Stages 3 and 4: the play terms with the base held, then everything jointly from there
+    (kept only where it lowers the cost). Returns (model, problem, least-squares result)."""
+    x_span = float(np.ptp(np.concatenate([r.x for r in recs]))) or 1.0
+    scale = float(np.median(np.abs(np.concatenate(loads)))) or 1.0
+    held = Problem(base0, recs, loads, warmup, fixed, joint=False)
+    box = held.bounds(x_span, scale)
+    best = _refine(held, _starts(held, x_span, scale, keep=2), box, max_nfev)
+    model = held.model(best.x)
+    joint = Problem(model.base, recs, loads, warmup, fixed, joint=True)
+    box = joint.bounds(x_span, scale)
+    polished = _refine(joint, [joint.start(model.terms)], box, max_nfev)
+    if polished.cost < best.cost:
+        return joint.model(polished.x), joint, polished
+    return model, held, best
 
 
 def identify_loaded(
@@ -210,12 +188,11 @@ def identify_loaded(
     ValueError
         A load of another length than its recording, not finite, or an unknown fixed term.
     """
-    from .core import identify
     from .data import make_recordings
 
     start = time.perf_counter()
     fixed = dict(fixed or {})
-    unknown = set(fixed) - {"gain", *_SEARCHED}
+    unknown = set(fixed) - {"gain", *SEARCHED}
     if unknown:
         raise ValueError(f"Loaded: unknown fixed term(s) {sorted(unknown)}")
     recs = make_recordings(recordings=list(recordings))
@@ -230,17 +207,10 @@ def identify_loaded(
     options = {"progress": False, **(base_options or {})}
     base_cls = type(template.base)
     spec = template.base if isinstance(template.base, Chain) else base_cls  # a Chain: itself
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        base0 = identify(spec, recordings=[(r.t, r.x, r.y) for r in recs], **options).model
-    problem = _Problem(base0, recs, arrays, warmup, fixed)
-    best = None
-    for p0 in _starts(problem, keep=2):
-        res = least_squares(problem.residual, p0, max_nfev=max_nfev, x_scale="jac")
-        if best is None or res.cost < best.cost:
-            best = res
-    assert best is not None
-    model = problem.model(best.x)
+    stretch = float(fixed["gain"]) if "gain" in fixed else load_stretch(recs, arrays, warmup)
+    unloaded = [(r.t, r.x, r.y - stretch * a) for r, a in zip(recs, arrays, strict=True)]
+    base0 = _base_alone(spec, unloaded, options)
+    model, problem, best = _staged(base0, recs, arrays, warmup, fixed, max_nfev)
     lo = min(float(r.x.min()) for r in recs)
     hi = max(float(r.x.max()) for r in recs)
     model.input_range = (lo, hi)
@@ -248,7 +218,7 @@ def identify_loaded(
         np.asarray(model.simulate(r.t, r.x, load=a), dtype=float)
         for r, a in zip(recs, arrays, strict=True)
     ]
-    names = sorted({f"base.{k.split('[')[0]}" for k in problem.base_names}) + problem.free
+    names = problem.identified()
     if "gain" not in fixed:
         names.append("gain")
     ses = _linearised_errors(problem, best, model)
@@ -261,7 +231,10 @@ def identify_loaded(
         evaluations=int(best.nfev),
         seconds=time.perf_counter() - start,
         generations=0,
-        method=f"Loaded({base_cls.__name__}): base alone, then joint least squares",
+        method=(
+            f"Loaded({base_cls.__name__}): stretch by regression, base on the data without it, "
+            "play terms with the base held, then joint least squares"
+        ),
         message=str(best.message),
         warmup=int(warmup),
         recordings=recs,
