@@ -3,16 +3,13 @@
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from .. import _core as core
 from .._args import number, python_names
 from .._arrays import checked_dt
 from ..models import Backlash, BoucWenBacklash, HysteresisModel
 from .base import EngineCompensator
-
-if TYPE_CHECKING:
-    pass  # python-control ships no types: its systems are Any to mypy
 
 _GAINS = (
     "lambda_",

@@ -55,7 +55,6 @@ from .problem import DirectProblem
 from .refine import TimeBudget, forward_jacobian, refine
 
 _PENALTY = 1e100
-_SE_NAMES = ("m", "c", "k", "alpha", "gamma", "delta", "nu")
 
 
 class _Stages:

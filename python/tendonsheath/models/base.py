@@ -10,7 +10,7 @@ import numbers
 from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar, Self, TypeVar, cast
+from typing import Any, ClassVar, Self, TypeVar, cast
 
 import numpy as np
 
@@ -23,9 +23,6 @@ from .._typing import ArrayLike, FloatArray
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
 from ..status import Status
-
-if TYPE_CHECKING:
-    pass  # python-control ships no types: its systems are Any to mypy
 
 FORMAT_NAME = "tendonsheath.model"
 FORMAT_VERSION = 1

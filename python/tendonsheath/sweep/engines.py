@@ -219,13 +219,6 @@ def _stop_pool(key) -> None:
     pool.shutdown(wait=True, cancel_futures=True)
 
 
-def shutdown_local_pools() -> None:
-    """Stop the kept process pools (they also stop when Python exits)."""
-    while _POOLS:
-        _, pool = _POOLS.popitem()
-        pool.shutdown(wait=True, cancel_futures=True)
-
-
 def run_local(
     run, items, workers=None, batch_size=None, progress=None, mp_context=None, record=None
 ) -> tuple[dict, EngineStats]:
