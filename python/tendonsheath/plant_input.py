@@ -1,5 +1,4 @@
-"""Input reconstruction between samples for the plants' batch simulation (issue 12, Step 9
-leftovers item 5).
+"""Input reconstruction between samples for the plants' batch simulation.
 
 With distal inertia and damping, sheath viscosity, creep or motor dynamics a plant is a
 continuous-time system: its output at a sample depends on the input's path since the last

@@ -1,4 +1,4 @@
-"""Frequency response of a closed loop from sine sweeps (seed 001's bandwidth measure)."""
+"""Frequency response of a closed loop from sine sweeps (Lau et al. 2015's bandwidth measure)."""
 
 from __future__ import annotations
 

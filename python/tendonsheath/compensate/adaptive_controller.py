@@ -1,4 +1,4 @@
-"""Adaptive output-feedback controller (seed 002, spec D.3)."""
+"""Adaptive output-feedback controller (Do et al. 2015, spec D.3)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Curve-angle feedforward (seed 000, spec B2): compensation that follows the route's shape."""
+"""Curve-angle feedforward (Sun, Wang & Phee 2015, spec B2): it follows the route's shape."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The real-time inverse of every identified model, as a feedforward (seed 002, spec D.2, and
+"""The real-time inverse of every identified model, as a feedforward (Do et al. 2015, spec D.2, and
 the engines of ``tendonsheath/compensators/model_inverse.hpp``)."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Do, Tjahjowidodo, Lau & Phee, Mechatronics 2015 (seed 002), in simulation."""
+"""Do, Tjahjowidodo, Lau & Phee, Mechatronics 2015, in simulation."""
 
 from __future__ import annotations
 
