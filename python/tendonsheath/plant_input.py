@@ -51,3 +51,12 @@ def fine_grid(t, u, mode, substeps, lookahead, periodic, who):
         return tf, fft_upsample(u, substeps), "bandlimited (periodic: FFT)"
     uf = core.reconstruct_bandlimited(np.ascontiguousarray(u, dtype=float), substeps, lookahead)
     return tf, uf, "bandlimited (windowed sinc)"
+
+
+__all__ = [
+    "DEFAULT_LOOKAHEAD",
+    "DEFAULT_SUBSTEPS",
+    "INTERPOLATIONS",
+    "check_interpolation",
+    "fine_grid",
+]

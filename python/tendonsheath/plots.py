@@ -44,3 +44,6 @@ def plot_tension_profile(plant, ax=None):
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize="small")
     return ax
+
+
+__all__ = ["plot_tension_profile"]

@@ -188,3 +188,6 @@ def frequency_response(
         bandwidth_3db=_first_crossing(f, gain_db, -3.0, above=False),
         bandwidth_error=_first_crossing(f, err, max(2.0 * low, low + 0.05), above=True),
     )
+
+
+__all__ = ["FrequencyResponse", "frequency_response"]

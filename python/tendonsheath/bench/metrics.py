@@ -77,3 +77,6 @@ def tracking_metrics(reference: np.ndarray, output: np.ndarray) -> dict[str, flo
         "max_percent_error": float(100.0 * np.max(np.abs(e)) / span),
         "loop_width": loop_width(reference, output),
     }
+
+
+__all__ = ["dominant_period", "loop_width", "tracking_metrics"]

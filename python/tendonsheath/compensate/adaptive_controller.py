@@ -314,3 +314,6 @@ class AdaptiveController(EngineCompensator):
 
     # -- persistence -----------------------------------------------------------------
     _saved_settings = ("feedforward_model", "smoothing", *_GAINS)
+
+
+__all__ = ["AdaptiveController"]

@@ -223,3 +223,6 @@ class ContinuumFeedforward(Feedforward):
             F (N).
         """
         return self._engine.bending_force(float(theta_d))
+
+
+__all__ = ["ContinuumFeedforward", "RENAMED"]

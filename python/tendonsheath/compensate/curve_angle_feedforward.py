@@ -342,3 +342,6 @@ def _engine(who: str, v: dict):
     p.limits = v["limits"].to_core()
     with python_names(who):
         return core.CurveAngleFeedforward(p)
+
+
+__all__ = ["CurveAngleFeedforward"]

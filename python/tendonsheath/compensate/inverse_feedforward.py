@@ -362,3 +362,6 @@ def _filter_hz(value) -> float | None:
     if not (math.isfinite(f) and f > 0.0):
         raise ValueError(f"InverseFeedforward: filter_hz must be > 0 or None/null (got {f:g})")
     return f
+
+
+__all__ = ["InverseFeedforward", "RangeLike"]

@@ -77,3 +77,6 @@ def groups(model: Chain, standard_errors: dict) -> dict:
 
 def _float(v):
     return None if v is None else float(v)
+
+
+__all__ = ["TIED", "applies", "canonical", "entry_names", "groups"]

@@ -348,3 +348,14 @@ def identify_normalized(fit_normalised, model_class, recs: list[Recording]) -> F
         recordings=recs,
         predictions=preds,
     )
+
+
+__all__ = [
+    "IOMap",
+    "NORMALIZED",
+    "PLAIN_TOLERANCE",
+    "applies",
+    "identify_normalized",
+    "map_uncertainty",
+    "to_raw",
+]

@@ -573,3 +573,6 @@ def _fit(run: dict, model, problem, se_bounds, seconds, generations, message) ->
         recordings=recs,
         predictions=predictions,
     )
+
+
+__all__ = ["identify_oscillator", "period_count"]

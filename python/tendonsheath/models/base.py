@@ -527,3 +527,14 @@ def _short(value):
     if isinstance(value, float) and math.isfinite(value):
         return f"{value:.6g}"
     return repr(value)
+
+
+__all__ = [
+    "FORMAT_NAME",
+    "FORMAT_VERSION",
+    "HysteresisModel",
+    "load_model",
+    "model_class_from_dict",
+    "saved_input_range",
+    "split_wrapped_changes",
+]

@@ -364,3 +364,23 @@ def run_dask(
         extra={"scheduler": client.scheduler.address},
     )
     return col.results, stats
+
+
+__all__ = [
+    "ByValue",
+    "EngineStats",
+    "Item",
+    "Outcome",
+    "SweepError",
+    "auto_batch_size",
+    "connect",
+    "is_dask_client",
+    "local_pool",
+    "make_batches",
+    "portable",
+    "progress_bar",
+    "run_batch",
+    "run_dask",
+    "run_local",
+    "run_serial",
+]

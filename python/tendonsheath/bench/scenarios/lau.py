@@ -251,3 +251,19 @@ def _targets(runs_by_servo: dict) -> list[dict]:
         )
     )
     return out
+
+
+__all__ = [
+    "BACKBONE",
+    "CALIBRATION_ANGLES",
+    "CONDITIONS",
+    "HEADLINE",
+    "MODES",
+    "PAPER",
+    "ROUTE",
+    "SERVOS",
+    "TENDON_OFFSET",
+    "calibrate",
+    "compensators",
+    "lau2015",
+]

@@ -311,3 +311,20 @@ def _local_target(local: dict, servo: str) -> dict:
         local["met"],
         "x",
     )
+
+
+__all__ = [
+    "ANGLES",
+    "BACKLASH_ROUTE",
+    "CALIBRATION_ANGLES",
+    "CONDITIONS",
+    "LENGTH",
+    "LOAD_FORCE",
+    "RADIUS",
+    "SERVOS",
+    "SPRING",
+    "calibrate",
+    "local_reference",
+    "plant_groups",
+    "sun2015",
+]
