@@ -128,10 +128,6 @@ def is_format_version(value: Any, expected: int) -> bool:
     return isinstance(value, int) and not isinstance(value, bool) and value == expected
 
 
-def optional_number(who: str, name: str, value: Any) -> float | None:
-    return None if value is None else number(who, name, value)
-
-
 def number_array(who: str, name: str, values: Any) -> np.ndarray:
     """`values` (numbers, any nesting) as a float array; a TypeError naming the argument when
     they are not numbers (a string, a dict, text inside)."""

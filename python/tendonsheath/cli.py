@@ -1251,5 +1251,7 @@ def main() -> None:
     app()
 
 
+__all__ = ["MAX_PART_COLUMNS", "app", "main"]
+
 if __name__ == "__main__":
     main()

@@ -1203,3 +1203,21 @@ def _count(model: HysteresisModel) -> int:
         elif isinstance(v, int | float):
             n += 1
     return n
+
+
+__all__ = [
+    "AFFINE",
+    "CANDIDATES",
+    "Comparison",
+    "FOLD_REFINE_EVALUATIONS",
+    "INVERSE_NOTE",
+    "MIN_PIECE",
+    "OutOfTime",
+    "PARTS_CAPTION",
+    "SETTLE_FRACTION",
+    "SETTLE_NOTE",
+    "compare_models",
+    "default_models",
+    "model_name",
+    "parse_model",
+]

@@ -325,3 +325,13 @@ def frequency_response_data(
         1j * np.radians(np.asarray(phase_deg, dtype=float))
     )
     return control.FrequencyResponseData(response, 2.0 * np.pi * f, name=name)
+
+
+__all__ = [
+    "INSTALL_HINT",
+    "Snapshots",
+    "frequency_response_data",
+    "require_control",
+    "streaming_delay",
+    "to_system",
+]

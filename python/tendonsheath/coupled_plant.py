@@ -239,3 +239,6 @@ class CoupledPlant(PythonObject):
         y = np.asarray(angles, dtype=np.float64).reshape(-1)
         pairs = zip(self.sensors, y, strict=True)
         return np.array([v if s is None else s.measure(float(v), dt=dt) for s, v in pairs])
+
+
+__all__ = ["CoupledPlant", "CoupledSimulation"]

@@ -235,3 +235,14 @@ def robustness_section(out: Path, runs: int = 200, seed: int = 0, angle_unit: st
         )
     )
     return ("robustness", f"Robustness over {numbers['runs']} perturbed plants", body, numbers)
+
+
+__all__ = [
+    "DEMO_SCHEMA_VERSION",
+    "demo_models",
+    "model_section",
+    "rate_section",
+    "robustness_section",
+    "run_demo",
+    "standard_input",
+]

@@ -329,3 +329,6 @@ def cpp_header(source: str | Path, namespace: str | None = None) -> str:
         + "#include <tendonsheath/result.hpp>\n\n"
         f"namespace {namespace} {{\n\n{body}\n}}  // namespace {namespace}\n"
     )
+
+
+__all__ = ["cpp_header"]

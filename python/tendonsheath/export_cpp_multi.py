@@ -187,3 +187,6 @@ def coupled_feedforward_body(ff) -> tuple[str, str]:
         "c.step(y_d, u, dt);  // y_d, u: `joints` doubles each; a non-finite angle holds",
     )
     return "compensators/coupled_feedforward.hpp", body + build
+
+
+__all__ = ["coupled_feedforward_body", "load_compensated_body"]

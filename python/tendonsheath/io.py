@@ -937,3 +937,15 @@ def write_csv(path: str | Path, columns: dict[str, np.ndarray]) -> Path:
     with atomic_path(path) as tmp:
         np.savetxt(tmp, data, delimiter=",", header=",".join(names), comments="", fmt="%.10g")
     return path
+
+
+__all__ = [
+    "Log",
+    "MAX_UPSAMPLING",
+    "MIN_ROWS",
+    "columns",
+    "deg2rad",
+    "rad2deg",
+    "read_log",
+    "write_csv",
+]

@@ -293,3 +293,6 @@ class Motor(PythonObject):
     def __repr__(self) -> str:
         inner = ", ".join(f"{k}={v:.6g}" for k, v in self.params.items())
         return f"Motor.{self.kind}({inner})"
+
+
+__all__ = ["Motor"]

@@ -52,3 +52,6 @@ def _check_writable(folder: Path, what: str, path: Path) -> None:
             pass
     except OSError as exc:
         raise ValueError(f"{what} {path}: cannot write in {existing} ({exc.strerror})") from None
+
+
+__all__ = ["check_image_file", "check_output_file", "check_output_folder", "image_suffixes"]

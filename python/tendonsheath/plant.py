@@ -1,9 +1,9 @@
 """Physics plants of spec A.5: quasi-static N-element tendon-sheath simulators (C++ core).
 
-* :class:`PullPullPlant`: the bidirectional pair of seeds 000/002; pulley angle in, pulley
-  angle out (rad).
-* :class:`ContinuumPlant`: the pair bending a continuum segment (seed 001); output the bending
-  angle (rad).
+* :class:`PullPullPlant`: the bidirectional pair of Sun, Wang & Phee 2015 and Do
+  et al. 2015; pulley angle in, pulley angle out (rad).
+* :class:`ContinuumPlant`: the pair bending a continuum segment (Lau et al. 2015); output the
+  bending angle (rad).
 * :class:`SingleTendonPlant`: one tendon, proximal displacement in, distal displacement out (m).
 
 Every plant simulates in C++ (``simulate``) or streams (``reset``/``step``); its route may change
@@ -647,7 +647,7 @@ class SingleTendonPlant(_Plant):
 
 
 class PullPullPlant(_Plant):
-    """The bidirectional pull-pull pair (seeds 000, 002): pulley angle in, pulley angle out (rad).
+    """The bidirectional pull-pull pair (Sun, Wang & Phee 2015; Do et al. 2015): angle in and out.
 
     Two tendons with pretension T0 (N) and axial stiffness EA (``stiffness``, N) run in two
     sheaths (``route`` for tendon 1, the one a positive input pulls; ``route2`` for tendon 2,
@@ -914,7 +914,7 @@ class PullPullPlant(_Plant):
 
 
 class ContinuumPlant(PullPullPlant):
-    """A pull-pull pair bending one continuum segment (seed 001, spec C.5); output theta_b (rad).
+    """A pull-pull pair bending a continuum segment (Lau et al. 2015, spec C.5); output theta_b.
 
     Li and Rahn: the tendon force that holds a bending angle theta_b is F = kappa EI/r_t with
     kappa = theta_b / l, and the stroke is x_out = r_t theta_b, so the segment is a spring

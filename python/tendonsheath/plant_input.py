@@ -1,5 +1,4 @@
-"""Input reconstruction between samples for the plants' batch simulation (issue 12, Step 9
-leftovers item 5).
+"""Input reconstruction between samples for the plants' batch simulation.
 
 With distal inertia and damping, sheath viscosity, creep or motor dynamics a plant is a
 continuous-time system: its output at a sample depends on the input's path since the last
@@ -52,3 +51,12 @@ def fine_grid(t, u, mode, substeps, lookahead, periodic, who):
         return tf, fft_upsample(u, substeps), "bandlimited (periodic: FFT)"
     uf = core.reconstruct_bandlimited(np.ascontiguousarray(u, dtype=float), substeps, lookahead)
     return tf, uf, "bandlimited (windowed sinc)"
+
+
+__all__ = [
+    "DEFAULT_LOOKAHEAD",
+    "DEFAULT_SUBSTEPS",
+    "INTERPOLATIONS",
+    "check_interpolation",
+    "fine_grid",
+]

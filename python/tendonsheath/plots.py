@@ -46,16 +46,4 @@ def plot_tension_profile(plant, ax=None):
     return ax
 
 
-def plot_hysteresis(q_in, q_out, ax=None, label=None):
-    """Output against input (a hysteresis loop). Returns the Axes."""
-    import matplotlib.pyplot as plt
-
-    if ax is None:
-        _, ax = plt.subplots(figsize=(4.5, 4))
-    ax.plot(q_in, q_out, label=label)
-    ax.set_xlabel("input angle (rad)")
-    ax.set_ylabel("output angle (rad)")
-    ax.grid(True, alpha=0.3)
-    if label:
-        ax.legend(fontsize="small")
-    return ax
+__all__ = ["plot_tension_profile"]

@@ -302,3 +302,6 @@ def check_curve_angle(value: ArrayLike, what: str = "curve angle") -> None:
     ):
         if np.any(bad):
             raise ValueError(f"{what} must {rule} (got {arr[np.argmax(bad)]:g})")
+
+
+__all__ = ["MAX_CURVE_ANGLE", "Route", "UnitWarning", "check_curve_angle"]

@@ -180,3 +180,6 @@ class Sensor(PythonObject):
             f"Sensor(resolution={self.resolution:g}, noise_std={self.noise_std:g}, "
             f"seed={self.seed}{extra})"
         )
+
+
+__all__ = ["Sensor"]

@@ -192,3 +192,6 @@ def _assess(output: np.ndarray, fields: dict) -> tuple[bool, str]:
     if fields.get("nonconverged"):
         return False, f"{fields['nonconverged']} step(s) did not converge"
     return True, ""
+
+
+__all__ = ["FIELDS", "SimulationResult"]

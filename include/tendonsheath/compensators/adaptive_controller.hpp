@@ -1,4 +1,4 @@
-// Adaptive output-feedback controller of Do et al. (seed 002, spec D.3): the
+// Adaptive output-feedback controller of Do et al. 2015 (spec D.3): the
 // tendon-sheath output y = c x + d(t) seen through a torque-driven motor
 // J x'' + b x' + tau_d = u is treated as y'' = -a y' + beta u + delta(t), and
 // the unknown (J/c, -b/c) and the bound of delta are estimated online:

@@ -1,4 +1,4 @@
-// Feedforward of Lau et al. (seed 001, spec C) for a tendon-sheath-driven
+// Feedforward of Lau et al. 2015 (spec C) for a tendon-sheath-driven
 // continuum segment: bending angle in, motor angle out.
 //
 // mode Published, the paper's equations as printed (eqs. 11-38):

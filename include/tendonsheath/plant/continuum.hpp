@@ -1,4 +1,4 @@
-// A pull-pull pair driving one constant-curvature continuum segment (seed 001,
+// A pull-pull pair driving one constant-curvature continuum segment (Lau et al. 2015,
 // spec C.5). Li and Rahn: the tendon pull that holds the bending angle
 // theta_b = kappa l is F = kappa EI / r_t, and the tendon stroke is
 // x_out = r_t theta_b. The segment is therefore a linear spring on the stroke,

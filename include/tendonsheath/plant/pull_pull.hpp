@@ -1,4 +1,4 @@
-// Bidirectional pull-pull pair (seeds 000 and 002, spec A.4/A.5): two
+// Bidirectional pull-pull pair (Sun, Wang & Phee 2015; Do et al. 2015; spec A.4/A.5): two
 // pretensioned tendons in two sheaths between a proximal pulley (angle in,
 // radius r_p) and a distal pulley (angle out, radius r_d) with a load.
 //

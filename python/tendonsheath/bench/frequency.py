@@ -1,4 +1,4 @@
-"""Frequency response of a closed loop from sine sweeps (seed 001's bandwidth measure)."""
+"""Frequency response of a closed loop from sine sweeps (Lau et al. 2015's bandwidth measure)."""
 
 from __future__ import annotations
 
@@ -188,3 +188,6 @@ def frequency_response(
         bandwidth_3db=_first_crossing(f, gain_db, -3.0, above=False),
         bandwidth_error=_first_crossing(f, err, max(2.0 * low, low + 0.05), above=True),
     )
+
+
+__all__ = ["FrequencyResponse", "frequency_response"]

@@ -113,3 +113,13 @@ def describe(cycle: dict, unit: str = "rad") -> str:
         f"limit cycle near {cycle['frequency_hz']:.3g} Hz, {size} ({cycle['output_reversals']} "
         f"tip reversals for the reference's {cycle['reference_reversals']})"
     )
+
+
+__all__ = [
+    "EXTRA_CYCLES_PER_S",
+    "EXTRA_OVER_REFERENCE",
+    "SWING_SHARE",
+    "describe",
+    "limit_cycle",
+    "reversals",
+]

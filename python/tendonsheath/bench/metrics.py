@@ -52,7 +52,7 @@ def loop_width(x: np.ndarray, y: np.ndarray, points: int = 200) -> float:
 
 def tracking_metrics(reference: np.ndarray, output: np.ndarray) -> dict[str, float]:
     """mse, rmse, max_abs (output units), percent_error and max_percent_error (of the
-    reference's range, seed 001's measure) and the output-vs-reference loop width.
+    reference's range, the measure of Lau et al. 2015) and the output-vs-reference loop width.
 
     Parameters
     ----------
@@ -77,3 +77,6 @@ def tracking_metrics(reference: np.ndarray, output: np.ndarray) -> dict[str, flo
         "max_percent_error": float(100.0 * np.max(np.abs(e)) / span),
         "loop_width": loop_width(reference, output),
     }
+
+
+__all__ = ["dominant_period", "loop_width", "tracking_metrics"]

@@ -11,7 +11,7 @@ import numpy as np
 
 from .. import _core as core
 from .._arrays import as_timed_signal
-from ..compensate.curve_angle_feedforward import shape_of
+from ..physics import route_shape as shape_of
 from ..plant import PullPullPlant
 from ..protocols import STEP_SIGNALS, StreamingCompensator, missing_members, step_signals
 from ..sensor import Sensor
@@ -433,3 +433,6 @@ def _sensed(plant, ts, routes, shape_sensing, friction, idx):
 
 def _first(route):
     return route[0] if isinstance(route, tuple | list) else route
+
+
+__all__ = ["Controller", "Result", "controller_name", "run"]

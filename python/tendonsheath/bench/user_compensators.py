@@ -163,3 +163,6 @@ def told_by_user(user: UserCompensator) -> dict[str, tuple[Any, str]]:
     for key, value in user.kwargs.items():
         told[key] = (value, "declared by the user ([[compare.user]] kwargs)")
     return told
+
+
+__all__ = ["UserCompensator", "parse_user_compensators", "told_by_user"]

@@ -805,3 +805,16 @@ def _conditions(sc: UserScenario, at_angles: str, shape) -> dict[str, str]:
         "takes them), from the motor encoder, the noisy distal sensor and a "
         f"{shape.describe()}",
     }
+
+
+__all__ = [
+    "COMPENSATORS",
+    "ScenarioError",
+    "UserScenario",
+    "calibration_angles",
+    "load",
+    "parse",
+    "run_user_compensators",
+    "run_user_scenario",
+    "tension_bench_friction",
+]

@@ -1,18 +1,15 @@
-"""Adaptive output-feedback controller (seed 002, spec D.3)."""
+"""Adaptive output-feedback controller (Do et al. 2015, spec D.3)."""
 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from .. import _core as core
 from .._args import number, python_names
 from .._arrays import checked_dt
 from ..models import Backlash, BoucWenBacklash, HysteresisModel
 from .base import EngineCompensator
-
-if TYPE_CHECKING:
-    pass  # python-control ships no types: its systems are Any to mypy
 
 _GAINS = (
     "lambda_",
@@ -317,3 +314,6 @@ class AdaptiveController(EngineCompensator):
 
     # -- persistence -----------------------------------------------------------------
     _saved_settings = ("feedforward_model", "smoothing", *_GAINS)
+
+
+__all__ = ["AdaptiveController"]

@@ -184,3 +184,6 @@ class Feedforward(EngineCompensator):
         """
         ts, ys = as_timed_signal(t, y_desired, "y_desired", f"{type(self).__name__}.command")
         return self._engine.command(ts, ys, bool(status))
+
+
+__all__ = ["EngineCompensator", "Feedforward", "SavedAsJson"]

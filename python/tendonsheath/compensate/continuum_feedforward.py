@@ -1,4 +1,4 @@
-"""Feedforward of a tendon-sheath-driven continuum segment (seed 001, spec C)."""
+"""Feedforward of a tendon-sheath-driven continuum segment (Lau et al. 2015, spec C)."""
 
 from __future__ import annotations
 
@@ -223,3 +223,6 @@ class ContinuumFeedforward(Feedforward):
             F (N).
         """
         return self._engine.bending_force(float(theta_d))
+
+
+__all__ = ["ContinuumFeedforward", "RENAMED"]

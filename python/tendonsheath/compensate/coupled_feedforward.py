@@ -185,3 +185,6 @@ class CoupledFeedforward(PythonObject, SavedAsJson):
 
     def __repr__(self) -> str:
         return f"CoupledFeedforward({self.model!r})"
+
+
+__all__ = ["CoupledFeedforward"]

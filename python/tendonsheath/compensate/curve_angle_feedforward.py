@@ -1,4 +1,4 @@
-"""Curve-angle feedforward (seed 000, spec B2): compensation that follows the route's shape."""
+"""Curve-angle feedforward (Sun, Wang & Phee 2015, spec B2): it follows the route's shape."""
 
 from __future__ import annotations
 
@@ -342,3 +342,6 @@ def _engine(who: str, v: dict):
     p.limits = v["limits"].to_core()
     with python_names(who):
         return core.CurveAngleFeedforward(p)
+
+
+__all__ = ["CurveAngleFeedforward"]

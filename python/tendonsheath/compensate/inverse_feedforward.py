@@ -1,4 +1,4 @@
-"""The real-time inverse of every identified model, as a feedforward (seed 002, spec D.2, and
+"""The real-time inverse of every identified model, as a feedforward (Do et al. 2015, spec D.2, and
 the engines of ``tendonsheath/compensators/model_inverse.hpp``)."""
 
 from __future__ import annotations
@@ -362,3 +362,6 @@ def _filter_hz(value) -> float | None:
     if not (math.isfinite(f) and f > 0.0):
         raise ValueError(f"InverseFeedforward: filter_hz must be > 0 or None/null (got {f:g})")
     return f
+
+
+__all__ = ["InverseFeedforward", "RangeLike"]

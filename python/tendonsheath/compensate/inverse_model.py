@@ -165,3 +165,6 @@ def route_friction(model: HysteresisModel) -> float | None:
             mu = m.params["angle_friction"]
             return 0.0 if mu is None else float(mu)
     return None
+
+
+__all__ = ["ANGLE_BASES", "INVERTIBLE", "describe", "follows_route", "part", "route_friction"]

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
@@ -12,9 +12,6 @@ from .._arrays import as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
 from .around import AroundFeedforward
 from .limits import LimitsLike, as_limits
-
-if TYPE_CHECKING:
-    pass
 
 
 class LearnedFeedforward(AroundFeedforward):

@@ -78,3 +78,6 @@ def as_limits(limits: LimitsLike) -> CommandLimits:
 
 def _limit_value(name: str, value) -> float:
     return number("limits", name, value)
+
+
+__all__ = ["CommandLimits", "LimitsLike", "as_limits"]

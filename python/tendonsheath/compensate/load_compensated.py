@@ -179,3 +179,6 @@ class LoadCompensated(PythonObject, SavedAsJson):
 
     def __repr__(self) -> str:
         return f"LoadCompensated({self.model!r}, switch={self.switch:g})"
+
+
+__all__ = ["LoadCompensated"]

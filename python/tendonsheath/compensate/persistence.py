@@ -281,3 +281,14 @@ def load_as(cls: type[_C], source: str | Path | dict) -> _C:
             f"not a {cls.__name__} (tendonsheath.compensate.load reads any compensator)"
         )
     return compensator
+
+
+__all__ = [
+    "FORMAT_NAME",
+    "FORMAT_VERSION",
+    "compensator_dict",
+    "compensator_from_dict",
+    "load_as",
+    "load_compensator",
+    "to_json",
+]

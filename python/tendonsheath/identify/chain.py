@@ -238,3 +238,6 @@ def _assess(problem: ChainProblem, recs, warmup, model, quality, u_best, search,
         )
         assessed["groups"] = gauge.groups(model, assessed["standard_errors"])
     return assessed
+
+
+__all__ = ["CHAIN_HELD", "ChainProblem", "identify_chain"]

@@ -332,3 +332,6 @@ def _bounds(fit: Fit, names: list[str], theta0: FloatArray) -> tuple[FloatArray,
     lo = np.array([bounds.get(k, (-np.inf, np.inf))[0] for k in names], dtype=float)
     hi = np.array([bounds.get(k, (-np.inf, np.inf))[1] for k in names], dtype=float)
     return np.minimum(lo, theta0), np.maximum(hi, theta0)
+
+
+__all__ = ["CoupledFit", "identify_coupled"]

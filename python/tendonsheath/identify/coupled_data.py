@@ -109,3 +109,6 @@ def _check(t, x, y, who: str) -> CoupledRecording:
             f"(t[{k}] = {ts[k]} after t[{k - 1}] = {ts[k - 1]})"
         )
     return CoupledRecording(np.ascontiguousarray(ts), xs, ys)
+
+
+__all__ = ["CoupledRecording", "coupled_recordings"]

@@ -181,3 +181,16 @@ def cross_validate(
     fitted: list = []
     train, held_out, preds = evaluate_splits(splits, estimator_split(estimator, fitted))
     return CrossValidation(held_out, train, fitted, groups, preds, what)
+
+
+__all__ = [
+    "CrossValidation",
+    "Estimator",
+    "MAX_LEAVE_ONE_OUT",
+    "Split",
+    "cross_validate",
+    "estimator_split",
+    "evaluate_splits",
+    "recording_groups",
+    "recording_splits",
+]

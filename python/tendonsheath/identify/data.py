@@ -331,3 +331,20 @@ def thin_for_search(
     if sum(r.n for r in out) > 0.75 * total:
         return recs, warmup
     return out, 0
+
+
+__all__ = [
+    "DYNAMIC_SEARCH_SAMPLES",
+    "MAX_DECIMATION",
+    "MAX_THIN_STEP",
+    "MIN_SAMPLES",
+    "Recording",
+    "SEARCH_THIN",
+    "check_for_fit",
+    "decimate_for_search",
+    "fitted_mask",
+    "make_recordings",
+    "recording_set",
+    "search_windows",
+    "thin_for_search",
+]

@@ -579,3 +579,27 @@ def caller_stacklevel() -> int:
         frame = frame.f_back
         level += 1
     return level
+
+
+__all__ = [
+    "BOUND_TOLERANCE",
+    "CONDITION_LIMIT",
+    "CORRELATION_LIMIT",
+    "Diagnostics",
+    "Entry",
+    "IdentifiabilityWarning",
+    "RCOND",
+    "block_length",
+    "bootstrap",
+    "bound_side",
+    "caller_stacklevel",
+    "covariance",
+    "entries_from_labels",
+    "entries_of",
+    "fd_jacobian",
+    "linearised_se",
+    "moving_block_resample",
+    "se_dict",
+    "vector_of",
+    "with_vector",
+]

@@ -288,3 +288,6 @@ def _assess(problem: DynamicProblem, model: Chain, quality, u_best, workers: int
         label_of=label_of,
         **se,
     )
+
+
+__all__ = ["DynamicProblem", "STATIC", "identify_dynamic", "is_dynamic_chain"]

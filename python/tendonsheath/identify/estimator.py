@@ -439,3 +439,6 @@ def _record_input_range(fit, recs) -> None:
     hi = max(float(np.max(r.x)) for r in recs)
     fit.input_range = (lo, hi)
     fit.model.input_range = (lo, hi)
+
+
+__all__ = ["Identifier", "NotFittedError"]

@@ -62,3 +62,6 @@ def with_training_range(fit, recs):
     hi = max(float(np.max(r.x)) for r in recs)
     model = bounded_to_training(fit.model, lo, hi)
     return fit if model is fit.model else dataclasses.replace(fit, model=model)
+
+
+__all__ = ["bounded_to_training", "with_training_range"]

@@ -478,3 +478,6 @@ def _fmt(v) -> str:
 def _field_names() -> list[str]:
     """The fields of :class:`Fit`, in order (what may be set on one)."""
     return [f.name for f in dataclass_fields(Fit)]
+
+
+__all__ = ["Fit", "FitQuality", "GIVEN_CLASS", "fit_quality", "metrics", "simulate_model"]

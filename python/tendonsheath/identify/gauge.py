@@ -1,5 +1,5 @@
 """The identifiable parameterisation of ``Chain(Backlash or BoucWenBacklash, Polynomial)``
-with a full polynomial (issue 12, Step 9 leftovers item 3).
+with a full polynomial: one direction of the dead bands and the polynomial's offset is fixed.
 
 Shifting the first model's output by d (B_r -> B_r - d / c_r, B_l -> B_l + d / c_l; the
 Bouc-Wen state does not depend on the dead bands) is undone exactly by re-expanding the
@@ -77,3 +77,6 @@ def groups(model: Chain, standard_errors: dict) -> dict:
 
 def _float(v):
     return None if v is None else float(v)
+
+
+__all__ = ["TIED", "applies", "canonical", "entry_names", "groups"]

@@ -441,3 +441,13 @@ def laws_from_points(problem: DirectProblem, points: list[dict]) -> np.ndarray:
     if problem.tanh:
         c[-1] = mu
     return c
+
+
+__all__ = [
+    "ClassSetup",
+    "GPI_PLAYS",
+    "Posed",
+    "SPECS_BY_NAME",
+    "identify_class",
+    "laws_from_points",
+]

@@ -136,3 +136,17 @@ def detect_for_recordings(recs, periodic: bool | None = None) -> tuple[str, str]
         "linear": "energy up to the Nyquist frequency, ramps, or non-uniform sampling",
     }[mode]
     return mode, f"input reconstruction {mode} detected ({why})"
+
+
+__all__ = [
+    "FLAT_FRACTION",
+    "MARGIN",
+    "MIN_SAMPLES",
+    "TOP_BAND",
+    "detect_for_recordings",
+    "detect_input_interpolation",
+    "is_uniform",
+    "linear_error",
+    "spectrum",
+    "tail_fraction",
+]

@@ -241,3 +241,6 @@ def identify_loaded(
         predictions=predictions,
         input_range=(lo, hi),
     )
+
+
+__all__ = ["identify_loaded", "load_stretch"]

@@ -266,3 +266,15 @@ class Problem:
         _, coef, base, terms = got
         base, gain = self.linear.apply(base, coef)
         return Loaded(base, gain=gain, **terms)
+
+
+__all__ = [
+    "LinearPart",
+    "Problem",
+    "SEARCHED",
+    "as_weighted",
+    "base_vector",
+    "prefix",
+    "weighted",
+    "with_values",
+]

@@ -127,3 +127,6 @@ def andrews_seconds(
         if den > 0:
             alpha += (b - a) * p / total * (num / den) * p**2
     return 1.1447 * (alpha * total) ** (1.0 / 3.0)
+
+
+__all__ = ["andrews_lags", "andrews_seconds", "newey_west"]

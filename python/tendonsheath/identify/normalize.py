@@ -1,4 +1,4 @@
-"""Any sign, any offset, any units: identification on centred, scaled data (issue 12 item 4).
+"""Any sign, any offset, any units: identification on centred, scaled data.
 
 The hysteresis models' own parameters have a positive gain and (Backlash, PrandtlIshlinskii)
 no output offset, and their default bounds assume an input centred near zero. ``identify``
@@ -348,3 +348,14 @@ def identify_normalized(fit_normalised, model_class, recs: list[Recording]) -> F
         recordings=recs,
         predictions=preds,
     )
+
+
+__all__ = [
+    "IOMap",
+    "NORMALIZED",
+    "PLAIN_TOLERANCE",
+    "applies",
+    "identify_normalized",
+    "map_uncertainty",
+    "to_raw",
+]

@@ -55,7 +55,6 @@ from .problem import DirectProblem
 from .refine import TimeBudget, forward_jacobian, refine
 
 _PENALTY = 1e100
-_SE_NAMES = ("m", "c", "k", "alpha", "gamma", "delta", "nu")
 
 
 class _Stages:
@@ -574,3 +573,6 @@ def _fit(run: dict, model, problem, se_bounds, seconds, generations, message) ->
         recordings=recs,
         predictions=predictions,
     )
+
+
+__all__ = ["identify_oscillator", "period_count"]

@@ -168,3 +168,6 @@ def _assess(problem, recs, warmup, model, quality, u_best, search) -> dict:
         seed=search.seed,
         generic=(list(PlantModel.param_names), []),
     )
+
+
+__all__ = ["PlantProblem", "SEARCH_MAXITER", "SEARCH_NAMES", "SEARCH_POPSIZE", "identify_plant"]

@@ -129,3 +129,6 @@ def refine(
     if np.isfinite(2.0 * res.cost) and 2.0 * res.cost <= cost0:
         return res.x, res.message
     return u0, "kept the start (no improvement)"
+
+
+__all__ = ["REFINE_LIMIT", "TimeBudget", "forward_jacobian", "refine"]

@@ -51,3 +51,6 @@ def draw_report(fit, path: Path) -> Path:
     save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path
+
+
+__all__ = ["draw_report"]

@@ -186,3 +186,17 @@ class Search:
             bootstrap_block=o.bootstrap_block,
             budget=budget,
         )
+
+
+__all__ = [
+    "DEFAULTS",
+    "OPTION_NAMES",
+    "Options",
+    "Search",
+    "TYPES",
+    "check_names",
+    "check_search_options",
+    "default_threads",
+    "with_new_names",
+    "with_settings_signature",
+]

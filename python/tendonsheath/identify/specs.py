@@ -395,3 +395,17 @@ SPECS: dict[type, type[ModelSpec]] = {
     PrandtlIshlinskii: PrandtlIshlinskiiSpec,
     GeneralizedPrandtlIshlinskii: GeneralizedPrandtlIshlinskiiSpec,
 }
+
+
+__all__ = [
+    "BacklashSpec",
+    "BoucWenBacklashSpec",
+    "BoucWenSpec",
+    "CurveAngleModelSpec",
+    "GeneralizedPrandtlIshlinskiiSpec",
+    "HystereticOscillatorSpec",
+    "ModelSpec",
+    "PrandtlIshlinskiiSpec",
+    "SPECS",
+    "Scale",
+]

@@ -590,3 +590,17 @@ def _residuals(model, recs, warmup):
     y_hat = np.concatenate([simulate_model(model, r.t, r.x, r.angle_input)[warmup:] for r in recs])
     y = np.concatenate([r.y[warmup:] for r in recs])
     return y_hat, y - y_hat, [r.n - warmup for r in recs]
+
+
+__all__ = [
+    "BOOTSTRAP_DEFAULT",
+    "Layout",
+    "REFIT_NFEV",
+    "SE_METHODS",
+    "SingleAngle",
+    "assess",
+    "check_method",
+    "curve_angle_groups",
+    "setup_single_angle",
+    "single_angle",
+]

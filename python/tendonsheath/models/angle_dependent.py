@@ -379,3 +379,6 @@ class AngleDependent(HysteresisModel):
     def __repr__(self) -> str:
         laws = {k: v for k, v in self._laws.items() if v != "constant"}
         return f"AngleDependent({self._base_cls.__name__}, laws={laws})"
+
+
+__all__ = ["AngleDependent", "LAWS", "angle_factor", "law_value", "total_angle"]

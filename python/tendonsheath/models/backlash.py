@@ -25,3 +25,6 @@ class Backlash(HysteresisModel):
 
     def __init__(self, c_r: float = 1.0, c_l: float = 1.0, B_r: float = 0.1, B_l: float = 0.1):
         super().__init__(c_r=c_r, c_l=c_l, B_r=B_r, B_l=B_l)
+
+
+__all__ = ["Backlash"]

@@ -10,7 +10,7 @@ import numbers
 from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar, Self, TypeVar, cast
+from typing import Any, ClassVar, Self, TypeVar, cast
 
 import numpy as np
 
@@ -23,9 +23,6 @@ from .._typing import ArrayLike, FloatArray
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
 from ..status import Status
-
-if TYPE_CHECKING:
-    pass  # python-control ships no types: its systems are Any to mypy
 
 FORMAT_NAME = "tendonsheath.model"
 FORMAT_VERSION = 1
@@ -530,3 +527,14 @@ def _short(value):
     if isinstance(value, float) and math.isfinite(value):
         return f"{value:.6g}"
     return repr(value)
+
+
+__all__ = [
+    "FORMAT_NAME",
+    "FORMAT_VERSION",
+    "HysteresisModel",
+    "load_model",
+    "model_class_from_dict",
+    "saved_input_range",
+    "split_wrapped_changes",
+]

@@ -84,3 +84,6 @@ class BoucWen(HysteresisModel):
             max_step=max_step,
             max_substeps=max_substeps,
         )
+
+
+__all__ = ["BoucWen"]

@@ -88,3 +88,6 @@ def _default_rho(B_r, B_l) -> float | None:
             "rho = 2 / (B_r + B_l); give rho"
         )
     return rho
+
+
+__all__ = ["BoucWenBacklash"]

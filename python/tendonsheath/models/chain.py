@@ -187,3 +187,6 @@ class Chain(HysteresisModel):
 
     def __repr__(self) -> str:
         return f"Chain({self.first!r}, {self.second!r})"
+
+
+__all__ = ["Chain"]

@@ -255,3 +255,6 @@ def _check_saved_keys(data: dict[str, Any]) -> None:
     ):
         got = json.dumps(rows)[:60]
         raise ValueError(f"Coupled file: 'coupling' must be a list of rows of numbers (got {got})")
+
+
+__all__ = ["Coupled", "FORMAT_NAME", "FORMAT_VERSION"]

@@ -297,3 +297,6 @@ def curve_angle_samples(curve_angle, n: int, who: str) -> np.ndarray:
     if theta.size != n:
         raise ValueError(f"{who}: curve_angle and x have different lengths ({theta.size} and {n})")
     return theta
+
+
+__all__ = ["CurveAngleModel", "curve_angle_samples"]

@@ -235,3 +235,6 @@ class GeneralizedPrandtlIshlinskiiInverse(_GeneralizedBase):
             The operator this one inverts.
         """
         return GeneralizedPrandtlIshlinskii(**self.params)
+
+
+__all__ = ["GeneralizedPrandtlIshlinskii", "GeneralizedPrandtlIshlinskiiInverse"]

@@ -311,3 +311,12 @@ def fft_upsample(x: np.ndarray, fine: int) -> np.ndarray:
     if n % 2 == 0:
         Y[n // 2] *= 0.5
     return np.ascontiguousarray(np.fft.irfft(Y, n * fine) * fine)
+
+
+__all__ = [
+    "HystereticOscillator",
+    "UnboundedStateWarning",
+    "fft_upsample",
+    "is_periodic",
+    "uniform_step",
+]

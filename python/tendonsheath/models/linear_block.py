@@ -331,3 +331,13 @@ def _expm(m: np.ndarray) -> np.ndarray:
     for _ in range(s):
         out = out @ out
     return out
+
+
+__all__ = [
+    "FirstOrderLag",
+    "LinearBlock",
+    "SecondOrderLag",
+    "apply_filter",
+    "discretise",
+    "sample_time",
+]

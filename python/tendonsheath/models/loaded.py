@@ -361,3 +361,6 @@ def _check_terms(terms: dict[str, float]) -> None:
             ok, bound = math.isfinite(v) and v >= 0, ">= 0"
         if not ok:
             raise ValueError(f"Loaded: {name} must be {bound} (got {v:g})")
+
+
+__all__ = ["LOAD_TERMS", "Loaded", "play", "play_radius"]

@@ -205,3 +205,6 @@ def _checked(name: str, value) -> float:
         what = "finite and not 0" if name == "gain" else f"in {'[' if closed else '('}{lo}, {hi})"
         raise ValueError(f"PlantModel: {name} must be {what} (got {v})")
     return v
+
+
+__all__ = ["PlantModel", "WRAP"]

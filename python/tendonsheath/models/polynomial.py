@@ -71,3 +71,6 @@ class Polynomial(HysteresisModel):
         u = np.asarray(u, dtype=float)
         powers = range(1, self.degree + 1, 2) if self.options["odd"] else range(self.degree + 1)
         return np.stack([u**k for k in powers], axis=-1)
+
+
+__all__ = ["Polynomial"]

@@ -133,3 +133,6 @@ def _vector(model, name: str, values) -> list[float]:
     if arr.ndim != 1:
         raise ValueError(f"PrandtlIshlinskii: thresholds and weights must be 1-D (got {arr.shape})")
     return [float(v) for v in arr]
+
+
+__all__ = ["PrandtlIshlinskii", "PrandtlIshlinskiiInverse"]

@@ -244,3 +244,6 @@ def _check_map(values: dict[str, float]) -> None:
     gain = values["output_gain"]
     if not (math.isfinite(gain) and gain != 0):
         raise ValueError(f"Scaled: output_gain must be finite and not 0 (got {gain:g})")
+
+
+__all__ = ["Scaled"]

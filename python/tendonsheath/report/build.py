@@ -494,3 +494,14 @@ def write(
         "figures": written,
         "data": _jsonable(metrics),
     }
+
+
+__all__ = [
+    "SCHEMA",
+    "SCHEMA_VERSION",
+    "details",
+    "honesty_section",
+    "intro_for",
+    "scenario_section",
+    "write",
+]

@@ -180,3 +180,17 @@ def bars(values: dict, title: str, ylabel: str, paper: dict | None = None, log: 
     ax.legend(fontsize=8)
     fig.tight_layout()
     return fig
+
+
+__all__ = [
+    "COLORS",
+    "PALETTE",
+    "bars",
+    "bode",
+    "errors",
+    "loops",
+    "planar_centreline",
+    "png",
+    "routes",
+    "tracking",
+]

@@ -104,3 +104,15 @@ def page(title: str, intro: str, sections: list[tuple[str, str, str]]) -> str:
 <body><main><h1>{html.escape(title)}</h1><p class="note">Generated {stamp} by tendonsheath.</p>
 {intro}<nav>{nav}</nav>{body}</main><script>{CHECK_SCRIPT}</script></body></html>
 """
+
+
+__all__ = [
+    "CHECK_SCRIPT",
+    "STYLE",
+    "conditions",
+    "figure",
+    "fmt",
+    "interactive_figure",
+    "page",
+    "table",
+]

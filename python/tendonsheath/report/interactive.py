@@ -112,3 +112,6 @@ def plotly_js() -> str:
     from plotly.offline import get_plotlyjs
 
     return get_plotlyjs()
+
+
+__all__ = ["MARKER", "POINTS", "errors", "loops", "plotly_js", "thinned", "tracking"]

@@ -82,3 +82,6 @@ def executive_summary(
         items.append("No shown run had a limit cycle or a saturated command.")
     body = "".join(f"<li>{_html.escape(i)}</li>" for i in items)
     return f'<div class="summary"><h2>Summary</h2><ul>{body}</ul></div>'
+
+
+__all__ = ["executive_summary"]

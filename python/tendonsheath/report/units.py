@@ -72,3 +72,14 @@ def rows_in_unit(
             new[header(key, unit_after(unit, angle_unit))] = convert(value, unit, angle_unit)
         out.append(new)
     return out
+
+
+__all__ = [
+    "ANGLE_UNITS",
+    "check_angle_unit",
+    "convert",
+    "header",
+    "rows_in_unit",
+    "unit_after",
+    "unit_of_key",
+]

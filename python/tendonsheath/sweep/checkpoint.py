@@ -110,3 +110,6 @@ class Checkpoint:
         if self._file is not None:
             self._file.close()
             self._file = None
+
+
+__all__ = ["Checkpoint", "FORMAT"]

@@ -541,3 +541,21 @@ def as_design(spec) -> Design:
         "sweep: expected a Grid, MonteCarlo, LatinHypercube, Saltelli or a dict of "
         f"parameter -> distribution (got {type(spec).__name__})"
     )
+
+
+__all__ = [
+    "Choice",
+    "Design",
+    "Distribution",
+    "Grid",
+    "Integers",
+    "LatinHypercube",
+    "LogNormal",
+    "MonteCarlo",
+    "Normal",
+    "Relative",
+    "Saltelli",
+    "Seed",
+    "Uniform",
+    "as_design",
+]

@@ -219,13 +219,6 @@ def _stop_pool(key) -> None:
     pool.shutdown(wait=True, cancel_futures=True)
 
 
-def shutdown_local_pools() -> None:
-    """Stop the kept process pools (they also stop when Python exits)."""
-    while _POOLS:
-        _, pool = _POOLS.popitem()
-        pool.shutdown(wait=True, cancel_futures=True)
-
-
 def run_local(
     run, items, workers=None, batch_size=None, progress=None, mp_context=None, record=None
 ) -> tuple[dict, EngineStats]:
@@ -371,3 +364,23 @@ def run_dask(
         extra={"scheduler": client.scheduler.address},
     )
     return col.results, stats
+
+
+__all__ = [
+    "ByValue",
+    "EngineStats",
+    "Item",
+    "Outcome",
+    "SweepError",
+    "auto_batch_size",
+    "connect",
+    "is_dask_client",
+    "local_pool",
+    "make_batches",
+    "portable",
+    "progress_bar",
+    "run_batch",
+    "run_dask",
+    "run_local",
+    "run_serial",
+]

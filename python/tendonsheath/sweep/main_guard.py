@@ -40,3 +40,6 @@ def _is_main_guard(node) -> bool:
 def in_bootstrapping_worker() -> bool:
     """True in a worker process that is importing the parent's script (spawn/forkserver)."""
     return bool(getattr(multiprocessing.current_process(), "_inheriting", False))
+
+
+__all__ = ["ADVICE", "in_bootstrapping_worker", "unguarded_script"]

@@ -173,3 +173,6 @@ def make_plan(design: Design, n: int | None, seed: int | None) -> Plan:
     else:  # pragma: no cover - a new design kind must be added here
         raise ValueError(f"sweep: unknown design {type(design).__name__}")
     return Plan(design, seed, runs, drawn=list(design.distributions), fixed=dict(design.fixed))
+
+
+__all__ = ["Plan", "make_plan", "new_seed"]

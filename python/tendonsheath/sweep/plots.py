@@ -125,3 +125,6 @@ def _sensitivity_bars(result, sensitivity, groups, out: Path) -> Path:
         ax.legend(fontsize="small")
     ax.grid(True, axis="x", alpha=0.3)
     return _saved(fig, out / "sensitivity.png")
+
+
+__all__ = ["plot_all"]

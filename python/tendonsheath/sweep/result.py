@@ -555,3 +555,6 @@ def check_bound(bound) -> None:
             raise ValueError(f"{what} must be finite (got {value})")
         if (metric is None or metric in _ERROR_METRICS) and value <= 0:
             raise ValueError(f"{what} must be > 0: an error metric is >= 0 (got {value})")
+
+
+__all__ = ["QUANTILES", "SweepResult", "build_table", "check_bound", "engine_info"]

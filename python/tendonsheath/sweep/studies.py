@@ -192,3 +192,12 @@ def _limit_cycle_share(groups: list, compensator: str) -> dict[str, float]:
         if name == compensator and "limit_cycle" in g:
             return {"limit_cycle_share": float(g["limit_cycle"].mean())}
     return {}
+
+
+__all__ = [
+    "ROBUSTNESS_RUNS",
+    "ROBUSTNESS_SEED",
+    "robustness_design",
+    "robustness_section",
+    "robustness_study",
+]

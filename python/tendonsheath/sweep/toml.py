@@ -222,3 +222,15 @@ def read_sweep_file(path) -> SweepFile:
         retries=sw.get("retries", 3),
         bound=report.get("bound"),
     )
+
+
+__all__ = [
+    "DESIGNS",
+    "SCENARIOS",
+    "SECTIONS",
+    "SWEEP_KEYS",
+    "SweepFile",
+    "load_run",
+    "parse_parameter",
+    "read_sweep_file",
+]

@@ -202,3 +202,22 @@ def identification_budget(scale: float) -> dict[str, int]:
     """Differential-evolution budget of the calibrations: the default for full runs, a
     smaller search for shortened ones (tests)."""
     return {} if scale >= 1.0 else {"maxiter": 40, "popsize": 10}
+
+
+__all__ = [
+    "PLANT_VALUE",
+    "ScenarioResult",
+    "announce",
+    "cal_model_rows",
+    "calibrated",
+    "encoder",
+    "first_paragraph",
+    "honesty_panel",
+    "identification_budget",
+    "kinematic_told",
+    "piecewise_routes",
+    "ratio",
+    "runs_seen",
+    "scenario_result",
+    "target",
+]

@@ -1,4 +1,4 @@
-"""Do, Tjahjowidodo, Lau & Phee, Mechatronics 2015 (seed 002), in simulation."""
+"""Do, Tjahjowidodo, Lau & Phee, Mechatronics 2015, in simulation."""
 
 from __future__ import annotations
 
@@ -532,3 +532,35 @@ robustness_run.parameters = (  # type: ignore[attr-defined]
     "route_pieces",
     "route_seed",
 )
+
+
+__all__ = [
+    "CALIBRATION_ROUTE",
+    "CALIBRATION_ROUTES",
+    "CONDITIONS",
+    "FEEDFORWARDS",
+    "HEADLINE",
+    "INERTIA",
+    "NOMINAL",
+    "PAPER_MSE",
+    "SENSING",
+    "SERVOS",
+    "SHAPE_LAWS",
+    "SMOOTHING",
+    "TIP_HEADLINE_MS",
+    "VISCOUS",
+    "calibrate",
+    "calibrations",
+    "do2015",
+    "feedforwards",
+    "motor_datasheet",
+    "physics",
+    "plants",
+    "random_route",
+    "reference",
+    "robustness_run",
+    "route_schedule",
+    "servo_motor",
+    "shape_sensing",
+    "torque_motor",
+]

@@ -173,10 +173,10 @@ def as_record(tip: dict[float, dict[str, Any]]) -> dict[str, Any]:
 
 
 def targets(tip: dict[float, dict[str, Any]], target) -> list[dict]:
-    """The Step 14 claims: the better tip-feedback controller's median >= 500x and minimum
-    >= 190x at 1 ms, median >= 100x at 5 ms; each controller's own line beside it. A
-    controller with a limit cycle in any of its runs meets no claim, whatever its figure; its
-    limit cycles and saturated cycles are named beside the verdict."""
+    """The claims the bench checks for tip feedback: the better tip-feedback controller's
+    median >= 500x and minimum >= 190x at 1 ms, median >= 100x at 5 ms; each controller's own
+    line beside it. A controller with a limit cycle in any of its runs meets no claim, whatever
+    its figure; its limit cycles and saturated cycles are named beside the verdict."""
     out = []
     for ms, need_median, need_min in ((1.0, 500.0, 190.0), (5.0, 100.0, None)):
         s = tip[ms]["summary"]

@@ -1,4 +1,4 @@
-"""Lau et al., ISOT 2015 (seed 001), in simulation: a continuum manipulator driven through
+"""Lau et al., ISOT 2015, in simulation: a continuum manipulator driven through
 a tendon-sheath pair."""
 
 from __future__ import annotations
@@ -119,7 +119,7 @@ def lau2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     """Continuum manipulator, +/-90 deg at 0.4 Hz through a 1 m sheath on a semicircle,
     behind a PID servo and a yielding PD servo.
 
-    Percent error (mean |e| over the 180 deg range, seed 001's measure) of no compensation
+    Percent error (mean |e| over the 180 deg range, the paper's measure) of no compensation
     and of both feedforward modes, alone and inside a motor-encoder loop, beside the paper's
     < 5 %, and the frequency response 0.05-2 Hz through the motor lag beside its 0.8 Hz
     bandwidth.
@@ -251,3 +251,19 @@ def _targets(runs_by_servo: dict) -> list[dict]:
         )
     )
     return out
+
+
+__all__ = [
+    "BACKBONE",
+    "CALIBRATION_ANGLES",
+    "CONDITIONS",
+    "HEADLINE",
+    "MODES",
+    "PAPER",
+    "ROUTE",
+    "SERVOS",
+    "TENDON_OFFSET",
+    "calibrate",
+    "compensators",
+    "lau2015",
+]

@@ -17,3 +17,6 @@ def random_arcs(length: float, curve_angle: float, pieces: int, seed: int) -> Ro
     lengths = rng.dirichlet(np.ones(pieces)) * length
     angles = rng.dirichlet(np.ones(pieces)) * curve_angle
     return Route.arcs(list(zip(lengths.tolist(), angles.tolist(), strict=True)))
+
+
+__all__ = ["random_arcs"]

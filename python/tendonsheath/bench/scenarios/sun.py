@@ -1,6 +1,6 @@
 """Sun, Wang & Phee, "Modeling and motion compensation of a bidirectional tendon-sheath
 actuated system for robotic endoscopic surgery", Computer Methods and Programs in Biomedicine
-119(2), 2015 (seed 000), in simulation: compensation that follows the route's curve angle, with
+119(2), 2015, in simulation: compensation that follows the route's curve angle, with
 no sensor at the tip."""
 
 from __future__ import annotations
@@ -311,3 +311,20 @@ def _local_target(local: dict, servo: str) -> dict:
         local["met"],
         "x",
     )
+
+
+__all__ = [
+    "ANGLES",
+    "BACKLASH_ROUTE",
+    "CALIBRATION_ANGLES",
+    "CONDITIONS",
+    "LENGTH",
+    "LOAD_FORCE",
+    "RADIUS",
+    "SERVOS",
+    "SPRING",
+    "calibrate",
+    "local_reference",
+    "plant_groups",
+    "sun2015",
+]
