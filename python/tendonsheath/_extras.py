@@ -8,7 +8,7 @@ package and the install command; the command line prints it as ``error: ...`` (e
 
 from __future__ import annotations
 
-import importlib
+import sys
 from types import ModuleType
 
 
@@ -59,10 +59,11 @@ def require(module: str, *, extra: str, feature: str) -> ModuleType:
     MissingExtraError
         The module cannot be imported.
     """
-    try:
-        return importlib.import_module(module)
+    try:  # the import statement's own hook (builtins.__import__), so that it can be replaced
+        __import__(module)
     except ImportError as exc:
         raise MissingExtraError(module.partition(".")[0], extra, feature) from exc
+    return sys.modules[module]
 
 
 def require_plotly(module: str = "plotly") -> ModuleType:
