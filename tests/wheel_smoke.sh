@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs a built wheel into a fresh venv outside the source tree and runs the quick start
-# from there, so `import tendonsheath` can only find the installed wheel.
+# from there, so `import tendonsheath` can only find the installed wheel. The wheel alone is the
+# light core (no extra): it must install none of the extras' packages and still simulate,
+# identify, compensate and run the commands.
 # Usage: bash tests/wheel_smoke.sh dist/tendonsheath-*.whl
 set -euo pipefail
 wheel=$(realpath "${1:?usage: wheel_smoke.sh WHEEL}")
