@@ -26,9 +26,11 @@ $(STAMP): pyproject.toml
 venv: $(STAMP)
 
 # No build isolation: the build tools live in the venv and the CMake build
-# directory (build/) is kept, so a rebuild only recompiles what changed.
+# directory (build/) is kept, so a rebuild only recompiles what changed. The extras: test (the
+# tools and every optional package the tests use) and report (Plotly, for `make demo`'s HTML
+# report; in test too, named so that the demo does not depend on what the tests need).
 install: $(STAMP)
-	$(PY) -m pip install --quiet --no-build-isolation ".[test]"
+	$(PY) -m pip install --quiet --no-build-isolation ".[test,report]"
 
 demo: install
 	$(VENV)/bin/tendonsheath demo --out $(DEMO_OUT)

@@ -3,6 +3,7 @@
 from importlib.metadata import version as _version
 
 from . import bench, compensate, io, loads, models, physics, presets, protocols
+from ._extras import MissingExtraError
 from .compare import Comparison, compare_models
 from .coupled_plant import CoupledPlant, CoupledSimulation
 from .identify import Fit, IdentifiabilityWarning, Identifier, identify, identify_coupled
@@ -33,6 +34,7 @@ __all__ = [
     "Fit",
     "IdentifiabilityWarning",
     "Identifier",
+    "MissingExtraError",
     "Motor",
     "Plant",
     "PullPullPlant",

@@ -13,6 +13,7 @@ from rich.console import Console
 from rich.table import Table
 from typer.core import TyperCommand, TyperOption
 
+from ._extras import MissingExtraError, require_plotly
 from .identify.diagnostics import IdentifiabilityWarning
 from .identify.fit import GIVEN_CLASS
 from .outputs import check_image_file, check_output_file, check_output_folder
@@ -85,8 +86,9 @@ def _no_traceback(command):
     """Every way a command ends is one line, never a traceback. Ctrl-C: exit code 130
     (128 + SIGINT); outputs are written atomically, so none is left half-written. A
     ValueError, OverflowError or OSError no check caught earlier is bad input or a file the
-    system refused: "error: ..." and exit 2. Anything else is a bug: its type and message on
-    one line, said to be a bug, and exit 1."""
+    system refused, and a MissingExtraError a feature used without its extra: "error: ..." and
+    exit 2. Anything else is a bug: its type and message on one line, said to be a bug, and
+    exit 1."""
 
     @functools.wraps(command)
     def run(*args, **kwargs):
@@ -101,7 +103,7 @@ def _no_traceback(command):
             raise typer.Exit(130) from None
         except (typer.Exit, typer.Abort, _CLICK_ERROR):
             raise  # typer's own ends: an exit code, a usage error
-        except (ValueError, OverflowError, OSError) as exc:
+        except (ValueError, OverflowError, OSError, MissingExtraError) as exc:
             _fail(exc)
         except Exception as exc:  # a bug: said so in one line, not hidden
             _fail_bug(name, exc)
@@ -182,6 +184,7 @@ def demo(
     if unknown:
         _fail(f"unknown scenario(s) {unknown}; known: {list(SCENARIOS)}")
     _checked(check_output_folder, out)
+    require_plotly()  # the report needs it: said before the runs start
     steps = 1 + 3 * len(scenario or SCENARIOS) + 1 + int(robustness)
     with StepProgress(wanted(quiet), steps, "starting") as bar:
         # the calibrations' identifiability warnings are part of the result (the report's
@@ -315,6 +318,7 @@ def bench(
     from .report.build import write
 
     unit = _angle_unit(angle_unit)
+    require_plotly()  # the report is written last: say so before the runs, not after
     try:
         sc = load(scenario)
     except ScenarioError as exc:

@@ -28,10 +28,10 @@ from typing import TYPE_CHECKING, Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ._extras import require
+
 if TYPE_CHECKING:
     import control  # python-control ships no types: its systems are Any to mypy
-
-INSTALL_HINT = "pip install 'tendonsheath[control]'"
 
 
 def require_control() -> ModuleType:
@@ -44,16 +44,10 @@ def require_control() -> ModuleType:
 
     Raises
     ------
-    ImportError
-        python-control is not installed.
+    MissingExtraError
+        python-control is not installed (the ``control`` extra; an ImportError).
     """
-    try:
-        import control
-    except ImportError as exc:
-        raise ImportError(
-            f"python-control interop needs the optional 'control' package: {INSTALL_HINT}"
-        ) from exc
-    return control
+    return require("control", extra="control", feature="python-control interop")
 
 
 class _Block(Protocol):

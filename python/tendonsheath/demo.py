@@ -17,6 +17,7 @@ import numpy as np
 
 from . import models
 from ._atomic import write_bytes
+from ._extras import require_plotly
 from .bench.metrics import loop_width
 from .report.units import check_angle_unit
 
@@ -96,11 +97,13 @@ def run_demo(
     robustness: bool = True,
     angle_unit: str = "deg",
 ) -> dict:
-    """Run the scenarios (all by default) and write the report; returns what was written."""
+    """Run the scenarios (all by default) and write the report; returns what was written.
+    Without Plotly (the ``report`` extra) a MissingExtraError, before anything is run."""
     from .bench.scenarios import SCENARIOS
     from .report.build import write
 
     check_angle_unit(angle_unit)
+    require_plotly()
     names = list(SCENARIOS) if scenarios is None else scenarios
     unknown = [n for n in names if n not in SCENARIOS]
     if unknown:

@@ -1,5 +1,7 @@
-"""Reading logged data: CSV/TSV with a header, NPY (structured or 2-D), NPZ, HDF5, Excel, and
-ROS bags (ROS 1 .bag; ROS 2 .db3, .mcap or a bag folder; the ``ros`` extra).
+"""Reading logged data: CSV/TSV with a header, NPY (structured or 2-D), NPZ, HDF5 (the
+``hdf5`` extra), Excel (the ``excel`` extra), and ROS bags (ROS 1 .bag; ROS 2 .db3, .mcap or a
+bag folder; the ``ros`` extra). HDF5 or Excel without its extra is a MissingExtraError (an
+ImportError) naming the extra.
 
 ``read_log(path, time=..., input=..., output=..., curve_angle=...)`` returns a :class:`Log`
 with the named columns as float arrays. Every problem raises ValueError naming the file,
@@ -39,6 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from ._atomic import atomic_path
+from ._extras import require
 from ._rosbag import TIME_KEY, bag_columns, bag_path, read_bag
 from ._textread import Column, parse_cells, read_text_cells, read_text_header, read_text_table
 from ._timecol import TimeColumn, check_unit, read_time
@@ -391,7 +394,7 @@ def _read_npz(path: Path) -> _Table:
 
 
 def _read_hdf5(path: Path) -> _Table:
-    import h5py
+    h5py = require("h5py", extra="hdf5", feature=f"{path}: reading HDF5 files")
 
     cols: dict[str, np.ndarray] = {}
     try:
@@ -408,12 +411,7 @@ def _read_hdf5(path: Path) -> _Table:
 
 
 def _read_excel(path: Path, sheet=None) -> _Table:
-    try:
-        import openpyxl
-    except ImportError:  # pragma: no cover - a declared dependency
-        raise ValueError(
-            f"{path}: reading Excel files needs openpyxl (pip install openpyxl)"
-        ) from None
+    openpyxl = require("openpyxl", extra="excel", feature=f"{path}: reading Excel files")
     try:
         book = openpyxl.load_workbook(path, read_only=True, data_only=True)
     except Exception as exc:  # openpyxl raises many types for a broken file
@@ -518,6 +516,8 @@ def columns(path: str | Path, sheet: str | int | None = None) -> list[str]:
     ------
     ValueError
         A file that cannot be read (the message names it).
+    MissingExtraError
+        An HDF5 or Excel file without h5py or openpyxl (the ``hdf5`` or ``excel`` extra).
     """
     path = Path(path)
     bag = bag_path(path)
@@ -624,6 +624,8 @@ def read_log(
     ------
     ValueError
         Any problem with the file, naming the file and, where it applies, column and row.
+    MissingExtraError
+        An HDF5 or Excel file without h5py or openpyxl (the ``hdf5`` or ``excel`` extra).
     """
     if missing not in ("error", "drop", "interpolate"):
         raise ValueError(f"missing must be 'error', 'drop' or 'interpolate' (got {missing!r})")

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._atomic import write_bytes, write_json, write_text
+from .._extras import require_plotly
 from ..bench.limit_cycle import describe as describe_limit_cycle
 from . import figures, html, interactive
 from .summary import executive_summary
@@ -462,8 +463,11 @@ def write(
     ------
     ValueError
         An angle_unit other than "deg" or "rad".
+    MissingExtraError
+        Plotly (the ``report`` extra) is not installed: checked before anything is written.
     """
     check_angle_unit(angle_unit)
+    require_plotly()
     out.mkdir(parents=True, exist_ok=True)
     sections, written = [], []
     for result in scenario_results:

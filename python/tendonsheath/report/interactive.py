@@ -3,7 +3,8 @@
 Each figure is a div and a call of Plotly.newPlot; plotly.js itself is inlined once per report
 by :func:`html.page`, so the file stays self-contained and works offline. The traces are
 thinned to at most ``POINTS`` samples (the minimum and maximum of each stretch, so no peak of
-the error is lost) and stored as float32, to keep the report small."""
+the error is lost) and stored as float32, to keep the report small. Plotly is the ``report``
+extra: imported where a figure is drawn, never at ``import tendonsheath``."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import html as _html
 
 import numpy as np
 
+from .._extras import require_plotly
 from .figures import _angle, _color
 
 POINTS = 2000  # per trace: a few pixels' worth across a report-wide figure
@@ -61,7 +63,7 @@ def _div(fig, title: str, xlabel: str, ylabel: str, height: int, caption: str) -
 
 
 def tracking(runs: dict, title: str, caption: str, last_seconds=12.0, unit="deg") -> str:
-    import plotly.graph_objects as go
+    go = require_plotly("plotly.graph_objects")
 
     first = next(iter(runs.values()))
     keep = first.t >= first.t[-1] - last_seconds
@@ -74,7 +76,7 @@ def tracking(runs: dict, title: str, caption: str, last_seconds=12.0, unit="deg"
 
 
 def errors(runs: dict, title: str, caption: str, unit="deg") -> str:
-    import plotly.graph_objects as go
+    go = require_plotly("plotly.graph_objects")
 
     traces = [
         _line(go, r.t, _angle(r.error, unit), name, _color(name, i))
@@ -87,7 +89,7 @@ def errors(runs: dict, title: str, caption: str, unit="deg") -> str:
 
 
 def loops(runs: dict, title: str, caption: str, unit="deg") -> str:
-    import plotly.graph_objects as go
+    go = require_plotly("plotly.graph_objects")
 
     traces = []
     for i, (name, r) in enumerate(runs.items()):
@@ -109,9 +111,7 @@ def loops(runs: dict, title: str, caption: str, unit="deg") -> str:
 
 def plotly_js() -> str:
     """The plotly.js bundle shipped with the plotly package (no network)."""
-    from plotly.offline import get_plotlyjs
-
-    return get_plotlyjs()
+    return require_plotly("plotly.offline").get_plotlyjs()
 
 
 __all__ = ["MARKER", "POINTS", "errors", "loops", "plotly_js", "thinned", "tracking"]

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._atomic import atomic_path, write_json
+from .._extras import require
 
 if TYPE_CHECKING:  # pandas is imported when a table is built (an optional dependency)
     import pandas as pd
@@ -21,13 +22,7 @@ QUANTILES = {"q05": 0.05, "q25": 0.25, "median": 0.5, "q75": 0.75, "q95": 0.95}
 
 
 def _pandas():
-    try:
-        import pandas
-    except ImportError:  # pragma: no cover - depends on the install
-        raise ImportError(
-            "sweep tables need pandas (and pyarrow for Parquet): pip install 'tendonsheath[sweep]'"
-        ) from None
-    return pandas
+    return require("pandas", extra="sweep", feature="the sweep's table")
 
 
 def _is_number(x) -> bool:
@@ -418,6 +413,7 @@ class SweepResult:
         Path
             The file written.
         """
+        require("pyarrow", extra="sweep", feature="the sweep's Parquet table")
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
         table = self.table.copy()
