@@ -322,7 +322,6 @@ def frequency_response_data(
 
 
 __all__ = [
-    "INSTALL_HINT",
     "Snapshots",
     "frequency_response_data",
     "require_control",
