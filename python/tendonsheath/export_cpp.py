@@ -17,11 +17,11 @@ docs/cpp-without-exceptions.md). The compensators whose step takes more than (y_
 from __future__ import annotations
 
 import json
-import math
 import re
 from pathlib import Path
 
-_INF = "std::numeric_limits<double>::infinity()"
+from ._cpp_literal import cpp_number as _number
+
 _BACKLASH_KEYS = ("c_r", "c_l", "B_r", "B_l")
 # C++ keywords and alternative tokens (C++20's too: a header outlives its standard), and the
 # namespaces a header must not open
@@ -39,15 +39,6 @@ _CPP_RESERVED = frozenset(
 _EXPORTED_COMPENSATORS = ("InverseFeedforward", "CurveAngleFeedforward", "ContinuumFeedforward")
 # those whose step takes more than (y_d, dt): export_cpp_multi.py writes them
 _MULTI_INPUT_COMPENSATORS = ("LoadCompensated", "CoupledFeedforward")
-
-
-def _number(value: float) -> str:
-    value = float(value)
-    if math.isnan(value):
-        raise ValueError("export --cpp: a parameter is NaN")
-    if math.isinf(value):
-        return _INF if value > 0 else f"-{_INF}"
-    return repr(value)
 
 
 def _literal(value) -> str:

@@ -14,10 +14,10 @@ Python's bit for bit.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 
-_INF = "std::numeric_limits<double>::infinity()"
+from ._cpp_literal import cpp_number as _number
+
 _MULTI_INPUT = "tendonsheath/io/json_multi_input.hpp"
 # the ModelPart members each kind's inverse reads (compensate/inverse_model.py)
 _MEMBERS = {
@@ -33,15 +33,6 @@ _MEMBERS = {
     "FirstOrderLag": ("lag",),
     "SecondOrderLag": ("lag",),
 }
-
-
-def _number(value: float) -> str:
-    value = float(value)
-    if math.isnan(value):
-        raise ValueError("export --cpp: a parameter is NaN")
-    if math.isinf(value):
-        return _INF if value > 0 else f"-{_INF}"
-    return repr(value)
 
 
 def _fields(obj) -> list[str]:
