@@ -27,36 +27,19 @@
 
 #include "../json_malformed_cases.hpp"
 
-#if !defined(EXPECT_EXCEPTIONS) || EXPECT_EXCEPTIONS != TENDONSHEATH_EXCEPTIONS
-#error "built in the wrong mode: EXPECT_EXCEPTIONS must equal TENDONSHEATH_EXCEPTIONS"
-#endif
+#include "harness.hpp"
 
 namespace ts = tendonsheath;
 using json = ts::io::json;
 
+using no_exceptions::check;
+using no_exceptions::failures;
+using no_exceptions::Rng;
+
 namespace {
 
-int failures = 0;  // checks that failed
-int refused = 0;   // loads that returned an error
+int refused = 0;    // loads that returned an error
 int malformed = 0;  // malformed files whose message was checked for its words
-
-void check(bool ok, const std::string& what) {
-  if (ok) return;
-  ++failures;
-  std::fprintf(stderr, "FAILED: %s\n", what.c_str());
-}
-
-// splitmix64: the same draws in both builds
-struct Rng {
-  std::uint64_t s;
-  std::uint64_t next() {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  std::size_t below(std::size_t n) { return static_cast<std::size_t>(next() % n); }
-};
 
 std::string dir;  // this run's temporary directory: "DIR" in what is printed
 

@@ -24,41 +24,23 @@
 
 #include <tendonsheath/tendonsheath.hpp>
 
+#include "harness.hpp"
+
 #if !TENDONSHEATH_EXCEPTIONS
 #include <csignal>
 #include <sys/wait.h>
 #include <unistd.h>
 #endif
 
-#if !defined(EXPECT_EXCEPTIONS) || EXPECT_EXCEPTIONS != TENDONSHEATH_EXCEPTIONS
-#error "built in the wrong mode: EXPECT_EXCEPTIONS must equal TENDONSHEATH_EXCEPTIONS"
-#endif
-
 namespace ts = tendonsheath;
+
+using no_exceptions::check;
+using no_exceptions::failures;
+using no_exceptions::Rng;
 
 namespace {
 
-int failures = 0;  // checks that failed
 int refused = 0;   // make() calls that returned an error (the test needs many)
-
-void check(bool ok, const std::string& what) {
-  if (ok) return;
-  ++failures;
-  std::fprintf(stderr, "FAILED: %s\n", what.c_str());
-}
-
-// splitmix64: the same draws in both builds
-struct Rng {
-  std::uint64_t s;
-  std::uint64_t next() {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-  std::size_t below(std::size_t n) { return static_cast<std::size_t>(next() % n); }
-};
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kBad[] = {kNaN, -1.0, 0.0};
