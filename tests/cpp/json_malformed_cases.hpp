@@ -1,6 +1,7 @@
 // Malformed compensator files, each with the words its loader's message must hold: the cases of
 // the JSON loaders' tests (test_io_json_multi_input.cpp) and of the program that runs them with
-// and without C++ exceptions (no_exceptions/json_cases.cpp), so that both check the same files.
+// and without C++ exceptions (no_exceptions/json_cases.cpp), so that both check the same files;
+// and the good files and models they are made from (test_io_json.cpp loads those too).
 #pragma once
 
 #include <cstdint>

@@ -10,32 +10,16 @@
 #include <string>
 #include <tendonsheath/io/json.hpp>
 
+#include "json_malformed_cases.hpp"
+
 namespace ts = tendonsheath;
 using ts::io::json;
 
+using malformed_json::backlash_model4;
+using malformed_json::curve_angle_file;
+using malformed_json::inverse_file;
+
 namespace {
-
-json backlash_model(double c_r, double c_l, double B_r, double B_l) {
-  return {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "Backlash"},
-          {"params", {{"c_r", c_r}, {"c_l", c_l}, {"B_r", B_r}, {"B_l", B_l}}},
-          {"options", json::object()}};
-}
-
-json inverse_file(json model, double smoothing = 0.05) {
-  return {{"format", "tendonsheath.compensator"}, {"version", 1},
-          {"compensator", "InverseFeedforward"}, {"model", std::move(model)},
-          {"smoothing", smoothing},
-          {"limits", {{"min", nullptr}, {"max", nullptr}, {"max_rate", nullptr}}}};
-}
-
-json curve_angle_file() {
-  return {{"format", "tendonsheath.compensator"}, {"version", 1},
-          {"compensator", "CurveAngleFeedforward"}, {"friction", 0.12}, {"stiffness", 5000.0},
-          {"length", 1.0}, {"pretension", 15.0}, {"load_force", 1.0}, {"load_stiffness", 50.0},
-          {"proximal_radius", 6e-3}, {"distal_radius", 4e-3}, {"curve_angle", 2.0},
-          {"smoothing", 0.03}, {"max_correction_rate", nullptr},
-          {"limits", {{"min", -3.0}, {"max", 3.0}, {"max_rate", 20.0}}}};
-}
 
 std::string error_of(const json& file) {
   try {
@@ -55,7 +39,7 @@ TEST(IoJson, BacklashInverseStepsEqualTheCoreObjectOverRandomCases) {
     ts::BacklashInverseParams p;
     p.c_r = u(rng), p.c_l = u(rng), p.B_r = b(rng), p.B_l = b(rng), p.v_eps = 0.01 + b(rng);
     ts::io::LoadedCompensator loaded =
-        ts::io::compensator_from_json(inverse_file(backlash_model(p.c_r, p.c_l, p.B_r, p.B_l), p.v_eps));
+        ts::io::compensator_from_json(inverse_file(backlash_model4(p.c_r, p.c_l, p.B_r, p.B_l), p.v_eps));
     ts::BacklashInverseFeedforward direct(p);
     EXPECT_EQ(loaded.kind(), "InverseFeedforward");
     for (int k = 0; k < 200; ++k) {
@@ -66,10 +50,7 @@ TEST(IoJson, BacklashInverseStepsEqualTheCoreObjectOverRandomCases) {
 }
 
 TEST(IoJson, ScaledModelAppliesItsMapAroundTheInnerInverse) {
-  json scaled = {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "Scaled"},
-                 {"inner", backlash_model(1.2, 0.8, 0.1, 0.05)},
-                 {"map", {{"input_offset", 0.3}, {"input_scale", 2.0}, {"output_offset", -0.1},
-                          {"output_gain", -1.5}}}};
+  json scaled = malformed_json::scaled_model();
   json file = inverse_file(scaled, 0.06);
   file["limits"]["max"] = 1.0;
   ts::io::LoadedCompensator loaded = ts::io::compensator_from_json(file);
@@ -94,7 +75,7 @@ TEST(IoJson, PrandtlIshlinskiiAndBoucWenBacklashModelsLoad) {
   ASSERT_TRUE(std::holds_alternative<ts::ModelInverse>(loaded.engine()));
   const auto& inverse = std::get<ts::ModelInverse>(loaded.engine());
   EXPECT_TRUE(std::holds_alternative<ts::PrandtlIshlinskiiInverse>(inverse.core()));  // exact
-  json bw = backlash_model(1.0, 1.1, 0.1, 0.2);
+  json bw = backlash_model4(1.0, 1.1, 0.1, 0.2);
   bw["model"] = "BoucWenBacklash";
   bw["params"].update({{"rho", 5.0}, {"sigma", 0.5}, {"n", 1.0}});
   bw["options"] = {{"max_step", 0.01}, {"max_substeps", 100}};
@@ -179,10 +160,10 @@ TEST(IoJson, MalformedFilesNameTheKey) {
   f = curve_angle_file();
   f["format"] = "tendonsheath.model";
   EXPECT_NE(error_of(f).find("'format'"), std::string::npos) << error_of(f);
-  json inv = inverse_file(backlash_model(1, 1, 0.1, 0.1));
+  json inv = inverse_file(backlash_model4(1, 1, 0.1, 0.1));
   inv["model"]["model"] = "PolynomialHysteresis";
   EXPECT_NE(error_of(inv).find("key 'model'"), std::string::npos) << error_of(inv);
-  inv = inverse_file(backlash_model(1, 1, 0.1, 0.1));
+  inv = inverse_file(backlash_model4(1, 1, 0.1, 0.1));
   inv["model"]["params"].erase("B_l");
   EXPECT_NE(error_of(inv).find("model: params: key 'B_l' is missing"), std::string::npos)
       << error_of(inv);
@@ -229,7 +210,7 @@ TEST(IoJson, NumbersBeyondADoubleNameTheFileAndTheKey) {
   }
   EXPECT_EQ(file_error_of(text), "");
   // an integer setting beyond an int is named too (get<int> would wrap it round)
-  json bw = backlash_model(1.0, 1.1, 0.1, 0.2);
+  json bw = backlash_model4(1.0, 1.1, 0.1, 0.2);
   bw["model"] = "BoucWenBacklash";
   bw["params"].update({{"rho", 5.0}, {"sigma", 0.5}, {"n", 1.0}});
   bw["options"] = {{"max_step", 0.01}, {"max_substeps", 100}};
@@ -242,7 +223,7 @@ TEST(IoJson, NumbersBeyondADoubleNameTheFileAndTheKey) {
 // The settings of the inverse of every model: input_range ([lo, hi], null, or absent: the
 // model's own), range_margin and filter_hz; the commands stay in the widened range.
 TEST(IoJson, InverseRangeSettings) {
-  json model = backlash_model(1.0, 1.0, 0.1, 0.1);
+  json model = backlash_model4(1.0, 1.0, 0.1, 0.1);
   model["input_range"] = {-0.4, 0.6};
   json file = inverse_file(model);
   auto widest = [](ts::io::LoadedCompensator c) {
@@ -278,24 +259,11 @@ TEST(IoJson, InverseRangeSettings) {
 // Every model class the identification returns loads (a Chain, a Scaled one, a lag, a plant,
 // an angle-dependent one), and a bad key inside any of them is named.
 TEST(IoJson, EveryModelClassLoads) {
-  const json lag = {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "SecondOrderLag"},
-                    {"params", {{"frequency", 4.0}, {"damping", 0.7}}}, {"options", json::object()}};
-  const json chain = {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "Chain"},
-                      {"first", backlash_model(1.0, 1.0, 0.1, 0.1)}, {"second", lag}};
+  const json chain = malformed_json::chain_model();  // a Backlash then a SecondOrderLag
   EXPECT_EQ(error_of(inverse_file(chain)), "(no error)");
-  const json plant = {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "PlantModel"},
-                      {"params", {{"friction_angle", 1.0}, {"backlash", 0.1}, {"viscous_time", 0.0},
-                                  {"gain", 1.0}, {"offset", 0.0}}},
-                      {"options", {{"elements", 10}}}};
+  const json plant = malformed_json::plant_model();
   EXPECT_EQ(error_of(inverse_file(plant)), "(no error)");
-  json angle = {{"format", "tendonsheath.model"}, {"version", 1}, {"model", "AngleDependent"},
-                {"params", {{"base", "Backlash"},
-                            {"laws", {{"c_r", "constant"}, {"c_l", "constant"}, {"B_r", "tanh"},
-                                      {"B_l", "linear"}}},
-                            {"coefficients", {{"c_r", {1.0}}, {"c_l", {1.0}}, {"B_r", {0.05, 0.1}},
-                                              {"B_l", {0.05, 0.01}}}},
-                            {"angle_friction", 0.1}}},
-                {"options", {{"base_options", json::object()}}}};
+  json angle = malformed_json::angle_dependent_model();
   ts::io::LoadedCompensator loaded = ts::io::compensator_from_json(inverse_file(angle));
   EXPECT_TRUE(std::get<ts::ModelInverse>(loaded.engine()).follows_route());
   angle["params"]["laws"]["B_r"] = "cubic";
@@ -316,7 +284,7 @@ TEST(IoJson, LearnedFeedforwardAddsItsTableAndNamesBadKeys) {
   auto learned_file = [] {
     return json{{"format", "tendonsheath.compensator"}, {"version", 1},
                 {"compensator", "LearnedFeedforward"},
-                {"feedforward", inverse_file(backlash_model(1, 1, 0.05, 0.05))},
+                {"feedforward", inverse_file(backlash_model4(1, 1, 0.05, 0.05))},
                 {"table", {0.0, 0.01, 0.03}}, {"table_dt", 2e-3}, {"hold_last", true},
                 {"limits", {{"min", nullptr}, {"max", nullptr}, {"max_rate", nullptr}}}};
   };
@@ -324,7 +292,7 @@ TEST(IoJson, LearnedFeedforwardAddsItsTableAndNamesBadKeys) {
   EXPECT_EQ(loaded.kind(), "LearnedFeedforward");
   ASSERT_NE(loaded.learned_correction(), nullptr);
   ts::io::LoadedCompensator plain =
-      ts::io::compensator_from_json(inverse_file(backlash_model(1, 1, 0.05, 0.05)));
+      ts::io::compensator_from_json(inverse_file(backlash_model4(1, 1, 0.05, 0.05)));
   const double expected[] = {0.0, 0.005, 0.01, 0.02, 0.03, 0.03, 0.03};
   for (int k = 0; k < 7; ++k) {
     const double y = 0.3 * std::sin(0.2 * k), dt = k == 0 ? 0.0 : 1e-3;
@@ -362,12 +330,7 @@ TEST(IoJson, LearnedFeedforwardAddsItsTableAndNamesBadKeys) {
 // A GeneralizedPrandtlIshlinskii file's options.envelope_range (as Python writes it) sets both
 // envelopes' tanh input range; absent or null leaves them unbounded; a bad one is named.
 TEST(IoJson, GeneralizedPIEnvelopeRangeLoads) {
-  json gpi = {{"format", "tendonsheath.model"}, {"version", 1},
-              {"model", "GeneralizedPrandtlIshlinskii"},
-              {"params", {{"rising_a", 1.0}, {"rising_b", 2.0}, {"rising_c", 0.1}, {"rising_d", 0.0},
-                          {"falling_a", 1.2}, {"falling_b", 1.5}, {"falling_c", -0.1},
-                          {"falling_d", 0.05}, {"thresholds", {0.0, 0.1}}, {"weights", {1.0, 0.5}}}},
-              {"options", {{"envelope_range", {-0.5, 0.7}}}}};
+  json gpi = malformed_json::generalized_pi_model();
   const ts::ModelPart part = ts::io::detail::part_from_json(gpi, "m");
   const auto& g = part.generalized_prandtl_ishlinskii;
   EXPECT_EQ(g.rising.lo, -0.5);
@@ -395,7 +358,7 @@ TEST(IoJson, TheVersionMustBeTheInteger) {
     json f = curve_angle_file();
     f["version"] = version;
     EXPECT_NE(error_of(f).find("unsupported 'version'"), std::string::npos) << error_of(f);
-    json inv = inverse_file(backlash_model(1, 1, 0.1, 0.1));
+    json inv = inverse_file(backlash_model4(1, 1, 0.1, 0.1));
     inv["model"]["version"] = version;
     EXPECT_NE(error_of(inv).find("unsupported 'version'"), std::string::npos) << error_of(inv);
   }
