@@ -192,6 +192,7 @@ lint: install
 	$(VENV)/bin/ruff check python tests benchmarks examples
 	$(VENV)/bin/ruff format --check python tests benchmarks examples
 	$(VENV)/bin/mypy
+	$(VENV)/bin/lint-imports --no-cache
 
 clean:
 	rm -rf build dist $(VENV) $(DEMO_OUT) .pytest_cache .ruff_cache .mypy_cache

@@ -24,7 +24,7 @@ from rich.table import Table
 
 import tendonsheath as ts
 from _common import write_results
-from tendonsheath.presets import realistic_plant
+from tendonsheath.plant.presets import realistic_plant
 
 FS, N, REF = 100.0, 400, 256
 MODES = ("hold", "linear", "bandlimited")

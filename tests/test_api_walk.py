@@ -37,18 +37,18 @@ import tendonsheath as ts
 # The public modules, in the order their docstrings were written.
 PUBLIC_MODULES = [
     "tendonsheath.models",
-    "tendonsheath.loads",
-    "tendonsheath.route",
-    "tendonsheath.sensor",
-    "tendonsheath.motor",
+    "tendonsheath.plant.loads",
+    "tendonsheath.plant.route",
+    "tendonsheath.plant.sensor",
+    "tendonsheath.plant.motor",
     "tendonsheath.status",
-    "tendonsheath.presets",
-    "tendonsheath.physics",
+    "tendonsheath.plant.presets",
+    "tendonsheath.plant.physics",
     "tendonsheath.io",
     "tendonsheath.compensate",
     "tendonsheath.simulation_result",  # before plant, which re-exports SimulationResult
+    "tendonsheath.plant.coupled",  # before plant, which re-exports CoupledPlant
     "tendonsheath.plant",
-    "tendonsheath.coupled_plant",
     "tendonsheath.sweep",
     "tendonsheath.bench",
     "tendonsheath.report.build",
@@ -70,7 +70,7 @@ NOT_WALKED = {
     "tendonsheath.demo": "the `tendonsheath demo` job, run by the command",
     "tendonsheath.outputs": "output-path checks of the commands",
     "tendonsheath.plots": "the figure behind the plants' plot_tensions() (walked there)",
-    "tendonsheath.plant_input": "the plants' input reconstruction, used through simulate()",
+    "tendonsheath.report": "the report's folder (report.build and report.summary walked)",
     "tendonsheath.report.figures": "figures of report.build (walked)",
     "tendonsheath.report.html": "HTML of report.build (walked)",
     "tendonsheath.report.interactive": "Plotly figures of report.build (walked)",
@@ -324,7 +324,7 @@ def test_every_module_of_the_package_is_walked_or_listed():
     modules = set()
     for path in package.rglob("*.py"):
         parts = path.relative_to(package).with_suffix("").parts
-        if len(parts) == 1 or parts[0] == "report":  # top-level modules; report has no __init__
+        if len(parts) == 1 or parts[0] == "report":  # top-level modules; report's modules
             modules.add(".".join(("tendonsheath", *parts)))
         else:
             modules.add(f"tendonsheath.{parts[0]}")  # a subpackage: walked through its __all__
@@ -497,8 +497,8 @@ MINIMAL_CALLS = {
     "tendonsheath.compensate.load_compensated.LoadCompensated": (
         lambda kw: ts.compensate.LoadCompensated(ts.models.Loaded(_model()), **kw)
     ),
-    "tendonsheath.presets.realistic_motor": lambda kw: ts.presets.realistic_motor(**kw),
-    "tendonsheath.presets.realistic_plant": lambda kw: ts.presets.realistic_plant(**kw),
+    "tendonsheath.plant.presets.realistic_motor": lambda kw: ts.presets.realistic_motor(**kw),
+    "tendonsheath.plant.presets.realistic_plant": lambda kw: ts.presets.realistic_plant(**kw),
     "tendonsheath.compensate.adaptive_controller.AdaptiveController": (
         lambda kw: ts.compensate.AdaptiveController(**kw)
     ),

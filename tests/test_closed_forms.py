@@ -1,5 +1,5 @@
 """The closed forms of spec A (C++ physics/pull_pull_statics.hpp, reached through
-tendonsheath.physics and the CurveAngleModel helpers) against the independent reference in
+tendonsheath.plant.physics and the CurveAngleModel helpers) against the independent reference in
 tests/reference/closed_forms.py (50-digit decimal arithmetic; a 2x2 solve with quadrature shape
 integrals), over many random parameter sets and across the series switch."""
 

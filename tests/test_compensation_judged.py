@@ -55,7 +55,7 @@ def test_inverse_feedforward_and_adaptive_beat_the_papers_factors(do_setup, name
 
 
 # Improvement factors (MSE none / MSE compensated) on the realistic plant (do_scenario
-# .plants(): tendonsheath.presets, the PID servo) with bench.calibrate's model (calibration
+# .plants(): tendonsheath.plant.presets, the PID servo) with bench.calibrate's model (calibration
 # route, not the nominal test route; fitted from the command), seed 0, budget 40 x 10;
 # thresholds sit about 15 % below.
 # measured:            feedforward  adaptive

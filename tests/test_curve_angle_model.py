@@ -6,7 +6,7 @@ import pytest
 import tendonsheath as ts
 from reference import closed_forms as ref
 from tendonsheath.models import CurveAngleModel
-from tendonsheath.physics import backlash_half_width, load_offset, spring_slope
+from tendonsheath.plant.physics import backlash_half_width, load_offset, spring_slope
 
 
 def _random_params(rng):

@@ -7,7 +7,7 @@ import pytest
 
 from tendonsheath import _core as core
 from tendonsheath import models
-from tendonsheath.models.hysteretic_oscillator import fft_upsample
+from tendonsheath._sampling import fft_upsample
 
 NAMES = ("m", "c", "k", "alpha", "beta", "gamma", "delta", "nu")
 

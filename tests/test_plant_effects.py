@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import tendonsheath as ts
-from tendonsheath.loads import TorsionalSpring
+from tendonsheath.plant.loads import TorsionalSpring
 
 RNG_CASES = 8
 

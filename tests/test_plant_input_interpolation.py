@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import tendonsheath as ts
-from tendonsheath.presets import realistic_plant
+from tendonsheath.plant.presets import realistic_plant
 
 FS = 100.0
 N = 400

@@ -97,8 +97,9 @@ def all_problems(module: types.ModuleType) -> list[str]:
             continue
         obj = getattr(module, name)
         if inspect.ismodule(obj):
-            # a package may export its own subpackages (ts.models, ts.io), nothing else
-            if obj.__name__ != f"{modname}.{name}":
+            # a package may export its own subpackages (ts.models, ts.io) and modules of
+            # its folders (ts.presets is tendonsheath.plant.presets), nothing else (np, re)
+            if not obj.__name__.startswith(f"{modname}."):
                 problems.append(f"{name}: the module {obj.__name__}")
             continue
         origin = imported.get(name)

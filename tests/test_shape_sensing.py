@@ -8,9 +8,7 @@ import pytest
 
 import tendonsheath as ts
 from tendonsheath import physics
-from tendonsheath.bench.calibration import ShapeSensing as FromCalibration
-from tendonsheath.bench.calibration import sensed_schedule
-from tendonsheath.bench.shape_sensing import ShapeSensing, sensed_route_schedule
+from tendonsheath.bench.shape_sensing import ShapeSensing, sensed_route_schedule, sensed_schedule
 
 # A route every one of whose 20 equal arcs bends by at least 2 pi/20 = 0.31 rad: no sensed
 # arc comes near the clip at 0 (noise <= 0.05 rad per arc), so the noise is not biased.
@@ -36,8 +34,7 @@ def _changing(t_switch, before, after):
     return lambda tk: before if tk < t_switch else after
 
 
-def test_calibration_re_exports_the_one_class():
-    assert FromCalibration is ShapeSensing
+def test_the_bench_exports_the_one_class():
     assert ts.bench.ShapeSensing is ShapeSensing
 
 

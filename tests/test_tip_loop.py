@@ -17,7 +17,7 @@ from tendonsheath.compensate import (
     TipLoop,
 )
 from tendonsheath.models import Backlash, BoucWenBacklash, Scaled
-from tendonsheath.presets import realistic_motor, realistic_plant
+from tendonsheath.plant.presets import realistic_motor, realistic_plant
 
 SCHEDULE = [(1.0, 0.5), (2.0, 1.0), (3.0, 2.0)]
 

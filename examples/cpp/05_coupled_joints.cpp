@@ -33,7 +33,7 @@ ts::PullPullParams drive() {
   p.pretension = 20.0;
   p.proximal_radius = p.distal_radius = 15e-3;
   p.elements = 40;
-  p.distal_inertia = 2e-5;  // the realistic effects (tendonsheath.presets.realistic_plant)
+  p.distal_inertia = 2e-5;  // the realistic effects (tendonsheath.plant.presets.realistic_plant)
   p.distal_damping = 2e-3;
   p.sheath_viscosity = 8.0;
   p.relaxation_fraction = 0.08;

@@ -2,25 +2,32 @@
 
 from importlib.metadata import version as _version
 
-from . import bench, compensate, io, loads, models, physics, presets, protocols
+from . import _moved, bench, compensate, io, models, protocols
 from ._extras import MissingExtraError
 from .compare import Comparison, compare_models
-from .coupled_plant import CoupledPlant, CoupledSimulation
 from .identify import Fit, IdentifiabilityWarning, Identifier, identify, identify_coupled
 from .models import load_model
-from .motor import Motor
 from .plant import (
     ContinuumPlant,
+    CoupledPlant,
+    CoupledSimulation,
+    Motor,
     PullPullPlant,
+    Route,
+    Sensor,
     SingleTendonPlant,
     SlackWarning,
+    UnitWarning,
+    loads,
+    physics,
+    presets,
 )
 from .protocols import Compensator, Plant
-from .route import Route, UnitWarning
-from .sensor import Sensor
 from .simulation_result import SimulationResult
 from .status import Status, status_counts
 from .sweep import sweep
+
+_moved.install()  # importing a module's old path names its new one
 
 # one source: pyproject.toml's version, as installed
 __version__ = _version("tendonsheath")

@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike, NDArray
 
 if TYPE_CHECKING:
     from .identify.data import Recording
-    from .io import Log
+    from .io.log import Log
 
 # an array of samples the package returns
 FloatArray: TypeAlias = NDArray[np.float64]

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import warnings
+from importlib.metadata import version as package_version
 from pathlib import Path
 from typing import NoReturn
 
@@ -133,9 +134,7 @@ def _print_notes(log) -> None:
 
 def _print_version(value: bool) -> None:
     if value:
-        from . import __version__
-
-        typer.echo(f"tendonsheath {__version__}")
+        typer.echo(f"tendonsheath {package_version('tendonsheath')}")
         raise typer.Exit()
 
 

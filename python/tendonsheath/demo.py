@@ -148,8 +148,8 @@ def rate_section(out: Path, frequencies=(0.1, 1.0, 5.0)):
     presets) beside the capstan-only pair, which draws the same loop at any rate."""
     from .bench.rate_dependence import hysteresis_loops, loops_figure
     from .bench.scenarios.do import _COMMON, NOMINAL, physics, servo_motor
-    from .motor import Motor
-    from .plant import PullPullPlant
+    from .plant.motor import Motor
+    from .plant.pull_pull import PullPullPlant
     from .report import figures, html
 
     plants = {
@@ -176,7 +176,7 @@ def rate_section(out: Path, frequencies=(0.1, 1.0, 5.0)):
         "<p>The do2015 drive driven by a 1 rad sine at each rate through its servo (motor "
         "encoder in, distal angle out, last of three periods). The capstan-only pair is rate "
         "independent; the realistic plant (viscous sheath friction, tendon creep, a dynamic "
-        "distal joint, motor friction and gear backlash: <code>tendonsheath.presets</code>) "
+        "distal joint, motor friction and gear backlash: <code>tendonsheath.plant.presets</code>) "
         "widens its loop with rate, as measured drives do.</p>"
         + html.table(rows)
         + html.figure(data, "Input-output loops of the realistic plant at 0.1, 1 and 5 Hz.")

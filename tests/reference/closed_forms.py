@@ -1,5 +1,5 @@
 """An independent reference for the closed forms of spec A (A1-A7) that the C++ core computes
-(``physics/pull_pull_statics.hpp``, reached from Python through ``tendonsheath.physics``).
+(``physics/pull_pull_statics.hpp``, reached from Python through ``tendonsheath.plant.physics``).
 
 Nothing here shares code or method with the core:
 

@@ -20,10 +20,10 @@ import numpy as np
 from tendonsheath.bench.metrics import tracking_metrics
 from tendonsheath.bench.scenarios.routes import random_arcs
 from tendonsheath.compensate import CurveAngleFeedforward, InverseFeedforward
-from tendonsheath.loads import ConstantTorque
 from tendonsheath.models import Backlash
 from tendonsheath.plant import PullPullPlant
-from tendonsheath.route import Route
+from tendonsheath.plant.loads import ConstantTorque
+from tendonsheath.plant.route import Route
 
 #: Nominal values the compensators are tuned for (SI, rad).
 NOMINAL = {

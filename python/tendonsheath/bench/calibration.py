@@ -23,16 +23,15 @@ identified parameters sit at (within 1 % of) their search bounds.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .. import models
-from ..physics import route_shape
-from ..route import Route
-from ..sensor import Sensor
+from ..plant.route import Route
+from ..plant.sensor import Sensor
 from .loop_calibration import LoopCalibration, calibrate_loop
 from .motor_calibration import MotorCalibration, calibrate_servo, run_experiment
 from .shape_sensing import ShapeSensing
@@ -46,33 +45,13 @@ if TYPE_CHECKING:
         InverseFeedforward,
     )
     from ..identify.loop_dynamics import LoopDynamics
-    from ..plant import PullPullPlant
+    from ..plant.pull_pull import PullPullPlant
     from .run import Result
 
 NOMINAL = {"pretension": 1.0, "length": 1.0, "proximal_radius": 1.0}
 NOMINAL_FRICTION = 0.1  # held when a single curve angle cannot identify it
 # the report's column of relative standard errors: the spread were the data made by the class
 _SE = "relative s.e. (given the model class)"
-
-
-# -- shape sensing (the sensor itself: shape_sensing.py) ------------------------------------
-
-
-def sensed_schedule(shape: ShapeSensing, t, routes: Callable, friction: float, seed_offset=0):
-    """What a curve-angle compensator is told during a test run: sample indices and one
-    (g, G, Theta) row per reading, for a uniform route of the sensed angle."""
-
-    def angle_at(tk: float) -> float:
-        r = routes(tk)
-        r = r[0] if isinstance(r, tuple | list) else r
-        return float(r.curve_angle)
-
-    idx, sensed = shape.readings(t, angle_at, seed_offset)
-    rows = []
-    for a in sensed:
-        s = route_shape(Route.uniform(1.0, float(a)), friction)
-        rows.append([s.g, s.G, s.total_angle])
-    return idx, sensed, np.ascontiguousarray(rows, dtype=float)
 
 
 # -- calibration ----------------------------------------------------------------------------
@@ -1187,12 +1166,10 @@ def honesty_entry(
 __all__ = [
     "NOMINAL",
     "Calibration",
-    "ShapeSensing",
     "Told",
     "calibrate",
     "calibrate_load",
     "calibration_input",
     "honesty_entry",
     "in_class_fit",
-    "sensed_schedule",
 ]

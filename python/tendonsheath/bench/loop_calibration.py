@@ -25,12 +25,12 @@ from ..identify.loop_dynamics import (
     empirical_response,
     identify_loop_dynamics,
 )
-from ..sensor import Sensor
+from ..plant.sensor import Sensor
 from .motor_calibration import motor_calibration_input, run_experiment
 
 if TYPE_CHECKING:
-    from ..plant import PullPullPlant
-    from ..route import Route
+    from ..plant.pull_pull import PullPullPlant
+    from ..plant.route import Route
 
 
 def loop_calibration_input(

@@ -17,11 +17,11 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..identify.servo import ServoFit, identify_servo
-from ..sensor import Sensor
+from ..plant.sensor import Sensor
 
 if TYPE_CHECKING:
-    from ..plant import PullPullPlant
-    from ..route import Route
+    from ..plant.pull_pull import PullPullPlant
+    from ..plant.route import Route
 
 
 def motor_calibration_input(

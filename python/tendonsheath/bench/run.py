@@ -11,10 +11,10 @@ import numpy as np
 
 from .. import _core as core
 from .._arrays import as_timed_signal
-from ..physics import route_shape as shape_of
-from ..plant import PullPullPlant
+from ..plant.physics import route_shape as shape_of
+from ..plant.pull_pull import PullPullPlant
+from ..plant.sensor import Sensor
 from ..protocols import STEP_SIGNALS, StreamingCompensator, missing_members, step_signals
-from ..sensor import Sensor
 from ..status import status_counts
 from .limit_cycle import limit_cycle
 from .metrics import dominant_period, tracking_metrics
@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from ..compensate import AdaptiveController
     from ..compensate.base import Feedforward
     from ..compensate.learned_feedforward import LearnedFeedforward
-    from .calibration import ShapeSensing
+    from .shape_sensing import ShapeSensing
 
 # what bench.run closes the loop with: any StreamingCompensator (None: uncompensated); the
 # shipped ones are named too, their step(y_d, dt) being narrower than the protocol's
@@ -162,7 +162,7 @@ def run(
     t -> Route. ``noise``: a Sensor, a noise standard deviation (rad), or None (then
     ``plant.sensor``). ``dropout``: [(start, stop), ...] seconds when the sensor reads NaN.
     ``warmup`` (s): excluded from the metrics; default one period of the reference.
-    ``shape_sensing`` (a :class:`~tendonsheath.bench.calibration.ShapeSensing`): the
+    ``shape_sensing`` (a :class:`~tendonsheath.bench.shape_sensing.ShapeSensing`): the
     CurveAngleFeedforward (or a route-following InverseFeedforward) is told the sensed curve
     angle (noise, delay, reading rate) instead of the route's exact shape.
 

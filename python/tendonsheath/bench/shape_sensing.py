@@ -17,8 +17,8 @@ from typing import Any
 
 import numpy as np
 
-from ..physics import route_shape
-from ..route import Route
+from ..plant.physics import route_shape
+from ..plant.route import Route
 
 #: The first seed of the sensing noise (kept from the first ShapeSensing: readings repeat).
 _SEED_BASE = 10_000
@@ -299,11 +299,28 @@ def sensed_route_schedule(
     rows = []
     for route in sensed:
         # a uniform reading's g, G do not depend on its length: computed on a unit length, as
-        # calibration.sensed_schedule does, so that segments=0 gives its rows bit for bit
+        # sensed_schedule does, so that segments=0 gives its rows bit for bit
         of = Route.uniform(1.0, route.curve_angle) if shape.segments == 0 else route
         s = route_shape(of, friction)
         rows.append([s.g, s.G, s.total_angle])
     return idx, sensed, np.ascontiguousarray(rows, dtype=float).reshape(-1, 3)
 
 
-__all__ = ["ShapeSensing", "sensed_route_schedule"]
+def sensed_schedule(shape: ShapeSensing, t, routes: Callable, friction: float, seed_offset=0):
+    """What a curve-angle compensator is told during a test run: sample indices and one
+    (g, G, Theta) row per reading, for a uniform route of the sensed angle."""
+
+    def angle_at(tk: float) -> float:
+        r = routes(tk)
+        r = r[0] if isinstance(r, tuple | list) else r
+        return float(r.curve_angle)
+
+    idx, sensed = shape.readings(t, angle_at, seed_offset)
+    rows = []
+    for a in sensed:
+        s = route_shape(Route.uniform(1.0, float(a)), friction)
+        rows.append([s.g, s.G, s.total_angle])
+    return idx, sensed, np.ascontiguousarray(rows, dtype=float)
+
+
+__all__ = ["sensed_schedule", "ShapeSensing", "sensed_route_schedule"]

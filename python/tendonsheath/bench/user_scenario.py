@@ -11,7 +11,7 @@
     proximal_radius = 0.01              # m
     distal_radius = 0.01                # m (pull_pull only)
     elements = 40                       # per sheath
-    realistic = true                    # the realistic preset (tendonsheath.presets): distal
+    realistic = true                    # the realistic preset (tendonsheath.plant.presets): distal
                                         #   dynamics, sheath viscosity, creep, unequal pair,
                                         #   motor friction and gear backlash; false: ideal
     # continuum only: bending_stiffness, tendon_offset, backbone_length
@@ -79,14 +79,14 @@ from typing import Any
 
 import numpy as np
 
-from .. import loads, presets
 from .._angles import PLAUSIBLE_JOINT_ANGLE, warn_if_degrees
-from .._textread import read_config_text
 from ..compensate import AdaptiveController
-from ..motor import Motor
-from ..plant import ContinuumPlant, PullPullPlant
-from ..route import Route
-from ..sensor import Sensor
+from ..io._textread import read_config_text
+from ..plant import loads, presets
+from ..plant.motor import Motor
+from ..plant.pull_pull import ContinuumPlant, PullPullPlant
+from ..plant.route import Route
+from ..plant.sensor import Sensor
 from .run import run
 from .scenarios.common import ScenarioResult, piecewise_routes, ratio
 from .user_compensators import UserCompensator, parse_user_compensators, told_by_user
@@ -417,7 +417,7 @@ _LOAD_KEYS = {
     "torsional_spring": {"stiffness", "preload"},
     "spring_damper": {"stiffness", "damping"},
 }
-# the [load] keys under the names the load classes give their arguments (tendonsheath.loads)
+# the [load] keys under the names the load classes give their arguments (tendonsheath.plant.loads)
 _LOAD_ARGUMENTS = {"tau": "torque", "k": "stiffness", "c": "damping"}
 
 
@@ -626,8 +626,8 @@ def calibration_angles(sc: UserScenario) -> list[float]:
 def run_user_scenario(sc: UserScenario, progress=None) -> ScenarioResult:
     """Calibrate with :func:`bench.calibrate` on calibration shapes that differ from every
     test route (the plant's logs alone), then run every compensator of [compare]."""
-    from .calibration import ShapeSensing
     from .scenarios.common import announce, honesty_panel
+    from .shape_sensing import ShapeSensing
 
     servo_motor = _servo(sc)
     sensor = Sensor(**sc.sensor)

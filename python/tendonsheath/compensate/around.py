@@ -10,7 +10,7 @@ from ..status import Status
 from .base import EngineCompensator
 
 if TYPE_CHECKING:
-    from ..route import Route
+    from ..plant.route import Route
 
 
 def follows_route(feedforward: Any) -> bool:

@@ -17,7 +17,13 @@ from . import persistence
 
 class SavedAsJson:
     """Saving a compensator as its JSON file (``to_json``) and reading one back (``load``);
-    the class gives ``to_dict``."""
+    the class gives ``to_dict``. A class that declares its file's keys (``_saved_settings``)
+    is a kind of file ``load`` reads (registered under its name)."""
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if "_saved_settings" in vars(cls):
+            persistence.register(cls)
 
     def to_dict(self) -> dict:
         """The compensator as a dict (format ``tendonsheath.compensator``): each class its own.

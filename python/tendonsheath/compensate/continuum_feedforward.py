@@ -86,6 +86,7 @@ class ContinuumFeedforward(Feedforward):
         An unknown mode, or a value out of range (the message names the argument and the value).
     """
 
+    _renamed_settings = RENAMED  # files written before the vocabulary still load
     _saved_settings = (
         "friction",
         "length",

@@ -13,8 +13,8 @@ from .. import _core as core
 from .._arrays import as_vector, checked_dt
 from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
-from ..coupled_plant import _joint_matrix
 from ..models import Coupled
+from ..plant.coupled import _joint_matrix
 from ..status import Status
 from . import persistence
 from .base import SavedAsJson

@@ -13,13 +13,13 @@ from .._angles import checked_curve_angle, warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, number, python_names
 from .._arrays import as_signal, as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
-from ..physics import route_shape as shape_of
+from ..plant.physics import route_shape as shape_of
 from .base import Feedforward
 from .limits import LimitsLike, as_limits
 
 if TYPE_CHECKING:
     from ..models import CurveAngleModel
-    from ..route import Route
+    from ..plant.route import Route
 
 
 class CurveAngleFeedforward(Feedforward):

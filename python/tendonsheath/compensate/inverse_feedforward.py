@@ -15,13 +15,13 @@ from .._args import number, python_names
 from .._arrays import as_signal, as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
 from ..models import HysteresisModel
-from ..physics import route_shape as shape_of
+from ..plant.physics import route_shape as shape_of
 from .base import Feedforward
 from .inverse_model import describe, follows_route, route_friction
 from .limits import LimitsLike, as_limits
 
 if TYPE_CHECKING:
-    from ..route import Route
+    from ..plant.route import Route
 
 RangeLike = str | tuple[float, float] | list[float] | None
 

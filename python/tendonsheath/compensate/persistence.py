@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any, TypeAlias, TypeVar
 from .._args import is_format_version, renamed
 from .._atomic import write_text
 from .._json_source import naming_the_file, read_json_source
+from ..models import Coupled, HysteresisModel
 
 if TYPE_CHECKING:
     from .adaptive_controller import AdaptiveController
@@ -81,29 +82,15 @@ def _finite_or_none(value):
     return None if math.isinf(value) else value
 
 
-def _registry() -> dict[str, type[Compensator]]:
-    from .adaptive_controller import AdaptiveController
-    from .continuum_feedforward import ContinuumFeedforward
-    from .coupled_feedforward import CoupledFeedforward
-    from .curve_angle_feedforward import CurveAngleFeedforward
-    from .encoder_loop import EncoderLoop
-    from .inverse_feedforward import InverseFeedforward
-    from .learned_feedforward import LearnedFeedforward
-    from .load_compensated import LoadCompensated
-    from .tip_loop import TipLoop
+# the kinds of compensator file, by name: each class declaring its keys registers itself
+# (compensate.base.SavedAsJson), so this module imports no compensator
+_KINDS: dict[str, type[Compensator]] = {}
 
-    kinds = (
-        InverseFeedforward,
-        CurveAngleFeedforward,
-        ContinuumFeedforward,
-        AdaptiveController,
-        EncoderLoop,
-        LearnedFeedforward,
-        TipLoop,
-        LoadCompensated,
-        CoupledFeedforward,
-    )
-    return {c.__name__: c for c in kinds}
+
+def register(cls: type[Compensator]) -> None:
+    """Read files naming ``cls.__name__`` with ``cls`` (its ``_saved_settings`` and
+    ``_from_saved``)."""
+    _KINDS[cls.__name__] = cls
 
 
 def compensator_from_dict(data: dict[str, Any]) -> Compensator:
@@ -115,13 +102,13 @@ def compensator_from_dict(data: dict[str, Any]) -> Compensator:
             f"unsupported compensator file version {data.get('version')!r} "
             f"(expected {FORMAT_VERSION})"
         )
-    registry = _registry()
+    registry = _KINDS
     name = data.get("compensator")
     if name not in registry:
         raise ValueError(f"unknown compensator {name!r}; known: {sorted(registry)}")
     cls = registry[name]
     settings = {k: v for k, v in data.items() if k not in ("format", "version", "compensator")}
-    settings = _upgraded(name, settings)
+    settings = _upgraded(cls, settings)
     expected = cls._saved_settings
     unknown = sorted(set(settings) - set(expected))
     if unknown:
@@ -134,14 +121,15 @@ def compensator_from_dict(data: dict[str, Any]) -> Compensator:
     return cls._from_saved(values)
 
 
-def _upgraded(name: str, settings: dict[str, Any]) -> dict[str, Any]:
+def _upgraded(cls: type[Compensator], settings: dict[str, Any]) -> dict[str, Any]:
     """Settings of a file written before the vocabulary (docs/vocabulary.md) under their new
-    names; such files load without a warning."""
-    if name == "ContinuumFeedforward":
-        from .continuum_feedforward import RENAMED
-
+    names (the class's ``_renamed_settings``, old -> new); such files load without a
+    warning."""
+    name = cls.__name__
+    old_names = getattr(cls, "_renamed_settings", None)
+    if old_names:
         try:
-            return renamed(f"{name} file", settings, RENAMED, warn=False)
+            return renamed(f"{name} file", settings, old_names, warn=False)
         except TypeError as err:  # both names: a bad file
             raise ValueError(str(err)) from None
     if name in ("CurveAngleFeedforward", "ContinuumFeedforward") and "play" not in settings:
@@ -161,8 +149,6 @@ def _setting(name: str, key: str, value):
     if key == "limits":
         return _limits(name, value)
     if key in _MODELS:
-        from ..models import Coupled, HysteresisModel
-
         if name == "CoupledFeedforward":  # the joints' models and their coupling
             return Coupled.from_dict(value)
         return None if value is None else HysteresisModel.from_dict(value)

@@ -15,7 +15,7 @@ from .around import AroundFeedforward, follows_route
 from .limits import LimitsLike, as_limits
 
 if TYPE_CHECKING:
-    from ..route import Route
+    from ..plant.route import Route
 
 _GAINS = ("kp", "ki", "kd", "derivative_cutoff_hz", "max_correction")
 MAX_SCHEDULE = 8  # TipLoopParams::kMaxSchedule

@@ -495,14 +495,12 @@ def refine_by_trials(
 
 def _rebuilder(loop: Any) -> Callable[[dict[str, float]], Any]:
     """gains -> a TipLoop like ``loop`` (same feedforward settings, schedule and limits)."""
-    from .tip_loop import TipLoop
-
     settings = dict(loop._settings)
     feedforward = loop.feedforward
 
     def build(gains: dict[str, float]) -> Any:
         kwargs = {**settings, **gains}
-        return TipLoop(feedforward, **kwargs)
+        return type(loop)(feedforward, **kwargs)
 
     return build
 

@@ -9,7 +9,7 @@ import numpy as np
 
 from .. import _core as core
 from .._arrays import as_vector
-from ..route import Route, check_curve_angle
+from ..plant.route import Route, check_curve_angle
 
 MIN_SAMPLES = 20  # fitted samples per fit (after warm-up), at the very least
 

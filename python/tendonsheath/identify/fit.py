@@ -11,7 +11,7 @@ import numpy as np
 
 from .._typing import ArrayLike
 from ..models import HysteresisModel
-from ..route import Route
+from ..plant.route import Route
 from .data import Recording
 from .diagnostics import Diagnostics
 

@@ -121,7 +121,7 @@ def detect_for_recordings(recs, periodic: bool | None = None) -> tuple[str, str]
     uniformly sampled recording agrees on, else "linear". ``periodic``: whether the records
     are whole periods (None: detected by :func:`~tendonsheath.models.hysteretic_oscillator.
     is_periodic`)."""
-    from ..models.hysteretic_oscillator import is_periodic
+    from .._sampling import is_periodic
 
     def whole(x):
         return is_periodic(x) if periodic is None else bool(periodic)

@@ -46,8 +46,8 @@ import numpy as np
 from scipy.optimize import differential_evolution, least_squares, nnls
 
 from .. import _core as core
+from .._sampling import fft_upsample, is_periodic, uniform_step
 from ..models import HystereticOscillator
-from ..models.hysteretic_oscillator import fft_upsample, is_periodic, uniform_step
 from .data import check_for_fit
 from .fit import Fit, fit_quality
 from .interpolation import detect_for_recordings

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from ..models import CurveAngleModel, GeneralizedPrandtlIshlinskii, PrandtlIshlinskii
-from ..route import Route
+from ..plant.route import Route
 from .chain import ChainProblem
 from .data import fitted_mask, recording_set
 from .diagnostics import (

@@ -11,8 +11,8 @@ import numpy as np
 from .._args import number
 from .._arrays import checked_dt
 from .._typing import ArrayLike, FloatArray
-from ..physics import route_dead_zone_factor
-from ..route import Route
+from ..plant.physics import route_dead_zone_factor
+from ..plant.route import Route
 from ..status import Status
 from .base import _REGISTRY, HysteresisModel
 from .curve_angle import curve_angle_samples
@@ -25,7 +25,7 @@ LAWS = ("constant", "linear", "tanh")
 
 def angle_factor(curve_angle: ArrayLike | Route, mu: ArrayLike) -> float | FloatArray:
     """The "tanh" law's basis: tanh(mu |Theta|/2) of a curve angle, or the dead-zone factor
-    F(g, G, mu Theta) of a route (g, G at friction mu; :func:`~tendonsheath.physics.
+    F(g, G, mu Theta) of a route (g, G at friction mu; :func:`~tendonsheath.plant.physics.
     dead_zone_factor`), which is tanh(mu Theta/2) for a uniform route.
 
     Parameters
@@ -96,7 +96,7 @@ class AngleDependent(HysteresisModel):
 
     Wherever it takes a curve angle it also takes a :class:`~tendonsheath.Route` (e.g. a
     sensed shape): "tanh" is then p0 + p1 F(g, G, mu Theta), the pull-pull dead-zone factor of
-    the route's distribution of curvature (:func:`~tendonsheath.physics.dead_zone_factor`,
+    the route's distribution of curvature (:func:`~tendonsheath.plant.physics.dead_zone_factor`,
     g and G at mu = ``angle_friction``; tanh(mu Theta/2) again for a uniform route), and
     "linear" takes the route's curve angle.
 

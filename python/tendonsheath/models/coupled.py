@@ -15,7 +15,7 @@ from .._atomic import write_text
 from .._json_source import read_json_source
 from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
-from ..coupled_plant import _coupling_matrix, _joint_matrix
+from ..plant.coupled import _coupling_matrix, _joint_matrix
 from .base import HysteresisModel, load_model
 
 FORMAT_NAME = "tendonsheath.coupled_model"

@@ -7,11 +7,11 @@ import copy
 import numpy as np
 
 from .. import _core as core
-from .. import physics
 from .._args import accepts_old_names
 from .._arrays import as_signal, as_time_and_signal, checked_dt
 from .._typing import ArrayLike, FloatArray, FloatOrArray
-from ..route import Route
+from ..plant import physics
+from ..plant.route import Route
 from .base import HysteresisModel
 
 # Parameters renamed (old name -> new name, docs/vocabulary.md); the old names still work for one
@@ -39,7 +39,7 @@ class CurveAngleModel(HysteresisModel):
     sensed shape, :class:`~tendonsheath.bench.shape_sensing.ShapeSensing`): the terms are then
     those of spec A5/A6 for that route's distribution of curvature, with the shape integrals
     g, G computed at the model's own friction (:meth:`route_shape`): tanh(a/2) becomes the
-    dead-zone factor :func:`~tendonsheath.physics.dead_zone_factor` F(g, G, a) and
+    dead-zone factor :func:`~tendonsheath.plant.physics.dead_zone_factor` F(g, G, a) and
     tanh(a/2)/a becomes g G e^{-a}/(g + G e^{-2a}). Only the route's shape counts (g, G are
     normalised by its length); the model's ``length`` sets T0 L/EA as before.
 
@@ -188,7 +188,7 @@ class CurveAngleModel(HysteresisModel):
 
     def route_shape(self, route: Route) -> core.ShapeIntegrals:
         """The route's shape integrals g, G at this model's friction, and its curve angle
-        (:func:`tendonsheath.physics.route_shape`): what the C++ model's ``set_shape`` takes.
+        (:func:`tendonsheath.plant.physics.route_shape`): what the C++ model's ``set_shape`` takes.
 
         Parameters
         ----------
@@ -214,9 +214,9 @@ class CurveAngleModel(HysteresisModel):
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], dt, curve_angle=u[1])
 
-    # closed-form terms, in the rotary units of the model (rad at the motor / at the joint), from
-    # tendonsheath.physics (the C++ closed forms that step() uses); curve_angle: a number or an
-    # array, and |curve_angle| counts, as in step()
+    # closed-form terms, in the rotary units of the model (rad at the motor / at the joint),
+    # from tendonsheath.plant.physics (the C++ closed forms that step() uses); curve_angle: a
+    # number or an array, and |curve_angle| counts, as in step()
     def backlash_half_width(self, curve_angle: ArrayLike | Route) -> FloatOrArray:
         """Half the dead-zone width at the motor, rad: e_b / r_p.
 

@@ -15,7 +15,7 @@ from ..status import Status
 from .base import HysteresisModel
 
 if TYPE_CHECKING:
-    from ..plant import PullPullPlant
+    from ..plant.pull_pull import PullPullPlant
 
 #: wrap angle of the internal uniform route (rad); only friction * wrap angle matters on it
 WRAP = 2.0 * math.pi
@@ -97,8 +97,8 @@ class PlantModel(HysteresisModel):
         self._plant: PullPullPlant = self._make_plant()
 
     def _make_plant(self) -> PullPullPlant:
-        from ..plant import PullPullPlant
-        from ..route import Route
+        from ..plant.pull_pull import PullPullPlant
+        from ..plant.route import Route
 
         v = self._values
         compliance = v["backlash"] / math.tanh(0.5 * v["friction_angle"])  # L/EA at T0 = 1

@@ -21,6 +21,7 @@ import numpy as np
 from .._atomic import save_figure
 from ..report.units import check_angle_unit, convert, header, unit_after, unit_of_key
 from .distributions import Integers, MonteCarlo, Relative, Seed
+from .driver import sweep
 
 if TYPE_CHECKING:
     from dask.distributed import Client
@@ -83,8 +84,6 @@ def robustness_study(
     SweepResult
         The runs' metrics.
     """
-    from . import sweep
-
     return sweep(run, design or robustness_design(), n=n, seed=seed, engine=engine,
                  **sweep_options)  # fmt: skip
 

@@ -40,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from .._textread import read_config_text
+from ..io._textread import read_config_text
 from .distributions import (
     Choice,
     Design,

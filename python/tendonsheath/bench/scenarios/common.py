@@ -8,8 +8,8 @@ from typing import Any
 
 import numpy as np
 
-from ...route import Route
-from ...sensor import Sensor
+from ...plant.route import Route
+from ...plant.sensor import Sensor
 from ..calibration import calibration_input  # noqa: F401 (re-exported)
 from ..frequency import FrequencyResponse
 from ..limit_cycle import describe

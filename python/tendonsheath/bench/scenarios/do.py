@@ -9,11 +9,11 @@ from typing import Any
 
 import numpy as np
 
-from ... import presets
 from ...compensate import AdaptiveController
-from ...motor import Motor
-from ...plant import PullPullPlant
-from ...route import Route
+from ...plant import presets
+from ...plant.motor import Motor
+from ...plant.pull_pull import PullPullPlant
+from ...plant.route import Route
 from ..calibration import calibrate as bench_calibrate
 from ..run import Result, run
 from ..shape_sensing import ShapeSensing
@@ -38,7 +38,7 @@ PAPER_MSE = {"none": 0.0158, "InverseFeedforward": 0.0012, "AdaptiveController":
 CONDITIONS = {
     "plant": "pull-pull pair, two 1.5 m sheaths, EA = 5000 N, T0 = 20 N, mu = 0.1, "
     "pulleys r_p = r_d = 15 mm, 40 elements per sheath, no distal load; realistic preset "
-    "(tendonsheath.presets): distal inertia and damping, sheath viscosity, tendon creep, "
+    "(tendonsheath.plant.presets): distal inertia and damping, sheath viscosity, tendon creep, "
     "sheath 2 friction +15 %, tendon 2 EA -10 %",
     "nominal route": "straight 0.5 m, then two 0.5 m arcs of pi/2 each (Theta = pi)",
     "route changes": "at random times (mean 4 s apart) the sheaths take random 2-4 arc "

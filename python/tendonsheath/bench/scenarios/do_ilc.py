@@ -17,8 +17,8 @@ import math
 from typing import Any
 
 from ...compensate import IterativeLearning
-from ...plant import PullPullPlant
-from ...route import Route
+from ...plant.pull_pull import PullPullPlant
+from ...plant.route import Route
 from ..run import run
 from .common import ratio
 

@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from ...compensate import AdaptiveController, TipLoop
-from ...sensor import Sensor
+from ...plant.sensor import Sensor
 from ..calibration import calibration_input
 from ..loop_calibration import calibrate_loop
 from ..run import run

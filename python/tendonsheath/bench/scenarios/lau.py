@@ -8,10 +8,10 @@ from typing import Any
 
 import numpy as np
 
-from ... import presets
-from ...motor import Motor
-from ...plant import ContinuumPlant
-from ...route import Route
+from ...plant import presets
+from ...plant.motor import Motor
+from ...plant.pull_pull import ContinuumPlant
+from ...plant.route import Route
 from ..calibration import calibrate as bench_calibrate
 from ..frequency import frequency_response
 from ..run import run
@@ -34,7 +34,7 @@ CONDITIONS = {
     "plant": "continuum segment (EI = 4e-4 N m^2, r_t = 2 mm, l = 30 mm) bent by a pull-pull "
     "pair through a 1 m sheath laid as a 0.6 m-diameter semicircle (Theta = pi); EA = 24000 N, "
     "T0 = 10 N, mu = 0.1, r_p = 5 mm, 40 elements per sheath; realistic preset "
-    "(tendonsheath.presets): distal dynamics, sheath viscosity, creep, unequal pair",
+    "(tendonsheath.plant.presets): distal dynamics, sheath viscosity, creep, unequal pair",
     "tracking": "+/-90 deg bending at 0.4 Hz; position servo 10 Hz, damping 0.8, run twice: a "
     "PID servo (the preset's default) and a PD servo that yields to the tendons' torque; both "
     "with the realistic preset's motor friction and gear backlash",

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...route import Route
+from ...plant.route import Route
 
 
 def random_arcs(length: float, curve_angle: float, pieces: int, seed: int) -> Route:

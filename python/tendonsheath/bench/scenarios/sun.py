@@ -10,13 +10,14 @@ from typing import Any
 
 import numpy as np
 
-from ... import presets
-from ...loads import ConstantTorque, TorsionalSpring
-from ...plant import PullPullPlant
-from ...route import Route
-from ..calibration import ShapeSensing, calibrate_load
+from ...plant import presets
+from ...plant.loads import ConstantTorque, TorsionalSpring
+from ...plant.pull_pull import PullPullPlant
+from ...plant.route import Route
 from ..calibration import calibrate as bench_calibrate
+from ..calibration import calibrate_load
 from ..run import run
+from ..shape_sensing import ShapeSensing
 from .common import (
     ScenarioResult,
     announce,
@@ -39,7 +40,7 @@ LOAD_FORCE, SPRING = 5.0, 500.0  # N and N/m at the tendon: 5 N at 1 rad for the
 CONDITIONS = {
     "plant": "pull-pull pair, two 1.2 m sheaths of uniform curvature, EA = 5000 N, "
     "T0 = 20 N, mu = 0.1, pulleys r_p = r_d = 10 mm, 40 elements per sheath; realistic "
-    "preset (tendonsheath.presets): distal dynamics, sheath viscosity, creep, unequal pair",
+    "preset (tendonsheath.plant.presets): distal dynamics, sheath viscosity, creep, unequal pair",
     "curve angles": "0, pi/2, pi, 3 pi/2, 2 pi",
     "loads": "none; constant 0.05 N m (5 N at the tendon); torsional spring 0.05 N m/rad "
     "(5 N at 1 rad)",

@@ -20,9 +20,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._arrays import checked_dt
-from ._pyobject import PythonObject
-from ._typing import ArrayLike, FloatArray
+from .._arrays import checked_dt
+from .._pyobject import PythonObject
+from .._typing import ArrayLike, FloatArray
 from .sensor import Sensor
 
 

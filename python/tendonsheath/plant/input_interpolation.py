@@ -18,8 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import _core as core
-from .models.hysteretic_oscillator import fft_upsample, is_periodic, uniform_step
+from .. import _core as core
+from .._sampling import fft_upsample, is_periodic, uniform_step
 
 INTERPOLATIONS = ("hold", "linear", "bandlimited")
 DEFAULT_SUBSTEPS = 8

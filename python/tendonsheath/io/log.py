@@ -40,12 +40,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ._atomic import atomic_path
-from ._extras import require
+from .._atomic import atomic_path
+from .._extras import require
+from .._typing import ArrayLike, FloatArray
 from ._rosbag import TIME_KEY, bag_columns, bag_path, read_bag
 from ._textread import Column, parse_cells, read_text_cells, read_text_header, read_text_table
 from ._timecol import TimeColumn, check_unit, read_time
-from ._typing import ArrayLike, FloatArray
 
 MIN_ROWS = 3
 MAX_UPSAMPLING = 10  # resampling may multiply the samples by at most this

@@ -23,12 +23,15 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from . import _core as core
-from . import physics, plant_input
-from ._args import integer, number, python_names
-from ._arrays import as_time_and_signal, checked_dt
-from ._pyobject import PythonObject
-from ._typing import ArrayLike
+from .. import _core as core
+from .._args import integer, number, python_names
+from .._arrays import as_time_and_signal, checked_dt
+from .._pyobject import PythonObject
+from .._typing import ArrayLike
+from ..simulation_result import SimulationResult
+from ..status import Status
+from . import input_interpolation as reconstruction
+from . import physics
 from .loads import (
     ConstantForce,
     ConstantTorque,
@@ -40,8 +43,6 @@ from .loads import (
 from .motor import Motor
 from .route import Route
 from .sensor import Sensor
-from .simulation_result import SimulationResult
-from .status import Status
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -150,7 +151,11 @@ class _Plant(PythonObject):
     _engine: Any = None
     motor: Motor | None = None
     sensor: Sensor | None = None
-    _interpolation = ("hold", plant_input.DEFAULT_SUBSTEPS, plant_input.DEFAULT_LOOKAHEAD)
+    _interpolation = (
+        "hold",
+        reconstruction.DEFAULT_SUBSTEPS,
+        reconstruction.DEFAULT_LOOKAHEAD,
+    )
 
     _arguments: dict  # the constructor's arguments, kept by _recording_arguments
 
@@ -171,29 +176,31 @@ class _Plant(PythonObject):
     def set_input_interpolation(
         self,
         mode: str,
-        substeps: int = plant_input.DEFAULT_SUBSTEPS,
-        lookahead: int = plant_input.DEFAULT_LOOKAHEAD,
+        substeps: int = reconstruction.DEFAULT_SUBSTEPS,
+        lookahead: int = reconstruction.DEFAULT_LOOKAHEAD,
     ) -> None:
         """The default reconstruction of the command between samples in :meth:`simulate`
         ("hold", "linear" or "bandlimited", on a grid ``substeps`` times finer; see
-        :mod:`tendonsheath.plant_input`). :meth:`step` stays causal (hold) whatever it is.
+        :mod:`tendonsheath.plant.input_interpolation`). :meth:`step` stays causal (hold)
+        whatever it is.
 
         Parameters
         ----------
         mode : {"hold", "linear", "bandlimited"}
             The reconstruction.
         substeps : int, optional
-            Refinement of the grid (default ``plant_input.DEFAULT_SUBSTEPS``).
+            Refinement of the grid (default
+            ``tendonsheath.plant.input_interpolation.DEFAULT_SUBSTEPS``).
         lookahead : int, optional
             Half-width of the band-limited sinc in samples (default
-            ``plant_input.DEFAULT_LOOKAHEAD``).
+            ``tendonsheath.plant.input_interpolation.DEFAULT_LOOKAHEAD``).
 
         Raises
         ------
         ValueError
             An unknown mode or a substeps or lookahead out of range.
         """
-        plant_input.check_interpolation(mode, substeps, lookahead, type(self).__name__)
+        reconstruction.check_interpolation(mode, substeps, lookahead, type(self).__name__)
         self._interpolation = (mode, int(substeps), int(lookahead))
 
     @property
@@ -376,7 +383,7 @@ class _Plant(PythonObject):
         :meth:`set_input_interpolation`) reconstructs the command between samples and steps
         the plant on the finer grid (uniform ``t`` needed); ``periodic`` (None: detected)
         picks exact FFT upsampling for a record of whole periods (see
-        :mod:`tendonsheath.plant_input`).
+        :mod:`tendonsheath.plant.input_interpolation`).
 
         ``t`` (s) may be None only without a motor, a damper and a route schedule. ``routes``
         is None or a callable t -> Route (or a (route1, route2) pair for a pull-pull plant); it
@@ -427,12 +434,14 @@ class _Plant(PythonObject):
         sensor_arg = core.Sensor(self.sensor._params) if self.sensor is not None else None
         mode, fine, lookahead = self._interpolation
         mode = mode if input_interpolation is None else input_interpolation
-        plant_input.check_interpolation(mode, fine, lookahead, name)
+        reconstruction.check_interpolation(mode, fine, lookahead, name)
         how, t_run, u_run, idx_run = "hold", ts, us, idx
         if mode != "hold" and us.size > 1:
             if ts is None:
                 raise ValueError(f"{name}: input_interpolation={mode!r} needs the time t")
-            t_run, u_run, how = plant_input.fine_grid(ts, us, mode, fine, lookahead, periodic, name)
+            t_run, u_run, how = reconstruction.fine_grid(
+                ts, us, mode, fine, lookahead, periodic, name
+            )
             idx_run = None if idx is None else (idx * fine).astype(np.uint64)
         q_out, q_in, slack, meas, tens, noncon, q_motor, flags = self._engine.simulate(
             t_run, u_run, motor_arg, sensor_arg, idx_run, angles
@@ -518,7 +527,7 @@ class _Plant(PythonObject):
         matplotlib.axes.Axes
             The axes drawn on.
         """
-        from .plots import plot_tension_profile
+        from ..plots import plot_tension_profile
 
         return plot_tension_profile(self, ax=ax)
 
@@ -526,7 +535,7 @@ class _Plant(PythonObject):
 class SingleTendonPlant(_Plant):
     """One tendon in one sheath: proximal displacement in (m), distal displacement out (m).
 
-    ``load`` is a :class:`~tendonsheath.loads.ConstantForce`, ``LinearSpring`` or
+    ``load`` is a :class:`~tendonsheath.plant.loads.ConstantForce`, ``LinearSpring`` or
     ``SpringPreload`` pulling the distal end (default ConstantForce(10 N)).
 
     Parameters
@@ -656,7 +665,7 @@ class PullPullPlant(_Plant):
     pulley. ``elements`` N per sheath; ``friction`` mu.
 
     Effects beyond the quasi-static capstan pair (all off by default; with none of them and
-    no load the pair *is* a classic backlash, see :mod:`tendonsheath.presets` for realistic
+    no load the pair *is* a classic backlash, see :mod:`tendonsheath.plant.presets` for realistic
     values):
 
     - ``distal_inertia`` J_d (kg m^2) and ``distal_damping`` c_d (N m s/rad): a dynamic distal
