@@ -41,7 +41,7 @@ gtest:
 	  $(SUDO) apt-get update -qq && $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libgtest-dev googletest; \
 	fi
 
-# nlohmann/json for the optional tendonsheath/io/json.hpp, its test and C++ example 03
+# nlohmann/json for the optional tendonsheath/io/json.hpp, its test and C++ example 12
 nlohmann-json:
 	@if [ ! -f /usr/include/nlohmann/json.hpp ] && [ ! -f /usr/local/include/nlohmann/json.hpp ]; then \
 	  echo "nlohmann/json not found: installing nlohmann-json3-dev with apt-get"; \
@@ -96,7 +96,7 @@ test-cpp: gtest nlohmann-json
 	cmake --install $(CPP_BUILD) --prefix build/cpp-install > /dev/null
 	cmake -S examples/cpp -B build/cpp-consumer -DCMAKE_PREFIX_PATH=$(CURDIR)/build/cpp-install > /dev/null
 	cmake --build build/cpp-consumer -j $(JOBS)
-	@# the examples again with g++ -fno-exceptions, as embedded targets build, and run (03 too: its
+	@# the examples again with g++ -fno-exceptions, as embedded targets build, and run (12 too: its
 	@# JSON loaders return a Result); ctest above ran tests/cpp/no_exceptions, the core's make<T>()
 	@# and the JSON loaders compared in both modes (docs/cpp-without-exceptions.md)
 	cmake -S examples/cpp -B build/cpp-noexcept -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=Release \

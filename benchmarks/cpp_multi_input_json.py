@@ -4,7 +4,7 @@ CoupledFeedforward files: the largest |C++ command - Python command| over random
 The cases are tests/test_cpp_multi_input_json.py's (random Loaded models over four bases,
 settings and loads with dropouts; 2 or 3 coupled joints over the same bases, their own ranges or
 the file's, desired angles with dropouts), over more seeds: each file saved by Python, run by
-C++ example 03 over a 2 s, 1 kHz trajectory, and compared with Python's streamed commands. The
+C++ example 12 over a 2 s, 1 kHz trajectory, and compared with Python's streamed commands. The
 test asserts 1e-12; this reports the figure.
 
 With --export the same cases go through `tendonsheath export --cpp` instead of the JSON loader:
@@ -13,7 +13,7 @@ each file's header, all of them built into one program with g++ -fno-exceptions
 
     .venv/bin/python benchmarks/cpp_multi_input_json.py [--seeds 24] [--export]
 
-(it builds example 03 into build/cpp with CMake first when it is not there).
+(it builds example 12 into build/cpp with CMake first when it is not there).
 """
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 import test_cpp_multi_input_json as cases  # noqa: E402  (the test's random cases)
 import test_export_cpp_multi as exported  # noqa: E402  (the exported headers' program)
 
-EXAMPLE = ROOT / "build" / "cpp" / "examples" / "cpp" / "example_03_load_and_run"
+EXAMPLE = ROOT / "build" / "cpp" / "examples" / "cpp" / "example_12_load_and_run"
 
 
 def load_compensated_gap(k: int, tmp: Path) -> float:
@@ -67,11 +67,11 @@ def coupled_gap(k: int, tmp: Path) -> float:
 
 
 def build_example() -> None:
-    """Example 03 into build/cpp (Release, nlohmann/json needed), as `make test-cpp` builds it."""
+    """Example 12 into build/cpp (Release, nlohmann/json needed), as `make test-cpp` builds it."""
     build = ROOT / "build" / "cpp"
     configure = ["cmake", "-S", str(ROOT), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release"]
     subprocess.run([*configure, "-DTENDONSHEATH_BUILD_EXAMPLES=ON"], check=True)
-    target = ["--target", "example_03_load_and_run", "-j2"]
+    target = ["--target", "example_12_load_and_run", "-j2"]
     subprocess.run(["cmake", "--build", str(build), *target], check=True)
 
 

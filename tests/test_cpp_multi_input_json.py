@@ -1,5 +1,5 @@
 """LoadCompensated and CoupledFeedforward saved by Python load in C++
-(tendonsheath/io/json_multi_input.hpp, run by example 03) and give Python's commands to 1e-12 over
+(tendonsheath/io/json_multi_input.hpp, run by example 12) and give Python's commands to 1e-12 over
 random models, loads (with dropouts) and coupled joints; in Python the files round-trip bit for
 bit and load strictly; ``export --cpp`` writes their headers, and points their models to them."""
 
@@ -15,7 +15,7 @@ import pytest
 from typer.testing import CliRunner
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from test_cpp_example_03 import example  # noqa: E402,F401  (the fixture: the built example)
+from test_cpp_example_12 import example  # noqa: E402,F401  (the fixture: the built example)
 
 from tendonsheath.cli import app  # noqa: E402
 from tendonsheath.compensate import CoupledFeedforward, LoadCompensated, load_compensator  # noqa: E402
@@ -30,7 +30,7 @@ from tendonsheath.models import (  # noqa: E402
 )
 
 T = np.arange(0.0, 2.0, 1e-3)  # 1 kHz
-DTS = np.concatenate([[0.0], np.diff(T)])  # as example 03 computes them
+DTS = np.concatenate([[0.0], np.diff(T)])  # as example 12 computes them
 
 
 def _base(rng, k):

@@ -377,8 +377,8 @@ def _to_6_digits(text: str) -> str:
 
 
 def _deploy(ns, folder):
-    # the C++ commands, from the JSON loader (example 03) and from the generated header, are
-    # Python's (measured: 0 difference; example 03 prints 17 digits)
+    # the C++ commands, from the JSON loader (example 12) and from the generated header, are
+    # Python's (measured: 0 difference; example 12 prints 17 digits)
     assert np.max(np.abs(ns["u_cpp"] - ns["u_python"])) < 1e-12
     assert np.max(np.abs(ns["u_params"] - ns["u_python"])) < 1e-12
     import tendonsheath as ts
@@ -461,10 +461,10 @@ def _scenario_toml(ns, folder):
 
 
 def _cpp_build_configured(_folder: Path) -> None:
-    """docs/tutorials/deploy.md builds and runs C++ example 03 in the build folder that
+    """docs/tutorials/deploy.md builds and runs C++ example 12 in the build folder that
     `make test-cpp` configures (it needs nlohmann/json, which `make test-cpp` installs)."""
     if not (ROOT / "build" / "cpp" / "CMakeCache.txt").is_file():
-        pytest.fail("docs/tutorials/deploy.md runs C++ example 03: run `make test-cpp` first")
+        pytest.fail("docs/tutorials/deploy.md runs C++ example 12: run `make test-cpp` first")
 
 
 SETUP = {"tutorials/ros-bags.md": _ros_bags_written, "tutorials/deploy.md": _cpp_build_configured}

@@ -2,7 +2,7 @@
 
 A file Python saved (``to_json``), one number in it replaced, is loaded by Python
 (``ts.compensate.load``) and by the C++ loader (``tendonsheath/io/json.hpp`` and
-``io/json_multi_input.hpp``, run by C++ example 03): both refuse it, with the same rule text
+``io/json_multi_input.hpp``, run by C++ example 12): both refuse it, with the same rule text
 (the message after its last ``": "``: "kp must be >= 0 (got -1)"), or both take it. The rows
 are not written by hand: every numeric leaf of one saved file of each compensator (the
 composite models inside an InverseFeedforward, a LoadCompensated, a CoupledFeedforward) gets
@@ -22,7 +22,7 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from test_cpp_example_03 import example  # noqa: E402,F401  (the fixture: the built example)
+from test_cpp_example_12 import example  # noqa: E402,F401  (the fixture: the built example)
 
 import tendonsheath as ts  # noqa: E402
 from tendonsheath.compensate import (  # noqa: E402
@@ -124,7 +124,7 @@ def _python(file: Path) -> str | None:
 
 
 def _cpp(example, file: Path, tmp_path: Path) -> str | None:  # noqa: F811
-    """The C++ loader's refusal (example 03 prints it and exits 2), or None: it loaded and
+    """The C++ loader's refusal (example 12 prints it and exits 2), or None: it loaded and
     ran an empty trajectory."""
     empty = tmp_path / "empty.csv"
     empty.write_text("")

@@ -43,3 +43,15 @@ def test_example_runs(script, tmp_path):
     for path in written:
         assert path.is_file() and path.stat().st_size > 0, (path, result.stdout[-2000:])
         assert path.resolve().is_relative_to(tmp_path.resolve()), path
+
+
+def test_the_cpp_examples_are_paired_with_python_by_number():
+    # as pantor/ruckig lays them out: examples/NN_task.py and examples/cpp/NN_task.cpp do the
+    # same task; a number without a C++ file is Python-only (identification, reports, sweeps)
+    root = Path(__file__).resolve().parent.parent / "examples"
+    cpp = sorted(p.stem for p in (root / "cpp").glob("[0-9]*.cpp"))
+    python = [p.stem for p in EXAMPLES]
+    assert len(cpp) >= 5
+    assert [s for s in cpp if s not in python] == []
+    numbers = [s.split("_", 1)[0] for s in python]
+    assert len(set(numbers)) == len(numbers), "two Python examples share a number"

@@ -1,6 +1,6 @@
 """`tendonsheath export FILE --cpp OUT.hpp`: the header compiles, its parameters are constexpr,
 and the core built from them steps exactly like the same file loaded with io/json.hpp (which
-test_cpp_example_03 ties to Python) or holds Python's numbers bit for bit (models)."""
+test_cpp_example_12 ties to Python) or holds Python's numbers bit for bit (models)."""
 
 import shutil
 import subprocess

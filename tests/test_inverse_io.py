@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from test_cpp_example_03 import example  # noqa: E402,F401  (the fixture: the built example)
+from test_cpp_example_12 import example  # noqa: E402,F401  (the fixture: the built example)
 from test_inverse_every_model import T, _every_class, _reference_input  # noqa: E402
 
 import tendonsheath as ts  # noqa: E402
@@ -42,7 +42,7 @@ def _trajectory(path: Path, y_d, theta) -> None:
 
 
 def test_cpp_loader_commands_equal_python_for_every_class(example, tmp_path):  # noqa: F811
-    """Every model class, a range and the new settings: example 03 (tendonsheath/io/json.hpp)
+    """Every model class, a range and the new settings: example 12 (tendonsheath/io/json.hpp)
     gives Python's commands to 1e-12 (route-following ones with a changing curve angle)."""
     rng = np.random.default_rng(8)
     for name, model in _every_class(rng).items():

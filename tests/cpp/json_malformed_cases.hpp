@@ -235,7 +235,7 @@ inline json changed(json good, const std::function<void(json&)>& change) {
   return good;
 }
 
-// 42 malformed single-input files: the cases of test_io_json.cpp and test_cpp_example_03.py
+// 42 malformed single-input files: the cases of test_io_json.cpp and test_cpp_example_12.py
 inline std::vector<BadFile> compensator_cases() {
   const json curve = curve_angle_file();
   const json inv = inverse_file(backlash_model4(1, 1, 0.1, 0.1));

@@ -1,4 +1,4 @@
-"""Writes inverse_feedforward.json, the compensator C++ example 03 loads.
+"""Writes inverse_feedforward.json, the compensator C++ example 12 loads.
 
 A Backlash model is identified from a synthetic log of a BoucWenBacklash drive (outside the
 identified class, with sensor noise), and its InverseFeedforward is saved with to_json.

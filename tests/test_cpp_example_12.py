@@ -1,4 +1,4 @@
-"""C++ example 03 loads compensators saved by Python and gives Python's commands to 1e-12
+"""C++ example 12 loads compensators saved by Python and gives Python's commands to 1e-12
 on the same 1 kHz trajectory (issue 15, Done-when line 2)."""
 
 import json
@@ -20,7 +20,7 @@ from tendonsheath.compensate import (
 from tendonsheath.models import Backlash, BoucWenBacklash, PrandtlIshlinskii, Scaled
 
 ROOT = Path(__file__).resolve().parents[1]
-TARGET = "example_03_load_and_run"
+TARGET = "example_12_load_and_run"
 
 
 @pytest.fixture(scope="module")
@@ -30,7 +30,7 @@ def example(tmp_path_factory) -> Path:
     if built.is_file():
         return built
     if not Path("/usr/include/nlohmann/json.hpp").is_file() or shutil.which("cmake") is None:
-        pytest.fail("example 03 needs cmake and nlohmann/json: run `make test-cpp` first")
+        pytest.fail("example 12 needs cmake and nlohmann/json: run `make test-cpp` first")
     build = tmp_path_factory.mktemp("cpp")
     cmake = ["cmake", "-S", str(ROOT), "-B", str(build), "-DTENDONSHEATH_BUILD_EXAMPLES=ON"]
     subprocess.run([*cmake, "-DCMAKE_BUILD_TYPE=Release"], check=True, capture_output=True)

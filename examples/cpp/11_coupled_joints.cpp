@@ -1,4 +1,4 @@
-// 05: coupled joints in a 1 kHz control loop: a wrist whose joint-1 cables run over an idler on
+// 11: coupled joints in a 1 kHz control loop: a wrist whose joint-1 cables run over an idler on
 // joint 0's axis (joint 1 turns 0.25 rad per rad of joint 0, whatever its motor does). Two
 // physics pull-pull drives with the realistic effects; CoupledFeedforward inverts each joint's
 // own BoucWenBacklash of (desired - coupling of the other joints' desired angles). The models

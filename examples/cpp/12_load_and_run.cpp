@@ -1,14 +1,14 @@
-// 03: a compensator identified in Python, loaded from its JSON file and run in a 1 kHz loop.
+// 12: a compensator identified in Python, loaded from its JSON file and run in a 1 kHz loop.
 //
-//   example_03_load_and_run COMPENSATOR.json             1 kHz sine, self-check (ctest)
-//   example_03_load_and_run COMPENSATOR.json TRAJ OUT    t,y_d lines in TRAJ -> commands in OUT
+//   example_12_load_and_run COMPENSATOR.json             1 kHz sine, self-check (ctest)
+//   example_12_load_and_run COMPENSATOR.json TRAJ OUT    t,y_d lines in TRAJ -> commands in OUT
 //                                                        (t,y_d,c lines: c is the motor encoder
 //                                                        for an EncoderLoop, the tip angle for a
 //                                                        TipLoop, else the curve angle set before
 //                                                        each step; t,y_d,c,a lines: a is the
 //                                                        curve angle set before each step)
-//   example_03_load_and_run LOAD_COMPENSATED.json TRAJ OUT      t,y_d,load lines -> commands
-//   example_03_load_and_run COUPLED_FEEDFORWARD.json TRAJ OUT   t,y_1,...,y_J lines -> lines of
+//   example_12_load_and_run LOAD_COMPENSATED.json TRAJ OUT      t,y_d,load lines -> commands
+//   example_12_load_and_run COUPLED_FEEDFORWARD.json TRAJ OUT   t,y_1,...,y_J lines -> lines of
 //                                                        J commands (io/json_multi_input.hpp)
 //
 // The file comes from Python (examples/cpp/data/make_inverse_feedforward.py):

@@ -1,4 +1,4 @@
-// 02: a compensator in a fixed-rate (1 kHz) control loop against the physics plant,
+// 04: a compensator in a fixed-rate (1 kHz) control loop against the physics plant,
 // while the endoscope bends from Theta = pi/2 to 2 pi. The curve-angle feedforward is
 // told the current curve angle each cycle (as from shape sensing or a bending knob).
 // Exits 0 when the compensated RMSE is below a third of the uncompensated one.

@@ -1,4 +1,4 @@
-// 04: no tip sensor, a servo that yields. A backlash inverse feedforward drives a position servo
+// 10: no tip sensor, a servo that yields. A backlash inverse feedforward drives a position servo
 // without integral action (a PD servo with a reflected inertia: the tendons' pull deflects it)
 // at 1 kHz, alone and inside an EncoderLoop, a PI loop on the motor's own encoder. The loop's
 // gains would come from Python's EncoderLoop.from_calibration (the servo identified from a motor
