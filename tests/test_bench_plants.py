@@ -135,13 +135,13 @@ def _assert_same_run(a, b):
     assert a.metrics["mse"] == pytest.approx(b.metrics["mse"], rel=1e-12)
 
 
-def _pi_feedforward():
+def _pi_feedforward(**settings):
     spec = importlib.util.spec_from_file_location(
         "example_09_plants", ROOT / "examples" / "09_user_compensator.py"
     )
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
-    return module.PIFeedforward(gain=0.8)
+    return module.PIFeedforward(**{"gain": 0.8, **settings})
 
 
 def _routes(t):
@@ -191,8 +191,8 @@ def test_single_tendon_plant_tracks_as_its_capstan_closed_form():
     a = 0.1 * 2.0
     lag = 10.0 * 1.0 / 2e4 * ((math.exp(a) - 1) / a - 1)
     pulled = t > 0.5  # past the dead zone (about 0.1 mm at 2 mm/s)
-    # 60 lumped elements approximate the continuous profile within 2 % (measured 0.9 %)
-    np.testing.assert_allclose(-result.error[pulled], lag, rtol=0.02)
+    # 60 lumped elements approximate the continuous profile: measured 5e-5 relative, so 1e-3
+    np.testing.assert_allclose(-result.error[pulled], lag, rtol=1e-3)
     # its Python twin (the same plant stepped from Python) runs it the same
     twin = ts.bench.run(Wrapped(_single()), None, t, reference, warmup=0.0)
     _assert_same_run(twin, result)
@@ -236,10 +236,12 @@ def test_a_compiled_user_plant_runs_as_its_python_twin_and_the_play_closed_form(
     motor = ts.Motor.position(40.0, 0.8)
     twin, native_plant = PlayPlant(h), cpp_plants.PlayPlant(half_width=h)
     twin.motor = native_plant.motor = motor
-    a = ts.bench.run(twin, _pi_feedforward(), T, Y_D)
-    b = ts.bench.run(native_plant, _pi_feedforward(), T, Y_D)
+    pi = {"gain": 1.0, "kp": 2.0, "ki": 20.0}
+    a = ts.bench.run(twin, _pi_feedforward(**pi), T, Y_D)
+    b = ts.bench.run(native_plant, _pi_feedforward(**pi), T, Y_D)
     _assert_same_run(b, a)
-    assert b.metrics["rmse"] < ts.bench.run(native_plant, None, T, Y_D).metrics["rmse"]
+    # the feedback closes the play's lag: measured rmse 0.014 rad against 0.061 uncompensated
+    assert b.metrics["rmse"] < 0.5 * ts.bench.run(native_plant, None, T, Y_D).metrics["rmse"]
     # simulate: from rest, on a copy
     np.testing.assert_allclose(native_plant.simulate(T, Y_D), _play(Y_D, h), atol=1e-15)
 

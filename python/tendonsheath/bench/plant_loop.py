@@ -140,6 +140,13 @@ class BenchPlant:
 def check_plant(plant) -> None:
     """Raise ValueError naming what ``plant`` lacks of :class:`~tendonsheath.protocols.Plant`,
     or for a plant bench.run cannot close one loop around."""
+    from ..coupled_plant import CoupledPlant
+
+    if isinstance(plant, CoupledPlant):
+        raise ValueError(
+            "bench.run closes one loop around a single-input plant; a CoupledPlant's step takes "
+            "one command per joint: run each joint's plant (CoupledPlant.plants) on its own"
+        )
     missing = missing_members(plant, Plant)
     if missing:
         raise ValueError(
@@ -147,13 +154,6 @@ def check_plant(plant) -> None:
             "plant needs params, reset(), step(command, dt) and simulate(t, command) (see "
             "tendonsheath.protocols.Plant; PullPullPlant, ContinuumPlant and SingleTendonPlant "
             "meet it)"
-        )
-    from ..coupled_plant import CoupledPlant
-
-    if isinstance(plant, CoupledPlant):
-        raise ValueError(
-            "bench.run closes one loop around a single-input plant; a CoupledPlant's step takes "
-            "one command per joint: run each joint's plant (CoupledPlant.plants) on its own"
         )
 
 
