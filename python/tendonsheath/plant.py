@@ -553,6 +553,9 @@ class _Plant(PythonObject):
     def _lengths(self) -> tuple[float, ...]:
         raise NotImplementedError  # the subclass's sheath lengths
 
+    def _angles_for(self, r) -> np.ndarray:
+        raise NotImplementedError  # the subclass's node angles for a route
+
     def _needs_time(self) -> bool:
         return self._engine.time_dependent()
 

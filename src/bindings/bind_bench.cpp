@@ -1,4 +1,5 @@
-// The closed-loop virtual bench: one call runs the whole loop in C++.
+// The closed-loop virtual bench: one call runs the whole loop in C++, over any plant (the erased
+// plant of bench_plant.hpp: a shipped engine, a compiled user plant or a Python one).
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>

@@ -27,6 +27,9 @@ What bench.run uses of a plant (beyond the protocol's ``params``, ``reset``, ``s
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 
 from ..motor import Motor
@@ -41,14 +44,14 @@ class _PythonPlantSteps:
     """The members the C++ loop calls on a Python plant (bindings: bench_plant.hpp), each the
     plant's own or None (its default); ``set_route_index(i)`` sets the i-th scheduled route."""
 
-    def __init__(self, plant, routes: list):
+    def __init__(self, plant, routes: list) -> None:
         self.name = type(plant).__name__
         self.reset, self.step = plant.reset, plant.step
         for name in _OPTIONAL_CALLS:
             member = getattr(plant, name, None)
             setattr(self, name, member if callable(member) else None)
         self._plant, self._routes = plant, routes
-        self.set_route_index = None  # set by the first scheduled route
+        self.set_route_index: Callable[[int], None] | None = None  # set by a scheduled route
 
     def _set_route(self, i: int) -> None:
         route = self._routes[i]
@@ -62,7 +65,7 @@ class BenchPlant:
     """A plant as bench.run closes the loop around it: what the C++ loop steps (``engine``),
     its motor and sensor engines, its route schedule and its uncompensated gain."""
 
-    def __init__(self, plant):
+    def __init__(self, plant) -> None:
         check_plant(plant)
         self.plant = plant
         self.motor = _member_of_kind(plant, "motor", Motor)
@@ -70,7 +73,9 @@ class BenchPlant:
         compiled = getattr(plant, "_tendonsheath_plant", None)
         self.compiled = callable(compiled)
         self._routes: list = []  # a Python plant's scheduled routes, by index
-        self.engine = compiled() if self.compiled else _PythonPlantSteps(plant, self._routes)
+        self.engine: Any = (
+            compiled() if callable(compiled) else _PythonPlantSteps(plant, self._routes)
+        )
 
     @property
     def kinematic_gain(self) -> float:

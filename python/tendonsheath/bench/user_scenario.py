@@ -640,7 +640,10 @@ def _plant(sc: UserScenario, motor: Motor | None, sensor: Sensor | None = None):
 
 def _built_user_plant(sc: UserScenario):
     """The user's plant, on the scenario's initial route when it takes routes."""
-    plant = sc.user_plant.build()
+    user = sc.user_plant
+    if user is None:
+        raise ScenarioError(f"{sc.source} [plant]: no user plant ('class') is named")
+    plant = user.build()
     set_route = getattr(plant, "set_route", None)
     if callable(set_route):
         try:
