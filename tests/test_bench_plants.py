@@ -168,6 +168,16 @@ def test_a_python_plant_runs_as_the_shipped_plant_it_wraps(controller, routes):
     assert not np.array_equal(shipped.output, Y_D)  # a real run (the plant's play shows)
 
 
+def test_a_python_continuum_plant_runs_as_the_shipped_one():
+    def continuum(motor=None):
+        return ts.ContinuumPlant(ROUTE, elements=20, stiffness=5e3, pretension=20.0, motor=motor)
+
+    motor = ts.Motor.position(40.0, 0.8)
+    reference = 0.5 * Y_D
+    shipped = ts.bench.run(continuum(motor), None, T, reference)
+    _assert_same_run(ts.bench.run(Wrapped(continuum(), motor), None, T, reference), shipped)
+
+
 def _single(motor=None):
     return ts.SingleTendonPlant(
         ts.Route.uniform(1.0, 2.0),
