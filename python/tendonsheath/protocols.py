@@ -14,7 +14,9 @@ are there (not their signatures).
   ``to_json`` and a classmethod ``load`` (the shipped ones: ``tendonsheath.compensate.load``).
 * :class:`FeedforwardCompensator`: a compensator with ``command(t, y_desired)``, a whole
   trajectory at once (the feedforwards; a feedback controller has none).
-* :class:`Plant`: ``reset``, ``step``, ``simulate`` and ``params``.
+* :class:`Plant`: ``reset``, ``step``, ``simulate`` and ``params``: all that :func:`bench.run
+  <tendonsheath.bench.run>` needs of a plant (what else it reads where a plant has it, such as
+  its ``motor``, is listed in :mod:`tendonsheath.bench.plant_loop`).
 """
 
 from __future__ import annotations

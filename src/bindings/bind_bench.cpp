@@ -1,4 +1,5 @@
-// The closed-loop virtual bench: one call runs the whole loop in C++.
+// The closed-loop virtual bench: one call runs the whole loop in C++, over any plant (the erased
+// plant of bench_plant.hpp: a shipped engine, a compiled user plant or a Python one).
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
@@ -13,6 +14,7 @@
 #include <tendonsheath/tendonsheath.hpp>
 #include <vector>
 
+#include "bench_plant.hpp"
 #include "bindings.hpp"
 
 namespace tsbind {
@@ -81,7 +83,7 @@ template <class Inner>
 struct NeedsGil<ts::WithTipLoop<Inner>> : NeedsGil<Inner> {};
 
 template <class Controller>
-nb::tuple run_loop(const ts::PullPullPlant& plant_in, std::optional<ts::Motor> motor,
+nb::tuple run_loop(BenchPlant& plant, std::optional<ts::Motor> motor,
               std::optional<ts::Sensor> sensor, Controller controller, InArray t, InArray y_d,
               std::optional<InIndex> sidx, std::optional<InMatrix> sang,
               std::optional<InMatrix> shapes, std::optional<InMask> dropout) {
@@ -101,7 +103,6 @@ nb::tuple run_loop(const ts::PullPullPlant& plant_in, std::optional<ts::Motor> m
       shape_rows.push_back({shapes->data()[3 * i], shapes->data()[3 * i + 1], shapes->data()[3 * i + 2]});
     shape_sched.shapes = shape_rows.data();
   }
-  ts::PullPullPlant plant = plant_in;
   auto [output, po] = new_array(n);
   auto [measured, pm] = new_array(n);
   auto [command, pc] = new_array(n);
@@ -110,16 +111,17 @@ nb::tuple run_loop(const ts::PullPullPlant& plant_in, std::optional<ts::Motor> m
   std::vector<unsigned char> slack(n), fallback(n);
   ts::ClosedLoopTrace trace{po, pm, pc, pq, slack.data(), fallback.data(), pst};
   auto loop = [&] {
-    ts::run_closed_loop(plant, motor ? &*motor : nullptr, sensor ? &*sensor : nullptr, controller,
+    ts::run_closed_loop(plant.view, motor ? &*motor : nullptr, sensor ? &*sensor : nullptr, controller,
                         t.data(), y_d.data(), n, sched, shape_sched,
                         dropout ? dropout->data() : nullptr, trace, where);
   };
-  if constexpr (NeedsGil<Controller>::value) {
+  if (NeedsGil<Controller>::value || plant.needs_gil) {
     loop();
   } else {
     nb::gil_scoped_release release;
     loop();
   }
+  plant.rethrow();
   auto [slack_arr, ps] = new_array(n);
   auto [fallback_arr, pf] = new_array(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -131,7 +133,7 @@ nb::tuple run_loop(const ts::PullPullPlant& plant_in, std::optional<ts::Motor> m
 
 // The loop, with an EncoderLoop or a TipLoop around the controller's command when one is given.
 template <class Controller>
-nb::tuple run_looped(const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
+nb::tuple run_looped(BenchPlant& plant, std::optional<ts::Motor> motor,
                      std::optional<ts::Sensor> sensor, Controller controller, InArray t,
                      InArray y_d, std::optional<InIndex> sidx, std::optional<InMatrix> sang,
                      std::optional<InMatrix> shapes, std::optional<InMask> dropout,
@@ -152,7 +154,7 @@ nb::tuple run_looped(const ts::PullPullPlant& plant, std::optional<ts::Motor> mo
 // The loop, with a learned correction table added to the controller's command (inside the
 // encoder or tip loop, whose target it corrects) when one is given.
 template <class Controller>
-nb::tuple run(const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
+nb::tuple run(BenchPlant& plant, std::optional<ts::Motor> motor,
               std::optional<ts::Sensor> sensor, Controller controller, InArray t, InArray y_d,
               std::optional<InIndex> sidx, std::optional<InMatrix> sang,
               std::optional<InMatrix> shapes, std::optional<InMask> dropout,
@@ -169,12 +171,13 @@ template <class Make>
 void def_run(nb::module_& m, const char* name, Make make) {
   m.def(
       name,
-      [make](const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
+      [make](nb::handle plant, std::optional<ts::Motor> motor,
              std::optional<ts::Sensor> sensor, const typename Make::argument_type& c, InArray t,
              InArray y_d, std::optional<InIndex> sidx, std::optional<InMatrix> sang,
              std::optional<InMatrix> shapes, std::optional<InMask> dropout,
              std::optional<OuterLoop> outer_loop, std::optional<ts::LearnedCorrection> learned) {
-        return run(plant, motor, sensor, make(c), t, y_d, sidx, sang, shapes, dropout,
+        BenchPlant bench_plant(plant);
+        return run(bench_plant, motor, sensor, make(c), t, y_d, sidx, sang, shapes, dropout,
                    outer_loop, learned);
       },
       "plant"_a, "motor"_a.none(), "sensor"_a.none(), "controller"_a, "t"_a, "y_d"_a,
@@ -211,11 +214,12 @@ PythonLoop python_loop(nb::object compensator, const std::vector<int>& inputs) {
 }
 
 template <class Loop>
-nb::tuple run_any(const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
+nb::tuple run_any(nb::handle plant_handle, std::optional<ts::Motor> motor,
                   std::optional<ts::Sensor> sensor, Loop loop, InArray t, InArray y_d,
                   std::optional<InIndex> sidx, std::optional<InMatrix> sang,
                   std::optional<InMask> dropout, std::optional<OuterLoop> outer_loop,
                   std::optional<InMatrix> shapes, std::optional<ts::LearnedCorrection> learned) {
+  BenchPlant plant(plant_handle);
   return run(plant, motor, sensor, std::move(loop), t, y_d, sidx, sang, shapes, dropout,
              outer_loop, learned);
 }
@@ -225,7 +229,7 @@ nb::tuple run_any(const ts::PullPullPlant& plant, std::optional<ts::Motor> motor
 void bind_bench(nb::module_& m) {
   m.def(
       "bench_erased",
-      [](const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
+      [](nb::handle plant, std::optional<ts::Motor> motor,
          std::optional<ts::Sensor> sensor, nb::handle capsule, InArray t, InArray y_d,
          std::optional<InIndex> sidx, std::optional<InMatrix> sang,
          std::optional<InMask> dropout, std::optional<OuterLoop> outer_loop,
@@ -239,7 +243,7 @@ void bind_bench(nb::module_& m) {
       "learned"_a.none() = nb::none());
   m.def(
       "bench_python",
-      [](const ts::PullPullPlant& plant, std::optional<ts::Motor> motor,
+      [](nb::handle plant, std::optional<ts::Motor> motor,
          std::optional<ts::Sensor> sensor, nb::object compensator, std::vector<int> inputs,
          InArray t, InArray y_d, std::optional<InIndex> sidx, std::optional<InMatrix> sang,
          std::optional<InMask> dropout, std::optional<OuterLoop> outer_loop,

@@ -12,12 +12,18 @@ import numpy as np
 from .. import _core as core
 from .._arrays import as_timed_signal
 from ..plant.physics import route_shape as shape_of
-from ..plant.pull_pull import PullPullPlant
 from ..plant.sensor import Sensor
-from ..protocols import STEP_SIGNALS, StreamingCompensator, missing_members, step_signals
+from ..protocols import (
+    STEP_SIGNALS,
+    Plant,
+    StreamingCompensator,
+    missing_members,
+    step_signals,
+)
 from ..status import status_counts
 from .limit_cycle import limit_cycle
 from .metrics import dominant_period, tracking_metrics
+from .plant_loop import BenchPlant
 
 if TYPE_CHECKING:
     from .._typing import ArrayLike
@@ -64,9 +70,9 @@ class Result:
     t : numpy.ndarray of float
         Sample times (s).
     reference : numpy.ndarray of float
-        The desired output (rad).
+        The desired output (rad; m for a SingleTendonPlant).
     output : numpy.ndarray of float
-        The plant's output (rad).
+        The plant's output (rad; m for a SingleTendonPlant).
     measured : numpy.ndarray of float
         The sensor's reading of the output (NaN during dropouts).
     command : numpy.ndarray of float
@@ -116,7 +122,7 @@ def controller_name(controller) -> str:
     return type(controller).__name__
 
 
-def _sensor_engine(noise, plant):
+def _sensor_engine(noise, plant: BenchPlant):
     if noise is None:
         noise = plant.sensor
     if noise is None:
@@ -125,7 +131,7 @@ def _sensor_engine(noise, plant):
         noise = Sensor(noise_std=float(noise))
     if not isinstance(noise, Sensor):
         raise ValueError("noise must be None, a standard deviation (rad) or a tendonsheath.Sensor")
-    return core.Sensor(noise._params)
+    return noise.engine()
 
 
 def _dropout_mask(dropout, t):
@@ -140,7 +146,7 @@ def _dropout_mask(dropout, t):
 
 
 def run(
-    plant: PullPullPlant,
+    plant: Plant,
     controller: Controller,
     t: ArrayLike,
     reference: ArrayLike,
@@ -150,14 +156,26 @@ def run(
     warmup: float | None = None,
     shape_sensing: ShapeSensing | None = None,
 ) -> Result:
-    """Track ``reference`` (distal angle, rad, at times ``t``) with ``controller`` on ``plant``.
+    """Track ``reference`` (the plant's output: a distal angle, rad; a SingleTendonPlant's
+    distal displacement, m) at times ``t`` with ``controller`` on ``plant``.
 
-    ``controller``: None (uncompensated: the kinematic motor angle r_d/r_p * y_d), an
+    ``plant``: any object meeting :class:`~tendonsheath.protocols.Plant`, all closed in one
+    C++ loop: a shipped plant (PullPullPlant, ContinuumPlant, SingleTendonPlant) or a compiled
+    one (bound with ``tendonsheath_bind/plant.hpp``) at C++ speed, any other stepped from
+    Python (``step(command, dt)`` once per cycle, after ``reset()``). What the loop reads of a
+    plant beyond the protocol, each optional (its ``motor`` and ``sensor``, ``kinematic_gain``
+    or ``distal_radius``/``proximal_radius``, ``set_route``, ``slack()``, ``status()`` ...), is
+    listed in :mod:`tendonsheath.bench.plant_loop`; a member the run needs and the plant lacks
+    is named in the error.
+
+    ``controller``: None (uncompensated: the kinematic command ``plant.kinematic_gain * y_d``,
+    r_d/r_p * y_d for a pull-pull pair, y_d for a single tendon), an
     :class:`InverseFeedforward` (of any model; one that follows the route, of a
     CurveAngleModel or AngleDependent model, is given the route's shape like the
     CurveAngleFeedforward), :class:`CurveAngleFeedforward` (it is given the route's shape
     every time the route changes, as from shape sensing), :class:`ContinuumFeedforward` or
-    :class:`AdaptiveController` (needs a torque motor on the plant). The plant's own motor
+    :class:`AdaptiveController` (needs a torque motor on the plant), or any
+    :class:`~tendonsheath.protocols.StreamingCompensator`. The plant's own motor
     (``plant.motor``) sits between controller and plant. ``routes``: None or a callable
     t -> Route. ``noise``: a Sensor, a noise standard deviation (rad), or None (then
     ``plant.sensor``). ``dropout``: [(start, stop), ...] seconds when the sensor reads NaN.
@@ -168,14 +186,15 @@ def run(
 
     Parameters
     ----------
-    plant : PullPullPlant or ContinuumPlant
-        The plant (with its motor and sensor).
+    plant : Plant
+        The plant (with its motor and sensor): a shipped one, a compiled one or one written in
+        Python (see above).
     controller : compensator or None
         See above.
     t : array_like of float, shape (n,)
         Sample times (s), at least 2.
     reference : array_like of float, shape (n,)
-        The desired distal angle (rad).
+        The desired output (rad; m for a SingleTendonPlant).
     routes : callable, optional
         t -> Route (or a (route1, route2) pair).
     noise : Sensor or float, optional
@@ -195,18 +214,19 @@ def run(
     Raises
     ------
     ValueError
-        A plant or controller it does not know, bad samples or arguments, or an
-        AdaptiveController without a torque motor.
+        A plant that lacks a member of the Plant protocol or one the run needs (named), a
+        controller it does not know, bad samples or arguments, or an AdaptiveController
+        without a torque motor.
+    TypeError
+        A compensator without reset and step, a plant's motor or sensor of the wrong kind, or a
+        Python plant's step that returned no number.
     RuntimeError
         The closed loop produced a non-finite output.
     """
-    if not isinstance(plant, PullPullPlant):
-        raise ValueError(
-            f"bench.run needs a PullPullPlant or ContinuumPlant (got {type(plant).__name__})"
-        )
+    bench_plant = BenchPlant(plant)
     ts, ys = _record(t, reference)
     warmup = _checked_warmup(warmup, ts)
-    loop = _Loop(plant, ts, ys, routes, noise, dropout)
+    loop = _Loop(bench_plant, ts, ys, routes, noise, dropout)
     outputs = _run_controller(loop, controller, shape_sensing)
     if warmup is None:
         warmup = min(dominant_period(ts, ys), 0.5 * float(ts[-1] - ts[0]))
@@ -236,14 +256,14 @@ class _Loop:
     """What every closed loop shares: the plant, its motor and sensor, the record, the route
     schedule and the dropout mask, as the C++ bench functions take them."""
 
-    def __init__(self, plant, ts, ys, routes, noise, dropout):
+    def __init__(self, plant: BenchPlant, ts, ys, routes, noise, dropout):
         self.plant, self.ts, self.ys, self.routes = plant, ts, ys, routes
         self.idx = self.angles = None
         if routes is not None:
             if not callable(routes):
                 raise ValueError("routes must be None or a callable t -> Route")
-            self.idx, self.angles = plant._schedule(ts, routes)
-        self.motor = core.Motor(plant.motor._params) if plant.motor is not None else None
+            self.idx, self.angles = plant.schedule(ts, routes)
+        self.motor = plant.motor.engine() if plant.motor is not None else None
         self.sensor = _sensor_engine(noise, plant)
         self.mask = _dropout_mask(dropout, ts)
         # a core.EncoderLoop or core.TipLoop around the controller's command
@@ -263,7 +283,7 @@ class _Loop:
         given as a keyword (the TipLoop's schedule needs them)."""
         idx = self.idx if idx is None else idx
         angles = self.angles if angles is None else angles
-        head = (self.plant._engine, self.motor, self.sensor, controller, *extra, self.ts, self.ys)
+        head = (self.plant.engine, self.motor, self.sensor, controller, *extra, self.ts, self.ys)
         tail = (idx, angles) if shapes is _NO_SHAPES else (idx, angles, shapes)
         return fn(*head, *tail, self.mask, self.outer_loop, learned=self.learned)
 
@@ -274,7 +294,7 @@ class _Loop:
         idx, angles, shapes = _route_shapes(self, friction, shape_sensing)
         if positional:
             return self.call(fn, controller, *extra, shapes=shapes, idx=idx, angles=angles)
-        head = (self.plant._engine, self.motor, self.sensor, controller, *extra, self.ts, self.ys)
+        head = (self.plant.engine, self.motor, self.sensor, controller, *extra, self.ts, self.ys)
         return fn(
             *head, idx, angles, self.mask, self.outer_loop, shapes=shapes, learned=self.learned
         )
@@ -286,8 +306,7 @@ def _run_controller(loop: _Loop, controller, shape_sensing):
     LearnedFeedforward its feedforward's path with the correction table added, in C++ (a
     TipLoop with a gain schedule is given the route's shapes on every path)."""
     if controller is None:
-        gain = loop.plant.distal_radius / loop.plant.proximal_radius
-        return loop.call(core.bench_open_loop, gain, shapes=None)
+        return loop.call(core.bench_open_loop, loop.plant.kinematic_gain, shapes=None)
     _check_compensator(controller)
     _check_motor_kind(loop.plant, controller)
     taken_apart = getattr(controller, "_outer_loop", None)
@@ -343,7 +362,7 @@ def _check_compensator(controller) -> None:
         )
 
 
-def _check_motor_kind(plant, controller) -> None:
+def _check_motor_kind(plant: BenchPlant, controller) -> None:
     if getattr(controller, "control_output", "x") != "torque":
         return
     if plant.motor is None or plant.motor.kind != "torque":
@@ -367,7 +386,7 @@ def _route_shapes(loop: _Loop, friction: float, shape_sensing):
     angles = loop.angles
     if idx is None:
         idx = np.array([0], dtype=np.uint64)
-        angles = np.ascontiguousarray(plant._angles_for(plant.route)[None, :])
+        angles = np.ascontiguousarray(plant.angles_for(plant.route)[None, :])
         route_at = [plant.route]
     else:
         route_at = [_first(routes(float(ts[int(k)]))) for k in idx]
@@ -421,7 +440,7 @@ def _sensed(plant, ts, routes, shape_sensing, friction, idx):
     merged = np.union1d(np.asarray(idx, dtype=np.int64), r_idx.astype(np.int64))
     angle_rows, shape_rows = [], []
     for k in merged:
-        angle_rows.append(plant._angles_for(routes(float(ts[k]))))
+        angle_rows.append(plant.angles_for(routes(float(ts[k]))))
         j = int(np.searchsorted(r_idx, k, side="right")) - 1
         shape_rows.append(sensed_rows[max(j, 0)])
     return (

@@ -71,7 +71,7 @@ def _entry(entry, here: str, base: Path) -> UserCompensator:
         )
     if not isinstance(kwargs, dict):
         raise ValueError(f"{here}: 'kwargs' must be a table of keyword arguments")
-    cls, origin = _resolve(spec, entry.get("file"), here, base)
+    cls, origin = resolve_class(spec, entry.get("file"), here, base)
     name = entry.get("name", cls.__name__)
     if not isinstance(name, str) or not name:
         raise ValueError(f"{here}: 'name' must be a non-empty string")
@@ -80,7 +80,9 @@ def _entry(entry, here: str, base: Path) -> UserCompensator:
     return user
 
 
-def _resolve(spec: str, file, here: str, base: Path) -> tuple[type, str]:
+def resolve_class(spec: str, file, here: str, base: Path) -> tuple[type, str]:
+    """The class ``spec`` names ("module:Class", or "Class" in the Python ``file``, relative
+    to ``base``) and its origin "module:Class"; ValueError starting with ``here`` otherwise."""
     if file is not None:
         if not isinstance(file, str):
             raise ValueError(f"{here}: 'file' must be a path (string)")
@@ -165,4 +167,4 @@ def told_by_user(user: UserCompensator) -> dict[str, tuple[Any, str]]:
     return told
 
 
-__all__ = ["UserCompensator", "parse_user_compensators", "told_by_user"]
+__all__ = ["UserCompensator", "parse_user_compensators", "resolve_class", "told_by_user"]

@@ -15,6 +15,8 @@
                                         #   dynamics, sheath viscosity, creep, unequal pair,
                                         #   motor friction and gear backlash; false: ideal
     # continuum only: bending_stiffness, tendon_offset, backbone_length
+    # or your own plant instead (tendonsheath.bench.user_plants): class = "module:Class" (or
+    # file = "my_plant.py" and class = "MyPlant") and kwargs = { ... }, no other [plant] key
 
     [route]                             # the initial route: one of
     length = 1.2                        #   length + total_angle (uniform curvature)
@@ -90,6 +92,7 @@ from ..plant.sensor import Sensor
 from .run import run
 from .scenarios.common import ScenarioResult, piecewise_routes, ratio
 from .user_compensators import UserCompensator, parse_user_compensators, told_by_user
+from .user_plants import UserPlant, parse_user_plant
 
 COMPENSATORS = ("none", "inverse_feedforward", "curve_angle_feedforward", "adaptive")
 
@@ -151,6 +154,7 @@ class UserScenario:
     source: str = "<scenario>"
     route_changes: list[tuple[float, Route]] = field(default_factory=list)
     user_compensators: list[UserCompensator] = field(default_factory=list)
+    user_plant: UserPlant | None = None  # [plant] class = ...: the user's own plant
 
 
 def _check_type(where: str, key: str, value, kind):
@@ -223,9 +227,11 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         )
     if not 0 <= data.get("seed", 0) < 2**32:
         raise ScenarioError(f"{source}: 'seed' must be in [0, 2**32) (got {data['seed']})")
-    s = {name: _section(data, name, source) for name in _KEYS}
-    plant_type = s["plant"].get("type", "pull_pull")
-    if plant_type not in ("pull_pull", "continuum"):
+    user_plant = _user_plant(data, source)
+    s = {name: _section(data, name, source) for name in _KEYS if name != "plant" or not user_plant}
+    s.setdefault("plant", {})
+    plant_type = "user" if user_plant else s["plant"].get("type", "pull_pull")
+    if plant_type not in ("pull_pull", "continuum", "user"):
         raise ScenarioError(f"{source} [plant]: 'type' must be 'pull_pull' or 'continuum'")
     route = _route(s["route"], f"{source} [route]")
     changes = []
@@ -241,6 +247,13 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
     if any(b[0] <= a[0] for a, b in zip(changes, changes[1:], strict=False)):
         raise ScenarioError(f"{source} [[route.changes]]: times must increase")
     compensators, user = _compare_table(s["compare"], source)
+    if user_plant is not None:
+        compensators = _on_user_plant(s["compare"], compensators, source)
+        if changes and not callable(getattr(user_plant.build(), "set_route", None)):
+            raise ScenarioError(
+                f"{source} [[route.changes]]: the plant {user_plant.origin} has no "
+                "set_route(route) to take them"
+            )
     motor = {"bandwidth_hz": 60.0, "damping": 0.8, **s["motor"]}
     reference = _reference_table(s["reference"], motor["bandwidth_hz"], source)
     load = s["load"] or None
@@ -254,7 +267,9 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         )
     sc = UserScenario(
         title=data.get("title", "user scenario"),
-        plant={"type": plant_type, **s["plant"]},
+        plant={"type": plant_type, **s["plant"]}
+        if user_plant is None
+        else {"type": "user", "class": user_plant.origin, "kwargs": user_plant.kwargs},
         route={"initial": route},
         load=load,
         motor=motor,
@@ -267,6 +282,7 @@ def parse(text: str, source: str = "<scenario>") -> UserScenario:
         source=source,
         route_changes=changes,
         user_compensators=user,
+        user_plant=user_plant,
     )
     _check_calibration(sc, f"{source} [calibration]")
     return _checked(sc)
@@ -368,6 +384,41 @@ def _check_calibration(sc: UserScenario, where: str) -> None:
         except (TypeError, ValueError) as exc:
             raise ScenarioError(f"{where}: angles[{i}]: {exc}") from None
     calibration_angles(sc)  # none is a test route's angle
+
+
+def _user_plant(data: dict, source: str) -> UserPlant | None:
+    """The user's own plant a [plant] table with 'class' names (None without one; see
+    :mod:`tendonsheath.bench.user_plants`); the tables for the shipped plants ([load], [motor],
+    [torque_motor]) are refused beside it."""
+    table = data.get("plant", {})
+    if "class" not in table and "file" not in table:
+        return None
+    given = [name for name in ("load", "motor", "torque_motor") if name in data]
+    if given:
+        raise ScenarioError(
+            f"{source} [{given[0]}]: a user plant ([plant] class = ...) brings its own motor "
+            "and load (its motor attribute); remove the table"
+        )
+    base = Path(source).parent if Path(source).is_file() else Path.cwd()
+    try:
+        return parse_user_plant(table, f"{source} [plant]", base)
+    except ValueError as exc:
+        raise ScenarioError(str(exc)) from None
+
+
+def _on_user_plant(compare: dict, compensators: list[str], source: str) -> list[str]:
+    """The shipped compensators run on a user plant: "none" only (the others are calibrated
+    on the shipped plant's tension bench); by default "none"."""
+    if "compensators" not in compare:
+        return ["none"]
+    calibrated = [name for name in compensators if name != "none"]
+    if calibrated:
+        raise ScenarioError(
+            f"{source} [compare]: '{calibrated[0]}' is calibrated on the shipped plant's "
+            "tension bench, which a user plant ([plant] class = ...) does not offer: compare "
+            '"none" and your own [[compare.user]] compensators on it'
+        )
+    return compensators
 
 
 def _compare_table(compare: dict, source: str) -> tuple[list[str], list[UserCompensator]]:
@@ -562,6 +613,8 @@ def _torque(sc: UserScenario) -> Motor:
 
 
 def _plant(sc: UserScenario, motor: Motor | None, sensor: Sensor | None = None):
+    if sc.user_plant is not None:  # it brings its own motor and sensor
+        return _built_user_plant(sc)
     p = {k: v for k, v in sc.plant.items() if k not in ("type", "realistic")}
     if _realistic(sc):
         kind = ContinuumPlant if sc.plant["type"] == "continuum" else PullPullPlant
@@ -583,6 +636,21 @@ def _plant(sc: UserScenario, motor: Motor | None, sensor: Sensor | None = None):
         )
     except (TypeError, ValueError) as exc:
         raise ScenarioError(f"{sc.source} [plant]: {exc}") from None
+
+
+def _built_user_plant(sc: UserScenario):
+    """The user's plant, on the scenario's initial route when it takes routes."""
+    user = sc.user_plant
+    if user is None:
+        raise ScenarioError(f"{sc.source} [plant]: no user plant ('class') is named")
+    plant = user.build()
+    set_route = getattr(plant, "set_route", None)
+    if callable(set_route):
+        try:
+            set_route(sc.route["initial"])
+        except (TypeError, ValueError) as exc:
+            raise ScenarioError(f"{sc.source} [route]: {exc}") from None
+    return plant
 
 
 def tension_bench_friction(plant) -> float:

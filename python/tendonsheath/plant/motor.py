@@ -228,6 +228,19 @@ class Motor(PythonObject):
         without integral action."""
         return self._engine.integral()
 
+    def engine(self) -> core.Motor:
+        """A copy of the C++ motor engine this motor built (and validated) once, at rest: what a
+        plant steps between command and pulley, and what :func:`tendonsheath.bench.run` runs.
+
+        Returns
+        -------
+        tendonsheath._core.Motor
+            An independent engine (stepping it leaves this motor's own state alone).
+        """
+        copy = self._engine.__copy__()
+        copy.reset()
+        return copy
+
     def reset(self) -> None:
         """Back to rest: the next step starts afresh."""
         self._engine.reset()

@@ -222,7 +222,7 @@ class _Plant(PythonObject):
             )
         self.motor = motor
         self.sensor = sensor
-        self._motor_engine = core.Motor(motor._params) if motor is not None else None
+        self._motor_engine = motor.engine() if motor is not None else None
 
     # -- streaming -------------------------------------------------------------------
     def reset(self) -> None:
@@ -430,8 +430,8 @@ class _Plant(PythonObject):
             if not callable(routes):
                 raise ValueError(f"{name}: routes must be None or a callable t -> Route")
             idx, angles = self._schedule(ts, routes)
-        motor_arg = core.Motor(self.motor._params) if self.motor is not None else None
-        sensor_arg = core.Sensor(self.sensor._params) if self.sensor is not None else None
+        motor_arg = self.motor.engine() if self.motor is not None else None
+        sensor_arg = self.sensor.engine() if self.sensor is not None else None
         mode, fine, lookahead = self._interpolation
         mode = mode if input_interpolation is None else input_interpolation
         reconstruction.check_interpolation(mode, fine, lookahead, name)
@@ -488,6 +488,57 @@ class _Plant(PythonObject):
             stacklevel=3,
         )
 
+    def route_schedule(self, t: ArrayLike, routes: Callable) -> tuple[np.ndarray, np.ndarray]:
+        """The route changes of ``routes`` over the times ``t``, as the C++ loops take them:
+        the sample indices where the route changes (the first always 0) and each new route's
+        node angles (what :meth:`simulate` and :func:`tendonsheath.bench.run` pass to C++).
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,)
+            Sample times (s).
+        routes : callable
+            t -> Route (or a (route1, route2) pair for a pull-pull plant).
+
+        Returns
+        -------
+        index : numpy.ndarray of uint64
+            The samples at which the route changes.
+        angles : numpy.ndarray of float, shape (changes, node angles)
+            Each new route's node angles (:meth:`node_angles`).
+
+        Raises
+        ------
+        ValueError
+            A route of the wrong kind or length.
+        """
+        return self._schedule(np.asarray(t, dtype=float), routes)
+
+    def node_angles(self, route: Route | tuple[Route, Route]) -> np.ndarray:
+        """The lumped node angles (rad) a route gives this plant's elements.
+
+        Parameters
+        ----------
+        route : Route or (Route, Route)
+            The route (a pull-pull plant: or the pair of its two sheaths).
+
+        Returns
+        -------
+        numpy.ndarray of float
+            The node angles, as the C++ plant's set_node_angles takes them.
+
+        Raises
+        ------
+        ValueError
+            A route of the wrong kind or length.
+        """
+        return self._angles_for(route)
+
+    def _tendonsheath_plant(self):
+        # what tendonsheath.bench.run steps: the C++ engine without the motor (the bench runs
+        # the motor between controller and plant); the loop steps a copy
+        return self._engine
+
     def _schedule(self, ts, routes):
         idx, rows = [], []
         prev_obj = object()
@@ -510,6 +561,9 @@ class _Plant(PythonObject):
 
     def _lengths(self) -> tuple[float, ...]:
         raise NotImplementedError  # the subclass's sheath lengths
+
+    def _angles_for(self, r) -> np.ndarray:
+        raise NotImplementedError  # the subclass's node angles for a route
 
     def _needs_time(self) -> bool:
         return self._engine.time_dependent()
@@ -615,6 +669,12 @@ class SingleTendonPlant(_Plant):
         with python_names(cls):
             self._engine = core.SingleTendonPlant(p, route._core)
         self._setup_io(motor, sensor)
+
+    @property
+    def kinematic_gain(self) -> float:
+        """The uncompensated command per unit of desired output: 1 (m of proximal displacement
+        per m of distal displacement)."""
+        return 1.0
 
     def _lengths(self) -> tuple[float, ...]:
         return (self.route.length,)
@@ -802,6 +862,12 @@ class PullPullPlant(_Plant):
     def distal_radius(self) -> float:
         """Distal pulley radius r_d (m); for a continuum plant, the tendon offset r_t."""
         return self._engine.params.distal_radius
+
+    @property
+    def kinematic_gain(self) -> float:
+        """The uncompensated command per unit of desired output: distal_radius /
+        proximal_radius (the motor angle for a distal angle)."""
+        return self.distal_radius / self.proximal_radius
 
     def _lengths(self) -> tuple[float, ...]:
         return (self.route.length, self.route2.length)

@@ -101,6 +101,20 @@ class Sensor(PythonObject):
         """Samples kept for the delay."""
         return self._params.history
 
+    def engine(self) -> core.Sensor:
+        """A copy of the C++ sensor engine this sensor built (and validated) once, at rest (its
+        noise sequence from the seed): what a plant's simulation and
+        :func:`tendonsheath.bench.run` read the output with.
+
+        Returns
+        -------
+        tendonsheath._core.Sensor
+            An independent engine (reading with it leaves this sensor's own state alone).
+        """
+        copy = self._engine.__copy__()
+        copy.reset()
+        return copy
+
     def reset(self) -> None:
         """Restart the noise sequence from its seed and empty the history."""
         self._engine.reset()

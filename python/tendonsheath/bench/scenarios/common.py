@@ -175,7 +175,16 @@ def honesty_panel(
 
 
 def kinematic_told(plant) -> dict[str, tuple[Any, str]]:
-    """The uncompensated drive's only input: the kinematic ratio of its pulleys."""
+    """The uncompensated drive's only input: the kinematic ratio of its pulleys (a plant
+    without pulley radii: its kinematic_gain)."""
+    if not (hasattr(plant, "distal_radius") and hasattr(plant, "proximal_radius")):
+        from ..plant_loop import BenchPlant
+
+        gain = (
+            BenchPlant(plant).kinematic_gain,
+            "the plant's kinematic_gain (the uncompensated command)",
+        )
+        return {"kinematic gain": gain}
     return {
         "kinematic gain r_d/r_p": (
             plant.distal_radius / plant.proximal_radius,
