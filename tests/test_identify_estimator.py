@@ -2,6 +2,8 @@
 fit (the same answer as identify, bit for bit), prediction, unknown settings, and
 cross-validation over recordings against a hand-written loop."""
 
+import inspect
+
 import numpy as np
 import pytest
 from _realdata_helpers import plant_log
@@ -14,7 +16,7 @@ from tendonsheath.identify import (
     cross_validate,
     metrics,
 )
-from tendonsheath.identify.settings import OPTION_NAMES
+from tendonsheath.identify.settings import DEFAULTS, OPTION_NAMES
 from tendonsheath.models import (
     Backlash,
     BoucWen,
@@ -51,6 +53,34 @@ def test_get_params_set_params_round_trip():
     assert est.get_params(deep=False) == params
 
 
+def test_init_takes_every_setting_as_a_keyword_with_identifys_default():
+    # an explicit signature (no **settings): each setting of Options, keyword-only, same default
+    params = list(inspect.signature(Identifier).parameters.values())
+    assert [p.name for p in params] == ["model", *OPTION_NAMES]
+    assert params[0].default is None
+    for p in params[1:]:
+        assert p.kind is p.KEYWORD_ONLY and p.default == DEFAULTS[p.name], p.name
+    est = Identifier(Backlash, maxiter=7)
+    assert est.maxiter == 7 and est.popsize == DEFAULTS["popsize"]
+
+
+def test_fit_returns_the_estimator_and_the_old_reading_warns(log):
+    t, x, y = log
+    est = Identifier(Backlash, **FAST)
+    with pytest.raises(AttributeError, match="to_dict"):
+        est.to_dict  # noqa: B018 (unfitted: no fallback)
+    assert est.fit([(t, x, y)]) is est
+    assert est.model_ is est.fit_.model
+    # before, fit() returned the model: its attributes still answer, naming model_
+    with pytest.warns(DeprecationWarning, match=r"model_\.to_dict") as rec:
+        old = est.to_dict()
+    assert old == est.model_.to_dict() and {w.filename for w in rec} == {__file__}
+    with pytest.warns(DeprecationWarning, match=r"model_\.params"):
+        assert est.params == est.model_.params
+    with pytest.raises(AttributeError, match="no_such_attribute"):
+        est.no_such_attribute  # noqa: B018
+
+
 def test_clone_is_unfitted_equal_and_independent(log):
     t, x, y = log
     est = Identifier(Backlash, fixed={"c_l": 0.9}, bounds={"c_r": (0.1, 3.0)}, **FAST)
@@ -83,8 +113,9 @@ def test_fit_gives_identify_bit_for_bit(log, model, extra):
     t, x, y = log
     fit = ts.identify(model, t, x, y, **FAST, **extra)
     est = Identifier(model, **FAST, **extra)
-    fitted = est.fit([(t, x, y)])
-    assert fitted is est.model_ and fitted is est.fit_.model
+    assert est.fit([(t, x, y)]) is est
+    fitted = est.model_
+    assert fitted is est.fit_.model
     assert fitted.to_dict() == fit.model.to_dict()  # identical floats, not approximately
     assert est.fit_.rmse == fit.rmse
     assert est.fit_.standard_errors.keys() == fit.standard_errors.keys()
@@ -96,7 +127,7 @@ def test_fit_with_angle_laws_gives_identify_bit_for_bit(three_logs):
     recs = [(t, x, y, angle) for (t, x, y), angle in zip(three_logs, (0.5, 1.5, 2.5), strict=True)]
     laws = {"c_r": "linear"}
     fit = ts.identify(Backlash, recordings=recs, depends_on_angle=laws, **FAST)
-    model = Identifier(Backlash, depends_on_angle=laws, **FAST).fit(recs)
+    model = Identifier(Backlash, depends_on_angle=laws, **FAST).fit(recs).model_
     assert model.to_dict() == fit.model.to_dict()
 
 
@@ -113,7 +144,7 @@ def test_predict_and_score_match_the_fit(log):
 
 def test_unknown_settings_are_rejected_by_name(log):
     t, x, y = log
-    with pytest.raises(TypeError, match=r"'maxiters'.*did you mean maxiter"):
+    with pytest.raises(TypeError, match=r"unexpected keyword argument 'maxiters'"):
         Identifier(Backlash, maxiters=5)
     with pytest.raises(TypeError, match="'smoothing'"):
         Identifier(Backlash).set_params(smoothing=1.0)

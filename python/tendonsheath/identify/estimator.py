@@ -1,11 +1,13 @@
 """Identification as an object, in the scikit-learn mould: :class:`Identifier` stores the model
-and the settings, ``fit(recordings)`` returns the fitted model (the :class:`Fit` kept in
-``fit_``), ``get_params``/``set_params``/``clone`` let a comparison or a cross-validation make
-one unfitted copy per fold."""
+and the settings (keyword arguments of ``__init__``, kept as attributes of the same names),
+``fit(recordings)`` returns the estimator with the fitted model in ``model_`` and the
+:class:`Fit` in ``fit_``, and ``get_params``/``set_params``/``clone`` let a comparison or a
+cross-validation make one unfitted copy per fold."""
 
 from __future__ import annotations
 
 import copy
+import warnings
 from collections.abc import Sequence
 from typing import Any
 
@@ -13,16 +15,10 @@ import numpy as np
 
 from .._typing import ArrayLike, RecordingLike, Recordings
 from ..models import HysteresisModel
+from .core import fit_recordings
 from .data import make_recordings
 from .fit import Fit, metrics, simulate_model
-from .settings import (
-    DEFAULTS,
-    OPTION_NAMES,
-    Options,
-    Search,
-    check_names,
-    with_settings_signature,
-)
+from .settings import DEFAULTS, OPTION_NAMES, Options, check_names
 
 
 class NotFittedError(ValueError, AttributeError):
@@ -32,17 +28,22 @@ class NotFittedError(ValueError, AttributeError):
 class Identifier:
     """An identification's model and settings; ``fit(recordings)`` runs it.
 
-    ``Identifier(model, **settings)`` takes the settings as keywords (listed below);
-    ``identify(model, t, x, y, **settings)`` is
-    ``Identifier(model, **settings).fit_data(t, x, y)`` with the :class:`Fit` returned, and
-    ``fit(recordings)`` returns the fitted model and keeps the Fit in ``fit_``. The settings
-    are stored as attributes of the same names (scikit-learn's
-    convention), which ``get_params``, ``set_params`` and ``clone`` read and copy, so that a
-    comparison or a cross-validation can make one unfitted copy per fold. An unknown setting
-    raises TypeError naming it (and the closest known ones); the values are checked by ``fit``.
-    The settings are those of :func:`~tendonsheath.identify.identify`, whose docstring
-    describes the search in full; their defaults are the fields of
+    ``Identifier(model, maxiter=30, ...)`` takes the settings as keyword arguments (listed
+    below) and stores them, unchanged and unchecked, as attributes of the same names
+    (scikit-learn's convention), which ``get_params``, ``set_params`` and ``clone`` read and
+    copy, so that a comparison or a cross-validation can make one unfitted copy per fold.
+    ``fit(recordings)`` identifies the model and returns the estimator, with the fitted model
+    in ``model_`` and the :class:`Fit` in ``fit_``: ``Identifier(model, ...).fit(recs).model_``.
+    ``identify(model, t, x, y, **settings)`` is ``Identifier(model, **settings).fit_data(t, x,
+    y)``, which returns the Fit. An unknown setting raises TypeError naming it; the values are
+    checked by ``fit``. The settings are those of :func:`~tendonsheath.identify.identify`,
+    whose docstring describes the search in full; their defaults are the fields of
     :class:`~tendonsheath.identify.settings.Options`.
+
+    Before this release ``fit`` returned the fitted model: code that reads the model's
+    attributes from what ``fit`` returns (``Identifier(...).fit(recs).to_dict()``) still
+    works for one release, with a DeprecationWarning naming ``model_`` (the Identifier's own
+    ``options``, ``predict`` and ``score`` are the estimator's, not the model's).
 
     Every Fit carries ``diagnostics`` (parameters near their bounds, correlations, condition
     number) and an :class:`~tendonsheath.identify.IdentifiabilityWarning` names the parameters
@@ -141,16 +142,60 @@ class Identifier:
     tendonsheath.identify.cross_validate : Scores an Identifier over held-out recordings.
     """
 
-    warmup: int  # one of the settings (OPTION_NAMES), set by __init__ and set_params
-
-    @with_settings_signature
     def __init__(
-        self, model: type[HysteresisModel] | HysteresisModel | str | None = None, **settings: Any
-    ):
-        check_names(settings, type(self).__name__)
+        self,
+        model: type[HysteresisModel] | HysteresisModel | str | None = None,
+        *,
+        warmup: int = 0,
+        bounds: dict | None = None,
+        fixed: dict | None = None,
+        free: Any = None,
+        initial: Any = None,
+        depends_on_angle: dict | None = None,
+        seed: int | None = 0,
+        maxiter: int = 100,
+        popsize: int = 15,
+        tol: float = 0.01,
+        workers: int | None = None,
+        polish: bool = True,
+        separable: bool = True,
+        progress: bool = True,
+        search_samples: int | None = 200_000,
+        time_budget: Any = None,
+        input_interpolation: str | None = None,
+        periodic: bool | None = None,
+        strategy: str = "auto",
+        normalize: bool = True,
+        standard_errors: str = "linearised",
+        bootstrap: int | None = None,
+        bootstrap_block: int | None = None,
+    ) -> None:
+        # every setting stored as given, under its own name (scikit-learn's convention);
+        # the defaults are Options' (a test holds the two lists equal)
         self.model = model
-        for name in OPTION_NAMES:
-            setattr(self, name, settings.get(name, DEFAULTS[name]))
+        self.warmup = warmup
+        self.bounds = bounds
+        self.fixed = fixed
+        self.free = free
+        self.initial = initial
+        self.depends_on_angle = depends_on_angle
+        self.seed = seed
+        self.maxiter = maxiter
+        self.popsize = popsize
+        self.tol = tol
+        self.workers = workers
+        self.polish = polish
+        self.separable = separable
+        self.progress = progress
+        self.search_samples = search_samples
+        self.time_budget = time_budget
+        self.input_interpolation = input_interpolation
+        self.periodic = periodic
+        self.strategy = strategy
+        self.normalize = normalize
+        self.standard_errors = standard_errors
+        self.bootstrap = bootstrap
+        self.bootstrap_block = bootstrap_block
 
     # -- parameters ------------------------------------------------------------------------
 
@@ -238,9 +283,7 @@ class Identifier:
 
     # -- fitting and prediction ------------------------------------------------------------
 
-    def fit(
-        self, recordings: Recordings, *, curve_angle: ArrayLike | None = None
-    ) -> HysteresisModel:
+    def fit(self, recordings: Recordings, *, curve_angle: ArrayLike | None = None) -> Identifier:
         """Identify the model from recordings; the recordings share the parameters.
 
         Parameters
@@ -254,8 +297,8 @@ class Identifier:
 
         Returns
         -------
-        HysteresisModel
-            The fitted model (also kept in ``model_``; the :class:`Fit` in ``fit_``).
+        Identifier
+            This estimator, fitted: the model in ``model_``, the :class:`Fit` in ``fit_``.
 
         Raises
         ------
@@ -264,7 +307,7 @@ class Identifier:
             support.
         """
         self.fit_data(recordings=_as_list(recordings), curve_angle=curve_angle)
-        return self.model_
+        return self
 
     def fit_data(
         self,
@@ -306,14 +349,10 @@ class Identifier:
             Bad data or settings (the message names them), or a setting the model does not
             support.
         """
-        from .core import run
-
-        options = self.options()
-        search = Search.of(options)  # checked before the data, as identify() always did
-        recs = make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle)
-        self.fit_ = run(self.model, recs, options, search)
+        self.fit_ = fit_recordings(
+            self.model, self.options(), t, x, y, recordings=recordings, curve_angle=curve_angle
+        )
         self.model_ = self.fit_.model
-        _record_input_range(self.fit_, recs)
         return self.fit_
 
     def predict(self, recordings: Recordings) -> list[np.ndarray]:
@@ -380,6 +419,21 @@ class Identifier:
             raise NotFittedError(f"this {type(self).__name__} is not fitted: call fit() first")
         return self.model_
 
+    def __getattr__(self, name: str) -> Any:
+        # fit() returned the fitted model before it returned the estimator: the model's public
+        # attributes stay reachable on a fitted Identifier for one release, with a warning
+        model = self.__dict__.get("model_")
+        if name.startswith("_") or name.endswith("_") or not hasattr(model, name):
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        warnings.warn(
+            f"Identifier.fit() returns the Identifier now, not the fitted model: read "
+            f"{name!r} on its model_ (Identifier(...).fit(recordings).model_.{name}); "
+            "this fallback will be removed in the next release",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return getattr(model, name)
+
 
 def _as_list(recordings):
     """One recording (a Log, a Recording or a tuple) as a list of one; lists as they are."""
@@ -431,14 +485,6 @@ def _differs(value, name: str) -> bool:
         return bool(value != default)
     except (TypeError, ValueError):
         return True
-
-
-def _record_input_range(fit, recs) -> None:
-    """The training inputs' range (all recordings, data units) on the Fit and its model."""
-    lo = min(float(np.min(r.x)) for r in recs)
-    hi = max(float(np.max(r.x)) for r in recs)
-    fit.input_range = (lo, hi)
-    fit.model.input_range = (lo, hi)
 
 
 __all__ = ["Identifier", "NotFittedError"]

@@ -28,6 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._typing import ArrayLike
+from ..models.hysteretic_oscillator import is_periodic
 
 TOP_BAND = 0.4  # fraction of the sampling rate above which a band-limited input is empty
 MARGIN = 0.1  # the tail must be below this fraction of linear interpolation's error
@@ -121,7 +122,6 @@ def detect_for_recordings(recs, periodic: bool | None = None) -> tuple[str, str]
     uniformly sampled recording agrees on, else "linear". ``periodic``: whether the records
     are whole periods (None: detected by :func:`~tendonsheath.models.hysteretic_oscillator.
     is_periodic`)."""
-    from ..models.hysteretic_oscillator import is_periodic
 
     def whole(x):
         return is_periodic(x) if periodic is None else bool(periodic)

@@ -8,6 +8,8 @@ least squares for each candidate inside the C++ call (variable projection).
 
 from __future__ import annotations
 
+import copy
+
 import numpy as np
 from scipy.optimize import lsq_linear, nnls
 
@@ -405,4 +407,43 @@ def law_check(depends: dict[str, str], names) -> dict[str, str]:
     return out
 
 
-__all__ = ["DirectProblem", "SeparableProblem", "Space", "law_check", "law_value"]
+def with_fitted_output(problem, y_star: np.ndarray):
+    """A shallow copy of ``problem`` whose measured output (fitted samples) is ``y_star``: the
+    problem's own ``with_fitted_output`` when it has one (a chain's), else its ``y`` at
+    ``mask`` replaced."""
+    own = getattr(problem, "with_fitted_output", None)
+    if own is not None:
+        return own(y_star)
+    p = copy.copy(problem)
+    y = np.array(problem.y, dtype=float)
+    y[problem.mask] = y_star
+    p.y = y
+    return p
+
+
+def over_recordings(problem, recs: list[Recording], warmup: int):
+    """A shallow copy of ``problem`` over other recordings (same parameters and bounds): the
+    problem's own ``over_recordings`` when it has one (a chain's), else its recordings, their
+    set, output and mask replaced."""
+    own = getattr(problem, "over_recordings", None)
+    if own is not None:
+        return own(recs, warmup)
+    p = copy.copy(problem)
+    p.recs = recs
+    p.rs = recording_set(recs, warmup, getattr(problem, "with_angle", False))
+    p.y = np.concatenate([r.y for r in recs])
+    p.mask = fitted_mask(recs, warmup)
+    if hasattr(p, "angles"):
+        p.angles = None
+    return p
+
+
+__all__ = [
+    "DirectProblem",
+    "SeparableProblem",
+    "Space",
+    "law_check",
+    "law_value",
+    "over_recordings",
+    "with_fitted_output",
+]

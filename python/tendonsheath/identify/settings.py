@@ -133,6 +133,23 @@ def default_threads() -> int:
     return n
 
 
+SE_METHODS = ("linearised", "bootstrap", "bootstrap-recordings", "none")
+BOOTSTRAP_DEFAULT = 200
+
+
+def check_method(standard_errors: str, count: int | None) -> tuple[str, int]:
+    """``standard_errors`` (one of :data:`SE_METHODS`) and the bootstrap's resample count
+    (``count``, default :data:`BOOTSTRAP_DEFAULT`, at least 2 for a bootstrap), checked."""
+    if standard_errors not in SE_METHODS:
+        raise ValueError(
+            f"standard_errors must be one of {list(SE_METHODS)} (got {standard_errors!r})"
+        )
+    n = BOOTSTRAP_DEFAULT if count is None else int(count)
+    if standard_errors.startswith("bootstrap") and n < 2:
+        raise ValueError(f"bootstrap must be at least 2 resamples (got {count})")
+    return standard_errors, n
+
+
 @dataclasses.dataclass(frozen=True)
 class Search:
     """The global search, refinement and standard-error settings, checked; ``budget`` is the
@@ -163,8 +180,6 @@ class Search:
     def of(cls, options: Options) -> Search:
         """Check ``options``' search settings (one message naming the option) and start the
         time budget (a TimeBudget given as ``time_budget`` is shared, not restarted)."""
-        from .uncertainty import check_method
-
         o = options
         check_search_options(
             maxiter=o.maxiter, popsize=o.popsize, tol=o.tol, workers=o.workers, warmup=o.warmup
@@ -189,11 +204,14 @@ class Search:
 
 
 __all__ = [
+    "BOOTSTRAP_DEFAULT",
     "DEFAULTS",
     "OPTION_NAMES",
     "Options",
+    "SE_METHODS",
     "Search",
     "TYPES",
+    "check_method",
     "check_names",
     "check_search_options",
     "default_threads",
