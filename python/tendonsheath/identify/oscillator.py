@@ -44,6 +44,7 @@ import warnings
 
 import numpy as np
 from scipy.optimize import differential_evolution, least_squares, nnls
+from scipy.signal import csd, welch
 
 from .. import _core as core
 from ..models import HystereticOscillator
@@ -152,8 +153,6 @@ def _bla(segments) -> tuple[float, float, float, float]:
             lines = lines[lines > 0]
             G, w = Y[lines] / X[lines], 2 * np.pi * f[lines]
         else:
-            from scipy.signal import csd, welch
-
             nper = min(n, 1024)
             fw, Puu = welch(s.x, fs=1 / s.dt, nperseg=nper)
             _, Puy = csd(s.x, s.y, fs=1 / s.dt, nperseg=nper)
