@@ -16,13 +16,14 @@ from tendonsheath.identify import (
     cross_validate,
     metrics,
 )
-from tendonsheath.identify.settings import DEFAULTS, OPTION_NAMES
+from tendonsheath.identify.settings import DEFAULTS, IDENTIFIER_NAMES, OSCILLATOR_NAMES
 from tendonsheath.models import (
     Backlash,
     BoucWen,
     BoucWenBacklash,
     Chain,
     CurveAngleModel,
+    HystereticOscillator,
     Polynomial,
     PrandtlIshlinskii,
 )
@@ -43,7 +44,7 @@ def three_logs():
 def test_get_params_set_params_round_trip():
     est = Identifier(BoucWenBacklash, maxiter=7, bounds={"rho": (1.0, 9.0)}, seed=3)
     params = est.get_params()
-    assert set(params) == {"model", *OPTION_NAMES}
+    assert list(params) == ["model", *IDENTIFIER_NAMES]
     assert params["model"] is BoucWenBacklash and params["maxiter"] == 7 and params["seed"] == 3
     assert params["popsize"] == 15  # an unset setting keeps identify()'s default
     assert Identifier(**params).get_params() == params
@@ -54,14 +55,42 @@ def test_get_params_set_params_round_trip():
 
 
 def test_init_takes_every_setting_as_a_keyword_with_identifys_default():
-    # an explicit signature (no **settings): each setting of Options, keyword-only, same default
+    # an explicit signature (no **settings): each setting of Options, keyword-only, same
+    # default, but for a HystereticOscillator's own ones, grouped in ``oscillator``
     params = list(inspect.signature(Identifier).parameters.values())
-    assert [p.name for p in params] == ["model", *OPTION_NAMES]
-    assert params[0].default is None
-    for p in params[1:]:
+    assert [p.name for p in params] == ["model", *IDENTIFIER_NAMES]
+    assert set(IDENTIFIER_NAMES) == (set(DEFAULTS) - set(OSCILLATOR_NAMES)) | {"oscillator"}
+    assert params[0].default is None and params[-1].default is None
+    for p in params[1:-1]:
         assert p.kind is p.KEYWORD_ONLY and p.default == DEFAULTS[p.name], p.name
     est = Identifier(Backlash, maxiter=7)
     assert est.maxiter == 7 and est.popsize == DEFAULTS["popsize"]
+    assert {n: getattr(est.options(), n) for n in OSCILLATOR_NAMES} == {
+        n: DEFAULTS[n] for n in OSCILLATOR_NAMES
+    }
+
+
+def test_oscillator_settings_are_grouped_and_the_old_keywords_warn(log):
+    t, x, y = log
+    fit = ts.identify(HystereticOscillator, t, x, y, strategy="search", periodic=False, **FAST)
+    group = {"strategy": "search", "periodic": False}
+    est = Identifier(HystereticOscillator, oscillator=group, **FAST)
+    assert est.fit([(t, x, y)]).model_.to_dict() == fit.model.to_dict()  # identical floats
+    with pytest.warns(DeprecationWarning, match=r"oscillator=\{'strategy': 'search'\}") as rec:
+        old = Identifier(
+            HystereticOscillator, strategy="search", oscillator={"periodic": False}, **FAST
+        )
+    assert {w.filename for w in rec} == {__file__}
+    assert old.get_params()["oscillator"] == group and old.options() == est.options()
+    with pytest.warns(DeprecationWarning, match="input_interpolation= is now a key"):
+        old.set_params(input_interpolation="hold")
+    assert old.oscillator == {**group, "input_interpolation": "hold"}
+    with pytest.raises(TypeError, match="not both"):
+        Identifier(HystereticOscillator, strategy="auto", oscillator={"strategy": "search"})
+    with pytest.raises(TypeError, match=r"oscillator: unknown setting\(s\) 'strategie'"):
+        Identifier(HystereticOscillator, oscillator={"strategie": "search"}).fit([(t, x, y)])
+    with pytest.raises(TypeError, match="oscillator must be a dict"):
+        Identifier(HystereticOscillator, oscillator="search").options()
 
 
 def test_fit_returns_the_estimator_and_the_old_reading_warns(log):

@@ -7,22 +7,67 @@ cross-validation make one unfitted copy per fold."""
 from __future__ import annotations
 
 import copy
+import functools
 import warnings
 from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
+from .._args import caller_outside_package
 from .._typing import ArrayLike, RecordingLike, Recordings
 from ..models import HysteresisModel
 from .core import fit_recordings
 from .data import make_recordings
 from .fit import Fit, metrics, simulate_model
-from .settings import DEFAULTS, OPTION_NAMES, Options, check_names
+from .settings import (
+    DEFAULTS,
+    IDENTIFIER_NAMES,
+    OSCILLATOR_NAMES,
+    Options,
+    check_names,
+    oscillator_settings,
+)
 
 
 class NotFittedError(ValueError, AttributeError):
     """An :class:`Identifier` used for prediction before ``fit``."""
+
+
+def _oscillator_keywords(init):
+    """``Identifier.__init__`` that also takes the old keywords of the oscillator settings
+    (``strategy=``, ...), moved into ``oscillator`` with a DeprecationWarning; the signature
+    shows the new form only."""
+
+    @functools.wraps(init)
+    def call(self, *args: Any, **kwargs: Any) -> None:
+        init(self, *args, **_into_oscillator(kwargs))
+
+    return call
+
+
+def _into_oscillator(kwargs: dict[str, Any]) -> dict[str, Any]:
+    """``kwargs`` with the old keywords ``input_interpolation``, ``periodic`` and ``strategy``
+    moved into the ``oscillator`` dict, each with a DeprecationWarning at the user's line."""
+    old = [n for n in OSCILLATOR_NAMES if n in kwargs]
+    if not old:
+        return kwargs
+    kwargs = dict(kwargs)
+    group = dict(kwargs.get("oscillator") or {})
+    for name in old:
+        value = kwargs.pop(name)
+        if name in group:
+            raise TypeError(f"Identifier: give oscillator={{{name!r}: ...}} or {name}=, not both")
+        warnings.warn(
+            f"Identifier: {name}= is now a key of oscillator= (a HystereticOscillator's own "
+            f"settings): Identifier(model, oscillator={{{name!r}: {value!r}}}); {name}= will "
+            "be removed in the next release",
+            DeprecationWarning,
+            stacklevel=caller_outside_package() - 1,
+        )
+        group[name] = value
+    kwargs["oscillator"] = group
+    return kwargs
 
 
 class Identifier:
@@ -38,7 +83,12 @@ class Identifier:
     y)``, which returns the Fit. An unknown setting raises TypeError naming it; the values are
     checked by ``fit``. The settings are those of :func:`~tendonsheath.identify.identify`,
     whose docstring describes the search in full; their defaults are the fields of
-    :class:`~tendonsheath.identify.settings.Options`.
+    :class:`~tendonsheath.identify.settings.Options`. The settings that only a
+    HystereticOscillator's identification reads (``input_interpolation``, ``periodic``,
+    ``strategy``) are grouped in the ``oscillator`` dict: ``identify(HystereticOscillator, t, x,
+    y, strategy="search")`` is ``Identifier(HystereticOscillator, oscillator={"strategy":
+    "search"}).fit_data(t, x, y)``; given to Identifier as keywords of their own they still
+    work for one release, with a DeprecationWarning naming ``oscillator``.
 
     Before this release ``fit`` returned the fitted model: code that reads the model's
     attributes from what ``fit`` returns (``Identifier(...).fit(recs).to_dict()``) still
@@ -105,15 +155,6 @@ class Identifier:
         generation in which it runs out and the least squares at its next evaluation, keeping
         the best point so far (``fit.stopped_on_budget`` records it). Standard errors and
         diagnostics come after, outside the budget.
-    input_interpolation : {"hold", "linear", "bandlimited"}, optional
-        The input reconstruction between samples (HystereticOscillator; default:
-        detected from the input when no ``initial`` is given, else ``initial``'s).
-    periodic : bool, optional
-        Whether the records are whole periods, for the band-limited reconstruction (None:
-        detected).
-    strategy : {"auto", "search"}, default "auto"
-        HystereticOscillator's path: "auto" is best linear approximation, equation error,
-        then simulation-error least squares; "search" the plain differential evolution.
     normalize : bool, default True
         Fit on centred, scaled data and map back (Backlash, BoucWenBacklash,
         PrandtlIshlinskii, GeneralizedPrandtlIshlinskii, PlantModel and Chains of a
@@ -128,6 +169,15 @@ class Identifier:
         Bootstrap resamples (default 200).
     bootstrap_block : int, optional
         Block length of the residual bootstrap (default from the autocorrelation).
+    oscillator : dict, optional
+        A HystereticOscillator's own settings, by key (each optional): ``"strategy"``
+        ({"auto", "search"}, default "auto": best linear approximation, equation error, then
+        simulation-error least squares; "search": the plain differential evolution),
+        ``"input_interpolation"`` ({"hold", "linear", "bandlimited"}: the input
+        reconstruction between samples; default detected from the input when no ``initial``
+        is given, else ``initial``'s; another model class raises) and ``"periodic"`` (bool:
+        whether the records are whole periods, for the band-limited reconstruction; default
+        detected).
 
     Attributes
     ----------
@@ -142,6 +192,7 @@ class Identifier:
     tendonsheath.identify.cross_validate : Scores an Identifier over held-out recordings.
     """
 
+    @_oscillator_keywords
     def __init__(
         self,
         model: type[HysteresisModel] | HysteresisModel | str | None = None,
@@ -162,16 +213,15 @@ class Identifier:
         progress: bool = True,
         search_samples: int | None = 200_000,
         time_budget: Any = None,
-        input_interpolation: str | None = None,
-        periodic: bool | None = None,
-        strategy: str = "auto",
         normalize: bool = True,
         standard_errors: str = "linearised",
         bootstrap: int | None = None,
         bootstrap_block: int | None = None,
+        oscillator: dict[str, Any] | None = None,
     ) -> None:
         # every setting stored as given, under its own name (scikit-learn's convention);
-        # the defaults are Options' (a test holds the two lists equal)
+        # the defaults are Options' (a test holds the two lists equal); a HystereticOscillator's
+        # own settings are grouped in ``oscillator``
         self.model = model
         self.warmup = warmup
         self.bounds = bounds
@@ -189,13 +239,11 @@ class Identifier:
         self.progress = progress
         self.search_samples = search_samples
         self.time_budget = time_budget
-        self.input_interpolation = input_interpolation
-        self.periodic = periodic
-        self.strategy = strategy
         self.normalize = normalize
         self.standard_errors = standard_errors
         self.bootstrap = bootstrap
         self.bootstrap_block = bootstrap_block
+        self.oscillator = oscillator
 
     # -- parameters ------------------------------------------------------------------------
 
@@ -213,7 +261,7 @@ class Identifier:
         dict of str to object
             ``model`` and every setting by name (the values themselves, not copies).
         """
-        return {"model": self.model, **{n: getattr(self, n) for n in OPTION_NAMES}}
+        return {"model": self.model, **{n: getattr(self, n) for n in IDENTIFIER_NAMES}}
 
     def set_params(self, **params: Any) -> Identifier:
         """Change settings (or ``model``) in place.
@@ -227,9 +275,10 @@ class Identifier:
             New values by name: ``model`` or any setting of :class:`Identifier` (``warmup``,
             ``bounds``, ``fixed``, ``free``, ``initial``, ``depends_on_angle``, ``seed``,
             ``maxiter``, ``popsize``, ``tol``, ``workers``, ``polish``, ``separable``,
-            ``progress``, ``search_samples``, ``time_budget``, ``input_interpolation``,
-            ``periodic``, ``strategy``, ``normalize``, ``standard_errors``, ``bootstrap``,
-            ``bootstrap_block``).
+            ``progress``, ``search_samples``, ``time_budget``, ``normalize``,
+            ``standard_errors``, ``bootstrap``, ``bootstrap_block``, ``oscillator``). The old
+            keywords ``input_interpolation``, ``periodic`` and ``strategy`` go into
+            ``oscillator``, with a DeprecationWarning.
 
         Returns
         -------
@@ -242,7 +291,10 @@ class Identifier:
             An unknown name (the message names it and the closest known ones); nothing is
             changed then.
         """
-        check_names([n for n in params if n != "model"], type(self).__name__)
+        if any(n in params for n in OSCILLATOR_NAMES):  # the old keywords, into the group
+            params = _into_oscillator(params)
+            params["oscillator"] = {**(self.oscillator or {}), **params["oscillator"]}
+        check_names([n for n in params if n != "model"], type(self).__name__, IDENTIFIER_NAMES)
         for name, value in params.items():
             setattr(self, name, value)
         return self
@@ -269,14 +321,20 @@ class Identifier:
         Returns
         -------
         Options
-            A frozen :class:`~tendonsheath.identify.settings.Options` of the current settings
-            (unchecked: ``fit`` checks them).
+            A frozen :class:`~tendonsheath.identify.settings.Options` of the current settings,
+            ``oscillator``'s among them (their values unchecked: ``fit`` checks them).
+
+        Raises
+        ------
+        TypeError
+            ``oscillator`` is not a dict, or has a key that is no oscillator setting.
         """
-        return Options(**{n: getattr(self, n) for n in OPTION_NAMES})
+        general = {n: getattr(self, n) for n in IDENTIFIER_NAMES if n != "oscillator"}
+        return Options(**general, **oscillator_settings(self.oscillator, type(self).__name__))
 
     def __repr__(self) -> str:
         changed = [
-            f"{n}={getattr(self, n)!r}" for n in OPTION_NAMES if _differs(getattr(self, n), n)
+            f"{n}={getattr(self, n)!r}" for n in IDENTIFIER_NAMES if _differs(getattr(self, n), n)
         ]
         name = getattr(self.model, "__name__", None) or repr(self.model)
         return f"{type(self).__name__}({', '.join([name, *changed])})"
@@ -480,7 +538,7 @@ def _copied(value):
 
 
 def _differs(value, name: str) -> bool:
-    default = DEFAULTS[name]
+    default = DEFAULTS.get(name)
     try:
         return bool(value != default)
     except (TypeError, ValueError):
