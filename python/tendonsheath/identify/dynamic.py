@@ -22,12 +22,11 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
-from .. import _core as core
 from ..models import BoucWenBacklash, Chain, LinearBlock, PrandtlIshlinskii, SecondOrderLag
 from ..models.linear_block import apply_filter, sample_time
 from .data import Recording, check_for_fit, decimate_for_search, fitted_mask, recording_set
 from .fit import Fit, fit_quality, simulate_model
-from .problem import Space, _base_struct, _search_base, bounded_lsq
+from .problem import FEATURES, Space, _base_struct, _search_base, bounded_lsq
 from .search import search_and_refine
 from .specs import BoucWenBacklashSpec, PrandtlIshlinskiiSpec, Scale
 from .uncertainty import assess
@@ -98,7 +97,7 @@ class DynamicProblem:
         self.search_base = _search_base(
             self.static_cls, self.options, self.spec.search_options, static.params
         )
-        self.features = getattr(core, f"features_{self.spec.kind}")
+        self.features = FEATURES[self.spec.kind]
         self.rs = recording_set(recs, warmup, False)
         self.y = np.concatenate([r.y for r in recs])
         self.mask = fitted_mask(recs, warmup)
@@ -119,7 +118,7 @@ class DynamicProblem:
         p.y = np.concatenate([r.y for r in recs])
         p.mask = fitted_mask(recs, warmup)
         p.edges = np.cumsum([0] + [r.n for r in recs])
-        p.dts = [float(np.median(np.diff(r.t))) for r in recs]
+        p.dts = [float(np.median(np.diff(t))) for t in _times(recs)]
         return p
 
     def _split(self, c: np.ndarray):
