@@ -2,6 +2,8 @@
 fit (the same answer as identify, bit for bit), prediction, unknown settings, and
 cross-validation over recordings against a hand-written loop."""
 
+import inspect
+
 import numpy as np
 import pytest
 from _realdata_helpers import plant_log
@@ -14,13 +16,14 @@ from tendonsheath.identify import (
     cross_validate,
     metrics,
 )
-from tendonsheath.identify.settings import OPTION_NAMES
+from tendonsheath.identify.settings import DEFAULTS, IDENTIFIER_NAMES, OSCILLATOR_NAMES
 from tendonsheath.models import (
     Backlash,
     BoucWen,
     BoucWenBacklash,
     Chain,
     CurveAngleModel,
+    HystereticOscillator,
     Polynomial,
     PrandtlIshlinskii,
 )
@@ -41,7 +44,7 @@ def three_logs():
 def test_get_params_set_params_round_trip():
     est = Identifier(BoucWenBacklash, maxiter=7, bounds={"rho": (1.0, 9.0)}, seed=3)
     params = est.get_params()
-    assert set(params) == {"model", *OPTION_NAMES}
+    assert list(params) == ["model", *IDENTIFIER_NAMES]
     assert params["model"] is BoucWenBacklash and params["maxiter"] == 7 and params["seed"] == 3
     assert params["popsize"] == 15  # an unset setting keeps identify()'s default
     assert Identifier(**params).get_params() == params
@@ -49,6 +52,62 @@ def test_get_params_set_params_round_trip():
     assert other.set_params(**params) is other
     assert other.get_params() == params
     assert est.get_params(deep=False) == params
+
+
+def test_init_takes_every_setting_as_a_keyword_with_identifys_default():
+    # an explicit signature (no **settings): each setting of Options, keyword-only, same
+    # default, but for a HystereticOscillator's own ones, grouped in ``oscillator``
+    params = list(inspect.signature(Identifier).parameters.values())
+    assert [p.name for p in params] == ["model", *IDENTIFIER_NAMES]
+    assert set(IDENTIFIER_NAMES) == (set(DEFAULTS) - set(OSCILLATOR_NAMES)) | {"oscillator"}
+    assert params[0].default is None and params[-1].default is None
+    for p in params[1:-1]:
+        assert p.kind is p.KEYWORD_ONLY and p.default == DEFAULTS[p.name], p.name
+    est = Identifier(Backlash, maxiter=7)
+    assert est.maxiter == 7 and est.popsize == DEFAULTS["popsize"]
+    assert {n: getattr(est.options(), n) for n in OSCILLATOR_NAMES} == {
+        n: DEFAULTS[n] for n in OSCILLATOR_NAMES
+    }
+
+
+def test_oscillator_settings_are_grouped_and_the_old_keywords_warn(log):
+    t, x, y = log
+    fit = ts.identify(HystereticOscillator, t, x, y, strategy="search", periodic=False, **FAST)
+    group = {"strategy": "search", "periodic": False}
+    est = Identifier(HystereticOscillator, oscillator=group, **FAST)
+    assert est.fit([(t, x, y)]).model_.to_dict() == fit.model.to_dict()  # identical floats
+    with pytest.warns(DeprecationWarning, match=r"oscillator=\{'strategy': 'search'\}") as rec:
+        old = Identifier(
+            HystereticOscillator, strategy="search", oscillator={"periodic": False}, **FAST
+        )
+    assert {w.filename for w in rec} == {__file__}
+    assert old.get_params()["oscillator"] == group and old.options() == est.options()
+    with pytest.warns(DeprecationWarning, match="input_interpolation= is now a key"):
+        old.set_params(input_interpolation="hold")
+    assert old.oscillator == {**group, "input_interpolation": "hold"}
+    with pytest.raises(TypeError, match="not both"):
+        Identifier(HystereticOscillator, strategy="auto", oscillator={"strategy": "search"})
+    with pytest.raises(TypeError, match=r"oscillator: unknown setting\(s\) 'strategie'"):
+        Identifier(HystereticOscillator, oscillator={"strategie": "search"}).fit([(t, x, y)])
+    with pytest.raises(TypeError, match="oscillator must be a dict"):
+        Identifier(HystereticOscillator, oscillator="search").options()
+
+
+def test_fit_returns_the_estimator_and_the_old_reading_warns(log):
+    t, x, y = log
+    est = Identifier(Backlash, **FAST)
+    with pytest.raises(AttributeError, match="to_dict"):
+        est.to_dict  # noqa: B018 (unfitted: no fallback)
+    assert est.fit([(t, x, y)]) is est
+    assert est.model_ is est.fit_.model
+    # before, fit() returned the model: its attributes still answer, naming model_
+    with pytest.warns(DeprecationWarning, match=r"model_\.to_dict") as rec:
+        old = est.to_dict()
+    assert old == est.model_.to_dict() and {w.filename for w in rec} == {__file__}
+    with pytest.warns(DeprecationWarning, match=r"model_\.params"):
+        assert est.params == est.model_.params
+    with pytest.raises(AttributeError, match="no_such_attribute"):
+        est.no_such_attribute  # noqa: B018
 
 
 def test_clone_is_unfitted_equal_and_independent(log):
@@ -83,8 +142,9 @@ def test_fit_gives_identify_bit_for_bit(log, model, extra):
     t, x, y = log
     fit = ts.identify(model, t, x, y, **FAST, **extra)
     est = Identifier(model, **FAST, **extra)
-    fitted = est.fit([(t, x, y)])
-    assert fitted is est.model_ and fitted is est.fit_.model
+    assert est.fit([(t, x, y)]) is est
+    fitted = est.model_
+    assert fitted is est.fit_.model
     assert fitted.to_dict() == fit.model.to_dict()  # identical floats, not approximately
     assert est.fit_.rmse == fit.rmse
     assert est.fit_.standard_errors.keys() == fit.standard_errors.keys()
@@ -96,7 +156,7 @@ def test_fit_with_angle_laws_gives_identify_bit_for_bit(three_logs):
     recs = [(t, x, y, angle) for (t, x, y), angle in zip(three_logs, (0.5, 1.5, 2.5), strict=True)]
     laws = {"c_r": "linear"}
     fit = ts.identify(Backlash, recordings=recs, depends_on_angle=laws, **FAST)
-    model = Identifier(Backlash, depends_on_angle=laws, **FAST).fit(recs)
+    model = Identifier(Backlash, depends_on_angle=laws, **FAST).fit(recs).model_
     assert model.to_dict() == fit.model.to_dict()
 
 
@@ -113,7 +173,7 @@ def test_predict_and_score_match_the_fit(log):
 
 def test_unknown_settings_are_rejected_by_name(log):
     t, x, y = log
-    with pytest.raises(TypeError, match=r"'maxiters'.*did you mean maxiter"):
+    with pytest.raises(TypeError, match=r"unexpected keyword argument 'maxiters'"):
         Identifier(Backlash, maxiters=5)
     with pytest.raises(TypeError, match="'smoothing'"):
         Identifier(Backlash).set_params(smoothing=1.0)

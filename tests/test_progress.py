@@ -73,17 +73,17 @@ def test_sweep_command_prints_no_bar_off_a_terminal(tmp_path):
 def test_identify_search_uses_the_shared_bar(monkeypatch):
     import importlib
 
-    core = importlib.import_module("tendonsheath.identify.core")  # the package shadows it
+    search = importlib.import_module("tendonsheath.identify.search")
     terminal = _Terminal()
     monkeypatch.setattr(sys, "stderr", terminal)
-    bar = core._Progress(True, "Backlash", 10)
+    bar = search._Progress(True, "Backlash", 10)
     bar.start -= 2.0  # past the second a bar waits for
     for generation in range(1, 11):
         bar.update(generation, 1.0 / generation)
     bar.close()
     text = terminal.getvalue()
     assert "10/10" in text and "generations" in text and "best cost 0.1" in text
-    quiet = core._Progress(False, "Backlash", 10)
+    quiet = search._Progress(False, "Backlash", 10)
     quiet.start -= 2.0
     quiet.update(1, 1.0)
     assert quiet.bar is None

@@ -12,6 +12,7 @@ least-squares stage is vectorised NumPy.
 
 from __future__ import annotations
 
+import copy
 import time
 
 import numpy as np
@@ -19,9 +20,12 @@ import numpy as np
 from ..models import Backlash, BoucWen, BoucWenBacklash, Chain, HystereticOscillator, Polynomial
 from . import gauge
 from .data import check_for_fit, thin_for_search
+from .dynamic import identify_dynamic, is_dynamic_chain
 from .fit import Fit, fit_quality, simulate_model
-from .problem import DirectProblem
+from .problem import DirectProblem, over_recordings
+from .search import search_and_refine
 from .specs import SPECS, Scale
+from .uncertainty import assess
 
 # parameters of the first model that the polynomial makes redundant, and their held values
 CHAIN_HELD = {
@@ -93,6 +97,20 @@ class ChainProblem:
         self.powers = np.arange(1, self.degree + 1, 2) if self.odd else np.arange(self.degree + 1)
         self.n_params = len(self.free) + self.powers.size
 
+    def with_fitted_output(self, y_star: np.ndarray) -> ChainProblem:
+        """A shallow copy whose measured output is ``y_star`` (``y`` holds the fitted samples
+        only)."""
+        p = copy.copy(self)
+        p.y = np.asarray(y_star, dtype=float)
+        return p
+
+    def over_recordings(self, recs, warmup: int) -> ChainProblem:
+        """A shallow copy over other recordings (same parameters and bounds)."""
+        p = copy.copy(self)
+        p.inner = over_recordings(self.inner, recs, warmup)
+        p.y = p.inner.y[p.inner.mask]
+        return p
+
     def _solve(self, U: np.ndarray):
         """Polynomial coefficients (P, K) and sums of squared residuals (P,) for outputs U."""
         U = U[:, self.inner.mask]
@@ -149,9 +167,6 @@ def _powers(U: np.ndarray, powers: np.ndarray) -> np.ndarray:
 def identify_chain(chain: Chain, recs, *, warmup: int = 0, bounds=None, fixed=None, search) -> Fit:
     """Identify a Chain (see the module docstring) with the :class:`Search` settings
     ``search``; returns a :class:`Fit`."""
-    from .core import search_and_refine
-    from .dynamic import identify_dynamic, is_dynamic_chain
-
     if is_dynamic_chain(chain):
         if bounds or fixed:
             raise ValueError("Chain with a linear block: bounds and fixed are not supported")
@@ -203,8 +218,6 @@ def identify_chain(chain: Chain, recs, *, warmup: int = 0, bounds=None, fixed=No
 def _assess(problem: ChainProblem, recs, warmup, model, quality, u_best, search, gauged) -> dict:
     """Standard errors and diagnostics of the first model's free parameters and the
     polynomial's coefficients (the gauge's identifiable groups when it applies)."""
-    from .uncertainty import assess
-
     assessed = assess(
         cls=Chain,
         model=model,

@@ -1,112 +1,42 @@
-"""identify(): the thin function over :class:`~tendonsheath.identify.estimator.Identifier`, the
-dispatch on the kind of model (normalised, chain, grey-box plant, one model class) and the global
-search (differential evolution, batched in C++) every path shares."""
+"""identify(): one identification from data, and :func:`run`, the dispatch on the kind of model
+(normalised data, a Loaded model, a chain, the grey-box plant, one model class) that
+:func:`identify` and :class:`~tendonsheath.identify.estimator.Identifier` share
+(:func:`fit_recordings`). The global search every path runs is in
+:mod:`tendonsheath.identify.search`; the fitters that call back into the whole identification
+(per-recording starts of angle laws, a Loaded model's base) are handed :func:`run` or
+:func:`identify`, so that the modules form a layered graph with core.py on top."""
 
 from __future__ import annotations
 
 import dataclasses
-import time
 from collections.abc import Sequence
-from contextvars import ContextVar
 from typing import Any
 
 import numpy as np
-from scipy.optimize import differential_evolution
 
-from .._progress import StepProgress
 from .._typing import ArrayLike
-from ..models import Chain, HysteresisModel, PlantModel
+from ..models import Chain, HysteresisModel, Loaded, PlantModel
 from ..models.base import _REGISTRY
+from . import normalize as _norm
+from .chain import identify_chain
 from .data import Recording, make_recordings
 from .extrapolation import with_training_range
 from .fit import Fit
-from .refine import TimeBudget, refine
+from .generic import identify_class
+from .loaded import identify_loaded
+from .plant_model import identify_plant
+from .refine import TimeBudget
+from .search import SEARCH_DEADLINE
 from .settings import (
     Options,
     Search,
+    check_names,
     check_search_options,
     with_new_names,
     with_settings_signature,
 )
 
-__all__ = ["check_search_options", "identify", "run"]
-
-
-_PENALTY = 1e100  # cost of invalid candidates (finite: DE squares energies)
-
-
-#: a time.perf_counter() instant past which every global search stops after its generation
-#: and keeps its best so far (set by compare_models' time budget; None: no deadline)
-SEARCH_DEADLINE: ContextVar[float | None] = ContextVar("SEARCH_DEADLINE", default=None)
-
-
-class _Progress:
-    """The shared progress bar (generations, best cost, ETA), shown only when the search lasts
-    more than a second and the output is a terminal."""
-
-    def __init__(self, enabled: bool, title: str, total: int):
-        self.enabled = enabled
-        self.title = title
-        self.total = total
-        self.start = time.perf_counter()
-        self.bar: StepProgress | None = None
-        self.shown = 0  # generations counted on the bar
-
-    def update(self, generation: int, best: float) -> None:
-        if not self.enabled:
-            return
-        if self.bar is None:
-            if time.perf_counter() - self.start < 1.0:
-                return
-            self.bar = StepProgress(True, self.total, self.title, "generations")
-        self.bar.show(f"{self.title}  best cost {best:.4g}")
-        self.bar.advance(generation - self.shown)
-        self.shown = generation
-
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.close()
-
-
-def global_search(problem, space, counter, label, search: Search, *, x0=None):
-    """SciPy's differential evolution over ``space`` (search coordinates), each generation
-    evaluated in one batched call of ``problem.cost``; invalid candidates cost _PENALTY. Stops
-    after the generation in which ``search.budget`` runs out."""
-
-    def population(U: np.ndarray) -> np.ndarray:  # U: (D, S) in search coordinates
-        C = space.natural(np.asarray(U).T)
-        counter["evaluations"] += C.shape[0]
-        costs = problem.cost(C)
-        return np.where(np.isfinite(costs), costs, _PENALTY)
-
-    bar = _Progress(search.progress, label, search.maxiter)
-    generation = {"n": 0}
-    budget = search.budget
-
-    def callback(intermediate_result):
-        generation["n"] += 1
-        bar.update(generation["n"], float(intermediate_result.fun))
-        deadline = SEARCH_DEADLINE.get()  # compare_models' budget over all candidates
-        over_deadline = deadline is not None and time.perf_counter() > deadline
-        return over_deadline or (budget is not None and budget.over())  # True stops DE
-
-    try:
-        return differential_evolution(
-            population,
-            list(zip(space.lower, space.upper, strict=True)),
-            vectorized=True,
-            updating="deferred",
-            popsize=search.popsize,
-            maxiter=search.maxiter,
-            tol=search.tol,
-            seed=search.seed,
-            polish=False,
-            init="latinhypercube",
-            x0=x0,
-            callback=callback,
-        )
-    finally:
-        bar.close()
+__all__ = ["SEARCH_DEADLINE", "check_search_options", "fit_recordings", "identify", "run"]
 
 
 @with_settings_signature
@@ -299,25 +229,48 @@ def identify(
         Bad data or arguments (the message names them), or an option the model does not
         support.
     """
-    from ..models import Loaded
-
     if isinstance(model_class, Loaded):
         return _identify_loaded(model_class, t, x, y, recordings, load, options)
     if load is not None:
         raise ValueError(
             "a measured load is taken by a Loaded model: identify(Loaded(BaseClass), ..., load=...)"
         )
-    from .estimator import Identifier
+    check_names(options, "identify")
+    return fit_recordings(
+        model_class, Options(**options), t, x, y, recordings=recordings, curve_angle=curve_angle
+    )
 
-    estimator = Identifier(model_class, **options)
-    estimator.fit_data(t, x, y, recordings=recordings, curve_angle=curve_angle)
-    return estimator.fit_
+
+def fit_recordings(
+    model: Any,
+    options: Options,
+    t: ArrayLike | None = None,
+    x: ArrayLike | None = None,
+    y: ArrayLike | None = None,
+    *,
+    recordings: Sequence | None = None,
+    curve_angle: ArrayLike | None = None,
+) -> Fit:
+    """The identification behind :func:`identify` and ``Identifier.fit``: the settings checked
+    (before the data), the recordings made, :func:`run`, and the training inputs' range
+    recorded on the Fit and its model."""
+    search = Search.of(options)  # checked before the data, as identify() always did
+    recs = make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle)
+    fit = run(model, recs, options, search)
+    _record_input_range(fit, recs)
+    return fit
+
+
+def _record_input_range(fit: Fit, recs: list[Recording]) -> None:
+    """The training inputs' range (all recordings, data units) on the Fit and its model."""
+    lo = min(float(np.min(r.x)) for r in recs)
+    hi = max(float(np.max(r.x)) for r in recs)
+    fit.input_range = (lo, hi)
+    fit.model.input_range = (lo, hi)
 
 
 def _identify_loaded(template, t, x, y, recordings, load, options: dict) -> Fit:
     """identify() of a Loaded model: the recordings and their loads, then identify_loaded."""
-    from .loaded import identify_loaded
-
     if recordings is None:
         if x is None or y is None or load is None:
             raise ValueError("a Loaded model needs t, x, y and load=, or recordings with loads")
@@ -338,13 +291,17 @@ def _identify_loaded(template, t, x, y, recordings, load, options: dict) -> Fit:
     fixed = options.pop("fixed", None)
     warmup = int(options.pop("warmup", 0))
     return identify_loaded(
-        template, recordings, loads, warmup=warmup, fixed=fixed, base_options=options
+        template,
+        recordings,
+        loads,
+        warmup=warmup,
+        fixed=fixed,
+        base_options=options,
+        identify_base=identify,
     )
 
 
 def _run_loaded(template, recs: list[Recording], opt: Options, search: Search) -> Fit:
-    from .loaded import identify_loaded
-
     missing = [i for i, r in enumerate(recs) if r.load is None]
     if missing:
         raise ValueError(
@@ -358,6 +315,7 @@ def _run_loaded(template, recs: list[Recording], opt: Options, search: Search) -
         warmup=int(opt.warmup),
         fixed=opt.fixed,
         base_options={**base, "workers": search.workers},
+        identify_base=identify,
     )
 
 
@@ -366,8 +324,6 @@ def run(model_class, recs: list[Recording], options: Options, search: Search) ->
     plant or one model class (see :mod:`tendonsheath.identify.generic`)."""
     if isinstance(model_class, str) and model_class in _REGISTRY:
         model_class = _REGISTRY[model_class]
-    from ..models import Loaded
-
     if isinstance(model_class, Loaded):  # recordings that carry their load (Logs read with it)
         return _stamp(search.budget, _run_loaded(model_class, recs, options, search))
     options = with_new_names(model_class, options)
@@ -376,8 +332,6 @@ def run(model_class, recs: list[Recording], options: Options, search: Search) ->
 
 
 def _dispatch(model_class, recs, opt: Options, search: Search) -> Fit:
-    from . import normalize as _norm
-
     if opt.normalize and _norm.applies(
         model_class,
         depends=opt.depends_on_angle,
@@ -395,14 +349,10 @@ def _dispatch(model_class, recs, opt: Options, search: Search) -> Fit:
         return _identify_chain(model_class, recs, opt, search)
     if model_class in (PlantModel, "PlantModel"):
         return _identify_plant(recs, opt, search)
-    from .generic import identify_class
-
-    return identify_class(model_class, recs, opt, search)
+    return identify_class(model_class, recs, opt, search, fit_one=run)
 
 
 def _identify_chain(chain: Chain, recs, opt: Options, search: Search) -> Fit:
-    from .chain import identify_chain
-
     if opt.depends_on_angle:
         raise ValueError("a Chain's parameters cannot depend on the curve angle")
     return identify_chain(
@@ -411,8 +361,6 @@ def _identify_chain(chain: Chain, recs, opt: Options, search: Search) -> Fit:
 
 
 def _identify_plant(recs, opt: Options, search: Search) -> Fit:
-    from .plant_model import identify_plant
-
     if opt.depends_on_angle or opt.bounds or opt.fixed:
         raise ValueError("PlantModel: bounds, fixed and depends_on_angle are not supported")
     if opt.initial is not None and not isinstance(opt.initial, PlantModel):
@@ -426,22 +374,3 @@ def _stamp(budget: TimeBudget, fit: Fit) -> Fit:
         fit.stopped_on_budget = True
         fit.message += budget.note()
     return fit
-
-
-def search_and_refine(problem, space, counter, label, search: Search, *, search_problem=None):
-    """Global search (on ``search_problem``, e.g. thinned records, default ``problem``) then
-    least-squares refinement of a separable problem (chains): returns (the best search
-    coordinates, the DE result, a message). Raises when no candidate gives a finite
-    simulation."""
-    res = global_search(search_problem or problem, space, counter, label, search)
-    if not np.isfinite(res.fun) or res.fun >= _PENALTY:
-        raise ValueError("identification failed: no candidate gives a finite simulation")
-    u_best = res.x
-    message = f"differential evolution: {res.message}"
-    budget = search.budget
-    if search.polish and space.lower.size and not (budget is not None and budget.over()):
-        u_best, msg = refine(
-            problem, space, u_best, counter, separable=True, budget=budget, max_nfev=200
-        )
-        message += f"; least squares: {msg}"
-    return u_best, res, message

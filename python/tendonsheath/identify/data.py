@@ -7,8 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import _core as core
 from .._arrays import as_vector
+from .._core import RecordingSet
 from ..plant.route import Route, check_curve_angle
 
 MIN_SAMPLES = 20  # fitted samples per fit (after warm-up), at the very least
@@ -205,7 +205,7 @@ def check_for_fit(
         raise ValueError("the output is constant: there is nothing to identify")
 
 
-def recording_set(recs: list[Recording], warmup: int, with_angle: bool) -> core.RecordingSet:
+def recording_set(recs: list[Recording], warmup: int, with_angle: bool) -> RecordingSet:
     """Pack recordings for the batched C++ evaluation (``with_angle``: the curve angles and
     the routes of the recordings that have one, for a model that takes them)."""
     has_t = all(r.t is not None for r in recs)
@@ -217,7 +217,7 @@ def recording_set(recs: list[Recording], warmup: int, with_angle: bool) -> core.
     if any(counts):
         route_s = np.concatenate([r.s for r in routes if r is not None])
         route_theta = np.concatenate([r.theta for r in routes if r is not None])
-    return core.RecordingSet(
+    return RecordingSet(
         t,
         np.concatenate([r.x for r in recs]),
         np.concatenate([r.y for r in recs]),

@@ -15,19 +15,21 @@ candidate is linear in the number of samples.
 
 from __future__ import annotations
 
+import copy
 import os
 import time
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
-from .. import _core as core
 from ..models import BoucWenBacklash, Chain, LinearBlock, PrandtlIshlinskii, SecondOrderLag
 from ..models.linear_block import apply_filter, sample_time
 from .data import Recording, check_for_fit, decimate_for_search, fitted_mask, recording_set
 from .fit import Fit, fit_quality, simulate_model
-from .problem import Space, _base_struct, _search_base, bounded_lsq
+from .problem import FEATURES, Space, _base_struct, _search_base, bounded_lsq
+from .search import search_and_refine
 from .specs import BoucWenBacklashSpec, PrandtlIshlinskiiSpec, Scale
+from .uncertainty import assess
 
 STATIC = (BoucWenBacklash, PrandtlIshlinskii)
 _PENALTY = 1e100
@@ -95,7 +97,7 @@ class DynamicProblem:
         self.search_base = _search_base(
             self.static_cls, self.options, self.spec.search_options, static.params
         )
-        self.features = getattr(core, f"features_{self.spec.kind}")
+        self.features = FEATURES[self.spec.kind]
         self.rs = recording_set(recs, warmup, False)
         self.y = np.concatenate([r.y for r in recs])
         self.mask = fitted_mask(recs, warmup)
@@ -107,6 +109,17 @@ class DynamicProblem:
         self.dts = [float(np.median(np.diff(t))) for t in _times(recs)]
         n_threads = workers if workers > 0 else (os.cpu_count() or 1)
         self.pool = ThreadPoolExecutor(n_threads) if n_threads > 1 else None
+
+    def over_recordings(self, recs: list[Recording], warmup: int) -> DynamicProblem:
+        """A shallow copy over other recordings (same parameters and bounds)."""
+        p = copy.copy(self)
+        p.recs = recs
+        p.rs = recording_set(recs, warmup, False)
+        p.y = np.concatenate([r.y for r in recs])
+        p.mask = fitted_mask(recs, warmup)
+        p.edges = np.cumsum([0] + [r.n for r in recs])
+        p.dts = [float(np.median(np.diff(t))) for t in _times(recs)]
+        return p
 
     def _split(self, c: np.ndarray):
         c = np.asarray(c, dtype=float)
@@ -187,7 +200,6 @@ def identify_dynamic(chain: Chain, recs, *, warmup=0, search) -> Fit:
     :class:`~tendonsheath.identify.settings.Search` settings ``search``. Standard errors
     and diagnostics: the Jacobian with respect to the chain's parameters (the operator's and
     the block's), or the bootstrap re-fits of :mod:`tendonsheath.identify.uncertainty`."""
-    from .core import search_and_refine
 
     for i, r in enumerate(recs):
         if r.t is None:
@@ -255,7 +267,6 @@ def identify_dynamic(chain: Chain, recs, *, warmup=0, search) -> Fit:
 def _assess(problem: DynamicProblem, model: Chain, quality, u_best, workers: int, **se) -> dict:
     """Standard errors and diagnostics w.r.t. the chain's parameters (the operator's, named
     first./second. as in the Chain, and the block's)."""
-    from .uncertainty import assess
 
     part = "first" if problem.hammerstein else "second"
     other = "second" if problem.hammerstein else "first"

@@ -1,27 +1,32 @@
 """Identification as an object, in the scikit-learn mould: :class:`Identifier` stores the model
-and the settings, ``fit(recordings)`` returns the fitted model (the :class:`Fit` kept in
-``fit_``), ``get_params``/``set_params``/``clone`` let a comparison or a cross-validation make
-one unfitted copy per fold."""
+and the settings (keyword arguments of ``__init__``, kept as attributes of the same names),
+``fit(recordings)`` returns the estimator with the fitted model in ``model_`` and the
+:class:`Fit` in ``fit_``, and ``get_params``/``set_params``/``clone`` let a comparison or a
+cross-validation make one unfitted copy per fold."""
 
 from __future__ import annotations
 
 import copy
+import functools
+import warnings
 from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
+from .._args import caller_outside_package
 from .._typing import ArrayLike, RecordingLike, Recordings
 from ..models import HysteresisModel
+from .core import fit_recordings
 from .data import make_recordings
 from .fit import Fit, metrics, simulate_model
 from .settings import (
     DEFAULTS,
-    OPTION_NAMES,
+    IDENTIFIER_NAMES,
+    OSCILLATOR_NAMES,
     Options,
-    Search,
     check_names,
-    with_settings_signature,
+    oscillator_settings,
 )
 
 
@@ -29,20 +34,66 @@ class NotFittedError(ValueError, AttributeError):
     """An :class:`Identifier` used for prediction before ``fit``."""
 
 
+def _oscillator_keywords(init):
+    """``Identifier.__init__`` that also takes the old keywords of the oscillator settings
+    (``strategy=``, ...), moved into ``oscillator`` with a DeprecationWarning; the signature
+    shows the new form only."""
+
+    @functools.wraps(init)
+    def call(self, *args: Any, **kwargs: Any) -> None:
+        init(self, *args, **_into_oscillator(kwargs))
+
+    return call
+
+
+def _into_oscillator(kwargs: dict[str, Any]) -> dict[str, Any]:
+    """``kwargs`` with the old keywords ``input_interpolation``, ``periodic`` and ``strategy``
+    moved into the ``oscillator`` dict, each with a DeprecationWarning at the user's line."""
+    old = [n for n in OSCILLATOR_NAMES if n in kwargs]
+    if not old:
+        return kwargs
+    kwargs = dict(kwargs)
+    group = dict(kwargs.get("oscillator") or {})
+    for name in old:
+        value = kwargs.pop(name)
+        if name in group:
+            raise TypeError(f"Identifier: give oscillator={{{name!r}: ...}} or {name}=, not both")
+        warnings.warn(
+            f"Identifier: {name}= is now a key of oscillator= (a HystereticOscillator's own "
+            f"settings): Identifier(model, oscillator={{{name!r}: {value!r}}}); {name}= will "
+            "be removed in the next release",
+            DeprecationWarning,
+            stacklevel=caller_outside_package() - 1,
+        )
+        group[name] = value
+    kwargs["oscillator"] = group
+    return kwargs
+
+
 class Identifier:
     """An identification's model and settings; ``fit(recordings)`` runs it.
 
-    ``Identifier(model, **settings)`` takes the settings as keywords (listed below);
-    ``identify(model, t, x, y, **settings)`` is
-    ``Identifier(model, **settings).fit_data(t, x, y)`` with the :class:`Fit` returned, and
-    ``fit(recordings)`` returns the fitted model and keeps the Fit in ``fit_``. The settings
-    are stored as attributes of the same names (scikit-learn's
-    convention), which ``get_params``, ``set_params`` and ``clone`` read and copy, so that a
-    comparison or a cross-validation can make one unfitted copy per fold. An unknown setting
-    raises TypeError naming it (and the closest known ones); the values are checked by ``fit``.
-    The settings are those of :func:`~tendonsheath.identify.identify`, whose docstring
-    describes the search in full; their defaults are the fields of
-    :class:`~tendonsheath.identify.settings.Options`.
+    ``Identifier(model, maxiter=30, ...)`` takes the settings as keyword arguments (listed
+    below) and stores them, unchanged and unchecked, as attributes of the same names
+    (scikit-learn's convention), which ``get_params``, ``set_params`` and ``clone`` read and
+    copy, so that a comparison or a cross-validation can make one unfitted copy per fold.
+    ``fit(recordings)`` identifies the model and returns the estimator, with the fitted model
+    in ``model_`` and the :class:`Fit` in ``fit_``: ``Identifier(model, ...).fit(recs).model_``.
+    ``identify(model, t, x, y, **settings)`` is ``Identifier(model, **settings).fit_data(t, x,
+    y)``, which returns the Fit. An unknown setting raises TypeError naming it; the values are
+    checked by ``fit``. The settings are those of :func:`~tendonsheath.identify.identify`,
+    whose docstring describes the search in full; their defaults are the fields of
+    :class:`~tendonsheath.identify.settings.Options`. The settings that only a
+    HystereticOscillator's identification reads (``input_interpolation``, ``periodic``,
+    ``strategy``) are grouped in the ``oscillator`` dict: ``identify(HystereticOscillator, t, x,
+    y, strategy="search")`` is ``Identifier(HystereticOscillator, oscillator={"strategy":
+    "search"}).fit_data(t, x, y)``; given to Identifier as keywords of their own they still
+    work for one release, with a DeprecationWarning naming ``oscillator``.
+
+    Before this release ``fit`` returned the fitted model: code that reads the model's
+    attributes from what ``fit`` returns (``Identifier(...).fit(recs).to_dict()``) still
+    works for one release, with a DeprecationWarning naming ``model_`` (the Identifier's own
+    ``options``, ``predict`` and ``score`` are the estimator's, not the model's).
 
     Every Fit carries ``diagnostics`` (parameters near their bounds, correlations, condition
     number) and an :class:`~tendonsheath.identify.IdentifiabilityWarning` names the parameters
@@ -104,15 +155,6 @@ class Identifier:
         generation in which it runs out and the least squares at its next evaluation, keeping
         the best point so far (``fit.stopped_on_budget`` records it). Standard errors and
         diagnostics come after, outside the budget.
-    input_interpolation : {"hold", "linear", "bandlimited"}, optional
-        The input reconstruction between samples (HystereticOscillator; default:
-        detected from the input when no ``initial`` is given, else ``initial``'s).
-    periodic : bool, optional
-        Whether the records are whole periods, for the band-limited reconstruction (None:
-        detected).
-    strategy : {"auto", "search"}, default "auto"
-        HystereticOscillator's path: "auto" is best linear approximation, equation error,
-        then simulation-error least squares; "search" the plain differential evolution.
     normalize : bool, default True
         Fit on centred, scaled data and map back (Backlash, BoucWenBacklash,
         PrandtlIshlinskii, GeneralizedPrandtlIshlinskii, PlantModel and Chains of a
@@ -127,6 +169,15 @@ class Identifier:
         Bootstrap resamples (default 200).
     bootstrap_block : int, optional
         Block length of the residual bootstrap (default from the autocorrelation).
+    oscillator : dict, optional
+        A HystereticOscillator's own settings, by key (each optional): ``"strategy"``
+        ({"auto", "search"}, default "auto": best linear approximation, equation error, then
+        simulation-error least squares; "search": the plain differential evolution),
+        ``"input_interpolation"`` ({"hold", "linear", "bandlimited"}: the input
+        reconstruction between samples; default detected from the input when no ``initial``
+        is given, else ``initial``'s; another model class raises) and ``"periodic"`` (bool:
+        whether the records are whole periods, for the band-limited reconstruction; default
+        detected).
 
     Attributes
     ----------
@@ -141,16 +192,58 @@ class Identifier:
     tendonsheath.identify.cross_validate : Scores an Identifier over held-out recordings.
     """
 
-    warmup: int  # one of the settings (OPTION_NAMES), set by __init__ and set_params
-
-    @with_settings_signature
+    @_oscillator_keywords
     def __init__(
-        self, model: type[HysteresisModel] | HysteresisModel | str | None = None, **settings: Any
-    ):
-        check_names(settings, type(self).__name__)
+        self,
+        model: type[HysteresisModel] | HysteresisModel | str | None = None,
+        *,
+        warmup: int = 0,
+        bounds: dict | None = None,
+        fixed: dict | None = None,
+        free: Any = None,
+        initial: Any = None,
+        depends_on_angle: dict | None = None,
+        seed: int | None = 0,
+        maxiter: int = 100,
+        popsize: int = 15,
+        tol: float = 0.01,
+        workers: int | None = None,
+        polish: bool = True,
+        separable: bool = True,
+        progress: bool = True,
+        search_samples: int | None = 200_000,
+        time_budget: Any = None,
+        normalize: bool = True,
+        standard_errors: str = "linearised",
+        bootstrap: int | None = None,
+        bootstrap_block: int | None = None,
+        oscillator: dict[str, Any] | None = None,
+    ) -> None:
+        # every setting stored as given, under its own name (scikit-learn's convention);
+        # the defaults are Options' (a test holds the two lists equal); a HystereticOscillator's
+        # own settings are grouped in ``oscillator``
         self.model = model
-        for name in OPTION_NAMES:
-            setattr(self, name, settings.get(name, DEFAULTS[name]))
+        self.warmup = warmup
+        self.bounds = bounds
+        self.fixed = fixed
+        self.free = free
+        self.initial = initial
+        self.depends_on_angle = depends_on_angle
+        self.seed = seed
+        self.maxiter = maxiter
+        self.popsize = popsize
+        self.tol = tol
+        self.workers = workers
+        self.polish = polish
+        self.separable = separable
+        self.progress = progress
+        self.search_samples = search_samples
+        self.time_budget = time_budget
+        self.normalize = normalize
+        self.standard_errors = standard_errors
+        self.bootstrap = bootstrap
+        self.bootstrap_block = bootstrap_block
+        self.oscillator = oscillator
 
     # -- parameters ------------------------------------------------------------------------
 
@@ -168,7 +261,7 @@ class Identifier:
         dict of str to object
             ``model`` and every setting by name (the values themselves, not copies).
         """
-        return {"model": self.model, **{n: getattr(self, n) for n in OPTION_NAMES}}
+        return {"model": self.model, **{n: getattr(self, n) for n in IDENTIFIER_NAMES}}
 
     def set_params(self, **params: Any) -> Identifier:
         """Change settings (or ``model``) in place.
@@ -182,9 +275,10 @@ class Identifier:
             New values by name: ``model`` or any setting of :class:`Identifier` (``warmup``,
             ``bounds``, ``fixed``, ``free``, ``initial``, ``depends_on_angle``, ``seed``,
             ``maxiter``, ``popsize``, ``tol``, ``workers``, ``polish``, ``separable``,
-            ``progress``, ``search_samples``, ``time_budget``, ``input_interpolation``,
-            ``periodic``, ``strategy``, ``normalize``, ``standard_errors``, ``bootstrap``,
-            ``bootstrap_block``).
+            ``progress``, ``search_samples``, ``time_budget``, ``normalize``,
+            ``standard_errors``, ``bootstrap``, ``bootstrap_block``, ``oscillator``). The old
+            keywords ``input_interpolation``, ``periodic`` and ``strategy`` go into
+            ``oscillator``, with a DeprecationWarning.
 
         Returns
         -------
@@ -197,7 +291,10 @@ class Identifier:
             An unknown name (the message names it and the closest known ones); nothing is
             changed then.
         """
-        check_names([n for n in params if n != "model"], type(self).__name__)
+        if any(n in params for n in OSCILLATOR_NAMES):  # the old keywords, into the group
+            params = _into_oscillator(params)
+            params["oscillator"] = {**(self.oscillator or {}), **params["oscillator"]}
+        check_names([n for n in params if n != "model"], type(self).__name__, IDENTIFIER_NAMES)
         for name, value in params.items():
             setattr(self, name, value)
         return self
@@ -224,23 +321,27 @@ class Identifier:
         Returns
         -------
         Options
-            A frozen :class:`~tendonsheath.identify.settings.Options` of the current settings
-            (unchecked: ``fit`` checks them).
+            A frozen :class:`~tendonsheath.identify.settings.Options` of the current settings,
+            ``oscillator``'s among them (their values unchecked: ``fit`` checks them).
+
+        Raises
+        ------
+        TypeError
+            ``oscillator`` is not a dict, or has a key that is no oscillator setting.
         """
-        return Options(**{n: getattr(self, n) for n in OPTION_NAMES})
+        general = {n: getattr(self, n) for n in IDENTIFIER_NAMES if n != "oscillator"}
+        return Options(**general, **oscillator_settings(self.oscillator, type(self).__name__))
 
     def __repr__(self) -> str:
         changed = [
-            f"{n}={getattr(self, n)!r}" for n in OPTION_NAMES if _differs(getattr(self, n), n)
+            f"{n}={getattr(self, n)!r}" for n in IDENTIFIER_NAMES if _differs(getattr(self, n), n)
         ]
         name = getattr(self.model, "__name__", None) or repr(self.model)
         return f"{type(self).__name__}({', '.join([name, *changed])})"
 
     # -- fitting and prediction ------------------------------------------------------------
 
-    def fit(
-        self, recordings: Recordings, *, curve_angle: ArrayLike | None = None
-    ) -> HysteresisModel:
+    def fit(self, recordings: Recordings, *, curve_angle: ArrayLike | None = None) -> Identifier:
         """Identify the model from recordings; the recordings share the parameters.
 
         Parameters
@@ -254,8 +355,8 @@ class Identifier:
 
         Returns
         -------
-        HysteresisModel
-            The fitted model (also kept in ``model_``; the :class:`Fit` in ``fit_``).
+        Identifier
+            This estimator, fitted: the model in ``model_``, the :class:`Fit` in ``fit_``.
 
         Raises
         ------
@@ -264,7 +365,7 @@ class Identifier:
             support.
         """
         self.fit_data(recordings=_as_list(recordings), curve_angle=curve_angle)
-        return self.model_
+        return self
 
     def fit_data(
         self,
@@ -306,14 +407,10 @@ class Identifier:
             Bad data or settings (the message names them), or a setting the model does not
             support.
         """
-        from .core import run
-
-        options = self.options()
-        search = Search.of(options)  # checked before the data, as identify() always did
-        recs = make_recordings(t, x, y, recordings=recordings, curve_angle=curve_angle)
-        self.fit_ = run(self.model, recs, options, search)
+        self.fit_ = fit_recordings(
+            self.model, self.options(), t, x, y, recordings=recordings, curve_angle=curve_angle
+        )
         self.model_ = self.fit_.model
-        _record_input_range(self.fit_, recs)
         return self.fit_
 
     def predict(self, recordings: Recordings) -> list[np.ndarray]:
@@ -380,6 +477,21 @@ class Identifier:
             raise NotFittedError(f"this {type(self).__name__} is not fitted: call fit() first")
         return self.model_
 
+    def __getattr__(self, name: str) -> Any:
+        # fit() returned the fitted model before it returned the estimator: the model's public
+        # attributes stay reachable on a fitted Identifier for one release, with a warning
+        model = self.__dict__.get("model_")
+        if name.startswith("_") or name.endswith("_") or not hasattr(model, name):
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        warnings.warn(
+            f"Identifier.fit() returns the Identifier now, not the fitted model: read "
+            f"{name!r} on its model_ (Identifier(...).fit(recordings).model_.{name}); "
+            "this fallback will be removed in the next release",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return getattr(model, name)
+
 
 def _as_list(recordings):
     """One recording (a Log, a Recording or a tuple) as a list of one; lists as they are."""
@@ -426,19 +538,11 @@ def _copied(value):
 
 
 def _differs(value, name: str) -> bool:
-    default = DEFAULTS[name]
+    default = DEFAULTS.get(name)
     try:
         return bool(value != default)
     except (TypeError, ValueError):
         return True
-
-
-def _record_input_range(fit, recs) -> None:
-    """The training inputs' range (all recordings, data units) on the Fit and its model."""
-    lo = min(float(np.min(r.x)) for r in recs)
-    hi = max(float(np.max(r.x)) for r in recs)
-    fit.input_range = (lo, hi)
-    fit.model.input_range = (lo, hi)
 
 
 __all__ = ["Identifier", "NotFittedError"]

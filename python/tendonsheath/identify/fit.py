@@ -11,9 +11,11 @@ import numpy as np
 
 from .._typing import ArrayLike
 from ..models import HysteresisModel
+from ..models.loaded import Loaded
 from ..plant.route import Route
 from .data import Recording
 from .diagnostics import Diagnostics
+from .report import draw_report
 
 #: what every standard error here is: the spread of the estimates were the data made by the
 #: model class, not a measure of how far a real drive lies from it
@@ -79,8 +81,6 @@ def fit_quality(recs, predictions, warmup: int) -> FitQuality:
 def simulate_model(model: HysteresisModel, t, x, curve_angle=None, load=None) -> np.ndarray:
     """Simulate any model; the curve angle is passed to the models that take one, the
     measured load to a Loaded model (which needs it)."""
-    from ..models.loaded import Loaded
-
     if isinstance(model, Loaded):
         if load is None:
             raise ValueError("a Loaded model needs the recording's measured load")
@@ -459,8 +459,6 @@ class Fit:
         Path
             The file written.
         """
-        from .report import draw_report
-
         self.warn()
         return draw_report(self, Path(path))
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -18,28 +19,34 @@ from ..models import (
     PrandtlIshlinskii,
 )
 from ..models.base import _REGISTRY
-from .core import _PENALTY, global_search
 from .data import check_for_fit, make_recordings, search_windows, thin_for_search
 from .fit import Fit, fit_quality, simulate_model
+from .oscillator import identify_oscillator
 from .problem import DirectProblem, SeparableProblem, law_check
 from .refine import refine
+from .search import PENALTY, global_search
 from .settings import Options, Search
 from .specs import SPECS, GeneralizedPrandtlIshlinskiiSpec, PrandtlIshlinskiiSpec, Scale
+from .uncertainty import assess, setup_single_angle
+
+#: the whole identification of one model class on checked recordings (core.run), handed down
+#: for the per-recording fits that start a search of angle laws
+FitOne = Callable[[Any, list, Options, Search], Fit]
 
 GPI_PLAYS = 10  # default number of plays of an identified GeneralizedPrandtlIshlinskii
 SPECS_BY_NAME = {cls.__name__: cls for cls in SPECS}
 _PLAYS = (PrandtlIshlinskii, GeneralizedPrandtlIshlinskii)
 
 
-def identify_class(model_class, recs, opt: Options, search: Search) -> Fit:
-    """Identify one model class (or hand a HystereticOscillator to its staged method)."""
+def identify_class(model_class, recs, opt: Options, search: Search, *, fit_one: FitOne) -> Fit:
+    """Identify one model class (or hand a HystereticOscillator to its staged method);
+    ``fit_one`` is the whole identification (:func:`tendonsheath.identify.core.run`), which
+    fits each recording alone to start a search of angle laws."""
     cls = _model_class(model_class)
     depends = _angle_laws(cls, opt.depends_on_angle)
     if opt.strategy not in ("auto", "search"):
         raise ValueError(f"strategy must be 'auto' or 'search' (got {opt.strategy!r})")
     if cls is HystereticOscillator and opt.strategy == "auto" and not depends:
-        from .oscillator import identify_oscillator
-
         return identify_oscillator(
             recs,
             warmup=int(opt.warmup),
@@ -56,7 +63,7 @@ def identify_class(model_class, recs, opt: Options, search: Search) -> Fit:
     counter = {"evaluations": 0}
     x0, search_here = None, search
     if depends:
-        x0 = _start_from_recordings(setup, posed.problem, recs, opt, search, counter)
+        x0 = _start_from_recordings(setup, posed.problem, recs, opt, search, counter, fit_one)
         search_here = dataclasses.replace(search, maxiter=max(5, search.maxiter // 5))
     start = time.perf_counter()
     res, u_best, message = _search_and_refine(setup, posed, search_here, counter, x0)
@@ -115,8 +122,6 @@ class ClassSetup:
 
     @classmethod
     def of(setup, cls, recs, opt: Options, depends: dict) -> ClassSetup:
-        from .uncertainty import setup_single_angle
-
         initial = _initial(cls, opt)
         values = initial.params
         spec = _spec_of(cls, values)
@@ -292,11 +297,11 @@ def _problem_maker(s: ClassSetup, opt: Options, search: Search, separable: bool)
 # -- global search and refinement ----------------------------------------------------------
 
 
-def _start_from_recordings(s: ClassSetup, problem, recs, opt: Options, search: Search, counter):
-    """A starting candidate for angle laws: per-recording fits (fast, separable where
-    possible) and the laws fitted to them; the joint search has it in its population."""
-    from .core import run
-
+def _start_from_recordings(
+    s: ClassSetup, problem, recs, opt: Options, search: Search, counter, fit_one: FitOne
+):
+    """A starting candidate for angle laws: per-recording fits by ``fit_one`` (fast, separable
+    where possible) and the laws fitted to them; the joint search has it in its population."""
     per_options = Options(
         warmup=s.warmup,
         fixed=opt.fixed,
@@ -314,7 +319,7 @@ def _start_from_recordings(s: ClassSetup, problem, recs, opt: Options, search: S
     )
     per_search = Search.of(per_options)
     per_rec = [
-        run(s.cls, make_recordings(recordings=[(r.t, r.x, r.y)]), per_options, per_search)
+        fit_one(s.cls, make_recordings(recordings=[(r.t, r.x, r.y)]), per_options, per_search)
         for r in recs
     ]
     counter["evaluations"] += sum(f.evaluations for f in per_rec)
@@ -330,7 +335,7 @@ def _search_and_refine(s: ClassSetup, posed: Posed, search: Search, counter, x0)
     space = problem.space
     label = f"identify {s.cls.__name__}"
     res = global_search(posed.search_problem, space, counter, label, search, x0=x0)
-    if not np.isfinite(res.fun) or res.fun >= _PENALTY:
+    if not np.isfinite(res.fun) or res.fun >= PENALTY:
         raise ValueError(
             f"identification failed: no parameters within the bounds give a finite simulation "
             f"of {s.cls.__name__} (search bounds: "
@@ -358,8 +363,6 @@ def _search_and_refine(s: ClassSetup, posed: Posed, search: Search, counter, x0)
 def _diagnose(
     s: ClassSetup, posed: Posed, recs, model, u_best, search, counter, seconds, res, message
 ) -> Fit:
-    from .uncertainty import assess
-
     predictions = [simulate_model(model, r.t, r.x, r.angle_input) for r in recs]
     quality = fit_quality(recs, predictions, s.warmup)
     assessed = assess(

@@ -26,7 +26,9 @@ sweep from rest) leaks no edge energy into the top band.
 from __future__ import annotations
 
 import numpy as np
+from scipy.signal import welch
 
+from .._sampling import is_periodic
 from .._typing import ArrayLike
 
 TOP_BAND = 0.4  # fraction of the sampling rate above which a band-limited input is empty
@@ -39,8 +41,6 @@ _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(16)
 def spectrum(x: np.ndarray, periodic: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """(frequencies in units of the sampling rate, power) of x with its mean removed: the
     exact DFT when x is whole periods, else Welch's estimate (Blackman-Harris window)."""
-    from scipy.signal import welch
-
     x = np.asarray(x, dtype=float)
     x = x - x.mean()
     if periodic:
@@ -121,7 +121,6 @@ def detect_for_recordings(recs, periodic: bool | None = None) -> tuple[str, str]
     uniformly sampled recording agrees on, else "linear". ``periodic``: whether the records
     are whole periods (None: detected by :func:`~tendonsheath.models.hysteretic_oscillator.
     is_periodic`)."""
-    from .._sampling import is_periodic
 
     def whole(x):
         return is_periodic(x) if periodic is None else bool(periodic)

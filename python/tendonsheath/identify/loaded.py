@@ -22,14 +22,15 @@ from __future__ import annotations
 
 import time
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
 from scipy.optimize import least_squares
 
-from ..models import BoucWen, Chain, HystereticOscillator
+from ..models import BoucWen, Chain, HystereticOscillator, Scaled
 from ..models.loaded import Loaded, play
+from .data import make_recordings
 from .fit import Fit, fit_quality
 from .loaded_problem import SEARCHED, Problem
 
@@ -55,14 +56,12 @@ def load_stretch(recs, loads, warmup: int) -> float:
     return float(coef[-1])
 
 
-def _base_alone(spec, unloaded: list, options: dict):
+def _base_alone(spec, unloaded: list, options: dict, identify_base: Callable[..., Fit]):
     """Stage 2: the base identified on the data without the stretch. A class that ``identify``
     does not normalise and that has no output offset of its own (BoucWen, the hysteretic
     oscillator) is fitted on centred data and put in a Scaled map holding the means (its
-    output offset then solved with the rest); given bounds or an initial model, raw units."""
-    from ..models import Scaled
-    from .core import identify
-
+    output offset then solved with the rest); given bounds or an initial model, raw units.
+    ``identify_base`` is :func:`~tendonsheath.identify.identify`."""
     raw = any(options.get(k) is not None for k in ("bounds", "initial", "depends_on_angle"))
     centre = spec in _NO_OFFSET and not raw and options.get("normalize") is not False
     xc = float(np.mean(np.concatenate([x for _, x, _ in unloaded]))) if centre else 0.0
@@ -70,7 +69,7 @@ def _base_alone(spec, unloaded: list, options: dict):
     recs = [(t, x - xc, y - yc) for t, x, y in unloaded]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        base = identify(spec, recordings=recs, **options).model
+        base = identify_base(spec, recordings=recs, **options).model
     return Scaled(base, input_offset=xc, output_offset=yc) if centre else base
 
 
@@ -158,6 +157,7 @@ def identify_loaded(
     fixed: dict[str, float] | None = None,
     base_options: dict[str, Any] | None = None,
     max_nfev: int = 40,
+    identify_base: Callable[..., Fit],
 ) -> Fit:
     """Identify ``template``'s base and load terms from recordings with a measured load.
 
@@ -177,6 +177,10 @@ def identify_loaded(
         Options of the base's own identification (seed, maxiter, ...).
     max_nfev : int, default 40
         Least-squares iterations of every start (each also estimates the Jacobian).
+    identify_base : callable
+        The base's own identification (stage 2), called as
+        ``identify_base(base_class, recordings=..., **base_options)`` and returning a
+        :class:`Fit`: :func:`~tendonsheath.identify.identify`, which hands itself here.
 
     Returns
     -------
@@ -188,8 +192,6 @@ def identify_loaded(
     ValueError
         A load of another length than its recording, not finite, or an unknown fixed term.
     """
-    from .data import make_recordings
-
     start = time.perf_counter()
     fixed = dict(fixed or {})
     unknown = set(fixed) - {"gain", *SEARCHED}
@@ -209,7 +211,7 @@ def identify_loaded(
     spec = template.base if isinstance(template.base, Chain) else base_cls  # a Chain: itself
     stretch = float(fixed["gain"]) if "gain" in fixed else load_stretch(recs, arrays, warmup)
     unloaded = [(r.t, r.x, r.y - stretch * a) for r, a in zip(recs, arrays, strict=True)]
-    base0 = _base_alone(spec, unloaded, options)
+    base0 = _base_alone(spec, unloaded, options, identify_base)
     model, problem, best = _staged(base0, recs, arrays, warmup, fixed, max_nfev)
     lo = min(float(r.x.min()) for r in recs)
     hi = max(float(r.x.max()) for r in recs)

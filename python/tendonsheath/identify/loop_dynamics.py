@@ -39,6 +39,7 @@ from scipy.signal import csd, lfilter, welch
 
 from .._arrays import as_timed_signal
 from .._typing import ArrayLike
+from ..control_interop import require_control
 from .servo import (
     ServoFit,
     _band,
@@ -184,8 +185,6 @@ class LoopDynamics:
         control.TransferFunction
             The transfer function in z.
         """
-        from ..control_interop import require_control
-
         ct = require_control()
         step = self._step(dt)
         num, den = self.discrete(step)

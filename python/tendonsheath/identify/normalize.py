@@ -46,6 +46,7 @@ from ..models import (
 from . import gauge
 from .data import Recording
 from .diagnostics import entries_from_labels, se_dict, vector_of, with_vector
+from .dynamic import is_dynamic_chain
 from .fit import Fit, metrics, simulate_model
 
 #: model classes identified on normalised data by default
@@ -109,8 +110,6 @@ def applies(model_class, *, depends, bounds, fixed, initial) -> bool:
     if depends or bounds or fixed:
         return False
     if isinstance(model_class, Chain):
-        from .dynamic import is_dynamic_chain
-
         return is_dynamic_chain(model_class) or (
             type(model_class.first) in _CHAIN_FIRST and isinstance(model_class.second, Polynomial)
         )

@@ -44,8 +44,14 @@ import warnings
 
 import numpy as np
 from scipy.optimize import differential_evolution, least_squares, nnls
+from scipy.signal import csd, welch
 
-from .. import _core as core
+from .._core import (
+    RecordingSet,
+    bouc_wen_paths,
+    oscillator_sensitivity_dense,
+    reconstruct_bandlimited,
+)
 from .._sampling import fft_upsample, is_periodic, uniform_step
 from ..models import HystereticOscillator
 from .data import check_for_fit
@@ -152,8 +158,6 @@ def _bla(segments) -> tuple[float, float, float, float]:
             lines = lines[lines > 0]
             G, w = Y[lines] / X[lines], 2 * np.pi * f[lines]
         else:
-            from scipy.signal import csd, welch
-
             nper = min(n, 1024)
             fw, Puu = welch(s.x, fs=1 / s.dt, nperseg=nper)
             _, Puy = csd(s.x, s.y, fs=1 / s.dt, nperseg=nper)
@@ -205,7 +209,7 @@ class _EquationError:
         params = np.ascontiguousarray(np.column_stack([G, D, nu]), dtype=float)
         cols = []
         for s, yf, mask in zip(self.segments, self.paths, self.masks, strict=True):
-            W = core.bouc_wen_paths(np.ascontiguousarray(yf), params, self.workers)
+            W = bouc_wen_paths(np.ascontiguousarray(yf), params, self.workers)
             n = s.x.size * self.PATH_FINE
             W = W[:, -n:][:, :: self.PATH_FINE]
             cols.append(W[:, mask])
@@ -390,11 +394,11 @@ def _simulation_problem(recs, per, warmup, start, free_names, se_bounds, options
     grids = [
         fft_upsample(r.x, fine)
         if p
-        else core.reconstruct_bandlimited(r.x, fine, int(options["lookahead"]))
+        else reconstruct_bandlimited(r.x, fine, int(options["lookahead"]))
         for r, p in zip(recs, per, strict=True)
     ]
     x_fine = np.concatenate(grids)
-    problem.rs = core.RecordingSet(
+    problem.rs = RecordingSet(
         np.concatenate([r.t for r in recs]),
         np.concatenate([r.x for r in recs]),
         np.concatenate([r.y for r in recs]),
@@ -530,7 +534,7 @@ def _jacobian(problem, space, recs, dense):
             return differences(u)
         S = np.vstack(
             [
-                core.oscillator_sensitivity_dense(
+                oscillator_sensitivity_dense(
                     params, float(r.t[1] - r.t[0]), r.n, np.ascontiguousarray(g), fine
                 )[1]
                 for r, g in zip(recs, grids, strict=True)

@@ -22,7 +22,9 @@ from ..models import PlantModel
 from .data import check_for_fit, fitted_mask
 from .fit import Fit, fit_quality, simulate_model
 from .problem import Space
+from .search import search_and_refine
 from .specs import Scale
+from .uncertainty import assess
 
 SEARCH_NAMES = ("friction_angle", "backlash", "viscous_time")
 SEARCH_MAXITER = 25
@@ -99,7 +101,6 @@ def identify_plant(recs, *, warmup=0, initial=None, search) -> Fit:
     """Identify a :class:`PlantModel` (see the module docstring) with the
     :class:`~tendonsheath.identify.settings.Search` settings ``search`` (its generations and
     population capped); returns a :class:`Fit`."""
-    from .core import search_and_refine
 
     elements = (initial or PlantModel()).options["elements"]
     problem = PlantProblem(recs, warmup, search.n_workers, elements)
@@ -143,7 +144,6 @@ def identify_plant(recs, *, warmup=0, initial=None, search) -> Fit:
 
 def _assess(problem, recs, warmup, model, quality, u_best, search) -> dict:
     """Standard errors and diagnostics w.r.t. the plant model's parameters."""
-    from .uncertainty import assess
 
     return assess(
         cls=PlantModel,

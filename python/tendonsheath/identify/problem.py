@@ -8,13 +8,63 @@ least squares for each candidate inside the C++ call (variable projection).
 
 from __future__ import annotations
 
+import copy
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 from scipy.optimize import lsq_linear, nnls
 
-from .. import _core as core
+from .._core import (
+    features_BoucWen,
+    features_BoucWenBacklash,
+    features_GeneralizedPrandtlIshlinskii,
+    features_PrandtlIshlinskii,
+    population_cost_Backlash,
+    population_cost_BoucWen,
+    population_cost_BoucWenBacklash,
+    population_cost_CurveAngleModel,
+    population_cost_HystereticOscillator,
+    population_simulate_Backlash,
+    population_simulate_BoucWen,
+    population_simulate_BoucWenBacklash,
+    population_simulate_CurveAngleModel,
+    population_simulate_HystereticOscillator,
+    separable_cost_BoucWen,
+    separable_cost_BoucWenBacklash,
+    separable_cost_GeneralizedPrandtlIshlinskii,
+    separable_cost_PrandtlIshlinskii,
+)
 from ..models import CurveAngleModel, HysteresisModel
 from ..models.angle_dependent import AngleDependent, angle_factor, law_value
 from .data import Recording, fitted_mask, recording_set
+
+#: the batched C++ kernels of a direct problem by model class name: (the population's costs,
+#: the population's outputs)
+POPULATION: dict[str, tuple[Callable[..., Any], Callable[..., Any]]] = {
+    "Backlash": (population_cost_Backlash, population_simulate_Backlash),
+    "BoucWen": (population_cost_BoucWen, population_simulate_BoucWen),
+    "BoucWenBacklash": (population_cost_BoucWenBacklash, population_simulate_BoucWenBacklash),
+    "CurveAngleModel": (population_cost_CurveAngleModel, population_simulate_CurveAngleModel),
+    "HystereticOscillator": (
+        population_cost_HystereticOscillator,
+        population_simulate_HystereticOscillator,
+    ),
+}
+#: the batched C++ kernels of a separable problem by its kind: the costs with the linear part
+#: solved, and the regressors (features) of the linear part
+SEPARABLE_COST: dict[str, Callable[..., Any]] = {
+    "BoucWen": separable_cost_BoucWen,
+    "BoucWenBacklash": separable_cost_BoucWenBacklash,
+    "GeneralizedPrandtlIshlinskii": separable_cost_GeneralizedPrandtlIshlinskii,
+    "PrandtlIshlinskii": separable_cost_PrandtlIshlinskii,
+}
+FEATURES: dict[str, Callable[..., Any]] = {
+    "BoucWen": features_BoucWen,
+    "BoucWenBacklash": features_BoucWenBacklash,
+    "GeneralizedPrandtlIshlinskii": features_GeneralizedPrandtlIshlinskii,
+    "PrandtlIshlinskii": features_PrandtlIshlinskii,
+}
 
 
 class Space:
@@ -99,8 +149,7 @@ class DirectProblem:
         self.rs = recording_set(recs, warmup, self.with_angle)
         self.base = _base_struct(model_class, options)
         self.search_base = _search_base(model_class, options, search_options)
-        self.population_cost = getattr(core, f"population_cost_{model_class.__name__}")
-        self.population_simulate = getattr(core, f"population_simulate_{model_class.__name__}")
+        self.population_cost, self.population_simulate = POPULATION[model_class.__name__]
         self.y = np.concatenate([r.y for r in recs])
         self.mask = fitted_mask(recs, warmup)
         self.angles: list[float] | None = None
@@ -285,8 +334,8 @@ class SeparableProblem:
         self.base = _base_struct(self.model_class, options, initial)
         self.search_base = _search_base(self.model_class, options, spec.search_options, initial)
         kind = spec.kind
-        self.separable_cost = getattr(core, f"separable_cost_{kind}")
-        self.features = getattr(core, f"features_{kind}")
+        self.separable_cost = SEPARABLE_COST[kind]
+        self.features = FEATURES[kind]
         self.y = np.concatenate([r.y for r in recs])
         self.mask = fitted_mask(recs, warmup)
         self.lin_lo, self.lin_hi = spec.linear_bounds(scale)
@@ -405,4 +454,46 @@ def law_check(depends: dict[str, str], names) -> dict[str, str]:
     return out
 
 
-__all__ = ["DirectProblem", "SeparableProblem", "Space", "law_check", "law_value"]
+def with_fitted_output(problem, y_star: np.ndarray):
+    """A shallow copy of ``problem`` whose measured output (fitted samples) is ``y_star``: the
+    problem's own ``with_fitted_output`` when it has one (a chain's), else its ``y`` at
+    ``mask`` replaced."""
+    own = getattr(problem, "with_fitted_output", None)
+    if own is not None:
+        return own(y_star)
+    p = copy.copy(problem)
+    y = np.array(problem.y, dtype=float)
+    y[problem.mask] = y_star
+    p.y = y
+    return p
+
+
+def over_recordings(problem, recs: list[Recording], warmup: int):
+    """A shallow copy of ``problem`` over other recordings (same parameters and bounds): the
+    problem's own ``over_recordings`` when it has one (a chain's), else its recordings, their
+    set, output and mask replaced."""
+    own = getattr(problem, "over_recordings", None)
+    if own is not None:
+        return own(recs, warmup)
+    p = copy.copy(problem)
+    p.recs = recs
+    p.rs = recording_set(recs, warmup, getattr(problem, "with_angle", False))
+    p.y = np.concatenate([r.y for r in recs])
+    p.mask = fitted_mask(recs, warmup)
+    if hasattr(p, "angles"):
+        p.angles = None
+    return p
+
+
+__all__ = [
+    "FEATURES",
+    "POPULATION",
+    "SEPARABLE_COST",
+    "DirectProblem",
+    "SeparableProblem",
+    "Space",
+    "law_check",
+    "law_value",
+    "over_recordings",
+    "with_fitted_output",
+]

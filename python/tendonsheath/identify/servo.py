@@ -37,6 +37,7 @@ from scipy.signal import butter, cont2discrete, lfilter, sosfiltfilt
 
 from .._arrays import as_timed_signal
 from .._typing import ArrayLike
+from ..control_interop import require_control
 
 if TYPE_CHECKING:
     import control
@@ -112,8 +113,6 @@ class ServoFit:
         control.TransferFunction
             The transfer function in z.
         """
-        from ..control_interop import require_control
-
         ct = require_control()
         step = self.dt if dt is None else float(dt)
         num, den = self.discrete(step)

@@ -51,6 +51,15 @@ OPTION_NAMES: tuple[str, ...] = tuple(f.name for f in dataclasses.fields(Options
 DEFAULTS: dict[str, Any] = {f.name: f.default for f in dataclasses.fields(Options)}
 TYPES: dict[str, Any] = {f.name: f.type for f in dataclasses.fields(Options)}  # annotations
 
+#: the settings only a HystereticOscillator's identification reads: an Identifier takes them
+#: grouped in its ``oscillator`` dict (identify() as keywords among the others)
+OSCILLATOR_NAMES: tuple[str, ...] = ("input_interpolation", "periodic", "strategy")
+#: the parameters of an Identifier besides ``model``: the other settings, then ``oscillator``
+IDENTIFIER_NAMES: tuple[str, ...] = (
+    *(n for n in OPTION_NAMES if n not in OSCILLATOR_NAMES),
+    "oscillator",
+)
+
 
 def with_settings_signature(fn):
     """``fn`` (taking ``**options``) with a signature that lists every setting as a
@@ -91,16 +100,31 @@ def with_new_names(model_class, options: Options) -> Options:
     return new
 
 
-def check_names(names, owner: str) -> None:
-    """TypeError naming the unknown settings (with the closest known ones)."""
-    unknown = [n for n in names if n not in DEFAULTS]
+def check_names(names, owner: str, known: tuple[str, ...] = OPTION_NAMES) -> None:
+    """TypeError naming the settings not among ``known`` (with the closest known ones)."""
+    unknown = [n for n in names if n not in known]
     if unknown:
-        hints = [m for n in unknown for m in difflib.get_close_matches(n, OPTION_NAMES, 1)]
+        hints = [m for n in unknown for m in difflib.get_close_matches(n, known, 1)]
         hint = f" (did you mean {', '.join(hints)}?)" if hints else ""
         raise TypeError(
             f"{owner}: unknown setting(s) {', '.join(map(repr, unknown))}{hint}; "
-            f"known: {', '.join(OPTION_NAMES)}"
+            f"known: {', '.join(known)}"
         )
+
+
+def oscillator_settings(group: Any, owner: str) -> dict[str, Any]:
+    """An Identifier's ``oscillator`` group (None or a dict with keys among
+    :data:`OSCILLATOR_NAMES`) as the three settings with their defaults; TypeError naming a
+    group that is no dict or an unknown key."""
+    if group is None:
+        group = {}
+    if not isinstance(group, dict):
+        raise TypeError(
+            f"{owner}: oscillator must be a dict with keys among {list(OSCILLATOR_NAMES)} "
+            f"(got {type(group).__name__})"
+        )
+    check_names(group, f"{owner}: oscillator", OSCILLATOR_NAMES)
+    return {n: group.get(n, DEFAULTS[n]) for n in OSCILLATOR_NAMES}
 
 
 def check_search_options(*, maxiter, popsize, tol, workers, warmup) -> None:
@@ -133,6 +157,23 @@ def default_threads() -> int:
     return n
 
 
+SE_METHODS = ("linearised", "bootstrap", "bootstrap-recordings", "none")
+BOOTSTRAP_DEFAULT = 200
+
+
+def check_method(standard_errors: str, count: int | None) -> tuple[str, int]:
+    """``standard_errors`` (one of :data:`SE_METHODS`) and the bootstrap's resample count
+    (``count``, default :data:`BOOTSTRAP_DEFAULT`, at least 2 for a bootstrap), checked."""
+    if standard_errors not in SE_METHODS:
+        raise ValueError(
+            f"standard_errors must be one of {list(SE_METHODS)} (got {standard_errors!r})"
+        )
+    n = BOOTSTRAP_DEFAULT if count is None else int(count)
+    if standard_errors.startswith("bootstrap") and n < 2:
+        raise ValueError(f"bootstrap must be at least 2 resamples (got {count})")
+    return standard_errors, n
+
+
 @dataclasses.dataclass(frozen=True)
 class Search:
     """The global search, refinement and standard-error settings, checked; ``budget`` is the
@@ -163,8 +204,6 @@ class Search:
     def of(cls, options: Options) -> Search:
         """Check ``options``' search settings (one message naming the option) and start the
         time budget (a TimeBudget given as ``time_budget`` is shared, not restarted)."""
-        from .uncertainty import check_method
-
         o = options
         check_search_options(
             maxiter=o.maxiter, popsize=o.popsize, tol=o.tol, workers=o.workers, warmup=o.warmup
@@ -189,14 +228,20 @@ class Search:
 
 
 __all__ = [
+    "BOOTSTRAP_DEFAULT",
     "DEFAULTS",
+    "IDENTIFIER_NAMES",
     "OPTION_NAMES",
+    "OSCILLATOR_NAMES",
     "Options",
+    "SE_METHODS",
     "Search",
     "TYPES",
+    "check_method",
     "check_names",
     "check_search_options",
     "default_threads",
+    "oscillator_settings",
     "with_new_names",
     "with_settings_signature",
 ]

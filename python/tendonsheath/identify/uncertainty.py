@@ -7,17 +7,15 @@ known; see :mod:`tendonsheath.identify.diagnostics` for the figures and their li
 
 from __future__ import annotations
 
-import copy
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from scipy.optimize import least_squares
 
 from ..models import CurveAngleModel, GeneralizedPrandtlIshlinskii, PrandtlIshlinskii
 from ..plant.route import Route
-from .chain import ChainProblem
-from .data import fitted_mask, recording_set
 from .diagnostics import (
     Diagnostics,
     Entry,
@@ -34,27 +32,14 @@ from .diagnostics import (
     with_vector,
 )
 from .fit import simulate_model
-from .problem import DirectProblem
-
-SE_METHODS = ("linearised", "bootstrap", "bootstrap-recordings", "none")
-BOOTSTRAP_DEFAULT = 200
+from .problem import DirectProblem, over_recordings, with_fitted_output
+from .settings import BOOTSTRAP_DEFAULT, SE_METHODS, check_method
 
 # names of the linear (solved) coefficients of the separable specs, for the bound check
 _LINEAR_NAMES = {
     "BoucWenBacklash": ["c_r", "B_r (c_r B_r)", "c_l", "B_l (c_l B_l)"],
     "BoucWen": ["alpha", "(1 - alpha) k"],
 }
-
-
-def check_method(standard_errors: str, count: int | None) -> tuple[str, int]:
-    if standard_errors not in SE_METHODS:
-        raise ValueError(
-            f"standard_errors must be one of {list(SE_METHODS)} (got {standard_errors!r})"
-        )
-    n = BOOTSTRAP_DEFAULT if count is None else int(count)
-    if standard_errors.startswith("bootstrap") and n < 2:
-        raise ValueError(f"bootstrap must be at least 2 resamples (got {count})")
-    return standard_errors, n
 
 
 # -- the CurveAngleModel at a single curve angle ---------------------------------------------
@@ -429,7 +414,7 @@ def _bootstrapped(f: _Fitted, group_fn, method: str, count: int, block, seed):
 
         def draw(rng):
             y_star = y_hat + moving_block_resample(resid, segments, b, rng)
-            return refit(_with_fitted_output(problem, y_star))
+            return refit(with_fitted_output(problem, y_star))
     else:
         if len(recs) < 2:
             raise ValueError(
@@ -439,7 +424,7 @@ def _bootstrapped(f: _Fitted, group_fn, method: str, count: int, block, seed):
 
         def draw(rng):
             idx = rng.integers(0, len(recs), size=len(recs))
-            return refit(_with_recordings(problem, [recs[i] for i in idx], f.warmup))
+            return refit(over_recordings(problem, [recs[i] for i in idx], f.warmup))
 
     boot = bootstrap(draw, count, seed)
     k = len(f.layout.names)
@@ -490,7 +475,6 @@ def _local_refit(problem, space, u0, use_separable) -> np.ndarray:
     """Least squares on a resample's simulation error from the estimate ``u0`` (a bounded
     trust-region run like the fit's own refinement, with a smaller budget: it starts at the
     optimum of the original data, a few iterations away from the resample's)."""
-    from scipy.optimize import least_squares
 
     span = space.upper - space.lower
     u0 = np.clip(u0, space.lower + 1e-9 * span, space.upper - 1e-9 * span)
@@ -543,46 +527,6 @@ def _delta_group_se(layout, model, group_fn, J, sse, n_fit, free_names) -> dict[
         G[:, i] = [(gu[n] - gd[n]) / (2 * h) for n in g0]
     var = np.einsum("ik,kl,il->i", G, cov, G)
     return {n: float(np.sqrt(max(v, 0.0))) for n, v in zip(g0, var, strict=True)}
-
-
-def _with_fitted_output(problem, y_star: np.ndarray):
-    """A shallow copy of ``problem`` whose measured output (fitted samples) is ``y_star``."""
-    p = copy.copy(problem)
-    if isinstance(problem, ChainProblem):  # y holds the fitted samples only
-        p.y = np.asarray(y_star, dtype=float)
-        return p
-    y = np.array(problem.y, dtype=float)
-    y[problem.mask] = y_star
-    p.y = y
-    return p
-
-
-def _with_recordings(problem, recs, warmup: int):
-    """A shallow copy of ``problem`` over other recordings (same parameters and bounds)."""
-    from .dynamic import DynamicProblem
-
-    if isinstance(problem, DynamicProblem):
-        p = copy.copy(problem)
-        p.recs = recs
-        p.rs = recording_set(recs, warmup, False)
-        p.y = np.concatenate([r.y for r in recs])
-        p.mask = fitted_mask(recs, warmup)
-        p.edges = np.cumsum([0] + [r.n for r in recs])
-        p.dts = [float(np.median(np.diff(r.t))) for r in recs]
-        return p
-    if isinstance(problem, ChainProblem):
-        chain_p = copy.copy(problem)
-        chain_p.inner = _with_recordings(problem.inner, recs, warmup)
-        chain_p.y = chain_p.inner.y[chain_p.inner.mask]
-        return chain_p
-    p = copy.copy(problem)
-    p.recs = recs
-    p.rs = recording_set(recs, warmup, getattr(problem, "with_angle", False))
-    p.y = np.concatenate([r.y for r in recs])
-    p.mask = fitted_mask(recs, warmup)
-    if hasattr(p, "angles"):
-        p.angles = None
-    return p
 
 
 def _residuals(model, recs, warmup):
