@@ -177,9 +177,9 @@ API_MODULES = [
     "bench",
     "io",
     "sweep",
-    "physics",
-    "presets",
-    "loads",
+    "plant.physics",
+    "plant.presets",
+    "plant.loads",
 ]
 
 

@@ -222,9 +222,9 @@ def test_the_walk_covers_every_public_numeric_field():
 def test_the_walk_covers_every_saved_compensator_and_composite_model():
     """Every class ts.compensate.load reads is walked, and every model class that cannot be
     built without parts (a composite) has rows here."""
-    from tendonsheath.compensate.persistence import _registry
+    from tendonsheath.compensate.persistence import _KINDS
 
-    assert {cls.__name__ for cls, _ in _compensators()} == set(_registry())
+    assert {cls.__name__ for cls, _ in _compensators()} == set(_KINDS)
     walked = {(cls.__name__, field) for cls, _, field, _ in COMPENSATOR_ROWS}
     for name in ("EncoderLoop", "TipLoop"):
         assert {(name, k) for k in ("kp", "ki", "kd", "max_correction")} <= walked

@@ -5,7 +5,8 @@ Windows-1252, semicolons, UTF-16) just work, with a note."""
 import numpy as np
 import pytest
 
-from tendonsheath import _textread, io
+from tendonsheath import io
+from tendonsheath.io import _textread
 
 GOOD = "t,x,y\n0,1,2\n1,2,3\n2,3,4\n"
 
