@@ -143,7 +143,7 @@ void bind_route(nb::module_& m) {
   // python-control's snapshots of an InverseFeedforward
   bind_copy(nb::class_<ts::Route>(m, "Route"))
       .def(nb::init<std::vector<double>, std::vector<double>>(), "s"_a, "theta"_a)
-      .def_static("uniform", &ts::Route::uniform, "length"_a, "total_angle"_a)
+      .def_static("uniform", &ts::Route::uniform, "length"_a, "curve_angle"_a)
       .def_static("arcs", &ts::Route::arcs, "pieces"_a)
       .def_static("from_points",
                   [](InMatrix xyz) {
@@ -279,7 +279,6 @@ void bind_motor(nb::module_& m) {
       .def_rw("viscous", &MP::viscous)
       .def_rw("max_torque", &MP::max_torque)
       .def_rw("max_substeps", &MP::max_substeps)
-      .def_rw("reflected_inertia", &MP::reflected_inertia)
       .def_rw("coulomb_friction", &MP::coulomb_friction)
       .def_rw("viscous_friction", &MP::viscous_friction)
       .def_rw("gear_backlash", &MP::gear_backlash)

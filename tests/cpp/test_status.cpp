@@ -210,7 +210,7 @@ TEST(Status, FeedforwardsNameThemselvesInErrors) {
 // ignored with Status::ok before), until an angle is taken again.
 TEST(Status, CurveAngleFeedforwardRejectsABadCurveAngle) {
   ts::CurveAngleFeedforwardParams cp;
-  cp.total_angle = 1.0;
+  cp.curve_angle = 1.0;
   ts::CurveAngleFeedforward ff(cp);
   const double before = ff.step(0.3, 0.0);
   for (double bad : {-1.0, static_cast<double>(NAN)}) {

@@ -94,7 +94,6 @@ class CurveAngleModel(HysteresisModel):
     added_params = {"play": 0.0}  # files saved before the play was a parameter
     control_inputs = ("x", "curve_angle")
     renamed_params = _RENAMED
-    core_names = dict(_RENAMED)  # the C++ fields keep the old names
 
     @accepts_old_names("CurveAngleModel", _RENAMED)
     def __init__(
