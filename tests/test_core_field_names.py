@@ -183,3 +183,14 @@ def test_the_core_says_the_python_name():
     cm.load_stiffness = -1.0
     with pytest.raises(ValueError, match=r"^CurveAngleModel: load_stiffness must be >= 0"):
         core.CurveAngleModel(cm)
+
+
+def test_a_shape_says_curve_angle_and_its_old_name_warns():
+    """ShapeIntegrals (what compensate.shape_of returns) holds the curve angle as curve_angle;
+    reading total_angle still works for one release, with a DeprecationWarning naming the new."""
+    shape = core.uniform_shape(friction=0.2, curve_angle=2.5)
+    assert shape.curve_angle == 2.5
+    with pytest.warns(DeprecationWarning, match="'total_angle' is now called 'curve_angle'"):
+        assert shape.total_angle == 2.5
+    route = ts.Route.uniform(1.0, 2.5)
+    assert ts.compensate.shape_of(route, 0.2).curve_angle == pytest.approx(2.5, rel=1e-12)

@@ -145,8 +145,10 @@ class Route {
 
   /// The arc length L of the route, metres.
   double length() const noexcept { return s_.back(); }
-  /// The total curve angle theta(L), radians.
-  double total_angle() const noexcept { return th_.back(); }
+  /// The curve angle theta(L), radians.
+  double curve_angle() const noexcept { return th_.back(); }
+  /// The curve angle theta(L) by its old name (docs/vocabulary.md).
+  [[deprecated("use curve_angle()")]] double total_angle() const noexcept { return curve_angle(); }
   /// The arc-length samples s_i, metres (non-decreasing, from 0 to L).
   const std::vector<double>& s() const noexcept { return s_; }
   /// The accumulated-angle samples theta_i, radians (non-decreasing, from 0).

@@ -48,7 +48,7 @@ class Route:
         th_arr = as_signal(number_array("Route", "theta", theta), "theta")
         with core_errors_as("Route"):
             self._core = core.Route(s_arr.tolist(), th_arr.tolist())
-        warn_if_curve_angle_in_degrees(self._core.total_angle, "Route", "theta[-1]")
+        warn_if_curve_angle_in_degrees(self._core.curve_angle, "Route", "theta[-1]")
 
     @classmethod
     def _wrap(cls, engine) -> Route:
@@ -180,7 +180,7 @@ class Route:
     @property
     def curve_angle(self) -> float:
         """Curve angle Theta = theta(L) (rad)."""
-        return self._core.total_angle
+        return self._core.curve_angle
 
     @property
     def total_angle(self) -> float:

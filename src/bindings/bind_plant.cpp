@@ -163,7 +163,7 @@ void bind_route(nb::module_& m) {
                   },
                   "s"_a, "kappa"_a)
       .def_prop_ro("length", &ts::Route::length)
-      .def_prop_ro("total_angle", &ts::Route::total_angle)
+      .def_prop_ro("curve_angle", &ts::Route::curve_angle)
       .def("s_samples", [](const ts::Route& r) { return copy_vector(r.s()); })
       .def("theta_samples", [](const ts::Route& r) { return copy_vector(r.theta()); })
       .def("angle_at", &ts::Route::angle_at, "s"_a)
@@ -340,7 +340,7 @@ void bind_plants(nb::module_& m) {
   single.def(nb::init<const SP&, const ts::Route&>(), "params"_a, "route"_a)
       .def_prop_ro("params", &ts::SingleTendonPlant::params)
       .def_prop_ro("length", &ts::SingleTendonPlant::length)
-      .def_prop_ro("total_angle", &ts::SingleTendonPlant::total_angle)
+      .def_prop_ro("curve_angle", &ts::SingleTendonPlant::curve_angle)
       .def("set_route", &ts::SingleTendonPlant::set_route, "route"_a)
       .def(
           "node_angles",
@@ -359,8 +359,8 @@ void bind_plants(nb::module_& m) {
       .def_prop_ro("params", &ts::PullPullPlant::params)
       .def_prop_ro("length1", &ts::PullPullPlant::length1)
       .def_prop_ro("length2", &ts::PullPullPlant::length2)
-      .def_prop_ro("total_angle1", &ts::PullPullPlant::total_angle1)
-      .def_prop_ro("total_angle2", &ts::PullPullPlant::total_angle2)
+      .def_prop_ro("curve_angle1", &ts::PullPullPlant::curve_angle1)
+      .def_prop_ro("curve_angle2", &ts::PullPullPlant::curve_angle2)
       .def("set_route",
            nb::overload_cast<const ts::Route&, const ts::Route&>(&ts::PullPullPlant::set_route),
            "route1"_a, "route2"_a)

@@ -62,7 +62,7 @@ TEST(ShapeIntegrals, PiecewiseLinearIsExact) {
     }
     EXPECT_NEAR(sh.g, g, 1e-6 * g);
     EXPECT_NEAR(sh.G, G, 1e-6 * G);
-    EXPECT_DOUBLE_EQ(sh.total_angle, th.back());
+    EXPECT_DOUBLE_EQ(sh.curve_angle, th.back());
   }
 }
 

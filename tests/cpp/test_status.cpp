@@ -217,7 +217,7 @@ TEST(Status, CurveAngleFeedforwardRejectsABadCurveAngle) {
     EXPECT_FALSE(ff.set_curve_angle(bad));
     EXPECT_TRUE(ff.angle_rejected());
     EXPECT_TRUE(ts::has(ff.status(), ts::Status::input_clamped));
-    EXPECT_EQ(ff.shape().total_angle, 1.0);
+    EXPECT_EQ(ff.shape().curve_angle, 1.0);
     ff.reset();
     EXPECT_EQ(ff.step(0.3, 0.0), before);
   }

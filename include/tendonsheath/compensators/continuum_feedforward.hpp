@@ -63,8 +63,8 @@ class ContinuumFeedforward {
     require_positive(p.stiffness, w, "stiffness");
     require_non_negative(p.pretension, w, "pretension");
     require_non_negative(p.curve_angle, w, "curve_angle");
-    require(p.curve_angle <= max_total_angle(p.gap_factor * p.friction), w,
-            "curve_angle must be <= ", max_total_angle(p.gap_factor * p.friction),
+    require(p.curve_angle <= max_curve_angle(p.gap_factor * p.friction), w,
+            "curve_angle must be <= ", max_curve_angle(p.gap_factor * p.friction),
             " rad for gap_factor * friction = ", p.gap_factor * p.friction,
             " (xi * curve_angle <= 50; got ", p.curve_angle, ")");
     require_positive(p.bending_stiffness, w, "bending_stiffness");

@@ -67,8 +67,8 @@ class CurveAngleFeedforward {
     require_positive(p.proximal_radius, w, "proximal_radius");
     require_positive(p.distal_radius, w, "distal_radius");
     require_non_negative(p.curve_angle, w, "curve_angle");
-    require(p.curve_angle <= max_total_angle(p.friction), w, "curve_angle must be <= ",
-            max_total_angle(p.friction), " rad for friction ", p.friction,
+    require(p.curve_angle <= max_curve_angle(p.friction), w, "curve_angle must be <= ",
+            max_curve_angle(p.friction), " rad for friction ", p.friction,
             " (friction * curve_angle <= 50; got ", p.curve_angle, ")");
     require_positive(p.smoothing, w, "smoothing");
     require_non_negative(p.play, w, "play");
@@ -84,7 +84,7 @@ class CurveAngleFeedforward {
   const Params& params() const noexcept { return p_; }
   /// The route shape in use.
   const ShapeIntegrals& shape() const noexcept { return shape_; }
-  /// True when the last set_curve_angle() was beyond max_total_angle(friction) and clamped.
+  /// True when the last set_curve_angle() was beyond max_curve_angle(friction) and clamped.
   bool angle_clamped() const noexcept { return angle_clamped_; }
 
   /// Start afresh from the initial state, as after construction; the parameters (and any route,
@@ -95,16 +95,16 @@ class CurveAngleFeedforward {
     correction_primed_ = false;
   }
 
-  /// Uniform curvature with total angle theta (rad); an angle beyond max_total_angle(friction) is
+  /// Uniform curvature with total angle theta (rad); an angle beyond max_curve_angle(friction) is
   /// clamped to it (angle_clamped() tells). A non-finite or negative one changes nothing and is
   /// rejected: status() reports input_clamped until an angle or shape is taken (angle_rejected()).
   /// @return whether the angle was taken
   bool set_curve_angle(double theta) noexcept {
     angle_rejected_ = !(std::isfinite(theta) && theta >= 0.0);
     if (angle_rejected_) return false;
-    angle_clamped_ = theta > max_total_angle(p_.friction);
-    if (angle_clamped_) theta = max_total_angle(p_.friction);
-    if (!(uniform_ && theta == shape_.total_angle)) {
+    angle_clamped_ = theta > max_curve_angle(p_.friction);
+    if (angle_clamped_) theta = max_curve_angle(p_.friction);
+    if (!(uniform_ && theta == shape_.curve_angle)) {
       update_shape(uniform_shape(p_.friction, theta));
       uniform_ = true;
     }
@@ -116,8 +116,8 @@ class CurveAngleFeedforward {
   /// @return whether the shape was taken
   bool set_shape(const ShapeIntegrals& shape) noexcept {
     angle_rejected_ = !(std::isfinite(shape.g) && std::isfinite(shape.G) && shape.g > 0.0 &&
-                        shape.G > 0.0 && std::isfinite(shape.total_angle) &&
-                        shape.total_angle >= 0.0);
+                        shape.G > 0.0 && std::isfinite(shape.curve_angle) &&
+                        shape.curve_angle >= 0.0);
     if (angle_rejected_) return false;
     update_shape(shape);
     uniform_ = false;
@@ -136,7 +136,7 @@ class CurveAngleFeedforward {
   }
 
   /// The last step's status: held (non-finite y_d), input_clamped (the curve angle in force
-  /// was clamped to max_total_angle, or the last one given was rejected), saturated (the command was cut to its limits).
+  /// was clamped to max_curve_angle, or the last one given was rejected), saturated (the command was cut to its limits).
   Status status() const noexcept {
     Status s = shaper_.status();
     if (held_) s |= Status::held_nonfinite_input;

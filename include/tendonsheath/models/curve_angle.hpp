@@ -163,7 +163,7 @@ class CurveAngleModel {
   /// The distal angle of the last step(), rad.
   double output() const noexcept { return y_; }
   /// The curve angle in use, rad (>= 0): the last set_curve_angle() or the shape's total angle.
-  double curve_angle() const noexcept { return shape_.total_angle; }
+  double curve_angle() const noexcept { return shape_.curve_angle; }
   /// The route shape in use (g, G with this model's friction, and the total angle); a curve
   /// angle alone is the uniform route's shape.
   const ShapeIntegrals& shape() const noexcept { return shape_; }
@@ -175,7 +175,7 @@ class CurveAngleModel {
   void set_curve_angle(double theta) noexcept {
     if (!std::isfinite(theta)) return;
     theta = std::fabs(theta);
-    if (uniform_ && theta == shape_.total_angle) return;
+    if (uniform_ && theta == shape_.curve_angle) return;
     uniform_ = true;
     shape_ = uniform_shape(p_.friction, theta);
     eb_ = backlash_half_width(theta);
@@ -195,11 +195,11 @@ class CurveAngleModel {
   /// @param shape the route's shape integrals
   void set_shape(const ShapeIntegrals& shape) noexcept {
     if (!(std::isfinite(shape.g) && std::isfinite(shape.G) && shape.g > 0.0 && shape.G > 0.0 &&
-          std::isfinite(shape.total_angle) && shape.total_angle >= 0.0))
+          std::isfinite(shape.curve_angle) && shape.curve_angle >= 0.0))
       return;
     uniform_ = false;
     shape_ = shape;
-    const double a = std::fmin(p_.friction * shape.total_angle, kMaxFrictionAngle);
+    const double a = std::fmin(p_.friction * shape.curve_angle, kMaxFrictionAngle);
     const double ea = std::exp(a), ema = std::exp(-a);
     const double u = std::fmin(std::fmax(shape.g, ema), 1.0) * ea;   // in [1, e^a]
     const double v = std::fmin(std::fmax(shape.G, 1.0), ea) * ema;   // in [e^-a, 1]

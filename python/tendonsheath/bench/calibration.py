@@ -71,7 +71,7 @@ def sensed_schedule(shape: ShapeSensing, t, routes: Callable, friction: float, s
     rows = []
     for a in sensed:
         s = route_shape(Route.uniform(1.0, float(a)), friction)
-        rows.append([s.g, s.G, s.total_angle])
+        rows.append([s.g, s.G, s.curve_angle])
     return idx, sensed, np.ascontiguousarray(rows, dtype=float)
 
 

@@ -302,7 +302,7 @@ def sensed_route_schedule(
         # calibration.sensed_schedule does, so that segments=0 gives its rows bit for bit
         of = Route.uniform(1.0, route.curve_angle) if shape.segments == 0 else route
         s = route_shape(of, friction)
-        rows.append([s.g, s.G, s.total_angle])
+        rows.append([s.g, s.G, s.curve_angle])
     return idx, sensed, np.ascontiguousarray(rows, dtype=float).reshape(-1, 3)
 
 

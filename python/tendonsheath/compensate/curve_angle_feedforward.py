@@ -303,7 +303,7 @@ class CurveAngleFeedforward(Feedforward):
             shapes = [shape_of(routes(tk), self.friction) for tk in ts]
             g = np.array([s.g for s in shapes])
             G = np.array([s.G for s in shapes])
-            theta = np.array([s.total_angle for s in shapes])
+            theta = np.array([s.curve_angle for s in shapes])
             return self._engine.command(ts, ys, g, G, theta, bool(status))
         if curve_angle is not None:
             theta = np.broadcast_to(np.asarray(curve_angle, dtype=np.float64), ys.shape)

@@ -309,7 +309,7 @@ class InverseFeedforward(Feedforward):
         if routes is not None:
             shapes = [shape_of(routes(tk), self.friction or 0.0) for tk in ts]
             return tuple(
-                np.array([getattr(s, k) for s in shapes]) for k in ("g", "G", "total_angle")
+                np.array([getattr(s, k) for s in shapes]) for k in ("g", "G", "curve_angle")
             )
         if curve_angle is None:
             raise ValueError(

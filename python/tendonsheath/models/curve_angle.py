@@ -197,7 +197,7 @@ class CurveAngleModel(HysteresisModel):
         Returns
         -------
         ShapeIntegrals
-            ``g``, ``G`` and ``total_angle``.
+            ``g``, ``G`` and ``curve_angle``.
         """
         return physics.route_shape(route, self.params["friction"])
 
@@ -205,7 +205,7 @@ class CurveAngleModel(HysteresisModel):
         """(dead-zone factor F, load factor K) of a route, spec A5/A6: F(g, G, a) and
         g G e^{-a}/(g + G e^{-2a}) (tanh(a/2) and tanh(a/2)/a for uniform curvature)."""
         shape = self.route_shape(route)
-        a = self.params["friction"] * shape.total_angle
+        a = self.params["friction"] * shape.curve_angle
         ema = np.exp(-a)
         load = shape.g * shape.G * ema / (shape.g + shape.G * ema * ema)
         return float(physics.dead_zone_factor(shape.g, shape.G, a)), float(load)
