@@ -92,7 +92,7 @@ def test_curve_angle_feedforward_uses_route_shape():
     uniform = ff._engine.correction(0.0, 1.0)
     ff.set_route(Route)
     shaped = ff._engine.correction(0.0, 1.0)
-    assert ff._engine.shape.total_angle == 3.0
+    assert ff._engine.shape.curve_angle == 3.0
     assert abs(shaped - uniform) > 0.1 * abs(uniform)
 
 

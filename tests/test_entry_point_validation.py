@@ -517,7 +517,7 @@ def test_a_bad_curve_angle_is_refused_not_ignored(angle):
     assert engine.set_curve_angle(angle) is False
     assert engine.angle_rejected()
     assert ts.Status.INPUT_CLAMPED in ts.Status(engine.status())
-    assert engine.shape.total_angle == 1.0  # unchanged
+    assert engine.shape.curve_angle == 1.0  # unchanged
     ff.reset()
     assert ff.step(0.3, 0.0) == before
     assert engine.set_curve_angle(2.0) and ts.Status(engine.status()) == ts.Status.OK

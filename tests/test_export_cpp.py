@@ -92,7 +92,8 @@ def test_exported_headers_compile_and_match_the_json_loader(tmp_path, compiler):
             build = "tendonsheath::BacklashInverseFeedforward c(P::params);"
         checks.append(_compensator_check(ns, build, tmp_path / f"{ns}.json", ns == "scaled"))
     constexpr = (
-        "static_assert(inv_backlash::params.v_eps == 0.04 && continuum::params.limits.max == 3.0);"
+        "static_assert(inv_backlash::params.smoothing == 0.04 && "
+        "continuum::params.limits.max == 3.0);"
     )
     source = (
         "#include <cmath>\n#include <cstdio>\n#include <iterator>\n"
@@ -192,11 +193,11 @@ def test_unsupported_models_are_one_line_errors(tmp_path):
 # namespace -> (the class its header names, a field to spoil): the header builds it with
 # make_compensator() without exceptions too
 WITHOUT_EXCEPTIONS = {
-    "inv_backlash": ("BacklashInverseFeedforward", "v_eps"),
-    "inv_bw": ("BacklashInverseFeedforward", "v_eps"),
+    "inv_backlash": ("BacklashInverseFeedforward", "smoothing"),
+    "inv_bw": ("BacklashInverseFeedforward", "smoothing"),
     "inv_pi": ("PrandtlIshlinskiiFeedforward", None),
-    "curve_angle": ("CurveAngleFeedforward", "v_eps"),
-    "continuum": ("ContinuumFeedforward", "v_eps"),
+    "curve_angle": ("CurveAngleFeedforward", "smoothing"),
+    "continuum": ("ContinuumFeedforward", "smoothing"),
 }
 
 

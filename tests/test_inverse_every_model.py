@@ -315,9 +315,9 @@ def test_angle_laws_take_the_route_shape():
         ff = InverseFeedforward(model, smoothing=0.02)
         mu = ff.friction
         shape = ts.physics.route_shape(route, mu)
-        factor = ts._core.shape_dead_zone_factor(shape.g, shape.G, mu * shape.total_angle)
+        factor = ts._core.shape_dead_zone_factor(shape.g, shape.G, mu * shape.curve_angle)
         c = model.params["coefficients"]
-        at_route = Backlash(c_r=c["c_r"][0] + c["c_r"][1] * shape.total_angle, c_l=c["c_l"][0],
+        at_route = Backlash(c_r=c["c_r"][0] + c["c_r"][1] * shape.curve_angle, c_l=c["c_l"][0],
                             B_r=c["B_r"][0] + c["B_r"][1] * factor,
                             B_l=c["B_l"][0] + c["B_l"][1] * factor)  # fmt: skip
         y_d = 0.5 * np.sin(2 * np.pi * 0.7 * T)
@@ -325,7 +325,7 @@ def test_angle_laws_take_the_route_shape():
         streamed = [ff.step(y, DT if k else 0.0) for k, y in enumerate(y_d)]
         expected = InverseFeedforward(at_route, smoothing=0.02).command(T, y_d)
         np.testing.assert_allclose(streamed, expected, rtol=0, atol=1e-13)
-        assert abs(factor - math.tanh(0.5 * mu * shape.total_angle)) > 1e-3  # not uniform
+        assert abs(factor - math.tanh(0.5 * mu * shape.curve_angle)) > 1e-3  # not uniform
 
 
 def _angle_oscillator():

@@ -224,7 +224,7 @@ def test_streaming_on_routes_equals_simulate_and_bad_shapes_are_ignored():
         (1.0, 1.0, -2.0),
     ):
         shape = core.ShapeIntegrals()
-        shape.g, shape.G, shape.total_angle = bad
+        shape.g, shape.G, shape.curve_angle = bad
         engine.set_shape(shape)
         assert (engine.shape().g, engine.shape().G, engine.curve_angle()) == before
 

@@ -152,7 +152,7 @@ def test_schedule_rows_are_the_sensed_routes_shapes():
     assert rows.shape == (idx.size, 3) and rows.flags.c_contiguous
     for route, row in zip(routes, rows, strict=True):
         s = physics.route_shape(route, 0.12)
-        assert list(row) == [s.g, s.G, s.total_angle]
+        assert list(row) == [s.g, s.G, s.curve_angle]
     # a (route1, route2) pair: route1 is sensed
     _, pair_routes, _ = sensed_route_schedule(shape, t, lambda _t: (CURVED, CURVED), 0.12, 1)
     assert pair_routes == routes

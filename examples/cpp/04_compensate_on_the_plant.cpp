@@ -25,10 +25,11 @@ int main() {
   // The compensator's physics (in practice: from an identified CurveAngleModel).
   ts::CurveAngleFeedforwardParams fp;
   fp.friction = 0.1;
-  fp.compliance = length / 5e3;
+  fp.stiffness = 5e3;
+  fp.length = length;
   fp.pretension = 20.0;
   fp.proximal_radius = fp.distal_radius = 10e-3;
-  fp.v_eps = 0.02;
+  fp.smoothing = 0.02;
   fp.limits.max_rate = 20.0;  // rad/s: the motor's speed limit
 
   double sse[2] = {0.0, 0.0};

@@ -23,11 +23,11 @@ int main() {
   ts::MotorParams mp;  // a PD servo that yields: static stiffness J_r w^2 = 0.39 N m/rad
   mp.bandwidth_hz = 10.0;
   mp.damping = 0.8;
-  mp.reflected_inertia = 1e-4;
+  mp.inertia = 1e-4;
 
   ts::BacklashInverseParams fp;  // its dead band at the motor, rad
   fp.B_r = fp.B_l = 0.05;
-  fp.v_eps = 0.03;
+  fp.smoothing = 0.03;
   ts::EncoderLoopParams lp;  // PI gains: tune_encoder_loop's for a 10 Hz, damping 0.8 servo
   lp.kp = 1.7;
   lp.ki = 72.0;

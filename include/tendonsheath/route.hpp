@@ -53,14 +53,14 @@ class Route {
     require(s_.back() > 0.0, w, "length must be > 0 (got ", s_.back(), ")");
   }
 
-  /// Constant curvature: theta(s) = total_angle * s / length.
+  /// Constant curvature: theta(s) = curve_angle * s / length.
   /// @param length L, m, > 0
-  /// @param total_angle Theta, rad, >= 0
+  /// @param curve_angle Theta, rad, >= 0
   /// @return the route; throws std::invalid_argument on a bad argument
-  static Route uniform(double length, double total_angle) {
+  static Route uniform(double length, double curve_angle) {
     require_positive(length, "Route.uniform", "length");
-    require_non_negative(total_angle, "Route.uniform", "total_angle");
-    return Route({0.0, length}, {0.0, total_angle});
+    require_non_negative(curve_angle, "Route.uniform", "curve_angle");
+    return Route({0.0, length}, {0.0, curve_angle});
   }
 
   /// Consecutive arcs of constant curvature: (length > 0, bend angle). A bend
@@ -145,8 +145,10 @@ class Route {
 
   /// The arc length L of the route, metres.
   double length() const noexcept { return s_.back(); }
-  /// The total curve angle theta(L), radians.
-  double total_angle() const noexcept { return th_.back(); }
+  /// The curve angle theta(L), radians.
+  double curve_angle() const noexcept { return th_.back(); }
+  /// The curve angle theta(L) by its old name (docs/vocabulary.md).
+  [[deprecated("use curve_angle()")]] double total_angle() const noexcept { return curve_angle(); }
   /// The arc-length samples s_i, metres (non-decreasing, from 0 to L).
   const std::vector<double>& s() const noexcept { return s_; }
   /// The accumulated-angle samples theta_i, radians (non-decreasing, from 0).

@@ -1,5 +1,6 @@
 """Argument handling shared by the public constructors: renamed keywords, number checks, and the
-C++ core's error messages translated into the Python vocabulary (docs/vocabulary.md)."""
+C++ core's error messages under the Python caller's name (the core names each parameter as Python
+does: one vocabulary, docs/vocabulary.md)."""
 
 from __future__ import annotations
 
@@ -15,16 +16,6 @@ from types import FrameType
 from typing import Any
 
 import numpy as np
-
-# C++ parameter fields whose Python argument has another name (docs/vocabulary.md); the core's
-# error messages are translated with this table before they reach a Python user.
-CORE_NAMES = {
-    "v_eps": "smoothing",
-    "total_angle": "curve_angle",
-    "sheath_length": "length",
-    "reflected_inertia": "inertia",
-    "compliance": "length / stiffness",
-}
 
 
 def renamed(
@@ -146,20 +137,18 @@ def integer(who: str, name: str, value: Any) -> int:
     return int(value)
 
 
-def to_python_names(message: str, who: str, names: Mapping[str, str]) -> str:
-    """A core error message ("CoreClass: v_eps must be > 0 (got 0)") in Python words:
-    prefixed by `who` and with each C++ field name replaced by its Python argument."""
+def as_caller(message: str, who: str) -> str:
+    """A core error message ("CoreClass: smoothing must be > 0 (got 0)") under the name of the
+    Python callable `who` ("InverseFeedforward: ..."); its words are kept, since the core's fields
+    have the Python names (docs/vocabulary.md)."""
     body = message.split(": ", 1)[1] if re.match(r"^[\w.]+: ", message) else message
-    for cpp, py in names.items():
-        body = re.sub(rf"\b{re.escape(cpp)}\b", py, body)
     return f"{who}: {body}"
 
 
 @contextmanager
-def python_names(who: str, names: Mapping[str, str] | None = None) -> Iterator[None]:
-    """Re-raise a ValueError of the C++ core (parameter validation) in Python names: those of
-    CORE_NAMES and `names` (C++ -> Python) on top."""
+def core_errors_as(who: str) -> Iterator[None]:
+    """Re-raise a ValueError of the C++ core (parameter validation) under `who`'s name."""
     try:
         yield
     except ValueError as err:
-        raise ValueError(to_python_names(str(err), who, {**CORE_NAMES, **(names or {})})) from None
+        raise ValueError(as_caller(str(err), who)) from None

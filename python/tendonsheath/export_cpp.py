@@ -161,7 +161,7 @@ def _direct_inverse(ff, model, map_values) -> tuple[str, str]:
     fields = {k: model.params[k] for k in _BACKLASH_KEYS}
     smoothing = ff.smoothing if map_values is None else ff.smoothing / abs(map_values[3])
     limits = {f"limits.{k}": v for k, v in _inner_limits(ff, map_values).items()}
-    fields = {**fields, "v_eps": smoothing, **limits}
+    fields = {**fields, "smoothing": smoothing, **limits}
     return "compensators/inverse_feedforward.hpp", _struct("BacklashInverseParams", fields)
 
 
@@ -232,14 +232,10 @@ def _compensator_body(ff) -> tuple[str | tuple[str, ...], str]:
         return _inverse_body(ff)
     s = ff.params
     limits = _limits_fields(s.pop("limits"))
-    # Python names -> the C++ fields (docs/vocabulary.md)
-    s["total_angle"], s["v_eps"] = s.pop("curve_angle"), s.pop("smoothing")
-    if kind == "CurveAngleFeedforward":
-        s = {"compliance": s.pop("length") / s.pop("stiffness"), **s}
+    if kind == "CurveAngleFeedforward":  # the C++ fields are the Python names
         body = _struct("CurveAngleFeedforwardParams", {**s, **limits})
         build = _builder("Compensator", "CurveAngleFeedforward", "params")
         return "compensators/curve_angle_feedforward.hpp", body + build
-    s["sheath_length"] = s.pop("length")
     s["mode"] = "tendonsheath::ContinuumMode::" + s["mode"].capitalize()
     body = _struct("ContinuumFeedforwardParams", {**s, **limits})
     build = _builder("Compensator", "ContinuumFeedforward", "params")

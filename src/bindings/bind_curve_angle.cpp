@@ -19,8 +19,8 @@ void bind_curve_angle(nb::module_& m) {
       .def_rw("stiffness", &P::stiffness)
       .def_rw("pretension", &P::pretension)
       .def_rw("length", &P::length)
-      .def_rw("load", &P::load)
-      .def_rw("spring", &P::spring)
+      .def_rw("load_force", &P::load_force)
+      .def_rw("load_stiffness", &P::load_stiffness)
       .def_rw("proximal_radius", &P::proximal_radius)
       .def_rw("distal_radius", &P::distal_radius)
       .def_rw("play", &P::play);

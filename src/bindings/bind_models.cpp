@@ -73,7 +73,7 @@ void bind_oscillator(nb::module_& m) {
       .def_rw("nu", &HO::nu)
       .def_rw("substeps", &HO::substeps)
       .def_rw("max_substeps", &HO::max_substeps)
-      .def_rw("input_reconstruction", &HO::input_reconstruction)
+      .def_rw("input_interpolation", &HO::input_interpolation)
       .def_rw("lookahead", &HO::lookahead);
   using Osc = ts::HystereticOscillator;
   bind_model<Osc>(m, "HystereticOscillator")

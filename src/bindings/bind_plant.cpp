@@ -143,7 +143,7 @@ void bind_route(nb::module_& m) {
   // python-control's snapshots of an InverseFeedforward
   bind_copy(nb::class_<ts::Route>(m, "Route"))
       .def(nb::init<std::vector<double>, std::vector<double>>(), "s"_a, "theta"_a)
-      .def_static("uniform", &ts::Route::uniform, "length"_a, "total_angle"_a)
+      .def_static("uniform", &ts::Route::uniform, "length"_a, "curve_angle"_a)
       .def_static("arcs", &ts::Route::arcs, "pieces"_a)
       .def_static("from_points",
                   [](InMatrix xyz) {
@@ -163,7 +163,7 @@ void bind_route(nb::module_& m) {
                   },
                   "s"_a, "kappa"_a)
       .def_prop_ro("length", &ts::Route::length)
-      .def_prop_ro("total_angle", &ts::Route::total_angle)
+      .def_prop_ro("curve_angle", &ts::Route::curve_angle)
       .def("s_samples", [](const ts::Route& r) { return copy_vector(r.s()); })
       .def("theta_samples", [](const ts::Route& r) { return copy_vector(r.theta()); })
       .def("angle_at", &ts::Route::angle_at, "s"_a)
@@ -279,7 +279,6 @@ void bind_motor(nb::module_& m) {
       .def_rw("viscous", &MP::viscous)
       .def_rw("max_torque", &MP::max_torque)
       .def_rw("max_substeps", &MP::max_substeps)
-      .def_rw("reflected_inertia", &MP::reflected_inertia)
       .def_rw("coulomb_friction", &MP::coulomb_friction)
       .def_rw("viscous_friction", &MP::viscous_friction)
       .def_rw("gear_backlash", &MP::gear_backlash)
@@ -341,7 +340,7 @@ void bind_plants(nb::module_& m) {
   single.def(nb::init<const SP&, const ts::Route&>(), "params"_a, "route"_a)
       .def_prop_ro("params", &ts::SingleTendonPlant::params)
       .def_prop_ro("length", &ts::SingleTendonPlant::length)
-      .def_prop_ro("total_angle", &ts::SingleTendonPlant::total_angle)
+      .def_prop_ro("curve_angle", &ts::SingleTendonPlant::curve_angle)
       .def("set_route", &ts::SingleTendonPlant::set_route, "route"_a)
       .def(
           "node_angles",
@@ -360,8 +359,8 @@ void bind_plants(nb::module_& m) {
       .def_prop_ro("params", &ts::PullPullPlant::params)
       .def_prop_ro("length1", &ts::PullPullPlant::length1)
       .def_prop_ro("length2", &ts::PullPullPlant::length2)
-      .def_prop_ro("total_angle1", &ts::PullPullPlant::total_angle1)
-      .def_prop_ro("total_angle2", &ts::PullPullPlant::total_angle2)
+      .def_prop_ro("curve_angle1", &ts::PullPullPlant::curve_angle1)
+      .def_prop_ro("curve_angle2", &ts::PullPullPlant::curve_angle2)
       .def("set_route",
            nb::overload_cast<const ts::Route&, const ts::Route&>(&ts::PullPullPlant::set_route),
            "route1"_a, "route2"_a)

@@ -40,8 +40,17 @@ void bind_shape(nb::module_& m) {
       .def(nb::init<>())
       .def_rw("g", &ts::ShapeIntegrals::g)
       .def_rw("G", &ts::ShapeIntegrals::G)
-      .def_rw("total_angle", &ts::ShapeIntegrals::total_angle);
-  m.def("uniform_shape", &ts::uniform_shape, "friction"_a, "total_angle"_a);
+      .def_rw("curve_angle", &ts::ShapeIntegrals::curve_angle)
+      .def_prop_ro("total_angle", [](const ts::ShapeIntegrals& s) {
+        // the old name of curve_angle, on the shapes compensate.shape_of returns
+        if (PyErr_WarnEx(PyExc_DeprecationWarning,
+                         "ShapeIntegrals: 'total_angle' is now called 'curve_angle' "
+                         "(docs/vocabulary.md); 'total_angle' will be removed in a future release",
+                         1) < 0)
+          throw nb::python_error();
+        return s.curve_angle;
+      });
+  m.def("uniform_shape", &ts::uniform_shape, "friction"_a, "curve_angle"_a);
   m.def(
       "shape_integrals",
       [](InArray s, InArray theta, double mu) {

@@ -62,7 +62,7 @@ TEST(ShapeIntegrals, PiecewiseLinearIsExact) {
     }
     EXPECT_NEAR(sh.g, g, 1e-6 * g);
     EXPECT_NEAR(sh.G, G, 1e-6 * G);
-    EXPECT_DOUBLE_EQ(sh.total_angle, th.back());
+    EXPECT_DOUBLE_EQ(sh.curve_angle, th.back());
   }
 }
 
@@ -73,7 +73,7 @@ TEST(InverseFeedforward, InvertsBacklashExactlyAwayFromReversals) {
   ip.c_l = bp.c_l;
   ip.B_r = bp.B_r;
   ip.B_l = bp.B_l;
-  ip.v_eps = 1e-6;  // nearly the exact inverse
+  ip.smoothing = 1e-6;  // nearly the exact inverse
   ts::BacklashInverseFeedforward ff(ip);
   ts::Backlash plant(bp);
   const double dt = 1e-3, pi = 3.141592653589793;

@@ -53,9 +53,9 @@ TEST(EncoderLoop, RemovesTheSteadyYieldOfAPdServoUnderRandomLoads) {
   std::uniform_real_distribution<double> f(20.0, 80.0), tq(-0.3, 0.3), jr(5e-5, 2e-4);
   for (int trial = 0; trial < 20; ++trial) {
     ts::MotorParams mp;
-    mp.bandwidth_hz = f(rng), mp.damping = 0.8, mp.reflected_inertia = jr(rng);
+    mp.bandwidth_hz = f(rng), mp.damping = 0.8, mp.inertia = jr(rng);
     const double tau = tq(rng), w = 2 * kPi * mp.bandwidth_hz;
-    const double yield = tau / (mp.reflected_inertia * w * w);
+    const double yield = tau / (mp.inertia * w * w);
     ts::Motor bare(mp), looped(mp);
     ts::EncoderLoop loop = make_loop(0.5, 0.2 * w);
     const double target = 0.3;

@@ -37,9 +37,9 @@ TEST(IoJson, BacklashInverseStepsEqualTheCoreObjectOverRandomCases) {
   std::uniform_real_distribution<double> u(0.2, 2.0), b(0.0, 0.3), y(-1.0, 1.0);
   for (int trial = 0; trial < 50; ++trial) {
     ts::BacklashInverseParams p;
-    p.c_r = u(rng), p.c_l = u(rng), p.B_r = b(rng), p.B_l = b(rng), p.v_eps = 0.01 + b(rng);
+    p.c_r = u(rng), p.c_l = u(rng), p.B_r = b(rng), p.B_l = b(rng), p.smoothing = 0.01 + b(rng);
     ts::io::LoadedCompensator loaded =
-        ts::io::compensator_from_json(inverse_file(backlash_model4(p.c_r, p.c_l, p.B_r, p.B_l), p.v_eps));
+        ts::io::compensator_from_json(inverse_file(backlash_model4(p.c_r, p.c_l, p.B_r, p.B_l), p.smoothing));
     ts::BacklashInverseFeedforward direct(p);
     EXPECT_EQ(loaded.kind(), "InverseFeedforward");
     for (int k = 0; k < 200; ++k) {
@@ -55,7 +55,7 @@ TEST(IoJson, ScaledModelAppliesItsMapAroundTheInnerInverse) {
   file["limits"]["max"] = 1.0;
   ts::io::LoadedCompensator loaded = ts::io::compensator_from_json(file);
   ts::BacklashInverseParams p;
-  p.c_r = 1.2, p.c_l = 0.8, p.B_r = 0.1, p.B_l = 0.05, p.v_eps = 0.06 / 1.5;
+  p.c_r = 1.2, p.c_l = 0.8, p.B_r = 0.1, p.B_l = 0.05, p.smoothing = 0.06 / 1.5;
   p.limits.max = (1.0 - 0.3) / 2.0;  // the raw command's limit in the inner units
   ts::BacklashInverseFeedforward inner(p);
   for (int k = 0; k < 500; ++k) {
@@ -86,10 +86,11 @@ TEST(IoJson, CurveAngleFileFillsEveryField) {
   const ts::CurveAngleFeedforwardParams p =
       ts::io::curve_angle_feedforward_params(curve_angle_file(), "f");
   EXPECT_EQ(p.friction, 0.12);
-  EXPECT_EQ(p.compliance, 2e-4);
+  EXPECT_EQ(p.stiffness, 5000.0);
+  EXPECT_EQ(p.length, 1.0);
   EXPECT_EQ(p.distal_radius, 4e-3);
-  EXPECT_EQ(p.total_angle, 2.0);
-  EXPECT_EQ(p.v_eps, 0.03);
+  EXPECT_EQ(p.curve_angle, 2.0);
+  EXPECT_EQ(p.smoothing, 0.03);
   EXPECT_TRUE(std::isinf(p.max_correction_rate));
   EXPECT_EQ(p.limits.min, -3.0);
   EXPECT_EQ(p.limits.max_rate, 20.0);
@@ -117,7 +118,9 @@ TEST(IoJson, FilesWithTheOldSettingNamesStillLoad) {
   old.erase("stiffness");
   old.erase("length");
   old["compliance"] = 2e-4;
-  EXPECT_EQ(ts::io::curve_angle_feedforward_params(old, "f").compliance, 2e-4);
+  const ts::CurveAngleFeedforwardParams was = ts::io::curve_angle_feedforward_params(old, "f");
+  EXPECT_EQ(was.length, 1.0);  // as Python reads it: EA = 1 / compliance, L = 1 m
+  EXPECT_DOUBLE_EQ(was.length / was.stiffness, 2e-4);
   EXPECT_EQ(error_of(old), "(no error)");
   old["length"] = 1.0;  // both the old and a new name: refused
   EXPECT_NE(error_of(old).find("unknown key 'length'"), std::string::npos) << error_of(old);
@@ -135,8 +138,8 @@ TEST(IoJson, FilesWithTheOldSettingNamesStillLoad) {
   before.erase("curve_angle");
   for (const json& f : {now, before}) {
     const ts::ContinuumFeedforwardParams p = ts::io::continuum_feedforward_params(f, "f");
-    EXPECT_EQ(p.sheath_length, 0.9);
-    EXPECT_EQ(p.total_angle, 2.5);
+    EXPECT_EQ(p.length, 0.9);
+    EXPECT_EQ(p.curve_angle, 2.5);
     EXPECT_EQ(error_of(f), "(no error)");
   }
 }

@@ -154,7 +154,7 @@ TEST(HystereticOscillator, SofteningAcceptedDivergenceFlaggedNeverNan) {
   ts::HystereticOscillatorParams q;
   q.gamma = 0.0; q.delta = -0.5; q.nu = 2.0;
   for (int mode = 0; mode <= 2; ++mode) {
-    q.input_reconstruction = mode;
+    q.input_interpolation = mode;
     ts::HystereticOscillator osc(q);
     EXPECT_EQ(osc.delay(), mode == 2 ? q.lookahead - 1 : 0);
     for (int k = 0; k < 5000; ++k) {
@@ -178,7 +178,7 @@ TEST(CurveAngleModel, SetShapeIsUniformClosedFormAndA5A6) {
     p.friction = 0.05 + 0.15 * unit(rng);
     p.stiffness = 5e3 + 4.5e4 * unit(rng);
     p.pretension = 2.0 + 38.0 * unit(rng);
-    p.load = -3.0 + 6.0 * unit(rng);
+    p.load_force = -3.0 + 6.0 * unit(rng);
     const double theta = 4.0 * std::acos(-1.0) * unit(rng);
     ts::CurveAngleModel by_angle(p), by_shape(p);
     by_angle.set_curve_angle(theta);
@@ -197,8 +197,8 @@ TEST(CurveAngleModel, SetShapeIsUniformClosedFormAndA5A6) {
     statics.friction = p.friction;
     statics.compliance = p.length / p.stiffness;
     statics.pretension = p.pretension;
-    const double fwd = statics.forward_elongation(sh, p.load);
-    const double bwd = statics.backward_elongation(sh, p.load);
+    const double fwd = statics.forward_elongation(sh, p.load_force);
+    const double bwd = statics.backward_elongation(sh, p.load_force);
     ts::CurveAngleModel model(p);
     model.set_shape(sh);
     const double top = 10.0 * (std::fabs(fwd) + std::fabs(bwd)) / p.proximal_radius;

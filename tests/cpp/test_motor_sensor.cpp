@@ -44,7 +44,7 @@ struct OldPositionMotor {
     }
     if (!(dt > 0.0) || !std::isfinite(dt)) return pulley;
     const double w = 2.0 * kPi * p.bandwidth_hz;
-    const double J = p.reflected_inertia;
+    const double J = p.inertia;
     const double inv_J = J > 0.0 ? 1.0 / J : 0.0;
     const double b = p.viscous_friction;
     const double m = std::ceil(dt * w / 0.1);
@@ -82,8 +82,8 @@ ts::MotorParams random_servo(std::mt19937_64& rng) {
   ts::MotorParams p;
   p.bandwidth_hz = 2.0 + 78.0 * u(rng);
   p.damping = 0.3 + 1.2 * u(rng);
-  p.reflected_inertia = std::pow(10.0, -5.0 + 2.0 * u(rng));
-  p.viscous_friction = p.reflected_inertia * 2.0 * kPi * p.bandwidth_hz * u(rng);
+  p.inertia = std::pow(10.0, -5.0 + 2.0 * u(rng));
+  p.viscous_friction = p.inertia * 2.0 * kPi * p.bandwidth_hz * u(rng);
   return p;
 }
 
@@ -104,7 +104,7 @@ TEST(PidServo, PdYieldsTauOverJw2AndPidNotAtAll) {
     ts::MotorParams p = random_servo(rng);
     const double w = omega(p);
     const double tau = 0.5 * u(rng), q_cmd = u(rng);
-    const double yield = tau / (p.reflected_inertia * w * w);  // the PD servo's deflection
+    const double yield = tau / (p.inertia * w * w);  // the PD servo's deflection
     ts::Motor pd(p);
     // s^2 + c s + w^2 with c <= 4 w decays at >= 0.26 w: 120 / w leaves < e^-30 of the step
     hold(pd, q_cmd, tau, 120.0 / w + 0.2);
@@ -133,7 +133,7 @@ TEST(PidServo, ZeroIntegralTimeIsTheOldMotorBitForBit) {
     p.max_accel = trial % 4 ? 50.0 + 2000.0 * u(rng) : std::numeric_limits<double>::infinity();
     p.max_substeps = 1 + static_cast<int>(300.0 * u(rng));
     if (trial % 5 == 0) {  // the ideal lag
-      p.reflected_inertia = 0.0;
+      p.inertia = 0.0;
       p.coulomb_friction = 0.0;
       p.viscous_friction = 0.0;
     }
@@ -193,7 +193,7 @@ TEST(PidServo, AntiWindupHoldsTheIntegralWhileSpeedLimited) {
 TEST(PidServo, StateSnapshotContinuesIdentically) {
   ts::MotorParams p;
   p.bandwidth_hz = 15.0;
-  p.reflected_inertia = 1e-4;
+  p.inertia = 1e-4;
   p.integral_time = 0.05;
   ts::Motor a(p), b(p);
   a.step(0.0, 0.0, 0.1);

@@ -54,7 +54,7 @@ TEST(NoAllocation, PlantsMotorAndSensorStep) {
   s.elements = 30;
   ts::SingleTendonPlant single(s, ts::Route::uniform(1.0, 2.0));
   ts::MotorParams mp;
-  mp.reflected_inertia = 1e-4;
+  mp.inertia = 1e-4;
   mp.coulomb_friction = 0.01;
   mp.gear_backlash = 0.01;
   ts::Motor motor(mp);

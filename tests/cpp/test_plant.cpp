@@ -35,7 +35,7 @@ std::string thrown_message(const std::function<void()>& f) {
 TEST(Route, ElementAnglesSumToTotal) {
   const auto r = ts::Route::arcs({{0.6, 0.0}, {0.4, kPi / 2}, {0.2, -1.0}});
   EXPECT_DOUBLE_EQ(r.length(), 1.2);
-  EXPECT_DOUBLE_EQ(r.total_angle(), kPi / 2 + 1.0);
+  EXPECT_DOUBLE_EQ(r.curve_angle(), kPi / 2 + 1.0);
   for (std::size_t n : {2u, 3u, 7u, 100u}) {
     std::vector<double> el(n), nodes(n - 1), work(n);
     r.element_angles(n, el.data());
@@ -43,8 +43,8 @@ TEST(Route, ElementAnglesSumToTotal) {
     double se = 0, sn = 0;
     for (double a : el) se += a;
     for (double a : nodes) sn += a;
-    EXPECT_NEAR(se, r.total_angle(), 1e-12);
-    EXPECT_NEAR(sn, r.total_angle(), 1e-12);
+    EXPECT_NEAR(se, r.curve_angle(), 1e-12);
+    EXPECT_NEAR(sn, r.curve_angle(), 1e-12);
   }
   EXPECT_NEAR(r.angle_at(0.3), 0.0, 1e-15);
   EXPECT_NEAR(r.angle_at(0.8), kPi / 4, 1e-12);
@@ -55,7 +55,7 @@ TEST(Route, PolylineTurningAngles) {
   const double xyz[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 1, 2, 1};
   const auto r = ts::Route::from_points(xyz, 4);
   EXPECT_NEAR(r.length(), 2.0 + std::sqrt(2.0), 1e-12);
-  EXPECT_NEAR(r.total_angle(), kPi / 2 + kPi / 4, 1e-12);
+  EXPECT_NEAR(r.curve_angle(), kPi / 2 + kPi / 4, 1e-12);
   EXPECT_NEAR(r.angle_at(0.5), 0.0, 1e-15);
   EXPECT_NEAR(r.angle_at(1.5), kPi / 2, 1e-12);
 }

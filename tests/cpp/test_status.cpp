@@ -210,14 +210,14 @@ TEST(Status, FeedforwardsNameThemselvesInErrors) {
 // ignored with Status::ok before), until an angle is taken again.
 TEST(Status, CurveAngleFeedforwardRejectsABadCurveAngle) {
   ts::CurveAngleFeedforwardParams cp;
-  cp.total_angle = 1.0;
+  cp.curve_angle = 1.0;
   ts::CurveAngleFeedforward ff(cp);
   const double before = ff.step(0.3, 0.0);
   for (double bad : {-1.0, static_cast<double>(NAN)}) {
     EXPECT_FALSE(ff.set_curve_angle(bad));
     EXPECT_TRUE(ff.angle_rejected());
     EXPECT_TRUE(ts::has(ff.status(), ts::Status::input_clamped));
-    EXPECT_EQ(ff.shape().total_angle, 1.0);
+    EXPECT_EQ(ff.shape().curve_angle, 1.0);
     ff.reset();
     EXPECT_EQ(ff.step(0.3, 0.0), before);
   }

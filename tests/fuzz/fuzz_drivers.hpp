@@ -171,12 +171,13 @@ inline Failure motor(const std::uint8_t* data, std::size_t size) {
   const std::uint8_t kind = b.byte() % 3;
   if (kind == 2) {
     p.kind = MotorKind::Torque;
+    p.inertia = 1e-2;  // the rotor's
     p.coulomb_friction = 0.01 * b.unit();
   } else {
     p.bandwidth_hz = 1.0 + 100.0 * b.unit();
     p.damping = 0.2 + b.unit();
     if (kind == 1) {
-      p.reflected_inertia = 1e-4 * (0.1 + b.unit());
+      p.inertia = 1e-4 * (0.1 + b.unit());
       p.coulomb_friction = 0.01 * b.unit();
       p.viscous_friction = 1e-3 * b.unit();
     }

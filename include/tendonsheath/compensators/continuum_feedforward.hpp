@@ -28,15 +28,15 @@ enum class ContinuumMode { Exact = 0, Published = 1 };
 struct ContinuumFeedforwardParams {
   double friction = 0.1;            ///< mu (xi = gap_factor * mu)
   double gap_factor = 1.0;          ///< gamma * delta_r of Kesner & Howe; 1 = plain capstan
-  double sheath_length = 1.0;       ///< L, m
+  double length = 1.0;              ///< L, the sheath's length, m
   double stiffness = 2.4e4;         ///< EA, N
   double pretension = 10.0;         ///< T0, N
-  double total_angle = 3.141592653589793;  ///< Theta of a constant-radius route, rad
+  double curve_angle = 3.141592653589793;  ///< Theta of a constant-radius route, rad
   double bending_stiffness = 4e-4;  ///< EI of the backbone, N m^2
   double tendon_offset = 2e-3;      ///< r_t, m
   double backbone_length = 0.03;    ///< l, m
   double proximal_radius = 5e-3;    ///< r_p, m
-  double v_eps = 0.1;               ///< smoothing speed of the direction switch, rad/s
+  double smoothing = 0.1;           ///< v_eps, the smoothing speed of the direction switch, rad/s
   double play = 0.0;                ///< motor-side play (gearhead backlash), total width, rad at the motor
   ContinuumMode mode = ContinuumMode::Exact;  ///< which equations: the capstan-consistent ones or the paper's
   CommandLimits limits{};           ///< the motor command's limits, on the motor angle, rad
@@ -59,32 +59,32 @@ class ContinuumFeedforward {
     const char* w = "ContinuumFeedforward";
     require_non_negative(p.friction, w, "friction");
     require_positive(p.gap_factor, w, "gap_factor");
-    require_positive(p.sheath_length, w, "sheath_length");
+    require_positive(p.length, w, "length");
     require_positive(p.stiffness, w, "stiffness");
     require_non_negative(p.pretension, w, "pretension");
-    require_non_negative(p.total_angle, w, "total_angle");
-    require(p.total_angle <= max_total_angle(p.gap_factor * p.friction), w,
-            "total_angle must be <= ", max_total_angle(p.gap_factor * p.friction),
+    require_non_negative(p.curve_angle, w, "curve_angle");
+    require(p.curve_angle <= max_curve_angle(p.gap_factor * p.friction), w,
+            "curve_angle must be <= ", max_curve_angle(p.gap_factor * p.friction),
             " rad for gap_factor * friction = ", p.gap_factor * p.friction,
-            " (xi * total_angle <= 50; got ", p.total_angle, ")");
+            " (xi * curve_angle <= 50; got ", p.curve_angle, ")");
     require_positive(p.bending_stiffness, w, "bending_stiffness");
     require_positive(p.tendon_offset, w, "tendon_offset");
     require_positive(p.backbone_length, w, "backbone_length");
     require_positive(p.proximal_radius, w, "proximal_radius");
-    require_positive(p.v_eps, w, "v_eps");
+    require_positive(p.smoothing, w, "smoothing");
     require_non_negative(p.play, w, "play");
     require(std::isfinite(p.play), w, "play must be finite");
     require(p.mode == ContinuumMode::Exact || p.mode == ContinuumMode::Published, w,
             "mode must be exact or published");
-    require(p.mode == ContinuumMode::Exact || p.friction * p.total_angle > 0.0, w,
-            "published mode needs friction * total_angle > 0 (its equations divide by xi)");
+    require(p.mode == ContinuumMode::Exact || p.friction * p.curve_angle > 0.0, w,
+            "published mode needs friction * curve_angle > 0 (its equations divide by xi)");
     p.limits.validate(w);
     if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     const double xi = p.gap_factor * p.friction;
-    statics_ = {xi, p.sheath_length / p.stiffness, p.pretension};
-    affine_ = statics_.affine(uniform_shape(xi, p.total_angle));
+    statics_ = {xi, p.length / p.stiffness, p.pretension};
+    affine_ = statics_.affine(uniform_shape(xi, p.curve_angle));
     if (p.mode == ContinuumMode::Published) {  // the route is fixed: constants of eqs. 11-28
-      const double L = p.sheath_length, Theta = p.total_angle;
+      const double L = p.length, Theta = p.curve_angle;
       const double R = L / Theta;
       em_ = std::exp(-xi * Theta);
       ep_ = 1.0 / em_;
@@ -110,7 +110,7 @@ class ContinuumFeedforward {
   double step(double theta_d, double dt) noexcept {
     if (!std::isfinite(theta_d)) return shaper_.apply(NAN, dt);
     const double rate = rate_.update(theta_d, dt);
-    const double s = std::tanh(rate / p_.v_eps);
+    const double s = std::tanh(rate / p_.smoothing);
     return shaper_.apply(tendon_input(theta_d, s) / p_.proximal_radius + 0.5 * s * p_.play, dt);
   }
 
@@ -132,7 +132,7 @@ class ContinuumFeedforward {
       return x_d + phi * (affine_.forward_offset + affine_.forward_slope * F) +
              (1.0 - phi) * (affine_.backward_offset + affine_.backward_slope * F);
     }
-    const double L = p_.sheath_length, EA = p_.stiffness, T0 = p_.pretension;
+    const double L = p_.length, EA = p_.stiffness, T0 = p_.pretension;
     // Cramer's rule on [A1, -A2; e^{-xi Theta}, -e^{xi Theta}] [T1; T3] = [2 T0 L; F]
     const double T1 = (-(2.0 * T0 * L) * ep_ + A2_ * F) / det_;
     const double delta_pull = (T1 * A1_ - T0 * L) / EA;

@@ -26,15 +26,16 @@ namespace tendonsheath {
 /// Parameters of CurveAngleFeedforward (validated by its constructor).
 struct CurveAngleFeedforwardParams {
   double friction = 0.1;           ///< mu
-  double compliance = 5e-5;        ///< L / EA, m/N
+  double stiffness = 2e4;          ///< EA of the tendon, N
+  double length = 1.0;             ///< L, the sheath's length, m (L / EA enters the statics)
   double pretension = 10.0;        ///< T0, N
   double load_force = 0.0;         ///< F_0 at the distal tendon level, N
   double load_stiffness = 0.0;     ///< k_e of a spring environment at the tendon level, N/m
   double proximal_radius = 5e-3;   ///< r_p, m
   double distal_radius = 5e-3;     ///< r_d, m
-  double total_angle = 3.141592653589793;  ///< initial Theta (uniform curvature), rad
+  double curve_angle = 3.141592653589793;  ///< initial Theta (uniform curvature), rad
   double play = 0.0;               ///< motor-side play (gearhead backlash), total width, rad at the motor
-  double v_eps = 0.05;             ///< smoothing speed of the direction switch, rad/s of output
+  double smoothing = 0.05;         ///< v_eps, the smoothing speed of the direction switch, rad/s of output
   double max_correction_rate = std::numeric_limits<double>::infinity();  ///< the correction's largest rate of change, m/s at the tendon
   CommandLimits limits{};          ///< the motor command's limits, on the motor angle, rad
 };
@@ -53,35 +54,37 @@ class CurveAngleFeedforward {
   using Params = CurveAngleFeedforwardParams;
 
   /// @param p the parameters; throws std::invalid_argument naming the first one out of range
-  /// (friction * total_angle must be <= 50).
+  /// (friction * curve_angle must be <= 50).
   explicit CurveAngleFeedforward(const Params& p) : p_(p), shaper_(p.limits) {
     const char* w = "CurveAngleFeedforward";
     require_non_negative(p.friction, w, "friction");
-    require_positive(p.compliance, w, "compliance");
+    require_positive(p.stiffness, w, "stiffness");
+    require_positive(p.length, w, "length");
+    require_positive(p.length / p.stiffness, w, "length / stiffness");
     require_non_negative(p.pretension, w, "pretension");
     require_finite(p.load_force, w, "load_force");
     require_non_negative(p.load_stiffness, w, "load_stiffness");
     require_positive(p.proximal_radius, w, "proximal_radius");
     require_positive(p.distal_radius, w, "distal_radius");
-    require_non_negative(p.total_angle, w, "total_angle");
-    require(p.total_angle <= max_total_angle(p.friction), w, "total_angle must be <= ",
-            max_total_angle(p.friction), " rad for friction ", p.friction,
-            " (friction * total_angle <= 50; got ", p.total_angle, ")");
-    require_positive(p.v_eps, w, "v_eps");
+    require_non_negative(p.curve_angle, w, "curve_angle");
+    require(p.curve_angle <= max_curve_angle(p.friction), w, "curve_angle must be <= ",
+            max_curve_angle(p.friction), " rad for friction ", p.friction,
+            " (friction * curve_angle <= 50; got ", p.curve_angle, ")");
+    require_positive(p.smoothing, w, "smoothing");
     require_non_negative(p.play, w, "play");
     require(std::isfinite(p.play), w, "play must be finite");
     require(p.max_correction_rate > 0.0, w, "max_correction_rate must be > 0");
     p.limits.validate(w);
     if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
-    statics_ = {p.friction, p.compliance, p.pretension};
-    update_shape(uniform_shape(p.friction, p.total_angle));
+    statics_ = {p.friction, p.length / p.stiffness, p.pretension};
+    update_shape(uniform_shape(p.friction, p.curve_angle));
   }
 
   /// The parameters it was built with.
   const Params& params() const noexcept { return p_; }
   /// The route shape in use.
   const ShapeIntegrals& shape() const noexcept { return shape_; }
-  /// True when the last set_curve_angle() was beyond max_total_angle(friction) and clamped.
+  /// True when the last set_curve_angle() was beyond max_curve_angle(friction) and clamped.
   bool angle_clamped() const noexcept { return angle_clamped_; }
 
   /// Start afresh from the initial state, as after construction; the parameters (and any route,
@@ -92,16 +95,16 @@ class CurveAngleFeedforward {
     correction_primed_ = false;
   }
 
-  /// Uniform curvature with total angle theta (rad); an angle beyond max_total_angle(friction) is
+  /// Uniform curvature with total angle theta (rad); an angle beyond max_curve_angle(friction) is
   /// clamped to it (angle_clamped() tells). A non-finite or negative one changes nothing and is
   /// rejected: status() reports input_clamped until an angle or shape is taken (angle_rejected()).
   /// @return whether the angle was taken
   bool set_curve_angle(double theta) noexcept {
     angle_rejected_ = !(std::isfinite(theta) && theta >= 0.0);
     if (angle_rejected_) return false;
-    angle_clamped_ = theta > max_total_angle(p_.friction);
-    if (angle_clamped_) theta = max_total_angle(p_.friction);
-    if (!(uniform_ && theta == shape_.total_angle)) {
+    angle_clamped_ = theta > max_curve_angle(p_.friction);
+    if (angle_clamped_) theta = max_curve_angle(p_.friction);
+    if (!(uniform_ && theta == shape_.curve_angle)) {
       update_shape(uniform_shape(p_.friction, theta));
       uniform_ = true;
     }
@@ -113,8 +116,8 @@ class CurveAngleFeedforward {
   /// @return whether the shape was taken
   bool set_shape(const ShapeIntegrals& shape) noexcept {
     angle_rejected_ = !(std::isfinite(shape.g) && std::isfinite(shape.G) && shape.g > 0.0 &&
-                        shape.G > 0.0 && std::isfinite(shape.total_angle) &&
-                        shape.total_angle >= 0.0);
+                        shape.G > 0.0 && std::isfinite(shape.curve_angle) &&
+                        shape.curve_angle >= 0.0);
     if (angle_rejected_) return false;
     update_shape(shape);
     uniform_ = false;
@@ -133,7 +136,7 @@ class CurveAngleFeedforward {
   }
 
   /// The last step's status: held (non-finite y_d), input_clamped (the curve angle in force
-  /// was clamped to max_total_angle, or the last one given was rejected), saturated (the command was cut to its limits).
+  /// was clamped to max_curve_angle, or the last one given was rejected), saturated (the command was cut to its limits).
   Status status() const noexcept {
     Status s = shaper_.status();
     if (held_) s |= Status::held_nonfinite_input;
@@ -149,7 +152,7 @@ class CurveAngleFeedforward {
   double step_with_rate(double y_d, double y_d_rate, double dt) noexcept {
     if (!std::isfinite(y_d_rate)) y_d_rate = 0.0;
     const double x_d = p_.distal_radius * y_d;
-    double c = correction(x_d, smooth_direction(y_d_rate, p_.v_eps));
+    double c = correction(x_d, smooth_direction(y_d_rate, p_.smoothing));
     if (correction_primed_ && std::isfinite(p_.max_correction_rate) && dt > 0.0) {
       const double step = p_.max_correction_rate * dt;
       if (c > correction_ + step) c = correction_ + step;

@@ -23,7 +23,7 @@ struct BacklashInverseParams {
   double c_l = 1.0;  ///< slope of the left (falling) branch, > 0
   double B_r = 0.1;  ///< dead-band offset of the right branch, command units, >= 0
   double B_l = 0.1;  ///< dead-band offset of the left branch, command units, >= 0
-  double v_eps = 0.05;  ///< smoothing speed of the direction switch, output units per s
+  double smoothing = 0.05;  ///< v_eps, the smoothing speed of the direction switch, output units per s
   CommandLimits limits{};  ///< the motor command's limits
 };
 
@@ -45,7 +45,7 @@ class BacklashInverseFeedforward {
     require_positive(p.c_l, w, "c_l");
     require_non_negative(p.B_r, w, "B_r");
     require_non_negative(p.B_l, w, "B_l");
-    require_positive(p.v_eps, w, "v_eps");
+    require_positive(p.smoothing, w, "smoothing");
     p.limits.validate(w);
   }
 
@@ -71,7 +71,7 @@ class BacklashInverseFeedforward {
   /// Same, with the desired output rate given (e.g.\ from a trajectory generator).
   double step_with_rate(double y_d, double y_d_rate, double dt) noexcept {
     if (!std::isfinite(y_d_rate)) y_d_rate = 0.0;
-    return shaper_.apply(inverse(y_d, smooth_direction(y_d_rate, p_.v_eps)), dt);
+    return shaper_.apply(inverse(y_d, smooth_direction(y_d_rate, p_.smoothing)), dt);
   }
   /// The last step's status: held_nonfinite_input (y_d not finite) and the command shaper's
   /// (saturated: the command was cut to its limits).

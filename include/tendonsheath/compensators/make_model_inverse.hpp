@@ -115,7 +115,7 @@ inline BacklashInverseFeedforward direct_inverse(const double* v, const InverseC
   p.c_l = v[1];
   p.B_r = v[2];
   p.B_l = v[3];
-  p.v_eps = c.smoothing;
+  p.smoothing = c.smoothing;
   return BacklashInverseFeedforward(p);
 }
 
@@ -130,15 +130,16 @@ inline void backlash_values(const ModelPart& p, double* v) {
 inline CurveAngleFeedforward curve_angle_inverse(const CurveAngleParams& m, const InverseContext& c) {
   CurveAngleFeedforwardParams p;
   p.friction = m.friction;
-  p.compliance = m.length / m.stiffness;
+  p.stiffness = m.stiffness;
+  p.length = m.length;
   p.pretension = m.pretension;
-  p.load_force = m.load;
-  p.load_stiffness = m.spring;
+  p.load_force = m.load_force;
+  p.load_stiffness = m.load_stiffness;
   p.proximal_radius = m.proximal_radius;
   p.distal_radius = m.distal_radius;
   p.play = m.play;
-  p.total_angle = 0.0;
-  p.v_eps = c.smoothing;
+  p.curve_angle = 0.0;
+  p.smoothing = c.smoothing;
   (void)CurveAngleModel(m);  // the model's own validation
   return CurveAngleFeedforward(p);
 }

@@ -153,11 +153,11 @@ class AngleDependentInverse {
   /// Any route: its shape integrals (with mu = the laws' angle_friction) and total angle.
   void set_shape(const ShapeIntegrals& s) noexcept {
     if (!(std::isfinite(s.g) && std::isfinite(s.G) && s.g > 0.0 && s.G > 0.0 &&
-          std::isfinite(s.total_angle)))
+          std::isfinite(s.curve_angle)))
       return;
     double v[AngleLaws::kMaxParams];
     laws_.at_shape(s, v);
-    theta_ = s.total_angle;
+    theta_ = s.curve_angle;
     clamped_ = !detail::set_base_params(engine_, v);
   }
   /// The curve angle in use, rad.

@@ -114,8 +114,8 @@ class TipLoop {
     scale_ = scale_at(angle);
     return true;
   }
-  /// The route's shape: its total_angle is the curve angle (set_curve_angle).
-  bool set_shape(const ShapeIntegrals& s) noexcept { return set_curve_angle(s.total_angle); }
+  /// The route's shape: its curve_angle is the curve angle (set_curve_angle).
+  bool set_shape(const ShapeIntegrals& s) noexcept { return set_curve_angle(s.curve_angle); }
 
   /// @brief One cycle: the servo command for a feedforward target, from the tip reading.
   /// @param target the feedforward's motor command this cycle, rad; a non-finite one holds the last command

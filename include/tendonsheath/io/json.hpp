@@ -150,22 +150,26 @@ inline CurveAngleFeedforwardParams curve_angle_feedforward_params(const json& f,
   CurveAngleFeedforwardParams p;
   p.friction = detail::number(f, "friction", where);
   if (f.contains("compliance")) {  // a file written before docs/vocabulary.md
-    p.compliance = detail::number(f, "compliance", where);
+    const double compliance = detail::number(f, "compliance", where);  // L / EA
+    require_positive(compliance, where.c_str(), "CurveAngleFeedforward: length / stiffness");
+    p.stiffness = 1.0 / compliance;  // as Python reads it: any EA, L with L / EA = compliance
+    p.length = 1.0;
   } else {  // each checked as Python checks it, before their ratio is
     const double stiffness = detail::number(f, "stiffness", where);
     const double length = detail::number(f, "length", where);
     require_positive(stiffness, where.c_str(), "CurveAngleFeedforward: stiffness");
     require_positive(length, where.c_str(), "CurveAngleFeedforward: length");
-    p.compliance = length / stiffness;
+    p.stiffness = stiffness;
+    p.length = length;
   }
   p.pretension = detail::number(f, "pretension", where);
   p.load_force = detail::number(f, "load_force", where);
   p.load_stiffness = detail::number(f, "load_stiffness", where);
   p.proximal_radius = detail::number(f, "proximal_radius", where);
   p.distal_radius = detail::number(f, "distal_radius", where);
-  p.total_angle = detail::number(f, "curve_angle", where);
+  p.curve_angle = detail::number(f, "curve_angle", where);
   if (f.contains("play")) p.play = detail::number(f, "play", where);  // absent in older files
-  p.v_eps = detail::number(f, "smoothing", where);
+  p.smoothing = detail::number(f, "smoothing", where);
   p.max_correction_rate = detail::number(f, "max_correction_rate", where, inf);
   p.limits = detail::limits(f, where);
   return p;
@@ -178,17 +182,17 @@ inline ContinuumFeedforwardParams continuum_feedforward_params(const json& f,
                                                                const std::string& where) {
   ContinuumFeedforwardParams p;
   p.friction = detail::number(f, "friction", where);
-  p.sheath_length = detail::number(f, detail::renamed_key(f, "length", "sheath_length"), where);
+  p.length = detail::number(f, detail::renamed_key(f, "length", "sheath_length"), where);
   p.stiffness = detail::number(f, "stiffness", where);
   p.pretension = detail::number(f, "pretension", where);
-  p.total_angle = detail::number(f, detail::renamed_key(f, "curve_angle", "total_angle"), where);
+  p.curve_angle = detail::number(f, detail::renamed_key(f, "curve_angle", "total_angle"), where);
   p.bending_stiffness = detail::number(f, "bending_stiffness", where);
   p.tendon_offset = detail::number(f, "tendon_offset", where);
   p.backbone_length = detail::number(f, "backbone_length", where);
   p.proximal_radius = detail::number(f, "proximal_radius", where);
   p.gap_factor = detail::number(f, "gap_factor", where);
   if (f.contains("play")) p.play = detail::number(f, "play", where);  // absent in older files
-  p.v_eps = detail::number(f, "smoothing", where);
+  p.smoothing = detail::number(f, "smoothing", where);
   const json& mode = detail::member(f, "mode", where);
   if (mode == "exact") p.mode = ContinuumMode::Exact;
   else if (mode == "published") p.mode = ContinuumMode::Published;
@@ -349,26 +353,6 @@ std::optional<T> built(const std::string& prefix, Args&&... args) {
   Result<T> r = tendonsheath::make<T>(std::forward<Args>(args)...);
   if (r.ok()) return std::optional<T>(std::move(r).value());
   tendonsheath::detail::report_error(prefix.empty() ? r.error() : prefix + ": " + r.error());
-  return std::nullopt;
-}
-
-// The file's (Python's) names of the core's fields, for the core's messages (Python's CORE_NAMES)
-inline const std::vector<std::pair<std::string, std::string>> kFileNames{
-    {"v_eps", "smoothing"}, {"total_angle", "curve_angle"}, {"sheath_length", "length"}};
-
-// built<T>, its message naming the file (`where`) and each field by the file's name
-// ("CurveAngleFeedforward: smoothing must be > 0 (got 0)"), as Python's loader says it
-template <class T, class... Args>
-std::optional<T> built_with_file_names(const std::string& where, Args&&... args) {
-  Result<T> r = tendonsheath::make<T>(std::forward<Args>(args)...);
-  if (r.ok()) return std::optional<T>(std::move(r).value());
-  std::string m = r.error();
-  for (const auto& [core, file] : kFileNames) {
-    const std::string key = ": " + core + " ";
-    for (auto at = m.find(key); at != std::string::npos; at = m.find(key, at + file.size()))
-      m.replace(at + 2, core.size(), file);
-  }
-  fail(where, m);
   return std::nullopt;
 }
 
@@ -555,7 +539,7 @@ inline std::optional<LoadedCompensator> compensator(const json& f, const std::st
     if (failed()) return std::nullopt;
     const CurveAngleFeedforwardParams p = curve_angle_feedforward_params(f, where);
     if (failed()) return std::nullopt;
-    auto engine = built_with_file_names<CurveAngleFeedforward>(where, p);
+    auto engine = built<CurveAngleFeedforward>(where, p);
     if (!engine) return std::nullopt;
     return LoadedCompensator("CurveAngleFeedforward", std::move(*engine));
   }
@@ -564,7 +548,7 @@ inline std::optional<LoadedCompensator> compensator(const json& f, const std::st
     if (failed()) return std::nullopt;
     const ContinuumFeedforwardParams p = continuum_feedforward_params(f, where);
     if (failed()) return std::nullopt;
-    auto engine = built_with_file_names<ContinuumFeedforward>(where, p);
+    auto engine = built<ContinuumFeedforward>(where, p);
     if (!engine) return std::nullopt;
     return LoadedCompensator("ContinuumFeedforward", std::move(*engine));
   }

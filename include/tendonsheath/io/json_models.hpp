@@ -182,9 +182,9 @@ inline void oscillator_options(const json& o, HystereticOscillatorParams& h, con
   if (o.contains("lookahead")) h.lookahead = integer(o, "lookahead", w);
   if (!o.contains("input_interpolation")) return;
   const json& v = member(o, "input_interpolation", w);
-  if (v == "hold") h.input_reconstruction = kInputHold;
-  else if (v == "linear") h.input_reconstruction = kInputLinear;
-  else if (v == "bandlimited") h.input_reconstruction = kInputBandlimited;
+  if (v == "hold") h.input_interpolation = kInputHold;
+  else if (v == "linear") h.input_interpolation = kInputLinear;
+  else if (v == "bandlimited") h.input_interpolation = kInputBandlimited;
   else fail(w, "key 'input_interpolation' must be \"linear\", \"hold\" or \"bandlimited\" (got " + shown(v) + ")");
 }
 
@@ -342,8 +342,8 @@ inline void curve_angle_part(ModelPart& part, const json& m, const std::string& 
   c.stiffness = number(p, "stiffness", w);
   c.pretension = number(p, "pretension", w);
   c.length = number(p, "length", w);
-  c.load = number(p, load, w);
-  c.spring = number(p, spring, w);
+  c.load_force = number(p, load, w);
+  c.load_stiffness = number(p, spring, w);
   c.proximal_radius = number(p, "proximal_radius", w);
   c.distal_radius = number(p, "distal_radius", w);
   if (p.contains("play")) c.play = number(p, "play", w);

@@ -54,7 +54,7 @@ struct AngleLaws {
   }
   /// The parameters for a route of shape s (its g, G computed with mu = angle_friction).
   void at_shape(const ShapeIntegrals& s, double* out) const noexcept {
-    evaluate(s.total_angle, shape_dead_zone_factor(s.g, s.G, angle_friction * s.total_angle),
+    evaluate(s.curve_angle, shape_dead_zone_factor(s.g, s.G, angle_friction * s.curve_angle),
              out);
   }
 

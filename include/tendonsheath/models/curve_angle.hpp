@@ -43,8 +43,8 @@ struct CurveAngleParams {
   double stiffness = 2.4e4;       ///< EA, tendon axial stiffness, N
   double pretension = 10.0;       ///< T0, N
   double length = 1.2;            ///< L, sheath length, m
-  double load = 0.0;              ///< F_L, constant distal load at tendon level, N (resists forward)
-  double spring = 0.0;            ///< k_e, environment spring at tendon level, N/m
+  double load_force = 0.0;        ///< F_L, constant distal load at tendon level, N (resists forward)
+  double load_stiffness = 0.0;    ///< k_e, environment spring at tendon level, N/m
   double proximal_radius = 5e-3;  ///< r_p, m
   double distal_radius = 5e-3;    ///< r_d, m
   double play = 0.0;              ///< motor-side play (the gearhead's backlash), total width, rad at the motor
@@ -54,7 +54,7 @@ struct CurveAngleParams {
   /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
   void assign(const double* v) noexcept {
     friction = v[0]; stiffness = v[1]; pretension = v[2]; length = v[3];
-    load = v[4]; spring = v[5]; proximal_radius = v[6]; distal_radius = v[7]; play = v[8];
+    load_force = v[4]; load_stiffness = v[5]; proximal_radius = v[6]; distal_radius = v[7]; play = v[8];
   }
 };
 
@@ -88,8 +88,8 @@ class CurveAngleModel {
     require_positive(p.stiffness, w, "stiffness");
     require_non_negative(p.pretension, w, "pretension");
     require_positive(p.length, w, "length");
-    require_finite(p.load, w, "load");
-    require_non_negative(p.spring, w, "spring");
+    require_finite(p.load_force, w, "load_force");
+    require_non_negative(p.load_stiffness, w, "load_stiffness");
     require_positive(p.proximal_radius, w, "proximal_radius");
     require_positive(p.distal_radius, w, "distal_radius");
     require_non_negative(p.play, w, "play");
@@ -117,11 +117,11 @@ class CurveAngleModel {
   }
   /// The load offset e_L at curve angle theta (rad), m.
   double load_offset(double theta) const noexcept {
-    return uniform::load_offset(p_.length, p_.stiffness, p_.load, p_.friction * std::fabs(theta));
+    return uniform::load_offset(p_.length, p_.stiffness, p_.load_force, p_.friction * std::fabs(theta));
   }
   /// The branch slope c at curve angle theta (rad), in (0, 1].
   double slope(double theta) const noexcept {
-    return uniform::spring_slope(p_.length, p_.stiffness, p_.spring,
+    return uniform::spring_slope(p_.length, p_.stiffness, p_.load_stiffness,
                                  p_.friction * std::fabs(theta));
   }
 
@@ -153,7 +153,7 @@ class CurveAngleModel {
       x_out_ = x_out_ < fwd ? fwd : (x_out_ > bwd ? bwd : x_out_);
     }
     // No-slack condition of spec A.4 on the total distal load.
-    const double force = p_.load + p_.spring * x_out_;
+    const double force = p_.load_force + p_.load_stiffness * x_out_;
     step_slack_ = std::fabs(force) >= slack_limit_;
     if (step_slack_) slack_ = true;
     y_ = x_out_ / p_.distal_radius;
@@ -163,7 +163,7 @@ class CurveAngleModel {
   /// The distal angle of the last step(), rad.
   double output() const noexcept { return y_; }
   /// The curve angle in use, rad (>= 0): the last set_curve_angle() or the shape's total angle.
-  double curve_angle() const noexcept { return shape_.total_angle; }
+  double curve_angle() const noexcept { return shape_.curve_angle; }
   /// The route shape in use (g, G with this model's friction, and the total angle); a curve
   /// angle alone is the uniform route's shape.
   const ShapeIntegrals& shape() const noexcept { return shape_; }
@@ -175,7 +175,7 @@ class CurveAngleModel {
   void set_curve_angle(double theta) noexcept {
     if (!std::isfinite(theta)) return;
     theta = std::fabs(theta);
-    if (uniform_ && theta == shape_.total_angle) return;
+    if (uniform_ && theta == shape_.curve_angle) return;
     uniform_ = true;
     shape_ = uniform_shape(p_.friction, theta);
     eb_ = backlash_half_width(theta);
@@ -195,19 +195,19 @@ class CurveAngleModel {
   /// @param shape the route's shape integrals
   void set_shape(const ShapeIntegrals& shape) noexcept {
     if (!(std::isfinite(shape.g) && std::isfinite(shape.G) && shape.g > 0.0 && shape.G > 0.0 &&
-          std::isfinite(shape.total_angle) && shape.total_angle >= 0.0))
+          std::isfinite(shape.curve_angle) && shape.curve_angle >= 0.0))
       return;
     uniform_ = false;
     shape_ = shape;
-    const double a = std::fmin(p_.friction * shape.total_angle, kMaxFrictionAngle);
+    const double a = std::fmin(p_.friction * shape.curve_angle, kMaxFrictionAngle);
     const double ea = std::exp(a), ema = std::exp(-a);
     const double u = std::fmin(std::fmax(shape.g, ema), 1.0) * ea;   // in [1, e^a]
     const double v = std::fmin(std::fmax(shape.G, 1.0), ea) * ema;   // in [e^-a, 1]
     const double compliance = p_.length / p_.stiffness;
     const double load_compliance = compliance * u * v / (u + v);
     eb_ = compliance * p_.pretension * (u - v) / (u + v);
-    eL_ = p_.load * load_compliance;
-    c_ = 1.0 / (1.0 + p_.spring * load_compliance);
+    eL_ = p_.load_force * load_compliance;
+    c_ = 1.0 / (1.0 + p_.load_stiffness * load_compliance);
     slack_limit_ = 2.0 * p_.pretension / u;
   }
   /// True once the distal load exceeded the no-slack limit since reset().

@@ -95,16 +95,16 @@ namespace detail {
 inline void validate_gpi(const GeneralizedPrandtlIshlinskiiParams& p, const char* w) {
   const Envelope* env[2] = {&p.rising, &p.falling};
   const char* names[2] = {"rising", "falling"};
-  for (int e = 0; e < 2; ++e) {
+  for (int e = 0; e < 2; ++e) {  // each coefficient by its Python (and file) name: rising_a, ...
     const std::string n = names[e];
-    require_positive(env[e]->a, w, (n + ".a").c_str());
-    require_positive(env[e]->b, w, (n + ".b").c_str());
-    require(env[e]->b >= kMinEnvelopeGain, w, n, ".b must be >= ", kMinEnvelopeGain,
+    require_positive(env[e]->a, w, (n + "_a").c_str());
+    require_positive(env[e]->b, w, (n + "_b").c_str());
+    require(env[e]->b >= kMinEnvelopeGain, w, n, "_b must be >= ", kMinEnvelopeGain,
             " (the envelope spans 20/b of input; got ", env[e]->b, ")");
-    require_finite(env[e]->c, w, (n + ".c").c_str());
-    require(std::fabs(env[e]->c) <= kMaxEnvelopeShift, w, n, ".c must be within +-",
+    require_finite(env[e]->c, w, (n + "_c").c_str());
+    require(std::fabs(env[e]->c) <= kMaxEnvelopeShift, w, n, "_c must be within +-",
             kMaxEnvelopeShift, " (got ", env[e]->c, ")");
-    require_finite(env[e]->d, w, (n + ".d").c_str());
+    require_finite(env[e]->d, w, (n + "_d").c_str());
     require(env[e]->lo < env[e]->hi, w, n, ".lo must be < ", n, ".hi (the tanh's input range; got [",
             env[e]->lo, ", ", env[e]->hi, "])");
   }

@@ -7,7 +7,7 @@
 // sub-steps per sample (at least `substeps`, raised automatically so that
 // h * omega <= 0.5 for stability, never above `max_substeps`).
 //
-// Input between samples (`input_reconstruction`):
+// Input between samples (`input_interpolation`):
 //   0 hold: u held at the last sample;
 //   1 linear: linear interpolation (the default);
 //   2 bandlimited: Kaiser-windowed sinc of half-width `lookahead` samples (see
@@ -40,7 +40,7 @@
 
 namespace tendonsheath {
 
-/// How HystereticOscillator reconstructs the input between samples (input_reconstruction).
+/// How HystereticOscillator reconstructs the input between samples (input_interpolation).
 enum InputReconstruction : int { kInputHold = 0, kInputLinear = 1, kInputBandlimited = 2 };
 
 namespace detail {
@@ -78,7 +78,7 @@ struct HystereticOscillatorParams {
   double nu = 1.0;  ///< Bouc-Wen sharpness, >= 1
   int substeps = 4;  ///< fewest RK4 sub-steps per sample, >= 1
   int max_substeps = 4096;  ///< most RK4 sub-steps per sample, >= substeps (bounds the work)
-  int input_reconstruction = kInputLinear;  ///< kInputHold, kInputLinear or kInputBandlimited
+  int input_interpolation = kInputLinear;  ///< kInputHold, kInputLinear or kInputBandlimited
   int lookahead = 16;  ///< half-width of the band-limited interpolation kernel, samples
 
   /// The identifiable parameters as a flat vector, in the order of the Python
@@ -123,9 +123,9 @@ class HystereticOscillator {
     require(p.k + p.alpha > 0.0, w, "k + alpha must be > 0 (no restoring force otherwise)");
     require(p.substeps >= 1, w, "substeps must be >= 1");
     require(p.max_substeps >= p.substeps, w, "max_substeps must be >= substeps");
-    require(p.input_reconstruction >= kInputHold && p.input_reconstruction <= kInputBandlimited,
-            w, "input_reconstruction must be 0 (hold), 1 (linear) or 2 (bandlimited)");
-    if (p.input_reconstruction == kInputBandlimited) {
+    require(p.input_interpolation >= kInputHold && p.input_interpolation <= kInputBandlimited,
+            w, "input_interpolation must be 0 (hold), 1 (linear) or 2 (bandlimited)");
+    if (p.input_interpolation == kInputBandlimited) {
       require(p.lookahead >= 1 && p.lookahead <= SincKernel::kMaxHalfWidth, w,
               "lookahead must be in [1, 64] samples (got ", p.lookahead, ")");
       if (detail::failed()) return;  // without exceptions, in make(): no buffers of a bad size
@@ -143,7 +143,7 @@ class HystereticOscillator {
 
   /// Samples by which step()'s output lags its input (lookahead - 1 when band-limited).
   int delay() const noexcept {
-    return p_.input_reconstruction == kInputBandlimited ? p_.lookahead - 1 : 0;
+    return p_.input_interpolation == kInputBandlimited ? p_.lookahead - 1 : 0;
   }
 
   /// Start afresh from the initial state, as after construction; the parameters (and any route,
@@ -164,14 +164,14 @@ class HystereticOscillator {
     held_ = !std::isfinite(u);
     kept_ = false;
     if (held_) {
-      if (p_.input_reconstruction != kInputBandlimited || !initialised_) return y_;
+      if (p_.input_interpolation != kInputBandlimited || !initialised_) return y_;
       u = last_input();
     }
     if (!initialised_ || !(dt > 0.0) || !std::isfinite(dt)) {
       if (!initialised_) {
         initialised_ = true;
         u_ = u;
-        if (p_.input_reconstruction == kInputBandlimited) {
+        if (p_.input_interpolation == kInputBandlimited) {
           for (double& h : history_) h = u;
           head_ = 0;
           cached_m_ = 0;
@@ -181,10 +181,10 @@ class HystereticOscillator {
     }
     ++samples_;
     const int m = substeps(dt);
-    if (p_.input_reconstruction == kInputHold) {
+    if (p_.input_interpolation == kInputHold) {
       const double u0 = u_;
       integrate([u0](int) { return u0; }, m, dt);
-    } else if (p_.input_reconstruction == kInputLinear) {
+    } else if (p_.input_interpolation == kInputLinear) {
       const double u0 = u_, du = (u - u_) / (2 * m);
       integrate([u0, du](int i) { return u0 + du * i; }, m, dt);
     } else {

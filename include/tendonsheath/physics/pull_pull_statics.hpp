@@ -74,7 +74,7 @@ inline double no_slack_limit(double pretension, double a) noexcept {
 struct ShapeIntegrals {
   double g = 1.0;            ///< (1/L) int e^{-mu theta} ds
   double G = 1.0;            ///< (1/L) int e^{+mu theta} ds
-  double total_angle = 0.0;  ///< Theta
+  double curve_angle = 0.0;  ///< Theta, the route's curve angle
 };
 
 /// The largest friction angle mu Theta the closed forms accept: the capstan ratio e^{-50}
@@ -83,9 +83,9 @@ constexpr double kMaxFrictionAngle = 50.0;
 
 /// Uniform curvature: g = (1 - e^{-a})/a, G = (e^a - 1)/a. (G through e^{-a} divided by
 /// zero once e^{-a} - 1 rounded to -1, at a of about 37.4.)
-inline ShapeIntegrals uniform_shape(double mu, double total_angle) noexcept {
-  const double a = mu * total_angle;
-  return {expm1_over(-a), expm1_over(a), total_angle};
+inline ShapeIntegrals uniform_shape(double mu, double curve_angle) noexcept {
+  const double a = mu * curve_angle;
+  return {expm1_over(-a), expm1_over(a), curve_angle};
 }
 
 /// The pull-pull dead zone's half-width per unit T0 L / EA for a route of shape integrals g, G
@@ -102,9 +102,14 @@ inline double shape_dead_zone_factor(double g, double G, double a) noexcept {
   return (g - Ge) / (g + Ge);
 }
 
-/// The largest total angle (rad) a friction mu admits: kMaxFrictionAngle / mu (inf for mu = 0).
-inline double max_total_angle(double mu) noexcept {
+/// The largest curve angle (rad) a friction mu admits: kMaxFrictionAngle / mu (inf for mu = 0).
+inline double max_curve_angle(double mu) noexcept {
   return mu > 0.0 ? kMaxFrictionAngle / mu : std::numeric_limits<double>::infinity();
+}
+
+/// max_curve_angle() by its old name (docs/vocabulary.md).
+[[deprecated("use max_curve_angle()")]] inline double max_total_angle(double mu) noexcept {
+  return max_curve_angle(mu);
 }
 
 /// Exact for a piecewise-linear theta(s) given at samples (s_i, theta_i), s
@@ -158,8 +163,8 @@ struct PullPullStatics {
   double forward_elongation(const ShapeIntegrals& sh1, const ShapeIntegrals& sh2,
                             double length_ratio, double load) const noexcept {
     const double r = length_ratio;
-    const double ema1 = std::exp(-friction * sh1.total_angle);
-    const double ema2 = std::exp(-friction * sh2.total_angle);
+    const double ema1 = std::exp(-friction * sh1.curve_angle);
+    const double ema2 = std::exp(-friction * sh2.curve_angle);
     const double t1p = (pretension * (1.0 + r) + load * r * sh2.G * ema2) /
                        (sh1.g + r * sh2.G * ema1 * ema2);
     return compliance * (t1p * sh1.g - pretension);
@@ -168,8 +173,8 @@ struct PullPullStatics {
   double backward_elongation(const ShapeIntegrals& sh1, const ShapeIntegrals& sh2,
                              double length_ratio, double load) const noexcept {
     const double r = length_ratio;
-    const double ea1 = std::exp(friction * sh1.total_angle);
-    const double ea2 = std::exp(friction * sh2.total_angle);
+    const double ea1 = std::exp(friction * sh1.curve_angle);
+    const double ea2 = std::exp(friction * sh2.curve_angle);
     const double t1p = (pretension * (1.0 + r) + load * r * sh2.g * ea2) /
                        (sh1.G + r * sh2.g * ea1 * ea2);
     return compliance * (t1p * sh1.G - pretension);
@@ -183,7 +188,7 @@ struct PullPullStatics {
   };
   /// The forward and backward elongations for route shape sh as affine functions of the load.
   Affine affine(const ShapeIntegrals& sh) const noexcept {
-    const double ema = std::exp(-friction * sh.total_angle), ea = 1.0 / ema;
+    const double ema = std::exp(-friction * sh.curve_angle), ea = 1.0 / ema;
     const double df = sh.g + sh.G * ema * ema, db = sh.G + sh.g * ea * ea;
     return {compliance * (2.0 * pretension * sh.g / df - pretension),
             compliance * sh.G * ema * sh.g / df,

@@ -19,7 +19,7 @@
 // Drive-train effects (both kinds, all off by default):
 // - Coulomb friction tau_c and viscous friction b_m on the motor shaft. The
 //   position servo then feels torques through its reflected inertia J_r
-//   (reflected_inertia > 0): q'' = w^2 (q_cmd - q) - 2 zeta w q'
+//   (inertia > 0): q'' = w^2 (q_cmd - q) - 2 zeta w q'
 //   + (tau_ext - b_m q' - tau_c sgn q') / J_r, so the tendons' torque deflects
 //   it and friction leaves a steady error up to tau_c / (J_r w^2) (a constant
 //   torque tau leaves tau / (J_r w^2); with integral action, none). With
@@ -53,12 +53,13 @@ struct MotorParams {
   double damping = 0.7;       ///< zeta (position)
   double max_speed = std::numeric_limits<double>::infinity();  ///< largest speed |q'|, rad/s (both)
   double max_accel = std::numeric_limits<double>::infinity();  ///< largest acceleration |q''|, rad/s^2 (position)
-  double inertia = 1e-2;      ///< J (torque)
+  /// J, kg m^2: the rotor's inertia (torque, > 0) or the inertia reflected to a position servo
+  /// (position, >= 0; 0 = the ideal lag, which ignores torques)
+  double inertia = 0.0;
   double viscous = 0.2;       ///< b (torque)
   double max_torque = std::numeric_limits<double>::infinity();  ///< torque limit of the command, N m (torque)
   int max_substeps = 256;  ///< most integration sub-steps in one step(), >= 1 (bounds its work)
-  double reflected_inertia = 0.0;  ///< J_r, kg m^2 (position): 0 = ideal lag, ignores torques
-  double coulomb_friction = 0.0;   ///< tau_c, N m (both; position needs reflected_inertia > 0)
+  double coulomb_friction = 0.0;   ///< tau_c, N m (both; position needs inertia > 0)
   double viscous_friction = 0.0;   ///< b_m, N m s/rad (position; torque kind: use viscous)
   double gear_backlash = 0.0;      ///< g, rad: total play between shaft and pulley (both)
   /// T_i, s (position): integral time of a PID servo, q'' gains w^2 z / T_i with z' = q_cmd - q,
@@ -98,7 +99,7 @@ class Motor {
       require_positive(p.damping, w, "damping");
       require(p.max_accel > 0.0 && !std::isnan(p.max_accel), w, "max_accel must be > 0 (got ",
               p.max_accel, ")");
-      require_non_negative(p.reflected_inertia, w, "reflected_inertia");
+      require_non_negative(p.inertia, w, "inertia");
       require_non_negative(p.viscous_friction, w, "viscous_friction");
       require_non_negative(p.integral_time, w, "integral_time");
       const double bound = 1.0 / (2.0 * p.damping * 2.0 * kPi * p.bandwidth_hz);
@@ -106,9 +107,9 @@ class Motor {
               "integral_time must be 0 (no integral action) or > 1 / (2 damping w) = ", bound,
               " s for a stable loop (got ", p.integral_time, ")");
       require((p.coulomb_friction == 0.0 && p.viscous_friction == 0.0) ||
-                  p.reflected_inertia > 0.0,
+                  p.inertia > 0.0,
               w, "coulomb_friction and viscous_friction of a position motor act through its "
-                 "reflected_inertia, which must then be > 0");
+                 "inertia, which must then be > 0");
     } else {
       require_positive(p.inertia, w, "inertia");
       require_non_negative(p.viscous, w, "viscous");
@@ -156,8 +157,8 @@ class Motor {
     if (!(dt > 0.0) || !std::isfinite(dt)) return pulley_;
     const bool position = p_.kind == MotorKind::Position;
     const double w = 2.0 * kPi * p_.bandwidth_hz;
-    // torques act through J (torque kind) or J_r (position kind, 0: ignored)
-    const double J = position ? p_.reflected_inertia : p_.inertia;
+    // torques act through J (the rotor's, or a position servo's reflected one: 0 ignores them)
+    const double J = p_.inertia;
     const double inv_J = J > 0.0 ? 1.0 / J : 0.0;
     const double b = position ? p_.viscous_friction : p_.viscous;
     const double rate = position ? w : (b > 0.0 ? b * inv_J : 0.0);

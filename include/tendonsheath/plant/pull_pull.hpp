@@ -148,10 +148,14 @@ class PullPullPlant {
   double length1() const noexcept { return L1_; }
   /// The length of sheath 2, m.
   double length2() const noexcept { return L2_; }
-  /// The total curve angle of sheath 1's current route, rad.
-  double total_angle1() const noexcept { return theta1_; }
-  /// The total curve angle of sheath 2's current route, rad.
-  double total_angle2() const noexcept { return theta2_; }
+  /// The curve angle of sheath 1's current route, rad.
+  double curve_angle1() const noexcept { return theta1_; }
+  /// The curve angle of sheath 2's current route, rad.
+  double curve_angle2() const noexcept { return theta2_; }
+  /// curve_angle1() by its old name (docs/vocabulary.md).
+  [[deprecated("use curve_angle1()")]] double total_angle1() const noexcept { return theta1_; }
+  /// curve_angle2() by its old name (docs/vocabulary.md).
+  [[deprecated("use curve_angle2()")]] double total_angle2() const noexcept { return theta2_; }
 
   /// Start afresh from the initial state, as after construction; the parameters (and any route,
   /// shape or curve angle set since) are kept.

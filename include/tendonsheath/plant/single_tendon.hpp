@@ -124,8 +124,10 @@ class SingleTendonPlant {
   std::size_t elements() const noexcept { return N_; }
   /// The sheath length L, m.
   double length() const noexcept { return L_; }
-  /// The total curve angle of the current route, rad.
-  double total_angle() const noexcept { return total_angle_; }
+  /// The curve angle of the current route, rad.
+  double curve_angle() const noexcept { return curve_angle_; }
+  /// The curve angle by its old name (docs/vocabulary.md).
+  [[deprecated("use curve_angle()")]] double total_angle() const noexcept { return curve_angle(); }
 
   /// Start afresh from the initial state, as after construction; the parameters (and any route,
   /// shape or curve angle set since) are kept.
@@ -162,7 +164,7 @@ class SingleTendonPlant {
       chain_.set_node_angle(N_ - i, a[i - 1]);
       sum += a[i - 1];
     }
-    total_angle_ = sum;
+    curve_angle_ = sum;
     update_increment();
   }
   /// The number of lumped node angles set_node_angles() reads, N - 1.
@@ -206,14 +208,14 @@ class SingleTendonPlant {
     if (p_.options.max_increment > 0.0) return;
     ChainOptions o = chain_.options();
     const double T = p_.load_force > 1.0 ? p_.load_force : 1.0;
-    o.max_increment = detail::default_increment(T, L_, p_.stiffness, p_.friction * total_angle_);
+    o.max_increment = detail::default_increment(T, L_, p_.stiffness, p_.friction * curve_angle_);
     chain_.set_options(o);
   }
 
   Params p_;
   std::size_t N_;
   double L_;
-  double total_angle_ = 0.0;
+  double curve_angle_ = 0.0;
   FrictionChain chain_;
   std::vector<double> angles_, work_;
   bool updated_ = true;

@@ -391,7 +391,7 @@ def _route_shapes(loop: _Loop, friction: float, shape_sensing):
     else:
         route_at = [_first(routes(float(ts[int(k)]))) for k in idx]
     shape_rows = [shape_of(r, friction) for r in route_at]
-    shapes = np.ascontiguousarray([[s.g, s.G, s.total_angle] for s in shape_rows])
+    shapes = np.ascontiguousarray([[s.g, s.G, s.curve_angle] for s in shape_rows])
     if shape_sensing is not None:
         idx, angles, shapes = _sensed(plant, ts, routes, shape_sensing, friction, idx)
     return idx, angles, shapes

@@ -302,7 +302,7 @@ def sensed_route_schedule(
         # sensed_schedule does, so that segments=0 gives its rows bit for bit
         of = Route.uniform(1.0, route.curve_angle) if shape.segments == 0 else route
         s = route_shape(of, friction)
-        rows.append([s.g, s.G, s.total_angle])
+        rows.append([s.g, s.G, s.curve_angle])
     return idx, sensed, np.ascontiguousarray(rows, dtype=float).reshape(-1, 3)
 
 
@@ -319,7 +319,7 @@ def sensed_schedule(shape: ShapeSensing, t, routes: Callable, friction: float, s
     rows = []
     for a in sensed:
         s = route_shape(Route.uniform(1.0, float(a)), friction)
-        rows.append([s.g, s.G, s.total_angle])
+        rows.append([s.g, s.G, s.curve_angle])
     return idx, sensed, np.ascontiguousarray(rows, dtype=float)
 
 

@@ -6,7 +6,7 @@ import math
 from typing import Any
 
 from .. import _core as core
-from .._args import number, python_names
+from .._args import core_errors_as, number
 from .._arrays import checked_dt
 from ..models import Backlash, BoucWenBacklash, HysteresisModel
 from .base import EngineCompensator
@@ -96,14 +96,14 @@ class AdaptiveController(EngineCompensator):
             ff = core.BacklashInverseParams()
             for key in ("c_r", "c_l", "B_r", "B_l"):
                 setattr(ff, key, feedforward_model.params[key])
-            ff.v_eps = number(who, "smoothing", smoothing)
+            ff.smoothing = number(who, "smoothing", smoothing)
             p.feedforward = ff
             p.has_feedforward = True
         self.feedforward_model = feedforward_model
         self.smoothing = number(who, "smoothing", smoothing)
         if not (math.isfinite(self.smoothing) and self.smoothing > 0):  # with a model or not
             raise ValueError(f"{who}: smoothing must be > 0 (got {self.smoothing:g})")
-        with python_names(who):
+        with core_errors_as(who):
             self._engine = core.AdaptiveController(p)
         self.design: Any = None  # set by from_calibration: what the gains were chosen from
         resolved = self._engine.params

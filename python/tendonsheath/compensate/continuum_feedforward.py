@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 from .. import _core as core
 from .._angles import warn_if_curve_angle_in_degrees
-from .._args import accepts_old_names, number, python_names
+from .._args import accepts_old_names, core_errors_as, number
 from .base import Feedforward
 from .limits import LimitsLike, as_limits
 
@@ -17,9 +17,12 @@ if TYPE_CHECKING:
 _MODES = {"exact": core.ContinuumMode.exact, "published": core.ContinuumMode.published}
 # old argument names -> vocabulary names (docs/vocabulary.md)
 RENAMED = {"sheath_length": "length", "total_angle": "curve_angle"}
-# settings with the same name in Python and in ContinuumFeedforwardParams
+# the settings that are fields of ContinuumFeedforwardParams (the same names in Python and C++)
 _SAME_NAMES = (
     "friction",
+    "length",
+    "curve_angle",
+    "smoothing",
     "stiffness",
     "pretension",
     "bending_stiffness",
@@ -133,11 +136,10 @@ class ContinuumFeedforward(Feedforward):
         p = core.ContinuumFeedforwardParams()
         for name in _SAME_NAMES:
             setattr(p, name, self._settings[name])
-        p.sheath_length, p.total_angle = self._settings["length"], self._settings["curve_angle"]
-        p.v_eps, p.mode = self._settings["smoothing"], _MODES[mode]
+        p.mode = _MODES[mode]
         p.limits = self._settings["limits"].to_core()
         self.mode = mode
-        with python_names(who):
+        with core_errors_as(who):
             self._engine = core.ContinuumFeedforward(p)
         warn_if_curve_angle_in_degrees(self._settings["curve_angle"], who)
 

@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import _core as core
 from .._angles import checked_curve_angle, warn_if_curve_angle_in_degrees
-from .._args import accepts_old_names, number, python_names
+from .._args import accepts_old_names, core_errors_as, number
 from .._arrays import as_signal, as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
 from ..plant.physics import route_shape as shape_of
@@ -303,7 +303,7 @@ class CurveAngleFeedforward(Feedforward):
             shapes = [shape_of(routes(tk), self.friction) for tk in ts]
             g = np.array([s.g for s in shapes])
             G = np.array([s.G for s in shapes])
-            theta = np.array([s.total_angle for s in shapes])
+            theta = np.array([s.curve_angle for s in shapes])
             return self._engine.command(ts, ys, g, G, theta, bool(status))
         if curve_angle is not None:
             theta = np.broadcast_to(np.asarray(curve_angle, dtype=np.float64), ys.shape)
@@ -330,17 +330,14 @@ def _engine(who: str, v: dict):
         if not v[name] > 0:
             raise ValueError(f"{who}: {name} must be > 0 (got {v[name]:g})")
     p = core.CurveAngleFeedforwardParams()
-    p.friction, p.compliance, p.pretension = (
-        v["friction"],
-        v["length"] / v["stiffness"],
-        v["pretension"],
-    )
+    p.friction, p.stiffness, p.length = v["friction"], v["stiffness"], v["length"]
+    p.pretension = v["pretension"]
     p.load_force, p.load_stiffness = v["load_force"], v["load_stiffness"]
     p.proximal_radius, p.distal_radius = v["proximal_radius"], v["distal_radius"]
-    p.total_angle, p.v_eps, p.play = v["curve_angle"], v["smoothing"], v["play"]
+    p.curve_angle, p.smoothing, p.play = v["curve_angle"], v["smoothing"], v["play"]
     p.max_correction_rate = v["max_correction_rate"]
     p.limits = v["limits"].to_core()
-    with python_names(who):
+    with core_errors_as(who):
         return core.CurveAngleFeedforward(p)
 
 

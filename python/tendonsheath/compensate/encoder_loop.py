@@ -6,7 +6,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from .. import _core as core
-from .._args import number, python_names
+from .._args import core_errors_as, number
 from .._arrays import checked_dt
 from ..protocols import step_signals
 from .around import AroundFeedforward
@@ -96,7 +96,7 @@ class EncoderLoop(AroundFeedforward):
             setattr(p, key, number(who, key, value))
         self.limits = as_limits(limits)
         p.limits = self.limits.to_core()
-        with python_names(who):
+        with core_errors_as(who):
             self._engine = core.EncoderLoop(p)
         self.feedforward = feedforward
         self.design: EncoderLoopDesign | None = None

@@ -11,7 +11,7 @@ import numpy as np
 
 from .. import _core as core
 from .._angles import checked_curve_angle
-from .._args import number, python_names
+from .._args import core_errors_as, number
 from .._arrays import as_signal, as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
 from ..models import HysteresisModel
@@ -130,7 +130,7 @@ class InverseFeedforward(Feedforward):
             "range_margin": self.range_margin,
             "filter_hz": self.filter_hz,
         }
-        with python_names("InverseFeedforward"):
+        with core_errors_as("InverseFeedforward"):
             self._engine = core.ModelInverse(describe(model), self._core_settings())
         self.follows_route = follows_route(model)
         if self.follows_route:
@@ -141,7 +141,7 @@ class InverseFeedforward(Feedforward):
         s.smoothing = self.smoothing
         s.limits = self.limits.to_core()
         if self.input_range is not None:
-            with python_names("InverseFeedforward"):
+            with core_errors_as("InverseFeedforward"):
                 s.range = core.InputRange.identified(*self.input_range, self.range_margin)
         s.filter_hz = 0.0 if self.filter_hz is None else self.filter_hz
         return s
@@ -309,7 +309,7 @@ class InverseFeedforward(Feedforward):
         if routes is not None:
             shapes = [shape_of(routes(tk), self.friction or 0.0) for tk in ts]
             return tuple(
-                np.array([getattr(s, k) for s in shapes]) for k in ("g", "G", "total_angle")
+                np.array([getattr(s, k) for s in shapes]) for k in ("g", "G", "curve_angle")
             )
         if curve_angle is None:
             raise ValueError(

@@ -7,7 +7,7 @@ from typing import Any
 import numpy as np
 
 from .. import _core as core
-from .._args import number, number_array, python_names
+from .._args import core_errors_as, number, number_array
 from .._arrays import as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
 from .around import AroundFeedforward
@@ -87,7 +87,7 @@ class LearnedFeedforward(AroundFeedforward):
         p.hold_last = bool(hold_last)
         self.limits = as_limits(limits)
         p.limits = self.limits.to_core()
-        with python_names(who):
+        with core_errors_as(who):
             self._engine = core.LearnedCorrection(values.tolist(), p)
         self.feedforward = feedforward
         self._settings = {

@@ -8,7 +8,7 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from .. import _core as core
-from .._args import number, python_names
+from .._args import core_errors_as, number
 from .._arrays import checked_dt
 from ..protocols import step_signals
 from .around import AroundFeedforward, follows_route
@@ -143,7 +143,7 @@ class TipLoop(AroundFeedforward):
         pairs = _schedule(who, schedule)
         self.limits = as_limits(limits)
         p.limits = self.limits.to_core()
-        with python_names(who):
+        with core_errors_as(who):
             p.set_schedule([a for a, _ in pairs], [g for _, g in pairs])
             self._engine = core.TipLoop(p)
         self.feedforward = feedforward

@@ -14,7 +14,7 @@ from typing import Any, ClassVar, Self, TypeVar, cast
 
 import numpy as np
 
-from .._args import is_format_version, python_names, renamed
+from .._args import core_errors_as, is_format_version, renamed
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import naming_the_file, read_json_source
@@ -94,8 +94,6 @@ class HysteresisModel(PythonObject, _ControlBlock):
     # parameters renamed (old -> new): with_params takes the old names with a warning for one
     # release, and saved files with them still load (silently)
     renamed_params: ClassVar[dict[str, str]] = {}
-    # C++ struct fields named otherwise in Python (C++ -> Python), on top of _args.CORE_NAMES
-    core_names: ClassVar[dict[str, str]] = {}
     # the range (lo, hi) of the inputs the model was identified on (all recordings, data units),
     # set by identify; None when unknown. Saved by to_dict as "input_range": [lo, hi].
     input_range: tuple[float, float] | None = None
@@ -122,27 +120,22 @@ class HysteresisModel(PythonObject, _ControlBlock):
             try:
                 setattr(struct, key, value)
             except TypeError:
-                name = self.core_names.get(key, key)
-                raise _field_error(type(self).__name__, name, value) from None
-        with python_names(type(self).__name__, self.core_names):  # the core names the parameter
+                raise _field_error(type(self).__name__, key, value) from None
+        with core_errors_as(type(self).__name__):  # the core names the parameter as Python does
             self._engine = self._core(struct)
 
     @classmethod
     def _core_values(cls, values: dict[str, Any]) -> dict[str, Any]:
-        """Map user-facing values to fields of the C++ parameter struct."""
-        return {cls._core_field(k): v for k, v in values.items()}
-
-    @classmethod
-    def _core_field(cls, name: str) -> str:
-        """The C++ struct field of the Python parameter `name`."""
-        return next((cpp for cpp, py in cls.core_names.items() if py == name), name)
+        """The values as the C++ parameter struct holds them, each under its Python name (a
+        model whose struct holds a value otherwise, a code or a nested struct, converts it)."""
+        return dict(values)
 
     # -- parameters ------------------------------------------------------------------
     @property
     def params(self) -> dict[str, Any]:
         """The identifiable parameters, as a dict (a copy)."""
         s = self._engine.params
-        return {k: _plain(getattr(s, self._core_field(k))) for k in self.param_names}
+        return {k: _plain(getattr(s, k)) for k in self.param_names}
 
     @property
     def options(self) -> dict[str, Any]:

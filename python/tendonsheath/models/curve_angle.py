@@ -94,7 +94,6 @@ class CurveAngleModel(HysteresisModel):
     added_params = {"play": 0.0}  # files saved before the play was a parameter
     control_inputs = ("x", "curve_angle")
     renamed_params = _RENAMED
-    core_names = dict(_RENAMED)  # the C++ fields keep the old names
 
     @accepts_old_names("CurveAngleModel", _RENAMED)
     def __init__(
@@ -198,7 +197,7 @@ class CurveAngleModel(HysteresisModel):
         Returns
         -------
         ShapeIntegrals
-            ``g``, ``G`` and ``total_angle``.
+            ``g``, ``G`` and ``curve_angle``.
         """
         return physics.route_shape(route, self.params["friction"])
 
@@ -206,7 +205,7 @@ class CurveAngleModel(HysteresisModel):
         """(dead-zone factor F, load factor K) of a route, spec A5/A6: F(g, G, a) and
         g G e^{-a}/(g + G e^{-2a}) (tanh(a/2) and tanh(a/2)/a for uniform curvature)."""
         shape = self.route_shape(route)
-        a = self.params["friction"] * shape.total_angle
+        a = self.params["friction"] * shape.curve_angle
         ema = np.exp(-a)
         load = shape.g * shape.G * ema / (shape.g + shape.G * ema * ema)
         return float(physics.dead_zone_factor(shape.g, shape.G, a)), float(load)

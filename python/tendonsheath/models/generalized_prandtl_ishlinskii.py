@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import re
 from collections.abc import Sequence
 from typing import Any
 
@@ -42,12 +41,7 @@ class _GeneralizedBase(HysteresisModel):
         values["thresholds"] = [float(v) for v in number_array(who, "thresholds", thresholds)]
         values["weights"] = [float(v) for v in number_array(who, "weights", weights)]
         values["envelope_range"] = _checked_range(who, envelope_range)
-        try:
-            super().__init__(**values)
-        except ValueError as err:  # the core's rising.a is the Python rising_a
-            raise ValueError(
-                re.sub(r"\b(rising|falling)\.([abcd])\b", r"\1_\2", str(err))
-            ) from None
+        super().__init__(**values)
 
     @classmethod
     def _core_values(cls, values: dict[str, Any]) -> dict[str, Any]:

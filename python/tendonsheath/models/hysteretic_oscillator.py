@@ -124,14 +124,14 @@ class HystereticOscillator(HysteresisModel):
                 f"HystereticOscillator: input_interpolation must be one of {_INTERPOLATIONS} "
                 f"(got {mode!r})"
             )
-        values["input_reconstruction"] = _CODES[mode]
+        values["input_interpolation"] = _CODES[mode]
         return values
 
     @property
     def options(self) -> dict[str, Any]:
         """substeps, max_substeps, input_interpolation and lookahead, as a dict (a copy)."""
         s = self._engine.params
-        mode = {v: k for k, v in _CODES.items()}[s.input_reconstruction]
+        mode = {v: k for k, v in _CODES.items()}[s.input_interpolation]
         return {
             "substeps": s.substeps,
             "max_substeps": s.max_substeps,

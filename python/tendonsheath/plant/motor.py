@@ -7,35 +7,35 @@ import math
 import numpy as np
 
 from .. import _core as core
-from .._args import number, python_names
+from .._args import core_errors_as, number
 from .._arrays import as_timed_signal, checked_dt
 from .._pyobject import PythonObject
 from .._typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
 
-# a constructor's arguments -> the MotorParams fields they set, by kind (a position motor's
-# ``inertia`` is the reflected inertia; a torque motor's is the rotor's own)
+# a constructor's arguments, by kind: each sets the MotorParams field of its name (a position
+# motor's ``inertia`` is the reflected inertia; a torque motor's is the rotor's own)
 _MOTOR_FIELDS = {
-    core.MotorKind.Position: {
-        "bandwidth_hz": "bandwidth_hz",
-        "damping": "damping",
-        "max_speed": "max_speed",
-        "max_accel": "max_accel",
-        "inertia": "reflected_inertia",
-        "coulomb_friction": "coulomb_friction",
-        "viscous_friction": "viscous_friction",
-        "gear_backlash": "gear_backlash",
-        "integral_time": "integral_time",
-    },
-    core.MotorKind.Torque: {
-        "inertia": "inertia",
-        "viscous": "viscous",
-        "max_torque": "max_torque",
-        "max_speed": "max_speed",
-        "coulomb_friction": "coulomb_friction",
-        "gear_backlash": "gear_backlash",
-    },
+    core.MotorKind.Position: (
+        "bandwidth_hz",
+        "damping",
+        "max_speed",
+        "max_accel",
+        "inertia",
+        "coulomb_friction",
+        "viscous_friction",
+        "gear_backlash",
+        "integral_time",
+    ),
+    core.MotorKind.Torque: (
+        "inertia",
+        "viscous",
+        "max_torque",
+        "max_speed",
+        "coulomb_friction",
+        "gear_backlash",
+    ),
 }
 
 
@@ -43,8 +43,8 @@ def _motor_params(kind, who: str, arguments: dict):
     """MotorParams of ``kind`` from a constructor's arguments, each checked to be a number."""
     p = core.MotorParams()
     p.kind = kind
-    for name, field in _MOTOR_FIELDS[kind].items():
-        setattr(p, field, number(who, name, arguments[name]))
+    for name in _MOTOR_FIELDS[kind]:
+        setattr(p, name, number(who, name, arguments[name]))
     return p
 
 
@@ -101,7 +101,7 @@ class Motor(PythonObject):
     def __init__(self, params: core.MotorParams):
         self._params = params
         kind = "position" if params.kind == core.MotorKind.Position else "torque"
-        with python_names(f"Motor.{kind}"):
+        with core_errors_as(f"Motor.{kind}"):
             self._engine = core.Motor(params)  # validates, naming the parameter
 
     def _recipe(self):
@@ -213,7 +213,7 @@ class Motor(PythonObject):
         p = self._params
         if self.kind == "position":
             keys = ("bandwidth_hz", "damping", "max_speed", "max_accel")
-            extra = {"inertia": p.reflected_inertia, "viscous_friction": p.viscous_friction}
+            extra = {"inertia": p.inertia, "viscous_friction": p.viscous_friction}
         else:
             keys = ("inertia", "viscous", "max_torque", "max_speed")
             extra = {}

@@ -152,7 +152,7 @@ def route_dead_zone_factor(route: Route, mu: ArrayLike) -> FloatOrArray:
     out = np.empty(flat.size)
     for i, m in enumerate(flat):
         shape = route_shape(route, float(m))
-        out[i] = dead_zone_factor(shape.g, shape.G, float(m) * shape.total_angle)
+        out[i] = dead_zone_factor(shape.g, shape.G, float(m) * shape.curve_angle)
     return out[0] if mus.ndim == 0 else out.reshape(mus.shape)
 
 

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .. import _core as core
-from .._args import integer, number, python_names
+from .._args import core_errors_as, integer, number
 from .._arrays import as_time_and_signal, checked_dt
 from .._pyobject import PythonObject
 from .._typing import ArrayLike
@@ -666,7 +666,7 @@ class SingleTendonPlant(_Plant):
         p.load_force, p.load_stiffness = load.linear()
         p.options = _options(cls, max_increment, fast_path)
         _set_effects(p, cls, _RATE_EFFECTS, effects)
-        with python_names(cls):
+        with core_errors_as(cls):
             self._engine = core.SingleTendonPlant(p, route._core)
         self._setup_io(motor, sensor)
 
@@ -835,7 +835,7 @@ class PullPullPlant(_Plant):
             p.load_torque, p.load_stiffness, p.load_damping = load.rotary()
         p.options = _options(cls, max_increment, fast_path)
         _set_effects(p, cls, _PAIR_EFFECTS, effects)
-        with python_names(cls):
+        with core_errors_as(cls):
             self._engine = self._make_engine(p)
         self._setup_io(motor, sensor)
 
@@ -1084,7 +1084,7 @@ class ContinuumPlant(PullPullPlant):
         c.elements = _check_elements(elements, cls)
         c.options = _options(cls, max_increment, fast_path)
         _set_effects(c, cls, _PAIR_EFFECTS, effects)
-        with python_names(cls):
+        with core_errors_as(cls):
             self._engine = core.ContinuumPlant(c, self.route._core, self.route2._core)
         self.load = TorsionalSpring(c.bending_stiffness / c.backbone_length)
         self._setup_io(motor, sensor)

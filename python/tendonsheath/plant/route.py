@@ -9,7 +9,7 @@ import numpy as np
 from .. import _core as core
 from .._angles import UnitWarning as UnitWarning
 from .._angles import warn_if_curve_angle_in_degrees
-from .._args import accepts_old_names, number, number_array, python_names, warn_renamed
+from .._args import accepts_old_names, core_errors_as, number, number_array, warn_renamed
 from .._arrays import as_signal
 from .._typing import ArrayLike, FloatArray
 
@@ -46,9 +46,9 @@ class Route:
     def __init__(self, s: ArrayLike, theta: ArrayLike):
         s_arr = as_signal(number_array("Route", "s", s), "s")
         th_arr = as_signal(number_array("Route", "theta", theta), "theta")
-        with python_names("Route"):
+        with core_errors_as("Route"):
             self._core = core.Route(s_arr.tolist(), th_arr.tolist())
-        warn_if_curve_angle_in_degrees(self._core.total_angle, "Route", "theta[-1]")
+        warn_if_curve_angle_in_degrees(self._core.curve_angle, "Route", "theta[-1]")
 
     @classmethod
     def _wrap(cls, engine) -> Route:
@@ -76,7 +76,7 @@ class Route:
         """
         length = number("Route.uniform", "length", length)
         angle = number("Route.uniform", "curve_angle", curve_angle)
-        with python_names("Route.uniform"):
+        with core_errors_as("Route.uniform"):
             route = cls._wrap(core.Route.uniform(length, angle))
         warn_if_curve_angle_in_degrees(angle, "Route.uniform")
         return route
@@ -108,7 +108,7 @@ class Route:
             raise TypeError(
                 f"Route.arcs: pieces must be (length, angle) pairs of numbers (got {pieces!r})"
             ) from None
-        with python_names("Route.arcs"):
+        with core_errors_as("Route.arcs"):
             route = cls._wrap(core.Route.arcs(items))
         warn_if_curve_angle_in_degrees(route.curve_angle, "Route.arcs", "the pieces' total angle")
         return route
@@ -180,7 +180,7 @@ class Route:
     @property
     def curve_angle(self) -> float:
         """Curve angle Theta = theta(L) (rad)."""
-        return self._core.total_angle
+        return self._core.curve_angle
 
     @property
     def total_angle(self) -> float:

@@ -8,7 +8,7 @@ import functools
 import numpy as np
 
 from .. import _core as core
-from .._args import integer, number, python_names
+from .._args import core_errors_as, integer, number
 from .._arrays import as_vector, checked_dt
 from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
@@ -67,7 +67,7 @@ class Sensor(PythonObject):
             )
         p.history = int(history)
         self._params = p
-        with python_names("Sensor"):
+        with core_errors_as("Sensor"):
             self._engine = core.Sensor(p)  # validates
 
     def _recipe(self):

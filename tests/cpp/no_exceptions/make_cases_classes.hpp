@@ -37,7 +37,7 @@ void models(Rng& rng) {
                                                  GPI{});
   using HO = ts::HystereticOscillatorParams;
   HO bandlimited;
-  bandlimited.input_reconstruction = ts::kInputBandlimited;
+  bandlimited.input_interpolation = ts::kInputBandlimited;
   spoiled<ts::HystereticOscillator, HO>(
       "HystereticOscillator", bandlimited,
       {bad(&HO::m), bad(&HO::nu), bad_int(&HO::substeps), bad_int(&HO::lookahead)}, rng);
@@ -57,7 +57,7 @@ void models(Rng& rng) {
 void compensators(Rng& rng) {
   using BI = ts::BacklashInverseParams;
   spoiled<ts::BacklashInverseFeedforward, BI>("BacklashInverseFeedforward", {},
-                                              {bad(&BI::c_r), bad(&BI::B_l), bad(&BI::v_eps)}, rng);
+                                              {bad(&BI::c_r), bad(&BI::B_l), bad(&BI::smoothing)}, rng);
   steps<ts::BacklashInverseFeedforward>("BacklashInverseFeedforward", 1.0, rng, BI{});
   ts::CommandLimits limits;
   limits.max_rate = 25.0;
@@ -65,16 +65,16 @@ void compensators(Rng& rng) {
                                           limits);
   using CF = ts::CurveAngleFeedforwardParams;
   spoiled<ts::CurveAngleFeedforward, CF>("CurveAngleFeedforward", {},
-                                         {bad(&CF::compliance), bad(&CF::total_angle),
-                                          bad(&CF::v_eps), bad(&CF::max_correction_rate)},
+                                         {bad(&CF::stiffness), bad(&CF::curve_angle),
+                                          bad(&CF::smoothing), bad(&CF::max_correction_rate)},
                                          rng);
   steps<ts::CurveAngleFeedforward>("CurveAngleFeedforward", 1.0, rng, CF{});
   using CN = ts::ContinuumFeedforwardParams;
   CN published;
   published.mode = ts::ContinuumMode::Published;
   spoiled<ts::ContinuumFeedforward, CN>("ContinuumFeedforward", published,
-                                        {bad(&CN::friction), bad(&CN::sheath_length),
-                                         bad(&CN::total_angle), bad(&CN::bending_stiffness)},
+                                        {bad(&CN::friction), bad(&CN::length),
+                                         bad(&CN::curve_angle), bad(&CN::bending_stiffness)},
                                         rng);
   steps<ts::ContinuumFeedforward>("ContinuumFeedforward", 0.5, rng, published);
   using LI = ts::LagInverseParams;
