@@ -148,8 +148,8 @@ def rate_section(out: Path, frequencies=(0.1, 1.0, 5.0)):
     presets) beside the capstan-only pair, which draws the same loop at any rate."""
     from .bench.rate_dependence import hysteresis_loops, loops_figure
     from .bench.scenarios.do import _COMMON, NOMINAL, physics, servo_motor
+    from .plant import PullPullPlant
     from .plant.motor import Motor
-    from .plant.pull_pull import PullPullPlant
     from .report import figures, html
 
     plants = {

@@ -45,7 +45,7 @@ if TYPE_CHECKING:
         InverseFeedforward,
     )
     from ..identify.loop_dynamics import LoopDynamics
-    from ..plant.pull_pull import PullPullPlant
+    from ..plant import PullPullPlant
     from .run import Result
 
 NOMINAL = {"pretension": 1.0, "length": 1.0, "proximal_radius": 1.0}

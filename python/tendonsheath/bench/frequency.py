@@ -14,7 +14,7 @@ if TYPE_CHECKING:
     import control  # python-control ships no types: its systems are Any to mypy
 
     from .._typing import ArrayLike
-    from ..plant.pull_pull import PullPullPlant
+    from ..plant import PullPullPlant
     from ..plant.sensor import Sensor
     from .run import Controller
 

@@ -29,7 +29,7 @@ from ..plant.sensor import Sensor
 from .motor_calibration import motor_calibration_input, run_experiment
 
 if TYPE_CHECKING:
-    from ..plant.pull_pull import PullPullPlant
+    from ..plant import PullPullPlant
     from ..plant.route import Route
 
 

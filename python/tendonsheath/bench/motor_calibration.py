@@ -20,7 +20,7 @@ from ..identify.servo import ServoFit, identify_servo
 from ..plant.sensor import Sensor
 
 if TYPE_CHECKING:
-    from ..plant.pull_pull import PullPullPlant
+    from ..plant import PullPullPlant
     from ..plant.route import Route
 
 

@@ -84,9 +84,8 @@ import numpy as np
 from .._angles import PLAUSIBLE_JOINT_ANGLE, warn_if_degrees
 from ..compensate import AdaptiveController
 from ..io._textread import read_config_text
-from ..plant import loads, presets
+from ..plant import ContinuumPlant, PullPullPlant, loads, presets
 from ..plant.motor import Motor
-from ..plant.pull_pull import ContinuumPlant, PullPullPlant
 from ..plant.route import Route
 from ..plant.sensor import Sensor
 from .run import run

@@ -15,7 +15,7 @@ from ..status import Status
 from .base import HysteresisModel
 
 if TYPE_CHECKING:
-    from ..plant.pull_pull import PullPullPlant
+    from ..plant import PullPullPlant
 
 #: wrap angle of the internal uniform route (rad); only friction * wrap angle matters on it
 WRAP = 2.0 * math.pi
@@ -97,7 +97,7 @@ class PlantModel(HysteresisModel):
         self._plant: PullPullPlant = self._make_plant()
 
     def _make_plant(self) -> PullPullPlant:
-        from ..plant.pull_pull import PullPullPlant
+        from ..plant import PullPullPlant
         from ..plant.route import Route
 
         v = self._values

@@ -7,11 +7,14 @@ forms (:mod:`~tendonsheath.plant.physics`) and the realistic presets
 """
 
 from . import input_interpolation, loads, physics, presets
+from .base import SlackWarning
+from .continuum import ContinuumPlant
 from .coupled import CoupledPlant, CoupledSimulation
 from .motor import Motor
-from .pull_pull import ContinuumPlant, PullPullPlant, SingleTendonPlant, SlackWarning
+from .pull_pull import PullPullPlant
 from .route import Route, UnitWarning
 from .sensor import Sensor
+from .single_tendon import SingleTendonPlant
 
 __all__ = [
     "ContinuumPlant",

@@ -10,9 +10,8 @@ from typing import Any
 import numpy as np
 
 from ...compensate import AdaptiveController
-from ...plant import presets
+from ...plant import PullPullPlant, presets
 from ...plant.motor import Motor
-from ...plant.pull_pull import PullPullPlant
 from ...plant.route import Route
 from ..calibration import calibrate as bench_calibrate
 from ..run import Result, run

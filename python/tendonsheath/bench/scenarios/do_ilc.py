@@ -17,7 +17,7 @@ import math
 from typing import Any
 
 from ...compensate import IterativeLearning
-from ...plant.pull_pull import PullPullPlant
+from ...plant import PullPullPlant
 from ...plant.route import Route
 from ..run import run
 from .common import ratio

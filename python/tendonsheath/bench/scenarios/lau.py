@@ -8,9 +8,8 @@ from typing import Any
 
 import numpy as np
 
-from ...plant import presets
+from ...plant import ContinuumPlant, presets
 from ...plant.motor import Motor
-from ...plant.pull_pull import ContinuumPlant
 from ...plant.route import Route
 from ..calibration import calibrate as bench_calibrate
 from ..frequency import frequency_response

@@ -10,9 +10,8 @@ from typing import Any
 
 import numpy as np
 
-from ...plant import presets
+from ...plant import PullPullPlant, presets
 from ...plant.loads import ConstantTorque, TorsionalSpring
-from ...plant.pull_pull import PullPullPlant
 from ...plant.route import Route
 from ..calibration import calibrate as bench_calibrate
 from ..calibration import calibrate_load

@@ -1,0 +1,572 @@
+"""What every physics plant shares (spec A.5): the C++-backed streaming and batch simulation,
+its route schedule, motor and sensor, the tensions after a step, and the SlackWarning.
+
+The plants themselves: :mod:`~tendonsheath.plant.pull_pull`,
+:mod:`~tendonsheath.plant.continuum`, :mod:`~tendonsheath.plant.single_tendon`.
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+import warnings
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .. import _core as core
+from .._args import integer, number
+from .._arrays import as_time_and_signal, checked_dt
+from .._pyobject import PythonObject
+from .._typing import ArrayLike
+from ..simulation_result import SimulationResult
+from ..status import Status
+from . import input_interpolation as reconstruction
+from .motor import Motor
+from .route import Route
+from .sensor import Sensor
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+
+class SlackWarning(RuntimeWarning):
+    """A tendon went slack (tension <= 0): the quasi-static model is not valid there."""
+
+
+def _options(cls, max_increment, fast_path):
+    o = core.ChainOptions()
+    if max_increment is not None:
+        o.max_increment = number(cls, "max_increment", max_increment)
+    o.fast_path = bool(fast_path)
+    return o
+
+
+# Effects beyond the quasi-static capstan chain (C++ parameter names); None leaves the default.
+_RATE_EFFECTS = ("sheath_viscosity", "relaxation_fraction", "relaxation_time")
+_PAIR_EFFECTS = ("distal_inertia", "distal_damping", *_RATE_EFFECTS, "friction2", "stiffness2")
+
+
+def _set_effects(p, cls, names, values):
+    """Copy the effect keywords onto the C++ parameters (which validate them at construction)."""
+    for name in names:
+        value = values[name]
+        if value is None:
+            continue
+        setattr(p, name, number(cls, name, value))
+
+
+# The plants' scalar parameters (same names in Python and C++).
+_PAIR_NUMBERS = ("friction", "stiffness", "pretension", "proximal_radius", "distal_radius")
+_CONTINUUM_NUMBERS = (
+    *_PAIR_NUMBERS[:4],
+    "bending_stiffness",
+    "tendon_offset",
+    "backbone_length",
+)
+
+
+def _set_numbers(p, cls, names, values):
+    for name in names:
+        setattr(p, name, number(cls, name, values[name]))
+
+
+def _effects_of(p, names) -> dict:
+    return {name: getattr(p, name) for name in names}
+
+
+def _check_elements(elements, cls):
+    elements = integer(cls, "elements", elements)
+    if elements < 2:
+        raise ValueError(f"{cls}: elements must be >= 2 (got {elements})")
+    return int(elements)
+
+
+def _check_route(route, name, cls):
+    if not isinstance(route, Route):
+        raise TypeError(f"{cls}: {name} must be a tendonsheath.Route (got {type(route).__name__})")
+    return route
+
+
+def _recording_arguments(init):
+    """``init`` that first keeps its bound arguments as ``self._arguments`` (the outermost
+    constructor's, when a subclass's calls its parent's)."""
+    signature = inspect.signature(init)
+
+    @functools.wraps(init)
+    def wrapper(self, *args, **kwargs):
+        if not hasattr(self, "_arguments"):
+            try:
+                bound = signature.bind(self, *args, **kwargs)
+            except TypeError:  # the constructor itself names the bad argument
+                return init(self, *args, **kwargs)
+            bound.apply_defaults()
+            self._arguments = _flat_arguments(signature, bound.arguments)
+        init(self, *args, **kwargs)
+
+    return wrapper
+
+
+def _flat_arguments(signature, arguments: dict) -> dict:
+    """Bound arguments without ``self``, a ``**kwargs`` catch-all spread into its keys."""
+    out = {}
+    for name, value in list(arguments.items())[1:]:
+        if signature.parameters[name].kind is inspect.Parameter.VAR_KEYWORD:
+            out.update(value)
+        else:
+            out[name] = value
+    return out
+
+
+def _rebuilt_plant(cls, arguments: dict, interpolation: tuple) -> _Plant:
+    """A plant of class ``cls`` built with ``arguments``, its input interpolation set."""
+    plant = cls(**arguments)
+    plant.set_input_interpolation(*interpolation)
+    return plant
+
+
+class _Plant(PythonObject):
+    """Shared streaming/batch behaviour; subclasses build ``_engine`` and describe their routes."""
+
+    _rows = 1
+    # core.SingleTendonPlant, core.PullPullPlant or core.ContinuumPlant, built by the subclass
+    _engine: Any = None
+    motor: Motor | None = None
+    sensor: Sensor | None = None
+    _interpolation = (
+        "hold",
+        reconstruction.DEFAULT_SUBSTEPS,
+        reconstruction.DEFAULT_LOOKAHEAD,
+    )
+
+    _arguments: dict  # the constructor's arguments, kept by _recording_arguments
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if "__init__" in vars(cls):
+            cls.__init__ = _recording_arguments(cls.__init__)
+
+    @property
+    def params(self) -> dict:
+        """The constructor's arguments, defaults filled in (a copy)."""
+        return dict(self._arguments)
+
+    def _recipe(self):
+        # pickled as its constructor's arguments: an equal plant at rest (tendonsheath._pyobject)
+        return _rebuilt_plant, (type(self), self._arguments, self._interpolation)
+
+    def set_input_interpolation(
+        self,
+        mode: str,
+        substeps: int = reconstruction.DEFAULT_SUBSTEPS,
+        lookahead: int = reconstruction.DEFAULT_LOOKAHEAD,
+    ) -> None:
+        """The default reconstruction of the command between samples in :meth:`simulate`
+        ("hold", "linear" or "bandlimited", on a grid ``substeps`` times finer; see
+        :mod:`tendonsheath.plant.input_interpolation`). :meth:`step` stays causal (hold)
+        whatever it is.
+
+        Parameters
+        ----------
+        mode : {"hold", "linear", "bandlimited"}
+            The reconstruction.
+        substeps : int, optional
+            Refinement of the grid (default
+            ``tendonsheath.plant.input_interpolation.DEFAULT_SUBSTEPS``).
+        lookahead : int, optional
+            Half-width of the band-limited sinc in samples (default
+            ``tendonsheath.plant.input_interpolation.DEFAULT_LOOKAHEAD``).
+
+        Raises
+        ------
+        ValueError
+            An unknown mode or a substeps or lookahead out of range.
+        """
+        reconstruction.check_interpolation(mode, substeps, lookahead, type(self).__name__)
+        self._interpolation = (mode, int(substeps), int(lookahead))
+
+    @property
+    def input_interpolation(self) -> str:
+        """The default reconstruction of the command in :meth:`simulate` ("hold", "linear" or
+        "bandlimited"; see :meth:`set_input_interpolation`)."""
+        return self._interpolation[0]
+
+    def _setup_io(self, motor, sensor):
+        if motor is not None and not isinstance(motor, Motor):
+            raise TypeError(
+                f"{type(self).__name__}: motor must be a tendonsheath.Motor or None "
+                f"(got {type(motor).__name__})"
+            )
+        if sensor is not None and not isinstance(sensor, Sensor):
+            raise TypeError(
+                f"{type(self).__name__}: sensor must be a tendonsheath.Sensor or None "
+                f"(got {type(sensor).__name__})"
+            )
+        self.motor = motor
+        self.sensor = sensor
+        self._motor_engine = motor.engine() if motor is not None else None
+
+    # -- streaming -------------------------------------------------------------------
+    def reset(self) -> None:
+        """Back to rest: uniform pretension, everything stuck; the next step starts there."""
+        self._engine.reset()
+        if self._motor_engine is not None:
+            self._motor_engine.reset()
+
+    def step(self, command: float, dt: float = 0.0) -> float:
+        """One sample: the command goes through the motor (if any), then the plant.
+
+        dt (s) is needed by a motor and by a damper load. A non-finite command holds the output.
+        The first step after construction or ``reset()`` takes its command as the rest state
+        (both tendons at pretension, output = command): start a stream from the position the
+        mechanism is really at, e.g. ``step(0.0)``, or the first move skips the dead zone.
+
+        Parameters
+        ----------
+        command : float
+            The command (rad at the pulley; m for a single tendon; N m for a torque motor).
+        dt : float, default 0.0
+            Time since the previous sample (s).
+
+        Returns
+        -------
+        float
+            The output after the step (rad; m for a single tendon).
+        """
+        dt = checked_dt(dt)
+        u = float(command)
+        if self._motor_engine is not None:
+            u = self._motor_engine.step(u, float(dt), self._engine.drive_reaction())
+        return self._engine.step(u, float(dt))
+
+    def status(self) -> Status:
+        """The last step's :class:`~tendonsheath.Status`: the plant's (held, clamped,
+        not_converged, slack) and its motor's (held, clamped, saturated).
+
+        Returns
+        -------
+        Status
+            The flags of the last :meth:`step`.
+        """
+        s = self._engine.status()
+        if self._motor_engine is not None:
+            s |= self._motor_engine.status()
+        return Status(s)
+
+    def output(self) -> float:
+        """The output after the last step (rad or m).
+
+        Returns
+        -------
+        float
+            The output.
+        """
+        return self._engine.output()
+
+    def input(self) -> float:
+        """The plant input after the motor (rad or m).
+
+        Returns
+        -------
+        float
+            The proximal pulley angle (rad) or displacement (m).
+        """
+        return self._engine.input()
+
+    def tensions(self) -> np.ndarray:
+        """Element tensions (N) after the last step, proximal to distal.
+
+        Returns
+        -------
+        numpy.ndarray of float
+            Shape (N,) for one tendon, (2, N) for a pair.
+        """
+        t = self._engine.tensions()
+        return t[0] if self._rows == 1 else t
+
+    def slip_state(self) -> np.ndarray:
+        """Stick/slip map of the interior sheath nodes, proximal to distal: +1 slipping toward
+        the proximal end (the tendon is pulled), -1 toward the distal end, 0 stuck.
+
+        Returns
+        -------
+        numpy.ndarray of int
+            Shape (N - 1,) for one tendon, (2, N - 1) for a pair.
+        """
+        s = self._engine.slip_state()
+        return s[0] if self._rows == 1 else s
+
+    def slack(self) -> bool:
+        """True when a tendon tension is <= 0 after the last step.
+
+        Returns
+        -------
+        bool
+            Whether a tendon is slack.
+        """
+        return self._engine.slack()
+
+    def min_tension(self) -> float:
+        """The smallest element tension after the last step.
+
+        Returns
+        -------
+        float
+            The tension (N).
+        """
+        return self._engine.min_tension()
+
+    @property
+    def elements(self) -> int:
+        """Elements N per sheath."""
+        return self._engine.elements
+
+    @property
+    def friction(self) -> float:
+        """Friction coefficient mu (of sheath 1 for a pair)."""
+        return self._engine.params.friction
+
+    @property
+    def stiffness(self) -> float:
+        """Tendon axial stiffness EA (N) (of tendon 1 for a pair)."""
+        return self._engine.params.stiffness
+
+    def element_positions(self, sheath: int = 1) -> np.ndarray:
+        """Arc length (m) of each element's midpoint along its sheath, proximal to distal.
+
+        Parameters
+        ----------
+        sheath : int, default 1
+            1, or 2 for the second sheath of a pair.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (N,)
+            The midpoints (m).
+        """
+        L = self._lengths()[sheath - 1]
+        n = self.elements
+        return (np.arange(n) + 0.5) * L / n
+
+    # -- batch -----------------------------------------------------------------------
+    def simulate(
+        self,
+        t: ArrayLike | None,
+        command: ArrayLike,
+        routes: Callable | None = None,
+        full: bool = False,
+        input_interpolation: str | None = None,
+        periodic: bool | None = None,
+        status: bool = False,
+    ) -> SimulationResult | tuple[SimulationResult, np.ndarray]:
+        """Simulate from rest (on the current route) without touching the streaming state.
+
+        ``input_interpolation`` ("hold", "linear", "bandlimited"; default: the plant's, see
+        :meth:`set_input_interpolation`) reconstructs the command between samples and steps
+        the plant on the finer grid (uniform ``t`` needed); ``periodic`` (None: detected)
+        picks exact FFT upsampling for a record of whole periods (see
+        :mod:`tendonsheath.plant.input_interpolation`).
+
+        ``t`` (s) may be None only without a motor, a damper and a route schedule. ``routes``
+        is None or a callable t -> Route (or a (route1, route2) pair for a pull-pull plant); it
+        is evaluated once per sample in Python and only the changes are passed to C++.
+        Returns a :class:`SimulationResult` (q_out as an array, with the plant's fields; its
+        ``status`` holds each sample's flags), or ``(result, flags)`` with ``status=True``. Warns
+        (:class:`SlackWarning`) with the time of the first slack sample.
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s), increasing.
+        command : array_like of float, shape (n,)
+            Commands (as for :meth:`step`).
+        routes : callable, optional
+            t -> Route (or a (route1, route2) pair), evaluated at every sample.
+        full : bool, default False
+            Accepted for older code; the result is the same (it always has every field).
+        input_interpolation : {"hold", "linear", "bandlimited"}, optional
+            The reconstruction of the command (default: the plant's).
+        periodic : bool, optional
+            Whether the record is a whole number of periods (None: detected).
+        status : bool, default False
+            Also return each sample's Status flags.
+
+        Returns
+        -------
+        result : SimulationResult, shape (n,)
+            The output q_out, with ``command``, ``q_in``, ``q_motor``, ``measured``,
+            ``slack``, ``tensions``, ``nonconverged``, ``status`` and ``input_interpolation``;
+            ``(result, flags)`` with ``status=True``.
+
+        Raises
+        ------
+        ValueError
+            t missing where it is needed, routes not callable, a bad route, or bad samples.
+        """
+        name = f"{type(self).__name__}.simulate"
+        ts, us = as_time_and_signal(t, command, "command")
+        if ts is None and (self.motor is not None or routes is not None or self._needs_time()):
+            raise ValueError(f"{name}: t is required with a motor, a damper or routes=")
+        idx = angles = None
+        if routes is not None:
+            if not callable(routes):
+                raise ValueError(f"{name}: routes must be None or a callable t -> Route")
+            idx, angles = self._schedule(ts, routes)
+        motor_arg = self.motor.engine() if self.motor is not None else None
+        sensor_arg = self.sensor.engine() if self.sensor is not None else None
+        mode, fine, lookahead = self._interpolation
+        mode = mode if input_interpolation is None else input_interpolation
+        reconstruction.check_interpolation(mode, fine, lookahead, name)
+        how, t_run, u_run, idx_run = "hold", ts, us, idx
+        if mode != "hold" and us.size > 1:
+            if ts is None:
+                raise ValueError(f"{name}: input_interpolation={mode!r} needs the time t")
+            t_run, u_run, how = reconstruction.fine_grid(
+                ts, us, mode, fine, lookahead, periodic, name
+            )
+            idx_run = None if idx is None else (idx * fine).astype(np.uint64)
+        q_out, q_in, slack, meas, tens, noncon, q_motor, flags = self._engine.simulate(
+            t_run, u_run, motor_arg, sensor_arg, idx_run, angles
+        )
+        if t_run is not ts:  # read at the original samples; slack anywhere in a step counts
+            step = slice(None, None, fine)
+            n = us.size
+            slack = np.r_[slack[0], slack[1 : (n - 1) * fine + 1].reshape(n - 1, fine).any(axis=1)]
+            flags = np.r_[
+                flags[0],
+                np.bitwise_or.reduce(flags[1 : (n - 1) * fine + 1].reshape(n - 1, fine), axis=1),
+            ].astype(flags.dtype)
+            q_out, q_in, meas = q_out[step], q_in[step], meas[step]
+            q_motor = None if q_motor is None or q_motor.size == 0 else q_motor[step]
+        self._warn_slack(ts, slack)
+        result = SimulationResult(
+            q_out,
+            t=ts,
+            input=us,
+            command=us,
+            q_in=q_in,
+            measured=meas,
+            slack=slack,
+            tensions=tens[0] if self._rows == 1 else tens,
+            nonconverged=int(noncon),
+            q_motor=q_motor,
+            status=flags,
+            input_interpolation=how,
+        )
+        return (result, flags) if status else result
+
+    def _warn_slack(self, ts, slack) -> None:
+        """A SlackWarning with the time of the first slack sample (pointing at the caller of
+        simulate)."""
+        if not slack.any():
+            return
+        k = int(np.flatnonzero(slack)[0])
+        when = f"t = {ts[k]:.6g} s" if ts is not None else "the start"
+        warnings.warn(
+            f"{type(self).__name__}: a tendon went slack (tension <= 0) first at {when} "
+            f"(sample {k}, {int(slack.sum())} samples in all); the quasi-static model is not "
+            f"valid there: raise the pretension or lower the load",
+            SlackWarning,
+            stacklevel=3,
+        )
+
+    def route_schedule(self, t: ArrayLike, routes: Callable) -> tuple[np.ndarray, np.ndarray]:
+        """The route changes of ``routes`` over the times ``t``, as the C++ loops take them:
+        the sample indices where the route changes (the first always 0) and each new route's
+        node angles (what :meth:`simulate` and :func:`tendonsheath.bench.run` pass to C++).
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,)
+            Sample times (s).
+        routes : callable
+            t -> Route (or a (route1, route2) pair for a pull-pull plant).
+
+        Returns
+        -------
+        index : numpy.ndarray of uint64
+            The samples at which the route changes.
+        angles : numpy.ndarray of float, shape (changes, node angles)
+            Each new route's node angles (:meth:`node_angles`).
+
+        Raises
+        ------
+        ValueError
+            A route of the wrong kind or length.
+        """
+        return self._schedule(np.asarray(t, dtype=float), routes)
+
+    def node_angles(self, route: Route | tuple[Route, Route]) -> np.ndarray:
+        """The lumped node angles (rad) a route gives this plant's elements.
+
+        Parameters
+        ----------
+        route : Route or (Route, Route)
+            The route (a pull-pull plant: or the pair of its two sheaths).
+
+        Returns
+        -------
+        numpy.ndarray of float
+            The node angles, as the C++ plant's set_node_angles takes them.
+
+        Raises
+        ------
+        ValueError
+            A route of the wrong kind or length.
+        """
+        return self._angles_for(route)
+
+    def _tendonsheath_plant(self):
+        # what tendonsheath.bench.run steps: the C++ engine without the motor (the bench runs
+        # the motor between controller and plant); the loop steps a copy
+        return self._engine
+
+    def _schedule(self, ts, routes):
+        idx, rows = [], []
+        prev_obj = object()
+        prev = None
+        for k, tk in enumerate(ts):
+            r = routes(float(tk))
+            if r is prev_obj:
+                continue
+            prev_obj = r
+            a = self._angles_for(r)
+            if prev is not None and np.array_equal(a, prev):
+                continue
+            prev = a
+            idx.append(k)
+            rows.append(a)
+        return (
+            np.asarray(idx, dtype=np.uint64),
+            np.ascontiguousarray(np.vstack(rows)),
+        )
+
+    def _lengths(self) -> tuple[float, ...]:
+        raise NotImplementedError  # the subclass's sheath lengths
+
+    def _angles_for(self, r) -> np.ndarray:
+        raise NotImplementedError  # the subclass's node angles for a route
+
+    def _needs_time(self) -> bool:
+        return self._engine.time_dependent()
+
+    def plot_tensions(self, ax: Axes | None = None) -> Axes:
+        """Draw the tension profile along the route(s) (see :func:`tendonsheath.plots`).
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Where to draw (default a new figure).
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+        """
+        from ..plots import plot_tension_profile
+
+        return plot_tension_profile(self, ax=ax)
+
+
+__all__ = ["SlackWarning"]

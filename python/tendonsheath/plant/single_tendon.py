@@ -1,0 +1,161 @@
+"""SingleTendonPlant: one tendon in its sheath, proximal displacement in, distal displacement
+out (m) (spec A.5)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from .. import _core as core
+from .._args import core_errors_as, number
+from . import physics
+from .loads import (
+    ConstantForce,
+    LinearSpring,
+    SpringPreload,
+)
+from .motor import Motor
+from .route import Route
+from .sensor import Sensor
+
+if TYPE_CHECKING:
+    pass
+from .base import (
+    _RATE_EFFECTS,
+    _check_elements,
+    _check_route,
+    _options,
+    _Plant,
+    _set_effects,
+)
+
+
+class SingleTendonPlant(_Plant):
+    """One tendon in one sheath: proximal displacement in (m), distal displacement out (m).
+
+    ``load`` is a :class:`~tendonsheath.plant.loads.ConstantForce`, ``LinearSpring`` or
+    ``SpringPreload`` pulling the distal end (default ConstantForce(10 N)).
+
+    Parameters
+    ----------
+    route : Route
+        Route of the sheath.
+    friction : float, default 0.1
+        Friction coefficient mu.
+    stiffness : float, default 2.4e4
+        Tendon axial stiffness EA (N).
+    elements : int, default 100
+        Elements N per sheath, >= 2.
+    load : ConstantForce, LinearSpring or SpringPreload, optional
+        The distal load (default ConstantForce(10.0)).
+    motor : Motor, optional
+        A drive between the command and the proximal pulley.
+    sensor : Sensor, optional
+        Reads the output (``SimulationResult.measured``).
+    max_increment : float, optional
+        Largest input sub-increment of the solver (m); None: the plant chooses.
+    fast_path : bool, default True
+        Use the solver's exact shortcuts (lazy update while the slip map stays valid).
+    sheath_viscosity : float, optional
+        Viscous drag on the sliding tendon (N s/m per metre of sheath; None: off).
+    relaxation_fraction : float, optional
+        Share r in [0, 1) of EA that relaxes (standard linear solid; None: off).
+    relaxation_time : float, optional
+        Time constant tau of the relaxation (s).
+
+    Raises
+    ------
+    ValueError
+        A route, load, motor or sensor of the wrong kind, elements not an integer >= 2, or a
+        value the C++ core rejects (the message names it).
+    TypeError
+        An effect that is not a number.
+    """
+
+    _rows = 1
+
+    def __init__(
+        self,
+        route: Route,
+        friction: float = 0.1,
+        stiffness: float = 2.4e4,
+        elements: int = 100,
+        load: ConstantForce | LinearSpring | SpringPreload | None = None,
+        motor: Motor | None = None,
+        sensor: Sensor | None = None,
+        max_increment: float | None = None,
+        fast_path: bool = True,
+        sheath_viscosity: float | None = None,
+        relaxation_fraction: float | None = None,
+        relaxation_time: float | None = None,
+    ):
+        cls = type(self).__name__
+        effects = {
+            "sheath_viscosity": sheath_viscosity,
+            "relaxation_fraction": relaxation_fraction,
+            "relaxation_time": relaxation_time,
+        }
+        self.route = _check_route(route, "route", cls)
+        load = ConstantForce(10.0) if load is None else load
+        if not isinstance(load, ConstantForce | LinearSpring | SpringPreload):
+            raise TypeError(
+                f"{cls}: load must be ConstantForce, LinearSpring or SpringPreload "
+                f"(got {type(load).__name__})"
+            )
+        self.load = load
+        p = core.SingleTendonParams()
+        p.friction = number(cls, "friction", friction)
+        p.stiffness = number(cls, "stiffness", stiffness)
+        p.elements = _check_elements(elements, cls)
+        p.load_force, p.load_stiffness = load.linear()
+        p.options = _options(cls, max_increment, fast_path)
+        _set_effects(p, cls, _RATE_EFFECTS, effects)
+        with core_errors_as(cls):
+            self._engine = core.SingleTendonPlant(p, route._core)
+        self._setup_io(motor, sensor)
+
+    @property
+    def kinematic_gain(self) -> float:
+        """The uncompensated command per unit of desired output: 1 (m of proximal displacement
+        per m of distal displacement)."""
+        return 1.0
+
+    def _lengths(self) -> tuple[float, ...]:
+        return (self.route.length,)
+
+    def set_route(self, route: Route) -> None:
+        """Bend the sheath to a new route (same length); over-capacity nodes slip next step.
+
+        Parameters
+        ----------
+        route : Route
+            The new route, of the same length.
+
+        Raises
+        ------
+        ValueError
+            Not a Route, or of another length.
+        """
+        self._engine.set_route(_check_route(route, "route", type(self).__name__)._core)
+        self.route = route
+
+    def _angles_for(self, r):
+        return self._engine.node_angles(_check_route(r, "routes(t)", type(self).__name__)._core)
+
+    def closed_form(self) -> dict:
+        """Capstan ratio and (A4) dead zone for the current route and load at rest (m).
+
+        Returns
+        -------
+        dict
+            ``capstan_ratio`` and ``dead_zone`` (m).
+        """
+        F0, _ = self.load.linear()
+        return {
+            "capstan_ratio": float(physics.capstan_ratio(self.friction, self.route.curve_angle)),
+            "dead_zone": physics.single_tendon_dead_zone(
+                self.route, self.stiffness, F0, self.friction
+            ),
+        }
+
+
+__all__ = ["SingleTendonPlant"]
