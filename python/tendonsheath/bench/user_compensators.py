@@ -64,20 +64,27 @@ def _entry(entry, here: str, base: Path) -> UserCompensator:
     unknown = sorted(set(entry) - _ENTRY_KEYS)
     if unknown:
         raise ValueError(f"{here}: unknown key '{unknown[0]}' (known: {sorted(_ENTRY_KEYS)})")
-    spec, kwargs = entry.get("class"), entry.get("kwargs", {})
-    if not isinstance(spec, str) or not spec:
-        raise ValueError(
-            f"{here}: 'class' (\"module:Class\", or a class name with 'file') is needed"
-        )
-    if not isinstance(kwargs, dict):
-        raise ValueError(f"{here}: 'kwargs' must be a table of keyword arguments")
-    cls, origin = resolve_class(spec, entry.get("file"), here, base)
+    cls, origin, kwargs = class_and_kwargs(entry, here, base)
     name = entry.get("name", cls.__name__)
     if not isinstance(name, str) or not name:
         raise ValueError(f"{here}: 'name' must be a non-empty string")
     user = UserCompensator(name, cls, dict(kwargs), origin)
     _check_builds(user, here)
     return user
+
+
+def class_and_kwargs(table: dict, here: str, base: Path) -> tuple[type, str, dict]:
+    """The class a table's 'class' (and 'file') names, its origin "module:Class" and the
+    table's 'kwargs'; ValueError starting with ``here`` when one is missing or malformed."""
+    spec, kwargs = table.get("class"), table.get("kwargs", {})
+    if not isinstance(spec, str) or not spec:
+        raise ValueError(
+            f"{here}: 'class' (\"module:Class\", or a class name with 'file') is needed"
+        )
+    if not isinstance(kwargs, dict):
+        raise ValueError(f"{here}: 'kwargs' must be a table of keyword arguments")
+    cls, origin = resolve_class(spec, table.get("file"), here, base)
+    return cls, origin, kwargs
 
 
 def resolve_class(spec: str, file, here: str, base: Path) -> tuple[type, str]:
@@ -167,4 +174,10 @@ def told_by_user(user: UserCompensator) -> dict[str, tuple[Any, str]]:
     return told
 
 
-__all__ = ["UserCompensator", "parse_user_compensators", "resolve_class", "told_by_user"]
+__all__ = [
+    "UserCompensator",
+    "class_and_kwargs",
+    "parse_user_compensators",
+    "resolve_class",
+    "told_by_user",
+]

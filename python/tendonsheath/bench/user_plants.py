@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from ..protocols import Plant, missing_members
-from .user_compensators import resolve_class
+from .user_compensators import class_and_kwargs
 
 _PLANT_KEYS = {"class", "file", "kwargs"}
 
@@ -50,14 +50,7 @@ def parse_user_plant(table: dict, where: str, base: Path) -> UserPlant:
             f"{where}: '{unknown[0]}' is a key of the shipped plants; a user plant ('class') "
             f"takes only {sorted(_PLANT_KEYS)}"
         )
-    spec, kwargs = table.get("class"), table.get("kwargs", {})
-    if not isinstance(spec, str) or not spec:
-        raise ValueError(
-            f"{where}: 'class' (\"module:Class\", or a class name with 'file') is needed"
-        )
-    if not isinstance(kwargs, dict):
-        raise ValueError(f"{where}: 'kwargs' must be a table of keyword arguments")
-    cls, origin = resolve_class(spec, table.get("file"), where, base)
+    cls, origin, kwargs = class_and_kwargs(table, where, base)
     user = UserPlant(cls, dict(kwargs), origin)
     try:
         instance = user.build()
