@@ -22,7 +22,7 @@ class SavedAsJson:
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
-        if "_saved_settings" in vars(cls):
+        if vars(cls).get("_saved_settings"):  # a kind of file (not a base declaring none)
             persistence.register(cls)
 
     def to_dict(self) -> dict:
