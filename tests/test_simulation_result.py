@@ -69,10 +69,10 @@ def test_models_return_the_result_type(seed):
     for model in _models(rng):
         res = model.simulate(t, x)
         _check_array_access(res, t, x)
-        if model.reports_status:
-            again, flags = model.simulate(t, x, status=True)
-            np.testing.assert_array_equal(again, res)
-            assert again.status is flags and flags.dtype == np.uint8
+        if model.reports_status:  # each sample's flags, always there
+            assert res.status.dtype == np.uint8 and res.status.shape == x.shape
+        else:  # a linear block reports none
+            assert res.status is None
     curve = CurveAngleModel().simulate(t, x, curve_angle=1.0)
     _check_array_access(curve, t, x)
 
@@ -89,8 +89,43 @@ def test_plants_return_the_result_type_with_their_fields():
         old = plant.simulate(t, x, full=True)  # the old spelling: the same result
         np.testing.assert_array_equal(old, res)
         np.testing.assert_array_equal(old.q_in, res.q_in)
-        again, flags = plant.simulate(t, x, status=True)
-        np.testing.assert_array_equal(flags, res.status)
+        assert res.status.dtype == np.uint8
+
+
+def test_the_old_status_switch_warns_and_returns_the_old_tuple():
+    """simulate(..., status=True) and command(..., status=True) keep working for one release:
+    the old (result, flags), the flags those of .status, with a DeprecationWarning naming
+    .status and pointing at this file (the user's line)."""
+    t = np.arange(0.0, 1.0, 1e-3)
+    x = np.sin(2 * np.pi * t)
+    plant = _plants()[1]
+    ff = ts.compensate.InverseFeedforward(BoucWenBacklash(B_r=0.05, B_l=0.05), smoothing=0.01)
+    calls = [
+        lambda: Backlash().simulate(t, x, status=True),
+        lambda: Backlash().simulate(t, x, True),  # the old positional switch
+        lambda: HystereticOscillator().simulate(t, x, None, True),
+        lambda: Scaled(Backlash(), output_gain=2.0).simulate(t, x, status=True),
+        lambda: plant.simulate(t, x, status=True),
+        lambda: ff.command(t, 0.5 * x, status=True),
+    ]
+    for call in calls:
+        with pytest.warns(DeprecationWarning, match=r"read \.status on the result") as record:
+            result, flags = call()
+        assert record[0].filename == __file__
+        assert isinstance(result, ts.SimulationResult) and flags.dtype == np.uint8
+        np.testing.assert_array_equal(flags, result.status)
+
+
+def test_command_returns_the_result_type():
+    t = np.arange(0.0, 1.0, 1e-3)
+    y_d = 0.5 * np.sin(2 * np.pi * t)
+    ff = ts.compensate.InverseFeedforward(BoucWenBacklash(B_r=0.05, B_l=0.05), smoothing=0.01)
+    u = ff.command(t, y_d)
+    _check_array_access(u, t, y_d)
+    assert u.status.dtype == np.uint8 and u.status.shape == y_d.shape
+    ff.reset()
+    streamed = np.array([ff.step(y, 1e-3 if k else 0.0) for k, y in enumerate(y_d)])
+    np.testing.assert_array_equal(u, streamed)  # the same commands as the streaming loop
 
 
 def test_failure_is_reported_and_results_pickle():

@@ -76,6 +76,9 @@ class CoupledSimulation:
         The joint angles y = (I - K)^-1 q.
     measured : numpy.ndarray
         The joint angles as the sensors read them (q_out where a joint has no sensor).
+
+    Like a single plant's :class:`~tendonsheath.SimulationResult` it also names its command
+    ``input`` and its q_out ``output``.
     """
 
     t: FloatArray
@@ -84,6 +87,16 @@ class CoupledSimulation:
     drive: FloatArray
     q_out: FloatArray
     measured: FloatArray
+
+    @property
+    def input(self) -> FloatArray:
+        """The commands (= ``command``), as every result names what the run was given."""
+        return self.command
+
+    @property
+    def output(self) -> FloatArray:
+        """The joint angles (= ``q_out``), as every result names what the run produced."""
+        return self.q_out
 
 
 class CoupledPlant(PythonObject):
