@@ -16,7 +16,7 @@ direction switch is smoothed over 3 % of that trajectory's peak rate (spec D.2: 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from scipy.signal import butter, sosfiltfilt

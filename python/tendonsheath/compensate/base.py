@@ -5,12 +5,10 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Self, cast
 
-import numpy as np
-
 from .._args import warn_status_switch
 from .._arrays import as_timed_signal, checked_dt
 from .._pyobject import PythonObject
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
 from ..status import Status
@@ -180,9 +178,7 @@ class Feedforward(EngineCompensator):
         dt = checked_dt(dt)
         return self._engine.step(float(y_d), float(dt))
 
-    def command(
-        self, t: ArrayLike, y_desired: ArrayLike, status: bool = False
-    ) -> SimulationResult:
+    def command(self, t: ArrayLike, y_desired: ArrayLike, status: bool = False) -> SimulationResult:
         """Motor commands for a whole trajectory, with each cycle's :class:`Status` flags
         (uint8) in the result's ``status``.
 

@@ -13,7 +13,7 @@ from .. import _core as core
 from .._angles import checked_curve_angle
 from .._args import core_errors_as, number
 from .._arrays import as_signal, as_timed_signal, checked_dt
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
 from ..models import HysteresisModel
 from ..plant.physics import route_shape as shape_of
 from ..simulation_result import SimulationResult

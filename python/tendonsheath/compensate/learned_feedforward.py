@@ -141,9 +141,7 @@ class LearnedFeedforward(AroundFeedforward):
         x = float(self.feedforward.step(float(y_d), dt))
         return self._engine.correct(x, dt)
 
-    def command(
-        self, t: ArrayLike, y_desired: ArrayLike, status: bool = False
-    ) -> SimulationResult:
+    def command(self, t: ArrayLike, y_desired: ArrayLike, status: bool = False) -> SimulationResult:
         """Corrected commands for a whole trajectory, from the initial state (the streaming
         state is left untouched); the feedforward must have ``command(t, y_d)``.
 

@@ -25,7 +25,7 @@ from .. import _core as core
 from .._args import number
 from .._arrays import as_timed_signal, checked_dt
 from .._pyobject import PythonObject
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
 from ..models.loaded import Loaded
 from ..simulation_result import SimulationResult
 from . import persistence

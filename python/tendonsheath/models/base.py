@@ -19,7 +19,7 @@ from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import naming_the_file, read_json_source
 from .._pyobject import PythonObject
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
 from ..status import Status

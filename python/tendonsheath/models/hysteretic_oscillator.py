@@ -11,7 +11,7 @@ import numpy as np
 from .. import _core as core
 from .._arrays import as_time_and_signal
 from .._sampling import fft_upsample, is_periodic, uniform_step
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
 from ..simulation_result import SimulationResult
 from .base import HysteresisModel
 

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._args import integer, number
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
 from .base import HysteresisModel
