@@ -123,9 +123,10 @@ def test_command_returns_the_result_type():
     u = ff.command(t, y_d)
     _check_array_access(u, t, y_d)
     assert u.status.dtype == np.uint8 and u.status.shape == y_d.shape
-    ff.reset()
-    streamed = np.array([ff.step(y, 1e-3 if k else 0.0) for k, y in enumerate(y_d)])
-    np.testing.assert_array_equal(u, streamed)  # the same commands as the streaming loop
+    # bit for bit the commands of the engine's call without flags (what command gave before)
+    np.testing.assert_array_equal(u, ff._engine.command(t, y_d, None, None, None, False))
+    model = BoucWenBacklash(B_r=0.05, B_l=0.05)
+    np.testing.assert_array_equal(model.simulate(t, y_d), model._engine.simulate(t, y_d, False))
 
 
 def test_failure_is_reported_and_results_pickle():
