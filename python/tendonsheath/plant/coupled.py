@@ -60,7 +60,9 @@ def _joint_matrix(values: ArrayLike, joints: int, name: str, owner: str) -> Floa
 
 @dataclass(frozen=True)
 class CoupledSimulation:
-    """A run of a :class:`CoupledPlant`: arrays of shape (n, joints).
+    """A run of a :class:`CoupledPlant`: arrays of shape (n, joints). Like a single plant's
+    :class:`~tendonsheath.SimulationResult` it also names its command ``input`` and its q_out
+    ``output``.
 
     Parameters
     ----------
@@ -76,9 +78,6 @@ class CoupledSimulation:
         The joint angles y = (I - K)^-1 q.
     measured : numpy.ndarray
         The joint angles as the sensors read them (q_out where a joint has no sensor).
-
-    Like a single plant's :class:`~tendonsheath.SimulationResult` it also names its command
-    ``input`` and its q_out ``output``.
     """
 
     t: FloatArray
