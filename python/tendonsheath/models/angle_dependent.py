@@ -253,7 +253,7 @@ class AngleDependent(HysteresisModel):
         return self._base_cls(**self.params_at(curve_angle), **self._base_options)
 
     # -- simulation ------------------------------------------------------------------
-    def simulate(  # type: ignore[override]  # curve_angle is its input
+    def simulate(  # curve_angle is its input
         self,
         t: ArrayLike | None,
         x: ArrayLike,

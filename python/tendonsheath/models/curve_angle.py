@@ -121,7 +121,7 @@ class CurveAngleModel(HysteresisModel):
             play=play,
         )
 
-    def simulate(  # type: ignore[override]  # curve_angle is its input
+    def simulate(  # curve_angle is its input
         self,
         t: ArrayLike | None,
         x: ArrayLike,

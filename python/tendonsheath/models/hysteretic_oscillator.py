@@ -169,7 +169,7 @@ class HystereticOscillator(HysteresisModel):
         """
         return float(self._engine.z_bound(float(displacement_range)))
 
-    def simulate(  # type: ignore[override]  # periodic is its own
+    def simulate(  # periodic is its own
         self, t: ArrayLike | None, x: ArrayLike, periodic: bool | None = None
     ) -> SimulationResult:
         """Output for the input samples x at times t, from rest.

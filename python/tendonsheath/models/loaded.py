@@ -211,7 +211,7 @@ class Loaded(HysteresisModel):
             raise ValueError("Loaded: the load must be finite")
         return arr
 
-    def simulate(  # type: ignore[override]  # the measured load besides the input
+    def simulate(  # the measured load besides the input
         self,
         t: ArrayLike | None,
         x: ArrayLike,

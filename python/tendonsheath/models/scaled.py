@@ -152,7 +152,7 @@ class Scaled(HysteresisModel):
         """
         return self.inner.status()
 
-    def simulate(  # type: ignore[override]  # the rest pass through to the inner model
+    def simulate(  # the rest pass through to the inner model
         self, t: ArrayLike | None, x: ArrayLike, **kwargs: Any
     ) -> SimulationResult:
         """The inner model's simulation, in the data's units.

@@ -11,7 +11,7 @@ import functools
 import inspect
 import warnings
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -359,7 +359,7 @@ class _Plant(PythonObject):
         input_interpolation: str | None = None,
         periodic: bool | None = None,
         status: bool = False,
-    ) -> SimulationResult | tuple[SimulationResult, np.ndarray]:
+    ) -> SimulationResult:
         """Simulate from rest (on the current route) without touching the streaming state.
 
         ``input_interpolation`` ("hold", "linear", "bandlimited"; default: the plant's, see
@@ -458,7 +458,7 @@ class _Plant(PythonObject):
         )
         if status:
             warn_status_switch(name)
-            return result, flags
+            return cast(SimulationResult, (result, flags))  # the old tuple, for one release
         return result
 
     def _warn_slack(self, ts, slack) -> None:
