@@ -192,3 +192,24 @@ def test_motor_simulate_returns_the_result_type_too():
     fresh = ts.Motor.position(bandwidth_hz=5.0)
     by_hand = [fresh.step(u, 0.0 if k == 0 else t[k] - t[k - 1]) for k, u in enumerate(command)]
     np.testing.assert_allclose(np.asarray(res), by_hand, rtol=0, atol=1e-15)
+
+
+def test_one_name_per_quantity_across_the_run_results():
+    """bench.Result's motor angle is q_motor (as a plant's result names it), a scenario's
+    metrics a field, a coupled run's command and q_out also input and output; the old names
+    still read for one release, with a DeprecationWarning naming the new one."""
+    from tendonsheath.bench.run import Result
+    from tendonsheath.bench.scenarios.common import ScenarioResult
+    from tendonsheath.plant.coupled import CoupledSimulation
+
+    n = np.arange(4.0)
+    run = Result("none", n, n, n + 1, n, n, 2 * n, n < 0, n < 0, 0.0, {"rmse": 1.0})
+    with pytest.warns(DeprecationWarning, match="'motor' is now called 'q_motor'") as record:
+        np.testing.assert_array_equal(run.motor, 2 * n)
+    assert record[0].filename == __file__
+    scenario = ScenarioResult("s", "S", "", {}, {"none": run}, [], {})
+    assert scenario.metrics == {"none": {"rmse": 1.0}}
+    with pytest.warns(DeprecationWarning, match=r"'metrics\(\)' is now called 'metrics'"):
+        assert scenario.metrics() == scenario.metrics
+    coupled = CoupledSimulation(n, n + 1, n, n, n + 2, n)
+    assert coupled.input is coupled.command and coupled.output is coupled.q_out
