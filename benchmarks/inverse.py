@@ -43,7 +43,8 @@ def _range_rows(model, logs) -> list[dict]:
         row = {"run": name, "input_range": [float(log.x.min()), float(log.x.max())]}
         for label, setting in (("unbounded", None), ("identified", "identified")):
             ff = InverseFeedforward(model, smoothing=0.05, input_range=setting)
-            u, flags = ff.command(log.t, desired, status=True)
+            u = ff.command(log.t, desired)
+            flags = u.status
             row[label] = {
                 "max_abs_command": float(np.max(np.abs(u))),
                 "out_of_range_share": float(np.mean((flags & ts.Status.OUT_OF_RANGE) != 0)),

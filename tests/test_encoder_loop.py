@@ -108,9 +108,9 @@ def test_it_makes_a_yielding_servo_follow_its_feedforward():
     alone = run(plant, ff, t, y_d)
     looped = run(plant, EncoderLoop(ff, kp=1.0, ki=150.0), t, y_d)
     keep = t > 2.0
-    miss_alone = np.sqrt(np.mean((alone.motor - alone.command)[keep] ** 2))
+    miss_alone = np.sqrt(np.mean((alone.q_motor - alone.command)[keep] ** 2))
     target = ff.command(t, y_d)
-    miss_looped = np.sqrt(np.mean((looped.motor - target)[keep] ** 2))
+    miss_looped = np.sqrt(np.mean((looped.q_motor - target)[keep] ** 2))
     assert miss_alone > 0.01
     # measured: 0.024 rad alone against 0.0016 rad with the loop (the servo's lag remains)
     assert miss_looped < 0.2 * miss_alone

@@ -141,7 +141,8 @@ def _curve_angle(model):
 
 def _run(model, ff, y_d):
     kw = _curve_angle(model)
-    u, flags = ff.command(T, y_d, status=True, **kw)
+    u = ff.command(T, y_d, **kw)
+    flags = u.status
     return u, flags, np.asarray(model.simulate(T, u, **kw))
 
 

@@ -35,9 +35,8 @@ class Passthrough:
     def step(self, y_d: float, dt: float) -> float:
         return float(y_d)
 
-    def command(self, t, y_d, status: bool = False):
-        x = np.asarray(y_d, dtype=float).copy()
-        return (x, np.zeros(x.size, np.uint8)) if status else x
+    def command(self, t, y_d):  # a plain array: no status (LearnedFeedforward adds the table's)
+        return np.asarray(y_d, dtype=float).copy()
 
 
 def _direct(table, table_dt, t, hold_last):
@@ -82,7 +81,8 @@ def test_past_the_end_it_holds_the_last_sample_or_adds_zero_and_says_so():
     t = np.arange(0.0, 0.01, DT)  # 10 samples, the table has 4
     y_d = np.ones(t.size)
     table = [0.1, 0.2, 0.3, 0.4]
-    hold, flags = LearnedFeedforward(Passthrough(), table, DT).command(t, y_d, status=True)
+    hold = LearnedFeedforward(Passthrough(), table, DT).command(t, y_d)
+    flags = hold.status
     zero = LearnedFeedforward(Passthrough(), table, DT, hold_last=False).command(t, y_d)
     np.testing.assert_allclose(hold, [1.1, 1.2, 1.3, 1.4] + [1.4] * 6)
     np.testing.assert_allclose(zero, [1.1, 1.2, 1.3, 1.4] + [1.0] * 6)
@@ -104,7 +104,8 @@ def test_it_adds_the_table_to_a_real_feedforward_and_shapes_the_result():
     learned = LearnedFeedforward(inverse, table, DT)
     np.testing.assert_allclose(learned.command(t, y_d), inverse.command(t, y_d) + table, atol=1e-12)
     capped = LearnedFeedforward(inverse, table + 1.0, DT, limits=(-0.4, 0.4))
-    u, flags = capped.command(t, y_d, status=True)
+    u = capped.command(t, y_d)
+    flags = u.status
     assert u.max() <= 0.4 and ((flags & int(Status.SATURATED)) != 0).any()
 
 

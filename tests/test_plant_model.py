@@ -80,15 +80,16 @@ def test_json_round_trip_and_streaming_match_simulate():
     m.reset()
     streamed = [m.step(x[0], 0.0)] + [m.step(v, 0.01) for v in x[1:]]
     np.testing.assert_allclose(streamed, y, rtol=0, atol=1e-9 * np.ptp(y))
-    y_s, flags = m.simulate(T, x, status=True)  # the plant's per-sample flags
+    y_s = m.simulate(T, x)  # the plant's per-sample flags
+    flags = y_s.status
     np.testing.assert_array_equal(y_s, y)
     assert flags.shape == x.shape
     # drag tau * speed beyond the dead zone unloads a tendon below zero: flagged, not hidden
     assert bool(flags[-1] & ts.Status.SLACK) == bool(m.status() & ts.Status.SLACK)
     slow = m.with_params(viscous_time=1e-3)
-    assert not slow.simulate(T, x, status=True)[1].any()
+    assert not slow.simulate(T, x).status.any()
     fast = m.with_params(viscous_time=1.0)
-    assert np.any(fast.simulate(T, x, status=True)[1] & ts.Status.SLACK)
+    assert np.any(fast.simulate(T, x).status & ts.Status.SLACK)
     # the dead zone: after a reversal the output holds until the input travels 2 e_b
     q = np.r_[np.linspace(0, 1, 200), np.linspace(1, 0, 200)]
     yq = PlantModel(backlash=0.12, friction_angle=1.0).simulate(np.arange(400) * 0.01, q)

@@ -181,7 +181,7 @@ def test_python_path_equals_the_cpp_loop(seed):
         fast = ts.bench.run(plant, c, T, Y_D, **kw)
         slow = ts.bench.run(plant, _Delegate(c), T, Y_D, **kw)
         assert slow.controller == "_Delegate"
-        for name in ("output", "measured", "command", "motor", "status", "fallback"):
+        for name in ("output", "measured", "command", "q_motor", "status", "fallback"):
             np.testing.assert_array_equal(getattr(slow, name), getattr(fast, name))
         assert fast.metrics["status"] == slow.metrics["status"]
         if isinstance(c, AdaptiveController):  # in fallback exactly after a NaN reading

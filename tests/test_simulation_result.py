@@ -69,10 +69,10 @@ def test_models_return_the_result_type(seed):
     for model in _models(rng):
         res = model.simulate(t, x)
         _check_array_access(res, t, x)
-        if model.reports_status:
-            again, flags = model.simulate(t, x, status=True)
-            np.testing.assert_array_equal(again, res)
-            assert again.status is flags and flags.dtype == np.uint8
+        if model.reports_status:  # each sample's flags, always there
+            assert res.status.dtype == np.uint8 and res.status.shape == x.shape
+        else:  # a linear block reports none
+            assert res.status is None
     curve = CurveAngleModel().simulate(t, x, curve_angle=1.0)
     _check_array_access(curve, t, x)
 
@@ -89,8 +89,44 @@ def test_plants_return_the_result_type_with_their_fields():
         old = plant.simulate(t, x, full=True)  # the old spelling: the same result
         np.testing.assert_array_equal(old, res)
         np.testing.assert_array_equal(old.q_in, res.q_in)
-        again, flags = plant.simulate(t, x, status=True)
-        np.testing.assert_array_equal(flags, res.status)
+        assert res.status.dtype == np.uint8
+
+
+def test_the_old_status_switch_warns_and_returns_the_old_tuple():
+    """simulate(..., status=True) and command(..., status=True) keep working for one release:
+    the old (result, flags), the flags those of .status, with a DeprecationWarning naming
+    .status and pointing at this file (the user's line)."""
+    t = np.arange(0.0, 1.0, 1e-3)
+    x = np.sin(2 * np.pi * t)
+    plant = _plants()[1]
+    ff = ts.compensate.InverseFeedforward(BoucWenBacklash(B_r=0.05, B_l=0.05), smoothing=0.01)
+    calls = [
+        lambda: Backlash().simulate(t, x, status=True),
+        lambda: Backlash().simulate(t, x, True),  # the old positional switch
+        lambda: HystereticOscillator().simulate(t, x, None, True),
+        lambda: Scaled(Backlash(), output_gain=2.0).simulate(t, x, status=True),
+        lambda: plant.simulate(t, x, status=True),
+        lambda: ff.command(t, 0.5 * x, status=True),
+    ]
+    for call in calls:
+        with pytest.warns(DeprecationWarning, match=r"read \.status on the result") as record:
+            result, flags = call()
+        assert record[0].filename == __file__
+        assert isinstance(result, ts.SimulationResult) and flags.dtype == np.uint8
+        np.testing.assert_array_equal(flags, result.status)
+
+
+def test_command_returns_the_result_type():
+    t = np.arange(0.0, 1.0, 1e-3)
+    y_d = 0.5 * np.sin(2 * np.pi * t)
+    ff = ts.compensate.InverseFeedforward(BoucWenBacklash(B_r=0.05, B_l=0.05), smoothing=0.01)
+    u = ff.command(t, y_d)
+    _check_array_access(u, t, y_d)
+    assert u.status.dtype == np.uint8 and u.status.shape == y_d.shape
+    # bit for bit the commands of the engine's call without flags (what command gave before)
+    np.testing.assert_array_equal(u, ff._engine.command(t, y_d, None, None, None, False))
+    model = BoucWenBacklash(B_r=0.05, B_l=0.05)
+    np.testing.assert_array_equal(model.simulate(t, y_d), model._engine.simulate(t, y_d, False))
 
 
 def test_failure_is_reported_and_results_pickle():
@@ -156,3 +192,24 @@ def test_motor_simulate_returns_the_result_type_too():
     fresh = ts.Motor.position(bandwidth_hz=5.0)
     by_hand = [fresh.step(u, 0.0 if k == 0 else t[k] - t[k - 1]) for k, u in enumerate(command)]
     np.testing.assert_allclose(np.asarray(res), by_hand, rtol=0, atol=1e-15)
+
+
+def test_one_name_per_quantity_across_the_run_results():
+    """bench.Result's motor angle is q_motor (as a plant's result names it), a scenario's
+    metrics a field, a coupled run's command and q_out also input and output; the old names
+    still read for one release, with a DeprecationWarning naming the new one."""
+    from tendonsheath.bench.run import Result
+    from tendonsheath.bench.scenarios.common import ScenarioResult
+    from tendonsheath.plant.coupled import CoupledSimulation
+
+    n = np.arange(4.0)
+    run = Result("none", n, n, n + 1, n, n, 2 * n, n < 0, n < 0, 0.0, {"rmse": 1.0})
+    with pytest.warns(DeprecationWarning, match="'motor' is now called 'q_motor'") as record:
+        np.testing.assert_array_equal(run.motor, 2 * n)
+    assert record[0].filename == __file__
+    scenario = ScenarioResult("s", "S", "", {}, {"none": run}, [], {})
+    assert scenario.metrics == {"none": {"rmse": 1.0}}
+    with pytest.warns(DeprecationWarning, match=r"'metrics\(\)' is now called 'metrics'"):
+        assert scenario.metrics() == scenario.metrics
+    coupled = CoupledSimulation(n, n + 1, n, n, n + 2, n)
+    assert coupled.input is coupled.command and coupled.output is coupled.q_out

@@ -46,7 +46,8 @@ def test_model_batch_flags_match_the_streaming_status(model):
     rng = np.random.default_rng(7)
     x = np.cumsum(rng.normal(0.0, 0.05, T.size))
     y_plain = model.simulate(T, x)
-    y, flags = model.simulate(T, x, status=True)
+    y = model.simulate(T, x)
+    flags = y.status
     assert isinstance(y_plain, np.ndarray)  # the default return type is unchanged
     np.testing.assert_array_equal(y, y_plain)
     assert flags.dtype == np.uint8 and flags.shape == x.shape
@@ -71,7 +72,7 @@ def test_a_held_nan_is_flagged_in_streaming_and_cleared_after():
 
 def test_pi_inverse_flags_an_unreachable_target_as_clamped():
     inv = ts.models.PrandtlIshlinskiiInverse(thresholds=[0.0, 0.1], weights=[0.6, 0.4])
-    _, flags = inv.simulate(None, np.array([0.0, 0.5, 1e305, 0.2]), status=True)
+    flags = inv.simulate(None, np.array([0.0, 0.5, 1e305, 0.2])).status
     assert [bool(f & Status.INPUT_CLAMPED) for f in flags] == [False, False, True, False]
 
 
@@ -79,7 +80,8 @@ def test_pi_inverse_flags_an_unreachable_target_as_clamped():
 def test_feedforward_flags_exactly_the_cycles_cut_to_the_limits(limit):
     ff = InverseFeedforward(ts.models.Backlash(), limits=CommandLimits(-limit, limit))
     u_plain = ff.command(T, SINE)
-    u, flags = ff.command(T, SINE, status=True)
+    u = ff.command(T, SINE)
+    flags = u.status
     np.testing.assert_array_equal(u, u_plain)
     free = InverseFeedforward(ts.models.Backlash()).command(T, SINE)
     cut = np.abs(free) > limit
@@ -99,7 +101,8 @@ def test_feedforward_streaming_status_reports_saturation():
 def test_plant_simulate_reports_held_and_motor_saturation_per_sample():
     plant = ts.PullPullPlant(route=ts.Route.uniform(1.0, 2.0), elements=20)
     q_plain = plant.simulate(T, SINE)
-    q, flags = plant.simulate(T, SINE, status=True)
+    q = plant.simulate(T, SINE)
+    flags = q.status
     np.testing.assert_array_equal(q, q_plain)
     assert not flags.any()  # a clean run flags nothing
     result = plant.simulate(T, SINE)
@@ -162,7 +165,8 @@ def test_curve_angle_model_flags_slack_only_in_the_cycles_past_the_no_slack_boun
     model = ts.models.CurveAngleModel(pretension=2.0, load_stiffness=4000.0, length=1.0)
     x = np.linspace(0.0, 3.0, 301)
     x = np.r_[x, x[::-1]]
-    y, flags = model.simulate(None, x, curve_angle=np.pi, status=True)
+    y = model.simulate(None, x, curve_angle=np.pi)
+    flags = y.status
     np.testing.assert_array_equal(y, model.simulate(None, x, curve_angle=np.pi))
     slack = (flags & Status.SLACK) != 0
     assert slack.any() and not slack.all()
@@ -180,16 +184,18 @@ def test_composite_models_report_their_parts_status():
     chain = ts.models.Chain(backlash, ts.models.SecondOrderLag())
     x = np.r_[SINE[:100], np.full(3, 1e12), SINE[100:200]]
     t = T[: x.size]
-    y, flags = chain.simulate(t, x, status=True)
+    y = chain.simulate(t, x)
+    flags = y.status
     np.testing.assert_array_equal(y, chain.simulate(t, x))
     # the backlash reports (nothing to flag here); the linear block reports no status
-    _, inner = backlash.simulate(t, x, status=True)
+    inner = backlash.simulate(t, x).status
     np.testing.assert_array_equal(flags, inner)
     with pytest.raises(TypeError, match="reports no status"):
         ts.models.SecondOrderLag().status()
     pi = ts.models.PrandtlIshlinskii(thresholds=[0.0, 0.1], weights=[0.6, 0.4])
     scaled = ts.models.Scaled(pi, input_scale=2.0, output_gain=-1.5)
-    ys, fs = scaled.simulate(None, np.array([0.0, 1.0, 1e305, 0.5]), status=True)
+    ys = scaled.simulate(None, np.array([0.0, 1.0, 1e305, 0.5]))
+    fs = ys.status
     assert [bool(f & Status.INPUT_CLAMPED) for f in fs] == [False, False, True, False]
     np.testing.assert_array_equal(ys, scaled.simulate(None, np.array([0.0, 1.0, 1e305, 0.5])))
     scaled.step(1e305)
@@ -199,6 +205,7 @@ def test_composite_models_report_their_parts_status():
 def test_oscillator_flags_come_with_both_simulation_paths():
     osc = ts.models.HystereticOscillator()
     for periodic in (False, True):
-        y, flags = osc.simulate(T[:-1], SINE[:-1], periodic=periodic, status=True)
+        y = osc.simulate(T[:-1], SINE[:-1], periodic=periodic)
+        flags = y.status
         np.testing.assert_array_equal(y, osc.simulate(T[:-1], SINE[:-1], periodic=periodic))
         assert flags.dtype == np.uint8 and not flags.any()

@@ -55,6 +55,17 @@ def warn_renamed(who: str, old: str, new: str, stacklevel: int | None = None) ->
     )
 
 
+def warn_status_switch(who: str) -> None:
+    """The DeprecationWarning of the old ``status=True`` switch (a ``(result, flags)`` tuple),
+    naming the new form and pointing at the user's line."""
+    warnings.warn(
+        f"{who}(..., status=True) is deprecated: read .status on the result (each sample's "
+        "Status flags, uint8; docs/status.md); status= will be removed in the next release",
+        DeprecationWarning,
+        stacklevel=caller_outside_package() - 1,
+    )
+
+
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
 

@@ -62,7 +62,7 @@ def model_section(out: Path) -> tuple[str, dict, list[Path]]:
     metrics, parts, written = {}, [], []
     for name, model in demo_models().items():
         start = time.perf_counter()
-        y = cast(np.ndarray, model.simulate(t, x))  # status not asked: the outputs alone
+        y = cast(np.ndarray, model.simulate(t, x))  # the outputs (an array); status unused
         elapsed = time.perf_counter() - start
         last = t >= t[-1] - 4.0  # the last input period
         metrics[name] = {

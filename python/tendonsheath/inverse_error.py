@@ -16,7 +16,7 @@ direction switch is smoothed over 3 % of that trajectory's peak rate (spec D.2: 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from scipy.signal import butter, sosfiltfilt
@@ -101,13 +101,12 @@ def offline_inverse(
         if load is None:
             raise ValueError("a Loaded model's inverse needs the recording's measured load")
         u = LoadCompensated(model, smoothing=smoothing).command(ts, desired, load)
-        return u, np.zeros(u.size, dtype=np.uint8)
+        return u.output, np.zeros(u.size, dtype=np.uint8)
     ff = InverseFeedforward(model, smoothing=smoothing)
     angle = _angle_argument(curve_angle, y.size)
     extra = angle if getattr(ff, "follows_route", False) and angle is not None else {}
-    commands, flags = cast(tuple[np.ndarray, np.ndarray],
-                           ff.command(ts, desired, status=True, **extra))  # fmt: skip
-    return commands, flags
+    u = ff.command(ts, desired, **extra)
+    return u.output, u.status
 
 
 def _angle_argument(curve_angle: Any, n: int) -> dict[str, Any] | None:

@@ -2,9 +2,9 @@
 
 Streaming: ``obj.status()`` right after ``obj.step(...)`` (plants, Motor, Sensor after
 ``measure``, every model, feedforward and controller) returns a :class:`Status`. Batch: the
-per-sample flags come with ``model.simulate(t, x, status=True)``,
-``feedforward.command(t, y_d, status=True)`` and ``plant.simulate(...).status``, as
-a uint8 array; :func:`status_counts` counts each flag.
+per-sample flags come in the ``status`` field of every run's result
+(``model.simulate(t, x).status``, ``feedforward.command(t, y_d).status``,
+``plant.simulate(...).status``) as a uint8 array; :func:`status_counts` counts each flag.
 """
 
 from __future__ import annotations
@@ -41,7 +41,7 @@ def status_counts(flags: ArrayLike) -> dict[str, int]:
     Parameters
     ----------
     flags : array_like of int
-        Per-sample :class:`Status` values (e.g. ``simulate(..., status=True)``'s flags).
+        Per-sample :class:`Status` values (e.g. ``simulate(...).status``).
 
     Returns
     -------

@@ -1083,7 +1083,7 @@ def in_class_fit(
     t = np.asarray(result.t)
     step = max(1, int(round(1.0 / (rate_hz * (t[1] - t[0])))))
     sl = slice(None, None, step)
-    ts, x, y = t[sl], np.asarray(result.motor)[sl], np.asarray(result.measured)[sl]
+    ts, x, y = t[sl], np.asarray(result.q_motor)[sl], np.asarray(result.measured)[sl]
     keep = ts >= ts[0] + result.warmup
     warm = int(np.argmax(keep)) if keep.any() else 0
     ok = np.isfinite(y)

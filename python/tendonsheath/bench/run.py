@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 import numpy as np
 
 from .. import _core as core
+from .._args import warn_renamed
 from .._arrays import as_timed_signal
 from ..plant.physics import route_shape as shape_of
 from ..plant.sensor import Sensor
@@ -77,8 +78,10 @@ class Result:
         The sensor's reading of the output (NaN during dropouts).
     command : numpy.ndarray of float
         The controller's command (rad, or N m for a torque controller).
-    motor : numpy.ndarray of float
-        The motor angle (rad).
+    q_motor : numpy.ndarray of float
+        The motor shaft angle its encoder reads (rad), as a plant's
+        :class:`~tendonsheath.SimulationResult` names it (``motor``, the old name, is still
+        read for one release, with a DeprecationWarning).
     slack : numpy.ndarray of bool
         Per cycle: a tendon was slack.
     fallback : numpy.ndarray of bool
@@ -98,12 +101,18 @@ class Result:
     output: np.ndarray
     measured: np.ndarray
     command: np.ndarray
-    motor: np.ndarray
+    q_motor: np.ndarray
     slack: np.ndarray
     fallback: np.ndarray
     warmup: float
     metrics: dict[str, Any] = field(default_factory=dict)  # floats, and "status": counts
     status: np.ndarray | None = None
+
+    @property
+    def motor(self) -> np.ndarray:
+        """The old name of :attr:`q_motor` (read for one release, with a DeprecationWarning)."""
+        warn_renamed("bench.Result", "motor", "q_motor")
+        return self.q_motor
 
     @property
     def error(self) -> np.ndarray:
@@ -406,7 +415,7 @@ def _result(controller, ts, ys, outputs, warmup: float) -> Result:
         output=output,
         measured=measured,
         command=command,
-        motor=motor_pos,
+        q_motor=motor_pos,
         slack=slack.astype(bool),
         fallback=fallback.astype(bool),
         warmup=float(warmup),

@@ -3,16 +3,32 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, Self
+from typing import Any, Self, cast
 
-import numpy as np
-
+from .._args import warn_status_switch
 from .._arrays import as_timed_signal, checked_dt
 from .._pyobject import PythonObject
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
 from ..control_interop import _ControlBlock
+from ..simulation_result import SimulationResult
 from ..status import Status
 from . import persistence
+
+
+def command_result(
+    who: str, t: Any, y_desired: Any, out: Any, status: bool = False
+) -> SimulationResult:
+    """A compensator's ``command`` result: the commands (an array) with ``t``, ``input`` (the
+    desired outputs) and ``status`` (each cycle's Status flags, uint8), from `out` (the
+    commands, or ``(commands, flags)`` as the C++ engines give them). With the deprecated
+    ``status=True`` it is the old ``(commands, flags)`` tuple, with a DeprecationWarning.
+    """
+    commands, flags = out if isinstance(out, tuple) else (out, getattr(out, "status", None))
+    result = SimulationResult(commands, t=t, input=y_desired, status=flags)
+    if status:
+        warn_status_switch(who)
+        return cast(SimulationResult, (result, flags))
+    return result
 
 
 class SavedAsJson:
@@ -162,11 +178,9 @@ class Feedforward(EngineCompensator):
         dt = checked_dt(dt)
         return self._engine.step(float(y_d), float(dt))
 
-    def command(
-        self, t: ArrayLike, y_desired: ArrayLike, status: bool = False
-    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
-        """Motor commands for a whole trajectory; with ``status=True`` returns
-        ``(commands, flags)``, flags holding each cycle's :class:`Status` (uint8).
+    def command(self, t: ArrayLike, y_desired: ArrayLike, status: bool = False) -> SimulationResult:
+        """Motor commands for a whole trajectory, with each cycle's :class:`Status` flags
+        (uint8) in the result's ``status``.
 
         Parameters
         ----------
@@ -175,13 +189,14 @@ class Feedforward(EngineCompensator):
         y_desired : array_like of float, shape (n,)
             Desired outputs.
         status : bool, default False
-            Also return each cycle's Status flags.
+            Deprecated (read ``result.status``): True returns ``(commands, flags)`` with a
+            DeprecationWarning, for one release.
 
         Returns
         -------
-        commands : numpy.ndarray of float, shape (n,)
-            Motor commands; ``(commands, flags)`` with ``status=True``, flags each cycle's
-            :class:`~tendonsheath.Status` (uint8).
+        SimulationResult, shape (n,)
+            Motor commands (an array), with ``t``, ``input`` (y_desired) and ``status`` (each
+            cycle's :class:`~tendonsheath.Status`, uint8).
 
         Raises
         ------
@@ -189,7 +204,8 @@ class Feedforward(EngineCompensator):
             t missing, or samples not finite or of different lengths.
         """
         ts, ys = as_timed_signal(t, y_desired, "y_desired", f"{type(self).__name__}.command")
-        return self._engine.command(ts, ys, bool(status))
+        out = self._engine.command(ts, ys, True)
+        return command_result(f"{type(self).__name__}.command", ts, ys, out, status)
 
 
 __all__ = ["EngineCompensator", "Feedforward", "SavedAsJson"]

@@ -12,9 +12,10 @@ from .. import _core as core
 from .._angles import checked_curve_angle, warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, core_errors_as, number
 from .._arrays import as_signal, as_timed_signal, checked_dt
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
 from ..plant.physics import route_shape as shape_of
-from .base import Feedforward
+from ..simulation_result import SimulationResult
+from .base import Feedforward, command_result
 from .limits import LimitsLike, as_limits
 
 if TYPE_CHECKING:
@@ -269,10 +270,10 @@ class CurveAngleFeedforward(Feedforward):
         curve_angle: ArrayLike | None = None,
         routes: Callable[[float], Route] | None = None,
         status: bool = False,
-    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
+    ) -> SimulationResult:
         """Motor angles for a whole trajectory; the shape from `curve_angle` (scalar or one
         per sample) or `routes` (a callable t -> route), else the constructor's curve angle.
-        With ``status=True`` returns ``(commands, flags)`` (each cycle's Status, uint8).
+        The result's ``status`` holds each cycle's Status flags (uint8).
 
         Parameters
         ----------
@@ -285,26 +286,29 @@ class CurveAngleFeedforward(Feedforward):
         routes : callable, optional
             t -> the route at time t (takes precedence over curve_angle).
         status : bool, default False
-            Also return each cycle's Status flags.
+            Deprecated (read ``result.status``): True returns ``(commands, flags)`` with a
+            DeprecationWarning, for one release.
 
         Returns
         -------
-        commands : numpy.ndarray of float, shape (n,)
-            Motor angles (rad); ``(commands, flags)`` with ``status=True``, flags each cycle's
-            :class:`~tendonsheath.Status` (uint8).
+        SimulationResult, shape (n,)
+            Motor angles (rad), with ``t``, ``input`` (y_desired) and ``status`` (each cycle's
+            :class:`~tendonsheath.Status`, uint8).
 
         Raises
         ------
         ValueError
             t missing, or samples not finite or of different lengths.
         """
-        ts, ys = as_timed_signal(t, y_desired, "y_desired", "CurveAngleFeedforward.command")
+        who = "CurveAngleFeedforward.command"
+        ts, ys = as_timed_signal(t, y_desired, "y_desired", who)
         if routes is not None:
             shapes = [shape_of(routes(tk), self.friction) for tk in ts]
             g = np.array([s.g for s in shapes])
             G = np.array([s.G for s in shapes])
             theta = np.array([s.curve_angle for s in shapes])
-            return self._engine.command(ts, ys, g, G, theta, bool(status))
+            out = self._engine.command(ts, ys, g, G, theta, True)
+            return command_result(who, ts, ys, out, status)
         if curve_angle is not None:
             theta = np.broadcast_to(np.asarray(curve_angle, dtype=np.float64), ys.shape)
             theta = as_signal(theta, "curve_angle")
@@ -313,8 +317,10 @@ class CurveAngleFeedforward(Feedforward):
                 raise ValueError(
                     f"CurveAngleFeedforward.command: curve_angle must be >= 0 (got {bad:g})"
                 )
-            return self._engine.command(ts, ys, None, None, theta, bool(status))
-        return self._engine.command(ts, ys, None, None, None, bool(status))
+            out = self._engine.command(ts, ys, None, None, theta, True)
+            return command_result(who, ts, ys, out, status)
+        out = self._engine.command(ts, ys, None, None, None, True)
+        return command_result(who, ts, ys, out, status)
 
 
 def _from_compliance(compliance) -> dict[str, float]:

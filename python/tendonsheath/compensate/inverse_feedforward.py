@@ -13,10 +13,11 @@ from .. import _core as core
 from .._angles import checked_curve_angle
 from .._args import core_errors_as, number
 from .._arrays import as_signal, as_timed_signal, checked_dt
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
 from ..models import HysteresisModel
 from ..plant.physics import route_shape as shape_of
-from .base import Feedforward
+from ..simulation_result import SimulationResult
+from .base import Feedforward, command_result
 from .inverse_model import describe, follows_route, route_friction
 from .limits import LimitsLike, as_limits
 
@@ -268,7 +269,7 @@ class InverseFeedforward(Feedforward):
         status: bool = False,
         curve_angle: ArrayLike | None = None,
         routes: Callable[[float], Route] | None = None,
-    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
+    ) -> SimulationResult:
         """Motor commands for a whole trajectory, from the initial state. An inverse that
         follows the route takes it from `routes` (a callable t -> route) or `curve_angle`
         (scalar or one per sample), and needs one of them.
@@ -280,7 +281,8 @@ class InverseFeedforward(Feedforward):
         y_desired : array_like of float, shape (n,)
             Desired outputs.
         status : bool, default False
-            Also return each cycle's Status flags.
+            Deprecated (read ``result.status``): True returns ``(commands, flags)`` with a
+            DeprecationWarning, for one release.
         curve_angle : float or array_like of float, optional
             Curve angle (rad), one value or one per sample (route-following inverses).
         routes : callable, optional
@@ -288,9 +290,9 @@ class InverseFeedforward(Feedforward):
 
         Returns
         -------
-        commands : numpy.ndarray of float, shape (n,)
-            Motor commands; ``(commands, flags)`` with ``status=True``, flags each cycle's
-            :class:`~tendonsheath.Status` (uint8).
+        SimulationResult, shape (n,)
+            Motor commands (an array), with ``t``, ``input`` (y_desired) and ``status`` (each
+            cycle's :class:`~tendonsheath.Status`, uint8).
 
         Raises
         ------
@@ -300,7 +302,8 @@ class InverseFeedforward(Feedforward):
         """
         ts, ys = as_timed_signal(t, y_desired, "y_desired", "InverseFeedforward.command")
         g, G, theta = self._route_samples(ts, ys, curve_angle, routes)
-        return self._engine.command(ts, ys, g, G, theta, bool(status))
+        out = self._engine.command(ts, ys, g, G, theta, True)
+        return command_result("InverseFeedforward.command", ts, ys, out, status)
 
     def _route_samples(self, ts, ys, curve_angle, routes):
         """(g, G, curve angle) per sample for the engine (None where not given)."""

@@ -10,7 +10,9 @@ from .. import _core as core
 from .._args import core_errors_as, number, number_array
 from .._arrays import as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
+from ..simulation_result import SimulationResult
 from .around import AroundFeedforward
+from .base import command_result
 from .limits import LimitsLike, as_limits
 
 
@@ -139,9 +141,7 @@ class LearnedFeedforward(AroundFeedforward):
         x = float(self.feedforward.step(float(y_d), dt))
         return self._engine.correct(x, dt)
 
-    def command(
-        self, t: ArrayLike, y_desired: ArrayLike, status: bool = False
-    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
+    def command(self, t: ArrayLike, y_desired: ArrayLike, status: bool = False) -> SimulationResult:
         """Corrected commands for a whole trajectory, from the initial state (the streaming
         state is left untouched); the feedforward must have ``command(t, y_d)``.
 
@@ -152,12 +152,14 @@ class LearnedFeedforward(AroundFeedforward):
         y_desired : array_like of float, shape (n,)
             Desired outputs.
         status : bool, default False
-            Also return each cycle's Status flags (the feedforward's and the table's).
+            Deprecated (read ``result.status``): True returns ``(commands, flags)`` with a
+            DeprecationWarning, for one release.
 
         Returns
         -------
-        commands : numpy.ndarray of float, shape (n,)
-            The commands; ``(commands, flags)`` with ``status=True``.
+        SimulationResult, shape (n,)
+            The commands, with ``t``, ``input`` (y_desired) and ``status`` (each cycle's
+            flags: the feedforward's, where its result has them, and the table's).
 
         Raises
         ------
@@ -171,14 +173,12 @@ class LearnedFeedforward(AroundFeedforward):
                 "has no command(t, y_d)"
             )
         ts, ys = as_timed_signal(t, y_desired, "y_desired", "LearnedFeedforward.command")
-        if status:
-            x, inner_flags = inner(ts, ys, status=True)
-        else:
-            x, inner_flags = inner(ts, ys), None
+        x = inner(ts, ys)
         u, flags = self._engine.play(ts, np.ascontiguousarray(x, dtype=np.float64))
-        if status:
-            return u, (flags | np.asarray(inner_flags, dtype=np.uint8)).astype(np.uint8)
-        return u
+        inner_flags = getattr(x, "status", None)
+        if inner_flags is not None:
+            flags = (flags | np.asarray(inner_flags, dtype=np.uint8)).astype(np.uint8)
+        return command_result("LearnedFeedforward.command", ts, ys, (u, flags), status)
 
     @property
     def table(self) -> FloatArray:

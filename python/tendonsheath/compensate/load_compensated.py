@@ -25,10 +25,11 @@ from .. import _core as core
 from .._args import number
 from .._arrays import as_timed_signal, checked_dt
 from .._pyobject import PythonObject
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
 from ..models.loaded import Loaded
+from ..simulation_result import SimulationResult
 from . import persistence
-from .base import SavedAsJson
+from .base import SavedAsJson, command_result
 from .inverse_feedforward import InverseFeedforward
 
 
@@ -123,7 +124,7 @@ class LoadCompensated(PythonObject, SavedAsJson):
         z = self.inverse.step(float(y_d) - self.model.terms["gain"] * load, dt)
         return float(self._play.step(float(z), load))
 
-    def command(self, t: ArrayLike, y_desired: ArrayLike, load: ArrayLike) -> FloatArray:
+    def command(self, t: ArrayLike, y_desired: ArrayLike, load: ArrayLike) -> SimulationResult:
         """Commands for a whole trajectory under its measured load, from the initial state.
 
         Parameters
@@ -137,8 +138,9 @@ class LoadCompensated(PythonObject, SavedAsJson):
 
         Returns
         -------
-        numpy.ndarray of float, shape (n,)
-            The commands.
+        SimulationResult, shape (n,)
+            The commands, with ``t``, ``input`` (y_desired) and ``status`` (the base
+            inverse's flags of each cycle).
 
         Raises
         ------
@@ -150,8 +152,9 @@ class LoadCompensated(PythonObject, SavedAsJson):
         if not np.all(np.isfinite(loads)):
             raise ValueError("LoadCompensated.command: the load must be finite")
         loads = np.ascontiguousarray(loads)
-        z = np.asarray(self.inverse.command(ts, ys - self.model.terms["gain"] * loads))
-        return np.asarray(self._play.command(np.ascontiguousarray(z, dtype=float), loads))
+        z = self.inverse.command(ts, ys - self.model.terms["gain"] * loads)
+        u = self._play.command(np.ascontiguousarray(z, dtype=float), loads)
+        return command_result("LoadCompensated.command", ts, ys, (u, z.status))
 
     # -- persistence -----------------------------------------------------------------
     def to_dict(self) -> dict:

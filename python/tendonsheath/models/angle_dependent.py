@@ -13,6 +13,7 @@ from .._arrays import checked_dt
 from .._typing import ArrayLike, FloatArray
 from ..plant.physics import route_dead_zone_factor
 from ..plant.route import Route
+from ..simulation_result import SimulationResult
 from ..status import Status
 from .base import _REGISTRY, HysteresisModel
 from .curve_angle import curve_angle_samples
@@ -252,13 +253,12 @@ class AngleDependent(HysteresisModel):
         return self._base_cls(**self.params_at(curve_angle), **self._base_options)
 
     # -- simulation ------------------------------------------------------------------
-    def simulate(  # type: ignore[override]  # curve_angle (before status) is its input
+    def simulate(  # curve_angle is its input
         self,
         t: ArrayLike | None,
         x: ArrayLike,
         curve_angle: ArrayLike | None = None,
-        status: bool = False,
-    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
+    ) -> SimulationResult:
         """Output of the base model at one curve angle for the input samples x at times t.
 
         Parameters
@@ -270,13 +270,11 @@ class AngleDependent(HysteresisModel):
         curve_angle : float, array_like of float, or Route
             The curve angle Theta (rad): a number, or an array of n equal values; or the route
             (its shape).
-        status : bool, default False
-            Also return each sample's :class:`~tendonsheath.Status`.
 
         Returns
         -------
-        y : numpy.ndarray of float, shape (n,)
-            Output samples (``(y, flags)`` with ``status=True``).
+        SimulationResult, shape (n,)
+            Output samples, with ``status`` each sample's :class:`~tendonsheath.Status`.
 
         Raises
         ------
@@ -284,14 +282,14 @@ class AngleDependent(HysteresisModel):
             No curve angle, or one that varies during the run.
         """
         if isinstance(curve_angle, Route):
-            return self.at(curve_angle).simulate(t, x, **({"status": True} if status else {}))
+            return self.at(curve_angle).simulate(t, x)
         theta = curve_angle_samples(curve_angle, np.size(x), "AngleDependent")
         if np.any(theta != theta[0]):
             raise ValueError(
                 "AngleDependent: simulate takes one curve angle per call (the array varies); "
                 "CurveAngleModel handles a curve angle that changes during a run"
             )
-        return self.at(theta[0]).simulate(t, x, **({"status": True} if status else {}))
+        return self.at(theta[0]).simulate(t, x)
 
     def reset(self) -> None:
         """Forget the streaming state and its curve angle."""

@@ -14,12 +14,12 @@ from typing import Any, ClassVar, Self, TypeVar, cast
 
 import numpy as np
 
-from .._args import core_errors_as, is_format_version, renamed
+from .._args import core_errors_as, is_format_version, renamed, warn_status_switch
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import naming_the_file, read_json_source
 from .._pyobject import PythonObject
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
 from ..status import Status
@@ -34,25 +34,42 @@ _F = TypeVar("_F", bound=Callable[..., Any])
 
 
 def _returning_result(simulate: _F) -> _F:
-    """``simulate`` that returns a :class:`SimulationResult` (the output with its time and
-    input), or ``(result, flags)`` where it returned ``(y, flags)``."""
+    """``simulate`` that returns a :class:`SimulationResult` (the output with its time, input
+    and each sample's Status flags in ``status``).
+
+    The implementation returns the output, ``(output, flags)`` or a result with its flags. The
+    old switch ``status=True`` (a keyword, or one more positional bool) still gives the old
+    ``(result, flags)`` for one release, with a DeprecationWarning naming ``result.status``.
+    """
 
     signature = inspect.signature(simulate)
+    positional = sum(
+        p.kind is p.POSITIONAL_OR_KEYWORD for p in list(signature.parameters.values())[1:]
+    )
 
     # (self, *args, **kwargs), not (self, t, x, ...): the call below binds the arguments, so
     # an unknown keyword is simulate's own TypeError naming it, even with t or x missing
     @functools.wraps(simulate)
     def wrapper(self, *args, **kwargs):
+        legacy = kwargs.pop("status", False)
+        if len(args) == positional + 1 and isinstance(args[-1], bool | np.bool_):
+            args, legacy = args[:-1], args[-1]  # simulate(t, x, True): the old positional switch
+        if legacy:
+            warn_status_switch(f"{type(self).__name__}.simulate")
         out = simulate(self, *args, **kwargs)
         bound = signature.bind(self, *args, **kwargs).arguments
         t, x = bound["t"], bound["x"]
         y, flags = out if isinstance(out, tuple) else (out, None)
         if flags is None and isinstance(y, SimulationResult):
             flags = y.status
+        if flags is None and self.reports_status:  # a model with a status but no flags: all OK
+            flags = np.zeros(np.size(y), dtype=np.uint8)
         # this model's own t and x (a wrapper's inner model saw transformed ones)
         ts = None if t is None else np.asarray(t, dtype=float)
         y = SimulationResult(y, t=ts, input=np.asarray(x, dtype=float), status=flags)
-        return (y, flags) if isinstance(out, tuple) else y
+        if legacy:
+            return y, (np.zeros(y.size, dtype=np.uint8) if flags is None else flags)
+        return y
 
     return cast(_F, wrapper)  # the same call; a SimulationResult is an array of the output
 
@@ -82,7 +99,8 @@ class HysteresisModel(PythonObject, _ControlBlock):
     param_names: ClassVar[tuple[str, ...]] = ()
     option_names: ClassVar[tuple[str, ...]] = ()
     rate_independent: bool = True  # per instance for Chain and Scaled (their parts decide)
-    # status() and simulate(..., status=True) report each step's Status (false: linear blocks)
+    # status() and simulate(...).status report each step's Status (false: linear blocks, whose
+    # result's status is None)
     reports_status: ClassVar[bool] = True
     # parameters a saved file may hold as null (all others must be present and not null)
     nullable_params: ClassVar[tuple[str, ...]] = ()
@@ -163,9 +181,7 @@ class HysteresisModel(PythonObject, _ControlBlock):
 
     # -- simulation ------------------------------------------------------------------
     @_returning_result
-    def simulate(
-        self, t: ArrayLike | None, x: ArrayLike, status: bool = False
-    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
+    def simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
         """Output for the input samples x at times t (t may be None when rate-independent).
 
         Starts from the model's initial state; does not disturb the streaming state.
@@ -176,17 +192,14 @@ class HysteresisModel(PythonObject, _ControlBlock):
             Sample times (s), increasing; None for a rate-independent model.
         x : array_like of float, shape (n,)
             Input samples (the model's input unit, e.g. rad or m).
-        status : bool, default False
-            Also return each sample's :class:`~tendonsheath.Status`.
 
         Returns
         -------
-        y : SimulationResult, shape (n,)
+        SimulationResult, shape (n,)
             Output samples (an array), with ``t``, ``input``, ``success``, ``message`` and
-            ``status``.
-        flags : numpy.ndarray of uint8, shape (n,)
-            Each sample's :class:`~tendonsheath.Status` bits; only with ``status=True``, as
-            ``(y, flags)``.
+            ``status`` (each sample's :class:`~tendonsheath.Status` bits, uint8; None for a
+            model that reports no status). The old ``simulate(t, x, status=True)`` still
+            returns ``(result, result.status)`` for one release, with a DeprecationWarning.
 
         Raises
         ------
@@ -197,7 +210,7 @@ class HysteresisModel(PythonObject, _ControlBlock):
         if t is None and not self.rate_independent:
             raise ValueError(f"{type(self).__name__} is rate-dependent: t is required")
         ts, xs = as_time_and_signal(t, x)
-        return self._engine.simulate(ts, xs, bool(status))
+        return self._engine.simulate(ts, xs, True)
 
     def reset(self) -> None:
         """Forget the streaming state; the next step() starts afresh.

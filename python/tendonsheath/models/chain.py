@@ -6,17 +6,10 @@ from typing import Any
 
 import numpy as np
 
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
+from ..simulation_result import SimulationResult
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel
-
-
-def _reports(part: HysteresisModel, status: bool) -> bool:
-    return bool(status) and part.reports_status
-
-
-def _with_status(part: HysteresisModel, status: bool) -> dict[str, bool]:
-    return {"status": True} if _reports(part, status) else {}
 
 
 class Chain(HysteresisModel):
@@ -91,11 +84,9 @@ class Chain(HysteresisModel):
             self.first.with_params(**parts["first"]), self.second.with_params(**parts["second"])
         )
 
-    def simulate(
-        self, t: ArrayLike | None, x: ArrayLike, status: bool = False
-    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
-        """y = second(first(x)); with ``status=True`` also each sample's Status flags, those of
-        both parts together (a part without a status, a linear block, adds none).
+    def simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
+        """y = second(first(x)); its ``status`` holds each sample's Status flags, those of both
+        parts together (a part without a status, a linear block, adds none).
 
         Parameters
         ----------
@@ -103,27 +94,21 @@ class Chain(HysteresisModel):
             Sample times (s); None when both parts are rate-independent.
         x : array_like of float, shape (n,)
             Input samples.
-        status : bool, default False
-            Also return each sample's Status flags.
 
         Returns
         -------
-        y : numpy.ndarray of float, shape (n,)
-            Output samples; ``(y, flags)`` with ``status=True``, flags the uint8
-            :class:`~tendonsheath.Status` bits of each sample.
+        SimulationResult, shape (n,)
+            Output samples, with ``status`` the uint8 :class:`~tendonsheath.Status` bits of
+            each sample.
         """
-        # each part's output, or (output, flags) where it reports its status (_with_status)
-        u: Any = self.first.simulate(t, x, **_with_status(self.first, status))
+        u = self.first.simulate(t, x)
         t2 = None if self.second.rate_independent else t
-        y: Any = self.second.simulate(t2, u[0] if _reports(self.first, status) else u,
-                                      **_with_status(self.second, status))  # fmt: skip
-        if not status:
-            return y
+        y = self.second.simulate(t2, u)
         flags = np.zeros(np.size(x), dtype=np.uint8)
-        for part, out in ((self.first, u), (self.second, y)):
-            if _reports(part, status):
-                flags |= out[1]
-        return (y[0] if _reports(self.second, status) else y), flags
+        for out in (u, y):
+            if out.status is not None:
+                flags |= out.status
+        return SimulationResult(y, status=flags)
 
     def reset(self) -> None:
         """Forget both parts' streaming state."""

@@ -9,9 +9,10 @@ import numpy as np
 from .. import _core as core
 from .._args import accepts_old_names
 from .._arrays import as_signal, as_time_and_signal, checked_dt
-from .._typing import ArrayLike, FloatArray, FloatOrArray
+from .._typing import ArrayLike, FloatOrArray
 from ..plant import physics
 from ..plant.route import Route
+from ..simulation_result import SimulationResult
 from .base import HysteresisModel
 
 # Parameters renamed (old name -> new name, docs/vocabulary.md); the old names still work for one
@@ -120,15 +121,14 @@ class CurveAngleModel(HysteresisModel):
             play=play,
         )
 
-    def simulate(  # type: ignore[override]  # curve_angle (before status) is its input
+    def simulate(  # curve_angle is its input
         self,
         t: ArrayLike | None,
         x: ArrayLike,
         curve_angle: ArrayLike | None = None,
-        status: bool = False,
-    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
-        """Distal angle for motor angles x and curve angle(s) (scalar or per sample); with
-        ``status=True`` also each sample's Status flags (held, slack).
+    ) -> SimulationResult:
+        """Distal angle for motor angles x and curve angle(s) (scalar or per sample), with each
+        sample's Status flags (held, slack) in ``status``.
 
         Parameters
         ----------
@@ -139,13 +139,11 @@ class CurveAngleModel(HysteresisModel):
         curve_angle : float, array_like of float, shape (n,), or Route
             The curve angle Theta (rad), one value or one per sample, or the route (its shape,
             held over the run); required.
-        status : bool, default False
-            Also return each sample's Status flags.
 
         Returns
         -------
-        y : numpy.ndarray of float, shape (n,)
-            Distal angles (rad); ``(y, flags)`` with ``status=True``.
+        SimulationResult, shape (n,)
+            Distal angles (rad), with ``status`` each sample's flags.
 
         Raises
         ------
@@ -156,9 +154,9 @@ class CurveAngleModel(HysteresisModel):
         if isinstance(curve_angle, Route):
             engine = copy.copy(self._engine)
             engine.set_shape(self.route_shape(curve_angle))
-            return engine.simulate(ts, xs, None, bool(status))
+            return engine.simulate(ts, xs, None, True)
         theta = curve_angle_samples(curve_angle, xs.size, type(self).__name__)
-        return self._engine.simulate(ts, xs, theta, bool(status))
+        return self._engine.simulate(ts, xs, theta, True)
 
     def step(self, x: float, dt: float = 0.0, curve_angle: float | Route | None = None) -> float:
         """One sample; ``curve_angle`` may be omitted after the first call (the last is kept).

@@ -11,7 +11,8 @@ import numpy as np
 from .. import _core as core
 from .._arrays import as_time_and_signal
 from .._sampling import fft_upsample, is_periodic, uniform_step
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
+from ..simulation_result import SimulationResult
 from .base import HysteresisModel
 
 _INTERPOLATIONS = ("linear", "hold", "bandlimited")
@@ -168,9 +169,9 @@ class HystereticOscillator(HysteresisModel):
         """
         return float(self._engine.z_bound(float(displacement_range)))
 
-    def simulate(  # type: ignore[override]  # periodic (before status) is its own
-        self, t: ArrayLike | None, x: ArrayLike, periodic: bool | None = None, status: bool = False
-    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
+    def simulate(  # periodic is its own
+        self, t: ArrayLike | None, x: ArrayLike, periodic: bool | None = None
+    ) -> SimulationResult:
         """Output for the input samples x at times t, from rest.
 
         ``periodic`` matters only for ``input_interpolation="bandlimited"``: True upsamples
@@ -179,7 +180,7 @@ class HystereticOscillator(HysteresisModel):
 
         Raises ValueError when the hysteretic force diverges during the simulation; warns
         (:class:`UnboundedStateWarning`) when the simulated displacement range leaves the
-        range over which z is bounded (:meth:`z_bound`). ``status=True`` also returns each
+        range over which z is bounded (:meth:`z_bound`). The result's ``status`` holds each
         sample's Status flags (all OK on the dense periodic path: its input is checked finite
         and a divergence raises).
 
@@ -191,13 +192,11 @@ class HystereticOscillator(HysteresisModel):
             Input force samples.
         periodic : bool, optional
             Whether the record is a whole number of periods (band-limited input only).
-        status : bool, default False
-            Also return each sample's Status flags.
 
         Returns
         -------
-        y : numpy.ndarray of float, shape (n,)
-            Displacements; ``(y, flags)`` with ``status=True``.
+        SimulationResult, shape (n,)
+            Displacements, with ``status`` each sample's flags.
 
         Raises
         ------
@@ -216,12 +215,11 @@ class HystereticOscillator(HysteresisModel):
                 if periodic:
                     fine = 2 * int(self._engine.substeps(dt))
                     y = self._engine.simulate_dense(dt, xs.size, fft_upsample(xs, fine), fine)
-                    if status:
-                        y = (y, np.zeros(xs.size, dtype=np.uint8))
+                    y = (y, np.zeros(xs.size, dtype=np.uint8))
                 else:
-                    y = self._engine.simulate(ts, xs, bool(status))
+                    y = self._engine.simulate(ts, xs, True)
             else:
-                y = self._engine.simulate(ts, xs, bool(status))
+                y = self._engine.simulate(ts, xs, True)
         except ValueError as exc:
             if "diverged" not in str(exc):
                 raise
@@ -233,8 +231,8 @@ class HystereticOscillator(HysteresisModel):
                 "excitation drives the displacement beyond the range where this softening "
                 "Bouc-Wen loop is bounded"
             ) from None
-        self.check_bounded(float(np.ptp(y[0] if status else y)), "the simulated displacement")
-        return y
+        self.check_bounded(float(np.ptp(y[0])), "the simulated displacement")
+        return SimulationResult(y[0], status=y[1])
 
     def check_bounded(self, displacement_range: float, what: str = "the displacement") -> bool:
         """Warn (:class:`UnboundedStateWarning`) and return False when z has no finite bound

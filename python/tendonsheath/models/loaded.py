@@ -31,6 +31,7 @@ import numpy as np
 
 from .._args import number
 from .._typing import ArrayLike, FloatArray
+from ..simulation_result import SimulationResult
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel, split_wrapped_changes
 
@@ -210,14 +211,13 @@ class Loaded(HysteresisModel):
             raise ValueError("Loaded: the load must be finite")
         return arr
 
-    def simulate(  # type: ignore[override]  # the measured load besides the input
+    def simulate(  # the measured load besides the input
         self,
         t: ArrayLike | None,
         x: ArrayLike,
         load: ArrayLike | None = None,
-        status: bool = False,
         **kwargs: Any,
-    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
+    ) -> SimulationResult:
         """Output for the input x under the measured load (from the initial state).
 
         Parameters
@@ -228,15 +228,14 @@ class Loaded(HysteresisModel):
             Input samples.
         load : float or array_like of float, shape (n,), optional
             The measured load of every sample (default 0).
-        status : bool, default False
-            Also return the base's per-sample Status flags.
         **kwargs
             Passed to the base's ``simulate`` (e.g. ``curve_angle``).
 
         Returns
         -------
-        y : numpy.ndarray of float, shape (n,)
-            Output samples; ``(y, flags)`` with ``status=True``.
+        SimulationResult, shape (n,)
+            Output samples, with ``status`` the base's per-sample Status flags (all zero for
+            a base without a status).
 
         Raises
         ------
@@ -246,17 +245,10 @@ class Loaded(HysteresisModel):
         xs = np.asarray(x, dtype=float)
         loads = self._loads(xs, load)
         z = play(xs, self.radius(loads))
-        kw = dict(kwargs)
-        if status and self.base.reports_status:
-            kw["status"] = True
-        out = self.base.simulate(t, z, **kw)
-        y, flags = out if kw.get("status") else (out, None)
-        y = np.asarray(y, dtype=float) + self.terms["gain"] * loads
-        if status:
-            if flags is None:
-                flags = np.zeros(xs.size, dtype=np.uint8)
-            return y, flags
-        return y
+        out = self.base.simulate(t, z, **kwargs)
+        y = np.asarray(out, dtype=float) + self.terms["gain"] * loads
+        flags = out.status if out.status is not None else np.zeros(xs.size, dtype=np.uint8)
+        return SimulationResult(y, status=flags)
 
     def reset(self) -> None:
         """Forget the streaming state (the play's and the base's)."""

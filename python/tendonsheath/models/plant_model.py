@@ -10,7 +10,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._args import integer, number
-from .._typing import ArrayLike, FloatArray
+from .._typing import ArrayLike
+from ..simulation_result import SimulationResult
 from ..status import Status
 from .base import HysteresisModel
 
@@ -47,7 +48,7 @@ class PlantModel(HysteresisModel):
     The tendons are linear springs: where the viscous drag (``viscous_time`` times the speed)
     exceeds the dead zone a tendon's tension passes below zero. The model then goes on as an
     effective one (no :class:`~tendonsheath.plant.SlackWarning`); ``status`` and
-    ``simulate(..., status=True)`` flag those samples SLACK.
+    ``simulate(...).status`` flags those samples SLACK.
 
     Parameters
     ----------
@@ -128,9 +129,7 @@ class PlantModel(HysteresisModel):
         """``{"elements": ...}``."""
         return {"elements": self._elements}
 
-    def simulate(
-        self, t: ArrayLike | None, x: ArrayLike, status: bool = False
-    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
+    def simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
         """Output for the input samples x at times t (needed), from rest at x[0].
 
         Parameters
@@ -139,23 +138,20 @@ class PlantModel(HysteresisModel):
             Sample times (s); required.
         x : array_like of float, shape (n,)
             Input samples (pulley angle, input unit).
-        status : bool, default False
-            Also return each sample's Status flags (SLACK where a tendon went slack).
 
         Returns
         -------
-        y : numpy.ndarray of float, shape (n,)
-            Output samples; ``(y, flags)`` with ``status=True``.
+        SimulationResult, shape (n,)
+            Output samples, with ``status`` each sample's Status flags (SLACK where a tendon
+            went slack).
         """
         if t is None:
             raise ValueError("PlantModel is rate-dependent: t is required")
         with warnings.catch_warnings():  # slack: flagged in the status, not warned (above)
             warnings.simplefilter("ignore")
-            out: Any = self._plant.simulate(t, x, status=bool(status))  # q or (q, flags)
-        flags: Any
-        q, flags = out if status else (out, None)
+            q = self._plant.simulate(t, x)
         y = self._values["offset"] + self._values["gain"] * np.asarray(q)
-        return (y, flags) if status else y
+        return SimulationResult(y, status=q.status)
 
     def reset(self) -> None:
         """Forget the streaming state."""

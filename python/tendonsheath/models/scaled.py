@@ -9,6 +9,7 @@ import numpy as np
 
 from .._args import number
 from .._typing import ArrayLike, FloatArray
+from ..simulation_result import SimulationResult
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel, split_wrapped_changes
 
@@ -151,9 +152,9 @@ class Scaled(HysteresisModel):
         """
         return self.inner.status()
 
-    def simulate(  # type: ignore[override]  # status and the rest pass through to the inner model
+    def simulate(  # the rest pass through to the inner model
         self, t: ArrayLike | None, x: ArrayLike, **kwargs: Any
-    ) -> FloatArray | tuple[FloatArray, np.ndarray]:
+    ) -> SimulationResult:
         """The inner model's simulation, in the data's units.
 
         Parameters
@@ -163,17 +164,15 @@ class Scaled(HysteresisModel):
         x : array_like of float, shape (n,)
             Input samples in the data's units.
         **kwargs
-            Passed to the inner model's ``simulate`` (``status``, ``curve_angle``, ...).
+            Passed to the inner model's ``simulate`` (``curve_angle``, ...).
 
         Returns
         -------
-        y : numpy.ndarray of float, shape (n,)
-            Output samples; ``(y, flags)`` with ``status=True``.
+        SimulationResult, shape (n,)
+            Output samples, with ``status`` the inner model's per-sample flags.
         """
         out = self.inner.simulate(t, self.to_inner_input(x), **kwargs)
-        if kwargs.get("status"):  # (inner output, per-sample flags)
-            return self.from_inner_output(out[0]), out[1]
-        return self.from_inner_output(out)
+        return SimulationResult(self.from_inner_output(out), status=out.status)
 
     def reset(self) -> None:
         """Forget the inner model's streaming state."""

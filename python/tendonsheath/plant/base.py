@@ -11,12 +11,12 @@ import functools
 import inspect
 import warnings
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
 from .. import _core as core
-from .._args import integer, number
+from .._args import integer, number, warn_status_switch
 from .._arrays import as_time_and_signal, checked_dt
 from .._pyobject import PythonObject
 from .._typing import ArrayLike
@@ -359,7 +359,7 @@ class _Plant(PythonObject):
         input_interpolation: str | None = None,
         periodic: bool | None = None,
         status: bool = False,
-    ) -> SimulationResult | tuple[SimulationResult, np.ndarray]:
+    ) -> SimulationResult:
         """Simulate from rest (on the current route) without touching the streaming state.
 
         ``input_interpolation`` ("hold", "linear", "bandlimited"; default: the plant's, see
@@ -372,7 +372,8 @@ class _Plant(PythonObject):
         is None or a callable t -> Route (or a (route1, route2) pair for a pull-pull plant); it
         is evaluated once per sample in Python and only the changes are passed to C++.
         Returns a :class:`SimulationResult` (q_out as an array, with the plant's fields; its
-        ``status`` holds each sample's flags), or ``(result, flags)`` with ``status=True``. Warns
+        ``status`` holds each sample's flags; the old ``status=True`` still returns
+        ``(result, flags)`` for one release, with a DeprecationWarning). Warns
         (:class:`SlackWarning`) with the time of the first slack sample.
 
         Parameters
@@ -390,14 +391,15 @@ class _Plant(PythonObject):
         periodic : bool, optional
             Whether the record is a whole number of periods (None: detected).
         status : bool, default False
-            Also return each sample's Status flags.
+            Deprecated (read ``result.status``): True returns ``(result, flags)`` with a
+            DeprecationWarning, for one release.
 
         Returns
         -------
         result : SimulationResult, shape (n,)
             The output q_out, with ``command``, ``q_in``, ``q_motor``, ``measured``,
-            ``slack``, ``tensions``, ``nonconverged``, ``status`` and ``input_interpolation``;
-            ``(result, flags)`` with ``status=True``.
+            ``slack``, ``tensions``, ``nonconverged``, ``status`` (each sample's Status
+            flags, uint8) and ``input_interpolation``.
 
         Raises
         ------
@@ -454,7 +456,10 @@ class _Plant(PythonObject):
             status=flags,
             input_interpolation=how,
         )
-        return (result, flags) if status else result
+        if status:
+            warn_status_switch(name)
+            return cast(SimulationResult, (result, flags))  # the old tuple, for one release
+        return result
 
     def _warn_slack(self, ts, slack) -> None:
         """A SlackWarning with the time of the first slack sample (pointing at the caller of

@@ -60,7 +60,9 @@ def _joint_matrix(values: ArrayLike, joints: int, name: str, owner: str) -> Floa
 
 @dataclass(frozen=True)
 class CoupledSimulation:
-    """A run of a :class:`CoupledPlant`: arrays of shape (n, joints).
+    """A run of a :class:`CoupledPlant`: arrays of shape (n, joints). Like a single plant's
+    :class:`~tendonsheath.SimulationResult` it also names its command ``input`` and its q_out
+    ``output``.
 
     Parameters
     ----------
@@ -84,6 +86,16 @@ class CoupledSimulation:
     drive: FloatArray
     q_out: FloatArray
     measured: FloatArray
+
+    @property
+    def input(self) -> FloatArray:
+        """The commands (= ``command``), as every result names what the run was given."""
+        return self.command
+
+    @property
+    def output(self) -> FloatArray:
+        """The joint angles (= ``q_out``), as every result names what the run produced."""
+        return self.q_out
 
 
 class CoupledPlant(PythonObject):

@@ -478,7 +478,7 @@ def write(
         "schema": SCHEMA,
         "version": SCHEMA_VERSION,
         "generated": datetime.now(UTC).isoformat(timespec="seconds"),
-        "scenarios": {r.name: r.metrics() for r in scenario_results},
+        "scenarios": {r.name: r.metrics for r in scenario_results},
         "paper": {r.name: r.paper for r in scenario_results},
         "details": {r.name: details(r) for r in scenario_results},
         "honesty": {r.name: r.honesty for r in scenario_results if r.honesty},
