@@ -19,7 +19,14 @@ import numpy as np
 
 from tendonsheath.bench.scenarios import SCENARIOS
 
-FIELDS = ("output", "measured", "command", "motor", "status")
+# the motor encoder is `q_motor` (`motor` in builds before the results took one name)
+FIELDS = ("output", "measured", "command", ("q_motor", "motor"), "status")
+
+
+def _field(res, name):
+    if isinstance(name, tuple):  # the first name this build has
+        return getattr(res, next(n for n in name if n in type(res).__dataclass_fields__))
+    return getattr(res, name)
 
 
 def main() -> None:
@@ -30,7 +37,7 @@ def main() -> None:
     start, prints = time.perf_counter(), {}
     for name, run in SCENARIOS.items():
         for key, res in run(scale=args.scale, seed=0).runs.items():
-            arrays = [np.ascontiguousarray(getattr(res, f)) for f in FIELDS]
+            arrays = [np.ascontiguousarray(_field(res, f)) for f in FIELDS]
             digest = hashlib.sha256(b"".join(a.tobytes() for a in arrays)).hexdigest()
             prints[f"{name}/{key}"] = [digest, float(res.metrics["mse"])]
     with open(args.out, "w") as f:

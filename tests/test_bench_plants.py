@@ -129,7 +129,7 @@ def _pair(motor=None, sensor=None):
 
 
 def _assert_same_run(a, b):
-    for name in ("output", "measured", "command", "motor"):
+    for name in ("output", "measured", "command", "q_motor"):
         np.testing.assert_allclose(getattr(a, name), getattr(b, name), rtol=0, atol=1e-12)
     assert np.array_equal(a.slack, b.slack) and np.array_equal(a.status, b.status)
     assert a.metrics["mse"] == pytest.approx(b.metrics["mse"], rel=1e-12)
