@@ -384,7 +384,7 @@ def _deploy(ns, folder):
     import tendonsheath as ts
 
     # the line the program prints, as the page quotes it, with Python's count of the cycles cut
-    saturated = ts.status_counts(ns["flags"])["saturated"]
+    saturated = ts.status_counts(ns["u_python"].status)["saturated"]
     printed = f"0 cycles held at the range's edge, {saturated} saturated"
     assert printed in ns["_shell"][-1] and printed in (DOCS / "tutorials/deploy.md").read_text()
     # the header the page shows is the one the command wrote (to 6 digits: the identified

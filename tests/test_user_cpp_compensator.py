@@ -83,7 +83,7 @@ def test_bench_run_in_cpp_equals_the_python_compensator(cpp, python_twin, seed):
     compiled = cpp.PIFeedforward(**kw)
     fast = ts.bench.run(bench_plant(), compiled, T, Y_D, noise=noise, dropout=dropout)
     slow = ts.bench.run(bench_plant(), python_twin(**kw), T, Y_D, noise=noise, dropout=dropout)
-    for name in ("output", "measured", "command", "motor"):
+    for name in ("output", "measured", "command", "q_motor"):
         np.testing.assert_allclose(getattr(fast, name), getattr(slow, name), rtol=0, atol=1e-12)
     # the C++ loop ran a copy (the capsule's): the object itself was never stepped, so its
     # integral is still zero; stepped from Python, it would hold the run's integral
