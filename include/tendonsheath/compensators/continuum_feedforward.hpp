@@ -17,6 +17,7 @@
 #include "../physics/pull_pull_statics.hpp"
 #include "../validate.hpp"
 #include "command_shaping.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -40,6 +41,42 @@ struct ContinuumFeedforwardParams {
   double play = 0.0;                ///< motor-side play (gearhead backlash), total width, rad at the motor
   ContinuumMode mode = ContinuumMode::Exact;  ///< which equations: the capstan-consistent ones or the paper's
   CommandLimits limits{};           ///< the motor command's limits, on the motor angle, rad
+};
+
+/// The parameter table of ContinuumFeedforwardParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<ContinuumFeedforwardParams> {
+  static constexpr const char* owner = "ContinuumFeedforward";  ///< the class its constructor takes it
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("friction", &ContinuumFeedforwardParams::friction, "", non_negative(),
+            "mu (xi = gap_factor * mu)"),
+      param("gap_factor", &ContinuumFeedforwardParams::gap_factor, "", positive(),
+            "gamma * delta_r of Kesner and Howe; 1 = plain capstan"),
+      param("length", &ContinuumFeedforwardParams::length, "m", positive(),
+            "L, the sheath's length"),
+      param("stiffness", &ContinuumFeedforwardParams::stiffness, "N", positive(),
+            "EA"),
+      param("pretension", &ContinuumFeedforwardParams::pretension, "N", non_negative(),
+            "T0"),
+      param("curve_angle", &ContinuumFeedforwardParams::curve_angle, "rad", documented(0.0, true, kInf, false),
+            "Theta of a constant-radius route, <= the largest the friction allows"),
+      param("bending_stiffness", &ContinuumFeedforwardParams::bending_stiffness, "N m^2", positive(),
+            "EI of the backbone"),
+      param("tendon_offset", &ContinuumFeedforwardParams::tendon_offset, "m", positive(),
+            "r_t"),
+      param("backbone_length", &ContinuumFeedforwardParams::backbone_length, "m", positive(),
+            "l"),
+      param("proximal_radius", &ContinuumFeedforwardParams::proximal_radius, "m", positive(),
+            "r_p"),
+      param("smoothing", &ContinuumFeedforwardParams::smoothing, "rad/s", positive(),
+            "v_eps, the smoothing speed of the direction switch"),
+      param("play", &ContinuumFeedforwardParams::play, "rad", non_negative(),
+            "motor-side play (gearhead backlash), total width at the motor"),
+      param("mode", &ContinuumFeedforwardParams::mode, "", any(),
+            "ContinuumMode: the capstan-consistent equations (exact) or the paper's (published)"),
+      param("limits", &ContinuumFeedforwardParams::limits, "", any(),
+            "CommandLimits: the command's min, max and max_rate"));
 };
 
 /// @brief Feedforward of Lau et al.\ (spec C) for a tendon-sheath-driven continuum segment: desired

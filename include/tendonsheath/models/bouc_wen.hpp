@@ -14,6 +14,7 @@
 #include "../validate.hpp"
 #include "bouc_wen_backlash.hpp"
 #include "power.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -35,6 +36,30 @@ struct BoucWenParams {
   void assign(const double* v) noexcept {
     A = v[0]; beta = v[1]; gamma = v[2]; n = v[3]; alpha = v[4]; k = v[5];
   }
+};
+
+/// The parameter table of BoucWenParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<BoucWenParams> {
+  static constexpr const char* owner = "BoucWen";  ///< the class its constructor takes it
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("A", &BoucWenParams::A, "", positive(),
+            "amplitude of the hysteretic state's rate"),
+      param("beta", &BoucWenParams::beta, "", positive(),
+            "shape parameter"),
+      param("gamma", &BoucWenParams::gamma, "", finite(),
+            "shape parameter, |gamma| <= beta and beta + gamma > 0 (bounded state)"),
+      param("n", &BoucWenParams::n, "", at_least(1.0),
+            "sharpness of the transitions"),
+      param("alpha", &BoucWenParams::alpha, "", in_range(0.0, 1.0),
+            "share of the linear (elastic) path"),
+      param("k", &BoucWenParams::k, "output/input", finite(),
+            "gain of the hysteretic path"),
+      param("max_step", &BoucWenParams::max_step, "", positive(),
+            "largest change of z / z_u per RK4 sub-step"),
+      param("max_substeps", &BoucWenParams::max_substeps, "", documented(1, true, kInf, false),
+            "most RK4 sub-steps in one step() (bounds its work)"));
 };
 
 /// @brief Classic Bouc-Wen hysteresis as a rate-independent input-output model.
