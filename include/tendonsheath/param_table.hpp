@@ -82,9 +82,11 @@ constexpr ParamField<P, T> param(const char* name, T P::*member, const char* uni
 }
 
 /// Specialised next to each parameter struct P, with `static constexpr auto fields` (a tuple of
-/// param() rows, in the order of the struct and of the constructor's checks) and
+/// param() rows, in the order of the struct and of the constructor's checks),
 /// `static constexpr const char* owner` (the class whose constructor takes P: its messages'
-/// prefix). Undefined for a struct without a table.
+/// prefix) and `static constexpr bool checked_from_table` (true when that constructor checks the
+/// rows' single-field bounds with validate_fields(); false when it keeps its own checks, for an
+/// order of checks or a message of its own). Undefined for a struct without a table.
 template <class P>
 struct ParamTable;
 

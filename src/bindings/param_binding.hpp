@@ -66,7 +66,8 @@ bool set_field(P& p, const std::string& key, nb::handle value, const char* struc
 }
 
 // Binds P as `name`: a property per table row, P(**fields) (an unknown keyword: TypeError naming
-// it) and the static fields(), the rows as dicts. Returns the class for anything bound by hand.
+// it), the static fields(), the rows as dicts, and the class attributes owner (the class that
+// checks P) and checked_from_table. Returns the class for anything bound by hand.
 template <class P>
 nb::class_<P> bind_params(nb::module_& m, const char* name) {
   nb::class_<P> cls(m, name);
@@ -94,6 +95,7 @@ nb::class_<P> bind_params(nb::module_& m, const char* name) {
       "The parameter table: a dict per field (name, unit, default, lo, lo_closed, hi, hi_closed, "
       "check, doc), in the order of the struct.");
   cls.attr("owner") = tendonsheath::ParamTable<P>::owner;
+  cls.attr("checked_from_table") = tendonsheath::ParamTable<P>::checked_from_table;
   return cls;
 }
 

@@ -71,6 +71,7 @@ struct AdaptiveControllerParams {
 template <>
 struct ParamTable<AdaptiveControllerParams> {
   static constexpr const char* owner = "AdaptiveController";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("lambda_", &AdaptiveControllerParams::lambda, "1/s", positive(),

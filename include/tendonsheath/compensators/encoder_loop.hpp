@@ -39,6 +39,7 @@ struct EncoderLoopParams {
 template <>
 struct ParamTable<EncoderLoopParams> {
   static constexpr const char* owner = "EncoderLoop";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("kp", &EncoderLoopParams::kp, "rad/rad", non_negative(),

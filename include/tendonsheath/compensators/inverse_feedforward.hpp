@@ -32,6 +32,7 @@ struct BacklashInverseParams {
 template <>
 struct ParamTable<BacklashInverseParams> {
   static constexpr const char* owner = "BacklashInverseFeedforward";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("c_r", &BacklashInverseParams::c_r, "output/input", positive(),

@@ -38,6 +38,7 @@ struct LagInverseParams {
 template <>
 struct ParamTable<LagInverseParams> {
   static constexpr const char* owner = "LagInverse";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("order", &LagInverseParams::order, "", documented(1, true, 2, true),

@@ -37,6 +37,7 @@ struct LearnedFeedforwardParams {
 template <>
 struct ParamTable<LearnedFeedforwardParams> {
   static constexpr const char* owner = "LearnedCorrection";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("table_dt", &LearnedFeedforwardParams::table_dt, "s", documented(0.0, false, kInf, false),

@@ -57,6 +57,7 @@ struct TipLoopParams {
 template <>
 struct ParamTable<TipLoopParams> {
   static constexpr const char* owner = "TipLoop";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("kp", &TipLoopParams::kp, "rad/rad", non_negative(),

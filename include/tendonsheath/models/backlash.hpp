@@ -42,6 +42,7 @@ struct BacklashParams {
 template <>
 struct ParamTable<BacklashParams> {
   static constexpr const char* owner = "Backlash";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("c_r", &BacklashParams::c_r, "output/input", positive(),

@@ -42,6 +42,7 @@ struct BoucWenParams {
 template <>
 struct ParamTable<BoucWenParams> {
   static constexpr const char* owner = "BoucWen";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("A", &BoucWenParams::A, "", positive(),

@@ -45,6 +45,7 @@ struct BoucWenBacklashParams {
 template <>
 struct ParamTable<BoucWenBacklashParams> {
   static constexpr const char* owner = "BoucWenBacklash";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("c_r", &BoucWenBacklashParams::c_r, "output/input", positive(),

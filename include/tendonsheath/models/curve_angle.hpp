@@ -63,6 +63,7 @@ struct CurveAngleParams {
 template <>
 struct ParamTable<CurveAngleParams> {
   static constexpr const char* owner = "CurveAngleModel";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("friction", &CurveAngleParams::friction, "", non_negative(),

@@ -95,6 +95,7 @@ struct HystereticOscillatorParams {
 template <>
 struct ParamTable<HystereticOscillatorParams> {
   static constexpr const char* owner = "HystereticOscillator";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("m", &HystereticOscillatorParams::m, "", positive(),

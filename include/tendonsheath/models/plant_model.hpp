@@ -31,6 +31,7 @@ struct PlantModelParams {
 template <>
 struct ParamTable<PlantModelParams> {
   static constexpr const char* owner = "PlantModel";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("friction_angle", &PlantModelParams::friction_angle, "rad", documented(0.0, false, 20.0, false),

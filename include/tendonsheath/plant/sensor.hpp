@@ -33,6 +33,7 @@ struct SensorParams {
 template <>
 struct ParamTable<SensorParams> {
   static constexpr const char* owner = "Sensor";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("resolution", &SensorParams::resolution, "input", non_negative(),

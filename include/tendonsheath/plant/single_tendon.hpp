@@ -37,6 +37,7 @@ struct SingleTendonParams {
 template <>
 struct ParamTable<SingleTendonParams> {
   static constexpr const char* owner = "SingleTendonPlant";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("friction", &SingleTendonParams::friction, "", non_negative(),
