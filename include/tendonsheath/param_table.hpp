@@ -13,6 +13,7 @@
 #pragma once
 
 #include <limits>
+#include <string_view>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -124,6 +125,18 @@ void validate_field(const P& p, const ParamField<P, T>& row, const char* where) 
 template <class P>
 void validate_fields(const P& p, const char* where) {
   for_each_field<P>([&](const auto& row) { validate_field(p, row, where); });
+}
+
+/// Checks the rows from `first` to `last` (names, both included) in table order, for a constructor
+/// whose cross-field rules sit between the single-field checks.
+template <class P>
+void validate_fields(const P& p, const char* where, std::string_view first, std::string_view last) {
+  bool inside = false;
+  for_each_field<P>([&](const auto& row) {
+    if (row.name == first) inside = true;
+    if (inside) validate_field(p, row, where);
+    if (row.name == last) inside = false;
+  });
 }
 
 }  // namespace tendonsheath

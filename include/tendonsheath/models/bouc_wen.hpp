@@ -42,7 +42,7 @@ struct BoucWenParams {
 template <>
 struct ParamTable<BoucWenParams> {
   static constexpr const char* owner = "BoucWen";  ///< the class its constructor takes it
-  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("A", &BoucWenParams::A, "", positive(),
@@ -78,17 +78,12 @@ class BoucWen {
   /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit BoucWen(const Params& p) : p_(p) {
     const char* w = "BoucWen";
-    require_positive(p.A, w, "A");
-    require_positive(p.beta, w, "beta");
-    require_finite(p.gamma, w, "gamma");
+    validate_fields(p, w, "A", "gamma");  // from ParamTable<BoucWenParams>
     require(std::fabs(p.gamma) <= p.beta, w,
             "|gamma| must be <= beta for a bounded hysteretic state (got beta=", p.beta,
             ", gamma=", p.gamma, ")");
     require(p.beta + p.gamma > 0.0, w, "beta + gamma must be > 0");
-    require_at_least(p.n, 1.0, w, "n");
-    require_in_range(p.alpha, 0.0, 1.0, w, "alpha");
-    require_finite(p.k, w, "k");
-    require_positive(p.max_step, w, "max_step");
+    validate_fields(p, w, "n", "max_step");
     require(p.max_substeps >= 1, w, "max_substeps must be >= 1");
     if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     derive();
