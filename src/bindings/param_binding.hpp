@@ -65,6 +65,38 @@ bool set_field(P& p, const std::string& key, nb::handle value, const char* struc
   return found;
 }
 
+// The Python type a row's value takes, for the keyword constructor's signature (the stub).
+template <class T>
+std::string python_type() {
+  if constexpr (std::is_same_v<T, bool>) {
+    return "bool";
+  } else if constexpr (std::is_floating_point_v<T>) {
+    return "float";
+  } else if constexpr (std::is_integral_v<T>) {
+    return "int";
+  } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+    return "collections.abc.Sequence[float]";
+  } else {
+    nb::handle t = nb::type<T>();  // a nested struct or an enum, bound before P
+    return t.is_valid() ? std::string(nb::type_name(t).c_str()) : std::string("object");
+  }
+}
+
+// "def __init__(self, *, c_r: float = ..., ...) -> None": every row a keyword-only argument.
+template <class P>
+std::string init_signature() {
+  std::string s = "def __init__(self";
+  const char* sep = ", *, ";
+  tendonsheath::for_each_field<P>([&](const auto& row) {
+    using T = typename std::decay_t<decltype(row)>::value_type;
+    s += sep;
+    s += row.name;
+    s += ": " + python_type<T>() + " = ...";
+    sep = ", ";
+  });
+  return s + ") -> None";
+}
+
 // Binds P as `name`: a property per table row, P(**fields) (an unknown keyword: TypeError naming
 // it), the static fields(), the rows as dicts, and the class attributes owner (the class that
 // checks P) and checked_from_table. Returns the class for anything bound by hand.
@@ -82,6 +114,7 @@ nb::class_<P> bind_params(nb::module_& m, const char* name) {
         }
         new (self) P(std::move(p));
       },
+      nb::sig(init_signature<P>().c_str()),
       "Set any field by keyword; the others keep their defaults (fields() lists them).");
   tendonsheath::for_each_field<P>([&](const auto& row) { cls.def_rw(row.name, row.member); });
   cls.def_static(
