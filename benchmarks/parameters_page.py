@@ -60,7 +60,8 @@ def _range(row: dict[str, Any]) -> str:
         return "finite"
     has_lo, has_hi = not math.isinf(lo), not math.isinf(hi)
     if has_lo and not has_hi:
-        return (">= " if row["lo_closed"] else "> ") + _number(lo)
+        text = (">= " if row["lo_closed"] else "> ") + _number(lo)
+        return text + (" (inf: no limit)" if row["hi_closed"] else "")
     if has_hi and not has_lo:
         return ("<= " if row["hi_closed"] else "< ") + _number(hi)
     if not has_lo and not has_hi:
