@@ -245,6 +245,8 @@ def test_the_binding_is_the_table(struct):
         if isinstance(value, float | int | bool | list):
             assert value == row["default"], (struct, row["name"])
             assert getattr(cls(**{row["name"]: value}), row["name"]) == value
+            with pytest.raises(TypeError, match=rf"^{struct}: {row['name']} cannot take .* str$"):
+                cls(**{row["name"]: "text"})
     with pytest.raises(TypeError, match=rf"^{struct}: unknown keyword 'no_such_field'$"):
         cls(no_such_field=1.0)
 
