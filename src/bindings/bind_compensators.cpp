@@ -9,6 +9,7 @@
 #include <tendonsheath/tendonsheath.hpp>
 
 #include "bindings.hpp"
+#include "param_binding.hpp"
 
 namespace tsbind {
 namespace ts = tendonsheath;
@@ -59,14 +60,7 @@ void bind_limits(nb::module_& m) {
 
 void bind_inverse(nb::module_& m) {
   using P = ts::BacklashInverseParams;
-  nb::class_<P>(m, "BacklashInverseParams")
-      .def(nb::init<>())
-      .def_rw("c_r", &P::c_r)
-      .def_rw("c_l", &P::c_l)
-      .def_rw("B_r", &P::B_r)
-      .def_rw("B_l", &P::B_l)
-      .def_rw("smoothing", &P::smoothing)
-      .def_rw("limits", &P::limits);
+  bind_params<P>(m, "BacklashInverseParams");
   using B = ts::BacklashInverseFeedforward;
   bind_copy(nb::class_<B>(m, "BacklashInverseFeedforward"))
       .def(nb::init<const P&>(), "params"_a)
@@ -100,21 +94,7 @@ void bind_inverse(nb::module_& m) {
 
 void bind_curve_angle_feedforward(nb::module_& m) {
   using P = ts::CurveAngleFeedforwardParams;
-  nb::class_<P>(m, "CurveAngleFeedforwardParams")
-      .def(nb::init<>())
-      .def_rw("friction", &P::friction)
-      .def_rw("stiffness", &P::stiffness)
-      .def_rw("length", &P::length)
-      .def_rw("pretension", &P::pretension)
-      .def_rw("load_force", &P::load_force)
-      .def_rw("load_stiffness", &P::load_stiffness)
-      .def_rw("proximal_radius", &P::proximal_radius)
-      .def_rw("distal_radius", &P::distal_radius)
-      .def_rw("curve_angle", &P::curve_angle)
-      .def_rw("play", &P::play)
-      .def_rw("smoothing", &P::smoothing)
-      .def_rw("max_correction_rate", &P::max_correction_rate)
-      .def_rw("limits", &P::limits);
+  bind_params<P>(m, "CurveAngleFeedforwardParams");
   using C = ts::CurveAngleFeedforward;
   bind_copy(nb::class_<C>(m, "CurveAngleFeedforward"))
       .def(nb::init<const P&>(), "params"_a)
@@ -155,22 +135,7 @@ void bind_continuum(nb::module_& m) {
       .value("exact", ts::ContinuumMode::Exact)
       .value("published", ts::ContinuumMode::Published);
   using P = ts::ContinuumFeedforwardParams;
-  nb::class_<P>(m, "ContinuumFeedforwardParams")
-      .def(nb::init<>())
-      .def_rw("friction", &P::friction)
-      .def_rw("gap_factor", &P::gap_factor)
-      .def_rw("length", &P::length)
-      .def_rw("stiffness", &P::stiffness)
-      .def_rw("pretension", &P::pretension)
-      .def_rw("curve_angle", &P::curve_angle)
-      .def_rw("bending_stiffness", &P::bending_stiffness)
-      .def_rw("tendon_offset", &P::tendon_offset)
-      .def_rw("backbone_length", &P::backbone_length)
-      .def_rw("proximal_radius", &P::proximal_radius)
-      .def_rw("smoothing", &P::smoothing)
-      .def_rw("play", &P::play)
-      .def_rw("mode", &P::mode)
-      .def_rw("limits", &P::limits);
+  bind_params<P>(m, "ContinuumFeedforwardParams");
   using C = ts::ContinuumFeedforward;
   bind_copy(nb::class_<C>(m, "ContinuumFeedforward"))
       .def(nb::init<const P&>(), "params"_a)
@@ -190,33 +155,7 @@ void bind_continuum(nb::module_& m) {
 
 void bind_adaptive(nb::module_& m) {
   using P = ts::AdaptiveControllerParams;
-  nb::class_<P>(m, "AdaptiveControllerParams")
-      .def(nb::init<>())
-      .def_rw("lambda_", &P::lambda)
-      .def_rw("k_s", &P::k_s)
-      .def_rw("epsilon", &P::epsilon)
-      .def_rw("gamma_psi", &P::gamma_psi)
-      .def_rw("gamma_phi", &P::gamma_phi)
-      .def_rw("gamma_D", &P::gamma_D)
-      .def_rw("sigma_psi", &P::sigma_psi)
-      .def_rw("sigma_phi", &P::sigma_phi)
-      .def_rw("sigma_D", &P::sigma_D)
-      .def_rw("psi_0", &P::psi_0)
-      .def_rw("phi_0", &P::phi_0)
-      .def_rw("D_0", &P::D_0)
-      .def_rw("phi_min", &P::phi_min)
-      .def_rw("psi_max", &P::psi_max)
-      .def_rw("phi_max", &P::phi_max)
-      .def_rw("D_max", &P::D_max)
-      .def_rw("adaptation_deadzone", &P::adaptation_deadzone)
-      .def_rw("derivative_cutoff_hz", &P::derivative_cutoff_hz)
-      .def_rw("derivative_damping", &P::derivative_damping)
-      .def_rw("max_torque", &P::max_torque)
-      .def_rw("has_feedforward", &P::has_feedforward)
-      .def_rw("feedforward", &P::feedforward)
-      .def_rw("fallback_kp", &P::fallback_kp)
-      .def_rw("fallback_kd", &P::fallback_kd)
-      .def_rw("model_acceleration", &P::model_acceleration);
+  bind_params<P>(m, "AdaptiveControllerParams");
   nb::class_<ts::AdaptiveEstimates>(m, "AdaptiveEstimates")
       .def_ro("psi", &ts::AdaptiveEstimates::psi)
       .def_ro("phi", &ts::AdaptiveEstimates::phi)
@@ -235,14 +174,7 @@ void bind_adaptive(nb::module_& m) {
 
 void bind_encoder_loop(nb::module_& m) {
   using P = ts::EncoderLoopParams;
-  nb::class_<P>(m, "EncoderLoopParams")
-      .def(nb::init<>())
-      .def_rw("kp", &P::kp)
-      .def_rw("ki", &P::ki)
-      .def_rw("kd", &P::kd)
-      .def_rw("derivative_cutoff_hz", &P::derivative_cutoff_hz)
-      .def_rw("max_correction", &P::max_correction)
-      .def_rw("limits", &P::limits);
+  bind_params<P>(m, "EncoderLoopParams");
   using L = ts::EncoderLoop;
   bind_copy(nb::class_<L>(m, "EncoderLoop"))
       .def(nb::init<const P&>(), "params"_a)
@@ -257,14 +189,9 @@ void bind_encoder_loop(nb::module_& m) {
 
 void bind_tip_loop(nb::module_& m) {
   using P = ts::TipLoopParams;
-  nb::class_<P>(m, "TipLoopParams")
-      .def(nb::init<>())
-      .def_rw("kp", &P::kp)
-      .def_rw("ki", &P::ki)
-      .def_rw("kd", &P::kd)
-      .def_rw("derivative_cutoff_hz", &P::derivative_cutoff_hz)
-      .def_rw("max_correction", &P::max_correction)
-      .def_rw("limits", &P::limits)
+  // the schedule's arrays are bound by hand: read-only lists of schedule_size points, set
+  // together by set_schedule (a table row would expose all kMaxSchedule slots)
+  bind_params<P>(m, "TipLoopParams")
       .def_prop_ro("schedule_angles",
                    [](const P& p) {
                      return std::vector<double>(p.schedule_angles.begin(),
@@ -312,11 +239,7 @@ void bind_tip_loop(nb::module_& m) {
 
 void bind_learned_feedforward(nb::module_& m) {
   using P = ts::LearnedFeedforwardParams;
-  nb::class_<P>(m, "LearnedFeedforwardParams")
-      .def(nb::init<>())
-      .def_rw("table_dt", &P::table_dt)
-      .def_rw("hold_last", &P::hold_last)
-      .def_rw("limits", &P::limits);
+  bind_params<P>(m, "LearnedFeedforwardParams");
   using L = ts::LearnedCorrection;
   bind_copy(nb::class_<L>(m, "LearnedCorrection"))
       .def(nb::init<std::vector<double>, const P&>(), "table"_a, "params"_a)

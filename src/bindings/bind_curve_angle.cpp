@@ -6,6 +6,7 @@
 #include <tendonsheath/models/curve_angle.hpp>
 
 #include "bindings.hpp"
+#include "param_binding.hpp"
 
 namespace tsbind {
 namespace ts = tendonsheath;
@@ -13,17 +14,7 @@ using namespace nb::literals;
 
 void bind_curve_angle(nb::module_& m) {
   using P = ts::CurveAngleParams;
-  nb::class_<P>(m, "CurveAngleParams")
-      .def(nb::init<>())
-      .def_rw("friction", &P::friction)
-      .def_rw("stiffness", &P::stiffness)
-      .def_rw("pretension", &P::pretension)
-      .def_rw("length", &P::length)
-      .def_rw("load_force", &P::load_force)
-      .def_rw("load_stiffness", &P::load_stiffness)
-      .def_rw("proximal_radius", &P::proximal_radius)
-      .def_rw("distal_radius", &P::distal_radius)
-      .def_rw("play", &P::play);
+  bind_params<P>(m, "CurveAngleParams");
 
   using M = ts::CurveAngleModel;
   bind_copy(nb::class_<M>(m, "CurveAngleModel"))

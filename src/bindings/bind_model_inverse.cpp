@@ -9,6 +9,7 @@
 #include <tendonsheath/tendonsheath.hpp>
 
 #include "bindings.hpp"
+#include "param_binding.hpp"
 
 namespace tsbind {
 namespace ts = tendonsheath;
@@ -18,22 +19,9 @@ namespace {
 
 void bind_parts(nb::module_& m) {
   using PM = ts::PlantModelParams;
-  nb::class_<PM>(m, "PlantModelParams")
-      .def(nb::init<>())
-      .def_rw("friction_angle", &PM::friction_angle)
-      .def_rw("backlash", &PM::backlash)
-      .def_rw("viscous_time", &PM::viscous_time)
-      .def_rw("gain", &PM::gain)
-      .def_rw("offset", &PM::offset)
-      .def_rw("elements", &PM::elements);
+  bind_params<PM>(m, "PlantModelParams");
   using L = ts::LagInverseParams;
-  nb::class_<L>(m, "LagInverseParams")
-      .def(nb::init<>())
-      .def_rw("order", &L::order)
-      .def_rw("time_constant", &L::time_constant)
-      .def_rw("frequency", &L::frequency)
-      .def_rw("damping", &L::damping)
-      .def_rw("filter_hz", &L::filter_hz);
+  bind_params<L>(m, "LagInverseParams");
   using A = ts::AngleLaws;
   nb::class_<A>(m, "AngleLaws")
       .def(nb::init<>())

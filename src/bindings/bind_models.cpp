@@ -7,6 +7,7 @@
 #include <tendonsheath/tendonsheath.hpp>
 
 #include "bindings.hpp"
+#include "param_binding.hpp"
 #include "model_binding.hpp"
 
 namespace tsbind {
@@ -16,44 +17,20 @@ using namespace nb::literals;
 namespace {
 
 void bind_backlash(nb::module_& m) {
-  nb::class_<ts::BacklashParams>(m, "BacklashParams")
-      .def(nb::init<>())
-      .def_rw("c_r", &ts::BacklashParams::c_r)
-      .def_rw("c_l", &ts::BacklashParams::c_l)
-      .def_rw("B_r", &ts::BacklashParams::B_r)
-      .def_rw("B_l", &ts::BacklashParams::B_l);
+  bind_params<ts::BacklashParams>(m, "BacklashParams");
   bind_model<ts::Backlash>(m, "Backlash").def("set_state", &ts::Backlash::set_state, "x"_a, "y"_a);
 }
 
 // Bouc-Wen backlash and the classic Bouc-Wen model.
 void bind_bouc_wen(nb::module_& m) {
   using BWB = ts::BoucWenBacklashParams;
-  nb::class_<BWB>(m, "BoucWenBacklashParams")
-      .def(nb::init<>())
-      .def_rw("c_r", &BWB::c_r)
-      .def_rw("c_l", &BWB::c_l)
-      .def_rw("B_r", &BWB::B_r)
-      .def_rw("B_l", &BWB::B_l)
-      .def_rw("rho", &BWB::rho)
-      .def_rw("sigma", &BWB::sigma)
-      .def_rw("n", &BWB::n)
-      .def_rw("max_step", &BWB::max_step)
-      .def_rw("max_substeps", &BWB::max_substeps);
+  bind_params<BWB>(m, "BoucWenBacklashParams");
   bind_model<ts::BoucWenBacklash>(m, "BoucWenBacklash")
       .def("state", &ts::BoucWenBacklash::state)
       .def("set_state", &ts::BoucWenBacklash::set_state, "x"_a, "w"_a);
 
   using BW = ts::BoucWenParams;
-  nb::class_<BW>(m, "BoucWenParams")
-      .def(nb::init<>())
-      .def_rw("A", &BW::A)
-      .def_rw("beta", &BW::beta)
-      .def_rw("gamma", &BW::gamma)
-      .def_rw("n", &BW::n)
-      .def_rw("alpha", &BW::alpha)
-      .def_rw("k", &BW::k)
-      .def_rw("max_step", &BW::max_step)
-      .def_rw("max_substeps", &BW::max_substeps);
+  bind_params<BW>(m, "BoucWenParams");
   bind_model<ts::BoucWen>(m, "BoucWen")
       .def("state", &ts::BoucWen::state)
       .def("z_ultimate", &ts::BoucWen::z_ultimate);
@@ -61,20 +38,7 @@ void bind_bouc_wen(nb::module_& m) {
 
 void bind_oscillator(nb::module_& m) {
   using HO = ts::HystereticOscillatorParams;
-  nb::class_<HO>(m, "HystereticOscillatorParams")
-      .def(nb::init<>())
-      .def_rw("m", &HO::m)
-      .def_rw("c", &HO::c)
-      .def_rw("k", &HO::k)
-      .def_rw("alpha", &HO::alpha)
-      .def_rw("beta", &HO::beta)
-      .def_rw("gamma", &HO::gamma)
-      .def_rw("delta", &HO::delta)
-      .def_rw("nu", &HO::nu)
-      .def_rw("substeps", &HO::substeps)
-      .def_rw("max_substeps", &HO::max_substeps)
-      .def_rw("input_interpolation", &HO::input_interpolation)
-      .def_rw("lookahead", &HO::lookahead);
+  bind_params<HO>(m, "HystereticOscillatorParams");
   using Osc = ts::HystereticOscillator;
   bind_model<Osc>(m, "HystereticOscillator")
       .def("velocity", &Osc::velocity)
@@ -155,10 +119,7 @@ void bind_oscillator_dense(nb::module_& m) {
 
 void bind_prandtl_ishlinskii(nb::module_& m) {
   using PI = ts::PrandtlIshlinskiiParams;
-  nb::class_<PI>(m, "PrandtlIshlinskiiParams")
-      .def(nb::init<>())
-      .def_rw("thresholds", &PI::thresholds)
-      .def_rw("weights", &PI::weights);
+  bind_params<PI>(m, "PrandtlIshlinskiiParams");
   bind_model<ts::PrandtlIshlinskii>(m, "PrandtlIshlinskii")
       .def("play_states", &ts::PrandtlIshlinskii::play_states);
   bind_model<ts::PrandtlIshlinskiiInverse>(m, "PrandtlIshlinskiiInverse")

@@ -8,6 +8,7 @@
 #include <tendonsheath/tendonsheath.hpp>
 
 #include "bindings.hpp"
+#include "param_binding.hpp"
 #include "model_binding.hpp"
 
 namespace tsbind {
@@ -15,10 +16,7 @@ namespace ts = tendonsheath;
 using namespace nb::literals;
 
 void bind_models_extended(nb::module_& m) {
-  nb::class_<ts::PolynomialParams>(m, "PolynomialParams")
-      .def(nb::init<>())
-      .def_rw("coefficients", &ts::PolynomialParams::coefficients)
-      .def_rw("odd", &ts::PolynomialParams::odd);
+  bind_params<ts::PolynomialParams>(m, "PolynomialParams");
   bind_model<ts::Polynomial>(m, "Polynomial");
 
   nb::class_<ts::Envelope>(m, "Envelope")
@@ -33,12 +31,7 @@ void bind_models_extended(nb::module_& m) {
       .def("slope_at", &ts::Envelope::slope_at, nb::arg("x"))
       .def("inverse", &ts::Envelope::inverse, nb::arg("g"));
   using G = ts::GeneralizedPrandtlIshlinskiiParams;
-  nb::class_<G>(m, "GeneralizedPrandtlIshlinskiiParams")
-      .def(nb::init<>())
-      .def_rw("rising", &G::rising)
-      .def_rw("falling", &G::falling)
-      .def_rw("thresholds", &G::thresholds)
-      .def_rw("weights", &G::weights);
+  bind_params<G>(m, "GeneralizedPrandtlIshlinskiiParams");
   bind_model<ts::GeneralizedPrandtlIshlinskii>(m, "GeneralizedPrandtlIshlinskii");
   bind_model<ts::GeneralizedPrandtlIshlinskiiInverse>(m, "GeneralizedPrandtlIshlinskiiInverse")
       .def("input_clamped", &ts::GeneralizedPrandtlIshlinskiiInverse::input_clamped);

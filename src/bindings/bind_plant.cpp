@@ -11,6 +11,7 @@
 #include <tendonsheath/tendonsheath.hpp>
 
 #include "bindings.hpp"
+#include "param_binding.hpp"
 
 namespace tsbind {
 namespace ts = tendonsheath;
@@ -209,58 +210,13 @@ void bind_plant_params(nb::module_& m) {
       .def_rw("fast_path", &CO::fast_path);
 
   using SP = ts::SingleTendonParams;
-  nb::class_<SP>(m, "SingleTendonParams")
-      .def(nb::init<>())
-      .def_rw("friction", &SP::friction)
-      .def_rw("stiffness", &SP::stiffness)
-      .def_rw("elements", &SP::elements)
-      .def_rw("load_force", &SP::load_force)
-      .def_rw("load_stiffness", &SP::load_stiffness)
-      .def_rw("sheath_viscosity", &SP::sheath_viscosity)
-      .def_rw("relaxation_fraction", &SP::relaxation_fraction)
-      .def_rw("relaxation_time", &SP::relaxation_time)
-      .def_rw("options", &SP::options);
+  bind_params<SP>(m, "SingleTendonParams");
 
   using PP = ts::PullPullParams;
-  nb::class_<PP>(m, "PullPullParams")
-      .def(nb::init<>())
-      .def_rw("friction", &PP::friction)
-      .def_rw("stiffness", &PP::stiffness)
-      .def_rw("pretension", &PP::pretension)
-      .def_rw("proximal_radius", &PP::proximal_radius)
-      .def_rw("distal_radius", &PP::distal_radius)
-      .def_rw("elements", &PP::elements)
-      .def_rw("load_torque", &PP::load_torque)
-      .def_rw("load_stiffness", &PP::load_stiffness)
-      .def_rw("load_damping", &PP::load_damping)
-      .def_rw("distal_inertia", &PP::distal_inertia)
-      .def_rw("distal_damping", &PP::distal_damping)
-      .def_rw("sheath_viscosity", &PP::sheath_viscosity)
-      .def_rw("relaxation_fraction", &PP::relaxation_fraction)
-      .def_rw("relaxation_time", &PP::relaxation_time)
-      .def_rw("friction2", &PP::friction2)
-      .def_rw("stiffness2", &PP::stiffness2)
-      .def_rw("options", &PP::options);
+  bind_params<PP>(m, "PullPullParams");
 
   using CP = ts::ContinuumParams;
-  nb::class_<CP>(m, "ContinuumParams")
-      .def(nb::init<>())
-      .def_rw("friction", &CP::friction)
-      .def_rw("stiffness", &CP::stiffness)
-      .def_rw("pretension", &CP::pretension)
-      .def_rw("proximal_radius", &CP::proximal_radius)
-      .def_rw("bending_stiffness", &CP::bending_stiffness)
-      .def_rw("tendon_offset", &CP::tendon_offset)
-      .def_rw("backbone_length", &CP::backbone_length)
-      .def_rw("elements", &CP::elements)
-      .def_rw("distal_inertia", &CP::distal_inertia)
-      .def_rw("distal_damping", &CP::distal_damping)
-      .def_rw("sheath_viscosity", &CP::sheath_viscosity)
-      .def_rw("relaxation_fraction", &CP::relaxation_fraction)
-      .def_rw("relaxation_time", &CP::relaxation_time)
-      .def_rw("friction2", &CP::friction2)
-      .def_rw("stiffness2", &CP::stiffness2)
-      .def_rw("options", &CP::options);
+  bind_params<CP>(m, "ContinuumParams");
 }
 
 void bind_motor(nb::module_& m) {
@@ -268,21 +224,7 @@ void bind_motor(nb::module_& m) {
       .value("Position", ts::MotorKind::Position)
       .value("Torque", ts::MotorKind::Torque);
   using MP = ts::MotorParams;
-  bind_copy(nb::class_<MP>(m, "MotorParams"))
-      .def(nb::init<>())
-      .def_rw("kind", &MP::kind)
-      .def_rw("bandwidth_hz", &MP::bandwidth_hz)
-      .def_rw("damping", &MP::damping)
-      .def_rw("max_speed", &MP::max_speed)
-      .def_rw("max_accel", &MP::max_accel)
-      .def_rw("inertia", &MP::inertia)
-      .def_rw("viscous", &MP::viscous)
-      .def_rw("max_torque", &MP::max_torque)
-      .def_rw("max_substeps", &MP::max_substeps)
-      .def_rw("coulomb_friction", &MP::coulomb_friction)
-      .def_rw("viscous_friction", &MP::viscous_friction)
-      .def_rw("gear_backlash", &MP::gear_backlash)
-      .def_rw("integral_time", &MP::integral_time);
+  bind_copy(bind_params<MP>(m, "MotorParams"));
   bind_copy(nb::class_<ts::Motor>(m, "Motor"))
       .def(nb::init<const MP&>(), "params"_a)
       .def_prop_ro("params", &ts::Motor::params)
@@ -299,13 +241,7 @@ void bind_motor(nb::module_& m) {
 
 void bind_sensor(nb::module_& m) {
   using SeP = ts::SensorParams;
-  bind_copy(nb::class_<SeP>(m, "SensorParams"))
-      .def(nb::init<>())
-      .def_rw("resolution", &SeP::resolution)
-      .def_rw("noise_std", &SeP::noise_std)
-      .def_rw("seed", &SeP::seed)
-      .def_rw("delay", &SeP::delay)
-      .def_rw("history", &SeP::history);
+  bind_copy(bind_params<SeP>(m, "SensorParams"));
   bind_copy(nb::class_<ts::Sensor>(m, "Sensor"))
       .def(nb::init<const SeP&>(), "params"_a)
       .def_ro_static("MAX_HISTORY", &ts::Sensor::kMaxHistory)

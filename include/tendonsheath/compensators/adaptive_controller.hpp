@@ -22,6 +22,7 @@
 #include "../validate.hpp"
 #include "command_shaping.hpp"
 #include "inverse_feedforward.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -64,6 +65,65 @@ struct AdaptiveControllerParams {
   /// place of y_d'' in nu_r, so the inertial term pushes the motor across the band
   /// before the output error shows it. The difference is part of the bounded delta.
   bool model_acceleration = false;
+};
+
+/// The parameter table of AdaptiveControllerParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<AdaptiveControllerParams> {
+  static constexpr const char* owner = "AdaptiveController";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("lambda_", &AdaptiveControllerParams::lambda, "1/s", positive(),
+            "lambda, the sliding surface's pole (C++ member lambda)"),
+      param("k_s", &AdaptiveControllerParams::k_s, "N m s/rad", non_negative(),
+            "feedback gain on s"),
+      param("epsilon", &AdaptiveControllerParams::epsilon, "rad/s", positive(),
+            "boundary layer of the robust term"),
+      param("gamma_psi", &AdaptiveControllerParams::gamma_psi, "", non_negative(),
+            "adaptation gain of psi"),
+      param("gamma_phi", &AdaptiveControllerParams::gamma_phi, "", non_negative(),
+            "adaptation gain of phi"),
+      param("gamma_D", &AdaptiveControllerParams::gamma_D, "", non_negative(),
+            "adaptation gain of D"),
+      param("sigma_psi", &AdaptiveControllerParams::sigma_psi, "", non_negative(),
+            "sigma-modification (leakage) of psi"),
+      param("sigma_phi", &AdaptiveControllerParams::sigma_phi, "", non_negative(),
+            "sigma-modification (leakage) of phi"),
+      param("sigma_D", &AdaptiveControllerParams::sigma_D, "", non_negative(),
+            "sigma-modification (leakage) of D"),
+      param("psi_0", &AdaptiveControllerParams::psi_0, "", documented(-kInf, true, kInf, true),
+            "initial psi, in [-psi_max, psi_max]"),
+      param("phi_0", &AdaptiveControllerParams::phi_0, "", documented(0.0, false, kInf, true),
+            "initial phi, in [phi_min, phi_max]"),
+      param("D_0", &AdaptiveControllerParams::D_0, "", documented(0.0, true, kInf, true),
+            "initial D, in [0, D_max]"),
+      param("phi_min", &AdaptiveControllerParams::phi_min, "", positive(),
+            "lower projection bound of phi"),
+      param("psi_max", &AdaptiveControllerParams::psi_max, "", positive(),
+            "projection bound of |psi|"),
+      param("phi_max", &AdaptiveControllerParams::phi_max, "", documented(0.0, false, kInf, false),
+            "upper projection bound of phi, > phi_min"),
+      param("D_max", &AdaptiveControllerParams::D_max, "", positive(),
+            "projection bound of D"),
+      param("adaptation_deadzone", &AdaptiveControllerParams::adaptation_deadzone, "rad/s", non_negative(),
+            "no adaptation while |s| is below this (noise floor)"),
+      param("derivative_cutoff_hz", &AdaptiveControllerParams::derivative_cutoff_hz, "Hz", positive(),
+            "natural frequency of the second-order derivative filter of y"),
+      param("derivative_damping", &AdaptiveControllerParams::derivative_damping, "", positive(),
+            "damping ratio of that filter"),
+      param("max_torque", &AdaptiveControllerParams::max_torque, "N m", documented(0.0, false, kInf, true),
+            "torque limit, |u| <= max_torque"),
+      param("has_feedforward", &AdaptiveControllerParams::has_feedforward, "", any(),
+            "the fallback has a backlash feedforward"),
+      param("feedforward", &AdaptiveControllerParams::feedforward, "", any(),
+            "BacklashInverseParams of the fallback's feedforward (used when has_feedforward)"),
+      param("fallback_kp", &AdaptiveControllerParams::fallback_kp, "N m/rad", non_negative(),
+            "torque per rad of motor position error"),
+      param("fallback_kd", &AdaptiveControllerParams::fallback_kd, "N m s/rad", non_negative(),
+            "torque per rad/s of motor velocity error"),
+      param("model_acceleration", &AdaptiveControllerParams::model_acceleration, "", any(),
+            "include the model's acceleration term"));
 };
 
 /// The adaptive controller's online estimates.

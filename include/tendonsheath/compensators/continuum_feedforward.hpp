@@ -17,6 +17,7 @@
 #include "../physics/pull_pull_statics.hpp"
 #include "../validate.hpp"
 #include "command_shaping.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -42,6 +43,43 @@ struct ContinuumFeedforwardParams {
   CommandLimits limits{};           ///< the motor command's limits, on the motor angle, rad
 };
 
+/// The parameter table of ContinuumFeedforwardParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<ContinuumFeedforwardParams> {
+  static constexpr const char* owner = "ContinuumFeedforward";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("friction", &ContinuumFeedforwardParams::friction, "", non_negative(),
+            "mu (xi = gap_factor * mu)"),
+      param("gap_factor", &ContinuumFeedforwardParams::gap_factor, "", positive(),
+            "gamma * delta_r of Kesner and Howe; 1 = plain capstan"),
+      param("length", &ContinuumFeedforwardParams::length, "m", positive(),
+            "L, the sheath's length"),
+      param("stiffness", &ContinuumFeedforwardParams::stiffness, "N", positive(),
+            "EA"),
+      param("pretension", &ContinuumFeedforwardParams::pretension, "N", non_negative(),
+            "T0"),
+      param("curve_angle", &ContinuumFeedforwardParams::curve_angle, "rad", non_negative(),
+            "Theta of a constant-radius route, <= the largest the friction allows"),
+      param("bending_stiffness", &ContinuumFeedforwardParams::bending_stiffness, "N m^2", positive(),
+            "EI of the backbone"),
+      param("tendon_offset", &ContinuumFeedforwardParams::tendon_offset, "m", positive(),
+            "r_t"),
+      param("backbone_length", &ContinuumFeedforwardParams::backbone_length, "m", positive(),
+            "l"),
+      param("proximal_radius", &ContinuumFeedforwardParams::proximal_radius, "m", positive(),
+            "r_p"),
+      param("smoothing", &ContinuumFeedforwardParams::smoothing, "rad/s", positive(),
+            "v_eps, the smoothing speed of the direction switch"),
+      param("play", &ContinuumFeedforwardParams::play, "rad", non_negative(),
+            "motor-side play (gearhead backlash), total width at the motor"),
+      param("mode", &ContinuumFeedforwardParams::mode, "", any(),
+            "ContinuumMode: the capstan-consistent equations (exact) or the paper's (published)"),
+      param("limits", &ContinuumFeedforwardParams::limits, "", any(),
+            "CommandLimits: the command's min, max and max_rate"));
+};
+
 /// @brief Feedforward of Lau et al.\ (spec C) for a tendon-sheath-driven continuum segment: desired
 /// bending angle in, motor angle out.
 ///
@@ -57,22 +95,12 @@ class ContinuumFeedforward {
   /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit ContinuumFeedforward(const Params& p) : p_(p), shaper_(p.limits) {
     const char* w = "ContinuumFeedforward";
-    require_non_negative(p.friction, w, "friction");
-    require_positive(p.gap_factor, w, "gap_factor");
-    require_positive(p.length, w, "length");
-    require_positive(p.stiffness, w, "stiffness");
-    require_non_negative(p.pretension, w, "pretension");
-    require_non_negative(p.curve_angle, w, "curve_angle");
+    validate_fields(p, w, "friction", "curve_angle");  // from ParamTable<ContinuumFeedforwardParams>
     require(p.curve_angle <= max_curve_angle(p.gap_factor * p.friction), w,
             "curve_angle must be <= ", max_curve_angle(p.gap_factor * p.friction),
             " rad for gap_factor * friction = ", p.gap_factor * p.friction,
             " (xi * curve_angle <= 50; got ", p.curve_angle, ")");
-    require_positive(p.bending_stiffness, w, "bending_stiffness");
-    require_positive(p.tendon_offset, w, "tendon_offset");
-    require_positive(p.backbone_length, w, "backbone_length");
-    require_positive(p.proximal_radius, w, "proximal_radius");
-    require_positive(p.smoothing, w, "smoothing");
-    require_non_negative(p.play, w, "play");
+    validate_fields(p, w, "bending_stiffness", "play");
     require(std::isfinite(p.play), w, "play must be finite");
     require(p.mode == ContinuumMode::Exact || p.mode == ContinuumMode::Published, w,
             "mode must be exact or published");

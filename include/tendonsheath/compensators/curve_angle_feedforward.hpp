@@ -20,6 +20,7 @@
 #include "../status.hpp"
 #include "../validate.hpp"
 #include "command_shaping.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -38,6 +39,41 @@ struct CurveAngleFeedforwardParams {
   double smoothing = 0.05;         ///< v_eps, the smoothing speed of the direction switch, rad/s of output
   double max_correction_rate = std::numeric_limits<double>::infinity();  ///< the correction's largest rate of change, m/s at the tendon
   CommandLimits limits{};          ///< the motor command's limits, on the motor angle, rad
+};
+
+/// The parameter table of CurveAngleFeedforwardParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<CurveAngleFeedforwardParams> {
+  static constexpr const char* owner = "CurveAngleFeedforward";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("friction", &CurveAngleFeedforwardParams::friction, "", non_negative(),
+            "mu, the sheath's Coulomb friction coefficient"),
+      param("stiffness", &CurveAngleFeedforwardParams::stiffness, "N", positive(),
+            "EA of the tendon"),
+      param("length", &CurveAngleFeedforwardParams::length, "m", positive(),
+            "L, the sheath's length (L / EA enters the statics)"),
+      param("pretension", &CurveAngleFeedforwardParams::pretension, "N", non_negative(),
+            "T0"),
+      param("load_force", &CurveAngleFeedforwardParams::load_force, "N", finite(),
+            "F_0 at the distal tendon level"),
+      param("load_stiffness", &CurveAngleFeedforwardParams::load_stiffness, "N/m", non_negative(),
+            "k_e of a spring environment at the tendon level"),
+      param("proximal_radius", &CurveAngleFeedforwardParams::proximal_radius, "m", positive(),
+            "r_p"),
+      param("distal_radius", &CurveAngleFeedforwardParams::distal_radius, "m", positive(),
+            "r_d"),
+      param("curve_angle", &CurveAngleFeedforwardParams::curve_angle, "rad", documented(0.0, true, kInf, false),
+            "initial Theta (uniform curvature), <= the largest the friction allows"),
+      param("play", &CurveAngleFeedforwardParams::play, "rad", non_negative(),
+            "motor-side play (gearhead backlash), total width at the motor"),
+      param("smoothing", &CurveAngleFeedforwardParams::smoothing, "rad/s", positive(),
+            "v_eps, the smoothing speed of the direction switch"),
+      param("max_correction_rate", &CurveAngleFeedforwardParams::max_correction_rate, "m/s", documented(0.0, false, kInf, true),
+            "the correction's largest rate of change, at the tendon"),
+      param("limits", &CurveAngleFeedforwardParams::limits, "", any(),
+            "CommandLimits: the command's min, max and max_rate"));
 };
 
 /// @brief Curve-angle feedforward of Sun, Wang & Phee (spec B2): the motor input modified by the

@@ -21,6 +21,7 @@
 #include "../status.hpp"
 #include "../validate.hpp"
 #include "command_shaping.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -32,6 +33,27 @@ struct EncoderLoopParams {
   double derivative_cutoff_hz = 50.0;  ///< corner of the derivative's first-order low-pass, Hz, > 0
   double max_correction = std::numeric_limits<double>::infinity();  ///< largest |correction|, rad, > 0
   CommandLimits limits{};  ///< the servo command's limits (after the correction)
+};
+
+/// The parameter table of EncoderLoopParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<EncoderLoopParams> {
+  static constexpr const char* owner = "EncoderLoop";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("kp", &EncoderLoopParams::kp, "rad/rad", non_negative(),
+            "proportional gain on the encoder error"),
+      param("ki", &EncoderLoopParams::ki, "1/s", non_negative(),
+            "integral gain"),
+      param("kd", &EncoderLoopParams::kd, "s", non_negative(),
+            "derivative gain"),
+      param("derivative_cutoff_hz", &EncoderLoopParams::derivative_cutoff_hz, "Hz", positive(),
+            "corner of the derivative's first-order low-pass"),
+      param("max_correction", &EncoderLoopParams::max_correction, "rad", documented(0.0, false, kInf, true),
+            "largest |correction|"),
+      param("limits", &EncoderLoopParams::limits, "", any(),
+            "CommandLimits: the command's min, max and max_rate"));
 };
 
 /// @brief A PI(D) loop on the motor encoder that makes the shaft follow a feedforward's target.
@@ -47,12 +69,11 @@ class EncoderLoop {
   /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit EncoderLoop(const Params& p) : p_(p), shaper_(p.limits) {
     const char* w = "EncoderLoop";
-    require_non_negative(p.kp, w, "kp");
-    require_non_negative(p.ki, w, "ki");
-    require_non_negative(p.kd, w, "kd");
+    // kp, ki, kd, derivative_cutoff_hz from ParamTable<EncoderLoopParams> (the two finiteness
+    // checks below cannot fail first: >= 0 and > 0 already require finite values)
+    validate_fields(p, w);
     require(std::isfinite(p.kp) && std::isfinite(p.ki) && std::isfinite(p.kd), w,
             "kp, ki and kd must be finite");
-    require_positive(p.derivative_cutoff_hz, w, "derivative_cutoff_hz");
     require(std::isfinite(p.derivative_cutoff_hz), w, "derivative_cutoff_hz must be finite");
     require(p.max_correction > 0.0, w, "max_correction must be > 0 (got ", p.max_correction, ")");
     p.limits.validate(w);

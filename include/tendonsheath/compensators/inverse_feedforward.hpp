@@ -13,6 +13,7 @@
 #include "../models/prandtl_ishlinskii.hpp"
 #include "../validate.hpp"
 #include "command_shaping.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -25,6 +26,27 @@ struct BacklashInverseParams {
   double B_l = 0.1;  ///< dead-band offset of the left branch, command units, >= 0
   double smoothing = 0.05;  ///< v_eps, the smoothing speed of the direction switch, output units per s
   CommandLimits limits{};  ///< the motor command's limits
+};
+
+/// The parameter table of BacklashInverseParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<BacklashInverseParams> {
+  static constexpr const char* owner = "BacklashInverseFeedforward";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("c_r", &BacklashInverseParams::c_r, "output/input", positive(),
+            "slope of the right (rising) branch"),
+      param("c_l", &BacklashInverseParams::c_l, "output/input", positive(),
+            "slope of the left (falling) branch"),
+      param("B_r", &BacklashInverseParams::B_r, "command", non_negative(),
+            "dead-band offset of the right branch"),
+      param("B_l", &BacklashInverseParams::B_l, "command", non_negative(),
+            "dead-band offset of the left branch"),
+      param("smoothing", &BacklashInverseParams::smoothing, "output/s", positive(),
+            "v_eps, the smoothing speed of the direction switch"),
+      param("limits", &BacklashInverseParams::limits, "", any(),
+            "CommandLimits: the command's min, max and max_rate"));
 };
 
 /// @brief Direct inverse feedforward of backlash-like hysteresis (spec D.2): no iteration.
@@ -41,11 +63,7 @@ class BacklashInverseFeedforward {
   /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit BacklashInverseFeedforward(const Params& p) : p_(p), shaper_(p.limits) {
     const char* w = "BacklashInverseFeedforward";
-    require_positive(p.c_r, w, "c_r");
-    require_positive(p.c_l, w, "c_l");
-    require_non_negative(p.B_r, w, "B_r");
-    require_non_negative(p.B_l, w, "B_l");
-    require_positive(p.smoothing, w, "smoothing");
+    validate_fields(p, w);  // c_r .. smoothing, from ParamTable<BacklashInverseParams>
     p.limits.validate(w);
   }
 

@@ -16,6 +16,7 @@
 
 #include "../status.hpp"
 #include "../validate.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -31,6 +32,25 @@ struct LagInverseParams {
   double corner_hz() const noexcept {
     return order == 1 ? 1.0 / (2.0 * 3.14159265358979323846 * time_constant) : frequency;
   }
+};
+
+/// The parameter table of LagInverseParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<LagInverseParams> {
+  static constexpr const char* owner = "LagInverse";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("order", &LagInverseParams::order, "", documented(1, true, 2, true),
+            "1: FirstOrderLag, 2: SecondOrderLag"),
+      param("time_constant", &LagInverseParams::time_constant, "s", documented(0.0, false, kInf, false),
+            "the first-order lag's tau"),
+      param("frequency", &LagInverseParams::frequency, "Hz", documented(0.0, false, kInf, false),
+            "the second-order lag's natural frequency"),
+      param("damping", &LagInverseParams::damping, "", documented(0.0, false, kInf, false),
+            "the second-order lag's damping ratio"),
+      param("filter_hz", &LagInverseParams::filter_hz, "Hz", documented(0.0, true, kInf, false),
+            "the inverse's corner; 0: 5 x the block's corner"));
 };
 
 /// @brief The inverse of a unit-gain first- or second-order lag: a Tustin filter with its own

@@ -22,6 +22,7 @@
 #include "../validate.hpp"
 #include "command_shaping.hpp"
 #include "encoder_loop.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -30,6 +31,21 @@ struct LearnedFeedforwardParams {
   double table_dt = 1e-3;  ///< time between the table's samples, s, > 0 and finite
   bool hold_last = true;   ///< past the table's end: hold its last sample (true) or add 0 (false)
   CommandLimits limits{};  ///< the command's limits (after the correction)
+};
+
+/// The parameter table of LearnedFeedforwardParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<LearnedFeedforwardParams> {
+  static constexpr const char* owner = "LearnedCorrection";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("table_dt", &LearnedFeedforwardParams::table_dt, "s", documented(0.0, false, kInf, false),
+            "time between the table's samples"),
+      param("hold_last", &LearnedFeedforwardParams::hold_last, "", any(),
+            "past the table's end: hold its last sample (true) or add 0 (false)"),
+      param("limits", &LearnedFeedforwardParams::limits, "", any(),
+            "CommandLimits: the command's min, max and max_rate"));
 };
 
 /// @brief A stored correction table played back in time and added to a feedforward's command.

@@ -34,6 +34,7 @@
 #include "../validate.hpp"
 #include "command_shaping.hpp"
 #include "encoder_loop.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -52,6 +53,27 @@ struct TipLoopParams {
   CommandLimits limits{};  ///< the servo command's limits (after the correction)
 };
 
+/// The parameter table of TipLoopParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<TipLoopParams> {
+  static constexpr const char* owner = "TipLoop";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("kp", &TipLoopParams::kp, "rad/rad", non_negative(),
+            "proportional gain on the tip error"),
+      param("ki", &TipLoopParams::ki, "1/s", non_negative(),
+            "integral gain"),
+      param("kd", &TipLoopParams::kd, "s", non_negative(),
+            "derivative gain"),
+      param("derivative_cutoff_hz", &TipLoopParams::derivative_cutoff_hz, "Hz", positive(),
+            "corner of the derivative's first-order low-pass"),
+      param("max_correction", &TipLoopParams::max_correction, "rad", documented(0.0, false, kInf, true),
+            "largest |correction|"),
+      param("limits", &TipLoopParams::limits, "", any(),
+            "CommandLimits: the command's min, max and max_rate"));
+};
+
 /// @brief A PI(D) loop on the tip angle around a feedforward's motor command, its gains scheduled
 /// over the route's curve angle.
 ///
@@ -66,10 +88,7 @@ class TipLoop {
   /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit TipLoop(const Params& p) : p_(p), shaper_(p.limits) {
     const char* w = "TipLoop";
-    require_non_negative(p.kp, w, "kp");
-    require_non_negative(p.ki, w, "ki");
-    require_non_negative(p.kd, w, "kd");
-    require_positive(p.derivative_cutoff_hz, w, "derivative_cutoff_hz");
+    validate_fields(p, w);  // kp, ki, kd, derivative_cutoff_hz, from ParamTable<TipLoopParams>
     require(p.max_correction > 0.0, w, "max_correction must be > 0 (got ", p.max_correction, ")");
     require(p.schedule_size <= Params::kMaxSchedule, w, "schedule_size must be <= ",
             Params::kMaxSchedule, " (got ", p.schedule_size, ")");

@@ -18,6 +18,7 @@
 
 #include "../status.hpp"
 #include "../validate.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -37,6 +38,23 @@ struct BacklashParams {
   }
 };
 
+/// The parameter table of BacklashParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<BacklashParams> {
+  static constexpr const char* owner = "Backlash";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("c_r", &BacklashParams::c_r, "output/input", positive(),
+            "slope of the right (rising) branch"),
+      param("c_l", &BacklashParams::c_l, "output/input", positive(),
+            "slope of the left (falling) branch"),
+      param("B_r", &BacklashParams::B_r, "input", non_negative(),
+            "dead-band offset of the right branch"),
+      param("B_l", &BacklashParams::B_l, "input", non_negative(),
+            "dead-band offset of the left branch"));
+};
+
 /// @brief Classic backlash (Tao & Kokotovic): y <- clamp(y, c_r (x - B_r), c_l (x + B_l)).
 ///
 /// Two straight branches with slopes c_r, c_l and dead-band offsets B_r, B_l; between them the
@@ -51,11 +69,7 @@ class Backlash {
 
   /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit Backlash(const Params& p) : p_(p) {
-    const char* w = "Backlash";
-    require_positive(p.c_r, w, "c_r");
-    require_positive(p.c_l, w, "c_l");
-    require_non_negative(p.B_r, w, "B_r");
-    require_non_negative(p.B_l, w, "B_l");
+    validate_fields(p, "Backlash");  // each field's bound, from ParamTable<BacklashParams>
   }
 
   /// The parameters it was built with.

@@ -14,6 +14,7 @@
 #include "../validate.hpp"
 #include "bouc_wen_backlash.hpp"
 #include "power.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -37,6 +38,31 @@ struct BoucWenParams {
   }
 };
 
+/// The parameter table of BoucWenParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<BoucWenParams> {
+  static constexpr const char* owner = "BoucWen";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("A", &BoucWenParams::A, "", positive(),
+            "amplitude of the hysteretic state's rate"),
+      param("beta", &BoucWenParams::beta, "", positive(),
+            "shape parameter"),
+      param("gamma", &BoucWenParams::gamma, "", finite(),
+            "shape parameter, |gamma| <= beta and beta + gamma > 0 (bounded state)"),
+      param("n", &BoucWenParams::n, "", at_least(1.0),
+            "sharpness of the transitions"),
+      param("alpha", &BoucWenParams::alpha, "", in_range(0.0, 1.0),
+            "share of the linear (elastic) path"),
+      param("k", &BoucWenParams::k, "output/input", finite(),
+            "gain of the hysteretic path"),
+      param("max_step", &BoucWenParams::max_step, "", positive(),
+            "largest change of z / z_u per RK4 sub-step"),
+      param("max_substeps", &BoucWenParams::max_substeps, "", documented(1, true, kInf, false),
+            "most RK4 sub-steps in one step() (bounds its work)"));
+};
+
 /// @brief Classic Bouc-Wen hysteresis as a rate-independent input-output model.
 ///
 /// dz = A dx - beta |dx| |z|^(n-1) z - gamma dx |z|^n and y = alpha x + (1 - alpha) k z, with z
@@ -52,17 +78,12 @@ class BoucWen {
   /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit BoucWen(const Params& p) : p_(p) {
     const char* w = "BoucWen";
-    require_positive(p.A, w, "A");
-    require_positive(p.beta, w, "beta");
-    require_finite(p.gamma, w, "gamma");
+    validate_fields(p, w, "A", "gamma");  // from ParamTable<BoucWenParams>
     require(std::fabs(p.gamma) <= p.beta, w,
             "|gamma| must be <= beta for a bounded hysteretic state (got beta=", p.beta,
             ", gamma=", p.gamma, ")");
     require(p.beta + p.gamma > 0.0, w, "beta + gamma must be > 0");
-    require_at_least(p.n, 1.0, w, "n");
-    require_in_range(p.alpha, 0.0, 1.0, w, "alpha");
-    require_finite(p.k, w, "k");
-    require_positive(p.max_step, w, "max_step");
+    validate_fields(p, w, "n", "max_step");
     require(p.max_substeps >= 1, w, "max_substeps must be >= 1");
     if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     derive();

@@ -16,6 +16,7 @@
 #include "../status.hpp"
 #include "../validate.hpp"
 #include "power.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -38,6 +39,33 @@ struct BoucWenBacklashParams {
   void assign(const double* v) noexcept {
     c_r = v[0]; c_l = v[1]; B_r = v[2]; B_l = v[3]; rho = v[4]; sigma = v[5]; n = v[6];
   }
+};
+
+/// The parameter table of BoucWenBacklashParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<BoucWenBacklashParams> {
+  static constexpr const char* owner = "BoucWenBacklash";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("c_r", &BoucWenBacklashParams::c_r, "output/input", positive(),
+            "slope of the right (rising) branch"),
+      param("c_l", &BoucWenBacklashParams::c_l, "output/input", positive(),
+            "slope of the left (falling) branch"),
+      param("B_r", &BoucWenBacklashParams::B_r, "input", non_negative(),
+            "dead-band offset of the right branch"),
+      param("B_l", &BoucWenBacklashParams::B_l, "input", non_negative(),
+            "dead-band offset of the left branch"),
+      param("rho", &BoucWenBacklashParams::rho, "1/input", positive(),
+            "transition rate (spec default 2/(B_r+B_l))"),
+      param("sigma", &BoucWenBacklashParams::sigma, "", at_least(0.5),
+            "shape of the transition"),
+      param("n", &BoucWenBacklashParams::n, "", at_least(1.0),
+            "sharpness of the transition"),
+      param("max_step", &BoucWenBacklashParams::max_step, "", positive(),
+            "largest rho*|dx| per RK4 sub-step"),
+      param("max_substeps", &BoucWenBacklashParams::max_substeps, "", documented(1, true, kInf, false),
+            "most RK4 sub-steps in one step() (bounds its work)"));
 };
 
 namespace detail {
@@ -107,14 +135,7 @@ class BoucWenBacklash {
   /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit BoucWenBacklash(const Params& p) : p_(p) {
     const char* w = "BoucWenBacklash";
-    require_positive(p.c_r, w, "c_r");
-    require_positive(p.c_l, w, "c_l");
-    require_non_negative(p.B_r, w, "B_r");
-    require_non_negative(p.B_l, w, "B_l");
-    require_positive(p.rho, w, "rho");
-    require_at_least(p.sigma, 0.5, w, "sigma");
-    require_at_least(p.n, 1.0, w, "n");
-    require_positive(p.max_step, w, "max_step");
+    validate_fields(p, w);  // c_r .. max_step, from ParamTable<BoucWenBacklashParams>
     require(p.max_substeps >= 1, w, "max_substeps must be >= 1");
     if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     f_ = detail::NormalisedBoucWen<detail::AbsPower>{p.rho, p.sigma, detail::AbsPower(p.n - 1.0)};

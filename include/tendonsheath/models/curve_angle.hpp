@@ -34,6 +34,7 @@
 #include "../physics/pull_pull_statics.hpp"
 #include "../status.hpp"
 #include "../validate.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -56,6 +57,33 @@ struct CurveAngleParams {
     friction = v[0]; stiffness = v[1]; pretension = v[2]; length = v[3];
     load_force = v[4]; load_stiffness = v[5]; proximal_radius = v[6]; distal_radius = v[7]; play = v[8];
   }
+};
+
+/// The parameter table of CurveAngleParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<CurveAngleParams> {
+  static constexpr const char* owner = "CurveAngleModel";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("friction", &CurveAngleParams::friction, "", non_negative(),
+            "mu, Coulomb friction coefficient"),
+      param("stiffness", &CurveAngleParams::stiffness, "N", positive(),
+            "EA, tendon axial stiffness"),
+      param("pretension", &CurveAngleParams::pretension, "N", non_negative(),
+            "T0, the tendon's pretension"),
+      param("length", &CurveAngleParams::length, "m", positive(),
+            "L, sheath length"),
+      param("load_force", &CurveAngleParams::load_force, "N", finite(),
+            "F_L, constant distal load at tendon level (resists forward)"),
+      param("load_stiffness", &CurveAngleParams::load_stiffness, "N/m", non_negative(),
+            "k_e, environment spring at tendon level"),
+      param("proximal_radius", &CurveAngleParams::proximal_radius, "m", positive(),
+            "r_p, the proximal pulley's radius"),
+      param("distal_radius", &CurveAngleParams::distal_radius, "m", positive(),
+            "r_d, the distal pulley's radius"),
+      param("play", &CurveAngleParams::play, "rad", non_negative(),
+            "motor-side play (the gearhead's backlash), total width at the motor"));
 };
 
 /// @brief Closed-form pull-pull tendon-sheath model with the curve angle as a second input (spec B,
@@ -84,15 +112,7 @@ class CurveAngleModel {
   /// @param p the parameters; throws std::invalid_argument naming the first one out of range.
   explicit CurveAngleModel(const Params& p) : p_(p) {
     const char* w = "CurveAngleModel";
-    require_non_negative(p.friction, w, "friction");
-    require_positive(p.stiffness, w, "stiffness");
-    require_non_negative(p.pretension, w, "pretension");
-    require_positive(p.length, w, "length");
-    require_finite(p.load_force, w, "load_force");
-    require_non_negative(p.load_stiffness, w, "load_stiffness");
-    require_positive(p.proximal_radius, w, "proximal_radius");
-    require_positive(p.distal_radius, w, "distal_radius");
-    require_non_negative(p.play, w, "play");
+    validate_fields(p, w);  // every field's bound, from ParamTable<CurveAngleParams>
     require(std::isfinite(p.play), w, "play must be finite");
     if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     half_play_ = 0.5 * p.proximal_radius * p.play;

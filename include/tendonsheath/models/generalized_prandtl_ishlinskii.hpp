@@ -24,6 +24,7 @@
 
 #include "../status.hpp"
 #include "../validate.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -81,6 +82,23 @@ struct GeneralizedPrandtlIshlinskiiParams {
   Envelope falling{};  ///< the falling (unloading) envelope gamma_l
   std::vector<double> thresholds{0.0, 0.05, 0.1, 0.2};  ///< play thresholds, 0 = r_0 < r_1 < ..., input units
   std::vector<double> weights{0.6, 0.2, 0.1, 0.1};  ///< play weights, p_0 > 0 and p_i >= 0
+};
+
+/// The parameter table of GeneralizedPrandtlIshlinskiiParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<GeneralizedPrandtlIshlinskiiParams> {
+  static constexpr const char* owner = "GeneralizedPrandtlIshlinskii";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("rising", &GeneralizedPrandtlIshlinskiiParams::rising, "", any(),
+            "the rising (loading) envelope gamma_r: a tanh(b (x - c)) + d on [lo, hi]"),
+      param("falling", &GeneralizedPrandtlIshlinskiiParams::falling, "", any(),
+            "the falling (unloading) envelope gamma_l: a tanh(b (x - c)) + d on [lo, hi]"),
+      param("thresholds", &GeneralizedPrandtlIshlinskiiParams::thresholds, "input", any(),
+            "play thresholds, 0 = r_0 < r_1 < ..."),
+      param("weights", &GeneralizedPrandtlIshlinskiiParams::weights, "", any(),
+            "play weights, p_0 > 0 and p_i >= 0"));
 };
 
 /// Bounds on an envelope's input gain and shift: its input range c +- kEnvelopeSpan / b (past

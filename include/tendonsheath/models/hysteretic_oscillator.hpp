@@ -37,6 +37,7 @@
 #include "../validate.hpp"
 #include "bandlimited.hpp"
 #include "power.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -90,6 +91,39 @@ struct HystereticOscillatorParams {
   }
 };
 
+/// The parameter table of HystereticOscillatorParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<HystereticOscillatorParams> {
+  static constexpr const char* owner = "HystereticOscillator";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("m", &HystereticOscillatorParams::m, "", positive(),
+            "mass"),
+      param("c", &HystereticOscillatorParams::c, "", non_negative(),
+            "viscous damping"),
+      param("k", &HystereticOscillatorParams::k, "", non_negative(),
+            "linear stiffness (k + alpha > 0)"),
+      param("alpha", &HystereticOscillatorParams::alpha, "", non_negative(),
+            "Bouc-Wen stiffness of the hysteretic force"),
+      param("beta", &HystereticOscillatorParams::beta, "", non_negative(),
+            "Bouc-Wen scale"),
+      param("gamma", &HystereticOscillatorParams::gamma, "", finite(),
+            "Bouc-Wen shape (any sign)"),
+      param("delta", &HystereticOscillatorParams::delta, "", finite(),
+            "Bouc-Wen shape (any sign)"),
+      param("nu", &HystereticOscillatorParams::nu, "", at_least(1.0),
+            "Bouc-Wen sharpness"),
+      param("substeps", &HystereticOscillatorParams::substeps, "", documented(1, true, kInf, false),
+            "fewest RK4 sub-steps per sample"),
+      param("max_substeps", &HystereticOscillatorParams::max_substeps, "", documented(1, true, kInf, false),
+            "most RK4 sub-steps per sample, >= substeps (bounds the work)"),
+      param("input_interpolation", &HystereticOscillatorParams::input_interpolation, "", documented(0, true, 2, true),
+            "0 (hold), 1 (linear) or 2 (band-limited) input between samples"),
+      param("lookahead", &HystereticOscillatorParams::lookahead, "samples", documented(1, true, 64, true),
+            "half-width of the band-limited interpolation kernel"));
+};
+
 /// @brief Single-degree-of-freedom oscillator with a Bouc-Wen restoring force, force u in,
 /// displacement y out: m y'' + c y' + k y + z = u,
 /// z' = alpha y' - beta (gamma |y'| |z|^(nu-1) z + delta y' |z|^nu).
@@ -112,14 +146,7 @@ class HystereticOscillator {
   /// band-limited history is allocated here, once.
   explicit HystereticOscillator(const Params& p) : p_(p) {
     const char* w = "HystereticOscillator";
-    require_positive(p.m, w, "m");
-    require_non_negative(p.c, w, "c");
-    require_non_negative(p.k, w, "k");
-    require_non_negative(p.alpha, w, "alpha");
-    require_non_negative(p.beta, w, "beta");
-    require_finite(p.gamma, w, "gamma");
-    require_finite(p.delta, w, "delta");
-    require_at_least(p.nu, 1.0, w, "nu");
+    validate_fields(p, w);  // m .. nu, from ParamTable<HystereticOscillatorParams>
     require(p.k + p.alpha > 0.0, w, "k + alpha must be > 0 (no restoring force otherwise)");
     require(p.substeps >= 1, w, "substeps must be >= 1");
     require(p.max_substeps >= p.substeps, w, "max_substeps must be >= substeps");

@@ -13,6 +13,7 @@
 #include "../route.hpp"
 #include "../status.hpp"
 #include "../validate.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -24,6 +25,27 @@ struct PlantModelParams {
   double gain = 1.0;            ///< output gain, finite and != 0
   double offset = 0.0;          ///< output offset, finite
   int elements = 10;            ///< the sheath's element count, >= 2
+};
+
+/// The parameter table of PlantModelParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<PlantModelParams> {
+  static constexpr const char* owner = "PlantModel";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("friction_angle", &PlantModelParams::friction_angle, "rad", documented(0.0, false, 20.0, false),
+            "mu Theta of the uniform route"),
+      param("backlash", &PlantModelParams::backlash, "input", positive(),
+            "half the dead zone e_b"),
+      param("viscous_time", &PlantModelParams::viscous_time, "s", non_negative(),
+            "c_v L^2 / EA"),
+      param("gain", &PlantModelParams::gain, "output/input", documented(-kInf, false, kInf, false),
+            "output gain, finite and != 0"),
+      param("offset", &PlantModelParams::offset, "output", finite(),
+            "output offset"),
+      param("elements", &PlantModelParams::elements, "", at_least(2.0),
+            "the sheath's element count"));
 };
 
 /// The wrap angle of PlantModel's internal uniform route, rad (only friction * wrap matters).

@@ -9,6 +9,7 @@
 
 #include "../status.hpp"
 #include "../validate.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -16,6 +17,19 @@ namespace tendonsheath {
 struct PolynomialParams {
   std::vector<double> coefficients{0.0, 1.0};  ///< a_0, a_1, ... (all powers) or a_1, a_3, ... (odd)
   bool odd = false;  ///< true: the coefficients are those of the odd powers a_1, a_3, ...
+};
+
+/// The parameter table of PolynomialParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<PolynomialParams> {
+  static constexpr const char* owner = "Polynomial";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("coefficients", &PolynomialParams::coefficients, "", any(),
+            "a_0, a_1, ... (all powers) or a_1, a_3, ... (odd), finite, not empty"),
+      param("odd", &PolynomialParams::odd, "", any(),
+            "true: the coefficients are those of the odd powers a_1, a_3, ..."));
 };
 
 /// @brief Static output map y = sum_k a_k u^k (k = 0..degree, or odd powers only).

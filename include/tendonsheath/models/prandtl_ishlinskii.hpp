@@ -21,6 +21,7 @@
 #include "../compensators/input_range.hpp"
 #include "../status.hpp"
 #include "../validate.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -28,6 +29,19 @@ namespace tendonsheath {
 struct PrandtlIshlinskiiParams {
   std::vector<double> thresholds{0.0, 0.05, 0.1, 0.15, 0.2};  ///< play thresholds r_i >= 0, strictly increasing, input units (r_0 = 0 for the inverse)
   std::vector<double> weights{0.5, 0.2, 0.15, 0.1, 0.05};  ///< play weights p_i; every partial sum p_0 + ... + p_j must be > 0
+};
+
+/// The parameter table of PrandtlIshlinskiiParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<PrandtlIshlinskiiParams> {
+  static constexpr const char* owner = "PrandtlIshlinskii";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("thresholds", &PrandtlIshlinskiiParams::thresholds, "input", any(),
+            "play thresholds r_i >= 0, strictly increasing (r_0 = 0 for the inverse)"),
+      param("weights", &PrandtlIshlinskiiParams::weights, "", any(),
+            "play weights p_i; every partial sum p_0 + ... + p_j must be > 0"));
 };
 
 namespace detail {

@@ -9,6 +9,7 @@
 #include "../route.hpp"
 #include "../validate.hpp"
 #include "pull_pull.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -31,6 +32,47 @@ struct ContinuumParams {
   double friction2 = -1.0;  ///< mu of sheath 2; -1: the same as friction
   double stiffness2 = -1.0;  ///< EA of tendon 2, N; -1: the same as stiffness
   ChainOptions options;  ///< numerical options of the friction chain (bound the work of a step)
+};
+
+/// The parameter table of ContinuumParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<ContinuumParams> {
+  static constexpr const char* owner = "ContinuumPlant";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("friction", &ContinuumParams::friction, "", non_negative(),
+            "mu, the sheaths' Coulomb friction coefficient"),
+      param("stiffness", &ContinuumParams::stiffness, "N", positive(),
+            "EA of each tendon"),
+      param("pretension", &ContinuumParams::pretension, "N", positive(),
+            "T0, pretension / EA < 0.05"),
+      param("proximal_radius", &ContinuumParams::proximal_radius, "m", positive(),
+            "r_p, the proximal pulley's radius"),
+      param("bending_stiffness", &ContinuumParams::bending_stiffness, "N m^2", positive(),
+            "EI of the backbone"),
+      param("tendon_offset", &ContinuumParams::tendon_offset, "m", positive(),
+            "r_t, the tendons' offset from the backbone"),
+      param("backbone_length", &ContinuumParams::backbone_length, "m", positive(),
+            "l, the bending segment's length"),
+      param("elements", &ContinuumParams::elements, "", documented(2, true, 1000000, true),
+            "N per sheath"),
+      param("distal_inertia", &ContinuumParams::distal_inertia, "kg m^2", non_negative(),
+            "of the segment about its bending (at theta_b)"),
+      param("distal_damping", &ContinuumParams::distal_damping, "N m s/rad", non_negative(),
+            "the segment's viscous damping"),
+      param("sheath_viscosity", &ContinuumParams::sheath_viscosity, "N s/m^2", non_negative(),
+            "viscous drag per metre of sheath"),
+      param("relaxation_fraction", &ContinuumParams::relaxation_fraction, "", documented(0.0, true, 1.0, false),
+            "SLS tendon: share of EA in the Maxwell arm"),
+      param("relaxation_time", &ContinuumParams::relaxation_time, "s", positive(),
+            "tau of the Maxwell arm"),
+      param("friction2", &ContinuumParams::friction2, "", documented(0.0, true, kInf, false),
+            "mu of sheath 2; -1: the same as friction"),
+      param("stiffness2", &ContinuumParams::stiffness2, "N", documented(0.0, false, kInf, false),
+            "EA of tendon 2; -1: the same as stiffness"),
+      param("options", &ContinuumParams::options, "", any(),
+            "ChainOptions: numerical options of the friction chain (bound the work of a step)"));
 };
 
 /// The pull-pull pair a continuum segment maps to: distal radius r_t and a torsional load stiffness

@@ -39,6 +39,7 @@
 
 #include "../status.hpp"
 #include "../validate.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -65,6 +66,41 @@ struct MotorParams {
   /// T_i, s (position): integral time of a PID servo, q'' gains w^2 z / T_i with z' = q_cmd - q,
   /// so a constant load leaves no steady error; 0 = none (the PD servo); else > 1/(2 zeta w)
   double integral_time = 0.0;
+};
+
+/// The parameter table of MotorParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<MotorParams> {
+  static constexpr const char* owner = "Motor";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("kind", &MotorParams::kind, "", any(),
+            "MotorKind: a position-controlled drive or a torque-driven one"),
+      param("bandwidth_hz", &MotorParams::bandwidth_hz, "Hz", documented(0.0, false, kInf, false),
+            "natural frequency f_n of the position loop (position)"),
+      param("damping", &MotorParams::damping, "", documented(0.0, false, kInf, false),
+            "zeta of the position loop (position)"),
+      param("max_speed", &MotorParams::max_speed, "rad/s", documented(0.0, false, kInf, true),
+            "largest speed |q'| (both)"),
+      param("max_accel", &MotorParams::max_accel, "rad/s^2", documented(0.0, false, kInf, true),
+            "largest acceleration |q''| (position)"),
+      param("inertia", &MotorParams::inertia, "kg m^2", documented(0.0, true, kInf, false),
+            "J of the rotor (> 0 for a torque motor)"),
+      param("viscous", &MotorParams::viscous, "N m s/rad", documented(0.0, true, kInf, false),
+            "b, the rotor's viscous friction (torque)"),
+      param("max_torque", &MotorParams::max_torque, "N m", documented(0.0, false, kInf, true),
+            "torque limit of the command (torque)"),
+      param("max_substeps", &MotorParams::max_substeps, "", documented(1, true, kInf, false),
+            "most integration sub-steps in one step() (bounds its work)"),
+      param("coulomb_friction", &MotorParams::coulomb_friction, "N m", documented(0.0, true, kInf, false),
+            "tau_c (both; position needs inertia > 0)"),
+      param("viscous_friction", &MotorParams::viscous_friction, "N m s/rad", documented(0.0, true, kInf, false),
+            "b_m (position; torque kind: use viscous)"),
+      param("gear_backlash", &MotorParams::gear_backlash, "rad", documented(0.0, true, kInf, false),
+            "g: total play between shaft and pulley (both)"),
+      param("integral_time", &MotorParams::integral_time, "s", documented(0.0, true, kInf, false),
+            "T_i of the position loop's integral action, 0 = none (position)"));
 };
 
 /// @brief A motor model that turns a command into the proximal pulley angle (rad), or for a

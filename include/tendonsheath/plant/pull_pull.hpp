@@ -30,6 +30,7 @@
 #include "../validate.hpp"
 #include "friction_chain.hpp"
 #include "single_tendon.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -52,6 +53,49 @@ struct PullPullParams {
   double friction2 = -1.0;         ///< mu of sheath 2; -1: the same as friction
   double stiffness2 = -1.0;        ///< EA of tendon 2, N; -1: the same as stiffness
   ChainOptions options;  ///< numerical options of the friction chain (bound the work of a step)
+};
+
+/// The parameter table of PullPullParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<PullPullParams> {
+  static constexpr const char* owner = "PullPullPlant";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("friction", &PullPullParams::friction, "", non_negative(),
+            "mu, the sheaths' Coulomb friction coefficient"),
+      param("stiffness", &PullPullParams::stiffness, "N", positive(),
+            "EA of each tendon"),
+      param("pretension", &PullPullParams::pretension, "N", positive(),
+            "T0, pretension / EA < 0.05"),
+      param("proximal_radius", &PullPullParams::proximal_radius, "m", positive(),
+            "r_p, the proximal pulley's radius"),
+      param("distal_radius", &PullPullParams::distal_radius, "m", positive(),
+            "r_d, the distal pulley's radius"),
+      param("elements", &PullPullParams::elements, "", documented(2, true, 1000000, true),
+            "N per sheath"),
+      param("load_torque", &PullPullParams::load_torque, "N m", finite(),
+            "tau_0, the distal load's constant torque"),
+      param("load_stiffness", &PullPullParams::load_stiffness, "N m/rad", non_negative(),
+            "k_theta, the distal load's spring"),
+      param("load_damping", &PullPullParams::load_damping, "N m s/rad", non_negative(),
+            "c_theta, the distal load's damper"),
+      param("distal_inertia", &PullPullParams::distal_inertia, "kg m^2", non_negative(),
+            "J_d, the distal joint's inertia"),
+      param("distal_damping", &PullPullParams::distal_damping, "N m s/rad", non_negative(),
+            "c_d, the distal joint's viscous damping"),
+      param("sheath_viscosity", &PullPullParams::sheath_viscosity, "N s/m^2", non_negative(),
+            "viscous drag per metre of sheath"),
+      param("relaxation_fraction", &PullPullParams::relaxation_fraction, "", documented(0.0, true, 1.0, false),
+            "SLS tendon: share of EA in the Maxwell arm"),
+      param("relaxation_time", &PullPullParams::relaxation_time, "s", positive(),
+            "tau of the Maxwell arm"),
+      param("friction2", &PullPullParams::friction2, "", documented(0.0, true, kInf, false),
+            "mu of sheath 2; -1: the same as friction"),
+      param("stiffness2", &PullPullParams::stiffness2, "N", documented(0.0, false, kInf, false),
+            "EA of tendon 2; -1: the same as stiffness"),
+      param("options", &PullPullParams::options, "", any(),
+            "ChainOptions: numerical options of the friction chain (bound the work of a step)"));
 };
 
 namespace detail {

@@ -16,6 +16,7 @@
 
 #include "../status.hpp"
 #include "../validate.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -26,6 +27,25 @@ struct SensorParams {
   std::uint64_t seed = 0;  ///< seed of the noise generator: a seed gives the same sequence on every platform
   double delay = 0.0;  ///< latency, s, >= 0: a reading is of x delay seconds ago (0 = none)
   int history = 1024;  ///< samples kept for the delay, in [1, 2^24] (allocated at construction)
+};
+
+/// The parameter table of SensorParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<SensorParams> {
+  static constexpr const char* owner = "Sensor";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("resolution", &SensorParams::resolution, "input", non_negative(),
+            "quantisation step (same unit as x), 0 = none"),
+      param("noise_std", &SensorParams::noise_std, "input", non_negative(),
+            "Gaussian noise standard deviation"),
+      param("seed", &SensorParams::seed, "", any(),
+            "seed of the noise generator: a seed gives the same sequence on every platform"),
+      param("delay", &SensorParams::delay, "s", non_negative(),
+            "latency: a reading is of x delay seconds ago (0 = none)"),
+      param("history", &SensorParams::history, "samples", documented(1, true, 16777216, true),
+            "samples kept for the delay (allocated at construction)"));
 };
 
 /// @brief An encoder-like sensor: y = quantise(x(t - delay) + noise), Gaussian noise of standard
@@ -50,9 +70,7 @@ class Sensor {
   /// @param p the parameters; throws std::invalid_argument when resolution, noise_std or delay is
   /// not >= 0 (finite) or history is not in [1, kMaxHistory].
   explicit Sensor(const Params& p) : p_(p) {
-    require_non_negative(p.resolution, "Sensor", "resolution");
-    require_non_negative(p.noise_std, "Sensor", "noise_std");
-    require_non_negative(p.delay, "Sensor", "delay");
+    validate_fields(p, "Sensor");  // resolution, noise_std, delay: from ParamTable<SensorParams>
     require(p.history >= 1 && p.history <= kMaxHistory, "Sensor", "history must be in [1, ",
             kMaxHistory, "] samples (got ", p.history, ")");
     if (detail::failed()) return;  // without exceptions, in make(): no history of a bad size

@@ -16,6 +16,7 @@
 #include "../route.hpp"
 #include "../validate.hpp"
 #include "friction_chain.hpp"
+#include "../param_table.hpp"
 
 namespace tendonsheath {
 
@@ -30,6 +31,33 @@ struct SingleTendonParams {
   double relaxation_fraction = 0.0;  ///< SLS tendon: share of EA in the Maxwell arm, [0, 1)
   double relaxation_time = 1.0;      ///< s
   ChainOptions options;  ///< numerical options of the friction chain (bound the work of a step)
+};
+
+/// The parameter table of SingleTendonParams (param_table.hpp): unit, range and doc of each field.
+template <>
+struct ParamTable<SingleTendonParams> {
+  static constexpr const char* owner = "SingleTendonPlant";  ///< the class its constructor takes it
+  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  /// The rows, in the order of the struct and of the constructor's checks.
+  static constexpr auto fields = std::make_tuple(
+      param("friction", &SingleTendonParams::friction, "", non_negative(),
+            "mu, the sheath's Coulomb friction coefficient"),
+      param("stiffness", &SingleTendonParams::stiffness, "N", positive(),
+            "EA, the tendon's axial stiffness"),
+      param("elements", &SingleTendonParams::elements, "", documented(2, true, 1000000, true),
+            "N, the sheath's element count"),
+      param("load_force", &SingleTendonParams::load_force, "N", finite(),
+            "F0: distal load (and tendon tension) at x_out = 0; F0 > 0 or k > 0, F0 / EA < 0.05"),
+      param("load_stiffness", &SingleTendonParams::load_stiffness, "N/m", non_negative(),
+            "k, the distal load's spring"),
+      param("sheath_viscosity", &SingleTendonParams::sheath_viscosity, "N s/m^2", non_negative(),
+            "viscous drag per metre of sheath"),
+      param("relaxation_fraction", &SingleTendonParams::relaxation_fraction, "", documented(0.0, true, 1.0, false),
+            "SLS tendon: share of EA in the Maxwell arm"),
+      param("relaxation_time", &SingleTendonParams::relaxation_time, "s", positive(),
+            "tau of the Maxwell arm"),
+      param("options", &SingleTendonParams::options, "", any(),
+            "ChainOptions: numerical options of the friction chain (bound the work of a step)"));
 };
 
 namespace detail {

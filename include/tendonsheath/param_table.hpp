@@ -1,0 +1,142 @@
+// One parameter table per parameter struct: each field's name, unit, valid range and one-line
+// doc, declared once next to the struct (its default is the struct's own member initialiser).
+// The bindings (a property per row, a keyword constructor, fields()), the constructors' checks
+// of single-field bounds and the docs page docs/parameters.md are derived from it.
+//
+//   template <> struct ParamTable<BacklashParams> {
+//     static constexpr auto fields = std::make_tuple(
+//         param("c_r", &BacklashParams::c_r, "", positive(), "slope of the rising branch"), ...);
+//   };
+//
+// Header-only C++17: the table is a constexpr tuple of literal rows (no allocation); checking it
+// (validate_fields) goes through validate.hpp, so it works built without exceptions too.
+#pragma once
+
+#include <limits>
+#include <string_view>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+
+#include "validate.hpp"
+
+namespace tendonsheath {
+
+/// How a row's single-field bound is checked: the check_* kinds are checked by validate_fields()
+/// with validate.hpp's message; documented is a bound the constructor checks by hand (its message
+/// or its place among cross-field checks differs), unchecked a field with no bound of its own.
+enum class Check : unsigned char {
+  unchecked,     ///< any value (or a non-scalar row: a vector, an array, a nested struct, an enum)
+  finite,        ///< "<name> must be finite (got v)"
+  positive,      ///< "<name> must be > 0 (got v)": finite and > 0
+  non_negative,  ///< "<name> must be >= 0 (got v)": finite and >= 0
+  at_least,      ///< "<name> must be >= lo (got v)": finite and >= lo
+  in_range,      ///< "<name> must be in [lo, hi] (got v)": finite and in [lo, hi]
+  documented,    ///< the range [lo, hi] (inclusivity as given) is checked by the constructor by hand
+};
+
+/// A row's valid range: its bounds, their inclusivity, and how it is checked.
+struct Range {
+  Check check = Check::unchecked;              ///< how the bound is checked
+  double lo = -std::numeric_limits<double>::infinity();  ///< lower bound (-inf: none)
+  bool lo_closed = false;                      ///< lo itself is valid
+  double hi = std::numeric_limits<double>::infinity();   ///< upper bound (+inf: none)
+  bool hi_closed = false;                      ///< hi itself is valid
+};
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Any value, no check of its own (a cross-field rule may still apply).
+constexpr Range any() { return Range{}; }
+/// Finite.
+constexpr Range finite() { return Range{Check::finite, -kInf, false, kInf, false}; }
+/// Finite and > 0 (require_positive).
+constexpr Range positive() { return Range{Check::positive, 0.0, false, kInf, false}; }
+/// Finite and >= 0 (require_non_negative).
+constexpr Range non_negative() { return Range{Check::non_negative, 0.0, true, kInf, false}; }
+/// Finite and >= lo (require_at_least).
+constexpr Range at_least(double lo) { return Range{Check::at_least, lo, true, kInf, false}; }
+/// Finite and in [lo, hi] (require_in_range).
+constexpr Range in_range(double lo, double hi) { return Range{Check::in_range, lo, true, hi, true}; }
+/// A bound the constructor checks by hand: [lo or (lo, hi] or hi) as the flags say.
+constexpr Range documented(double lo, bool lo_closed, double hi, bool hi_closed) {
+  return Range{Check::documented, lo, lo_closed, hi, hi_closed};
+}
+
+/// One row of a parameter table: field `name` of struct P, of type T, at `member`.
+template <class P, class T>
+struct ParamField {
+  using struct_type = P;  ///< the parameter struct
+  using value_type = T;   ///< the field's type
+  const char* name;       ///< the field's (and the Python argument's) name
+  T P::*member;           ///< the field
+  const char* unit;       ///< its unit ("" when dimensionless or in the input's units: see doc)
+  Range range;            ///< its valid range and how it is checked
+  const char* doc;        ///< one line
+};
+
+/// A row: param("c_r", &BacklashParams::c_r, "", positive(), "slope of the rising branch").
+template <class P, class T>
+constexpr ParamField<P, T> param(const char* name, T P::*member, const char* unit, Range range,
+                                 const char* doc) {
+  return ParamField<P, T>{name, member, unit, range, doc};
+}
+
+/// Specialised next to each parameter struct P, with `static constexpr auto fields` (a tuple of
+/// param() rows, in the order of the struct and of the constructor's checks),
+/// `static constexpr const char* owner` (the class whose constructor takes P: its messages'
+/// prefix) and `static constexpr bool checked_from_table` (true when that constructor checks the
+/// rows' single-field bounds with validate_fields(); false when it keeps its own checks, for an
+/// order of checks or a message of its own). Undefined for a struct without a table.
+template <class P>
+struct ParamTable;
+
+/// Calls f(row) for each row of P's table, in order.
+template <class P, class F>
+constexpr void for_each_field(F&& f) {
+  std::apply([&](const auto&... row) { (f(row), ...); }, ParamTable<P>::fields);
+}
+
+/// The number of rows of P's table.
+template <class P>
+constexpr std::size_t field_count() {
+  return std::tuple_size_v<std::decay_t<decltype(ParamTable<P>::fields)>>;
+}
+
+/// Checks one row's single-field bound with validate.hpp's message (the documented and
+/// unchecked kinds are left to the constructor).
+template <class P, class T>
+void validate_field(const P& p, const ParamField<P, T>& row, const char* where) {
+  if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+    const double v = static_cast<double>(p.*row.member);
+    switch (row.range.check) {
+      case Check::finite: require_finite(v, where, row.name); break;
+      case Check::positive: require_positive(v, where, row.name); break;
+      case Check::non_negative: require_non_negative(v, where, row.name); break;
+      case Check::at_least: require_at_least(v, row.range.lo, where, row.name); break;
+      case Check::in_range: require_in_range(v, row.range.lo, row.range.hi, where, row.name); break;
+      default: break;
+    }
+  }
+}
+
+/// Checks every row's single-field bound of p in table order, naming the first one out of range
+/// as "<where>: <name> must be ..."; the cross-field rules stay with the constructor.
+template <class P>
+void validate_fields(const P& p, const char* where) {
+  for_each_field<P>([&](const auto& row) { validate_field(p, row, where); });
+}
+
+/// Checks the rows from `first` to `last` (names, both included) in table order, for a constructor
+/// whose cross-field rules sit between the single-field checks.
+template <class P>
+void validate_fields(const P& p, const char* where, std::string_view first, std::string_view last) {
+  bool inside = false;
+  for_each_field<P>([&](const auto& row) {
+    if (row.name == first) inside = true;
+    if (inside) validate_field(p, row, where);
+    if (row.name == last) inside = false;
+  });
+}
+
+}  // namespace tendonsheath

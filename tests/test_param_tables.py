@@ -1,0 +1,389 @@
+"""One parameter table per C++ params struct (include/tendonsheath/param_table.hpp, issue 26):
+every table is walked here against what is derived from it or must agree with it: the bound
+struct (its properties and keyword constructor), the Python class that takes those parameters
+(a keyword of that name with the same default, a numpydoc entry), its saved JSON, and the
+generated page docs/parameters.md. The struct -> Python mapping and the fields no Python
+argument sets are test_core_field_names' (PYTHON_OF, INTERNAL)."""
+
+from __future__ import annotations
+
+import importlib.util
+import inspect
+import math
+import re
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpydoc.docscrape as nd
+import pytest
+from test_core_field_names import INTERNAL, PYTHON_OF, _arguments
+
+import tendonsheath as ts
+from tendonsheath import _core as core
+from tendonsheath.compensate import (
+    AdaptiveController,
+    ContinuumFeedforward,
+    CurveAngleFeedforward,
+    EncoderLoop,
+    InverseFeedforward,
+    LearnedFeedforward,
+    TipLoop,
+)
+
+m = ts.models
+ROOT = Path(__file__).resolve().parents[1]
+STRUCTS = sorted(PYTHON_OF)
+
+# struct -> {property bound by hand beside the table's rows: why}
+HAND_BOUND = {
+    "TipLoopParams": {
+        "schedule_angles": "read-only list of schedule_size points, set by set_schedule",
+        "schedule_gains": "read-only list of schedule_size points, set by set_schedule",
+    },
+}
+
+# (struct, field) -> why a Python default differs from the table's (in form, or for one kind)
+DEFAULT_DIFFERS = {
+    ("HystereticOscillatorParams", "input_interpolation"): "Python names the code: 'linear' is 1",
+    ("MotorParams", "inertia"): "Motor.torque's is 0.01 (a torque motor needs inertia > 0)",
+}
+
+# struct -> why no JSON holds its fields
+NOT_SAVED = {
+    "SingleTendonParams": "a plant is not saved to JSON (a scenario file builds it)",
+    "PullPullParams": "a plant is not saved to JSON (a scenario file builds it)",
+    "ContinuumParams": "a plant is not saved to JSON (a scenario file builds it)",
+    "MotorParams": "a motor is not saved to JSON (a scenario file builds it)",
+    "SensorParams": "a sensor is not saved to JSON (a scenario file builds it)",
+}
+
+
+def _curve_ff() -> CurveAngleFeedforward:
+    return CurveAngleFeedforward(friction=0.1, stiffness=2e4, length=1.0, pretension=10.0)
+
+
+# struct -> the saved objects whose to_dict() together hold its fields
+SAVED = {
+    "BacklashParams": lambda: [m.Backlash()],
+    "BoucWenBacklashParams": lambda: [m.BoucWenBacklash()],
+    "BoucWenParams": lambda: [m.BoucWen()],
+    "HystereticOscillatorParams": lambda: [m.HystereticOscillator()],
+    "PrandtlIshlinskiiParams": lambda: [m.PrandtlIshlinskii()],
+    "GeneralizedPrandtlIshlinskiiParams": lambda: [m.GeneralizedPrandtlIshlinskii()],
+    "PolynomialParams": lambda: [m.Polynomial(coefficients=[0.0, 1.0])],
+    "CurveAngleParams": lambda: [m.CurveAngleModel()],
+    "PlantModelParams": lambda: [m.PlantModel()],
+    "LagInverseParams": lambda: [
+        InverseFeedforward(m.FirstOrderLag()),
+        InverseFeedforward(m.SecondOrderLag()),
+    ],
+    "BacklashInverseParams": lambda: [InverseFeedforward(m.Backlash())],
+    "CurveAngleFeedforwardParams": lambda: [_curve_ff()],
+    "ContinuumFeedforwardParams": lambda: [ContinuumFeedforward()],
+    "AdaptiveControllerParams": lambda: [AdaptiveController()],
+    "EncoderLoopParams": lambda: [EncoderLoop(InverseFeedforward(m.Backlash()))],
+    "TipLoopParams": lambda: [TipLoop(_curve_ff())],
+    "LearnedFeedforwardParams": lambda: [
+        LearnedFeedforward(InverseFeedforward(m.Backlash()), table=[0.0, 0.1], table_dt=1e-3)
+    ],
+}
+
+
+def _rows(struct: str) -> list[dict[str, Any]]:
+    return getattr(core, struct).fields()
+
+
+def _properties(cls: type) -> set[str]:
+    return {n for n, d in vars(cls).items() if isinstance(d, property) and not n.startswith("_")}
+
+
+def _same(python_default: Any, table_default: Any) -> bool:
+    """A Python default equal to the table's: numbers, sequences, an enum by its name, a nested
+    struct (an Envelope) by its (a, b, c, d)."""
+    if isinstance(table_default, list):
+        return list(python_default) == table_default
+    if hasattr(type(table_default), "__members__"):
+        return str(python_default) == table_default.name
+    if isinstance(table_default, core.Envelope):
+        t = table_default
+        return tuple(python_default) == (t.a, t.b, t.c, t.d)
+    return python_default == table_default or (
+        isinstance(table_default, float)
+        and math.isnan(table_default)
+        and math.isnan(python_default)
+    )
+
+
+def _doc_names(target) -> dict[str, str]:
+    """A numpydoc Parameters section as {name: description} (``a, b : float`` gives both)."""
+    doc = nd.ClassDoc(target) if isinstance(target, type) else nd.FunctionDoc(target)
+    out = {}
+    for p in doc["Parameters"]:
+        for name in p.name.split(","):
+            out[name.strip()] = " ".join(p.desc)
+    return out
+
+
+def _documented(name: str, targets) -> bool:
+    """An entry for name, or a ``**kwargs`` entry whose description lists it."""
+    for t in targets:
+        entries = _doc_names(t)
+        if name in entries:
+            return True
+        for key, desc in entries.items():
+            if key.startswith("**") and re.search(rf"(?<!\w){re.escape(name)}(?!\w)", desc):
+                return True
+    return False
+
+
+def _keys(obj: Any) -> set[str]:
+    """Every key of every dict nested in a to_dict() result."""
+    if isinstance(obj, dict):
+        return set(obj).union(*(_keys(v) for v in obj.values()))
+    if isinstance(obj, list | tuple):
+        return set().union(*(_keys(v) for v in obj)) if obj else set()
+    return set()
+
+
+# -- the checks, as functions of the rows (the self-check feeds them a broken row) ----------
+
+
+def binding_problems(struct: str, rows: list[dict[str, Any]]) -> list[str]:
+    """The bound struct's properties are exactly the rows' names (and the hand-bound ones)."""
+    names = [r["name"] for r in rows]
+    bound = _properties(getattr(core, struct))
+    expected = set(names) | set(HAND_BOUND.get(struct, {}))
+    problems = [f"{struct}: bound but not in its table: {sorted(bound - expected)}"] * bool(
+        bound - expected
+    )
+    problems += [f"{struct}: in its table but not bound: {sorted(expected - bound)}"] * bool(
+        expected - bound
+    )
+    if len(set(names)) != len(names):
+        problems.append(f"{struct}: a row twice")
+    return problems
+
+
+def python_problems(struct: str, rows: list[dict[str, Any]]) -> list[str]:
+    """Each row's field is a keyword of a Python callable that takes the struct, with the
+    table's default (where it has one: None keeps the C++ default), and has a docstring entry."""
+    targets = PYTHON_OF[struct]
+    problems = []
+    for row in rows:
+        name = row["name"]
+        if name in INTERNAL.get(struct, {}):
+            continue
+        takers = [t for t in targets if name in _arguments(t)]
+        if not takers:
+            problems.append(f"{struct}.{name}: no Python keyword")
+            continue
+        defaults = [
+            p.default
+            for t in takers
+            if (p := inspect.signature(t).parameters.get(name)) is not None
+            and p.default not in (None, inspect.Parameter.empty)
+        ]
+        if (struct, name) not in DEFAULT_DIFFERS and any(
+            not _same(d, row["default"]) for d in defaults
+        ):
+            problems.append(f"{struct}.{name}: Python default {defaults} != {row['default']}")
+        if not _documented(name, takers):
+            problems.append(f"{struct}.{name}: no docstring entry")
+    return problems
+
+
+def json_problems(struct: str, rows: list[dict[str, Any]], saved: list[Any]) -> list[str]:
+    """Each row's field is a key of the saved objects' to_dict() (internal fields aside; a
+    nested struct's row, an Envelope, may be saved flat as name_a, name_b, ...)."""
+    keys = set().union(*(_keys(obj.to_dict()) for obj in saved))
+    internal = INTERNAL.get(struct, {})
+
+    def saved_flat(row):
+        nested = not isinstance(row["default"], float | int | bool | list)
+        return nested and any(k.startswith(row["name"] + "_") for k in keys)
+
+    missing = [
+        r["name"]
+        for r in rows
+        if r["name"] not in internal and r["name"] not in keys and not saved_flat(r)
+    ]
+    return [f"{struct}: not in the saved JSON: {missing}"] if missing else []
+
+
+# -- the walk ------------------------------------------------------------------------------
+
+
+def test_every_params_struct_has_a_table():
+    with_table = sorted(
+        n for n, c in vars(core).items() if n.endswith("Params") and hasattr(c, "fields")
+    )
+    assert with_table == STRUCTS
+    assert set(NOT_SAVED) | set(SAVED) == set(STRUCTS) and not set(NOT_SAVED) & set(SAVED)
+
+
+@pytest.mark.parametrize("struct", STRUCTS)
+def test_the_binding_is_the_table(struct):
+    rows = _rows(struct)
+    assert not binding_problems(struct, rows)
+    cls = getattr(core, struct)
+    default = cls()
+    for row in rows:  # each row's default is the struct's own, and a keyword sets it
+        assert set(row) == {
+            "name",
+            "unit",
+            "default",
+            "lo",
+            "lo_closed",
+            "hi",
+            "hi_closed",
+            "check",
+            "doc",
+        }
+        assert row["doc"], f"{struct}.{row['name']}: no doc"
+        value = getattr(default, row["name"])
+        if isinstance(value, float | int | bool | list):
+            assert value == row["default"], (struct, row["name"])
+            assert getattr(cls(**{row["name"]: value}), row["name"]) == value
+            with pytest.raises(TypeError, match=rf"^{struct}: {row['name']} cannot take .* str$"):
+                cls(**{row["name"]: "text"})
+    with pytest.raises(TypeError, match=rf"^{struct}: unknown keyword 'no_such_field'$"):
+        cls(no_such_field=1.0)
+
+
+@pytest.mark.parametrize("struct", STRUCTS)
+def test_python_takes_and_documents_every_row(struct):
+    assert not python_problems(struct, _rows(struct))
+
+
+@pytest.mark.parametrize("struct", sorted(SAVED))
+def test_the_saved_json_holds_every_row(struct):
+    assert not json_problems(struct, _rows(struct), SAVED[struct]())
+
+
+def _route():
+    return core.Route.uniform(1.0, 2.5)
+
+
+# owner -> how to build it from its params (the plants take routes, LearnedCorrection a table)
+BUILD = {
+    "SingleTendonPlant": lambda p: core.SingleTendonPlant(p, _route()),
+    "PullPullPlant": lambda p: core.PullPullPlant(p, _route(), _route()),
+    "ContinuumPlant": lambda p: core.ContinuumPlant(p, _route(), _route()),
+    "LearnedCorrection": lambda p: core.LearnedCorrection([0.0], p),
+}
+# struct -> why its owner is not built here
+NOT_BUILT = {
+    "LagInverseParams": "LagInverse is bound only inside ModelInverse (test_model_inverse)",
+    "PlantModelParams": "PlantModel is bound only inside ModelInverse (test_model_inverse)",
+}
+# (struct, field) -> why the constructor's message names it otherwise
+MESSAGE_NAME = {("AdaptiveControllerParams", "lambda_"): "lambda"}
+# struct -> the class whose messages also check it (ContinuumPlant builds a PullPullPlant, which
+# checks the tendons' and pulleys' fields in its own name)
+ALSO_CHECKED_BY = {"ContinuumParams": "PullPullPlant"}
+# Motor checks a field only for the kind that uses it (its rows are all `documented`), so the
+# walk below builds each owner from defaults plus one field out of its range.
+BAD = {  # check -> (a value out of range, the message's tail)
+    "positive": lambda r: (0.0, "must be > 0 (got 0)"),
+    "non_negative": lambda r: (-1.0, "must be >= 0 (got -1)"),
+    "at_least": lambda r: (r["lo"] - 0.5, f"must be >= {r['lo']:g} (got {r['lo'] - 0.5:g})"),
+    "in_range": lambda r: (
+        r["hi"] + 1.0,
+        f"must be in [{r['lo']:g}, {r['hi']:g}] (got {r['hi'] + 1:g})",
+    ),
+    "finite": lambda r: (math.inf, "must be finite (got inf)"),
+}
+
+
+@pytest.mark.parametrize("struct", sorted(set(STRUCTS) - set(NOT_BUILT)))
+def test_every_checked_row_is_the_constructors_first_message(struct):
+    """Each row with a checked bound: the owner built from defaults and that one field out of
+    range fails first with validate.hpp's message naming it, whether the constructor checks it
+    from the table or by hand (so a table cannot claim a bound its constructor does not hold)."""
+    cls = getattr(core, struct)
+    build = BUILD.get(cls.owner, getattr(core, cls.owner))
+    for row in cls.fields():
+        if row["check"] not in BAD:
+            continue
+        value, tail = BAD[row["check"]](row)
+        name = MESSAGE_NAME.get((struct, row["name"]), row["name"])
+        owners = "|".join(re.escape(o) for o in (cls.owner, ALSO_CHECKED_BY.get(struct, cls.owner)))
+        with pytest.raises(ValueError, match=f"^({owners}): {re.escape(f'{name} {tail}')}"):
+            build(cls(**{row["name"]: value}))
+
+
+def test_checked_from_table_is_what_the_header_does():
+    """checked_from_table (the docs page's claim) is true exactly for the structs whose table's
+    header calls validate_fields()."""
+    for header in (ROOT / "include" / "tendonsheath").rglob("*.hpp"):
+        text = header.read_text(encoding="utf-8")
+        for struct in re.findall(r"^struct ParamTable<(\w+)>", text, flags=re.M):
+            owner = getattr(core, struct).owner
+            calls = re.search(rf"{owner}\(const Params& p\)[^{{]*\{{[^}}]*validate_fields\(p", text)
+            assert getattr(core, struct).checked_from_table == bool(calls), struct
+
+
+def test_a_checked_bound_is_the_constructors_message():
+    """A row checked from the table fails with validate.hpp's message, in the owner's name."""
+    for struct, field, bad, message in (
+        ("BacklashParams", "c_r", 0.0, "Backlash: c_r must be > 0 (got 0)"),
+        (
+            "BoucWenBacklashParams",
+            "sigma",
+            0.25,
+            "BoucWenBacklash: sigma must be >= 0.5 (got 0.25)",
+        ),
+        ("CurveAngleParams", "play", -1.0, "CurveAngleModel: play must be >= 0 (got -1)"),
+        ("SensorParams", "delay", -1.0, "Sensor: delay must be >= 0 (got -1)"),
+        (
+            "EncoderLoopParams",
+            "derivative_cutoff_hz",
+            0.0,
+            "EncoderLoop: derivative_cutoff_hz must be > 0 (got 0)",
+        ),
+    ):
+        cls = getattr(core, struct)
+        owner = getattr(core, cls.owner)
+        with pytest.raises(ValueError, match=f"^{re.escape(message)}$"):
+            owner(cls(**{field: bad}))
+
+
+def test_the_walk_can_fail():
+    """Self-check: a deliberately broken row is caught by each check."""
+    rows = _rows("BacklashParams")
+    renamed = [dict(rows[0], name="c_right")] + rows[1:]
+    assert binding_problems("BacklashParams", renamed) == [
+        "BacklashParams: bound but not in its table: ['c_r']",
+        "BacklashParams: in its table but not bound: ['c_right']",
+    ]
+    assert python_problems("BacklashParams", renamed) == [
+        "BacklashParams.c_right: no Python keyword"
+    ]
+    wrong_default = [dict(rows[0], default=2.0)] + rows[1:]
+    assert python_problems("BacklashParams", wrong_default) == [
+        "BacklashParams.c_r: Python default [1.0] != 2.0"
+    ]
+    assert json_problems("BacklashParams", renamed, [m.Backlash()]) == [
+        "BacklashParams: not in the saved JSON: ['c_right']"
+    ]
+    assert not _documented("c_right", (m.Backlash,))
+
+
+def test_the_parameters_page_is_current(capsys):
+    spec = importlib.util.spec_from_file_location(
+        "parameters_page", ROOT / "benchmarks" / "parameters_page.py"
+    )
+    page = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = page
+    try:
+        spec.loader.exec_module(page)
+        code = page.main(["--check"])
+        names = [n for _, group in page.structs_by_group() for n in group]
+    finally:
+        sys.modules.pop(spec.name, None)
+    assert code == 0, (
+        "docs/parameters.md is stale: run `python benchmarks/parameters_page.py`\n"
+        + capsys.readouterr().out
+    )
+    assert sorted(names) == STRUCTS  # every table on the page, each once
