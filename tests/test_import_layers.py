@@ -1,6 +1,7 @@
-"""The package's layers as folders: old module paths name their new place, and no module
-imports from the package's ``__init__`` (what lets .importlinter leave out the edges that
-``from . import _core`` makes; `make lint` runs its layer and no-cycle contracts)."""
+"""The package's layers as folders: old module paths name their new place, no module imports
+a name from the package's ``__init__``, and one module per layer (``_bound.py``) imports the
+C++ extension, which import-linter's graph cannot see (`make lint` runs .importlinter's layer
+and no-cycle contracts)."""
 
 import ast
 import importlib
@@ -71,3 +72,37 @@ def test_the_public_names_stay_where_they_were():
     assert ts.physics is importlib.import_module("tendonsheath.plant.physics")
     assert ts.loads is importlib.import_module("tendonsheath.plant.loads")
     assert ts.io.read_log is importlib.import_module("tendonsheath.io.log").read_log
+
+
+def _imports_the_extension(module_path: Path) -> bool:
+    for node in ast.walk(ast.parse(module_path.read_text())):
+        if isinstance(node, ast.ImportFrom):
+            target = _resolved(module_path, node)
+            if target == "tendonsheath._core" or (
+                target == "tendonsheath" and any(a.name == "_core" for a in node.names)
+            ):
+                return True
+        elif isinstance(node, ast.Import) and any(
+            a.name == "tendonsheath._core" for a in node.names
+        ):
+            return True
+    return False
+
+
+def test_one_module_per_layer_imports_the_extension():
+    # <layer>/_bound.py lists the C++ names its folder uses; no other module imports _core
+    importers = sorted(
+        str(m.relative_to(PACKAGE)) for m in PACKAGE.rglob("*.py") if _imports_the_extension(m)
+    )
+    assert importers == [f"{layer}/_bound.py" for layer in sorted(LAYERS_WITH_CORE)]
+
+
+def test_the_extension_check_can_fail(tmp_path):
+    probe = PACKAGE / "plant" / "motor.py"
+    for text in ("from .. import _core as core", "from .._core import Motor"):
+        assert _resolved(probe, ast.parse(text).body[0]) in ("tendonsheath", "tendonsheath._core")
+    assert _imports_the_extension(PACKAGE / "plant" / "_bound.py")
+    assert not _imports_the_extension(PACKAGE / "plant" / "motor.py")
+
+
+LAYERS_WITH_CORE = ("bench", "compensate", "identify", "models", "plant")

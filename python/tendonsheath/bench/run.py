@@ -9,7 +9,6 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 
-from .. import _core as core
 from .._args import warn_renamed
 from .._arrays import as_timed_signal
 from ..plant.physics import route_shape as shape_of
@@ -22,6 +21,7 @@ from ..protocols import (
     step_signals,
 )
 from ..status import status_counts
+from . import _bound as core
 from .limit_cycle import limit_cycle
 from .metrics import dominant_period, tracking_metrics
 from .plant_loop import BenchPlant

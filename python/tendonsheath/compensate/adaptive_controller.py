@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from .. import _core as core
 from .._args import core_errors_as, number
 from .._arrays import checked_dt
 from ..models import Backlash, BoucWenBacklash, HysteresisModel
+from . import _bound as core
 from .base import EngineCompensator
 
 _GAINS = (

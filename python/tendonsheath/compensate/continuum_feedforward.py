@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
-from .. import _core as core
 from .._angles import warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, core_errors_as, number
+from . import _bound as core
 from .base import Feedforward
 from .limits import LimitsLike, as_limits
 

@@ -9,13 +9,13 @@ from typing import Any
 
 import numpy as np
 
-from .. import _core as core
 from .._arrays import as_vector, checked_dt
 from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from ..models import Coupled
 from ..plant.coupled import _joint_matrix
 from ..status import Status
+from . import _bound as core
 from . import persistence
 from .base import SavedAsJson
 from .inverse_feedforward import InverseFeedforward

@@ -8,13 +8,13 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .. import _core as core
 from .._angles import checked_curve_angle, warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, core_errors_as, number
 from .._arrays import as_signal, as_timed_signal, checked_dt
 from .._typing import ArrayLike
 from ..plant.physics import route_shape as shape_of
 from ..simulation_result import SimulationResult
+from . import _bound as core
 from .base import Feedforward, command_result
 from .limits import LimitsLike, as_limits
 

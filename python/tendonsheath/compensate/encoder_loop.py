@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
-from .. import _core as core
 from .._args import core_errors_as, number
 from .._arrays import checked_dt
 from ..protocols import step_signals
+from . import _bound as core
 from .around import AroundFeedforward
 from .limits import LimitsLike, as_limits
 

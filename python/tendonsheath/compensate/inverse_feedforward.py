@@ -9,7 +9,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .. import _core as core
 from .._angles import checked_curve_angle
 from .._args import core_errors_as, number
 from .._arrays import as_signal, as_timed_signal, checked_dt
@@ -17,6 +16,7 @@ from .._typing import ArrayLike
 from ..models import HysteresisModel
 from ..plant.physics import route_shape as shape_of
 from ..simulation_result import SimulationResult
+from . import _bound as core
 from .base import Feedforward, command_result
 from .inverse_model import describe, follows_route, route_friction
 from .limits import LimitsLike, as_limits

@@ -8,7 +8,6 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-from .. import _core as core
 from ..models import (
     AngleDependent,
     Chain,
@@ -21,6 +20,7 @@ from ..models import (
     SecondOrderLag,
 )
 from ..models.base import _REGISTRY
+from . import _bound as core
 
 #: the C++ part member of each model class whose core parameter struct is copied as it is
 _STRUCT_MEMBERS = {

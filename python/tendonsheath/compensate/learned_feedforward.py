@@ -6,11 +6,11 @@ from typing import Any
 
 import numpy as np
 
-from .. import _core as core
 from .._args import core_errors_as, number, number_array
 from .._arrays import as_timed_signal, checked_dt
 from .._typing import ArrayLike, FloatArray
 from ..simulation_result import SimulationResult
+from . import _bound as core
 from .around import AroundFeedforward
 from .base import command_result
 from .limits import LimitsLike, as_limits

@@ -7,8 +7,8 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TypeAlias
 
-from .. import _core as core
 from .._args import number
+from . import _bound as core
 
 
 @dataclass(frozen=True)

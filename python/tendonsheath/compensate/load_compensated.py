@@ -21,13 +21,13 @@ from typing import Any
 
 import numpy as np
 
-from .. import _core as core
 from .._args import number
 from .._arrays import as_timed_signal, checked_dt
 from .._pyobject import PythonObject
 from .._typing import ArrayLike
 from ..models.loaded import Loaded
 from ..simulation_result import SimulationResult
+from . import _bound as core
 from . import persistence
 from .base import SavedAsJson, command_result
 from .inverse_feedforward import InverseFeedforward

@@ -7,10 +7,10 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
-from .. import _core as core
 from .._args import core_errors_as, number
 from .._arrays import checked_dt
 from ..protocols import step_signals
+from . import _bound as core
 from .around import AroundFeedforward, follows_route
 from .limits import LimitsLike, as_limits
 

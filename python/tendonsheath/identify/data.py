@@ -8,8 +8,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._arrays import as_vector
-from .._core import RecordingSet
 from ..plant.route import Route, check_curve_angle
+from ._bound import RecordingSet
 
 MIN_SAMPLES = 20  # fitted samples per fit (after warm-up), at the very least
 

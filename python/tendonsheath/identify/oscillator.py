@@ -46,14 +46,14 @@ import numpy as np
 from scipy.optimize import differential_evolution, least_squares, nnls
 from scipy.signal import csd, welch
 
-from .._core import (
+from .._sampling import fft_upsample, is_periodic, uniform_step
+from ..models import HystereticOscillator
+from ._bound import (
     RecordingSet,
     bouc_wen_paths,
     oscillator_sensitivity_dense,
     reconstruct_bandlimited,
 )
-from .._sampling import fft_upsample, is_periodic, uniform_step
-from ..models import HystereticOscillator
 from .data import check_for_fit
 from .fit import Fit, fit_quality
 from .interpolation import detect_for_recordings

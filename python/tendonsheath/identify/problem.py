@@ -15,7 +15,9 @@ from typing import Any
 import numpy as np
 from scipy.optimize import lsq_linear, nnls
 
-from .._core import (
+from ..models import CurveAngleModel, HysteresisModel
+from ..models.angle_dependent import AngleDependent, angle_factor, law_value
+from ._bound import (
     features_BoucWen,
     features_BoucWenBacklash,
     features_GeneralizedPrandtlIshlinskii,
@@ -35,8 +37,6 @@ from .._core import (
     separable_cost_GeneralizedPrandtlIshlinskii,
     separable_cost_PrandtlIshlinskii,
 )
-from ..models import CurveAngleModel, HysteresisModel
-from ..models.angle_dependent import AngleDependent, angle_factor, law_value
 from .data import Recording, fitted_mask, recording_set
 
 #: the batched C++ kernels of a direct problem by model class name: (the population's costs,

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .. import _core as core
+from . import _bound as core
 from .base import HysteresisModel
 
 

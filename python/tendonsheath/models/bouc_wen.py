@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from .. import _args
-from .. import _core as core
+from . import _bound as core
 from .base import HysteresisModel
 
 # Parameters renamed (old name -> new name); the old names still work, with a warning.

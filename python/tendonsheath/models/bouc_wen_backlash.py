@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import math
 
-from .. import _core as core
 from .._args import number
+from . import _bound as core
 from .base import HysteresisModel
 
 

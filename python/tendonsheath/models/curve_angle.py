@@ -6,13 +6,13 @@ import copy
 
 import numpy as np
 
-from .. import _core as core
 from .._args import accepts_old_names
 from .._arrays import as_signal, as_time_and_signal, checked_dt
 from .._typing import ArrayLike, FloatOrArray
 from ..plant import physics
 from ..plant.route import Route
 from ..simulation_result import SimulationResult
+from . import _bound as core
 from .base import HysteresisModel
 
 # Parameters renamed (old name -> new name, docs/vocabulary.md); the old names still work for one

@@ -7,9 +7,9 @@ from typing import Any
 
 import numpy as np
 
-from .. import _core as core
 from .._args import number_array
 from .._typing import ArrayLike, FloatArray
+from . import _bound as core
 from .base import HysteresisModel
 
 _ENVELOPE = ("a", "b", "c", "d")

@@ -8,11 +8,11 @@ from typing import Any
 
 import numpy as np
 
-from .. import _core as core
 from .._arrays import as_time_and_signal
 from .._sampling import fft_upsample, is_periodic, uniform_step
 from .._typing import ArrayLike
 from ..simulation_result import SimulationResult
+from . import _bound as core
 from .base import HysteresisModel
 
 _INTERPOLATIONS = ("linear", "hold", "bandlimited")

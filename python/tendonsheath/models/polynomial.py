@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import _core as core
 from .._args import integer
 from .._typing import ArrayLike, FloatArray
+from . import _bound as core
 from .base import HysteresisModel
 
 

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import _core as core
 from .._args import number_array
 from .._typing import ArrayLike
+from . import _bound as core
 from .base import HysteresisModel
 
 

@@ -15,13 +15,13 @@ from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
-from .. import _core as core
 from .._args import integer, number, warn_status_switch
 from .._arrays import as_time_and_signal, checked_dt
 from .._pyobject import PythonObject
 from .._typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
+from . import _bound as core
 from . import input_interpolation as reconstruction
 from .motor import Motor
 from .route import Route

@@ -6,8 +6,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from .. import _core as core
 from .._args import core_errors_as
+from . import _bound as core
 from .loads import (
     TorsionalSpring,
 )

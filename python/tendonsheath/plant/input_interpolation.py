@@ -18,8 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import _core as core
 from .._sampling import fft_upsample, is_periodic, uniform_step
+from . import _bound as core
 
 INTERPOLATIONS = ("hold", "linear", "bandlimited")
 DEFAULT_SUBSTEPS = 8

@@ -6,13 +6,13 @@ import math
 
 import numpy as np
 
-from .. import _core as core
 from .._args import core_errors_as, number
 from .._arrays import as_timed_signal, checked_dt
 from .._pyobject import PythonObject
 from .._typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
+from . import _bound as core
 
 # a constructor's arguments, by kind: each sets the MotorParams field of its name (a position
 # motor's ``inertia`` is the reflected inertia; a torque motor's is the rotor's own)

@@ -16,9 +16,9 @@ from typing import Any
 
 import numpy as np
 
-from .. import _core as core
 from .._args import accepts_old_names
 from .._typing import ArrayLike, FloatArray, FloatOrArray
+from . import _bound as core
 from .route import Route
 
 

@@ -14,8 +14,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from .. import _core as core
 from .._args import core_errors_as
+from . import _bound as core
 from . import physics
 from .loads import (
     ConstantTorque,

@@ -6,12 +6,12 @@ from collections.abc import Iterable, Sequence
 
 import numpy as np
 
-from .. import _core as core
 from .._angles import UnitWarning as UnitWarning
 from .._angles import warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, core_errors_as, number, number_array, warn_renamed
 from .._arrays import as_signal
 from .._typing import ArrayLike, FloatArray
+from . import _bound as core
 
 # 100 full turns: the largest curve angle accepted in measured data (no sheath route comes near
 # it; a larger logged value is a unit or column mistake). The plant itself takes any angle.

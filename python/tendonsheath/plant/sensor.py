@@ -7,12 +7,12 @@ import functools
 
 import numpy as np
 
-from .. import _core as core
 from .._args import core_errors_as, integer, number
 from .._arrays import as_vector, checked_dt
 from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from ..status import Status
+from . import _bound as core
 
 
 class Sensor(PythonObject):

@@ -1,0 +1,53 @@
+"""The C++ core as identification use it: the one module of this folder that imports
+``tendonsheath._core`` (the nanobind extension); every other module takes the bound
+names from here."""
+
+from .._core import (  # noqa: F401 (re-exported)
+    RecordingSet,
+    bouc_wen_paths,
+    features_BoucWen,
+    features_BoucWenBacklash,
+    features_GeneralizedPrandtlIshlinskii,
+    features_PrandtlIshlinskii,
+    oscillator_sensitivity_dense,
+    population_cost_Backlash,
+    population_cost_BoucWen,
+    population_cost_BoucWenBacklash,
+    population_cost_CurveAngleModel,
+    population_cost_HystereticOscillator,
+    population_simulate_Backlash,
+    population_simulate_BoucWen,
+    population_simulate_BoucWenBacklash,
+    population_simulate_CurveAngleModel,
+    population_simulate_HystereticOscillator,
+    reconstruct_bandlimited,
+    separable_cost_BoucWen,
+    separable_cost_BoucWenBacklash,
+    separable_cost_GeneralizedPrandtlIshlinskii,
+    separable_cost_PrandtlIshlinskii,
+)
+
+__all__ = [
+    "RecordingSet",
+    "bouc_wen_paths",
+    "features_BoucWen",
+    "features_BoucWenBacklash",
+    "features_GeneralizedPrandtlIshlinskii",
+    "features_PrandtlIshlinskii",
+    "oscillator_sensitivity_dense",
+    "population_cost_Backlash",
+    "population_cost_BoucWen",
+    "population_cost_BoucWenBacklash",
+    "population_cost_CurveAngleModel",
+    "population_cost_HystereticOscillator",
+    "population_simulate_Backlash",
+    "population_simulate_BoucWen",
+    "population_simulate_BoucWenBacklash",
+    "population_simulate_CurveAngleModel",
+    "population_simulate_HystereticOscillator",
+    "reconstruct_bandlimited",
+    "separable_cost_BoucWen",
+    "separable_cost_BoucWenBacklash",
+    "separable_cost_GeneralizedPrandtlIshlinskii",
+    "separable_cost_PrandtlIshlinskii",
+]
