@@ -414,7 +414,8 @@ class _Plant(PythonObject):
         if routes is not None:
             if not callable(routes):
                 raise ValueError(f"{name}: routes must be None or a callable t -> Route")
-            idx, angles = self._schedule(ts, routes)
+            assert ts is not None  # routes without t raised above
+            idx, angles = self.route_schedule(ts, routes)
         motor_arg = self.motor.engine() if self.motor is not None else None
         sensor_arg = self.sensor.engine() if self.sensor is not None else None
         mode, fine, lookahead = self._interpolation
@@ -500,7 +501,24 @@ class _Plant(PythonObject):
         ValueError
             A route of the wrong kind or length.
         """
-        return self._schedule(np.asarray(t, dtype=float), routes)
+        idx, rows = [], []
+        prev_obj = object()
+        prev = None
+        for k, tk in enumerate(np.asarray(t, dtype=float)):
+            r = routes(float(tk))
+            if r is prev_obj:
+                continue
+            prev_obj = r
+            a = self._angles_for(r)
+            if prev is not None and np.array_equal(a, prev):
+                continue
+            prev = a
+            idx.append(k)
+            rows.append(a)
+        return (
+            np.asarray(idx, dtype=np.uint64),
+            np.ascontiguousarray(np.vstack(rows)),
+        )
 
     def node_angles(self, route: Route | tuple[Route, Route]) -> np.ndarray:
         """The lumped node angles (rad) a route gives this plant's elements.
@@ -526,26 +544,6 @@ class _Plant(PythonObject):
         # what tendonsheath.bench.run steps: the C++ engine without the motor (the bench runs
         # the motor between controller and plant); the loop steps a copy
         return self._engine
-
-    def _schedule(self, ts, routes):
-        idx, rows = [], []
-        prev_obj = object()
-        prev = None
-        for k, tk in enumerate(ts):
-            r = routes(float(tk))
-            if r is prev_obj:
-                continue
-            prev_obj = r
-            a = self._angles_for(r)
-            if prev is not None and np.array_equal(a, prev):
-                continue
-            prev = a
-            idx.append(k)
-            rows.append(a)
-        return (
-            np.asarray(idx, dtype=np.uint64),
-            np.ascontiguousarray(np.vstack(rows)),
-        )
 
     def _lengths(self) -> tuple[float, ...]:
         raise NotImplementedError  # the subclass's sheath lengths
