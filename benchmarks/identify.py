@@ -94,7 +94,7 @@ def main() -> None:
     spec = BoucWenBacklashSpec()
     b = spec.bounds(Scale.of(make_recordings(t, x, y)), {})
     bounds = [b[k] for k in NAMES]
-    base = truth._engine.params
+    base = truth.params_struct()
 
     def compiled_objective(p):
         try:

@@ -30,11 +30,11 @@ def _cases():
     cases = []
     for name, model in (("Backlash", ts.models.Backlash()), ("BoucWenBacklash", bl),
                         ("PrandtlIshlinskii", pi)):  # fmt: skip
-        eng = model._engine
+        eng = getattr(ts._core, name)(model)  # the bare C++ class: a copy of the model
         cases.append((f"{name}.simulate", lambda t, x, e=eng: e.simulate(t, x, False),
                       lambda t, x, e=eng: e.simulate(t, x, True),
                       lambda t, x, m=model: m.simulate(t, x)))  # fmt: skip
-    eng = ff._engine
+    eng = ts._core.ModelInverse(ff)  # the bare C++ class: a copy of the compensator
     cases.append(("InverseFeedforward(Backlash).command",
                   lambda t, y, e=eng: e.command(t, y, None, None, None, False),
                   lambda t, y, e=eng: e.command(t, y, None, None, None, True),

@@ -22,7 +22,7 @@ def test_state_stays_in_unit_interval_for_any_input(rng):
         m.reset()
         for xk in x:
             m.step(xk)
-            assert abs(m._engine.state()) <= 1.0
+            assert abs(m.state()) <= 1.0
 
 
 def _loop(peak=1.0, n=4001):

@@ -89,10 +89,10 @@ def test_curve_angle_feedforward_uses_route_shape():
         theta = np.array([0.0, 1.0, 3.0])
 
     ff = CurveAngleFeedforward(0.15, 1 / 5e-5, 1.0, 20.0, curve_angle=3.0, smoothing=1e-4)
-    uniform = ff._engine.correction(0.0, 1.0)
+    uniform = ts._core.CurveAngleFeedforward.correction(ff, 0.0, 1.0)
     ff.set_route(Route)
-    shaped = ff._engine.correction(0.0, 1.0)
-    assert ff._engine.shape.curve_angle == 3.0
+    shaped = ts._core.CurveAngleFeedforward.correction(ff, 0.0, 1.0)
+    assert ff.shape.curve_angle == 3.0
     assert abs(shaped - uniform) > 0.1 * abs(uniform)
 
 
@@ -103,8 +103,8 @@ def test_continuum_modes_differ_by_the_published_double_counting():
     # exact: forward elongation under the bending force
     F = exact.bending_force(theta)
     assert F == pytest.approx(theta / 0.03 * 4e-4 / 2e-3)
-    x_exact = exact._engine.tendon_input(theta, 1.0)
-    x_pub = published._engine.tendon_input(theta, 1.0)
+    x_exact = exact.tendon_input(theta, 1.0)
+    x_pub = published.tendon_input(theta, 1.0)
     a = 0.1 * np.pi
     L_EA = 1.0 / 2.4e4
     expected_exact = 2e-3 * theta + L_EA * np.tanh(a / 2) * (10.0 + F / a)

@@ -43,7 +43,7 @@ def test_envelopes_follow_their_tangents_as_the_core_does():
         x = np.linspace(lo - 5 * (hi - lo), hi + 5 * (hi - lo), 2001)
         up, down = m.envelopes(x)
         up0, down0 = plain.envelopes(x)
-        params = m._engine.params
+        params = m.params_struct()
         for got, plain_got, env in ((up, up0, params.rising), (down, down0, params.falling)):
             assert env.lo == lo and env.hi == hi
             np.testing.assert_allclose(got, [env(v) for v in x], rtol=1e-13, atol=1e-14)

@@ -38,12 +38,12 @@ def test_population_cost_equals_python_sse(workers):
         p.update(c_r=rng.uniform(0.8, 1.2), B_r=rng.uniform(0, 0.2), rho=rng.uniform(5, 30))
         pop.append(p)
     rows = np.array([[p[k] for k in BoucWenBacklash.param_names] * len(recs) for p in pop])
-    costs = core.population_cost_BoucWenBacklash(truth._engine.params, rows, rs, workers)
+    costs = core.population_cost_BoucWenBacklash(truth.params_struct(), rows, rs, workers)
     for p, c in zip(pop, costs, strict=True):
         m = BoucWenBacklash(**p)
         want = sum(np.sum((y[50:] - m.simulate(t, x)[50:]) ** 2) for t, x, y in recs)
         assert c == pytest.approx(want, rel=1e-12)
-    sims = core.population_simulate_BoucWenBacklash(truth._engine.params, rows, rs, workers)
+    sims = core.population_simulate_BoucWenBacklash(truth.params_struct(), rows, rs, workers)
     m = BoucWenBacklash(**pop[3])
     assert np.array_equal(sims[3], np.concatenate([m.simulate(t, x) for t, x, _ in recs]))
 
@@ -52,13 +52,13 @@ def test_invalid_members_cost_infinity_and_rate_dependent_uses_time():
     truth = Backlash()
     rs = _pack(_recordings(truth), 0)
     rows = np.array([[1.0, 1.0, 0.1, 0.1] * 2, [-1.0, 1.0, 0.1, 0.1] * 2])
-    costs = core.population_cost_Backlash(truth._engine.params, rows, rs, 2)
+    costs = core.population_cost_Backlash(truth.params_struct(), rows, rs, 2)
     assert np.isfinite(costs[0]) and np.isinf(costs[1])
     osc = HystereticOscillator(m=1.0, c=0.3, k=2.0, alpha=1.0)
     recs = _recordings(osc, n=300)
     rs = _pack(recs, 0)
     row = np.array([[osc.params[k] for k in HystereticOscillator.param_names] * 2])
-    sim = core.population_simulate_HystereticOscillator(osc._engine.params, row, rs, 1)[0]
+    sim = core.population_simulate_HystereticOscillator(osc.params_struct(), row, rs, 1)[0]
     assert np.allclose(sim[:300], osc.simulate(recs[0][0], recs[0][1]), rtol=0, atol=1e-14)
 
 
@@ -67,11 +67,11 @@ def test_separable_cost_is_the_least_squares_residual():
     recs = _recordings(truth)
     rs = _pack(recs, 20)
     v = np.array([[15.0, 1.0, 3.0], [9.0, 2.0, 5.0]])
-    costs = core.separable_cost_BoucWenBacklash(truth._engine.params, v, rs, 2)
+    costs = core.separable_cost_BoucWenBacklash(truth.params_struct(), v, rs, 2)
     y = np.concatenate([r[2][20:] for r in recs])
     mask = np.concatenate([np.arange(r[1].size) >= 20 for r in recs])
     for row, cost in zip(v, costs, strict=True):
-        F = core.features_BoucWenBacklash(truth._engine.params, row, rs)[mask]
+        F = core.features_BoucWenBacklash(truth.params_struct(), row, rs)[mask]
         theta, *_ = np.linalg.lstsq(F, y, rcond=None)
         assert cost == pytest.approx(np.sum((y - F @ theta) ** 2), rel=1e-6)
 

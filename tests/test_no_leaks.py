@@ -40,7 +40,7 @@ def test_the_check_sees_a_leak_when_on_and_is_quiet_when_off(tmp_path):
     leak = (
         "import ctypes, tendonsheath as ts\n"
         "m = ts.models.Backlash()\n"
-        "ctypes.pythonapi.Py_IncRef(ctypes.py_object(m._engine))\n"
+        "ctypes.pythonapi.Py_IncRef(ctypes.py_object(m))\n"
     )
     for on in (True, False):
         env = {k: v for k, v in os.environ.items() if k != "TENDONSHEATH_LEAK_WARNINGS"}

@@ -46,17 +46,15 @@ def test_sensitivities_match_central_differences(rng, softening):
         fine = 8
         xf = fft_upsample(x, fine)
         model = models.HystereticOscillator(**p)
-        y, S = core.oscillator_sensitivity_dense(model._engine.params, dt, x.size, xf, fine)
-        y_sim = model._engine.simulate_dense(dt, x.size, xf, fine)
+        y, S = core.oscillator_sensitivity_dense(model.params_struct(), dt, x.size, xf, fine)
+        y_sim = model.simulate_dense(dt, x.size, xf, fine)
         np.testing.assert_allclose(y, y_sim, rtol=0, atol=1e-12 * np.ptp(y_sim))
         for j, name in enumerate(NAMES):
             forward = name == "nu" and nu == 1.0  # nu >= 1: one-sided there
             h = (1e-8 if forward else 1e-7) * (abs(p[name]) if name != "nu" else 1.0)
             lo = p[name] if forward else p[name] - h
-            up = model.with_params(**{name: p[name] + h})._engine.simulate_dense(
-                dt, x.size, xf, fine
-            )
-            dn = model.with_params(**{name: lo})._engine.simulate_dense(dt, x.size, xf, fine)
+            up = model.with_params(**{name: p[name] + h}).simulate_dense(dt, x.size, xf, fine)
+            dn = model.with_params(**{name: lo}).simulate_dense(dt, x.size, xf, fine)
             fd = (up - dn) / (p[name] + h - lo)
             scale = np.max(np.abs(fd))
             assert scale > 0, name
@@ -70,4 +68,4 @@ def test_sensitivities_match_central_differences(rng, softening):
 def test_sensitivity_rejects_bad_grid():
     model = models.HystereticOscillator()
     with pytest.raises(ValueError, match="n \\* fine"):
-        core.oscillator_sensitivity_dense(model._engine.params, 0.01, 10, np.zeros(7), 2)
+        core.oscillator_sensitivity_dense(model.params_struct(), 0.01, 10, np.zeros(7), 2)

@@ -143,7 +143,7 @@ def test_set_shape_of_a_uniform_route_is_the_uniform_closed_form(seed):
     # measured worst 1.9e-16 relative to the output's range (rounding of g, G): 1e-12
     assert np.max(np.abs(by_route - by_angle)) < 1e-12 * np.ptp(by_angle)
     # the C++ model's terms directly: set_shape(uniform_shape) against set_curve_angle
-    engine = core.CurveAngleModel(model._engine.params)
+    engine = core.CurveAngleModel(model.params_struct())
     engine.set_shape(core.uniform_shape(mu, theta))
     assert not engine.uniform() and engine.curve_angle() == theta
     route = ts.Route.uniform(1.0, theta)
@@ -210,11 +210,11 @@ def test_streaming_on_routes_equals_simulate_and_bad_shapes_are_ignored():
     model.reset()
     ys = [model.step(q[0], 0.0, curve_angle=route)] + [model.step(a) for a in q[1:]]
     assert np.array_equal(ys, y)
-    assert not model._engine.uniform() and model._engine.curve_angle() == route.curve_angle
+    assert not model.uniform() and model.curve_angle() == route.curve_angle
     # a number again: the uniform route of that angle
     model.step(0.3, 0.0, curve_angle=2.0)
-    assert model._engine.uniform() and model._engine.curve_angle() == 2.0
-    engine = core.CurveAngleModel(model._engine.params)
+    assert model.uniform() and model.curve_angle() == 2.0
+    engine = core.CurveAngleModel(model.params_struct())
     engine.set_shape(physics.route_shape(route, 0.15))
     before = (engine.shape().g, engine.shape().G, engine.curve_angle())
     for bad in (

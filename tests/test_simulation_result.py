@@ -124,9 +124,12 @@ def test_command_returns_the_result_type():
     _check_array_access(u, t, y_d)
     assert u.status.dtype == np.uint8 and u.status.shape == y_d.shape
     # bit for bit the commands of the engine's call without flags (what command gave before)
-    np.testing.assert_array_equal(u, ff._engine.command(t, y_d, None, None, None, False))
+    raw = ts._core.ModelInverse.command(ff, t, y_d, None, None, None, False)
+    np.testing.assert_array_equal(u, raw)
     model = BoucWenBacklash(B_r=0.05, B_l=0.05)
-    np.testing.assert_array_equal(model.simulate(t, y_d), model._engine.simulate(t, y_d, False))
+    np.testing.assert_array_equal(
+        model.simulate(t, y_d), ts._core.BoucWenBacklash.simulate(model, t, y_d, False)
+    )
 
 
 def test_failure_is_reported_and_results_pickle():

@@ -349,7 +349,7 @@ def test_streaming_dt_is_checked_in_python_and_held_in_the_core():
         for step in (model.step, ff.step, _plant().step, motor.step):
             with pytest.raises(ValueError, match="dt must be"):
                 step(0.1, dt)
-        assert math.isfinite(ff._engine.step(0.1, dt))  # real time: holds, never throws
+        assert math.isfinite(ts._core.ModelInverse.step(ff, 0.1, dt))  # real time: holds
 
 
 def test_read_log_refuses_an_upsampling_typo(data):

@@ -1,7 +1,7 @@
 """Models, compensators and plants behave like Python objects: copies, pickles, attributes.
 
-Their streaming state lives in C++ engines (the ``_engine`` attribute and its kin), which
-copy exactly but do not serialise. So:
+Most of them *are* a bound C++ class (a Python subclass of it, see :func:`bound_base`), whose
+streaming state copies exactly but does not serialise. So:
 
 * ``copy.deepcopy`` and ``copy.copy`` give an independent object with the exact streaming
   state of the original (each engine is a C++ copy): stepping the copy continues as the
@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import copy
 import functools
+import sys
 from collections.abc import Callable
 from typing import Any
 
@@ -40,6 +41,27 @@ def _opening(init: Callable) -> Callable:
             object.__delattr__(self, _OPEN)
 
     return wrapper
+
+
+def bound_base(cls: type) -> type | None:
+    """The C++ class bound by nanobind that ``cls`` is built on (the first one in its method
+    resolution order defined in a compiled extension), or None for a pure Python class."""
+    for base in cls.__mro__:
+        module = sys.modules.get(base.__module__)
+        if type(base).__name__ == "nb_type" and getattr(module, "__file__", "").endswith(
+            (".so", ".pyd")
+        ):
+            return base
+    return None
+
+
+def bound_attribute(obj: Any, name: str) -> Any:
+    """``obj``'s attribute ``name`` as its bound C++ class defines it (a property such as
+    ``params`` that the Python class redefines in its own shape)."""
+    base = bound_base(type(obj))
+    if base is None:
+        raise TypeError(f"{type(obj).__name__} is not built on a bound C++ class")
+    return getattr(base, name).__get__(obj, type(obj))
 
 
 def from_state(cls: type[Any], state: dict[str, Any]) -> Any:
@@ -83,6 +105,9 @@ class PythonObject:
 
     def __deepcopy__(self, memo: dict) -> Any:
         new = type(self).__new__(type(self))
+        bound = bound_base(type(self))
+        if bound is not None:  # the C++ part: an exact copy, streaming state included
+            bound.__init__(new, self)  # type: ignore[misc]
         memo[id(self)] = new
         vars(new).update(copy.deepcopy(vars(self), memo))  # engines: exact C++ copies
         return new

@@ -72,11 +72,15 @@ inline tendonsheath::RouteSchedule to_schedule(const std::optional<InIndex>& sid
   return sched;
 }
 
-// copy.copy and copy.deepcopy of a streaming engine: a snapshot of its whole state (the
+// copy.copy and copy.deepcopy of a streaming engine, and T(other): a snapshot of its whole state (the
 // python-control systems of tendonsheath.control step from saved snapshots).
 template <class Cls>
 std::decay_t<Cls> bind_copy(Cls&& cls) {
   using T = typename std::decay_t<Cls>::Type;
+  // T(other): what a Python class built on T calls to copy itself (its __init__ can run once)
+  if constexpr (!std::is_aggregate_v<T>)
+    cls.def(nb::init<const T&>(), nb::arg("other"),
+            "A copy of ``other``: its parameters and its exact streaming state.");
   cls.def("__copy__", [](const T& self) { return T(self); });
   cls.def("__deepcopy__", [](const T& self, nb::handle) { return T(self); }, nb::arg("memo"));
   return std::forward<Cls>(cls);

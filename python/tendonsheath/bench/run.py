@@ -11,6 +11,7 @@ import numpy as np
 
 from .._args import warn_renamed
 from .._arrays import as_timed_signal
+from .._pyobject import bound_base
 from ..plant.physics import route_shape as shape_of
 from ..plant.sensor import Sensor
 from ..protocols import (
@@ -335,10 +336,10 @@ def _run_controller(loop: _Loop, controller, shape_sensing):
     engine_of = getattr(controller, "_bench_engine", None)
     engine = engine_of() if callable(engine_of) else None
     if isinstance(engine, core.CurveAngleFeedforward) or (
-        isinstance(engine, core.ModelInverse) and engine.follows_route()
+        isinstance(engine, core.ModelInverse) and core.ModelInverse.follows_route(engine)
     ):
         return _run_curve_angle(loop, controller, engine, shape_sensing)
-    fn = _ENGINE_LOOPS.get(type(engine))
+    fn = _ENGINE_LOOPS.get(bound_base(type(engine)) or type(None))
     if fn is not None:
         if loop.scheduled:
             return loop.call_with_shapes(fn, engine, **shaped, positional=True)
@@ -384,7 +385,7 @@ def _run_curve_angle(loop: _Loop, controller, engine, shape_sensing):
     """The controller is told the route's shape from the start and at every change (a route
     schedule always starts at sample 0), or the sensed shape with ``shape_sensing``."""
     idx, angles, shapes = _route_shapes(loop, controller.friction, shape_sensing)
-    fn = _ROUTE_LOOPS[type(engine)]
+    fn = _ROUTE_LOOPS[bound_base(type(engine)) or type(None)]
     return loop.call(fn, engine, shapes=shapes, idx=idx, angles=angles)
 
 

@@ -7,6 +7,7 @@ from typing import Any
 
 from .._args import core_errors_as, number
 from .._arrays import checked_dt
+from .._pyobject import bound_attribute
 from ..models import Backlash, BoucWenBacklash, HysteresisModel
 from . import _bound as core
 from .base import EngineCompensator
@@ -38,7 +39,7 @@ _GAINS = (
 )
 
 
-class AdaptiveController(EngineCompensator):
+class AdaptiveController(EngineCompensator, core.AdaptiveController):  # type: ignore[misc]
     """Sliding-surface adaptive controller with a distal sensor; outputs motor torque.
 
     u = -k_s s - psi y' - phi nu_r - D tanh(s/epsilon) with s = e' + lambda e, and online
@@ -104,9 +105,9 @@ class AdaptiveController(EngineCompensator):
         if not (math.isfinite(self.smoothing) and self.smoothing > 0):  # with a model or not
             raise ValueError(f"{who}: smoothing must be > 0 (got {self.smoothing:g})")
         with core_errors_as(who):
-            self._engine = core.AdaptiveController(p)
+            core.AdaptiveController.__init__(self, p)
         self.design: Any = None  # set by from_calibration: what the gains were chosen from
-        resolved = self._engine.params
+        resolved = bound_attribute(self, "params")
         self._settings = {
             "feedforward_model": feedforward_model,
             "smoothing": self.smoothing,
@@ -273,19 +274,19 @@ class AdaptiveController(EngineCompensator):
         return choose_bandwidth(dyns, build, trial)
 
     @property
-    def estimates(self) -> dict[str, float]:
+    def estimates(self) -> dict[str, float]:  # type: ignore[override]
         """The current estimates psi, phi and D."""
-        e = self._engine.estimates
+        e = bound_attribute(self, "estimates")
         return {"psi": e.psi, "phi": e.phi, "D": e.D}
 
     @property
-    def in_fallback(self) -> bool:
+    def in_fallback(self) -> bool:  # type: ignore[override]
         """Whether the last cycle ran the dropout fallback (a NaN measurement)."""
-        return self._engine.in_fallback()
+        return core.AdaptiveController.in_fallback(self)
 
     def reset(self) -> None:
         """Back to the initial estimates and state."""
-        self._engine.reset()
+        core.AdaptiveController.reset(self)
 
     def step(self, y_d: float, y_measured: float, motor_position: float, dt: float) -> float:
         """One control cycle; returns the motor torque. y_measured may be NaN (dropout).
@@ -307,7 +308,9 @@ class AdaptiveController(EngineCompensator):
             The motor torque (N m).
         """
         dt = checked_dt(dt)
-        return self._engine.step(float(y_d), float(y_measured), float(motor_position), float(dt))
+        return core.AdaptiveController.step(
+            self, float(y_d), float(y_measured), float(motor_position), float(dt)
+        )
 
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], u[1], u[2], dt)

@@ -36,7 +36,7 @@ class AroundFeedforward(EngineCompensator):
         Status
             The flags of the last step.
         """
-        own = Status(self._engine.status())
+        own = Status(self._bound_class.status(self))
         inner = getattr(self.feedforward, "status", None)
         return own | Status(int(inner())) if callable(inner) else own
 

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, Self, cast
+from typing import Any, ClassVar, Self, cast
 
 from .._args import warn_status_switch
 from .._arrays import as_timed_signal, checked_dt
-from .._pyobject import PythonObject
+from .._pyobject import PythonObject, bound_base
 from .._typing import ArrayLike
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
@@ -97,11 +97,19 @@ class SavedAsJson:
 
 class EngineCompensator(PythonObject, SavedAsJson, _ControlBlock):
     """What every compensator built on a C++ engine shares: its status, its constructor
-    settings and saving them (``to_json``/``load``), and the engine ``bench.run`` steps."""
+    settings and saving them (``to_json``/``load``), and the engine ``bench.run`` steps.
 
-    _engine: Any  # the C++ compensator the subclass builds (each its own class)
+    Each subclass is also its bound C++ class (``class TipLoop(AroundFeedforward,
+    core.TipLoop)``) and initialises it in its ``__init__``: the compensator *is* the real-time
+    object the C++ closed loop steps."""
+
+    _bound_class: ClassVar[Any] = None  # the bound C++ class the subclass is built on
     _settings: dict  # the constructor's settings, saved by to_json
     _saved_settings: tuple[str, ...] = ()  # the keys of a saved file, in order
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        cls._bound_class = bound_base(cls)
 
     def status(self) -> Status:
         """The last step's :class:`~tendonsheath.Status` (held input, saturated command, ...).
@@ -111,7 +119,7 @@ class EngineCompensator(PythonObject, SavedAsJson, _ControlBlock):
         Status
             The flags of the last :meth:`step`.
         """
-        return Status(self._engine.status())
+        return Status(self._bound_class.status(self))
 
     @property
     def params(self) -> dict:
@@ -140,8 +148,8 @@ class EngineCompensator(PythonObject, SavedAsJson, _ControlBlock):
         return cls(**values)
 
     def _bench_engine(self):
-        """The C++ engine ``bench.run`` runs in its C++ loop (None: step it from Python)."""
-        return self._engine
+        """The C++ object ``bench.run`` runs in its C++ loop (None: step it from Python)."""
+        return self
 
 
 class Feedforward(EngineCompensator):
@@ -158,7 +166,7 @@ class Feedforward(EngineCompensator):
 
     def reset(self) -> None:
         """Forget the streaming state (the desired-rate history and the last command)."""
-        self._engine.reset()
+        self._bound_class.reset(self)
 
     def step(self, y_d: float, dt: float) -> float:
         """One control cycle (real-time core, no allocation).
@@ -176,7 +184,7 @@ class Feedforward(EngineCompensator):
             The motor command.
         """
         dt = checked_dt(dt)
-        return self._engine.step(float(y_d), float(dt))
+        return self._bound_class.step(self, float(y_d), float(dt))
 
     def command(self, t: ArrayLike, y_desired: ArrayLike, status: bool = False) -> SimulationResult:
         """Motor commands for a whole trajectory, with each cycle's :class:`Status` flags
@@ -204,7 +212,7 @@ class Feedforward(EngineCompensator):
             t missing, or samples not finite or of different lengths.
         """
         ts, ys = as_timed_signal(t, y_desired, "y_desired", f"{type(self).__name__}.command")
-        out = self._engine.command(ts, ys, True)
+        out = self._bound_class.command(self, ts, ys, True)
         return command_result(f"{type(self).__name__}.command", ts, ys, out, status)
 
 

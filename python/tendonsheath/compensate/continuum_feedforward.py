@@ -39,7 +39,7 @@ def _numbers(arguments: dict) -> dict:
     return {k: v for k, v in arguments.items() if k not in ("self", "mode", "limits", "who")}
 
 
-class ContinuumFeedforward(Feedforward):
+class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ignore[misc]
     """Desired bending angle (rad) in, motor angle (rad) out: X_in = X_d + delta_ts + delta_F.
 
     ``mode="published"`` implements Lau et al.'s equations as printed (effective backlash
@@ -140,7 +140,7 @@ class ContinuumFeedforward(Feedforward):
         p.limits = self._settings["limits"].to_core()
         self.mode = mode
         with core_errors_as(who):
-            self._engine = core.ContinuumFeedforward(p)
+            core.ContinuumFeedforward.__init__(self, p)
         warn_if_curve_angle_in_degrees(self._settings["curve_angle"], who)
 
     @classmethod
@@ -225,7 +225,7 @@ class ContinuumFeedforward(Feedforward):
         float
             F (N).
         """
-        return self._engine.bending_force(float(theta_d))
+        return core.ContinuumFeedforward.bending_force(self, float(theta_d))
 
 
 __all__ = ["ContinuumFeedforward", "RENAMED"]

@@ -21,7 +21,7 @@ from .base import SavedAsJson
 from .inverse_feedforward import InverseFeedforward
 
 
-class CoupledFeedforward(PythonObject, SavedAsJson):
+class CoupledFeedforward(PythonObject, SavedAsJson, core.CoupledFeedforward):  # type: ignore[misc]
     """Motor commands that make a :class:`~tendonsheath.models.Coupled` model's joints follow
     their desired angles.
 
@@ -54,6 +54,8 @@ class CoupledFeedforward(PythonObject, SavedAsJson):
 
     # the keys of a saved file (to_json): the Coupled model whole and the joints' settings,
     # defaults resolved; tendonsheath/io/json_multi_input.hpp reads it
+    # the joints' inverses (the C++ class's joints() counts them)
+    joints: list[InverseFeedforward]  # type: ignore[assignment]
     _saved_settings = ("model", "smoothing", "limits", "input_range", "range_margin", "filter_hz")
     # absent input_range: each joint's own model's range (InverseFeedforward's "identified")
     _optional_settings = ("input_range",)
@@ -66,13 +68,11 @@ class CoupledFeedforward(PythonObject, SavedAsJson):
             )
         self.model = model
         self.settings = dict(settings)
-        # each joint's inverse, as built from its model and the settings (the engine steps
-        # copies of their engines)
+        # each joint's inverse, as built from its model and the settings (the C++ object
+        # steps copies of them)
         self.joints = [InverseFeedforward(m, **settings) for m in model.models]
         self._coupling = model.coupling
-        self._engine = core.CoupledFeedforward(
-            [ff._engine for ff in self.joints], self._coupling.ravel().tolist()
-        )
+        core.CoupledFeedforward.__init__(self, self.joints, self._coupling.ravel().tolist())
 
     def _recipe(self):
         # pickled as its model and settings: an equal compensator at rest (tendonsheath._pyobject)
@@ -96,7 +96,7 @@ class CoupledFeedforward(PythonObject, SavedAsJson):
 
     def reset(self) -> None:
         """Every joint's inverse back to its initial state."""
-        self._engine.reset()
+        core.CoupledFeedforward.reset(self)
 
     def step(self, y_d: ArrayLike, dt: float) -> FloatArray:
         """One control cycle: one command per joint.
@@ -125,7 +125,7 @@ class CoupledFeedforward(PythonObject, SavedAsJson):
                 f"CoupledFeedforward.step: y_d must hold {len(self.joints)} angles, one per "
                 f"joint (got {yd.size})"
             )
-        return self._engine.step(yd, dt)
+        return core.CoupledFeedforward.step(self, yd, dt)
 
     def status(self) -> Status:
         """The last cycle's :class:`~tendonsheath.Status`, all joints' flags together.
@@ -135,7 +135,7 @@ class CoupledFeedforward(PythonObject, SavedAsJson):
         Status
             The union of the joints' flags.
         """
-        return Status(self._engine.status())
+        return Status(core.CoupledFeedforward.status(self))
 
     def command(self, t: ArrayLike, y_desired: ArrayLike) -> FloatArray:
         """Motor commands for whole trajectories, from the initial state (the streaming
@@ -160,7 +160,7 @@ class CoupledFeedforward(PythonObject, SavedAsJson):
         """
         yd = _joint_matrix(y_desired, len(self.joints), "y_desired", "CoupledFeedforward.command")
         ts = np.ascontiguousarray(as_vector(t, "t"))
-        return self._engine.command(ts, yd)
+        return core.CoupledFeedforward.command(self, ts, yd)
 
     # -- persistence -----------------------------------------------------------------
     def to_dict(self) -> dict:

@@ -11,6 +11,7 @@ import numpy as np
 from .._angles import checked_curve_angle, warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, core_errors_as, number
 from .._arrays import as_signal, as_timed_signal, checked_dt
+from .._pyobject import bound_attribute
 from .._typing import ArrayLike
 from ..plant.physics import route_shape as shape_of
 from ..simulation_result import SimulationResult
@@ -23,7 +24,7 @@ if TYPE_CHECKING:
     from ..plant.route import Route
 
 
-class CurveAngleFeedforward(Feedforward):
+class CurveAngleFeedforward(Feedforward, core.CurveAngleFeedforward):  # type: ignore[misc]
     """x_in = r_d y_d + phi Delta_fwd + (1 - phi) Delta_bwd, re-evaluated every cycle.
 
     Delta_fwd/bwd are the full-slip elongations of the pulled tendon (spec A5/A6) for the
@@ -125,7 +126,8 @@ class CurveAngleFeedforward(Feedforward):
         }
         self._settings = {k: number(who, k, v) for k, v in values.items()}
         self._settings["limits"] = as_limits(limits)
-        self._engine = _engine(who, self._settings)
+        with core_errors_as(who):
+            core.CurveAngleFeedforward.__init__(self, _params(who, self._settings))
         warn_if_curve_angle_in_degrees(self._settings["curve_angle"], who)
 
     @classmethod
@@ -192,7 +194,7 @@ class CurveAngleFeedforward(Feedforward):
     @property
     def friction(self) -> float:
         """Friction coefficient mu."""
-        return self._engine.params.friction
+        return bound_attribute(self, "params").friction
 
     @accepts_old_names("CurveAngleFeedforward.set_curve_angle", {"total_angle": "curve_angle"})
     def set_curve_angle(self, curve_angle: float) -> None:
@@ -211,8 +213,8 @@ class CurveAngleFeedforward(Feedforward):
             reports ``input_clamped``; the Python call says so instead).
         """
         who = "CurveAngleFeedforward.set_curve_angle"
-        self._engine.set_curve_angle(
-            checked_curve_angle(who, number(who, "curve_angle", curve_angle))
+        core.CurveAngleFeedforward.set_curve_angle(
+            self, checked_curve_angle(who, number(who, "curve_angle", curve_angle))
         )
 
     def set_route(self, route: Route) -> None:
@@ -230,7 +232,7 @@ class CurveAngleFeedforward(Feedforward):
         """
         if not (hasattr(route, "s") and hasattr(route, "theta")):
             raise TypeError(f"set_route needs a Route (got {route!r})")
-        self._engine.set_shape(shape_of(route, self.friction))
+        core.CurveAngleFeedforward.set_shape(self, shape_of(route, self.friction))
 
     def step(
         self, y_d: float, dt: float, curve_angle: float | None = None, route: Route | None = None
@@ -258,7 +260,7 @@ class CurveAngleFeedforward(Feedforward):
             self.set_route(route)
         elif curve_angle is not None:
             self.set_curve_angle(curve_angle)
-        return self._engine.step(float(y_d), float(dt))
+        return core.CurveAngleFeedforward.step(self, float(y_d), float(dt))
 
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], dt, curve_angle=u[1])
@@ -307,7 +309,7 @@ class CurveAngleFeedforward(Feedforward):
             g = np.array([s.g for s in shapes])
             G = np.array([s.G for s in shapes])
             theta = np.array([s.curve_angle for s in shapes])
-            out = self._engine.command(ts, ys, g, G, theta, True)
+            out = core.CurveAngleFeedforward.command(self, ts, ys, g, G, theta, True)
             return command_result(who, ts, ys, out, status)
         if curve_angle is not None:
             theta = np.broadcast_to(np.asarray(curve_angle, dtype=np.float64), ys.shape)
@@ -317,9 +319,9 @@ class CurveAngleFeedforward(Feedforward):
                 raise ValueError(
                     f"CurveAngleFeedforward.command: curve_angle must be >= 0 (got {bad:g})"
                 )
-            out = self._engine.command(ts, ys, None, None, theta, True)
+            out = core.CurveAngleFeedforward.command(self, ts, ys, None, None, theta, True)
             return command_result(who, ts, ys, out, status)
-        out = self._engine.command(ts, ys, None, None, None, True)
+        out = core.CurveAngleFeedforward.command(self, ts, ys, None, None, None, True)
         return command_result(who, ts, ys, out, status)
 
 
@@ -331,7 +333,8 @@ def _from_compliance(compliance) -> dict[str, float]:
     return {"stiffness": 1.0 / compliance, "length": 1.0}
 
 
-def _engine(who: str, v: dict):
+def _params(who: str, v: dict):
+    """The C++ parameter struct of these settings (stiffness and length checked first)."""
     for name in ("stiffness", "length"):
         if not v[name] > 0:
             raise ValueError(f"{who}: {name} must be > 0 (got {v[name]:g})")
@@ -343,8 +346,7 @@ def _engine(who: str, v: dict):
     p.curve_angle, p.smoothing, p.play = v["curve_angle"], v["smoothing"], v["play"]
     p.max_correction_rate = v["max_correction_rate"]
     p.limits = v["limits"].to_core()
-    with core_errors_as(who):
-        return core.CurveAngleFeedforward(p)
+    return p
 
 
 __all__ = ["CurveAngleFeedforward"]

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 from .._args import core_errors_as, number
 from .._arrays import checked_dt
+from .._pyobject import bound_attribute
 from ..protocols import step_signals
 from . import _bound as core
 from .around import AroundFeedforward
@@ -19,7 +20,7 @@ if TYPE_CHECKING:
 _GAINS = ("kp", "ki", "kd", "derivative_cutoff_hz", "max_correction")
 
 
-class EncoderLoop(AroundFeedforward):
+class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
     """A feedforward's command made real by a PI(D) loop on the motor encoder.
 
     A feedforward computes the motor angle x_ff its model says gives the desired output. A
@@ -97,7 +98,7 @@ class EncoderLoop(AroundFeedforward):
         self.limits = as_limits(limits)
         p.limits = self.limits.to_core()
         with core_errors_as(who):
-            self._engine = core.EncoderLoop(p)
+            core.EncoderLoop.__init__(self, p)
         self.feedforward = feedforward
         self.design: EncoderLoopDesign | None = None
         self._settings = {**{k: getattr(p, k) for k in _GAINS}, "limits": self.limits}
@@ -153,7 +154,7 @@ class EncoderLoop(AroundFeedforward):
     def reset(self) -> None:
         """Forget the feedforward's and the loop's state."""
         self.feedforward.reset()
-        self._engine.reset()
+        core.EncoderLoop.reset(self)
 
     def step(self, y_d: float, q: float, dt: float) -> float:
         """One control cycle: the servo command.
@@ -174,12 +175,12 @@ class EncoderLoop(AroundFeedforward):
         """
         dt = checked_dt(dt)
         x = float(self.feedforward.step(float(y_d), dt))
-        return self._engine.correct(x, float(q), dt)
+        return self.correct(x, float(q), dt)
 
     @property
-    def correction(self) -> float:
+    def correction(self) -> float:  # type: ignore[override]
         """The correction added to the feedforward's last command (rad)."""
-        return self._engine.correction()
+        return core.EncoderLoop.correction(self)
 
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], u[1], dt)
@@ -187,7 +188,7 @@ class EncoderLoop(AroundFeedforward):
     # -- the bench and persistence ------------------------------------------------------
     def _outer_loop(self):
         """(the C++ loop, the feedforward) for bench.run's C++ loops."""
-        return core.EncoderLoop(self._engine.params), self.feedforward
+        return core.EncoderLoop(bound_attribute(self, "params")), self.feedforward
 
     def _bench_engine(self):
         return None  # bench.run takes the loop apart (_outer_loop)

@@ -27,7 +27,7 @@ if TYPE_CHECKING:
 RangeLike = str | tuple[float, float] | list[float] | None
 
 
-class InverseFeedforward(Feedforward):
+class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
     """Motor command that makes `model` produce the desired output, with no distal sensor.
 
     Every model class :func:`~tendonsheath.identify` and ``compare_models`` return has a
@@ -93,6 +93,9 @@ class InverseFeedforward(Feedforward):
         core rejects.
     """
 
+    # whether the model's law depends on the route: a bool here, where the C++ class has a
+    # method of that name
+    follows_route: bool  # type: ignore[assignment]
     _saved_settings = (
         "model",
         "smoothing",
@@ -132,7 +135,7 @@ class InverseFeedforward(Feedforward):
             "filter_hz": self.filter_hz,
         }
         with core_errors_as("InverseFeedforward"):
-            self._engine = core.ModelInverse(describe(model), self._core_settings())
+            core.ModelInverse.__init__(self, describe(model), self._core_settings())
         self.follows_route = follows_route(model)
         if self.follows_route:
             self.control_inputs = ("y_d", "curve_angle")
@@ -163,7 +166,7 @@ class InverseFeedforward(Feedforward):
         return (lo - m, hi + m)
 
     @property
-    def friction(self) -> float | None:
+    def friction(self) -> float | None:  # type: ignore[override]
         """The friction coefficient of the route's shape integrals (a CurveAngleModel's
         friction, an AngleDependent's angle_friction, 0 without a tanh law); None when the
         inverse does not follow the route."""
@@ -195,8 +198,8 @@ class InverseFeedforward(Feedforward):
             A curve angle that is not finite or negative (the C++ core would ignore it).
         """
         who = "InverseFeedforward.set_curve_angle"
-        self._engine.set_curve_angle(
-            checked_curve_angle(who, number(who, "curve_angle", curve_angle))
+        core.ModelInverse.set_curve_angle(
+            self, checked_curve_angle(who, number(who, "curve_angle", curve_angle))
         )
 
     def set_shape(self, shape: Any) -> None:
@@ -208,7 +211,7 @@ class InverseFeedforward(Feedforward):
         shape : ShapeIntegrals
             g, G (computed with :attr:`friction`) and the total angle.
         """
-        self._engine.set_shape(shape)
+        core.ModelInverse.set_shape(self, shape)
 
     def set_route(self, route: Route) -> None:
         """Any route: its shape integrals with :attr:`friction` (see :meth:`set_shape`).
@@ -226,7 +229,7 @@ class InverseFeedforward(Feedforward):
         if not (hasattr(route, "s") and hasattr(route, "theta")):
             raise TypeError(f"set_route needs a Route (got {route!r})")
         if self.follows_route:
-            self._engine.set_shape(shape_of(route, self.friction or 0.0))
+            core.ModelInverse.set_shape(self, shape_of(route, self.friction or 0.0))
 
     def step(
         self, y_d: float, dt: float, curve_angle: float | None = None, route: Route | None = None
@@ -255,14 +258,14 @@ class InverseFeedforward(Feedforward):
             self.set_route(route)
         elif curve_angle is not None:
             self.set_curve_angle(curve_angle)
-        return self._engine.step(float(y_d), float(dt))
+        return core.ModelInverse.step(self, float(y_d), float(dt))
 
     def _control_step(self, u, dt: float) -> float:
         if self.follows_route:
             return self.step(u[0], dt, curve_angle=u[1])
         return self.step(u[0], dt)
 
-    def command(
+    def command(  # type: ignore[override]
         self,
         t: ArrayLike,
         y_desired: ArrayLike,
@@ -302,7 +305,7 @@ class InverseFeedforward(Feedforward):
         """
         ts, ys = as_timed_signal(t, y_desired, "y_desired", "InverseFeedforward.command")
         g, G, theta = self._route_samples(ts, ys, curve_angle, routes)
-        out = self._engine.command(ts, ys, g, G, theta, True)
+        out = core.ModelInverse.command(self, ts, ys, g, G, theta, True)
         return command_result("InverseFeedforward.command", ts, ys, out, status)
 
     def _route_samples(self, ts, ys, curve_angle, routes):

@@ -95,7 +95,7 @@ def part(model: HysteresisModel) -> Any:
 
 
 def _struct_part(p, model) -> None:
-    setattr(p, _STRUCT_MEMBERS[type(model).__name__], model._engine.params)
+    setattr(p, _STRUCT_MEMBERS[type(model).__name__], model.params_struct())
 
 
 def _plant_part(p, model: PlantModel) -> None:
@@ -135,7 +135,7 @@ def _angle_part(p, model: AngleDependent) -> None:
     p.base = base
     p.laws = laws
     theta0 = math.pi if "tanh" in params["laws"].values() else 0.0
-    setattr(p, _STRUCT_MEMBERS[base], model.at(theta0)._engine.params)
+    setattr(p, _STRUCT_MEMBERS[base], model.at(theta0).params_struct())
 
 
 _BUILDERS: dict[type, Callable[[Any, Any], None]] = {

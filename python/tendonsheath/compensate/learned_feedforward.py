@@ -8,6 +8,7 @@ import numpy as np
 
 from .._args import core_errors_as, number, number_array
 from .._arrays import as_timed_signal, checked_dt
+from .._pyobject import bound_attribute
 from .._typing import ArrayLike, FloatArray
 from ..simulation_result import SimulationResult
 from . import _bound as core
@@ -16,7 +17,7 @@ from .base import command_result
 from .limits import LimitsLike, as_limits
 
 
-class LearnedFeedforward(AroundFeedforward):
+class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ignore[misc]
     """A feedforward's command plus a correction learned over repeated trials, played in time.
 
     Iterative learning (:class:`~tendonsheath.compensate.IterativeLearning`) learns, from the tip
@@ -90,7 +91,7 @@ class LearnedFeedforward(AroundFeedforward):
         self.limits = as_limits(limits)
         p.limits = self.limits.to_core()
         with core_errors_as(who):
-            self._engine = core.LearnedCorrection(values.tolist(), p)
+            core.LearnedCorrection.__init__(self, values.tolist(), p)
         self.feedforward = feedforward
         self._settings = {
             "table": values.tolist(),
@@ -120,7 +121,7 @@ class LearnedFeedforward(AroundFeedforward):
     def reset(self) -> None:
         """Forget the feedforward's state; the table's time back to 0."""
         self.feedforward.reset()
-        self._engine.reset()
+        core.LearnedCorrection.reset(self)
 
     def step(self, y_d: float, dt: float) -> float:
         """One control cycle: the feedforward's command plus the table at the time since reset.
@@ -139,7 +140,7 @@ class LearnedFeedforward(AroundFeedforward):
         """
         dt = checked_dt(dt)
         x = float(self.feedforward.step(float(y_d), dt))
-        return self._engine.correct(x, dt)
+        return self.correct(x, dt)
 
     def command(self, t: ArrayLike, y_desired: ArrayLike, status: bool = False) -> SimulationResult:
         """Corrected commands for a whole trajectory, from the initial state (the streaming
@@ -174,14 +175,14 @@ class LearnedFeedforward(AroundFeedforward):
             )
         ts, ys = as_timed_signal(t, y_desired, "y_desired", "LearnedFeedforward.command")
         x = inner(ts, ys)
-        u, flags = self._engine.play(ts, np.ascontiguousarray(x, dtype=np.float64))
+        u, flags = self.play(ts, np.ascontiguousarray(x, dtype=np.float64))
         inner_flags = getattr(x, "status", None)
         if inner_flags is not None:
             flags = (flags | np.asarray(inner_flags, dtype=np.uint8)).astype(np.uint8)
         return command_result("LearnedFeedforward.command", ts, ys, (u, flags), status)
 
     @property
-    def table(self) -> FloatArray:
+    def table(self) -> FloatArray:  # type: ignore[override]
         """The correction table (a copy)."""
         return np.array(self._settings["table"], dtype=np.float64)
 
@@ -196,16 +197,16 @@ class LearnedFeedforward(AroundFeedforward):
         return bool(self._settings["hold_last"])
 
     @property
-    def correction(self) -> float:
+    def correction(self) -> float:  # type: ignore[override]
         """The correction added in the last step."""
-        return self._engine.correction()
+        return core.LearnedCorrection.correction(self)
 
     @property
-    def time(self) -> float:
+    def time(self) -> float:  # type: ignore[override]
         """The time since reset (s) the table was read at in the last step."""
-        return self._engine.time()
+        return core.LearnedCorrection.time(self)
 
-    def at(self, t: ArrayLike) -> FloatArray:
+    def at(self, t: ArrayLike) -> FloatArray:  # type: ignore[override]
         """The table interpolated at times ``t`` (s; past the end the last sample or 0).
 
         Parameters
@@ -219,7 +220,9 @@ class LearnedFeedforward(AroundFeedforward):
             The corrections.
         """
         times = np.asarray(t, dtype=np.float64)
-        return np.array([self._engine.at(float(v)) for v in times.ravel()]).reshape(times.shape)
+        return np.array([core.LearnedCorrection.at(self, float(v)) for v in times.ravel()]).reshape(
+            times.shape
+        )
 
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], dt)
@@ -235,7 +238,7 @@ class LearnedFeedforward(AroundFeedforward):
     def _learned_correction(self):
         """(the C++ table player, the feedforward) for bench.run's C++ loops."""
         return core.LearnedCorrection(
-            self._settings["table"], self._engine.params
+            self._settings["table"], bound_attribute(self, "params")
         ), self.feedforward
 
     def _bench_engine(self):

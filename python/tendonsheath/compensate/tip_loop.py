@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from .._args import core_errors_as, number
 from .._arrays import checked_dt
+from .._pyobject import bound_attribute
 from ..protocols import step_signals
 from . import _bound as core
 from .around import AroundFeedforward, follows_route
@@ -61,7 +62,7 @@ def _schedule(who: str, schedule: Any) -> Schedule:
     return pairs
 
 
-class TipLoop(AroundFeedforward):
+class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
     """A feedforward's command corrected by a PI(D) loop on the measured tip angle.
 
     A feedforward computes the motor command x_ff its model says gives the desired output
@@ -145,7 +146,7 @@ class TipLoop(AroundFeedforward):
         p.limits = self.limits.to_core()
         with core_errors_as(who):
             p.set_schedule([a for a, _ in pairs], [g for _, g in pairs])
-            self._engine = core.TipLoop(p)
+            core.TipLoop.__init__(self, p)
         self.feedforward = feedforward
         self.design: Any = None
         self._settings = {
@@ -288,7 +289,7 @@ class TipLoop(AroundFeedforward):
     def reset(self) -> None:
         """Forget the feedforward's and the loop's state (the curve angle is kept)."""
         self.feedforward.reset()
-        self._engine.reset()
+        core.TipLoop.reset(self)
 
     def step(self, y_d: float, y: float, dt: float) -> float:
         """One control cycle: the servo command.
@@ -310,17 +311,17 @@ class TipLoop(AroundFeedforward):
         dt = checked_dt(dt)
         y_d = float(y_d)
         x = float(self.feedforward.step(y_d, dt))
-        return self._engine.correct(x, y_d, float(y), dt)
+        return self.correct(x, y_d, float(y), dt)
 
     @property
-    def correction(self) -> float:
+    def correction(self) -> float:  # type: ignore[override]
         """The correction added to the feedforward's last command (rad)."""
-        return self._engine.correction()
+        return core.TipLoop.correction(self)
 
     @property
-    def gain_scale(self) -> float:
+    def gain_scale(self) -> float:  # type: ignore[override]
         """The gain schedule's factor at the curve angle now (1 with no schedule)."""
-        return self._engine.gain_scale()
+        return core.TipLoop.gain_scale(self)
 
     @property
     def schedule(self) -> Schedule:
@@ -362,7 +363,7 @@ class TipLoop(AroundFeedforward):
             self.feedforward.set_route(route)
         self._set_angle(route.curve_angle)
 
-    def set_curve_angle(self, curve_angle: float) -> None:
+    def set_curve_angle(self, curve_angle: float) -> None:  # type: ignore[override]
         """Tell the feedforward the curve angle (when it follows the route) and the gain
         schedule.
 
@@ -393,13 +394,13 @@ class TipLoop(AroundFeedforward):
     def _set_angle(self, angle: float) -> None:
         angle = float(angle)
         self._check_angle(angle)
-        self._engine.set_curve_angle(angle)
+        core.TipLoop.set_curve_angle(self, angle)
 
     # -- the bench and persistence ------------------------------------------------------
     def _outer_loop(self):
         """(the C++ loop, the feedforward) for bench.run's C++ loops."""
-        loop = core.TipLoop(self._engine.params)
-        loop.set_curve_angle(self._engine.curve_angle())
+        loop = core.TipLoop(bound_attribute(self, "params"))
+        loop.set_curve_angle(self.curve_angle())
         return loop, self.feedforward
 
     def _bench_engine(self):

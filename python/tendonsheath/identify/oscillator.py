@@ -387,10 +387,9 @@ def _simulation_problem(recs, per, warmup, start, free_names, se_bounds, options
     )
     if mode != "bandlimited":
         return problem, f"input reconstruction {mode}", None
-    engine = HystereticOscillator(**start, **options)._engine
-    fine = 2 * max(
-        int(options["substeps"]), max(int(engine.substeps(float(r.t[1] - r.t[0]))) for r in recs)
-    )
+    model = HystereticOscillator(**start, **options)
+    steps = (model.substeps(float(r.t[1] - r.t[0])) for r in recs)
+    fine = 2 * max(int(options["substeps"]), max(int(n) for n in steps))
     grids = [
         fft_upsample(r.x, fine)
         if p
@@ -529,7 +528,7 @@ def _jacobian(problem, space, recs, dense):
     def sensitivities(u):
         v = space.natural(u)
         try:
-            params = problem.model(v)._engine.params
+            params = problem.model(v).params_struct()
         except ValueError:
             return differences(u)
         S = np.vstack(

@@ -97,7 +97,7 @@ class Space:
 
 def _base_struct(model_class, options: dict, values: dict | None = None):
     """The C++ parameter struct holding the model's numerical options."""
-    return model_class(**(values or {}), **options)._engine.params
+    return model_class(**(values or {}), **options).params_struct()
 
 
 #: options that the global search may only coarsen (it needs the basin, not the last digit)

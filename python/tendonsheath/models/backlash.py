@@ -6,7 +6,7 @@ from . import _bound as core
 from .base import HysteresisModel
 
 
-class Backlash(HysteresisModel):
+class Backlash(HysteresisModel, core.Backlash):  # type: ignore[misc]
     """Exact piecewise backlash: y = c_r (x - B_r) rising, y = c_l (x + B_l) falling, held between.
 
     Starts in the middle of the band at the first sample. Rate-independent.
@@ -19,7 +19,6 @@ class Backlash(HysteresisModel):
         Half-widths of the band on the rising and falling side (input unit), >= 0.
     """
 
-    _core = core.Backlash
     _core_params = core.BacklashParams
     param_names = ("c_r", "c_l", "B_r", "B_l")
 

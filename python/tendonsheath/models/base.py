@@ -18,7 +18,7 @@ from .._args import core_errors_as, is_format_version, renamed, warn_status_swit
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import naming_the_file, read_json_source
-from .._pyobject import PythonObject
+from .._pyobject import PythonObject, bound_attribute, bound_base
 from .._typing import ArrayLike
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
@@ -75,11 +75,14 @@ def _returning_result(simulate: _F) -> _F:
 
 
 class HysteresisModel(PythonObject, _ControlBlock):
-    """A single-input single-output model backed by a real-time C++ core object.
+    """A single-input single-output model; most are a real-time C++ class.
 
-    Subclasses declare ``_core`` (the C++ class), ``_core_params`` (its parameter
-    struct) and ``param_names`` (the identifiable parameters, in order), and may
-    list ``option_names`` (numerical settings that are not identified).
+    A model with a C++ core subclasses the bound class too (``class Backlash(HysteresisModel,
+    core.Backlash)``): the model *is* the C++ object, so it goes to the core's functions as it
+    is. Subclasses declare ``_core_params`` (the C++ parameter struct) and ``param_names`` (the
+    identifiable parameters, in order), and may list ``option_names`` (numerical settings that
+    are not identified). A model without one (a chain, a linear block) overrides ``simulate``,
+    ``step`` and ``reset``.
 
     Parameters
     ----------
@@ -94,8 +97,8 @@ class HysteresisModel(PythonObject, _ControlBlock):
         message names the parameter).
     """
 
-    _core: ClassVar[Any]
     _core_params: ClassVar[Any]
+    _bound_class: ClassVar[Any] = None  # the bound C++ class this model is built on, if any
     param_names: ClassVar[tuple[str, ...]] = ()
     option_names: ClassVar[tuple[str, ...]] = ()
     rate_independent: bool = True  # per instance for Chain and Scaled (their parts decide)
@@ -119,6 +122,7 @@ class HysteresisModel(PythonObject, _ControlBlock):
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         _REGISTRY[cls.__name__] = cls
+        cls._bound_class = bound_base(cls)
         if "simulate" in vars(cls):  # every model's simulate returns a SimulationResult
             cls.simulate = _returning_result(cls.simulate)
         if "to_dict" in vars(cls):  # every model's file holds its input range
@@ -140,7 +144,7 @@ class HysteresisModel(PythonObject, _ControlBlock):
             except TypeError:
                 raise _field_error(type(self).__name__, key, value) from None
         with core_errors_as(type(self).__name__):  # the core names the parameter as Python does
-            self._engine = self._core(struct)
+            self._bound_class.__init__(self, struct)
 
     @classmethod
     def _core_values(cls, values: dict[str, Any]) -> dict[str, Any]:
@@ -152,14 +156,32 @@ class HysteresisModel(PythonObject, _ControlBlock):
     @property
     def params(self) -> dict[str, Any]:
         """The identifiable parameters, as a dict (a copy)."""
-        s = self._engine.params
+        s = self.params_struct()
         return {k: _plain(getattr(s, k)) for k in self.param_names}
 
     @property
     def options(self) -> dict[str, Any]:
         """The numerical options (not identified), as a dict (a copy)."""
-        s = self._engine.params
+        s = self.params_struct()
         return {k: _plain(getattr(s, k)) for k in self.option_names}
+
+    def params_struct(self) -> Any:
+        """The parameters and options as the C++ core holds them (its ``*Params`` struct, a
+        copy), for the core's own functions.
+
+        Returns
+        -------
+        object
+            The bound parameter struct, e.g. :class:`~tendonsheath._core.BacklashParams`.
+
+        Raises
+        ------
+        TypeError
+            A model without a C++ core (a chain, a linear block).
+        """
+        if self._bound_class is None:
+            raise TypeError(f"{type(self).__name__} has no C++ core and no parameter struct")
+        return bound_attribute(self, "params")
 
     def with_params(self, **changes: Any) -> Self:
         """A new model with some parameters changed (options kept).
@@ -210,7 +232,7 @@ class HysteresisModel(PythonObject, _ControlBlock):
         if t is None and not self.rate_independent:
             raise ValueError(f"{type(self).__name__} is rate-dependent: t is required")
         ts, xs = as_time_and_signal(t, x)
-        return self._engine.simulate(ts, xs, True)
+        return self._bound_class.simulate(self, ts, xs, True)
 
     def reset(self) -> None:
         """Forget the streaming state; the next step() starts afresh.
@@ -219,7 +241,7 @@ class HysteresisModel(PythonObject, _ControlBlock):
         -------
         None
         """
-        self._engine.reset()
+        self._bound_class.reset(self)
 
     def step(self, x: float, dt: float = 0.0) -> float:
         """Advance one sample (streaming).
@@ -237,7 +259,7 @@ class HysteresisModel(PythonObject, _ControlBlock):
             The output sample.
         """
         dt = checked_dt(dt)
-        return self._engine.step(float(x), float(dt))
+        return self._bound_class.step(self, float(x), float(dt))
 
     def status(self) -> Status:
         """The last step's :class:`~tendonsheath.Status` (held input, clamped, ...).
@@ -254,7 +276,7 @@ class HysteresisModel(PythonObject, _ControlBlock):
         """
         if not self.reports_status:
             raise TypeError(f"{type(self).__name__} has no real-time core and reports no status")
-        return Status(self._engine.status())
+        return Status(self._bound_class.status(self))
 
     # -- persistence -----------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:

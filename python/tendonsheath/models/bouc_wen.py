@@ -10,7 +10,7 @@ from .base import HysteresisModel
 _RENAMED = {"a": "alpha"}
 
 
-class BoucWen(HysteresisModel):
+class BoucWen(HysteresisModel, core.BoucWen):  # type: ignore[misc]
     """y = alpha x + (1 - alpha) k z with dz = A dx - beta |dx| |z|^(n-1) z - gamma dx |z|^n.
 
     Requires beta > 0 and |gamma| <= beta (bounded state, |z| <= (A/(beta+gamma))^(1/n)).
@@ -54,7 +54,6 @@ class BoucWen(HysteresisModel):
         Both ``alpha`` and ``a``, or a parameter the C++ core rejects.
     """
 
-    _core = core.BoucWen
     _core_params = core.BoucWenParams
     param_names = ("A", "beta", "gamma", "n", "alpha", "k")
     option_names = ("max_step", "max_substeps")

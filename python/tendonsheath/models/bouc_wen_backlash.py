@@ -9,7 +9,7 @@ from . import _bound as core
 from .base import HysteresisModel
 
 
-class BoucWenBacklash(HysteresisModel):
+class BoucWenBacklash(HysteresisModel, core.BoucWenBacklash):  # type: ignore[misc]
     """y = phi c_r (x - B_r) + (1 - phi) c_l (x + B_l), phi = (1 + w)/2, w in [-1, 1].
 
     dw = rho [dx - sigma |dx| |w|^(n-1) w + (sigma - 1) dx |w|^n]. ``rho`` defaults to
@@ -40,7 +40,6 @@ class BoucWenBacklash(HysteresisModel):
         rejects.
     """
 
-    _core = core.BoucWenBacklash
     _core_params = core.BoucWenBacklashParams
     param_names = ("c_r", "c_l", "B_r", "B_l", "rho", "sigma", "n")
     option_names = ("max_step", "max_substeps")

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-import copy
+from typing import Any
 
 import numpy as np
 
@@ -20,7 +20,7 @@ from .base import HysteresisModel
 _RENAMED = {"load": "load_force", "spring": "load_stiffness"}
 
 
-class CurveAngleModel(HysteresisModel):
+class CurveAngleModel(HysteresisModel, core.CurveAngleModel):  # type: ignore[misc]
     """Distal angle of a pull-pull TSM from the motor angle and the route's curve angle.
 
     Inputs: ``x`` the proximal (motor) angle in rad and ``curve_angle`` Theta in rad (a
@@ -78,7 +78,6 @@ class CurveAngleModel(HysteresisModel):
     factor and leaves the predictions unchanged.
     """
 
-    _core = core.CurveAngleModel
     _core_params = core.CurveAngleParams
     param_names = (
         "friction",
@@ -121,7 +120,7 @@ class CurveAngleModel(HysteresisModel):
             play=play,
         )
 
-    def simulate(  # curve_angle is its input
+    def simulate(  # type: ignore[override]  # curve_angle is its input
         self,
         t: ArrayLike | None,
         x: ArrayLike,
@@ -152,11 +151,12 @@ class CurveAngleModel(HysteresisModel):
         """
         ts, xs = as_time_and_signal(t, x)
         if isinstance(curve_angle, Route):
-            engine = copy.copy(self._engine)
+            engine = core.CurveAngleModel(self)  # a copy: this model's shape stays
             engine.set_shape(self.route_shape(curve_angle))
             return engine.simulate(ts, xs, None, True)
         theta = curve_angle_samples(curve_angle, xs.size, type(self).__name__)
-        return self._engine.simulate(ts, xs, theta, True)
+        out: Any = core.CurveAngleModel.simulate(self, ts, xs, theta, True)  # (output, flags)
+        return out
 
     def step(self, x: float, dt: float = 0.0, curve_angle: float | Route | None = None) -> float:
         """One sample; ``curve_angle`` may be omitted after the first call (the last is kept).
@@ -177,11 +177,11 @@ class CurveAngleModel(HysteresisModel):
         """
         dt = checked_dt(dt)
         if isinstance(curve_angle, Route):
-            self._engine.set_shape(self.route_shape(curve_angle))
+            self.set_shape(self.route_shape(curve_angle))
             curve_angle = None
         if curve_angle is None:
-            return self._engine.step(float(x), float(dt))
-        return self._engine.step(float(x), float(dt), float(curve_angle))
+            return core.CurveAngleModel.step(self, float(x), float(dt))
+        return core.CurveAngleModel.step(self, float(x), float(dt), float(curve_angle))
 
     def route_shape(self, route: Route) -> core.ShapeIntegrals:
         """The route's shape integrals g, G at this model's friction, and its curve angle
@@ -214,7 +214,7 @@ class CurveAngleModel(HysteresisModel):
     # closed-form terms, in the rotary units of the model (rad at the motor / at the joint),
     # from tendonsheath.plant.physics (the C++ closed forms that step() uses); curve_angle: a
     # number or an array, and |curve_angle| counts, as in step()
-    def backlash_half_width(self, curve_angle: ArrayLike | Route) -> FloatOrArray:
+    def backlash_half_width(self, curve_angle: ArrayLike | Route) -> FloatOrArray:  # type: ignore[override]
         """Half the dead-zone width at the motor, rad: e_b / r_p.
 
         Parameters
@@ -236,7 +236,7 @@ class CurveAngleModel(HysteresisModel):
         )
         return e_b / p["proximal_radius"]
 
-    def load_offset(self, curve_angle: ArrayLike | Route) -> FloatOrArray:
+    def load_offset(self, curve_angle: ArrayLike | Route) -> FloatOrArray:  # type: ignore[override]
         """Load offset at the motor, rad: e_L / r_p.
 
         Parameters
@@ -258,7 +258,7 @@ class CurveAngleModel(HysteresisModel):
         )
         return e_L / p["proximal_radius"]
 
-    def slope(self, curve_angle: ArrayLike | Route) -> FloatOrArray:
+    def slope(self, curve_angle: ArrayLike | Route) -> FloatOrArray:  # type: ignore[override]
         """Branch slope c of the linear displacements (dimensionless).
 
         Parameters

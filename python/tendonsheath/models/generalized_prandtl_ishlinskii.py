@@ -63,7 +63,7 @@ class _GeneralizedBase(HysteresisModel):
         """``envelope_range``: the envelopes' tanh input range [lo, hi] (beyond it, their
         tangent lines); left out when there is none (the tanh everywhere: saved files stay
         as before)."""
-        env = self._engine.params.rising
+        env = self.params_struct().rising
         if not (np.isfinite(env.lo) and np.isfinite(env.hi)):
             return {}
         return {"envelope_range": [float(env.lo), float(env.hi)]}
@@ -71,7 +71,7 @@ class _GeneralizedBase(HysteresisModel):
     @property
     def params(self) -> dict[str, Any]:
         """The flat envelope coefficients, thresholds and weights, as a dict (a copy)."""
-        s = self._engine.params
+        s = self.params_struct()
         out = {
             f"{side}_{k}": getattr(getattr(s, side), k)
             for side in ("rising", "falling")
@@ -138,7 +138,7 @@ def _checked_range(who: str, value: Sequence[float] | None) -> list[float] | Non
     return [lo, hi]
 
 
-class GeneralizedPrandtlIshlinskii(_GeneralizedBase):
+class GeneralizedPrandtlIshlinskii(_GeneralizedBase, core.GeneralizedPrandtlIshlinskii):  # type: ignore[misc]
     """Plays bounded by saturating envelopes gamma(x) = a tanh(b (x - c)) + d, one for rising
     and one for falling input; the threshold-0 play is the centre line between them. Beyond
     ``envelope_range`` (the training inputs' range, once identified) the envelopes follow their
@@ -174,7 +174,6 @@ class GeneralizedPrandtlIshlinskii(_GeneralizedBase):
         rejects.
     """
 
-    _core = core.GeneralizedPrandtlIshlinskii
     _core_params = core.GeneralizedPrandtlIshlinskiiParams
 
     def inverse(self) -> GeneralizedPrandtlIshlinskiiInverse:
@@ -188,7 +187,9 @@ class GeneralizedPrandtlIshlinskii(_GeneralizedBase):
         return GeneralizedPrandtlIshlinskiiInverse(**self.params)
 
 
-class GeneralizedPrandtlIshlinskiiInverse(_GeneralizedBase):
+class GeneralizedPrandtlIshlinskiiInverse(  # type: ignore[misc]
+    _GeneralizedBase, core.GeneralizedPrandtlIshlinskiiInverse
+):
     """Inverse of :class:`GeneralizedPrandtlIshlinskii`: solves the monotone loading curve of
     the current play states each step (bounded bisection), clipped to the reachable range.
 
@@ -217,7 +218,6 @@ class GeneralizedPrandtlIshlinskiiInverse(_GeneralizedBase):
         rejects.
     """
 
-    _core = core.GeneralizedPrandtlIshlinskiiInverse
     _core_params = core.GeneralizedPrandtlIshlinskiiParams
 
     def inverse(self) -> GeneralizedPrandtlIshlinskii:

@@ -24,7 +24,7 @@ class UnboundedStateWarning(UserWarning):
     hysteretic force z of a HystereticOscillator stays bounded."""
 
 
-class HystereticOscillator(HysteresisModel):
+class HystereticOscillator(HysteresisModel, core.HystereticOscillator):  # type: ignore[misc]
     """Bouc-Wen oscillator: m y'' + c y' + k y + z = u, with the hysteretic force z:
 
     z' = alpha y' - beta (gamma |y'| |z|^(nu-1) z + delta y' |z|^nu).
@@ -80,11 +80,10 @@ class HystereticOscillator(HysteresisModel):
         An unknown input_interpolation or a parameter the C++ core rejects.
     """
 
-    _core = core.HystereticOscillator
     _core_params = core.HystereticOscillatorParams
     param_names = ("m", "c", "k", "alpha", "beta", "gamma", "delta", "nu")
     option_names = ("substeps", "max_substeps", "input_interpolation", "lookahead")
-    rate_independent = False
+    rate_independent = False  # type: ignore[misc]
 
     def __init__(
         self,
@@ -131,7 +130,7 @@ class HystereticOscillator(HysteresisModel):
     @property
     def options(self) -> dict[str, Any]:
         """substeps, max_substeps, input_interpolation and lookahead, as a dict (a copy)."""
-        s = self._engine.params
+        s = self.params_struct()
         mode = {v: k for k, v in _CODES.items()}[s.input_interpolation]
         return {
             "substeps": s.substeps,
@@ -146,10 +145,10 @@ class HystereticOscillator(HysteresisModel):
         return self.options["input_interpolation"]
 
     @property
-    def delay(self) -> int:
+    def delay(self) -> int:  # type: ignore[override]
         """Samples by which :meth:`step`'s output lags its input (``lookahead - 1`` when
         band-limited, else 0). :meth:`simulate` compensates it."""
-        return int(self._engine.delay())
+        return int(core.HystereticOscillator.delay(self))
 
     def z_bound(self, displacement_range: float) -> float:
         """A bound on |z| while the displacement stays within an interval of that width: the
@@ -167,7 +166,7 @@ class HystereticOscillator(HysteresisModel):
         float
             The bound on |z| (force unit), or ``inf``.
         """
-        return float(self._engine.z_bound(float(displacement_range)))
+        return float(core.HystereticOscillator.z_bound(self, float(displacement_range)))
 
     def simulate(  # periodic is its own
         self, t: ArrayLike | None, x: ArrayLike, periodic: bool | None = None
@@ -207,19 +206,21 @@ class HystereticOscillator(HysteresisModel):
             raise ValueError("HystereticOscillator is rate-dependent: t is required")
         ts, xs = as_time_and_signal(t, x)
         assert ts is not None  # t was given
+        y: Any  # the core's output, or (output, flags)
         try:
             if self.input_interpolation == "bandlimited" and xs.size > 1:
                 dt = uniform_step(ts, "HystereticOscillator (bandlimited input)")
                 if periodic is None:
                     periodic = is_periodic(xs)
                 if periodic:
-                    fine = 2 * int(self._engine.substeps(dt))
-                    y = self._engine.simulate_dense(dt, xs.size, fft_upsample(xs, fine), fine)
-                    y = (y, np.zeros(xs.size, dtype=np.uint8))
+                    fine = 2 * int(self.substeps(dt))
+                    upsampled = fft_upsample(xs, fine)
+                    dense = self.simulate_dense(dt, xs.size, upsampled, fine)
+                    y = (dense, np.zeros(xs.size, dtype=np.uint8))
                 else:
-                    y = self._engine.simulate(ts, xs, True)
+                    y = core.HystereticOscillator.simulate(self, ts, xs, True)
             else:
-                y = self._engine.simulate(ts, xs, True)
+                y = core.HystereticOscillator.simulate(self, ts, xs, True)
         except ValueError as exc:
             if "diverged" not in str(exc):
                 raise

@@ -10,7 +10,7 @@ from . import _bound as core
 from .base import HysteresisModel
 
 
-class Polynomial(HysteresisModel):
+class Polynomial(HysteresisModel, core.Polynomial):  # type: ignore[misc]
     """y = sum_k a_k u^k: ``Polynomial(3)`` is the identity cubic (a = [0, 1, 0, 0]);
     ``odd=True`` keeps odd powers only (coefficients a_1, a_3, ...).
 
@@ -31,7 +31,6 @@ class Polynomial(HysteresisModel):
         Neither a degree >= 1 nor coefficients.
     """
 
-    _core = core.Polynomial
     _core_params = core.PolynomialParams
     param_names = ("coefficients",)
     option_names = ("odd",)

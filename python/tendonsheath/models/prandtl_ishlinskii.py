@@ -27,7 +27,7 @@ class _PlayOperators(HysteresisModel):
         )
 
 
-class PrandtlIshlinskii(_PlayOperators):
+class PrandtlIshlinskii(_PlayOperators, core.PrandtlIshlinskii):  # type: ignore[misc]
     """y = sum_i weights[i] * play_{thresholds[i]}[x].
 
     Thresholds: 0 <= r_0 < r_1 < ...; the partial sums of the weights must be > 0.
@@ -46,8 +46,6 @@ class PrandtlIshlinskii(_PlayOperators):
     ValueError
         Arrays that are not 1-D, or values the C++ core rejects.
     """
-
-    _core = core.PrandtlIshlinskii
 
     @classmethod
     def uniform(
@@ -95,7 +93,7 @@ class PrandtlIshlinskii(_PlayOperators):
         return PrandtlIshlinskiiInverse(p["thresholds"], p["weights"])
 
 
-class PrandtlIshlinskiiInverse(_PlayOperators):
+class PrandtlIshlinskiiInverse(_PlayOperators, core.PrandtlIshlinskiiInverse):  # type: ignore[misc]
     """Exact inverse of :class:`PrandtlIshlinskii` with the same thresholds and weights.
 
     Each sample solves the piecewise-linear loading curve of the current play states
@@ -113,8 +111,6 @@ class PrandtlIshlinskiiInverse(_PlayOperators):
     ValueError
         Arrays that are not 1-D, or values the C++ core rejects.
     """
-
-    _core = core.PrandtlIshlinskiiInverse
 
     def inverse(self) -> PrandtlIshlinskii:
         """The forward operator this one inverts.
