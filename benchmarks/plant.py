@@ -124,7 +124,7 @@ def adversarial_rows(elements=(100, 400), seconds: float = 20.0):
         for name, load in loads.items():
             t, q, rng = adversarial_input(seconds)
             plant = ts.PullPullPlant(route=ts.Route.uniform(1.2, np.pi), elements=n, load=load)
-            engine = plant._engine
+            engine = plant
             idx, ang = route_schedule(rng, t.size, engine.n_node_angles)
             cpu, wall, solves, status = engine.profile_steps(q * 1.0, 1e-3, idx, ang)
             unconverged = int(np.count_nonzero(status & int(ts.Status.NOT_CONVERGED)))

@@ -82,7 +82,7 @@ def test_the_gains_hold_a_simulated_servo_under_a_load():
     motor = ts.Motor.position(bandwidth_hz=40.0, damping=0.7, inertia=1e-4)
     loop = ts.compensate.EncoderLoop(ts.compensate.InverseFeedforward(ts.models.Backlash(
         B_r=0.0, B_l=0.0)), **design.gains())  # fmt: skip
-    engine = motor._engine
+    engine = motor.engine()  # the bare C++ motor (its position() reads the angle)
     q, errors = 0.0, []
     for k in range(3000):
         target = 0.5 if k > 100 else 0.0

@@ -32,7 +32,7 @@ def test_damped_load_never_exceeds_the_bound(elements):
         elements=elements,
         load=ts.loads.SpringDamper(0.05, 0.01),
     )
-    engine = plant._engine
+    engine = plant
     assert engine.max_solves() == 8 * elements + 264
     q, index, angles = adversarial(3000, engine.n_node_angles)
     _, _, solves, status = engine.profile_steps(q, 1e-3, index, angles)
@@ -58,7 +58,7 @@ def test_a_step_past_the_bound_is_flagged_and_the_next_steps_recover():
     options.max_iterations, options.max_halvings = 5, 1
     options.max_substeps, options.extra_iterations = 4, 4
     p.options = options
-    tight = core.PullPullPlant(p, route._core, route._core)
+    tight = core.PullPullPlant(p, route, route)
     assert tight.max_solves() == 22
     q, index, angles = adversarial(3000, tight.n_node_angles)
     routes = dict(zip(index.tolist(), angles, strict=True))

@@ -44,13 +44,13 @@ def test_friction_chain_never_commits_a_non_finite_solution(first):
             plant.step(first)
         y = plant.step(1e307)
         assert math.isfinite(y)
-        assert plant._engine.input_clamped()
-        assert ts.Status.INPUT_CLAMPED in ts.Status(plant._engine.status())  # in-band
+        assert plant.input_clamped()
+        assert ts.Status.INPUT_CLAMPED in plant.status()  # in-band
         plant.step(math.nan)
-        assert ts.Status(plant._engine.status()) & ts.Status.HELD_NONFINITE_INPUT
+        assert plant.status() & ts.Status.HELD_NONFINITE_INPUT
         ys = [plant.step(v) for v in np.linspace(0.0, 0.01, 50)]
         assert np.all(np.isfinite(ys)) and np.all(np.isfinite(plant.tensions()))
-        assert not plant._engine.input_clamped()
+        assert not plant.input_clamped()
 
 
 @pytest.mark.filterwarnings("ignore::tendonsheath.SlackWarning")
@@ -75,13 +75,13 @@ def test_motor_stays_finite_and_settles_after_a_huge_step():
         ts.Motor.torque(0.01, 0.2),
         ts.Motor.torque(0.01, 0.0),
     ):
-        engine = core.Motor(motor._params)
+        engine = motor.engine()  # the bare C++ motor
         engine.step(0.0, 0.0)
         q = engine.step(1e6, 1e300)
         assert math.isfinite(q) and engine.clamped()
         later = [engine.step(0.1, 1e-3) for _ in range(100)]
         assert np.all(np.isfinite(later))
-    servo = core.Motor(ts.Motor.position(10.0, 0.7)._params)
+    servo = ts.Motor.position(10.0, 0.7).engine()
     servo.step(0.0, 0.0)
     assert servo.step(1.0, 1e300) == pytest.approx(1.0, abs=1e-9)  # a lag settles at its command
 
@@ -145,7 +145,7 @@ def test_chain_options_have_upper_bounds():
         params = core.PullPullParams()
         params.options = options
         with pytest.raises(ValueError, match=rf"{name} must be .*100000\]"):
-            route = ts.Route.uniform(1.0, 1.0)._core
+            route = ts.Route.uniform(1.0, 1.0)
             core.PullPullPlant(params, route, route)
 
 
@@ -233,4 +233,4 @@ def test_plants_flag_a_step_the_chain_did_not_take():
         assert plant.status() == ts.Status.OK
         assert plant.step(math.inf, 1e-3) == y
         assert plant.status() == ts.Status.HELD_NONFINITE_INPUT
-        assert plant._engine.last_converged()
+        assert plant.last_converged()

@@ -1,5 +1,6 @@
-// The closed-loop virtual bench: one call runs the whole loop in C++, over any plant (the erased
-// plant of bench_plant.hpp: a shipped engine, a compiled user plant or a Python one).
+// The closed-loop virtual bench: one call (bench_run) runs the whole loop in C++, over any
+// controller (AnyController) and any plant (the erased plant of bench_plant.hpp: a shipped
+// engine, a compiled user plant or a Python one).
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
@@ -34,7 +35,6 @@ struct PythonLoop {
   nb::object status_fn;          // None: no status
   std::vector<int> inputs;       // 0: y_d, 1: measured, 2: motor (step_inputs order)
   std::string name;
-  static constexpr bool needs_gil = true;
 
   void reset() { self.attr("reset")(); }
   void on_shape(const ts::ShapeIntegrals&) noexcept {}
@@ -71,16 +71,98 @@ struct PythonLoop {
   }
 };
 
-template <class Controller, class = void>
-struct NeedsGil : std::false_type {};
-template <class Controller>
-struct NeedsGil<Controller, std::void_t<decltype(Controller::needs_gil)>> : std::true_type {};
+// The compensator in a capsule from tendonsheath_bind::bind_compensator (another module).
+ts::ErasedLoop erased_loop(nb::handle capsule) {
+  if (!PyCapsule_IsValid(capsule.ptr(), ts::kCompensatorCapsuleName))
+    throw nb::type_error(
+        "bench.run: _tendonsheath_compensator() must return a capsule named "
+        "'tendonsheath.compensator.v1' (bind the class with tendonsheath_bind/compensator.hpp)");
+  auto* c = static_cast<ts::ErasedCompensator*>(
+      PyCapsule_GetPointer(capsule.ptr(), ts::kCompensatorCapsuleName));
+  if (c->table == nullptr || c->table->version != ts::kCompensatorTableVersion)
+    throw nb::type_error("bench.run: the compensator was built against another tendonsheath "
+                         "version (function table version mismatch): rebuild it");
+  return ts::ErasedLoop{*c};
+}
+
+PythonLoop python_loop(nb::handle compensator, const std::vector<int>& inputs) {
+  if (inputs.empty() || inputs.size() > 3)
+    throw nb::value_error("bench_run: a Python compensator takes 1 to 3 step inputs");
+  for (int i : inputs)
+    if (i < 0 || i > 2) throw nb::value_error("bench_run: step input codes are 0, 1, 2");
+  nb::object self = nb::borrow<nb::object>(compensator);
+  nb::object status = nb::none();
+  if (nb::hasattr(self, "status") && PyCallable_Check(self.attr("status").ptr()))
+    status = self.attr("status");
+  return PythonLoop{self, self.attr("step"), status, inputs,
+                    nb::cast<std::string>(nb::type_name(self.type()))};
+}
+
+// Every controller bench.run runs, as one type: the uncompensated gain, a shipped compensator
+// (a copy, stepped in C++ without the GIL), a user's compiled one (its function table) or a
+// Python one (its step called each cycle, the GIL held). One closed loop is compiled for it,
+// and one for it inside each of the encoder loop, the tip loop and the learned table.
+class AnyController {
+ public:
+  using Loop = std::variant<ts::OpenLoop, ts::FeedforwardLoop<ts::BacklashInverseFeedforward>,
+                            ts::FeedforwardLoop<ts::PrandtlIshlinskiiFeedforward>,
+                            ts::FeedforwardLoop<ts::ContinuumFeedforward>, ts::CurveAngleLoop,
+                            ts::ModelInverseLoop, ts::AdaptiveLoop, ts::ErasedLoop, PythonLoop>;
+  explicit AnyController(Loop loop) : loop_(std::move(loop)) {}
+  bool needs_gil() const noexcept { return std::holds_alternative<PythonLoop>(loop_); }
+  void reset() { std::visit([](auto& c) { c.reset(); }, loop_); }
+  void on_shape(const ts::ShapeIntegrals& s) {
+    std::visit([&](auto& c) { c.on_shape(s); }, loop_);
+  }
+  bool in_fallback() const {
+    return std::visit([](const auto& c) { return c.in_fallback(); }, loop_);
+  }
+  ts::Status status() const {
+    return std::visit([](const auto& c) { return c.status(); }, loop_);
+  }
+  double command(double y_d, double measured, double motor, double dt) {
+    return std::visit([&](auto& c) { return c.command(y_d, measured, motor, dt); }, loop_);
+  }
+
+ private:
+  Loop loop_;
+};
+
+// A bound compensator of class C (a shipped Python compensator is one: it subclasses it) as its
+// loop L, when `c` is one.
+template <class C, class L>
+bool as_loop(nb::handle c, std::optional<AnyController>& out) {
+  if (!nb::isinstance<C>(c)) return false;
+  out.emplace(L{nb::cast<const C&>(c)});
+  return true;
+}
+
+// The controller: None (uncompensated: gain * y_d), a shipped compensator, a capsule from a
+// user's compiled one (_tendonsheath_compensator()), or any object with reset() and step() whose
+// step takes the signals `inputs` (0: y_d, 1: measured, 2: motor) and dt.
+AnyController any_controller(nb::handle c, double gain, const std::vector<int>& inputs) {
+  if (c.is_none()) return AnyController{ts::OpenLoop{gain}};
+  std::optional<AnyController> out;
+  if (as_loop<ts::ModelInverse, ts::ModelInverseLoop>(c, out) ||
+      as_loop<ts::CurveAngleFeedforward, ts::CurveAngleLoop>(c, out) ||
+      as_loop<ts::AdaptiveController, ts::AdaptiveLoop>(c, out) ||
+      as_loop<ts::ContinuumFeedforward, ts::FeedforwardLoop<ts::ContinuumFeedforward>>(c, out) ||
+      as_loop<ts::BacklashInverseFeedforward,
+              ts::FeedforwardLoop<ts::BacklashInverseFeedforward>>(c, out) ||
+      as_loop<ts::PrandtlIshlinskiiFeedforward,
+              ts::FeedforwardLoop<ts::PrandtlIshlinskiiFeedforward>>(c, out))
+    return std::move(*out);
+  if (PyCapsule_CheckExact(c.ptr())) return AnyController{erased_loop(c)};
+  return AnyController{python_loop(c, inputs)};
+}
+
+bool needs_gil(const AnyController& c) { return c.needs_gil(); }
 template <class Inner>
-struct NeedsGil<ts::WithEncoderLoop<Inner>> : NeedsGil<Inner> {};
+bool needs_gil(const ts::WithEncoderLoop<Inner>& c) { return needs_gil(c.inner); }
 template <class Inner>
-struct NeedsGil<ts::WithLearnedCorrection<Inner>> : NeedsGil<Inner> {};
+bool needs_gil(const ts::WithLearnedCorrection<Inner>& c) { return needs_gil(c.inner); }
 template <class Inner>
-struct NeedsGil<ts::WithTipLoop<Inner>> : NeedsGil<Inner> {};
+bool needs_gil(const ts::WithTipLoop<Inner>& c) { return needs_gil(c.inner); }
 
 template <class Controller>
 nb::tuple run_loop(BenchPlant& plant, std::optional<ts::Motor> motor,
@@ -115,7 +197,7 @@ nb::tuple run_loop(BenchPlant& plant, std::optional<ts::Motor> motor,
                         t.data(), y_d.data(), n, sched, shape_sched,
                         dropout ? dropout->data() : nullptr, trace, where);
   };
-  if (NeedsGil<Controller>::value || plant.needs_gil) {
+  if (needs_gil(controller) || plant.needs_gil) {
     loop();
   } else {
     nb::gil_scoped_release release;
@@ -167,114 +249,29 @@ nb::tuple run(BenchPlant& plant, std::optional<ts::Motor> motor,
                     dropout, outer_loop);
 }
 
-template <class Make>
-void def_run(nb::module_& m, const char* name, Make make) {
-  m.def(
-      name,
-      [make](nb::handle plant, std::optional<ts::Motor> motor,
-             std::optional<ts::Sensor> sensor, const typename Make::argument_type& c, InArray t,
-             InArray y_d, std::optional<InIndex> sidx, std::optional<InMatrix> sang,
-             std::optional<InMatrix> shapes, std::optional<InMask> dropout,
-             std::optional<OuterLoop> outer_loop, std::optional<ts::LearnedCorrection> learned) {
-        BenchPlant bench_plant(plant);
-        return run(bench_plant, motor, sensor, make(c), t, y_d, sidx, sang, shapes, dropout,
-                   outer_loop, learned);
-      },
-      "plant"_a, "motor"_a.none(), "sensor"_a.none(), "controller"_a, "t"_a, "y_d"_a,
-      "schedule_index"_a.none(), "schedule_angles"_a.none(), "shapes"_a.none(),
-      "dropout"_a.none(), "outer_loop"_a.none() = nb::none(), "learned"_a.none() = nb::none());
-}
-
-template <class Arg, class Loop>
-struct Maker {
-  using argument_type = Arg;
-  Loop operator()(const Arg& a) const { return Loop{a}; }
-};
-
-// The compensator in a capsule from tendonsheath_bind::bind_compensator (another module).
-ts::ErasedLoop erased_loop(nb::handle capsule) {
-  if (!PyCapsule_IsValid(capsule.ptr(), ts::kCompensatorCapsuleName))
-    throw nb::type_error(
-        "bench.run: _tendonsheath_compensator() must return a capsule named "
-        "'tendonsheath.compensator.v1' (bind the class with tendonsheath_bind/compensator.hpp)");
-  auto* c = static_cast<ts::ErasedCompensator*>(
-      PyCapsule_GetPointer(capsule.ptr(), ts::kCompensatorCapsuleName));
-  if (c->table == nullptr || c->table->version != ts::kCompensatorTableVersion)
-    throw nb::type_error("bench.run: the compensator was built against another tendonsheath "
-                         "version (function table version mismatch): rebuild it");
-  return ts::ErasedLoop{*c};
-}
-
-PythonLoop python_loop(nb::object compensator, const std::vector<int>& inputs) {
-  nb::object status = nb::none();
-  if (nb::hasattr(compensator, "status") && PyCallable_Check(compensator.attr("status").ptr()))
-    status = compensator.attr("status");
-  return PythonLoop{compensator, compensator.attr("step"), status, inputs,
-                    nb::cast<std::string>(nb::type_name(compensator.type()))};
-}
-
-template <class Loop>
-nb::tuple run_any(nb::handle plant_handle, std::optional<ts::Motor> motor,
-                  std::optional<ts::Sensor> sensor, Loop loop, InArray t, InArray y_d,
-                  std::optional<InIndex> sidx, std::optional<InMatrix> sang,
-                  std::optional<InMask> dropout, std::optional<OuterLoop> outer_loop,
-                  std::optional<InMatrix> shapes, std::optional<ts::LearnedCorrection> learned) {
-  BenchPlant plant(plant_handle);
-  return run(plant, motor, sensor, std::move(loop), t, y_d, sidx, sang, shapes, dropout,
-             outer_loop, learned);
-}
-
 }  // namespace
 
 void bind_bench(nb::module_& m) {
   m.def(
-      "bench_erased",
-      [](nb::handle plant, std::optional<ts::Motor> motor,
-         std::optional<ts::Sensor> sensor, nb::handle capsule, InArray t, InArray y_d,
-         std::optional<InIndex> sidx, std::optional<InMatrix> sang,
+      "bench_run",
+      [](nb::handle plant, std::optional<ts::Motor> motor, std::optional<ts::Sensor> sensor,
+         nb::handle controller, InArray t, InArray y_d, std::optional<InIndex> sidx,
+         std::optional<InMatrix> sang, std::optional<InMatrix> shapes,
          std::optional<InMask> dropout, std::optional<OuterLoop> outer_loop,
-         std::optional<InMatrix> shapes, std::optional<ts::LearnedCorrection> learned) {
-        return run_any(plant, motor, sensor, erased_loop(capsule), t, y_d, sidx, sang, dropout,
-                       outer_loop, shapes, learned);
+         std::optional<ts::LearnedCorrection> learned, double gain, std::vector<int> inputs) {
+        BenchPlant bench_plant(plant);
+        return run(bench_plant, motor, sensor, any_controller(controller, gain, inputs), t, y_d,
+                   sidx, sang, shapes, dropout, outer_loop, learned);
       },
-      "plant"_a, "motor"_a.none(), "sensor"_a.none(), "capsule"_a, "t"_a, "y_d"_a,
-      "schedule_index"_a.none(), "schedule_angles"_a.none(), "dropout"_a.none(),
-      "outer_loop"_a.none() = nb::none(), "shapes"_a.none() = nb::none(),
-      "learned"_a.none() = nb::none());
-  m.def(
-      "bench_python",
-      [](nb::handle plant, std::optional<ts::Motor> motor,
-         std::optional<ts::Sensor> sensor, nb::object compensator, std::vector<int> inputs,
-         InArray t, InArray y_d, std::optional<InIndex> sidx, std::optional<InMatrix> sang,
-         std::optional<InMask> dropout, std::optional<OuterLoop> outer_loop,
-         std::optional<InMatrix> shapes, std::optional<ts::LearnedCorrection> learned) {
-        if (inputs.empty() || inputs.size() > 3)
-          throw nb::value_error("bench_python: 1 to 3 step inputs");
-        for (int i : inputs)
-          if (i < 0 || i > 2) throw nb::value_error("bench_python: step input codes are 0, 1, 2");
-        return run_any(plant, motor, sensor, python_loop(compensator, inputs), t, y_d, sidx, sang,
-                       dropout, outer_loop, shapes, learned);
-      },
-      "plant"_a, "motor"_a.none(), "sensor"_a.none(), "compensator"_a, "inputs"_a, "t"_a,
-      "y_d"_a, "schedule_index"_a.none(), "schedule_angles"_a.none(), "dropout"_a.none(),
-      "outer_loop"_a.none() = nb::none(), "shapes"_a.none() = nb::none(),
-      "learned"_a.none() = nb::none());
-  def_run(m, "bench_open_loop", [] {
-    struct M {
-      using argument_type = double;
-      ts::OpenLoop operator()(double gain) const { return ts::OpenLoop{gain}; }
-    };
-    return M{};
-  }());
-  def_run(m, "bench_inverse", Maker<ts::BacklashInverseFeedforward,
-                                          ts::FeedforwardLoop<ts::BacklashInverseFeedforward>>{});
-  def_run(m, "bench_pi_inverse", Maker<ts::PrandtlIshlinskiiFeedforward,
-                                             ts::FeedforwardLoop<ts::PrandtlIshlinskiiFeedforward>>{});
-  def_run(m, "bench_curve_angle", Maker<ts::CurveAngleFeedforward, ts::CurveAngleLoop>{});
-  def_run(m, "bench_model_inverse", Maker<ts::ModelInverse, ts::ModelInverseLoop>{});
-  def_run(m, "bench_continuum", Maker<ts::ContinuumFeedforward,
-                                            ts::FeedforwardLoop<ts::ContinuumFeedforward>>{});
-  def_run(m, "bench_adaptive", Maker<ts::AdaptiveController, ts::AdaptiveLoop>{});
+      "plant"_a, "motor"_a.none(), "sensor"_a.none(), "controller"_a.none(), "t"_a, "y_d"_a,
+      "schedule_index"_a.none() = nb::none(), "schedule_angles"_a.none() = nb::none(),
+      "shapes"_a.none() = nb::none(), "dropout"_a.none() = nb::none(),
+      "outer_loop"_a.none() = nb::none(), "learned"_a.none() = nb::none(), "gain"_a = 1.0,
+      "inputs"_a = std::vector<int>{},
+      "The closed loop controller -> motor -> plant -> sensor in C++ (bench.run): any plant,\n"
+      "and a controller that is None (uncompensated: gain * y_d), a shipped compensator, a\n"
+      "capsule of a compiled one, or a Python object whose step takes `inputs` and dt.\n"
+      "Returns (output, measured, command, motor, slack, fallback, status).");
 }
 
 }  // namespace tsbind

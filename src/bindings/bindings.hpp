@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -72,15 +73,29 @@ inline tendonsheath::RouteSchedule to_schedule(const std::optional<InIndex>& sid
   return sched;
 }
 
-// copy.copy and copy.deepcopy of a streaming engine, and T(other): a snapshot of its whole state (the
-// python-control systems of tendonsheath.control step from saved snapshots).
+// The T(other) constructors bind_copy queued, defined by finish_copy_constructors() once every
+// class has its own constructors (so that a class's signature shows those first).
+inline std::vector<std::function<void()>>& pending_copy_constructors() {
+  static std::vector<std::function<void()>> pending;
+  return pending;
+}
+
+inline void finish_copy_constructors() {
+  for (auto& define : pending_copy_constructors()) define();
+  pending_copy_constructors().clear();
+}
+
+// copy.copy and copy.deepcopy of a streaming engine, and T(other): a snapshot of its whole state
+// (the python-control systems of tendonsheath.control step from saved snapshots; a Python class
+// built on T copies itself with T(other), as its __init__ runs once).
 template <class Cls>
 std::decay_t<Cls> bind_copy(Cls&& cls) {
   using T = typename std::decay_t<Cls>::Type;
-  // T(other): what a Python class built on T calls to copy itself (its __init__ can run once)
   if constexpr (!std::is_aggregate_v<T>)
-    cls.def(nb::init<const T&>(), nb::arg("other"),
-            "A copy of ``other``: its parameters and its exact streaming state.");
+    pending_copy_constructors().push_back([cls]() mutable {
+      cls.def(nb::init<const T&>(), nb::arg("other"),
+              "A copy of ``other``: its parameters and its exact streaming state.");
+    });
   cls.def("__copy__", [](const T& self) { return T(self); });
   cls.def("__deepcopy__", [](const T& self, nb::handle) { return T(self); }, nb::arg("memo"));
   return std::forward<Cls>(cls);

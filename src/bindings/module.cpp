@@ -20,4 +20,5 @@ NB_MODULE(_core, m) {
   tsbind::bind_batch(m);
   tsbind::bind_model_inverse(m);
   tsbind::bind_coupled(m);
+  tsbind::finish_copy_constructors();
 }

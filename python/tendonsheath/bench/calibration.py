@@ -45,7 +45,7 @@ if TYPE_CHECKING:
         InverseFeedforward,
     )
     from ..identify.loop_dynamics import LoopDynamics
-    from ..plant import PullPullPlant
+    from ..plant import ContinuumPlant, PullPullPlant
     from .run import Result
 
 NOMINAL = {"pretension": 1.0, "length": 1.0, "proximal_radius": 1.0}
@@ -611,7 +611,7 @@ def _near_bounds(fit, tol: float = 0.01) -> list[str]:
 
 
 def calibrate(
-    plant: PullPullPlant,
+    plant: PullPullPlant | ContinuumPlant,
     routes: Sequence[Route],
     *,
     models_: Sequence[str] = ("BoucWenBacklash", "CurveAngleModel"),
@@ -951,7 +951,7 @@ def _curve_angle_groups(fit, runs, friction_identified: bool, spring: bool) -> d
 def calibrate_load(
     cal: Calibration,
     name: str,
-    plant: PullPullPlant,
+    plant: PullPullPlant | ContinuumPlant,
     route: Route,
     *,
     duration: float = 10.0,

@@ -14,7 +14,7 @@ if TYPE_CHECKING:
     import control  # python-control ships no types: its systems are Any to mypy
 
     from .._typing import ArrayLike
-    from ..plant import PullPullPlant
+    from ..plant import ContinuumPlant, PullPullPlant
     from ..plant.sensor import Sensor
     from .run import Controller
 
@@ -105,7 +105,7 @@ def _first_crossing(f: np.ndarray, values: np.ndarray, level: float, above: bool
 
 
 def frequency_response(
-    plant: PullPullPlant,
+    plant: PullPullPlant | ContinuumPlant,
     controller: Controller,
     frequencies: ArrayLike | None = None,
     amplitude: float = 0.5,

@@ -29,7 +29,7 @@ from ..plant.sensor import Sensor
 from .motor_calibration import motor_calibration_input, run_experiment
 
 if TYPE_CHECKING:
-    from ..plant import PullPullPlant
+    from ..plant import ContinuumPlant, PullPullPlant
     from ..plant.route import Route
 
 
@@ -121,7 +121,7 @@ class LoopCalibration:
 
 
 def calibrate_loop(
-    plant: PullPullPlant,
+    plant: PullPullPlant | ContinuumPlant,
     route: Route | None = None,
     sensor: Sensor | None = None,
     *,

@@ -20,7 +20,7 @@ from ..identify.servo import ServoFit, identify_servo
 from ..plant.sensor import Sensor
 
 if TYPE_CHECKING:
-    from ..plant import PullPullPlant
+    from ..plant import ContinuumPlant, PullPullPlant
     from ..plant.route import Route
 
 
@@ -101,7 +101,7 @@ class MotorCalibration:
 
 
 def calibrate_servo(
-    plant: PullPullPlant,
+    plant: PullPullPlant | ContinuumPlant,
     route: Route | None = None,
     *,
     duration: float = 10.0,
@@ -143,7 +143,9 @@ def calibrate_servo(
     return MotorCalibration(identify_servo(t, command, encoder), t, command, encoder)
 
 
-def _drive(plant: PullPullPlant, route: Route | None, t: np.ndarray, command: np.ndarray) -> Any:
+def _drive(
+    plant: PullPullPlant | ContinuumPlant, route: Route | None, t: np.ndarray, command: np.ndarray
+) -> Any:
     """Simulate ``plant`` bent into ``route`` (default its own) driven by ``command``; the
     plant's route is restored."""
     previous = plant.route
@@ -161,7 +163,7 @@ def _encoder(sim: Any) -> np.ndarray:
 
 
 def run_experiment(
-    plant: PullPullPlant,
+    plant: PullPullPlant | ContinuumPlant,
     route: Route | None,
     t: np.ndarray,
     command: np.ndarray,

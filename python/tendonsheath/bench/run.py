@@ -41,20 +41,6 @@ Controller: TypeAlias = (
     "StreamingCompensator | Feedforward | LearnedFeedforward | AdaptiveController | None"
 )
 
-# the C++ loop for each shipped compensator's engine (its _bench_engine())
-_ENGINE_LOOPS = {
-    core.BacklashInverseFeedforward: core.bench_inverse,
-    core.PrandtlIshlinskiiFeedforward: core.bench_pi_inverse,
-    core.ContinuumFeedforward: core.bench_continuum,
-    core.AdaptiveController: core.bench_adaptive,
-    core.ModelInverse: core.bench_model_inverse,
-}
-# the C++ loop of an engine that follows the route: it is given the route's shapes
-_ROUTE_LOOPS = {
-    core.CurveAngleFeedforward: core.bench_curve_angle,
-    core.ModelInverse: core.bench_model_inverse,
-}
-_NO_SHAPES = object()  # the bench_* function takes no shapes argument
 
 
 @dataclass
@@ -287,27 +273,32 @@ class _Loop:
             self.outer_loop.params.schedule_angles
         )
 
-    def call(self, fn, controller, *extra, shapes=_NO_SHAPES, idx=None, angles=None):
-        """``fn`` (a ``_core.bench_*`` function) on this loop; the schedule may be replaced.
-        ``fn`` without a positional shapes argument (bench_erased, bench_python) takes shapes
-        given as a keyword (the TipLoop's schedule needs them)."""
-        idx = self.idx if idx is None else idx
-        angles = self.angles if angles is None else angles
-        head = (self.plant.engine, self.motor, self.sensor, controller, *extra, self.ts, self.ys)
-        tail = (idx, angles) if shapes is _NO_SHAPES else (idx, angles, shapes)
-        return fn(*head, *tail, self.mask, self.outer_loop, learned=self.learned)
-
-    def call_with_shapes(self, fn, controller, *extra, friction, shape_sensing, positional):
-        """``fn`` given the route's shapes (or the sensed ones) from the start and at every
-        change, for a TipLoop's gain schedule around a feedforward that does not follow the
-        route."""
-        idx, angles, shapes = _route_shapes(self, friction, shape_sensing)
-        if positional:
-            return self.call(fn, controller, *extra, shapes=shapes, idx=idx, angles=angles)
-        head = (self.plant.engine, self.motor, self.sensor, controller, *extra, self.ts, self.ys)
-        return fn(
-            *head, idx, angles, self.mask, self.outer_loop, shapes=shapes, learned=self.learned
+    def call(self, controller, shapes=None, idx=None, angles=None, **how):
+        """The C++ closed loop (``bench_run``) with ``controller`` (None, a shipped compensator,
+        a compiled one's capsule or a Python one; ``how``: its ``gain`` or step ``inputs``);
+        the schedule may be replaced, and ``shapes`` go to the controller at each change."""
+        return core.bench_run(
+            self.plant.engine,
+            self.motor,
+            self.sensor,
+            controller,
+            self.ts,
+            self.ys,
+            self.idx if idx is None else idx,
+            self.angles if angles is None else angles,
+            shapes,
+            self.mask,
+            self.outer_loop,
+            self.learned,
+            **how,
         )
+
+    def call_with_shapes(self, controller, *, friction, shape_sensing, **how):
+        """``controller`` given the route's shapes (or the sensed ones) from the start and at
+        every change, for a TipLoop's gain schedule around a feedforward that does not follow
+        the route."""
+        idx, angles, shapes = _route_shapes(self, friction, shape_sensing)
+        return self.call(controller, shapes=shapes, idx=idx, angles=angles, **how)
 
 
 def _run_controller(loop: _Loop, controller, shape_sensing):
@@ -316,7 +307,7 @@ def _run_controller(loop: _Loop, controller, shape_sensing):
     LearnedFeedforward its feedforward's path with the correction table added, in C++ (a
     TipLoop with a gain schedule is given the route's shapes on every path)."""
     if controller is None:
-        return loop.call(core.bench_open_loop, loop.plant.kinematic_gain, shapes=None)
+        return loop.call(None, gain=loop.plant.kinematic_gain)
     _check_compensator(controller)
     _check_motor_kind(loop.plant, controller)
     taken_apart = getattr(controller, "_outer_loop", None)
@@ -331,25 +322,24 @@ def _run_controller(loop: _Loop, controller, shape_sensing):
     compiled = getattr(controller, "_tendonsheath_compensator", None)
     if callable(compiled):  # a user's C++ compensator (tendonsheath_bind/compensator.hpp)
         if loop.scheduled:
-            return loop.call_with_shapes(core.bench_erased, compiled(), **shaped, positional=False)
-        return loop.call(core.bench_erased, compiled())
+            return loop.call_with_shapes(compiled(), **shaped)
+        return loop.call(compiled())
     engine_of = getattr(controller, "_bench_engine", None)
     engine = engine_of() if callable(engine_of) else None
+    if engine is not None and bound_base(type(engine)) is None:
+        engine = None  # a Python class without a C++ core: stepped from Python
     if isinstance(engine, core.CurveAngleFeedforward) or (
         isinstance(engine, core.ModelInverse) and core.ModelInverse.follows_route(engine)
     ):
         return _run_curve_angle(loop, controller, engine, shape_sensing)
-    fn = _ENGINE_LOOPS.get(bound_base(type(engine)) or type(None))
-    if fn is not None:
+    if engine is not None:  # a shipped compensator: stepped in C++
         if loop.scheduled:
-            return loop.call_with_shapes(fn, engine, **shaped, positional=True)
-        return loop.call(fn, engine, shapes=None)
+            return loop.call_with_shapes(engine, **shaped)
+        return loop.call(engine)
     codes = [STEP_SIGNALS.index(s) for s in step_signals(controller)]
     if loop.scheduled:
-        return loop.call_with_shapes(
-            core.bench_python, controller, codes, **shaped, positional=False
-        )
-    return loop.call(core.bench_python, controller, codes)
+        return loop.call_with_shapes(controller, **shaped, inputs=codes)
+    return loop.call(controller, inputs=codes)
 
 
 def _friction(controller) -> float:
@@ -385,8 +375,7 @@ def _run_curve_angle(loop: _Loop, controller, engine, shape_sensing):
     """The controller is told the route's shape from the start and at every change (a route
     schedule always starts at sample 0), or the sensed shape with ``shape_sensing``."""
     idx, angles, shapes = _route_shapes(loop, controller.friction, shape_sensing)
-    fn = _ROUTE_LOOPS[bound_base(type(engine)) or type(None)]
-    return loop.call(fn, engine, shapes=shapes, idx=idx, angles=angles)
+    return loop.call(engine, shapes=shapes, idx=idx, angles=angles)
 
 
 def _route_shapes(loop: _Loop, friction: float, shape_sensing):

@@ -11,13 +11,13 @@ import functools
 import inspect
 import warnings
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any, ClassVar, cast
 
 import numpy as np
 
 from .._args import integer, number, warn_status_switch
 from .._arrays import as_time_and_signal, checked_dt
-from .._pyobject import PythonObject
+from .._pyobject import PythonObject, bound_attribute, bound_base
 from .._typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
@@ -127,11 +127,15 @@ def _rebuilt_plant(cls, arguments: dict, interpolation: tuple) -> _Plant:
 
 
 class _Plant(PythonObject):
-    """Shared streaming/batch behaviour; subclasses build ``_engine`` and describe their routes."""
+    """Shared streaming/batch behaviour; each subclass is also its bound C++ plant
+    (``class PullPullPlant(_Plant, core.PullPullPlant)``), initialises it in its ``__init__``
+    and describes its routes."""
 
     _rows = 1
-    # core.SingleTendonPlant, core.PullPullPlant or core.ContinuumPlant, built by the subclass
-    _engine: Any = None
+    # core.SingleTendonPlant, core.PullPullPlant or core.ContinuumPlant: the class built on
+    _bound_class: ClassVar[Any] = None
+    # the C++ motor the plant steps between command and pulley (a copy of ``motor``, at rest)
+    _drive: Any = None
     motor: Motor | None = None
     sensor: Sensor | None = None
     _interpolation = (
@@ -146,6 +150,7 @@ class _Plant(PythonObject):
         super().__init_subclass__(**kwargs)
         if "__init__" in vars(cls):
             cls.__init__ = _recording_arguments(cls.__init__)
+        cls._bound_class = bound_base(cls)
 
     @property
     def params(self) -> dict:
@@ -205,14 +210,14 @@ class _Plant(PythonObject):
             )
         self.motor = motor
         self.sensor = sensor
-        self._motor_engine = motor.engine() if motor is not None else None
+        self._drive = motor.engine() if motor is not None else None
 
     # -- streaming -------------------------------------------------------------------
     def reset(self) -> None:
         """Back to rest: uniform pretension, everything stuck; the next step starts there."""
-        self._engine.reset()
-        if self._motor_engine is not None:
-            self._motor_engine.reset()
+        self._bound_class.reset(self)
+        if self._drive is not None:
+            self._drive.reset()
 
     def step(self, command: float, dt: float = 0.0) -> float:
         """One sample: the command goes through the motor (if any), then the plant.
@@ -236,9 +241,9 @@ class _Plant(PythonObject):
         """
         dt = checked_dt(dt)
         u = float(command)
-        if self._motor_engine is not None:
-            u = self._motor_engine.step(u, float(dt), self._engine.drive_reaction())
-        return self._engine.step(u, float(dt))
+        if self._drive is not None:
+            u = self._drive.step(u, float(dt), self._bound_class.drive_reaction(self))
+        return self._bound_class.step(self, u, float(dt))
 
     def status(self) -> Status:
         """The last step's :class:`~tendonsheath.Status`: the plant's (held, clamped,
@@ -249,9 +254,9 @@ class _Plant(PythonObject):
         Status
             The flags of the last :meth:`step`.
         """
-        s = self._engine.status()
-        if self._motor_engine is not None:
-            s |= self._motor_engine.status()
+        s = self._bound_class.status(self)
+        if self._drive is not None:
+            s |= self._drive.status()
         return Status(s)
 
     def output(self) -> float:
@@ -262,7 +267,7 @@ class _Plant(PythonObject):
         float
             The output.
         """
-        return self._engine.output()
+        return self._bound_class.output(self)
 
     def input(self) -> float:
         """The plant input after the motor (rad or m).
@@ -272,7 +277,7 @@ class _Plant(PythonObject):
         float
             The proximal pulley angle (rad) or displacement (m).
         """
-        return self._engine.input()
+        return self._bound_class.input(self)
 
     def tensions(self) -> np.ndarray:
         """Element tensions (N) after the last step, proximal to distal.
@@ -282,7 +287,7 @@ class _Plant(PythonObject):
         numpy.ndarray of float
             Shape (N,) for one tendon, (2, N) for a pair.
         """
-        t = self._engine.tensions()
+        t = self._bound_class.tensions(self)
         return t[0] if self._rows == 1 else t
 
     def slip_state(self) -> np.ndarray:
@@ -294,7 +299,7 @@ class _Plant(PythonObject):
         numpy.ndarray of int
             Shape (N - 1,) for one tendon, (2, N - 1) for a pair.
         """
-        s = self._engine.slip_state()
+        s = self._bound_class.slip_state(self)
         return s[0] if self._rows == 1 else s
 
     def slack(self) -> bool:
@@ -305,7 +310,7 @@ class _Plant(PythonObject):
         bool
             Whether a tendon is slack.
         """
-        return self._engine.slack()
+        return self._bound_class.slack(self)
 
     def min_tension(self) -> float:
         """The smallest element tension after the last step.
@@ -315,22 +320,22 @@ class _Plant(PythonObject):
         float
             The tension (N).
         """
-        return self._engine.min_tension()
+        return self._bound_class.min_tension(self)
 
     @property
     def elements(self) -> int:
         """Elements N per sheath."""
-        return self._engine.elements
+        return bound_attribute(self, "elements")
 
     @property
     def friction(self) -> float:
         """Friction coefficient mu (of sheath 1 for a pair)."""
-        return self._engine.params.friction
+        return bound_attribute(self, "params").friction
 
     @property
     def stiffness(self) -> float:
         """Tendon axial stiffness EA (N) (of tendon 1 for a pair)."""
-        return self._engine.params.stiffness
+        return bound_attribute(self, "params").stiffness
 
     def element_positions(self, sheath: int = 1) -> np.ndarray:
         """Arc length (m) of each element's midpoint along its sheath, proximal to distal.
@@ -429,8 +434,8 @@ class _Plant(PythonObject):
                 ts, us, mode, fine, lookahead, periodic, name
             )
             idx_run = None if idx is None else (idx * fine).astype(np.uint64)
-        q_out, q_in, slack, meas, tens, noncon, q_motor, flags = self._engine.simulate(
-            t_run, u_run, motor_arg, sensor_arg, idx_run, angles
+        q_out, q_in, slack, meas, tens, noncon, q_motor, flags = self._bound_class.simulate(
+            self, t_run, u_run, motor_arg, sensor_arg, idx_run, angles
         )
         if t_run is not ts:  # read at the original samples; slack anywhere in a step counts
             step = slice(None, None, fine)
@@ -541,9 +546,9 @@ class _Plant(PythonObject):
         return self._angles_for(route)
 
     def _tendonsheath_plant(self):
-        # what tendonsheath.bench.run steps: the C++ engine without the motor (the bench runs
+        # what tendonsheath.bench.run steps: the C++ plant without the motor (the bench runs
         # the motor between controller and plant); the loop steps a copy
-        return self._engine
+        return self
 
     def _lengths(self) -> tuple[float, ...]:
         raise NotImplementedError  # the subclass's sheath lengths
@@ -552,7 +557,7 @@ class _Plant(PythonObject):
         raise NotImplementedError  # the subclass's node angles for a route
 
     def _needs_time(self) -> bool:
-        return self._engine.time_dependent()
+        return self._bound_class.time_dependent(self)
 
     def plot_tensions(self, ax: Axes | None = None) -> Axes:
         """Draw the tension profile along the route(s) (see :func:`tendonsheath.plots`).

@@ -26,10 +26,10 @@ from .base import (
     _set_effects,
     _set_numbers,
 )
-from .pull_pull import PullPullPlant
+from .pull_pull import _PairPlant
 
 
-class ContinuumPlant(PullPullPlant):
+class ContinuumPlant(_PairPlant, core.ContinuumPlant):  # type: ignore[misc]
     """A pull-pull pair bending a continuum segment (Lau et al. 2015, spec C.5); output theta_b.
 
     Li and Rahn: the tendon force that holds a bending angle theta_b is F = kappa EI/r_t with
@@ -126,24 +126,24 @@ class ContinuumPlant(PullPullPlant):
         c.options = _options(cls, max_increment, fast_path)
         _set_effects(c, cls, _PAIR_EFFECTS, effects)
         with core_errors_as(cls):
-            self._engine = core.ContinuumPlant(c, self.route._core, self.route2._core)
+            core.ContinuumPlant.__init__(self, c, self.route, self.route2)
         self.load = TorsionalSpring(c.bending_stiffness / c.backbone_length)
         self._setup_io(motor, sensor)
 
     @property
     def bending_stiffness(self) -> float:
         """Backbone bending stiffness EI (N m^2)."""
-        return self._engine.continuum_params.bending_stiffness
+        return self.continuum_params.bending_stiffness
 
     @property
     def tendon_offset(self) -> float:
         """Distance r_t of the tendons from the backbone (m)."""
-        return self._engine.continuum_params.tendon_offset
+        return self.continuum_params.tendon_offset
 
     @property
     def backbone_length(self) -> float:
         """Length l of the continuum segment (m)."""
-        return self._engine.continuum_params.backbone_length
+        return self.continuum_params.backbone_length
 
     @property
     def spring_stiffness(self) -> float:
@@ -158,7 +158,7 @@ class ContinuumPlant(PullPullPlant):
         float
             F (N).
         """
-        return self._engine.tendon_force()
+        return core.ContinuumPlant.tendon_force(self)
 
 
 __all__ = ["ContinuumPlant"]

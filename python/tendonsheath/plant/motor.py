@@ -8,7 +8,7 @@ import numpy as np
 
 from .._args import core_errors_as, number
 from .._arrays import as_timed_signal, checked_dt
-from .._pyobject import PythonObject
+from .._pyobject import PythonObject, bound_attribute
 from .._typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
@@ -64,7 +64,7 @@ _FIELDS = tuple(
 )
 
 
-class Motor(PythonObject):
+class Motor(PythonObject, core.Motor):  # type: ignore[misc]
     """A drive between the controller and the proximal pulley.
 
     ``Motor.position(...)``: a position-controlled motor seen as a second-order lag
@@ -99,18 +99,18 @@ class Motor(PythonObject):
     """
 
     def __init__(self, params: core.MotorParams):
-        self._params = params
         kind = "position" if params.kind == core.MotorKind.Position else "torque"
         with core_errors_as(f"Motor.{kind}"):
-            self._engine = core.Motor(params)  # validates, naming the parameter
+            core.Motor.__init__(self, params)  # validates, naming the parameter
 
     def _recipe(self):
         # pickled as its parameters: an equal motor at rest (tendonsheath._pyobject)
-        fields = {k: getattr(self._params, k) for k in _FIELDS if hasattr(self._params, k)}
+        p = self._struct()
+        fields = {k: getattr(p, k) for k in _FIELDS if hasattr(p, k)}
         return _motor_from_fields, (fields,)
 
     @classmethod
-    def position(
+    def position(  # type: ignore[override]
         cls,
         bandwidth_hz: float = 1.5,
         damping: float = 0.7,
@@ -205,12 +205,16 @@ class Motor(PythonObject):
     @property
     def kind(self) -> str:
         """The kind: "position" or "torque"."""
-        return "position" if self._params.kind == core.MotorKind.Position else "torque"
+        return "position" if self._struct().kind == core.MotorKind.Position else "torque"
+
+    def _struct(self) -> core.MotorParams:
+        """The C++ parameter struct (the bound class's ``params``)."""
+        return bound_attribute(self, "params")
 
     @property
-    def params(self) -> dict:
+    def params(self) -> dict:  # type: ignore[override]
         """The motor's parameters by the names of :meth:`position` or :meth:`torque`."""
-        p = self._params
+        p = self._struct()
         if self.kind == "position":
             keys = ("bandwidth_hz", "damping", "max_speed", "max_accel")
             extra = {"inertia": p.inertia, "viscous_friction": p.viscous_friction}
@@ -223,10 +227,10 @@ class Motor(PythonObject):
         return {**{k: getattr(p, k) for k in keys}, **extra}
 
     @property
-    def integral(self) -> float:
+    def integral(self) -> float:  # type: ignore[override]
         """The position servo's integral of the error, z = int (q_cmd - q) dt (rad s); 0
         without integral action."""
-        return self._engine.integral()
+        return core.Motor.integral(self)
 
     def engine(self) -> core.Motor:
         """A copy of the C++ motor engine this motor built (and validated) once, at rest: what a
@@ -237,13 +241,13 @@ class Motor(PythonObject):
         tendonsheath._core.Motor
             An independent engine (stepping it leaves this motor's own state alone).
         """
-        copy = self._engine.__copy__()
+        copy = core.Motor(self)
         copy.reset()
         return copy
 
     def reset(self) -> None:
         """Back to rest: the next step starts afresh."""
-        self._engine.reset()
+        core.Motor.reset(self)
 
     def step(self, command: float, dt: float, tau_ext: float = 0.0) -> float:
         """Advance by dt; returns the motor position (rad).
@@ -263,7 +267,7 @@ class Motor(PythonObject):
             The pulley angle (rad).
         """
         dt = checked_dt(dt)
-        return self._engine.step(float(command), float(dt), float(tau_ext))
+        return core.Motor.step(self, float(command), float(dt), float(tau_ext))
 
     def status(self) -> Status:
         """The last step's :class:`~tendonsheath.Status` (held, clamped, saturated).
@@ -273,7 +277,7 @@ class Motor(PythonObject):
         Status
             The flags of the last :meth:`step`.
         """
-        return Status(self._engine.status())
+        return Status(core.Motor.status(self))
 
     def simulate(self, t: ArrayLike, command: ArrayLike) -> SimulationResult:
         """Motor position for a command sequence, unloaded (starts from rest).
@@ -297,7 +301,7 @@ class Motor(PythonObject):
             t missing, or samples not finite or of different lengths.
         """
         ts, us = as_timed_signal(t, command, "command", "Motor.simulate")
-        m = core.Motor(self._params)
+        m = core.Motor(self._struct())
         out = np.empty_like(us)
         for k in range(us.size):
             out[k] = m.step(us[k], 0.0 if k == 0 else ts[k] - ts[k - 1], 0.0)

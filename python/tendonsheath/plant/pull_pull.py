@@ -15,6 +15,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from .._args import core_errors_as
+from .._pyobject import bound_attribute
 from . import _bound as core
 from . import physics
 from .loads import (
@@ -41,153 +42,36 @@ from .base import (
 )
 
 
-class PullPullPlant(_Plant):
-    """The bidirectional pull-pull pair (Sun, Wang & Phee 2015; Do et al. 2015): angle in and out.
-
-    Two tendons with pretension T0 (N) and axial stiffness EA (``stiffness``, N) run in two
-    sheaths (``route`` for tendon 1, the one a positive input pulls; ``route2`` for tendon 2,
-    default the same) between a proximal pulley of radius r_p and a distal one of radius r_d
-    (m). ``load`` (None, ConstantTorque, TorsionalSpring or SpringDamper) acts on the distal
-    pulley. ``elements`` N per sheath; ``friction`` mu.
-
-    Effects beyond the quasi-static capstan pair (all off by default; with none of them and
-    no load the pair *is* a classic backlash, see :mod:`tendonsheath.plant.presets` for realistic
-    values):
-
-    - ``distal_inertia`` J_d (kg m^2) and ``distal_damping`` c_d (N m s/rad): a dynamic distal
-      joint;
-    - ``sheath_viscosity`` (N s/m per metre of sheath): viscous drag on the sliding tendon
-      besides Coulomb friction, so the hysteresis widens with rate;
-    - ``relaxation_fraction`` r in [0, 1) and ``relaxation_time`` tau (s): each tendon element a
-      standard linear solid (r EA relaxes with time constant tau), so a held input creeps;
-    - ``friction2`` and ``stiffness2``: sheath 2's friction and tendon 2's EA when the pair is
-      unequal (None: the same as tendon 1).
-
-    Any of these (or a damped load) makes a step depend on dt, so ``t`` is then required.
-
-    Parameters
-    ----------
-    route : Route
-        Route of the sheath (of tendon 1 for a pair).
-    friction : float, default 0.1
-        Friction coefficient mu (of sheath 1 for a pair).
-    stiffness : float, default 2.4e4
-        Tendon axial stiffness EA (N) (of tendon 1 for a pair).
-    pretension : float, default 10.0
-        Pretension T0 of both tendons (N).
-    proximal_radius : float, default 5e-3
-        Proximal (motor) pulley radius r_p (m).
-    distal_radius : float, default 5e-3
-        Distal pulley radius r_d (m).
-    elements : int, default 100
-        Elements N per sheath, >= 2.
-    load : ConstantTorque, TorsionalSpring or SpringDamper, optional
-        The load on the distal pulley (None: none).
-    motor : Motor, optional
-        A drive between the command and the proximal pulley.
-    route2 : Route, optional
-        Route of sheath 2 (default: route).
-    sensor : Sensor, optional
-        Reads the output (``SimulationResult.measured``).
-    max_increment : float, optional
-        Largest input sub-increment of the solver (m); None: the plant chooses.
-    fast_path : bool, default True
-        Use the solver's exact shortcuts (lazy update while the slip map stays valid).
-    distal_inertia : float, optional
-        J_d (kg m^2) of a dynamic distal joint (None: off).
-    distal_damping : float, optional
-        c_d (N m s/rad) of the distal joint (None: off).
-    sheath_viscosity : float, optional
-        Viscous drag on the sliding tendon (N s/m per metre of sheath; None: off).
-    relaxation_fraction : float, optional
-        Share r in [0, 1) of EA that relaxes (standard linear solid; None: off).
-    relaxation_time : float, optional
-        Time constant tau of the relaxation (s).
-    friction2 : float, optional
-        Friction of sheath 2 (None: as sheath 1).
-    stiffness2 : float, optional
-        EA of tendon 2 (N) (None: as tendon 1).
-
-    Raises
-    ------
-    ValueError
-        A route, load, motor or sensor of the wrong kind, elements not an integer >= 2, or a
-        value the C++ core rejects (the message names it).
-    TypeError
-        An effect that is not a number.
-    """
+class _PairPlant(_Plant):
+    """What the pull-pull pair and the continuum plant share: two tendons, two routes, the
+    pair's parameters and closed forms. Each of the two is also its own bound C++ class (a
+    Python class takes one bound base), so this part is plain Python."""
 
     _rows = 2
-
-    def __init__(
-        self,
-        route: Route,
-        friction: float = 0.1,
-        stiffness: float = 2.4e4,
-        pretension: float = 10.0,
-        proximal_radius: float = 5e-3,
-        distal_radius: float = 5e-3,
-        elements: int = 100,
-        load: ConstantTorque | TorsionalSpring | SpringDamper | None = None,
-        motor: Motor | None = None,
-        route2: Route | None = None,
-        sensor: Sensor | None = None,
-        max_increment: float | None = None,
-        fast_path: bool = True,
-        distal_inertia: float | None = None,
-        distal_damping: float | None = None,
-        sheath_viscosity: float | None = None,
-        relaxation_fraction: float | None = None,
-        relaxation_time: float | None = None,
-        friction2: float | None = None,
-        stiffness2: float | None = None,
-    ):
-        cls = type(self).__name__
-        effects = {k: v for k, v in locals().items() if k in _PAIR_EFFECTS}
-        self.route = _check_route(route, "route", cls)
-        self.route2 = _check_route(route if route2 is None else route2, "route2", cls)
-        if load is not None and not isinstance(
-            load, ConstantTorque | TorsionalSpring | SpringDamper
-        ):
-            raise TypeError(
-                f"{cls}: load must be None, ConstantTorque, TorsionalSpring or SpringDamper "
-                f"(got {type(load).__name__})"
-            )
-        self.load = load
-        p = core.PullPullParams()
-        _set_numbers(p, cls, _PAIR_NUMBERS, locals())
-        p.elements = _check_elements(elements, cls)
-        if load is not None:
-            p.load_torque, p.load_stiffness, p.load_damping = load.rotary()
-        p.options = _options(cls, max_increment, fast_path)
-        _set_effects(p, cls, _PAIR_EFFECTS, effects)
-        with core_errors_as(cls):
-            self._engine = self._make_engine(p)
-        self._setup_io(motor, sensor)
-
-    def _make_engine(self, p):
-        return core.PullPullPlant(p, self.route._core, self.route2._core)
+    route: Route
+    route2: Route
+    load: ConstantTorque | TorsionalSpring | SpringDamper | None
 
     @property
     def effects(self) -> dict:
         """The effects beyond the quasi-static pair (C++ names; 0 or -1 = off / as tendon 1)."""
-        return _effects_of(self._engine.params, _PAIR_EFFECTS)
+        return _effects_of(bound_attribute(self, "params"), _PAIR_EFFECTS)
 
     # parameters
     @property
     def pretension(self) -> float:
         """Pretension T0 of both tendons (N)."""
-        return self._engine.params.pretension
+        return bound_attribute(self, "params").pretension
 
     @property
     def proximal_radius(self) -> float:
         """Proximal (motor) pulley radius r_p (m)."""
-        return self._engine.params.proximal_radius
+        return bound_attribute(self, "params").proximal_radius
 
     @property
     def distal_radius(self) -> float:
         """Distal pulley radius r_d (m); for a continuum plant, the tendon offset r_t."""
-        return self._engine.params.distal_radius
+        return bound_attribute(self, "params").distal_radius
 
     @property
     def kinematic_gain(self) -> float:
@@ -218,7 +102,7 @@ class PullPullPlant(_Plant):
         cls = type(self).__name__
         r1 = _check_route(route, "route", cls)
         r2 = r1 if route2 is None else _check_route(route2, "route2", cls)
-        self._engine.set_route(r1._core, r2._core)
+        self._bound_class.set_route(self, r1, r2)
         self.route, self.route2 = r1, r2
 
     def _angles_for(self, r):
@@ -229,7 +113,7 @@ class PullPullPlant(_Plant):
             r1, r2 = (_check_route(x, "routes(t)", cls) for x in r)
         else:
             r1 = r2 = _check_route(r, "routes(t)", cls)
-        return self._engine.node_angles(r1._core, r2._core)
+        return self._bound_class.node_angles(self, r1, r2)
 
     # closed forms ------------------------------------------------------------------
     def load_force(self) -> float:
@@ -312,6 +196,129 @@ class PullPullPlant(_Plant):
                 )
             ),
         }
+
+
+class PullPullPlant(_PairPlant, core.PullPullPlant):  # type: ignore[misc]
+    """The bidirectional pull-pull pair (Sun, Wang & Phee 2015; Do et al. 2015): angle in and out.
+
+    Two tendons with pretension T0 (N) and axial stiffness EA (``stiffness``, N) run in two
+    sheaths (``route`` for tendon 1, the one a positive input pulls; ``route2`` for tendon 2,
+    default the same) between a proximal pulley of radius r_p and a distal one of radius r_d
+    (m). ``load`` (None, ConstantTorque, TorsionalSpring or SpringDamper) acts on the distal
+    pulley. ``elements`` N per sheath; ``friction`` mu.
+
+    Effects beyond the quasi-static capstan pair (all off by default; with none of them and
+    no load the pair *is* a classic backlash, see :mod:`tendonsheath.plant.presets` for realistic
+    values):
+
+    - ``distal_inertia`` J_d (kg m^2) and ``distal_damping`` c_d (N m s/rad): a dynamic distal
+      joint;
+    - ``sheath_viscosity`` (N s/m per metre of sheath): viscous drag on the sliding tendon
+      besides Coulomb friction, so the hysteresis widens with rate;
+    - ``relaxation_fraction`` r in [0, 1) and ``relaxation_time`` tau (s): each tendon element a
+      standard linear solid (r EA relaxes with time constant tau), so a held input creeps;
+    - ``friction2`` and ``stiffness2``: sheath 2's friction and tendon 2's EA when the pair is
+      unequal (None: the same as tendon 1).
+
+    Any of these (or a damped load) makes a step depend on dt, so ``t`` is then required.
+
+    Parameters
+    ----------
+    route : Route
+        Route of the sheath (of tendon 1 for a pair).
+    friction : float, default 0.1
+        Friction coefficient mu (of sheath 1 for a pair).
+    stiffness : float, default 2.4e4
+        Tendon axial stiffness EA (N) (of tendon 1 for a pair).
+    pretension : float, default 10.0
+        Pretension T0 of both tendons (N).
+    proximal_radius : float, default 5e-3
+        Proximal (motor) pulley radius r_p (m).
+    distal_radius : float, default 5e-3
+        Distal pulley radius r_d (m).
+    elements : int, default 100
+        Elements N per sheath, >= 2.
+    load : ConstantTorque, TorsionalSpring or SpringDamper, optional
+        The load on the distal pulley (None: none).
+    motor : Motor, optional
+        A drive between the command and the proximal pulley.
+    route2 : Route, optional
+        Route of sheath 2 (default: route).
+    sensor : Sensor, optional
+        Reads the output (``SimulationResult.measured``).
+    max_increment : float, optional
+        Largest input sub-increment of the solver (m); None: the plant chooses.
+    fast_path : bool, default True
+        Use the solver's exact shortcuts (lazy update while the slip map stays valid).
+    distal_inertia : float, optional
+        J_d (kg m^2) of a dynamic distal joint (None: off).
+    distal_damping : float, optional
+        c_d (N m s/rad) of the distal joint (None: off).
+    sheath_viscosity : float, optional
+        Viscous drag on the sliding tendon (N s/m per metre of sheath; None: off).
+    relaxation_fraction : float, optional
+        Share r in [0, 1) of EA that relaxes (standard linear solid; None: off).
+    relaxation_time : float, optional
+        Time constant tau of the relaxation (s).
+    friction2 : float, optional
+        Friction of sheath 2 (None: as sheath 1).
+    stiffness2 : float, optional
+        EA of tendon 2 (N) (None: as tendon 1).
+
+    Raises
+    ------
+    ValueError
+        A route, load, motor or sensor of the wrong kind, elements not an integer >= 2, or a
+        value the C++ core rejects (the message names it).
+    TypeError
+        An effect that is not a number.
+    """
+
+    def __init__(
+        self,
+        route: Route,
+        friction: float = 0.1,
+        stiffness: float = 2.4e4,
+        pretension: float = 10.0,
+        proximal_radius: float = 5e-3,
+        distal_radius: float = 5e-3,
+        elements: int = 100,
+        load: ConstantTorque | TorsionalSpring | SpringDamper | None = None,
+        motor: Motor | None = None,
+        route2: Route | None = None,
+        sensor: Sensor | None = None,
+        max_increment: float | None = None,
+        fast_path: bool = True,
+        distal_inertia: float | None = None,
+        distal_damping: float | None = None,
+        sheath_viscosity: float | None = None,
+        relaxation_fraction: float | None = None,
+        relaxation_time: float | None = None,
+        friction2: float | None = None,
+        stiffness2: float | None = None,
+    ):
+        cls = type(self).__name__
+        effects = {k: v for k, v in locals().items() if k in _PAIR_EFFECTS}
+        self.route = _check_route(route, "route", cls)
+        self.route2 = _check_route(route if route2 is None else route2, "route2", cls)
+        if load is not None and not isinstance(
+            load, ConstantTorque | TorsionalSpring | SpringDamper
+        ):
+            raise TypeError(
+                f"{cls}: load must be None, ConstantTorque, TorsionalSpring or SpringDamper "
+                f"(got {type(load).__name__})"
+            )
+        self.load = load
+        p = core.PullPullParams()
+        _set_numbers(p, cls, _PAIR_NUMBERS, locals())
+        p.elements = _check_elements(elements, cls)
+        if load is not None:
+            p.load_torque, p.load_stiffness, p.load_damping = load.rotary()
+        p.options = _options(cls, max_increment, fast_path)
+        _set_effects(p, cls, _PAIR_EFFECTS, effects)
+        with core_errors_as(cls):
+            core.PullPullPlant.__init__(self, p, self.route, self.route2)
+        self._setup_io(motor, sensor)
 
 
 __all__ = ["PullPullPlant"]

@@ -10,6 +10,7 @@ from .._angles import UnitWarning as UnitWarning
 from .._angles import warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, core_errors_as, number, number_array, warn_renamed
 from .._arrays import as_signal
+from .._pyobject import bound_attribute
 from .._typing import ArrayLike, FloatArray
 from . import _bound as core
 
@@ -20,7 +21,7 @@ MAX_CURVE_ANGLE = 200 * np.pi
 _PIECE = ("Route.arcs", "piece")
 
 
-class Route:
+class Route(core.Route):
     """The centreline of a sheath as its accumulated curve angle theta(s) = int_0^s |kappa| ds.
 
     Stored as samples (s_i, theta_i) with s from 0 to the length L and theta non-decreasing,
@@ -39,21 +40,27 @@ class Route:
     ------
     ValueError
         Samples that are not finite, of different lengths, or not as above.
+
+    Notes
+    -----
+    A Route is the C++ ``tendonsheath::Route`` (a subclass of the bound class), so the
+    plants' and compensators' C++ functions take it as it is.
     """
 
-    __slots__ = ("_core",)
+    __slots__ = ()
 
     def __init__(self, s: ArrayLike, theta: ArrayLike):
         s_arr = as_signal(number_array("Route", "s", s), "s")
         th_arr = as_signal(number_array("Route", "theta", theta), "theta")
         with core_errors_as("Route"):
-            self._core = core.Route(s_arr.tolist(), th_arr.tolist())
-        warn_if_curve_angle_in_degrees(self._core.curve_angle, "Route", "theta[-1]")
+            core.Route.__init__(self, s_arr.tolist(), th_arr.tolist())
+        warn_if_curve_angle_in_degrees(self.curve_angle, "Route", "theta[-1]")
 
     @classmethod
-    def _wrap(cls, engine) -> Route:
+    def _wrap(cls, built: core.Route) -> Route:
+        """A Route that is a copy of the C++ route ``built``."""
         obj = cls.__new__(cls)
-        obj._core = engine
+        core.Route.__init__(obj, built)
         return obj
 
     @classmethod
@@ -175,12 +182,12 @@ class Route:
     @property
     def length(self) -> float:
         """Sheath length L (m)."""
-        return self._core.length
+        return bound_attribute(self, "length")
 
     @property
     def curve_angle(self) -> float:
         """Curve angle Theta = theta(L) (rad)."""
-        return self._core.curve_angle
+        return bound_attribute(self, "curve_angle")
 
     @property
     def total_angle(self) -> float:
@@ -191,14 +198,14 @@ class Route:
     @property
     def s(self) -> np.ndarray:
         """The sample arc lengths (m)."""
-        return self._core.s_samples()
+        return self.s_samples()
 
     @property
     def theta(self) -> np.ndarray:
         """The accumulated curve angle at each sample (rad)."""
-        return self._core.theta_samples()
+        return self.theta_samples()
 
-    def angle_at(self, s: ArrayLike) -> float | FloatArray:
+    def angle_at(self, s: ArrayLike) -> float | FloatArray:  # type: ignore[override]
         """theta(s) (rad), vectorised; right-continuous at corners, clamped outside [0, L].
 
         Parameters
@@ -213,9 +220,9 @@ class Route:
         """
         arr = np.asarray(s, dtype=np.float64)
         if arr.ndim == 0:
-            return self._core.angle_at(float(arr))
+            return core.Route.angle_at(self, float(arr))
         flat = np.ascontiguousarray(arr.ravel())
-        return self._core.angles_at(flat).reshape(arr.shape)
+        return self.angles_at(flat).reshape(arr.shape)
 
     def element_angles(self, n: int) -> np.ndarray:
         """Angles of n equal elements, proximal to distal (they sum to curve_angle).
@@ -230,7 +237,7 @@ class Route:
         numpy.ndarray of float, shape (n,)
             The curve angle of each element (rad).
         """
-        return self._core.element_angles(int(n))
+        return core.Route.element_angles(self, int(n))
 
     def node_angles(self, n: int) -> np.ndarray:
         """Lumped angles of the n-1 interior nodes of an n-element sheath (sum: curve_angle).
@@ -245,7 +252,7 @@ class Route:
         numpy.ndarray of float, shape (n - 1,)
             The curve angle lumped at each interior node (rad).
         """
-        return self._core.node_angles(int(n))
+        return core.Route.node_angles(self, int(n))
 
     def scaled(self, factor: float) -> Route:
         """The same shape with every bend scaled by factor >= 0 (same length).
@@ -274,6 +281,12 @@ class Route:
 
     def __reduce__(self):  # pickled as its samples (a route is immutable)
         return Route, (self.s, self.theta)
+
+    def __copy__(self) -> Route:  # immutable: itself (the bound class's copy is no Route)
+        return self
+
+    def __deepcopy__(self, memo: dict) -> Route:  # type: ignore[override]
+        return self
 
     def __repr__(self) -> str:
         return f"Route(length={self.length:.6g} m, curve_angle={self.curve_angle:.6g} rad)"

@@ -9,13 +9,13 @@ import numpy as np
 
 from .._args import core_errors_as, integer, number
 from .._arrays import as_vector, checked_dt
-from .._pyobject import PythonObject
+from .._pyobject import PythonObject, bound_attribute
 from .._typing import ArrayLike, FloatArray
 from ..status import Status
 from . import _bound as core
 
 
-class Sensor(PythonObject):
+class Sensor(PythonObject, core.Sensor):  # type: ignore[misc]
     """Reading y = quantise(x(t - delay) + noise): noise ~ N(0, noise_std^2), steps of
     ``resolution``, ``delay`` seconds of latency.
 
@@ -66,40 +66,47 @@ class Sensor(PythonObject):
                 f"Sensor: history must be in [1, {core.Sensor.MAX_HISTORY}] samples (got {history})"
             )
         p.history = int(history)
-        self._params = p
         with core_errors_as("Sensor"):
-            self._engine = core.Sensor(p)  # validates
+            core.Sensor.__init__(self, p)  # validates
 
     def _recipe(self):
         # pickled as its settings: an equal sensor at rest (tendonsheath._pyobject)
-        names = ("resolution", "noise_std", "seed", "delay", "history")
-        settings = {k: getattr(self._params, k) for k in names}
-        return functools.partial(Sensor, **settings), ()
+        return functools.partial(Sensor, **self.params), ()
+
+    @property
+    def params(self) -> dict:  # type: ignore[override]
+        """The sensor's settings by the names of its constructor (a copy)."""
+        p = self._struct()
+        return {k: getattr(p, k) for k in ("resolution", "noise_std", "seed", "delay", "history")}
 
     @property
     def resolution(self) -> float:
         """Quantisation step (0: none)."""
-        return self._params.resolution
+        return self._struct().resolution
 
     @property
     def noise_std(self) -> float:
         """Standard deviation of the noise."""
-        return self._params.noise_std
+        return self._struct().noise_std
 
     @property
     def seed(self) -> int:
         """Seed of the noise sequence."""
-        return self._params.seed
+        return self._struct().seed
 
     @property
     def delay(self) -> float:
         """Latency (s): a reading is of the true value this long before (0: none)."""
-        return self._params.delay
+        return self._struct().delay
 
     @property
     def history(self) -> int:
         """Samples kept for the delay."""
-        return self._params.history
+        return self._struct().history
+
+    def _struct(self) -> core.SensorParams:
+        """The C++ parameter struct (the bound class's ``params``)."""
+        return bound_attribute(self, "params")
 
     def engine(self) -> core.Sensor:
         """A copy of the C++ sensor engine this sensor built (and validated) once, at rest (its
@@ -111,15 +118,15 @@ class Sensor(PythonObject):
         tendonsheath._core.Sensor
             An independent engine (reading with it leaves this sensor's own state alone).
         """
-        copy = self._engine.__copy__()
+        copy = core.Sensor(self)
         copy.reset()
         return copy
 
     def reset(self) -> None:
         """Restart the noise sequence from its seed and empty the history."""
-        self._engine.reset()
+        core.Sensor.reset(self)
 
-    def measure(
+    def measure(  # type: ignore[override]
         self, x: ArrayLike, t: ArrayLike | None = None, dt: float = 0.0
     ) -> float | FloatArray:
         """One reading per value of x (scalar or array), continuing the noise sequence and
@@ -154,10 +161,10 @@ class Sensor(PythonObject):
         if arr.ndim == 0:
             if t is not None:
                 raise ValueError("Sensor.measure: t is for an array x; a scalar x takes dt")
-            return self._engine.measure(float(arr), step)
+            return core.Sensor.measure(self, float(arr), step)
         times = self._times(t, arr)
         flat = np.ascontiguousarray(arr.ravel())
-        return self._engine.measure_many(flat, times, step).reshape(arr.shape)
+        return self.measure_many(flat, times, step).reshape(arr.shape)
 
     def _times(self, t: ArrayLike | None, arr: np.ndarray) -> np.ndarray | None:
         """The checked sample times of an array reading (None when not given and not needed)."""
@@ -186,7 +193,7 @@ class Sensor(PythonObject):
         Status
             The flags of the last reading.
         """
-        return Status(self._engine.status())
+        return Status(core.Sensor.status(self))
 
     def __repr__(self) -> str:
         extra = f", delay={self.delay:g}, history={self.history}" if self.delay > 0.0 else ""

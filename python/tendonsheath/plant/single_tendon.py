@@ -29,7 +29,7 @@ from .base import (
 )
 
 
-class SingleTendonPlant(_Plant):
+class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
     """One tendon in one sheath: proximal displacement in (m), distal displacement out (m).
 
     ``load`` is a :class:`~tendonsheath.plant.loads.ConstantForce`, ``LinearSpring`` or
@@ -110,7 +110,7 @@ class SingleTendonPlant(_Plant):
         p.options = _options(cls, max_increment, fast_path)
         _set_effects(p, cls, _RATE_EFFECTS, effects)
         with core_errors_as(cls):
-            self._engine = core.SingleTendonPlant(p, route._core)
+            core.SingleTendonPlant.__init__(self, p, route)
         self._setup_io(motor, sensor)
 
     @property
@@ -122,7 +122,7 @@ class SingleTendonPlant(_Plant):
     def _lengths(self) -> tuple[float, ...]:
         return (self.route.length,)
 
-    def set_route(self, route: Route) -> None:
+    def set_route(self, route: Route) -> None:  # type: ignore[override]
         """Bend the sheath to a new route (same length); over-capacity nodes slip next step.
 
         Parameters
@@ -135,11 +135,13 @@ class SingleTendonPlant(_Plant):
         ValueError
             Not a Route, or of another length.
         """
-        self._engine.set_route(_check_route(route, "route", type(self).__name__)._core)
+        core.SingleTendonPlant.set_route(self, _check_route(route, "route", type(self).__name__))
         self.route = route
 
     def _angles_for(self, r):
-        return self._engine.node_angles(_check_route(r, "routes(t)", type(self).__name__)._core)
+        return core.SingleTendonPlant.node_angles(
+            self, _check_route(r, "routes(t)", type(self).__name__)
+        )
 
     def closed_form(self) -> dict:
         """Capstan ratio and (A4) dead zone for the current route and load at rest (m).
