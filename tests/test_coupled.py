@@ -200,3 +200,35 @@ def test_round_trip_and_bad_inputs(tmp_path):
     with pytest.raises(TypeError, match="Sensor"):
         ts.CoupledPlant([ts.PullPullPlant(r, **RIG) for r in ROUTES], np.zeros((2, 2)), [1, 2])
     assert isinstance(CoupledFeedforward(model).joints[0], InverseFeedforward)
+
+
+def test_coupled_runs_return_a_simulation_result_with_every_joints_flags():
+    """Coupled.simulate and CoupledFeedforward.command give one SimulationResult (n, J) as
+    every simulate and command does: its t, input and each sample's flags of all joints."""
+    models = [Backlash(B_r=0.05, B_l=0.05), BoucWenBacklash(B_r=0.02, B_l=0.02)]
+    model = Coupled(models, [[0.0, 0.0], [0.2, 0.0]])
+    t = np.arange(0.0, 1.0, 1e-3)
+    x = np.column_stack([np.sin(2 * np.pi * t), 0.5 * np.cos(2 * np.pi * t)])
+    y = model.simulate(t, x)
+    assert isinstance(y, ts.SimulationResult) and y.shape == (t.size, 2)
+    np.testing.assert_array_equal(y.t, t)
+    np.testing.assert_array_equal(y.input, x)
+    own = [m.simulate(t, x[:, i]).status for i, m in enumerate(models)]
+    assert y.status.dtype == np.uint8
+    np.testing.assert_array_equal(y.status, own[0] | own[1])
+    # commands beyond the limits are saturated: those cycles say so
+    ff = CoupledFeedforward(model, input_range=None, limits=(-0.3, 0.3))
+    y_d = np.column_stack([0.3 * np.sin(2 * np.pi * t), 0.2 * np.sin(4 * np.pi * t)])
+    u = ff.command(t, y_d)
+    assert isinstance(u, ts.SimulationResult) and u.shape == (t.size, 2)
+    np.testing.assert_array_equal(u.input, y_d)
+    saturated = (u.status & ts.Status.SATURATED) != 0
+    assert u.status.shape == (t.size,) and 0 < saturated.sum() < t.size
+    np.testing.assert_array_equal(saturated, np.any(np.abs(u) >= 0.3, axis=1))
+    # streaming gives the same flags, cycle by cycle
+    ff.reset()
+    flags = []
+    for k in range(t.size):
+        ff.step(y_d[k], 1e-3 if k else 0.0)
+        flags.append(int(ff.status()))
+    np.testing.assert_array_equal(u.status, flags)

@@ -29,8 +29,9 @@ OutArray step(ts::CoupledFeedforward& self, InArray y_d, double dt) {
   return out;
 }
 
-// A copy over a whole trajectory (rows: samples, columns: joints), from the initial state.
-OutMatrix command(const ts::CoupledFeedforward& self, InArray t, InMatrix y) {
+// A copy over a whole trajectory (rows: samples, columns: joints), from the initial state:
+// (commands, each cycle's Status flags).
+nb::tuple command(const ts::CoupledFeedforward& self, InArray t, InMatrix y) {
   const std::size_t n = y.shape(0), joints = self.joints();
   check_joints(y.shape(1), joints, "y_desired");
   check_lengths(n, t.shape(0), "t", "CoupledFeedforward");
@@ -40,16 +41,19 @@ OutMatrix command(const ts::CoupledFeedforward& self, InArray t, InMatrix y) {
     ts::check_series(t.data(), column.data(), n, "CoupledFeedforward");
   }
   auto [out, u] = new_matrix(n, joints);
+  auto [flags, f] = new_bytes(n);
   ts::CoupledFeedforward ff = self;
   ff.reset();
   const double* tp = t.data();
   const double* yp = y.data();
   {
     nb::gil_scoped_release release;
-    for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t k = 0; k < n; ++k) {
       ff.step(yp + k * joints, u + k * joints, k == 0 ? 0.0 : tp[k] - tp[k - 1]);
+      f[k] = static_cast<std::uint8_t>(ff.status());
+    }
   }
-  return out;
+  return nb::make_tuple(out, flags);
 }
 
 }  // namespace

@@ -42,7 +42,6 @@ Controller: TypeAlias = (
 )
 
 
-
 @dataclass
 class Result:
     """Every signal of a bench run and its metrics (computed after ``warmup`` seconds).

@@ -14,6 +14,7 @@ from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from ..models import Coupled
 from ..plant.coupled import _joint_matrix
+from ..simulation_result import SimulationResult
 from ..status import Status
 from . import _bound as core
 from . import persistence
@@ -137,9 +138,9 @@ class CoupledFeedforward(PythonObject, SavedAsJson, core.CoupledFeedforward):  #
         """
         return Status(core.CoupledFeedforward.status(self))
 
-    def command(self, t: ArrayLike, y_desired: ArrayLike) -> FloatArray:
+    def command(self, t: ArrayLike, y_desired: ArrayLike) -> SimulationResult:  # type: ignore[override]
         """Motor commands for whole trajectories, from the initial state (the streaming
-        state is not touched).
+        state is not touched), with each cycle's flags (all joints' together).
 
         Parameters
         ----------
@@ -150,8 +151,9 @@ class CoupledFeedforward(PythonObject, SavedAsJson, core.CoupledFeedforward):  #
 
         Returns
         -------
-        numpy.ndarray of float, shape (n, J)
-            The motor commands.
+        SimulationResult, shape (n, J)
+            The motor commands (an array), with ``t``, ``input`` (y_desired) and ``status``
+            (each cycle's :class:`~tendonsheath.Status` flags of every joint, uint8, shape (n,)).
 
         Raises
         ------
@@ -160,7 +162,8 @@ class CoupledFeedforward(PythonObject, SavedAsJson, core.CoupledFeedforward):  #
         """
         yd = _joint_matrix(y_desired, len(self.joints), "y_desired", "CoupledFeedforward.command")
         ts = np.ascontiguousarray(as_vector(t, "t"))
-        return core.CoupledFeedforward.command(self, ts, yd)
+        commands, flags = core.CoupledFeedforward.command(self, ts, yd)
+        return SimulationResult(commands, t=ts, input=yd, status=flags)
 
     # -- persistence -----------------------------------------------------------------
     def to_dict(self) -> dict:

@@ -16,6 +16,7 @@ from .._json_source import read_json_source
 from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from ..plant.coupled import _coupling_matrix, _joint_matrix
+from ..simulation_result import SimulationResult
 from .base import HysteresisModel, load_model
 
 FORMAT_NAME = "tendonsheath.coupled_model"
@@ -83,11 +84,14 @@ class Coupled(PythonObject):
         numpy.ndarray of float, shape (n, J)
             The joints' own outputs.
         """
-        xs = _joint_matrix(x, self.joints, "x", "Coupled")
-        cols = [np.asarray(m.simulate(t, xs[:, i])) for i, m in enumerate(self.models)]
-        return np.column_stack(cols)
+        return np.column_stack([np.asarray(r) for r in self._own_runs(t, x)[1]])
 
-    def simulate(self, t: ArrayLike | None, x: ArrayLike) -> FloatArray:
+    def _own_runs(self, t, x) -> tuple[FloatArray, list]:
+        """(the inputs as a matrix, each joint model's simulate result on its column)."""
+        xs = _joint_matrix(x, self.joints, "x", "Coupled")
+        return xs, [m.simulate(t, xs[:, i]) for i, m in enumerate(self.models)]
+
+    def simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
         """The joints' angles from their inputs alone: y = (I - C)^-1 h.
 
         Parameters
@@ -99,10 +103,17 @@ class Coupled(PythonObject):
 
         Returns
         -------
-        numpy.ndarray of float, shape (n, J)
-            The joints' angles.
+        SimulationResult, shape (n, J)
+            The joints' angles (an array), with ``t``, ``input`` (x) and ``status`` (each
+            sample's flags of every joint model together, uint8, shape (n,); None when no joint
+            model reports any).
         """
-        return self.own(t, x) @ self._solve.T
+        xs, runs = self._own_runs(t, x)
+        own = np.column_stack([np.asarray(r) for r in runs])
+        flags = [r.status for r in runs if getattr(r, "status", None) is not None]
+        status = np.bitwise_or.reduce(np.stack(flags), axis=0) if flags else None
+        ts = None if t is None else np.asarray(t, dtype=np.float64)
+        return SimulationResult(own @ self._solve.T, t=ts, input=xs, status=status)
 
     def predict(self, t: ArrayLike | None, x: ArrayLike, y: ArrayLike) -> FloatArray:
         """Each joint's angle from its own input and the other joints' measured angles,
