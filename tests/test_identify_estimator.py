@@ -70,6 +70,20 @@ def test_init_takes_every_setting_as_a_keyword_with_identifys_default():
     }
 
 
+def test_identify_takes_every_setting_as_a_keyword_with_its_default():
+    # identify's own signature (not one forged at import): the data, then each setting of
+    # Options, keyword-only, in its order and with its default; a misspelt one is Python's
+    # TypeError naming it
+    params = list(inspect.signature(ts.identify).parameters.values())
+    assert [p.name for p in params] == [
+        "model_class", "t", "x", "y", "recordings", "curve_angle", "load", *DEFAULTS
+    ]  # fmt: skip
+    for p in params[7:]:
+        assert p.kind is p.KEYWORD_ONLY and p.default == DEFAULTS[p.name], p.name
+    with pytest.raises(TypeError, match=r"unexpected keyword argument 'maxiters'"):
+        ts.identify(Backlash, [0.0, 1.0], [0.0, 1.0], [0.0, 1.0], maxiters=5)
+
+
 def test_oscillator_settings_are_grouped_and_the_old_keywords_warn(log):
     t, x, y = log
     fit = ts.identify(HystereticOscillator, t, x, y, strategy="search", periodic=False, **FAST)

@@ -539,6 +539,7 @@ def _fit_logs(candidate, data: list[Path], validate: Path | None, columns: dict,
     validate it on ``validate``: (fit, validation metrics or None, number of recordings).
     A fit or a validation error that is not finite is an error (exit 2)."""
     from .identify import identify as run_identify
+    from .models import Loaded
 
     _note_suspicious(data, [validate] if validate else [], columns["input"], columns["output"])
     logs = _read_logs(data, columns)
@@ -549,7 +550,7 @@ def _fit_logs(candidate, data: list[Path], validate: Path | None, columns: dict,
         warnings.simplefilter("ignore", IdentifiabilityWarning)
         fit = run_identify(candidate, recordings=logs, **search)
     val = None
-    if vlog is not None and vlog.load is not None:
+    if vlog is not None and vlog.load is not None and isinstance(fit.model, Loaded):
         from .identify.fit import metrics
 
         val = metrics(vlog.y, fit.model.simulate(vlog.t, vlog.x, load=vlog.load))

@@ -874,7 +874,8 @@ def _add_fit(cal: Calibration, name: str, run_names, data, search: dict, *, warm
 
     model = getattr(models, name)
     fits = [
-        identify(model, *data, **search, warmup=warmup, seed=s, progress=False, **budget)
+        # data is (t, x, y) or empty (then search holds the recordings)
+        identify(model, *data, **search, warmup=warmup, seed=s, progress=False, **budget)  # type: ignore[misc]
         for s in range(seed, seed + RESTARTS.get(name, 1))
     ]
     fit = min(fits, key=lambda f: f.rmse)

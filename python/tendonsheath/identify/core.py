@@ -28,18 +28,16 @@ from .plant_model import identify_plant
 from .refine import TimeBudget
 from .search import SEARCH_DEADLINE
 from .settings import (
+    OPTION_NAMES,
     Options,
     Search,
-    check_names,
     check_search_options,
     with_new_names,
-    with_settings_signature,
 )
 
 __all__ = ["SEARCH_DEADLINE", "check_search_options", "fit_recordings", "identify", "run"]
 
 
-@with_settings_signature
 def identify(
     model_class: type[HysteresisModel] | HysteresisModel | str,
     t: ArrayLike | None = None,
@@ -49,7 +47,29 @@ def identify(
     recordings: Sequence | None = None,
     curve_angle: ArrayLike | None = None,
     load: Any = None,
-    **options: Any,
+    warmup: int = 0,
+    bounds: dict | None = None,
+    fixed: dict | None = None,
+    free: Any = None,
+    initial: Any = None,
+    depends_on_angle: dict | None = None,
+    seed: int | None = 0,
+    maxiter: int = 100,
+    popsize: int = 15,
+    tol: float = 0.01,
+    workers: int | None = None,
+    polish: bool = True,
+    separable: bool = True,
+    progress: bool = True,
+    search_samples: int | None = 200_000,
+    time_budget: Any = None,
+    input_interpolation: str | None = None,
+    periodic: bool | None = None,
+    strategy: str = "auto",
+    normalize: bool = True,
+    standard_errors: str = "linearised",
+    bootstrap: int | None = None,
+    bootstrap_block: int | None = None,
 ) -> Fit:
     """Identify a model from input/output recordings by simulation-error minimisation.
 
@@ -229,13 +249,16 @@ def identify(
         Bad data or arguments (the message names them), or an option the model does not
         support.
     """
+    # the settings, by the names of Options (a test holds these keywords and defaults equal
+    # to its fields)
+    given = locals()
+    options = {name: given[name] for name in OPTION_NAMES}
     if isinstance(model_class, Loaded):
         return _identify_loaded(model_class, t, x, y, recordings, load, options)
     if load is not None:
         raise ValueError(
             "a measured load is taken by a Loaded model: identify(Loaded(BaseClass), ..., load=...)"
         )
-    check_names(options, "identify")
     return fit_recordings(
         model_class, Options(**options), t, x, y, recordings=recordings, curve_angle=curve_angle
     )

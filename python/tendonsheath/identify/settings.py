@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import dataclasses
 import difflib
-import inspect
 import os
 from typing import Any
 
@@ -59,21 +58,6 @@ IDENTIFIER_NAMES: tuple[str, ...] = (
     *(n for n in OPTION_NAMES if n not in OSCILLATOR_NAMES),
     "oscillator",
 )
-
-
-def with_settings_signature(fn):
-    """``fn`` (taking ``**options``) with a signature that lists every setting as a
-    keyword-only parameter and its default, for help() and editors."""
-    sig = inspect.signature(fn)
-    kept = [p for p in sig.parameters.values() if p.kind is not inspect.Parameter.VAR_KEYWORD]
-    named = [
-        inspect.Parameter(
-            n, inspect.Parameter.KEYWORD_ONLY, default=DEFAULTS[n], annotation=TYPES[n]
-        )
-        for n in OPTION_NAMES
-    ]
-    fn.__signature__ = sig.replace(parameters=kept + named)
-    return fn
 
 
 def with_new_names(model_class, options: Options) -> Options:
@@ -243,5 +227,4 @@ __all__ = [
     "default_threads",
     "oscillator_settings",
     "with_new_names",
-    "with_settings_signature",
 ]
