@@ -277,8 +277,6 @@ NOT_BUILT = {
     "LagInverseParams": "LagInverse is bound only inside ModelInverse (test_model_inverse)",
     "PlantModelParams": "PlantModel is bound only inside ModelInverse (test_model_inverse)",
 }
-# (struct, field) -> why the constructor's message names it otherwise
-MESSAGE_NAME = {("AdaptiveControllerParams", "lambda_"): "lambda"}
 # struct -> the class whose messages also check it (ContinuumPlant builds a PullPullPlant, which
 # checks the tendons' and pulleys' fields in its own name)
 ALSO_CHECKED_BY = {"ContinuumParams": "PullPullPlant"}
@@ -307,7 +305,7 @@ def test_every_checked_row_is_the_constructors_first_message(struct):
         if row["check"] not in BAD:
             continue
         value, tail = BAD[row["check"]](row)
-        name = MESSAGE_NAME.get((struct, row["name"]), row["name"])
+        name = row["name"]
         owners = "|".join(re.escape(o) for o in (cls.owner, ALSO_CHECKED_BY.get(struct, cls.owner)))
         with pytest.raises(ValueError, match=f"^({owners}): {re.escape(f'{name} {tail}')}"):
             build(cls(**{row["name"]: value}))

@@ -71,7 +71,7 @@ struct AdaptiveControllerParams {
 template <>
 struct ParamTable<AdaptiveControllerParams> {
   static constexpr const char* owner = "AdaptiveController";  ///< the class its constructor takes it
-  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("lambda_", &AdaptiveControllerParams::lambda, "1/s", positive(),
@@ -152,28 +152,13 @@ class AdaptiveController {
   explicit AdaptiveController(const Params& p)
       : p_(p), ff_(checked_feedforward(p)), slope_(0.5 * (p.feedforward.c_r + p.feedforward.c_l)) {
     const char* w = "AdaptiveController";
-    require_positive(p.lambda, w, "lambda");
-    require_non_negative(p.k_s, w, "k_s");
-    require_positive(p.epsilon, w, "epsilon");
-    require_non_negative(p.gamma_psi, w, "gamma_psi");
-    require_non_negative(p.gamma_phi, w, "gamma_phi");
-    require_non_negative(p.gamma_D, w, "gamma_D");
-    require_non_negative(p.sigma_psi, w, "sigma_psi");
-    require_non_negative(p.sigma_phi, w, "sigma_phi");
-    require_non_negative(p.sigma_D, w, "sigma_D");
-    require_positive(p.phi_min, w, "phi_min");
+    validate_fields(p, w);  // each field's own bound, from ParamTable<AdaptiveControllerParams>
+    // the bounds that depend on other fields (phi_min, psi_max and D_max are checked above)
     require(p.phi_max > p.phi_min, w, "phi_max must be > phi_min");
     require_in_range(p.phi_0, p.phi_min, p.phi_max, w, "phi_0");
-    require_positive(p.psi_max, w, "psi_max");
     require_in_range(p.psi_0, -p.psi_max, p.psi_max, w, "psi_0");
-    require_positive(p.D_max, w, "D_max");
     require_in_range(p.D_0, 0.0, p.D_max, w, "D_0");
-    require_non_negative(p.adaptation_deadzone, w, "adaptation_deadzone");
-    require_positive(p.derivative_cutoff_hz, w, "derivative_cutoff_hz");
-    require_positive(p.derivative_damping, w, "derivative_damping");
     require(p.max_torque > 0.0, w, "max_torque must be > 0");
-    require_non_negative(p.fallback_kp, w, "fallback_kp");
-    require_non_negative(p.fallback_kd, w, "fallback_kd");
     if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values
     reset();
   }

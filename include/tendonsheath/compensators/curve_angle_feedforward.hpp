@@ -45,7 +45,7 @@ struct CurveAngleFeedforwardParams {
 template <>
 struct ParamTable<CurveAngleFeedforwardParams> {
   static constexpr const char* owner = "CurveAngleFeedforward";  ///< the class its constructor takes it
-  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("friction", &CurveAngleFeedforwardParams::friction, "", non_negative(),
@@ -64,7 +64,7 @@ struct ParamTable<CurveAngleFeedforwardParams> {
             "r_p"),
       param("distal_radius", &CurveAngleFeedforwardParams::distal_radius, "m", positive(),
             "r_d"),
-      param("curve_angle", &CurveAngleFeedforwardParams::curve_angle, "rad", documented(0.0, true, kInf, false),
+      param("curve_angle", &CurveAngleFeedforwardParams::curve_angle, "rad", non_negative(),
             "initial Theta (uniform curvature), <= the largest the friction allows"),
       param("play", &CurveAngleFeedforwardParams::play, "rad", non_negative(),
             "motor-side play (gearhead backlash), total width at the motor"),
@@ -93,22 +93,12 @@ class CurveAngleFeedforward {
   /// (friction * curve_angle must be <= 50).
   explicit CurveAngleFeedforward(const Params& p) : p_(p), shaper_(p.limits) {
     const char* w = "CurveAngleFeedforward";
-    require_non_negative(p.friction, w, "friction");
-    require_positive(p.stiffness, w, "stiffness");
-    require_positive(p.length, w, "length");
+    validate_fields(p, w);  // each field's own bound, from ParamTable<CurveAngleFeedforwardParams>
+    // the rules between fields, and the bounds the table cannot hold
     require_positive(p.length / p.stiffness, w, "length / stiffness");
-    require_non_negative(p.pretension, w, "pretension");
-    require_finite(p.load_force, w, "load_force");
-    require_non_negative(p.load_stiffness, w, "load_stiffness");
-    require_positive(p.proximal_radius, w, "proximal_radius");
-    require_positive(p.distal_radius, w, "distal_radius");
-    require_non_negative(p.curve_angle, w, "curve_angle");
     require(p.curve_angle <= max_curve_angle(p.friction), w, "curve_angle must be <= ",
             max_curve_angle(p.friction), " rad for friction ", p.friction,
             " (friction * curve_angle <= 50; got ", p.curve_angle, ")");
-    require_positive(p.smoothing, w, "smoothing");
-    require_non_negative(p.play, w, "play");
-    require(std::isfinite(p.play), w, "play must be finite");
     require(p.max_correction_rate > 0.0, w, "max_correction_rate must be > 0");
     p.limits.validate(w);
     if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values

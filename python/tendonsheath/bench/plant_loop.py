@@ -5,7 +5,8 @@ What bench.run uses of a plant (beyond the protocol's ``params``, ``reset``, ``s
 ``simulate``; everything optional has a default):
 
 * ``_tendonsheath_plant()`` (optional): what the C++ loop steps at C++ speed: the shipped
-  plants give their C++ engine (without the motor), a compiled plant bound with
+  plants give themselves (each is its bound C++ plant; the loop steps a copy, without the
+  motor), a compiled plant bound with
   ``tendonsheath_bind/plant.hpp`` a capsule. Without it the plant is a *Python plant*: the loop
   calls its ``step(command, dt)`` once per cycle (slower, the same loop otherwise), after
   ``reset()``; the plant object itself is stepped.
