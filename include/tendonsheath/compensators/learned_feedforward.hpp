@@ -37,10 +37,10 @@ struct LearnedFeedforwardParams {
 template <>
 struct ParamTable<LearnedFeedforwardParams> {
   static constexpr const char* owner = "LearnedCorrection";  ///< the class its constructor takes it
-  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
-      param("table_dt", &LearnedFeedforwardParams::table_dt, "s", documented(0.0, false, kInf, false),
+      param("table_dt", &LearnedFeedforwardParams::table_dt, "s", positive(),
             "time between the table's samples"),
       param("hold_last", &LearnedFeedforwardParams::hold_last, "", any(),
             "past the table's end: hold its last sample (true) or add 0 (false)"),
@@ -68,8 +68,7 @@ class LearnedCorrection {
     require(!table_.empty(), w, "the table is empty (give at least one sample)");
     for (std::size_t i = 0; i < table_.size(); ++i)
       require(std::isfinite(table_[i]), w, "table[", i, "] is not finite (got ", table_[i], ")");
-    require(p.table_dt > 0.0 && std::isfinite(p.table_dt), w,
-            "table_dt must be > 0 and finite (got ", p.table_dt, ")");
+    validate_fields(p, w);  // table_dt's bound, from ParamTable<LearnedFeedforwardParams>
     p.limits.validate(w);
   }
 

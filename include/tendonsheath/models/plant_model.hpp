@@ -31,7 +31,7 @@ struct PlantModelParams {
 template <>
 struct ParamTable<PlantModelParams> {
   static constexpr const char* owner = "PlantModel";  ///< the class its constructor takes it
-  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("friction_angle", &PlantModelParams::friction_angle, "rad", documented(0.0, false, 20.0, false),
@@ -85,14 +85,12 @@ class PlantModel {
  private:
   static PullPullPlant make(const Params& p) {
     const char* w = "PlantModel";
+    validate_fields(p, w);  // each field's own bound, from ParamTable<PlantModelParams>
+    // the open range and the excluded 0 the table's kinds do not hold
     require(std::isfinite(p.friction_angle) && p.friction_angle > 0.0 && p.friction_angle < 20.0,
             w, "friction_angle must be in (0, 20) (got ", p.friction_angle, ")");
-    require_positive(p.backlash, w, "backlash");
-    require_non_negative(p.viscous_time, w, "viscous_time");
     require(std::isfinite(p.gain) && p.gain != 0.0, w, "gain must be finite and not 0 (got ",
             p.gain, ")");
-    require_finite(p.offset, w, "offset");
-    require(p.elements >= 2, w, "elements must be >= 2 (got ", p.elements, ")");
     // L / EA at T0 = 1 N and L = 1 m, per unit radius; the pulleys' radius r is a free scale
     // (e_b = T0 L tanh(a/2) / (EA r)), chosen so that the rest strain T0 / EA = compliance r
     // stays <= 1e-3, well inside the plant's small-strain bound (T0 / EA < 0.05).

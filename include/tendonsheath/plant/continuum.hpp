@@ -38,7 +38,7 @@ struct ContinuumParams {
 template <>
 struct ParamTable<ContinuumParams> {
   static constexpr const char* owner = "ContinuumPlant";  ///< the class its constructor takes it
-  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("friction", &ContinuumParams::friction, "", non_negative(),
@@ -76,13 +76,13 @@ struct ParamTable<ContinuumParams> {
 };
 
 /// The pull-pull pair a continuum segment maps to: distal radius r_t and a torsional load stiffness
-/// EI / l. Throws std::invalid_argument when bending_stiffness, tendon_offset or backbone_length is
-/// not > 0.
+/// EI / l. Throws std::invalid_argument naming the first field out of its range (the table's
+/// bounds, then elements and relaxation_fraction).
 inline PullPullParams continuum_to_pull_pull(const ContinuumParams& c) {
   const char* w = "ContinuumPlant";
-  require_positive(c.bending_stiffness, w, "bending_stiffness");
-  require_positive(c.tendon_offset, w, "tendon_offset");
-  require_positive(c.backbone_length, w, "backbone_length");
+  validate_fields(c, w);  // each field's own bound, from ParamTable<ContinuumParams>
+  detail::validate_elements(c.elements, w);
+  detail::validate_relaxation_fraction(c.relaxation_fraction, w);
   PullPullParams p;
   p.friction = c.friction;
   p.stiffness = c.stiffness;

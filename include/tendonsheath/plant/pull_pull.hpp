@@ -59,7 +59,7 @@ struct PullPullParams {
 template <>
 struct ParamTable<PullPullParams> {
   static constexpr const char* owner = "PullPullPlant";  ///< the class its constructor takes it
-  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("friction", &PullPullParams::friction, "", non_negative(),
@@ -133,16 +133,9 @@ class PullPullPlant {
         L1_(route1.length()),
         L2_(route2.length()) {
     const char* w = "PullPullPlant";
-    detail::validate_tendon(p.friction, p.stiffness, p.elements, w);
-    require_positive(p.pretension, w, "pretension");
-    require_positive(p.proximal_radius, w, "proximal_radius");
-    require_positive(p.distal_radius, w, "distal_radius");
-    require_finite(p.load_torque, w, "load_torque");
-    require_non_negative(p.load_stiffness, w, "load_stiffness");
-    require_non_negative(p.load_damping, w, "load_damping");
-    require_non_negative(p.distal_inertia, w, "distal_inertia");
-    require_non_negative(p.distal_damping, w, "distal_damping");
-    detail::validate_rate_effects(p.sheath_viscosity, p.relaxation_fraction, p.relaxation_time, w);
+    validate_fields(p, w);  // each field's own bound, from ParamTable<PullPullParams>
+    detail::validate_elements(p.elements, w);
+    detail::validate_relaxation_fraction(p.relaxation_fraction, w);
     require(p.friction2 == -1.0 || (p.friction2 >= 0.0 && std::isfinite(p.friction2)), w,
             "friction2 must be finite and >= 0, or -1 for the same as friction (got ", p.friction2,
             ")");

@@ -37,7 +37,7 @@ struct SingleTendonParams {
 template <>
 struct ParamTable<SingleTendonParams> {
   static constexpr const char* owner = "SingleTendonPlant";  ///< the class its constructor takes it
-  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("friction", &SingleTendonParams::friction, "", non_negative(),
@@ -61,9 +61,7 @@ struct ParamTable<SingleTendonParams> {
 };
 
 namespace detail {
-inline void validate_tendon(double mu, double EA, int N, const char* w) {
-  require_non_negative(mu, w, "friction");
-  require_positive(EA, w, "stiffness");
+inline void validate_elements(int N, const char* w) {
   require(N >= 2, w, "elements must be >= 2 (got ", N, ")");
   require(N <= 1000000, w, "elements must be <= 1000000 (got ", N, ")");
 }
@@ -88,12 +86,11 @@ inline double default_increment(double T, double L, double EA, double a) noexcep
   return e > 0.0 ? e / 20.0 : 0.0;
 }
 
-// Validation of the rate effects every plant shares.
-inline void validate_rate_effects(double viscosity, double fraction, double tau, const char* w) {
-  require_non_negative(viscosity, w, "sheath_viscosity");
+// The half-open bound of the relaxing share every plant has (the table's other rows are
+// checked by validate_fields).
+inline void validate_relaxation_fraction(double fraction, const char* w) {
   require(fraction >= 0.0 && fraction < 1.0, w, "relaxation_fraction must be in [0, 1) (got ",
           fraction, ")");
-  require_positive(tau, w, "relaxation_time");
 }
 
 inline void check_route_length(const Route& r, double L, const char* w) {
@@ -119,13 +116,12 @@ class SingleTendonPlant {
   SingleTendonPlant(const Params& p, const Route& route)
       : p_(p), N_(static_cast<std::size_t>(p.elements > 0 ? p.elements : 0)), L_(route.length()) {
     const char* w = "SingleTendonPlant";
-    detail::validate_tendon(p.friction, p.stiffness, p.elements, w);
-    require_finite(p.load_force, w, "load_force");
-    require_non_negative(p.load_stiffness, w, "load_stiffness");
+    validate_fields(p, w);  // each field's own bound, from ParamTable<SingleTendonParams>
+    detail::validate_elements(p.elements, w);
+    detail::validate_relaxation_fraction(p.relaxation_fraction, w);
     require(p.load_force > 0.0 || p.load_stiffness > 0.0, w,
             "the load must pull the tendon: load_force > 0 or load_stiffness > 0");
     detail::validate_rest_strain(p.load_force, p.stiffness, w, "load_force");
-    detail::validate_rate_effects(p.sheath_viscosity, p.relaxation_fraction, p.relaxation_time, w);
     validate_chain_options(p.options, w);
     if (detail::failed()) return;  // without exceptions, in make(): no chain of a bad size
     chain_ = FrictionChain(N_);
