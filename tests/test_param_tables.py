@@ -239,6 +239,7 @@ def test_the_binding_is_the_table(struct):
             "hi_closed",
             "check",
             "doc",
+            "applies_to",
         }
         assert row["doc"], f"{struct}.{row['name']}: no doc"
         value = getattr(default, row["name"])
@@ -277,17 +278,33 @@ NOT_BUILT = {
     "LagInverseParams": "LagInverse is bound only inside ModelInverse (test_model_inverse)",
     "PlantModelParams": "PlantModel is bound only inside ModelInverse (test_model_inverse)",
 }
-# Motor checks a field only for the kind that uses it (its rows are all `documented`), so the
-# walk below builds each owner from defaults plus one field out of its range.
+
+
+def _below(row: dict) -> float | int:
+    """A value just below an at_least row's bound (an integer for an integer field)."""
+    if isinstance(row["default"], int):
+        return int(row["lo"]) - 1
+    return row["lo"] - 0.5
+
+
+# The walk below builds each owner from defaults plus one field out of its range; a row that
+# applies to some parameters only (a Motor's kind: applies_to) with those (APPLIES), and with the
+# others it must pass.
 BAD = {  # check -> (a value out of range, the message's tail)
     "positive": lambda r: (0.0, "must be > 0 (got 0)"),
     "non_negative": lambda r: (-1.0, "must be >= 0 (got -1)"),
-    "at_least": lambda r: (r["lo"] - 0.5, f"must be >= {r['lo']:g} (got {r['lo'] - 0.5:g})"),
+    "at_least": lambda r: (_below(r), f"must be >= {r['lo']:g} (got {_below(r):g})"),
     "in_range": lambda r: (
         r["hi"] + 1.0,
         f"must be in [{r['lo']:g}, {r['hi']:g}] (got {r['hi'] + 1:g})",
     ),
     "finite": lambda r: (math.inf, "must be finite (got inf)"),
+    "positive_or_inf": lambda r: (0.0, "must be > 0 (got 0)"),
+}
+# (struct, applies_to) -> the other fields that make a row apply (a torque motor needs inertia)
+APPLIES = {
+    ("MotorParams", "position"): {"kind": core.MotorKind.Position},
+    ("MotorParams", "torque"): {"kind": core.MotorKind.Torque, "inertia": 1e-3},
 }
 
 
@@ -303,8 +320,15 @@ def test_every_checked_row_is_the_constructors_first_message(struct):
             continue
         value, tail = BAD[row["check"]](row)
         name = row["name"]
+        setup = APPLIES[(struct, row["applies_to"])] if row["applies_to"] else {}
         with pytest.raises(ValueError, match=f"^{re.escape(f'{cls.owner}: {name} {tail}')}"):
-            build(cls(**{row["name"]: value}))
+            build(cls(**{**setup, row["name"]: value}))
+        if row["applies_to"]:  # the bound holds only where the row applies
+            others = [
+                s for (st, w), s in APPLIES.items() if st == struct and w != row["applies_to"]
+            ]
+            for other in others:
+                build(cls(**{**other, row["name"]: value}))
 
 
 def test_checked_from_table_is_what_the_header_does():

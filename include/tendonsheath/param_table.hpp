@@ -32,6 +32,7 @@ enum class Check : unsigned char {
   non_negative,  ///< "<name> must be >= 0 (got v)": finite and >= 0
   at_least,      ///< "<name> must be >= lo (got v)": finite and >= lo
   in_range,      ///< "<name> must be in [lo, hi] (got v)": finite and in [lo, hi]
+  positive_or_inf,  ///< "<name> must be > 0 (got v)": > 0, +inf allowed (no limit)
   documented,    ///< the range [lo, hi] (inclusivity as given) is checked by the constructor by hand
 };
 
@@ -58,6 +59,8 @@ constexpr Range non_negative() { return Range{Check::non_negative, 0.0, true, kI
 constexpr Range at_least(double lo) { return Range{Check::at_least, lo, true, kInf, false}; }
 /// Finite and in [lo, hi] (require_in_range).
 constexpr Range in_range(double lo, double hi) { return Range{Check::in_range, lo, true, hi, true}; }
+/// > 0, +inf allowed: a limit that inf turns off.
+constexpr Range positive_or_inf() { return Range{Check::positive_or_inf, 0.0, false, kInf, true}; }
 /// A bound the constructor checks by hand: [lo or (lo, hi] or hi) as the flags say.
 constexpr Range documented(double lo, bool lo_closed, double hi, bool hi_closed) {
   return Range{Check::documented, lo, lo_closed, hi, hi_closed};
@@ -73,6 +76,10 @@ struct ParamField {
   const char* unit;       ///< its unit ("" when dimensionless or in the input's units: see doc)
   Range range;            ///< its valid range and how it is checked
   const char* doc;        ///< one line
+  /// the parameters the row applies to (nullptr: all), e.g. a position motor's: its bound is
+  /// checked only where this holds
+  bool (*applies)(const P&) = nullptr;
+  const char* applies_to = nullptr;  ///< which those are, in words ("position"), for the docs
 };
 
 /// A row: param("c_r", &BacklashParams::c_r, "", positive(), "slope of the rising branch").
@@ -80,6 +87,16 @@ template <class P, class T>
 constexpr ParamField<P, T> param(const char* name, T P::*member, const char* unit, Range range,
                                  const char* doc) {
   return ParamField<P, T>{name, member, unit, range, doc};
+}
+
+/// A row that applies only where applies(p) holds (`which`: those parameters in words):
+/// only_if(param("viscous", ...), &is_torque, "torque").
+template <class P, class T>
+constexpr ParamField<P, T> only_if(ParamField<P, T> row, bool (*applies)(const P&),
+                                   const char* which) {
+  row.applies = applies;
+  row.applies_to = which;
+  return row;
 }
 
 /// Specialised next to each parameter struct P, with `static constexpr auto fields` (a tuple of
@@ -108,6 +125,7 @@ constexpr std::size_t field_count() {
 template <class P, class T>
 void validate_field(const P& p, const ParamField<P, T>& row, const char* where) {
   if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+    if (row.applies != nullptr && !row.applies(p)) return;  // not these parameters' field
     const double v = static_cast<double>(p.*row.member);
     switch (row.range.check) {
       case Check::finite: require_finite(v, where, row.name); break;
@@ -115,6 +133,7 @@ void validate_field(const P& p, const ParamField<P, T>& row, const char* where) 
       case Check::non_negative: require_non_negative(v, where, row.name); break;
       case Check::at_least: require_at_least(v, row.range.lo, where, row.name); break;
       case Check::in_range: require_in_range(v, row.range.lo, row.range.hi, where, row.name); break;
+      case Check::positive_or_inf: require(v > 0.0, where, row.name, " must be > 0 (got ", v, ")"); break;
       default: break;
     }
   }

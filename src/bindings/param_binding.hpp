@@ -26,12 +26,14 @@ inline const char* check_name(tendonsheath::Check c) {
     case Check::non_negative: return "non_negative";
     case Check::at_least: return "at_least";
     case Check::in_range: return "in_range";
+    case Check::positive_or_inf: return "positive_or_inf";
     case Check::documented: return "documented";
     default: return "unchecked";
   }
 }
 
-// One row as a dict: name, unit, default, lo, lo_closed, hi, hi_closed, check, doc.
+// One row as a dict: name, unit, default, lo, lo_closed, hi, hi_closed, check, doc, applies_to
+// (None: every parameter set).
 template <class P, class T>
 nb::dict field_row(const tendonsheath::ParamField<P, T>& row, const P& defaults) {
   nb::dict d;
@@ -44,6 +46,7 @@ nb::dict field_row(const tendonsheath::ParamField<P, T>& row, const P& defaults)
   d["hi_closed"] = row.range.hi_closed;
   d["check"] = check_name(row.range.check);
   d["doc"] = row.doc;
+  d["applies_to"] = row.applies_to ? nb::cast(row.applies_to) : nb::none();
   return d;
 }
 
@@ -126,7 +129,7 @@ nb::class_<P> bind_params(nb::module_& m, const char* name) {
         return rows;
       },
       "The parameter table: a dict per field (name, unit, default, lo, lo_closed, hi, hi_closed, "
-      "check, doc), in the order of the struct.");
+      "check, doc, applies_to), in the order of the struct.");
   cls.attr("owner") = tendonsheath::ParamTable<P>::owner;
   cls.attr("checked_from_table") = tendonsheath::ParamTable<P>::checked_from_table;
   return cls;

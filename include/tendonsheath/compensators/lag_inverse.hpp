@@ -35,20 +35,30 @@ struct LagInverseParams {
 };
 
 /// The parameter table of LagInverseParams (param_table.hpp): unit, range and doc of each field.
+namespace detail {
+/// The rows of a first-order lag only (time_constant).
+constexpr bool is_first_order(const LagInverseParams& p) { return p.order == 1; }
+/// The rows of a second-order lag only (frequency, damping).
+constexpr bool is_second_order(const LagInverseParams& p) { return p.order == 2; }
+}  // namespace detail
+
 template <>
 struct ParamTable<LagInverseParams> {
   static constexpr const char* owner = "LagInverse";  ///< the class its constructor takes it
-  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("order", &LagInverseParams::order, "", documented(1, true, 2, true),
             "1: FirstOrderLag, 2: SecondOrderLag"),
-      param("time_constant", &LagInverseParams::time_constant, "s", documented(0.0, false, kInf, false),
-            "the first-order lag's tau"),
-      param("frequency", &LagInverseParams::frequency, "Hz", documented(0.0, false, kInf, false),
-            "the second-order lag's natural frequency"),
-      param("damping", &LagInverseParams::damping, "", documented(0.0, false, kInf, false),
-            "the second-order lag's damping ratio"),
+      only_if(param("time_constant", &LagInverseParams::time_constant, "s", positive(),
+                    "the first-order lag's tau"),
+              &detail::is_first_order, "order 1"),
+      only_if(param("frequency", &LagInverseParams::frequency, "Hz", positive(),
+                    "the second-order lag's natural frequency"),
+              &detail::is_second_order, "order 2"),
+      only_if(param("damping", &LagInverseParams::damping, "", positive(),
+                    "the second-order lag's damping ratio"),
+              &detail::is_second_order, "order 2"),
       param("filter_hz", &LagInverseParams::filter_hz, "Hz", documented(0.0, true, kInf, false),
             "the inverse's corner; 0: 5 x the block's corner"));
 };
@@ -64,11 +74,7 @@ class LagInverse {
   explicit LagInverse(const Params& p) : p_(p) {
     const char* w = "LagInverse";
     require(p.order == 1 || p.order == 2, w, "order must be 1 or 2 (got ", p.order, ")");
-    if (p.order == 1) require_positive(p.time_constant, w, "time_constant");
-    if (p.order == 2) {
-      require_positive(p.frequency, w, "frequency");
-      require_positive(p.damping, w, "damping");
-    }
+    validate_fields(p, w);  // each field's own bound, from ParamTable<LagInverseParams>
     require(std::isfinite(p.filter_hz) && p.filter_hz >= 0.0, w,
             "filter_hz must be > 0, or 0 for the default (got ", p.filter_hz, ")");
     if (detail::failed()) return;  // without exceptions, in make(): nothing derived from bad values

@@ -69,38 +69,52 @@ struct MotorParams {
 };
 
 /// The parameter table of MotorParams (param_table.hpp): unit, range and doc of each field.
+namespace detail {
+/// The rows of a position motor only (bandwidth_hz, damping, ...).
+constexpr bool is_position_motor(const MotorParams& p) { return p.kind == MotorKind::Position; }
+/// The rows of a torque motor only (viscous, max_torque).
+constexpr bool is_torque_motor(const MotorParams& p) { return p.kind == MotorKind::Torque; }
+}  // namespace detail
+
 template <>
 struct ParamTable<MotorParams> {
   static constexpr const char* owner = "Motor";  ///< the class its constructor takes it
-  static constexpr bool checked_from_table = false;  ///< its constructor checks every bound by hand (an order of checks or a message of its own)
+  static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
   static constexpr auto fields = std::make_tuple(
       param("kind", &MotorParams::kind, "", any(),
             "MotorKind: a position-controlled drive or a torque-driven one"),
-      param("bandwidth_hz", &MotorParams::bandwidth_hz, "Hz", documented(0.0, false, kInf, false),
-            "natural frequency f_n of the position loop (position)"),
-      param("damping", &MotorParams::damping, "", documented(0.0, false, kInf, false),
-            "zeta of the position loop (position)"),
-      param("max_speed", &MotorParams::max_speed, "rad/s", documented(0.0, false, kInf, true),
+      only_if(param("bandwidth_hz", &MotorParams::bandwidth_hz, "Hz", positive(),
+                    "natural frequency f_n of the position loop (position)"),
+              &detail::is_position_motor, "position"),
+      only_if(param("damping", &MotorParams::damping, "", positive(),
+                    "zeta of the position loop (position)"),
+              &detail::is_position_motor, "position"),
+      param("max_speed", &MotorParams::max_speed, "rad/s", positive_or_inf(),
             "largest speed |q'| (both)"),
-      param("max_accel", &MotorParams::max_accel, "rad/s^2", documented(0.0, false, kInf, true),
-            "largest acceleration |q''| (position)"),
+      only_if(param("max_accel", &MotorParams::max_accel, "rad/s^2", positive_or_inf(),
+                    "largest acceleration |q''| (position)"),
+              &detail::is_position_motor, "position"),
       param("inertia", &MotorParams::inertia, "kg m^2", documented(0.0, true, kInf, false),
             "J of the rotor (> 0 for a torque motor)"),
-      param("viscous", &MotorParams::viscous, "N m s/rad", documented(0.0, true, kInf, false),
-            "b, the rotor's viscous friction (torque)"),
-      param("max_torque", &MotorParams::max_torque, "N m", documented(0.0, false, kInf, true),
-            "torque limit of the command (torque)"),
-      param("max_substeps", &MotorParams::max_substeps, "", documented(1, true, kInf, false),
+      only_if(param("viscous", &MotorParams::viscous, "N m s/rad", non_negative(),
+                    "b, the rotor's viscous friction (torque)"),
+              &detail::is_torque_motor, "torque"),
+      only_if(param("max_torque", &MotorParams::max_torque, "N m", positive_or_inf(),
+                    "torque limit of the command (torque)"),
+              &detail::is_torque_motor, "torque"),
+      param("max_substeps", &MotorParams::max_substeps, "", at_least(1),
             "most integration sub-steps in one step() (bounds its work)"),
-      param("coulomb_friction", &MotorParams::coulomb_friction, "N m", documented(0.0, true, kInf, false),
+      param("coulomb_friction", &MotorParams::coulomb_friction, "N m", non_negative(),
             "tau_c (both; position needs inertia > 0)"),
-      param("viscous_friction", &MotorParams::viscous_friction, "N m s/rad", documented(0.0, true, kInf, false),
-            "b_m (position; torque kind: use viscous)"),
-      param("gear_backlash", &MotorParams::gear_backlash, "rad", documented(0.0, true, kInf, false),
+      only_if(param("viscous_friction", &MotorParams::viscous_friction, "N m s/rad", non_negative(),
+                    "b_m (position; torque kind: use viscous)"),
+              &detail::is_position_motor, "position"),
+      param("gear_backlash", &MotorParams::gear_backlash, "rad", non_negative(),
             "g: total play between shaft and pulley (both)"),
-      param("integral_time", &MotorParams::integral_time, "s", documented(0.0, true, kInf, false),
-            "T_i of the position loop's integral action, 0 = none (position)"));
+      only_if(param("integral_time", &MotorParams::integral_time, "s", non_negative(),
+                    "T_i of the position loop's integral action, 0 = none (position)"),
+              &detail::is_position_motor, "position"));
 };
 
 /// @brief A motor model that turns a command into the proximal pulley angle (rad), or for a
@@ -127,17 +141,11 @@ class Motor {
   explicit Motor(const Params& p) : p_(p) {
     const char* w = "Motor";
     require(p.kind == MotorKind::Position || p.kind == MotorKind::Torque, w, "unknown kind");
-    require(p.max_speed > 0.0 && !std::isnan(p.max_speed), w, "max_speed must be > 0 (got ",
-            p.max_speed, ")");
-    require(p.max_substeps >= 1, w, "max_substeps must be >= 1");
+    // each field's own bound, from ParamTable<MotorParams> (a row of one kind only for it)
+    validate_fields(p, w);
+    // the inertia's bound by kind, and the rules between fields
     if (p.kind == MotorKind::Position) {
-      require_positive(p.bandwidth_hz, w, "bandwidth_hz");
-      require_positive(p.damping, w, "damping");
-      require(p.max_accel > 0.0 && !std::isnan(p.max_accel), w, "max_accel must be > 0 (got ",
-              p.max_accel, ")");
       require_non_negative(p.inertia, w, "inertia");
-      require_non_negative(p.viscous_friction, w, "viscous_friction");
-      require_non_negative(p.integral_time, w, "integral_time");
       const double bound = 1.0 / (2.0 * p.damping * 2.0 * kPi * p.bandwidth_hz);
       require(p.integral_time == 0.0 || p.integral_time > bound, w,
               "integral_time must be 0 (no integral action) or > 1 / (2 damping w) = ", bound,
@@ -148,13 +156,7 @@ class Motor {
                  "inertia, which must then be > 0");
     } else {
       require_positive(p.inertia, w, "inertia");
-      require_non_negative(p.viscous, w, "viscous");
-      require(p.max_torque > 0.0 && !std::isnan(p.max_torque), w, "max_torque must be > 0 (got ",
-              p.max_torque, ")");
     }
-    require_non_negative(p.coulomb_friction, w, "coulomb_friction");
-    require_non_negative(p.gear_backlash, w, "gear_backlash");
-    require(std::isfinite(p.gear_backlash), w, "gear_backlash must be finite");
   }
 
   /// The parameters it was built with.
