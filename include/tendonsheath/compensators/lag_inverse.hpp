@@ -34,7 +34,6 @@ struct LagInverseParams {
   }
 };
 
-/// The parameter table of LagInverseParams (param_table.hpp): unit, range and doc of each field.
 namespace detail {
 /// The rows of a first-order lag only (time_constant).
 constexpr bool is_first_order(const LagInverseParams& p) { return p.order == 1; }
@@ -42,6 +41,7 @@ constexpr bool is_first_order(const LagInverseParams& p) { return p.order == 1; 
 constexpr bool is_second_order(const LagInverseParams& p) { return p.order == 2; }
 }  // namespace detail
 
+/// The parameter table of LagInverseParams (param_table.hpp): unit, range and doc of each field.
 template <>
 struct ParamTable<LagInverseParams> {
   static constexpr const char* owner = "LagInverse";  ///< the class its constructor takes it

@@ -68,7 +68,6 @@ struct MotorParams {
   double integral_time = 0.0;
 };
 
-/// The parameter table of MotorParams (param_table.hpp): unit, range and doc of each field.
 namespace detail {
 /// The rows of a position motor only (bandwidth_hz, damping, ...).
 constexpr bool is_position_motor(const MotorParams& p) { return p.kind == MotorKind::Position; }
@@ -76,6 +75,7 @@ constexpr bool is_position_motor(const MotorParams& p) { return p.kind == MotorK
 constexpr bool is_torque_motor(const MotorParams& p) { return p.kind == MotorKind::Torque; }
 }  // namespace detail
 
+/// The parameter table of MotorParams (param_table.hpp): unit, range and doc of each field.
 template <>
 struct ParamTable<MotorParams> {
   static constexpr const char* owner = "Motor";  ///< the class its constructor takes it
