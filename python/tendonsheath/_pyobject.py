@@ -22,7 +22,7 @@ import copy
 import functools
 import sys
 from collections.abc import Callable
-from typing import Any
+from typing import Any, ClassVar
 
 _OPEN = "_initialising"  # set on an instance while its outermost __init__ runs
 
@@ -58,7 +58,7 @@ def bound_base(cls: type) -> type | None:
 def bound_attribute(obj: Any, name: str) -> Any:
     """``obj``'s attribute ``name`` as its bound C++ class defines it (a property such as
     ``params`` that the Python class redefines in its own shape)."""
-    base = bound_base(type(obj))
+    base = getattr(type(obj), "_bound_class", None) or bound_base(type(obj))
     if base is None:
         raise TypeError(f"{type(obj).__name__} is not built on a bound C++ class")
     return getattr(base, name).__get__(obj, type(obj))
@@ -90,10 +90,17 @@ class PythonObject:
 
     A subclass whose state holds C++ engines defines ``_recipe()``: a picklable
     ``(callable, args)`` that builds an equal object at rest. Without one, the instance's
-    attributes are pickled as they are (each must pickle)."""
+    attributes are pickled as they are (each must pickle).
+
+    ``_bound_class`` is the bound C++ class a subclass is built on (None: pure Python), for the
+    calls that must reach it past a Python method of the same name
+    (``self._bound_class.step(self, ...)``)."""
+
+    _bound_class: ClassVar[Any] = None
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
+        cls._bound_class = bound_base(cls)
         if "__init__" in vars(cls):
             cls.__init__ = _opening(cls.__init__)
 
@@ -105,9 +112,8 @@ class PythonObject:
 
     def __deepcopy__(self, memo: dict) -> Any:
         new = type(self).__new__(type(self))
-        bound = bound_base(type(self))
-        if bound is not None:  # the C++ part: an exact copy, streaming state included
-            bound.__init__(new, self)  # type: ignore[misc]
+        if self._bound_class is not None:  # the C++ part: an exact copy, its state included
+            self._bound_class.__init__(new, self)
         memo[id(self)] = new
         vars(new).update(copy.deepcopy(vars(self), memo))  # engines: exact C++ copies
         return new

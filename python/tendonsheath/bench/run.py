@@ -317,28 +317,27 @@ def _run_controller(loop: _Loop, controller, shape_sensing):
     if callable(learned):
         loop.learned, controller = learned()
         _check_compensator(controller)
-    shaped = dict(friction=_friction(controller), shape_sensing=shape_sensing)
+    how: dict[str, Any] = {}
     compiled = getattr(controller, "_tendonsheath_compensator", None)
     if callable(compiled):  # a user's C++ compensator (tendonsheath_bind/compensator.hpp)
-        if loop.scheduled:
-            return loop.call_with_shapes(compiled(), **shaped)
-        return loop.call(compiled())
-    engine_of = getattr(controller, "_bench_engine", None)
-    engine = engine_of() if callable(engine_of) else None
-    if engine is not None and bound_base(type(engine)) is None:
-        engine = None  # a Python class without a C++ core: stepped from Python
-    if isinstance(engine, core.CurveAngleFeedforward) or (
-        isinstance(engine, core.ModelInverse) and core.ModelInverse.follows_route(engine)
-    ):
-        return _run_curve_angle(loop, controller, engine, shape_sensing)
-    if engine is not None:  # a shipped compensator: stepped in C++
-        if loop.scheduled:
-            return loop.call_with_shapes(engine, **shaped)
-        return loop.call(engine)
-    codes = [STEP_SIGNALS.index(s) for s in step_signals(controller)]
+        runner = compiled()
+    else:
+        engine_of = getattr(controller, "_bench_engine", None)
+        engine = engine_of() if callable(engine_of) else None
+        if engine is not None and bound_base(type(engine)) is None:
+            engine = None  # a Python class without a C++ core: stepped from Python
+        if isinstance(engine, core.CurveAngleFeedforward) or (
+            isinstance(engine, core.ModelInverse) and core.ModelInverse.follows_route(engine)
+        ):
+            return _run_curve_angle(loop, controller, engine, shape_sensing)
+        runner = engine  # a shipped compensator: stepped in C++
+        if engine is None:  # a Python one: its step called with these signals
+            runner = controller
+            how["inputs"] = [STEP_SIGNALS.index(s) for s in step_signals(controller)]
     if loop.scheduled:
-        return loop.call_with_shapes(controller, **shaped, inputs=codes)
-    return loop.call(controller, inputs=codes)
+        friction = _friction(controller)
+        return loop.call_with_shapes(runner, friction=friction, shape_sensing=shape_sensing, **how)
+    return loop.call(runner, **how)
 
 
 def _friction(controller) -> float:

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, ClassVar, Self, cast
+from typing import Any, Self, cast
 
 from .._args import warn_status_switch
 from .._arrays import as_timed_signal, checked_dt
-from .._pyobject import PythonObject, bound_base
+from .._pyobject import PythonObject
 from .._typing import ArrayLike
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
@@ -103,13 +103,8 @@ class EngineCompensator(PythonObject, SavedAsJson, _ControlBlock):
     core.TipLoop)``) and initialises it in its ``__init__``: the compensator *is* the real-time
     object the C++ closed loop steps."""
 
-    _bound_class: ClassVar[Any] = None  # the bound C++ class the subclass is built on
     _settings: dict  # the constructor's settings, saved by to_json
     _saved_settings: tuple[str, ...] = ()  # the keys of a saved file, in order
-
-    def __init_subclass__(cls, **kwargs):
-        super().__init_subclass__(**kwargs)
-        cls._bound_class = bound_base(cls)
 
     def status(self) -> Status:
         """The last step's :class:`~tendonsheath.Status` (held input, saturated command, ...).

@@ -18,7 +18,7 @@ from .._args import core_errors_as, is_format_version, renamed, warn_status_swit
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import naming_the_file, read_json_source
-from .._pyobject import PythonObject, bound_attribute, bound_base
+from .._pyobject import PythonObject, bound_attribute
 from .._typing import ArrayLike
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
@@ -98,7 +98,6 @@ class HysteresisModel(PythonObject, _ControlBlock):
     """
 
     _core_params: ClassVar[Any]
-    _bound_class: ClassVar[Any] = None  # the bound C++ class this model is built on, if any
     param_names: ClassVar[tuple[str, ...]] = ()
     option_names: ClassVar[tuple[str, ...]] = ()
     rate_independent: bool = True  # per instance for Chain and Scaled (their parts decide)
@@ -122,7 +121,6 @@ class HysteresisModel(PythonObject, _ControlBlock):
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         _REGISTRY[cls.__name__] = cls
-        cls._bound_class = bound_base(cls)
         if "simulate" in vars(cls):  # every model's simulate returns a SimulationResult
             cls.simulate = _returning_result(cls.simulate)
         if "to_dict" in vars(cls):  # every model's file holds its input range

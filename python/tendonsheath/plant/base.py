@@ -11,13 +11,13 @@ import functools
 import inspect
 import warnings
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, ClassVar, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
 from .._args import integer, number, warn_status_switch
 from .._arrays import as_time_and_signal, checked_dt
-from .._pyobject import PythonObject, bound_attribute, bound_base
+from .._pyobject import PythonObject, bound_attribute
 from .._typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
@@ -132,8 +132,6 @@ class _Plant(PythonObject):
     and describes its routes."""
 
     _rows = 1
-    # core.SingleTendonPlant, core.PullPullPlant or core.ContinuumPlant: the class built on
-    _bound_class: ClassVar[Any] = None
     # the C++ motor the plant steps between command and pulley (a copy of ``motor``, at rest)
     _drive: Any = None
     motor: Motor | None = None
@@ -150,7 +148,6 @@ class _Plant(PythonObject):
         super().__init_subclass__(**kwargs)
         if "__init__" in vars(cls):
             cls.__init__ = _recording_arguments(cls.__init__)
-        cls._bound_class = bound_base(cls)
 
     @property
     def params(self) -> dict:
