@@ -166,7 +166,7 @@ bool needs_gil(const ts::WithTipLoop<Inner>& c) { return needs_gil(c.inner); }
 
 template <class Controller>
 nb::tuple run_loop(BenchPlant& plant, std::optional<ts::Motor> motor,
-              std::optional<ts::Sensor> sensor, Controller controller, InArray t, InArray y_d,
+              std::optional<ts::Sensor> sensor, std::optional<ts::Sensor> encoder, Controller controller, InArray t, InArray y_d,
               std::optional<InIndex> sidx, std::optional<InMatrix> sang,
               std::optional<InMatrix> shapes, std::optional<InMask> dropout) {
   const char* where = "bench.run";
@@ -195,7 +195,8 @@ nb::tuple run_loop(BenchPlant& plant, std::optional<ts::Motor> motor,
   auto loop = [&] {
     ts::run_closed_loop(plant.view, motor ? &*motor : nullptr, sensor ? &*sensor : nullptr, controller,
                         t.data(), y_d.data(), n, sched, shape_sched,
-                        dropout ? dropout->data() : nullptr, trace, where);
+                        dropout ? dropout->data() : nullptr, trace, where,
+                        encoder ? &*encoder : nullptr);
   };
   if (needs_gil(controller) || plant.needs_gil) {
     loop();
@@ -216,36 +217,36 @@ nb::tuple run_loop(BenchPlant& plant, std::optional<ts::Motor> motor,
 // The loop, with an EncoderLoop or a TipLoop around the controller's command when one is given.
 template <class Controller>
 nb::tuple run_looped(BenchPlant& plant, std::optional<ts::Motor> motor,
-                     std::optional<ts::Sensor> sensor, Controller controller, InArray t,
+                     std::optional<ts::Sensor> sensor, std::optional<ts::Sensor> encoder, Controller controller, InArray t,
                      InArray y_d, std::optional<InIndex> sidx, std::optional<InMatrix> sang,
                      std::optional<InMatrix> shapes, std::optional<InMask> dropout,
                      std::optional<OuterLoop> outer_loop) {
   if (outer_loop) {
     if (const auto* e = std::get_if<ts::EncoderLoop>(&*outer_loop))
-      return run_loop(plant, motor, sensor,
+      return run_loop(plant, motor, sensor, encoder,
                       ts::WithEncoderLoop<Controller>{std::move(controller), *e}, t, y_d, sidx,
                       sang, shapes, dropout);
-    return run_loop(plant, motor, sensor,
+    return run_loop(plant, motor, sensor, encoder,
                     ts::WithTipLoop<Controller>{std::move(controller),
                                                 std::get<ts::TipLoop>(*outer_loop)},
                     t, y_d, sidx, sang, shapes, dropout);
   }
-  return run_loop(plant, motor, sensor, std::move(controller), t, y_d, sidx, sang, shapes, dropout);
+  return run_loop(plant, motor, sensor, encoder, std::move(controller), t, y_d, sidx, sang, shapes, dropout);
 }
 
 // The loop, with a learned correction table added to the controller's command (inside the
 // encoder or tip loop, whose target it corrects) when one is given.
 template <class Controller>
 nb::tuple run(BenchPlant& plant, std::optional<ts::Motor> motor,
-              std::optional<ts::Sensor> sensor, Controller controller, InArray t, InArray y_d,
+              std::optional<ts::Sensor> sensor, std::optional<ts::Sensor> encoder, Controller controller, InArray t, InArray y_d,
               std::optional<InIndex> sidx, std::optional<InMatrix> sang,
               std::optional<InMatrix> shapes, std::optional<InMask> dropout,
               std::optional<OuterLoop> outer_loop, std::optional<ts::LearnedCorrection> learned) {
   if (learned)
-    return run_looped(plant, motor, sensor,
+    return run_looped(plant, motor, sensor, encoder,
                       ts::WithLearnedCorrection<Controller>{std::move(controller), *learned}, t,
                       y_d, sidx, sang, shapes, dropout, outer_loop);
-  return run_looped(plant, motor, sensor, std::move(controller), t, y_d, sidx, sang, shapes,
+  return run_looped(plant, motor, sensor, encoder, std::move(controller), t, y_d, sidx, sang, shapes,
                     dropout, outer_loop);
 }
 
@@ -258,19 +259,21 @@ void bind_bench(nb::module_& m) {
          nb::handle controller, InArray t, InArray y_d, std::optional<InIndex> sidx,
          std::optional<InMatrix> sang, std::optional<InMatrix> shapes,
          std::optional<InMask> dropout, std::optional<OuterLoop> outer_loop,
-         std::optional<ts::LearnedCorrection> learned, double gain, std::vector<int> inputs) {
+         std::optional<ts::LearnedCorrection> learned, double gain, std::vector<int> inputs,
+         std::optional<ts::Sensor> encoder) {
         BenchPlant bench_plant(plant);
-        return run(bench_plant, motor, sensor, any_controller(controller, gain, inputs), t, y_d,
+        return run(bench_plant, motor, sensor, encoder, any_controller(controller, gain, inputs), t, y_d,
                    sidx, sang, shapes, dropout, outer_loop, learned);
       },
       "plant"_a, "motor"_a.none(), "sensor"_a.none(), "controller"_a.none(), "t"_a, "y_d"_a,
       "schedule_index"_a.none() = nb::none(), "schedule_angles"_a.none() = nb::none(),
       "shapes"_a.none() = nb::none(), "dropout"_a.none() = nb::none(),
       "outer_loop"_a.none() = nb::none(), "learned"_a.none() = nb::none(), "gain"_a = 1.0,
-      "inputs"_a = std::vector<int>{},
+      "inputs"_a = std::vector<int>{}, "encoder"_a.none() = nb::none(),
       "The closed loop controller -> motor -> plant -> sensor in C++ (bench.run): any plant,\n"
       "and a controller that is None (uncompensated: gain * y_d), a shipped compensator, a\n"
-      "capsule of a compiled one, or a Python object whose step takes `inputs` and dt.\n"
+      "capsule of a compiled one, or a Python object whose step takes `inputs` and dt; the\n"
+      "encoder (a Sensor, or None: exact) reads the motor shaft for the controller and the record.\n"
       "Returns (output, measured, command, motor, slack, fallback, status).");
 }
 

@@ -251,21 +251,24 @@ struct WithTipLoop {
 /// @param dropout n flags, nonzero where the measurement is lost, or nullptr
 /// @param out where each sample's record goes
 /// @param where the name that starts an error message
+/// @param encoder the motor encoder's reading (resolution, noise, latency) of the motor shaft,
+/// what the controller and the record get as the motor position, or nullptr (exact)
 template <class Plant, class Controller>
 void run_closed_loop(Plant& plant, Motor* motor, Sensor* sensor, Controller& controller,
                      const double* t, const double* y_d, std::size_t n, const RouteSchedule& sched,
                      const ShapeSchedule& shapes, const unsigned char* dropout,
-                     const ClosedLoopTrace& out, const char* where) {
+                     const ClosedLoopTrace& out, const char* where, Sensor* encoder = nullptr) {
   require(t != nullptr, where, "the bench needs the time vector t");
   check_series(t, y_d, n, where);
   check_schedule(plant, sched, n, where);
   plant.reset();
   if (motor) motor->reset();
   if (sensor) sensor->reset();
+  if (encoder) encoder->reset();
   controller.reset();
   std::size_t next = 0;
   double measured = sensor ? sensor->measure(plant.output()) : plant.output();
-  double motor_position = plant.input();
+  double motor_position = encoder ? encoder->measure(plant.input()) : plant.input();
   for (std::size_t k = 0; k < n; ++k) {
     while (next < sched.count && sched.index[next] == k) {
       plant.set_node_angles(sched.angles + next * sched.width);
@@ -276,6 +279,7 @@ void run_closed_loop(Plant& plant, Motor* motor, Sensor* sensor, Controller& con
     const double u = controller.command(y_d[k], measured, motor_position, dt);
     const double pulley = motor ? motor->step(u, dt, plant.drive_reaction()) : u;
     motor_position = motor ? motor->position() : u;  // what the controller's encoder reads
+    if (encoder) motor_position = encoder->measure(motor_position, dt);
     const double y = plant.step(pulley, dt);
     const bool lost = dropout && dropout[k];
     const double reading = sensor ? sensor->measure(y, dt) : y;  // dt: its latency
@@ -290,6 +294,7 @@ void run_closed_loop(Plant& plant, Motor* motor, Sensor* sensor, Controller& con
       Status s = controller.status() | plant.status();
       if (motor) s |= motor->status();
       if (sensor) s |= sensor->status();
+      if (encoder) s |= encoder->status();
       out.status[k] = static_cast<unsigned char>(s);
     }
   }

@@ -11,11 +11,25 @@ from .calibration import (
 from .frequency import FrequencyResponse, frequency_response
 from .loop_calibration import LoopCalibration, calibrate_loop, loop_calibration_input
 from .metrics import loop_width, tracking_metrics
-from .motor_calibration import MotorCalibration, calibrate_servo, motor_calibration_input
+from .motor_calibration import (
+    MotorCalibration,
+    TorqueMotorCalibration,
+    calibrate_servo,
+    calibrate_torque_motor,
+    motor_calibration_input,
+)
 from .run import Result, run
 from .shape_sensing import sensed_route_schedule
+from .trial import Choice, Trial, calibration_trial, choose, measured_mse
 
 __all__ = [
+    "Choice",
+    "Trial",
+    "choose",
+    "TorqueMotorCalibration",
+    "calibrate_torque_motor",
+    "calibration_trial",
+    "measured_mse",
     "Calibration",
     "ShapeSensing",
     "calibrate",

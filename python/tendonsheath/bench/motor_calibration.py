@@ -183,4 +183,141 @@ def run_experiment(
     return _encoder(sim), np.asarray(reading, dtype=float)
 
 
-__all__ = ["MotorCalibration", "calibrate_servo", "motor_calibration_input"]
+@dataclass
+class TorqueMotorCalibration:
+    """A torque motor identified from its torque command and encoder logs: inertia J and
+    viscous damping b at the shaft (and the rest of the regression: Coulomb friction, the
+    tendons' mean stiffness and an offset), with their standard errors.
+
+    Parameters
+    ----------
+    inertia, viscous : float
+        J (kg m^2) and b (N m s/rad) identified.
+    inertia_se, viscous_se : float
+        Their standard errors.
+    coulomb, stiffness : float
+        The Coulomb friction (N m) and the tendons' stiffness seen at the shaft (N m/rad).
+    t, torque, encoder : numpy.ndarray
+        The logs.
+    """
+
+    inertia: float
+    viscous: float
+    inertia_se: float
+    viscous_se: float
+    coulomb: float
+    stiffness: float
+    t: np.ndarray
+    torque: np.ndarray
+    encoder: np.ndarray
+
+    def summary(self) -> str:
+        """One line: the identified J and b with their standard errors.
+
+        Returns
+        -------
+        str
+            The summary.
+        """
+        return (
+            f"torque motor identified from a torque chirp: J = {self.inertia:.3g} +/- "
+            f"{self.inertia_se:.2g} kg m^2, b = {self.viscous:.3g} +/- {self.viscous_se:.2g} "
+            "N m s/rad"
+        )
+
+
+def torque_calibration_input(
+    duration: float = 6.0,
+    amplitude: float = 2.0,
+    f_start: float = 1.0,
+    f_stop: float = 15.0,
+    rate: float = 1000.0,
+) -> tuple[np.ndarray, np.ndarray]:
+    """A torque chirp (N m): ``amplitude`` from ``f_start`` to ``f_stop`` Hz (logarithmic)."""
+    from scipy.signal import chirp
+
+    t = np.arange(0.0, duration, 1.0 / rate)
+    return t, amplitude * chirp(t, f_start, duration, f_stop, method="logarithmic")
+
+
+def calibrate_torque_motor(
+    plant: PullPullPlant | ContinuumPlant,
+    route: Route | None = None,
+    *,
+    duration: float = 6.0,
+    amplitude: float = 2.0,
+) -> TorqueMotorCalibration:
+    """Drive ``plant`` through its torque motor with a torque chirp
+    (:func:`torque_calibration_input`), log the torque and the motor encoder, and identify the
+    shaft's inertia and damping by least squares on
+    tau = J q'' + b q' + c sgn(q') + k q + d, the encoder's derivatives from a
+    Savitzky-Golay filter (the tendons act as the spring k and part of c). Nothing is read
+    from the plant but its logs.
+
+    Parameters
+    ----------
+    plant : PullPullPlant or ContinuumPlant
+        The robot, with a torque motor.
+    route : Route, optional
+        The calibration shape (default the plant's route).
+    duration : float, default 6.0
+        Length of the run (s).
+    amplitude : float, default 2.0
+        The chirp's amplitude (N m).
+
+    Returns
+    -------
+    TorqueMotorCalibration
+        J and b with their standard errors, and the logs.
+
+    Raises
+    ------
+    ValueError
+        The plant has no torque motor, or the logs do not determine J and b.
+    """
+    from scipy.signal import savgol_filter
+
+    motor = getattr(plant, "motor", None)
+    if motor is None or motor.kind != "torque":
+        raise ValueError("calibrate_torque_motor needs a plant driven by a torque motor")
+    t, torque = torque_calibration_input(duration, amplitude)
+    encoder = _encoder(_drive(plant, route, t, torque))
+    dt = float(t[1] - t[0])
+    window = 41  # 41 ms: smooths a count's steps, far below the chirp's 15 Hz top
+    q = savgol_filter(encoder, window, 3)
+    qd = savgol_filter(encoder, window, 3, deriv=1, delta=dt)
+    qdd = savgol_filter(encoder, window, 3, deriv=2, delta=dt)
+    keep = slice(window, -window)
+    a = np.column_stack([qdd, qd, np.tanh(qd / 1e-2), q, np.ones_like(q)])[keep]
+    b = torque[keep]
+    coef, *_ = np.linalg.lstsq(a, b, rcond=None)
+    resid = b - a @ coef
+    dof = max(b.size - a.shape[1], 1)
+    cov = np.linalg.pinv(a.T @ a) * float(resid @ resid) / dof
+    se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    if not (coef[0] > 0.0 and coef[0] > 3.0 * se[0]):
+        raise ValueError(
+            f"calibrate_torque_motor: the logs do not determine the inertia (J = {coef[0]:.3g} "
+            f"+/- {se[0]:.2g}): use a longer run or a larger amplitude"
+        )
+    return TorqueMotorCalibration(
+        inertia=float(coef[0]),
+        viscous=float(max(coef[1], 0.0)),
+        inertia_se=float(se[0]),
+        viscous_se=float(se[1]),
+        coulomb=float(coef[2]),
+        stiffness=float(coef[3]),
+        t=t,
+        torque=torque,
+        encoder=encoder,
+    )
+
+
+__all__ = [
+    "MotorCalibration",
+    "TorqueMotorCalibration",
+    "calibrate_servo",
+    "calibrate_torque_motor",
+    "motor_calibration_input",
+    "torque_calibration_input",
+]

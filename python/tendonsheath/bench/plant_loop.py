@@ -15,6 +15,8 @@ What bench.run uses of a plant (beyond the protocol's ``params``, ``reset``, ``s
   and never runs that motor itself. A Python plant that wraps a shipped plant wraps one built
   without a motor and gives the motor here.
 * ``sensor`` (a :class:`~tendonsheath.Sensor` or None): the default reading of the output.
+* ``encoder`` (a :class:`~tendonsheath.Sensor` or None): the motor encoder's reading of the
+  motor shaft (resolution, noise), what the controllers read as the motor position.
 * ``kinematic_gain``, or ``distal_radius`` and ``proximal_radius``: the uncompensated command
   per unit of desired output (gain * reference; needed only for ``controller=None``).
 * ``output()``, ``input()``: the output and input at rest (default 0); ``drive_reaction()``:
@@ -72,6 +74,7 @@ class BenchPlant:
         self.plant = plant
         self.motor = _member_of_kind(plant, "motor", Motor)
         self.sensor = _member_of_kind(plant, "sensor", Sensor)
+        self.encoder = _member_of_kind(plant, "encoder", Sensor)
         compiled = getattr(plant, "_tendonsheath_plant", None)
         self.compiled = callable(compiled)
         self._routes: list = []  # a Python plant's scheduled routes, by index

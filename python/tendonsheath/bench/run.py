@@ -260,6 +260,7 @@ class _Loop:
             self.idx, self.angles = plant.schedule(ts, routes)
         self.motor = plant.motor.engine() if plant.motor is not None else None
         self.sensor = _sensor_engine(noise, plant)
+        self.encoder = plant.encoder.engine() if plant.encoder is not None else None
         self.mask = _dropout_mask(dropout, ts)
         # a core.EncoderLoop or core.TipLoop around the controller's command
         self.outer_loop = None
@@ -289,6 +290,7 @@ class _Loop:
             self.mask,
             self.outer_loop,
             self.learned,
+            encoder=self.encoder,
             **how,
         )
 

@@ -126,6 +126,14 @@ def _rebuilt_plant(cls, arguments: dict, interpolation: tuple) -> _Plant:
     return plant
 
 
+def _encoder_reading(encoder: Sensor, t, q_motor: np.ndarray) -> np.ndarray:
+    """What the motor encoder logs of the shaft angle ``q_motor`` at times ``t`` (its
+    resolution, noise and latency, its noise sequence from its seed)."""
+    engine = encoder.engine()
+    return np.asarray(engine.measure_many(np.ascontiguousarray(q_motor, dtype=float),
+                                          np.ascontiguousarray(t, dtype=float), 0.0))  # fmt: skip
+
+
 class _Plant(PythonObject):
     """Shared streaming/batch behaviour; each subclass is also its bound C++ plant
     (``class PullPullPlant(_Plant, core.PullPullPlant)``), initialises it in its ``__init__``
@@ -136,6 +144,7 @@ class _Plant(PythonObject):
     _drive: Any = None
     motor: Motor | None = None
     sensor: Sensor | None = None
+    encoder: Sensor | None = None
     _interpolation = (
         "hold",
         reconstruction.DEFAULT_SUBSTEPS,
@@ -194,7 +203,7 @@ class _Plant(PythonObject):
         "bandlimited"; see :meth:`set_input_interpolation`)."""
         return self._interpolation[0]
 
-    def _setup_io(self, motor, sensor):
+    def _setup_io(self, motor, sensor, encoder=None):
         if motor is not None and not isinstance(motor, Motor):
             raise TypeError(
                 f"{type(self).__name__}: motor must be a tendonsheath.Motor or None "
@@ -205,8 +214,18 @@ class _Plant(PythonObject):
                 f"{type(self).__name__}: sensor must be a tendonsheath.Sensor or None "
                 f"(got {type(sensor).__name__})"
             )
+        if encoder is not None and not isinstance(encoder, Sensor):
+            raise TypeError(
+                f"{type(self).__name__}: encoder must be a tendonsheath.Sensor or None "
+                f"(got {type(encoder).__name__})"
+            )
+        if encoder is not None and motor is None:
+            raise ValueError(
+                f"{type(self).__name__}: an encoder reads a motor's shaft: give the plant a motor"
+            )
         self.motor = motor
         self.sensor = sensor
+        self.encoder = encoder
         self._drive = motor.engine() if motor is not None else None
 
     # -- streaming -------------------------------------------------------------------
@@ -445,6 +464,8 @@ class _Plant(PythonObject):
             q_out, q_in, meas = q_out[step], q_in[step], meas[step]
             q_motor = None if q_motor is None or q_motor.size == 0 else q_motor[step]
         self._warn_slack(ts, slack)
+        if self.encoder is not None and q_motor is not None and q_motor.size:
+            q_motor = _encoder_reading(self.encoder, ts, q_motor)
         result = SimulationResult(
             q_out,
             t=ts,

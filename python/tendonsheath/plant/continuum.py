@@ -81,6 +81,10 @@ class ContinuumPlant(_PairPlant, core.ContinuumPlant):  # type: ignore[misc]
         Friction of sheath 2 (None: as sheath 1).
     stiffness2 : float, optional
         EA of tendon 2 (N) (None: as tendon 1).
+    encoder : Sensor, optional
+        The motor encoder's reading of the motor shaft (resolution, noise): what
+        ``SimulationResult.q_motor`` logs and what ``bench.run``'s controllers read (None:
+        exact).
 
     Raises
     ------
@@ -114,6 +118,7 @@ class ContinuumPlant(_PairPlant, core.ContinuumPlant):  # type: ignore[misc]
         relaxation_time: float | None = None,
         friction2: float | None = None,
         stiffness2: float | None = None,
+        encoder: Sensor | None = None,
     ):
         cls = type(self).__name__
         effects = {k: v for k, v in locals().items() if k in _PAIR_EFFECTS}
@@ -128,7 +133,7 @@ class ContinuumPlant(_PairPlant, core.ContinuumPlant):  # type: ignore[misc]
         with core_errors_as(cls):
             core.ContinuumPlant.__init__(self, c, self.route, self.route2)
         self.load = TorsionalSpring(c.bending_stiffness / c.backbone_length)
-        self._setup_io(motor, sensor)
+        self._setup_io(motor, sensor, encoder)
 
     @property
     def bending_stiffness(self) -> float:

@@ -49,6 +49,13 @@ import numbers
 from typing import Any
 
 from .motor import Motor
+from .population import (
+    PRIORS,
+    PlantDraw,
+    random_continuum_plant,
+    random_realistic_plant,
+    random_single_tendon_plant,
+)
 
 #: The realistic effects, relative where a plant's own value sets the scale.
 REALISTIC = {
@@ -199,4 +206,14 @@ def _given_or_default(kwargs: dict[str, Any], name: str) -> float | None:
     return float(value)
 
 
-__all__ = ["REALISTIC", "SERVOS", "realistic_motor", "realistic_plant"]
+__all__ = [
+    "PRIORS",
+    "REALISTIC",
+    "SERVOS",
+    "PlantDraw",
+    "random_continuum_plant",
+    "random_realistic_plant",
+    "random_single_tendon_plant",
+    "realistic_motor",
+    "realistic_plant",
+]

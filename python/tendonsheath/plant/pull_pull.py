@@ -264,6 +264,10 @@ class PullPullPlant(_PairPlant, core.PullPullPlant):  # type: ignore[misc]
         Friction of sheath 2 (None: as sheath 1).
     stiffness2 : float, optional
         EA of tendon 2 (N) (None: as tendon 1).
+    encoder : Sensor, optional
+        The motor encoder's reading of the motor shaft (resolution, noise): what
+        ``SimulationResult.q_motor`` logs and what ``bench.run``'s controllers read (None:
+        exact).
 
     Raises
     ------
@@ -296,6 +300,7 @@ class PullPullPlant(_PairPlant, core.PullPullPlant):  # type: ignore[misc]
         relaxation_time: float | None = None,
         friction2: float | None = None,
         stiffness2: float | None = None,
+        encoder: Sensor | None = None,
     ):
         cls = type(self).__name__
         effects = {k: v for k, v in locals().items() if k in _PAIR_EFFECTS}
@@ -318,7 +323,7 @@ class PullPullPlant(_PairPlant, core.PullPullPlant):  # type: ignore[misc]
         _set_effects(p, cls, _PAIR_EFFECTS, effects)
         with core_errors_as(cls):
             core.PullPullPlant.__init__(self, p, self.route, self.route2)
-        self._setup_io(motor, sensor)
+        self._setup_io(motor, sensor, encoder)
 
 
 __all__ = ["PullPullPlant"]

@@ -61,6 +61,10 @@ class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
         Share r in [0, 1) of EA that relaxes (standard linear solid; None: off).
     relaxation_time : float, optional
         Time constant tau of the relaxation (s).
+    encoder : Sensor, optional
+        The motor encoder's reading of the motor shaft (resolution, noise): what
+        ``SimulationResult.q_motor`` logs and what ``bench.run``'s controllers read (None:
+        exact).
 
     Raises
     ------
@@ -87,6 +91,7 @@ class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
         sheath_viscosity: float | None = None,
         relaxation_fraction: float | None = None,
         relaxation_time: float | None = None,
+        encoder: Sensor | None = None,
     ):
         cls = type(self).__name__
         effects = {
@@ -111,7 +116,7 @@ class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
         _set_effects(p, cls, _RATE_EFFECTS, effects)
         with core_errors_as(cls):
             core.SingleTendonPlant.__init__(self, p, route)
-        self._setup_io(motor, sensor)
+        self._setup_io(motor, sensor, encoder)
 
     @property
     def kinematic_gain(self) -> float:
