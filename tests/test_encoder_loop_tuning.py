@@ -6,6 +6,7 @@ margins obey the bounds Ms implies, ki is the largest the bound allows for its k
 hold a simulated motor under the C++ EncoderLoop. A servo that cannot be closed is refused.
 """
 
+import dataclasses
 import math
 
 import control as ct
@@ -41,7 +42,10 @@ SERVOS = [_servo(f, z, g, d, ti) for f, z, g, d, ti in
 @pytest.mark.parametrize("servo", SERVOS, ids=lambda s: f"{s.frequency}Hz")
 @pytest.mark.parametrize("derivative", [False, True])
 def test_design_is_stable_within_its_sensitivity_bound(servo, derivative):
-    design = tune_encoder_loop(servo, max_sensitivity=1.7, derivative=derivative)
+    # a PID servo gets no loop by default (see the test below): the MIGO search is forced
+    force = servo.integral_time > 0
+    design = tune_encoder_loop(servo, max_sensitivity=1.7, derivative=derivative,
+                               force_integral=force)  # fmt: skip
     L, S = _closed_loop(design)
     assert np.all(np.abs(S.poles()) < 1.0)
     w = np.geomspace(1e-2, math.pi / design.dt, 4000)
@@ -111,3 +115,39 @@ def test_summary_states_the_margins():
     text = tune_encoder_loop(SERVOS[0]).summary()
     for word in ("kp", "ki", "Ms", "gain margin", "phase margin", "crossover"):
         assert word in text
+
+
+def test_a_servo_with_its_own_integral_gets_no_loop_and_the_design_says_why():
+    """Around a PID servo an encoder-loop integral makes a double integrator: the design leaves
+    the loop out (gains 0: the closed loop is the servo's) and its summary names the reason;
+    force_integral designs the MIGO loop anyway, and a PD servo still gets one."""
+    pid, pd = SERVOS[5], SERVOS[0]
+    design = tune_encoder_loop(pid)
+    assert (design.kp, design.ki, design.kd) == (0.0, 0.0, 0.0)
+    assert design.sensitivity_peak == 1.0 and design.target_met
+    assert "integral action of its own" in design.summary()
+    assert "integral action of its own" in design.as_dict()["note"]
+    forced = tune_encoder_loop(pid, force_integral=True)
+    assert forced.ki > 0 and not forced.note
+    assert tune_encoder_loop(pd).ki > 0
+    ff = ts.compensate.InverseFeedforward(ts.models.Backlash(B_r=0.0, B_l=0.0))
+    loop = ts.compensate.EncoderLoop.from_calibration(ff, pid)
+    assert loop.params["ki"] == 0.0 and loop.params["kp"] == 0.0
+    assert ts.compensate.EncoderLoop.from_calibration(ff, pid, force_integral=True).params[
+        "ki"
+    ] == pytest.approx(forced.ki)
+
+
+def test_a_design_states_its_target_beside_what_it_reached():
+    design = tune_encoder_loop(SERVOS[0], max_sensitivity=1.7)
+    out = design.as_dict()
+    assert out["target"]["sensitivity_peak"] == 1.7
+    # Ms = 1.7 guarantees GM >= 1.7 / 0.7 (7.71 dB) and PM >= 2 asin(1 / 3.4) (34.2 deg)
+    assert out["target"]["gain_margin_db"] == pytest.approx(20 * math.log10(1.7 / 0.7))
+    assert out["target"]["phase_margin_deg"] == pytest.approx(math.degrees(2 * math.asin(1 / 3.4)))
+    assert out["reached"]["sensitivity_peak"] == design.sensitivity_peak
+    assert out["target_met"] is True and "target <= 1.7: met" in design.summary()
+    # a design above its bound (as a hand-set or refined one may be) says so
+    over = dataclasses.replace(design, sensitivity_peak=2.4)
+    assert not over.target_met and over.as_dict()["target_met"] is False
+    assert "2.4 reached (target <= 1.7: NOT met)" in over.summary()
