@@ -42,10 +42,7 @@ SERVOS = [_servo(f, z, g, d, ti) for f, z, g, d, ti in
 @pytest.mark.parametrize("servo", SERVOS, ids=lambda s: f"{s.frequency}Hz")
 @pytest.mark.parametrize("derivative", [False, True])
 def test_design_is_stable_within_its_sensitivity_bound(servo, derivative):
-    # a PID servo gets no loop by default (see the test below): the MIGO search is forced
-    force = servo.integral_time > 0
-    design = tune_encoder_loop(servo, max_sensitivity=1.7, derivative=derivative,
-                               force_integral=force)  # fmt: skip
+    design = tune_encoder_loop(servo, max_sensitivity=1.7, derivative=derivative)
     L, S = _closed_loop(design)
     assert np.all(np.abs(S.poles()) < 1.0)
     w = np.geomspace(1e-2, math.pi / design.dt, 4000)
@@ -117,25 +114,27 @@ def test_summary_states_the_margins():
         assert word in text
 
 
-def test_a_servo_with_its_own_integral_gets_no_loop_and_the_design_says_why():
-    """Around a PID servo an encoder-loop integral makes a double integrator: the design leaves
-    the loop out (gains 0: the closed loop is the servo's) and its summary names the reason;
-    force_integral designs the MIGO loop anyway, and a PD servo still gets one."""
+def test_a_servo_with_its_own_integral_is_in_the_design_and_may_be_left_alone():
+    """The servo's integral is in the loop the design closes (the double integrator's margins
+    are the design's) and the design's note says so; servo_integral_only leaves the loop out
+    around it (gains 0), never around a PD servo."""
     pid, pd = SERVOS[5], SERVOS[0]
     design = tune_encoder_loop(pid)
-    assert (design.kp, design.ki, design.kd) == (0.0, 0.0, 0.0)
-    assert design.sensitivity_peak == 1.0 and design.target_met
-    assert "integral action of its own" in design.summary()
-    assert "integral action of its own" in design.as_dict()["note"]
-    forced = tune_encoder_loop(pid, force_integral=True)
-    assert forced.ki > 0 and not forced.note
-    assert tune_encoder_loop(pd).ki > 0
+    assert design.ki > 0 and "double integrator" in design.note
+    assert "T_i 0.0135 s" in design.summary()
+    # the same gains without the servo's integral are a different design: it was not ignored
+    bare = tune_encoder_loop(dataclasses.replace(pid, integral_time=0.0))
+    assert (bare.kp, bare.ki) != (design.kp, design.ki) and not bare.note
+    alone = tune_encoder_loop(pid, servo_integral_only=True)
+    assert (alone.kp, alone.ki, alone.kd) == (0.0, 0.0, 0.0) and alone.target_met
+    assert "no loop" in alone.summary() and "no loop" in alone.as_dict()["note"]
+    assert tune_encoder_loop(pd, servo_integral_only=True).ki > 0
     ff = ts.compensate.InverseFeedforward(ts.models.Backlash(B_r=0.0, B_l=0.0))
-    loop = ts.compensate.EncoderLoop.from_calibration(ff, pid)
+    loop = ts.compensate.EncoderLoop.from_calibration(ff, pid, servo_integral_only=True)
     assert loop.params["ki"] == 0.0 and loop.params["kp"] == 0.0
-    assert ts.compensate.EncoderLoop.from_calibration(ff, pid, force_integral=True).params[
-        "ki"
-    ] == pytest.approx(forced.ki)
+    assert ts.compensate.EncoderLoop.from_calibration(ff, pid).params["ki"] == pytest.approx(
+        design.ki
+    )
 
 
 def test_a_design_states_its_target_beside_what_it_reached():

@@ -18,7 +18,7 @@ from tendonsheath.compensate.tuning import controller_polynomials, frequency_mar
 PACKAGE_PARENT = Path(tendonsheath.__file__).resolve().parents[1]
 
 # The designs, as a script run with and without python-control: an encoder loop around a PD
-# and (forced) a PID servo, with and without a derivative; a tip loop over two shapes (one
+# and a PID servo, with and without a derivative; a tip loop over two shapes (one
 # without a resonance in its band) through TipLoop.from_calibration.
 DESIGNS = r"""
 import dataclasses, json, math, sys
@@ -41,7 +41,7 @@ ff = ts.compensate.InverseFeedforward(ts.models.Backlash(B_r=0.0, B_l=0.0))
 out = {}
 for name, sv, kw in (("pd", servo(60.0, 0.8, 0, 0.0), {}),
                      ("pd derivative", servo(25.0, 0.3, 2, 0.0), {"derivative": True}),
-                     ("pid forced", servo(69.0, 1.1, 0, 0.0135), {"force_integral": True})):
+                     ("pid", servo(69.0, 1.1, 0, 0.0135), {})):
     d = EncoderLoop.from_calibration(ff, sv, **kw).design
     out[name] = [d.kp, d.ki, d.kd, d.sensitivity_peak, d.gain_margin_db, d.phase_margin_deg,
                  d.crossover_hz]
@@ -73,7 +73,7 @@ def _designs(block: bool) -> dict:
 
 def test_the_tuners_design_without_python_control_as_with_it():
     bare = _designs(block=True)
-    assert set(bare) == {"pd", "pd derivative", "pid forced", "tip"}
+    assert set(bare) == {"pd", "pd derivative", "pid", "tip"}
     for values in bare.values():
         assert values[1] > 0  # a design with integral action, not a refusal
     pytest.importorskip("control")

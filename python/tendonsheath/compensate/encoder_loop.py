@@ -112,7 +112,7 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         max_sensitivity: float = 1.7,
         derivative: bool = False,
         limits: LimitsLike = None,
-        force_integral: bool = False,
+        servo_integral_only: bool = False,
     ) -> EncoderLoop:
         """Gains from an identified servo (motor calibration logs alone): the largest integral
         gain whose loop keeps the peak sensitivity |1/(1 + C G)| below ``max_sensitivity``
@@ -133,11 +133,10 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
             Also tune a derivative gain (PID); PI otherwise.
         limits : CommandLimits, tuple, dict or None, optional
             Saturation of the servo command.
-        force_integral : bool, default False
-            Design the integral even around a servo identified with integral action of its own
-            (a PID servo); by default such a servo gets no loop (gains 0: it already holds its
-            command, and an integral around it makes a double integrator), which ``design``
-            says.
+        servo_integral_only : bool, default False
+            Around a servo identified with integral action of its own (a PID servo), leave the
+            loop out (gains 0: the servo's integral alone holds the command) instead of adding
+            a second integral; the design's ``note`` says which was done.
 
         Returns
         -------
@@ -160,7 +159,7 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         """
         from .tuning import tune_encoder_loop
 
-        design = tune_encoder_loop(servo, dt, max_sensitivity, derivative, force_integral)
+        design = tune_encoder_loop(servo, dt, max_sensitivity, derivative, servo_integral_only)
         loop = cls(feedforward, **design.gains(), limits=limits)
         loop.design = design
         return loop
