@@ -6,6 +6,7 @@ margins obey the bounds Ms implies, ki is the largest the bound allows for its k
 hold a simulated motor under the C++ EncoderLoop. A servo that cannot be closed is refused.
 """
 
+import dataclasses
 import math
 
 import control as ct
@@ -111,3 +112,41 @@ def test_summary_states_the_margins():
     text = tune_encoder_loop(SERVOS[0]).summary()
     for word in ("kp", "ki", "Ms", "gain margin", "phase margin", "crossover"):
         assert word in text
+
+
+def test_a_servo_with_its_own_integral_is_in_the_design_and_may_be_left_alone():
+    """The servo's integral is in the loop the design closes (the double integrator's margins
+    are the design's) and the design's note says so; servo_integral_only leaves the loop out
+    around it (gains 0), never around a PD servo."""
+    pid, pd = SERVOS[5], SERVOS[0]
+    design = tune_encoder_loop(pid)
+    assert design.ki > 0 and "double integrator" in design.note
+    assert "T_i 0.0135 s" in design.summary()
+    # the same gains without the servo's integral are a different design: it was not ignored
+    bare = tune_encoder_loop(dataclasses.replace(pid, integral_time=0.0))
+    assert (bare.kp, bare.ki) != (design.kp, design.ki) and not bare.note
+    alone = tune_encoder_loop(pid, servo_integral_only=True)
+    assert (alone.kp, alone.ki, alone.kd) == (0.0, 0.0, 0.0) and alone.target_met
+    assert "no loop" in alone.summary() and "no loop" in alone.as_dict()["note"]
+    assert tune_encoder_loop(pd, servo_integral_only=True).ki > 0
+    ff = ts.compensate.InverseFeedforward(ts.models.Backlash(B_r=0.0, B_l=0.0))
+    loop = ts.compensate.EncoderLoop.from_calibration(ff, pid, servo_integral_only=True)
+    assert loop.params["ki"] == 0.0 and loop.params["kp"] == 0.0
+    assert ts.compensate.EncoderLoop.from_calibration(ff, pid).params["ki"] == pytest.approx(
+        design.ki
+    )
+
+
+def test_a_design_states_its_target_beside_what_it_reached():
+    design = tune_encoder_loop(SERVOS[0], max_sensitivity=1.7)
+    out = design.as_dict()
+    assert out["target"]["sensitivity_peak"] == 1.7
+    # Ms = 1.7 guarantees GM >= 1.7 / 0.7 (7.71 dB) and PM >= 2 asin(1 / 3.4) (34.2 deg)
+    assert out["target"]["gain_margin_db"] == pytest.approx(20 * math.log10(1.7 / 0.7))
+    assert out["target"]["phase_margin_deg"] == pytest.approx(math.degrees(2 * math.asin(1 / 3.4)))
+    assert out["reached"]["sensitivity_peak"] == design.sensitivity_peak
+    assert out["target_met"] is True and "target <= 1.7: met" in design.summary()
+    # a design above its bound (as a hand-set or refined one may be) says so
+    over = dataclasses.replace(design, sensitivity_peak=2.4)
+    assert not over.target_met and over.as_dict()["target_met"] is False
+    assert "2.4 reached (target <= 1.7: NOT met)" in over.summary()

@@ -3,6 +3,7 @@ sensor delay from calibration logs (synthetic linear data, the realistic Do plan
 bench.calibrate(..., dynamics=True))."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -12,7 +13,12 @@ import tendonsheath as ts
 from tendonsheath import presets
 from tendonsheath.bench import calibrate, calibrate_loop, loop_calibration_input
 from tendonsheath.bench.scenarios import do
-from tendonsheath.identify import LoopDynamics, empirical_response, identify_loop_dynamics
+from tendonsheath.identify import (
+    LoopDynamics,
+    ResonanceOutOfBandWarning,
+    empirical_response,
+    identify_loop_dynamics,
+)
 from tendonsheath.identify.servo import servo_filter
 
 DT = 1e-3
@@ -201,3 +207,64 @@ def test_calibrate_attaches_one_loop_per_shape(do_plant):
     assert "shape 3: distal resonance (Hz)" in rows
     assert not any("pretension" in r for r in rows)  # no groups: no scale to declare
     assert sum("loop (chirp" in r.name for r in cal.runs) == len(routes)
+
+
+def test_a_mode_outside_the_excitation_band_is_refused():
+    """Logs say nothing of a mode the command never excited: a synthetic 250 Hz mode under the
+    5-120 Hz chirp is fitted near 250 Hz (the data are the model's own form), but reported as
+    no resonance within the band; the distal part is then its gain and delay, and a mode below
+    the band is refused outright. A 100 Hz mode, inside the band, is still reported."""
+    rng = np.random.default_rng(7)
+    t, u, q, y, true = _synthetic(rng, 250.0, 0.2, 1, 60.0)
+    for band in (None, (5.0, 120.0)):  # inferred from the command (2-117 Hz) or given
+        with pytest.warns(ResonanceOutOfBandWarning, match="no resonance identified"):
+            dyn = identify_loop_dynamics(t, u, q, y, band_hz=band)
+        assert not dyn.resonance_identified and dyn.resonance_hz == math.inf
+        assert math.isnan(dyn.damping)
+        assert dyn.rejected_resonance_hz > dyn.band_hz[1]
+        assert dyn.design_limit_hz == dyn.band_hz[1]
+        # the inferred band's upper edge: the chirp ends at 120 Hz, its last Hz tapered
+        assert 100.0 < dyn.band_hz[1] <= 120.0
+        assert dyn.delay_samples == 1  # a 250 Hz mode adds < 0.3 samples of lag in the band
+        num, den = dyn.distal_discrete()
+        assert den.tolist() == [1.0] and num.tolist() == [0.0, pytest.approx(dyn.gain)]
+        # up to 40 Hz the static distal part is within 10 % of the truth: it misses the 250 Hz
+        # mode's phase lag, about 2 zeta f / f_n (6 % at 40 Hz), and its lift (f / f_n)^2 (3 %)
+        f = np.linspace(5.0, 40.0, 30)
+        rel = np.abs(dyn.frequency_response(f) / _true_response(true, f) - 1)
+        assert np.max(rel) < 0.1, np.max(rel)
+        assert "none within the" in dyn.summary() and "refused" in dyn.summary()
+        d = dyn.as_dict()
+        assert d["resonance_hz"] is None and d["resonance_identified"] is False
+        assert d["rejected_resonance_hz"] == dyn.rejected_resonance_hz
+    t, u, q, y, _ = _synthetic(rng, 3.0, 0.3, 1, 60.0)
+    with pytest.raises(ValueError, match=r"below the excitation's band \(5-120 Hz\)"):
+        identify_loop_dynamics(t, u, q, y, band_hz=(5.0, 120.0))
+    t, u, q, y, _ = _synthetic(rng, 100.0, 0.2, 1, 60.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ResonanceOutOfBandWarning)
+        dyn = identify_loop_dynamics(t, u, q, y, band_hz=(5.0, 120.0))
+    assert dyn.resonance_identified and abs(dyn.resonance_hz - 100.0) < 5.0
+    for bad in ((120.0, 5.0), (5.0, 900.0), "wide"):
+        with pytest.raises(ValueError, match="band_hz"):
+            identify_loop_dynamics(t, u, q, y, band_hz=bad)
+
+
+def test_calibrate_loop_finds_no_resonance_on_a_plant_without_distal_dynamics(do_plant):
+    """A pull-pull pair with no distal inertia has no mode for the 5-120 Hz chirp to show: the
+    fit's mode lands far above the band (about 220 Hz) and calibrate_loop refuses it; the
+    realistic preset's mode (42.5 Hz, in the band) is still found, without the warning."""
+    sensor = ts.Sensor(noise_std=2e-4, resolution=1e-4, delay=1e-3)
+    bare = ts.PullPullPlant(route=do.NOMINAL, motor=do.servo_motor("pid"),
+                            **{**do._COMMON, "elements": 20}, distal_inertia=0.0)  # fmt: skip
+    with pytest.warns(ResonanceOutOfBandWarning, match="5-120 Hz excitation band"):
+        dyn = calibrate_loop(bare, sensor=sensor, seed=5).dynamics
+    assert dyn.band_hz == (5.0, 120.0) and not dyn.resonance_identified
+    assert dyn.rejected_resonance_hz > 120.0 and dyn.design_limit_hz == 120.0
+    assert abs(dyn.delay - 1e-3) <= DT + 1e-12
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ResonanceOutOfBandWarning)
+        real = calibrate_loop(do_plant, sensor=sensor, seed=5).dynamics
+    f_mode, _ = _expected_distal_mode()
+    assert real.resonance_identified and real.band_hz == (5.0, 120.0)
+    assert abs(real.resonance_hz - f_mode) < 0.15 * f_mode  # as the realistic test above

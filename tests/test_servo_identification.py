@@ -13,6 +13,7 @@ from scipy.signal import csd, lsim, lti, welch
 
 import tendonsheath as ts
 from tendonsheath.bench.motor_calibration import calibrate_servo, motor_calibration_input
+from tendonsheath.bench.scenarios import do
 from tendonsheath.identify.servo import identify_servo
 
 
@@ -115,3 +116,14 @@ def test_bad_options_name_themselves():
         identify_servo(t, u, u, highpass_hz=1e4)
     with pytest.raises(ValueError, match="f_start < f_stop"):
         motor_calibration_input(2.0, 0.5, f_start=50.0, f_stop=10.0)
+
+
+def test_the_servo_kind_says_whether_integral_action_was_identified():
+    """On the demo's drive (tendons attached) the PD servo's slowly varying load fitted an
+    integral at T_i ~ 0.8 s (a 0.2 Hz corner, below the 1 Hz band the dynamics are fitted in),
+    and the PD servo was named PID: such an integral is not identified. The PID servo's
+    (T_i 13.5 ms, a 12 Hz corner) still is."""
+    pd = calibrate_servo(do.plants("pd")[0], do.CALIBRATION_ROUTES[0]).servo
+    assert pd.integral_time == 0.0 and "(PD)" in pd.summary()
+    pid = calibrate_servo(do.plants("pid")[0], do.CALIBRATION_ROUTES[0]).servo
+    assert pid.integral_time == pytest.approx(0.0135, rel=0.1) and "PID" in pid.summary()

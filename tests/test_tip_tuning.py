@@ -2,7 +2,9 @@
 (closed-loop poles, python-control), refusals on loops built to be unclosable, and the
 trial-based choices on synthetic scores."""
 
+import dataclasses
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -10,6 +12,7 @@ import pytest
 import tendonsheath as ts
 from tendonsheath.compensate import AdaptiveController, TipLoop
 from tendonsheath.compensate.adaptive_tuning import AdaptiveDesign, adaptive_limits
+from tendonsheath.compensate.iterative_learning import design_learning
 from tendonsheath.compensate.tip_tuning import (
     ROBUSTNESS_GAIN,
     choose_by_trials,
@@ -18,7 +21,7 @@ from tendonsheath.compensate.tip_tuning import (
     tune_tip_loop,
     with_dead_band_scaled,
 )
-from tendonsheath.compensate.tuning import controller_polynomials
+from tendonsheath.compensate.tuning import MarginNotMetWarning, controller_polynomials
 from tendonsheath.identify.loop_dynamics import LoopDynamics
 from tendonsheath.identify.servo import ServoFit
 
@@ -190,7 +193,16 @@ def test_refinement_moves_toward_a_better_trial_score_under_the_robustness_test(
         kp = loop.params["kp"]
         return 1.0 + math.log(max(kp, 1e-3) / target["kp"]) ** 2
 
-    refined = refine_by_trials(start, score)
+    # the bowl pulls kp past what the bound 1.7 allows (refinement may go to twice it): the
+    # design states the peak it reached (2.7) beside the target, and warns
+    with pytest.warns(MarginNotMetWarning, match="above its target 1.7"):
+        refined = refine_by_trials(start, score)
+    assert refined.design.sensitivity_reached > 1.7 * 1.01 and not refined.design.target_met
+    assert "target <= 1.7: NOT met" in refined.design.summary()
+    out = refined.design.as_dict()
+    assert out["target"]["sensitivity_peak"] == 1.7 and out["target_met"] is False
+    assert out["reached"]["sensitivity_peak"] == refined.design.sensitivity_reached
+    assert start.design.target_met and "target <= 1.7: met" in start.design.summary()
     assert refined.params["kp"] > start.params["kp"]
     assert score(refined) < score(start)
     assert refined.design.refined and refined.design.robustness_ratio is not None
@@ -217,3 +229,47 @@ def test_from_calibration_builds_the_feedforward_and_keeps_the_design():
         TipLoop.from_calibration(model, [_dynamics()], max_sensitivity=(1.5, 2.0))
     with pytest.raises(ValueError, match="need a trial"):
         TipLoop.from_calibration(model, [_dynamics()], refine=True)
+
+
+def _no_mode(rejected_hz=201.0, delay=1):
+    """A shape whose logs showed no resonance within the 5-120 Hz chirp: the fit's mode at
+    ``rejected_hz`` was refused (as identify_loop_dynamics does)."""
+    return dataclasses.replace(_dynamics(delay=delay), resonance_hz=math.inf, damping=math.nan,
+                               band_hz=(5.0, 120.0), rejected_resonance_hz=rejected_hz)  # fmt: skip
+
+
+def test_no_resonance_in_the_band_designs_to_the_band_edge_never_from_the_refused_fit():
+    """Every tuner designs a shape with no resonance identified within its band from the band's
+    upper edge (120 Hz), whatever number the refused fit gave, and says so."""
+    model = ts.models.BoucWenBacklash(c_r=1.0, c_l=1.0, B_r=0.05, B_l=0.05)
+    a, b = tune_tip_loop([_no_mode(201.0)], dt=DT), tune_tip_loop([_no_mode(450.0)], dt=DT)
+    assert (a.kp, a.ki, a.kd) == (b.kp, b.ki, b.kd) and a.ki > 0  # the refused fit plays no part
+    assert a.limits_hz == (120.0,) and a.as_dict()["resonances_hz"] == [None]
+    assert "none within the 5-120 Hz band (120 Hz taken as the limit)" in a.summary()
+    # no crossover where the logs say nothing: |C P| < 1 from the band's edge to Nyquist
+    c_num, c_den = controller_polynomials(a.kp, a.ki, a.kd, a.derivative_cutoff_hz, DT)
+    g_num, g_den = loop_plant(_no_mode(), DT)
+    zinv = np.exp(-2j * np.pi * np.geomspace(120.0, 500.0, 400) * DT)
+    loop_gain = np.polyval(np.convolve(c_num, g_num)[::-1], zinv) / np.polyval(
+        np.convolve(c_den, g_den)[::-1], zinv
+    )
+    assert np.max(np.abs(loop_gain)) < 1.0
+    # the adaptive controller: its derivative filter at the edge, its bandwidth a tenth of it
+    ctrl = AdaptiveController.from_calibration(model, [_no_mode(450.0)], 0.01)
+    assert ctrl.design.resonance_hz == 120.0 and not ctrl.design.resonance_identified
+    assert ctrl.design.bandwidth_hz == pytest.approx(12.0)
+    assert "band's upper edge (no resonance identified" in ctrl.design.summary()
+    # with one shape's resonance identified below the edge, that resonance rules
+    both = AdaptiveController.from_calibration(model, [_no_mode(), _dynamics(resonance_hz=40.0)],
+                                               0.01)  # fmt: skip
+    assert both.design.resonance_hz == 40.0 and both.design.resonance_identified
+    # the learning law: its Q cutoff searched no higher than the band's edge
+    law = design_learning(_no_mode(450.0), DT)
+    assert law.known_up_to_hz == 120.0 and law.cutoff_hz <= 120.0 * (1 + 1e-9)
+    assert "120 Hz, the excitation band's upper edge" in law.summary()
+    assert design_learning(_dynamics(), DT).known_up_to_hz is None
+    with pytest.raises(ValueError, match="known only up to 120 Hz"):
+        design_learning(_no_mode(), DT, min_cutoff_hz=150.0)
+    with warnings.catch_warnings():  # a design within its bound does not warn
+        warnings.simplefilter("error", MarginNotMetWarning)
+        tune_tip_loop([_dynamics(), _no_mode()], dt=DT)

@@ -569,9 +569,13 @@ def _loop_rows(cal: Calibration) -> list[dict[str, Any]]:
     source = "identified from the loop calibration run (command, encoder and tip logs), shape "
     for i, d in enumerate(cal.loop_dynamics):
         se = d.standard_errors
+        mode = [("distal resonance (Hz)", d.resonance_hz, "resonance_hz"),
+                ("distal damping", d.damping, "damping")]  # fmt: skip
+        if not d.resonance_identified:  # the band's edge is what a design was told, not a mode
+            mode = [(f"distal resonance: {d.resonance_text()}; limit (Hz)", d.design_limit_hz,
+                     None)]  # fmt: skip
         for quantity, value, key in (
-            ("distal resonance (Hz)", d.resonance_hz, "resonance_hz"),
-            ("distal damping", d.damping, "damping"),
+            *mode,
             ("tip delay (s)", d.delay, "delay"),
             ("loop bandwidth, command -> tip (Hz)", d.bandwidth_hz, None),
         ):
@@ -710,7 +714,14 @@ def calibrate(
     -------
     Calibration
         The identified models and their provenance.
+
+    Raises
+    ------
+    ValueError
+        A plant driven by a torque motor (the excitation is an angle command for a position
+        servo), or a bad setting.
     """
+    _refuse_torque_motor(plant)
     checked_fit_input(fit_input)
     shape = shape or ShapeSensing(seed=seed)
     t, command = calibration_input(duration, amplitude)
@@ -751,6 +762,19 @@ def calibrate(
                                            runs[i].sensed_angle, float(loop.t[-1] - loop.t[0]),
                                            int(loop.t.size)))  # fmt: skip
     return cal
+
+
+def _refuse_torque_motor(plant: Any) -> None:
+    """calibrate drives the robot with angle commands: a torque motor would take them as
+    torques (N m) and the fit would be nonsense, so such a plant is refused."""
+    motor = getattr(plant, "motor", None)
+    if motor is not None and getattr(motor, "kind", "position") == "torque":
+        raise ValueError(
+            "calibrate: the plant's motor is a torque motor, but calibration drives the robot "
+            "with angle commands to a position servo; calibrate the same robot with a position "
+            "motor (Motor.position) and give a torque-driven joint its identified model with the "
+            "motor's declared inertia and damping (AdaptiveController.from_calibration)"
+        )
 
 
 def _identify_models(cal: Calibration) -> None:

@@ -164,12 +164,15 @@ def calibrate_loop(
     Returns
     -------
     LoopCalibration
-        The logs and the identified dynamics.
+        The logs and the identified dynamics; a resonance only within the chirp's band
+        (``f_start`` to ``f_stop``): a drive with no mode there gets none (``resonance_hz``
+        inf, and a ResonanceOutOfBandWarning).
 
     Raises
     ------
     ValueError
-        The plant has no position motor, or the logs cannot identify the loop.
+        The plant has no position motor, or the logs cannot identify the loop (a distal mode
+        below ``f_start`` included).
     """
     motor = getattr(plant, "motor", None)
     if motor is None or motor.kind != "position":
@@ -178,7 +181,9 @@ def calibrate_loop(
         raise ValueError("calibrate_loop: sensor must be a tendonsheath.Sensor or None")
     t, command = loop_calibration_input(duration, span, f_start, f_stop)
     encoder, tip = run_experiment(plant, route, t, command, sensor, seed)
-    dynamics = identify_loop_dynamics(t, command, encoder, tip, max_delay, highpass_hz)
+    dynamics = identify_loop_dynamics(
+        t, command, encoder, tip, max_delay, highpass_hz, band_hz=(f_start, f_stop)
+    )
     return LoopCalibration(dynamics, t, command, encoder, tip)
 
 

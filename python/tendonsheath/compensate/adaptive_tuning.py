@@ -11,7 +11,9 @@ calibration runs identified (:class:`~tendonsheath.identify.loop_dynamics.LoopDy
 
 With a ``trial`` (a run on the calibration shapes) the bandwidth is chosen among f_res / 20,
 f_res / 10 and f_res / 6 (each capped by the delay); a design whose bandwidth would fall below
-0.2 Hz is refused.
+0.2 Hz is refused. A shape whose logs showed no resonance within the excitation's band stands
+for f_res with the band's upper edge (``LoopDynamics.design_limit_hz``: the highest frequency
+the logs speak of), and the design says so.
 """
 
 from __future__ import annotations
@@ -43,7 +45,9 @@ class AdaptiveDesign:
     derivative_cutoff_hz : float
         The derivative filter's corner (Hz).
     resonance_hz : float
-        The lowest identified distal resonance (Hz).
+        The lowest identified distal resonance (Hz), or the band's upper edge of a shape with
+        none identified within its excitation's band if that is lower (see
+        ``resonance_identified``).
     delay : float
         The longest identified sensor delay (s).
     dynamics : tuple of LoopDynamics
@@ -61,8 +65,15 @@ class AdaptiveDesign:
 
     @property
     def resonances_hz(self) -> tuple[float, ...]:
-        """The identified distal resonance of each calibration shape (Hz)."""
+        """The identified distal resonance of each calibration shape (Hz; inf where none was
+        identified within the excitation's band)."""
         return tuple(d.resonance_hz for d in self.dynamics)
+
+    @property
+    def resonance_identified(self) -> bool:
+        """Whether ``resonance_hz`` is an identified resonance (not a band's upper edge)."""
+        return any(d.resonance_identified and d.resonance_hz == self.resonance_hz
+                   for d in self.dynamics)  # fmt: skip
 
     @property
     def delays(self) -> tuple[float, ...]:
@@ -81,8 +92,9 @@ class AdaptiveDesign:
             "bandwidth_hz": self.bandwidth_hz,
             "derivative_cutoff_hz": self.derivative_cutoff_hz,
             "resonance_hz": self.resonance_hz,
+            "resonance_identified": self.resonance_identified,
             "delay_s": self.delay,
-            "resonances_hz": list(self.resonances_hz),
+            "resonances_hz": [f if math.isfinite(f) else None for f in self.resonances_hz],
             "delays_s": list(self.delays),
             "trials": [{"bandwidth_hz": f, "mse": v} for f, v in self.trials.items()],
             "dynamics": [d.as_dict() for d in self.dynamics],
@@ -96,10 +108,16 @@ class AdaptiveDesign:
         str
             Bandwidth, derivative corner, resonance and delay.
         """
+        source = (
+            f"resonance {self.resonance_hz:.3g} Hz"
+            if self.resonance_identified
+            else f"{self.resonance_hz:.3g} Hz, the excitation band's upper edge (no resonance "
+            "identified within the band)"
+        )
         return (
             f"adaptive: bandwidth {self.bandwidth_hz:.3g} Hz, derivative filter "
-            f"{self.derivative_cutoff_hz:.3g} Hz; designed from resonance "
-            f"{self.resonance_hz:.3g} Hz, delay {1e3 * self.delay:.3g} ms"
+            f"{self.derivative_cutoff_hz:.3g} Hz; designed from {source}, delay "
+            f"{1e3 * self.delay:.3g} ms"
         )
 
 
@@ -113,7 +131,7 @@ def adaptive_limits(dynamics: Sequence[LoopDynamics]) -> tuple[float, float, flo
     """
     if not dynamics:
         raise ValueError("AdaptiveController.from_calibration: no loop dynamics")
-    f_res = min(d.resonance_hz for d in dynamics)
+    f_res = min(d.design_limit_hz for d in dynamics)
     delay = max(d.delay for d in dynamics)
     cap = f_res / 10.0
     if delay > 0:

@@ -112,6 +112,7 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         max_sensitivity: float = 1.7,
         derivative: bool = False,
         limits: LimitsLike = None,
+        servo_integral_only: bool = False,
     ) -> EncoderLoop:
         """Gains from an identified servo (motor calibration logs alone): the largest integral
         gain whose loop keeps the peak sensitivity |1/(1 + C G)| below ``max_sensitivity``
@@ -132,6 +133,10 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
             Also tune a derivative gain (PID); PI otherwise.
         limits : CommandLimits, tuple, dict or None, optional
             Saturation of the servo command.
+        servo_integral_only : bool, default False
+            Around a servo identified with integral action of its own (a PID servo), leave the
+            loop out (gains 0: the servo's integral alone holds the command) instead of adding
+            a second integral; the design's ``note`` says which was done.
 
         Returns
         -------
@@ -142,10 +147,19 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         ------
         ValueError
             No gains make the identified loop stable within ``max_sensitivity``.
+
+        Warns
+        -----
+        MarginNotMetWarning
+            The design's peak sensitivity is above ``max_sensitivity``.
+
+        Notes
+        -----
+        Needs NumPy and SciPy only (no python-control).
         """
         from .tuning import tune_encoder_loop
 
-        design = tune_encoder_loop(servo, dt, max_sensitivity, derivative)
+        design = tune_encoder_loop(servo, dt, max_sensitivity, derivative, servo_integral_only)
         loop = cls(feedforward, **design.gains(), limits=limits)
         loop.design = design
         return loop

@@ -97,6 +97,9 @@ class LearningDesign:
         The sample time (s).
     order : int
         The Butterworth order of Q (applied forward and backward: twice that in magnitude).
+    known_up_to_hz : float, optional
+        The highest cutoff searched when the response is known only up to it: an identified
+        loop with no resonance within its excitation's band (the band's upper edge).
     """
 
     lead: int
@@ -107,6 +110,7 @@ class LearningDesign:
     rho_target: float
     dt: float
     order: int
+    known_up_to_hz: float | None = None
 
     def as_dict(self) -> dict[str, Any]:
         """The design as a dict.
@@ -132,6 +136,12 @@ class LearningDesign:
             f"zero-phase); |1 - gain L P| <= {self.rho:.3f} below the cutoff, "
             f"|Q (1 - gain L P)| <= {self.contraction:.3f} everywhere "
             f"(target {self.rho_target:g})"
+            + (
+                f"; cutoff searched up to {self.known_up_to_hz:.3g} Hz, the excitation band's "
+                "upper edge (no resonance identified within the band)"
+                if self.known_up_to_hz is not None
+                else ""
+            )
         )
 
 
@@ -609,7 +619,17 @@ def design_learning(
     sign = 1.0 if p0.real >= 0 else -1.0
     rel = np.linspace(0.1, 1.5, 29) if gains is None else np.asarray(gains, dtype=np.float64)
     gain_grid = sign * rel / abs(p0)
-    cutoffs = np.geomspace(min_cutoff_hz, 0.45 * nyquist, 60)
+    known = None  # an identified loop with no resonance in its band: known up to the band's edge
+    if getattr(frequency_response, "resonance_identified", True) is False:
+        known = float(frequency_response.design_limit_hz)
+        if not known > min_cutoff_hz:
+            raise ValueError(
+                f"{who}: refused: the identified loop is known only up to {known:g} Hz (no "
+                f"resonance within its excitation's band), below min_cutoff_hz = "
+                f"{min_cutoff_hz:g} Hz"
+            )
+    top = 0.45 * nyquist if known is None else min(0.45 * nyquist, known)
+    cutoffs = np.geomspace(min_cutoff_hz, top, 60)
     q_mag = np.empty((cutoffs.size, freqs.size))
     for i, fc in enumerate(cutoffs):
         sos = signal.butter(order, fc, fs=1.0 / dt, output="sos")
@@ -634,6 +654,7 @@ def design_learning(
         rho_target=rho,
         dt=dt,
         order=int(order),
+        known_up_to_hz=known,
     )
 
 

@@ -9,7 +9,16 @@ encoder loop's, :mod:`~tendonsheath.compensate.tuning`) made robust over the sha
 largest integral gain over kp (and kd) such that the loop is stable and its peak sensitivity
 |1 / (1 + C P_i)| stays below ``max_sensitivity`` on *every* calibration shape. The resonance
 and the delay enter through P_i, so a longer latency or a lighter resonance gives smaller gains;
-a path no PI(D) can close within the bound is refused.
+a path no PI(D) can close within the bound is refused. A shape whose logs showed no resonance
+within the excitation's band (``LoopDynamics.resonance_identified`` False) is designed with the
+band's upper edge as the highest frequency known: it stands for the resonance in the choice of
+the gains (derivative range, rejection band), and the loop gain must be below one from that edge
+up (a crossover where the logs say nothing is refused); the summary says so.
+
+The design states the peak sensitivity it reached beside its target (on a grid ten times
+denser than the search's); a design above its target (a refinement by trials may go up to
+``REFINED_SENSITIVITY`` times it) warns with a
+:class:`~tendonsheath.compensate.tuning.MarginNotMetWarning`.
 
 The gain schedule keeps the loop gain of each shape at the design's: the factor at shape i's
 curve angle is the median static gain of the shapes over shape i's.
@@ -30,7 +39,17 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .tuning import RobustLoop, _evaluate, controller_polynomials, largest_ki, loop_margins
+from .tuning import (
+    MS_TOLERANCE,
+    RobustLoop,
+    _evaluate,
+    _warn_if_not_met,
+    controller_polynomials,
+    implied_margins,
+    largest_ki,
+    loop_margins,
+    reached_peak,
+)
 
 if TYPE_CHECKING:
     from ..identify.loop_dynamics import LoopDynamics
@@ -115,8 +134,25 @@ class TipLoopDesign:
 
     @property
     def resonances_hz(self) -> tuple[float, ...]:
-        """The identified distal resonance of each calibration shape (Hz)."""
+        """The identified distal resonance of each calibration shape (Hz; inf where none was
+        identified within the excitation's band)."""
         return tuple(d.resonance_hz for d in self.dynamics)
+
+    @property
+    def limits_hz(self) -> tuple[float, ...]:
+        """The frequency each shape was designed with as its limit (Hz): its resonance, or
+        the band's upper edge where no resonance was identified within the band."""
+        return tuple(d.design_limit_hz for d in self.dynamics)
+
+    @property
+    def sensitivity_reached(self) -> float:
+        """The worst shape's peak sensitivity."""
+        return max(self.sensitivity_peaks)
+
+    @property
+    def target_met(self) -> bool:
+        """Whether every shape's peak sensitivity is within the bound (see ``MS_TOLERANCE``)."""
+        return self.sensitivity_reached <= MS_TOLERANCE * self.max_sensitivity
 
     @property
     def delays(self) -> tuple[float, ...]:
@@ -137,7 +173,15 @@ class TipLoopDesign:
         }
         out = {k: list(v) if isinstance(v, tuple) else v for k, v in out.items()}
         out["schedule"] = [list(p) for p in self.schedule]
-        out["resonances_hz"] = list(self.resonances_hz)
+        gm, pm = implied_margins(self.max_sensitivity)
+        out["target"] = {"sensitivity_peak": self.max_sensitivity, "gain_margin_db": gm,
+                         "phase_margin_deg": pm}  # fmt: skip
+        out["reached"] = {"sensitivity_peak": self.sensitivity_reached,
+                          "gain_margin_db": min(self.gain_margins_db),
+                          "phase_margin_deg": min(self.phase_margins_deg)}  # fmt: skip
+        out["target_met"] = self.target_met
+        out["resonances_hz"] = [f if math.isfinite(f) else None for f in self.resonances_hz]
+        out["limits_hz"] = list(self.limits_hz)
         out["delays_s"] = list(self.delays)
         out["trials"] = [
             {"max_sensitivity": ms, "dead_band_scale": k, "mse": v}
@@ -155,8 +199,12 @@ class TipLoopDesign:
         str
             Gains, dead-band scale, peak sensitivity, margins, resonance and delay.
         """
-        res = ", ".join(f"{f:.3g}" for f in self.resonances_hz)
+        if all(d.resonance_identified for d in self.dynamics):
+            res = "resonance " + ", ".join(f"{f:.3g}" for f in self.resonances_hz) + " Hz"
+        else:
+            res = "resonance " + ", ".join(d.resonance_text() for d in self.dynamics)
         delays = ", ".join(f"{1e3 * d:.3g}" for d in self.delays)
+        met = "met" if self.target_met else "NOT met"
         refined = (
             f"; refined by {len(self.refined)} trial moves on the calibration shapes (gains x "
             f"{ROBUSTNESS_GAIN:g}: trial error x {self.robustness_ratio:.3g})"
@@ -165,10 +213,10 @@ class TipLoopDesign:
         )
         return (
             f"tip loop: kp {self.kp:.3g}, ki {self.ki:.4g} 1/s, kd {self.kd:.3g} s, dead band x "
-            f"{self.dead_band_scale:g}; Ms {max(self.sensitivity_peaks):.3g} (<= "
-            f"{self.max_sensitivity:g}), gain margin {min(self.gain_margins_db):.3g} dB, phase "
-            f"margin {min(self.phase_margins_deg):.3g} deg (worst shape); designed from "
-            f"resonance {res} Hz, delay {delays} ms{refined}"
+            f"{self.dead_band_scale:g}; Ms {self.sensitivity_reached:.3g} reached (target <= "
+            f"{self.max_sensitivity:g}: {met}), gain margin {min(self.gain_margins_db):.3g} dB, "
+            f"phase margin {min(self.phase_margins_deg):.3g} deg (worst shape); designed from "
+            f"{res}, delay {delays} ms{refined}"
         )
 
 
@@ -179,10 +227,27 @@ def loop_plant(dynamics: LoopDynamics, dt: float) -> tuple[np.ndarray, np.ndarra
 
 
 class _RobustLoop(RobustLoop):
-    """The shared robust loop on the tip loop's grid, with the band criterion."""
+    """The shared robust loop on the tip loop's grid, with the band criterion; ``limits``: per
+    plant, the frequency (Hz) from which the loop gain must stay below one (None: no such
+    limit), for shapes with no resonance identified within their excitation's band."""
 
-    def __init__(self, plants: list[tuple[np.ndarray, np.ndarray]], dt: float, cutoff: float):
+    def __init__(self, plants: list[tuple[np.ndarray, np.ndarray]], dt: float, cutoff: float,
+                 limits: Sequence[float | None] | None = None):  # fmt: skip
         super().__init__(plants, dt, cutoff, points=600)
+        self.limited = []
+        for plant, limit in zip(plants, limits or [None] * len(plants), strict=True):
+            if limit is not None and limit < 0.5 / dt:
+                f = np.geomspace(limit, 0.5 / dt, 200)
+                zinv = np.exp(-2j * math.pi * f * dt)
+                self.limited.append((zinv, _evaluate(*plant, zinv)))
+
+    def acceptable(self, kp: float, ki: float, kd: float, ms: float) -> bool:
+        """Stable within ms on every plant, the loop gain below one above each limit."""
+        if not super().acceptable(kp, ki, kd, ms):
+            return False
+        c_num, c_den = controller_polynomials(kp, ki, kd, self.cutoff, self.dt)
+        return all(float(np.max(np.abs(_evaluate(c_num, c_den, zinv) * P))) < 1.0
+                   for zinv, P in self.limited)  # fmt: skip
 
     def band_sensitivity(self, kp: float, ki: float, kd: float, f_hz: np.ndarray) -> float:
         """The mean |S| over the frequencies ``f_hz``, worst shape: the rejection of what the
@@ -194,6 +259,12 @@ class _RobustLoop(RobustLoop):
             float(np.mean(np.abs(1.0 / (1.0 + C * _evaluate(num, den, zinv)))))
             for num, den in self.plants
         )
+
+
+def _band_limits(dynamics: Sequence[LoopDynamics]) -> list[float | None]:
+    """Per shape: the band's upper edge where no resonance was identified within it, else
+    None."""
+    return [None if d.resonance_identified else d.design_limit_hz for d in dynamics]
 
 
 def _largest_ki(loop: RobustLoop, kp: float, kd: float, ms: float) -> float:
@@ -259,6 +330,11 @@ def tune_tip_loop(
         No dynamics, a bad dt or bound, curve angles that do not match the shapes, or no gains
         that keep every shape's loop stable within ``max_sensitivity`` (the latency or the
         resonance leaves no room: the design is refused).
+
+    Warns
+    -----
+    MarginNotMetWarning
+        The peak sensitivity reached is above ``max_sensitivity`` (the design states both).
     """
     dyns = [dynamics] if not isinstance(dynamics, Sequence) else list(dynamics)
     dt, ms = float(dt), float(max_sensitivity)
@@ -274,11 +350,11 @@ def tune_tip_loop(
         )
     cutoff = 0.1 / dt
     plants = [loop_plant(d, dt) for d in dyns]
-    loop = _RobustLoop(plants, dt, cutoff)
+    loop = _RobustLoop(plants, dt, cutoff, _band_limits(dyns))
     g = float(np.median([abs(d.servo.gain * d.gain) or 1.0 for d in dyns]))
-    w_n = 2.0 * math.pi * min(min(d.resonance_hz, d.servo.frequency) for d in dyns)
+    w_n = 2.0 * math.pi * min(min(d.design_limit_hz, d.servo.frequency) for d in dyns)
     kds = np.linspace(0.0, 2.0 / (g * w_n), 5) if derivative else np.zeros(1)
-    band = np.geomspace(0.1, 0.25 * min(d.resonance_hz for d in dyns), 40)
+    band = np.geomspace(0.1, 0.25 * min(d.design_limit_hz for d in dyns), 40)
     best, best_cost = (0.0, 0.0, 0.0), math.inf
     if kp is not None and not (math.isfinite(float(kp)) and float(kp) >= 0):
         raise ValueError(f"tune_tip_loop: kp must be >= 0 (got {kp})")
@@ -296,8 +372,9 @@ def tune_tip_loop(
             f"with a peak sensitivity <= {ms:g} on every calibration shape at dt = {dt:g} s "
             f"(identified: {worst.summary()}); the tip loop cannot be closed on this drive"
         )
-    peaks = loop.peaks(*best)
+    peaks = reached_peak(loop, best)
     margins = [_margins(p, dt, best, cutoff) for p in plants]
+    _warn_if_not_met("tune_tip_loop", max(peaks), ms)
     return TipLoopDesign(
         kp=best[0],
         ki=best[1],
@@ -427,7 +504,8 @@ def refine_by_trials(
     ``ROBUSTNESS_RATIO`` times and nothing saturates (a loop near a limit cycle fails). A move
     must also keep the identified linear loops stable with a peak sensitivity within
     ``REFINED_SENSITIVITY`` times the design's bound (the dead band lowers the loop gain while
-    the tip sticks, never while it slips). The final margins are recomputed and stated.
+    the tip sticks, never while it slips). The final margins are recomputed and stated beside
+    the target; refined gains above the design's bound warn (MarginNotMetWarning).
 
     Parameters
     ----------
@@ -449,7 +527,8 @@ def refine_by_trials(
     build = _rebuilder(loop)
     gains = {"kp": design.kp, "ki": design.ki, "kd": design.kd}
     plants = [loop_plant(d, design.dt) for d in design.dynamics]
-    rl = _RobustLoop(plants, design.dt, design.derivative_cutoff_hz)
+    rl = _RobustLoop(plants, design.dt, design.derivative_cutoff_hz,
+                     _band_limits(design.dynamics))  # fmt: skip
     ceiling = REFINED_SENSITIVITY * design.max_sensitivity
     score = float(trial(loop))
     moves: list[dict[str, float]] = []
@@ -478,10 +557,12 @@ def refine_by_trials(
         return loop
     triple = (gains["kp"], gains["ki"], gains["kd"])
     margins = [_margins(p, design.dt, triple, design.derivative_cutoff_hz) for p in plants]
+    peaks = reached_peak(rl, triple)
+    _warn_if_not_met("refine_by_trials", max(peaks), design.max_sensitivity)
     new = replace(
         design,
         **gains,
-        sensitivity_peaks=tuple(rl.peaks(*triple)),
+        sensitivity_peaks=tuple(peaks),
         gain_margins_db=tuple(m[0] for m in margins),
         phase_margins_deg=tuple(m[1] for m in margins),
         crossovers_hz=tuple(m[2] for m in margins),

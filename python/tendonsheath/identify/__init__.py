@@ -18,6 +18,7 @@ from .interpolation import detect_input_interpolation
 from .loop_dynamics import (
     EmpiricalResponse,
     LoopDynamics,
+    ResonanceOutOfBandWarning,
     empirical_response,
     identify_loop_dynamics,
 )
@@ -34,6 +35,7 @@ __all__ = [
     "LoopDynamics",
     "ServoFit",
     "NotFittedError",
+    "ResonanceOutOfBandWarning",
     "cross_validate",
     "detect_input_interpolation",
     "empirical_response",

@@ -26,16 +26,29 @@ with the whole-sample resolution (dt / sqrt(12)).
 
 The excitation: a chirp on a monotonic ramp (the tendons never reverse through their dead
 zone), :func:`tendonsheath.bench.loop_calibration.loop_calibration_input`.
+
+A resonance is only reported within the excitation's band (``band_hz``: the chirp's, or where
+the command's speed spectrum lies within 30 dB of its peak): logs say nothing of a mode the
+command never excited. A drive whose distal part shows no mode within the band (a stiff or
+light joint) makes the second-order fit put one beyond it, a number the logs do not support;
+it is then refused: ``resonance_hz`` is inf (``resonance_identified`` False; the refused fit
+is kept as ``rejected_resonance_hz``), the distal part is its gain and delay alone, and a
+:class:`ResonanceOutOfBandWarning` says so. A design takes the band's upper edge as the highest
+frequency it knows (``design_limit_hz``). A mode below the band is refused with a ValueError
+(excite lower).
 """
 
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from scipy.ndimage import uniform_filter1d
 from scipy.signal import csd, lfilter, welch
+from scipy.signal.windows import tukey
 
 from .._arrays import as_timed_signal
 from .._typing import ArrayLike
@@ -60,6 +73,16 @@ _NAME = "identify_loop_dynamics"
 _DISTAL_DAMPINGS = (0.03, 0.08, 0.2, 0.5, 1.0)
 #: The least fraction of the high-passed tip's variance the distal fit must explain.
 _MIN_EXPLAINED = 0.05
+#: Where the band is inferred from the command: its speed spectrum within this many dB of
+#: its peak (a log chirp's falls as 1/f: 14 dB over 5-120 Hz; beyond its last frequency it
+#: drops by 60 dB and more within a few Hz).
+_BAND_DB = 30.0
+
+
+class ResonanceOutOfBandWarning(UserWarning):
+    """The distal fit put its mode outside the excitation's band: no resonance is reported
+    (``LoopDynamics.resonance_identified`` is False) and designs take the band's upper edge
+    as the highest frequency they know."""
 
 
 @dataclass(frozen=True)
@@ -91,6 +114,11 @@ class LoopDynamics:
         resonance_hz, damping and delay (s; see the module).
     delay_profile : dict of int to float
         The distal fit's sum of squared residuals at each delay tried (samples).
+    band_hz : tuple of float, optional
+        The excitation's band (Hz) the resonance was sought in.
+    rejected_resonance_hz : float, optional
+        The mode the second-order fit put outside ``band_hz`` (Hz), refused: nothing is
+        designed from it (``resonance_hz`` is then inf and ``damping`` NaN).
     """
 
     servo: ServoFit
@@ -104,11 +132,40 @@ class LoopDynamics:
     nrmse: float
     standard_errors: dict[str, float] = field(default_factory=dict)
     delay_profile: dict[int, float] = field(default_factory=dict)
+    band_hz: tuple[float, float] | None = None
+    rejected_resonance_hz: float | None = None
 
     @property
     def delay(self) -> float:
         """The distal part's delay (s): delay_samples * dt."""
         return self.delay_samples * self.dt
+
+    @property
+    def resonance_identified(self) -> bool:
+        """Whether a distal resonance was identified (within the excitation's band)."""
+        return math.isfinite(self.resonance_hz)
+
+    @property
+    def design_limit_hz(self) -> float:
+        """The frequency a design takes as the distal part's limit (Hz): the resonance, or,
+        with none identified within the band, the band's upper edge (the highest frequency
+        the logs speak of; the Nyquist frequency when no band is known)."""
+        if self.resonance_identified:
+            return self.resonance_hz
+        return float(self.band_hz[1]) if self.band_hz is not None else 0.5 / self.dt
+
+    def resonance_text(self) -> str:
+        """The resonance in words.
+
+        Returns
+        -------
+        str
+            e.g. "42.6 Hz", or "none within the 5-120 Hz band (120 Hz taken as the limit)".
+        """
+        if self.resonance_identified:
+            return f"{self.resonance_hz:.3g} Hz"
+        band = f"{self.band_hz[0]:.3g}-{self.band_hz[1]:.3g} Hz " if self.band_hz else ""
+        return f"none within the {band}band ({self.design_limit_hz:.3g} Hz taken as the limit)"
 
     def distal_discrete(self, dt: float | None = None) -> tuple[np.ndarray, np.ndarray]:
         """The distal part encoder -> tip in z^-1 (first-order hold, the delay included, rounded
@@ -126,6 +183,8 @@ class LoopDynamics:
         """
         step = self._step(dt)
         d = int(round(self.delay / step))
+        if not self.resonance_identified:  # gain and delay alone: no mode within the band
+            return np.concatenate([np.zeros(d), [self.gain]]), np.ones(1)
         return servo_filter(self.resonance_hz, self.damping, self.gain, d, step, 0.0, "foh")
 
     def discrete(self, dt: float | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -199,10 +258,14 @@ class LoopDynamics:
         dict
             Every field, the servo's as a dict, and the delay in seconds.
         """
+        found = self.resonance_identified
         return {
             "servo": self.servo.as_dict(),
-            "resonance_hz": self.resonance_hz,
-            "damping": self.damping,
+            "resonance_hz": self.resonance_hz if found else None,
+            "resonance_identified": found,
+            "band_hz": list(self.band_hz) if self.band_hz is not None else None,
+            "rejected_resonance_hz": self.rejected_resonance_hz,
+            "damping": self.damping if found else None,
             "gain": self.gain,
             "delay": self.delay,
             "delay_samples": self.delay_samples,
@@ -227,9 +290,18 @@ class LoopDynamics:
         def pm(key: str, scale: float = 1.0) -> str:
             return f" +- {scale * se[key]:.2g}" if key in se else ""
 
+        if self.resonance_identified:
+            mode = (
+                f"resonance {self.resonance_hz:.4g}{pm('resonance_hz')} Hz, damping "
+                f"{self.damping:.3g}{pm('damping')}"
+            )
+        else:
+            rejected = self.rejected_resonance_hz
+            mode = f"resonance {self.resonance_text()}" + (
+                f" (the fit's mode at {rejected:.3g} Hz refused)" if rejected else ""
+            )
         return (
-            f"resonance {self.resonance_hz:.4g}{pm('resonance_hz')} Hz, damping "
-            f"{self.damping:.3g}{pm('damping')}, delay {1e3 * self.delay:.3g}{pm('delay', 1e3)} ms "
+            f"{mode}, delay {1e3 * self.delay:.3g}{pm('delay', 1e3)} ms "
             f"({self.delay_samples} samples), bandwidth {self.bandwidth_hz:.3g} Hz "
             f"(command -> tip, -3 dB); servo {self.servo.frequency:.3g} Hz; distal nrmse "
             f"{self.nrmse:.2g}"
@@ -317,6 +389,7 @@ def identify_loop_dynamics(
     tip: ArrayLike,
     max_delay: int = 20,
     highpass_hz: float = 2.0,
+    band_hz: tuple[float, float] | None = None,
 ) -> LoopDynamics:
     """Identify a tip-feedback loop from a calibration run's logs (see the module).
 
@@ -337,18 +410,28 @@ def identify_loop_dynamics(
     highpass_hz : float, default 2.0
         The dynamics are fitted above this frequency (Hz; 0: the whole record, the mean
         removed).
+    band_hz : tuple of float, optional
+        The excitation's band (low, high) in Hz, e.g. the chirp's (5, 120); default inferred
+        from the command (where its speed spectrum is within 30 dB of its peak, above
+        ``highpass_hz``). No resonance is reported outside it (see the module).
 
     Returns
     -------
     LoopDynamics
-        The servo, the distal mode and delay, the loop's bandwidth.
+        The servo, the distal mode (or none within the band) and delay, the loop's bandwidth.
 
     Raises
     ------
     ValueError
         Arrays of different lengths, non-finite samples (naming the first sensor dropout), a
         non-uniform or too short record, a command that does not move, a tip that does not
-        respond to the encoder, or an argument out of range.
+        respond to the encoder, a distal mode below the excitation's band, or an argument
+        out of range.
+
+    Warns
+    -----
+    ResonanceOutOfBandWarning
+        The fit's mode lies above the band: no resonance is reported.
     """
     ts, u = as_timed_signal(t, command, "command", _NAME)
     _, q = as_timed_signal(ts, encoder, "encoder", _NAME)
@@ -375,6 +458,7 @@ def identify_loop_dynamics(
         raise ValueError(f"{_NAME}: max_delay must be an int in [0, n/4) (got {max_delay})")
     if not (math.isfinite(highpass_hz) and 0 <= highpass_hz < 0.25 / dt):
         raise ValueError(f"{_NAME}: highpass_hz must be in [0, {0.25 / dt:g}) Hz")
+    band = _excitation_band(u, dt, highpass_hz) if band_hz is None else _checked_band(band_hz, dt)
     servo = identify_servo(ts, u, q, max_delay=min(max_delay, 10), highpass_hz=highpass_hz)
     qb, yb = _band(q, dt, highpass_hz), _band(y, dt, highpass_hz)
     edge = min(int(round(1.0 / (max(highpass_hz, 1e-9) * dt))), u.size // 8)
@@ -389,11 +473,31 @@ def identify_loop_dynamics(
             f"{100 * max(explained, 0.0):.2g} % of the high-passed tip's variance): no sensor "
             "signal, or an excitation buried in the noise"
         )
-    gain = _gain(qb, yb, f, z, d, dt, keep)
-    errors = {
-        "resonance_hz" if k == "frequency" else k: v
-        for k, v in _standard_errors(r, res, f, z).items()
-    }
+    if f < band[0]:
+        raise ValueError(
+            f"{_NAME}: the distal fit's mode at {f:.3g} Hz lies below the excitation's band "
+            f"({band[0]:.3g}-{band[1]:.3g} Hz): no resonance identified within the band; start "
+            "the excitation lower (f_start) to identify it"
+        )
+    rejected = None
+    if f > band[1]:
+        rejected = f
+        warnings.warn(
+            f"{_NAME}: no resonance identified within the {band[0]:.3g}-{band[1]:.3g} Hz "
+            f"excitation band (the fit's mode at {f:.3g} Hz lies above it and is refused); the "
+            f"distal part is taken as its gain and delay, and {band[1]:.3g} Hz as the highest "
+            "frequency a design knows",
+            ResonanceOutOfBandWarning,
+            stacklevel=2,
+        )
+        sse, d, gain, res, profile = _static_distal(qb, yb, keep, max_delay)
+        f, z, errors = math.inf, math.nan, {}
+    else:
+        gain = _gain(qb, yb, f, z, d, dt, keep)
+        errors = {
+            "resonance_hz" if k == "frequency" else k: v
+            for k, v in _standard_errors(r, res, f, z).items()
+        }
     errors["delay"] = dt * _delay_error(profile, d, res.size)
     rmse = math.sqrt(sse / res.size)
     dyn = LoopDynamics(
@@ -408,8 +512,51 @@ def identify_loop_dynamics(
         nrmse=rmse / float(np.ptp(ys)),
         standard_errors=errors,
         delay_profile=profile,
+        band_hz=band,
+        rejected_resonance_hz=rejected,
     )
     return _with_bandwidth(dyn)
+
+
+def _excitation_band(u: np.ndarray, dt: float, highpass_hz: float) -> tuple[float, float]:
+    """(low, high) Hz where the command's speed spectrum (Tukey-windowed, smoothed over 1 Hz)
+    is within ``_BAND_DB`` of its peak, at or above ``highpass_hz``."""
+    v = np.diff(u)
+    v = (v - v.mean()) * tukey(v.size, 0.1)
+    power = np.abs(np.fft.rfft(v)) ** 2
+    f = np.fft.rfftfreq(v.size, dt)
+    power = uniform_filter1d(power, max(1, int(round(1.0 / f[1]))))  # 1 Hz
+    above = f >= max(highpass_hz, f[1])
+    if not np.any(above & (power > 0)):
+        return float(f[1]), 0.5 / dt
+    on = f[above & (power >= power[above].max() * 10 ** (-_BAND_DB / 10))]
+    return float(on.min()), float(on.max())
+
+
+def _checked_band(band_hz, dt: float) -> tuple[float, float]:
+    try:
+        lo, hi = (float(b) for b in band_hz)
+    except (TypeError, ValueError):
+        raise ValueError(f"{_NAME}: band_hz must be (low, high) in Hz (got {band_hz!r})") from None
+    if not (0 <= lo < hi <= 0.5 / dt):
+        raise ValueError(
+            f"{_NAME}: band_hz must satisfy 0 <= low < high <= {0.5 / dt:g} Hz (got {band_hz!r})"
+        )
+    return lo, hi
+
+
+def _static_distal(u: np.ndarray, y: np.ndarray, keep: slice, max_delay: int):
+    """The distal part as a gain and a delay (no mode): (sse, delay, gain, residual,
+    {delay: sse}) of the least-squares gain and offset at each delay in [0, max_delay]."""
+    fits = {}
+    for d in range(max_delay + 1):
+        s = np.concatenate([np.full(d, u[0]), u[: u.size - d]])[keep]
+        A = np.column_stack([s, np.ones_like(s)])
+        (g, c), *_ = np.linalg.lstsq(A, y[keep], rcond=None)
+        res = y[keep] - (g * s + c)
+        fits[d] = (float(res @ res), d, float(g), res)
+    sse, d, g, res = min(fits.values(), key=lambda item: item[0])
+    return sse, d, g, res, {k: v[0] for k, v in fits.items()}
 
 
 def _distal_fits(u: np.ndarray, y: np.ndarray, dt: float, keep: slice, max_delay: int):
@@ -491,4 +638,10 @@ def _with_bandwidth(dyn: LoopDynamics) -> LoopDynamics:
     return replace(dyn, bandwidth_hz=float(f[i - 1] * (f[i] / f[i - 1]) ** frac))
 
 
-__all__ = ["EmpiricalResponse", "LoopDynamics", "empirical_response", "identify_loop_dynamics"]
+__all__ = [
+    "EmpiricalResponse",
+    "LoopDynamics",
+    "ResonanceOutOfBandWarning",
+    "empirical_response",
+    "identify_loop_dynamics",
+]

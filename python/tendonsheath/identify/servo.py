@@ -13,9 +13,13 @@ calibration run's command and motor encoder, as
     q = offset + gain * w^2 (s + 1/T_i) / (s^3 + 2 damping w s^2 + w^2 s + w^2/T_i) * command
 
 (``integral_time`` T_i > 0). Both are fitted; the integral is kept when it lowers the Bayesian
-information criterion. The command is held over each sample (zero-order hold: what a servo
-receives), ``delay`` whole samples of transport delay. The excitation should move the servo
-over its bandwidth without reversing the tendons (a chirp on a slow ramp,
+information criterion and its corner 1 / (2 pi T_i) lies within the band the dynamics are
+fitted in (at or above ``highpass_hz``): a slower integral is no integral action the logs can
+show (a PD servo under the tendons' slowly varying pull fits one at T_i ~ 0.8 s, a 0.2 Hz
+corner below the 1 Hz high-pass), and the servo is then named PD. The command is held over
+each sample (zero-order hold: what a servo receives), ``delay`` whole samples of transport
+delay. The excitation should move the servo over its bandwidth without reversing the tendons
+(a chirp on a slow ramp,
 :func:`tendonsheath.bench.calibration.motor_calibration_input`).
 
 The dynamics are fitted on both signals high-passed (zero phase) above ``highpass_hz``: the
@@ -291,12 +295,14 @@ def identify_servo(
     max_delay : int, default 10
         The largest transport delay tried (samples), >= 0.
     highpass_hz : float, default 1.0
-        The dynamics are fitted above this frequency (Hz; 0: the whole record).
+        The dynamics are fitted above this frequency (Hz; 0: the whole record); an integral
+        whose corner lies below it is not identified (a PD servo).
 
     Returns
     -------
     ServoFit
-        The servo, with the delay of the best fit.
+        The servo, with the delay of the best fit; ``integral_time`` > 0 (named PID) only
+        when integral action was identified within the band.
 
     Raises
     ------
@@ -320,7 +326,8 @@ def identify_servo(
     edge = min(int(round(1.0 / (max(highpass_hz, 1e-9) * dt))), u.size // 8)
     keep = slice(edge, u.size - edge)
     start = _start(u, q, 0, dt, keep)  # a delay of a few samples barely moves the coarse grid
-    d, f, z, ti, res, r = _best_structure(u, q, dt, keep, start, max_delay)
+    slowest = highpass_hz if highpass_hz > 0 else 1.0 / (u.size * dt)
+    d, f, z, ti, res, r = _best_structure(u, q, dt, keep, start, max_delay, slowest)
     g, c, raw = _affine(_unit_response(f, z, u_raw, d, dt, ti), q_raw)
     rmse = math.sqrt(float(raw @ raw) / u_raw.size)
     span = float(np.ptp(q_raw))
@@ -348,11 +355,13 @@ def _best_delay(u, q, dt: float, keep: slice, start: np.ndarray, delays, **optio
     return min(fits, key=lambda item: item[0])
 
 
-def _best_structure(u, q, dt: float, keep: slice, start: np.ndarray, max_delay: int):
+def _best_structure(u, q, dt: float, keep: slice, start: np.ndarray, max_delay: int,
+                    slowest_hz: float = 0.0):  # fmt: skip
     """The PD form, or the PID form when it lowers the Bayesian information criterion
-    n ln(sse / n) + k ln(n) (k: 4 or 5 parameters with the gain and offset); the PID search
-    starts from the PD fit (its delay and the ones beside it) with the integral corner at 5, 20
-    and 50 % of its frequency."""
+    n ln(sse / n) + k ln(n) (k: 4 or 5 parameters with the gain and offset) and its integral
+    corner 1 / (2 pi T_i) is at least ``slowest_hz`` (the band the logs are fitted in); the PID
+    search starts from the PD fit (its delay and the ones beside it) with the integral corner
+    at 5, 20 and 50 % of its frequency."""
     pd = _best_delay(u, q, dt, keep, start, range(max_delay + 1))
     f_pd, z_pd, near = pd[2], pd[3], range(max(pd[1] - 1, 0), min(pd[1] + 1, max_delay) + 1)
     w = 2.0 * math.pi * f_pd
@@ -361,7 +370,8 @@ def _best_structure(u, q, dt: float, keep: slice, start: np.ndarray, max_delay: 
     pid = min((_best_delay(u, q, dt, keep, x0, near) for x0 in starts), key=lambda f: f[0])
     n = keep.stop - keep.start
     bic = [n * math.log(max(f[0], 1e-300) / n) + k * math.log(n) for f, k in ((pd, 4), (pid, 5))]
-    _, d, f, z, ti, res, r = pid if bic[1] < bic[0] else pd
+    in_band = pid[4] > 0 and 1.0 / (2.0 * math.pi * pid[4]) >= slowest_hz
+    _, d, f, z, ti, res, r = pid if bic[1] < bic[0] and in_band else pd
     return d, f, z, ti, res, r
 
 
