@@ -7,6 +7,7 @@ import pytest
 
 import tendonsheath as ts
 from tendonsheath.bench import calibrate_torque_motor, calibration_trial, measured_mse
+from tendonsheath.bench.calibration import calibration_input
 
 
 def _result(t, reference, measured, warmup=0.0):
@@ -126,3 +127,24 @@ def test_choose_leaves_out_a_part_that_does_not_help_and_says_so():
         ts.bench.choose({}, lambda c: 0.0)
     with pytest.raises(ValueError, match="keep_below"):
         ts.bench.choose({"a": 1}, lambda c: 0.0, keep_below=0.0)
+
+
+def test_choose_needs_a_richer_candidate_to_help_on_every_trial():
+    first = {"a": 1.0, "b": 0.5}
+    second = {"a": 1.0, "b": 0.99}  # b helps on one trial only
+    choice = ts.bench.choose({"a": "a", "b": "b"}, [first.get, second.get])
+    assert choice.name == "a" and "on every trial" in choice.reason
+    assert choice.all_scores == [first, second]
+    assert ts.bench.choose({"a": "a", "b": "b"}, [first.get, first.get]).name == "b"
+
+
+def test_a_faster_trial_plays_the_same_excitation_faster():
+    d = ts.presets.random_realistic_plant(0)
+    slow = calibration_trial(d.plant(), d.calibration_routes, ts.Sensor(), duration=8.0)
+    fast = calibration_trial(d.plant(), d.calibration_routes, ts.Sensor(), duration=8.0, speed=2.0)
+    np.testing.assert_array_equal(slow.t, fast.t)
+    np.testing.assert_array_equal(slow.reference, calibration_input(8.0, 1.0)[1])
+    # twice as fast: a 16 s excitation played in 8 s, every other sample of it
+    np.testing.assert_allclose(fast.reference, calibration_input(16.0, 1.0)[1][::2], atol=1e-12)
+    with pytest.raises(ValueError, match="speed"):
+        calibration_trial(d.plant(), d.calibration_routes, ts.Sensor(), speed=0.0)

@@ -47,7 +47,7 @@ from .calibration import calibrate, calibration_input
 from .loop_calibration import calibrate_loop
 from .motor_calibration import calibrate_torque_motor
 from .run import run
-from .trial import Trial, calibration_trial, choose
+from .trial import calibration_trial, choose
 
 #: the tip sensor's latencies of the tip-feedback figures (s)
 LATENCIES = (1e-3, 5e-3)
@@ -57,6 +57,9 @@ ROUTE_SEEDS = 5
 ILC_SEEDS = 5
 ILC_TRIALS = 10
 SHAPE_LAWS = {"B_r": "tanh", "B_l": "tanh"}
+#: the calibration trials' speeds: the calibration excitation as logged and twice as fast (a
+#: loop is kept only when it helps on both)
+TRIAL_SPEEDS = (1.0, 2.0)
 SMOOTHING = 0.03
 #: the studies a member can run
 STUDIES = ("sensorless", "tip", "adaptive", "ilc")
@@ -237,21 +240,23 @@ def _calibration(draw: PlantDraw, seed: int, budget: dict | None):
     }
 
 
-def _sensorless(draw, fits, tests, none, trial) -> dict[str, Any]:
+def _sensorless(draw, fits, tests, none, trials) -> dict[str, Any]:
     shape, enc = fits["shape command"], fits["shape encoder"]
     ff = shape.inverse_feedforward(smoothing=SMOOTHING)
     looped = enc.encoder_loop(enc.inverse_feedforward(smoothing=SMOOTHING))
-    choice = choose({"feedforward": ff, "feedforward + EncoderLoop": looped}, trial)
+    choice = choose({"feedforward": ff, "feedforward + EncoderLoop": looped}, trials)
     plant = tests.draw.plant(encoder_seed=tests.seed + 5)
     sensor = draw.tip_sensor(0.0, tests.seed + 7)
     alone = _factors(none, tests.mse(plant, ff, sensor))
     inside = _factors(none, tests.mse(plant, looped, sensor))
     keep = choice.name != "feedforward"
+    ratios = [row["feedforward + EncoderLoop"] / row["feedforward"] for row in choice.all_scores]
     return {
         "feedforward": alone,
         "feedforward + EncoderLoop": inside,
         "chosen": inside if keep else alone,
         "loop kept": keep,
+        "trial ratio": float(max(ratios)),
         "why": choice.reason,
         "servo": enc.servo.servo.summary(),
     }
@@ -403,14 +408,18 @@ def member_study(
     none = tests.mse(plant, None, draw.tip_sensor(0.0, seed + 7))
     out: dict[str, Any] = {"seed": seed, "draw": draw.describe(), "servo": draw.servo}
     if "sensorless" in studies:
-        trial = calibration_trial(
-            draw.plant(encoder_seed=seed + 31),
-            draw.calibration_routes,
-            draw.tip_sensor(0.0, seed + 53),
-            amplitude=draw.values["workspace"],
-            shape_sensing=_sensing(draw, seed + 901),
-        )
-        out["sensorless"] = _sensorless(draw, fits, tests, none, trial)
+        trials = [
+            calibration_trial(
+                draw.plant(encoder_seed=seed + 31 + k),
+                draw.calibration_routes,
+                draw.tip_sensor(0.0, seed + 53 + k),
+                amplitude=draw.values["workspace"],
+                shape_sensing=_sensing(draw, seed + 901 + k),
+                speed=speed,
+            )
+            for k, speed in enumerate(TRIAL_SPEEDS)
+        ]
+        out["sensorless"] = _sensorless(draw, fits, tests, none, trials)
     if "tip" in studies:
         out["tip"] = _tip(draw, fits, tests, none, seed)
     if "adaptive" in studies:
@@ -449,20 +458,24 @@ def continuum_member_study(
         servo=True,
     )
     enc = _quiet(cal.refit, "encoder")
-    # the loop is kept when a calibration trial (first calibration shape, tip sensor) shows it
-    # helps
+    # the loop is kept when calibration trials (first calibration shape, tip sensor, two
+    # speeds) show it helps
     shape0 = draw.calibration_routes[0]
     sensed0 = cal.runs[0].sensed_angle
-    t_trial, y_trial = calibration_input(15.0, draw.values["workspace"])
-    trial = Trial(
-        draw.plant(shape0, encoder_seed=seed + 31),
-        t_trial,
-        y_trial,
-        draw.tip_sensor(0.0, seed + 53),
-    )
+    trials = [
+        calibration_trial(
+            draw.plant(shape0, encoder_seed=seed + 31 + k),
+            [shape0],
+            draw.tip_sensor(0.0, seed + 53 + k),
+            duration=15.0,
+            amplitude=draw.values["workspace"],
+            speed=speed,
+        )
+        for k, speed in enumerate(TRIAL_SPEEDS)
+    ]
     alone0 = cal.continuum_feedforward(sensed0, mode="exact", smoothing=0.1)
     looped0 = enc.encoder_loop(enc.continuum_feedforward(sensed0, mode="exact", smoothing=0.1))
-    keep = choose({"alone": alone0, "looped": looped0}, trial).name == "looped"
+    keep = choose({"alone": alone0, "looped": looped0}, trials).name == "looped"
     t, y_d = draw.reference(duration, seed)
     sensor = draw.tip_sensor(0.0, seed + 7)
     errors, none_errors = [], []
@@ -541,6 +554,7 @@ def flatten(m: dict[str, Any]) -> dict[str, dict[str, float]]:
         "sensorless (encoder loop where it helps)": {
             **figures(s["chosen"]),
             "loop_kept": float(s["loop kept"]),
+            "trial_ratio": float(s["trial ratio"]),
         },
         "shape-aware InverseFeedforward": figures(s["feedforward"]),
         "shape-aware InverseFeedforward + EncoderLoop": figures(s["feedforward + EncoderLoop"]),

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -156,6 +156,7 @@ def calibration_trial(
     amplitude: float = 1.0,
     switch_every: float = SWITCH_EVERY,
     shape_sensing: Any = None,
+    speed: float = 1.0,
 ) -> Trial:
     """The tuners' trial: the calibration excitation (:func:`calibration_input`, ``duration``
     s at ``amplitude``) while the robot switches among its calibration shapes ``routes`` every
@@ -177,6 +178,9 @@ def calibration_trial(
         Seconds between shape changes.
     shape_sensing : ShapeSensing, optional
         What a route-following candidate is told of the shape.
+    speed : float, default 1.0
+        The excitation played this many times faster (its 0.25 Hz at 0.25 x speed Hz), > 0:
+        a second trial at another speed tells a part that helps at one rate only.
 
     Returns
     -------
@@ -188,7 +192,12 @@ def calibration_trial(
         raise ValueError("calibration_trial: give at least one calibration shape")
     if not (switch_every > 0.0 and math.isfinite(switch_every)):
         raise ValueError(f"calibration_trial: switch_every must be > 0 s (got {switch_every})")
+    if not (speed > 0.0 and math.isfinite(speed)):
+        raise ValueError(f"calibration_trial: speed must be > 0 (got {speed})")
     t, reference = calibration_input(duration, amplitude)
+    if speed != 1.0:  # the same excitation, time-compressed, on the same 1 kHz grid
+        t_full, full = calibration_input(duration * speed, amplitude)
+        reference = np.interp(t * speed, t_full, full)
     edges = np.arange(0.0, duration, switch_every)
     shapes = [routes[i % len(routes)] for i in range(edges.size)]
 
@@ -217,51 +226,62 @@ class Choice:
         Each candidate's trial error (rad^2; inf: diverged or saturated).
     reason : str
         One line: the scores and the rule.
+    all_scores : list of dict, optional
+        Each trial's errors, by candidate.
     """
 
     name: str
     chosen: Any
     scores: dict[str, float]
     reason: str
+    all_scores: list[dict[str, float]] = field(default_factory=list)
 
 
-def choose(candidates: dict[str, Any], trial: Any, keep_below: float = KEEP_BELOW) -> Choice:
-    """The simplest candidate that no richer one beats on ``trial``: candidates are given
+def choose(candidates: dict[str, Any], trials: Any, keep_below: float = KEEP_BELOW) -> Choice:
+    """The simplest candidate that no richer one beats on the trials: candidates are given
     simplest first (e.g. the feedforward alone, then inside an EncoderLoop); a later one is
-    chosen only when its trial error is below ``keep_below`` times the chosen one's so far.
-    A part that does not help on calibration trials is thus left out, and the reason says so.
+    chosen only when its error is below ``keep_below`` times the chosen one's so far on
+    *every* trial (one trial is one excitation; a part that helps on one and hurts on another
+    is not shown to help). A part that does not help on calibration trials is thus left out,
+    and the reason says so.
 
     Parameters
     ----------
     candidates : dict of str to compensator
         Name -> candidate, simplest first.
-    trial : callable
-        candidate -> its measured error (a :class:`Trial`).
+    trials : callable or sequence of callables
+        candidate -> its measured error (a :class:`Trial`), one or several.
     keep_below : float, default 0.95
         The share of the simpler candidate's error a richer one must get below, in (0, 1].
 
     Returns
     -------
     Choice
-        The chosen candidate, every score and the reason.
+        The chosen candidate, its scores (each candidate's worst ratio is decided on every
+        trial; ``scores`` holds the first trial's errors, ``all_scores`` every trial's) and
+        the reason.
     """
     if not candidates:
         raise ValueError("choose: give at least one candidate")
     if not 0.0 < keep_below <= 1.0:
         raise ValueError(f"choose: keep_below must be in (0, 1] (got {keep_below})")
-    scores = {name: float(trial(c)) for name, c in candidates.items()}
+    trials = list(trials) if isinstance(trials, list | tuple) else [trials]
+    if not trials:
+        raise ValueError("choose: give at least one trial")
+    table = [{name: float(trial(c)) for name, c in candidates.items()} for trial in trials]
     best = next(iter(candidates))
     for name in list(candidates)[1:]:
-        if scores[name] < keep_below * scores[best]:
+        if all(row[name] < keep_below * row[best] for row in table):
             best = name
-    listed = ", ".join(f"{n} {v:.3g}" for n, v in scores.items())
+    listed = "; ".join(", ".join(f"{n} {v:.3g}" for n, v in row.items()) for row in table)
     left_out = [n for n in candidates if n != best]
+    every = " on every trial" if len(table) > 1 else ""
     reason = (
         f"trial error (rad^2): {listed}; chosen: {best} (a richer candidate must get below "
-        f"{keep_below:g} x the simpler one's)"
+        f"{keep_below:g} x the simpler one's{every})"
         + (f"; left out: {', '.join(left_out)}" if left_out else "")
     )
-    return Choice(best, candidates[best], scores, reason)
+    return Choice(best, candidates[best], table[0], reason, table)
 
 
 __all__ = [
