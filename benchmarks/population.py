@@ -55,7 +55,17 @@ def summarise(table) -> dict:
             continue
         rows = rows.sort_values("seed")
         entry = {"members": int(len(rows))}
-        for col in ("fixed", "median", "min", "max", "none_median", "loop_kept", "shifted_ok"):
+        for col in (
+            "fixed",
+            "median",
+            "min",
+            "max",
+            "none_median",
+            "loop_kept",
+            "shifted_ok",
+            "refused",
+            "trial_ratio",
+        ):
             if col in rows and rows[col].notna().any():
                 v = rows[col].to_numpy(dtype=float)
                 entry[col] = {
@@ -78,6 +88,7 @@ def main() -> None:
     res = ts.sweep(
         population_run,
         Grid({"kind": ["pull-pull", "continuum"], "seed": seeds}),
+        seed=0,
         workers=args.workers,
         progress=True,
         checkpoint=ROOT / "build" / "population-checkpoint",

@@ -149,3 +149,33 @@ def test_an_encoder_needs_a_motor_and_a_sensor():
         ts.PullPullPlant(route=route, encoder=ts.Sensor())
     with pytest.raises(TypeError, match="encoder must be a tendonsheath.Sensor"):
         ts.PullPullPlant(route=route, motor=ts.Motor.position(), encoder=1e-3)
+
+
+def test_a_member_study_chooses_its_loop_by_trials_and_reports_both():
+    from tendonsheath.bench.population import flatten, member_study
+
+    m = member_study(3, studies=("sensorless",), duration=8.0,
+                     budget={"maxiter": 8, "popsize": 6})  # fmt: skip
+    s = m["sensorless"]
+    chosen = s["feedforward + EncoderLoop"] if s["loop kept"] else s["feedforward"]
+    assert s["chosen"] == chosen
+    assert ("chosen: feedforward + EncoderLoop" in s["why"]) == s["loop kept"]
+    # the loop is kept only where it helped on every calibration trial by 5 %
+    assert (s["trial ratio"] < 0.95) == s["loop kept"]
+    for figures in (s["feedforward"], s["feedforward + EncoderLoop"]):
+        assert len(figures["seeds"]) == 5
+        assert figures["median"] == pytest.approx(np.median(figures["seeds"]))
+        assert figures["min"] == min(figures["seeds"])
+    # the identified feedforward helps on the drive it was calibrated on (drifted since)
+    assert s["feedforward"]["median"] > 3.0
+    with pytest.raises(KeyError):  # only the studies asked for are run
+        flatten(m)
+    with pytest.raises(ValueError, match="unknown studies"):
+        member_study(3, studies=("tip", "magic"))
+
+
+def test_every_route_of_a_drive_keeps_its_length_even_with_a_tiny_lead_in():
+    rng = np.random.default_rng(0)
+    for lead_in in (0.0, 1e-5, 4e-4, 0.1):
+        r = pop._route(2.0, math.pi, 3, lead_in, rng)
+        assert r.length == pytest.approx(2.0, rel=1e-12)

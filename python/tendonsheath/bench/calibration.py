@@ -569,8 +569,10 @@ def _loop_rows(cal: Calibration) -> list[dict[str, Any]]:
     source = "identified from the loop calibration run (command, encoder and tip logs), shape "
     for i, d in enumerate(cal.loop_dynamics):
         se = d.standard_errors
-        mode = [("distal resonance (Hz)", d.resonance_hz, "resonance_hz"),
-                ("distal damping", d.damping, "damping")]  # fmt: skip
+        mode: list[tuple[str, float, str | None]] = [
+            ("distal resonance (Hz)", d.resonance_hz, "resonance_hz"),
+            ("distal damping", d.damping, "damping"),
+        ]
         if not d.resonance_identified:  # the band's edge is what a design was told, not a mode
             mode = [(f"distal resonance: {d.resonance_text()}; limit (Hz)", d.design_limit_hz,
                      None)]  # fmt: skip

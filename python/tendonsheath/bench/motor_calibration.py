@@ -20,7 +20,7 @@ from ..identify.servo import ServoFit, identify_servo
 from ..plant.sensor import Sensor
 
 if TYPE_CHECKING:
-    from ..plant import ContinuumPlant, PullPullPlant
+    from ..plant import ContinuumPlant, PullPullPlant, SingleTendonPlant
     from ..plant.route import Route
 
 
@@ -144,7 +144,10 @@ def calibrate_servo(
 
 
 def _drive(
-    plant: PullPullPlant | ContinuumPlant, route: Route | None, t: np.ndarray, command: np.ndarray
+    plant: PullPullPlant | ContinuumPlant | SingleTendonPlant,
+    route: Route | None,
+    t: np.ndarray,
+    command: np.ndarray,
 ) -> Any:
     """Simulate ``plant`` bent into ``route`` (default its own) driven by ``command``; the
     plant's route is restored."""
@@ -163,7 +166,7 @@ def _encoder(sim: Any) -> np.ndarray:
 
 
 def run_experiment(
-    plant: PullPullPlant | ContinuumPlant,
+    plant: PullPullPlant | ContinuumPlant | SingleTendonPlant,
     route: Route | None,
     t: np.ndarray,
     command: np.ndarray,

@@ -288,16 +288,20 @@ def _tip(draw, fits, tests, none, seed: int) -> dict[str, Any]:
             amplitude=draw.values["workspace"],
             shape_sensing=_sensing(draw, seed + 900),
         )
-        tip = TipLoop.from_calibration(
-            shape.backlash_model,
-            [loop.dynamics for loop in loops],
-            curve_angles=angles,
-            max_sensitivity=(1.7, 2.0),
-            dead_band_scale=(0.9, 0.8, 0.7),
-            trial=trial,
-            refine=True,
-            feedforward_options={"smoothing": SMOOTHING},
-        )
+        try:
+            tip = TipLoop.from_calibration(
+                shape.backlash_model,
+                [loop.dynamics for loop in loops],
+                curve_angles=angles,
+                max_sensitivity=(1.7, 2.0),
+                dead_band_scale=(0.9, 0.8, 0.7),
+                trial=trial,
+                refine=True,
+                feedforward_options={"smoothing": SMOOTHING},
+            )
+        except ValueError as refused:  # the tuner found no design that holds: said so
+            out[f"{1e3 * latency:g} ms"] = _refused(str(refused))
+            continue
         test_sensor = draw.tip_sensor(latency, seed + 43)
         out[f"{1e3 * latency:g} ms"] = {
             **_factors(none, tests.mse(plant, tip, test_sensor)),
@@ -317,19 +321,32 @@ def _adaptive(draw, fits, tests, seed: int) -> dict[str, Any]:
     trial = calibration_trial(
         torque_plant, draw.calibration_routes, sensor, amplitude=draw.values["workspace"]
     )
-    ctrl = AdaptiveController.from_calibration(
-        fits["single encoder"].backlash_model,
-        [loop.dynamics for loop in loops],
-        inertia=motor.inertia,
-        viscous=motor.viscous,
-        max_torque=5.0,
-        noise_std=draw.values["tip_noise"],
-        trial=trial,
-    )
+    try:
+        ctrl = AdaptiveController.from_calibration(
+            fits["single encoder"].backlash_model,
+            [loop.dynamics for loop in loops],
+            inertia=motor.inertia,
+            viscous=motor.viscous,
+            max_torque=5.0,
+            noise_std=draw.values["tip_noise"],
+            trial=trial,
+        )
+    except ValueError as refused:  # every trial saturated or diverged: the tuner refuses
+        return {"refused": str(refused), "identified": motor.summary()}
     test_sensor = draw.tip_sensor(latency, seed + 47)
     # the factor is over the uncompensated servo drive (as do2015's): a torque joint has no
     # uncompensated command
-    return {"runs": tests.mse(test_plant, ctrl, test_sensor), "identified": motor.summary()}
+    return {
+        "runs": tests.mse(test_plant, ctrl, test_sensor),
+        "identified": motor.summary(),
+        "designed_from": ctrl.design.summary(),
+    }
+
+
+def _refused(reason: str) -> dict[str, Any]:
+    """A pipeline whose tuner refused the drive: the user runs it uncompensated (1x), and the
+    reason is kept."""
+    return {"fixed": 1.0, "seeds": [], "median": 1.0, "min": 1.0, "refused": reason}
 
 
 def _ilc(draw, fits, tests, none_fixed: float, seed: int) -> dict[str, Any]:
@@ -424,7 +441,14 @@ def member_study(
         out["tip"] = _tip(draw, fits, tests, none, seed)
     if "adaptive" in studies:
         a = _adaptive(draw, fits, tests, seed)
-        out["adaptive"] = {**_factors(none, a["runs"]), "identified": a["identified"]}
+        if "refused" in a:
+            out["adaptive"] = {**_refused(a["refused"]), "identified": a["identified"]}
+        else:
+            out["adaptive"] = {
+                **_factors(none, a["runs"]),
+                "identified": a["identified"],
+                "designed_from": a["designed_from"],
+            }
     if "ilc" in studies:
         out["ilc"] = _ilc(draw, fits, tests, none["fixed"], seed)
     out["limit_cycle_runs"] = tests.limit_cycles
@@ -547,7 +571,10 @@ def flatten(m: dict[str, Any]) -> dict[str, dict[str, float]]:
     """A :func:`member_study` as pipeline -> figure -> float (the sweep table's rows)."""
 
     def figures(f: dict) -> dict[str, float]:
-        return {k: float(f[k]) for k in ("fixed", "median", "min")}
+        return {
+            **{k: float(f[k]) for k in ("fixed", "median", "min")},
+            "refused": float("refused" in f),
+        }
 
     s = m["sensorless"]
     out = {

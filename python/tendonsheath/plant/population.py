@@ -167,12 +167,14 @@ def _draw(rng: np.random.Generator, priors: dict[str, tuple[str, float, float]])
 
 def _route(length: float, angle: float, bends: int, lead_in: float, rng) -> Route:
     """A lead-in straight part (``lead_in`` of the length) then ``bends`` arcs sharing the
-    rest of the length and the total angle at random (Dirichlet(2) splits)."""
+    rest of the length and the total angle at random (Dirichlet(2) splits); a lead-in under
+    1 mm is none (every route of a drive keeps its length)."""
     straight = lead_in * length
+    straight = straight if straight > 1e-3 else 0.0
     lengths = rng.dirichlet(2.0 * np.ones(bends)) * (length - straight)
     angles = rng.dirichlet(2.0 * np.ones(bends)) * angle
     arcs = [(float(a), float(b)) for a, b in zip(lengths, angles, strict=True)]
-    return Route.arcs(([(straight, 0.0)] if straight > 1e-3 else []) + arcs)
+    return Route.arcs(([(straight, 0.0)] if straight > 0.0 else []) + arcs)
 
 
 @dataclass(frozen=True)
