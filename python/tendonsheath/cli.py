@@ -947,13 +947,14 @@ _COMPARE_MODELS_OPTION = typer.Option(
     None,
     "--models",
     help="Comma-separated candidates, e.g. backlash,bwb,pi,gpi,bwb+poly3 "
-    "(default: all of these, and CurveAngleModel with a curve angle); NAME+load (e.g. "
-    "backlash+load) takes the --load column.",
+    "(default: all of these, CurveAngleModel with a curve angle, and backlash+load, "
+    "bwb+load and pi+load with --load); NAME+load (e.g. gpi+load) takes the --load column.",
 )
 _COMPARE_LOAD_OPTION = typer.Option(
     None,
     "--load",
-    help="Measured load column (in a ROS bag /topic:field), for the NAME+load candidates.",
+    help="Measured load column (in a ROS bag /topic:field), for the NAME+load candidates "
+    "(the default candidates then include backlash+load, bwb+load and pi+load).",
 )
 _OBJECTIVE_OPTION = typer.Option(
     "prediction",

@@ -79,22 +79,36 @@ AFFINE = "affine"
 FOLD_REFINE_EVALUATIONS = 40
 
 
-def default_models(curve_angle: bool = False) -> list:
+#: the load-aware default candidates (logs that carry a measured load): Loaded(base) around
+#: the cheap invertible bases. Each named in compare_models on the three tool-5 training runs
+#: of benchmarks/tool5_default_path.py (3 folds; a shared 2-core machine): Loaded(Backlash)
+#: 5.7 s, Loaded(BoucWenBacklash) 3.3 s, Loaded(PrandtlIshlinskii) 1.3 s, held-out rmse 0.168,
+#: 0.173 and 0.174 of the affine map's; Loaded(GeneralizedPrandtlIshlinskii) took 48.9 s and
+#: Loaded(BoucWenBacklash+poly3) and +lag2 16-17 s each, for no lower error (0.179, 0.178 and
+#: 0.175): they are named by hand ("gpi+load", "bwb+poly3+load", ...).
+LOADED_BASES = (Backlash, BoucWenBacklash, PrandtlIshlinskii)
+
+
+def default_models(curve_angle: bool = False, load: bool = False) -> list:
     """The default candidates: the rate-independent operators, a BoucWenBacklash with a cubic
     output map, and a rate-dependent Hammerstein chain (BoucWenBacklash followed by a
     second-order lag; ``"lag1+bwb"`` names the Wiener one, ``"pi+lag1"`` a PI one); also
-    CurveAngleModel when the logs have a curve angle. Chains with a linear block need a
-    time column with a uniform step; they are left out of the defaults without one.
+    CurveAngleModel when the logs have a curve angle, and ``Loaded(Backlash)``,
+    ``Loaded(BoucWenBacklash)`` and ``Loaded(PrandtlIshlinskii)`` (:data:`LOADED_BASES`) when
+    they carry a measured load. Chains with a linear block need a time column with a uniform
+    step; they are left out of the defaults without one.
 
     Parameters
     ----------
     curve_angle : bool, default False
         Whether the logs have a curve angle (adds CurveAngleModel).
+    load : bool, default False
+        Whether the logs carry a measured load (adds the load-aware candidates).
 
     Returns
     -------
     list
-        Model classes and Chain instances.
+        Model classes, Chain and Loaded instances.
     """
     models: list = [
         Backlash,
@@ -106,6 +120,8 @@ def default_models(curve_angle: bool = False) -> list:
     ]
     if curve_angle:
         models.append(CurveAngleModel)
+    if load:
+        models += [Loaded(base) for base in LOADED_BASES]
     return models
 
 
@@ -841,11 +857,14 @@ def compare_models(
     margin = eligibility.check_range_margin(range_margin)
     recs = make_recordings(recordings=list(_as_recs(logs)), curve_angle=curve_angle)
     has_angle = all(r.curve_angle is not None for r in recs)
-    candidates, names = _candidates(models, recs, has_angle)
+    splits, mode = _splits(recs, validate, folds, curve_angle)
+    # a load every recording carries, the held-out ones too: the load-aware defaults
+    scored = [r for _, evals in splits for r, _, _ in evals]
+    has_load = all(getattr(r, "load", None) is not None for r in [*recs, *scored])
+    candidates, names = _candidates(models, recs, has_angle, has_load)
     # one estimator per candidate, cloned per fold; one bar for the comparison
     settings = dict(seed=seed, maxiter=maxiter, popsize=popsize, workers=workers, progress=False)
     estimators = [Identifier(c, **settings) for c in candidates]
-    splits, mode = _splits(recs, validate, folds, curve_angle)
     cv = isinstance(validate, str)
     whole_runs = (cv and len(recs) >= 2) or not isinstance(validate, str | int | float)
     splits = _without_initial_transients(splits)
@@ -905,12 +924,13 @@ def _check_time_budget(time_budget) -> None:
         raise ValueError(f"time_budget must be a number of seconds > 0 (got {time_budget!r})")
 
 
-def _candidates(models, recs, has_angle: bool) -> tuple[list, list[str]]:
-    """The candidates (given, or the defaults that the recordings support) and their names."""
+def _candidates(models, recs, has_angle: bool, has_load: bool) -> tuple[list, list[str]]:
+    """The candidates (given, or the defaults that the recordings support: the curve-angle
+    one with a curve angle, the load-aware ones with a measured load) and their names."""
     if models:
         candidates = [parse_model(m) for m in models]
     else:
-        candidates = default_models(has_angle)
+        candidates = default_models(has_angle, has_load)
         if not _uniform(recs):
             candidates = [c for c in candidates if not is_dynamic_chain(c)]
     names = [model_name(c) for c in candidates]
@@ -1211,6 +1231,7 @@ __all__ = [
     "Comparison",
     "FOLD_REFINE_EVALUATIONS",
     "INVERSE_NOTE",
+    "LOADED_BASES",
     "MIN_PIECE",
     "OutOfTime",
     "PARTS_CAPTION",
