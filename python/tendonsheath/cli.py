@@ -972,7 +972,7 @@ _RANGE_MARGIN_OPTION = typer.Option(
     0.1,
     "--range-margin",
     help="A candidate whose held-out prediction leaves the outputs' range by more than "
-    "this share of its span cannot win.",
+    "this share of its span is flagged (not excluded: the held-out error decides).",
 )
 
 
@@ -1199,6 +1199,10 @@ def _print_comparison(result, output_col: str) -> None:
         if r.get("excluded"):
             console.print(
                 f"[yellow]{r['model']} cannot win:[/yellow] {r['excluded']}", highlight=False
+            )
+        if r.get("range_flag"):
+            console.print(
+                f"[yellow]{r['model']} flagged:[/yellow] {r['range_flag']}", highlight=False
             )
         table.add_row(
             r["model"] + (" (x)" if r.get("excluded") else ""),
