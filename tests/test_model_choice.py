@@ -1,6 +1,7 @@
 """A model choice that never misleads: a candidate worse than the affine map on any held-out
-part, or leaving the outputs' range, cannot win (shown, with the reason); objective=
-"compensation" ranks by the inverse error."""
+part cannot win (shown, with the reason); one leaving the outputs' range there is flagged (the
+part's output is recorded: its error decides); objective="compensation" ranks by the inverse
+error."""
 
 from __future__ import annotations
 

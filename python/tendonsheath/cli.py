@@ -1055,12 +1055,20 @@ def compare(
     _print_parts(result)
     _print_winner(result, holdout is None and not vlogs, bool(vlogs))
     if report is not None:
-        _write_comparison(result, report)
+        _write_comparison(result, report, columns)
 
 
-def _write_comparison(result, report: Path) -> None:
-    """compare --report DIR: the report, and where the winner's model file is."""
-    console.print(f"report: {result.report(report)}", soft_wrap=True)
+def _write_comparison(result, report: Path, columns: dict) -> None:
+    """compare --report DIR: the report, and where the winner's model file is. The winner's
+    file names the columns it was compared on (as `identify` saves them), so that `predict`
+    reads the same input, time, curve angle and load (a Loaded winner needs its load)."""
+    from ._atomic import write_json
+
+    page = result.report(report)
+    record = result.winner.to_dict()
+    record["data"] = {k: (None if v is None else str(v)) for k, v in columns.items()}
+    write_json(report / "winner.json", record)
+    console.print(f"report: {page}", soft_wrap=True)
     console.print(
         f"winner's model file (tendonsheath predict reads it): {report}/winner.json",
         soft_wrap=True,
