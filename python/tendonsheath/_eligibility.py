@@ -1,22 +1,25 @@
 """Which candidates of :func:`~tendonsheath.compare.compare_models` may win: a model choice that
-never misleads.
+never misleads, judged on errors where they are known.
 
 A candidate can win on the pooled held-out error and still be worse than the affine map
 y = a x + b on one held-out run (a run with a longer stroke, another load): the pooled figure
 hides it, and on the robot that run is the one that matters. A candidate is therefore *not
-eligible* (it stays in the table, marked, with the reason) when
+eligible* (it stays in the table, marked, with the reason) when its held-out error on any
+held-out part (a held-out recording, or a held-out block of one recording) exceeds the affine
+map's on that part: the forward error, and under ``objective="compensation"`` the offline
+inverse error as well (a model that predicts a run worse than the affine map gives no ground to
+trust its inverse there), or it has no inverse error at all under that objective.
 
-- its held-out error on any held-out part (a held-out recording, or a held-out block of one
-  recording) exceeds the affine map's on that part: the forward error, and under
-  ``objective="compensation"`` the offline inverse error as well (a model that predicts a run
-  worse than the affine map gives no ground to trust its inverse there), or it has no inverse
-  error at all under that objective;
-- its prediction on a held-out part leaves the outputs' range by more than ``range_margin``
-  times that range's span. The range is the one the part's training outputs reached, widened
-  to the affine map's own prediction on the part (the baseline's extrapolation: a candidate is
-  not blamed for following the input where the affine map does too) and, where the logs carry
-  a measured load, to the affine map in the input and the load (a load beyond the training
-  loads moves the whole loop).
+Every held-out part compare_models scores has its output recorded, so the error there decides.
+A prediction that leaves the outputs' range on a part is *flagged*, not excluded
+(``range_flag``): the range is the one the part's training outputs reached, widened to the affine
+map's own prediction on the part (the baseline's extrapolation) and, where the logs carry a
+measured load, to the affine map in the input and the load (a load beyond the training loads
+moves the whole loop); the flag is raised past ``range_margin`` times that range's span. Where
+nothing is recorded (on the robot), the guard is the inverse's: InverseFeedforward holds its
+commands to the identified input range (widened by its own ``range_margin``) and flags the
+cycles it held. (Before issue 35 the range excess excluded a candidate even where its held-out
+error on that very part was lower than the affine map's.)
 
 The affine map is always eligible: the winner is never worse than it on any held-out part.
 """
@@ -93,8 +96,11 @@ def _describe_part(slot: dict, k: int) -> str:
 def judge(rows: list[dict], validation: list[dict], objective: str, range_margin: float) -> None:
     """Mark each row: ``eligible``, ``excluded`` (the reason, or None), ``worst_part_ratio``
     (its largest held-out error on one part over the affine map's there, by the objective's
-    error) and ``range_excess`` (its prediction's largest excursion past the allowed output
-    range, as a share of that range's span). Rows that failed are left as they are."""
+    error), ``range_excess`` (its prediction's largest excursion past the allowed output
+    range, as a share of that range's span) and ``range_flag`` (in words where the excursion
+    passes ``range_margin``, else None: a flag, never an exclusion, since the part's output is
+    recorded and its error judges the candidate there). Rows that failed are left as they
+    are."""
     base_row = next(r for r in rows if r["model"] == AFFINE)
     # compensation: the inverse error, and the forward one too (a model that predicts a run
     # worse than the affine map is no ground for trusting its inverse there)
@@ -108,12 +114,16 @@ def judge(rows: list[dict], validation: list[dict], objective: str, range_margin
             r["worst_part_ratio"] = _worse_than_affine(r, base_row, key, validation, reasons)
         excess = [_range_excess(slot, r["model"]) for slot in validation]
         r["range_excess"] = float(max(excess)) if excess else 0.0
+        r["range_flag"] = None
         if r["model"] != AFFINE and r["range_excess"] > range_margin:
             k = int(np.argmax(excess))
-            reasons.append(
+            r["range_flag"] = (
                 f"prediction leaves the outputs' range by {_share(r['range_excess'])} of its "
-                f"span on {_describe_part(validation[k], k)} (margin {_share(range_margin)})"
+                f"span on {_describe_part(validation[k], k)} (margin {_share(range_margin)}; "
+                "recorded there: its error decides)"
             )
+            if not np.isfinite(r["range_excess"]):  # a prediction that is not finite
+                reasons.append("prediction not finite on " + _describe_part(validation[k], k))
         r["eligible"] = not reasons
         r["excluded"] = "; ".join(reasons) if reasons else None
 

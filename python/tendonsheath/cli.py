@@ -947,13 +947,14 @@ _COMPARE_MODELS_OPTION = typer.Option(
     None,
     "--models",
     help="Comma-separated candidates, e.g. backlash,bwb,pi,gpi,bwb+poly3 "
-    "(default: all of these, and CurveAngleModel with a curve angle); NAME+load (e.g. "
-    "backlash+load) takes the --load column.",
+    "(default: all of these, CurveAngleModel with a curve angle, and backlash+load, "
+    "bwb+load and pi+load with --load); NAME+load (e.g. gpi+load) takes the --load column.",
 )
 _COMPARE_LOAD_OPTION = typer.Option(
     None,
     "--load",
-    help="Measured load column (in a ROS bag /topic:field), for the NAME+load candidates.",
+    help="Measured load column (in a ROS bag /topic:field), for the NAME+load candidates "
+    "(the default candidates then include backlash+load, bwb+load and pi+load).",
 )
 _OBJECTIVE_OPTION = typer.Option(
     "prediction",
@@ -971,7 +972,7 @@ _RANGE_MARGIN_OPTION = typer.Option(
     0.1,
     "--range-margin",
     help="A candidate whose held-out prediction leaves the outputs' range by more than "
-    "this share of its span cannot win.",
+    "this share of its span is flagged (not excluded: the held-out error decides).",
 )
 
 
@@ -1054,12 +1055,20 @@ def compare(
     _print_parts(result)
     _print_winner(result, holdout is None and not vlogs, bool(vlogs))
     if report is not None:
-        _write_comparison(result, report)
+        _write_comparison(result, report, columns)
 
 
-def _write_comparison(result, report: Path) -> None:
-    """compare --report DIR: the report, and where the winner's model file is."""
-    console.print(f"report: {result.report(report)}", soft_wrap=True)
+def _write_comparison(result, report: Path, columns: dict) -> None:
+    """compare --report DIR: the report, and where the winner's model file is. The winner's
+    file names the columns it was compared on (as `identify` saves them), so that `predict`
+    reads the same input, time, curve angle and load (a Loaded winner needs its load)."""
+    from ._atomic import write_json
+
+    page = result.report(report)
+    record = result.winner.to_dict()
+    record["data"] = {k: (None if v is None else str(v)) for k, v in columns.items()}
+    write_json(report / "winner.json", record)
+    console.print(f"report: {page}", soft_wrap=True)
     console.print(
         f"winner's model file (tendonsheath predict reads it): {report}/winner.json",
         soft_wrap=True,
@@ -1198,6 +1207,10 @@ def _print_comparison(result, output_col: str) -> None:
         if r.get("excluded"):
             console.print(
                 f"[yellow]{r['model']} cannot win:[/yellow] {r['excluded']}", highlight=False
+            )
+        if r.get("range_flag"):
+            console.print(
+                f"[yellow]{r['model']} flagged:[/yellow] {r['range_flag']}", highlight=False
             )
         table.add_row(
             r["model"] + (" (x)" if r.get("excluded") else ""),

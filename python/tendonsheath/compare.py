@@ -17,11 +17,16 @@ held-out data against the affine baseline y = a x + b:
 A candidate ``Loaded(cls)`` (or the name ``"bwb+load"``, ``"backlash+load"``, ...) takes
 the measured load the logs carry (``read_log(..., load=COLUMN)``): its load terms are fitted
 with it, its predictions and its inverse (``LoadCompensated``) are given each log's load.
+When every log (the held-out ones too) carries a load, the default candidates include
+``Loaded(Backlash)``, ``Loaded(BoucWenBacklash)`` and ``Loaded(PrandtlIshlinskii)``, as they
+include CurveAngleModel when the logs carry a curve angle.
 
 The winner is never worse than the affine map on any held-out part: a candidate that is (by
-the forward error; with ``objective="compensation"``, by the offline inverse error too), or
-whose prediction leaves the outputs' range by more than ``range_margin`` of its span, cannot
-win and is shown with the reason (``tendonsheath._eligibility``). With ``parsimony`` p > 0, a
+the forward error; with ``objective="compensation"``, by the offline inverse error too)
+cannot win and is shown with the reason (``tendonsheath._eligibility``). Every held-out part
+has its output recorded, so its error decides there: a prediction that leaves the outputs'
+range by more than ``range_margin`` of its span is flagged (``row["range_flag"]``), not
+excluded. With ``parsimony`` p > 0, a
 candidate with more parameters wins only if its error is more than p below that of every
 eligible candidate with fewer (``tendonsheath._parsimony``).
 
@@ -79,22 +84,36 @@ AFFINE = "affine"
 FOLD_REFINE_EVALUATIONS = 40
 
 
-def default_models(curve_angle: bool = False) -> list:
+#: the load-aware default candidates (logs that carry a measured load): Loaded(base) around
+#: the cheap invertible bases. Each named in compare_models on the three tool-5 training runs
+#: of benchmarks/tool5_default_path.py (3 folds; a shared 2-core machine): Loaded(Backlash)
+#: 5.7 s, Loaded(BoucWenBacklash) 3.3 s, Loaded(PrandtlIshlinskii) 1.3 s, held-out rmse 0.168,
+#: 0.173 and 0.174 of the affine map's; Loaded(GeneralizedPrandtlIshlinskii) took 48.9 s and
+#: Loaded(BoucWenBacklash+poly3) and +lag2 16-17 s each, for no lower error (0.179, 0.178 and
+#: 0.175): they are named by hand ("gpi+load", "bwb+poly3+load", ...).
+LOADED_BASES = (Backlash, BoucWenBacklash, PrandtlIshlinskii)
+
+
+def default_models(curve_angle: bool = False, load: bool = False) -> list:
     """The default candidates: the rate-independent operators, a BoucWenBacklash with a cubic
     output map, and a rate-dependent Hammerstein chain (BoucWenBacklash followed by a
     second-order lag; ``"lag1+bwb"`` names the Wiener one, ``"pi+lag1"`` a PI one); also
-    CurveAngleModel when the logs have a curve angle. Chains with a linear block need a
-    time column with a uniform step; they are left out of the defaults without one.
+    CurveAngleModel when the logs have a curve angle, and ``Loaded(Backlash)``,
+    ``Loaded(BoucWenBacklash)`` and ``Loaded(PrandtlIshlinskii)`` (:data:`LOADED_BASES`) when
+    they carry a measured load. Chains with a linear block need a time column with a uniform
+    step; they are left out of the defaults without one.
 
     Parameters
     ----------
     curve_angle : bool, default False
         Whether the logs have a curve angle (adds CurveAngleModel).
+    load : bool, default False
+        Whether the logs carry a measured load (adds the load-aware candidates).
 
     Returns
     -------
     list
-        Model classes and Chain instances.
+        Model classes, Chain and Loaded instances.
     """
     models: list = [
         Backlash,
@@ -106,6 +125,8 @@ def default_models(curve_angle: bool = False) -> list:
     ]
     if curve_angle:
         models.append(CurveAngleModel)
+    if load:
+        models += [Loaded(base) for base in LOADED_BASES]
     return models
 
 
@@ -308,7 +329,7 @@ class Comparison:
     and cpu_seconds (fitting and scoring over all folds), error (if the fit failed) and
     status ("out of time" past the time budget); per held-out part (a held-out recording or
     block) val_rmse_parts and inv_rmse_parts; eligible, excluded (why a candidate cannot win,
-    or None), worst_part_ratio and range_excess (``tendonsheath._eligibility``). Sorted
+    or None), worst_part_ratio, range_excess and range_flag (``tendonsheath._eligibility``). Sorted
     with the eligible rows first, each group by the objective's error (val_nrmse, or
     inv_nrmse for "compensation"); failures last.
     ``fits``: each candidate's Fit (a list of one per fold under cross-validation);
@@ -387,27 +408,33 @@ class Comparison:
         str
             Several lines (also ``str(comparison)``).
         """
+        w = max([34, *(len(r["model"]) for r in self.table)])
         lines = [
-            f"{'model':<34} {'train rmse':>11} {'val rmse':>11} {'val nrmse':>10} {'/affine':>8}"
+            f"{'model':<{w}} {'train rmse':>11} {'val rmse':>11} {'val nrmse':>10} {'/affine':>8}"
             f" {'inv nrmse':>10} {'/affine':>8}"
         ]
-        excluded = []
+        excluded, flagged = [], []
         for r in self.table:
             if r.get("error"):
-                lines.append(f"{r['model']:<34} {r.get('status', 'failed')}: {r['error']}")
+                lines.append(f"{r['model']:<{w}} {r.get('status', 'failed')}: {r['error']}")
                 continue
             mark = ""
             if r.get("excluded"):
                 excluded.append(r)
                 mark = f" [x{len(excluded)}]"
+            if r.get("range_flag"):
+                flagged.append(r)
+                mark += f" [!{len(flagged)}]"
             lines.append(
-                f"{r['model']:<34} {r['train_rmse']:>11.4g} {r['val_rmse']:>11.4g} "
+                f"{r['model']:<{w}} {r['train_rmse']:>11.4g} {r['val_rmse']:>11.4g} "
                 f"{100 * r['val_nrmse']:>9.3f}% {r['ratio_to_affine']:>8.3f} "
                 f"{_percent(r.get('inv_nrmse')):>10} {_plain(r.get('inv_ratio_to_affine')):>8}"
                 + mark
             )
         for k, r in enumerate(excluded, start=1):
             lines.append(f"[x{k}] {r['model']} cannot win: {r['excluded']}")
+        for k, r in enumerate(flagged, start=1):
+            lines.append(f"[!{k}] {r['model']}: {r['range_flag']}")
         lines.append(f"winner: {self.winner_name} ({self.mode})")
         if self.choice:
             lines.append(self.choice)
@@ -475,13 +502,14 @@ class Comparison:
         k = len(p["labels"])
         if k < 2:
             return []
-        head = f"{'held-out rmse / affine':<34}" + "".join(f" {j + 1:>8}" for j in range(k))
+        width = max([34, *(len(n) + 1 for n in p["models"])])
+        head = f"{'held-out rmse / affine':<{width}}" + "".join(f" {j + 1:>8}" for j in range(k))
         lines = [head]
         for name, ratios, worse in zip(
             p["models"], p["ratio_to_affine"], p["worse_than_affine"], strict=True
         ):
             cells = "".join(f" {_ratio_cell(q, w):>8}" for q, w in zip(ratios, worse, strict=True))
-            lines.append(f"{name:<34}{cells}")
+            lines.append(f"{name:<{width}}{cells}")
         lines.append("parts: " + ", ".join(f"{j + 1} = {n}" for j, n in enumerate(p["labels"])))
         lines.append("*: worse than the affine map on that part (the candidate cannot win)")
         return lines
@@ -770,9 +798,12 @@ def compare_models(
 
     A model choice that never misleads: a candidate whose held-out error (and, for
     "compensation", its inverse error) on any held-out part (a held-out recording or block)
-    exceeds the affine map's, or whose
-    prediction leaves the outputs' range by more than ``range_margin``, cannot win; it stays
-    in the table, marked with the reason (``row["excluded"]``, :meth:`Comparison.excluded`).
+    exceeds the affine map's cannot win; it stays in the table, marked with the reason
+    (``row["excluded"]``, :meth:`Comparison.excluded`). The held-out outputs are recorded, so
+    their error decides: a prediction that leaves the outputs' range by more than
+    ``range_margin`` is flagged (``row["range_flag"]``), not excluded. With logs that carry a
+    measured load (all of them, the held-out ones too), the default candidates include the
+    load-aware ones (:func:`default_models`).
     ``objective="compensation"`` ranks by the offline inverse error instead of the forward
     one (:mod:`tendonsheath.inverse_error`).
 
@@ -819,7 +850,7 @@ def compare_models(
     range_margin : float or None, default 0.1
         How far (a share of the outputs' span) a candidate's held-out prediction may leave
         the range the training outputs (or the affine map's prediction) reached before it is
-        excluded; None: no range check.
+        flagged (``range_flag``; a flag, not an exclusion); None: no range flag.
     parsimony : float, default 0.0
         A candidate with more parameters wins only by this margin: the winner is the eligible
         candidate with the fewest parameters whose error is within (1 + parsimony) of the
@@ -841,11 +872,14 @@ def compare_models(
     margin = eligibility.check_range_margin(range_margin)
     recs = make_recordings(recordings=list(_as_recs(logs)), curve_angle=curve_angle)
     has_angle = all(r.curve_angle is not None for r in recs)
-    candidates, names = _candidates(models, recs, has_angle)
+    splits, mode = _splits(recs, validate, folds, curve_angle)
+    # a load every recording carries, the held-out ones too: the load-aware defaults
+    scored = [r for _, evals in splits for r, _, _ in evals]
+    has_load = all(getattr(r, "load", None) is not None for r in [*recs, *scored])
+    candidates, names = _candidates(models, recs, has_angle, has_load)
     # one estimator per candidate, cloned per fold; one bar for the comparison
     settings = dict(seed=seed, maxiter=maxiter, popsize=popsize, workers=workers, progress=False)
     estimators = [Identifier(c, **settings) for c in candidates]
-    splits, mode = _splits(recs, validate, folds, curve_angle)
     cv = isinstance(validate, str)
     whole_runs = (cv and len(recs) >= 2) or not isinstance(validate, str | int | float)
     splits = _without_initial_transients(splits)
@@ -886,15 +920,14 @@ def _judge(rows, validation, objective: str, margin: float) -> str:
     what = "held-out or inverse error" if objective == "compensation" else "held-out error"
     rule = (
         f"ranked by {objective}: a candidate whose {what} exceeds the affine map's on any "
-        "held-out part"
+        "held-out part cannot win"
     )
     if np.isfinite(margin):
         rule += (
-            f", or whose prediction leaves the outputs' range by more than {100 * margin:g} % "
-            "of its span, cannot win"
+            f"; a prediction that leaves the outputs' range by more than {100 * margin:g} % of "
+            "its span is flagged, not excluded (the held-out outputs are recorded: their "
+            "error decides)"
         )
-    else:
-        rule += " cannot win"
     return rule
 
 
@@ -905,12 +938,13 @@ def _check_time_budget(time_budget) -> None:
         raise ValueError(f"time_budget must be a number of seconds > 0 (got {time_budget!r})")
 
 
-def _candidates(models, recs, has_angle: bool) -> tuple[list, list[str]]:
-    """The candidates (given, or the defaults that the recordings support) and their names."""
+def _candidates(models, recs, has_angle: bool, has_load: bool) -> tuple[list, list[str]]:
+    """The candidates (given, or the defaults that the recordings support: the curve-angle
+    one with a curve angle, the load-aware ones with a measured load) and their names."""
     if models:
         candidates = [parse_model(m) for m in models]
     else:
-        candidates = default_models(has_angle)
+        candidates = default_models(has_angle, has_load)
         if not _uniform(recs):
             candidates = [c for c in candidates if not is_dynamic_chain(c)]
     names = [model_name(c) for c in candidates]
@@ -1211,6 +1245,7 @@ __all__ = [
     "Comparison",
     "FOLD_REFINE_EVALUATIONS",
     "INVERSE_NOTE",
+    "LOADED_BASES",
     "MIN_PIECE",
     "OutOfTime",
     "PARTS_CAPTION",
