@@ -14,7 +14,11 @@ never from a test route:
   robustness test (:meth:`~tendonsheath.compensate.TipLoop.from_calibration`);
 * ``AdaptiveController``: its derivative filter at the identified resonance and its bandwidth
   chosen by the same trials on the torque-driven joint, within what the resonance and the
-  delay allow (:meth:`~tendonsheath.compensate.AdaptiveController.from_calibration`).
+  delay allow (:meth:`~tendonsheath.compensate.AdaptiveController.from_calibration`); the
+  motor's inertia and damping identified from a torque chirp
+  (:func:`~tendonsheath.bench.motor_calibration.calibrate_torque_motor`), not declared.
+
+Every trial is scored on the tip sensor's reading (:mod:`tendonsheath.bench.trial`).
 
 Each is then judged on the fixed route and on the random route schedules of the feedforwards'
 study, against the same uncompensated runs.
@@ -22,16 +26,16 @@ study, against the same uncompensated runs.
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 
 from ...compensate import AdaptiveController, TipLoop
 from ...plant.sensor import Sensor
-from ..calibration import calibration_input
 from ..loop_calibration import calibrate_loop
+from ..motor_calibration import calibrate_torque_motor
 from ..run import run
+from ..trial import calibration_trial
 from .common import piecewise_routes, ratio, runs_seen
 from .seeds import spread
 
@@ -52,23 +56,12 @@ def tip_sensor(latency: float, seed: int) -> Sensor:
 
 
 def trial_runner(plant, sensor: Sensor, duration: float, shape_sensing, routes_of):
-    """candidate -> mean squared tip error on the calibration shapes, switching among them
-    (inf when the command saturated: a trial that needs the limits has failed)."""
-    t, reference = calibration_input(duration, 1.0)
-    times = list(np.arange(0.0, duration, SWITCH_EVERY))
-    shapes = [routes_of[i % len(routes_of)] for i in range(len(times))]
-    routes = piecewise_routes(times, shapes)
-
-    def trial(candidate) -> float:
-        sensing = shape_sensing if getattr(candidate, "follows_route", False) else None
-        try:
-            r = run(plant, candidate, t, reference, routes=routes, noise=sensor,
-                    shape_sensing=sensing)  # fmt: skip
-        except RuntimeError:  # the loop diverged
-            return math.inf
-        return r.metrics["mse"] if r.metrics["status"]["saturated"] == 0 else math.inf
-
-    return trial
+    """candidate -> the tip sensor's measured mean squared error on the calibration shapes,
+    switching among them every 2.5 s (:func:`~tendonsheath.bench.trial.calibration_trial`:
+    scored on what the sensor reads, never on the simulated truth; inf when the loop diverged
+    or the command saturated)."""
+    return calibration_trial(plant, routes_of, sensor, duration=duration, amplitude=1.0,
+                             switch_every=SWITCH_EVERY, shape_sensing=shape_sensing)  # fmt: skip
 
 
 def design(do: Any, fits: dict, latency: float, seed: int, scale: float) -> dict[str, Any]:
@@ -95,16 +88,18 @@ def design(do: Any, fits: dict, latency: float, seed: int, scale: float) -> dict
         refine=True,
         feedforward_options={"smoothing": do.SMOOTHING},
     )
+    motor = calibrate_torque_motor(torque_plant, routes_of[0])
     adaptive = AdaptiveController.from_calibration(
         fits["single encoder"].backlash_model,
         dynamics,
-        inertia=do.INERTIA,
-        viscous=do.VISCOUS,
+        inertia=motor.inertia,
+        viscous=motor.viscous,
         max_torque=5.0,
         noise_std=TIP_NOISE_STD,
         trial=trial_runner(torque_plant, sensor, duration, None, routes_of),
     )
-    return {"TipLoop": tip, "AdaptiveController": adaptive, "sensor": sensor, "loops": loops}
+    return {"TipLoop": tip, "AdaptiveController": adaptive, "sensor": sensor, "loops": loops,
+            "torque_motor": motor}  # fmt: skip
 
 
 def study(do: Any, fits: dict, t, y_d, seeds, baseline: dict, seed: int, scale: float):
