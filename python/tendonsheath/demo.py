@@ -90,7 +90,7 @@ def model_section(out: Path) -> tuple[str, dict, list[Path]]:
 
 #: seconds of CPU each job of the demo takes at full length (measured on the 2-core machine,
 #: BLAS on one thread): the workers take the longest first, so that they finish together
-_COST = {"do2015": 38.5, "robustness": 32.7, "do2015 (PD servo)": 29.1, "lau2015": 8.2,
+_COST = {"do2015": 38.1, "do2015 (PD servo)": 29.2, "robustness": 20.7, "lau2015": 8.0,
          "sun2015": 5.3, "models": 0.3, "rate_dependence": 0.1}  # fmt: skip
 
 
