@@ -77,6 +77,7 @@ CASES = [
     (["demo", "--angle-unit", "grad"], "--angle-unit must be"),
     (["demo", "-o", "{d}/a_file"], "is a file, not a folder"),
     (["demo", "--seed", "-1"], "--seed must be in [0, 2**32)"),
+    (["demo", "--workers", "0"], "--workers must be at least 1"),
     # bench
     (["bench", "{d}/missing.toml"], "scenario file not found"),
     (["bench", "{d}/rate.toml"], "[reference]: 'rate'"),

@@ -67,8 +67,10 @@ def test_demo_writes_report_metrics_and_figures(tmp_path, monkeypatch, scenario_
     assert "report.html" in said and "metrics.json" in said
 
 
-def test_demo_rejects_unknown_scenario_and_bad_scale(tmp_path):
+def test_demo_rejects_unknown_scenario_bad_scale_and_workers(tmp_path):
     result = runner.invoke(app, ["demo", "--out", str(tmp_path), "--scenario", "nope"])
     assert result.exit_code == 2 and "unknown scenario" in result.output
     result = runner.invoke(app, ["demo", "--out", str(tmp_path), "--scale", "0"])
     assert result.exit_code == 2 and "--scale" in result.output
+    result = runner.invoke(app, ["demo", "--out", str(tmp_path), "--workers", "0"])
+    assert result.exit_code == 2 and "--workers" in result.output

@@ -167,6 +167,12 @@ def demo(
         help="Also run the Monte Carlo robustness study (200 draws x scale, at least 20).",
     ),
     angle_unit: str = typer.Option("deg", "--angle-unit", help=_ANGLE_UNIT_HELP),
+    workers: int | None = typer.Option(
+        None,
+        "--workers",
+        help="Processes the scenarios run in, side by side (default: one per core; 1: one "
+        "after the other in this process). The results do not depend on it.",
+    ),
     quiet: bool = _quiet_option(),
 ) -> None:
     """Run the virtual bench (the three seed experiments) and write report.html,
@@ -179,6 +185,8 @@ def demo(
         _fail(f"--scale must be a finite number > 0 (got {scale})")
     unit = _angle_unit(angle_unit)
     _check_seed(seed)
+    if workers is not None and workers < 1:
+        _fail(f"--workers must be at least 1 (got {workers})")
     unknown = [n for n in scenario or [] if n not in SCENARIOS]
     if unknown:
         _fail(f"unknown scenario(s) {unknown}; known: {list(SCENARIOS)}")
@@ -199,6 +207,7 @@ def demo(
                     seed=seed,
                     robustness=robustness,
                     angle_unit=unit,
+                    workers=workers,
                 )
             except ValueError as exc:
                 _fail(str(exc))

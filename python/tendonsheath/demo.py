@@ -88,6 +88,12 @@ def model_section(out: Path) -> tuple[str, dict, list[Path]]:
     return "".join(parts), metrics, written
 
 
+#: seconds of CPU each job of the demo takes at full length (measured on the 2-core machine,
+#: BLAS on one thread): the workers take the longest first, so that they finish together
+_COST = {"do2015": 38.1, "do2015 (PD servo)": 29.2, "robustness": 20.7, "lau2015": 8.0,
+         "sun2015": 5.3, "models": 0.3, "rate_dependence": 0.1}  # fmt: skip
+
+
 def run_demo(
     out: Path,
     scale: float = 1.0,
@@ -96,11 +102,18 @@ def run_demo(
     seed: int = 0,
     robustness: bool = True,
     angle_unit: str = "deg",
+    workers: int | None = None,
 ) -> dict:
     """Run the scenarios (all by default) and write the report; returns what was written.
-    Without Plotly (the ``report`` extra) a MissingExtraError, before anything is run."""
+    Without Plotly (the ``report`` extra) a MissingExtraError, before anything is run.
+
+    The scenarios and studies are independent: they run on ``workers`` processes (default:
+    one per core; 1: all in this process, one after the other), with the same results
+    either way. ``timings``: each one's seconds of work (do2015's: its parts' together)."""
+    import threadpoolctl
+
+    from ._jobs import cores, run_jobs
     from .bench.scenarios import SCENARIOS
-    from .report.build import write
 
     check_angle_unit(angle_unit)
     require_plotly()
@@ -108,31 +121,44 @@ def run_demo(
     unknown = [n for n in names if n not in SCENARIOS]
     if unknown:
         raise ValueError(f"unknown scenario(s) {unknown}; known: {list(SCENARIOS)}")
+    if workers is not None and (isinstance(workers, bool) or int(workers) != workers
+                                or workers < 1):  # fmt: skip
+        raise ValueError(f"workers must be an integer >= 1 (got {workers!r})")
     out.mkdir(parents=True, exist_ok=True)
+    workers = cores() if workers is None else int(workers)
+    jobs = _jobs(names, SCENARIOS, out, scale, seed, robustness, angle_unit, split=workers > 1)
+    with threadpoolctl.threadpool_limits(1, user_api="blas"):  # as in the jobs (run_jobs)
+        done = run_jobs(jobs, workers, progress, preload=["tendonsheath.demo"])
+        return _write(out, names, done, scale, seed, robustness, angle_unit)
+
+
+def _write(out, names, done, scale, seed, robustness, angle_unit) -> dict:
+    """The report from the jobs' outcomes (``done``: key -> (value, seconds))."""
+    from .report.build import write
+
     results, timings = [], {}
     for name in names:
-        start = time.perf_counter()
-        results.append(SCENARIOS[name](scale=scale, seed=seed, progress=progress))
-        timings[name] = time.perf_counter() - start
+        if name == "do2015" and "do2015 (PD servo)" in done:
+            from .bench.scenarios import do
+
+            start = time.perf_counter()
+            lead, pd = done["do2015"][0], done["do2015 (PD servo)"][0]
+            results.append(do.assemble(lead, {"pd": pd}, scale=scale, seed=seed))
+            seconds = done["do2015"][1] + done["do2015 (PD servo)"][1]
+            timings[name] = seconds + time.perf_counter() - start
+        else:
+            results.append(done[name][0])
+            timings[name] = done[name][1]
     extra = []
     if robustness:
-        if progress:
-            progress("robustness study")
-        start = time.perf_counter()
-        runs = max(20, round(200 * min(scale, 1.0)))
-        extra.append(robustness_section(out, runs=runs, seed=seed, angle_unit=angle_unit))
-        timings["robustness"] = time.perf_counter() - start
-    if progress:
-        progress("rate dependence")
-    start = time.perf_counter()
-    rate_body, rate_metrics, rate_file = rate_section(out)
+        extra.append(done["robustness"][0])
+        timings["robustness"] = done["robustness"][1]
+    rate_body, rate_metrics, rate_file = done["rate_dependence"][0]
     extra.append(
         ("rate_dependence", "Rate dependence of the realistic plant", rate_body, rate_metrics)
     )
-    timings["rate_dependence"] = time.perf_counter() - start
-    if progress:
-        progress("hysteresis models")
-    body, model_metrics, model_files = model_section(out)
+    timings["rate_dependence"] = done["rate_dependence"][1]
+    body, model_metrics, model_files = done["models"][0]
     extra.append(("models", "Hysteresis models on a standard input", body, model_metrics))
     written = write(out, results, extra, angle_unit=angle_unit)
     written["figures"] += [rate_file, *model_files]
@@ -141,6 +167,50 @@ def run_demo(
     written["timings"] = timings
     written["results"] = results
     return written
+
+
+def _jobs(names, scenarios, out, scale, seed, robustness, angle_unit, split: bool):
+    """The demo's independent jobs, in the order a serial run takes them. ``split``: the
+    built-in do2015 as two jobs (the PID servo with what is designed on it, and the PD
+    servo), which ``do.assemble`` puts together."""
+    from ._jobs import Job
+    from .bench.scenarios import do
+
+    common = {"scale": scale, "seed": seed}
+    jobs = []
+    for name in names:
+        if name == "do2015" and split and scenarios[name] is do.do2015:
+            jobs.append(Job(name, do.lead_study, common, _COST[name]))
+            pd = {"servo": "pd", **common}
+            jobs.append(Job("do2015 (PD servo)", do.servo_study, pd, _COST["do2015 (PD servo)"]))
+        else:
+            jobs.append(Job(name, scenarios[name], common, _COST.get(name, 1.0)))
+    if robustness:
+        runs = max(20, round(200 * min(scale, 1.0)))
+        kwargs = {"out": out, "runs": runs, "seed": seed, "angle_unit": angle_unit,
+                  "engine": "serial" if split else "local"}  # fmt: skip
+        jobs.append(Job("robustness", _robustness_job, kwargs, _COST["robustness"]))
+    jobs.append(Job("rate_dependence", _rate_job, {"out": out}, _COST["rate_dependence"]))
+    jobs.append(Job("models", _models_job, {"out": out}, _COST["models"]))
+    return jobs
+
+
+def _robustness_job(out: Path, runs: int, seed: int, angle_unit: str, engine: str, progress):
+    if progress:
+        progress("robustness study")
+    return robustness_section(out, runs=runs, seed=seed, angle_unit=angle_unit, engine=engine)
+
+
+def _rate_job(out: Path, progress):
+    if progress:
+        progress("rate dependence")
+    return rate_section(out)
+
+
+def _models_job(out: Path, progress):
+    if progress:
+        progress("hysteresis models")
+    return model_section(out)
 
 
 def rate_section(out: Path, frequencies=(0.1, 1.0, 5.0)):
@@ -184,10 +254,13 @@ def rate_section(out: Path, frequencies=(0.1, 1.0, 5.0)):
     return body, numbers, path
 
 
-def robustness_section(out: Path, runs: int = 200, seed: int = 0, angle_unit: str = "deg"):
+def robustness_section(
+    out: Path, runs: int = 200, seed: int = 0, angle_unit: str = "deg", engine: str = "local"
+):
     """Each do2015 compensator's MSE over ``runs`` draws of friction (+/-30 %), pretension
     (+/-30 %) and route (random arcs, total angle within +/-50 % of pi), all calibrated on
-    the nominal plant: robustness, not one lucky run."""
+    the nominal plant: robustness, not one lucky run. ``engine``: the sweep's ("local": a
+    process per core; "serial": this process)."""
     from .bench.scenarios.do import _COMMON, NOMINAL, robustness_run
     from .report import html
     from .report.units import convert, rows_in_unit, unit_after
@@ -200,7 +273,12 @@ def robustness_section(out: Path, runs: int = 200, seed: int = 0, angle_unit: st
         route_angle=NOMINAL.curve_angle,
     )
     result = robustness_study(
-        run=robustness_run, n=runs, seed=2015 + seed, design=design, progress=False
+        run=robustness_run,
+        n=runs,
+        seed=2015 + seed,
+        design=design,
+        progress=False,
+        engine=engine,
     )
     numbers = study_figure(
         result, out, metric="mse", bound=1e-4, design=design, angle_unit=angle_unit

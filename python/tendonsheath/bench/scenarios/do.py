@@ -237,30 +237,80 @@ def do2015(scale: float = 1.0, seed: int = 0, progress=None) -> ScenarioResult:
     column beside it, the median and the minimum over 5 route-schedule seeds. ``scale``
     shortens the runs (tests).
     """
-    duration = max(8.0, 40.0 * scale)
-    t, y_d = reference(duration)
+    lead = lead_study(scale, seed, progress)
+    others = {servo: servo_study(servo, scale, seed, progress) for servo in SERVOS[1:]}
+    return assemble(lead, others, scale, seed)
+
+
+# do2015 in parts that share nothing but their arguments (the demo runs them in parallel
+# processes): lead_study (the PID servo, then the tip sensor and the learning designed on
+# it), servo_study of each other servo, and assemble, which only puts their outcomes together
+
+
+def _setup(scale: float, seed: int):
+    """The reference (t, y_d), the route seeds, the identification budget and the sensor."""
+    t, y_d = reference(max(8.0, 40.0 * scale))
     seeds = [seed + i for i in range(ROUTE_SEEDS)]
-    budget = identification_budget(scale)
-    sensor = encoder(seed=seed + 3)
-    studies, cals = {}, {}
-    for servo in SERVOS:
-        announce(progress, f"do2015: calibration ({servo} servo)")
-        cals[servo] = calibrations(calibrate(seed, budget, servo))
-        announce(progress, f"do2015: runs ({servo} servo)")
-        studies[servo] = _servo_study(servo, cals[servo], t, y_d, sensor, seeds)
+    return t, y_d, seeds, identification_budget(scale), encoder(seed=seed + 3)
+
+
+def servo_study(servo: str, scale: float = 1.0, seed: int = 0, progress=None) -> dict[str, Any]:
+    """One servo's part of do2015: its calibration (the four fits), then every feedforward on
+    the fixed route and on each seed's random schedule."""
+    t, y_d, seeds, budget, sensor = _setup(scale, seed)
+    announce(progress, f"do2015: calibration ({servo} servo)")
+    fits = calibrations(calibrate(seed, budget, servo))
+    announce(progress, f"do2015: runs ({servo} servo)")
+    study = _servo_study(servo, fits, t, y_d, sensor, seeds)
+    comps = study.pop("feedforwards")
+    design = comps["InverseFeedforward + EncoderLoop"].design.as_dict()
+    return {"servo": servo, "fits": fits, "study": study, "encoder_loop_design": design}
+
+
+def lead_study(scale: float = 1.0, seed: int = 0, progress=None) -> dict[str, Any]:
+    """The headline servo's part (:func:`servo_study` of the PID servo), then what is designed
+    on it: the tip-sensor controllers, the iterative learning, and the honesty panel of its
+    runs. Returns that part with ``tip`` and ``ilc`` (as records and target rows), the tip
+    runs at the headline latency and the panel."""
+    first = servo_study(SERVOS[0], scale, seed, progress)
+    t, y_d, seeds, budget, _ = _setup(scale, seed)
+    study = first["study"]
     announce(progress, "do2015: tip sensor (loop calibration, designs, runs at 0, 1, 5 ms)")
-    first = studies[SERVOS[0]]
-    baseline = {"fixed": first["fixed"]["none"],
-                "random": {s: r["none"] for s, r in first["random"].items()}}  # fmt: skip
-    tip = do_tip.study(sys.modules[__name__], cals[SERVOS[0]], t, y_d, seeds, baseline, seed,
+    baseline = {"fixed": study["fixed"]["none"],
+                "random": {s: r["none"] for s, r in study["random"].items()}}  # fmt: skip
+    tip = do_tip.study(sys.modules[__name__], first["fits"], t, y_d, seeds, baseline, seed,
                        scale)  # fmt: skip
-    _add_tip(studies, tip[TIP_HEADLINE_MS]["runs"])
+    tip_runs = tip[TIP_HEADLINE_MS]["runs"]
+    _add_tip(SERVOS[0], study, tip_runs)
     announce(progress, "do2015: iterative learning (10 trials), the learned table without sensor")
-    ilc = do_ilc.study(sys.modules[__name__], cals[SERVOS[0]], t, y_d, tip,
+    ilc = do_ilc.study(sys.modules[__name__], first["fits"], t, y_d, tip,
                        baseline["fixed"].metrics["mse"], seed)  # fmt: skip
-    headline = studies[SERVOS[0]]["random"][seeds[0]]
     announce(progress, "do2015: honesty panel")
-    return _result(cals, studies, headline, seed, budget, sensor, tip, do_ilc.as_record(ilc))
+    tip_sensor = tip[TIP_HEADLINE_MS]["designs"]["sensor"]
+    told = {"none": kinematic_told(plants()[0]),
+            "AdaptiveController": motor_datasheet(tip_sensor)}  # fmt: skip
+    honesty = honesty_panel(
+        first["fits"]["shape encoder"], _runs_only(study["random"][seeds[0]]), told=told,
+        seed=seed, budget=budget, calibrations=_calibration_of(first["fits"]),
+    )  # fmt: skip
+    ilc_record = do_ilc.as_record(ilc)
+    return {
+        **first,
+        "tip": {"record": do_tip.as_record(tip), "targets": do_tip.targets(tip, target),
+                "runs": tip_runs},
+        "ilc": {"record": ilc_record, "targets": do_ilc.targets(ilc_record, target)},
+        "honesty": honesty,
+    }  # fmt: skip
+
+
+def assemble(lead: dict[str, Any], others: dict[str, dict[str, Any]], scale: float = 1.0,
+             seed: int = 0) -> ScenarioResult:  # fmt: skip
+    """do2015's result from :func:`lead_study` and the other servos' :func:`servo_study`
+    (servo -> its outcome): the tip controllers' runs join every servo's table."""
+    for servo, part in others.items():
+        _add_tip(servo, part["study"], lead["tip"]["runs"])
+    parts = {SERVOS[0]: lead, **others}
+    return _result(parts, lead, seed, identification_budget(scale))
 
 
 def _servo_study(servo: str, fits: dict, t, y_d, sensor, seeds) -> dict[str, Any]:
@@ -287,17 +337,16 @@ def _run_all(plant, comps: dict, t, y_d, sensor, routes, shape) -> dict[str, Any
     return runs
 
 
-def _add_tip(studies: dict, runs: dict) -> None:
-    """The tip-feedback controllers' runs at the headline latency beside the feedforwards':
-    the adaptive controller (its own torque motor) in every servo's table, the TipLoop (around
-    the PID servo it was designed on) in the PID servo's."""
-    for servo, study in studies.items():
-        for name in do_tip.TIP_CONTROLLERS:
-            if name == "TipLoop" and servo != SERVOS[0]:
-                continue
-            study["fixed"][name] = runs["fixed"][name]
-            for s, result in runs["random"].items():
-                study["random"][s][name] = result[name]
+def _add_tip(servo: str, study: dict, runs: dict) -> None:
+    """The tip-feedback controllers' runs at the headline latency beside one servo's
+    feedforwards: the adaptive controller (its own torque motor) in every servo's table, the
+    TipLoop (around the PID servo it was designed on) in the PID servo's."""
+    for name in do_tip.TIP_CONTROLLERS:
+        if name == "TipLoop" and servo != SERVOS[0]:
+            continue
+        study["fixed"][name] = runs["fixed"][name]
+        for s, result in runs["random"].items():
+            study["random"][s][name] = result[name]
 
 
 def _runs_only(runs: dict) -> dict[str, Result]:
@@ -331,26 +380,19 @@ def _seen(runs: list) -> dict[str, Any]:
     return {k: seen[k] for k in ("seen", "limit_cycle", "saturated_cycles")}
 
 
-def _result(cals, studies, headline, seed, budget, sensor, tip, ilc) -> ScenarioResult:
+def _result(parts: dict, lead: dict, seed: int, budget: dict) -> ScenarioResult:
+    studies = {servo: parts[servo]["study"] for servo in SERVOS}
     summaries = {servo: _summary(studies[servo]) for servo in SERVOS}
+    seeds = sorted(studies[SERVOS[0]]["random"])
+    headline = studies[SERVOS[0]]["random"][seeds[0]]
     runs = _runs_only(headline)
     times, shapes = headline["_schedule"]
-    first = cals[SERVOS[0]]
-    tip_sensor = tip[TIP_HEADLINE_MS]["designs"]["sensor"]
-    told = {"none": kinematic_told(plants()[0]),
-            "AdaptiveController": motor_datasheet(tip_sensor)}  # fmt: skip
-    honesty = honesty_panel(
-        first["shape encoder"], runs, told=told, seed=seed, budget=budget,
-        calibrations=_calibration_of(first),
-    )  # fmt: skip
-    designs = {
-        servo: studies[servo]["feedforwards"]["InverseFeedforward + EncoderLoop"].design.as_dict()
-        for servo in SERVOS
-    }
+    first = lead["fits"]
+    designs = {servo: parts[servo]["encoder_loop_design"] for servo in SERVOS}
     return scenario_result(
         do2015,
         first["shape command"],
-        targets=_targets(summaries) + do_tip.targets(tip, target) + do_ilc.targets(ilc, target),
+        targets=_targets(summaries) + lead["tip"]["targets"] + lead["ilc"]["targets"],
         title="Do et al. 2015: feedforward and adaptive control under changing routes",
         conditions=CONDITIONS,
         runs=runs,
@@ -363,12 +405,12 @@ def _result(cals, studies, headline, seed, budget, sensor, tip, ilc) -> Scenario
                 s: {k: r.metrics for k, r in studies[s]["fixed"].items()} for s in SERVOS
             },  # fmt: skip
             "servo_summary": summaries,
-            "route_seeds": sorted(studies[SERVOS[0]]["random"]),
+            "route_seeds": seeds,
             "encoder_loop_design": designs,
             "headline_servo": SERVOS[0],
-            "tip_sensor": do_tip.as_record(tip),
+            "tip_sensor": lead["tip"]["record"],
             "tip_headline_ms": TIP_HEADLINE_MS,
-            "ilc": ilc,
+            "ilc": lead["ilc"]["record"],
         },
         calibration=_calibration_record(first),
         protocol="do2015: every model identified by bench.calibrate from runs on three "
@@ -379,7 +421,7 @@ def _result(cals, studies, headline, seed, budget, sensor, tip, ilc) -> Scenario
         "0.05 rad, delay 0.1 s, 10 Hz) during the test; feedforwards are judged on the fixed "
         "route, random-route figures are the median and the minimum over 5 route seeds. The "
         "runs shown are the PID servo's, route seed 0.",
-        honesty=honesty,
+        honesty=lead["honesty"],
     )
 
 
@@ -483,6 +525,24 @@ def _nominal_fits(seed: int = 0) -> dict[str, Any]:
     return _NOMINAL_FITS[seed]
 
 
+_NOMINAL_FEEDFORWARDS: dict[int, dict[str, Any]] = {}
+
+
+def _nominal_feedforwards(seed: int = 0) -> dict[str, Any]:
+    """The feedforwards the robustness study judges, built once per process from the
+    nominal fits: the EncoderLoop's tuning (on the identified servo, about 0.1 s) is the same
+    for every draw, and bench.run starts each run from the compensator's reset, as the
+    do2015 study runs one compensator on every route."""
+    if seed not in _NOMINAL_FEEDFORWARDS:
+        fits = _nominal_fits(seed)
+        shape = fits["shape encoder"]
+        _NOMINAL_FEEDFORWARDS[seed] = {
+            "InverseFeedforward": fits["single command"].inverse_feedforward(smoothing=SMOOTHING),
+            HEADLINE: shape.encoder_loop(shape.inverse_feedforward(smoothing=SMOOTHING)),
+        }
+    return _NOMINAL_FEEDFORWARDS[seed]
+
+
 def robustness_run(params: dict) -> dict[str, dict[str, float]]:
     """One draw of the robustness study: the plant's friction, pretension and route differ
     from the nominal plant the compensators were calibrated on; 10 s of the do2015 reference
@@ -505,11 +565,7 @@ def robustness_run(params: dict) -> dict[str, dict[str, float]]:
     seed = int(params.get("route_seed", 0)) % 100_000
     sensor = encoder(seed=seed)
     plant = PullPullPlant(route=route, motor=servo_motor(), **kwargs)
-    shape = fits["shape encoder"]
-    comps = {
-        "InverseFeedforward": fits["single command"].inverse_feedforward(smoothing=SMOOTHING),
-        HEADLINE: shape.encoder_loop(shape.inverse_feedforward(smoothing=SMOOTHING)),
-    }
+    comps = _nominal_feedforwards()
     runs = _run_all(plant, comps, t, y_d, sensor, None, shape_sensing(seed + 500))
     torque = PullPullPlant(route=route, motor=torque_motor(), **kwargs)
     adaptive = _adaptive_controller(fits["single encoder"].backlash_model, sensor)
@@ -548,10 +604,12 @@ __all__ = [
     "SMOOTHING",
     "TIP_HEADLINE_MS",
     "VISCOUS",
+    "assemble",
     "calibrate",
     "calibrations",
     "do2015",
     "feedforwards",
+    "lead_study",
     "motor_datasheet",
     "physics",
     "plants",
@@ -560,6 +618,7 @@ __all__ = [
     "robustness_run",
     "route_schedule",
     "servo_motor",
+    "servo_study",
     "shape_sensing",
     "torque_motor",
 ]
