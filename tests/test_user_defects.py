@@ -369,7 +369,7 @@ def test_demo_no_robustness_skips_the_study(tmp_path, monkeypatch, scenario_resu
         raise AssertionError("the robustness study ran")
 
     monkeypatch.setattr(demo, "robustness_section", forbidden)
-    monkeypatch.setattr(demo, "rate_section", lambda out: ("", {}, out / "rate.png"))
+    monkeypatch.setattr(demo, "rate_section", lambda out, **_: ("", {}, out / "rate.png"))
     monkeypatch.setattr(demo, "model_section", lambda out: ("", {}, []))
     from tendonsheath.bench import scenarios
 
@@ -379,8 +379,11 @@ def test_demo_no_robustness_skips_the_study(tmp_path, monkeypatch, scenario_resu
     )
     out = tmp_path / "demo"
     result = runner.invoke(
-        app, ["demo", "-s", "lau2015", "--no-robustness", "--angle-unit", "rad", "-o", str(out)]
-    )
+        app,
+        # one worker: the sections patched above run in this process (a worker imports its own)
+        ["demo", "-s", "lau2015", "--no-robustness", "--angle-unit", "rad", "--workers", "1",
+         "-o", str(out)],
+    )  # fmt: skip
     assert result.exit_code == 0, result.output
     assert "robustness:" not in result.output  # the study's table
     assert "mse (rad^2)" in result.output and "rmse (rad)" in result.output
@@ -442,3 +445,16 @@ def test_streamed_plant_takes_its_first_command_as_rest_state(rng):
         q = rng.uniform(-1.0, 1.0)
         assert plant.step(q) == pytest.approx(q, abs=1e-12)
         assert abs(plant.step(q + 0.05) - (q + 0.05)) > 1e-6  # now the slack takes its toll
+
+
+def test_the_rate_table_follows_the_report_angle_unit(tmp_path):
+    import math
+
+    import tendonsheath.demo as demo
+
+    body_rad, numbers, _ = demo.rate_section(tmp_path, frequencies=(1.0,), angle_unit="rad")
+    body_deg, _, _ = demo.rate_section(tmp_path, frequencies=(1.0,), angle_unit="deg")
+    assert "[deg" not in body_rad and "width at 1 Hz [rad]" in body_rad
+    assert "width at 1 Hz [deg]" in body_deg
+    width = numbers["realistic"]["loop_width_rad"]["1"]
+    assert f"{math.degrees(width):.3g}"[:3] in body_deg

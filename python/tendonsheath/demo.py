@@ -7,7 +7,6 @@ writes DIR/report.html (self-contained), DIR/metrics.json and the figures as PNG
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -19,7 +18,7 @@ from . import models
 from ._atomic import write_bytes
 from ._extras import require_plotly
 from .bench.metrics import loop_width
-from .report.units import check_angle_unit
+from .report.units import check_angle_unit, rows_in_unit
 
 DEMO_SCHEMA_VERSION = 1
 
@@ -190,7 +189,10 @@ def _jobs(names, scenarios, out, scale, seed, robustness, angle_unit, split: boo
         kwargs = {"out": out, "runs": runs, "seed": seed, "angle_unit": angle_unit,
                   "engine": "serial" if split else "local"}  # fmt: skip
         jobs.append(Job("robustness", _robustness_job, kwargs, _COST["robustness"]))
-    jobs.append(Job("rate_dependence", _rate_job, {"out": out}, _COST["rate_dependence"]))
+    jobs.append(
+        Job("rate_dependence", _rate_job, {"out": out, "angle_unit": angle_unit},
+            _COST["rate_dependence"])
+    )  # fmt: skip
     jobs.append(Job("models", _models_job, {"out": out}, _COST["models"]))
     return jobs
 
@@ -201,10 +203,10 @@ def _robustness_job(out: Path, runs: int, seed: int, angle_unit: str, engine: st
     return robustness_section(out, runs=runs, seed=seed, angle_unit=angle_unit, engine=engine)
 
 
-def _rate_job(out: Path, progress):
+def _rate_job(out: Path, progress, angle_unit: str = "deg"):
     if progress:
         progress("rate dependence")
-    return rate_section(out)
+    return rate_section(out, angle_unit=angle_unit)
 
 
 def _models_job(out: Path, progress):
@@ -213,9 +215,10 @@ def _models_job(out: Path, progress):
     return model_section(out)
 
 
-def rate_section(out: Path, frequencies=(0.1, 1.0, 5.0)):
+def rate_section(out: Path, frequencies=(0.1, 1.0, 5.0), angle_unit: str = "deg"):
     """Loops of the do2015 drive at 0.1, 1 and 5 Hz: the realistic plant (every effect of
-    presets) beside the capstan-only pair, which draws the same loop at any rate."""
+    presets) beside the capstan-only pair, which draws the same loop at any rate; the widths
+    in the report's ``angle_unit``."""
     from .bench.rate_dependence import hysteresis_loops, loops_figure
     from .bench.scenarios.do import _COMMON, NOMINAL, physics, servo_motor
     from .plant import PullPullPlant
@@ -233,12 +236,7 @@ def rate_section(out: Path, frequencies=(0.1, 1.0, 5.0)):
         loops[name] = hysteresis_loops(plant, frequencies=frequencies, amplitude=1.0)
         widths = {f: loop.width for f, loop in loops[name].items()}
         numbers[name] = {"loop_width_rad": {f"{f:g}": w for f, w in widths.items()}}
-        rows.append(
-            {
-                "plant": name,
-                **{f"width at {f:g} Hz [deg]": math.degrees(w) for f, w in widths.items()},
-            }
-        )
+        rows.append({"plant": name, **{f"width at {f:g} Hz": w for f, w in widths.items()}})
     data = figures.png(loops_figure(loops["realistic"], title="Realistic do2015 drive"))
     path = out / "rate_dependence.png"
     write_bytes(path, data)
@@ -248,7 +246,9 @@ def rate_section(out: Path, frequencies=(0.1, 1.0, 5.0)):
         "independent; the realistic plant (viscous sheath friction, tendon creep, a dynamic "
         "distal joint, motor friction and gear backlash: <code>tendonsheath.plant.presets</code>) "
         "widens its loop with rate, as measured drives do.</p>"
-        + html.table(rows)
+        + html.table(
+            rows_in_unit(rows, angle_unit, {f"width at {f:g} Hz": "rad" for f in frequencies})
+        )
         + html.figure(data, "Input-output loops of the realistic plant at 0.1, 1 and 5 Hz.")
     )
     return body, numbers, path

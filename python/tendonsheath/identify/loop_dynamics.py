@@ -382,6 +382,37 @@ def empirical_response(
 
 
 @_one_blas_thread
+def _checked_logs(t, command, encoder, tip, max_delay, highpass_hz):
+    """The logs as arrays on a uniform step, each checked (finite, moving; the tip without
+    dropouts) with the settings: (t, command, encoder, tip, dt)."""
+    ts, u = as_timed_signal(t, command, "command", _NAME)
+    _, q = as_timed_signal(ts, encoder, "encoder", _NAME)
+    _, y = as_timed_signal(ts, tip, "tip", _NAME)
+    dt = _uniform_step(ts, _NAME)
+    for name, x in (("command", u), ("encoder", q)):
+        if not np.all(np.isfinite(x)):
+            raise ValueError(f"{_NAME}: {name} must be finite")
+    bad = ~np.isfinite(y)
+    if bad.any():
+        first = int(np.argmax(bad))
+        raise ValueError(
+            f"{_NAME}: the tip reading has {int(bad.sum())} non-finite samples (sensor "
+            f"dropouts; the first at t = {ts[first]:.6g} s); dropouts are not bridged: cut the "
+            "record around them"
+        )
+    if not np.ptp(u) > 0:
+        raise ValueError(f"{_NAME}: the command does not move")
+    if not np.ptp(q) > 0:
+        raise ValueError(f"{_NAME}: the motor encoder does not move")
+    if not np.ptp(y) > 0:
+        raise ValueError(f"{_NAME}: the tip reading does not move (no response)")
+    if not (isinstance(max_delay, int) and 0 <= max_delay < u.size // 4):
+        raise ValueError(f"{_NAME}: max_delay must be an int in [0, n/4) (got {max_delay})")
+    if not (math.isfinite(highpass_hz) and 0 <= highpass_hz < 0.25 / dt):
+        raise ValueError(f"{_NAME}: highpass_hz must be in [0, {0.25 / dt:g}) Hz")
+    return ts, u, q, y, dt
+
+
 def identify_loop_dynamics(
     t: ArrayLike,
     command: ArrayLike,
@@ -433,31 +464,7 @@ def identify_loop_dynamics(
     ResonanceOutOfBandWarning
         The fit's mode lies above the band: no resonance is reported.
     """
-    ts, u = as_timed_signal(t, command, "command", _NAME)
-    _, q = as_timed_signal(ts, encoder, "encoder", _NAME)
-    _, y = as_timed_signal(ts, tip, "tip", _NAME)
-    dt = _uniform_step(ts, _NAME)
-    for name, x in (("command", u), ("encoder", q)):
-        if not np.all(np.isfinite(x)):
-            raise ValueError(f"{_NAME}: {name} must be finite")
-    bad = ~np.isfinite(y)
-    if bad.any():
-        first = int(np.argmax(bad))
-        raise ValueError(
-            f"{_NAME}: the tip reading has {int(bad.sum())} non-finite samples (sensor "
-            f"dropouts; the first at t = {ts[first]:.6g} s); dropouts are not bridged: cut the "
-            "record around them"
-        )
-    if not np.ptp(u) > 0:
-        raise ValueError(f"{_NAME}: the command does not move")
-    if not np.ptp(q) > 0:
-        raise ValueError(f"{_NAME}: the motor encoder does not move")
-    if not np.ptp(y) > 0:
-        raise ValueError(f"{_NAME}: the tip reading does not move (no response)")
-    if not (isinstance(max_delay, int) and 0 <= max_delay < u.size // 4):
-        raise ValueError(f"{_NAME}: max_delay must be an int in [0, n/4) (got {max_delay})")
-    if not (math.isfinite(highpass_hz) and 0 <= highpass_hz < 0.25 / dt):
-        raise ValueError(f"{_NAME}: highpass_hz must be in [0, {0.25 / dt:g}) Hz")
+    ts, u, q, y, dt = _checked_logs(t, command, encoder, tip, max_delay, highpass_hz)
     band = _excitation_band(u, dt, highpass_hz) if band_hz is None else _checked_band(band_hz, dt)
     servo = identify_servo(ts, u, q, max_delay=min(max_delay, 10), highpass_hz=highpass_hz)
     qb, yb = _band(q, dt, highpass_hz), _band(y, dt, highpass_hz)
