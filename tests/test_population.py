@@ -179,3 +179,28 @@ def test_every_route_of_a_drive_keeps_its_length_even_with_a_tiny_lead_in():
     for lead_in in (0.0, 1e-5, 4e-4, 0.1):
         r = pop._route(2.0, math.pi, 3, lead_in, rng)
         assert r.length == pytest.approx(2.0, rel=1e-12)
+
+
+def test_the_demo_member_is_the_demos_plant():
+    from tendonsheath.bench.scenarios import do
+
+    d = demo_draw()
+    demo = do.physics()
+    mine = d.physics()
+    for key in (
+        "friction",
+        "stiffness",
+        "pretension",
+        "proximal_radius",
+        "distal_radius",
+        "distal_inertia",
+        "distal_damping",
+        "sheath_viscosity",
+        "friction2",
+        "stiffness2",
+        "relaxation_fraction",
+        "relaxation_time",
+    ):
+        assert mine[key] == pytest.approx(demo[key], rel=1e-12), key
+    assert d.motor().params == do.servo_motor("pid").params
+    assert d.servo == "pid"

@@ -140,42 +140,49 @@ def _schedules_loop(controller) -> bool:
 def demo_draw() -> PlantDraw:
     """The demo's plant (``bench.scenarios.do``) as a member of the population: its values
     all inside the priors; its routes, sensors and calibration shapes the demo's."""
-    from .scenarios import do
+    from ..plant.presets import REALISTIC
+    from .scenarios import do, do_tip
 
+    common = do._COMMON
     values = {
-        "length": 1.5,
-        "route_angle": math.pi,
+        "length": do.NOMINAL.length,
+        "route_angle": do.NOMINAL.curve_angle,
         "bends": 2,
         "lead_in": 1.0 / 3.0,
-        "friction": 0.1,
-        "stiffness": 5e3,
-        "pretension": 20.0,
-        "proximal_radius": 15e-3,
-        "radius_ratio": 1.0,
-        "distal_inertia": 2e-5,
-        "distal_damping": 2e-3,
-        "sheath_viscosity": 8.0,
-        "relaxation_fraction": 0.08,
-        "relaxation_time": 1.5,
-        "friction2_ratio": 1.15,
-        "stiffness2_ratio": 0.9,
+        "friction": common["friction"],
+        "stiffness": common["stiffness"],
+        "pretension": common["pretension"],
+        "proximal_radius": common["proximal_radius"],
+        "radius_ratio": common["distal_radius"] / common["proximal_radius"],
+        **{
+            k: REALISTIC[k]
+            for k in (
+                "distal_inertia",
+                "distal_damping",
+                "sheath_viscosity",
+                "relaxation_fraction",
+                "relaxation_time",
+                "friction2_ratio",
+                "stiffness2_ratio",
+            )
+        },
         "servo_bandwidth_hz": 60.0,
         "servo_damping": 0.8,
         "servo_pid": 0.0,
-        "motor_inertia": 1e-4,
-        "motor_coulomb": 0.01,
-        "motor_viscous": 1e-3,
-        "gear_play": math.radians(0.5),
+        "motor_inertia": REALISTIC["motor_inertia"],
+        "motor_coulomb": REALISTIC["motor_coulomb_friction"],
+        "motor_viscous": REALISTIC["motor_viscous_friction"],
+        "gear_play": REALISTIC["gear_backlash"],
         "encoder_lines_log2": 9,
         "gear_ratio": 14.0,
         "encoder_noise_counts": 0.25,
-        "tip_noise": 2e-4,
-        "tip_resolution": 1e-4,
-        "shape_noise": 0.05,
-        "shape_delay": 0.1,
-        "shape_segments": 10,
-        "torque_inertia": 0.01,
-        "torque_viscous": 0.2,
+        "tip_noise": do_tip.TIP_NOISE_STD,
+        "tip_resolution": do_tip.TIP_RESOLUTION,
+        "shape_noise": do.SENSING["noise_std"],
+        "shape_delay": do.SENSING["delay"],
+        "shape_segments": do.SENSING["segments"],
+        "torque_inertia": do.INERTIA,
+        "torque_viscous": do.VISCOUS,
         "workspace": 1.3 / 1.15,
     }
     return PlantDraw(None, "pull-pull", values, do.NOMINAL, tuple(do.CALIBRATION_ROUTES))
