@@ -97,7 +97,10 @@ def main() -> None:
     table = res.table
     pull = summarise(table[table["kind"] == "pull-pull"])
     cont = summarise(table[table["kind"] == "continuum"])
-    demo = flatten(member_study(0, draw=demo_draw(), budget=POPULATION_BUDGET))
+    import threadpoolctl
+
+    with threadpoolctl.threadpool_limits(1, user_api="blas"):  # as population_run does
+        demo = flatten(member_study(0, draw=demo_draw(), budget=POPULATION_BUDGET))
     seconds = table[table["compensator"] == "member"]["seconds"]
     targets = []
     for name, (k1, need1, k2, need2) in TARGETS.items():

@@ -555,6 +555,15 @@ def population_run(params: dict) -> dict[str, dict[str, float]]:
     (``fixed``, ``median`` and ``min`` MSE reductions; ILC: ``min`` and ``median`` over its
     noise seeds and ``shifted_ok``). ``params``: ``seed`` (the member), ``kind``
     ("pull-pull" or "continuum")."""
+    import threadpoolctl
+
+    # the BLAS on one thread: the figures then do not depend on the machine's core count (the
+    # fits' small least-squares problems gain nothing from BLAS threads; see tendonsheath._jobs)
+    with threadpoolctl.threadpool_limits(1, user_api="blas"):
+        return _population_run(params)
+
+
+def _population_run(params: dict) -> dict[str, dict[str, float]]:
     seed = int(params["seed"])
     if params.get("kind", "pull-pull") == "continuum":
         c = continuum_member_study(seed, budget=POPULATION_BUDGET)
