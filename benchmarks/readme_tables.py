@@ -712,7 +712,7 @@ def population(p: Source) -> str:
         "noise and resolution; noisy, delayed shape sensing) and tested on the same drive "
         "drifted a little since, on references off the calibration's frequency that start "
         f"away from rest. The encoder loop was kept on {int(sum(kept))} of {members} members "
-        f"(left out where a calibration trial showed it did not help); the chosen pipeline "
+        f"(left out unless calibration trials at two speeds showed it helping); the chosen pipeline "
         f"is worse than the feedforward alone on {worse} of {members}. Continuum drives "
         f"(`random_continuum_plant`, lau2015's pipeline): mean error "
         f"{fmt(cont['median']['median'])} % median over members (each member's median over "
