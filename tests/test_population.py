@@ -204,3 +204,20 @@ def test_the_demo_member_is_the_demos_plant():
         assert mine[key] == pytest.approx(demo[key], rel=1e-12), key
     assert d.motor().params == do.servo_motor("pid").params
     assert d.servo == "pid"
+
+
+def test_the_report_reads_the_population_study_from_its_committed_json(tmp_path):
+    import json
+    from pathlib import Path
+
+    import tendonsheath.demo as demo
+
+    assert demo.population_section(tmp_path / "none.json") is None  # outside the repository
+    path = Path(__file__).resolve().parents[1] / "benchmarks" / "results" / "population.json"
+    body, data = demo.population_section(path)
+    figures = json.loads(path.read_text())
+    assert data == {"source": str(path), "members": figures["members"]}
+    for name in demo.POPULATION_TARGETS:
+        median = figures["pull_pull"][name]["median"]["median"]
+        assert f"<td>{name}</td><td>{median:.3g}x</td>" in body
+    assert figures["members"] >= 20 and figures["route_seeds"] >= 5
