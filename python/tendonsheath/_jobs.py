@@ -11,11 +11,13 @@ in order.
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
 import os
 import pickle
 import queue
 import signal
+import threading
 import time
 import warnings
 from collections.abc import Callable, Sequence
@@ -132,15 +134,18 @@ def _on_workers(jobs, remote, workers: int, progress: Progress, preload):
     ctx = multiprocessing.get_context(method)
     if method == "forkserver":  # effective when this process starts its fork server
         ctx.set_forkserver_preload(["tendonsheath", *preload])
-    lines = ctx.Queue()
     threads = max(1, cores() // workers)
-    pool = ProcessPoolExecutor(workers, ctx, initializer=_start_worker, initargs=(lines, threads))
-    done: dict[str, tuple[Any, list, float]] = {}
-    try:
+    with _ctrl_c_held():  # the processes started here never see Ctrl-C (see _ctrl_c_held)
+        lines = ctx.Queue()
+        pool = ProcessPoolExecutor(
+            workers, ctx, initializer=_start_worker, initargs=(lines, threads)
+        )
         futures = {
             pool.submit(_run_in_worker, job.run, job.kwargs): job
             for job in sorted(remote, key=lambda j: -j.cost)
         }
+    done: dict[str, tuple[Any, list, float]] = {}
+    try:
         for job in jobs:  # what cannot travel runs here meanwhile
             if job not in remote:
                 value, seconds = _timed(job, lambda line: _relay(lines, progress, line))
@@ -160,6 +165,29 @@ def _on_workers(jobs, remote, workers: int, progress: Progress, preload):
         for message, category, filename, lineno in done[job.key][1]:
             warnings.warn_explicit(message, category, filename, lineno)
     return {key: (value, seconds) for key, (value, _, seconds) in done.items()}
+
+
+@contextlib.contextmanager
+def _ctrl_c_held():
+    """Hold Ctrl-C (SIGINT) back while the fork server and the workers start: they inherit
+    the blocked signal and keep it blocked, so a Ctrl-C at the terminal, which reaches the whole
+    process group, never interrupts one of them (the fork server imports its preload before
+    it ignores SIGINT, and a KeyboardInterrupt there printed a traceback or left the pool
+    waiting on a dead server); this process gets the Ctrl-C once the block ends and stops
+    them. Off the main thread, or where signals cannot be blocked, it does nothing."""
+    hold = hasattr(signal, "pthread_sigmask") and (
+        threading.current_thread() is threading.main_thread()
+    )
+    if hold:  # started first: starting it unblocks SIGINT (multiprocessing.resource_tracker)
+        from multiprocessing import resource_tracker
+
+        resource_tracker.ensure_running()
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if hold else None
+    try:
+        yield
+    finally:
+        if previous is not None:
+            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
 def _outcome(fut: Future, job: Job, futures: dict[Future, Job]):
