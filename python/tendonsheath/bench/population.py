@@ -47,6 +47,7 @@ from .calibration import calibrate, calibration_input
 from .loop_calibration import calibrate_loop
 from .motor_calibration import calibrate_torque_motor
 from .run import run
+from .scenarios.common import ratio
 from .trial import calibration_trial, choose
 
 #: the tip sensor's latencies of the tip-feedback figures (s)
@@ -72,16 +73,12 @@ def _sensing(draw: PlantDraw, seed: int):
     return ShapeSensing(**draw.shape_sensing(seed))
 
 
-def _ratio(a: float, b: float) -> float:
-    return float(a / b) if b > 0 else math.inf
-
-
 def _factors(none: dict, runs: dict) -> dict[str, Any]:
     """MSE reduction over ``none`` on the fixed route and each route seed: {fixed, seeds,
     median, min}."""
-    seeds = [_ratio(none["random"][s], runs["random"][s]) for s in sorted(runs["random"])]
+    seeds = [ratio(none["random"][s], runs["random"][s]) for s in sorted(runs["random"])]
     return {
-        "fixed": _ratio(none["fixed"], runs["fixed"]),
+        "fixed": ratio(none["fixed"], runs["fixed"]),
         "seeds": seeds,
         "median": float(np.median(seeds)),
         "min": float(np.min(seeds)),
@@ -106,7 +103,7 @@ class _Tests:
     def mse(self, plant, controller, sensor, *, shape_seed: int = 500) -> dict[str, Any]:
         """{fixed: MSE, random: {seed: MSE}} of ``controller`` on ``plant`` (the true tip
         error: what the figure reports; no tuner sees it)."""
-        follows = getattr(controller, "follows_route", False) or _schedules_loop(controller)
+        follows = getattr(controller, "follows_route", False) or _is_tip_loop(controller)
         out: dict[str, Any] = {"random": {}}
         cases: list[tuple[int | None, Any]] = [(None, None), *self.schedules.items()]
         for key, routes in cases:
@@ -133,8 +130,11 @@ class _Tests:
         return out
 
 
-def _schedules_loop(controller) -> bool:
-    return type(controller).__name__ == "TipLoop"
+def _is_tip_loop(controller) -> bool:
+    """A TipLoop schedules its gains over the sensed shape, whatever its feedforward."""
+    from ..compensate import TipLoop
+
+    return isinstance(controller, TipLoop)
 
 
 def demo_draw() -> PlantDraw:
@@ -279,7 +279,7 @@ def _loops(draw, latency: float, seed: int):
     return sensor, loops
 
 
-def _tip(draw, fits, tests, none, seed: int) -> dict[str, Any]:
+def _tip(draw, fits, tests, none, seed: int, loops_at: dict) -> dict[str, Any]:
     from ..compensate import TipLoop
 
     out = {}
@@ -287,7 +287,7 @@ def _tip(draw, fits, tests, none, seed: int) -> dict[str, Any]:
     angles = [r.sensed_angle for r in shape.runs[: len(draw.calibration_routes)]]
     plant = tests.draw.plant(encoder_seed=seed + 17)
     for latency in LATENCIES:
-        sensor, loops = _loops(draw, latency, seed)
+        sensor, loops = loops_at[latency]
         trial = calibration_trial(
             draw.plant(encoder_seed=seed + 18),
             draw.calibration_routes,
@@ -317,14 +317,14 @@ def _tip(draw, fits, tests, none, seed: int) -> dict[str, Any]:
     return out
 
 
-def _adaptive(draw, fits, tests, seed: int) -> dict[str, Any]:
+def _adaptive(draw, fits, tests, seed: int, loops_at: dict) -> dict[str, Any]:
     from ..compensate import AdaptiveController
 
     latency = LATENCIES[0]
     torque_plant = draw.torque_plant(encoder_seed=seed + 19)
     motor = calibrate_torque_motor(torque_plant, draw.calibration_routes[0])
     test_plant = tests.draw.torque_plant(encoder_seed=seed + 20)
-    sensor, loops = _loops(draw, latency, seed)
+    sensor, loops = loops_at[latency]
     trial = calibration_trial(
         torque_plant, draw.calibration_routes, sensor, amplitude=draw.values["workspace"]
     )
@@ -356,11 +356,11 @@ def _refused(reason: str) -> dict[str, Any]:
     return {"fixed": 1.0, "seeds": [], "median": 1.0, "min": 1.0, "refused": reason}
 
 
-def _ilc(draw, fits, tests, none_fixed: float, seed: int) -> dict[str, Any]:
+def _ilc(draw, fits, tests, none_fixed: float, seed: int, loops_at: dict) -> dict[str, Any]:
     from ..compensate import IterativeLearning
 
     plant = tests.draw.plant(encoder_seed=seed + 23)
-    _, loops = _loops(draw, LATENCIES[0], seed)
+    _, loops = loops_at[LATENCIES[0]]
     ff = fits["single command"].inverse_feedforward(smoothing=SMOOTHING)
     t, y_d = tests.t, tests.y_d
     dt = float(t[1] - t[0])
@@ -380,7 +380,7 @@ def _ilc(draw, fits, tests, none_fixed: float, seed: int) -> dict[str, Any]:
             ilc.update(r.measured)
             n += 1
         learned = ilc.best_compensator()
-        learned_factors.append(_ratio(none_fixed, run(plant, learned, t, y_d).metrics["mse"]))
+        learned_factors.append(ratio(none_fixed, run(plant, learned, t, y_d).metrics["mse"]))
         shifted_ok.append(run(shifted, learned, t, y_d).metrics["mse"] <= ff_shift)
         trials.append(n - 1)
     return {
@@ -444,10 +444,18 @@ def member_study(
             for k, speed in enumerate(TRIAL_SPEEDS)
         ]
         out["sensorless"] = _sensorless(draw, fits, tests, none, trials)
+    # the loop calibrations (one per latency, on every calibration shape), run once for the
+    # tip loop, the adaptive controller and the learning that each design from them
+    latencies = LATENCIES if "tip" in studies else LATENCIES[:1]
+    loops_at = (
+        {lat: _loops(draw, lat, seed) for lat in latencies}
+        if {"tip", "adaptive", "ilc"} & set(studies)
+        else {}
+    )
     if "tip" in studies:
-        out["tip"] = _tip(draw, fits, tests, none, seed)
+        out["tip"] = _tip(draw, fits, tests, none, seed, loops_at)
     if "adaptive" in studies:
-        a = _adaptive(draw, fits, tests, seed)
+        a = _adaptive(draw, fits, tests, seed, loops_at)
         if "refused" in a:
             out["adaptive"] = {**_refused(a["refused"]), "identified": a["identified"]}
         else:
@@ -457,7 +465,7 @@ def member_study(
                 "designed_from": a["designed_from"],
             }
     if "ilc" in studies:
-        out["ilc"] = _ilc(draw, fits, tests, none["fixed"], seed)
+        out["ilc"] = _ilc(draw, fits, tests, none["fixed"], seed, loops_at)
     out["limit_cycle_runs"] = tests.limit_cycles
     out["seconds"] = time.perf_counter() - start
     return out

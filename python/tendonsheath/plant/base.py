@@ -204,21 +204,16 @@ class _Plant(PythonObject):
         return self._interpolation[0]
 
     def _setup_io(self, motor, sensor, encoder=None):
-        if motor is not None and not isinstance(motor, Motor):
-            raise TypeError(
-                f"{type(self).__name__}: motor must be a tendonsheath.Motor or None "
-                f"(got {type(motor).__name__})"
-            )
-        if sensor is not None and not isinstance(sensor, Sensor):
-            raise TypeError(
-                f"{type(self).__name__}: sensor must be a tendonsheath.Sensor or None "
-                f"(got {type(sensor).__name__})"
-            )
-        if encoder is not None and not isinstance(encoder, Sensor):
-            raise TypeError(
-                f"{type(self).__name__}: encoder must be a tendonsheath.Sensor or None "
-                f"(got {type(encoder).__name__})"
-            )
+        for name, value, kind in (
+            ("motor", motor, Motor),
+            ("sensor", sensor, Sensor),
+            ("encoder", encoder, Sensor),
+        ):
+            if value is not None and not isinstance(value, kind):
+                raise TypeError(
+                    f"{type(self).__name__}: {name} must be a tendonsheath.{kind.__name__} or "
+                    f"None (got {type(value).__name__})"
+                )
         if encoder is not None and motor is None:
             raise ValueError(
                 f"{type(self).__name__}: an encoder reads a motor's shaft: give the plant a motor"
