@@ -47,21 +47,11 @@ TIP_CONTROLLERS = ("TipLoop", "AdaptiveController")
 #: the candidates the trials choose among
 SENSITIVITY_BOUNDS = (1.7, 2.0)
 DEAD_BAND_SCALES = (0.9, 0.8, 0.7)
-SWITCH_EVERY = 2.5  # s: the trial runs switch calibration shapes this often
 
 
 def tip_sensor(latency: float, seed: int) -> Sensor:
     """The tip sensor at one latency."""
     return Sensor(noise_std=TIP_NOISE_STD, resolution=TIP_RESOLUTION, delay=latency, seed=seed)
-
-
-def trial_runner(plant, sensor: Sensor, duration: float, shape_sensing, routes_of):
-    """candidate -> the tip sensor's measured mean squared error on the calibration shapes,
-    switching among them every 2.5 s (:func:`~tendonsheath.bench.trial.calibration_trial`:
-    scored on what the sensor reads, never on the simulated truth; inf when the loop diverged
-    or the command saturated)."""
-    return calibration_trial(plant, routes_of, sensor, duration=duration, amplitude=1.0,
-                             switch_every=SWITCH_EVERY, shape_sensing=shape_sensing)  # fmt: skip
 
 
 def design(do: Any, fits: dict, latency: float, seed: int, scale: float) -> dict[str, Any]:
@@ -84,7 +74,9 @@ def design(do: Any, fits: dict, latency: float, seed: int, scale: float) -> dict
         curve_angles=angles,
         max_sensitivity=SENSITIVITY_BOUNDS,
         dead_band_scale=DEAD_BAND_SCALES,
-        trial=trial_runner(servo_plant, sensor, duration, sensing, routes_of),
+        trial=calibration_trial(
+            servo_plant, routes_of, sensor, duration=duration, shape_sensing=sensing
+        ),  # fmt: skip
         refine=True,
         feedforward_options={"smoothing": do.SMOOTHING},
     )
@@ -96,7 +88,7 @@ def design(do: Any, fits: dict, latency: float, seed: int, scale: float) -> dict
         viscous=motor.viscous,
         max_torque=5.0,
         noise_std=TIP_NOISE_STD,
-        trial=trial_runner(torque_plant, sensor, duration, None, routes_of),
+        trial=calibration_trial(torque_plant, routes_of, sensor, duration=duration),
     )
     return {"TipLoop": tip, "AdaptiveController": adaptive, "sensor": sensor, "loops": loops,
             "torque_motor": motor}  # fmt: skip
