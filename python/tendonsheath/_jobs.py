@@ -135,17 +135,21 @@ def _on_workers(jobs, remote, workers: int, progress: Progress, preload):
     if method == "forkserver":  # effective when this process starts its fork server
         ctx.set_forkserver_preload(["tendonsheath", *preload])
     threads = max(1, cores() // workers)
-    with _ctrl_c_held():  # the processes started here never see Ctrl-C (see _ctrl_c_held)
-        lines = ctx.Queue()
-        pool = ProcessPoolExecutor(
-            workers, ctx, initializer=_start_worker, initargs=(lines, threads)
-        )
-        futures = {
-            pool.submit(_run_in_worker, job.run, job.kwargs): job
-            for job in sorted(remote, key=lambda j: -j.cost)
-        }
+    pool: ProcessPoolExecutor | None = None
     done: dict[str, tuple[Any, list, float]] = {}
     try:
+        # the Ctrl-C held back here arrives as the block ends, still inside this try: the
+        # workers are then stopped before this process exits and removes the queue's
+        # semaphore, which a worker still starting would fail to find (a traceback)
+        with _ctrl_c_held():  # the processes started here never see Ctrl-C
+            lines = ctx.Queue()
+            pool = ProcessPoolExecutor(
+                workers, ctx, initializer=_start_worker, initargs=(lines, threads)
+            )
+            futures = {
+                pool.submit(_run_in_worker, job.run, job.kwargs): job
+                for job in sorted(remote, key=lambda j: -j.cost)
+            }
         for job in jobs:  # what cannot travel runs here meanwhile
             if job not in remote:
                 value, seconds = _timed(job, lambda line: _relay(lines, progress, line))
@@ -159,7 +163,8 @@ def _on_workers(jobs, remote, workers: int, progress: Progress, preload):
         pool.shutdown(wait=True)
         _relay(lines, progress)
     except BaseException:
-        _stop(pool)
+        if pool is not None:
+            _stop(pool)
         raise
     for job in jobs:  # the warnings in the jobs' order, as a serial run raises them
         for message, category, filename, lineno in done[job.key][1]:
@@ -169,25 +174,35 @@ def _on_workers(jobs, remote, workers: int, progress: Progress, preload):
 
 @contextlib.contextmanager
 def _ctrl_c_held():
-    """Hold Ctrl-C (SIGINT) back while the fork server and the workers start: they inherit
-    the blocked signal and keep it blocked, so a Ctrl-C at the terminal, which reaches the whole
-    process group, never interrupts one of them (the fork server imports its preload before
-    it ignores SIGINT, and a KeyboardInterrupt there printed a traceback or left the pool
-    waiting on a dead server); this process gets the Ctrl-C once the block ends and stops
-    them. Off the main thread, or where signals cannot be blocked, it does nothing."""
-    hold = hasattr(signal, "pthread_sigmask") and (
-        threading.current_thread() is threading.main_thread()
-    )
-    if hold:  # started first: starting it unblocks SIGINT (multiprocessing.resource_tracker)
-        from multiprocessing import resource_tracker
+    """Hold Ctrl-C (SIGINT) back while the fork server and the workers start, and deliver it
+    once they have. The block (a thread's signal mask) is inherited by the processes started
+    here, which keep it: a Ctrl-C at the terminal reaches the whole process group, and the
+    fork server imports its preload before it ignores SIGINT (a KeyboardInterrupt there
+    printed a traceback or left the pool waiting on a dead server). The mask holds only this
+    thread, and the kernel hands a process's signal to any thread that does not block it (a
+    BLAS or progress thread), so this process's handler is also swapped for one that notes
+    the Ctrl-C: raised mid-start, the KeyboardInterrupt left a worker started but not yet
+    counted by the pool, never stopped, failing with a traceback once this process had exited
+    and removed the queue's semaphore. Off the main thread, or where signals cannot be
+    blocked, it does nothing."""
+    if not hasattr(signal, "pthread_sigmask") or (
+        threading.current_thread() is not threading.main_thread()
+    ):
+        yield
+        return
+    from multiprocessing import resource_tracker
 
-        resource_tracker.ensure_running()
-    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if hold else None
+    resource_tracker.ensure_running()  # first: starting it unblocks SIGINT
+    noted: list[int] = []
+    handler = signal.signal(signal.SIGINT, lambda signum, frame: noted.append(signum))
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
     try:
         yield
     finally:
-        if previous is not None:
-            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)  # one held back is noted now
+        signal.signal(signal.SIGINT, handler)
+        if noted:
+            signal.raise_signal(signal.SIGINT)  # to the handler this process had
 
 
 def _outcome(fut: Future, job: Job, futures: dict[Future, Job]):
