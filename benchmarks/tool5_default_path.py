@@ -26,10 +26,13 @@ on the unknown initial state). Per run:
 Each as the winner's rmse over the affine map's on the same run: the median and the worst over
 the 47 runs. Encoder zeros: the jaw encoder is relative (its zero is arbitrary; it jumps in
 blocks of runs, as if zeroed anew per recording session) and the motor's zero jumps between
-sessions too. The figures are given twice: ``abs`` (the plain rmse, zeros as recorded: what
-a user of the default path sees) and ``zero_free`` (each run's mean error removed, for the
-winner and the affine map alike: the error of the loop's shape, whatever zero the encoders
-had).
+sessions too. The figures are given three ways: ``abs`` (the plain rmse, zeros as recorded:
+what a user of the default path sees who never re-calibrates), ``zero_free`` (each run's
+mean error removed, for the winner and the affine map alike: the error of the loop's shape,
+whatever zero the encoders had) and ``recalibrated`` (what a user sees who runs
+``ts.session.recalibrate`` at the start of each session: the winner and the affine map alike
+refitted on the first cycle of the session's first run, the sessions as ``_tool5.sessions``
+finds them, and the plain rmse scored on the run, after that cycle for the first run).
 
 Also: compare_models' wall time on the three training runs.
 
@@ -47,52 +50,35 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+from _tool5 import DEFAULT, NAMES, first_cycle, read_all, scores, sessions
 
 import tendonsheath as ts
 from _common import write_results
-from tendonsheath.compare import _settle
-from tendonsheath.inverse_error import offline_inverse
+from tendonsheath.session import recalibrate
 
-DEFAULT = Path(__file__).resolve().parents[2] / "shared" / "data" / "davinci_tool5"
-FREQS = (0.1, 0.2, 0.3, 0.4, 0.5)
-LOADS = tuple(range(10, 101, 10))
 TRAIN = ("f0.10Hz_load010", "f0.30Hz_load050", "f0.50Hz_load100")
+FIGURES = ("forward_abs", "forward_zero_free", "inverse_abs", "inverse_zero_free",
+           "forward_recalibrated", "inverse_recalibrated")  # fmt: skip
 
 
-def run_name(f: float, load: int) -> str:
-    return f"f{f:.2f}Hz_load{load:03d}"
-
-
-def read(data: Path, name: str) -> ts.io.Log:
-    return ts.io.read_log(
-        data / f"{name}.csv", time="t", input="motor", output="jaw", load="jaw_torque"
-    )
-
-
-def predict(model, log) -> np.ndarray:
-    if isinstance(model, ts.models.Loaded):
-        return np.asarray(model.simulate(log.t, log.x, load=log.load), dtype=float)
-    return np.asarray(model.simulate(log.t, log.x), dtype=float)
-
-
-def rmse(e: np.ndarray, zero_free: bool) -> float:
-    e = e - np.mean(e) if zero_free else e
-    return float(np.sqrt(np.mean(e * e)))
-
-
-def scores(model, log) -> dict[str, float]:
-    """Forward and inverse rmse on one held-out run, abs and zero-free, from its first
-    reversal on."""
-    k = _settle(log.x)
-    fwd = (predict(model, log) - log.y)[k:]
-    commands, _ = offline_inverse(model, log.t, log.y, None, log.load)
-    inv = (np.asarray(commands, dtype=float) - log.x)[k:]
-    return {
-        "forward_abs": rmse(fwd, False),
-        "forward_zero_free": rmse(fwd, True),
-        "inverse_abs": rmse(inv, False),
-        "inverse_zero_free": rmse(inv, True),
-    }
+def recalibrated_scores(models: dict, logs: dict, blocks: list[list[str]]) -> dict:
+    """name -> {model key -> (forward, inverse) rmse}: each model re-calibrated at the start
+    of each held-out run's session (the first cycle of the session's first run) and scored
+    on the run (the first run after that cycle)."""
+    out: dict[str, dict] = {}
+    for block in blocks:
+        first = logs[block[0]]
+        cal, load, n = first_cycle(first, 1.0 / float(block[0][1:5]))
+        recal = {key: recalibrate(m, cal, load=load).model for key, m in models.items()}
+        for name in block:
+            if name in TRAIN:
+                continue
+            start = n if name == block[0] else None
+            out[name] = {}
+            for key, m in recal.items():
+                s = scores(m, logs[name], start)
+                out[name][key] = (s["forward_abs"], s["inverse_abs"])
+    return out
 
 
 def main() -> int:
@@ -104,8 +90,8 @@ def main() -> int:
         print(f"no data at {args.data}: results/tool5_default_path.json kept as it is")
         return 0
     warnings.simplefilter("ignore")
-    names = [run_name(f, p) for f in FREQS for p in LOADS]
-    logs = {n: read(args.data, n) for n in names}
+    names = NAMES
+    logs = read_all(args.data)
     train = [logs[n] for n in TRAIN]
     start, load_before = time.perf_counter(), os.getloadavg()
     cmp = ts.compare_models(train)
@@ -114,6 +100,8 @@ def main() -> int:
     print(f"compare_models on the 3 training runs: {seconds:.1f} s wall")
     affine = cmp.fits["affine"]  # least squares on the three runs
     winner = cmp.winner
+    blocks = sessions(logs)
+    recal = recalibrated_scores({"winner": winner, "affine": affine}, logs, blocks)
     per_run = {}
     for n in names:
         if n in TRAIN:
@@ -121,8 +109,12 @@ def main() -> int:
         w, a = scores(winner, logs[n]), scores(affine, logs[n])
         per_run[n] = {k: w[k] / a[k] for k in w} | {f"winner_{k}": v for k, v in w.items()}
         per_run[n] |= {f"affine_{k}": v for k, v in a.items()}
+        for i, fig in enumerate(("forward_recalibrated", "inverse_recalibrated")):
+            per_run[n][fig] = recal[n]["winner"][i] / recal[n]["affine"][i]
+            per_run[n][f"winner_{fig}"] = recal[n]["winner"][i]
+            per_run[n][f"affine_{fig}"] = recal[n]["affine"][i]
     summary = {}
-    for fig in ("forward_abs", "forward_zero_free", "inverse_abs", "inverse_zero_free"):
+    for fig in FIGURES:
         r = np.array([p[fig] for p in per_run.values()])
         summary[fig] = {
             "median": float(np.median(r)),
@@ -161,6 +153,7 @@ def main() -> int:
                 }
                 for r in cmp.table
             ],
+            "sessions": blocks,
             "summary": summary,
             "per_run": per_run,
         },

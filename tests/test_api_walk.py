@@ -55,6 +55,7 @@ PUBLIC_MODULES = [
     "tendonsheath.report.summary",
     "tendonsheath.identify",
     "tendonsheath.compare",
+    "tendonsheath.session",
     "tendonsheath.inverse_error",
     "tendonsheath.control_interop",
     "tendonsheath.export_cpp",

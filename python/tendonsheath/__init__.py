@@ -2,7 +2,7 @@
 
 from importlib.metadata import version as _version
 
-from . import _moved, bench, compensate, io, models, protocols
+from . import _moved, bench, compensate, io, models, protocols, session
 from ._extras import MissingExtraError
 from .compare import Comparison, compare_models
 from .identify import Fit, IdentifiabilityWarning, Identifier, identify, identify_coupled
@@ -23,6 +23,7 @@ from .plant import (
     presets,
 )
 from .protocols import Compensator, Plant
+from .session import recalibrate, session_shift
 from .simulation_result import SimulationResult
 from .status import Status, status_counts
 from .sweep import sweep
@@ -64,6 +65,9 @@ __all__ = [
     "physics",
     "presets",
     "protocols",
+    "recalibrate",
+    "session",
+    "session_shift",
     "status_counts",
     "sweep",
     "__version__",
