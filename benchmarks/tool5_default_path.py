@@ -31,7 +31,7 @@ what a user of the default path sees who never re-calibrates), ``zero_free`` (ea
 mean error removed, for the winner and the affine map alike: the error of the loop's shape,
 whatever zero the encoders had) and ``recalibrated`` (what a user sees who runs
 ``ts.session.recalibrate`` at the start of each session: the winner and the affine map alike
-refitted on the first cycle of the session's first run, the sessions as ``_tool5.sessions``
+refitted on the first two cycles of the session's first run, the sessions as ``_tool5.sessions``
 finds them, and the plain rmse scored on the run, after that cycle for the first run).
 
 Also: compare_models' wall time on the three training runs.
@@ -63,12 +63,12 @@ FIGURES = ("forward_abs", "forward_zero_free", "inverse_abs", "inverse_zero_free
 
 def recalibrated_scores(models: dict, logs: dict, blocks: list[list[str]]) -> dict:
     """name -> {model key -> (forward, inverse) rmse}: each model re-calibrated at the start
-    of each held-out run's session (the first cycle of the session's first run) and scored
-    on the run (the first run after that cycle)."""
+    of each held-out run's session (the first two cycles of the session's first run) and
+    scored on the run (the first run after those cycles)."""
     out: dict[str, dict] = {}
     for block in blocks:
         first = logs[block[0]]
-        cal, load, n = first_cycle(first, 1.0 / float(block[0][1:5]))
+        cal, load, n = first_cycle(first, 2.0 / float(block[0][1:5]))  # two cycles
         recal = {key: recalibrate(m, cal, load=load).model for key, m in models.items()}
         for name in block:
             if name in TRAIN:

@@ -279,3 +279,13 @@ def test_the_report_parts_table_marks_a_ratio_that_rounds_to_one():
     data = json.loads(json.dumps(compare._parts_json(parts), allow_nan=False))
     assert data["inv_rmse"] == [[0.5, 0.5], [None, None]]
     assert data["worse_than_affine"] == [[False, False], [True, False]]
+
+
+def test_the_table_shows_each_candidates_spread_over_the_parts(linear_pair):
+    _, cmp = linear_pair
+    ratios = cmp.parts()["ratio_to_affine"][1]  # Backlash's, one per held-out part
+    spread = cmp.fold_spread()
+    assert spread["Backlash"] == f"{ratios.min():.2f}-{ratios.max():.2f}"
+    assert spread["affine"] == "1.00-1.00"
+    backlash_line = next(ln for ln in cmp.text().splitlines() if ln.startswith("Backlash "))
+    assert spread["Backlash"] in backlash_line

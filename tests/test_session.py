@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import tendonsheath as ts
-from tendonsheath.session import _branch, recalibrate, session_shift
+from tendonsheath.session import REFITTABLE, _branch, recalibrate, session_shift
 
 T = np.arange(0.0, 20.0, 0.01)
 
@@ -92,23 +92,39 @@ def test_recalibrate_recovers_the_new_session_and_keeps_the_rest():
         )
 
 
-def test_recalibrated_loaded_model_keeps_its_load_terms_and_inverts():
-    rng = np.random.default_rng(4)
+def _loaded():
     base = ts.models.Backlash(c_r=1.0, c_l=1.0, B_r=0.05, B_l=0.05)
-    model = ts.models.Loaded(base, gain=-0.2, slack=0.03, slack_load=0.5, friction=0.02)
-    x = _input(rng)
+    return ts.models.Loaded(base, gain=-0.2, slack=0.03, slack_load=0.5, friction=0.02)
+
+
+def test_recalibrated_loaded_model_refits_its_load_gain_where_the_load_varies():
+    model, x = _loaded(), _input(np.random.default_rng(4))
     load = 0.5 + 0.4 * np.sin(2 * np.pi * 0.07 * T)
-    moved = model.with_params(slack=0.05)
+    moved = model.with_params(slack=0.05, gain=-0.25)  # re-tensioned: another stretch
     y = 0.1 + 1.05 * np.asarray(moved.simulate(T, x, load=load))
-    recal = recalibrate(model, ts.io.Log(t=T, x=x, y=y, load=load))
-    assert recal.rmse_after < 0.1 * recal.rmse_before
+    recal = recalibrate(model, ts.io.Log(t=T, x=x, y=y, load=load), refit=REFITTABLE)
+    assert recal.rmse_after < 1e-3 * recal.rmse_before, recal.text()
     new = recal.model
     assert isinstance(new, ts.models.Loaded) and isinstance(new.base, ts.models.Scaled)
-    for term in ("gain", "slack_load", "friction"):
+    assert set(recal.refitted) == {"base.output_offset", "base.output_gain", "gain", "slack"}
+    # the output gain scales the base only: the stretch's share of it lands in the load gain
+    assert new.terms["gain"] == pytest.approx(-0.25 * 1.05, rel=1e-3)
+    assert new.terms["slack"] == pytest.approx(0.05, rel=1e-3)
+    for term in ("slack_load", "friction"):
         assert new.terms[term] == model.terms[term]
-    assert set(recal.refitted) == {"base.output_offset", "base.output_gain", "slack"}
     ff = ts.compensate.LoadCompensated(new)
     assert np.all(np.isfinite(ff.command(T, y, load=load)))
+
+
+def test_a_constant_load_keeps_the_load_gain_and_says_so():
+    model, x = _loaded(), _input(np.random.default_rng(5))
+    load = np.full(T.size, 0.3)
+    y = 0.1 + np.asarray(model.with_params(slack=0.05).simulate(T, x, load=load))
+    assert recalibrate(model, (T, x, y), load=load).notes == []  # the default: no load gain
+    recal = recalibrate(model, (T, x, y), load=load, refit=REFITTABLE)
+    assert recal.notes == ["load gain: kept (the load does not vary in the logs)"]
+    assert recal.model.terms["gain"] == model.terms["gain"]
+    assert recal.rmse_after < 0.01 * recal.rmse_before
 
 
 def test_a_model_without_a_dead_band_says_so():
@@ -126,7 +142,8 @@ def test_a_model_without_a_dead_band_says_so():
     [
         (lambda m, d: recalibrate(m, d, refit=("offset", "zero")), "refit: one or more of"),
         (lambda m, d: recalibrate(m, d, refit=()), "refit: one or more of"),
-        (lambda m, d: session_shift(m, [d, d]), "give one log"),
+        (lambda m, d: session_shift(m, []), "give a log"),
+        (lambda m, d: session_shift(m, [d, d], load=np.ones(T.size)), "load= goes with one log"),
         (lambda m, d: session_shift(m, (T, np.ones(T.size), d[2])), "must move both ways"),
         (lambda m, d: recalibrate(m, (T, np.ones(T.size), d[2])), "must move both ways"),
         (
@@ -141,3 +158,34 @@ def test_bad_calls_are_named(call, message):
     x = np.sin(T)
     with pytest.raises(ValueError, match=message):
         call(model, (T, x, np.asarray(model.simulate(T, x))))
+
+
+def test_a_load_gain_the_logs_cannot_determine_is_kept_and_named():
+    model, rng = _loaded(), np.random.default_rng(6)
+    logs = []
+    for level in (0.3, 0.3005):  # two loads, too close to tell the stretch apart from noise
+        x, load = _input(rng), np.full(T.size, level)
+        y = np.asarray(model.simulate(T, x, load=load)) + 0.01 + 0.003 * rng.standard_normal(T.size)
+        logs.append(ts.io.Log(t=T, x=x, y=y, load=load))
+    recal = recalibrate(model, logs, refit=REFITTABLE)
+    assert recal.model.terms["gain"] == model.terms["gain"]
+    assert "gain" not in recal.refitted
+    assert recal.notes[-1].startswith("load gain: kept (the logs' load varies too little")
+
+
+def test_a_reference_sets_how_far_the_models_own_logs_stray():
+    rng = np.random.default_rng(7)
+    model = _backlash(rng)
+    # the model's session: runs whose offset strays by up to 0.02 (a load it does not model)
+    own = []
+    for stray in (-0.02, 0.0, 0.015):
+        x = _input(rng)
+        own.append((T, x, _shifted(model, x, stray, 1.0, 0.0, 0.002, rng)))
+    x = _input(rng)
+    same = (T, x, _shifted(model, x, 0.01, 1.0, 0.0, 0.002, rng))
+    moved = (T, x, _shifted(model, x, 0.06, 1.0, 0.0, 0.002, rng))
+    assert not session_shift(model, same).same_state  # without a reference: a shift
+    checked = session_shift(model, same, reference=own)
+    assert checked.shifts["offset"].tolerance == pytest.approx(0.02, abs=1e-3)
+    assert checked.same_state, checked.text()
+    assert not session_shift(model, moved, reference=own).same_state

@@ -14,10 +14,13 @@ Both functions refit those few parameters on the new log and keep every other on
   middle and the gain g is independent of it;
 - the dead band where the model has one: Backlash's and BoucWenBacklash's B_r and B_l
   widened together by d (a play of half-width d in front of the model: exactly so for a
-  backlash), a Loaded model's slack moved by d; d in the input's unit.
+  backlash), a Loaded model's slack moved by d; d in the input's unit;
+- by name (``refit=``), a Loaded model's load gain (the tendon's stretch per unit load,
+  which re-tensioning changes), from logs at two loads or more (a load that follows the
+  motion within one run, as a brake's does, would be taken for part of the loop).
 
-The fit is least squares on the simulated output (scored from the input's first reversal
-on), from none of the three shifts. :func:`session_shift` reports each one with its standard
+The fit is least squares on the simulated output (each log scored from its input's first
+reversal on), from no shift at all. :func:`session_shift` reports each one with its standard
 error (Newey-West: the residuals of a drive are correlated over a cycle, so the plain ones
 would be far too small; :mod:`tendonsheath.identify.newey_west`); a shift is *significant*
 when it is more than twice its standard error from none, and the log is from the *same
@@ -28,7 +31,7 @@ predicts, inverts, saves and exports like the model it came from.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -42,12 +45,23 @@ from .models import HysteresisModel, Loaded, Scaled
 MATERIAL = 0.1
 #: what recalibrate refits by default
 TERMS = ("offset", "gain", "dead band")
+#: what it can refit: the load gain (a Loaded model's) by name, from logs at two loads or more
+REFITTABLE = (*TERMS, "load gain")
+#: a load gain is refitted only where the logs determine it: its standard error within this
+#: share of the model's own load gain
+LOAD_GAIN_SPREAD = 0.25
+UNITS = {
+    "offset": "output unit",
+    "gain": "ratio - 1",
+    "dead band": "input unit, half-width",
+    "load gain": "output unit per load unit",
+}
 
 
 @dataclass(frozen=True)
 class Shift:
     """One measured shift: its estimate, standard error and unit, and whether it is
-    significant (more than twice its standard error away from none).
+    significant (more than twice its standard error beyond what the model's own logs show).
 
     Parameters
     ----------
@@ -60,17 +74,21 @@ class Shift:
         Its standard error (Newey-West), same unit.
     unit : str
         The unit in words.
+    tolerance : float, default 0.0
+        How far the model's own logs already stray (the largest such shift on the reference
+        logs of :func:`session_shift`; 0 without them).
     """
 
     name: str
     value: float
     se: float
     unit: str
+    tolerance: float = 0.0
 
     @property
     def significant(self) -> bool:
-        """More than two standard errors away from none."""
-        return bool(abs(self.value) > 2.0 * self.se)
+        """More than two standard errors beyond the tolerance."""
+        return bool(abs(self.value) > self.tolerance + 2.0 * self.se)
 
     def text(self) -> str:
         """The shift in one line.
@@ -81,7 +99,8 @@ class Shift:
             Name, value +/- two standard errors, unit and whether it is significant.
         """
         mark = "significant" if self.significant else "within its noise"
-        return f"{self.name}: {self.value:+.4g} +/- {2 * self.se:.2g} {self.unit} ({mark})"
+        own = f"; its own logs stray {self.tolerance:.2g}" if self.tolerance else ""
+        return f"{self.name}: {self.value:+.4g} +/- {2 * self.se:.2g} {self.unit} ({mark}{own})"
 
 
 @dataclass(frozen=True)
@@ -180,17 +199,19 @@ class Recalibration:
         return self.text()
 
 
-def _one_recording(log: Any, load: Any):
-    recs = _as_recs(log)
-    if len(recs) != 1:
-        raise ValueError(f"give one log (a Log or a (t, x, y) tuple), got {len(recs)}")
-    (rec,) = recs
+def _recordings(logs: Any, load: Any) -> list:
+    recs = _as_recs(logs)
+    if not recs:
+        raise ValueError("give a log (a Log or a (t, x, y) tuple), or a list of them")
     if load is not None:
+        if len(recs) != 1:
+            raise ValueError("load= goes with one log; give logs that carry their load")
+        (rec,) = recs
         load = np.asarray(load, dtype=float)
         if load.shape != rec.x.shape or not np.all(np.isfinite(load)):
             raise ValueError(f"load: {rec.n} finite values are needed (got shape {load.shape})")
         rec.load = load
-    return rec
+    return recs
 
 
 def _predict(model: HysteresisModel, rec) -> np.ndarray:
@@ -272,39 +293,102 @@ class _Refitted:
     notes: list[str]
 
 
-def _refit(model: HysteresisModel, rec, refit) -> _Refitted:
-    """Fit the ``refit`` shifts of ``model`` on the recording (see the module's doc)."""
+class _Shifted:
+    """The model with the shifts ``names`` applied, on the scored samples of the recordings
+    (each from its input's first reversal on)."""
+
+    def __init__(self, model: HysteresisModel, recs: list, refit) -> None:
+        self.recs, self.starts = recs, [_settle(r.x) for r in recs]
+        for r, k in zip(recs, self.starts, strict=True):
+            if np.ptp(r.x) <= 0 or np.all(_branch(r.x)[k:] == _branch(r.x)[-1]):
+                raise ValueError("the log's input must move both ways for a shift to be measured")
+        self.mapped, self.prefix = _with_map(model)
+        values = self.mapped.params
+        self.map0 = values[self.prefix + "output_offset"], values[self.prefix + "output_gain"]
+        self.mean = float(np.mean(self.predict(model)))
+        bands = _dead_band_names(self.mapped) if "dead band" in refit else []
+        self.band0 = {n: float(values[n]) for n in bands}
+        # a B inside a Scaled map is in the map's normalised input unit
+        inner = bands and bands[0].startswith("inner.")
+        self.unit = float(values["input_scale"]) if inner else 1.0
+        loads = [r.load for r in recs if r.load is not None]
+        varied = isinstance(model, Loaded) and bool(loads) and np.ptp(np.concatenate(loads)) > 0
+        self.load_gain0 = float(values["gain"]) if varied and "load gain" in refit else None
+        self.names = [n for n in ("offset", "gain") if n in refit] + (["dead band"] * bool(bands))
+        self.names += ["load gain"] if self.load_gain0 is not None else []
+
+    def predict(self, model: HysteresisModel) -> np.ndarray:
+        parts = [_predict(model, r)[k:] for r, k in zip(self.recs, self.starts, strict=True)]
+        return np.concatenate(parts)
+
+    @property
+    def size(self) -> int:
+        return sum(r.n - k for r, k in zip(self.recs, self.starts, strict=True))
+
+    def measured(self) -> np.ndarray:
+        return np.concatenate([r.y[k:] for r, k in zip(self.recs, self.starts, strict=True)])
+
+    def build(self, theta: np.ndarray) -> HysteresisModel:
+        v = dict(zip(self.names, theta.tolist(), strict=True))
+        o, g = v.get("offset", 0.0), v.get("gain", 1.0)
+        offset0, gain0 = self.map0
+        changes = {
+            self.prefix + "output_offset": self.mean + o + g * (offset0 - self.mean),
+            self.prefix + "output_gain": g * gain0,
+        }
+        changes |= {n: b + v.get("dead band", 0.0) / self.unit for n, b in self.band0.items()}
+        if self.load_gain0 is not None:
+            changes["gain"] = self.load_gain0 + v["load gain"]
+        return self.mapped.with_params(**changes)
+
+    def notes(self, model: HysteresisModel, refit) -> list[str]:
+        out = []
+        if "dead band" in refit and not self.band0:
+            out.append(f"dead band: kept ({_kind(model)} has no dead-band parameter)")
+        if "load gain" in refit and self.load_gain0 is None:
+            if isinstance(model, Loaded):
+                out.append("load gain: kept (the load does not vary in the logs)")
+            else:
+                out.append(f"load gain: kept ({_kind(model)} takes no load)")
+        return out
+
+
+def _refit(model: HysteresisModel, recs: list, refit) -> _Refitted:
+    """Fit the ``refit`` shifts of ``model`` on the recordings (see the module's doc); a
+    load gain the logs do not determine (its standard error over :data:`LOAD_GAIN_SPREAD`
+    of the model's own) is kept, and the others refitted without it."""
+    found = _least_squares(_Shifted(model, recs, refit), recs)
+    problem, shifts = found[0], found[1]
+    shift = shifts.get("load gain")
+    if shift is not None and shift.se > LOAD_GAIN_SPREAD * abs(problem.load_gain0):
+        kept = tuple(n for n in refit if n != "load gain")
+        if not kept:
+            raise ValueError("the logs' load does not vary enough to refit the load gain")
+        again = _refit(model, recs, kept)
+        note = (f"load gain: kept (the logs' load varies too little to determine it: "
+                f"+/- {2 * shift.se:.2g} {UNITS['load gain']})")  # fmt: skip
+        return replace(again, notes=[*again.notes, note])
+    problem, shifts, before, after, fun = found
+    notes = problem.notes(model, refit)
+    return _Refitted(problem.build(fun), shifts, before, after, int(problem.size), notes)
+
+
+def _least_squares(problem: _Shifted, recs: list):
+    """(problem, shifts, rmse before, rmse after, the fitted vector)."""
     from scipy.optimize import least_squares
 
-    k = _settle(rec.x)
-    if np.ptp(rec.x) <= 0 or np.all(_branch(rec.x)[k:] == _branch(rec.x)[-1]):
-        raise ValueError("the log's input must move both ways for a shift to be measured")
-    mapped, prefix = _with_map(model)
-    values = mapped.params
-    offset0, gain0 = values[prefix + "output_offset"], values[prefix + "output_gain"]
-    mean = float(np.mean(_predict(model, rec)[k:]))
-    bands = _dead_band_names(mapped) if "dead band" in refit else []
-    band0 = {n: float(values[n]) for n in bands}
-    # a B inside a Scaled map is in the map's normalised input unit
-    unit = float(values["input_scale"]) if bands and bands[0].startswith("inner.") else 1.0
-    names = [n for n in ("offset", "gain") if n in refit] + (["dead band"] if bands else [])
-
-    def build(theta: np.ndarray) -> HysteresisModel:
-        v = dict(zip(names, theta.tolist(), strict=True))
-        o, g = v.get("offset", 0.0), v.get("gain", 1.0)
-        changes = {
-            prefix + "output_offset": mean + o + g * (offset0 - mean),
-            prefix + "output_gain": g * gain0,
-        }
-        changes |= {n: b + v.get("dead band", 0.0) / unit for n, b in band0.items()}
-        return mapped.with_params(**changes)
+    names, y = problem.names, problem.measured()
 
     def residual(theta: np.ndarray) -> np.ndarray:
-        return (_predict(build(theta), rec) - rec.y)[k:]
+        return problem.predict(problem.build(theta)) - y
 
-    start = {"offset": 0.0, "gain": 1.0, "dead band": 0.0}
-    low = {"offset": -np.inf, "gain": 0.2, "dead band": -unit * min(band0.values(), default=0)}
-    scale = {"offset": float(np.ptp(rec.y)) or 1.0, "gain": 0.1, "dead band": 0.01 * np.ptp(rec.x)}
+    start = {"offset": 0.0, "gain": 1.0, "dead band": 0.0, "load gain": 0.0}
+    low = dict.fromkeys(start, -np.inf) | {"gain": 0.2}
+    low["dead band"] = -problem.unit * min(problem.band0.values(), default=0.0)
+    x_span = float(np.ptp(np.concatenate([r.x for r in recs])))
+    loads = [np.ptp(r.load) for r in recs if r.load is not None]
+    scale = {"offset": float(np.ptp(y)), "gain": 0.1, "dead band": 0.01 * x_span,
+             "load gain": float(np.ptp(y)) / max(max(loads, default=1.0), 1e-12)}  # fmt: skip
     found = least_squares(
         residual,
         np.array([start[n] for n in names]),
@@ -312,19 +396,20 @@ def _refit(model: HysteresisModel, rec, refit) -> _Refitted:
         x_scale=[scale[n] or 1.0 for n in names],
         diff_step=1e-4,
     )
-    period = None if rec.t is None else [float(np.median(np.diff(rec.t)))]
-    se, _, _ = newey_west(found.jac, found.fun, len(names), None, periods=period)
-    units = {"offset": "output unit", "gain": "ratio - 1", "dead band": "input unit, half-width"}
+    sizes = [r.n - k for r, k in zip(recs, problem.starts, strict=True)]
+    periods = None if any(r.t is None for r in recs) else [_period(r.t) for r in recs]
+    se, _, _ = newey_west(found.jac, found.fun, len(names), None, sizes, periods)
     shifts = {
-        n: Shift(n, float(v - start[n]), float(e), units[n])
+        n: Shift(n, float(v - start[n]), float(e), UNITS[n])
         for n, v, e in zip(names, found.x, se, strict=True)
     }
-    notes = []
-    if "dead band" in refit and not bands:
-        notes.append(f"dead band: kept ({_kind(model)} has no dead-band parameter)")
     before = float(np.sqrt(np.mean(residual(np.array([start[n] for n in names])) ** 2)))
     after = float(np.sqrt(np.mean(found.fun**2)))
-    return _Refitted(build(found.x), shifts, before, after, int(found.fun.size), notes)
+    return problem, shifts, before, after, found.x
+
+
+def _period(t: np.ndarray) -> float:
+    return float(np.median(np.diff(t)))
 
 
 def _kind(model: HysteresisModel) -> str:
@@ -332,19 +417,29 @@ def _kind(model: HysteresisModel) -> str:
     return type(inner).__name__
 
 
-def session_shift(model: HysteresisModel, log: Any, *, load: Any = None) -> SessionShift:
+def session_shift(
+    model: HysteresisModel, log: Any, *, reference: Any = None, load: Any = None
+) -> SessionShift:
     """Whether ``log`` comes from the drive state ``model`` was fitted in: its output's
     offset and gain and its dead band, refitted on the log with standard errors (see the
     module's doc).
+
+    A model never fits its own logs exactly: from one run to the next (another load, another
+    speed) its offset strays too. ``reference`` (the logs the model was fitted on, or others
+    of its session) measures how far: each shift is then significant only beyond the
+    largest the reference logs show (``Shift.tolerance``), so that a run of the same session
+    is not taken for a new one.
 
     Parameters
     ----------
     model : HysteresisModel
         A fitted model.
-    log : Log or tuple
-        One new recording (t, x, y[, curve angle]); its load where the model takes one.
+    log : Log, tuple or list of them
+        The new recording(s) (t, x, y[, curve angle]); their load where the model takes one.
+    reference : Log, tuple or list of them, optional
+        Logs of the model's own session.
     load : array_like of float, optional
-        The measured load, where the log does not carry it.
+        The measured load of ``log``, where it does not carry it.
 
     Returns
     -------
@@ -354,13 +449,18 @@ def session_shift(model: HysteresisModel, log: Any, *, load: Any = None) -> Sess
     Raises
     ------
     ValueError
-        Not one recording, a missing load, a prediction that is not finite, or an input that
+        No recording, a missing load, a prediction that is not finite, or an input that
         does not move both ways.
     """
-    found = _refit(model, _one_recording(log, load), TERMS)
-    return SessionShift(
-        found.shifts, found.rmse_before, found.rmse_after, found.samples, found.notes
-    )
+    found = _refit(model, _recordings(log, load), TERMS)
+    shifts = found.shifts
+    if reference is not None:
+        own = [_refit(model, [r], TERMS).shifts for r in _recordings(reference, None)]
+        shifts = {
+            name: replace(s, tolerance=max(abs(o[name].value) for o in own if name in o))
+            for name, s in shifts.items()
+        }
+    return SessionShift(shifts, found.rmse_before, found.rmse_after, found.samples, found.notes)
 
 
 def recalibrate(
@@ -378,11 +478,11 @@ def recalibrate(
     ----------
     model : HysteresisModel
         A fitted model.
-    log : Log or tuple
-        The new session's short recording (t, x, y[, curve angle]); its load where the model
-        takes one.
+    log : Log, tuple or list of them
+        The new session's short recording(s) (t, x, y[, curve angle]); their load where the
+        model takes one (at two loads or more for the load gain).
     refit : sequence of str, default ("offset", "gain", "dead band")
-        What to refit.
+        What to refit; "load gain" too, by name.
     load : array_like of float, optional
         The measured load, where the log does not carry it.
 
@@ -395,13 +495,13 @@ def recalibrate(
     Raises
     ------
     ValueError
-        Unknown names in ``refit``, not one recording, a missing load, or an input that does
+        Unknown names in ``refit``, no recording, a missing load, or an input that does
         not move both ways.
     """
-    unknown = [name for name in refit if name not in TERMS]
+    unknown = [name for name in refit if name not in REFITTABLE]
     if unknown or not refit:
-        raise ValueError(f"refit: one or more of {list(TERMS)} (got {list(refit)})")
-    found = _refit(model, _one_recording(log, load), tuple(refit))
+        raise ValueError(f"refit: one or more of {list(REFITTABLE)} (got {list(refit)})")
+    found = _refit(model, _recordings(log, load), tuple(refit))
     mapped, _ = _with_map(model)
     refitted = {n: float(found.model.params[n]) for n in _changed(found.model, mapped)}
     return Recalibration(found.model, refitted, found.rmse_before, found.rmse_after, found.notes)
