@@ -77,7 +77,7 @@ class BagRecorder:
         topics = dict(LOOP_TOPICS if topics is None else topics)
         classes = {topic: _message_class(kind) for topic, kind in topics.items()}
         store = get_typestore(Stores.LATEST)
-        self._writer = Writer(self.path, version=9)
+        self._writer: Any = Writer(self.path, version=9)
         self._writer.open()
         self.node = Node(name, context=context)
         self.counts = dict.fromkeys(topics, 0)
