@@ -59,6 +59,7 @@ PUBLIC_MODULES = [
     "tendonsheath.control_interop",
     "tendonsheath.export_cpp",
     "tendonsheath.protocols",
+    "tendonsheath.ros2",
     "tendonsheath",
 ]
 
