@@ -15,10 +15,10 @@ import platform
 import time
 
 import numpy as np
-from _common import write_results
 from rclpy.executors import SingleThreadedExecutor
 
 import tendonsheath as ts
+from _common import write_results
 from tendonsheath.ros2 import _env, compensator_node, reference_node, sine
 
 RATES = (100.0, 250.0, 500.0)

@@ -162,3 +162,26 @@ def test_the_plant_sources_and_route_changes():
         plant_source(preset="nope")
     member = plant_source(member=MEMBER, torque=True)
     assert member.plant.motor.kind == "torque"
+
+
+def test_without_the_extra_the_commands_say_so_in_one_line(monkeypatch, tmp_path):
+    import subprocess
+    import sys
+
+    from typer.testing import CliRunner
+
+    from tendonsheath.cli import app
+
+    # importing the package (and tendonsheath.ros2) loads no rclpy
+    code = "import sys, tendonsheath.ros2, tendonsheath.cli; print('rclpy' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+    monkeypatch.setitem(sys.modules, "rclpy", None)  # import rclpy: ImportError
+    path = tmp_path / "ff.json"
+    ts.compensate.InverseFeedforward(ts.models.Backlash()).to_json(path)
+    for args in (["plant"], ["compensate", str(path)], ["reference"], ["record", "bag"]):
+        result = CliRunner().invoke(app, ["ros2", *args])
+        assert result.exit_code == 2, result.output
+        assert result.output.strip() == (
+            "error: tendonsheath ros2 (its nodes) needs rclpy: pip install 'tendonsheath[ros2]'"
+        )

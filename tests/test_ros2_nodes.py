@@ -82,15 +82,17 @@ def _cli(*args, domain):
 
 
 @pytest.fixture
-def context(request):
-    os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
-    ctx = _env.init(domain_id=_domain(request.node.name.__hash__() % 2 + 1))
+def context(monkeypatch):
+    """An rclpy context of the worker's second domain (the subprocess test has the first),
+    discovery on this host only; the tests of a worker run one after the other."""
+    monkeypatch.setenv("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+    ctx = _env.init(domain_id=_domain(1))
     yield ctx
     if ctx.ok():
         ctx.shutdown()
 
 
-def test_the_live_loop_tracks_as_bench_run_and_holds_when_the_reference_dies(tmp_path):
+def test_the_live_loop_tracks_as_bench_run_and_holds_when_the_reference_dies(tmp_path, monkeypatch):
     domain = _domain(0)
     path = tmp_path / "ff.json"
     _feedforward().to_json(path)
@@ -99,6 +101,7 @@ def test_the_live_loop_tracks_as_bench_run_and_holds_when_the_reference_dies(tmp
         "plant": _cli("plant", "--member", str(MEMBER), "--rate", rate, domain=domain),
         "compensate": _cli("compensate", str(path), "--rate", rate, domain=domain),
     }
+    monkeypatch.setenv("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")  # this process's too
     ctx = _env.init(domain_id=domain)
     try:
         obs = _Observer(ctx)

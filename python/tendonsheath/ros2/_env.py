@@ -11,7 +11,7 @@ from types import ModuleType
 
 from .._extras import require
 
-FEATURE = "the ROS 2 nodes (tendonsheath ros2)"
+FEATURE = "tendonsheath ros2 (its nodes)"
 # what a node imports: rclpy and the message packages of its topics
 MODULES = (
     "rclpy",
