@@ -60,6 +60,7 @@ PUBLIC_MODULES = [
     "tendonsheath.control_interop",
     "tendonsheath.export_cpp",
     "tendonsheath.protocols",
+    "tendonsheath.ros2",
     "tendonsheath",
 ]
 

@@ -1273,6 +1273,185 @@ def export_command(
     console.print(f"wrote {cpp}", highlight=False)
 
 
+ros2_app = typer.Typer(
+    help="Run on a robot over ROS 2: a compensator node, a simulated drive, a reference, a "
+    "recorder (pip install 'tendonsheath\\[ros2]'; see docs/ros2.md).",
+    no_args_is_help=True,
+)
+app.add_typer(ros2_app, name="ros2")
+
+_PARAM_HELP = "A node parameter KEY=VALUE (repeat; see docs/ros2.md), e.g. -p rate=250."
+_DURATION_HELP = "Stop after this many seconds (default: run until Ctrl-C)."
+_DOMAIN_HELP = "The ROS_DOMAIN_ID (default: the environment's, else 0)."
+
+
+def _ros2_spin(nodes: list, context, duration: float | None, what: str, finish=None) -> None:
+    """Spin until the duration, Ctrl-C or SIGTERM; then ``finish()`` (a recorder's close,
+    which destroys its node), the other nodes destroyed and the context shut down."""
+    from .ros2._run import spin
+
+    console.print(f"{what}: running (Ctrl-C stops it)", highlight=False)
+    try:
+        why = spin(nodes, context, duration)
+    finally:
+        if finish is not None:
+            finish()
+        else:
+            for node in nodes:
+                node.destroy_node()
+        if context.ok():
+            context.shutdown()
+    console.print(f"{what}: stopped ({why})", highlight=False)
+
+
+@ros2_app.command("compensate")
+@_one_paragraph
+@_no_traceback
+def ros2_compensate(
+    file: Path = typer.Argument(..., help="A saved compensator (JSON, from to_json)."),
+    joint: list[str] = typer.Option(None, "--joint", help="A joint's name (repeat; in order)."),
+    rate: float = typer.Option(200.0, "--rate", help="Control cycles per second (Hz)."),
+    param: list[str] = typer.Option(None, "--param", "-p", help=_PARAM_HELP),
+    activate: bool = typer.Option(
+        True,
+        "--activate/--no-activate",
+        help="Configure and activate at once, or wait for a "
+        "lifecycle manager (its change_state service).",
+    ),
+    name: str = typer.Option("tendonsheath_compensator", "--name", help="The node's name."),
+    domain_id: int | None = typer.Option(None, "--domain-id", help=_DOMAIN_HELP),
+    duration: float | None = typer.Option(None, "--duration", help=_DURATION_HELP),
+) -> None:
+    """Run a saved compensator as a ROS 2 lifecycle node: desired positions in, commands out,
+    each cycle's status on /diagnostics."""
+    from .compensate import load
+    from .ros2 import _env
+    from .ros2._run import parsed_parameters
+    from .ros2.compensator_node import PARAMETERS, compensator_node
+
+    _env.ros()
+    if not file.is_file():
+        _fail(f"file not found: {file}")
+    compensator = load(file)
+    params = {"rate": rate, **parsed_parameters(param or [], PARAMETERS)}
+    if joint:
+        params["joints"] = list(joint)
+    context = _env.init(domain_id)
+    node = compensator_node(compensator, name=name, context=context, parameters=params)
+    if activate:
+        node.trigger_configure()
+        node.trigger_activate()
+        if node.live is None:
+            _fail("the compensator node failed to configure (see its log above)")
+    _ros2_spin([node], context, duration, f"{name} ({type(compensator).__name__})")
+
+
+@ros2_app.command("plant")
+@_one_paragraph
+@_no_traceback
+def ros2_plant(
+    preset: str | None = typer.Option(None, "--preset", help="realistic or ideal."),
+    member: int | None = typer.Option(
+        None, "--member", help="A population member: ts.presets.random_realistic_plant(SEED)."
+    ),
+    scenario: Path | None = typer.Option(
+        None, "--scenario", help="The plant of a bench scenario file (TOML)."
+    ),
+    latency: float = typer.Option(0.0, "--latency", help="The tip sensor's latency (s)."),
+    noise: float | None = typer.Option(None, "--noise", help="The tip sensor's noise (rad)."),
+    seed: int = typer.Option(0, "--seed", help="Seed of the sensors' noise."),
+    torque: bool = typer.Option(False, "--torque", help="A torque motor (AdaptiveController)."),
+    rate: float = typer.Option(500.0, "--rate", help="Plant steps per second (Hz)."),
+    param: list[str] = typer.Option(None, "--param", "-p", help=_PARAM_HELP),
+    domain_id: int | None = typer.Option(None, "--domain-id", help=_DOMAIN_HELP),
+    duration: float | None = typer.Option(None, "--duration", help=_DURATION_HELP),
+) -> None:
+    """Run the simulated drive as a ROS 2 node in real time: commands in; the motor encoder,
+    the tip sensor (noise, latency) and the load out; route changes from a topic. Default
+    plant: --preset realistic."""
+    from .ros2 import _env
+    from .ros2._run import parsed_parameters
+    from .ros2.live_plant import plant_source
+    from .ros2.plant_node import PARAMETERS, plant_node
+
+    _env.ros()
+    _check_seed(seed)
+    if preset is None and member is None and scenario is None:
+        preset = "realistic"
+    live = plant_source(
+        preset,
+        member,
+        None if scenario is None else str(scenario),
+        latency=latency,
+        noise=noise,
+        seed=seed,
+        torque=torque,
+    )
+    params = {"rate": rate, **parsed_parameters(param or [], PARAMETERS)}
+    context = _env.init(domain_id)
+    node = plant_node(live, context=context, parameters=params)
+    _ros2_spin([node], context, duration, "tendonsheath_plant")
+
+
+@ros2_app.command("reference")
+@_one_paragraph
+@_no_traceback
+def ros2_reference(
+    amplitude: float = typer.Option(0.3, "--amplitude", help="Amplitude of the sine (rad)."),
+    frequency: float = typer.Option(0.5, "--frequency", help="Its frequency (Hz)."),
+    offset: float = typer.Option(0.0, "--offset", help="Its offset (rad)."),
+    rate: float = typer.Option(200.0, "--rate", help="Messages per second (Hz)."),
+    topic: str = typer.Option("desired", "--topic", help="The topic (JointState)."),
+    joint: str = typer.Option("joint0", "--joint", help="The joint's name."),
+    domain_id: int | None = typer.Option(None, "--domain-id", help=_DOMAIN_HELP),
+    duration: float | None = typer.Option(None, "--duration", help=_DURATION_HELP),
+) -> None:
+    """Publish a sine as the desired position (sensor_msgs/JointState), to try a compensator
+    node without a robot's planner."""
+    from .ros2 import _env
+    from .ros2.reference_node import reference_node, sine
+
+    _env.ros()
+    signal = sine(amplitude, frequency, offset)
+    context = _env.init(domain_id)
+    node = reference_node(signal, rate=rate, topic=topic, joint=joint, context=context)
+    _ros2_spin([node], context, duration, "tendonsheath_reference")
+
+
+@ros2_app.command("record")
+@_one_paragraph
+@_no_traceback
+def ros2_record(
+    out: Path = typer.Argument(..., help="The bag's folder (new)."),
+    topic: list[str] = typer.Option(
+        None,
+        "--topic",
+        help="TOPIC=TYPE, e.g. tip_state=sensor_msgs/msg/JointState (repeat; "
+        "default the live loop's topics).",
+    ),
+    domain_id: int | None = typer.Option(None, "--domain-id", help=_DOMAIN_HELP),
+    duration: float | None = typer.Option(None, "--duration", help=_DURATION_HELP),
+) -> None:
+    """Record topics into a ROS 2 bag (rosbags' writer: no rosbag2 needed) that read_log
+    reads back."""
+    from .ros2 import _env
+    from .ros2.recorder import BagRecorder
+
+    _env.ros()
+    topics = None
+    if topic:
+        pairs = [t.partition("=") for t in topic]
+        bad = [t for t, (_, sep, kind) in zip(topic, pairs, strict=True) if not (sep and kind)]
+        if bad:
+            _fail(f"--topic takes TOPIC=TYPE (got {bad[0]!r})")
+        topics = {name: kind for name, _, kind in pairs}
+    context = _env.init(domain_id)
+    recorder = BagRecorder(out, topics, context=context)
+    _ros2_spin([recorder.node], context, duration, f"recording {out}", finish=recorder.close)
+    counts = ", ".join(f"{k} {v}" for k, v in recorder.counts.items())
+    console.print(f"wrote {out} ({counts} messages)", highlight=False)
+
+
 def main() -> None:
     app()
 

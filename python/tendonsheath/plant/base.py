@@ -290,6 +290,19 @@ class _Plant(PythonObject):
         """
         return self._bound_class.input(self)
 
+    def motor_position(self) -> float:
+        """The motor shaft's angle after the last step, before the gear's play: what its
+        encoder reads (without a motor, the plant input).
+
+        Returns
+        -------
+        float
+            The shaft angle (rad; m for a single tendon).
+        """
+        if self._drive is None:
+            return self.input()
+        return float(self._drive.position())
+
     def tensions(self) -> np.ndarray:
         """Element tensions (N) after the last step, proximal to distal.
 
