@@ -17,6 +17,7 @@ from ..models import HysteresisModel
 from ..plant.physics import route_shape as shape_of
 from ..simulation_result import SimulationResult
 from . import _bound as core
+from ._kinds import require_model
 from .base import Feedforward, command_result
 from .inverse_model import describe, follows_route, route_friction
 from .limits import LimitsLike, as_limits
@@ -116,11 +117,7 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
         range_margin: float = 0.1,
         filter_hz: float | None = None,
     ):
-        if not isinstance(model, HysteresisModel):
-            raise TypeError(
-                "InverseFeedforward: model must be a tendonsheath model "
-                f"(got {type(model).__name__})"
-            )
+        require_model("InverseFeedforward", model)
         self.model = model
         self.smoothing = number("InverseFeedforward", "smoothing", smoothing)
         self.limits = as_limits(limits)

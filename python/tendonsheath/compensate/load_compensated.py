@@ -29,6 +29,7 @@ from ..models.loaded import Loaded
 from ..simulation_result import SimulationResult
 from . import _bound as core
 from . import persistence
+from ._kinds import require_model
 from .base import SavedAsJson, command_result
 from .inverse_feedforward import InverseFeedforward
 
@@ -68,8 +69,7 @@ class LoadCompensated(PythonObject, SavedAsJson):
     )
 
     def __init__(self, model: Loaded, switch: float | None = None, **inverse_options: Any):
-        if not isinstance(model, Loaded):
-            raise TypeError(f"LoadCompensated needs a Loaded model (got {type(model).__name__})")
+        require_model("LoadCompensated", model, Loaded)
         self.model = model
         if switch is None:
             span = 1.0
