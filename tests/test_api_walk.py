@@ -492,7 +492,7 @@ MINIMAL_CALLS = {
         lambda kw: ts.models.Loaded(_model()).with_params(**kw)
     ),
     "tendonsheath.models.loaded.Loaded.simulate": (
-        lambda kw: ts.models.Loaded(_model()).simulate(np.arange(3.0), np.zeros(3), **kw)
+        lambda kw: ts.models.Loaded(_model()).simulate(np.arange(3.0), np.zeros(3), 0.0, **kw)
     ),
     "tendonsheath.compensate.load_compensated.LoadCompensated": (
         lambda kw: ts.compensate.LoadCompensated(ts.models.Loaded(_model()), **kw)

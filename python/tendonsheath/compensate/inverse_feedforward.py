@@ -198,6 +198,7 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
         core.ModelInverse.set_curve_angle(
             self, checked_curve_angle(who, number(who, "curve_angle", curve_angle))
         )
+        self._route_given = True
 
     def set_shape(self, shape: Any) -> None:
         """A route's shape integrals (``ts.physics.route_shape(route, self.friction)``), for an
@@ -209,6 +210,7 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
             g, G (computed with :attr:`friction`) and the total angle.
         """
         core.ModelInverse.set_shape(self, shape)
+        self._route_given = True
 
     def set_route(self, route: Route) -> None:
         """Any route: its shape integrals with :attr:`friction` (see :meth:`set_shape`).
@@ -227,6 +229,7 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
             raise TypeError(f"set_route needs a Route (got {route!r})")
         if self.follows_route:
             core.ModelInverse.set_shape(self, shape_of(route, self.friction or 0.0))
+            self._route_given = True
 
     def step(
         self, y_d: float, dt: float, curve_angle: float | None = None, route: Route | None = None
@@ -249,12 +252,24 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
         -------
         float
             The motor command.
+
+        Raises
+        ------
+        ValueError
+            An inverse that follows the route, with no route or curve angle given yet (now,
+            or by set_curve_angle, set_shape or set_route).
         """
         dt = checked_dt(dt)
         if route is not None:
             self.set_route(route)
         elif curve_angle is not None:
             self.set_curve_angle(curve_angle)
+        elif self.follows_route and not getattr(self, "_route_given", False):
+            raise ValueError(
+                f"InverseFeedforward.step: the inverse of {type(self.model).__name__} follows "
+                "the route: give curve_angle= or route= (or set_curve_angle) before the first "
+                "step; its command depends on it"
+            )
         return core.ModelInverse.step(self, float(y_d), float(dt))
 
     def _control_step(self, u, dt: float) -> float:

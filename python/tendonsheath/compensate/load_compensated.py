@@ -99,7 +99,7 @@ class LoadCompensated(PythonObject, SavedAsJson):
         self._play.reset()
         self._load = 0.0
 
-    def step(self, y_d: float, dt: float, load: float = 0.0) -> float:
+    def step(self, y_d: float, dt: float, load: float) -> float:
         """One control cycle.
 
         Parameters
@@ -108,8 +108,10 @@ class LoadCompensated(PythonObject, SavedAsJson):
             Desired output.
         dt : float
             Time since the previous cycle (s), >= 0.
-        load : float, default 0.0
-            The load measured (or estimated) this cycle; a non-finite value holds the last.
+        load : float
+            The load measured (or estimated) this cycle, required as in C++'s
+            ``step(y_d, dt, load)``; a non-finite value holds the last finite one (0 before
+            the first, as the C++ step, which cannot throw, does).
 
         Returns
         -------
