@@ -391,9 +391,9 @@ def se_dict(model, entries: Sequence[Entry], se: np.ndarray) -> dict:
         if e.scale:
             v = np.asarray(params[e.key], dtype=float)
             ref = float(np.max(np.abs(v)))
-            out[e.key] = (np.abs(v) * (float(s) / ref if ref > 0 else 0.0)).tolist()
-        elif e.index is not None:
-            out.setdefault(e.key, [0.0] * len(params[e.key]))[e.index] = float(s)
+            out[e.key] = (np.abs(v) * (float(s) / ref if ref > 0 else np.nan)).tolist()
+        elif e.index is not None:  # an element not identified (held) has no error: NaN
+            out.setdefault(e.key, [float("nan")] * len(params[e.key]))[e.index] = float(s)
         else:
             out[e.key] = float(s)
         for key in e.also:
@@ -495,11 +495,46 @@ def covariance(J: np.ndarray, sse: float, n_fit: int) -> np.ndarray:
 
 
 def linearised_se(J: np.ndarray, sse: float, n_fit: int) -> np.ndarray:
-    """s^2 (J'J)^-1 standard errors, s^2 = SSE / (N - p); NaN if J is not finite."""
+    """s^2 (J'J)^-1 standard errors, s^2 = SSE / (N - p); NaN if J is not finite. A
+    parameter the data do not determine gets inf, never a small number: one the output does
+    not depend on (a zero column), or one that dominates (component > 0.25) a direction
+    whose singular value of the column-normalised J is below RCOND times the largest (an
+    exactly collinear group, such as a constant regressor beside an offset)."""
     k = J.shape[1]
     if not np.all(np.isfinite(J)):
         return np.full(k, np.nan)
-    return np.sqrt(np.clip(np.diag(covariance(J, sse, n_fit)), 0.0, None))
+    se = np.sqrt(np.clip(np.diag(covariance(J, sse, n_fit)), 0.0, None))
+    norms = np.linalg.norm(J, axis=0)
+    se[~(norms > 0)] = np.inf
+    if k and np.any(norms > 0):
+        _, sv, vt = np.linalg.svd(J / np.where(norms > 0, norms, 1.0), full_matrices=False)
+        for value, direction in zip(sv, vt, strict=True):
+            if value <= RCOND * sv[0]:
+                se[np.abs(direction) > 0.25] = np.inf
+    return se
+
+
+def undetermined_notes(errors: dict[str, Any]) -> list[str]:
+    """A warning note ("!" first) naming the estimates whose standard error is inf (the data
+    do not determine them, see :func:`linearised_se`); none when there are none.
+
+    Parameters
+    ----------
+    errors : dict of str to float or list of float
+        Standard errors by name.
+
+    Returns
+    -------
+    list of str
+        One note, or none.
+    """
+    names = [k for k, v in errors.items() if any(np.isposinf(np.asarray(v, dtype=float).ravel()))]
+    if not names:
+        return []
+    return [
+        f"!the data do not determine {', '.join(names)} (standard error inf): a constant or "
+        "collinear regressor, or an effect the records never excite"
+    ]
 
 
 # -- bootstrap -------------------------------------------------------------------------------
@@ -600,6 +635,7 @@ __all__ = [
     "linearised_se",
     "moving_block_resample",
     "se_dict",
+    "undetermined_notes",
     "vector_of",
     "with_vector",
 ]
