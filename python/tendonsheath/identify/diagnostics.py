@@ -199,7 +199,7 @@ class Diagnostics:
         d.condition_number = float(sv[0] / sv[-1]) if sv[-1] > 0 else float("inf")
         weak = np.abs(vt[-1])
         d.weak = [names[i] for i in np.argsort(weak)[::-1] if weak[i] > 0.25][:4]
-        cov = _inverse_gram(sv, vt)
+        cov = inverse_gram(sv, vt)
         sd = np.sqrt(np.clip(np.diag(cov), 0.0, None))
         with np.errstate(invalid="ignore", divide="ignore"):
             corr = cov / np.outer(sd, sd)
@@ -475,7 +475,7 @@ def fd_jacobian(
 RCOND = 1e-12  # singular values of the column-normalised J floored at RCOND * the largest
 
 
-def _inverse_gram(sv: np.ndarray, vt: np.ndarray) -> np.ndarray:
+def inverse_gram(sv: np.ndarray, vt: np.ndarray) -> np.ndarray:
     """(Js'Js)^-1 from the SVD of the column-normalised Jacobian Js, with the singular values
     floored at RCOND times the largest: an unidentifiable direction gets a huge (not a
     discarded, as with a pseudo-inverse) variance, so its parameters show large standard
@@ -491,7 +491,7 @@ def covariance(J: np.ndarray, sse: float, n_fit: int) -> np.ndarray:
     norms = np.where(norms > 0, norms, 1.0)
     _, sv, vt = np.linalg.svd(J / norms, full_matrices=False)
     s2 = sse / max(n_fit - k, 1)
-    return s2 * _inverse_gram(sv, vt) / np.outer(norms, norms)
+    return s2 * inverse_gram(sv, vt) / np.outer(norms, norms)
 
 
 def linearised_se(J: np.ndarray, sse: float, n_fit: int) -> np.ndarray:
@@ -632,6 +632,7 @@ __all__ = [
     "entries_from_labels",
     "entries_of",
     "fd_jacobian",
+    "inverse_gram",
     "linearised_se",
     "moving_block_resample",
     "se_dict",
