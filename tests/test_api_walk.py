@@ -447,9 +447,11 @@ def _loop_dynamics():
 
 
 def _coupled_log():
-    """_log() on two joints (the second reversed in time)."""
+    """_log() on two joints (the second shifted by a quarter of the record: a reversed one
+    can be the same signal, which identify_coupled refuses)."""
     t, x, y = _log()
-    return t, np.column_stack([x, x[::-1]]), np.column_stack([y, y[::-1]])
+    shift = x.size // 4
+    return t, np.column_stack([x, np.roll(x, shift)]), np.column_stack([y, np.roll(y, shift)])
 
 
 MINIMAL_CALLS = {
@@ -494,7 +496,7 @@ MINIMAL_CALLS = {
         lambda kw: ts.models.Loaded(_model()).with_params(**kw)
     ),
     "tendonsheath.models.loaded.Loaded.simulate": (
-        lambda kw: ts.models.Loaded(_model()).simulate(np.arange(3.0), np.zeros(3), **kw)
+        lambda kw: ts.models.Loaded(_model()).simulate(np.arange(3.0), np.zeros(3), 0.0, **kw)
     ),
     "tendonsheath.compensate.load_compensated.LoadCompensated": (
         lambda kw: ts.compensate.LoadCompensated(ts.models.Loaded(_model()), **kw)

@@ -178,7 +178,7 @@ def test_load_compensated_commands_make_the_model_follow(seed):
     pairs = enumerate(zip(y_d, load, strict=True))
     streamed = [ff.step(a, 1e-3 if k else 0.0, b) for k, (a, b) in pairs]
     np.testing.assert_allclose(streamed, u, atol=1e-9)
-    with pytest.raises(TypeError, match="needs a Loaded model"):
+    with pytest.raises(TypeError, match="model must be a Loaded model"):
         ts.compensate.LoadCompensated(ts.models.Backlash())
 
 

@@ -611,8 +611,11 @@ def test_equal_models_hash_equal_and_work_as_set_members_and_keys(name, rng):
         assert len({a, b}) == 1 and {a: "x"}[b] == "x"
         before = hash(a)
         t = np.linspace(0.0, 1.0, 50)
+        # a model that takes the curve angle needs one on its first step (then keeps it)
+        first = {"curve_angle": 1.0} if getattr(a, "uses_curve_angle", False) else {}
         for k, x in enumerate(np.sin(2 * np.pi * t)):
-            a.step(x, 0.0 if k == 0 else t[1])  # the streaming state moves, the value does not
+            # the streaming state moves, the value does not
+            a.step(x, 0.0 if k == 0 else t[1], **(first if k == 0 else {}))
         assert hash(a) == before and a == b
 
 

@@ -21,6 +21,7 @@ are there (not their signatures).
 
 from __future__ import annotations
 
+import inspect
 from typing import Any, Protocol, runtime_checkable
 
 __all__ = [
@@ -244,7 +245,34 @@ def step_signals(compensator: object) -> tuple[str, ...]:
             f"{type(compensator).__name__}.step_inputs must name distinct signals among "
             f"{list(STEP_SIGNALS)} (got {list(inputs)})"
         )
+    _check_step_arguments(compensator, inputs)
     return inputs
+
+
+def _check_step_arguments(compensator: object, inputs: tuple[str, ...]) -> None:
+    """``step`` takes the signals ``inputs`` names, then dt: else the loop would fail on its
+    first step, deep inside (a step that takes a measurement without declaring it). A step
+    without a signature to read (a compiled one) is its binding's to check."""
+    if callable(getattr(compensator, "_tendonsheath_compensator", None)):
+        return
+    try:
+        params = list(inspect.signature(compensator.step).parameters.values())  # type: ignore[attr-defined]
+    except (AttributeError, TypeError, ValueError):
+        return
+    if any(p.kind is p.VAR_POSITIONAL for p in params):
+        return
+    positional = [p for p in params if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+    required = [p for p in positional if p.default is p.empty]
+    if len(required) <= len(inputs) + 1 <= len(positional):
+        return
+    name = type(compensator).__name__
+    told = "its step_inputs" if hasattr(compensator, "step_inputs") else "the default step_inputs"
+    raise TypeError(
+        f"{name}.step({', '.join(p.name for p in positional)}) takes "
+        f"{len(required)} argument(s), but {told} {list(inputs)} and dt make "
+        f"{len(inputs) + 1}: set the class attribute step_inputs to the signals step takes "
+        f"before dt, among {list(STEP_SIGNALS)}"
+    )
 
 
 def _members(protocol: type) -> list[str]:

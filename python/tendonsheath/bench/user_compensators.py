@@ -18,12 +18,11 @@ from __future__ import annotations
 
 import importlib
 import importlib.util
-import inspect
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..protocols import STEP_SIGNALS, StreamingCompensator, missing_members, step_signals
+from ..protocols import StreamingCompensator, missing_members, step_signals
 
 _ENTRY_KEYS = {"class", "file", "name", "kwargs"}
 
@@ -138,32 +137,12 @@ def _check_builds(user: UserCompensator, here: str) -> None:
 
 
 def _check_step(instance, here: str, origin: str) -> None:
-    """``step`` takes the signals its ``step_inputs`` names, then dt (else the bench loop
-    would fail on its first step, deep inside). A compiled compensator runs in C++: its own
-    binding checks it."""
-    if callable(getattr(instance, "_tendonsheath_compensator", None)):
-        return
+    """``step`` takes the signals its ``step_inputs`` names, then dt (checked by
+    :func:`~tendonsheath.protocols.step_signals`), named by the entry."""
     try:
-        signals = step_signals(instance)
+        step_signals(instance)
     except TypeError as exc:
-        raise ValueError(f"{here}: {exc}") from None
-    try:
-        params = list(inspect.signature(instance.step).parameters.values())
-    except (TypeError, ValueError):  # no signature to read (a builtin): the loop will tell
-        return
-    if any(p.kind is p.VAR_POSITIONAL for p in params):
-        return
-    positional = [p for p in params if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
-    required = [p for p in positional if p.default is p.empty]
-    if len(required) <= len(signals) + 1 <= len(positional):
-        return
-    told = "its step_inputs" if hasattr(instance, "step_inputs") else "the default step_inputs"
-    names = ", ".join(p.name for p in positional)
-    raise ValueError(
-        f"{here}: {origin}.step({names}) takes {len(positional)} argument(s), but {told} "
-        f"{list(signals)} and dt make {len(signals) + 1}: set the class attribute step_inputs "
-        f"to the signals step takes before dt, among {list(STEP_SIGNALS)}"
-    )
+        raise ValueError(f"{here}: {origin}: {exc}") from None
 
 
 def told_by_user(user: UserCompensator) -> dict[str, tuple[Any, str]]:

@@ -10,6 +10,7 @@ from .._arrays import checked_dt
 from .._pyobject import bound_attribute
 from ..models import Backlash, BoucWenBacklash, HysteresisModel
 from . import _bound as core
+from ._kinds import require_dynamics, require_model
 from .base import EngineCompensator
 
 _GAINS = (
@@ -89,11 +90,7 @@ class AdaptiveController(EngineCompensator, core.AdaptiveController):  # type: i
         for key, value in gains.items():
             setattr(p, key, bool(value) if key == "model_acceleration" else number(who, key, value))
         if feedforward_model is not None:
-            if not isinstance(feedforward_model, Backlash | BoucWenBacklash):
-                raise TypeError(
-                    f"{who}: feedforward_model must be a Backlash or BoucWenBacklash "
-                    f"(got {type(feedforward_model).__name__})"
-                )
+            require_model(who, feedforward_model, (Backlash, BoucWenBacklash), "feedforward_model")
             ff = core.BacklashInverseParams()
             for key in ("c_r", "c_l", "B_r", "B_l"):
                 setattr(ff, key, feedforward_model.params[key])
@@ -265,7 +262,9 @@ class AdaptiveController(EngineCompensator, core.AdaptiveController):  # type: i
         """
         from .adaptive_tuning import choose_bandwidth
 
-        dyns = list(dynamics) if isinstance(dynamics, list | tuple) else [dynamics]
+        dyns = require_dynamics("AdaptiveController.from_calibration", dynamics)
+        if model is not None:
+            require_model("AdaptiveController.from_calibration", model, (Backlash, BoucWenBacklash))
 
         def build(bandwidth_hz: float, cutoff_hz: float) -> AdaptiveController:
             return cls.from_model(model, inertia, viscous, bandwidth_hz, cutoff_hz, max_torque,

@@ -18,6 +18,7 @@ from ..simulation_result import SimulationResult
 from ..status import Status
 from . import _bound as core
 from . import persistence
+from ._kinds import require_model
 from .base import SavedAsJson
 from .inverse_feedforward import InverseFeedforward
 
@@ -62,11 +63,7 @@ class CoupledFeedforward(PythonObject, SavedAsJson, core.CoupledFeedforward):  #
     _optional_settings = ("input_range",)
 
     def __init__(self, model: Coupled, **settings: Any):
-        if not isinstance(model, Coupled):
-            raise TypeError(
-                f"CoupledFeedforward: model must be a tendonsheath.models.Coupled "
-                f"(got {type(model).__name__})"
-            )
+        require_model("CoupledFeedforward", model, Coupled)
         self.model = model
         self.settings = dict(settings)
         # each joint's inverse, as built from its model and the settings (the C++ object

@@ -10,6 +10,7 @@ from .._arrays import checked_dt
 from .._pyobject import bound_attribute
 from ..protocols import step_signals
 from . import _bound as core
+from ._kinds import require_feedforward, require_servo
 from .around import AroundFeedforward
 from .limits import LimitsLike, as_limits
 
@@ -79,8 +80,8 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         limits: LimitsLike = None,
     ):
         who = "EncoderLoop"
-        missing = [m for m in ("reset", "step") if not callable(getattr(feedforward, m, None))]
-        if missing or isinstance(feedforward, EncoderLoop) or step_signals(feedforward) != ("y_d",):
+        require_feedforward(who, feedforward)
+        if isinstance(feedforward, EncoderLoop) or step_signals(feedforward) != ("y_d",):
             raise TypeError(
                 f"{who}: feedforward must be a feedforward compensator with reset() and "
                 f"step(y_d, dt) (got {type(feedforward).__name__})"
@@ -159,6 +160,8 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         """
         from .tuning import tune_encoder_loop
 
+        require_feedforward("EncoderLoop.from_calibration", feedforward)
+        require_servo("EncoderLoop.from_calibration", servo)
         design = tune_encoder_loop(servo, dt, max_sensitivity, derivative, servo_integral_only)
         loop = cls(feedforward, **design.gains(), limits=limits)
         loop.design = design

@@ -17,6 +17,7 @@ from ..models import HysteresisModel
 from ..plant.physics import route_shape as shape_of
 from ..simulation_result import SimulationResult
 from . import _bound as core
+from ._kinds import require_model
 from .base import Feedforward, command_result
 from .inverse_model import describe, follows_route, route_friction
 from .limits import LimitsLike, as_limits
@@ -116,11 +117,7 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
         range_margin: float = 0.1,
         filter_hz: float | None = None,
     ):
-        if not isinstance(model, HysteresisModel):
-            raise TypeError(
-                "InverseFeedforward: model must be a tendonsheath model "
-                f"(got {type(model).__name__})"
-            )
+        require_model("InverseFeedforward", model)
         self.model = model
         self.smoothing = number("InverseFeedforward", "smoothing", smoothing)
         self.limits = as_limits(limits)
@@ -201,6 +198,7 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
         core.ModelInverse.set_curve_angle(
             self, checked_curve_angle(who, number(who, "curve_angle", curve_angle))
         )
+        self._route_given = True
 
     def set_shape(self, shape: Any) -> None:
         """A route's shape integrals (``ts.physics.route_shape(route, self.friction)``), for an
@@ -212,6 +210,7 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
             g, G (computed with :attr:`friction`) and the total angle.
         """
         core.ModelInverse.set_shape(self, shape)
+        self._route_given = True
 
     def set_route(self, route: Route) -> None:
         """Any route: its shape integrals with :attr:`friction` (see :meth:`set_shape`).
@@ -230,6 +229,7 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
             raise TypeError(f"set_route needs a Route (got {route!r})")
         if self.follows_route:
             core.ModelInverse.set_shape(self, shape_of(route, self.friction or 0.0))
+            self._route_given = True
 
     def step(
         self, y_d: float, dt: float, curve_angle: float | None = None, route: Route | None = None
@@ -252,12 +252,24 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
         -------
         float
             The motor command.
+
+        Raises
+        ------
+        ValueError
+            An inverse that follows the route, with no route or curve angle given yet (now,
+            or by set_curve_angle, set_shape or set_route).
         """
         dt = checked_dt(dt)
         if route is not None:
             self.set_route(route)
         elif curve_angle is not None:
             self.set_curve_angle(curve_angle)
+        elif self.follows_route and not getattr(self, "_route_given", False):
+            raise ValueError(
+                f"InverseFeedforward.step: the inverse of {type(self.model).__name__} follows "
+                "the route: give curve_angle= or route= (or set_curve_angle) before the first "
+                "step; its command depends on it"
+            )
         return core.ModelInverse.step(self, float(y_d), float(dt))
 
     def _control_step(self, u, dt: float) -> float:

@@ -32,6 +32,7 @@ from scipy import signal
 from .._args import integer, number
 from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
+from ._kinds import require_feedforward
 from .learned_feedforward import LearnedFeedforward
 from .limits import LimitsLike
 
@@ -207,6 +208,7 @@ class IterativeLearning(PythonObject):
         limits: LimitsLike = None,
     ):
         who = "IterativeLearning"
+        require_feedforward(who, feedforward)
         ts = np.asarray(t, dtype=np.float64)
         ys = np.asarray(reference, dtype=np.float64)
         if ts.ndim != 1 or ys.shape != ts.shape or ts.size < 2:

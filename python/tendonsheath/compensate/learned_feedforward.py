@@ -12,6 +12,7 @@ from .._pyobject import bound_attribute
 from .._typing import ArrayLike, FloatArray
 from ..simulation_result import SimulationResult
 from . import _bound as core
+from ._kinds import require_feedforward
 from .around import AroundFeedforward
 from .base import command_result
 from .limits import LimitsLike, as_limits
@@ -72,9 +73,9 @@ class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ig
         limits: LimitsLike = None,
     ):
         who = "LearnedFeedforward"
-        missing = [m for m in ("reset", "step") if not callable(getattr(feedforward, m, None))]
+        require_feedforward(who, feedforward)
         takes_y_d = tuple(getattr(feedforward, "step_inputs", ("y_d",))) == ("y_d",)
-        if missing or not takes_y_d or isinstance(feedforward, LearnedFeedforward):
+        if not takes_y_d or isinstance(feedforward, LearnedFeedforward):
             raise TypeError(
                 f"{who}: feedforward must be a feedforward compensator with reset() and "
                 f"step(y_d, dt) (got {type(feedforward).__name__}; put an EncoderLoop or a "

@@ -29,6 +29,7 @@ from ..models.loaded import Loaded
 from ..simulation_result import SimulationResult
 from . import _bound as core
 from . import persistence
+from ._kinds import require_model
 from .base import SavedAsJson, command_result
 from .inverse_feedforward import InverseFeedforward
 
@@ -68,8 +69,7 @@ class LoadCompensated(PythonObject, SavedAsJson):
     )
 
     def __init__(self, model: Loaded, switch: float | None = None, **inverse_options: Any):
-        if not isinstance(model, Loaded):
-            raise TypeError(f"LoadCompensated needs a Loaded model (got {type(model).__name__})")
+        require_model("LoadCompensated", model, Loaded)
         self.model = model
         if switch is None:
             span = 1.0
@@ -99,7 +99,7 @@ class LoadCompensated(PythonObject, SavedAsJson):
         self._play.reset()
         self._load = 0.0
 
-    def step(self, y_d: float, dt: float, load: float = 0.0) -> float:
+    def step(self, y_d: float, dt: float, load: float) -> float:
         """One control cycle.
 
         Parameters
@@ -108,8 +108,10 @@ class LoadCompensated(PythonObject, SavedAsJson):
             Desired output.
         dt : float
             Time since the previous cycle (s), >= 0.
-        load : float, default 0.0
-            The load measured (or estimated) this cycle; a non-finite value holds the last.
+        load : float
+            The load measured (or estimated) this cycle, required as in C++'s
+            ``step(y_d, dt, load)``; a non-finite value holds the last finite one (0 before
+            the first, as the C++ step, which cannot throw, does).
 
         Returns
         -------

@@ -12,6 +12,7 @@ from .._arrays import checked_dt
 from .._pyobject import bound_attribute
 from ..protocols import step_signals
 from . import _bound as core
+from ._kinds import require_dynamics, require_feedforward, require_model
 from .around import AroundFeedforward, follows_route
 from .limits import LimitsLike, as_limits
 
@@ -125,8 +126,8 @@ class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
         limits: LimitsLike = None,
     ):
         who = "TipLoop"
-        missing = [m for m in ("reset", "step") if not callable(getattr(feedforward, m, None))]
-        if missing or step_signals(feedforward) != ("y_d",):
+        require_feedforward(who, feedforward)
+        if step_signals(feedforward) != ("y_d",):
             raise TypeError(
                 f"{who}: feedforward must be a feedforward compensator with reset() and "
                 f"step(y_d, dt) (got {type(feedforward).__name__})"
@@ -266,6 +267,9 @@ class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
             with_dead_band_scaled,
         )
 
+        who = "TipLoop.from_calibration"
+        require_model(who, model)
+        dynamics = require_dynamics(who, dynamics)
         bounds = _as_values(max_sensitivity)
         scales = _as_values(dead_band_scale)
         options = dict(feedforward_options or {})

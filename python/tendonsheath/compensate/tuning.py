@@ -35,6 +35,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from scipy.optimize import brentq
 
+from ._kinds import require_servo
+
 if TYPE_CHECKING:
     from ..identify.servo import ServoFit
 
@@ -405,6 +407,7 @@ def tune_encoder_loop(
         dt or max_sensitivity out of range, or no gains that keep the loop stable within
         ``max_sensitivity`` (the identified servo cannot be closed at this cycle time).
     """
+    require_servo("tune_encoder_loop", servo)
     dt, ms = float(dt), float(max_sensitivity)
     if not (math.isfinite(dt) and dt > 0):
         raise ValueError(f"tune_encoder_loop: dt must be > 0 (got {dt})")

@@ -117,6 +117,12 @@ def make_recordings(
             raise ValueError(f"{who}x and y have different lengths ({xs.size} and {ys.size})")
         _check_scale(xs, f"{who}input x")
         _check_scale(ys, f"{who}output y")
+        if np.array_equal(xs, ys):
+            raise ValueError(
+                f"{who}the output y is the input x, sample for sample (the same column read "
+                "twice?): a fit would be the identity, not the drive; read the output from "
+                "its own column"
+            )
         ts = None
         if ti is not None:
             ts = _vector(ti, f"{who}time t")

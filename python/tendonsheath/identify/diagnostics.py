@@ -199,7 +199,7 @@ class Diagnostics:
         d.condition_number = float(sv[0] / sv[-1]) if sv[-1] > 0 else float("inf")
         weak = np.abs(vt[-1])
         d.weak = [names[i] for i in np.argsort(weak)[::-1] if weak[i] > 0.25][:4]
-        cov = _inverse_gram(sv, vt)
+        cov = inverse_gram(sv, vt)
         sd = np.sqrt(np.clip(np.diag(cov), 0.0, None))
         with np.errstate(invalid="ignore", divide="ignore"):
             corr = cov / np.outer(sd, sd)
@@ -391,9 +391,9 @@ def se_dict(model, entries: Sequence[Entry], se: np.ndarray) -> dict:
         if e.scale:
             v = np.asarray(params[e.key], dtype=float)
             ref = float(np.max(np.abs(v)))
-            out[e.key] = (np.abs(v) * (float(s) / ref if ref > 0 else 0.0)).tolist()
-        elif e.index is not None:
-            out.setdefault(e.key, [0.0] * len(params[e.key]))[e.index] = float(s)
+            out[e.key] = (np.abs(v) * (float(s) / ref if ref > 0 else np.nan)).tolist()
+        elif e.index is not None:  # an element not identified (held) has no error: NaN
+            out.setdefault(e.key, [float("nan")] * len(params[e.key]))[e.index] = float(s)
         else:
             out[e.key] = float(s)
         for key in e.also:
@@ -475,7 +475,7 @@ def fd_jacobian(
 RCOND = 1e-12  # singular values of the column-normalised J floored at RCOND * the largest
 
 
-def _inverse_gram(sv: np.ndarray, vt: np.ndarray) -> np.ndarray:
+def inverse_gram(sv: np.ndarray, vt: np.ndarray) -> np.ndarray:
     """(Js'Js)^-1 from the SVD of the column-normalised Jacobian Js, with the singular values
     floored at RCOND times the largest: an unidentifiable direction gets a huge (not a
     discarded, as with a pseudo-inverse) variance, so its parameters show large standard
@@ -491,15 +491,50 @@ def covariance(J: np.ndarray, sse: float, n_fit: int) -> np.ndarray:
     norms = np.where(norms > 0, norms, 1.0)
     _, sv, vt = np.linalg.svd(J / norms, full_matrices=False)
     s2 = sse / max(n_fit - k, 1)
-    return s2 * _inverse_gram(sv, vt) / np.outer(norms, norms)
+    return s2 * inverse_gram(sv, vt) / np.outer(norms, norms)
 
 
 def linearised_se(J: np.ndarray, sse: float, n_fit: int) -> np.ndarray:
-    """s^2 (J'J)^-1 standard errors, s^2 = SSE / (N - p); NaN if J is not finite."""
+    """s^2 (J'J)^-1 standard errors, s^2 = SSE / (N - p); NaN if J is not finite. A
+    parameter the data do not determine gets inf, never a small number: one the output does
+    not depend on (a zero column), or one that dominates (component > 0.25) a direction
+    whose singular value of the column-normalised J is below RCOND times the largest (an
+    exactly collinear group, such as a constant regressor beside an offset)."""
     k = J.shape[1]
     if not np.all(np.isfinite(J)):
         return np.full(k, np.nan)
-    return np.sqrt(np.clip(np.diag(covariance(J, sse, n_fit)), 0.0, None))
+    se = np.sqrt(np.clip(np.diag(covariance(J, sse, n_fit)), 0.0, None))
+    norms = np.linalg.norm(J, axis=0)
+    se[~(norms > 0)] = np.inf
+    if k and np.any(norms > 0):
+        _, sv, vt = np.linalg.svd(J / np.where(norms > 0, norms, 1.0), full_matrices=False)
+        for value, direction in zip(sv, vt, strict=True):
+            if value <= RCOND * sv[0]:
+                se[np.abs(direction) > 0.25] = np.inf
+    return se
+
+
+def undetermined_notes(errors: dict[str, Any]) -> list[str]:
+    """A warning note ("!" first) naming the estimates whose standard error is inf (the data
+    do not determine them, see :func:`linearised_se`); none when there are none.
+
+    Parameters
+    ----------
+    errors : dict of str to float or list of float
+        Standard errors by name.
+
+    Returns
+    -------
+    list of str
+        One note, or none.
+    """
+    names = [k for k, v in errors.items() if any(np.isposinf(np.asarray(v, dtype=float).ravel()))]
+    if not names:
+        return []
+    return [
+        f"!the data do not determine {', '.join(names)} (standard error inf): a constant or "
+        "collinear regressor, or an effect the records never excite"
+    ]
 
 
 # -- bootstrap -------------------------------------------------------------------------------
@@ -597,9 +632,11 @@ __all__ = [
     "entries_from_labels",
     "entries_of",
     "fd_jacobian",
+    "inverse_gram",
     "linearised_se",
     "moving_block_resample",
     "se_dict",
+    "undetermined_notes",
     "vector_of",
     "with_vector",
 ]

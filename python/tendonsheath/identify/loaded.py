@@ -31,6 +31,7 @@ from scipy.optimize import least_squares
 from ..models import BoucWen, Chain, HystereticOscillator, Scaled
 from ..models.loaded import Loaded, play
 from .data import make_recordings
+from .diagnostics import Diagnostics, linearised_se, undetermined_notes
 from .fit import Fit, fit_quality
 from .loaded_problem import SEARCHED, Problem
 
@@ -108,13 +109,18 @@ def _refine(problem: Problem, starts, box, max_nfev: int):
 
 
 def _linearised_errors(problem: Problem, best, model: Loaded) -> dict[str, float]:
-    """Standard errors from the refinement's Jacobian (the gain's given the others; the
-    parameters solved linearly, a weighted base's weights and offset, have none)."""
+    """Standard errors from the refinement's Jacobian (the gain's from its regression with an
+    offset, given the others; the parameters solved linearly, a weighted base's weights and
+    offset, have none). A direction the data do not determine gets a huge error, never 0
+    (the singular values floored, not dropped as a pseudo-inverse does; a parameter the
+    output does not depend on gets inf)."""
     jac = np.asarray(best.jac, dtype=float)
     dof = max(problem.y.size - jac.shape[1] - 1, 1)
     sigma2 = 2.0 * float(best.cost) / dof
-    cov = sigma2 * np.linalg.pinv(jac.T @ jac)
-    se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    if jac.shape[1]:
+        se = linearised_se(jac, 2.0 * float(best.cost), problem.y.size - 1)
+    else:
+        se = np.zeros(0)
     out: dict = {}
     for k, v in zip(problem.base_names, se, strict=False):
         if k.endswith("]"):  # a list parameter's item: the errors as a list, NaN where held
@@ -126,9 +132,28 @@ def _linearised_errors(problem: Problem, best, model: Loaded) -> dict[str, float
     for k, v in zip(problem.free, se[len(problem.base_names) :], strict=True):
         out[k] = float(v * model.terms[k]) if k == "slack_load" else float(v)
     if "gain" not in problem.fixed:
-        den = float(problem.load_all @ problem.load_all)
-        out["gain"] = float(np.sqrt(sigma2 / den)) if den > 0 else float("nan")
+        a = np.column_stack([problem.load_all, np.ones_like(problem.load_all)])
+        out["gain"] = float(linearised_se(a, sigma2 * dof, dof + 2)[0])
     return out
+
+
+def check_load_varies(loads: list[np.ndarray], fixed: dict[str, float]) -> None:
+    """Refuse recordings whose load is one constant over all of them while load terms are to
+    be identified: ``gain * load`` is then a constant, the output offset's twin, and the
+    play's half-width r(load) one number shared by slack, slack_load and friction, which a
+    base's own dead band takes as well (Step 22: such a fit returned a gain of -6.8e-8 for
+    -1.5 with a standard error of 0)."""
+    free = [k for k in ("gain", *SEARCHED) if k not in fixed]
+    every = np.concatenate(loads)
+    level = float(np.max(np.abs(every)))
+    if not free or float(np.ptp(every)) > 1e-9 * level:
+        return
+    raise ValueError(
+        f"identify(Loaded): the load is constant ({every[0]:.6g}) over every recording, so "
+        f"the load terms {', '.join(free)} cannot be told from the base's output offset and "
+        "dead band; record at two or more loads, hold the terms (fixed={...}), or identify "
+        "the base alone"
+    )
 
 
 def _staged(base0, recs, loads, warmup, fixed, max_nfev):
@@ -206,6 +231,7 @@ def identify_loaded(
         if not np.all(np.isfinite(arr)):
             raise ValueError(f"recording {i}: the load is not finite")
         arrays.append(arr)
+    check_load_varies(arrays, fixed)
     options = {"progress": False, **(base_options or {})}
     base_cls = type(template.base)
     spec = template.base if isinstance(template.base, Chain) else base_cls  # a Chain: itself
@@ -224,7 +250,7 @@ def identify_loaded(
     if "gain" not in fixed:
         names.append("gain")
     ses = _linearised_errors(problem, best, model)
-    return Fit.from_quality(
+    fit = Fit.from_quality(
         model,
         fit_quality(recs, predictions, warmup),
         identified=names,
@@ -242,7 +268,10 @@ def identify_loaded(
         recordings=recs,
         predictions=predictions,
         input_range=(lo, hi),
+        diagnostics=Diagnostics(names=list(ses), notes=undetermined_notes(ses)),
     )
+    fit.diagnostics.warn()
+    return fit
 
 
-__all__ = ["identify_loaded", "load_stretch"]
+__all__ = ["check_load_varies", "identify_loaded", "load_stretch"]

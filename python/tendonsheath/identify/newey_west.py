@@ -16,6 +16,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from .._typing import FloatArray
+from .diagnostics import RCOND, inverse_gram
 
 
 def _starts(n: int, blocks: Sequence[int] | None) -> list[tuple[int, int]]:
@@ -66,9 +67,27 @@ def newey_west(
         for ell in range(1, min(lag, b - a - 1) + 1):
             gamma = g[ell:].T @ g[:-ell]
             s += (1.0 - ell / (lag + 1.0)) * (gamma + gamma.T)
-    bread = np.linalg.pinv(jac.T @ jac)
+    bread, undetermined = _bread(jac)
     cov = bread @ s @ bread
-    return np.sqrt(np.clip(np.diag(cov)[-k:], 0.0, None)), per_block, seconds
+    se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    se[undetermined] = np.inf
+    return se[-k:], per_block, seconds
+
+
+def _bread(jac: FloatArray) -> tuple[FloatArray, np.ndarray]:
+    """(J'J)^-1 with the singular values of the column-normalised J floored (a pseudo-inverse
+    would drop a direction the data do not determine and report a tiny error for it), and
+    which parameters are undetermined: a zero column, or one that dominates (> 0.25) a
+    direction whose singular value is below RCOND times the largest."""
+    norms = np.linalg.norm(jac, axis=0)
+    dead = ~(norms > 0)
+    scale = np.where(dead, 1.0, norms)
+    _, sv, vt = np.linalg.svd(jac / scale, full_matrices=False)
+    bread = inverse_gram(sv, vt) / np.outer(scale, scale)
+    for value, direction in zip(sv, vt, strict=True):
+        if value <= RCOND * sv[0]:
+            dead |= np.abs(direction) > 0.25
+    return bread, dead
 
 
 def _ar1_terms(g: FloatArray, spans: list[tuple[int, int]]) -> tuple[float, float] | None:

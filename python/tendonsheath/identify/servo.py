@@ -308,7 +308,7 @@ def identify_servo(
     ------
     ValueError
         Arrays of different lengths, non-finite samples, a non-uniform or too short record,
-        or a command that does not move.
+        a command that does not move, or an encoder identical to the command.
     """
     ts, u = as_timed_signal(t, command, "command", "identify_servo")
     _, q = as_timed_signal(ts, encoder, "encoder", "identify_servo")
@@ -321,6 +321,12 @@ def identify_servo(
         raise ValueError(f"identify_servo: highpass_hz must be in [0, {0.25 / dt:g}) Hz")
     if not (isinstance(max_delay, int) and 0 <= max_delay < u.size // 4):
         raise ValueError(f"identify_servo: max_delay must be an int in [0, n/4) (got {max_delay})")
+    if np.array_equal(u, q):
+        raise ValueError(
+            "identify_servo: the encoder is the command, sample for sample (the same signal "
+            "logged twice?): a fit would be a servo with no dynamics at a frequency the data "
+            "never show; log the motor encoder"
+        )
     u_raw, q_raw = u, q
     u, q = _band(u, dt, highpass_hz), _band(q, dt, highpass_hz)
     edge = min(int(round(1.0 / (max(highpass_hz, 1e-9) * dt))), u.size // 8)

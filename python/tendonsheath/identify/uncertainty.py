@@ -28,6 +28,7 @@ from .diagnostics import (
     linearised_se,
     moving_block_resample,
     se_dict,
+    undetermined_notes,
     vector_of,
     with_vector,
 )
@@ -248,6 +249,7 @@ def assess(
         se, g_hat, g_se, extra = _bootstrapped(fitted, group_fn, method, count, block, seed)
     else:
         se, g_hat, g_se, extra = _linearised(fitted, group_fn, J, keep, method, free_names)
+    notes += undetermined_notes(dict(zip(layout.names, se, strict=True)))
     diag = _diagnostics(J, keep, layout, (bvalues, bbounds, brefs), notes)
     extra["estimate_names"] = list(layout.names)
     return {

@@ -669,6 +669,7 @@ def _log_columns(
     number column in ``extra``; ``roles`` are the time, input, output and curve angle names;
     the time column as read (``_timecol``; None for a bag's, in seconds already)."""
     time, input_, output, curve_angle = roles
+    _distinct_roles(table, path, roles)
     x = table.numbers(input_, "input", allow_missing)
     n = x.size
     timecol = read_time(table, time, time_unit) if time is not None and time_unit else None
@@ -693,6 +694,24 @@ def _log_columns(
     rows = table.row_numbers(n)
     notes = list(table.notes) + (timecol.notes if timecol is not None else [])
     return Log(t, x, y, theta, extra, str(path), table.names(), notes, rows), timecol
+
+
+def _distinct_roles(table: _Table, path: Path, roles) -> None:
+    """One column per role: the same column as input and output would make every fit the
+    identity (and as time and a signal, a ramp)."""
+    seen: dict = {}
+    for role, column in zip(("time", "input", "output", "curve angle"), roles, strict=True):
+        if column is None or (role == "curve angle" and not isinstance(column, str)):
+            continue  # a curve angle may be a constant number
+        key = table.key(column)
+        if key is None:
+            continue  # not a column: numbers() names it
+        if key in seen:
+            raise ValueError(
+                f"{path}: column {column!r} is named as both the {seen[key]} and the {role}; "
+                "each needs its own column"
+            )
+        seen[key] = role
 
 
 def _checked_extra(path: Path, extra) -> dict | None:

@@ -168,20 +168,43 @@ class CurveAngleModel(HysteresisModel, core.CurveAngleModel):  # type: ignore[mi
         dt : float, default 0.0
             Time since the previous sample (s).
         curve_angle : float or Route, optional
-            The curve angle (rad) or the route (its shape); the last one when left out.
+            The curve angle (rad) or the route (its shape); the last one when left out,
+            required on the first call (or after :meth:`set_shape`).
 
         Returns
         -------
         float
             Distal angle (rad).
+
+        Raises
+        ------
+        ValueError
+            No curve angle yet: neither given now nor before (the output depends on it).
         """
         dt = checked_dt(dt)
         if isinstance(curve_angle, Route):
             self.set_shape(self.route_shape(curve_angle))
             curve_angle = None
         if curve_angle is None:
+            if not getattr(self, "_angle_given", False):
+                raise ValueError(
+                    "CurveAngleModel.step needs the curve angle (rad) or the route on its "
+                    "first call: the output depends on it, and none was given"
+                )
             return core.CurveAngleModel.step(self, float(x), float(dt))
+        self._angle_given = True
         return core.CurveAngleModel.step(self, float(x), float(dt), float(curve_angle))
+
+    def set_shape(self, shape: core.ShapeIntegrals) -> None:
+        """The route's shape for the following steps (:meth:`route_shape` of a route).
+
+        Parameters
+        ----------
+        shape : ShapeIntegrals
+            g, G (at this model's friction) and the curve angle.
+        """
+        core.CurveAngleModel.set_shape(self, shape)
+        self._angle_given = True
 
     def route_shape(self, route: Route) -> core.ShapeIntegrals:
         """The route's shape integrals g, G at this model's friction, and its curve angle

@@ -93,8 +93,9 @@ class Loaded(HysteresisModel):
     """y = base(play_r(load)(x)) + gain * load, r(load) = slack exp(-|load|/slack_load) +
     friction |load| (see the module for the physics).
 
-    Parameters are ``base.<name>`` and the four load terms. ``simulate`` and ``step`` take the
-    measured load (``load=``, per sample or one number); without it the load is 0.
+    Parameters are ``base.<name>`` and the four load terms. ``simulate`` and ``step`` need the
+    measured load (``load=``, per sample or one number; ``load=0.0`` for an unloaded drive):
+    without it they raise, never assume a load of 0.
 
     Parameters
     ----------
@@ -143,7 +144,7 @@ class Loaded(HysteresisModel):
         self.rate_independent = base.rate_independent
         self.control_inputs = ("x", "load")
         self._z: float | None = None  # the play's streaming state
-        self._load = 0.0
+        self._load: float | None = None  # the last finite load (held over a lost sample)
 
     # -- parameters ------------------------------------------------------------------
     @property
@@ -201,7 +202,10 @@ class Loaded(HysteresisModel):
     # -- simulation ------------------------------------------------------------------
     def _loads(self, x: np.ndarray, load: ArrayLike | None) -> np.ndarray:
         if load is None:
-            return np.zeros_like(x)
+            raise ValueError(
+                "Loaded.simulate needs the measured load (load=, one number or one per "
+                "sample; load=0.0 for an unloaded drive): the output depends on it"
+            )
         arr = np.asarray(load, dtype=float)
         if arr.ndim == 0:
             arr = np.full_like(x, float(arr))
@@ -226,8 +230,8 @@ class Loaded(HysteresisModel):
             Sample times (s); None when the base is rate-independent.
         x : array_like of float, shape (n,)
             Input samples.
-        load : float or array_like of float, shape (n,), optional
-            The measured load of every sample (default 0).
+        load : float or array_like of float, shape (n,)
+            The measured load of every sample (or one for all); required.
         **kwargs
             Passed to the base's ``simulate`` (e.g. ``curve_angle``).
 
@@ -240,7 +244,7 @@ class Loaded(HysteresisModel):
         Raises
         ------
         ValueError
-            A load of another length than x, or not finite; the base's own errors.
+            No load, a load of another length than x, or not finite; the base's own errors.
         """
         xs = np.asarray(x, dtype=float)
         loads = self._loads(xs, load)
@@ -254,9 +258,9 @@ class Loaded(HysteresisModel):
         """Forget the streaming state (the play's and the base's)."""
         self.base.reset()
         self._z = None
-        self._load = 0.0
+        self._load = None
 
-    def step(self, x: float, dt: float = 0.0, load: float = 0.0) -> float:
+    def step(self, x: float, dt: float = 0.0, load: float | None = None) -> float:
         """Advance one sample (streaming) under the measured load.
 
         Parameters
@@ -265,16 +269,29 @@ class Loaded(HysteresisModel):
             The input sample.
         dt : float, default 0.0
             Time since the previous sample (s).
-        load : float, default 0.0
-            The load measured at this sample.
+        load : float
+            The load measured at this sample (required; a non-finite one, a lost sample,
+            holds the last finite one).
 
         Returns
         -------
         float
             The output sample.
+
+        Raises
+        ------
+        ValueError
+            No load, or a non-finite one before any finite load since the reset.
         """
+        if load is None:
+            raise ValueError(
+                "Loaded.step needs the measured load (load=; 0.0 for an unloaded drive): the "
+                "output depends on it"
+            )
         x, load = float(x), float(load)
         if not math.isfinite(load):
+            if self._load is None:
+                raise ValueError("Loaded.step: the load is not finite and none came before it")
             load = self._load  # a lost load sample: hold the last one
         self._load = load
         r = float(self.radius(load))
@@ -298,8 +315,7 @@ class Loaded(HysteresisModel):
         return self.base.status()
 
     def _control_step(self, u, dt: float) -> float:
-        load = float(u[1]) if len(u) > 1 else 0.0
-        return self.step(float(u[0]), dt, load)
+        return self.step(float(u[0]), dt, float(u[1]))
 
     # -- persistence -----------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
