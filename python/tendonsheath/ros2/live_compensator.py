@@ -47,9 +47,10 @@ def needed_inputs(compensator: Any) -> tuple[str, ...]:
     """
     if isinstance(compensator, CoupledFeedforward):
         return ("desired",)
-    names = [_SIGNAL_INPUT[s] for s in step_signals(compensator)]
-    if isinstance(compensator, LoadCompensated):
-        names.append("load")
+    if isinstance(compensator, LoadCompensated):  # step(y_d, dt, load): the load after dt
+        names = ["desired", "load"]
+    else:
+        names = [_SIGNAL_INPUT[s] for s in step_signals(compensator)]
     if follows_route(compensator):
         names.append("curve_angle")
     return tuple(names)
