@@ -132,7 +132,7 @@ CASES = [
     (["export", "{d}/huge.json", "--cpp", "{d}/a.hpp"], "'smoothing' is too large"),
     (["export", "{d}/model.json", "--cpp", "{d}/a.hpp", "--namespace", "class"], "C++ keyword"),
     (["export", "{d}/class.json", "--cpp", "{d}/a.hpp"], "give --namespace"),
-    (["export", "{d}/model.json", "--cpp", "{d}/model.json"], "is the source file"),
+    (["export", "{d}/model.json", "--cpp", "{d}/model.json"], "unknown file type '.json'"),
     (["export", "{d}/model.json", "--cpp", "{d}/none/a.hpp"], "none"),
     (["export", "{d}/missing.json", "--cpp", "{d}/a.hpp"], "file not found"),
 ]

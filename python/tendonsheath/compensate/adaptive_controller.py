@@ -8,6 +8,7 @@ from typing import Any
 from .._args import core_errors_as, number
 from .._arrays import checked_dt
 from .._pyobject import bound_attribute
+from .._units import warn_unit_slips
 from ..models import Backlash, BoucWenBacklash, HysteresisModel
 from . import _bound as core
 from .base import EngineCompensator
@@ -106,6 +107,7 @@ class AdaptiveController(EngineCompensator, core.AdaptiveController):  # type: i
             raise ValueError(f"{who}: smoothing must be > 0 (got {self.smoothing:g})")
         with core_errors_as(who):
             core.AdaptiveController.__init__(self, p)
+        warn_unit_slips(who, p)
         self.design: Any = None  # set by from_calibration: what the gains were chosen from
         resolved = bound_attribute(self, "params")
         self._settings = {

@@ -7,6 +7,7 @@ import math
 from typing import TYPE_CHECKING
 
 from .._args import core_errors_as
+from .._units import warn_unit_slips
 from . import _bound as core
 from .loads import (
     TorsionalSpring,
@@ -132,6 +133,7 @@ class ContinuumPlant(_PairPlant, core.ContinuumPlant):  # type: ignore[misc]
         _set_effects(c, cls, _PAIR_EFFECTS, effects)
         with core_errors_as(cls):
             core.ContinuumPlant.__init__(self, c, self.route, self.route2)
+        warn_unit_slips(cls, c)
         self.load = TorsionalSpring(c.bending_stiffness / c.backbone_length)
         self._setup_io(motor, sensor, encoder)
 
