@@ -80,6 +80,10 @@ SMALL_LENGTH = Quantity(
 TIME = Quantity("s", 10.0, "10 s: the drive's lags and loop times are below a second", *_MS)
 # A delay, a latency, a sample step: milliseconds.
 DELAY = Quantity("s", 1.0, "1 s: a delay, a latency or a sample step is milliseconds", *_MS)
+# A calibration or a trial run: seconds to minutes.
+DURATION = Quantity(
+    "s", 3600.0, "an hour: a calibration or trial run lasts seconds to minutes", *_MS
+)
 # The tendon's stress relaxation: seconds to a minute.
 RELAXATION_TIME = Quantity("s", 100.0, "100 s: a tendon relaxes within a minute", *_MS)
 
@@ -100,10 +104,27 @@ _BY_NAME: dict[str, Quantity | None] = {
     "kd": None,
     # the PlantModel's friction angle mu * theta: its table bounds it at 20 rad already
     "friction_angle": None,
+    # the PlantModel's viscous time: identified up to the record's duration, so a long one is
+    # a finding of the search (which builds many), not a unit slip
+    "viscous_time": None,
 }
 
 
-def quantity_of(name: str, unit: str) -> Quantity | None:
+# (struct, field) pairs not checked: the curve-angle model and the feedforwards built from an
+# identified one hold their geometry in the data's units (the radii's ratio is the
+# transmission, a radius or a backbone near 1 is the normalisation), so any size is plausible
+_NORMALISED = {
+    ("CurveAngleParams", "proximal_radius"),
+    ("CurveAngleParams", "distal_radius"),
+    ("CurveAngleFeedforwardParams", "proximal_radius"),
+    ("CurveAngleFeedforwardParams", "distal_radius"),
+    ("ContinuumFeedforwardParams", "proximal_radius"),
+    ("ContinuumFeedforwardParams", "tendon_offset"),
+    ("ContinuumFeedforwardParams", "backbone_length"),
+}
+
+
+def quantity_of(name: str, unit: str, struct: str = "") -> Quantity | None:
     """The quantity of a field named ``name`` in ``unit`` (a parameter table's row), or None
     when no unit slip is checked for it (not an angle, a length or a time; or a gain in s).
 
@@ -113,12 +134,16 @@ def quantity_of(name: str, unit: str) -> Quantity | None:
         The field's (the Python argument's) name.
     unit : str
         Its unit as the parameter table gives it.
+    struct : str, optional
+        The parameter struct's name (some of its fields are in normalised units).
 
     Returns
     -------
     Quantity or None
         The quantity whose bound applies.
     """
+    if (struct, name) in _NORMALISED:
+        return None
     if name in _BY_NAME:
         q = _BY_NAME[name]
         return q if q is not None and q.unit == unit else None
@@ -157,7 +182,7 @@ def warn_if_unit_slip(
         f"{who}: {name} {v:g} {q.unit} is above {q.bound:.4g} {q.unit} ({q.reason}); did you "
         f"give {q.slip_name}? {v:g} {q.slip} = {v * q.factor:.4g} {q.unit}",
         UnitWarning,
-        stacklevel=caller_outside_package() if stacklevel is None else stacklevel,
+        stacklevel=caller_outside_package() - 1 if stacklevel is None else stacklevel,
     )
 
 
@@ -173,7 +198,7 @@ def warn_unit_slips(who: str, struct: Any) -> None:
         A bound ``...Params`` struct of ``tendonsheath._core``.
     """
     for row in type(struct).fields():
-        q = quantity_of(row["name"], row["unit"])
+        q = quantity_of(row["name"], row["unit"], type(struct).__name__)
         value = getattr(struct, row["name"], None)
         if q is not None and isinstance(value, float | int):
             warn_if_unit_slip(value, who, row["name"], q)

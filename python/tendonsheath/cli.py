@@ -515,11 +515,6 @@ def identify(
     from ._progress import wanted
 
     _check_identify_options(out, report, maxiter, warmup, seed)
-    if resamples is not None and not standard_errors.startswith("bootstrap"):
-        _fail(
-            f"--resamples applies to --standard-errors bootstrap or bootstrap-recordings only "
-            f"(got {standard_errors}): give one of those, or leave --resamples out"
-        )
     candidate = _checked(_model_spec, model)
     columns = _data_columns(
         time_col, time_unit, input=input_col, output=output_col, curve_angle=curve_angle
@@ -527,11 +522,7 @@ def identify(
     if load_col is not None:
         candidate = _checked(_loaded_spec, candidate)
         columns["load"] = load_col
-    if curve_angle is not None and not takes_curve_angle(getattr(candidate, "base", candidate)):
-        _fail(
-            f"--curve-angle: {model} takes no curve angle (CurveAngleModel does, `curve`): "
-            "leave --curve-angle out, or name a model that uses it"
-        )
+    _check_flags_apply(model, candidate, curve_angle, resamples, standard_errors)
     search = {
         "warmup": warmup,
         "seed": seed,
@@ -612,6 +603,21 @@ def _check_identify_options(
     _checked(
         check_search_options, maxiter=maxiter, popsize=15, tol=0.01, workers=None, warmup=warmup
     )
+
+
+def _check_flags_apply(model: str, candidate, curve_angle, resamples, standard_errors: str):
+    """identify's flags that do not apply to what was asked: a one-line error, never a flag
+    silently ignored (--resamples without a bootstrap, --curve-angle to a model without one)."""
+    if resamples is not None and not standard_errors.startswith("bootstrap"):
+        _fail(
+            f"--resamples applies to --standard-errors bootstrap or bootstrap-recordings only "
+            f"(got {standard_errors}): give one of those, or leave --resamples out"
+        )
+    if curve_angle is not None and not takes_curve_angle(getattr(candidate, "base", candidate)):
+        _fail(
+            f"--curve-angle: {model} takes no curve angle (CurveAngleModel does, `curve`): "
+            "leave --curve-angle out, or name a model that uses it"
+        )
 
 
 def _loaded_spec(candidate):

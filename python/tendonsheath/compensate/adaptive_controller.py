@@ -8,7 +8,7 @@ from typing import Any
 from .._args import core_errors_as, number
 from .._arrays import checked_dt
 from .._pyobject import bound_attribute
-from .._units import warn_unit_slips
+from .._units import ANGLE_NOISE, warn_if_unit_slip, warn_unit_slips
 from ..models import Backlash, BoucWenBacklash, HysteresisModel
 from . import _bound as core
 from .base import EngineCompensator
@@ -175,6 +175,7 @@ class AdaptiveController(EngineCompensator, core.AdaptiveController):  # type: i
             number(who, "max_torque", max_torque),
             number(who, "noise_std", noise_std),
         )
+        warn_if_unit_slip(noise_std, who, "noise_std", ANGLE_NOISE)
         if derivative_cutoff_hz is not None:
             derivative_cutoff_hz = number(who, "derivative_cutoff_hz", derivative_cutoff_hz)
         if not inertia > 0:
