@@ -67,6 +67,7 @@ _SCENARIOS = {
     "shape": "[calibration]\nshape_noise = -1.0\n",
     "user": '[[compare.user]]\nfile = "tracker.py"\nclass = "Tracker"\n',
     "typo": "[plant]\nfrction = 0.1\n",
+    "arcs_and_angle": "[route]\ntotal_angle = 3.0\narcs = [[0.5, 0.0], [0.5, 1.5]]\n",
 }
 
 # (command line, text the one-line error must hold); {d} is the inputs' folder
@@ -103,6 +104,28 @@ CASES = [
     (["identify", "{d}/data.csv", "-m", "Backlash", *COLS, "--seed", "-1"], "--seed must"),
     (["identify", "{d}/data.csv", "-m", "Backlash", *COLS, "--report", "{d}/r.xyz"], ".xyz"),
     (["identify", "{d}/data.csv", "-m", "Backlash", "--input", "x", "--output", "z"], "'z'"),
+    # flags that do not apply to what was asked (step 22): refused, never ignored
+    (
+        ["identify", "{d}/data.csv", "-m", "Backlash", *COLS, "--resamples", "50"],
+        "--resamples applies to --standard-errors bootstrap",
+    ),
+    (
+        ["identify", "{d}/data.csv", "-m", "Backlash", *COLS, "--curve-angle", "2"],
+        "--curve-angle: Backlash takes no curve angle",
+    ),
+    (["identify", "{d}/data.csv", "-m", "lag1+lag1", *COLS], "a lag chained with a lag"),
+    (["identify", "{d}/data.csv", "-m", "lag2", *COLS], "a lag alone is linear"),
+    (["identify", "{d}/data.csv", "-m", "bwb+poly3+lag1", *COLS], "3 parts; at most two"),
+    (["identify", "{d}/data.csv", "-m", "bwb+", *COLS], "an empty part around '+'"),
+    (
+        ["predict", "{d}/model.json", "{d}/data.csv", *COLS, "--curve-angle", "2"],
+        "--curve-angle: the saved Backlash takes no curve angle",
+    ),
+    (
+        ["predict", "{d}/model.json", "{d}/data.csv", *COLS, "--load", "x"],
+        "--load: the saved Backlash takes no measured load",
+    ),
+    (["bench", "{d}/arcs_and_angle.toml"], "give arcs or total_angle, not both"),
     # predict
     (["predict", "{d}/missing.json", "{d}/data.csv", *COLS], "missing.json"),
     (["predict", "{d}/huge_model.json", "{d}/data.csv", *COLS], "huge_model.json"),
@@ -132,7 +155,8 @@ CASES = [
     (["export", "{d}/huge.json", "--cpp", "{d}/a.hpp"], "'smoothing' is too large"),
     (["export", "{d}/model.json", "--cpp", "{d}/a.hpp", "--namespace", "class"], "C++ keyword"),
     (["export", "{d}/class.json", "--cpp", "{d}/a.hpp"], "give --namespace"),
-    (["export", "{d}/model.json", "--cpp", "{d}/model.json"], "is the source file"),
+    (["export", "{d}/model.json", "--cpp", "{d}/model.json"], "unknown file type '.json'"),
+    (["export", "{d}/model.json", "--cpp", "{d}/params.txt"], "use one of .h, .hh, .hpp, .hxx"),
     (["export", "{d}/model.json", "--cpp", "{d}/none/a.hpp"], "none"),
     (["export", "{d}/missing.json", "--cpp", "{d}/a.hpp"], "file not found"),
 ]

@@ -411,3 +411,60 @@ def test_the_parameters_page_is_current(capsys):
         + capsys.readouterr().out
     )
     assert sorted(names) == STRUCTS  # every table on the page, each once
+
+
+# public classes with numeric settings that are on neither kind of table, and why
+NOT_ON_THE_PAGE = {
+    "Comparison": "a result of compare_models (parsimony is how it was ranked)",
+    "CoupledFit": "a result of identify_coupled",
+    "Diagnostics": "a result of identify",
+    "ServoFit": "a result of identify_servo",
+    "Status": "per-sample flags (an IntFlag), not settings",
+    "Identifier": "identify's options, documented with ts.identify (docs/api)",
+}
+
+
+def _page_module():
+    spec = importlib.util.spec_from_file_location(
+        "parameters_page", ROOT / "benchmarks" / "parameters_page.py"
+    )
+    page = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(page)
+    return page
+
+
+def _configurable_classes() -> set[str]:
+    """The public classes whose constructor takes a number with a default, or a model's
+    coupling (Coupled) or a model to invert (the composite compensators)."""
+    found = set()
+    for mod in (ts, ts.models, ts.compensate, ts.bench, ts.io, ts.identify):
+        for name in mod.__all__:
+            cls = getattr(mod, name, None)
+            if not inspect.isclass(cls) or issubclass(cls, BaseException):
+                continue
+            try:
+                params = inspect.signature(cls).parameters.values()
+            except (TypeError, ValueError):
+                continue
+            numbers = [
+                p
+                for p in params
+                if isinstance(p.default, int | float) and not isinstance(p.default, bool)
+            ]
+            if numbers or name in ("Coupled", "LoadCompensated", "CoupledFeedforward"):
+                found.add(name)
+    return found
+
+
+def test_every_configurable_class_is_on_the_parameters_page():
+    """A class with settings is a C++ table's (PYTHON_OF), on the page's Python-only tables,
+    or named above with why not: a new class fails here until it is one of them."""
+    page = _page_module()
+    on_page = {name for _, name, _ in page.PYTHON_CLASSES}
+    tables = {getattr(t, "__name__", "") for targets in PYTHON_OF.values() for t in targets}
+    missing = _configurable_classes() - on_page - tables - set(NOT_ON_THE_PAGE)
+    assert not missing, f"configurable classes on no table of docs/parameters.md: {missing}"
+    text = (ROOT / "docs" / "parameters.md").read_text(encoding="utf-8")
+    for name in ("Loaded", "Coupled", "ShapeSensing", "IterativeLearning"):
+        assert f"### {name}\n" in text
+    assert {"Loaded", "ShapeSensing", "IterativeLearning"} <= _configurable_classes()

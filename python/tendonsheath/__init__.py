@@ -2,10 +2,11 @@
 
 from importlib.metadata import version as _version
 
-from . import _moved, bench, compensate, io, models, protocols, session
+# identify is the package, callable as identify.identify (identify/__init__.py says why)
+from . import _moved, bench, compensate, identify, io, models, protocols, session
 from ._extras import MissingExtraError
 from .compare import Comparison, compare_models
-from .identify import Fit, IdentifiabilityWarning, Identifier, identify, identify_coupled
+from .identify import Fit, IdentifiabilityWarning, Identifier, identify_coupled
 from .models import load_model
 from .plant import (
     ContinuumPlant,

@@ -124,9 +124,20 @@ class PythonObject:
     def __setattr__(self, name: str, value: Any) -> None:
         known = name.startswith("_") or name in vars(self) or hasattr(type(self), name)
         if not (known or _OPEN in vars(self)):
+            names = self._parameter_names()
+            if name in names:  # a parameter, read through params: not an attribute to set
+                how = (
+                    f"with_params({name}=...) makes a copy with the new value"
+                    if hasattr(self, "with_params")
+                    else "it is set at construction"
+                )
+                raise AttributeError(
+                    f"{type(self).__name__}: parameter {name!r} cannot be set on the object "
+                    f"(it is read as .params[{name!r}]); {how}"
+                )
             raise AttributeError(
                 f"{type(self).__name__} has no attribute {name!r} to set; its parameters are "
-                f"{self._parameter_names()}" + self._how_to_change()
+                f"{names}" + self._how_to_change()
             )
         object.__setattr__(self, name, value)
 

@@ -15,6 +15,7 @@ from rich.table import Table
 from typer.core import TyperCommand, TyperOption
 
 from ._extras import MissingExtraError, require_plotly
+from .identify.core import takes_curve_angle
 from .identify.diagnostics import IdentifiabilityWarning
 from .identify.fit import GIVEN_CLASS
 from .outputs import check_image_file, check_output_file, check_output_folder
@@ -95,7 +96,9 @@ def _no_traceback(command):
     def run(*args, **kwargs):
         name = command.__name__.removesuffix("_command")
         try:
-            return command(*args, **kwargs)
+            with warnings.catch_warnings():
+                warnings.showwarning = _show_warning
+                return command(*args, **kwargs)
         except KeyboardInterrupt:
             Console(stderr=True).print(
                 f"interrupted (Ctrl-C): {name} stopped; no output file is left half-written",
@@ -110,6 +113,19 @@ def _no_traceback(command):
             _fail_bug(name, exc)
 
     return run
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """A warning as one line on stderr, its category named: "Warning (UnitWarning): ...", not
+    Python's "FILE:LINE: UnitWarning: ..." with a line of the package's (or typer's) source."""
+    from rich.markup import escape
+
+    text = " ".join(str(message).split())
+    Console(stderr=True).print(
+        f"[yellow]Warning ({escape(category.__name__)}):[/yellow] {escape(text)}",
+        soft_wrap=True,
+        highlight=False,
+    )
 
 
 def _fail_bug(command: str, exc: Exception) -> NoReturn:
@@ -506,6 +522,7 @@ def identify(
     if load_col is not None:
         candidate = _checked(_loaded_spec, candidate)
         columns["load"] = load_col
+    _check_flags_apply(model, candidate, curve_angle, resamples, standard_errors)
     search = {
         "warmup": warmup,
         "seed": seed,
@@ -586,6 +603,21 @@ def _check_identify_options(
     _checked(
         check_search_options, maxiter=maxiter, popsize=15, tol=0.01, workers=None, warmup=warmup
     )
+
+
+def _check_flags_apply(model: str, candidate, curve_angle, resamples, standard_errors: str):
+    """identify's flags that do not apply to what was asked: a one-line error, never a flag
+    silently ignored (--resamples without a bootstrap, --curve-angle to a model without one)."""
+    if resamples is not None and not standard_errors.startswith("bootstrap"):
+        _fail(
+            f"--resamples applies to --standard-errors bootstrap or bootstrap-recordings only "
+            f"(got {standard_errors}): give one of those, or leave --resamples out"
+        )
+    if curve_angle is not None and not takes_curve_angle(getattr(candidate, "base", candidate)):
+        _fail(
+            f"--curve-angle: {model} takes no curve angle (CurveAngleModel does, `curve`): "
+            "leave --curve-angle out, or name a model that uses it"
+        )
 
 
 def _loaded_spec(candidate):
@@ -673,6 +705,7 @@ def predict(
     _check_predict_options(out, data, model_file, warmup)
     try:
         model = load_model(model_file)
+        _check_predict_flags(model, curve_angle, load_col)
         saved = _saved_columns(model_file)
         input_col = input_col or saved.get("input")
         time_col = time_col or saved.get("time")
@@ -726,6 +759,20 @@ def predict(
         console.print(
             f"rmse {m['rmse']:.4g} ({wanted_output} units)   nrmse {100 * m['nrmse']:.3f} %   "
             f"fit {m['fit_percent']:.2f} %"
+        )
+
+
+def _check_predict_flags(model, curve_angle: str | None, load_col: str | None) -> None:
+    """--curve-angle and --load given to a saved model that takes neither: a ValueError, not
+    a flag ignored."""
+    from .models import Loaded
+
+    name = type(model).__name__
+    if curve_angle is not None and not takes_curve_angle(getattr(model, "base", model)):
+        raise ValueError(f"--curve-angle: the saved {name} takes no curve angle; leave it out")
+    if load_col is not None and not isinstance(model, Loaded):
+        raise ValueError(
+            f"--load: the saved {name} takes no measured load (a Loaded model does); leave it out"
         )
 
 
@@ -1247,6 +1294,10 @@ def _print_comparison(result, output_col: str) -> None:
         )
 
 
+# a C++ header: a file named .json or .txt would hold C++ that nothing reads as a header
+CPP_HEADER_SUFFIXES = {"h", "hpp", "hh", "hxx"}
+
+
 @app.command("export")
 @_one_paragraph
 @_no_traceback
@@ -1265,7 +1316,7 @@ def export_command(
     try:
         if not source.is_file():
             raise ValueError(f"file not found: {source}")
-        check_output_file(cpp, "--cpp")
+        check_output_file(cpp, "--cpp", suffixes=CPP_HEADER_SUFFIXES)
         _refuse_overwriting(cpp, "--cpp", {"source file": source})
         write_text(cpp, cpp_header(source, namespace))
     except ValueError as exc:

@@ -153,6 +153,24 @@ _ALIASES = {
 _BLOCKS = {"lag1": FirstOrderLag, "lag2": SecondOrderLag}
 
 
+_FORMS = "MODEL, MODEL+polyN, MODEL+oddN, MODEL+lag1, MODEL+lag2, lag1+MODEL or lag2+MODEL"
+
+
+def _check_composite_name(text: str) -> None:
+    """A composite name's shape: one or two parts, not empty, one of them a hysteresis model
+    (a lag alone, or two lags, is no candidate), else a ValueError that says so."""
+    parts = [p.strip().lower() for p in text.split("+")]
+    if any(not p for p in parts):
+        raise ValueError(f"model {text!r}: an empty part around '+'; the forms are {_FORMS}")
+    if len(parts) > 2:
+        raise ValueError(f"model {text!r}: {len(parts)} parts; at most two: {_FORMS}")
+    if all(p in _BLOCKS for p in parts):
+        raise ValueError(
+            f"model {text!r}: a lag {'alone' if len(parts) == 1 else 'chained with a lag'} is "
+            f"linear, no hysteresis model; chain a lag with one (e.g. {parts[0]}+bwb): {_FORMS}"
+        )
+
+
 def parse_model(spec: type[HysteresisModel] | HysteresisModel | str) -> Any:
     """A candidate from a class, a Chain instance or a name: ``BoucWenBacklash``, ``gpi``,
     ``bwb+poly3`` (Chain with a cubic), ``bwb+odd3`` (odd cubic), ``bwb+lag2`` / ``pi+lag1``
@@ -183,6 +201,7 @@ def parse_model(spec: type[HysteresisModel] | HysteresisModel | str) -> Any:
     text = spec.strip()
     if text.lower().endswith("+load"):  # the measured load's terms around a model
         return Loaded(parse_model(text[: -len("+load")]))
+    _check_composite_name(text)
     base, _, tail = text.partition("+")
 
     def cls_of(name):

@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .. import models
+from .._units import DURATION, JOINT_ANGLE, warn_if_unit_slip
 from ..plant.route import Route
 from ..plant.sensor import Sensor
 from .loop_calibration import LoopCalibration, calibrate_loop
@@ -67,6 +68,8 @@ def calibration_input(duration: float, amplitude: float, rate: float = 1000.0):
     symmetric) and, between them, an amplitude that sweeps down to a third and back, plus a
     0.9 Hz ripple (nested minor loops). Runs shorter than three periods shorten the full-
     amplitude parts to a third of the run each."""
+    warn_if_unit_slip(amplitude, "calibration input", "amplitude", JOINT_ANGLE)
+    warn_if_unit_slip(duration, "calibration input", "duration", DURATION)
     t = np.arange(0.0, duration, 1.0 / rate)
     edge = min(1.0 / CALIBRATION_HZ, duration / 3.0)
     middle = np.clip((t - edge) / max(duration - 2.0 * edge, 1e-9), 0.0, 1.0)

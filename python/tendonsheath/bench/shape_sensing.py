@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from .._units import ANGLE_NOISE, DELAY, warn_if_unit_slip
 from ..plant.physics import route_shape
 from ..plant.route import Route
 
@@ -75,6 +76,8 @@ class ShapeSensing:
             value = getattr(self, name)
             if not (ok and math.isfinite(value)):
                 raise ValueError(f"ShapeSensing: {name} out of range (got {value!r})")
+        warn_if_unit_slip(self.noise_std, "ShapeSensing", "noise_std", ANGLE_NOISE)
+        warn_if_unit_slip(self.delay, "ShapeSensing", "delay", DELAY)
         segments = self.segments
         if isinstance(segments, bool) or int(segments) != segments or segments < 0:
             raise ValueError(f"ShapeSensing: segments must be an integer >= 0 (got {segments!r})")

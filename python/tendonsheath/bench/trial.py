@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from .._units import DELAY, warn_if_unit_slip
 from ..plant.route import Route
 from ..plant.sensor import Sensor
 from .calibration import calibration_input
@@ -50,6 +51,7 @@ def measured_mse(result: Result, delay: float = 0.0) -> float:
     """
     if not (delay >= 0.0 and math.isfinite(delay)):
         raise ValueError(f"measured_mse: delay must be finite and >= 0 (got {delay})")
+    warn_if_unit_slip(delay, "measured_mse", "delay", DELAY)
     t, reference = result.t, result.reference
     shifted = np.interp(t - delay, t, reference)
     err = (result.measured - shifted)[result.scored]

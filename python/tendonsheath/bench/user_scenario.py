@@ -81,7 +81,7 @@ from typing import Any
 
 import numpy as np
 
-from .._angles import PLAUSIBLE_JOINT_ANGLE, warn_if_degrees
+from .._units import JOINT_ANGLE, warn_if_unit_slip
 from ..compensate import AdaptiveController
 from ..io._textread import read_config_text
 from ..plant import ContinuumPlant, PullPullPlant, loads, presets
@@ -201,6 +201,12 @@ def _sensor_table(table: dict[str, Any], source: str) -> dict[str, Any]:
 
 
 def _route(spec: dict[str, Any], where: str, length: float | None = None) -> Route:
+    both = sorted({"length", "total_angle"} & set(spec))
+    if "arcs" in spec and both:
+        raise ScenarioError(
+            f"{where}: give arcs or {' and '.join(both)}, not both (the arcs set the route's "
+            f"length and angle: {', '.join(both)} would be ignored)"
+        )
     try:
         if "arcs" in spec:
             return Route.arcs([tuple(map(float, piece)) for piece in spec["arcs"]])
@@ -500,14 +506,7 @@ def _check_load(sc: UserScenario) -> None:
 def _check_sines(sines: list, src: str) -> None:
     """An amplitude past a full turn of the joint warns (each sine was checked at parse)."""
     for i, sine in enumerate(sines):
-        warn_if_degrees(
-            sine[0],
-            f"{src} [reference]",
-            f"sines[{i}] amplitude",
-            PLAUSIBLE_JOINT_ANGLE,
-            "a full turn: a distal joint turns less",
-            stacklevel=5,
-        )
+        warn_if_unit_slip(sine[0], f"{src} [reference]", f"sines[{i}] amplitude", JOINT_ANGLE)
 
 
 def _check_calibration_runs(sc: UserScenario) -> None:
@@ -517,14 +516,7 @@ def _check_calibration_runs(sc: UserScenario) -> None:
     src, cal = sc.source, sc.calibration
     if not cal["duration"] > 0 or not cal["amplitude"] > 0:
         raise ScenarioError(f"{src} [calibration]: duration and amplitude must be > 0")
-    warn_if_degrees(
-        cal["amplitude"],
-        f"{src} [calibration]",
-        "amplitude",
-        PLAUSIBLE_JOINT_ANGLE,
-        "a full turn: a distal joint turns less",
-        stacklevel=5,
-    )
+    warn_if_unit_slip(cal["amplitude"], f"{src} [calibration]", "amplitude", JOINT_ANGLE)
     from .shape_sensing import ShapeSensing
 
     try:

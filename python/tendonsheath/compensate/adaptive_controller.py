@@ -8,6 +8,7 @@ from typing import Any
 from .._args import core_errors_as, number
 from .._arrays import checked_dt
 from .._pyobject import bound_attribute
+from .._units import ANGLE_NOISE, warn_if_unit_slip, warn_unit_slips
 from ..models import Backlash, BoucWenBacklash, HysteresisModel
 from . import _bound as core
 from ._kinds import require_dynamics, require_model
@@ -103,6 +104,7 @@ class AdaptiveController(EngineCompensator, core.AdaptiveController):  # type: i
             raise ValueError(f"{who}: smoothing must be > 0 (got {self.smoothing:g})")
         with core_errors_as(who):
             core.AdaptiveController.__init__(self, p)
+        warn_unit_slips(who, p)
         self.design: Any = None  # set by from_calibration: what the gains were chosen from
         resolved = bound_attribute(self, "params")
         self._settings = {
@@ -170,6 +172,7 @@ class AdaptiveController(EngineCompensator, core.AdaptiveController):  # type: i
             number(who, "max_torque", max_torque),
             number(who, "noise_std", noise_std),
         )
+        warn_if_unit_slip(noise_std, who, "noise_std", ANGLE_NOISE)
         if derivative_cutoff_hz is not None:
             derivative_cutoff_hz = number(who, "derivative_cutoff_hz", derivative_cutoff_hz)
         if not inertia > 0:

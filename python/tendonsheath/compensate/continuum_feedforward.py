@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
-from .._angles import warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, core_errors_as, number
+from .._units import warn_unit_slips
 from . import _bound as core
 from .base import Feedforward
 from .limits import LimitsLike, as_limits
@@ -141,7 +141,7 @@ class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ign
         self.mode = mode
         with core_errors_as(who):
             core.ContinuumFeedforward.__init__(self, p)
-        warn_if_curve_angle_in_degrees(self._settings["curve_angle"], who)
+        warn_unit_slips(who, p)
 
     @classmethod
     @accepts_old_names("ContinuumFeedforward.from_model", {"total_angle": "curve_angle"})

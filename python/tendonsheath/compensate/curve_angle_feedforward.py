@@ -8,11 +8,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._angles import checked_curve_angle, warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, core_errors_as, number
 from .._arrays import as_signal, as_timed_signal, checked_dt
 from .._pyobject import bound_attribute
 from .._typing import ArrayLike
+from .._units import checked_curve_angle, warn_unit_slips
 from ..plant.physics import route_shape as shape_of
 from ..simulation_result import SimulationResult
 from . import _bound as core
@@ -128,7 +128,7 @@ class CurveAngleFeedforward(Feedforward, core.CurveAngleFeedforward):  # type: i
         self._settings["limits"] = as_limits(limits)
         with core_errors_as(who):
             core.CurveAngleFeedforward.__init__(self, _params(who, self._settings))
-        warn_if_curve_angle_in_degrees(self._settings["curve_angle"], who)
+        warn_unit_slips(who, _params(who, self._settings))
 
     @classmethod
     def from_model(

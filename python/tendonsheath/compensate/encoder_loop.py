@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 from .._args import core_errors_as, number
 from .._arrays import checked_dt
 from .._pyobject import bound_attribute
+from .._units import warn_unit_slips
 from ..protocols import step_signals
 from . import _bound as core
 from ._kinds import require_feedforward, require_servo
@@ -100,6 +101,7 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         p.limits = self.limits.to_core()
         with core_errors_as(who):
             core.EncoderLoop.__init__(self, p)
+        warn_unit_slips(who, p)
         self.feedforward = feedforward
         self.design: EncoderLoopDesign | None = None
         self._settings = {**{k: getattr(p, k) for k in _GAINS}, "limits": self.limits}

@@ -9,10 +9,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._angles import checked_curve_angle
 from .._args import core_errors_as, number
 from .._arrays import as_signal, as_timed_signal, checked_dt
 from .._typing import ArrayLike
+from .._units import checked_curve_angle
 from ..models import HysteresisModel
 from ..plant.physics import route_shape as shape_of
 from ..simulation_result import SimulationResult

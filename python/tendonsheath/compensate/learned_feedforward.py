@@ -10,6 +10,7 @@ from .._args import core_errors_as, number, number_array
 from .._arrays import as_timed_signal, checked_dt
 from .._pyobject import bound_attribute
 from .._typing import ArrayLike, FloatArray
+from .._units import warn_unit_slips
 from ..simulation_result import SimulationResult
 from . import _bound as core
 from ._kinds import require_feedforward
@@ -93,6 +94,7 @@ class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ig
         p.limits = self.limits.to_core()
         with core_errors_as(who):
             core.LearnedCorrection.__init__(self, values.tolist(), p)
+        warn_unit_slips(who, p)
         self.feedforward = feedforward
         self._settings = {
             "table": values.tolist(),

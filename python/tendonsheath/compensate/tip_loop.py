@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 from .._args import core_errors_as, number
 from .._arrays import checked_dt
 from .._pyobject import bound_attribute
+from .._units import CURVE_ANGLE, warn_if_unit_slip, warn_unit_slips
 from ..protocols import step_signals
 from . import _bound as core
 from ._kinds import require_dynamics, require_feedforward, require_model
@@ -148,6 +149,9 @@ class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
         with core_errors_as(who):
             p.set_schedule([a for a, _ in pairs], [g for _, g in pairs])
             core.TipLoop.__init__(self, p)
+        warn_unit_slips(who, p)
+        for i, (angle, _) in enumerate(pairs):
+            warn_if_unit_slip(angle, who, f"schedule[{i}] curve angle", CURVE_ANGLE)
         self.feedforward = feedforward
         self.design: Any = None
         self._settings = {

@@ -39,6 +39,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._units import CURVE_ANGLE, warn_if_unit_slip
 from .tuning import (
     MS_TOLERANCE,
     RobustLoop,
@@ -348,6 +349,8 @@ def tune_tip_loop(
         raise ValueError(
             f"tune_tip_loop: {len(curve_angles)} curve angles for {len(dyns)} loop dynamics"
         )
+    for i, angle in enumerate(curve_angles or ()):
+        warn_if_unit_slip(angle, "tune_tip_loop", f"curve_angles[{i}]", CURVE_ANGLE)
     cutoff = 0.1 / dt
     plants = [loop_plant(d, dt) for d in dyns]
     loop = _RobustLoop(plants, dt, cutoff, _band_limits(dyns))

@@ -6,7 +6,16 @@ least-squares refinement. :class:`Identifier` is the same as an object (settings
 ``fit(recordings)``, ``clone()``), and :func:`cross_validate` scores it over recordings. See
 :func:`identify`. :func:`detect_input_interpolation` says which input reconstruction between
 samples (band-limited, held, linear) identify() picks for a HystereticOscillator by default.
+
+The package itself is callable: ``tendonsheath.identify(...)`` is :func:`identify`, so
+``ts.identify(Backlash, t, x, y)`` and ``ts.identify.identify_loop_dynamics(...)`` both read as
+the docs write them (a function of the same name bound in ``tendonsheath`` would hide the
+package, and ``import tendonsheath.identify`` would give the function).
 """
+
+import inspect
+import sys
+import types
 
 from .core import identify
 from .coupled import CoupledFit, identify_coupled
@@ -45,3 +54,13 @@ __all__ = [
     "identify_loop_dynamics",
     "metrics",
 ]
+
+
+class _CallablePackage(types.ModuleType):
+    """This package, callable as :func:`identify` (its signature and docstring too)."""
+
+    __call__ = staticmethod(identify)
+
+
+sys.modules[__name__].__class__ = _CallablePackage
+__signature__ = inspect.signature(identify)  # inspect would drop model_class as a "self"

@@ -259,9 +259,48 @@ def identify(
         raise ValueError(
             "a measured load is taken by a Loaded model: identify(Loaded(BaseClass), ..., load=...)"
         )
+    if curve_angle is not None and not takes_curve_angle(model_class, depends_on_angle):
+        raise ValueError(
+            f"curve_angle= is taken by a model that uses the curve angle (CurveAngleModel, "
+            f"AngleDependent) or with depends_on_angle=; {_name_of(model_class)} does not: "
+            "leave curve_angle out, or say which parameters depend on it"
+        )
     return fit_recordings(
         model_class, Options(**options), t, x, y, recordings=recordings, curve_angle=curve_angle
     )
+
+
+def takes_curve_angle(model: Any, depends_on_angle: dict | None = None) -> bool:
+    """Whether identifying ``model`` (a class, an instance, a registered name or a Chain) uses
+    a curve angle: a model that uses it (or a Chain with such a part), or parameters that
+    depend on it. An unknown name counts as taking it (its own check names it later).
+
+    Parameters
+    ----------
+    model : type, HysteresisModel or str
+        What identify is given.
+    depends_on_angle : dict, optional
+        identify's ``depends_on_angle``.
+
+    Returns
+    -------
+    bool
+        True when a curve angle given with it is used.
+    """
+    if depends_on_angle:
+        return True
+    if isinstance(model, str):
+        model = _REGISTRY.get(model)
+        if model is None:
+            return True
+    candidates = [model, getattr(model, "first", None), getattr(model, "second", None)]
+    return any(getattr(m, "uses_curve_angle", False) for m in candidates)
+
+
+def _name_of(model: Any) -> str:
+    if isinstance(model, str):
+        return model
+    return model.__name__ if isinstance(model, type) else type(model).__name__
 
 
 def fit_recordings(

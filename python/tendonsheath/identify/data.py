@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._arrays import as_vector
+from .._units import CURVE_ANGLE, warn_if_unit_slip
 from ..plant.route import Route, check_curve_angle
 from ._bound import RecordingSet
 
@@ -165,6 +166,9 @@ def _angles(value, n: int, who: str) -> tuple[np.ndarray | None, Route | None]:
                 f"{who}curve angle and x have different lengths ({theta.size} and {n})"
             )
     check_curve_angle(theta, f"{who}curve angle")
+    if theta.size:
+        top = float(np.max(np.abs(theta)))
+        warn_if_unit_slip(top, f"identify: {who}curve_angle", "(largest)", CURVE_ANGLE)
     return theta, route
 
 

@@ -6,6 +6,7 @@ refinement, and the diagnostics that make the Fit."""
 from __future__ import annotations
 
 import dataclasses
+import math
 import time
 from collections.abc import Callable
 from typing import Any
@@ -126,6 +127,7 @@ class ClassSetup:
         values = initial.params
         spec = _spec_of(cls, values)
         held, free_names = _held_and_free(cls, spec, values, opt, depends)
+        _check_fixed_values(cls, opt.fixed or {})
         warmup = int(opt.warmup)
         n_params = len(free_names) + sum(1 for v in depends.values() if v != "constant")
         needs_angle = bool(depends) or getattr(cls, "uses_curve_angle", False)
@@ -184,6 +186,29 @@ def _spec_of(cls, values: dict):
         thr = np.asarray(values["thresholds"], dtype=float)
         return GeneralizedPrandtlIshlinskiiSpec(thr / thr[-1] if thr[-1] > 0 else thr)
     return SPECS[cls]()
+
+
+def _check_fixed_values(cls, fixed: dict) -> None:
+    """Each fixed value inside its parameter's valid range (the C++ parameter table's), else
+    a ValueError naming it: a value outside makes every simulation fail, and the search would
+    only say that no parameters give a finite one."""
+    table = getattr(cls, "_core_params", None)
+    rows = {r["name"]: r for r in table.fields()} if table is not None else {}
+    for name, value in fixed.items():
+        v = float(value)
+        row = rows.get(name)
+        if not math.isfinite(v):
+            raise ValueError(f"fixed {name} = {v:g} is not a finite number")
+        if row is None or row["check"] in ("unchecked", "finite", "documented"):
+            continue
+        lo_ok = v > row["lo"] or (row["lo_closed"] and v == row["lo"])
+        hi_ok = v < row["hi"] or (row["hi_closed"] and v == row["hi"])
+        if not (lo_ok and hi_ok):
+            left, right = "[" if row["lo_closed"] else "(", "]" if row["hi_closed"] else ")"
+            raise ValueError(
+                f"fixed {name} = {v:g} is outside {cls.__name__}'s valid range of {name}, "
+                f"{left}{row['lo']:g}, {row['hi']:g}{right}"
+            )
 
 
 def _held_and_free(cls, spec, values: dict, opt: Options, depends: dict):

@@ -193,6 +193,13 @@ class Search:
             maxiter=o.maxiter, popsize=o.popsize, tol=o.tol, workers=o.workers, warmup=o.warmup
         )
         method, count = check_method(o.standard_errors, o.bootstrap)
+        for name in ("bootstrap", "bootstrap_block"):
+            if getattr(o, name) is not None and not method.startswith("bootstrap"):
+                raise ValueError(
+                    f"{name}={getattr(o, name)} applies to standard_errors='bootstrap' or "
+                    f"'bootstrap-recordings' only (got standard_errors={method!r}): give one "
+                    f"of those, or leave {name} out"
+                )
         budget = o.time_budget
         if not isinstance(budget, TimeBudget):
             budget = TimeBudget(budget)

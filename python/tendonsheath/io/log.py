@@ -43,6 +43,7 @@ import numpy as np
 from .._atomic import atomic_path
 from .._extras import require
 from .._typing import ArrayLike, FloatArray
+from .._units import CURVE_ANGLE, warn_if_unit_slip
 from ._rosbag import TIME_KEY, bag_columns, bag_path, read_bag
 from ._textread import Column, parse_cells, read_text_cells, read_text_header, read_text_table
 from ._timecol import TimeColumn, check_unit, read_time
@@ -659,6 +660,9 @@ def read_log(
         log = _resample(log, resample)
     if degrees:
         log = log.to_radians()
+    if log.curve_angle is not None and log.curve_angle.size:
+        top = float(np.max(np.abs(log.curve_angle)))
+        warn_if_unit_slip(top, f"read_log({path.name})", "curve_angle (largest)", CURVE_ANGLE)
     return log
 
 
@@ -797,6 +801,13 @@ def _drop_duplicate_times(log: Log, table: _Table, time, timecol: TimeColumn | N
     keep = np.r_[True, np.diff(t) != 0]
     if keep.all():
         return log
+    copies = ~keep & np.r_[False, _same_as_before(log)]
+    if copies[~keep].all():  # rows logged twice (time and values): not a rounding of the stamps
+        log.notes.append(
+            f"{int((~keep).sum())} {table.row_name}(s) that repeat the one before (time and "
+            f"values) dropped: {table.row_name}s {_ranges(log.rows[~keep])}"
+        )
+        return _keep_rows(log, keep)
     if timecol is not None:
         _refuse_rounded(log, timecol, int((~keep).sum()))
     log.notes.append(
@@ -804,6 +815,15 @@ def _drop_duplicate_times(log: Log, table: _Table, time, timecol: TimeColumn | N
         f"(first kept): {table.row_name}s {_ranges(log.rows[~keep])}"
     )
     return _keep_rows(log, keep)
+
+
+def _same_as_before(log: Log) -> np.ndarray:
+    """Per row after the first: the same input, output and curve angle as the row before."""
+    same = np.diff(log.x) == 0
+    for values in (log.y, log.curve_angle):
+        if values is not None:
+            same &= np.diff(values) == 0
+    return same
 
 
 def _refuse_rounded(log: Log, timecol: TimeColumn, repeats: int) -> None:

@@ -20,6 +20,7 @@ from .._atomic import write_text
 from .._json_source import naming_the_file, read_json_source
 from .._pyobject import PythonObject, bound_attribute
 from .._typing import ArrayLike
+from .._units import warn_unit_slips
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
 from ..status import Status
@@ -143,6 +144,7 @@ class HysteresisModel(PythonObject, _ControlBlock):
                 raise _field_error(type(self).__name__, key, value) from None
         with core_errors_as(type(self).__name__):  # the core names the parameter as Python does
             self._bound_class.__init__(self, struct)
+        warn_unit_slips(type(self).__name__, struct)
 
     @classmethod
     def _core_values(cls, values: dict[str, Any]) -> dict[str, Any]:

@@ -22,7 +22,12 @@ from scipy.signal import cont2discrete, lfilter, lfilter_zi
 from .._args import number
 from .._arrays import checked_dt
 from .._typing import ArrayLike, FloatArray
+from .._units import quantity_of, warn_if_unit_slip
+from ._bound import LagInverseParams
 from .base import HysteresisModel
+
+# the units of the lags' parameters, from the C++ LagInverse's parameter table
+_LAG_UNITS = {row["name"]: row["unit"] for row in LagInverseParams.fields()}
 
 _UNIFORM = 1e-3  # relative spread of the sample time accepted as uniform
 
@@ -84,6 +89,10 @@ class LinearBlock(HysteresisModel):
                 f"expected {list(self.param_names)}"
             )
         self._values = out
+        for name, v in out.items():  # the C++ inverse's table gives each one's unit
+            q = quantity_of(name, _LAG_UNITS.get(name, ""))
+            if q is not None:
+                warn_if_unit_slip(v, type(self).__name__, name, q)
         self.reset()
 
     @property

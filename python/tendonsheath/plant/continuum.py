@@ -7,6 +7,7 @@ import math
 from typing import TYPE_CHECKING
 
 from .._args import core_errors_as
+from .._units import warn_unit_slips
 from . import _bound as core
 from .loads import (
     TorsionalSpring,
@@ -130,8 +131,14 @@ class ContinuumPlant(_PairPlant, core.ContinuumPlant):  # type: ignore[misc]
         c.elements = _check_elements(elements, cls)
         c.options = _options(cls, max_increment, fast_path)
         _set_effects(c, cls, _PAIR_EFFECTS, effects)
+        if c.backbone_length > 0 and not math.isfinite(c.bending_stiffness / c.backbone_length):
+            raise ValueError(  # else the core names the derived load_stiffness = inf
+                f"{cls}: backbone_length {c.backbone_length:g} m is too small: the backbone's "
+                f"stiffness bending_stiffness / backbone_length overflows"
+            )
         with core_errors_as(cls):
             core.ContinuumPlant.__init__(self, c, self.route, self.route2)
+        warn_unit_slips(cls, c)
         self.load = TorsionalSpring(c.bending_stiffness / c.backbone_length)
         self._setup_io(motor, sensor, encoder)
 

@@ -10,6 +10,7 @@ from .._args import core_errors_as, number
 from .._arrays import as_timed_signal, checked_dt
 from .._pyobject import PythonObject, bound_attribute
 from .._typing import ArrayLike
+from .._units import warn_unit_slips
 from ..simulation_result import SimulationResult
 from ..status import Status
 from . import _bound as core
@@ -102,6 +103,7 @@ class Motor(PythonObject, core.Motor):  # type: ignore[misc]
         kind = "position" if params.kind == core.MotorKind.Position else "torque"
         with core_errors_as(f"Motor.{kind}"):
             core.Motor.__init__(self, params)  # validates, naming the parameter
+        warn_unit_slips(f"Motor.{kind}", params)
 
     def _recipe(self):
         # pickled as its parameters: an equal motor at rest (tendonsheath._pyobject)

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 
 from .._args import core_errors_as
 from .._pyobject import bound_attribute
+from .._units import warn_unit_slips
 from . import _bound as core
 from . import physics
 from .loads import (
@@ -323,6 +324,7 @@ class PullPullPlant(_PairPlant, core.PullPullPlant):  # type: ignore[misc]
         _set_effects(p, cls, _PAIR_EFFECTS, effects)
         with core_errors_as(cls):
             core.PullPullPlant.__init__(self, p, self.route, self.route2)
+        warn_unit_slips(cls, p)
         self._setup_io(motor, sensor, encoder)
 
 

@@ -6,12 +6,12 @@ from collections.abc import Iterable, Sequence
 
 import numpy as np
 
-from .._angles import UnitWarning as UnitWarning
-from .._angles import warn_if_curve_angle_in_degrees
 from .._args import accepts_old_names, core_errors_as, number, number_array, warn_renamed
 from .._arrays import as_signal
 from .._pyobject import bound_attribute
 from .._typing import ArrayLike, FloatArray
+from .._units import LENGTH, warn_if_curve_angle_in_degrees, warn_if_unit_slip
+from .._units import UnitWarning as UnitWarning
 from . import _bound as core
 
 # 100 full turns: the largest curve angle accepted in measured data (no sheath route comes near
@@ -55,6 +55,7 @@ class Route(core.Route):
         with core_errors_as("Route"):
             core.Route.__init__(self, s_arr.tolist(), th_arr.tolist())
         warn_if_curve_angle_in_degrees(self.curve_angle, "Route", "theta[-1]")
+        warn_if_unit_slip(self.length, "Route", "s[-1] (the length)", LENGTH)
 
     @classmethod
     def _wrap(cls, built: core.Route) -> Route:
@@ -86,6 +87,7 @@ class Route(core.Route):
         with core_errors_as("Route.uniform"):
             route = cls._wrap(core.Route.uniform(length, angle))
         warn_if_curve_angle_in_degrees(angle, "Route.uniform")
+        warn_if_unit_slip(length, "Route.uniform", "length", LENGTH)
         return route
 
     @classmethod
@@ -118,6 +120,7 @@ class Route(core.Route):
         with core_errors_as("Route.arcs"):
             route = cls._wrap(core.Route.arcs(items))
         warn_if_curve_angle_in_degrees(route.curve_angle, "Route.arcs", "the pieces' total angle")
+        warn_if_unit_slip(route.length, "Route.arcs", "the pieces' total length", LENGTH)
         return route
 
     @classmethod
@@ -144,7 +147,9 @@ class Route(core.Route):
         pts = np.ascontiguousarray(number_array("Route.from_points", "xyz", xyz))
         if pts.ndim != 2 or pts.shape[1] != 3:
             raise ValueError(f"Route.from_points: points must be K x 3 (got shape {pts.shape})")
-        return cls._wrap(core.Route.from_points(pts))
+        route = cls._wrap(core.Route.from_points(pts))
+        warn_if_unit_slip(route.length, "Route.from_points", "the polyline's length", LENGTH)
+        return route
 
     @classmethod
     def from_curvature(cls, s: ArrayLike, kappa: ArrayLike) -> Route:
@@ -176,7 +181,10 @@ class Route(core.Route):
                 f"Route.from_curvature: s and kappa have different lengths "
                 f"({s_arr.size} and {k_arr.size})"
             )
-        return cls._wrap(core.Route.from_curvature(s_arr, k_arr))
+        route = cls._wrap(core.Route.from_curvature(s_arr, k_arr))
+        warn_if_curve_angle_in_degrees(route.curve_angle, "Route.from_curvature", "the curve angle")
+        warn_if_unit_slip(route.length, "Route.from_curvature", "s[-1] (the length)", LENGTH)
+        return route
 
     # -- properties ------------------------------------------------------------------
     @property

@@ -11,6 +11,7 @@ from .._args import core_errors_as, integer, number
 from .._arrays import as_vector, checked_dt
 from .._pyobject import PythonObject, bound_attribute
 from .._typing import ArrayLike, FloatArray
+from .._units import warn_unit_slips
 from ..status import Status
 from . import _bound as core
 
@@ -68,6 +69,7 @@ class Sensor(PythonObject, core.Sensor):  # type: ignore[misc]
         p.history = int(history)
         with core_errors_as("Sensor"):
             core.Sensor.__init__(self, p)  # validates
+        warn_unit_slips("Sensor", p)
 
     def _recipe(self):
         # pickled as its settings: an equal sensor at rest (tendonsheath._pyobject)

@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from .._args import core_errors_as, number
+from .._units import warn_unit_slips
 from . import _bound as core
 from . import physics
 from .loads import (
@@ -116,6 +117,7 @@ class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
         _set_effects(p, cls, _RATE_EFFECTS, effects)
         with core_errors_as(cls):
             core.SingleTendonPlant.__init__(self, p, route)
+        warn_unit_slips(cls, p)
         self._setup_io(motor, sensor, encoder)
 
     @property
