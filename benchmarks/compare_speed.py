@@ -10,7 +10,9 @@ candidates), resampled to 500 Hz: 10 000 samples each. The call: ``ts.compare_mo
 every default (leave-one-recording-out cross-validation over the five, the winner refitted
 on all of them). Wall seconds, the best and the median of ``--repeat`` calls, with the
 machine's load average before each: the machine is shared, and the best call is the one
-least disturbed by others. Writes benchmarks/results/compare_speed.json.
+least disturbed by others. ``--before``: the folds' fits as before issue 35 item 5, on every
+training sample with the full search (``compare.FOLD_SAMPLES``, ``FOLD_SEARCH_GENERATIONS``
+lifted). Writes benchmarks/results/compare_speed.json (``--before``: compare_speed_before).
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ from _tool5 import DEFAULT, run_name
 
 import tendonsheath as ts
 from _common import write_results
+from tendonsheath import compare
 
 RUNS = tuple(run_name(0.1, p) for p in (10, 30, 50, 70, 90))
 RATE = 500.0  # Hz: 20 s runs of 10 000 samples
@@ -36,7 +39,10 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--tool5", type=Path, default=DEFAULT)
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--before", action="store_true")
     args = ap.parse_args()
+    if args.before:
+        compare.FOLD_SAMPLES, compare.FOLD_SEARCH_GENERATIONS = 10**12, 10**6
     if not (args.tool5 / f"{RUNS[0]}.csv").exists():
         print(f"no data at {args.tool5}: results/compare_speed.json kept as it is")
         return 0
@@ -63,7 +69,7 @@ def main() -> int:
               f"winner {cmp.winner_name}")  # fmt: skip
     seconds = [c["seconds"] for c in calls]
     path = write_results(
-        "compare_speed",
+        "compare_speed_before" if args.before else "compare_speed",
         {
             "runs": list(RUNS),
             "samples": samples,

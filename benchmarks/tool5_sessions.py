@@ -79,7 +79,9 @@ def pair(a_model, a_runs, b_model, logs, block) -> dict:
     seconds = time.perf_counter() - start
     shift = session_shift(a_model, cal, load=load, reference=a_runs)
     own_runs = calibration_runs(block)
-    tests = [(first, n)] + [(logs[name], 0) for name in block if name not in own_runs]
+    tests = [(logs[name], 0) for name in block if name not in own_runs]
+    if first.x.size - n >= first.x.size // 4:  # the first run's rest, where a cycle is left
+        tests.insert(0, (first, n))
     ratios: dict[str, list[float]] = {"recalibrated_over_own": [], "as_was_over_own": []}
     for log, k in tests:
         own = scores(b_model, log, k)["forward_abs"]

@@ -82,6 +82,13 @@ AFFINE = "affine"
 #: GeneralizedPrandtlIshlinskii's folds 48.7 s -> 24.1 s, its held-out rmse 0.14403 -> 0.14398
 #: (benchmarks/compare_candidates_time.py)
 FOLD_REFINE_EVALUATIONS = 40
+#: the training samples of a cross-validation fold's fit, where the winner is refitted on all
+#: the data (the folds' fits only rank): a rate-independent candidate's records thinned to
+#: about this many (every turning point kept: data.thin_for_search), a dynamic chain's
+#: decimated (at most 4x). Measured with benchmarks/compare_speed.py (5 x 10^4 samples)
+FOLD_SAMPLES = 4000
+#: the global search's generations in such a fold (at most ``maxiter``)
+FOLD_SEARCH_GENERATIONS = 40
 
 
 #: the load-aware default candidates (logs that carry a measured load): Loaded(base) around
@@ -940,7 +947,11 @@ def compare_models(
     # folds whose fits only rank (the winner is refitted on all the data): a shorter polish
     capped = REFINE_LIMIT.set(FOLD_REFINE_EVALUATIONS if final else None)
     try:
-        rows, fits = run.all_candidates(estimators, names, has_angle, on_fit)
+        folds = estimators
+        if final:  # the folds' fits only rank: a shorter search (the final fit has it all)
+            short = {**settings, "maxiter": min(maxiter, FOLD_SEARCH_GENERATIONS)}
+            folds = [Identifier(c, **short) for c in candidates]
+        rows, fits = run.all_candidates(folds, names, has_angle, on_fit)
         fits[AFFINE] = Polynomial(coefficients=[b, a])
     finally:
         REFINE_LIMIT.reset(capped)
@@ -1210,8 +1221,11 @@ class _Run:
                 )
                 continue
             fitted: list = []
+            fit_split = estimator_split(estimator, fitted)
+            if self.final:
+                fit_split = _on_fewer_samples(fit_split, estimator.model)
             try:
-                tm, vm, sec, cpu = self.evaluate(name, estimator_split(estimator, fitted))
+                tm, vm, sec, cpu = self.evaluate(name, fit_split)
             except OutOfTime as exc:
                 rows.append(_out_of_time(name, str(exc)))
                 continue
@@ -1256,6 +1270,18 @@ class _Run:
         }
 
 
+def _on_fewer_samples(fit_split, candidate):
+    """``fit_split`` on the training records thinned (a rate-independent candidate) or
+    decimated (a dynamic chain) to about :data:`FOLD_SAMPLES`: a fold's fit only ranks."""
+    from .identify.data import decimate_for_search, thin_for_search
+
+    if getattr(candidate, "rate_independent", False):
+        return lambda train: fit_split(thin_for_search(list(train), 0, FOLD_SAMPLES)[0])
+    if is_dynamic_chain(candidate):
+        return lambda train: fit_split(decimate_for_search(list(train), 0, FOLD_SAMPLES)[0])
+    return fit_split
+
+
 def _out_of_time(name: str, message: str) -> dict:
     return {"model": name, "error": message, "status": "out of time"}
 
@@ -1290,6 +1316,8 @@ __all__ = [
     "CANDIDATES",
     "Comparison",
     "FOLD_REFINE_EVALUATIONS",
+    "FOLD_SAMPLES",
+    "FOLD_SEARCH_GENERATIONS",
     "INVERSE_NOTE",
     "LOADED_BASES",
     "MIN_PIECE",
