@@ -11,8 +11,8 @@ every default (leave-one-recording-out cross-validation over the five, the winne
 on all of them). Wall seconds, the best and the median of ``--repeat`` calls, with the
 machine's load average before each: the machine is shared, and the best call is the one
 least disturbed by others. ``--before``: the folds' fits as before issue 35 item 5, on every
-training sample with the full search (``compare.FOLD_SAMPLES``, ``FOLD_SEARCH_GENERATIONS``
-lifted). Writes benchmarks/results/compare_speed.json (``--before``: compare_speed_before).
+training sample (``compare.FOLD_THIN_ABOVE`` lifted). Writes
+benchmarks/results/compare_speed.json (``--before``: compare_speed_before.json).
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ def main() -> int:
     ap.add_argument("--before", action="store_true")
     args = ap.parse_args()
     if args.before:
-        compare.FOLD_SAMPLES, compare.FOLD_SEARCH_GENERATIONS = 10**12, 10**6
+        compare.FOLD_THIN_ABOVE = 10**12
     if not (args.tool5 / f"{RUNS[0]}.csv").exists():
         print(f"no data at {args.tool5}: results/compare_speed.json kept as it is")
         return 0

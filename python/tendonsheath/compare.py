@@ -82,13 +82,16 @@ AFFINE = "affine"
 #: GeneralizedPrandtlIshlinskii's folds 48.7 s -> 24.1 s, its held-out rmse 0.14403 -> 0.14398
 #: (benchmarks/compare_candidates_time.py)
 FOLD_REFINE_EVALUATIONS = 40
-#: the training samples of a cross-validation fold's fit, where the winner is refitted on all
-#: the data (the folds' fits only rank): a rate-independent candidate's records thinned to
-#: about this many (every turning point kept: data.thin_for_search), a dynamic chain's
-#: decimated (at most 4x). Measured with benchmarks/compare_speed.py (5 x 10^4 samples)
+#: the training samples of a cross-validation fold's fit past FOLD_THIN_ABOVE, where the
+#: winner is refitted on all the data (the folds' fits only rank): a rate-independent
+#: candidate's records thinned to about this many (every turning point kept:
+#: data.thin_for_search), a dynamic chain's decimated (at most 4x). Five tool-5 runs of 10^4
+#: samples with every default: 95 s -> 26-29 s on 2 cores (benchmarks/compare_speed.py). Folds
+#: up to FOLD_THIN_ABOVE samples are fitted on every sample: the ranking of close candidates
+#: can turn on the thinning (on three tool-5 runs of 4000 samples, thinned folds ranked
+#: Loaded(BoucWenBacklash) over Loaded(Backlash), whose inverse does better on unseen runs)
 FOLD_SAMPLES = 4000
-#: the global search's generations in such a fold (at most ``maxiter``)
-FOLD_SEARCH_GENERATIONS = 40
+FOLD_THIN_ABOVE = 16000
 
 
 #: the load-aware default candidates (logs that carry a measured load): Loaded(base) around
@@ -947,11 +950,7 @@ def compare_models(
     # folds whose fits only rank (the winner is refitted on all the data): a shorter polish
     capped = REFINE_LIMIT.set(FOLD_REFINE_EVALUATIONS if final else None)
     try:
-        folds = estimators
-        if final:  # the folds' fits only rank: a shorter search (the final fit has it all)
-            short = {**settings, "maxiter": min(maxiter, FOLD_SEARCH_GENERATIONS)}
-            folds = [Identifier(c, **short) for c in candidates]
-        rows, fits = run.all_candidates(folds, names, has_angle, on_fit)
+        rows, fits = run.all_candidates(estimators, names, has_angle, on_fit)
         fits[AFFINE] = Polynomial(coefficients=[b, a])
     finally:
         REFINE_LIMIT.reset(capped)
@@ -1272,14 +1271,24 @@ class _Run:
 
 def _on_fewer_samples(fit_split, candidate):
     """``fit_split`` on the training records thinned (a rate-independent candidate) or
-    decimated (a dynamic chain) to about :data:`FOLD_SAMPLES`: a fold's fit only ranks."""
+    decimated (a dynamic chain) to about :data:`FOLD_SAMPLES` where they hold more than
+    :data:`FOLD_THIN_ABOVE` samples: a fold's fit only ranks."""
     from .identify.data import decimate_for_search, thin_for_search
 
     if getattr(candidate, "rate_independent", False):
-        return lambda train: fit_split(thin_for_search(list(train), 0, FOLD_SAMPLES)[0])
-    if is_dynamic_chain(candidate):
-        return lambda train: fit_split(decimate_for_search(list(train), 0, FOLD_SAMPLES)[0])
-    return fit_split
+        fewer = thin_for_search
+    elif is_dynamic_chain(candidate):
+        fewer = decimate_for_search
+    else:
+        return fit_split
+
+    def fit_on_fewer(train):
+        train = list(train)
+        if sum(r.n for r in train) <= FOLD_THIN_ABOVE:
+            return fit_split(train)
+        return fit_split(fewer(train, 0, FOLD_SAMPLES)[0])
+
+    return fit_on_fewer
 
 
 def _out_of_time(name: str, message: str) -> dict:
@@ -1317,7 +1326,7 @@ __all__ = [
     "Comparison",
     "FOLD_REFINE_EVALUATIONS",
     "FOLD_SAMPLES",
-    "FOLD_SEARCH_GENERATIONS",
+    "FOLD_THIN_ABOVE",
     "INVERSE_NOTE",
     "LOADED_BASES",
     "MIN_PIECE",

@@ -11,13 +11,12 @@ from collections import deque
 import numpy as np
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
-from rclpy.parameter import Parameter
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray
 from trajectory_msgs.msg import JointTrajectory
 
 from ..status import Status
-from ._messages import COMMAND_TYPES, DESIRED_TYPES, Trajectory, by_name, joint_state
+from ._messages import COMMAND_TYPES, DESIRED_TYPES, Trajectory, by_name, declared, joint_state
 from .live_compensator import Limits, LiveCompensator
 
 # the samples of period and compute time kept for timing() (about 3 min at 500 Hz)
@@ -28,14 +27,7 @@ class CompensatorNode(LifecycleNode):
     """The compensator node (see the module)."""
 
     def __init__(self, compensator, name, context, values):
-        # a string array parameter needs its type: from the default list of strings
-        params = [Parameter(k, value=v) for k, v in values.items()]
-        super().__init__(
-            name,
-            context=context,
-            parameter_overrides=params,
-            automatically_declare_parameters_from_overrides=True,
-        )
+        super().__init__(name, context=context, **declared(values))
         self.compensator = compensator
         self.live: LiveCompensator | None = None
         self._timer = None

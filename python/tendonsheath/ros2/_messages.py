@@ -13,6 +13,17 @@ DESIRED_TYPES = ("joint_state", "joint_trajectory")
 COMMAND_TYPES = ("joint_state", "float64_multi_array")
 
 
+def declared(values: dict[str, Any]) -> dict[str, Any]:
+    """A node's keyword arguments that declare ``values`` as its ROS parameters (the
+    defaults, which a launch file or ``--ros-args -p`` overrides)."""
+    from rclpy.parameter import Parameter
+
+    return {
+        "parameter_overrides": [Parameter(k, value=v) for k, v in values.items()],
+        "automatically_declare_parameters_from_overrides": True,
+    }
+
+
 def stamp_seconds(stamp: Any) -> float:
     """A builtin_interfaces/Time in seconds."""
     return float(stamp.sec) + 1e-9 * float(stamp.nanosec)

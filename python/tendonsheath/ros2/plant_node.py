@@ -20,7 +20,7 @@ import time
 from typing import Any
 
 from . import _env
-from ._messages import COMMAND_TYPES, by_name, joint_state
+from ._messages import COMMAND_TYPES, by_name, declared, joint_state
 from .live_plant import LivePlant
 
 #: The node's parameters and their defaults.
@@ -86,7 +86,6 @@ def _node_class() -> type:
     if _CLASS:
         return _CLASS[0]
     from rclpy.node import Node
-    from rclpy.parameter import Parameter
     from sensor_msgs.msg import JointState
     from std_msgs.msg import Float64MultiArray
 
@@ -94,13 +93,8 @@ def _node_class() -> type:
         """The plant node (see the module)."""
 
         def __init__(self, plant, name, context, values):
-            params = [Parameter(k, value=v) for k, v in values.items()]
-            super().__init__(
-                name,
-                context=context,
-                parameter_overrides=params,
-                automatically_declare_parameters_from_overrides=True,
-            )
+
+            super().__init__(name, context=context, **declared(values))
             self.plant = plant
             self.joint = str(values["joint"])
             motor = getattr(plant.plant, "motor", None)
