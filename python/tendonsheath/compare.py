@@ -86,7 +86,7 @@ FOLD_REFINE_EVALUATIONS = 40
 #: winner is refitted on all the data (the folds' fits only rank): a rate-independent
 #: candidate's records thinned to about this many (every turning point kept:
 #: data.thin_for_search), a dynamic chain's decimated (at most 4x). Five tool-5 runs of 10^4
-#: samples with every default: 95 s -> 26-29 s on 2 cores (benchmarks/compare_speed.py). Folds
+#: samples with every default: 95 s -> 31 s on 2 cores (benchmarks/compare_speed.py). Folds
 #: up to FOLD_THIN_ABOVE samples are fitted on every sample: the ranking of close candidates
 #: can turn on the thinning (on three tool-5 runs of 4000 samples, thinned folds ranked
 #: Loaded(BoucWenBacklash) over Loaded(Backlash), whose inverse does better on unseen runs)
