@@ -301,9 +301,9 @@ def _note(text: str) -> None:
     console.print(f"[yellow]note:[/yellow] {text}", soft_wrap=True, highlight=False)
 
 
-def _note_suspicious(data: list[Path], validate: list[Path], input_col, output_col) -> None:
-    """Notes for the same file twice, validating on a training file, and the input and the
-    output the same column."""
+def _note_suspicious(data: list[Path], validate: list[Path]) -> None:
+    """Notes for the same file twice and validating on a training file (the input and the
+    output one column: read_log refuses it)."""
     seen: list[Path] = []
     for path in data:
         if any(_same_file(path, p) for p in seen):
@@ -315,11 +315,6 @@ def _note_suspicious(data: list[Path], validate: list[Path], input_col, output_c
                 f"validating on {path}, a training file: its validation error is not a "
                 "held-out error"
             )
-    if input_col is not None and input_col == output_col:
-        _note(
-            f"--input and --output are the same column '{input_col}': the model maps the "
-            "signal to itself"
-        )
 
 
 @app.command()
@@ -567,7 +562,7 @@ def _fit_logs(candidate, data: list[Path], validate: Path | None, columns: dict,
     from .identify import identify as run_identify
     from .models import Loaded
 
-    _note_suspicious(data, [validate] if validate else [], columns["input"], columns["output"])
+    _note_suspicious(data, [validate] if validate else [])
     logs = _read_logs(data, columns)
     vlog = _read_logs([validate], columns)[0] if validate is not None else None
     for log in logs + ([vlog] if vlog is not None else []):  # before the (long) fitting
@@ -715,7 +710,6 @@ def predict(
         load_col = load_col or saved.get("load")
         if input_col is None:
             raise ValueError("name the input column with --input")
-        _note_suspicious([], [], input_col, wanted_output)
         if isinstance(model, Loaded) and load_col is None:
             raise ValueError("a Loaded model needs the measured load: name its column with --load")
         table_columns = io.columns(data)
@@ -1085,7 +1079,7 @@ def compare(
     _check_choice_options(objective, range_margin, parsimony)
     _check_split_options(holdout, validate, folds)
     _check_seed(seed)
-    _note_suspicious(data, validate or [], input_col, output_col)
+    _note_suspicious(data, validate or [])
     if report is not None:
         _checked(check_output_folder, report, "--report")
     columns = _data_columns(
