@@ -9,6 +9,15 @@ Each generated table sits between two marker comments in README.md:
     ... (generated: do not edit by hand)
     <!-- table:NAME:end -->
 
+A figure the prose quotes from a result file carries a marker right after it (or in a group
+of markers, one a line, after its paragraph or table), which ``--check`` checks too:
+
+    ... is 1.62x a model fitted on that session's own three runs ...
+    <!-- result: tool5_sessions.json summary.recalibrated_over_own.median ~ 1.62 -->
+
+the key (dots between its parts, a list index as a number) holds a number that rounds to the
+figure at the digits it shows, and the figure stands in the text since the marker group before.
+
 The tables are defined in TABLES at the end of this file (a name, the result files it reads
 and a function that renders it). The result files are refreshed by `make results` (the demo's
 metrics.json copied to benchmarks/results/demo-metrics.json, the benchmark scripts' JSON),
@@ -791,6 +800,43 @@ def render(text: str, results: Path = RESULTS, tables: list[Table] = TABLES) -> 
     return text
 
 
+# a quoted figure: <!-- result: FILE KEY.PATH ~ FIGURE -->
+RESULT = re.compile(r"<!-- result: (\S+) (\S+) ~ (\S+) -->")
+FIGURE = re.compile(r"-?\d+(?:\.\d+)?(?:e[+-]?\d+)?")
+
+
+def rounds_to(value: float, figure: str) -> bool:
+    """Whether ``value`` rounded to the digits ``figure`` shows is ``figure``."""
+    mantissa, _, exponent = figure.lower().partition("e")
+    digits = len(mantissa.partition(".")[2])
+    shown = f"{value:.{digits}e}" if exponent else f"{value:.{digits}f}"
+    return float(shown) == float(figure)
+
+
+def figures_wrong(text: str, results: Path = RESULTS, page: str = "README.md") -> list[str]:
+    """Every ``result:`` marker of ``text`` (README.md's, or ``page``'s) whose figure is not its
+    result file's, one line each (a missing file or key raises ResultError)."""
+    cache: dict[str, Source] = {}
+    wrong, since, end = [], 0, 0
+    for m in RESULT.finditer(text):
+        if text[end : m.start()].strip():  # not the next of a group of markers: a new text
+            since = end
+        end = m.end()
+        name, key, figure = m.groups()
+        if name not in cache:
+            cache[name] = Source(results / name)
+        parts = [int(k) if re.fullmatch(r"-?\d+", k) else k for k in key.split(".")]
+        value = cache[name].num(*parts)
+        where = f"{page}: {name} {key}"
+        if not FIGURE.fullmatch(figure):
+            wrong.append(f"{where}: {figure!r} is not a figure")
+        elif not re.search(rf"(?<![\d.]){re.escape(figure)}(?![\d])", text[since : m.start()]):
+            wrong.append(f"{where}: the text before the marker no longer quotes {figure}")
+        elif not rounds_to(value, figure):
+            wrong.append(f"{where} is {value:.6g}; the text quotes {figure}")
+    return wrong
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--check", action="store_true", help="do not write; exit 1 on a diff")
@@ -800,9 +846,14 @@ def main(argv: list[str] | None = None) -> int:
     try:
         current = args.readme.read_text()
         new = render(current, args.results)
+        wrong = figures_wrong(current, args.results)
     except (ResultError, OSError) as exc:
         print(f"readme_tables: error: {exc}", file=sys.stderr)
         return 2
+    if wrong:  # a figure in the prose is the writer's to fix: never rewritten
+        print("\n".join(wrong))
+        print(f"{_display(args.readme)}: {len(wrong)} quoted figure(s) differ from their results")
+        return 1
     if args.check:
         if new == current:
             print(f"{_display(args.readme)}: tables up to date")

@@ -5,8 +5,21 @@ would paste them; a block with an ``if __name__ == "__main__":`` block is a scri
 runs as one, in a fresh interpreter (as in ``test_readme_snippets.py``). On the pages of
 SHELL_PAGES the commands run too, in order with the Python blocks, and a C++ or TOML block the
 page tells the reader to save is saved; what a page shows a command print (its ```text blocks)
-is what it printed. The scenario page's key table is checked against the parser. Building the
-site with warnings as errors is ``make docs``, which ``make test`` runs.
+is what it printed. A figure a page's prose quotes from what its code computes carries a
+marker, an HTML comment right after it (the site and GitHub show nothing):
+
+    at 0.135 <!-- check: cmp.row("Loaded(Backlash)")["ratio_to_affine"] ~ 0.135 -->
+
+says that the expression, evaluated in the namespace the page's blocks ran in, rounds to the
+quoted figure at its digits (0.135: three decimals; 6.0e-4: one in the mantissa); the figure
+must stand in the page's text since the marker before (so the prose and the marker change
+together; markers may also follow a paragraph or a block as a group, one a line). A marker
+without ``~``, ``<!-- check: EXPR -->``, is a claim in words: EXPR must be true. A figure the
+code no longer prints fails the page's test. (A figure quoted from benchmarks/results/*.json
+carries a ``<!-- result: FILE KEY ~ FIGURE -->`` marker instead, which
+``benchmarks/readme_tables.py --check`` checks.) The scenario page's key table is checked
+against the parser. Building the site with warnings as errors is ``make docs``, which
+``make test`` runs.
 """
 
 import importlib
@@ -140,6 +153,73 @@ def run_page(page: str, folder: Path) -> dict:
         elif lang == "bash" and page in SHELL_PAGES:
             namespace["_shell"].append(run_commands(code, folder, where))
     return namespace
+
+
+# a checked figure: <!-- check: EXPR ~ FIGURE --> (or a claim, <!-- check: EXPR -->)
+CHECK = re.compile(r"<!-- check: (.+?) -->", flags=re.S)
+FIGURE = r"-?\d+(?:\.\d+)?(?:e[+-]?\d+)?"
+
+
+def rounds_to(value: float, figure: str) -> bool:
+    """Whether ``value`` rounded to the digits ``figure`` shows is ``figure``."""
+    mantissa, _, exponent = figure.lower().partition("e")
+    digits = len(mantissa.partition(".")[2])
+    shown = f"{value:.{digits}e}" if exponent else f"{value:.{digits}f}"
+    return float(shown) == float(figure)
+
+
+def quoted_figures_wrong(text: str, namespace: dict, page: str) -> list[str]:
+    """Every marker of ``text`` whose figure (or claim) is not what the code computes, each as
+    a line naming the page, the expression, its value and the figure quoted."""
+    wrong, since, end = [], 0, 0
+    for m in CHECK.finditer(text):
+        if text[end : m.start()].strip():  # not the next of a group of markers: a new text
+            since = end
+        end = m.end()
+        expr, _, figure = (part.strip() for part in m[1].rpartition(" ~ "))
+        expr = expr or figure  # no "~": the whole marker is a claim
+        where = f"docs/{page}: <!-- check: {m[1]} -->"
+        try:
+            value = eval(expr, namespace)  # noqa: S307 (the page's own expressions)
+        except Exception as exc:  # a marker that cannot be evaluated is wrong too
+            wrong.append(f"{where}: {type(exc).__name__}: {exc}")
+            continue
+        if expr == figure:
+            if value is not True and value is not np.True_:
+                wrong.append(f"{where}: {value!r}, not True")
+        elif not re.fullmatch(FIGURE, figure):
+            wrong.append(f"{where}: {figure!r} is not a figure")
+        elif not re.search(rf"(?<![\d.]){re.escape(figure)}(?![\d])", text[since : m.start()]):
+            wrong.append(f"{where}: the text before it no longer quotes {figure}")
+        elif not rounds_to(float(value), figure):
+            wrong.append(f"{where}: the code gives {float(value):.6g}, the page quotes {figure}")
+    return wrong
+
+
+def test_a_quoted_figure_that_the_code_no_longer_gives_fails():
+    ns = {"ratio": 0.1349, "tiny": 6.04e-4, "n": 4}
+    good = (
+        "wins at 0.135 <!-- check: ratio ~ 0.135 -->, rmse 6.0e-4 <!-- check: tiny ~ 6.0e-4 -->"
+        " and 4 cycles <!-- check: n ~ 4 --> <!-- check: n == 4 -->"
+    )
+    assert quoted_figures_wrong(good, ns, "p.md") == []
+    stale = [
+        "wins at 0.14 <!-- check: ratio ~ 0.14 -->",  # 0.13 at two decimals
+        "wins at 0.135 <!-- check: ratio ~ 0.136 -->",  # the prose and the marker differ
+        "wins at 1.135 <!-- check: ratio ~ 0.135 -->",  # not the same figure
+        "4 cycles <!-- check: n == 5 -->",  # a claim that is false
+        "4 cycles <!-- check: gone ~ 4 -->",  # a name the page no longer defines
+    ]
+    for text in stale:
+        assert len(quoted_figures_wrong(text, ns, "p.md")) == 1, text
+    # markers may follow a paragraph as a group; the figure must stand in the text before the
+    # group, after the marker before it: one quote does not serve two texts
+    group = "0.135 and 4\n<!-- check: ratio ~ 0.135 -->\n<!-- check: n ~ 4 -->"
+    assert quoted_figures_wrong(group, ns, "p.md") == []
+    twice = "0.135 <!-- check: ratio ~ 0.135 --> more <!-- check: ratio ~ 0.135 -->"
+    assert len(quoted_figures_wrong(twice, ns, "p.md")) == 1
+    # the pages' markers are read (a changed syntax would find none and pass)
+    assert sum(len(CHECK.findall((DOCS / page).read_text())) for page in PAGES) >= 25
 
 
 def test_the_four_tutorials_are_there_with_code():
@@ -336,6 +416,7 @@ def test_every_python_block_runs_as_written(page, tmp_path, monkeypatch):
     check = CHECKS.get(page)
     if check is not None:
         check(namespace, tmp_path)
+    assert quoted_figures_wrong((DOCS / page).read_text(), namespace, page) == []
 
 
 def _simulate(ns, _folder):

@@ -50,8 +50,8 @@ def test_every_table_has_its_markers_and_result_files(tables):
 def _copy_results(tables, tmp_path: Path) -> Path:
     results = tmp_path / "results"
     results.mkdir()
-    for name in {f for t in tables.TABLES for f in t.files}:
-        shutil.copy(tables.RESULTS / name, results / name)
+    for path in tables.RESULTS.glob("*.json"):  # the tables' files and the quoted figures'
+        shutil.copy(path, results / path.name)
     readme = tmp_path / "README.md"
     shutil.copy(ROOT / "README.md", readme)
     return results
@@ -121,3 +121,34 @@ def test_three_significant_digits(tables):
     ]
     assert fmt(0.0012, trim=True) == "0.0012" and fmt(1e-4, trim=True) == "1e-4"
     assert fmt(float("nan")) == "n/a"
+
+
+def test_the_figures_the_prose_quotes_are_the_results(tables):
+    """README.md's and the docs pages' ``<!-- result: FILE KEY ~ FIGURE -->`` markers: each
+    figure is its result's, rounded as quoted (the check `--check` runs on README.md)."""
+    pages = {"README.md": ROOT / "README.md"}
+    pages.update({p.relative_to(ROOT).as_posix(): p for p in (ROOT / "docs").rglob("*.md")})
+    wrong, count = [], 0
+    for name, path in pages.items():
+        text = path.read_text()
+        count += len(tables.RESULT.findall(text))
+        wrong += tables.figures_wrong(text, tables.RESULTS, name)
+    assert wrong == []
+    assert count >= 50  # the markers are read (a changed syntax would find none)
+
+
+def test_a_stale_quoted_figure_fails_the_check(tables, tmp_path, capsys):
+    results = _copy_results(tables, tmp_path)
+    path = results / "tool5_sessions.json"
+    data = json.loads(path.read_text())
+    data["summary"]["recalibrated_over_own"]["median"] = 1.5  # the README quotes 1.62
+    path.write_text(json.dumps(data))
+    readme = tmp_path / "README.md"
+    code = tables.main(["--check", "--readme", str(readme), "--results", str(results)])
+    out = capsys.readouterr().out
+    assert code == 1 and "summary.recalibrated_over_own.median is 1.5; the text quotes 1.62" in out
+    # a figure the prose no longer quotes (the marker left behind) fails too
+    text = readme.read_text().replace("is 1.62x a model", "is 1.7x a model")
+    assert tables.figures_wrong(text, tables.RESULTS)[0].endswith("no longer quotes 1.62")
+    assert tables.rounds_to(0.1349, "0.135") and not tables.rounds_to(0.1349, "0.14")
+    assert tables.rounds_to(8.5626e-2, "8.56e-2") and tables.rounds_to(30.7, "31")
