@@ -131,7 +131,7 @@ def _corrupt(model_file, tmp_path, change):
         (lambda r: r["params"].pop("B_r"), "['B_r'] missing"),
         (lambda r: r["params"].__setitem__("B_r", None), "'B_r' is null"),
         (lambda r: r["params"].__setitem__("B_r", True), "'B_r' must be a number"),
-        (lambda r: r["params"].__setitem__("B_r", "wide"), "B_r has the wrong type"),
+        (lambda r: r["params"].__setitem__("B_r", "wide"), "'B_r' must be a number"),
         (lambda r: r.__setitem__("params", [1, 2]), "'params' must be an object"),
         (lambda r: r.__setitem__("data", ["motor"]), "'data' must be an object"),
     ],

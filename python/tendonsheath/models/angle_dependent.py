@@ -130,6 +130,7 @@ class AngleDependent(HysteresisModel):
     param_names = ("base", "laws", "coefficients", "angle_friction")
     option_names = ("base_options",)
     nullable_params = ("angle_friction",)
+    text_params = ("base",)
     uses_curve_angle = True
 
     def __init__(

@@ -109,6 +109,8 @@ class HysteresisModel(PythonObject, _ControlBlock):
     nullable_params: ClassVar[tuple[str, ...]] = ()
     # parameters added after files were saved: a file without one loads with this value
     added_params: ClassVar[dict[str, Any]] = {}
+    # parameters whose saved value is text (a name), not a number
+    text_params: ClassVar[tuple[str, ...]] = ()
     # signal names of to_control()'s system
     control_inputs: tuple[str, ...] = ("x",)  # per instance for Scaled (its inner model's)
     control_output: ClassVar[str] = "y"
@@ -320,7 +322,8 @@ class HysteresisModel(PythonObject, _ControlBlock):
             raise ValueError(f"file holds a {model_cls.__name__}, not a {cls.__name__}")
         input_range = saved_input_range(model_cls.__name__, data)
         if hasattr(model_cls, "_from_parts"):  # composite models (Chain, ...)
-            model = model_cls._from_parts(data)
+            with _file_error(model_cls.__name__):
+                model = model_cls._from_parts(data)
         elif model_cls is not cls and "from_dict" in vars(model_cls):  # e.g. renamed parameters
             model = model_cls.from_dict(data)
         else:
@@ -328,6 +331,7 @@ class HysteresisModel(PythonObject, _ControlBlock):
                 model = _build_saved(model_cls, data)
         if input_range is not None:
             model.input_range = input_range
+        _refuse_unknown_keys(model_cls.__name__, data, model.to_dict())
         return model
 
     def to_json(self, path: str | Path | None = None) -> str:
@@ -413,6 +417,20 @@ def saved_input_range(name: str, data: dict[str, Any]) -> tuple[float, float] | 
     return (float(value[0]), float(value[1]))
 
 
+# what `identify` and `compare` write beside a model in its file (read by `predict`)
+_ANNOTATIONS = ("data", "fit", "validation", "input_range")
+
+
+def _refuse_unknown_keys(name: str, data: dict[str, Any], written: dict[str, Any]) -> None:
+    """A key the model does not write (a typo such as "option") would be ignored silently."""
+    unknown = sorted(set(data) - set(written) - set(_ANNOTATIONS))
+    if unknown:
+        raise ValueError(
+            f"{name} file: unknown key(s) {unknown}; expected {sorted(set(written))} "
+            f"(and {list(_ANNOTATIONS)})"
+        )
+
+
 def _field_error(name: str, key: str, value) -> Exception:
     """What a value the C++ field refused is: an integer too large for it (ValueError) or a
     value of the wrong type (TypeError)."""
@@ -453,7 +471,7 @@ def model_class_from_dict(data: dict[str, Any]) -> type[HysteresisModel]:
     if not is_format_version(version, FORMAT_VERSION):
         raise ValueError(f"unsupported model file version {version!r} (expected {FORMAT_VERSION})")
     name = data.get("model")
-    if name not in _REGISTRY:
+    if not isinstance(name, str) or name not in _REGISTRY:
         raise ValueError(f"unknown model {name!r}; known: {sorted(_REGISTRY)}")
     return _REGISTRY[name]
 
@@ -483,6 +501,8 @@ def _saved_params(model_cls, data: dict[str, Any]) -> dict[str, Any]:
         if value is None and key not in model_cls.nullable_params:
             raise ValueError(f"{name} file: parameter '{key}' is null")
         _check_not_bool(name, f"parameter '{key}'", value)
+        if isinstance(value, str) and key not in model_cls.text_params:
+            raise ValueError(f"{name} file: parameter '{key}' must be a number (got {value!r})")
     return params
 
 
@@ -491,10 +511,33 @@ def _saved_options(model_cls, data: dict[str, Any]) -> dict[str, Any]:
     options = data.get("options", {})
     if not isinstance(options, dict):
         raise ValueError(f"{model_cls.__name__} file: 'options' must be an object")
+    defaults = _option_defaults(model_cls)
     for key, value in options.items():
         if value is None:
             raise ValueError(f"{model_cls.__name__} file: option '{key}' is null")
+        _check_option_type(model_cls.__name__, key, value, defaults.get(key))
     return options
+
+
+def _option_defaults(model_cls) -> dict[str, Any]:
+    """The constructor's default value of each keyword, where it has one."""
+    try:
+        signature = inspect.signature(model_cls.__init__)
+    except (TypeError, ValueError):
+        return {}
+    return {k: p.default for k, p in signature.parameters.items() if p.default is not p.empty}
+
+
+def _check_option_type(name: str, key: str, value, default) -> None:
+    """A saved option of its default's kind: true/false for a flag (text "yes" would read as
+    true), a number for a number, an integer a C++ field can hold."""
+    if isinstance(default, bool) and not isinstance(value, bool):
+        raise ValueError(f"{name} file: option '{key}' must be true or false (got {value!r})")
+    number = isinstance(default, int | float) and not isinstance(default, bool)
+    if number and (isinstance(value, bool) or not isinstance(value, int | float)):
+        raise ValueError(f"{name} file: option '{key}' must be a number (got {value!r})")
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 2**63:
+        raise _field_error(f"{name} file", f"option '{key}'", value)
 
 
 def _check_not_bool(name: str, what: str, value) -> None:
@@ -503,6 +546,8 @@ def _check_not_bool(name: str, what: str, value) -> None:
         raise ValueError(f"{name} file: {what} must be a number (got {json.dumps(value)})")
     if isinstance(value, list | tuple):
         for v in value:
+            if isinstance(v, str):  # a list of numbers: "1.0" would read as 1.0
+                raise ValueError(f"{name} file: {what} must hold numbers (got {v!r})")
             _check_not_bool(name, what, v)
     if isinstance(value, dict):
         for v in value.values():

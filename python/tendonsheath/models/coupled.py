@@ -12,7 +12,7 @@ import numpy as np
 
 from .._args import is_format_version
 from .._atomic import write_text
-from .._json_source import read_json_source
+from .._json_source import naming_the_file, read_json_source
 from .._pyobject import PythonObject
 from .._typing import ArrayLike, FloatArray
 from ..plant.coupled import _coupling_matrix, _joint_matrix
@@ -236,7 +236,8 @@ class Coupled(PythonObject):
             An unreadable source or not a saved coupled model.
         """
         data = source if isinstance(source, dict) else read_json_source(source, "coupled model")
-        return cls.from_dict(data)
+        with naming_the_file(source):
+            return cls.from_dict(data)
 
     def __repr__(self) -> str:
         names = ", ".join(type(m).__name__ for m in self.models)
