@@ -32,6 +32,19 @@ BAD = [
     ("numbers.csv", b"0,1,2\n1,2,3\n2,3,4\n", r"header of column names \(got numbers\)"),
     ("dup.csv", b"t,x,x\n0,1,2\n1,2,3\n2,3,4\n", r"duplicate column names in the header: \['x'\]"),
     ("cut16.csv", GOOD.encode("utf-16")[:-1], r"not valid utf-16 text \(truncated data\)"),
+    # a file whose suffix says one kind and whose content is another (Step 22: file kinds)
+    ("json.csv", b'{"t": [0, 1], "x": [1, 2]}\n', r"this is JSON text, not a data table"),
+    ("list.csv", b"[[0, 1, 2], [1, 2, 3]]\n", r"this is JSON text, not a data table"),
+    ("text.npy", GOOD.encode(), r"this is text \(a CSV table\?\), not an NPY file; name it \.csv"),
+    ("text.npz", GOOD.encode(), r"this is text \(a CSV table\?\), not an NPZ file"),
+    ("text.h5", GOOD.encode(), r"this is text \(a CSV table\?\), not an HDF5 file"),
+    ("text.xlsx", GOOD.encode(), r"this is text \(a CSV table\?\), not an Excel \(\.xlsx\)"),
+    ("json.xlsx", b'{"a": 1}', r"this is JSON text, not an Excel \(\.xlsx\) workbook"),
+    ("npy.h5", b"\x93NUMPY\x01\x00rest", r"this is a NumPy \.npy file, not an HDF5 file; name it"),
+    ("h5.npy", b"\x89HDF\r\n\x1a\nrest", r"this is an HDF5 file, not an NPY file; name it \.h5"),
+    ("pdf.xlsx", b"%PDF-1.4 rest", r"this is a PDF document, not an Excel"),
+    ("empty.npy", b"", r"the file is empty \(0 bytes\), not an NPY file"),
+    ("binary.npy", bytes(range(256)) * 8, r"this is not an NPY file"),
 ]
 
 

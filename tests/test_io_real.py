@@ -44,7 +44,7 @@ def test_excel_errors_name_file_column_and_row(tmp_path):
         io.read_log(path, time="t", input="x")
     with pytest.raises(ValueError, match=r"short\.xlsx: unknown output column 'tip'"):
         io.read_log(path, time="t", input="x", output="tip")
-    (tmp_path / "junk.xlsx").write_text("not a workbook")
+    (tmp_path / "junk.xlsx").write_bytes(b"PK\x03\x04 not a workbook")  # a zip, broken
     with pytest.raises(ValueError, match=r"junk\.xlsx: not a readable Excel file"):
         io.read_log(tmp_path / "junk.xlsx", input="x")
 

@@ -90,6 +90,31 @@ def sniff_binary(path: Path, head: bytes, expected: str = "") -> None:
         raise _fail(path, f"this is a binary file, not {want}")
 
 
+def sniff_kind(path: Path, magic: bytes, what: str) -> None:
+    """Before a binary reader (NPY, NPZ, HDF5, Excel) opens ``path``: a one-line error where
+    its first bytes are not ``magic`` but another known format's, or text (a CSV table or
+    JSON named with the wrong suffix), instead of the reader's own message about a broken
+    file of its kind (NumPy's about pickled data, for a text file named .npy)."""
+    if path.is_dir() or not path.exists():
+        return  # the reader says so
+    with open(path, "rb") as f:
+        head = f.read(HEAD_BYTES)
+    if not head:
+        raise _fail(path, f"the file is empty (0 bytes), not {what}")
+    # at 0, or (HDF5's user block) at 512, 1024, 2048, ... bytes
+    if any(head[at:].startswith(magic) for at in (0, *(512 << k for k in range(8)))):
+        return
+    for other, kind, todo in _MAGIC:
+        if head.startswith(other):
+            raise _fail(path, f"this is {kind}, not {what}; {todo}")
+    if b"\x00" not in head:
+        text = head.lstrip(codecs.BOM_UTF8).lstrip()
+        kind = "JSON text" if text[:1] in (b"{", b"[") else "text (a CSV table?)"
+        todo = "" if kind == "JSON text" else "; name it .csv to read it as one"
+        raise _fail(path, f"this is {kind}, not {what}{todo}")
+    raise _fail(path, f"this is not {what} (its first bytes are not {what}'s)")
+
+
 def read_config_text(path: Path, what: str = "a TOML file") -> str:
     """The text of a small UTF-8 configuration file, or a one-line ValueError saying why
     not (a folder, a binary file, not UTF-8)."""
@@ -277,6 +302,8 @@ def _past_header(path: Path):
         raise _fail(path, "the file is empty (0 bytes)")
     if not head.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
         sniff_binary(path, head)
+    if head.lstrip(codecs.BOM_UTF8).lstrip()[:1] in (b"{", b"["):
+        raise _fail(path, "this is JSON text, not a data table (CSV/TSV with a header row)")
     encoding, note = choose_encoding(path, head)
     notes = [note] if note else []
     try:

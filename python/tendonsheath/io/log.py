@@ -45,7 +45,14 @@ from .._extras import require
 from .._typing import ArrayLike, FloatArray
 from .._units import CURVE_ANGLE, warn_if_unit_slip
 from ._rosbag import TIME_KEY, bag_columns, bag_path, read_bag
-from ._textread import Column, parse_cells, read_text_cells, read_text_header, read_text_table
+from ._textread import (
+    Column,
+    parse_cells,
+    read_text_cells,
+    read_text_header,
+    read_text_table,
+    sniff_kind,
+)
 from ._timecol import TimeColumn, check_unit, read_time
 
 MIN_ROWS = 3
@@ -369,6 +376,7 @@ def _read_text(path: Path) -> _Table:
 
 
 def _read_npy(path: Path) -> _Table:
+    sniff_kind(path, b"\x93NUMPY", "an NPY file")
     try:
         arr = np.load(path, allow_pickle=False)
     except ValueError as exc:
@@ -383,6 +391,7 @@ def _read_npy(path: Path) -> _Table:
 
 
 def _read_npz(path: Path) -> _Table:
+    sniff_kind(path, b"PK\x03\x04", "an NPZ file")
     try:
         with np.load(path, allow_pickle=False) as data:
             cols = {k: data[k] for k in data.files}
@@ -397,6 +406,7 @@ def _read_npz(path: Path) -> _Table:
 def _read_hdf5(path: Path) -> _Table:
     h5py = require("h5py", extra="hdf5", feature=f"{path}: reading HDF5 files")
 
+    sniff_kind(path, b"\x89HDF\r\n\x1a\n", "an HDF5 file")
     cols: dict[str, np.ndarray] = {}
     try:
         with h5py.File(path, "r") as f:
@@ -413,6 +423,7 @@ def _read_hdf5(path: Path) -> _Table:
 
 def _read_excel(path: Path, sheet=None) -> _Table:
     openpyxl = require("openpyxl", extra="excel", feature=f"{path}: reading Excel files")
+    sniff_kind(path, b"PK\x03\x04", "an Excel (.xlsx) workbook")
     try:
         book = openpyxl.load_workbook(path, read_only=True, data_only=True)
     except Exception as exc:  # openpyxl raises many types for a broken file
