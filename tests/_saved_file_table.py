@@ -19,7 +19,6 @@ def saved_kinds():
         "GPIInverse": M.GeneralizedPrandtlIshlinskiiInverse(),
         "CurveAngleModel": M.CurveAngleModel(),
         "FirstOrderLag": M.FirstOrderLag(),
-        "LinearBlock": M.LinearBlock(),
         "PlantModel": M.PlantModel(),
         "SecondOrderLag": M.SecondOrderLag(),
         "HystereticOscillator": M.HystereticOscillator(),

@@ -170,3 +170,17 @@ def test_a_command_line_warning_is_one_line_with_its_category(tmp_path):
     assert lines and lines[0].startswith("Warning (UnitWarning): read_log(run.csv): curve_angle")
     assert not re.search(r"\.py:\d+", result.output), result.output
     assert "warnings.warn" not in result.output
+
+
+def test_a_linear_block_that_cannot_run_says_so_in_one_line():
+    """The abstract base is refused, and a lag too slow or too fast for the sample time to
+    discretise is named (it was a singular matrix or an overflow from inside SciPy)."""
+    assert "use FirstOrderLag or SecondOrderLag" in _error(lambda: m.LinearBlock())
+    t = np.arange(100) * 0.01
+    with pytest.warns(ts.UnitWarning):
+        slow = m.FirstOrderLag(time_constant=1e300)
+    fast = m.SecondOrderLag(frequency=1e300)
+    for block in (slow, fast):
+        assert "cannot be discretised at a sample time of 0.01 s" in _error(
+            lambda block=block: block.simulate(t, np.sin(t))
+        )

@@ -75,6 +75,11 @@ class LinearBlock(HysteresisModel):
     _limits: ClassVar[dict[str, tuple[float, float]]] = {}
 
     def __init__(self, **values: float) -> None:
+        if type(self) is LinearBlock:
+            raise TypeError(
+                "LinearBlock is the base of the linear blocks, with no transfer function of "
+                "its own: use FirstOrderLag or SecondOrderLag"
+            )
         out: dict[str, float] = {}
         for name in self.param_names:
             v = number(type(self).__name__, name, values.pop(name))  # not "1", not None
@@ -130,6 +135,22 @@ class LinearBlock(HysteresisModel):
         """
         return discretise(*self.transfer(), dt)
 
+    def _coefficients(self, dt: float) -> tuple[np.ndarray, np.ndarray]:
+        """filter_coefficients, or a one-line ValueError where the block cannot be
+        discretised at dt (a time constant of 1e300 s: a singular matrix, an overflow)."""
+        try:
+            b, a = self.filter_coefficients(dt)
+        except (ArithmeticError, np.linalg.LinAlgError):
+            b = a = np.array([np.nan])
+        finite = np.all(np.isfinite(b)) and np.all(np.isfinite(a))
+        # a pole at z = 1 to rounding (no rest state to start from): a(1) = 0
+        if not finite or abs(np.sum(a)) <= 1e-12 * np.sum(np.abs(a)):
+            raise ValueError(
+                f"{type(self).__name__} {self._values} cannot be discretised at a sample "
+                f"time of {dt:g} s (a time constant or frequency too far from it)"
+            )
+        return b, a
+
     reports_status = False  # a linear filter in Python: no real-time core, no status
 
     def simulate(  # type: ignore[override]  # a Python filter: no status to report
@@ -152,12 +173,12 @@ class LinearBlock(HysteresisModel):
         Raises
         ------
         ValueError
-            t missing or not uniform.
+            t missing or not uniform, or a block that cannot be discretised at its step.
         """
         x = np.asarray(x, dtype=float)
         if x.size == 0:
             return x.copy()
-        b, a = self.filter_coefficients(sample_time(t))
+        b, a = self._coefficients(sample_time(t))
         return apply_filter(b, a, x)
 
     def reset(self) -> None:
@@ -195,7 +216,7 @@ class LinearBlock(HysteresisModel):
         if not dt > 0:
             raise ValueError(f"{type(self).__name__}.step needs dt > 0 after the first sample")
         if self._cache[0] != dt:
-            b, a = self.filter_coefficients(dt)
+            b, a = self._coefficients(dt)
             self._cache = (dt, b, a)
         _, b, a = self._cache
         if self._z is None:
