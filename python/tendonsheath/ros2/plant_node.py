@@ -128,7 +128,8 @@ def _node_class() -> type:
         def _tick(self):
             now = time.monotonic()
             dt, self._previous = now - self._previous, now
-            reading = self.plant.step(self.command, dt)
+            applied = self.command  # the command held over this tick
+            reading = self.plant.step(applied, dt)
             stamp = self.get_clock().now().to_msg()
             names = [self.joint]
             self._tip.publish(joint_state(JointState, names, stamp, position=[reading.tip]))
@@ -137,7 +138,9 @@ def _node_class() -> type:
                     JointState, names, stamp, position=[reading.motor], effort=[reading.load]
                 )
             )
-            self._truth.publish(joint_state(JointState, names, stamp, position=[reading.output]))
+            self._truth.publish(
+                joint_state(JointState, names, stamp, position=[reading.output], effort=[applied])
+            )
 
     _CLASS.append(PlantNode)
     return PlantNode
