@@ -66,7 +66,7 @@ def sessions(logs: dict[str, ts.io.Log]) -> list[list[str]]:
 
 
 def predict(model, log) -> np.ndarray:
-    if isinstance(model, ts.models.Loaded) or getattr(model, "takes_load", False):
+    if isinstance(model, ts.models.Loaded):
         return np.asarray(model.simulate(log.t, log.x, load=log.load), dtype=float)
     return np.asarray(model.simulate(log.t, log.x), dtype=float)
 

@@ -286,6 +286,7 @@ class _Refitted:
     error, and the rmse before and after on the log."""
 
     model: HysteresisModel
+    start: HysteresisModel  # the given model with the map the shifts went into
     shifts: dict[str, Shift]
     rmse_before: float
     rmse_after: float
@@ -300,12 +301,14 @@ class _Shifted:
     def __init__(self, model: HysteresisModel, recs: list, refit) -> None:
         self.recs, self.starts = recs, [_settle(r.x) for r in recs]
         for r, k in zip(recs, self.starts, strict=True):
-            if np.ptp(r.x) <= 0 or np.all(_branch(r.x)[k:] == _branch(r.x)[-1]):
+            direction = _branch(r.x)
+            if np.ptp(r.x) <= 0 or np.all(direction[k:] == direction[-1]):
                 raise ValueError("the log's input must move both ways for a shift to be measured")
         self.mapped, self.prefix = _with_map(model)
         values = self.mapped.params
         self.map0 = values[self.prefix + "output_offset"], values[self.prefix + "output_gain"]
-        self.mean = float(np.mean(self.predict(model)))
+        self.initial = self.predict(model)  # the model as given, on the scored samples
+        self.mean = float(np.mean(self.initial))
         bands = _dead_band_names(self.mapped) if "dead band" in refit else []
         self.band0 = {n: float(values[n]) for n in bands}
         # a B inside a Scaled map is in the map's normalised input unit
@@ -357,8 +360,7 @@ def _refit(model: HysteresisModel, recs: list, refit) -> _Refitted:
     """Fit the ``refit`` shifts of ``model`` on the recordings (see the module's doc); a
     load gain the logs do not determine (its standard error over :data:`LOAD_GAIN_SPREAD`
     of the model's own) is kept, and the others refitted without it."""
-    found = _least_squares(_Shifted(model, recs, refit), recs)
-    problem, shifts = found[0], found[1]
+    problem, shifts, before, after, fitted = _least_squares(_Shifted(model, recs, refit))
     shift = shifts.get("load gain")
     if shift is not None and shift.se > LOAD_GAIN_SPREAD * abs(problem.load_gain0):
         kept = tuple(n for n in refit if n != "load gain")
@@ -368,16 +370,15 @@ def _refit(model: HysteresisModel, recs: list, refit) -> _Refitted:
         note = (f"load gain: kept (the logs' load varies too little to determine it: "
                 f"+/- {2 * shift.se:.2g} {UNITS['load gain']})")  # fmt: skip
         return replace(again, notes=[*again.notes, note])
-    problem, shifts, before, after, fun = found
-    notes = problem.notes(model, refit)
-    return _Refitted(problem.build(fun), shifts, before, after, int(problem.size), notes)
+    new, notes = problem.build(fitted), problem.notes(model, refit)
+    return _Refitted(new, problem.mapped, shifts, before, after, problem.size, notes)
 
 
-def _least_squares(problem: _Shifted, recs: list):
+def _least_squares(problem: _Shifted):
     """(problem, shifts, rmse before, rmse after, the fitted vector)."""
     from scipy.optimize import least_squares
 
-    names, y = problem.names, problem.measured()
+    recs, names, y = problem.recs, problem.names, problem.measured()
 
     def residual(theta: np.ndarray) -> np.ndarray:
         return problem.predict(problem.build(theta)) - y
@@ -403,7 +404,7 @@ def _least_squares(problem: _Shifted, recs: list):
         n: Shift(n, float(v - start[n]), float(e), UNITS[n])
         for n, v, e in zip(names, found.x, se, strict=True)
     }
-    before = float(np.sqrt(np.mean(residual(np.array([start[n] for n in names])) ** 2)))
+    before = float(np.sqrt(np.mean((problem.initial - y) ** 2)))
     after = float(np.sqrt(np.mean(found.fun**2)))
     return problem, shifts, before, after, found.x
 
@@ -502,8 +503,7 @@ def recalibrate(
     if unknown or not refit:
         raise ValueError(f"refit: one or more of {list(REFITTABLE)} (got {list(refit)})")
     found = _refit(model, _recordings(log, load), tuple(refit))
-    mapped, _ = _with_map(model)
-    refitted = {n: float(found.model.params[n]) for n in _changed(found.model, mapped)}
+    refitted = {n: float(found.model.params[n]) for n in _changed(found.model, found.start)}
     return Recalibration(found.model, refitted, found.rmse_before, found.rmse_after, found.notes)
 
 

@@ -579,13 +579,18 @@ class PlantDraw:
         )
 
 
+#: the priors a kind draws after PRIORS (in this order: the seed's draws follow it)
+_KIND_PRIORS: dict[str, dict[str, tuple[str, float, float]]] = {
+    "pull-pull": {},
+    "continuum": CONTINUUM_PRIORS,
+    "single-tendon": SINGLE_TENDON_PRIORS,
+}
+
+
 def _member(kind: str, seed: int) -> PlantDraw:
     rng = np.random.default_rng([int(seed), KINDS.index(kind)])
     values = _draw(rng, PRIORS)
-    if kind == "continuum":
-        values.update(_draw(rng, CONTINUUM_PRIORS))
-    elif kind == "single-tendon":
-        values.update(_draw(rng, SINGLE_TENDON_PRIORS))
+    values.update(_draw(rng, _KIND_PRIORS[kind]))
     route = _route(
         values["length"], values["route_angle"], int(values["bends"]), values["lead_in"], rng
     )
@@ -661,11 +666,7 @@ def _checked_seed(seed: int) -> int:
 
 def in_priors(draw: PlantDraw) -> list[str]:
     """The values of ``draw`` outside the priors of its kind (empty: a member)."""
-    priors = dict(PRIORS)
-    if draw.kind == "continuum":
-        priors.update(CONTINUUM_PRIORS)
-    elif draw.kind == "single-tendon":
-        priors.update(SINGLE_TENDON_PRIORS)
+    priors = PRIORS | _KIND_PRIORS[draw.kind]
     out = []
     for name, (_, low, high) in priors.items():
         value = draw.values[name]
