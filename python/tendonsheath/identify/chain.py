@@ -24,7 +24,7 @@ from .dynamic import identify_dynamic, is_dynamic_chain
 from .fit import Fit, fit_quality, simulate_model
 from .problem import DirectProblem, over_recordings
 from .search import search_and_refine
-from .specs import SPECS, Scale
+from .specs import Scale, spec_for
 from .uncertainty import assess
 
 # parameters of the first model that the polynomial makes redundant, and their held values
@@ -56,7 +56,7 @@ class ChainProblem:
             )
         self.first_cls = cls
         self.second = second
-        spec = SPECS[cls]()
+        spec = spec_for(cls)
         values = first.params
         options = first.options
         held = {n: values[n] for n in spec.default_fixed}

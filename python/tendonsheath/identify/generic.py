@@ -23,11 +23,17 @@ from ..models.base import _REGISTRY
 from .data import check_for_fit, make_recordings, search_windows, thin_for_search
 from .fit import Fit, fit_quality, simulate_model
 from .oscillator import identify_oscillator
-from .problem import DirectProblem, SeparableProblem, law_check
+from .problem import POPULATION, DirectProblem, SeparableProblem, law_check
 from .refine import refine
 from .search import PENALTY, global_search
 from .settings import Options, Search
-from .specs import SPECS, GeneralizedPrandtlIshlinskiiSpec, PrandtlIshlinskiiSpec, Scale
+from .specs import (
+    SPECS,
+    GeneralizedPrandtlIshlinskiiSpec,
+    PrandtlIshlinskiiSpec,
+    Scale,
+    spec_for,
+)
 from .uncertainty import assess, setup_single_angle
 
 #: the whole identification of one model class on checked recordings (core.run), handed down
@@ -83,7 +89,7 @@ def _model_class(model_class) -> type[HysteresisModel]:
         if model_class not in _REGISTRY:
             raise ValueError(f"unknown model {model_class!r}; known: {sorted(SPECS_BY_NAME)}")
         model_class = _REGISTRY[model_class]
-    if model_class not in SPECS:
+    if model_class not in SPECS and not _table_identifiable(model_class):
         raise ValueError(
             f"cannot identify {getattr(model_class, '__name__', model_class)}; "
             f"identifiable models: {sorted(SPECS_BY_NAME)}"
@@ -185,7 +191,18 @@ def _spec_of(cls, values: dict):
     if cls is GeneralizedPrandtlIshlinskii:
         thr = np.asarray(values["thresholds"], dtype=float)
         return GeneralizedPrandtlIshlinskiiSpec(thr / thr[-1] if thr[-1] > 0 else thr)
-    return SPECS[cls]()
+    return spec_for(cls)
+
+
+def _table_identifiable(cls) -> bool:
+    """A model with no spec of its own that its parameter table and the core's batched kernels
+    identify (:class:`~tendonsheath.identify.specs.TableSpec`)."""
+    return (
+        isinstance(cls, type)
+        and issubclass(cls, HysteresisModel)
+        and getattr(cls, "_core_params", None) is not None
+        and cls.__name__ in POPULATION
+    )
 
 
 def _check_fixed_values(cls, fixed: dict) -> None:

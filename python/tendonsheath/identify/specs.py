@@ -386,6 +386,96 @@ class GeneralizedPrandtlIshlinskiiSpec(ModelSpec):
         }
 
 
+class TableSpec(ModelSpec):
+    """The bounds of a model with no spec of its own, from its C++ parameter table: each
+    identifiable parameter's unit scales its range to the data and its valid range clips it.
+
+    By unit: ``output/input`` a slope of 0.2-5 times the data's (of either sign when the table
+    allows it), ``input`` and ``output`` up to half the data's span, ``1/input`` 0.5-500 over the
+    input's span (searched on a log scale), any other a decade either side of the table's
+    default (log-scaled when positive). A model whose parameters are not scalars, or whose
+    batched C++ kernels are missing, needs a spec of its own.
+    """
+
+    def __init__(self, model_class: type) -> None:
+        self.model_class = model_class
+        self.kind = model_class.__name__
+        rows = {f["name"]: f for f in model_class._core_params.fields()}
+        self.rows = [rows[n] for n in model_class.param_names]
+        self.log_names = frozenset(
+            f["name"]
+            for f in self.rows
+            if f["unit"] == "1/input" or (f["unit"] not in _DATA_UNITS and _decade(f)[2])
+        )
+        for f in self.rows:
+            if not isinstance(f["default"], int | float) or isinstance(f["default"], bool):
+                raise ValueError(
+                    f"cannot identify {self.kind}: its parameter {f['name']!r} is not a "
+                    "number, so its bounds cannot follow from the parameter table; give it a "
+                    "spec of its own in tendonsheath/identify/specs.py"
+                )
+
+    def bounds(self, s, fixed):
+        return {f["name"]: _clip(f, _scaled(f, s)) for f in self.rows}
+
+
+_DATA_UNITS = ("output/input", "input", "output", "1/input")
+
+
+def _scaled(row: dict, s: Scale) -> tuple[float, float]:
+    unit, lo = row["unit"], row["lo"]
+    if unit == "output/input":
+        return (0.2 * s.slope, 5.0 * s.slope) if lo >= 0 else (-5.0 * s.slope, 5.0 * s.slope)
+    if unit in ("input", "output"):
+        half = 0.5 * (s.x_range if unit == "input" else s.y_range)
+        return (0.0, half) if lo >= 0 else (-half, half)
+    if unit == "1/input":
+        return 0.5 / s.x_range, 500.0 / s.x_range
+    a, b, _ = _decade(row)
+    return a, b
+
+
+def _decade(row: dict) -> tuple[float, float, bool]:
+    """A decade either side of the default (log-scaled when the range is positive), else the
+    default +- 10 times its size (at least 1)."""
+    d = float(row["default"]) if isinstance(row["default"], int | float) else 0.0
+    if d > 0 and row["lo"] >= 0:
+        return d / 10.0, d * 10.0, True
+    w = 10.0 * max(abs(d), 1.0)
+    return d - w, d + w, False
+
+
+def _clip(row: dict, b: tuple[float, float]) -> tuple[float, float]:
+    return max(b[0], row["lo"]), min(b[1], row["hi"])
+
+
+def spec_for(model_class: type) -> ModelSpec:
+    """The identification spec of a model class: its own where it has one, else the
+    :class:`TableSpec` read from its parameter table.
+
+    Parameters
+    ----------
+    model_class : type
+        A :class:`~tendonsheath.models.HysteresisModel` subclass with a C++ core.
+
+    Returns
+    -------
+    ModelSpec
+        Its bounds, log-scaled names and batched kernel kind.
+
+    Raises
+    ------
+    ValueError
+        A model with neither a spec nor a parameter table of numbers.
+    """
+    own = SPECS.get(model_class)
+    if own is not None:
+        return own()
+    if getattr(model_class, "_core_params", None) is None:
+        raise ValueError(f"cannot identify {model_class.__name__}: it has no C++ parameter table")
+    return TableSpec(model_class)
+
+
 SPECS: dict[type, type[ModelSpec]] = {
     Backlash: BacklashSpec,
     BoucWenBacklash: BoucWenBacklashSpec,
@@ -408,4 +498,6 @@ __all__ = [
     "PrandtlIshlinskiiSpec",
     "SPECS",
     "Scale",
+    "TableSpec",
+    "spec_for",
 ]
