@@ -3,7 +3,7 @@
 from typing import Any
 
 # identify is the package, callable as identify.identify (identify/__init__.py says why)
-from . import _moved, bench, compensate, identify, io, models, protocols, session
+from . import bench, compensate, identify, io, models, protocols, session
 from ._extras import MissingExtraError
 from .compare import Comparison, compare_models
 from .identify import Fit, IdentifiabilityWarning, Identifier, identify_coupled
@@ -28,8 +28,6 @@ from .session import recalibrate, session_shift
 from .simulation_result import SimulationResult
 from .status import Status, status_counts
 from .sweep import sweep
-
-_moved.install()  # importing a module's old path names its new one
 
 
 def __getattr__(name: str) -> Any:

@@ -9,7 +9,6 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 
-from .._args import warn_renamed
 from .._arrays import as_timed_signal
 from .._pyobject import bound_base
 from ..plant.physics import route_shape as shape_of
@@ -66,8 +65,7 @@ class Result:
         The controller's command (rad, or N m for a torque controller).
     q_motor : numpy.ndarray of float
         The motor shaft angle its encoder reads (rad), as a plant's
-        :class:`~tendonsheath.SimulationResult` names it (``motor``, the old name, is still
-        read for one release, with a DeprecationWarning).
+        :class:`~tendonsheath.SimulationResult` names it.
     slack : numpy.ndarray of bool
         Per cycle: a tendon was slack.
     fallback : numpy.ndarray of bool
@@ -93,12 +91,6 @@ class Result:
     warmup: float
     metrics: dict[str, Any] = field(default_factory=dict)  # floats, and "status": counts
     status: np.ndarray | None = None
-
-    @property
-    def motor(self) -> np.ndarray:
-        """The old name of :attr:`q_motor` (read for one release, with a DeprecationWarning)."""
-        warn_renamed("bench.Result", "motor", "q_motor")
-        return self.q_motor
 
     @property
     def error(self) -> np.ndarray:
