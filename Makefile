@@ -13,7 +13,7 @@ SUDO := $(shell if [ "$$(id -u)" != 0 ] && command -v sudo > /dev/null; then ech
 REALDATA ?= ../shared/data/nhoyh_vio_com
 
 .PHONY: all venv install demo test test-python test-cpp gtest nlohmann-json chromium clang fuzz fuzz-build bench results \
-	readme lint clean wheel wheel-test docs doxygen
+	readme parameters lint clean wheel wheel-test docs doxygen
 
 all: install
 
@@ -164,7 +164,6 @@ test: test-cpp lint wheel-test docs test-python
 
 bench: install
 	@for f in benchmarks/[a-z]*.py; do \
-	  [ "$$f" = benchmarks/readme_tables.py ] && continue; \
 	  echo "== $$f"; $(PY) $$f || exit 1; \
 	done
 
@@ -183,14 +182,18 @@ results: demo
 	@echo "== benchmarks/inverse.py"; $(PY) benchmarks/inverse.py || exit 1
 	$(MAKE) readme
 
-# README.md's tables from the committed result files (no build needed)
+# The generated docs live in tools/ (generators, not benchmarks): README.md's tables from the
+# committed result files (no build needed), and docs/parameters.md from the C++ parameter tables
 readme:
-	$(PYTHON) benchmarks/readme_tables.py
+	$(PYTHON) tools/readme_tables.py
+
+parameters: install
+	$(PY) tools/parameters_page.py
 
 # mypy (configured in pyproject.toml) reads the installed extension's stubs, hence `install`
 lint: install
-	$(VENV)/bin/ruff check python tests benchmarks examples
-	$(VENV)/bin/ruff format --check python tests benchmarks examples
+	$(VENV)/bin/ruff check python tests benchmarks examples tools
+	$(VENV)/bin/ruff format --check python tests benchmarks examples tools
 	$(VENV)/bin/mypy
 	$(VENV)/bin/lint-imports --no-cache
 

@@ -1,8 +1,9 @@
-"""bench.run closes one loop around any plant meeting tendonsheath.protocols.Plant: a plant
-written in Python (stepped from Python) runs as the shipped plant it wraps, to the last bit; a
-compiled user plant (examples/cpp/user_plant, tendonsheath_bind/plant.hpp) as its pure-Python
-twin and as the closed form of a play; the SingleTendonPlant, its reference the distal
-displacement (m), as its capstan closed form; and a plant that lacks a member is named."""
+"""bench.run closes one loop around any plant with reset() and step(command, dt)
+(protocols.SteppedPlant): a plant written in Python (stepped from Python) runs as the shipped
+plant it wraps, to the last bit; a compiled user plant (examples/cpp/user_plant,
+tendonsheath_bind/plant.hpp) as its pure-Python twin and as the closed form of a play; the
+SingleTendonPlant, its reference the distal displacement (m), as its capstan closed form; and a
+plant that lacks a member is named."""
 
 import importlib
 import importlib.machinery
@@ -256,14 +257,9 @@ def test_a_compiled_user_plant_runs_as_its_python_twin_and_the_play_closed_form(
     np.testing.assert_allclose(native_plant.simulate(T, Y_D), _play(Y_D, h), atol=1e-15)
 
 
-class _NoSimulate:
-    params: dict = {}
-
+class _NoStep:
     def reset(self):
         pass
-
-    def step(self, command, dt=0.0):
-        return command
 
 
 class _Fails(PlayPlant):
@@ -279,9 +275,9 @@ class _NotANumber(PlayPlant):
 
 
 def test_a_plant_that_lacks_a_member_or_fails_is_named():
-    with pytest.raises(ValueError, match="_NoSimulate has no simulate"):
-        ts.bench.run(_NoSimulate(), None, T, Y_D)
-    with pytest.raises(ValueError, match="object has no params and no reset and no step"):
+    with pytest.raises(ValueError, match=r"_NoStep has no step: a plant needs reset\(\) and"):
+        ts.bench.run(_NoStep(), None, T, Y_D)
+    with pytest.raises(ValueError, match="object has no reset and no step"):
         ts.bench.run(object(), None, T, Y_D)
     no_gain = PlayPlant()
     no_gain.kinematic_gain = None

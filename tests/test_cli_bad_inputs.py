@@ -92,7 +92,7 @@ CASES = [
         ["bench", "{d}/shape.toml"],
         "[calibration]: 'shape_noise' (ShapeSensing noise_std) out of range",
     ),
-    (["bench", "{d}/user.toml"], "set the class attribute step_inputs"),
+    (["bench", "{d}/user.toml"], "declare the class attribute step_inputs"),
     (["bench", "{d}/typo.toml"], "unknown key 'frction'"),
     (["bench", "{d}/typo.toml", "-o", "{d}/a_file"], "unknown key 'frction'"),
     # identify

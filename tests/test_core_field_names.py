@@ -110,7 +110,7 @@ def _fields(struct: type) -> set[str]:
 
 def _arguments(target) -> set[str]:
     """The argument names of a Python constructor or factory: a model's parameters and options
-    (its **renamed catch-all aside), else its signature's names."""
+    else its signature's names."""
     if isinstance(target, type) and issubclass(target, m.HysteresisModel):
         names = set(target.param_names) | set(target.option_names)
         if target is m.GeneralizedPrandtlIshlinskii:  # the envelopes as sequences or flat

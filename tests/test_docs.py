@@ -17,7 +17,7 @@ together; markers may also follow a paragraph or a block as a group, one a line)
 without ``~``, ``<!-- check: EXPR -->``, is a claim in words: EXPR must be true. A figure the
 code no longer prints fails the page's test. (A figure quoted from benchmarks/results/*.json
 carries a ``<!-- result: FILE KEY ~ FIGURE -->`` marker instead, which
-``benchmarks/readme_tables.py --check`` checks.) The scenario page's key table is checked
+``tools/readme_tables.py --check`` checks.) The scenario page's key table is checked
 against the parser. Building the site with warnings as errors is ``make docs``, which
 ``make test`` runs.
 """

@@ -84,42 +84,34 @@ def test_identify_takes_every_setting_as_a_keyword_with_its_default():
         ts.identify(Backlash, [0.0, 1.0], [0.0, 1.0], [0.0, 1.0], maxiters=5)
 
 
-def test_oscillator_settings_are_grouped_and_the_old_keywords_warn(log):
+def test_oscillator_settings_are_grouped_and_the_old_keywords_are_refused(log):
     t, x, y = log
     fit = ts.identify(HystereticOscillator, t, x, y, strategy="search", periodic=False, **FAST)
     group = {"strategy": "search", "periodic": False}
     est = Identifier(HystereticOscillator, oscillator=group, **FAST)
     assert est.fit([(t, x, y)]).model_.to_dict() == fit.model.to_dict()  # identical floats
-    with pytest.warns(DeprecationWarning, match=r"oscillator=\{'strategy': 'search'\}") as rec:
-        old = Identifier(
-            HystereticOscillator, strategy="search", oscillator={"periodic": False}, **FAST
-        )
-    assert {w.filename for w in rec} == {__file__}
-    assert old.get_params()["oscillator"] == group and old.options() == est.options()
-    with pytest.warns(DeprecationWarning, match="input_interpolation= is now a key"):
-        old.set_params(input_interpolation="hold")
-    assert old.oscillator == {**group, "input_interpolation": "hold"}
-    with pytest.raises(TypeError, match="not both"):
-        Identifier(HystereticOscillator, strategy="auto", oscillator={"strategy": "search"})
+    # the old keywords of their own were removed (0.x): a TypeError naming the keyword
+    with pytest.raises(TypeError, match="'strategy'"):
+        Identifier(HystereticOscillator, strategy="search", oscillator={"periodic": False})
+    with pytest.raises(TypeError, match="'input_interpolation'"):
+        est.set_params(input_interpolation="hold")
+    assert est.oscillator == group  # unchanged by the refused call
     with pytest.raises(TypeError, match=r"oscillator: unknown setting\(s\) 'strategie'"):
         Identifier(HystereticOscillator, oscillator={"strategie": "search"}).fit([(t, x, y)])
     with pytest.raises(TypeError, match="oscillator must be a dict"):
         Identifier(HystereticOscillator, oscillator="search").options()
 
 
-def test_fit_returns_the_estimator_and_the_old_reading_warns(log):
+def test_fit_returns_the_estimator_not_the_model(log):
     t, x, y = log
     est = Identifier(Backlash, **FAST)
     with pytest.raises(AttributeError, match="to_dict"):
         est.to_dict  # noqa: B018 (unfitted: no fallback)
     assert est.fit([(t, x, y)]) is est
     assert est.model_ is est.fit_.model
-    # before, fit() returned the model: its attributes still answer, naming model_
-    with pytest.warns(DeprecationWarning, match=r"model_\.to_dict") as rec:
-        old = est.to_dict()
-    assert old == est.model_.to_dict() and {w.filename for w in rec} == {__file__}
-    with pytest.warns(DeprecationWarning, match=r"model_\.params"):
-        assert est.params == est.model_.params
+    # before, fit() returned the model: its attributes are the model_'s only (0.x removal)
+    with pytest.raises(AttributeError, match="to_dict"):
+        est.to_dict  # noqa: B018
     with pytest.raises(AttributeError, match="no_such_attribute"):
         est.no_such_attribute  # noqa: B018
 

@@ -1,16 +1,12 @@
-"""The package's layers as folders: old module paths name their new place, no module imports
-a name from the package's ``__init__``, and one module per layer (``_bound.py``) imports the
-C++ extension, which import-linter's graph cannot see (`make lint` runs .importlinter's layer
-and no-cycle contracts)."""
+"""The package's layers as folders: no module imports a name from the package's ``__init__``,
+and one module per layer (``_bound.py``) imports the C++ extension, which import-linter's graph
+cannot see (`make lint` runs .importlinter's layer and no-cycle contracts)."""
 
 import ast
 import importlib
 from pathlib import Path
 
-import pytest
-
 import tendonsheath as ts
-from tendonsheath._moved import MOVED
 
 PACKAGE = Path(ts.__file__).resolve().parent
 
@@ -57,13 +53,6 @@ def test_the_resolver_sees_an_import_from_the_root(tmp_path):
     assert _resolved(probe, node) == "tendonsheath"
     node = ast.parse("from ..plant import Motor").body[0]
     assert _resolved(probe, node) == "tendonsheath.plant"
-
-
-@pytest.mark.parametrize(("old", "new"), sorted(MOVED.items()))
-def test_an_old_module_path_names_its_new_place(old, new):
-    importlib.import_module(new)
-    with pytest.raises(ModuleNotFoundError, match=new.replace(".", r"\.")):
-        importlib.import_module(old)
 
 
 def test_the_public_names_stay_where_they_were():

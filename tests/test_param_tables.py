@@ -396,7 +396,7 @@ def test_the_walk_can_fail():
 
 def test_the_parameters_page_is_current(capsys):
     spec = importlib.util.spec_from_file_location(
-        "parameters_page", ROOT / "benchmarks" / "parameters_page.py"
+        "parameters_page", ROOT / "tools" / "parameters_page.py"
     )
     page = importlib.util.module_from_spec(spec)
     sys.modules[spec.name] = page
@@ -407,7 +407,7 @@ def test_the_parameters_page_is_current(capsys):
     finally:
         sys.modules.pop(spec.name, None)
     assert code == 0, (
-        "docs/parameters.md is stale: run `python benchmarks/parameters_page.py`\n"
+        "docs/parameters.md is stale: run `python tools/parameters_page.py`\n"
         + capsys.readouterr().out
     )
     assert sorted(names) == STRUCTS  # every table on the page, each once
@@ -426,7 +426,7 @@ NOT_ON_THE_PAGE = {
 
 def _page_module():
     spec = importlib.util.spec_from_file_location(
-        "parameters_page", ROOT / "benchmarks" / "parameters_page.py"
+        "parameters_page", ROOT / "tools" / "parameters_page.py"
     )
     page = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(page)

@@ -1,5 +1,5 @@
 """README.md's result tables are generated from the committed benchmarks/results/*.json by
-benchmarks/readme_tables.py: they must match, and a missing file or key must fail clearly."""
+tools/readme_tables.py: they must match, and a missing file or key must fail clearly."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-SCRIPT = ROOT / "benchmarks" / "readme_tables.py"
+SCRIPT = ROOT / "tools" / "readme_tables.py"
 
 
 @pytest.fixture(scope="module")
@@ -32,7 +32,7 @@ def test_readme_tables_match_the_committed_results(tables, capsys):
     out = capsys.readouterr()
     assert code == 0, (
         "README.md's generated tables differ from benchmarks/results/*.json; "
-        "run `python benchmarks/readme_tables.py` (or `make results` to refresh the results)\n"
+        "run `python tools/readme_tables.py` (or `make results` to refresh the results)\n"
         + out.out
         + out.err
     )

@@ -178,17 +178,16 @@ def test_gpi_inverse_commands_stay_in_the_envelopes_range():
 # -- issue 16, item 10: the smaller defects ------------------------------------------------
 
 
-def test_bouc_wen_has_one_name_per_parameter_and_reads_the_old_one():
-    """A is the amplitude, alpha the linear share (it was `a`, beside `A`)."""
+def test_bouc_wen_has_one_name_per_parameter_and_its_old_files_load():
+    """A is the amplitude, alpha the linear share (it was `a`, beside `A`): a file written
+    before the rename still loads; the old keyword a= is gone (0.x)."""
     names = ts.models.BoucWen.param_names
     assert "alpha" in names and "a" not in names
     rng = np.random.default_rng(3)
     x = np.cumsum(rng.normal(0.0, 0.05, 500))
     for alpha in (0.0, 0.25, 0.9):
         new = ts.models.BoucWen(A=1.2, beta=1.0, gamma=0.2, n=1.5, alpha=alpha, k=0.7)
-        with pytest.warns(DeprecationWarning, match="'a' is now called 'alpha'"):
-            old = ts.models.BoucWen(A=1.2, beta=1.0, gamma=0.2, n=1.5, a=alpha, k=0.7)
-        assert old == new and new.params["alpha"] == alpha
+        assert new.params["alpha"] == alpha
         # y = alpha x + (1 - alpha) k z: alpha is the slope of the linear path
         z = ts.models.BoucWen(A=1.2, beta=1.0, gamma=0.2, n=1.5, alpha=0.0, k=1.0).simulate(None, x)
         np.testing.assert_allclose(new.simulate(None, x), alpha * x + (1 - alpha) * 0.7 * z)
@@ -198,8 +197,8 @@ def test_bouc_wen_has_one_name_per_parameter_and_reads_the_old_one():
             warnings.simplefilter("error")
             assert ts.load_model(data) == new
             assert ts.models.BoucWen.from_dict(data) == new
-    with pytest.raises(TypeError, match="give alpha or its old name a, not both"):
-        ts.models.BoucWen(alpha=0.2, a=0.3)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'a'"):
+        ts.models.BoucWen(a=0.3)
     with pytest.raises(ValueError, match=r"BoucWen: alpha must be in \[0, 1\]"):
         ts.models.BoucWen(alpha=1.5)
 

@@ -86,16 +86,13 @@ def test_plants_return_the_result_type_with_their_fields():
         np.testing.assert_array_equal(res.command, x)
         np.testing.assert_array_equal(res.q_out, res.output)
         assert res.q_in.shape == x.shape and res.status.shape == x.shape
-        old = plant.simulate(t, x, full=True)  # the old spelling: the same result
-        np.testing.assert_array_equal(old, res)
-        np.testing.assert_array_equal(old.q_in, res.q_in)
         assert res.status.dtype == np.uint8
 
 
-def test_the_old_status_switch_warns_and_returns_the_old_tuple():
-    """simulate(..., status=True) and command(..., status=True) keep working for one release:
-    the old (result, flags), the flags those of .status, with a DeprecationWarning naming
-    .status and pointing at this file (the user's line)."""
+def test_the_old_status_and_full_switches_are_gone():
+    """simulate(..., status=True), command(..., status=True) and a plant's full=True were
+    removed (0.x, CHANGELOG): each is Python's own TypeError naming the argument, never the old
+    tuple returned quietly; the flags are the result's ``status``."""
     t = np.arange(0.0, 1.0, 1e-3)
     x = np.sin(2 * np.pi * t)
     plant = _plants()[1]
@@ -107,13 +104,12 @@ def test_the_old_status_switch_warns_and_returns_the_old_tuple():
         lambda: Scaled(Backlash(), output_gain=2.0).simulate(t, x, status=True),
         lambda: plant.simulate(t, x, status=True),
         lambda: ff.command(t, 0.5 * x, status=True),
+        lambda: plant.simulate(t, x, full=True),
     ]
     for call in calls:
-        with pytest.warns(DeprecationWarning, match=r"read \.status on the result") as record:
-            result, flags = call()
-        assert record[0].filename == __file__
-        assert isinstance(result, ts.SimulationResult) and flags.dtype == np.uint8
-        np.testing.assert_array_equal(flags, result.status)
+        with pytest.raises(TypeError, match="status|full|positional argument"):
+            call()
+    assert ff.command(t, 0.5 * x).status.dtype == np.uint8
 
 
 def test_command_returns_the_result_type():
@@ -199,20 +195,17 @@ def test_motor_simulate_returns_the_result_type_too():
 
 def test_one_name_per_quantity_across_the_run_results():
     """bench.Result's motor angle is q_motor (as a plant's result names it), a scenario's
-    metrics a field, a coupled run's command and q_out also input and output; the old names
-    still read for one release, with a DeprecationWarning naming the new one."""
+    metrics a field (a dict), a coupled run's command and q_out also input and output."""
     from tendonsheath.bench.run import Result
     from tendonsheath.bench.scenarios.common import ScenarioResult
     from tendonsheath.plant.coupled import CoupledSimulation
 
     n = np.arange(4.0)
     run = Result("none", n, n, n + 1, n, n, 2 * n, n < 0, n < 0, 0.0, {"rmse": 1.0})
-    with pytest.warns(DeprecationWarning, match="'motor' is now called 'q_motor'") as record:
-        np.testing.assert_array_equal(run.motor, 2 * n)
-    assert record[0].filename == __file__
+    np.testing.assert_array_equal(run.q_motor, 2 * n)
+    assert not hasattr(run, "motor")  # the old name was removed (0.x)
     scenario = ScenarioResult("s", "S", "", {}, {"none": run}, [], {})
     assert scenario.metrics == {"none": {"rmse": 1.0}}
-    with pytest.warns(DeprecationWarning, match=r"'metrics\(\)' is now called 'metrics'"):
-        assert scenario.metrics() == scenario.metrics
+    assert type(scenario.metrics) is dict  # no longer callable as the old metrics()
     coupled = CoupledSimulation(n, n + 1, n, n, n + 2, n)
     assert coupled.input is coupled.command and coupled.output is coupled.q_out

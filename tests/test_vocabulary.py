@@ -1,6 +1,6 @@
-"""One vocabulary (docs/vocabulary.md): the public constructors speak the Python names, old
-names warn for one release and behave the same, wrong types are TypeErrors naming the argument,
-and models are hashable values."""
+"""One vocabulary (docs/vocabulary.md): the public constructors speak the Python names (the
+old names were removed; files saved with them still load), wrong types are TypeErrors naming
+the argument, and models are hashable values."""
 
 from __future__ import annotations
 
@@ -243,181 +243,51 @@ def test_a_value_out_of_range_names_the_python_argument_not_the_cpp_field(make, 
     assert who.split(".")[0] in dir(ts) + dir(ts.compensate) + dir(ts.models) + ["Motor"]
 
 
-# -- deprecated aliases ------------------------------------------------------------------------
+# -- the old names are gone (0.x: removed, CHANGELOG); saved files with them still load ----
 
-
-def _command(ff, rng) -> np.ndarray:
-    t = np.linspace(0.0, 2.0, 401)
-    return ff.command(t, np.cumsum(rng.normal(0.0, 0.02, t.size)))
-
-
-def _route_uniform(old: bool, p: dict):
-    if old:
-        return ts.Route.uniform(p["length"], total_angle=p["angle"])
-    return ts.Route.uniform(p["length"], curve_angle=p["angle"])
-
-
-def _route_attribute(old: bool, p: dict):
-    route = ts.Route.uniform(p["length"], p["angle"])
-    return route.total_angle if old else route.curve_angle
-
-
-def _continuum_angle(old: bool, p: dict):
-    key = "total_angle" if old else "curve_angle"
-    return ContinuumFeedforward(friction=p["mu"], **{key: p["angle"]})
-
-
-def _continuum_length(old: bool, p: dict):
-    key = "sheath_length" if old else "length"
-    return ContinuumFeedforward(friction=p["mu"], **{key: p["length"]})
-
-
-def _continuum_from_model(old: bool, p: dict):
-    model = ts.models.CurveAngleModel(friction=p["mu"], load_stiffness=300.0, distal_radius=2e-3)
-    key = "total_angle" if old else "curve_angle"
-    return ContinuumFeedforward.from_model(model, 2e-3, 0.03, **{key: p["angle"]})
-
-
-def _curve_compliance(old: bool, p: dict):
-    if old:
-        return CurveAngleFeedforward(friction=p["mu"], compliance=p["C"], pretension=10.0)
-    return CurveAngleFeedforward(p["mu"], 1.0 / p["C"], 1.0, 10.0)
-
-
-def _curve_set_angle(old: bool, p: dict):
-    ff = CurveAngleFeedforward(**SHEATH)
-    ff.set_curve_angle(**{"total_angle" if old else "curve_angle": p["angle"]})
-    return ff
-
-
-def _bouc_wen(old: bool, p: dict):
-    return ts.models.BoucWen(**{"a" if old else "alpha": p["share"]})
-
-
-def _bouc_wen_with_params(old: bool, p: dict):
-    return ts.models.BoucWen().with_params(**{"a" if old else "alpha": p["share"]})
-
-
-def _curve_model_load(old: bool, p: dict):
-    return ts.models.CurveAngleModel(friction=p["mu"], **{"load" if old else "load_force": p["F"]})
-
-
-def _curve_model_spring(old: bool, p: dict):
-    key = "spring" if old else "load_stiffness"
-    return ts.models.CurveAngleModel(friction=p["mu"], **{key: p["k"]})
-
-
-def _curve_with_load(old: bool, p: dict):
-    model = ts.models.CurveAngleModel(friction=p["mu"], load_stiffness=p["k"])
-    return model.with_params(**{"load" if old else "load_force": p["F"]})
-
-
-def _curve_with_spring(old: bool, p: dict):
-    model = ts.models.CurveAngleModel(friction=p["mu"], load_force=p["F"])
-    return model.with_params(**{"spring" if old else "load_stiffness": p["k"]})
-
-
-ALIASES = [
-    ("Route.uniform", "total_angle", "curve_angle", _route_uniform),
-    ("Route", "total_angle", "curve_angle", _route_attribute),
-    ("ContinuumFeedforward", "total_angle", "curve_angle", _continuum_angle),
-    ("ContinuumFeedforward", "sheath_length", "length", _continuum_length),
-    ("ContinuumFeedforward.from_model", "total_angle", "curve_angle", _continuum_from_model),
-    ("CurveAngleFeedforward", "compliance", "stiffness and length", _curve_compliance),
-    ("CurveAngleFeedforward.set_curve_angle", "total_angle", "curve_angle", _curve_set_angle),
-    ("BoucWen", "a", "alpha", _bouc_wen),
-    ("BoucWen.with_params", "a", "alpha", _bouc_wen_with_params),
-    ("CurveAngleModel", "load", "load_force", _curve_model_load),
-    ("CurveAngleModel", "spring", "load_stiffness", _curve_model_spring),
-    ("CurveAngleModel.with_params", "load", "load_force", _curve_with_load),
-    ("CurveAngleModel.with_params", "spring", "load_stiffness", _curve_with_spring),
+OLD_NAMES = [
+    (lambda: ts.Route.uniform(1.0, total_angle=1.0), "total_angle"),
+    (lambda: ContinuumFeedforward(friction=0.1, total_angle=1.0), "total_angle"),
+    (lambda: ContinuumFeedforward(friction=0.1, sheath_length=1.0), "sheath_length"),
+    (
+        lambda: ContinuumFeedforward.from_model(
+            ts.models.CurveAngleModel(load_stiffness=300.0), 2e-3, 0.03, 1.0, total_angle=1.0
+        ),
+        "total_angle",
+    ),
+    (lambda: CurveAngleFeedforward(0.1, compliance=1e-4, pretension=10.0), "compliance"),
+    (lambda: CurveAngleFeedforward(**SHEATH).set_curve_angle(total_angle=1.0), "total_angle"),
+    (lambda: ts.models.BoucWen(a=0.3), "a"),
+    (lambda: ts.models.BoucWen().with_params(a=0.3), "a"),
+    (lambda: ts.models.CurveAngleModel(load=1.0), "load"),
+    (lambda: ts.models.CurveAngleModel(spring=1.0), "spring"),
+    (lambda: ts.models.CurveAngleModel().with_params(load=1.0), "load"),
+    (lambda: ts.physics.capstan_ratio(0.1, total_angle=1.0), "total_angle"),
 ]
 
 
-def _same_behaviour(old, new, rng) -> None:
-    if hasattr(new, "command"):
-        seed = int(rng.integers(1 << 30))
-        np.testing.assert_array_equal(
-            _command(old, np.random.default_rng(seed)), _command(new, np.random.default_rng(seed))
-        )
-        assert old.params == new.params
-    else:
-        assert old == new
-    if isinstance(new, ts.models.CurveAngleModel):  # and they run the same
-        q = np.cumsum(rng.normal(0.0, 0.05, 500))
-        theta = rng.uniform(0.0, 2.0 * np.pi)
-        np.testing.assert_array_equal(
-            old.simulate(None, q, curve_angle=theta), new.simulate(None, q, curve_angle=theta)
-        )
+@pytest.mark.parametrize(("make", "old"), OLD_NAMES, ids=[o for _, o in OLD_NAMES])
+def test_an_old_name_is_a_type_error_naming_it(make, old):
+    with pytest.raises(TypeError, match=f"unexpected keyword argument '{old}'"):
+        make()
 
 
-@pytest.mark.parametrize(
-    ("who", "old", "new", "build"), ALIASES, ids=[a[1] + "-" + a[0] for a in ALIASES]
-)
-def test_an_old_name_warns_naming_the_new_one_and_behaves_the_same(who, old, new, build, rng):
-    for _ in range(5):
-        p = {
-            "mu": rng.uniform(0.05, 0.2),
-            "angle": rng.uniform(0.1, 3 * np.pi),
-            "length": rng.uniform(0.3, 2.0),
-            "C": rng.uniform(1e-5, 1e-4),
-            "share": rng.uniform(0.0, 1.0),
-            "F": rng.uniform(-5.0, 5.0),
-            "k": 10 ** rng.uniform(1.0, 4.0),
-        }
-        with pytest.warns(DeprecationWarning) as caught:
-            got_old = build(True, p)
-        assert len(caught) == 1
-        message = str(caught[0].message)
-        assert message.startswith(f"{who}: '{old}' is now called '{new}'"), message
-        assert Path(caught[0].filename).resolve() == Path(__file__).resolve()  # the caller's line
-        _same_behaviour(got_old, build(False, p), rng)
-
-
-def test_the_old_compliance_is_the_ratio_length_over_stiffness(rng):
-    """compliance=C and any (EA, L) with L/EA = C give the same commands (to rounding)."""
-    for _ in range(10):
-        mu, length, ea = rng.uniform(0.05, 0.2), rng.uniform(0.3, 2.0), rng.uniform(5e3, 5e4)
-        new = CurveAngleFeedforward(mu, ea, length, 10.0, load_force=1.0)
-        with pytest.warns(DeprecationWarning):
-            old = CurveAngleFeedforward(mu, compliance=length / ea, pretension=10.0, load_force=1.0)
-        seed = int(rng.integers(1 << 30))
-        np.testing.assert_allclose(
-            _command(old, np.random.default_rng(seed)),
-            _command(new, np.random.default_rng(seed)),
-            rtol=1e-12,
-            atol=1e-15,
-        )
+def test_a_route_has_no_old_total_angle():
+    assert not hasattr(ROUTE, "total_angle") and ROUTE.curve_angle == pytest.approx(np.pi)
 
 
 @pytest.mark.parametrize(
     ("make", "message"),
     [
-        (lambda: ts.Route.uniform(1.0, 1.0, total_angle=1.0), "multiple values .* 'curve_angle'"),
-        (lambda: ContinuumFeedforward(length=1.0, sheath_length=1.0), "length or its old name"),
-        (lambda: CurveAngleFeedforward(0.1, 2e4, 1.0, 10.0, compliance=1e-4), "multiple values"),
-        (
-            lambda: CurveAngleFeedforward(0.1, length=1.0, pretension=10.0, compliance=1e-4),
-            "not both",
-        ),
         (lambda: CurveAngleFeedforward(0.1, 2e4), "missing 2 .* 'length' and 'pretension'"),
         (lambda: CurveAngleFeedforward(0.1, 5e-5, 10.0), "missing 1 .* 'pretension'"),
         (lambda: ts.Route.uniform(1.0, angle=1.0), "unexpected keyword argument 'angle'"),
         (lambda: ContinuumFeedforward(spring=1.0), "unexpected keyword argument 'spring'"),
-        (lambda: ts.models.BoucWen(b=1.0), r"unexpected keyword argument\(s\) \['b'\]"),
-        (
-            lambda: ts.models.CurveAngleModel(load=1.0, load_force=1.0),
-            "give load_force or its old name load, not both",
-        ),
-        (
-            lambda: ts.models.CurveAngleModel().with_params(spring=1.0, load_stiffness=2.0),
-            "give load_stiffness or its old name spring, not both",
-        ),
+        (lambda: ts.models.BoucWen(b=1.0), "unexpected keyword argument 'b'"),
         (lambda: ts.models.CurveAngleModel(springs=1.0), "unexpected keyword argument 'springs'"),
     ],
 )
-@pytest.mark.filterwarnings("ignore::DeprecationWarning")  # the old names warn: tested above
-def test_old_and_new_name_together_or_unknown_keywords_are_type_errors(make, message):
+def test_missing_or_unknown_keywords_are_type_errors(make, message):
     with pytest.raises(TypeError, match=message):
         make()
 
@@ -464,7 +334,7 @@ def test_a_model_file_with_a_load_under_both_names_is_a_bad_file():
         ts.models.load_model(data)
 
 
-# -- identify's fixed, free and bounds with CurveAngleModel's old names ----------------------
+# -- identify's fixed, free and bounds take the parameters' names only --------------------
 
 
 def _curve_recordings():
@@ -474,46 +344,20 @@ def _curve_recordings():
     return [(t, x, truth.simulate(t, x, curve_angle=a), a) for a in (1.0, 3.0)]
 
 
-IDENTIFY_OLD_NEW = [
-    ({"fixed": {"spring": 50.0}}, {"fixed": {"load_stiffness": 50.0}}, ["spring"]),
-    ({"free": ["spring"]}, {"free": ["load_stiffness"]}, ["spring"]),
-    ({"bounds": {"load": (-4.0, 4.0)}}, {"bounds": {"load_force": (-4.0, 4.0)}}, ["load"]),
-    (  # spring in free and in bounds: one warning per old name and call
-        {"free": ["spring"], "bounds": {"spring": (0.0, 1e3), "load": (-4.0, 4.0)}},
-        {
-            "free": ["load_stiffness"],
-            "bounds": {"load_stiffness": (0.0, 1e3), "load_force": (-4.0, 4.0)},
-        },
-        ["load", "spring"],
-    ),
-]
-
-
-@pytest.mark.parametrize(("old", "new", "names"), IDENTIFY_OLD_NEW)
-def test_identify_takes_the_old_load_names_with_one_warning_each(old, new, names):
-    recordings = _curve_recordings()
-    quick = dict(maxiter=4, popsize=5, seed=0, workers=1, progress=False, standard_errors="none")
-    with pytest.warns(DeprecationWarning) as caught:
-        got_old = ts.identify(ts.models.CurveAngleModel, recordings=recordings, **old, **quick)
-    deprecations = [w for w in caught if w.category is DeprecationWarning]
-    messages = sorted(str(w.message) for w in deprecations)
-    assert len(messages) == len(names), messages
-    for message, name in zip(messages, names, strict=True):
-        renamed = {"load": "load_force", "spring": "load_stiffness"}[name]
-        assert message.startswith(f"identify(CurveAngleModel): '{name}' is now called '{renamed}'")
-    assert {Path(w.filename).resolve() for w in deprecations} == {Path(__file__).resolve()}
-    got_new = ts.identify(ts.models.CurveAngleModel, recordings=recordings, **new, **quick)
-    assert got_old.model == got_new.model
-    assert sorted(got_old.fixed) == sorted(got_new.fixed)
-
-
-def test_identify_with_a_load_under_both_names_is_a_type_error():
-    with pytest.raises(TypeError, match="give load_stiffness or its old name spring, not both"):
+@pytest.mark.parametrize(
+    ("old", "name"),
+    [
+        ({"fixed": {"spring": 50.0}}, "spring"),
+        ({"free": ["spring"]}, "spring"),
+        ({"bounds": {"load": (-4.0, 4.0)}}, "load"),
+    ],
+)
+def test_identify_refuses_the_old_load_names_naming_them(old, name):
+    with pytest.raises(
+        ValueError, match=rf"unknown parameter\(s\) \['{name}'\] of CurveAngleModel"
+    ):
         ts.identify(
-            ts.models.CurveAngleModel,
-            recordings=_curve_recordings(),
-            fixed={"spring": 1.0, "load_stiffness": 2.0},
-            progress=False,
+            ts.models.CurveAngleModel, recordings=_curve_recordings(), progress=False, **old
         )
 
 

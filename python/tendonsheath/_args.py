@@ -1,16 +1,14 @@
-"""Argument handling shared by the public constructors: renamed keywords, number checks, and the
+"""Argument handling shared by the public constructors: saved files' old keys, number checks, the
 C++ core's error messages under the Python caller's name (the core names each parameter as Python
 does: one vocabulary, docs/vocabulary.md)."""
 
 from __future__ import annotations
 
-import functools
 import numbers
 import os
 import re
 import sys
-import warnings
-from collections.abc import Callable, Iterable, Iterator, Mapping
+from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from types import FrameType
 from typing import Any
@@ -18,102 +16,31 @@ from typing import Any
 import numpy as np
 
 
-def renamed(
-    who: str,
-    values: dict[str, Any],
-    renames: Mapping[str, str],
-    warn: bool = True,
-) -> dict[str, Any]:
-    """`values` with each old keyword of `renames` (old -> new) moved to its new name.
-
-    With ``warn`` each old name found raises a DeprecationWarning naming the new one (saved
-    files are read without one). Giving both names is a TypeError, as Python does for an
-    argument given twice.
-    """
+def renamed(who: str, values: dict[str, Any], renames: Mapping[str, str]) -> dict[str, Any]:
+    """`values` (a saved file's keys) with each old key of `renames` (old -> new) moved to its
+    new name: files written before a rename still load. Both names is a TypeError."""
     out = dict(values)
     for old, new in renames.items():
         if old not in out:
             continue
         if out.get(new) is not None:
             raise TypeError(f"{who}: give {new} or its old name {old}, not both")
-        if warn:
-            warn_renamed(who, old, new, caller_outside_package())
         out[new] = out.pop(old)
     return out
-
-
-def warn_renamed(who: str, old: str, new: str, stacklevel: int | None = None) -> None:
-    """The DeprecationWarning of an old name (argument or attribute) that names the new one,
-    pointing at the user's line: the first frame outside the package unless `stacklevel` says."""
-    if stacklevel is None:
-        stacklevel = caller_outside_package() - 1  # counted from this function, not its caller
-    warnings.warn(
-        f"{who}: {old!r} is now called {new!r} (docs/vocabulary.md); {old!r} will be removed "
-        "in the next release",
-        DeprecationWarning,
-        stacklevel=stacklevel,
-    )
-
-
-def warn_status_switch(who: str) -> None:
-    """The DeprecationWarning of the old ``status=True`` switch (a ``(result, flags)`` tuple),
-    naming the new form and pointing at the user's line."""
-    warnings.warn(
-        f"{who}(..., status=True) is deprecated: read .status on the result (each sample's "
-        "Status flags, uint8; docs/status.md); status= will be removed in the next release",
-        DeprecationWarning,
-        stacklevel=caller_outside_package() - 1,
-    )
 
 
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
 
 def caller_outside_package() -> int:
-    """The ``stacklevel`` for :func:`warn_renamed`, called by the caller of this function, that
-    points at the first frame outside the package: the user's line, for a warning raised some
-    calls deep (identify's settings pass through the estimator first)."""
-    frame: FrameType | None = sys._getframe(1)  # the caller; warn_renamed itself is level 1
+    """The ``stacklevel`` for a warning raised by the caller of this function that points at
+    the first frame outside the package: the user's line, for a warning raised some calls
+    deep."""
+    frame: FrameType | None = sys._getframe(1)  # the caller; warnings.warn itself is level 1
     level = 2
     while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_DIR):
         frame, level = frame.f_back, level + 1
     return level
-
-
-def accepts_old_names(who: str, renames: Mapping[str, str | Callable[[Any], dict[str, Any]]]):
-    """Decorator: the function also takes the old keywords of `renames` for one release, each
-    with a DeprecationWarning that names the new one. A rename maps an old name to its new name,
-    or to a function of the old value that gives the new keywords (one old setting split in
-    two). The signature (``inspect.signature``, the docs) shows only the new names."""
-
-    def wrap(fn):
-        @functools.wraps(fn)
-        def call(*args, **kwargs):
-            for old in sorted(renames.keys() & kwargs.keys()):
-                kwargs = _new_keywords(who, old, renames[old], kwargs)
-            return fn(*args, **kwargs)
-
-        return call
-
-    return wrap
-
-
-def _new_keywords(who: str, old: str, new, kwargs: dict[str, Any]) -> dict[str, Any]:
-    value = kwargs.pop(old)
-    values = new(value) if callable(new) else {new: value}
-    label = " and ".join(values)
-    if set(values) & set(kwargs):
-        raise TypeError(f"{who}: give {label} or its old name {old}, not both")
-    warn_renamed(who, old, label, caller_outside_package())
-    return {**kwargs, **values}
-
-
-def reject_unknown(who: str, extra: Mapping[str, Any], old_names: Iterable[str]) -> None:
-    """A TypeError for keywords that are neither parameters nor `old_names` (a renames map's
-    keys, or a list)."""
-    unknown = sorted(set(extra) - set(old_names))
-    if unknown:
-        raise TypeError(f"{who}: unexpected keyword argument(s) {unknown}")
 
 
 def number(who: str, name: str, value: Any) -> float:

@@ -934,7 +934,9 @@ def compare_models(
     has_load = all(getattr(r, "load", None) is not None for r in [*recs, *scored])
     candidates, names = _candidates(models, recs, has_angle, has_load)
     # one estimator per candidate, cloned per fold; one bar for the comparison
-    settings = dict(seed=seed, maxiter=maxiter, popsize=popsize, workers=workers, progress=False)
+    settings: dict[str, Any] = dict(
+        seed=seed, maxiter=maxiter, popsize=popsize, workers=workers, progress=False
+    )
     estimators = [Identifier(c, **settings) for c in candidates]
     cv = isinstance(validate, str)
     whole_runs = (cv and len(recs) >= 2) or not isinstance(validate, str | int | float)

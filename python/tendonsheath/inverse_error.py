@@ -19,7 +19,6 @@ import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from scipy.signal import butter, sosfiltfilt
 
 from .bench.metrics import dominant_period
 
@@ -48,6 +47,8 @@ def desired_from_record(t: np.ndarray, y: np.ndarray) -> np.ndarray:
     numpy.ndarray of float
         The smoothed output (y itself when too short to filter).
     """
+    from scipy.signal import butter, sosfiltfilt
+
     t, y = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
     if y.size < 16:
         return y.copy()

@@ -14,9 +14,11 @@ are there (not their signatures).
   ``to_json`` and a classmethod ``load`` (the shipped ones: ``tendonsheath.compensate.load``).
 * :class:`FeedforwardCompensator`: a compensator with ``command(t, y_desired)``, a whole
   trajectory at once (the feedforwards; a feedback controller has none).
-* :class:`Plant`: ``reset``, ``step``, ``simulate`` and ``params``: all that :func:`bench.run
+* :class:`SteppedPlant`: ``reset`` and ``step(command, dt)``: all that :func:`bench.run
   <tendonsheath.bench.run>` needs of a plant (what else it reads where a plant has it, such as
   its ``motor``, is listed in :mod:`tendonsheath.bench.plant_loop`).
+* :class:`Plant`: a stepped plant that also has ``simulate`` and ``params`` (the shipped ones;
+  a scenario's calibration simulates whole records).
 """
 
 from __future__ import annotations
@@ -28,6 +30,7 @@ __all__ = [
     "Compensator",
     "FeedforwardCompensator",
     "Plant",
+    "SteppedPlant",
     "StreamingCompensator",
     "missing_members",
     "step_signals",
@@ -140,16 +143,13 @@ class FeedforwardCompensator(Compensator, Protocol):
 
 
 @runtime_checkable
-class Plant(Protocol):
-    """A simulated drive: streaming (``reset``/``step``) and whole records (``simulate``).
+class SteppedPlant(Protocol):
+    """A drive stepped one sample at a time: all that :func:`bench.run
+    <tendonsheath.bench.run>` asks of a plant.
 
     A structural protocol: it is never instantiated; ``isinstance`` checks that an object has
-    ``params``, ``reset``, ``step`` and ``simulate``.
+    ``reset`` and ``step``.
     """
-
-    @property
-    def params(self) -> dict[str, Any]:
-        """The constructor's arguments, defaults filled in (a copy)."""
 
     def reset(self) -> None:
         """Back to rest: the next :meth:`step` starts there.
@@ -174,6 +174,19 @@ class Plant(Protocol):
         float
             The output after the step.
         """
+
+
+@runtime_checkable
+class Plant(SteppedPlant, Protocol):
+    """A simulated drive: streaming (``reset``/``step``) and whole records (``simulate``).
+
+    A structural protocol: it is never instantiated; ``isinstance`` checks that an object has
+    ``reset``, ``step``, ``params`` and ``simulate``.
+    """
+
+    @property
+    def params(self) -> dict[str, Any]:
+        """The constructor's arguments, defaults filled in (a copy)."""
 
     def simulate(self, t: Any, command: Any) -> Any:
         """A whole record from rest, without touching the streaming state.
@@ -251,8 +264,9 @@ def step_signals(compensator: object) -> tuple[str, ...]:
 
 def _check_step_arguments(compensator: object, inputs: tuple[str, ...]) -> None:
     """``step`` takes the signals ``inputs`` names, then dt: else the loop would fail on its
-    first step, deep inside (a step that takes a measurement without declaring it). A step
-    without a signature to read (a compiled one) is its binding's to check."""
+    first step, deep inside, or (a ``dt`` with a default after an undeclared measurement) feed
+    dt in as the measurement. A step without a signature to read (a compiled one) is its
+    binding's to check."""
     if callable(getattr(compensator, "_tendonsheath_compensator", None)):
         return
     try:
@@ -261,17 +275,48 @@ def _check_step_arguments(compensator: object, inputs: tuple[str, ...]) -> None:
         return
     if any(p.kind is p.VAR_POSITIONAL for p in params):
         return
+    name = type(compensator).__name__
+    keyword_only = [p.name for p in params if p.kind is p.KEYWORD_ONLY and p.default is p.empty]
+    if keyword_only:
+        raise TypeError(
+            f"{name}.step takes {', '.join(keyword_only)} as keyword-only argument(s), but the "
+            "loop passes the signals positionally, then dt: make them positional and declare "
+            f"the class attribute step_inputs (the signals before dt, among {list(STEP_SIGNALS)})"
+        )
     positional = [p for p in params if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+    names = [p.name for p in positional]
     required = [p for p in positional if p.default is p.empty]
-    if len(required) <= len(inputs) + 1 <= len(positional):
+    dt_at = names.index("dt") if "dt" in names else None
+    fits = len(required) <= len(inputs) + 1 <= len(positional)
+    if fits and dt_at in (None, len(inputs)):
         return
+    if dt_at is None:
+        signals, after_dt = names[: max(len(required) - 1, 1)], []
+    else:
+        after_dt = [p.name for p in required if names.index(p.name) > dt_at]
+        signals = names[:dt_at] + after_dt
+    raise TypeError(_undeclared_signals(compensator, names, signals, after_dt, inputs))
+
+
+def _undeclared_signals(compensator: object, names, signals, after_dt, inputs) -> str:
+    """One line: what ``step`` takes, what the loop would pass, what to declare."""
     name = type(compensator).__name__
     told = "its step_inputs" if hasattr(compensator, "step_inputs") else "the default step_inputs"
-    raise TypeError(
-        f"{name}.step({', '.join(p.name for p in positional)}) takes "
-        f"{len(required)} argument(s), but {told} {list(inputs)} and dt make "
-        f"{len(inputs) + 1}: set the class attribute step_inputs to the signals step takes "
-        f"before dt, among {list(STEP_SIGNALS)}"
+    if after_dt:
+        what = f"{', '.join(after_dt)} after dt (the loop passes the signals, then dt)"
+    elif len(signals) > len(inputs):
+        what = f"a measurement before dt, but {told} {list(inputs)} pass only {len(inputs)}"
+    else:
+        what = f"{len(signals)} signal(s) before dt, but {told} {list(inputs)} pass {len(inputs)}"
+    if all(s in STEP_SIGNALS for s in signals) and len(set(signals)) == len(signals) > 0:
+        declare = f"step_inputs = {tuple(signals)!r}"
+    else:
+        declare = "step_inputs (e.g. ('y_d', 'y') for a step(y_d, y, dt))"
+    where = f" and take them before dt: step({', '.join(signals)}, dt)" if after_dt else ""
+    return (
+        f"{name}.step({', '.join(names)}) takes {what}: declare the class attribute "
+        f'{declare}{where} (in order, among "y_d" the desired output, "y" the measured output, '
+        '"q" the motor encoder angle)'
     )
 
 

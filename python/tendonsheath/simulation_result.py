@@ -3,9 +3,8 @@ its time, input, success, message and ``.plot()``.
 
 It is a NumPy array subclass holding the output samples, so code that used the array a
 ``simulate`` returned (``np.asarray(res)``, ``res[k]``, ``res - y``, ``np.mean(res)``) runs
-unchanged; indexing and arithmetic give plain arrays. A plant's result also has the fields
-that ``simulate(full=True)`` used to return (``q_out``, ``q_in``, ``measured``, ``slack``, ...),
-so ``full=True`` is no longer needed (it is still accepted).
+unchanged; indexing and arithmetic give plain arrays. A plant's result also has the plant's
+fields (``q_out``, ``q_in``, ``measured``, ``slack``, ...).
 """
 
 from __future__ import annotations

@@ -11,7 +11,6 @@ of the tip angle against the reversals of the reference, each reversal a swing l
 from __future__ import annotations
 
 import numpy as np
-from scipy.signal import find_peaks
 
 #: a swing smaller than this share of the reference's range is not a reversal
 SWING_SHARE = 1e-3
@@ -24,6 +23,8 @@ EXTRA_CYCLES_PER_S = 1.0
 def reversals(x: np.ndarray, swing: float) -> int:
     """Turns of ``x`` (maxima and minima) that stand at least ``swing`` above or below
     their neighbourhood (``scipy.signal.find_peaks`` prominence)."""
+    from scipy.signal import find_peaks
+
     if x.size < 3:
         return 0
     peaks = find_peaks(x, prominence=swing)[0]

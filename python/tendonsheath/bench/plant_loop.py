@@ -1,8 +1,9 @@
-"""The plant of a :func:`tendonsheath.bench.run`: any object meeting
-:class:`tendonsheath.protocols.Plant`, stepped in the one C++ closed loop.
+"""The plant of a :func:`tendonsheath.bench.run`: any object with ``reset()`` and
+``step(command, dt)`` (:class:`tendonsheath.protocols.SteppedPlant`), stepped in the one C++
+closed loop; a closed loop needs neither :class:`~tendonsheath.protocols.Plant`'s ``params`` nor
+its ``simulate``.
 
-What bench.run uses of a plant (beyond the protocol's ``params``, ``reset``, ``step`` and
-``simulate``; everything optional has a default):
+What else bench.run uses of a plant (everything optional has a default):
 
 * ``_tendonsheath_plant()`` (optional): what the C++ loop steps at C++ speed: the shipped
   plants give themselves (each is its bound C++ plant; the loop steps a copy, without the
@@ -38,7 +39,7 @@ import numpy as np
 from ..plant.coupled import CoupledPlant
 from ..plant.motor import Motor
 from ..plant.sensor import Sensor
-from ..protocols import Plant, missing_members
+from ..protocols import SteppedPlant, missing_members
 
 # what a plant offers to the C++ loop, each read after every step (None: the default)
 _OPTIONAL_CALLS = ("output", "input", "drive_reaction", "slack", "status")
@@ -148,20 +149,21 @@ class BenchPlant:
 
 
 def check_plant(plant) -> None:
-    """Raise ValueError naming what ``plant`` lacks of :class:`~tendonsheath.protocols.Plant`,
+    """Raise ValueError naming what ``plant`` lacks of
+    :class:`~tendonsheath.protocols.SteppedPlant` (``reset`` and ``step``),
     or for a plant bench.run cannot close one loop around."""
     if isinstance(plant, CoupledPlant):
         raise ValueError(
             "bench.run closes one loop around a single-input plant; a CoupledPlant's step takes "
             "one command per joint: run each joint's plant (CoupledPlant.plants) on its own"
         )
-    missing = missing_members(plant, Plant)
+    missing = missing_members(plant, SteppedPlant)
     if missing:
         raise ValueError(
             f"bench.run: the plant {type(plant).__name__} has no {' and no '.join(missing)}: a "
-            "plant needs params, reset(), step(command, dt) and simulate(t, command) (see "
-            "tendonsheath.protocols.Plant; PullPullPlant, ContinuumPlant and SingleTendonPlant "
-            "meet it)"
+            "plant needs reset() and step(command, dt) (see "
+            "tendonsheath.protocols.SteppedPlant; PullPullPlant, ContinuumPlant and "
+            "SingleTendonPlant have them)"
         )
 
 

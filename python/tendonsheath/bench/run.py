@@ -9,14 +9,13 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 
-from .._args import warn_renamed
 from .._arrays import as_timed_signal
 from .._pyobject import bound_base
 from ..plant.physics import route_shape as shape_of
 from ..plant.sensor import Sensor
 from ..protocols import (
     STEP_SIGNALS,
-    Plant,
+    SteppedPlant,
     StreamingCompensator,
     missing_members,
     step_signals,
@@ -66,8 +65,7 @@ class Result:
         The controller's command (rad, or N m for a torque controller).
     q_motor : numpy.ndarray of float
         The motor shaft angle its encoder reads (rad), as a plant's
-        :class:`~tendonsheath.SimulationResult` names it (``motor``, the old name, is still
-        read for one release, with a DeprecationWarning).
+        :class:`~tendonsheath.SimulationResult` names it.
     slack : numpy.ndarray of bool
         Per cycle: a tendon was slack.
     fallback : numpy.ndarray of bool
@@ -93,12 +91,6 @@ class Result:
     warmup: float
     metrics: dict[str, Any] = field(default_factory=dict)  # floats, and "status": counts
     status: np.ndarray | None = None
-
-    @property
-    def motor(self) -> np.ndarray:
-        """The old name of :attr:`q_motor` (read for one release, with a DeprecationWarning)."""
-        warn_renamed("bench.Result", "motor", "q_motor")
-        return self.q_motor
 
     @property
     def error(self) -> np.ndarray:
@@ -141,7 +133,7 @@ def _dropout_mask(dropout, t):
 
 
 def run(
-    plant: Plant,
+    plant: SteppedPlant,
     controller: Controller,
     t: ArrayLike,
     reference: ArrayLike,
@@ -154,14 +146,15 @@ def run(
     """Track ``reference`` (the plant's output: a distal angle, rad; a SingleTendonPlant's
     distal displacement, m) at times ``t`` with ``controller`` on ``plant``.
 
-    ``plant``: any object meeting :class:`~tendonsheath.protocols.Plant`, all closed in one
-    C++ loop: a shipped plant (PullPullPlant, ContinuumPlant, SingleTendonPlant) or a compiled
-    one (bound with ``tendonsheath_bind/plant.hpp``) at C++ speed, any other stepped from
-    Python (``step(command, dt)`` once per cycle, after ``reset()``). What the loop reads of a
-    plant beyond the protocol, each optional (its ``motor`` and ``sensor``, ``kinematic_gain``
-    or ``distal_radius``/``proximal_radius``, ``set_route``, ``slack()``, ``status()`` ...), is
-    listed in :mod:`tendonsheath.bench.plant_loop`; a member the run needs and the plant lacks
-    is named in the error.
+    ``plant``: any object with ``reset()`` and ``step(command, dt)``
+    (:class:`~tendonsheath.protocols.SteppedPlant`; no ``params`` or ``simulate`` needed), all
+    closed in one C++ loop: a shipped plant (PullPullPlant, ContinuumPlant, SingleTendonPlant)
+    or a compiled one (bound with ``tendonsheath_bind/plant.hpp``) at C++ speed, any other
+    stepped from Python (``step(command, dt)`` once per cycle, after ``reset()``). What the
+    loop reads of a plant beyond the protocol, each optional (its ``motor`` and ``sensor``,
+    ``kinematic_gain`` or ``distal_radius``/``proximal_radius``, ``set_route``, ``slack()``,
+    ``status()`` ...), is listed in :mod:`tendonsheath.bench.plant_loop`; a member the run
+    needs and the plant lacks is named in the error.
 
     ``controller``: None (uncompensated: the kinematic command ``plant.kinematic_gain * y_d``,
     r_d/r_p * y_d for a pull-pull pair, y_d for a single tendon), an
@@ -181,7 +174,7 @@ def run(
 
     Parameters
     ----------
-    plant : Plant
+    plant : SteppedPlant
         The plant (with its motor and sensor): a shipped one, a compiled one or one written in
         Python (see above).
     controller : compensator or None
@@ -209,7 +202,7 @@ def run(
     Raises
     ------
     ValueError
-        A plant that lacks a member of the Plant protocol or one the run needs (named), a
+        A plant without reset() or step(), or without a member the run needs (named), a
         controller it does not know, bad samples or arguments, or an AdaptiveController
         without a torque motor.
     TypeError

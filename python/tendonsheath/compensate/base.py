@@ -3,9 +3,8 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, Self, cast
+from typing import Any, Self
 
-from .._args import warn_status_switch
 from .._arrays import as_timed_signal, checked_dt
 from .._pyobject import PythonObject
 from .._typing import ArrayLike
@@ -15,20 +14,12 @@ from ..status import Status
 from . import persistence
 
 
-def command_result(
-    who: str, t: Any, y_desired: Any, out: Any, status: bool = False
-) -> SimulationResult:
+def command_result(t: Any, y_desired: Any, out: Any) -> SimulationResult:
     """A compensator's ``command`` result: the commands (an array) with ``t``, ``input`` (the
     desired outputs) and ``status`` (each cycle's Status flags, uint8), from `out` (the
-    commands, or ``(commands, flags)`` as the C++ engines give them). With the deprecated
-    ``status=True`` it is the old ``(commands, flags)`` tuple, with a DeprecationWarning.
-    """
+    commands, or ``(commands, flags)`` as the C++ engines give them)."""
     commands, flags = out if isinstance(out, tuple) else (out, getattr(out, "status", None))
-    result = SimulationResult(commands, t=t, input=y_desired, status=flags)
-    if status:
-        warn_status_switch(who)
-        return cast(SimulationResult, (result, flags))
-    return result
+    return SimulationResult(commands, t=t, input=y_desired, status=flags)
 
 
 class SavedAsJson:
@@ -181,7 +172,7 @@ class Feedforward(EngineCompensator):
         dt = checked_dt(dt)
         return self._bound_class.step(self, float(y_d), float(dt))
 
-    def command(self, t: ArrayLike, y_desired: ArrayLike, status: bool = False) -> SimulationResult:
+    def command(self, t: ArrayLike, y_desired: ArrayLike) -> SimulationResult:
         """Motor commands for a whole trajectory, with each cycle's :class:`Status` flags
         (uint8) in the result's ``status``.
 
@@ -191,9 +182,6 @@ class Feedforward(EngineCompensator):
             Sample times (s), increasing; required.
         y_desired : array_like of float, shape (n,)
             Desired outputs.
-        status : bool, default False
-            Deprecated (read ``result.status``): True returns ``(commands, flags)`` with a
-            DeprecationWarning, for one release.
 
         Returns
         -------
@@ -208,7 +196,7 @@ class Feedforward(EngineCompensator):
         """
         ts, ys = as_timed_signal(t, y_desired, "y_desired", f"{type(self).__name__}.command")
         out = self._bound_class.command(self, ts, ys, True)
-        return command_result(f"{type(self).__name__}.command", ts, ys, out, status)
+        return command_result(ts, ys, out)
 
 
 __all__ = ["EngineCompensator", "Feedforward", "SavedAsJson"]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
-from .._args import accepts_old_names, core_errors_as, number
+from .._args import core_errors_as, number
 from .._units import warn_unit_slips
 from . import _bound as core
 from .base import Feedforward
@@ -15,8 +15,8 @@ if TYPE_CHECKING:
     from ..models import CurveAngleModel
 
 _MODES = {"exact": core.ContinuumMode.exact, "published": core.ContinuumMode.published}
-# old argument names -> vocabulary names (docs/vocabulary.md)
-RENAMED = {"sheath_length": "length", "total_angle": "curve_angle"}
+# saved files' old keys -> vocabulary names (docs/vocabulary.md): such files still load
+SAVED_AS = {"sheath_length": "length", "total_angle": "curve_angle"}
 # the settings that are fields of ContinuumFeedforwardParams (the same names in Python and C++)
 _SAME_NAMES = (
     "friction",
@@ -35,7 +35,7 @@ _SAME_NAMES = (
 
 
 def _numbers(arguments: dict) -> dict:
-    """The numeric constructor arguments (all but self, mode, limits and the old names)."""
+    """The numeric constructor arguments (all but self, mode and limits)."""
     return {k: v for k, v in arguments.items() if k not in ("self", "mode", "limits", "who")}
 
 
@@ -52,15 +52,13 @@ class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ign
     friction : float, default 0.1
         Friction coefficient mu.
     length : float, default 1.0
-        Sheath length L (m) (its old name ``sheath_length=`` still works for one release, with
-        a DeprecationWarning; docs/vocabulary.md).
+        Sheath length L (m).
     stiffness : float, default 2.4e4
         Tendon axial stiffness EA (N).
     pretension : float, default 10.0
         Pretension T0 (N).
     curve_angle : float, default pi
-        Curve angle Theta of the sheath (rad) (its old name ``total_angle=`` still works for
-        one release, with a DeprecationWarning).
+        Curve angle Theta of the sheath (rad).
     bending_stiffness : float, default 4e-4
         Backbone bending stiffness EI (N m^2).
     tendon_offset : float, default 2e-3
@@ -89,7 +87,7 @@ class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ign
         An unknown mode, or a value out of range (the message names the argument and the value).
     """
 
-    _renamed_settings = RENAMED  # files written before the vocabulary still load
+    _renamed_settings = SAVED_AS  # files written before the vocabulary still load
     _saved_settings = (
         "friction",
         "length",
@@ -107,7 +105,6 @@ class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ign
         "limits",
     )
 
-    @accepts_old_names("ContinuumFeedforward", RENAMED)
     def __init__(
         self,
         friction: float = 0.1,
@@ -144,7 +141,6 @@ class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ign
         warn_unit_slips(who, p)
 
     @classmethod
-    @accepts_old_names("ContinuumFeedforward.from_model", {"total_angle": "curve_angle"})
     def from_model(
         cls,
         model: CurveAngleModel,
@@ -168,8 +164,7 @@ class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ign
         backbone_length : float
             l (m).
         curve_angle : float
-            Curve angle of the sheath (rad) (its old name ``total_angle=`` still works for one
-            release, with a DeprecationWarning).
+            Curve angle of the sheath (rad).
         mode : {"exact", "published"}, default "exact"
             See the class.
         **options
@@ -228,4 +223,4 @@ class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ign
         return core.ContinuumFeedforward.bending_force(self, float(theta_d))
 
 
-__all__ = ["ContinuumFeedforward", "RENAMED"]
+__all__ = ["ContinuumFeedforward", "SAVED_AS"]

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._args import accepts_old_names, core_errors_as, number
+from .._args import core_errors_as, number
 from .._arrays import as_signal, as_timed_signal, checked_dt
 from .._pyobject import bound_attribute
 from .._typing import ArrayLike
@@ -40,9 +40,9 @@ class CurveAngleFeedforward(Feedforward, core.CurveAngleFeedforward):  # type: i
     friction : float
         Friction coefficient mu.
     stiffness : float
-        Tendon axial stiffness EA (N), > 0; only L/EA enters the feedforward (the old
-        ``compliance=`` L/EA still works for one release, with a DeprecationWarning, as
-        stiffness 1/compliance and length 1 m; docs/vocabulary.md).
+        Tendon axial stiffness EA (N), > 0; only L/EA enters the feedforward (a file saved
+        with the old ``compliance`` L/EA loads as stiffness 1/compliance and length 1 m;
+        docs/vocabulary.md).
     length : float
         Sheath length L (m), > 0.
     pretension : float
@@ -92,7 +92,6 @@ class CurveAngleFeedforward(Feedforward, core.CurveAngleFeedforward):  # type: i
         "limits",
     )
 
-    @accepts_old_names("CurveAngleFeedforward", {"compliance": lambda c: _from_compliance(c)})
     def __init__(
         self,
         friction: float,
@@ -196,15 +195,13 @@ class CurveAngleFeedforward(Feedforward, core.CurveAngleFeedforward):  # type: i
         """Friction coefficient mu."""
         return bound_attribute(self, "params").friction
 
-    @accepts_old_names("CurveAngleFeedforward.set_curve_angle", {"total_angle": "curve_angle"})
-    def set_curve_angle(self, curve_angle: float) -> None:
+    def set_curve_angle(self, curve_angle: float) -> None:  # type: ignore[override]
         """Uniform curvature with this curve angle (rad).
 
         Parameters
         ----------
         curve_angle : float
-            The curve angle Theta (rad), finite and >= 0 (its old name ``total_angle=`` still
-            works for one release, with a DeprecationWarning).
+            The curve angle Theta (rad), finite and >= 0.
 
         Raises
         ------
@@ -265,13 +262,12 @@ class CurveAngleFeedforward(Feedforward, core.CurveAngleFeedforward):  # type: i
     def _control_step(self, u, dt: float) -> float:
         return self.step(u[0], dt, curve_angle=u[1])
 
-    def command(  # type: ignore[override]  # curve_angle (before status) is its input
+    def command(  # type: ignore[override]  # curve_angle is its input
         self,
         t: ArrayLike,
         y_desired: ArrayLike,
         curve_angle: ArrayLike | None = None,
         routes: Callable[[float], Route] | None = None,
-        status: bool = False,
     ) -> SimulationResult:
         """Motor angles for a whole trajectory; the shape from `curve_angle` (scalar or one
         per sample) or `routes` (a callable t -> route), else the constructor's curve angle.
@@ -287,9 +283,6 @@ class CurveAngleFeedforward(Feedforward, core.CurveAngleFeedforward):  # type: i
             Curve angle (rad), one value or one per sample, >= 0.
         routes : callable, optional
             t -> the route at time t (takes precedence over curve_angle).
-        status : bool, default False
-            Deprecated (read ``result.status``): True returns ``(commands, flags)`` with a
-            DeprecationWarning, for one release.
 
         Returns
         -------
@@ -310,7 +303,7 @@ class CurveAngleFeedforward(Feedforward, core.CurveAngleFeedforward):  # type: i
             G = np.array([s.G for s in shapes])
             theta = np.array([s.curve_angle for s in shapes])
             out = core.CurveAngleFeedforward.command(self, ts, ys, g, G, theta, True)
-            return command_result(who, ts, ys, out, status)
+            return command_result(ts, ys, out)
         if curve_angle is not None:
             theta = np.broadcast_to(np.asarray(curve_angle, dtype=np.float64), ys.shape)
             theta = as_signal(theta, "curve_angle")
@@ -320,17 +313,9 @@ class CurveAngleFeedforward(Feedforward, core.CurveAngleFeedforward):  # type: i
                     f"CurveAngleFeedforward.command: curve_angle must be >= 0 (got {bad:g})"
                 )
             out = core.CurveAngleFeedforward.command(self, ts, ys, None, None, theta, True)
-            return command_result(who, ts, ys, out, status)
+            return command_result(ts, ys, out)
         out = core.CurveAngleFeedforward.command(self, ts, ys, None, None, None, True)
-        return command_result(who, ts, ys, out, status)
-
-
-def _from_compliance(compliance) -> dict[str, float]:
-    """The deprecated ``compliance=`` (L/EA, docs/vocabulary.md) as EA = 1/compliance, L = 1 m."""
-    compliance = number("CurveAngleFeedforward", "compliance", compliance)
-    if not compliance > 0:
-        raise ValueError(f"CurveAngleFeedforward: compliance must be > 0 (got {compliance:g})")
-    return {"stiffness": 1.0 / compliance, "length": 1.0}
+        return command_result(ts, ys, out)
 
 
 def _params(who: str, v: dict):

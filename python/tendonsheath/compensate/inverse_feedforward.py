@@ -281,7 +281,6 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
         self,
         t: ArrayLike,
         y_desired: ArrayLike,
-        status: bool = False,
         curve_angle: ArrayLike | None = None,
         routes: Callable[[float], Route] | None = None,
     ) -> SimulationResult:
@@ -295,9 +294,6 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
             Sample times (s), increasing; required.
         y_desired : array_like of float, shape (n,)
             Desired outputs.
-        status : bool, default False
-            Deprecated (read ``result.status``): True returns ``(commands, flags)`` with a
-            DeprecationWarning, for one release.
         curve_angle : float or array_like of float, optional
             Curve angle (rad), one value or one per sample (route-following inverses).
         routes : callable, optional
@@ -318,7 +314,7 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
         ts, ys = as_timed_signal(t, y_desired, "y_desired", "InverseFeedforward.command")
         g, G, theta = self._route_samples(ts, ys, curve_angle, routes)
         out = core.ModelInverse.command(self, ts, ys, g, G, theta, True)
-        return command_result("InverseFeedforward.command", ts, ys, out, status)
+        return command_result(ts, ys, out)
 
     def _route_samples(self, ts, ys, curve_angle, routes):
         """(g, G, curve angle) per sample for the engine (None where not given)."""

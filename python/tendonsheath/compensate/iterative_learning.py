@@ -27,7 +27,6 @@ from dataclasses import asdict, dataclass
 from typing import Any
 
 import numpy as np
-from scipy import signal
 
 from .._args import integer, number
 from .._pyobject import PythonObject
@@ -207,6 +206,8 @@ class IterativeLearning(PythonObject):
         hold_last: bool = True,
         limits: LimitsLike = None,
     ):
+        from scipy import signal
+
         who = "IterativeLearning"
         require_feedforward(who, feedforward)
         ts = np.asarray(t, dtype=np.float64)
@@ -457,6 +458,8 @@ class IterativeLearning(PythonObject):
         numpy.ndarray of float, shape (n,)
             The next table.
         """
+        from scipy import signal
+
         e = np.asarray(error, dtype=np.float64)
         shifted = np.zeros_like(e)
         shifted[: e.size - self.lead] = e[self.lead :]  # advanced; nothing learned at the end
@@ -632,11 +635,7 @@ def design_learning(
             )
     top = 0.45 * nyquist if known is None else min(0.45 * nyquist, known)
     cutoffs = np.geomspace(min_cutoff_hz, top, 60)
-    q_mag = np.empty((cutoffs.size, freqs.size))
-    for i, fc in enumerate(cutoffs):
-        sos = signal.butter(order, fc, fs=1.0 / dt, output="sos")
-        _, h = signal.sosfreqz(sos, worN=freqs, fs=1.0 / dt)
-        q_mag[i] = np.abs(h) ** 2  # forward and backward
+    q_mag = _zero_phase_gains(order, cutoffs, freqs, dt)
     best = _best_lead_and_gain(freqs, p, gain_grid, cutoffs, q_mag, max_lead, dt, rho)
     if best is None:
         raise ValueError(
@@ -658,6 +657,18 @@ def design_learning(
         order=int(order),
         known_up_to_hz=known,
     )
+
+
+def _zero_phase_gains(order: int, cutoffs: np.ndarray, freqs: np.ndarray, dt: float) -> np.ndarray:
+    """|Q|^2 of the zero-phase Butterworth low-pass at each cutoff (rows) and frequency."""
+    from scipy import signal
+
+    q_mag = np.empty((cutoffs.size, freqs.size))
+    for i, fc in enumerate(cutoffs):
+        sos = signal.butter(order, fc, fs=1.0 / dt, output="sos")
+        _, h = signal.sosfreqz(sos, worN=freqs, fs=1.0 / dt)
+        q_mag[i] = np.abs(h) ** 2  # forward and backward
+    return q_mag
 
 
 def _response_of(who: str, frequency_response: Any, dt: float) -> Callable:

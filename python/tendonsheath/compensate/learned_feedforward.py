@@ -145,7 +145,7 @@ class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ig
         x = float(self.feedforward.step(float(y_d), dt))
         return self.correct(x, dt)
 
-    def command(self, t: ArrayLike, y_desired: ArrayLike, status: bool = False) -> SimulationResult:
+    def command(self, t: ArrayLike, y_desired: ArrayLike) -> SimulationResult:
         """Corrected commands for a whole trajectory, from the initial state (the streaming
         state is left untouched); the feedforward must have ``command(t, y_d)``.
 
@@ -155,9 +155,6 @@ class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ig
             Sample times (s), increasing.
         y_desired : array_like of float, shape (n,)
             Desired outputs.
-        status : bool, default False
-            Deprecated (read ``result.status``): True returns ``(commands, flags)`` with a
-            DeprecationWarning, for one release.
 
         Returns
         -------
@@ -182,7 +179,7 @@ class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ig
         inner_flags = getattr(x, "status", None)
         if inner_flags is not None:
             flags = (flags | np.asarray(inner_flags, dtype=np.uint8)).astype(np.uint8)
-        return command_result("LearnedFeedforward.command", ts, ys, (u, flags), status)
+        return command_result(ts, ys, (u, flags))
 
     @property
     def table(self) -> FloatArray:  # type: ignore[override]

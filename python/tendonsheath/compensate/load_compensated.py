@@ -156,7 +156,7 @@ class LoadCompensated(PythonObject, SavedAsJson):
         loads = np.ascontiguousarray(loads)
         z = self.inverse.command(ts, ys - self.model.terms["gain"] * loads)
         u = self._play.command(np.ascontiguousarray(z, dtype=float), loads)
-        return command_result("LoadCompensated.command", ts, ys, (u, z.status))
+        return command_result(ts, ys, (u, z.status))
 
     # -- persistence -----------------------------------------------------------------
     def to_dict(self) -> dict:

@@ -129,7 +129,7 @@ def _upgraded(cls: type[Compensator], settings: dict[str, Any]) -> dict[str, Any
     old_names = getattr(cls, "_renamed_settings", None)
     if old_names:
         try:
-            return renamed(f"{name} file", settings, old_names, warn=False)
+            return renamed(f"{name} file", settings, old_names)
         except TypeError as err:  # both names: a bad file
             raise ValueError(str(err)) from None
     if name in ("CurveAngleFeedforward", "ContinuumFeedforward") and "play" not in settings:

@@ -33,7 +33,6 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ._kinds import require_servo
 
@@ -315,6 +314,8 @@ def frequency_margins(
     tuple of float
         Gain margin (dB), phase margin (deg), gain-crossover frequency (Hz).
     """
+    from scipy.optimize import brentq
+
     nyquist = math.pi / dt
 
     def L(w):

@@ -32,7 +32,6 @@ from .settings import (
     Options,
     Search,
     check_search_options,
-    with_new_names,
 )
 
 __all__ = ["SEARCH_DEADLINE", "check_search_options", "fit_recordings", "identify", "run"]
@@ -388,7 +387,6 @@ def run(model_class, recs: list[Recording], options: Options, search: Search) ->
         model_class = _REGISTRY[model_class]
     if isinstance(model_class, Loaded):  # recordings that carry their load (Logs read with it)
         return _stamp(search.budget, _run_loaded(model_class, recs, options, search))
-    options = with_new_names(model_class, options)
     fit = _dispatch(model_class, recs, options, search)
     return _stamp(search.budget, with_training_range(fit, recs))
 

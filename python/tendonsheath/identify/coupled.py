@@ -24,7 +24,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy.optimize import least_squares
 
 from .._typing import ArrayLike, FloatArray
 from ..models import Coupled, HysteresisModel
@@ -328,6 +327,8 @@ class _JointData:
 
 def _fit_joint(cls, data: _JointData, warmup: int, options: dict) -> _Joint:
     """Stages (1) to (3) for one joint: linear start, its own model, joint refinement."""
+    from scipy.optimize import least_squares
+
     k = data.k
     x, y, others = data.stacked(warmup)
     a = np.column_stack([x, np.ones_like(x), others])

@@ -7,14 +7,11 @@ cross-validation make one unfitted copy per fold."""
 from __future__ import annotations
 
 import copy
-import functools
-import warnings
 from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
-from .._args import caller_outside_package
 from .._typing import ArrayLike, RecordingLike, Recordings
 from ..models import HysteresisModel
 from .core import fit_recordings
@@ -23,7 +20,6 @@ from .fit import Fit, metrics, simulate_model
 from .settings import (
     DEFAULTS,
     IDENTIFIER_NAMES,
-    OSCILLATOR_NAMES,
     Options,
     check_names,
     oscillator_settings,
@@ -32,42 +28,6 @@ from .settings import (
 
 class NotFittedError(ValueError, AttributeError):
     """An :class:`Identifier` used for prediction before ``fit``."""
-
-
-def _oscillator_keywords(init):
-    """``Identifier.__init__`` that also takes the old keywords of the oscillator settings
-    (``strategy=``, ...), moved into ``oscillator`` with a DeprecationWarning; the signature
-    shows the new form only."""
-
-    @functools.wraps(init)
-    def call(self, *args: Any, **kwargs: Any) -> None:
-        init(self, *args, **_into_oscillator(kwargs))
-
-    return call
-
-
-def _into_oscillator(kwargs: dict[str, Any]) -> dict[str, Any]:
-    """``kwargs`` with the old keywords ``input_interpolation``, ``periodic`` and ``strategy``
-    moved into the ``oscillator`` dict, each with a DeprecationWarning at the user's line."""
-    old = [n for n in OSCILLATOR_NAMES if n in kwargs]
-    if not old:
-        return kwargs
-    kwargs = dict(kwargs)
-    group = dict(kwargs.get("oscillator") or {})
-    for name in old:
-        value = kwargs.pop(name)
-        if name in group:
-            raise TypeError(f"Identifier: give oscillator={{{name!r}: ...}} or {name}=, not both")
-        warnings.warn(
-            f"Identifier: {name}= is now a key of oscillator= (a HystereticOscillator's own "
-            f"settings): Identifier(model, oscillator={{{name!r}: {value!r}}}); {name}= will "
-            "be removed in the next release",
-            DeprecationWarning,
-            stacklevel=caller_outside_package() - 1,
-        )
-        group[name] = value
-    kwargs["oscillator"] = group
-    return kwargs
 
 
 class Identifier:
@@ -87,13 +47,7 @@ class Identifier:
     HystereticOscillator's identification reads (``input_interpolation``, ``periodic``,
     ``strategy``) are grouped in the ``oscillator`` dict: ``identify(HystereticOscillator, t, x,
     y, strategy="search")`` is ``Identifier(HystereticOscillator, oscillator={"strategy":
-    "search"}).fit_data(t, x, y)``; given to Identifier as keywords of their own they still
-    work for one release, with a DeprecationWarning naming ``oscillator``.
-
-    Before this release ``fit`` returned the fitted model: code that reads the model's
-    attributes from what ``fit`` returns (``Identifier(...).fit(recs).to_dict()``) still
-    works for one release, with a DeprecationWarning naming ``model_`` (the Identifier's own
-    ``options``, ``predict`` and ``score`` are the estimator's, not the model's).
+    "search"}).fit_data(t, x, y)``.
 
     Every Fit carries ``diagnostics`` (parameters near their bounds, correlations, condition
     number) and an :class:`~tendonsheath.identify.IdentifiabilityWarning` names the parameters
@@ -192,7 +146,6 @@ class Identifier:
     tendonsheath.identify.cross_validate : Scores an Identifier over held-out recordings.
     """
 
-    @_oscillator_keywords
     def __init__(
         self,
         model: type[HysteresisModel] | HysteresisModel | str | None = None,
@@ -276,9 +229,7 @@ class Identifier:
             ``bounds``, ``fixed``, ``free``, ``initial``, ``depends_on_angle``, ``seed``,
             ``maxiter``, ``popsize``, ``tol``, ``workers``, ``polish``, ``separable``,
             ``progress``, ``search_samples``, ``time_budget``, ``normalize``,
-            ``standard_errors``, ``bootstrap``, ``bootstrap_block``, ``oscillator``). The old
-            keywords ``input_interpolation``, ``periodic`` and ``strategy`` go into
-            ``oscillator``, with a DeprecationWarning.
+            ``standard_errors``, ``bootstrap``, ``bootstrap_block``, ``oscillator``).
 
         Returns
         -------
@@ -291,9 +242,6 @@ class Identifier:
             An unknown name (the message names it and the closest known ones); nothing is
             changed then.
         """
-        if any(n in params for n in OSCILLATOR_NAMES):  # the old keywords, into the group
-            params = _into_oscillator(params)
-            params["oscillator"] = {**(self.oscillator or {}), **params["oscillator"]}
         check_names([n for n in params if n != "model"], type(self).__name__, IDENTIFIER_NAMES)
         for name, value in params.items():
             setattr(self, name, value)
@@ -476,21 +424,6 @@ class Identifier:
         if not hasattr(self, "model_"):
             raise NotFittedError(f"this {type(self).__name__} is not fitted: call fit() first")
         return self.model_
-
-    def __getattr__(self, name: str) -> Any:
-        # fit() returned the fitted model before it returned the estimator: the model's public
-        # attributes stay reachable on a fitted Identifier for one release, with a warning
-        model = self.__dict__.get("model_")
-        if name.startswith("_") or name.endswith("_") or not hasattr(model, name):
-            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
-        warnings.warn(
-            f"Identifier.fit() returns the Identifier now, not the fitted model: read "
-            f"{name!r} on its model_ (Identifier(...).fit(recordings).model_.{name}); "
-            "this fallback will be removed in the next release",
-            DeprecationWarning,
-            stacklevel=2,
-        )
-        return getattr(model, name)
 
 
 def _as_list(recordings):

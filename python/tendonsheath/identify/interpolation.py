@@ -26,7 +26,6 @@ sweep from rest) leaks no edge energy into the top band.
 from __future__ import annotations
 
 import numpy as np
-from scipy.signal import welch
 
 from .._sampling import is_periodic
 from .._typing import ArrayLike
@@ -41,6 +40,8 @@ _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(16)
 def spectrum(x: np.ndarray, periodic: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """(frequencies in units of the sampling rate, power) of x with its mean removed: the
     exact DFT when x is whole periods, else Welch's estimate (Blackman-Harris window)."""
+    from scipy.signal import welch
+
     x = np.asarray(x, dtype=float)
     x = x - x.mean()
     if periodic:

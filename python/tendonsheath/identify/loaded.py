@@ -26,7 +26,6 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
-from scipy.optimize import least_squares
 
 from ..models import BoucWen, Chain, HystereticOscillator, Scaled
 from ..models.loaded import Loaded, play
@@ -95,6 +94,8 @@ def _starts(problem: Problem, x_span: float, scale: float, keep: int) -> list[np
 
 def _refine(problem: Problem, starts, box, max_nfev: int):
     """The best least-squares result over the starts (inside the box)."""
+    from scipy.optimize import least_squares
+
     best = None
     lo, hi = box
     for p0 in starts:

@@ -17,8 +17,6 @@ Linear in the output, so solved for every candidate instead of searched:
 from __future__ import annotations
 
 import numpy as np
-from scipy.linalg import solve_triangular
-from scipy.optimize import lsq_linear
 
 from ..models import GeneralizedPrandtlIshlinskii, HysteresisModel, PrandtlIshlinskii, Scaled
 from ..models.loaded import Loaded, play, play_radius
@@ -105,6 +103,9 @@ def as_weighted(base: HysteresisModel) -> HysteresisModel:
 def _bounded_lstsq(a: np.ndarray, b: np.ndarray, lower: np.ndarray) -> np.ndarray:
     """argmin ||a c - b|| subject to c >= lower, through the normal equations (the Gram
     matrix by einsum: a few columns, no threaded BLAS call on the long side)."""
+    from scipy.linalg import solve_triangular
+    from scipy.optimize import lsq_linear
+
     gram = np.einsum("ij,ik->jk", a, a)
     rhs = np.einsum("ij,i->j", a, b)
     gram += np.eye(gram.shape[0]) * (1e-12 * float(np.trace(gram)) + 1e-300)

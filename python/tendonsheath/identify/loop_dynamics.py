@@ -46,9 +46,6 @@ from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from scipy.ndimage import uniform_filter1d
-from scipy.signal import csd, lfilter, welch
-from scipy.signal.windows import tukey
 
 from .._arrays import as_timed_signal
 from .._typing import ArrayLike
@@ -362,6 +359,8 @@ def empirical_response(
     ValueError
         Arrays of different lengths, non-finite samples, a non-uniform or too short record.
     """
+    from scipy.signal import csd, welch
+
     ts, u = as_timed_signal(t, command, "command", "empirical_response")
     _, y = as_timed_signal(ts, output, "output", "empirical_response")
     dt = _uniform_step(ts, "empirical_response")
@@ -528,6 +527,9 @@ def identify_loop_dynamics(
 def _excitation_band(u: np.ndarray, dt: float, highpass_hz: float) -> tuple[float, float]:
     """(low, high) Hz where the command's speed spectrum (Tukey-windowed, smoothed over 1 Hz)
     is within ``_BAND_DB`` of its peak, at or above ``highpass_hz``."""
+    from scipy.ndimage import uniform_filter1d
+    from scipy.signal.windows import tukey
+
     v = np.diff(u)
     v = (v - v.mean()) * tukey(v.size, 0.1)
     power = np.abs(np.fft.rfft(v)) ** 2
@@ -605,6 +607,8 @@ def _distal_fits(u: np.ndarray, y: np.ndarray, dt: float, keep: slice, max_delay
 
 
 def _gain(u, y, f: float, z: float, d: int, dt: float, keep: slice) -> float:
+    from scipy.signal import lfilter
+
     num, den = servo_filter(f, z, 1.0, d, dt, 0.0, "foh")
     s = lfilter(num, den, u - u[0])[keep]
     A = np.column_stack([s, np.ones_like(s)])

@@ -43,8 +43,6 @@ import time
 import warnings
 
 import numpy as np
-from scipy.optimize import differential_evolution, least_squares, nnls
-from scipy.signal import csd, welch
 
 from .._sampling import fft_upsample, is_periodic, uniform_step
 from ..models import HystereticOscillator
@@ -148,6 +146,8 @@ class _Segment:
 
 def _bla(segments) -> tuple[float, float, float, float]:
     """m, c_e, k_e and the highest excited frequency from the frequency response."""
+    from scipy.signal import csd, welch
+
     rows_re, rows_im, rhs_re, rhs_im, f_top = [], [], [], [], 0.0
     for s in segments:
         n = s.x.size
@@ -223,6 +223,8 @@ class _EquationError:
 
     def solve(self, w):
         """Non-negative (m, c, k, alpha) and the residual for one w column."""
+        from scipy.optimize import nnls
+
         M = np.column_stack([self.A, w])
         col = np.linalg.norm(M, axis=0)
         col[col == 0] = 1.0
@@ -288,6 +290,8 @@ def _setup(initial, input_interpolation, fixed, free):
 def _equation_error_stage(ee, held, seed, popsize, maxiter, budget, counter):
     """Differential evolution over (G, D, nu) then a least-squares polish: the search
     coordinates and the DE result."""
+    from scipy.optimize import differential_evolution, least_squares
+
     nu_lo, nu_hi = (1.0, 3.0) if "nu" not in held else (held["nu"], held["nu"])
     ee_bounds = [(-30.0, 30.0), (-30.0, 30.0), (nu_lo, max(nu_hi, nu_lo + 1e-12))]
     fixed_nu = "nu" in held

@@ -13,7 +13,6 @@ from collections.abc import Callable
 from typing import Any
 
 import numpy as np
-from scipy.optimize import lsq_linear, nnls
 
 from ..models import CurveAngleModel, HysteresisModel
 from ..models.angle_dependent import AngleDependent, angle_factor, law_value
@@ -406,6 +405,8 @@ def bounded_lsq(F: np.ndarray, y: np.ndarray, lo: np.ndarray, hi: np.ndarray) ->
     reflected step multiplies an infinite stride by zero ("invalid value encountered in
     multiply") and it is also ~50x slower.
     """
+    from scipy.optimize import lsq_linear, nnls
+
     lo = np.asarray(lo, dtype=float)
     hi = np.asarray(hi, dtype=float)
     if F.shape[0] > F.shape[1] + 1:

@@ -7,7 +7,6 @@ import time
 from contextvars import ContextVar
 
 import numpy as np
-from scipy.optimize import least_squares
 
 
 class TimeBudget:
@@ -79,6 +78,8 @@ def refine(
     runs out it stops and returns the best point evaluated so far. At most REFINE_LIMIT
     evaluations while that is set.
     """
+    from scipy.optimize import least_squares
+
     limit = REFINE_LIMIT.get()
     if limit is not None:
         max_nfev = min(max_nfev, int(limit))

@@ -9,7 +9,6 @@ import time
 from contextvars import ContextVar
 
 import numpy as np
-from scipy.optimize import differential_evolution
 
 from .._progress import StepProgress
 from .refine import refine
@@ -58,6 +57,7 @@ def global_search(problem, space, counter, label, search: Search, *, x0=None):
     """SciPy's differential evolution over ``space`` (search coordinates), each generation
     evaluated in one batched call of ``problem.cost``; invalid candidates cost PENALTY. Stops
     after the generation in which ``search.budget`` runs out."""
+    from scipy.optimize import differential_evolution
 
     def population(U: np.ndarray) -> np.ndarray:  # U: (D, S) in search coordinates
         C = space.natural(np.asarray(U).T)

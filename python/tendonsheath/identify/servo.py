@@ -36,8 +36,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import threadpoolctl
-from scipy.optimize import least_squares
-from scipy.signal import butter, cont2discrete, lfilter, sosfiltfilt
 
 from .._arrays import as_timed_signal
 from .._typing import ArrayLike
@@ -177,6 +175,8 @@ def servo_filter(
     ``delay`` samples more. ``hold="foh"``: first-order hold instead (the input a sampled
     continuous signal, linear between samples: q_k from u_k-1 and u_k), for a stage driven by
     a measured signal rather than a held command."""
+    from scipy.signal import cont2discrete
+
     w = 2.0 * math.pi * frequency
     if integral_time > 0:
         wi = 1.0 / integral_time
@@ -194,6 +194,8 @@ def servo_filter(
 
 def _unit_response(frequency: float, damping: float, u: np.ndarray, delay: int, dt: float,
                    integral_time: float = 0.0, hold: str = "zoh"):  # fmt: skip
+    from scipy.signal import lfilter
+
     num, den = servo_filter(frequency, damping, 1.0, delay, dt, integral_time, hold)
     shifted = u - u[0]  # from rest at the first command
     return lfilter(num, den, shifted) + u[0]
@@ -207,6 +209,8 @@ def _affine(s: np.ndarray, q: np.ndarray) -> tuple[float, float, np.ndarray]:
 
 
 def _band(x: np.ndarray, dt: float, highpass_hz: float) -> np.ndarray:
+    from scipy.signal import butter, sosfiltfilt
+
     if highpass_hz <= 0:
         return x - x.mean()
     sos = butter(2, highpass_hz, btype="highpass", fs=1.0 / dt, output="sos")
@@ -226,6 +230,8 @@ def _fit_at_delay(u, q, delay: int, dt: float, start: np.ndarray, keep: slice, *
     delay, on the samples ``keep``; ``start`` has 2 entries (no integral) or 3; the gain and
     offset are solved linearly inside (variable projection). ``hold`` and ``min_damping``: the
     discretisation (see :func:`servo_filter`) and the lower bound of the damping searched."""
+    from scipy.optimize import least_squares
+
     nyquist = 0.5 / dt
 
     def residual(p):

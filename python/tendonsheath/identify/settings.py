@@ -12,7 +12,6 @@ from typing import Any
 
 import numpy as np
 
-from .._args import caller_outside_package, renamed, warn_renamed
 from .refine import TimeBudget
 
 
@@ -58,30 +57,6 @@ IDENTIFIER_NAMES: tuple[str, ...] = (
     *(n for n in OPTION_NAMES if n not in OSCILLATOR_NAMES),
     "oscillator",
 )
-
-
-def with_new_names(model_class, options: Options) -> Options:
-    """``options`` with the renamed parameters of ``model_class`` (old -> new, such as
-    CurveAngleModel's ``spring`` -> ``load_stiffness``) under their new names in ``fixed``,
-    ``free`` and ``bounds``; each old name found warns once (DeprecationWarning)."""
-    renames = getattr(model_class, "renamed_params", None)
-    if not isinstance(model_class, type) or not renames:
-        return options
-    who = f"identify({model_class.__name__})"
-    fixed, bounds, free = options.fixed or {}, options.bounds or {}, list(options.free or ())
-    found = sorted((set(fixed) | set(bounds) | set(free)) & renames.keys())
-    if not found:
-        return options
-    new = dataclasses.replace(  # first: an old and a new name together raise, not warn
-        options,
-        fixed=renamed(who, fixed, renames, warn=False) if options.fixed is not None else None,
-        bounds=renamed(who, bounds, renames, warn=False) if options.bounds is not None else None,
-        free=[renames.get(n, n) for n in free] if options.free is not None else None,
-    )
-    level = caller_outside_package()
-    for old in found:
-        warn_renamed(who, old, renames[old], stacklevel=level)
-    return new
 
 
 def check_names(names, owner: str, known: tuple[str, ...] = OPTION_NAMES) -> None:
@@ -233,5 +208,4 @@ __all__ = [
     "check_search_options",
     "default_threads",
     "oscillator_settings",
-    "with_new_names",
 ]

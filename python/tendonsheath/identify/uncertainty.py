@@ -12,7 +12,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.optimize import least_squares
 
 from ..models import CurveAngleModel, GeneralizedPrandtlIshlinskii, PrandtlIshlinskii
 from ..plant.route import Route
@@ -477,6 +476,7 @@ def _local_refit(problem, space, u0, use_separable) -> np.ndarray:
     """Least squares on a resample's simulation error from the estimate ``u0`` (a bounded
     trust-region run like the fit's own refinement, with a smaller budget: it starts at the
     optimum of the original data, a few iterations away from the resample's)."""
+    from scipy.optimize import least_squares
 
     span = space.upper - space.lower
     u0 = np.clip(u0, space.lower + 1e-9 * span, space.upper - 1e-9 * span)

@@ -14,7 +14,7 @@ from typing import Any, ClassVar, Self, TypeVar, cast
 
 import numpy as np
 
-from .._args import core_errors_as, is_format_version, renamed, warn_status_switch
+from .._args import core_errors_as, is_format_version, renamed
 from .._arrays import as_time_and_signal, checked_dt
 from .._atomic import write_text
 from .._json_source import naming_the_file, read_json_source
@@ -38,25 +38,15 @@ def _returning_result(simulate: _F) -> _F:
     """``simulate`` that returns a :class:`SimulationResult` (the output with its time, input
     and each sample's Status flags in ``status``).
 
-    The implementation returns the output, ``(output, flags)`` or a result with its flags. The
-    old switch ``status=True`` (a keyword, or one more positional bool) still gives the old
-    ``(result, flags)`` for one release, with a DeprecationWarning naming ``result.status``.
+    The implementation returns the output, ``(output, flags)`` or a result with its flags.
     """
 
     signature = inspect.signature(simulate)
-    positional = sum(
-        p.kind is p.POSITIONAL_OR_KEYWORD for p in list(signature.parameters.values())[1:]
-    )
 
     # (self, *args, **kwargs), not (self, t, x, ...): the call below binds the arguments, so
     # an unknown keyword is simulate's own TypeError naming it, even with t or x missing
     @functools.wraps(simulate)
     def wrapper(self, *args, **kwargs):
-        legacy = kwargs.pop("status", False)
-        if len(args) == positional + 1 and isinstance(args[-1], bool | np.bool_):
-            args, legacy = args[:-1], args[-1]  # simulate(t, x, True): the old positional switch
-        if legacy:
-            warn_status_switch(f"{type(self).__name__}.simulate")
         out = simulate(self, *args, **kwargs)
         bound = signature.bind(self, *args, **kwargs).arguments
         t, x = bound["t"], bound["x"]
@@ -67,10 +57,7 @@ def _returning_result(simulate: _F) -> _F:
             flags = np.zeros(np.size(y), dtype=np.uint8)
         # this model's own t and x (a wrapper's inner model saw transformed ones)
         ts = None if t is None else np.asarray(t, dtype=float)
-        y = SimulationResult(y, t=ts, input=np.asarray(x, dtype=float), status=flags)
-        if legacy:
-            return y, (np.zeros(y.size, dtype=np.uint8) if flags is None else flags)
-        return y
+        return SimulationResult(y, t=ts, input=np.asarray(x, dtype=float), status=flags)
 
     return cast(_F, wrapper)  # the same call; a SimulationResult is an array of the output
 
@@ -114,8 +101,8 @@ class HysteresisModel(PythonObject, _ControlBlock):
     # signal names of to_control()'s system
     control_inputs: tuple[str, ...] = ("x",)  # per instance for Scaled (its inner model's)
     control_output: ClassVar[str] = "y"
-    # parameters renamed (old -> new): with_params takes the old names with a warning for one
-    # release, and saved files with them still load (silently)
+    # saved files' old parameter keys (old -> new): such files still load (data, not API: the
+    # constructor and with_params take only the new names)
     renamed_params: ClassVar[dict[str, str]] = {}
     # the range (lo, hi) of the inputs the model was identified on (all recordings, data units),
     # set by identify; None when unknown. Saved by to_dict as "input_range": [lo, hi].
@@ -191,15 +178,13 @@ class HysteresisModel(PythonObject, _ControlBlock):
         Parameters
         ----------
         **changes
-            Parameters or options by name, with their new values (a renamed parameter's old
-            name too, for one release, with a DeprecationWarning).
+            Parameters or options by name, with their new values.
 
         Returns
         -------
         HysteresisModel
             A new model of the same class; this one is unchanged.
         """
-        changes = renamed(f"{type(self).__name__}.with_params", changes, self.renamed_params)
         values = {**self.params, **self.options, **changes}
         return type(self)(**values)
 
@@ -222,8 +207,7 @@ class HysteresisModel(PythonObject, _ControlBlock):
         SimulationResult, shape (n,)
             Output samples (an array), with ``t``, ``input``, ``success``, ``message`` and
             ``status`` (each sample's :class:`~tendonsheath.Status` bits, uint8; None for a
-            model that reports no status). The old ``simulate(t, x, status=True)`` still
-            returns ``(result, result.status)`` for one release, with a DeprecationWarning.
+            model that reports no status).
 
         Raises
         ------
@@ -324,7 +308,7 @@ class HysteresisModel(PythonObject, _ControlBlock):
         if hasattr(model_cls, "_from_parts"):  # composite models (Chain, ...)
             with _file_error(model_cls.__name__):
                 model = model_cls._from_parts(data)
-        elif model_cls is not cls and "from_dict" in vars(model_cls):  # e.g. renamed parameters
+        elif model_cls is not cls and "from_dict" in vars(model_cls):  # its own reader
             model = model_cls.from_dict(data)
         else:
             with _file_error(model_cls.__name__):
@@ -485,7 +469,7 @@ def _saved_params(model_cls, data: dict[str, Any]) -> dict[str, Any]:
     if not isinstance(params, dict):
         raise ValueError(f"{name} file: 'params' must be an object (got {params!r})")
     try:
-        params = renamed(name, params, model_cls.renamed_params, warn=False)
+        params = renamed(name, params, model_cls.renamed_params)
     except TypeError as err:  # a parameter under its old and new names: a bad file
         raise ValueError(f"{name} file: {str(err).removeprefix(name + ': ')}") from None
     unknown = sorted(set(params) - set(model_cls.param_names) - set(model_cls.option_names))

@@ -2,20 +2,18 @@
 
 from __future__ import annotations
 
-from .. import _args
 from . import _bound as core
 from .base import HysteresisModel
 
-# Parameters renamed (old name -> new name); the old names still work, with a warning.
-_RENAMED = {"a": "alpha"}
+# saved files' old parameter keys (old -> new): files that say "a" still load
+_SAVED_AS = {"a": "alpha"}
 
 
 class BoucWen(HysteresisModel, core.BoucWen):  # type: ignore[misc]
     """y = alpha x + (1 - alpha) k z with dz = A dx - beta |dx| |z|^(n-1) z - gamma dx |z|^n.
 
     Requires beta > 0 and |gamma| <= beta (bounded state, |z| <= (A/(beta+gamma))^(1/n)).
-    ``alpha`` was called ``a`` before; ``a=`` still works with a DeprecationWarning, and model
-    files that say ``a`` still load.
+    ``alpha`` was called ``a`` before: model files that say ``a`` still load.
 
     No ``input_interpolation`` option (unlike HystereticOscillator and the plants): z is
     integrated in x, not in time (RK4 over the increment from one sample to the next), so
@@ -35,29 +33,25 @@ class BoucWen(HysteresisModel, core.BoucWen):  # type: ignore[misc]
         Shape parameter, |gamma| <= beta.
     n : float, default 1.0
         Sharpness of the transitions, >= 1.
-    alpha : float, optional
-        Share of the linear path, in [0, 1] (default 0.5).
+    alpha : float, default 0.5
+        Share of the linear path, in [0, 1].
     k : float, default 1.0
         Gain, finite.
     max_step : float, default 0.05
         Largest RK4 sub-step in x (input unit).
     max_substeps : int, default 256
         Most RK4 sub-steps per sample.
-    **renamed
-        Only ``a``, the old name of ``alpha`` (DeprecationWarning).
 
     Raises
     ------
-    TypeError
-        A keyword other than the parameters above and ``a``.
     ValueError
-        Both ``alpha`` and ``a``, or a parameter the C++ core rejects.
+        A parameter the C++ core rejects.
     """
 
     _core_params = core.BoucWenParams
     param_names = ("A", "beta", "gamma", "n", "alpha", "k")
     option_names = ("max_step", "max_substeps")
-    renamed_params = _RENAMED
+    renamed_params = _SAVED_AS
 
     def __init__(
         self,
@@ -65,20 +59,17 @@ class BoucWen(HysteresisModel, core.BoucWen):  # type: ignore[misc]
         beta: float = 0.5,
         gamma: float = 0.5,
         n: float = 1.0,
-        alpha: float | None = None,
+        alpha: float = 0.5,
         k: float = 1.0,
         max_step: float = 0.05,
         max_substeps: int = 256,
-        **renamed: float,
     ):
-        _args.reject_unknown("BoucWen", renamed, _RENAMED)
-        alpha = _args.renamed("BoucWen", {"alpha": alpha, **renamed}, _RENAMED)["alpha"]
         super().__init__(
             A=A,
             beta=beta,
             gamma=gamma,
             n=n,
-            alpha=0.5 if alpha is None else alpha,
+            alpha=alpha,
             k=k,
             max_step=max_step,
             max_substeps=max_substeps,

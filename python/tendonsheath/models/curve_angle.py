@@ -6,7 +6,6 @@ from typing import Any
 
 import numpy as np
 
-from .._args import accepts_old_names
 from .._arrays import as_signal, as_time_and_signal, checked_dt
 from .._typing import ArrayLike, FloatOrArray
 from ..plant import physics
@@ -15,9 +14,8 @@ from ..simulation_result import SimulationResult
 from . import _bound as core
 from .base import HysteresisModel
 
-# Parameters renamed (old name -> new name, docs/vocabulary.md); the old names still work for one
-# release, with a warning, and model files that hold them still load.
-_RENAMED = {"load": "load_force", "spring": "load_stiffness"}
+# saved files' old parameter keys (old -> new, docs/vocabulary.md): such files still load
+_SAVED_AS = {"load": "load_force", "spring": "load_stiffness"}
 
 
 class CurveAngleModel(HysteresisModel, core.CurveAngleModel):  # type: ignore[misc]
@@ -55,10 +53,9 @@ class CurveAngleModel(HysteresisModel, core.CurveAngleModel):  # type: ignore[mi
     length : float, default 1.2
         Sheath length L (m).
     load_force : float, default 0.0
-        F_L (N): constant distal load at the tendon, positive resisting forward motion (was
-        ``load``; the old name works for one release, with a DeprecationWarning).
+        F_L (N): constant distal load at the tendon, positive resisting forward motion.
     load_stiffness : float, default 0.0
-        k_e (N/m): environment stiffness at the tendon (was ``spring``, likewise).
+        k_e (N/m): environment stiffness at the tendon.
     proximal_radius : float, default 5e-3
         Motor pulley radius r_p (m).
     distal_radius : float, default 5e-3
@@ -93,9 +90,8 @@ class CurveAngleModel(HysteresisModel, core.CurveAngleModel):  # type: ignore[mi
     uses_curve_angle = True
     added_params = {"play": 0.0}  # files saved before the play was a parameter
     control_inputs = ("x", "curve_angle")
-    renamed_params = _RENAMED
+    renamed_params = _SAVED_AS
 
-    @accepts_old_names("CurveAngleModel", _RENAMED)
     def __init__(
         self,
         friction: float = 0.1,

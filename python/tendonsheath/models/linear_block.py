@@ -17,7 +17,6 @@ import math
 from typing import Any, ClassVar
 
 import numpy as np
-from scipy.signal import cont2discrete, lfilter, lfilter_zi
 
 from .._args import number
 from .._arrays import checked_dt
@@ -34,6 +33,8 @@ _UNIFORM = 1e-3  # relative spread of the sample time accepted as uniform
 
 def discretise(num, den, dt: float) -> tuple[np.ndarray, np.ndarray]:
     """(b, a) of the transfer function num/den for sample time dt, first-order hold."""
+    from scipy.signal import cont2discrete
+
     b, a, _ = cont2discrete((num, den), dt, method="foh")
     b = np.atleast_1d(np.squeeze(b)).astype(float)
     a = np.asarray(a, dtype=float)
@@ -208,6 +209,8 @@ class LinearBlock(HysteresisModel):
         ValueError
             dt not > 0 after the first sample.
         """
+        from scipy.signal import lfilter, lfilter_zi
+
         dt = checked_dt(dt)
         x = float(x)
         if self._rest is None:
@@ -231,6 +234,8 @@ class LinearBlock(HysteresisModel):
 
 def apply_filter(b: np.ndarray, a: np.ndarray, x: np.ndarray, axis: int = 0) -> np.ndarray:
     """lfilter from rest at the first sample (steady state), along ``axis``."""
+    from scipy.signal import lfilter, lfilter_zi
+
     x = np.asarray(x, dtype=float)
     zi = lfilter_zi(b, a)
     first = np.take(x, [0], axis=axis)

@@ -11,11 +11,11 @@ import functools
 import inspect
 import warnings
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._args import integer, number, warn_status_switch
+from .._args import integer, number
 from .._arrays import as_time_and_signal, checked_dt
 from .._pyobject import PythonObject, bound_attribute
 from .._typing import ArrayLike
@@ -384,10 +384,8 @@ class _Plant(PythonObject):
         t: ArrayLike | None,
         command: ArrayLike,
         routes: Callable | None = None,
-        full: bool = False,
         input_interpolation: str | None = None,
         periodic: bool | None = None,
-        status: bool = False,
     ) -> SimulationResult:
         """Simulate from rest (on the current route) without touching the streaming state.
 
@@ -401,8 +399,7 @@ class _Plant(PythonObject):
         is None or a callable t -> Route (or a (route1, route2) pair for a pull-pull plant); it
         is evaluated once per sample in Python and only the changes are passed to C++.
         Returns a :class:`SimulationResult` (q_out as an array, with the plant's fields; its
-        ``status`` holds each sample's flags; the old ``status=True`` still returns
-        ``(result, flags)`` for one release, with a DeprecationWarning). Warns
+        ``status`` holds each sample's flags). Warns
         (:class:`SlackWarning`) with the time of the first slack sample.
 
         Parameters
@@ -413,15 +410,10 @@ class _Plant(PythonObject):
             Commands (as for :meth:`step`).
         routes : callable, optional
             t -> Route (or a (route1, route2) pair), evaluated at every sample.
-        full : bool, default False
-            Accepted for older code; the result is the same (it always has every field).
         input_interpolation : {"hold", "linear", "bandlimited"}, optional
             The reconstruction of the command (default: the plant's).
         periodic : bool, optional
             Whether the record is a whole number of periods (None: detected).
-        status : bool, default False
-            Deprecated (read ``result.status``): True returns ``(result, flags)`` with a
-            DeprecationWarning, for one release.
 
         Returns
         -------
@@ -474,7 +466,7 @@ class _Plant(PythonObject):
         self._warn_slack(ts, slack)
         if self.encoder is not None and q_motor is not None and q_motor.size:
             q_motor = _encoder_reading(self.encoder, ts, q_motor)
-        result = SimulationResult(
+        return SimulationResult(
             q_out,
             t=ts,
             input=us,
@@ -488,10 +480,6 @@ class _Plant(PythonObject):
             status=flags,
             input_interpolation=how,
         )
-        if status:
-            warn_status_switch(name)
-            return cast(SimulationResult, (result, flags))  # the old tuple, for one release
-        return result
 
     def _warn_slack(self, ts, slack) -> None:
         """A SlackWarning with the time of the first slack sample (pointing at the caller of

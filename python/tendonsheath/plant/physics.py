@@ -16,7 +16,6 @@ from typing import Any
 
 import numpy as np
 
-from .._args import accepts_old_names
 from .._typing import ArrayLike, FloatArray, FloatOrArray
 from . import _bound as core
 from .route import Route
@@ -52,7 +51,6 @@ def tanh_half_over(a: ArrayLike) -> FloatOrArray:
     return _elementwise(core.tanh_half_over, a)
 
 
-@accepts_old_names("physics.capstan_ratio", {"total_angle": "curve_angle"})
 def capstan_ratio(
     mu: ArrayLike, curve_angle: ArrayLike, direction: ArrayLike = 1.0
 ) -> FloatOrArray:
@@ -63,8 +61,7 @@ def capstan_ratio(
     mu : float or array_like
         Friction coefficient mu.
     curve_angle : float or array_like
-        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
-        with a DeprecationWarning).
+        Curve angle Theta (rad).
     direction : float or array_like, default 1.0
         +1 when the tendon is pulled (slides towards the motor), -1 when released.
 
@@ -176,7 +173,6 @@ def shape_integrals(route: Route, mu: float) -> tuple[float, float]:
     return float(shape.g), float(shape.G)
 
 
-@accepts_old_names("physics.backlash_half_width", {"total_angle": "curve_angle"})
 def backlash_half_width(
     length: ArrayLike, EA: ArrayLike, pretension: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike
 ) -> FloatOrArray:
@@ -193,8 +189,7 @@ def backlash_half_width(
     mu : float or array_like
         Friction coefficient mu.
     curve_angle : float or array_like
-        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
-        with a DeprecationWarning).
+        Curve angle Theta (rad).
 
     Returns
     -------
@@ -205,7 +200,6 @@ def backlash_half_width(
     return _elementwise(core.uniform_backlash_half_width, length, EA, pretension, a)
 
 
-@accepts_old_names("physics.load_offset", {"total_angle": "curve_angle"})
 def load_offset(
     length: ArrayLike, EA: ArrayLike, load_force: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike
 ) -> FloatOrArray:
@@ -222,8 +216,7 @@ def load_offset(
     mu : float or array_like
         Friction coefficient mu.
     curve_angle : float or array_like
-        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
-        with a DeprecationWarning).
+        Curve angle Theta (rad).
 
     Returns
     -------
@@ -234,7 +227,6 @@ def load_offset(
     return _elementwise(core.uniform_load_offset, length, EA, load_force, a)
 
 
-@accepts_old_names("physics.load_compliance", {"total_angle": "curve_angle"})
 def load_compliance(
     length: ArrayLike, EA: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike
 ) -> FloatOrArray:
@@ -249,8 +241,7 @@ def load_compliance(
     mu : float or array_like
         Friction coefficient mu.
     curve_angle : float or array_like
-        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
-        with a DeprecationWarning).
+        Curve angle Theta (rad).
 
     Returns
     -------
@@ -260,7 +251,6 @@ def load_compliance(
     return _elementwise(core.uniform_load_compliance, length, EA, _friction_angle(mu, curve_angle))
 
 
-@accepts_old_names("physics.spring_slope", {"total_angle": "curve_angle"})
 def spring_slope(
     length: ArrayLike, EA: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike, k: ArrayLike
 ) -> FloatOrArray:
@@ -275,8 +265,7 @@ def spring_slope(
     mu : float or array_like
         Friction coefficient mu.
     curve_angle : float or array_like
-        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
-        with a DeprecationWarning).
+        Curve angle Theta (rad).
     k : float or array_like
         Stiffness of the spring load (N/m).
 
@@ -289,7 +278,6 @@ def spring_slope(
     return _elementwise(core.uniform_spring_slope, length, EA, k, a)
 
 
-@accepts_old_names("physics.dead_zone_width", {"total_angle": "curve_angle"})
 def dead_zone_width(
     length: ArrayLike, EA: ArrayLike, pretension: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike
 ) -> FloatOrArray:
@@ -306,8 +294,7 @@ def dead_zone_width(
     mu : float or array_like
         Friction coefficient mu.
     curve_angle : float or array_like
-        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
-        with a DeprecationWarning).
+        Curve angle Theta (rad).
 
     Returns
     -------
@@ -317,7 +304,6 @@ def dead_zone_width(
     return 2.0 * backlash_half_width(length, EA, pretension, mu, curve_angle)
 
 
-@accepts_old_names("physics.no_slack_limit", {"total_angle": "curve_angle"})
 def no_slack_limit(pretension: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike) -> FloatOrArray:
     """Largest distal load F_L before the released tendon goes slack: T0 (a/sinh a)(1 + e^-a).
 
@@ -328,8 +314,7 @@ def no_slack_limit(pretension: ArrayLike, mu: ArrayLike, curve_angle: ArrayLike)
     mu : float or array_like
         Friction coefficient mu.
     curve_angle : float or array_like
-        Curve angle Theta (rad) (its old name ``total_angle=`` still works for one release,
-        with a DeprecationWarning).
+        Curve angle Theta (rad).
 
     Returns
     -------

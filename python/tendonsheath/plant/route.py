@@ -6,7 +6,7 @@ from collections.abc import Iterable, Sequence
 
 import numpy as np
 
-from .._args import accepts_old_names, core_errors_as, number, number_array, warn_renamed
+from .._args import core_errors_as, number, number_array
 from .._arrays import as_signal
 from .._pyobject import bound_attribute
 from .._typing import ArrayLike, FloatArray
@@ -65,7 +65,6 @@ class Route(core.Route):
         return obj
 
     @classmethod
-    @accepts_old_names("Route.uniform", {"total_angle": "curve_angle"})
     def uniform(cls, length: float, curve_angle: float) -> Route:
         """Constant curvature: theta(s) = curve_angle * s / length.
 
@@ -74,8 +73,7 @@ class Route(core.Route):
         length : float
             Sheath length L (m), > 0.
         curve_angle : float
-            Curve angle Theta (rad), >= 0 (its old name ``total_angle=`` still works for one
-            release, with a DeprecationWarning; docs/vocabulary.md).
+            Curve angle Theta (rad), >= 0.
 
         Returns
         -------
@@ -196,12 +194,6 @@ class Route(core.Route):
     def curve_angle(self) -> float:
         """Curve angle Theta = theta(L) (rad)."""
         return bound_attribute(self, "curve_angle")
-
-    @property
-    def total_angle(self) -> float:
-        """Deprecated: the old name of :attr:`curve_angle`."""
-        warn_renamed("Route", "total_angle", "curve_angle")
-        return self.curve_angle
 
     @property
     def s(self) -> np.ndarray:

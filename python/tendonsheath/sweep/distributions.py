@@ -23,7 +23,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy import stats
 
 _EPS = 1e-12
 
@@ -177,6 +176,8 @@ class Normal(Distribution):
     """
 
     def __init__(self, mean: float, std: float, lo: float | None = None, hi: float | None = None):
+        from scipy import stats
+
         self.mean = _finite(mean, "Normal: mean")
         self.std = _finite(std, "Normal: std")
         if not self.std > 0:
@@ -205,6 +206,8 @@ class Normal(Distribution):
         numpy.ndarray
             The values, shaped as u.
         """
+        from scipy import stats
+
         u = np.clip(np.asarray(u, dtype=np.float64), _EPS, 1 - _EPS)
         q = self._cdf_lo + (self._cdf_hi - self._cdf_lo) * u
         return np.clip(stats.norm.ppf(q, self.mean, self.std), self.lo, self.hi)
@@ -253,6 +256,8 @@ class LogNormal(Distribution):
         numpy.ndarray
             The values, shaped as u.
         """
+        from scipy import stats
+
         u = np.clip(np.asarray(u, dtype=np.float64), _EPS, 1 - _EPS)
         return self.median * np.exp(self.sigma * stats.norm.ppf(u))
 

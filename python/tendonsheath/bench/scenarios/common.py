@@ -8,7 +8,6 @@ from typing import Any
 
 import numpy as np
 
-from ..._args import warn_renamed
 from ...plant.route import Route
 from ...plant.sensor import Sensor
 from ..calibration import calibration_input  # noqa: F401 (re-exported)
@@ -44,19 +43,9 @@ class ScenarioResult:
     table_units: dict[str, str] = field(default_factory=dict)
 
     @property
-    def metrics(self) -> MetricsTable:
-        """compensator -> metric -> value, for metrics.json: each run's ``metrics`` field (the
-        old call ``metrics()`` still works for one release, with a DeprecationWarning)."""
-        return MetricsTable({name: dict(result.metrics) for name, result in self.runs.items()})
-
-
-class MetricsTable(dict):
-    """A scenario's metrics (compensator -> metric -> value), a dict; calling it, as the old
-    ``ScenarioResult.metrics()`` was, returns it with a DeprecationWarning (one release)."""
-
-    def __call__(self) -> MetricsTable:
-        warn_renamed("ScenarioResult", "metrics()", "metrics")
-        return self
+    def metrics(self) -> dict[str, dict[str, Any]]:
+        """compensator -> metric -> value, for metrics.json: each run's ``metrics`` field."""
+        return {name: dict(result.metrics) for name, result in self.runs.items()}
 
 
 def first_paragraph(doc: str) -> str:
@@ -227,7 +216,6 @@ def identification_budget(scale: float) -> dict[str, int]:
 
 __all__ = [
     "PLANT_VALUE",
-    "MetricsTable",
     "ScenarioResult",
     "announce",
     "cal_model_rows",

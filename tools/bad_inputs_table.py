@@ -1,7 +1,7 @@
 """The table of docs/bad-inputs.md: every bad input tried, with the one-line error (or the
 result) it gets today. Each case is run here, so the table is what the code says.
 
-    .venv/bin/python benchmarks/bad_inputs_table.py > /tmp/table.md
+    .venv/bin/python tools/bad_inputs_table.py > /tmp/table.md
 """
 
 from __future__ import annotations

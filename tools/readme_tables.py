@@ -1,7 +1,7 @@
 """README.md's result tables, generated from the committed result files in benchmarks/results/.
 
-    python benchmarks/readme_tables.py           # rewrite README.md in place
-    python benchmarks/readme_tables.py --check   # exit 1 with a unified diff if README.md drifts
+    python tools/readme_tables.py           # rewrite README.md in place
+    python tools/readme_tables.py --check   # exit 1 with a unified diff if README.md drifts
 
 Each generated table sits between two marker comments in README.md:
 
@@ -40,7 +40,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 RESULTS = ROOT / "benchmarks" / "results"
 README = ROOT / "README.md"
-SCRIPT = "python benchmarks/readme_tables.py"
+SCRIPT = "python tools/readme_tables.py"
 
 
 class ResultError(Exception):

@@ -1,7 +1,7 @@
 """docs/parameters.md, generated from the C++ parameter tables (param_table.hpp).
 
-    python benchmarks/parameters_page.py           # rewrite docs/parameters.md
-    python benchmarks/parameters_page.py --check   # exit 1 with a unified diff if it drifts
+    python tools/parameters_page.py           # rewrite docs/parameters.md
+    python tools/parameters_page.py --check   # exit 1 with a unified diff if it drifts
 
 Each parameter struct declares its table once, next to the struct in its header
 (``template <> struct ParamTable<BacklashParams>``); the bindings expose it as the struct's
@@ -22,7 +22,7 @@ from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
 PAGE = ROOT / "docs" / "parameters.md"
-SCRIPT = "python benchmarks/parameters_page.py"
+SCRIPT = "python tools/parameters_page.py"
 GROUPS = (
     ("models", "Models"),
     ("plant", "Plants, motor and sensor"),
