@@ -554,6 +554,7 @@ MINIMAL_CALLS.update(
             ts.models.PrandtlIshlinskii,
             ts.models.PrandtlIshlinskiiInverse,
             ts.models.CurveAngleModel,
+            ts.models.PlantModel,
         )
     }
 )

@@ -21,7 +21,7 @@ import math
 from collections.abc import Callable, Sequence
 from typing import Any, TypeVar
 
-from .._args import renamed
+from .._args import integer, number, renamed
 from .base import HysteresisModel
 
 _T = TypeVar("_T", bound=type)
@@ -103,8 +103,8 @@ def from_table(cls: _T) -> _T:
     if _declared(cls, "option_names") is None:
         cls.option_names = tuple(r["name"] for r in rows if r["role"] == "option")  # type: ignore[attr-defined]
     own = _declared(cls, "__init__")
-    if getattr(own, "from_table", False):  # a decorated base's: this class's rows may differ
-        own = None
+    if getattr(own, "from_table", False) or _takes_rows_only(own):
+        own = None  # a decorated base's (this class's rows may differ), or a base's (**values)
     signature = _signature(cls, rows, own)
     if own is None:
         own = _init_taking(cls, signature)
@@ -122,6 +122,59 @@ def _declared(cls: type, name: str) -> Any:
         if name in vars(klass):
             return vars(klass)[name]
     return None
+
+
+def _takes_rows_only(init: Any) -> bool:
+    """A base's ``__init__(self, **values)``: it takes the rows by name; the class gets a
+    constructor that names them (and takes them positionally)."""
+    if init is None:
+        return False
+    kinds = [p.kind for p in inspect.signature(init).parameters.values()][1:]
+    return kinds == [inspect.Parameter.VAR_KEYWORD]
+
+
+def checked_values(
+    owner: str, rows: list[dict[str, Any]], values: dict[str, Any]
+) -> dict[str, Any]:
+    """``values`` (one per numeric row) checked against the rows' bounds in table order, with
+    the C++ core's messages (validate.hpp), for a model that runs in Python.
+
+    Parameters
+    ----------
+    owner : str
+        The class named in the messages.
+    rows : list of dict
+        The table's rows (``fields()``).
+    values : dict
+        A value per row name.
+
+    Returns
+    -------
+    dict
+        The values as float (int for an integer row).
+
+    Raises
+    ------
+    TypeError
+        A value that is not a number (an integer for an integer row).
+    ValueError
+        A value out of its row's range: "<owner>: <name> must be ... (got v)".
+    """
+    out = dict(values)
+    for row in rows:
+        name = row["name"]
+        if isinstance(row["default"], int):
+            out[name] = integer(owner, name, values[name])
+        else:
+            out[name] = number(owner, name, values[name])
+        v = float(out[name])
+        bound = _range_text(row)
+        lo_ok = v >= row["lo"] if row["lo_closed"] else v > row["lo"]
+        hi_ok = v <= row["hi"] if row["hi_closed"] else v < row["hi"]
+        finite = math.isfinite(v) or (row["check"] == "positive_or_inf" and v == math.inf)
+        if not (finite and lo_ok and hi_ok):
+            raise ValueError(f"{owner}: {name} must be {bound or 'finite'} (got {v:g})")
+    return out
 
 
 def _python_default(cls: type, row: dict[str, Any]) -> Any:
@@ -242,7 +295,7 @@ def _row_entry(cls: type, row: dict[str, Any], param: inspect.Parameter) -> list
         head = f"{row['name']} : {kind}, optional"
     else:
         head = f"{row['name']} : {kind}, default {shown!r}"
-    doc = row["doc"][:1].upper() + row["doc"][1:]
+    doc = row["doc"]  # as written (a symbol such as mu or c_v keeps its case)
     unit = row["unit"] + (" unit" if row["unit"] in ("input", "output", "command") else "")
     unit = f" ({unit})" if unit else ""
     bound = _range_text(row)
@@ -337,4 +390,4 @@ def _with_parameters(
     return "\n".join(out) + "\n"
 
 
-__all__ = ["from_table", "table_default", "table_rows"]
+__all__ = ["checked_values", "from_table", "table_default", "table_rows"]
