@@ -118,7 +118,7 @@ struct ParamTable<HystereticOscillatorParams> {
       option("max_substeps", &HystereticOscillatorParams::max_substeps, "", documented(1, true, kInf, false),
             "most RK4 sub-steps per sample, >= substeps (bounds the work)"),
       option("input_interpolation", &HystereticOscillatorParams::input_interpolation, "", documented(0, true, 2, true),
-            "0 (hold), 1 (linear) or 2 (band-limited) input between samples"),
+            "the input between samples: 0 (Python \"hold\"), 1 (\"linear\") or 2 (\"bandlimited\")"),
       option("lookahead", &HystereticOscillatorParams::lookahead, "samples", documented(1, true, 64, true),
             "half-width of the band-limited interpolation kernel"));
 };

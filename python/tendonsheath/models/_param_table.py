@@ -298,10 +298,10 @@ def _row_entry(cls: type, row: dict[str, Any], param: inspect.Parameter) -> list
     doc = row["doc"]  # as written (a symbol such as mu or c_v keeps its case)
     unit = row["unit"] + (" unit" if row["unit"] in ("input", "output", "command") else "")
     unit = f" ({unit})" if unit else ""
-    bound = _range_text(row)
+    bound = _range_text(row) if type(shown) is type(row["default"]) else ""  # not of a code
     text = f"{doc}{unit}" + (f"; {bound}" if bound else "") + "."
     if param.default is None and shown is not None and row["name"] not in derived:
-        text += f" The table's default: {shown!r}."
+        text += f" None gives the default, {shown!r}."
     return [head, *_wrapped(text)]
 
 
