@@ -548,6 +548,25 @@ MINIMAL_CALLS = {
         lambda kw: ts.SimulationResult(np.zeros(3), **kw)
     ),
 }
+# the models built from their parameter tables take the rows by **values (models/_param_table.py)
+MINIMAL_CALLS.update(
+    {
+        f"{cls.__module__}.{cls.__name__}": (lambda kw, cls=cls: cls(**kw))
+        for cls in (
+            ts.models.Backlash,
+            ts.models.BoucWen,
+            ts.models.BoucWenBacklash,
+            ts.models.HystereticOscillator,
+            ts.models.PrandtlIshlinskii,
+            ts.models.PrandtlIshlinskiiInverse,
+            ts.models.CurveAngleModel,
+            ts.models.PlantModel,
+        )
+    }
+)
+MINIMAL_CALLS["tendonsheath.models.polynomial.Polynomial"] = lambda kw: ts.models.Polynomial(
+    1, **kw
+)
 
 
 def _takes_kwargs(obj) -> bool:

@@ -178,7 +178,7 @@ def python_problems(struct: str, rows: list[dict[str, Any]]) -> list[str]:
         if not takers:
             problems.append(f"{struct}.{name}: no Python keyword")
             continue
-        defaults = [
+        defaults = [  # (a class built from the table has no second copy: test_param_single_copy)
             p.default
             for t in takers
             if (p := inspect.signature(t).parameters.get(name)) is not None
@@ -240,8 +240,10 @@ def test_the_binding_is_the_table(struct):
             "check",
             "doc",
             "applies_to",
+            "role",
         }
         assert row["doc"], f"{struct}.{row['name']}: no doc"
+        assert row["role"] in ("parameter", "option"), (struct, row["name"])
         value = getattr(default, row["name"])
         if isinstance(value, float | int | bool | list):
             assert value == row["default"], (struct, row["name"])

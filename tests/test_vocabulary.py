@@ -268,7 +268,11 @@ OLD_NAMES = [
 
 @pytest.mark.parametrize(("make", "old"), OLD_NAMES, ids=[o for _, o in OLD_NAMES])
 def test_an_old_name_is_a_type_error_naming_it(make, old):
-    with pytest.raises(TypeError, match=f"unexpected keyword argument '{old}'"):
+    # Python's own words, or a table-built model's (which lists the names it takes)
+    with pytest.raises(
+        TypeError,
+        match=rf"unexpected keyword argument '{old}'|unknown parameter\(s\) \['{old}'\]",
+    ):
         make()
 
 
@@ -283,8 +287,8 @@ def test_a_route_has_no_old_total_angle():
         (lambda: CurveAngleFeedforward(0.1, 5e-5, 10.0), "missing 1 .* 'pretension'"),
         (lambda: ts.Route.uniform(1.0, angle=1.0), "unexpected keyword argument 'angle'"),
         (lambda: ContinuumFeedforward(spring=1.0), "unexpected keyword argument 'spring'"),
-        (lambda: ts.models.BoucWen(b=1.0), "unexpected keyword argument 'b'"),
-        (lambda: ts.models.CurveAngleModel(springs=1.0), "unexpected keyword argument 'springs'"),
+        (lambda: ts.models.BoucWen(b=1.0), r"unknown parameter\(s\) \['b'\]"),
+        (lambda: ts.models.CurveAngleModel(springs=1.0), r"unknown parameter\(s\) \['springs'\]"),
     ],
 )
 def test_missing_or_unknown_keywords_are_type_errors(make, message):

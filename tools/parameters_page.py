@@ -40,7 +40,11 @@ validate.hpp's message, `constructor` when its own code does; cross-field rules,
 doc, are always the constructor's). A row that applies to some parameters only (a position
 motor's `bandwidth_hz`) says so in its range, and its bound is checked only there. The Python
 argument that sets a field has the field's name
-([One vocabulary](vocabulary.md)).
+([One vocabulary](vocabulary.md)). Each row is an identifiable parameter or, marked
+*(option)*, a numerical option that identification leaves as it is (`fields()`' `role`); a
+model's Python class takes its parameter and option names, its signature with these defaults,
+the Parameters entries of its docstring and its saved keys from its table
+(`tendonsheath/models/_param_table.py`), so none of them is written a second time.
 
 The classes with no C++ parameter struct (the load terms, the composite models, the coupling,
 the shape sensor, the iterative learning, the command limits) have their tables at the end,
@@ -143,7 +147,7 @@ def render_struct(name: str, cls: Any) -> str:
     ]
     for row in cls.fields():
         cells = (
-            f"`{row['name']}`",
+            f"`{row['name']}`" + (" *(option)*" if row["role"] == "option" else ""),
             row["unit"],
             _default(row["default"]),
             _range(row),

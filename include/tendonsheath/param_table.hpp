@@ -1,7 +1,9 @@
-// One parameter table per parameter struct: each field's name, unit, valid range and one-line
-// doc, declared once next to the struct (its default is the struct's own member initialiser).
-// The bindings (a property per row, a keyword constructor, fields()), the constructors' checks
-// of single-field bounds and the docs page docs/parameters.md are derived from it.
+// One parameter table per parameter struct: each field's name, unit, valid range, one-line doc
+// and role (an identifiable parameter or a numerical option), declared once next to the struct
+// (its default is the struct's own member initialiser). The bindings (a property per row, a
+// keyword constructor, fields()), the constructors' checks of single-field bounds, the order in
+// which assign_parameters() reads a flat vector, the Python models' names, signatures, defaults,
+// docstrings and saved keys, and the docs page docs/parameters.md are derived from it.
 //
 //   template <> struct ParamTable<BacklashParams> {
 //     static constexpr auto fields = std::make_tuple(
@@ -34,6 +36,14 @@ enum class Check : unsigned char {
   in_range,      ///< "<name> must be in [lo, hi] (got v)": finite and in [lo, hi]
   positive_or_inf,  ///< "<name> must be > 0 (got v)": > 0, +inf allowed (no limit)
   documented,    ///< the range [lo, hi] (inclusivity as given) is checked by the constructor by hand
+};
+
+/// What a row is to identification: a parameter is identified (in the flat vector of
+/// assign_parameters(), a Python model's param_names, a saved file's "params"); an option is a
+/// numerical setting that is not (a Python model's option_names, a saved file's "options").
+enum class Role : unsigned char {
+  parameter,  ///< identifiable
+  option,     ///< a numerical setting (sub-steps, interpolation, ...), not identified
 };
 
 /// A row's valid range: its bounds, their inclusivity, and how it is checked.
@@ -80,6 +90,7 @@ struct ParamField {
   /// checked only where this holds
   bool (*applies)(const P&) = nullptr;
   const char* applies_to = nullptr;  ///< which those are, in words ("position"), for the docs
+  Role role = Role::parameter;       ///< identifiable parameter or numerical option
 };
 
 /// A row: param("c_r", &BacklashParams::c_r, "", positive(), "slope of the rising branch").
@@ -87,6 +98,15 @@ template <class P, class T>
 constexpr ParamField<P, T> param(const char* name, T P::*member, const char* unit, Range range,
                                  const char* doc) {
   return ParamField<P, T>{name, member, unit, range, doc};
+}
+
+/// An option's row (Role::option): option("max_substeps", &BoucWenParams::max_substeps, "", ...).
+template <class P, class T>
+constexpr ParamField<P, T> option(const char* name, T P::*member, const char* unit, Range range,
+                                  const char* doc) {
+  ParamField<P, T> row{name, member, unit, range, doc};
+  row.role = Role::option;
+  return row;
 }
 
 /// A row that applies only where applies(p) holds (`which`: those parameters in words):
@@ -118,6 +138,50 @@ constexpr void for_each_field(F&& f) {
 template <class P>
 constexpr std::size_t field_count() {
   return std::tuple_size_v<std::decay_t<decltype(ParamTable<P>::fields)>>;
+}
+
+/// The rows of a base struct B's table as rows of D, a struct derived from B (the inverse of a
+/// model takes the model's parameters: its table starts with the model's rows, not a copy):
+/// std::tuple_cat(rows_of<D, B>(), std::make_tuple(param("smoothing", &D::smoothing, ...))).
+template <class D, class B>
+constexpr auto rows_of() {
+  static_assert(std::is_base_of_v<B, D>, "rows_of<D, B>: D must derive from B");
+  return std::apply(
+      [](const auto&... row) {
+        return std::make_tuple([](const auto& r) {
+          using T = typename std::decay_t<decltype(r)>::value_type;
+          ParamField<D, T> out{r.name, static_cast<T D::*>(r.member), r.unit, r.range, r.doc};
+          out.applies_to = r.applies_to;  // (a row that applies to some B only is not inherited)
+          out.role = r.role;
+          return out;
+        }(row)...);
+      },
+      ParamTable<B>::fields);
+}
+
+/// The number of P's identifiable parameters (Role::parameter rows of type double): the length
+/// of the flat vector assign_parameters() reads.
+template <class P>
+constexpr std::size_t parameter_count() {
+  std::size_t n = 0;
+  for_each_field<P>([&](const auto& row) {
+    using T = typename std::decay_t<decltype(row)>::value_type;
+    if (std::is_same_v<T, double> && row.role == Role::parameter) ++n;
+  });
+  return n;
+}
+
+/// Sets P's identifiable parameters (Role::parameter rows of type double) from
+/// v[0..parameter_count<P>()), in table order (the Python param_names' order); options are kept.
+template <class P>
+void assign_parameters(P& p, const double* v) noexcept {
+  std::size_t i = 0;
+  for_each_field<P>([&](const auto& row) {
+    using T = typename std::decay_t<decltype(row)>::value_type;
+    if constexpr (std::is_same_v<T, double>) {
+      if (row.role == Role::parameter) p.*row.member = v[i++];
+    }
+  });
 }
 
 /// Checks one row's single-field bound with validate.hpp's message (the documented and

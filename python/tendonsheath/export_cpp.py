@@ -22,7 +22,6 @@ from pathlib import Path
 
 from ._cpp_literal import cpp_number as _number
 
-_BACKLASH_KEYS = ("c_r", "c_l", "B_r", "B_l")
 # C++ keywords and alternative tokens (C++20's too: a header outlives its standard), and the
 # namespaces a header must not open
 _CPP_RESERVED = frozenset(
@@ -158,7 +157,9 @@ def _inner_limits(ff, map_values):
 
 
 def _direct_inverse(ff, model, map_values) -> tuple[str, str]:
-    fields = {k: model.params[k] for k in _BACKLASH_KEYS}
+    from .models import Backlash  # its rows begin BacklashInverseParams' table (rows_of)
+
+    fields = {k: model.params[k] for k in Backlash.param_names}
     smoothing = ff.smoothing if map_values is None else ff.smoothing / abs(map_values[3])
     limits = {f"limits.{k}": v for k, v in _inner_limits(ff, map_values).items()}
     fields = {**fields, "smoothing": smoothing, **limits}

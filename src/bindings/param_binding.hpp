@@ -33,7 +33,7 @@ inline const char* check_name(tendonsheath::Check c) {
 }
 
 // One row as a dict: name, unit, default, lo, lo_closed, hi, hi_closed, check, doc, applies_to
-// (None: every parameter set).
+// (None: every parameter set) and role ("parameter": identifiable, or "option").
 template <class P, class T>
 nb::dict field_row(const tendonsheath::ParamField<P, T>& row, const P& defaults) {
   nb::dict d;
@@ -47,6 +47,7 @@ nb::dict field_row(const tendonsheath::ParamField<P, T>& row, const P& defaults)
   d["check"] = check_name(row.range.check);
   d["doc"] = row.doc;
   d["applies_to"] = row.applies_to ? nb::cast(row.applies_to) : nb::none();
+  d["role"] = row.role == tendonsheath::Role::option ? "option" : "parameter";
   return d;
 }
 
@@ -129,7 +130,7 @@ nb::class_<P> bind_params(nb::module_& m, const char* name) {
         return rows;
       },
       "The parameter table: a dict per field (name, unit, default, lo, lo_closed, hi, hi_closed, "
-      "check, doc, applies_to), in the order of the struct.");
+      "check, doc, applies_to, role: 'parameter' or 'option'), in the order of the struct.");
   cls.attr("owner") = tendonsheath::ParamTable<P>::owner;
   cls.attr("checked_from_table") = tendonsheath::ParamTable<P>::checked_from_table;
   return cls;

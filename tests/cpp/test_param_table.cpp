@@ -29,7 +29,42 @@ static_assert(std::get<0>(kBacklash).member == &ts::BacklashParams::c_r);
 static_assert(std::get<0>(kBacklash).range.check == ts::Check::positive);
 static_assert(std::get<3>(kBacklash).range.lo_closed);
 static_assert(ts::field_count<ts::AdaptiveControllerParams>() == 25);
+
+// Each row says parameter or option; assign() reads the parameter rows, in table order.
+constexpr auto& kBoucWen = ts::ParamTable<ts::BoucWenParams>::fields;
+static_assert(std::get<5>(kBoucWen).role == ts::Role::parameter);  // k
+static_assert(std::get<6>(kBoucWen).role == ts::Role::option);     // max_step
+static_assert(ts::parameter_count<ts::BoucWenParams>() == 6);
+static_assert(ts::parameter_count<ts::HystereticOscillatorParams>() == 8);
+// The inverse's table starts with the model's rows (rows_of), not a copy.
+constexpr auto& kInverse = ts::ParamTable<ts::BacklashInverseParams>::fields;
+static_assert(ts::field_count<ts::BacklashInverseParams>() == 6);
+static_assert(std::get<2>(kInverse).member ==
+              static_cast<double ts::BacklashInverseParams::*>(&ts::BacklashParams::B_r));
+static_assert(std::get<2>(kInverse).range.check == std::get<2>(kBacklash).range.check);
 }  // namespace
+
+TEST(ParamTable, AssignReadsTheParameterRowsInTableOrderAndKeepsTheOptions) {
+  const double v[] = {1.5, 0.4, 0.3, 2.0, 0.25, -1.0};
+  ts::BoucWenParams p;
+  p.max_step = 0.01;
+  p.assign(v);
+  EXPECT_EQ(p.A, 1.5);
+  EXPECT_EQ(p.beta, 0.4);
+  EXPECT_EQ(p.gamma, 0.3);
+  EXPECT_EQ(p.n, 2.0);
+  EXPECT_EQ(p.alpha, 0.25);
+  EXPECT_EQ(p.k, -1.0);
+  EXPECT_EQ(p.max_step, 0.01);
+  EXPECT_EQ(p.max_substeps, 256);
+}
+
+TEST(ParamTable, TheInversesModelRowsCheckItsFields) {
+  ts::BacklashInverseParams p;
+  p.B_l = -1.0;
+  EXPECT_EQ(message_of([&] { ts::BacklashInverseFeedforward f(p); }),
+            "BacklashInverseFeedforward: B_l must be >= 0 (got -1)");
+}
 
 TEST(ParamTable, RowsNameTheirFieldsInStructOrder) {
   const char* names[] = {"c_r", "c_l", "B_r", "B_l"};

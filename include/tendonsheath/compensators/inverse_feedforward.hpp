@@ -10,6 +10,7 @@
 
 #include <cmath>
 
+#include "../models/backlash.hpp"
 #include "../models/prandtl_ishlinskii.hpp"
 #include "../validate.hpp"
 #include "command_shaping.hpp"
@@ -17,36 +18,28 @@
 
 namespace tendonsheath {
 
-/// Parameters of BacklashInverseFeedforward: the identified backlash branches, the smoothing and
-/// the command limits (validated by its constructor).
-struct BacklashInverseParams {
-  double c_r = 1.0;  ///< slope of the right (rising) branch, > 0
-  double c_l = 1.0;  ///< slope of the left (falling) branch, > 0
-  double B_r = 0.1;  ///< dead-band offset of the right branch, command units, >= 0
-  double B_l = 0.1;  ///< dead-band offset of the left branch, command units, >= 0
+/// Parameters of BacklashInverseFeedforward: the identified backlash branches (a BacklashParams:
+/// c_r, c_l, B_r, B_l, in the command's units), the smoothing and the command limits (validated
+/// by its constructor).
+struct BacklashInverseParams : BacklashParams {
   double smoothing = 0.05;  ///< v_eps, the smoothing speed of the direction switch, output units per s
   CommandLimits limits{};  ///< the motor command's limits
 };
 
-/// The parameter table of BacklashInverseParams (param_table.hpp): unit, range and doc of each field.
+/// The parameter table of BacklashInverseParams (param_table.hpp): the model's rows (those of
+/// BacklashParams, not a copy), then the smoothing and the limits.
 template <>
 struct ParamTable<BacklashInverseParams> {
   static constexpr const char* owner = "BacklashInverseFeedforward";  ///< the class its constructor takes it
   static constexpr bool checked_from_table = true;  ///< its constructor checks the single-field bounds with validate_fields()
   /// The rows, in the order of the struct and of the constructor's checks.
-  static constexpr auto fields = std::make_tuple(
-      param("c_r", &BacklashInverseParams::c_r, "output/input", positive(),
-            "slope of the right (rising) branch"),
-      param("c_l", &BacklashInverseParams::c_l, "output/input", positive(),
-            "slope of the left (falling) branch"),
-      param("B_r", &BacklashInverseParams::B_r, "command", non_negative(),
-            "dead-band offset of the right branch"),
-      param("B_l", &BacklashInverseParams::B_l, "command", non_negative(),
-            "dead-band offset of the left branch"),
-      param("smoothing", &BacklashInverseParams::smoothing, "output/s", positive(),
-            "v_eps, the smoothing speed of the direction switch"),
-      param("limits", &BacklashInverseParams::limits, "", any(),
-            "CommandLimits: the command's min, max and max_rate"));
+  static constexpr auto fields = std::tuple_cat(
+      rows_of<BacklashInverseParams, BacklashParams>(),
+      std::make_tuple(
+          param("smoothing", &BacklashInverseParams::smoothing, "output/s", positive(),
+                "v_eps, the smoothing speed of the direction switch"),
+          param("limits", &BacklashInverseParams::limits, "", any(),
+                "CommandLimits: the command's min, max and max_rate")));
 };
 
 /// @brief Direct inverse feedforward of backlash-like hysteresis (spec D.2): no iteration.

@@ -105,15 +105,18 @@ inline InvertibleModel invertible_model(const json& m, const std::string& where)
   const json& p = member(m, "params", where);
   const std::string w = where + ": params";
   if (out.name == "Backlash" || out.name == "BoucWenBacklash") {
-    const bool bw = out.name == "BoucWenBacklash";
-    std::set<std::string> keys{"c_r", "c_l", "B_r", "B_l"};
-    if (bw) keys.insert({"rho", "sigma", "n"});
+    std::set<std::string> keys;  // the model's parameter rows (its options are not in "params")
+    const auto parameter = [&](const auto& row) {
+      if (row.role == Role::parameter) keys.insert(row.name);
+    };
+    if (out.name == "BoucWenBacklash") for_each_field<BoucWenBacklashParams>(parameter);
+    else for_each_field<BacklashParams>(parameter);
     check_keys(p, keys, keys, w);
     for (const auto& k : keys) number(p, k, w);  // every one a number, used or not
-    out.backlash.c_r = number(p, "c_r", w);
-    out.backlash.c_l = number(p, "c_l", w);
-    out.backlash.B_r = number(p, "B_r", w);
-    out.backlash.B_l = number(p, "B_l", w);
+    // the inverse takes the backlash rows (BacklashInverseParams derives from BacklashParams)
+    for_each_field<BacklashParams>([&](const auto& row) {
+      out.backlash.*row.member = number(p, row.name, w);
+    });
   } else if (out.name == "PrandtlIshlinskii") {
     check_keys(p, {"thresholds", "weights"}, {"thresholds", "weights"}, w);
     out.pi.thresholds = numbers(p, "thresholds", w);

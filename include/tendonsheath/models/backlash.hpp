@@ -29,13 +29,12 @@ struct BacklashParams {
   double B_r = 0.1;  ///< dead-band offset of the right branch, input units
   double B_l = 0.1;  ///< dead-band offset of the left branch, input units
 
-  /// The identifiable parameters as a flat vector, in the order of the Python
-  /// param_names (numerical options are left as they are).
+  /// How many identifiable parameters assign() reads: the table's Role::parameter rows
+  /// (checked against it below the table).
   static constexpr std::size_t vector_size = 4;
-  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
-  void assign(const double* v) noexcept {
-    c_r = v[0]; c_l = v[1]; B_r = v[2]; B_l = v[3];
-  }
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the table's
+  /// parameter rows (the Python param_names); the options are kept.
+  void assign(const double* v) noexcept;
 };
 
 /// The parameter table of BacklashParams (param_table.hpp): unit, range and doc of each field.
@@ -54,6 +53,10 @@ struct ParamTable<BacklashParams> {
       param("B_l", &BacklashParams::B_l, "input", non_negative(),
             "dead-band offset of the left branch"));
 };
+
+static_assert(BacklashParams::vector_size == parameter_count<BacklashParams>(),
+              "vector_size is the number of the table's parameter rows");
+inline void BacklashParams::assign(const double* v) noexcept { assign_parameters(*this, v); }
 
 /// @brief Classic backlash (Tao & Kokotovic): y <- clamp(y, c_r (x - B_r), c_l (x + B_l)).
 ///

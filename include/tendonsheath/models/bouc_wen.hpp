@@ -29,13 +29,12 @@ struct BoucWenParams {
   double max_step = 0.05;  ///< largest change of z / z_u per RK4 sub-step
   int max_substeps = 256;  ///< most RK4 sub-steps in one step(), >= 1 (bounds its work)
 
-  /// The identifiable parameters as a flat vector, in the order of the Python
-  /// param_names (numerical options are left as they are).
+  /// How many identifiable parameters assign() reads: the table's Role::parameter rows
+  /// (checked against it below the table).
   static constexpr std::size_t vector_size = 6;
-  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
-  void assign(const double* v) noexcept {
-    A = v[0]; beta = v[1]; gamma = v[2]; n = v[3]; alpha = v[4]; k = v[5];
-  }
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the table's
+  /// parameter rows (the Python param_names); the options are kept.
+  void assign(const double* v) noexcept;
 };
 
 /// The parameter table of BoucWenParams (param_table.hpp): unit, range and doc of each field.
@@ -57,11 +56,15 @@ struct ParamTable<BoucWenParams> {
             "share of the linear (elastic) path"),
       param("k", &BoucWenParams::k, "output/input", finite(),
             "gain of the hysteretic path"),
-      param("max_step", &BoucWenParams::max_step, "", positive(),
+      option("max_step", &BoucWenParams::max_step, "", positive(),
             "largest change of z / z_u per RK4 sub-step"),
-      param("max_substeps", &BoucWenParams::max_substeps, "", documented(1, true, kInf, false),
+      option("max_substeps", &BoucWenParams::max_substeps, "", documented(1, true, kInf, false),
             "most RK4 sub-steps in one step() (bounds its work)"));
 };
+
+static_assert(BoucWenParams::vector_size == parameter_count<BoucWenParams>(),
+              "vector_size is the number of the table's parameter rows");
+inline void BoucWenParams::assign(const double* v) noexcept { assign_parameters(*this, v); }
 
 /// @brief Classic Bouc-Wen hysteresis as a rate-independent input-output model.
 ///

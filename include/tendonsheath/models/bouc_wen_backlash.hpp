@@ -32,13 +32,12 @@ struct BoucWenBacklashParams {
   double max_step = 0.05;  ///< largest rho*|dx| per RK4 sub-step
   int max_substeps = 256;  ///< most RK4 sub-steps in one step(), >= 1 (bounds its work)
 
-  /// The identifiable parameters as a flat vector, in the order of the Python
-  /// param_names (numerical options are left as they are).
+  /// How many identifiable parameters assign() reads: the table's Role::parameter rows
+  /// (checked against it below the table).
   static constexpr std::size_t vector_size = 7;
-  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
-  void assign(const double* v) noexcept {
-    c_r = v[0]; c_l = v[1]; B_r = v[2]; B_l = v[3]; rho = v[4]; sigma = v[5]; n = v[6];
-  }
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the table's
+  /// parameter rows (the Python param_names); the options are kept.
+  void assign(const double* v) noexcept;
 };
 
 /// The parameter table of BoucWenBacklashParams (param_table.hpp): unit, range and doc of each field.
@@ -62,11 +61,15 @@ struct ParamTable<BoucWenBacklashParams> {
             "shape of the transition"),
       param("n", &BoucWenBacklashParams::n, "", at_least(1.0),
             "sharpness of the transition"),
-      param("max_step", &BoucWenBacklashParams::max_step, "", positive(),
+      option("max_step", &BoucWenBacklashParams::max_step, "", positive(),
             "largest rho*|dx| per RK4 sub-step"),
-      param("max_substeps", &BoucWenBacklashParams::max_substeps, "", documented(1, true, kInf, false),
+      option("max_substeps", &BoucWenBacklashParams::max_substeps, "", documented(1, true, kInf, false),
             "most RK4 sub-steps in one step() (bounds its work)"));
 };
+
+static_assert(BoucWenBacklashParams::vector_size == parameter_count<BoucWenBacklashParams>(),
+              "vector_size is the number of the table's parameter rows");
+inline void BoucWenBacklashParams::assign(const double* v) noexcept { assign_parameters(*this, v); }
 
 namespace detail {
 // |w|^P for a compile-time integer P (the usual sharpness exponents).

@@ -50,13 +50,12 @@ struct CurveAngleParams {
   double distal_radius = 5e-3;    ///< r_d, m
   double play = 0.0;              ///< motor-side play (the gearhead's backlash), total width, rad at the motor
 
-  /// How many identifiable parameters assign() reads.
+  /// How many identifiable parameters assign() reads: the table's Role::parameter rows
+  /// (checked against it below the table).
   static constexpr std::size_t vector_size = 9;
-  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
-  void assign(const double* v) noexcept {
-    friction = v[0]; stiffness = v[1]; pretension = v[2]; length = v[3];
-    load_force = v[4]; load_stiffness = v[5]; proximal_radius = v[6]; distal_radius = v[7]; play = v[8];
-  }
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the table's
+  /// parameter rows (the Python param_names); the options are kept.
+  void assign(const double* v) noexcept;
 };
 
 /// The parameter table of CurveAngleParams (param_table.hpp): unit, range and doc of each field.
@@ -85,6 +84,10 @@ struct ParamTable<CurveAngleParams> {
       param("play", &CurveAngleParams::play, "rad", non_negative(),
             "motor-side play (the gearhead's backlash), total width at the motor"));
 };
+
+static_assert(CurveAngleParams::vector_size == parameter_count<CurveAngleParams>(),
+              "vector_size is the number of the table's parameter rows");
+inline void CurveAngleParams::assign(const double* v) noexcept { assign_parameters(*this, v); }
 
 /// @brief Closed-form pull-pull tendon-sheath model with the curve angle as a second input (spec B,
 /// from the uniform-curvature closed form A.7 and the spring slope of A.4).

@@ -82,13 +82,12 @@ struct HystereticOscillatorParams {
   int input_interpolation = kInputLinear;  ///< kInputHold, kInputLinear or kInputBandlimited
   int lookahead = 16;  ///< half-width of the band-limited interpolation kernel, samples
 
-  /// The identifiable parameters as a flat vector, in the order of the Python
-  /// param_names (numerical options are left as they are).
+  /// How many identifiable parameters assign() reads: the table's Role::parameter rows
+  /// (checked against it below the table).
   static constexpr std::size_t vector_size = 8;
-  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the Python param_names.
-  void assign(const double* v) noexcept {
-    m = v[0]; c = v[1]; k = v[2]; alpha = v[3]; beta = v[4]; gamma = v[5]; delta = v[6]; nu = v[7];
-  }
+  /// Set the identifiable parameters from `v[0..vector_size)`, in the order of the table's
+  /// parameter rows (the Python param_names); the options are kept.
+  void assign(const double* v) noexcept;
 };
 
 /// The parameter table of HystereticOscillatorParams (param_table.hpp): unit, range and doc of each field.
@@ -114,15 +113,19 @@ struct ParamTable<HystereticOscillatorParams> {
             "Bouc-Wen shape (any sign)"),
       param("nu", &HystereticOscillatorParams::nu, "", at_least(1.0),
             "Bouc-Wen sharpness"),
-      param("substeps", &HystereticOscillatorParams::substeps, "", documented(1, true, kInf, false),
+      option("substeps", &HystereticOscillatorParams::substeps, "", documented(1, true, kInf, false),
             "fewest RK4 sub-steps per sample"),
-      param("max_substeps", &HystereticOscillatorParams::max_substeps, "", documented(1, true, kInf, false),
+      option("max_substeps", &HystereticOscillatorParams::max_substeps, "", documented(1, true, kInf, false),
             "most RK4 sub-steps per sample, >= substeps (bounds the work)"),
-      param("input_interpolation", &HystereticOscillatorParams::input_interpolation, "", documented(0, true, 2, true),
-            "0 (hold), 1 (linear) or 2 (band-limited) input between samples"),
-      param("lookahead", &HystereticOscillatorParams::lookahead, "samples", documented(1, true, 64, true),
+      option("input_interpolation", &HystereticOscillatorParams::input_interpolation, "", documented(0, true, 2, true),
+            "the input between samples: 0 (Python \"hold\"), 1 (\"linear\") or 2 (\"bandlimited\")"),
+      option("lookahead", &HystereticOscillatorParams::lookahead, "samples", documented(1, true, 64, true),
             "half-width of the band-limited interpolation kernel"));
 };
+
+static_assert(HystereticOscillatorParams::vector_size == parameter_count<HystereticOscillatorParams>(),
+              "vector_size is the number of the table's parameter rows");
+inline void HystereticOscillatorParams::assign(const double* v) noexcept { assign_parameters(*this, v); }
 
 /// @brief Single-degree-of-freedom oscillator with a Bouc-Wen restoring force, force u in,
 /// displacement y out: m y'' + c y' + k y + z = u,

@@ -44,7 +44,7 @@ struct ParamTable<PlantModelParams> {
             "output gain, finite and != 0"),
       param("offset", &PlantModelParams::offset, "output", finite(),
             "output offset"),
-      param("elements", &PlantModelParams::elements, "", at_least(2.0),
+      option("elements", &PlantModelParams::elements, "", at_least(2.0),
             "the sheath's element count"));
 };
 

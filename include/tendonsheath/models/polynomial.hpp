@@ -28,7 +28,7 @@ struct ParamTable<PolynomialParams> {
   static constexpr auto fields = std::make_tuple(
       param("coefficients", &PolynomialParams::coefficients, "", any(),
             "a_0, a_1, ... (all powers) or a_1, a_3, ... (odd), finite, not empty"),
-      param("odd", &PolynomialParams::odd, "", any(),
+      option("odd", &PolynomialParams::odd, "", any(),
             "true: the coefficients are those of the odd powers a_1, a_3, ..."));
 };
 

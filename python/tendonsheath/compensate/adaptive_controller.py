@@ -93,7 +93,7 @@ class AdaptiveController(EngineCompensator, core.AdaptiveController):  # type: i
         if feedforward_model is not None:
             require_model(who, feedforward_model, (Backlash, BoucWenBacklash), "feedforward_model")
             ff = core.BacklashInverseParams()
-            for key in ("c_r", "c_l", "B_r", "B_l"):
+            for key in Backlash.param_names:  # the rows BacklashInverseParams takes (rows_of)
                 setattr(ff, key, feedforward_model.params[key])
             ff.smoothing = number(who, "smoothing", smoothing)
             p.feedforward = ff

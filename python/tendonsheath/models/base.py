@@ -74,6 +74,9 @@ class HysteresisModel(PythonObject, _ControlBlock):
 
     Parameters
     ----------
+    *args
+        The parameters in the order of the signature: taken by a model built from its table
+        (``models/_param_table.py``), which names them; refused here.
     **values
         The subclass's parameters (``param_names``) and options (``option_names``) by name; a
         name left out or given as None keeps the C++ default.
@@ -92,10 +95,13 @@ class HysteresisModel(PythonObject, _ControlBlock):
     # status() and simulate(...).status report each step's Status (false: linear blocks, whose
     # result's status is None)
     reports_status: ClassVar[bool] = True
+    # parameters whose default is derived from the others' (None in the signature; _core_values
+    # derives it)
+    derived_params: ClassVar[tuple[str, ...]] = ()
     # parameters a saved file may hold as null (all others must be present and not null)
     nullable_params: ClassVar[tuple[str, ...]] = ()
-    # parameters added after files were saved: a file without one loads with this value
-    added_params: ClassVar[dict[str, Any]] = {}
+    # parameters added after files were saved: a file without one loads with the table's default
+    added_params: ClassVar[tuple[str, ...]] = ()
     # parameters whose saved value is text (a name), not a number
     text_params: ClassVar[tuple[str, ...]] = ()
     # signal names of to_control()'s system
@@ -116,7 +122,9 @@ class HysteresisModel(PythonObject, _ControlBlock):
         if "to_dict" in vars(cls):  # every model's file holds its input range
             cls.to_dict = _with_input_range(cls.to_dict)
 
-    def __init__(self, **values: Any) -> None:
+    def __init__(self, *args: Any, **values: Any) -> None:
+        if args:  # a model built from its table maps them to names first (_param_table.py)
+            raise TypeError(f"{type(self).__name__}: give the parameters by name")
         unknown = set(values) - set(self.param_names) - set(self.option_names)
         if unknown:  # an unknown keyword: TypeError, as Python says for any function
             raise TypeError(
@@ -141,18 +149,24 @@ class HysteresisModel(PythonObject, _ControlBlock):
         model whose struct holds a value otherwise, a code or a nested struct, converts it)."""
         return dict(values)
 
+    @classmethod
+    def _python_value(cls, name: str, value: Any) -> Any:
+        """A value of the C++ struct's field ``name`` as Python shows it (in ``params``,
+        ``options``, the signature's defaults): a model whose field holds a code overrides it."""
+        return _plain(value)
+
     # -- parameters ------------------------------------------------------------------
     @property
     def params(self) -> dict[str, Any]:
         """The identifiable parameters, as a dict (a copy)."""
         s = self.params_struct()
-        return {k: _plain(getattr(s, k)) for k in self.param_names}
+        return {k: self._python_value(k, getattr(s, k)) for k in self.param_names}
 
     @property
     def options(self) -> dict[str, Any]:
         """The numerical options (not identified), as a dict (a copy)."""
         s = self.params_struct()
-        return {k: _plain(getattr(s, k)) for k in self.option_names}
+        return {k: self._python_value(k, getattr(s, k)) for k in self.option_names}
 
     def params_struct(self) -> Any:
         """The parameters and options as the C++ core holds them (its ``*Params`` struct, a
@@ -477,8 +491,9 @@ def _saved_params(model_cls, data: dict[str, Any]) -> dict[str, Any]:
         raise ValueError(
             f"{name}: unknown parameter(s) {unknown}; expected {list(model_cls.param_names)}"
         )
-    params = {**model_cls.added_params, **params}
-    missing = [k for k in model_cls.param_names if k not in params]
+    missing = [
+        k for k in model_cls.param_names if k not in params and k not in model_cls.added_params
+    ]
     if missing:
         raise ValueError(f"{name} file: parameter(s) {missing} missing from 'params'")
     for key, value in params.items():

@@ -3,35 +3,21 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from .._args import number
 from . import _bound as core
+from ._param_table import from_table, table_default
 from .base import HysteresisModel
 
 
+@from_table  # param_names, option_names, the signature, the defaults, the Parameters section
 class BoucWenBacklash(HysteresisModel, core.BoucWenBacklash):  # type: ignore[misc]
     """y = phi c_r (x - B_r) + (1 - phi) c_l (x + B_l), phi = (1 + w)/2, w in [-1, 1].
 
     dw = rho [dx - sigma |dx| |w|^(n-1) w + (sigma - 1) dx |w|^n]. ``rho`` defaults to
     2 / (B_r + B_l). Larger n makes the dead zone flatter (n -> inf tends to Backlash).
     ``max_step`` and ``max_substeps`` set the RK4 sub-stepping in x (numerical options).
-
-    Parameters
-    ----------
-    c_r, c_l : float, default 1.0
-        Slopes of the rising and falling branches (> 0).
-    B_r, B_l : float, default 0.1
-        Dead-zone offsets on the rising and falling side (input unit), >= 0.
-    rho : float, optional
-        Rate of the state w per unit input, > 0; default 2 / (B_r + B_l).
-    sigma : float, default 1.0
-        Shape of the transitions, >= 0.5.
-    n : float, default 4.0
-        Flatness of the dead zone (>= 1).
-    max_step : float, default 0.05
-        Largest RK4 sub-step in x (input unit).
-    max_substeps : int, default 256
-        Most RK4 sub-steps per sample.
 
     Raises
     ------
@@ -41,34 +27,15 @@ class BoucWenBacklash(HysteresisModel, core.BoucWenBacklash):  # type: ignore[mi
     """
 
     _core_params = core.BoucWenBacklashParams
-    param_names = ("c_r", "c_l", "B_r", "B_l", "rho", "sigma", "n")
-    option_names = ("max_step", "max_substeps")
+    derived_params = ("rho",)  # None: 2 / (B_r + B_l)
 
-    def __init__(
-        self,
-        c_r: float = 1.0,
-        c_l: float = 1.0,
-        B_r: float = 0.1,
-        B_l: float = 0.1,
-        rho: float | None = None,
-        sigma: float = 1.0,
-        n: float = 4.0,
-        max_step: float = 0.05,
-        max_substeps: int = 256,
-    ):
-        if rho is None:
-            rho = _default_rho(B_r, B_l)
-        super().__init__(
-            c_r=c_r,
-            c_l=c_l,
-            B_r=B_r,
-            B_l=B_l,
-            rho=rho,
-            sigma=sigma,
-            n=n,
-            max_step=max_step,
-            max_substeps=max_substeps,
-        )
+    @classmethod
+    def _core_values(cls, values: dict[str, Any]) -> dict[str, Any]:
+        if values.get("rho") is not None:
+            return values
+        B_r = values.get("B_r", table_default(cls, "B_r"))
+        B_l = values.get("B_l", table_default(cls, "B_l"))
+        return {**values, "rho": _default_rho(B_r, B_l)}
 
 
 def _default_rho(B_r, B_l) -> float | None:

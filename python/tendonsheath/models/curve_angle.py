@@ -12,12 +12,14 @@ from ..plant import physics
 from ..plant.route import Route
 from ..simulation_result import SimulationResult
 from . import _bound as core
+from ._param_table import from_table
 from .base import HysteresisModel
 
 # saved files' old parameter keys (old -> new, docs/vocabulary.md): such files still load
 _SAVED_AS = {"load": "load_force", "spring": "load_stiffness"}
 
 
+@from_table  # param_names, the signature, the defaults and the Parameters section
 class CurveAngleModel(HysteresisModel, core.CurveAngleModel):  # type: ignore[misc]
     """Distal angle of a pull-pull TSM from the motor angle and the route's curve angle.
 
@@ -42,28 +44,9 @@ class CurveAngleModel(HysteresisModel, core.CurveAngleModel):  # type: ignore[mi
     tanh(a/2)/a becomes g G e^{-a}/(g + G e^{-2a}). Only the route's shape counts (g, G are
     normalised by its length); the model's ``length`` sets T0 L/EA as before.
 
-    Parameters
-    ----------
-    friction : float, default 0.1
-        Friction coefficient mu of the tendon in the sheath.
-    stiffness : float, default 2.4e4
-        Axial stiffness EA of the tendon (N).
-    pretension : float, default 10.0
-        Pretension T0 (N).
-    length : float, default 1.2
-        Sheath length L (m).
-    load_force : float, default 0.0
-        F_L (N): constant distal load at the tendon, positive resisting forward motion.
-    load_stiffness : float, default 0.0
-        k_e (N/m): environment stiffness at the tendon.
-    proximal_radius : float, default 5e-3
-        Motor pulley radius r_p (m).
-    distal_radius : float, default 5e-3
-        Joint pulley radius r_d (m).
-    play : float, default 0.0
-        Motor-side play (a gearhead's backlash), total width in rad at the motor, >= 0: a dead
-        zone in series with the tendons', the same at every curve angle (held at 0 by
-        ``identify`` unless freed; curve angles that differ tell it from the tendons').
+    ``play`` (a gearhead's backlash) is a dead zone
+    in series with the tendons', the same at every curve angle (held at 0 by ``identify``
+    unless freed; curve angles that differ tell it from the tendons').
 
     Notes
     -----
@@ -76,45 +59,10 @@ class CurveAngleModel(HysteresisModel, core.CurveAngleModel):  # type: ignore[mi
     """
 
     _core_params = core.CurveAngleParams
-    param_names = (
-        "friction",
-        "stiffness",
-        "pretension",
-        "length",
-        "load_force",
-        "load_stiffness",
-        "proximal_radius",
-        "distal_radius",
-        "play",
-    )
     uses_curve_angle = True
-    added_params = {"play": 0.0}  # files saved before the play was a parameter
+    added_params = ("play",)  # files saved before the play was a parameter: its default
     control_inputs = ("x", "curve_angle")
     renamed_params = _SAVED_AS
-
-    def __init__(
-        self,
-        friction: float = 0.1,
-        stiffness: float = 2.4e4,
-        pretension: float = 10.0,
-        length: float = 1.2,
-        load_force: float = 0.0,
-        load_stiffness: float = 0.0,
-        proximal_radius: float = 5e-3,
-        distal_radius: float = 5e-3,
-        play: float = 0.0,
-    ):
-        super().__init__(
-            friction=friction,
-            stiffness=stiffness,
-            pretension=pretension,
-            length=length,
-            load_force=load_force,
-            load_stiffness=load_stiffness,
-            proximal_radius=proximal_radius,
-            distal_radius=distal_radius,
-            play=play,
-        )
 
     def simulate(  # type: ignore[override]  # curve_angle is its input
         self,

@@ -10,44 +10,58 @@ import numpy as np
 from .._args import number_array
 from .._typing import ArrayLike, FloatArray
 from . import _bound as core
+from ._param_table import from_table, table_default
 from .base import HysteresisModel
 
 _ENVELOPE = ("a", "b", "c", "d")
-_FLAT = tuple(f"{side}_{k}" for side in ("rising", "falling") for k in _ENVELOPE)
+_ROWS = core.GeneralizedPrandtlIshlinskiiParams.fields()
+# the envelope rows (rising, falling), each saved flat as <side>_a ... <side>_d
+_SIDES = tuple(r["name"] for r in _ROWS if isinstance(r["default"], core.Envelope))
+_FLAT = tuple(f"{side}_{k}" for side in _SIDES for k in _ENVELOPE)
 
 
 class _GeneralizedBase(HysteresisModel):
-    param_names = (*_FLAT, "thresholds", "weights")
+    param_names = tuple(n for r in _ROWS for n in (_FLAT if r["name"] == _SIDES[0] else ()))
+    param_names += tuple(r["name"] for r in _ROWS if r["name"] not in _SIDES)
     option_names = ("envelope_range",)
 
     def __init__(
         self,
-        rising: Sequence[float] | FloatArray = (1.0, 1.0, 0.0, 0.0),
-        falling: Sequence[float] | FloatArray = (1.0, 1.0, 0.0, 0.0),
-        thresholds: ArrayLike = (0.0, 0.05, 0.1, 0.2),
-        weights: ArrayLike = (0.6, 0.2, 0.1, 0.1),
+        rising: Sequence[float] | FloatArray | None = None,
+        falling: Sequence[float] | FloatArray | None = None,
+        thresholds: ArrayLike | None = None,
+        weights: ArrayLike | None = None,
         envelope_range: Sequence[float] | None = None,
         **flat: float,
     ):
+        who = type(self).__name__
+        values: dict[str, Any] = {}
         for side, env in (("rising", rising), ("falling", falling)):
+            if env is None:
+                env = table_default(type(self), side)
             if np.ndim(env) != 1 or len(env) != len(_ENVELOPE):
                 raise ValueError(
-                    f"{type(self).__name__}: {side} must be the 4 envelope coefficients "
-                    f"(a, b, c, d) (got {env!r})"
+                    f"{who}: {side} must be the 4 envelope coefficients (a, b, c, d) (got {env!r})"
                 )
-        values = dict(zip(_FLAT, [*rising, *falling], strict=True))
+            values.update(zip((f"{side}_{k}" for k in _ENVELOPE), env, strict=True))
         values.update(flat)
-        who = type(self).__name__
-        values["thresholds"] = [float(v) for v in number_array(who, "thresholds", thresholds)]
-        values["weights"] = [float(v) for v in number_array(who, "weights", weights)]
+        for name, given in (("thresholds", thresholds), ("weights", weights)):
+            if given is not None:
+                values[name] = [float(v) for v in number_array(who, name, given)]
         values["envelope_range"] = _checked_range(who, envelope_range)
         super().__init__(**values)
+
+    @classmethod
+    def _python_value(cls, name: str, value: Any) -> Any:
+        if isinstance(value, core.Envelope):  # rising, falling: (a, b, c, d)
+            return [float(getattr(value, k)) for k in _ENVELOPE]
+        return super()._python_value(name, value)
 
     @classmethod
     def _core_values(cls, values: dict[str, Any]) -> dict[str, Any]:
         out = {k: v for k, v in values.items() if k not in (*_FLAT, "envelope_range")}
         span = values.get("envelope_range")
-        for side in ("rising", "falling"):
+        for side in _SIDES:
             env = core.Envelope()
             for k in _ENVELOPE:
                 key = f"{side}_{k}"
@@ -72,13 +86,9 @@ class _GeneralizedBase(HysteresisModel):
     def params(self) -> dict[str, Any]:
         """The flat envelope coefficients, thresholds and weights, as a dict (a copy)."""
         s = self.params_struct()
-        out = {
-            f"{side}_{k}": getattr(getattr(s, side), k)
-            for side in ("rising", "falling")
-            for k in _ENVELOPE
-        }
-        out["thresholds"] = [float(v) for v in s.thresholds]
-        out["weights"] = [float(v) for v in s.weights]
+        out = {f"{side}_{k}": getattr(getattr(s, side), k) for side in _SIDES for k in _ENVELOPE}
+        for name in self.param_names[len(_FLAT) :]:  # the plays' thresholds and weights
+            out[name] = [float(v) for v in getattr(s, name)]
         return out
 
     def envelopes(self, x: ArrayLike) -> tuple[FloatArray, FloatArray]:
@@ -98,10 +108,7 @@ class _GeneralizedBase(HysteresisModel):
         x = np.asarray(x, dtype=float)
         span = self.options.get("envelope_range")
         lo, hi = (-np.inf, np.inf) if span is None else span
-        up, down = (
-            _envelope(x, [p[f"{side}_{k}"] for k in _ENVELOPE], lo, hi)
-            for side in ("rising", "falling")
-        )
+        up, down = (_envelope(x, [p[f"{side}_{k}"] for k in _ENVELOPE], lo, hi) for side in _SIDES)
         return up, down
 
 
@@ -138,6 +145,7 @@ def _checked_range(who: str, value: Sequence[float] | None) -> list[float] | Non
     return [lo, hi]
 
 
+@from_table  # the signature's defaults and the rows' Parameters entries
 class GeneralizedPrandtlIshlinskii(_GeneralizedBase, core.GeneralizedPrandtlIshlinskii):  # type: ignore[misc]
     """Plays bounded by saturating envelopes gamma(x) = a tanh(b (x - c)) + d, one for rising
     and one for falling input; the threshold-0 play is the centre line between them. Beyond
@@ -151,13 +159,6 @@ class GeneralizedPrandtlIshlinskii(_GeneralizedBase, core.GeneralizedPrandtlIshl
 
     Parameters
     ----------
-    rising, falling : sequence of 4 float, default (1.0, 1.0, 0.0, 0.0)
-        Envelope coefficients (a, b, c, d) of gamma(x) = a tanh(b (x - c)) + d for rising and
-        falling input.
-    thresholds : sequence of float, default (0.0, 0.05, 0.1, 0.2)
-        Play thresholds (input unit): the first 0, increasing.
-    weights : sequence of float, default (0.6, 0.2, 0.1, 0.1)
-        Play weights, one per threshold: >= 0, weights[0] > 0.
     envelope_range : (float, float), optional
         The input range (lo, hi) of both envelopes' tanh; beyond it each envelope continues
         along its tangent line (continuous, with a continuous slope, still increasing) instead
@@ -187,6 +188,7 @@ class GeneralizedPrandtlIshlinskii(_GeneralizedBase, core.GeneralizedPrandtlIshl
         return GeneralizedPrandtlIshlinskiiInverse(**self.params)
 
 
+@from_table  # the signature's defaults and the rows' Parameters entries
 class GeneralizedPrandtlIshlinskiiInverse(  # type: ignore[misc]
     _GeneralizedBase, core.GeneralizedPrandtlIshlinskiiInverse
 ):
@@ -195,13 +197,6 @@ class GeneralizedPrandtlIshlinskiiInverse(  # type: ignore[misc]
 
     Parameters
     ----------
-    rising, falling : sequence of 4 float, default (1.0, 1.0, 0.0, 0.0)
-        Envelope coefficients (a, b, c, d) of gamma(x) = a tanh(b (x - c)) + d for rising and
-        falling input.
-    thresholds : sequence of float, default (0.0, 0.05, 0.1, 0.2)
-        Play thresholds (input unit): the first 0, increasing.
-    weights : sequence of float, default (0.6, 0.2, 0.1, 0.1)
-        Play weights, one per threshold: >= 0, weights[0] > 0.
     envelope_range : (float, float), optional
         The input range (lo, hi) of both envelopes' tanh; beyond it each envelope continues
         along its tangent line (continuous, with a continuous slope, still increasing) instead

@@ -13,6 +13,7 @@ from .._sampling import fft_upsample, is_periodic, uniform_step
 from .._typing import ArrayLike
 from ..simulation_result import SimulationResult
 from . import _bound as core
+from ._param_table import from_table
 from .base import HysteresisModel
 
 _INTERPOLATIONS = ("linear", "hold", "bandlimited")
@@ -24,6 +25,7 @@ class UnboundedStateWarning(UserWarning):
     hysteretic force z of a HystereticOscillator stays bounded."""
 
 
+@from_table  # param_names, option_names, the signature, the defaults, the Parameters section
 class HystereticOscillator(HysteresisModel, core.HystereticOscillator):  # type: ignore[misc]
     """Bouc-Wen oscillator: m y'' + c y' + k y + z = u, with the hysteretic force z:
 
@@ -41,38 +43,13 @@ class HystereticOscillator(HysteresisModel, core.HystereticOscillator):  # type:
 
     ``input_interpolation`` (the input reconstruction between samples):
 
-    - ``"linear"`` (default) or ``"hold"``;
+    - ``"linear"`` (the default) or ``"hold"``;
     - ``"bandlimited"``: the input is treated as band-limited. :meth:`simulate` upsamples a
       periodic record exactly by FFT zero padding (``periodic=True``, or detected: the
       record's periodic extension has no energy above 0.4 of the sampling rate) and
       otherwise uses a Kaiser-windowed sinc of half-width ``lookahead`` samples. The
       streaming :meth:`step` uses the same windowed sinc, so its output lags the input by
       :attr:`delay` = ``lookahead - 1`` samples. Needs uniform sampling.
-
-    Parameters
-    ----------
-    m : float, default 1.0
-        Mass, > 0.
-    c : float, default 0.1
-        Viscous damping, >= 0.
-    k : float, default 1.0
-        Linear stiffness, >= 0 (k + alpha > 0).
-    alpha : float, default 1.0
-        Hysteretic stiffness of z, >= 0.
-    beta : float, default 1.0
-        Scale of the hysteretic terms, >= 0.
-    gamma, delta : float, default 0.5
-        Shape of the loop (any sign of gamma + delta; see above).
-    nu : float, default 1.0
-        Exponent of |z|, >= 1.
-    substeps : int, default 4
-        Least RK4 sub-steps per sample.
-    max_substeps : int, default 4096
-        Most RK4 sub-steps per sample, >= substeps.
-    input_interpolation : {"linear", "hold", "bandlimited"}, default "linear"
-        The input reconstruction between samples.
-    lookahead : int, default 16
-        Half-width of the band-limited sinc (samples).
 
     Raises
     ------
@@ -81,63 +58,25 @@ class HystereticOscillator(HysteresisModel, core.HystereticOscillator):  # type:
     """
 
     _core_params = core.HystereticOscillatorParams
-    param_names = ("m", "c", "k", "alpha", "beta", "gamma", "delta", "nu")
-    option_names = ("substeps", "max_substeps", "input_interpolation", "lookahead")
     rate_independent = False  # type: ignore[misc]
-
-    def __init__(
-        self,
-        m: float = 1.0,
-        c: float = 0.1,
-        k: float = 1.0,
-        alpha: float = 1.0,
-        beta: float = 1.0,
-        gamma: float = 0.5,
-        delta: float = 0.5,
-        nu: float = 1.0,
-        substeps: int = 4,
-        max_substeps: int = 4096,
-        input_interpolation: str = "linear",
-        lookahead: int = 16,
-    ):
-        super().__init__(
-            m=m,
-            c=c,
-            k=k,
-            alpha=alpha,
-            beta=beta,
-            gamma=gamma,
-            delta=delta,
-            nu=nu,
-            substeps=substeps,
-            max_substeps=max_substeps,
-            input_interpolation=input_interpolation,
-            lookahead=lookahead,
-        )
 
     @classmethod
     def _core_values(cls, values: dict[str, Any]) -> dict[str, Any]:
-        values = dict(values)
-        mode = values.pop("input_interpolation", "linear")
+        if "input_interpolation" not in values:
+            return values
+        mode = values["input_interpolation"]
         if mode not in _INTERPOLATIONS:
             raise ValueError(
                 f"HystereticOscillator: input_interpolation must be one of {_INTERPOLATIONS} "
                 f"(got {mode!r})"
             )
-        values["input_interpolation"] = _CODES[mode]
-        return values
+        return {**values, "input_interpolation": _CODES[mode]}
 
-    @property
-    def options(self) -> dict[str, Any]:
-        """substeps, max_substeps, input_interpolation and lookahead, as a dict (a copy)."""
-        s = self.params_struct()
-        mode = {v: k for k, v in _CODES.items()}[s.input_interpolation]
-        return {
-            "substeps": s.substeps,
-            "max_substeps": s.max_substeps,
-            "input_interpolation": mode,
-            "lookahead": s.lookahead,
-        }
+    @classmethod
+    def _python_value(cls, name: str, value: Any) -> Any:
+        if name == "input_interpolation":  # the C++ field holds its code
+            return {code: mode for mode, code in _CODES.items()}[value]
+        return super()._python_value(name, value)
 
     @property
     def input_interpolation(self) -> str:

@@ -9,10 +9,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._args import integer, number
 from .._typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
+from . import _bound as core
+from ._param_table import checked_values, from_table, table_rows
 from .base import HysteresisModel
 
 if TYPE_CHECKING:
@@ -20,81 +21,28 @@ if TYPE_CHECKING:
 
 #: wrap angle of the internal uniform route (rad); only friction * wrap angle matters on it
 WRAP = 2.0 * math.pi
-_LIMITS = {  # (low, high, low included)
-    "friction_angle": (0.0, 20.0, False),
-    "backlash": (0.0, math.inf, False),
-    "viscous_time": (0.0, math.inf, True),
-    "gain": (-math.inf, math.inf, False),
-    "offset": (-math.inf, math.inf, False),
-}
 
 
-class PlantModel(HysteresisModel):
-    """A :class:`~tendonsheath.PullPullPlant` reduced to the groups its input/output data can
-    identify, in the data's own units (the pulley angle *is* the input):
+class _GreyBox(HysteresisModel):
+    """The grey-box model's parameters, checked against the table and held here (it runs a
+    PullPullPlant; the C++ PlantModel, ModelInverse's, takes the same table)."""
 
-    - ``friction_angle`` mu Theta (rad): the capstan exponent, which shapes the transition
-      after a reversal (the route is a uniform arc; only the product matters on it);
-    - ``backlash`` e_b: half the dead zone, in input units; the tendon compliance follows as
-      L / EA = e_b / (T0 tanh(mu Theta / 2)) (spec A7; pretension, length and radii are
-      scale choices that the data cannot separate from it);
-    - ``viscous_time`` (s): the sheath's viscous drag relative to the tendon stiffness,
-      c_v L^2 / EA, which widens the loop with the rate (0: quasi-static);
-    - ``gain`` and ``offset``: the output map y = offset + gain * q_out (any sign, units).
+    _core_params = core.PlantModelParams
 
-    ``elements`` (option, default 10): the sheath's element count; a small one keeps the
-    model cheap enough to identify in a model comparison.
-
-    The tendons are linear springs: where the viscous drag (``viscous_time`` times the speed)
-    exceeds the dead zone a tendon's tension passes below zero. The model then goes on as an
-    effective one (no :class:`~tendonsheath.plant.SlackWarning`); ``status`` and
-    ``simulate(...).status`` flags those samples SLACK.
-
-    Parameters
-    ----------
-    friction_angle : float, default 1.0
-        mu Theta (rad), in (0, 20).
-    backlash : float, default 0.1
-        Half the dead zone e_b (input unit), > 0.
-    viscous_time : float, default 0.0
-        c_v L^2 / EA (s), >= 0.
-    gain : float, default 1.0
-        Output gain, finite and not 0.
-    offset : float, default 0.0
-        Output offset (output unit).
-    elements : int, default 10
-        The sheath's element count, >= 2.
-
-    Raises
-    ------
-    ValueError
-        A value that is not a number or is out of its range.
-    """
-
-    param_names = ("friction_angle", "backlash", "viscous_time", "gain", "offset")
-    option_names = ("elements",)
-    rate_independent = False
-
-    def __init__(
-        self,
-        friction_angle: float = 1.0,
-        backlash: float = 0.1,
-        viscous_time: float = 0.0,
-        gain: float = 1.0,
-        offset: float = 0.0,
-        elements: int = 10,
-    ):
-        values = {
-            "friction_angle": friction_angle,
-            "backlash": backlash,
-            "viscous_time": viscous_time,
-            "gain": gain,
-            "offset": offset,
-        }
-        self._values = {k: _checked(k, v) for k, v in values.items()}
-        if integer("PlantModel", "elements", elements) < 2:
-            raise ValueError(f"PlantModel: elements must be >= 2 (got {elements})")
-        self._elements: int = int(elements)
+    def __init__(self, **values: Any):
+        unknown = sorted(set(values) - set(self.param_names) - set(self.option_names))
+        if unknown:
+            raise TypeError(
+                f"PlantModel: unknown parameter(s) {unknown}; "
+                f"expected {list(self.param_names + self.option_names)}"
+            )
+        rows = table_rows(type(self))
+        given = {r["name"]: values.get(r["name"], r["default"]) for r in rows}
+        checked = checked_values("PlantModel", rows, given)
+        if checked["gain"] == 0.0:  # the table's "finite and != 0": the zero by hand
+            raise ValueError("PlantModel: gain must be finite and not 0 (got 0)")
+        self._values = {k: float(checked[k]) for k in self.param_names}
+        self._elements: int = int(checked["elements"])
         self._plant: PullPullPlant = self._make_plant()
 
     def _make_plant(self) -> PullPullPlant:
@@ -119,6 +67,37 @@ class PlantModel(HysteresisModel):
             sheath_viscosity=viscosity if viscosity > 0 else None,
         )
 
+
+@from_table  # param_names, option_names, the signature, the defaults, the Parameters section
+class PlantModel(_GreyBox):
+    """A :class:`~tendonsheath.PullPullPlant` reduced to the groups its input/output data can
+    identify, in the data's own units (the pulley angle *is* the input):
+
+    - ``friction_angle`` mu Theta (rad): the capstan exponent, which shapes the transition
+      after a reversal (the route is a uniform arc; only the product matters on it);
+    - ``backlash`` e_b: half the dead zone, in input units; the tendon compliance follows as
+      L / EA = e_b / (T0 tanh(mu Theta / 2)) (spec A7; pretension, length and radii are
+      scale choices that the data cannot separate from it);
+    - ``viscous_time`` (s): the sheath's viscous drag relative to the tendon stiffness,
+      c_v L^2 / EA, which widens the loop with the rate (0: quasi-static);
+    - ``gain`` and ``offset``: the output map y = offset + gain * q_out (any sign, units).
+
+    ``elements`` (an option): the sheath's element count; a small one keeps the
+    model cheap enough to identify in a model comparison.
+
+    The tendons are linear springs: where the viscous drag (``viscous_time`` times the speed)
+    exceeds the dead zone a tendon's tension passes below zero. The model then goes on as an
+    effective one (no :class:`~tendonsheath.plant.SlackWarning`); ``status`` and
+    ``simulate(...).status`` flags those samples SLACK.
+
+    Raises
+    ------
+    ValueError
+        A value that is not a number or is out of its range.
+    """
+
+    rate_independent = False
+
     @property
     def params(self) -> dict[str, Any]:
         """The five identifiable groups, as a dict (a copy)."""
@@ -126,8 +105,8 @@ class PlantModel(HysteresisModel):
 
     @property
     def options(self) -> dict[str, Any]:
-        """``{"elements": ...}``."""
-        return {"elements": self._elements}
+        """The sheath's element count, as a dict."""
+        return {name: self._elements for name in self.option_names}
 
     def simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
         """Output for the input samples x at times t (needed), from rest at x[0].
@@ -186,21 +165,7 @@ class PlantModel(HysteresisModel):
 
     def __repr__(self) -> str:
         inner = ", ".join(f"{k}={v:.6g}" for k, v in self._values.items())
-        return f"PlantModel({inner}, elements={self._elements})"
-
-
-def _checked(name: str, value) -> float:
-    v = number("PlantModel", name, value)
-    lo, hi, closed = _LIMITS[name]
-    ok = math.isfinite(v) and (lo <= v if closed else lo < v) and v < hi
-    if name == "gain":
-        ok = math.isfinite(v) and v != 0.0
-    if name == "offset":
-        ok = math.isfinite(v)
-    if not ok:
-        what = "finite and not 0" if name == "gain" else f"in {'[' if closed else '('}{lo}, {hi})"
-        raise ValueError(f"PlantModel: {name} must be {what} (got {v})")
-    return v
+        return f"PlantModel({inner}, {self.option_names[0]}={self._elements})"
 
 
 __all__ = ["PlantModel", "WRAP"]

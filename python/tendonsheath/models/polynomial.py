@@ -2,14 +2,18 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from .._args import integer
 from .._typing import ArrayLike, FloatArray
 from . import _bound as core
+from ._param_table import from_table, table_default
 from .base import HysteresisModel
 
 
+@from_table  # param_names, option_names, the signature and the rows' Parameters entries
 class Polynomial(HysteresisModel, core.Polynomial):  # type: ignore[misc]
     """y = sum_k a_k u^k: ``Polynomial(3)`` is the identity cubic (a = [0, 1, 0, 0]);
     ``odd=True`` keeps odd powers only (coefficients a_1, a_3, ...).
@@ -19,11 +23,8 @@ class Polynomial(HysteresisModel, core.Polynomial):  # type: ignore[misc]
     Parameters
     ----------
     degree : int, optional
-        Degree >= 1 of the identity polynomial; ignored when coefficients are given.
-    coefficients : array_like of float, optional
-        a_0, a_1, ... (a_1, a_3, ... with ``odd=True``).
-    odd : bool, default False
-        Keep odd powers only.
+        Degree >= 1 of the identity polynomial (its coefficients are then derived); ignored
+        when coefficients are given.
 
     Raises
     ------
@@ -32,12 +33,12 @@ class Polynomial(HysteresisModel, core.Polynomial):  # type: ignore[misc]
     """
 
     _core_params = core.PolynomialParams
-    param_names = ("coefficients",)
-    option_names = ("odd",)
+    derived_params = ("coefficients",)  # None: the identity polynomial of the degree
 
     def __init__(
-        self, degree: int | None = None, coefficients: ArrayLike | None = None, odd: bool = False
+        self, degree: int | None = None, coefficients: ArrayLike | None = None, **values: Any
     ):
+        odd = bool(values.get("odd", table_default(type(self), "odd")))
         if coefficients is None:
             if degree is None or integer("Polynomial", "degree", degree) < 1:
                 raise ValueError("Polynomial: give a degree >= 1 or the coefficients")
@@ -45,8 +46,8 @@ class Polynomial(HysteresisModel, core.Polynomial):  # type: ignore[misc]
             count = (degree + 1) // 2 if odd else degree + 1
             coefficients = np.zeros(count)
             coefficients[0 if odd else 1] = 1.0
-        coefficients = [float(c) for c in np.atleast_1d(np.asarray(coefficients, dtype=float))]
-        super().__init__(coefficients=coefficients, odd=bool(odd))
+        values["coefficients"] = [float(c) for c in np.atleast_1d(np.asarray(coefficients, float))]
+        super().__init__(**values)
 
     @property
     def degree(self) -> int:

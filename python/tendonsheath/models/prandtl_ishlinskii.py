@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from .._args import number_array
 from .._typing import ArrayLike
 from . import _bound as core
+from ._param_table import from_table
 from .base import HysteresisModel
 
 
@@ -14,32 +17,19 @@ class _PlayOperators(HysteresisModel):
     """The weighted plays' parameters, shared by the operator and its inverse."""
 
     _core_params = core.PrandtlIshlinskiiParams
-    param_names = ("thresholds", "weights")
 
-    def __init__(
-        self,
-        thresholds: ArrayLike = (0.0, 0.05, 0.1, 0.15, 0.2),
-        weights: ArrayLike = (0.5, 0.2, 0.15, 0.1, 0.05),
-    ):
-        super().__init__(
-            thresholds=_vector(self, "thresholds", thresholds),
-            weights=_vector(self, "weights", weights),
-        )
+    @classmethod
+    def _core_values(cls, values: dict[str, Any]) -> dict[str, Any]:
+        return {k: None if v is None else _vector(cls, k, v) for k, v in values.items()}
 
 
+@from_table  # param_names, the signature, the defaults and the Parameters section
 class PrandtlIshlinskii(_PlayOperators, core.PrandtlIshlinskii):  # type: ignore[misc]
     """y = sum_i weights[i] * play_{thresholds[i]}[x].
 
     Thresholds: 0 <= r_0 < r_1 < ...; the partial sums of the weights must be > 0.
     With r_0 = 0 too, the loading curve is strictly increasing and the operator is
     exactly invertible: see :meth:`inverse`. Plays start on the virgin curve from x = 0.
-
-    Parameters
-    ----------
-    thresholds : array_like of float, default (0.0, 0.05, 0.1, 0.15, 0.2)
-        Play thresholds r_i (input unit), 1-D, increasing from >= 0.
-    weights : array_like of float, default (0.5, 0.2, 0.15, 0.1, 0.05)
-        Play weights, one per threshold; partial sums > 0.
 
     Raises
     ------
@@ -93,18 +83,12 @@ class PrandtlIshlinskii(_PlayOperators, core.PrandtlIshlinskii):  # type: ignore
         return PrandtlIshlinskiiInverse(p["thresholds"], p["weights"])
 
 
+@from_table  # param_names, the signature, the defaults and the Parameters section
 class PrandtlIshlinskiiInverse(_PlayOperators, core.PrandtlIshlinskiiInverse):  # type: ignore[misc]
     """Exact inverse of :class:`PrandtlIshlinskii` with the same thresholds and weights.
 
     Each sample solves the piecewise-linear loading curve of the current play states
     exactly, so ``forward.simulate(t, inverse.simulate(t, y)) == y`` to rounding.
-
-    Parameters
-    ----------
-    thresholds : array_like of float, default (0.0, 0.05, 0.1, 0.15, 0.2)
-        Play thresholds r_i (input unit), 1-D, increasing from >= 0.
-    weights : array_like of float, default (0.5, 0.2, 0.15, 0.1, 0.05)
-        Play weights, one per threshold; partial sums > 0.
 
     Raises
     ------
@@ -124,8 +108,8 @@ class PrandtlIshlinskiiInverse(_PlayOperators, core.PrandtlIshlinskiiInverse):  
         return PrandtlIshlinskii(p["thresholds"], p["weights"])
 
 
-def _vector(model, name: str, values) -> list[float]:
-    arr = number_array(type(model).__name__, name, values)
+def _vector(cls: type, name: str, values) -> list[float]:
+    arr = number_array(cls.__name__, name, values)
     if arr.ndim != 1:
         raise ValueError(f"PrandtlIshlinskii: thresholds and weights must be 1-D (got {arr.shape})")
     return [float(v) for v in arr]

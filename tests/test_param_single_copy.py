@@ -1,0 +1,214 @@
+"""A model's parameters are written once, in its C++ parameter table (issue 37, item 2).
+
+The Python model classes take their names (``param_names``, ``option_names``, the saved file's
+keys), signatures, defaults and the numpydoc entries of their parameters from ``fields()``
+(``tendonsheath/models/_param_table.py``). This test reads the source of every module of
+``tendonsheath/models`` and fails where one writes again what a table already says:
+
+- a default: an argument or a dict key named as a row with a literal value;
+- the names: ``param_names``/``option_names`` assigned a literal naming a row, or a literal
+  list of two or more rows' names;
+- a forward by hand: a call keyword ``name=name`` for a row;
+- a docstring entry: a class docstring's Parameters section documenting a row.
+
+A self-check feeds it the Backlash module as it was written before (every one of these).
+"""
+
+from __future__ import annotations
+
+import ast
+import inspect
+from pathlib import Path
+
+import pytest
+
+import tendonsheath as ts
+from tendonsheath.models._param_table import from_table
+
+ROOT = Path(__file__).resolve().parents[1]
+MODELS = ROOT / "python" / "tendonsheath" / "models"
+
+
+def _module_rows() -> dict[str, set[str]]:
+    """module file name -> the row names of the tables its classes take."""
+    out: dict[str, set[str]] = {}
+    for name in dir(ts.models):
+        cls = getattr(ts.models, name)
+        struct = getattr(cls, "_core_params", None)
+        if not inspect.isclass(cls) or struct is None:
+            continue
+        file = Path(inspect.getfile(cls)).name
+        out.setdefault(file, set()).update(r["name"] for r in struct.fields())
+    return out
+
+
+def _literal(node: ast.AST | None) -> bool:
+    """A number, a string, a bool, or a tuple/list of them (None is "derived", not a copy)."""
+    if isinstance(node, ast.Constant):
+        return node.value is not None
+    if isinstance(node, ast.UnaryOp):
+        return _literal(node.operand)
+    if isinstance(node, ast.Tuple | ast.List):
+        return bool(node.elts) and all(_literal(e) for e in node.elts)
+    return False
+
+
+def _documented_rows(doc: str, rows: set[str]) -> list[str]:
+    """The rows a docstring's own Parameters section documents."""
+    lines = inspect.cleandoc(doc).splitlines()
+    found, inside = [], False
+    for i, line in enumerate(lines):
+        nxt = lines[i + 1] if i + 1 < len(lines) else ""
+        if line.strip() and set(nxt.strip()) == {"-"}:
+            inside = line.strip() == "Parameters"
+            continue
+        if inside and line and not line[0].isspace() and " : " in line:
+            names = [n.strip() for n in line.split(" : ")[0].split(",")]
+            found += [n for n in names if n in rows]
+    return found
+
+
+def copies(source: str, rows: set[str]) -> list[str]:
+    """What the module's source writes again of the rows: one line per finding."""
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        where = f"line {getattr(node, 'lineno', '?')}"
+        if isinstance(node, ast.FunctionDef):
+            args = node.args
+            positional = args.posonlyargs + args.args
+            pairs = list(
+                zip(positional[len(positional) - len(args.defaults) :], args.defaults, strict=True)
+            )
+            pairs += [
+                (a, d)
+                for a, d in zip(args.kwonlyargs, args.kw_defaults, strict=True)
+                if d is not None
+            ]
+            found += [
+                f"{where}: default of {a.arg} in {node.name}()"
+                for a, d in pairs
+                if a.arg in rows and _literal(d)
+            ]
+        elif isinstance(node, ast.Dict):
+            found += [
+                f"{where}: default of {k.value} in a dict"
+                for k, v in zip(node.keys, node.values, strict=True)
+                if isinstance(k, ast.Constant) and k.value in rows and _literal(v)
+            ]
+        elif isinstance(node, ast.Assign | ast.AnnAssign):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            for t in targets:
+                literal = isinstance(node.value, ast.Tuple | ast.List) and any(
+                    isinstance(e, ast.Constant) and e.value in rows for e in node.value.elts
+                )
+                if isinstance(t, ast.Name) and t.id in ("param_names", "option_names") and literal:
+                    found.append(f"{where}: {t.id} written by hand")
+        elif isinstance(node, ast.Tuple | ast.List):
+            named = [e.value for e in node.elts if isinstance(e, ast.Constant) and e.value in rows]
+            if len(named) >= 2:
+                found.append(f"{where}: the names {named} listed by hand")
+        elif isinstance(node, ast.Call):
+            found += [
+                f"{where}: {k.arg}={k.arg} forwarded by hand"
+                for k in node.keywords
+                if k.arg in rows and isinstance(k.value, ast.Name) and k.value.id == k.arg
+            ]
+        elif isinstance(node, ast.ClassDef):
+            doc = ast.get_docstring(node, clean=False) or ""
+            found += [
+                f"{where}: {name} documented by hand in {node.name}"
+                for name in _documented_rows(doc, rows)
+            ]
+    return found
+
+
+MODULE_ROWS = _module_rows()
+
+
+def test_every_table_model_module_is_scanned():
+    expected = {
+        "backlash.py",
+        "bouc_wen.py",
+        "bouc_wen_backlash.py",
+        "hysteretic_oscillator.py",
+        "prandtl_ishlinskii.py",
+        "generalized_prandtl_ishlinskii.py",
+        "polynomial.py",
+        "curve_angle.py",
+        "plant_model.py",
+    }
+    assert expected <= set(MODULE_ROWS)
+
+
+@pytest.mark.parametrize("module", sorted(MODULE_ROWS))
+def test_no_model_module_writes_a_row_twice(module):
+    source = (MODELS / module).read_text(encoding="utf-8")
+    assert not copies(source, MODULE_ROWS[module])
+
+
+def test_every_table_model_is_built_from_its_table():
+    """Each model class with a table is completed by from_table: its names, its signature's
+    defaults and its Parameters entries are the table's."""
+    for name in ts.models.__all__:
+        cls = getattr(ts.models, name)
+        if not inspect.isclass(cls) or getattr(cls, "_core_params", None) is None:
+            continue
+        rows = cls._core_params.fields()
+        names = {r["name"] for r in rows}
+        flat = set(cls.param_names) | set(cls.option_names)
+        assert flat == names or name.startswith("GeneralizedPrandtlIshlinskii"), name
+        signature = inspect.signature(cls)
+        for row in rows:
+            param = signature.parameters[row["name"]]
+            if param.default is not None:
+                assert param.default == cls._python_value(row["name"], row["default"]) or (
+                    param.default == tuple(row["default"])
+                ), (name, row["name"])
+            assert f"\n{row['name']} : " in "\n" + inspect.getdoc(cls), (name, row["name"])
+
+
+OLD_BACKLASH = '''
+class Backlash(HysteresisModel, core.Backlash):
+    """Exact piecewise backlash.
+
+    Parameters
+    ----------
+    c_r, c_l : float, default 1.0
+        Slopes of the rising and falling branches (> 0).
+    B_r, B_l : float, default 0.1
+        Half-widths of the band (input unit), >= 0.
+    """
+
+    _core_params = core.BacklashParams
+    param_names = ("c_r", "c_l", "B_r", "B_l")
+    added_params = {"B_l": 0.1}
+
+    def __init__(self, c_r: float = 1.0, c_l: float = 1.0, B_r: float = 0.1, B_l: float = 0.1):
+        super().__init__(c_r=c_r, c_l=c_l, B_r=B_r, B_l=B_l)
+'''
+
+
+def test_the_scan_can_fail():
+    """Self-check: the Backlash module as it was written before this test (each copy found)."""
+    found = copies(OLD_BACKLASH, {"c_r", "c_l", "B_r", "B_l"})
+    assert sum("default of" in f and "__init__" in f for f in found) == 4
+    assert sum("forwarded by hand" in f for f in found) == 4
+    assert sum("documented by hand" in f for f in found) == 4
+    assert any("param_names written by hand" in f for f in found)
+    assert any("listed by hand" in f for f in found)
+    assert any("default of B_l in a dict" in f for f in found)
+    assert not copies("x = {'c_r': None}\ndef f(B_r=None): pass\n", {"c_r", "B_r"})
+
+
+def test_from_table_needs_a_documented_python_only_argument():
+    """An argument in no table row and not in the class's own Parameters section is refused
+    when the class is made, not found later by the docs walk."""
+
+    class _Toy(ts.models.Backlash):
+        """A toy."""
+
+        def __init__(self, gain: float = 2.0, **values):
+            super().__init__(**values)
+
+    with pytest.raises(TypeError, match=r"_Toy: argument 'gain' is in no table row"):
+        from_table(_Toy)
