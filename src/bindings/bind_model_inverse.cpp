@@ -75,6 +75,7 @@ nb::list model_kinds(const nb::module_& m) {
     d["member"] = ts::PartMember<M>::name;  // the ModelPart property holding its parameters
     d["params"] = nb::borrow(nb::type<typename M::Params>());  // the bound parameter struct
     d["root_invertible"] = ts::root_invertible<M>::value;
+    d["angle_dependent_base"] = ts::angle_dependent_base<M>;
     constexpr bool vector = ts::has_param_vector<M>::value;
     d["param_vector"] = vector;
     // its batch kernels (bind_batch.cpp binds them for every model with a parameter vector)
@@ -182,7 +183,7 @@ void bind_model_inverse(nb::module_& m) {
       "model_kinds", [m]() { return model_kinds(m); },
       "The core's model list: per model class a dict of its kind (class name), member (the\n"
       "ModelPart property holding its parameters), params (the parameter struct),\n"
-      "root_invertible, param_vector, and population_cost / population_simulate (its batch\n"
+      "root_invertible, angle_dependent_base, param_vector, and population_cost / population_simulate (its batch\n"
       "kernels when it has a parameter vector, else None).");
 }
 

@@ -19,6 +19,15 @@ static_assert(std::is_same_v<ts::ForwardModel::First,
                                           ts::Polynomial, ts::PlantModel>>,
               "ForwardModel runs the root-invertible models of the list, in the list's order");
 
+static_assert(ts::angle_dependent_base<ts::Backlash> && ts::angle_dependent_base<ts::BoucWen> &&
+                  ts::angle_dependent_base<ts::BoucWenBacklash> &&
+                  ts::angle_dependent_base<ts::HystereticOscillator>,
+              "the models with an AngleDependent engine");
+static_assert(!ts::angle_dependent_base<ts::PrandtlIshlinskii> &&
+                  !ts::angle_dependent_base<ts::PlantModel> &&
+                  !ts::angle_dependent_base<ts::CurveAngleModel>,
+              "no AngleDependent engine of their own");
+
 TEST(ModelList, EachModelHasItsOwnPartMemberAndKind) {
   std::set<std::string> kinds, members;
   std::set<const void*> addresses;

@@ -162,12 +162,10 @@ inline double initial_angle(const AngleLaws& laws) {
 }
 
 // The engine of an AngleDependent over base M, built from the base parameters v at curve angle
-// theta: none unless an overload below builds one (the caller reports the base as refused).
+// theta: the overloads below (a model without one is no AngleDependent base: has_angle_engine).
 template <class M>
 std::optional<ModelInverse::Core> angle_engine(TypeTag<M>, const ModelPart&, const double*, double,
-                                               const InverseContext&) {
-  return std::nullopt;
-}
+                                               const InverseContext&) = delete;
 // Backlash, BoucWenBacklash: the direct inverse of their first four parameters
 template <class M>
 std::optional<ModelInverse::Core> direct_angle_engine(const ModelPart& p, const double* v,
@@ -206,6 +204,14 @@ inline std::optional<ModelInverse::Core> angle_engine(TypeTag<HystereticOscillat
   return AngleDependentInverse<OscillatorInverse>(OscillatorInverse(o, c.filter_hz), p.laws, theta);
 }
 
+template <class M, class = void>
+struct has_angle_engine : std::false_type {};
+template <class M>
+struct has_angle_engine<M, std::void_t<decltype(angle_engine(
+                               TypeTag<M>{}, std::declval<const ModelPart&>(),
+                               std::declval<const double*>(), 0.0,
+                               std::declval<const InverseContext&>()))>> : std::true_type {};
+
 inline ModelInverse::Core angle_dependent(const ModelPart& p, const InverseContext& c) {
   p.laws.validate(c.where.c_str());
   if (detail::failed()) return PassThrough{};  // without exceptions: no law read past the arrays
@@ -213,7 +219,10 @@ inline ModelInverse::Core angle_dependent(const ModelPart& p, const InverseConte
   double v[AngleLaws::kMaxParams];
   p.laws.at_angle(theta, v);
   std::optional<ModelInverse::Core> engine;
-  visit_model_kind(p.base, [&](auto tag) { engine = angle_engine(tag, p, v, theta, c); });
+  visit_model_kind(p.base, [&](auto tag) {
+    if constexpr (has_angle_engine<typename decltype(tag)::type>::value)
+      engine = angle_engine(tag, p, v, theta, c);
+  });
   if (engine) return std::move(*engine);
   detail::check_failed(c.where, "the inverse of an AngleDependent model takes a Backlash, "
                        "BoucWenBacklash, BoucWen or HystereticOscillator base (got '", p.base, "')");
@@ -341,6 +350,12 @@ inline ModelInverse unused_inverse() {
 }
 
 }  // namespace detail
+
+/// Whether model M of the list (model_list.hpp) can be the base of an AngleDependent model in
+/// make_model_inverse (Backlash, BoucWenBacklash, BoucWen, HystereticOscillator): it has an
+/// engine whose parameters follow the laws.
+template <class M>
+inline constexpr bool angle_dependent_base = detail::has_angle_engine<M>::value;
 
 /// The real-time inverse of model `m` with settings `s` (see the file's comment for which inverse
 /// each class gets). Throws std::invalid_argument, message starting with `where`, naming the

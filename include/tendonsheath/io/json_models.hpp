@@ -277,8 +277,12 @@ inline void angle_dependent_part(ModelPart& part, const json& m, const std::stri
   if (!base.is_string())
     return fail(w, "key 'base' must be a model class name (got " + shown(base) + ")");
   part.base = base.get<std::string>();
+  bool base_ok = false;  // a model of the list that make_model_inverse takes as a base
+  visit_model_kind(part.base, [&](auto tag) {
+    base_ok = angle_dependent_base<typename decltype(tag)::type>;
+  });
   const auto names = param_names(part.base);
-  if (names.empty() || part.base == "PlantModel" || part.base.find("Lag") != std::string::npos)
+  if (!base_ok || names.empty())
     return fail(w, "key 'base': the inverse of an AngleDependent model takes a Backlash, "
                    "BoucWenBacklash, BoucWen or HystereticOscillator base (got " +
                        shown(base) + ")");

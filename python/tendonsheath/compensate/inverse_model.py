@@ -32,8 +32,8 @@ PART_MEMBERS: dict[str, tuple[str, ...]] = {
     "FirstOrderLag": ("lag",),
     "SecondOrderLag": ("lag",),
 }
-#: AngleDependent bases with a real-time inverse
-ANGLE_BASES = ("Backlash", "BoucWenBacklash", "BoucWen", "HystereticOscillator")
+#: AngleDependent bases with a real-time inverse (the core's ``angle_dependent_base``)
+ANGLE_BASES = tuple(k["kind"] for k in core.model_kinds() if k["angle_dependent_base"])
 _LAW_CODES = {"constant": 0, "linear": 1, "tanh": 2}
 
 #: the model classes (and Chains of them) InverseFeedforward inverts, for messages
