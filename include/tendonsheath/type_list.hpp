@@ -58,6 +58,7 @@ struct filter_list;
 /// (see filter_list)
 template <class... Ts, template <class> class Keep>
 struct filter_list<TypeList<Ts...>, Keep> {
+  /// the kept types, a TypeList
   using type = decltype((TypeList<>{} + ... +
                          std::conditional_t<Keep<Ts>::value, TypeList<Ts>, TypeList<>>{}));
 };
