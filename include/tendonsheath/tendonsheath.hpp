@@ -25,6 +25,7 @@
 #include "compensators/coupled_feedforward.hpp"
 #include "models/angle_laws.hpp"
 #include "models/forward_model.hpp"
+#include "models/model_list.hpp"
 #include "models/plant_model.hpp"
 #include "compensators/curve_angle_feedforward.hpp"
 #include "compensators/continuum_feedforward.hpp"

@@ -19,20 +19,6 @@ from collections.abc import Callable
 from ._cpp_literal import cpp_number as _number
 
 _MULTI_INPUT = "tendonsheath/io/json_multi_input.hpp"
-# the ModelPart members each kind's inverse reads (compensate/inverse_model.py)
-_MEMBERS = {
-    "Backlash": ("backlash",),
-    "BoucWenBacklash": ("bouc_wen_backlash",),
-    "BoucWen": ("bouc_wen",),
-    "PrandtlIshlinskii": ("prandtl_ishlinskii",),
-    "GeneralizedPrandtlIshlinskii": ("generalized_prandtl_ishlinskii",),
-    "Polynomial": ("polynomial",),
-    "HystereticOscillator": ("hysteretic_oscillator",),
-    "CurveAngleModel": ("curve_angle_model",),
-    "PlantModel": ("plant_model",),
-    "FirstOrderLag": ("lag",),
-    "SecondOrderLag": ("lag",),
-}
 
 
 def _fields(obj) -> list[str]:
@@ -76,12 +62,12 @@ def _refusal(kind: str, what: str) -> Callable[[str], ValueError]:
 def _inverse_function(name: str, inverse, kind: str) -> str:
     """An inline function ``name()`` building the ModelInverse of the InverseFeedforward
     ``inverse`` (its model's description and settings) with make_model_inverse."""
-    from .compensate.inverse_model import describe
+    from .compensate.inverse_model import PART_MEMBERS, describe
 
     desc = describe(inverse.model)
     body = f"  m.parts.resize({len(desc.parts)});\n"
     for i, part in enumerate(desc.parts):
-        members = _MEMBERS.get(part.kind)
+        members = PART_MEMBERS.get(part.kind)
         refuse = _refusal(kind, f"{part.kind} model")
         if members is None:
             raise refuse("its parameters are not plain fields")

@@ -232,11 +232,11 @@ void bind_batch(nb::module_& m) {
       "y"_a, "params"_a, "workers"_a = 0,
       "Bouc-Wen state w (z / alpha) along the displacement path y for each row (G, D, nu).");
 
-  def_population<ts::Backlash>(m, "Backlash");
-  def_population<ts::BoucWenBacklash>(m, "BoucWenBacklash");
-  def_population<ts::BoucWen>(m, "BoucWen");
-  def_population<ts::HystereticOscillator>(m, "HystereticOscillator");
-  def_population<ts::CurveAngleModel>(m, "CurveAngleModel");
+  // every model of the list with a parameter vector (model_list.hpp)
+  ts::for_each_type(ts::filter_list_t<ts::Models, ts::has_param_vector>{}, [&](auto tag) {
+    using M = typename decltype(tag)::type;
+    def_population<M>(m, ts::model_kind<M>());
+  });
 
   def_separable<tb::BoucWenBacklashFeatures>(m, "BoucWenBacklash");
   def_separable<tb::BoucWenFeatures>(m, "BoucWen");

@@ -98,16 +98,22 @@ PythonLoop python_loop(nb::handle compensator, const std::vector<int>& inputs) {
                     nb::cast<std::string>(nb::type_name(self.type()))};
 }
 
+// The variant of AnyController: the uncompensated gain, the loop of each compensator of the list
+// (closed_loop.hpp: Compensators), a compiled one's and a Python one's.
+template <class L>
+struct LoopVariant;
+template <class... Cs>
+struct LoopVariant<ts::TypeList<Cs...>> {
+  using type = std::variant<ts::OpenLoop, ts::loop_of_t<Cs>..., ts::ErasedLoop, PythonLoop>;
+};
+
 // Every controller bench.run runs, as one type: the uncompensated gain, a shipped compensator
 // (a copy, stepped in C++ without the GIL), a user's compiled one (its function table) or a
 // Python one (its step called each cycle, the GIL held). One closed loop is compiled for it,
 // and one for it inside each of the encoder loop, the tip loop and the learned table.
 class AnyController {
  public:
-  using Loop = std::variant<ts::OpenLoop, ts::FeedforwardLoop<ts::BacklashInverseFeedforward>,
-                            ts::FeedforwardLoop<ts::PrandtlIshlinskiiFeedforward>,
-                            ts::FeedforwardLoop<ts::ContinuumFeedforward>, ts::CurveAngleLoop,
-                            ts::ModelInverseLoop, ts::AdaptiveLoop, ts::ErasedLoop, PythonLoop>;
+  using Loop = LoopVariant<ts::Compensators>::type;
   explicit AnyController(Loop loop) : loop_(std::move(loop)) {}
   bool needs_gil() const noexcept { return std::holds_alternative<PythonLoop>(loop_); }
   void reset() { std::visit([](auto& c) { c.reset(); }, loop_); }
@@ -128,13 +134,17 @@ class AnyController {
   Loop loop_;
 };
 
-// A bound compensator of class C (a shipped Python compensator is one: it subclasses it) as its
-// loop L, when `c` is one.
-template <class C, class L>
-bool as_loop(nb::handle c, std::optional<AnyController>& out) {
-  if (!nb::isinstance<C>(c)) return false;
-  out.emplace(L{nb::cast<const C&>(c)});
-  return true;
+// The first compensator class C of the list (closed_loop.hpp: Compensators) that `c` is an instance
+// of (a shipped Python compensator is one: it subclasses it), in C's loop.
+std::optional<AnyController> shipped_loop(nb::handle c) {
+  std::optional<AnyController> out;
+  ts::any_type(ts::Compensators{}, [&](auto tag) {
+    using C = typename decltype(tag)::type;
+    if (!nb::isinstance<C>(c)) return false;
+    out.emplace(ts::loop_of_t<C>{nb::cast<const C&>(c)});
+    return true;
+  });
+  return out;
 }
 
 // The controller: None (uncompensated: gain * y_d), a shipped compensator, a capsule from a
@@ -142,16 +152,7 @@ bool as_loop(nb::handle c, std::optional<AnyController>& out) {
 // step takes the signals `inputs` (0: y_d, 1: measured, 2: motor) and dt.
 AnyController any_controller(nb::handle c, double gain, const std::vector<int>& inputs) {
   if (c.is_none()) return AnyController{ts::OpenLoop{gain}};
-  std::optional<AnyController> out;
-  if (as_loop<ts::ModelInverse, ts::ModelInverseLoop>(c, out) ||
-      as_loop<ts::CurveAngleFeedforward, ts::CurveAngleLoop>(c, out) ||
-      as_loop<ts::AdaptiveController, ts::AdaptiveLoop>(c, out) ||
-      as_loop<ts::ContinuumFeedforward, ts::FeedforwardLoop<ts::ContinuumFeedforward>>(c, out) ||
-      as_loop<ts::BacklashInverseFeedforward,
-              ts::FeedforwardLoop<ts::BacklashInverseFeedforward>>(c, out) ||
-      as_loop<ts::PrandtlIshlinskiiFeedforward,
-              ts::FeedforwardLoop<ts::PrandtlIshlinskiiFeedforward>>(c, out))
-    return std::move(*out);
+  if (std::optional<AnyController> out = shipped_loop(c)) return std::move(*out);
   if (PyCapsule_CheckExact(c.ptr())) return AnyController{erased_loop(c)};
   return AnyController{python_loop(c, inputs)};
 }

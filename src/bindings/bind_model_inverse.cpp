@@ -55,21 +55,41 @@ void bind_parts(nb::module_& m) {
           },
           "shape"_a);
   using P = ts::ModelPart;
-  nb::class_<P>(m, "ModelPart")
-      .def(nb::init<>())
-      .def_rw("kind", &P::kind)
-      .def_rw("backlash", &P::backlash)
-      .def_rw("bouc_wen_backlash", &P::bouc_wen_backlash)
-      .def_rw("bouc_wen", &P::bouc_wen)
-      .def_rw("prandtl_ishlinskii", &P::prandtl_ishlinskii)
-      .def_rw("generalized_prandtl_ishlinskii", &P::generalized_prandtl_ishlinskii)
-      .def_rw("polynomial", &P::polynomial)
-      .def_rw("plant_model", &P::plant_model)
-      .def_rw("hysteretic_oscillator", &P::hysteretic_oscillator)
-      .def_rw("curve_angle_model", &P::curve_angle_model)
-      .def_rw("lag", &P::lag)
-      .def_rw("base", &P::base)
-      .def_rw("laws", &P::laws);
+  nb::class_<P> part(m, "ModelPart");
+  part.def(nb::init<>()).def_rw("kind", &P::kind);
+  ts::for_each_type(ts::Models{}, [&](auto tag) {  // a property per model of the list
+    using Member = ts::PartMember<typename decltype(tag)::type>;
+    part.def_rw(Member::name, Member::member);
+  });
+  part.def_rw("lag", &P::lag).def_rw("base", &P::base).def_rw("laws", &P::laws);
+}
+
+// The model list (model_list.hpp) as Python reads it: one dict per model, in the list's order
+// (`m`: the module, whose batch kernels a model with a parameter vector has).
+nb::list model_kinds(const nb::module_& m) {
+  nb::list out;
+  ts::for_each_type(ts::Models{}, [&](auto tag) {
+    using M = typename decltype(tag)::type;
+    nb::dict d;
+    d["kind"] = ts::model_kind<M>();
+    d["member"] = ts::PartMember<M>::name;  // the ModelPart property holding its parameters
+    d["params"] = nb::borrow(nb::type<typename M::Params>());  // the bound parameter struct
+    d["root_invertible"] = ts::root_invertible<M>::value;
+    d["angle_dependent_base"] = ts::angle_dependent_base<M>;
+    constexpr bool vector = ts::has_param_vector<M>::value;
+    d["param_vector"] = vector;
+    // its batch kernels (bind_batch.cpp binds them for every model with a parameter vector)
+    nb::object cost = nb::none(), simulate = nb::none();
+    if constexpr (vector) {
+      const std::string kind = ts::model_kind<M>();
+      cost = m.attr(("population_cost_" + kind).c_str());
+      simulate = m.attr(("population_simulate_" + kind).c_str());
+    }
+    d["population_cost"] = cost;
+    d["population_simulate"] = simulate;
+    out.append(d);
+  });
+  return out;
 }
 
 void bind_description(nb::module_& m) {
@@ -159,6 +179,12 @@ void bind_model_inverse(nb::module_& m) {
   bind_parts(m);
   bind_description(m);
   bind_inverse_engine(m);
+  m.def(
+      "model_kinds", [m]() { return model_kinds(m); },
+      "The core's model list: per model class a dict of its kind (class name), member (the\n"
+      "ModelPart property holding its parameters), params (the parameter struct),\n"
+      "root_invertible, angle_dependent_base, param_vector, and population_cost / population_simulate (its batch\n"
+      "kernels when it has a parameter vector, else None).");
 }
 
 }  // namespace tsbind

@@ -12,6 +12,8 @@
 #include <cstddef>
 
 #include "../compensators/adaptive_controller.hpp"
+#include "../compensators/continuum_feedforward.hpp"
+#include "../compensators/inverse_feedforward.hpp"
 #include "../compensators/curve_angle_feedforward.hpp"
 #include "../compensators/encoder_loop.hpp"
 #include "../compensators/learned_feedforward.hpp"
@@ -21,7 +23,9 @@
 #include "../plant/motor.hpp"
 #include "../plant/sensor.hpp"
 #include "../plant/simulate_plant.hpp"
+#include "../type_list.hpp"
 #include "../validate.hpp"
+#include "erased_compensator.hpp"
 
 namespace tendonsheath {
 
@@ -137,6 +141,78 @@ struct AdaptiveLoop {
     return ctrl.step(y_d, measured, motor, dt);
   }
 };
+
+/// @brief Any compensator C in the loop, by what it has (see erased_compensator.hpp): its step
+/// takes the reference, the measurement and the motor position as its signature says; it is
+/// given the route's shapes when it has set_shape(ShapeIntegrals), and reports its status() and
+/// in_fallback() when it has them. The loop of a compensator added to Compensators without a
+/// LoopOf of its own.
+template <class C>
+struct CompensatorLoop {
+  /// the compensator
+  C compensator;
+  /// Start afresh from the initial state (the compensator's reset()).
+  void reset() noexcept { compensator.reset(); }
+  /// Passes the route shape to the compensator when it follows the route (set_shape).
+  void on_shape(const ShapeIntegrals& s) noexcept {
+    if constexpr (detail::follows_shape<C>::value) compensator.set_shape(s);
+  }
+  /// The compensator's in_fallback(), or false when it has none.
+  bool in_fallback() const noexcept { return erased_in_fallback<C>(&compensator); }
+  /// The compensator's status(), or Status::ok when it has none.
+  Status status() const noexcept { return static_cast<Status>(erased_status<C>(&compensator)); }
+  /// @return the compensator's step over the signals it takes, the command
+  double command(double y_d, double measured, double motor, double dt) noexcept {
+    return erased_command<C>(&compensator, y_d, measured, motor, dt);
+  }
+};
+
+/// The loop run_closed_loop() runs compensator C in: CompensatorLoop<C> unless specialised (the
+/// compensators below keep the named loops above).
+template <class C>
+struct LoopOf {
+  using type = CompensatorLoop<C>;  ///< the loop
+};
+/// (see LoopOf)
+template <>
+struct LoopOf<ModelInverse> {
+  using type = ModelInverseLoop;  ///< the loop
+};
+/// (see LoopOf)
+template <>
+struct LoopOf<CurveAngleFeedforward> {
+  using type = CurveAngleLoop;  ///< the loop
+};
+/// (see LoopOf)
+template <>
+struct LoopOf<AdaptiveController> {
+  using type = AdaptiveLoop;  ///< the loop
+};
+/// (see LoopOf)
+template <>
+struct LoopOf<ContinuumFeedforward> {
+  using type = FeedforwardLoop<ContinuumFeedforward>;  ///< the loop
+};
+/// (see LoopOf)
+template <>
+struct LoopOf<BacklashInverseFeedforward> {
+  using type = FeedforwardLoop<BacklashInverseFeedforward>;  ///< the loop
+};
+/// (see LoopOf)
+template <>
+struct LoopOf<PrandtlIshlinskiiFeedforward> {
+  using type = FeedforwardLoop<PrandtlIshlinskiiFeedforward>;  ///< the loop
+};
+/// The loop of compensator C.
+template <class C>
+using loop_of_t = typename LoopOf<C>::type;
+
+/// The one list of the core's compensators that the closed loop runs at C++ speed: Python's
+/// bench.run hands a bound one (or a Python compensator built on one) to the loop of its class
+/// (LoopOf), tried in this order. Adding a compensator: its header, its binding, one entry here.
+using Compensators = TypeList<ModelInverse, CurveAngleFeedforward, AdaptiveController,
+                              ContinuumFeedforward, BacklashInverseFeedforward,
+                              PrandtlIshlinskiiFeedforward>;
 
 /// @brief Any of the controllers above with an EncoderLoop around its command: the loop makes the
 /// motor encoder follow the controller's command (a motor angle), no tip sensor involved.

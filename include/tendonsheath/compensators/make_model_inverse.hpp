@@ -49,22 +49,29 @@ inline bool is_lag(const ModelPart& p) {
   return p.kind == "FirstOrderLag" || p.kind == "SecondOrderLag";
 }
 
-// the forward model a root engine runs for part p, if it has one
+// the model M a root engine runs, from its parameters (a PlantModel's: quasi-static, its viscous
+// drag inverted by a lag inverse, see plant_lag)
+template <class M>
+M forward_of(const typename M::Params& p) {
+  return M(p);
+}
+template <>
+inline PlantModel forward_of<PlantModel>(const PlantModelParams& p) {
+  PlantModelParams q = p;
+  q.viscous_time = 0.0;
+  return PlantModel(q);
+}
+
+// the forward model a root engine runs for part p, if it has one (a model of ForwardModel's)
 inline std::optional<ForwardModel::First> forward_first(const ModelPart& p) {
-  if (p.kind == "Backlash") return ForwardModel::First{Backlash(p.backlash)};
-  if (p.kind == "BoucWenBacklash") return ForwardModel::First{BoucWenBacklash(p.bouc_wen_backlash)};
-  if (p.kind == "BoucWen") return ForwardModel::First{BoucWen(p.bouc_wen)};
-  if (p.kind == "PrandtlIshlinskii")
-    return ForwardModel::First{PrandtlIshlinskii(p.prandtl_ishlinskii)};
-  if (p.kind == "GeneralizedPrandtlIshlinskii")
-    return ForwardModel::First{GeneralizedPrandtlIshlinskii(p.generalized_prandtl_ishlinskii)};
-  if (p.kind == "Polynomial") return ForwardModel::First{Polynomial(p.polynomial)};
-  if (p.kind == "PlantModel") {  // quasi-static: its viscous drag is inverted by a lag inverse
-    PlantModelParams q = p.plant_model;
-    q.viscous_time = 0.0;
-    return ForwardModel::First{PlantModel(q)};
-  }
-  return std::nullopt;
+  std::optional<ForwardModel::First> out;
+  any_type(ForwardModel::Models{}, [&](auto tag) {
+    using M = typename decltype(tag)::type;
+    if (p.kind != model_kind<M>()) return false;
+    out.emplace(forward_of<M>(part_params<M>(p)));
+    return true;
+  });
+  return out;
 }
 
 // The first-order lag equivalent to a PlantModel's viscous drag: the delay of its output behind
@@ -119,12 +126,14 @@ inline BacklashInverseFeedforward direct_inverse(const double* v, const InverseC
   return BacklashInverseFeedforward(p);
 }
 
-inline void backlash_values(const ModelPart& p, double* v) {
-  const bool bw = p.kind == "BoucWenBacklash" || p.base == "BoucWenBacklash";
-  v[0] = bw ? p.bouc_wen_backlash.c_r : p.backlash.c_r;
-  v[1] = bw ? p.bouc_wen_backlash.c_l : p.backlash.c_l;
-  v[2] = bw ? p.bouc_wen_backlash.B_r : p.backlash.B_r;
-  v[3] = bw ? p.bouc_wen_backlash.B_l : p.backlash.B_l;
+// the direct inverse's four values (c_r, c_l, B_r, B_l) of a Backlash's or BoucWenBacklash's
+// parameters
+template <class P>
+void backlash_values(const P& p, double* v) {
+  v[0] = p.c_r;
+  v[1] = p.c_l;
+  v[2] = p.B_r;
+  v[3] = p.B_l;
 }
 
 inline CurveAngleFeedforward curve_angle_inverse(const CurveAngleParams& m, const InverseContext& c) {
@@ -152,33 +161,69 @@ inline double initial_angle(const AngleLaws& laws) {
   return 0.0;
 }
 
+// The engine of an AngleDependent over base M, built from the base parameters v at curve angle
+// theta: the overloads below (a model without one is no AngleDependent base: has_angle_engine).
+template <class M>
+std::optional<ModelInverse::Core> angle_engine(TypeTag<M>, const ModelPart&, const double*, double,
+                                               const InverseContext&) = delete;
+// Backlash, BoucWenBacklash: the direct inverse of their first four parameters
+template <class M>
+std::optional<ModelInverse::Core> direct_angle_engine(const ModelPart& p, const double* v,
+                                                      double theta, const InverseContext& c) {
+  require(p.laws.count == M::Params::vector_size, c.where, "AngleDependent ", p.base,
+          " needs one law per base parameter (got ", p.laws.count, ")");
+  return AngleDependentInverse<BacklashInverseFeedforward>(direct_inverse(v, c), p.laws, theta);
+}
+inline std::optional<ModelInverse::Core> angle_engine(TypeTag<Backlash>, const ModelPart& p,
+                                                      const double* v, double theta,
+                                                      const InverseContext& c) {
+  return direct_angle_engine<Backlash>(p, v, theta, c);
+}
+inline std::optional<ModelInverse::Core> angle_engine(TypeTag<BoucWenBacklash>, const ModelPart& p,
+                                                      const double* v, double theta,
+                                                      const InverseContext& c) {
+  return direct_angle_engine<BoucWenBacklash>(p, v, theta, c);
+}
+inline std::optional<ModelInverse::Core> angle_engine(TypeTag<BoucWen>, const ModelPart& p,
+                                                      const double* v, double theta,
+                                                      const InverseContext& c) {
+  require(p.laws.count == BoucWenParams::vector_size, c.where,
+          "AngleDependent BoucWen needs 6 laws (got ", p.laws.count, ")");
+  BoucWenParams b = p.bouc_wen;
+  b.assign(v);
+  auto root = root_engine(ForwardModel(ForwardModel::First{BoucWen(b)}), c);
+  return AngleDependentInverse<RootInverse<ForwardModel>>(root, p.laws, theta);
+}
+inline std::optional<ModelInverse::Core> angle_engine(TypeTag<HystereticOscillator>,
+                                                      const ModelPart& p, const double* v,
+                                                      double theta, const InverseContext& c) {
+  require(p.laws.count == HystereticOscillatorParams::vector_size, c.where,
+          "AngleDependent HystereticOscillator needs 8 laws (got ", p.laws.count, ")");
+  HystereticOscillatorParams o = p.hysteretic_oscillator;
+  o.assign(v);
+  return AngleDependentInverse<OscillatorInverse>(OscillatorInverse(o, c.filter_hz), p.laws, theta);
+}
+
+template <class M, class = void>
+struct has_angle_engine : std::false_type {};
+template <class M>
+struct has_angle_engine<M, std::void_t<decltype(angle_engine(
+                               TypeTag<M>{}, std::declval<const ModelPart&>(),
+                               std::declval<const double*>(), 0.0,
+                               std::declval<const InverseContext&>()))>> : std::true_type {};
+
 inline ModelInverse::Core angle_dependent(const ModelPart& p, const InverseContext& c) {
   p.laws.validate(c.where.c_str());
   if (detail::failed()) return PassThrough{};  // without exceptions: no law read past the arrays
   const double theta = initial_angle(p.laws);
   double v[AngleLaws::kMaxParams];
   p.laws.at_angle(theta, v);
-  if (p.base == "Backlash" || p.base == "BoucWenBacklash") {
-    require(p.laws.count == (p.base == "Backlash" ? 4u : 7u), c.where, "AngleDependent ", p.base,
-            " needs one law per base parameter (got ", p.laws.count, ")");
-    return AngleDependentInverse<BacklashInverseFeedforward>(direct_inverse(v, c), p.laws, theta);
-  }
-  if (p.base == "BoucWen") {
-    require(p.laws.count == BoucWenParams::vector_size, c.where,
-            "AngleDependent BoucWen needs 6 laws (got ", p.laws.count, ")");
-    BoucWenParams b = p.bouc_wen;
-    b.assign(v);
-    auto root = root_engine(ForwardModel(ForwardModel::First{BoucWen(b)}), c);
-    return AngleDependentInverse<RootInverse<ForwardModel>>(root, p.laws, theta);
-  }
-  if (p.base == "HystereticOscillator") {
-    require(p.laws.count == HystereticOscillatorParams::vector_size, c.where,
-            "AngleDependent HystereticOscillator needs 8 laws (got ", p.laws.count, ")");
-    HystereticOscillatorParams o = p.hysteretic_oscillator;
-    o.assign(v);
-    return AngleDependentInverse<OscillatorInverse>(OscillatorInverse(o, c.filter_hz), p.laws,
-                                                    theta);
-  }
+  std::optional<ModelInverse::Core> engine;
+  visit_model_kind(p.base, [&](auto tag) {
+    if constexpr (has_angle_engine<typename decltype(tag)::type>::value)
+      engine = angle_engine(tag, p, v, theta, c);
+  });
+  if (engine) return std::move(*engine);
   detail::check_failed(c.where, "the inverse of an AngleDependent model takes a Backlash, "
                        "BoucWenBacklash, BoucWen or HystereticOscillator base (got '", p.base, "')");
   return PassThrough{};  // (without exceptions: never used, the check has failed)
@@ -191,30 +236,70 @@ inline LagInverse lag_inverse(const ModelPart& p, const InverseContext& c) {
   return LagInverse(q);
 }
 
+// The inverse of one model M of the list (model_list.hpp): the root search on the model (and a
+// PlantModel's viscous lag) unless M has an inverse of its own (an overload below).
+template <class M>
+InversePlan inverse_plan(TypeTag<M>, const ModelPart& p, const InverseContext& c) {
+  static_assert(root_invertible<M>::value,
+                "a model that is not root_invertible needs its own inverse_plan() overload");
+  InversePlan plan;
+  auto first = forward_first(p);
+  if (detail::failed()) return plan;  // without exceptions: a half-built model is not used
+  plan.core = root_engine(ForwardModel(std::move(*first)), c);
+  plan.pre = plant_lag(p, c);
+  return plan;
+}
+
+// Backlash, BoucWenBacklash: the direct inverse of spec D.2
+template <class M>
+InversePlan direct_plan(const ModelPart& p, const InverseContext& c) {
+  InversePlan plan;
+  (void)M(part_params<M>(p));  // the model's own validation
+  double v[AngleLaws::kMaxParams];
+  backlash_values(part_params<M>(p), v);
+  plan.core = direct_inverse(v, c);
+  return plan;
+}
+inline InversePlan inverse_plan(TypeTag<Backlash>, const ModelPart& p, const InverseContext& c) {
+  return direct_plan<Backlash>(p, c);
+}
+inline InversePlan inverse_plan(TypeTag<BoucWenBacklash>, const ModelPart& p,
+                                const InverseContext& c) {
+  return direct_plan<BoucWenBacklash>(p, c);
+}
+
+// PrandtlIshlinskii: the exact inverse when thresholds[0] = 0, else the root search
+inline InversePlan inverse_plan(TypeTag<PrandtlIshlinskii> tag, const ModelPart& p,
+                                const InverseContext& c) {
+  if (p.prandtl_ishlinskii.thresholds.empty() || p.prandtl_ishlinskii.thresholds.front() != 0.0)
+    return inverse_plan<PrandtlIshlinskii>(tag, p, c);
+  InversePlan plan;
+  PrandtlIshlinskiiInverse inverse(p.prandtl_ishlinskii);
+  if (detail::failed()) return plan;  // without exceptions: a half-built inverse is not used
+  inverse.set_range(c.range);
+  plan.core = std::move(inverse);
+  return plan;
+}
+
+inline InversePlan inverse_plan(TypeTag<HystereticOscillator>, const ModelPart& p,
+                                const InverseContext& c) {
+  InversePlan plan;
+  plan.core = OscillatorInverse(p.hysteretic_oscillator, c.filter_hz);
+  return plan;
+}
+
+inline InversePlan inverse_plan(TypeTag<CurveAngleModel>, const ModelPart& p,
+                                const InverseContext& c) {
+  InversePlan plan;
+  plan.core = curve_angle_inverse(p.curve_angle_model, c);
+  plan.friction = p.curve_angle_model.friction;
+  return plan;
+}
+
 // the inverse of one plain model
 inline InversePlan single(const ModelPart& p, const InverseContext& c) {
   InversePlan plan;
-  double v[AngleLaws::kMaxParams];
-  if (p.kind == "Backlash" || p.kind == "BoucWenBacklash") {
-    if (p.kind == "Backlash") (void)Backlash(p.backlash);  // the model's own validation
-    else (void)BoucWenBacklash(p.bouc_wen_backlash);
-    backlash_values(p, v);
-    plan.core = direct_inverse(v, c);
-  } else if (p.kind == "PrandtlIshlinskii" && !p.prandtl_ishlinskii.thresholds.empty() &&
-             p.prandtl_ishlinskii.thresholds.front() == 0.0) {
-    PrandtlIshlinskiiInverse inverse(p.prandtl_ishlinskii);
-    if (detail::failed()) return plan;  // without exceptions: a half-built inverse is not used
-    inverse.set_range(c.range);
-    plan.core = std::move(inverse);
-  } else if (auto first = forward_first(p)) {
-    if (detail::failed()) return plan;  // without exceptions: a half-built model is not used
-    plan.core = root_engine(ForwardModel(std::move(*first)), c);
-    plan.pre = plant_lag(p, c);
-  } else if (p.kind == "HystereticOscillator") {
-    plan.core = OscillatorInverse(p.hysteretic_oscillator, c.filter_hz);
-  } else if (p.kind == "CurveAngleModel") {
-    plan.core = curve_angle_inverse(p.curve_angle_model, c);
-    plan.friction = p.curve_angle_model.friction;
+  if (visit_model_kind(p.kind, [&](auto tag) { plan = inverse_plan(tag, p, c); })) {
   } else if (p.kind == "AngleDependent") {
     plan.core = angle_dependent(p, c);
     plan.friction = p.laws.angle_friction;
@@ -265,6 +350,12 @@ inline ModelInverse unused_inverse() {
 }
 
 }  // namespace detail
+
+/// Whether model M of the list (model_list.hpp) can be the base of an AngleDependent model in
+/// make_model_inverse (Backlash, BoucWenBacklash, BoucWen, HystereticOscillator): it has an
+/// engine whose parameters follow the laws.
+template <class M>
+inline constexpr bool angle_dependent_base = detail::has_angle_engine<M>::value;
 
 /// The real-time inverse of model `m` with settings `s` (see the file's comment for which inverse
 /// each class gets). Throws std::invalid_argument, message starting with `where`, naming the

@@ -28,6 +28,7 @@
 #include "../models/curve_angle.hpp"
 #include "../models/forward_model.hpp"
 #include "../models/hysteretic_oscillator.hpp"
+#include "../models/model_list.hpp"
 #include "../physics/pull_pull_statics.hpp"
 #include "command_shaping.hpp"
 #include "curve_angle_feedforward.hpp"
@@ -59,25 +60,45 @@ struct ScaledMap {
 };
 
 /// @brief One plain model of the library, reduced to what its inverse needs: `kind` (the Python
-/// class name) says which member holds its parameters.
+/// class name) says which member holds its parameters. Besides `lag`, `base` and `laws`, it has
+/// one member per model class of the list (model_list.hpp, TENDONSHEATH_MODELS): `backlash`
+/// (BacklashParams), `bouc_wen_backlash`, `bouc_wen`, `prandtl_ishlinskii`,
+/// `generalized_prandtl_ishlinskii`, `polynomial`, `plant_model`, `hysteretic_oscillator` and
+/// `curve_angle_model` (CurveAngleParams); part_params<M>() reaches model M's.
 struct ModelPart {
-  std::string kind;  ///< Backlash, BoucWenBacklash, BoucWen, PrandtlIshlinskii,
-                     ///< GeneralizedPrandtlIshlinskii, Polynomial, PlantModel,
-                     ///< HystereticOscillator, CurveAngleModel, FirstOrderLag, SecondOrderLag
-                     ///< or AngleDependent
-  BacklashParams backlash{};  ///< Backlash
-  BoucWenBacklashParams bouc_wen_backlash{};  ///< BoucWenBacklash
-  BoucWenParams bouc_wen{};  ///< BoucWen
-  PrandtlIshlinskiiParams prandtl_ishlinskii{};  ///< PrandtlIshlinskii
-  GeneralizedPrandtlIshlinskiiParams generalized_prandtl_ishlinskii{};  ///< GPI
-  PolynomialParams polynomial{};  ///< Polynomial
-  PlantModelParams plant_model{};  ///< PlantModel
-  HystereticOscillatorParams hysteretic_oscillator{};  ///< HystereticOscillator
-  CurveAngleParams curve_angle_model{};  ///< CurveAngleModel
+  std::string kind;  ///< a model class of the list, FirstOrderLag, SecondOrderLag or
+                     ///< AngleDependent
+#define TENDONSHEATH_DETAIL_PART_MEMBER(Model, member) Model::Params member{};
+  TENDONSHEATH_MODELS(TENDONSHEATH_DETAIL_PART_MEMBER)
+#undef TENDONSHEATH_DETAIL_PART_MEMBER
   LagInverseParams lag{};  ///< FirstOrderLag (order 1) or SecondOrderLag (order 2)
   std::string base;  ///< AngleDependent: the base's kind (its options in the member above)
   AngleLaws laws{};  ///< AngleDependent: the laws of the base's parameters
 };
+
+/// Where ModelPart holds model M's parameters: `name` (the member's and the Python property's
+/// name) and `member` (the pointer to it), for each model M of the list.
+template <class M>
+struct PartMember;
+#define TENDONSHEATH_DETAIL_PART_POINTER(Model, name_)            \
+  template <>                                                     \
+  struct PartMember<Model> {                                      \
+    static constexpr const char* name = #name_;                   \
+    static constexpr auto member = &ModelPart::name_;             \
+  };
+TENDONSHEATH_MODELS(TENDONSHEATH_DETAIL_PART_POINTER)
+#undef TENDONSHEATH_DETAIL_PART_POINTER
+
+/// Model M's parameters in part p.
+template <class M>
+typename M::Params& part_params(ModelPart& p) noexcept {
+  return p.*PartMember<M>::member;
+}
+/// Model M's parameters in part p.
+template <class M>
+const typename M::Params& part_params(const ModelPart& p) noexcept {
+  return p.*PartMember<M>::member;
+}
 
 /// A model as its inverse needs it: one part, or a Chain's two (first, then second), and the map
 /// of a Scaled model around it.

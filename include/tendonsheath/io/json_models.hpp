@@ -137,12 +137,37 @@ inline void check_format(const json& file, const char* format, const std::string
     fail(where, "unsupported 'version' " + shown(v) + " (expected 1)");
 }
 
-// the parameters of a model class, in its Python param_names order (what AngleLaws index)
+// The models of the list (model_list.hpp) whose file's params are their parameter vector's
+// scalars by name (param_names) and whose options model_options() reads: those with a parameter
+// vector, but CurveAngleModel (its reader takes the old key names and an optional play).
+template <class M>
+struct scalar_model : has_param_vector<M> {};
+template <>
+struct scalar_model<CurveAngleModel> : std::false_type {};
+using ScalarModels = filter_list_t<Models, scalar_model>;
+
+// the names of parameter vector P (the first P::vector_size rows of its table: its assign()
+// order, Python's param_names)
+template <class P>
+std::vector<std::string> vector_names() {
+  std::vector<std::string> out;
+  for_each_field<P>([&](const auto& row) {
+    if (out.size() < P::vector_size) out.emplace_back(row.name);
+  });
+  return out;
+}
+
+// the parameters of a model class, in its Python param_names order (what AngleLaws index): a
+// model of ScalarModels, PlantModel or a lag
 inline std::vector<std::string> param_names(const std::string& kind) {
-  if (kind == "Backlash") return {"c_r", "c_l", "B_r", "B_l"};
-  if (kind == "BoucWenBacklash") return {"c_r", "c_l", "B_r", "B_l", "rho", "sigma", "n"};
-  if (kind == "BoucWen") return {"A", "beta", "gamma", "n", "alpha", "k"};
-  if (kind == "HystereticOscillator") return {"m", "c", "k", "alpha", "beta", "gamma", "delta", "nu"};
+  std::vector<std::string> out;
+  if (any_type(ScalarModels{}, [&](auto tag) {
+        using M = typename decltype(tag)::type;
+        if (kind != model_kind<M>()) return false;
+        out = vector_names<typename M::Params>();
+        return true;
+      }))
+    return out;
   if (kind == "PlantModel") return {"friction_angle", "backlash", "viscous_time", "gain", "offset"};
   if (kind == "FirstOrderLag") return {"time_constant"};
   if (kind == "SecondOrderLag") return {"frequency", "damping"};
@@ -188,29 +213,49 @@ inline void oscillator_options(const json& o, HystereticOscillatorParams& h, con
   else fail(w, "key 'input_interpolation' must be \"linear\", \"hold\" or \"bandlimited\" (got " + shown(v) + ")");
 }
 
-// the base parameters of `kind` from scalars v (its param_names order), into part's member
+// the base parameters of `kind` (a model of ScalarModels) from scalars v
+// (its param_names order), into part's member
 inline void assign_base(ModelPart& part, const std::string& kind, const std::vector<double>& v) {
-  if (kind == "Backlash") part.backlash.assign(v.data());
-  else if (kind == "BoucWenBacklash") part.bouc_wen_backlash.assign(v.data());
-  else if (kind == "BoucWen") part.bouc_wen.assign(v.data());
-  else if (kind == "HystereticOscillator") part.hysteretic_oscillator.assign(v.data());
+  any_type(ScalarModels{}, [&](auto tag) {
+    using M = typename decltype(tag)::type;
+    if (kind != model_kind<M>()) return false;
+    part_params<M>(part).assign(v.data());
+    return true;
+  });
 }
 
-// the options of a base model (BoucWenBacklash, BoucWen, HystereticOscillator) into part
+// The options of a scalar model M (its file's "options") into its parameters: none unless an
+// overload below reads some.
+template <class M>
+void model_options(TypeTag<M>, typename M::Params&, const json& o, const std::string& w) {
+  check_keys(o, {}, {}, w);
+}
+inline void model_options(TypeTag<BoucWenBacklash>, BoucWenBacklashParams& p, const json& o,
+                          const std::string& w) {
+  check_keys(o, {"max_step", "max_substeps"}, {}, w);
+  bouc_wen_options(o, p.max_step, p.max_substeps, w);
+}
+inline void model_options(TypeTag<BoucWen>, BoucWenParams& p, const json& o,
+                          const std::string& w) {
+  check_keys(o, {"max_step", "max_substeps"}, {}, w);
+  bouc_wen_options(o, p.max_step, p.max_substeps, w);
+}
+inline void model_options(TypeTag<HystereticOscillator>, HystereticOscillatorParams& p,
+                          const json& o, const std::string& w) {
+  check_keys(o, {"substeps", "max_substeps", "input_interpolation", "lookahead"}, {}, w);
+  oscillator_options(o, p, w);
+}
+
+// the options of a base model (a model of ScalarModels) into part
 inline void base_options(ModelPart& part, const std::string& kind, const json& o,
                          const std::string& w) {
-  if (kind == "BoucWenBacklash") {
-    check_keys(o, {"max_step", "max_substeps"}, {}, w);
-    bouc_wen_options(o, part.bouc_wen_backlash.max_step, part.bouc_wen_backlash.max_substeps, w);
-  } else if (kind == "BoucWen") {
-    check_keys(o, {"max_step", "max_substeps"}, {}, w);
-    bouc_wen_options(o, part.bouc_wen.max_step, part.bouc_wen.max_substeps, w);
-  } else if (kind == "HystereticOscillator") {
-    check_keys(o, {"substeps", "max_substeps", "input_interpolation", "lookahead"}, {}, w);
-    oscillator_options(o, part.hysteretic_oscillator, w);
-  } else {
+  if (!any_type(ScalarModels{}, [&](auto tag) {
+        using M = typename decltype(tag)::type;
+        if (kind != model_kind<M>()) return false;
+        model_options(tag, part_params<M>(part), o, w);
+        return true;
+      }))
     check_keys(o, {}, {}, w);
-  }
 }
 
 inline AngleLaw law_of(const json& v, const std::string& key, const std::string& w) {
@@ -232,8 +277,12 @@ inline void angle_dependent_part(ModelPart& part, const json& m, const std::stri
   if (!base.is_string())
     return fail(w, "key 'base' must be a model class name (got " + shown(base) + ")");
   part.base = base.get<std::string>();
+  bool base_ok = false;  // a model of the list that make_model_inverse takes as a base
+  visit_model_kind(part.base, [&](auto tag) {
+    base_ok = angle_dependent_base<typename decltype(tag)::type>;
+  });
   const auto names = param_names(part.base);
-  if (names.empty() || part.base == "PlantModel" || part.base.find("Lag") != std::string::npos)
+  if (!base_ok || names.empty())
     return fail(w, "key 'base': the inverse of an AngleDependent model takes a Backlash, "
                    "BoucWenBacklash, BoucWen or HystereticOscillator base (got " +
                        shown(base) + ")");
@@ -371,6 +420,45 @@ inline void scalar_part(ModelPart& part, const json& m, const std::string& where
   }
 }
 
+// The params (and options) of a model M of the list (model_list.hpp) into part: a model of
+// ScalarModels by default, else an overload below.
+template <class M>
+void model_part(TypeTag<M>, ModelPart& part, const json& m, const std::string& where) {
+  static_assert(scalar_model<M>::value, "a model outside ScalarModels needs its own model_part()");
+  scalar_part(part, m, where);
+}
+inline void model_part(TypeTag<PlantModel>, ModelPart& part, const json& m,
+                       const std::string& where) {
+  scalar_part(part, m, where);
+}
+inline void model_part(TypeTag<PrandtlIshlinskii>, ModelPart& part, const json& m,
+                       const std::string& where) {
+  plays_part(part, m, where);
+}
+inline void model_part(TypeTag<GeneralizedPrandtlIshlinskii>, ModelPart& part, const json& m,
+                       const std::string& where) {
+  plays_part(part, m, where);
+}
+inline void model_part(TypeTag<Polynomial>, ModelPart& part, const json& m,
+                       const std::string& where) {
+  polynomial_part(part, m, where);
+}
+inline void model_part(TypeTag<CurveAngleModel>, ModelPart& part, const json& m,
+                       const std::string& where) {
+  curve_angle_part(part, m, where);
+}
+
+// the model kinds the loader inverts, for its message: the list's, then the others
+inline std::string loader_kinds() {
+  std::string out;
+  for_each_type(Models{}, [&](auto tag) {
+    out += model_kind<typename decltype(tag)::type>();
+    out += ", ";
+  });
+  return out + "AngleDependent, FirstOrderLag, SecondOrderLag, a Chain of two and a Scaled model "
+               "around them";
+}
+
 inline const std::set<std::string> kPlainKeys{"format", "version", "model", "params", "options",
                                               "input_range"};
 
@@ -382,22 +470,19 @@ inline ModelPart part_from_json(const json& m, const std::string& where) {
   part.kind = name.is_string() ? name.get<std::string>() : shown(name);
   check_keys(m, kPlainKeys, {"params"}, where);
   if (failed()) return part;
-  if (part.kind == "PrandtlIshlinskii" || part.kind == "GeneralizedPrandtlIshlinskii")
-    plays_part(part, m, where);
-  else if (part.kind == "Polynomial") polynomial_part(part, m, where);
-  else if (part.kind == "CurveAngleModel") curve_angle_part(part, m, where);
-  else if (part.kind == "AngleDependent") angle_dependent_part(part, m, where);
-  else if (!param_names(part.kind).empty()) scalar_part(part, m, where);
-  else if (part.kind == "Loaded")
+  if (visit_model_kind(part.kind, [&](auto tag) { model_part(tag, part, m, where); })) {
+  } else if (part.kind == "AngleDependent") {
+    angle_dependent_part(part, m, where);
+  } else if (!param_names(part.kind).empty()) {  // a lag
+    scalar_part(part, m, where);
+  } else if (part.kind == "Loaded") {
     fail(where, "key 'model': a Loaded model's inverse takes the measured load each cycle: save a "
                 "LoadCompensated and load it with io::load_load_compensated_json "
                 "(tendonsheath/io/json_multi_input.hpp)");
-  else
-    fail(where, "key 'model': the C++ loader inverts Backlash, BoucWenBacklash, BoucWen, "
-                "PrandtlIshlinskii, GeneralizedPrandtlIshlinskii, Polynomial, PlantModel, "
-                "HystereticOscillator, CurveAngleModel, AngleDependent, FirstOrderLag, "
-                "SecondOrderLag, a Chain of two and a Scaled model around them (got " +
-                    shown(name) + ")");
+  } else {
+    fail(where, "key 'model': the C++ loader inverts " + loader_kinds() + " (got " + shown(name) +
+                    ")");
+  }
   return part;
 }
 

@@ -7,13 +7,8 @@
 #include <variant>
 
 #include "../status.hpp"
-#include "backlash.hpp"
-#include "bouc_wen.hpp"
-#include "bouc_wen_backlash.hpp"
-#include "generalized_prandtl_ishlinskii.hpp"
-#include "plant_model.hpp"
-#include "polynomial.hpp"
-#include "prandtl_ishlinskii.hpp"
+#include "../type_list.hpp"
+#include "model_list.hpp"
 
 namespace tendonsheath {
 
@@ -21,9 +16,12 @@ namespace tendonsheath {
 /// y = second(first(x, dt)).
 class ForwardModel {
  public:
-  /// The models a ForwardModel can run first.
-  using First = std::variant<Backlash, BoucWenBacklash, BoucWen, PrandtlIshlinskii,
-                             GeneralizedPrandtlIshlinskii, Polynomial, PlantModel>;
+  /// The models a ForwardModel can run first: those of the model list (model_list.hpp) that are
+  /// root_invertible (Backlash, BoucWenBacklash, BoucWen, PrandtlIshlinskii,
+  /// GeneralizedPrandtlIshlinskii, Polynomial, PlantModel).
+  using Models = filter_list_t<tendonsheath::Models, root_invertible>;
+  /// One of Models.
+  using First = apply_list_t<Models, std::variant>;
 
   /// @param first the model (copied)
   explicit ForwardModel(First first) : first_(std::move(first)) {}

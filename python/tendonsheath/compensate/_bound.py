@@ -30,6 +30,7 @@ from .._core import (  # noqa: F401 (re-exported)
     ScaledMap,
     TipLoop,
     TipLoopParams,
+    model_kinds,
 )
 
 __all__ = [
@@ -60,4 +61,5 @@ __all__ = [
     "ScaledMap",
     "TipLoop",
     "TipLoopParams",
+    "model_kinds",
 ]

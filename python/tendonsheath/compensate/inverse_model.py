@@ -22,19 +22,18 @@ from ..models import (
 from ..models.base import _REGISTRY
 from . import _bound as core
 
-#: the C++ part member of each model class whose core parameter struct is copied as it is
-_STRUCT_MEMBERS = {
-    "Backlash": "backlash",
-    "BoucWenBacklash": "bouc_wen_backlash",
-    "BoucWen": "bouc_wen",
-    "PrandtlIshlinskii": "prandtl_ishlinskii",
-    "GeneralizedPrandtlIshlinskii": "generalized_prandtl_ishlinskii",
-    "Polynomial": "polynomial",
-    "HystereticOscillator": "hysteretic_oscillator",
-    "CurveAngleModel": "curve_angle_model",
+#: the C++ part member of each model class of the core's model list (``model_kinds()``, from
+#: include/tendonsheath/models/model_list.hpp): where its parameter struct is copied as it is
+_STRUCT_MEMBERS = {k["kind"]: k["member"] for k in core.model_kinds()}
+#: the ModelPart members the inverse of each kind reads (what ``export --cpp`` writes): the
+#: model list's, and a lag's LagInverseParams
+PART_MEMBERS: dict[str, tuple[str, ...]] = {
+    **{kind: (member,) for kind, member in _STRUCT_MEMBERS.items()},
+    "FirstOrderLag": ("lag",),
+    "SecondOrderLag": ("lag",),
 }
-#: AngleDependent bases with a real-time inverse
-ANGLE_BASES = ("Backlash", "BoucWenBacklash", "BoucWen", "HystereticOscillator")
+#: AngleDependent bases with a real-time inverse (the core's ``angle_dependent_base``)
+ANGLE_BASES = tuple(k["kind"] for k in core.model_kinds() if k["angle_dependent_base"])
 _LAW_CODES = {"constant": 0, "linear": 1, "tanh": 2}
 
 #: the model classes (and Chains of them) InverseFeedforward inverts, for messages
@@ -167,4 +166,12 @@ def route_friction(model: HysteresisModel) -> float | None:
     return None
 
 
-__all__ = ["ANGLE_BASES", "INVERTIBLE", "describe", "follows_route", "part", "route_friction"]
+__all__ = [
+    "ANGLE_BASES",
+    "INVERTIBLE",
+    "PART_MEMBERS",
+    "describe",
+    "follows_route",
+    "part",
+    "route_friction",
+]

@@ -2,6 +2,9 @@
 ``tendonsheath._core`` (the nanobind extension); every other module takes the bound
 names from here."""
 
+from collections.abc import Callable
+from typing import Any
+
 from .._core import (  # noqa: F401 (re-exported)
     RecordingSet,
     bouc_wen_paths,
@@ -9,17 +12,8 @@ from .._core import (  # noqa: F401 (re-exported)
     features_BoucWenBacklash,
     features_GeneralizedPrandtlIshlinskii,
     features_PrandtlIshlinskii,
+    model_kinds,
     oscillator_sensitivity_dense,
-    population_cost_Backlash,
-    population_cost_BoucWen,
-    population_cost_BoucWenBacklash,
-    population_cost_CurveAngleModel,
-    population_cost_HystereticOscillator,
-    population_simulate_Backlash,
-    population_simulate_BoucWen,
-    population_simulate_BoucWenBacklash,
-    population_simulate_CurveAngleModel,
-    population_simulate_HystereticOscillator,
     reconstruct_bandlimited,
     separable_cost_BoucWen,
     separable_cost_BoucWenBacklash,
@@ -27,7 +21,17 @@ from .._core import (  # noqa: F401 (re-exported)
     separable_cost_PrandtlIshlinskii,
 )
 
+#: the batched C++ kernels of a direct problem by model class name, one per model of the core's
+#: model list with a parameter vector (``model_kinds()``): (the population's costs, the
+#: population's outputs)
+POPULATION: dict[str, tuple[Callable[..., Any], Callable[..., Any]]] = {
+    k["kind"]: (k["population_cost"], k["population_simulate"])
+    for k in model_kinds()
+    if k["param_vector"]
+}
+
 __all__ = [
+    "POPULATION",
     "RecordingSet",
     "bouc_wen_paths",
     "features_BoucWen",
@@ -35,16 +39,6 @@ __all__ = [
     "features_GeneralizedPrandtlIshlinskii",
     "features_PrandtlIshlinskii",
     "oscillator_sensitivity_dense",
-    "population_cost_Backlash",
-    "population_cost_BoucWen",
-    "population_cost_BoucWenBacklash",
-    "population_cost_CurveAngleModel",
-    "population_cost_HystereticOscillator",
-    "population_simulate_Backlash",
-    "population_simulate_BoucWen",
-    "population_simulate_BoucWenBacklash",
-    "population_simulate_CurveAngleModel",
-    "population_simulate_HystereticOscillator",
     "reconstruct_bandlimited",
     "separable_cost_BoucWen",
     "separable_cost_BoucWenBacklash",

@@ -17,20 +17,11 @@ import numpy as np
 from ..models import CurveAngleModel, HysteresisModel
 from ..models.angle_dependent import AngleDependent, angle_factor, law_value
 from ._bound import (
+    POPULATION,
     features_BoucWen,
     features_BoucWenBacklash,
     features_GeneralizedPrandtlIshlinskii,
     features_PrandtlIshlinskii,
-    population_cost_Backlash,
-    population_cost_BoucWen,
-    population_cost_BoucWenBacklash,
-    population_cost_CurveAngleModel,
-    population_cost_HystereticOscillator,
-    population_simulate_Backlash,
-    population_simulate_BoucWen,
-    population_simulate_BoucWenBacklash,
-    population_simulate_CurveAngleModel,
-    population_simulate_HystereticOscillator,
     separable_cost_BoucWen,
     separable_cost_BoucWenBacklash,
     separable_cost_GeneralizedPrandtlIshlinskii,
@@ -38,18 +29,6 @@ from ._bound import (
 )
 from .data import Recording, fitted_mask, recording_set
 
-#: the batched C++ kernels of a direct problem by model class name: (the population's costs,
-#: the population's outputs)
-POPULATION: dict[str, tuple[Callable[..., Any], Callable[..., Any]]] = {
-    "Backlash": (population_cost_Backlash, population_simulate_Backlash),
-    "BoucWen": (population_cost_BoucWen, population_simulate_BoucWen),
-    "BoucWenBacklash": (population_cost_BoucWenBacklash, population_simulate_BoucWenBacklash),
-    "CurveAngleModel": (population_cost_CurveAngleModel, population_simulate_CurveAngleModel),
-    "HystereticOscillator": (
-        population_cost_HystereticOscillator,
-        population_simulate_HystereticOscillator,
-    ),
-}
 #: the batched C++ kernels of a separable problem by its kind: the costs with the linear part
 #: solved, and the regressors (features) of the linear part
 SEPARABLE_COST: dict[str, Callable[..., Any]] = {
