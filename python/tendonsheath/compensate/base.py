@@ -34,12 +34,9 @@ def command_result(
 class SavedAsJson:
     """Saving a compensator as its JSON file (``to_json``) and reading one back (``load``);
     the class gives ``to_dict``. A class that declares its file's keys (``_saved_settings``)
-    is a kind of file ``load`` reads (registered under its name)."""
-
-    def __init_subclass__(cls, **kwargs):
-        super().__init_subclass__(**kwargs)
-        if vars(cls).get("_saved_settings"):  # a kind of file (not a base declaring none)
-            persistence.register(cls)
+    is a kind of file ``load`` reads once registered under its name
+    (:func:`~tendonsheath.compensate.persistence.register`, which
+    :mod:`tendonsheath.compensate` calls with the compensators it exports)."""
 
     def to_dict(self) -> dict:
         """The compensator as a dict (format ``tendonsheath.compensator``): each class its own.

@@ -120,7 +120,7 @@ class CurveAngleModel(HysteresisModel, core.CurveAngleModel):  # type: ignore[mi
             play=play,
         )
 
-    def simulate(  # type: ignore[override]  # curve_angle is its input
+    def _simulate(  # curve_angle is its input
         self,
         t: ArrayLike | None,
         x: ArrayLike,

@@ -215,7 +215,7 @@ class Loaded(HysteresisModel):
             raise ValueError("Loaded: the load must be finite")
         return arr
 
-    def simulate(  # the measured load besides the input
+    def _simulate(  # the measured load besides the input
         self,
         t: ArrayLike | None,
         x: ArrayLike,
@@ -318,7 +318,7 @@ class Loaded(HysteresisModel):
         return self.step(float(u[0]), dt, float(u[1]))
 
     # -- persistence -----------------------------------------------------------------
-    def to_dict(self) -> dict[str, Any]:
+    def _dict_fields(self) -> dict[str, Any]:
         """The model as a JSON-ready dict: the base whole and the load terms.
 
         Returns

@@ -129,7 +129,7 @@ class PlantModel(HysteresisModel):
         """``{"elements": ...}``."""
         return {"elements": self._elements}
 
-    def simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
+    def _simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
         """Output for the input samples x at times t (needed), from rest at x[0].
 
         Parameters
