@@ -13,39 +13,32 @@ streaming state copies exactly but does not serialise. So:
   pickled. Outputs of ``simulate``/``command`` (which start at rest) and any ``step`` sequence
   from rest are identical to the original's.
 * Setting an attribute the class does not declare (``model.B_r = 0.5``) raises
-  AttributeError naming the parameters, instead of adding an attribute nothing reads.
+  AttributeError naming the parameters, instead of adding an attribute nothing reads. A class
+  declares the public attributes its ``__init__`` sets with class-level annotations
+  (``limits: CommandLimits``); private ones (``_name``) need no declaration.
 """
 
 from __future__ import annotations
 
 import copy
-import functools
+import inspect
 import sys
 from collections.abc import Callable
 from typing import Any, ClassVar
-
-_OPEN = "_initialising"  # set on an instance while its outermost __init__ runs
-
-
-def _opening(init: Callable) -> Callable:
-    """``init`` during which the instance takes new public attributes (its own settings)."""
-
-    @functools.wraps(init)
-    def wrapper(self, *args, **kwargs):
-        if _OPEN in vars(self):  # a subclass's __init__ calling its parent's
-            return init(self, *args, **kwargs)
-        object.__setattr__(self, _OPEN, True)
-        try:
-            return init(self, *args, **kwargs)
-        finally:
-            object.__delattr__(self, _OPEN)
-
-    return wrapper
 
 
 def bound_base(cls: type) -> type | None:
     """The C++ class bound by nanobind that ``cls`` is built on (the first one in its method
     resolution order defined in a compiled extension), or None for a pure Python class."""
+    if cls not in _BOUND_BASES:
+        _BOUND_BASES[cls] = _first_bound(cls)
+    return _BOUND_BASES[cls]
+
+
+_BOUND_BASES: dict[type, type | None] = {}  # bound_base of each class asked about
+
+
+def _first_bound(cls: type) -> type | None:
     for base in cls.__mro__:
         module = sys.modules.get(base.__module__)
         if type(base).__name__ == "nb_type" and getattr(module, "__file__", "").endswith(
@@ -62,6 +55,33 @@ def bound_attribute(obj: Any, name: str) -> Any:
     if base is None:
         raise TypeError(f"{type(obj).__name__} is not built on a bound C++ class")
     return getattr(base, name).__get__(obj, type(obj))
+
+
+def constructor_arguments(cls: type, values: dict[str, Any]) -> dict[str, Any]:
+    """The arguments of ``cls``'s constructor, in its signature's order, from ``values`` (the
+    constructor's ``locals()`` before it assigns anything); a ``**kwargs`` catch-all is
+    spread into its keys.
+
+    Parameters
+    ----------
+    cls : type
+        The class whose ``__init__`` signature names the arguments.
+    values : dict
+        The constructor's local variables.
+
+    Returns
+    -------
+    dict
+        Each argument's value, by name.
+    """
+    out: dict[str, Any] = {}
+    init = cls.__init__  # type: ignore[misc]  # the class's own constructor
+    for name, p in list(inspect.signature(init).parameters.items())[1:]:
+        if p.kind is p.VAR_KEYWORD:
+            out.update(values[name])
+        elif p.kind is not p.VAR_POSITIONAL:
+            out[name] = values[name]
+    return out
 
 
 def from_state(cls: type[Any], state: dict[str, Any]) -> Any:
@@ -84,6 +104,19 @@ def from_state(cls: type[Any], state: dict[str, Any]) -> Any:
     return obj
 
 
+class _BoundClass:
+    """``cls._bound_class``: :func:`bound_base` of the class it is read on."""
+
+    def __get__(self, obj: Any, owner: type) -> type | None:
+        return bound_base(owner)
+
+
+def _declared(cls: type, name: str) -> bool:
+    """Whether ``cls`` or a base annotates ``name`` at class level (an attribute its
+    ``__init__`` sets)."""
+    return any(name in vars(base).get("__annotations__", {}) for base in cls.__mro__)
+
+
 class PythonObject:
     """Copies that do not share the C++ engine, pickling through the configuration, and no
     silent attribute for a misspelt or unknown name (see :mod:`tendonsheath._pyobject`).
@@ -94,15 +127,13 @@ class PythonObject:
 
     ``_bound_class`` is the bound C++ class a subclass is built on (None: pure Python), for the
     calls that must reach it past a Python method of the same name
-    (``self._bound_class.step(self, ...)``)."""
+    (``self._bound_class.step(self, ...)``).
 
-    _bound_class: ClassVar[Any] = None
+    A public attribute can be set only where the class declares it: a class attribute, a
+    class-level annotation (for those its ``__init__`` sets), or one the instance already
+    has."""
 
-    def __init_subclass__(cls, **kwargs):
-        super().__init_subclass__(**kwargs)
-        cls._bound_class = bound_base(cls)
-        if "__init__" in vars(cls):
-            cls.__init__ = _opening(cls.__init__)
+    _bound_class: ClassVar[Any] = _BoundClass()
 
     def _recipe(self) -> tuple[Callable, tuple]:
         return from_state, (type(self), dict(vars(self)))
@@ -123,7 +154,7 @@ class PythonObject:
 
     def __setattr__(self, name: str, value: Any) -> None:
         known = name.startswith("_") or name in vars(self) or hasattr(type(self), name)
-        if not (known or _OPEN in vars(self)):
+        if not (known or _declared(type(self), name)):
             names = self._parameter_names()
             if name in names:  # a parameter, read through params: not an attribute to set
                 how = (

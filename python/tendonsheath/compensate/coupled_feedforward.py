@@ -54,6 +54,10 @@ class CoupledFeedforward(PythonObject, SavedAsJson, core.CoupledFeedforward):  #
         A bad setting (as InverseFeedforward says).
     """
 
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    model: Coupled
+    settings: dict[str, Any]
+
     # the keys of a saved file (to_json): the Coupled model whole and the joints' settings,
     # defaults resolved; tendonsheath/io/json_multi_input.hpp reads it
     # the joints' inverses (the C++ class's joints() counts them)

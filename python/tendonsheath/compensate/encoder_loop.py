@@ -13,7 +13,7 @@ from ..protocols import step_signals
 from . import _bound as core
 from ._kinds import require_feedforward, require_servo
 from .around import AroundFeedforward
-from .limits import LimitsLike, as_limits
+from .limits import CommandLimits, LimitsLike, as_limits
 
 if TYPE_CHECKING:
     from ..identify.servo import ServoFit
@@ -65,6 +65,10 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         A gain or limit the C++ core rejects (the message names it).
     """
 
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    limits: CommandLimits
+    design: EncoderLoopDesign | None
+
     control_inputs = ("y_d", "q")
     control_output = "x"
     step_inputs = ("y_d", "q")
@@ -103,7 +107,7 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
             core.EncoderLoop.__init__(self, p)
         warn_unit_slips(who, p)
         self.feedforward = feedforward
-        self.design: EncoderLoopDesign | None = None
+        self.design = None
         self._settings = {**{k: getattr(p, k) for k in _GAINS}, "limits": self.limits}
 
     @classmethod

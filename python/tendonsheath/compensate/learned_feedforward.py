@@ -16,7 +16,7 @@ from . import _bound as core
 from ._kinds import require_feedforward
 from .around import AroundFeedforward
 from .base import command_result
-from .limits import LimitsLike, as_limits
+from .limits import CommandLimits, LimitsLike, as_limits
 
 
 class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ignore[misc]
@@ -60,6 +60,9 @@ class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ig
     ValueError
         An empty table, a non-finite entry (its index named), table_dt <= 0, or bad limits.
     """
+
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    limits: CommandLimits
 
     control_inputs = ("y_d",)
     control_output = "x"

@@ -56,6 +56,11 @@ class LoadCompensated(PythonObject, SavedAsJson):
         switch not > 0.
     """
 
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    model: Loaded
+    switch: float
+    inverse: InverseFeedforward
+
     # the keys of a saved file (to_json), in order: the model whole, the switch and the base
     # inverse's settings (defaults resolved); tendonsheath/io/json_multi_input.hpp reads it
     _saved_settings = (

@@ -101,7 +101,8 @@ def register(*classes: Any) -> None:
     None
     """
     for cls in classes:
-        if isinstance(cls, type) and getattr(cls, "_saved_settings", ()):
+        saved: tuple[str, ...] = getattr(cls, "_saved_settings", ())
+        if isinstance(cls, type) and saved:
             _KINDS[cls.__name__] = cls
 
 

@@ -30,6 +30,10 @@ class Chain(HysteresisModel):
         A part that is not a tendonsheath model, or is itself a chain.
     """
 
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    first: HysteresisModel
+    second: HysteresisModel
+
     param_names = ()
     option_names = ()
 

@@ -116,6 +116,10 @@ class Loaded(HysteresisModel):
         A value not finite, slack or friction < 0, slack_load not > 0, or a Loaded base.
     """
 
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    base: HysteresisModel
+    terms: dict[str, float]
+
     param_names = ()
     option_names = ()
 

@@ -45,6 +45,11 @@ class Scaled(HysteresisModel):
         output_gain 0.
     """
 
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    inner: HysteresisModel
+    map: dict[str, float]
+    uses_curve_angle: bool
+
     param_names = ()
     option_names = ()
 
