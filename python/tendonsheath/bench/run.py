@@ -18,6 +18,7 @@ from ..protocols import (
     STEP_SIGNALS,
     Plant,
     StreamingCompensator,
+    bench_declarations,
     missing_members,
     step_signals,
 )
@@ -263,8 +264,8 @@ class _Loop:
         self.encoder = plant.encoder.engine() if plant.encoder is not None else None
         self.mask = _dropout_mask(dropout, ts)
         # a core.EncoderLoop or core.TipLoop around the controller's command
-        self.outer_loop = None
-        self.learned = None  # a core.LearnedCorrection added to the command (inside the loop)
+        self.outer_loop: Any = None
+        self.learned: Any = None  # a core.LearnedCorrection added to the command (in the loop)
 
     @property
     def scheduled(self) -> bool:
@@ -303,43 +304,45 @@ class _Loop:
 
 
 def _run_controller(loop: _Loop, controller, shape_sensing):
-    """Run the loop on the fastest path the controller offers (by its capabilities); an
-    EncoderLoop or TipLoop runs its feedforward's path with the loop around it, a
-    LearnedFeedforward its feedforward's path with the correction table added, in C++ (a
-    TipLoop with a gain schedule is given the route's shapes on every path)."""
+    """Run the loop on the fastest path the controller declares
+    (:class:`~tendonsheath.protocols.BenchCompensator`): its stages (an EncoderLoop's or
+    TipLoop's loop around its feedforward, a LearnedFeedforward's table added to its
+    feedforward) run in C++ around the inner compensator's path, and that compensator is
+    stepped in C++ where it gives an engine, else from Python (a TipLoop with a gain schedule
+    is given the route's shapes on every path)."""
     if controller is None:
         return loop.call(None, gain=loop.plant.kinematic_gain)
     _check_compensator(controller)
     _check_motor_kind(loop.plant, controller)
-    taken_apart = getattr(controller, "_outer_loop", None)
-    if callable(taken_apart):
-        loop.outer_loop, controller = taken_apart()
+    declared = bench_declarations(controller)
+    while declared.stage is not None:  # each stage's slot in the C++ loop is taken once
+        stage, inner = declared.stage
+        slot = "learned" if isinstance(stage, core.LearnedCorrection) else "outer_loop"
+        if getattr(loop, slot) is not None:
+            raise ValueError(
+                f"bench.run: {type(controller).__name__} declares a second {slot} stage "
+                "(one feedback loop and one learned table at most)"
+            )
+        setattr(loop, slot, stage)
+        controller = inner
         _check_compensator(controller)
-    learned = getattr(controller, "_learned_correction", None)
-    if callable(learned):
-        loop.learned, controller = learned()
-        _check_compensator(controller)
+        declared = bench_declarations(controller)
     how: dict[str, Any] = {}
-    compiled = getattr(controller, "_tendonsheath_compensator", None)
-    if callable(compiled):  # a user's C++ compensator (tendonsheath_bind/compensator.hpp)
-        runner = compiled()
-    else:
-        engine_of = getattr(controller, "_bench_engine", None)
-        engine = engine_of() if callable(engine_of) else None
+    engine = declared.engine
+    if not declared.compiled:  # a user's C++ compensator (tendonsheath_bind/compensator.hpp)
         if engine is not None and bound_base(type(engine)) is None:
             engine = None  # a Python class without a C++ core: stepped from Python
         if isinstance(engine, core.CurveAngleFeedforward) or (
             isinstance(engine, core.ModelInverse) and core.ModelInverse.follows_route(engine)
         ):
             return _run_curve_angle(loop, controller, engine, shape_sensing)
-        runner = engine  # a shipped compensator: stepped in C++
         if engine is None:  # a Python one: its step called with these signals
-            runner = controller
+            engine = controller
             how["inputs"] = [STEP_SIGNALS.index(s) for s in step_signals(controller)]
     if loop.scheduled:
         friction = _friction(controller)
-        return loop.call_with_shapes(runner, friction=friction, shape_sensing=shape_sensing, **how)
-    return loop.call(runner, **how)
+        return loop.call_with_shapes(engine, friction=friction, shape_sensing=shape_sensing, **how)
+    return loop.call(engine, **how)
 
 
 def _friction(controller) -> float:

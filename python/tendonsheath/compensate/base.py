@@ -139,8 +139,15 @@ class EngineCompensator(PythonObject, SavedAsJson, _ControlBlock):
     def _from_saved(cls, values: dict):
         return cls(**values)
 
-    def _bench_engine(self):
-        """The C++ object ``bench.run`` runs in its C++ loop (None: step it from Python)."""
+    def bench_engine(self) -> Any:
+        """The real-time object ``bench.run`` steps in its C++ loop: the compensator itself
+        (:class:`~tendonsheath.protocols.BenchCompensator`).
+
+        Returns
+        -------
+        object
+            This compensator (its bound C++ class).
+        """
         return self
 
 

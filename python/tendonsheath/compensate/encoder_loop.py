@@ -209,12 +209,26 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         return self.step(u[0], u[1], dt)
 
     # -- the bench and persistence ------------------------------------------------------
-    def _outer_loop(self):
-        """(the C++ loop, the feedforward) for bench.run's C++ loops."""
+    def bench_stage(self) -> tuple[Any, Any]:
+        """The C++ loop and the feedforward it is around, for bench.run's C++ loop
+        (:class:`~tendonsheath.protocols.BenchCompensator`).
+
+        Returns
+        -------
+        (object, compensator)
+            A copy of this loop's real-time core, and the feedforward.
+        """
         return core.EncoderLoop(bound_attribute(self, "params")), self.feedforward
 
-    def _bench_engine(self):
-        return None  # bench.run takes the loop apart (_outer_loop)
+    def bench_engine(self) -> None:
+        """None: bench.run runs this loop as a stage around its feedforward
+        (:meth:`bench_stage`).
+
+        Returns
+        -------
+        None
+        """
+        return None
 
     def __repr__(self) -> str:
         gains = ", ".join(f"{k}={self._settings[k]:g}" for k in ("kp", "ki", "kd"))

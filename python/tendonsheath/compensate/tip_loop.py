@@ -409,14 +409,28 @@ class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
         core.TipLoop.set_curve_angle(self, angle)
 
     # -- the bench and persistence ------------------------------------------------------
-    def _outer_loop(self):
-        """(the C++ loop, the feedforward) for bench.run's C++ loops."""
+    def bench_stage(self) -> tuple[Any, Any]:
+        """The C++ loop and the feedforward it is around, for bench.run's C++ loop
+        (:class:`~tendonsheath.protocols.BenchCompensator`).
+
+        Returns
+        -------
+        (object, compensator)
+            A copy of this loop's real-time core, and the feedforward.
+        """
         loop = core.TipLoop(bound_attribute(self, "params"))
         loop.set_curve_angle(self.curve_angle())
         return loop, self.feedforward
 
-    def _bench_engine(self):
-        return None  # bench.run takes the loop apart (_outer_loop)
+    def bench_engine(self) -> None:
+        """None: bench.run runs this loop as a stage around its feedforward
+        (:meth:`bench_stage`).
+
+        Returns
+        -------
+        None
+        """
+        return None
 
     @classmethod
     def _from_saved(cls, values: dict):
