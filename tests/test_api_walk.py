@@ -555,6 +555,36 @@ MINIMAL_CALLS = {
 }
 
 
+def _configured(qual: str):
+    """An object of the class ``qual``'s set_params belongs to (the saved kinds' table, a
+    plant on a route), or a Backlash for a base class (the method is the same)."""
+    from _saved_file_table import saved_kinds
+
+    ms, coupled, cs = saved_kinds()
+    route = ts.Route.uniform(1.0, np.pi)
+    built = {type(o).__name__: o for o in [*ms.values(), coupled, *cs.values()]}
+    built.update(
+        PullPullPlant=ts.PullPullPlant(route, elements=10),
+        SingleTendonPlant=ts.SingleTendonPlant(route, elements=10),
+        ContinuumPlant=ts.ContinuumPlant(elements=10),
+        CoupledPlant=ts.CoupledPlant([ts.PullPullPlant(route, elements=10)], [[0.0]]),
+        Motor=ts.Motor.position(20.0),
+        Sensor=ts.Sensor(),
+    )
+    return built.get(qual.split(".")[-2], ts.models.Backlash())
+
+
+# set_params (tendonsheath._pyobject.PythonObject's, inherited by every model, plant and
+# compensator): called on an object of its class
+MINIMAL_CALLS.update(
+    {
+        qual: (lambda kw, qual=qual: _configured(qual).set_params(**kw))
+        for qual, (_, obj) in CALLABLES.items()
+        if qual.endswith(".set_params") and obj is ts.models.Backlash.set_params
+    }
+)
+
+
 def _takes_kwargs(obj) -> bool:
     # the code object, not inspect.signature: a __signature__ that spells out the settings
     # (ts.identify) can hide the **options the body validates

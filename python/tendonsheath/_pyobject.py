@@ -24,7 +24,7 @@ import copy
 import inspect
 import sys
 from collections.abc import Callable
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Self
 
 
 def bound_base(cls: type) -> type | None:
@@ -84,6 +84,21 @@ def constructor_arguments(cls: type, values: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
+def _constructor_parameters(cls: type) -> list[tuple[str, inspect.Parameter]]:
+    """The parameters of ``cls``'s constructor after ``self``, but a ``*args``."""
+    init = cls.__init__  # type: ignore[misc]  # the class's own constructor
+    items = list(inspect.signature(init).parameters.items())[1:]
+    return [(name, p) for name, p in items if p.kind is not p.VAR_POSITIONAL]
+
+
+def _plain_attribute(cls: type, name: str) -> bool:
+    """Whether ``name`` is declared on ``cls`` as data (an annotation or a property), not a
+    method."""
+    if _declared(cls, name):
+        return True
+    return isinstance(getattr(cls, name, None), property)
+
+
 def from_state(cls: type[Any], state: dict[str, Any]) -> Any:
     """An instance of ``cls`` with the attributes ``state`` (its pickled ``__dict__``).
 
@@ -137,6 +152,74 @@ class PythonObject:
 
     def _recipe(self) -> tuple[Callable, tuple]:
         return from_state, (type(self), dict(vars(self)))
+
+    # -- configuration (scikit-learn's idiom) ----------------------------------------------
+    def _configuration(self) -> dict[str, Any]:
+        """The values the object was configured with, by constructor argument name (the hook
+        :meth:`get_params` reads; a model gives its parameters and options, a plant its
+        constructor's arguments, a compensator its settings). An argument missing here is
+        read as the attribute of its name, where the object has one."""
+        return {}
+
+    def get_params(self, deep: bool = False) -> dict[str, Any]:
+        """The constructor's arguments, by the names of its signature (scikit-learn's
+        ``get_params``): ``type(obj)(**obj.get_params())`` builds an equal object.
+
+        Parameters
+        ----------
+        deep : bool, default False
+            Accepted for scikit-learn's ``clone``; a nested model or compensator is returned
+            as the object it is.
+
+        Returns
+        -------
+        dict
+            Each argument's value (a copy of the dict; the values are not copied).
+        """
+        values = self._configuration()
+        out: dict[str, Any] = {}
+        takes_more = False
+        for name, p in _constructor_parameters(type(self)):
+            if p.kind is p.VAR_KEYWORD:
+                takes_more = True
+            elif name in values:
+                out[name] = values[name]
+            elif name in vars(self) or _plain_attribute(type(self), name):
+                out[name] = getattr(self, name)
+        if takes_more:  # the rest of the configuration goes through **kwargs
+            out.update({k: v for k, v in values.items() if k not in out})
+        return out
+
+    def set_params(self, **changes: Any) -> Self:
+        """A new object with some constructor arguments changed (scikit-learn's
+        ``set_params``, except that this object is left unchanged: its C++ core is fixed at
+        construction, so the change makes a new one; use the returned object, as
+        ``clone(est).set_params(...)`` does).
+
+        Parameters
+        ----------
+        **changes
+            Constructor arguments by name, with their new values.
+
+        Returns
+        -------
+        object
+            A new object of the same class.
+
+        Raises
+        ------
+        TypeError
+            A name the constructor does not take.
+        """
+        parameters = dict(_constructor_parameters(type(self)))
+        if not any(p.kind is p.VAR_KEYWORD for p in parameters.values()):
+            unknown = sorted(set(changes) - set(parameters))
+            if unknown:
+                raise TypeError(
+                    f"{type(self).__name__}.set_params: unknown argument(s) {unknown}; "
+                    f"expected {list(parameters)}"
+                )
+        return type(self)(**{**self.get_params(), **changes})
 
     def __reduce__(self):
         return self._recipe()

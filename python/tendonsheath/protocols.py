@@ -80,7 +80,6 @@ class StreamingCompensator(Protocol):
         """
 
 
-@runtime_checkable
 class BenchCompensator(StreamingCompensator, Protocol):
     """Everything :func:`bench.run <tendonsheath.bench.run>` asks of a compensator.
 
@@ -101,8 +100,9 @@ class BenchCompensator(StreamingCompensator, Protocol):
     A compensator compiled with ``tendonsheath_bind/compensator.hpp`` gives its engine as its
     binding's ``_tendonsheath_compensator()`` capsule instead of :meth:`bench_engine`.
 
-    A structural protocol: it is never instantiated; ``isinstance`` checks that an object has
-    ``reset`` and ``step`` (the other members are optional).
+    A structural protocol for type checkers, never instantiated: it types each member as the
+    loop reads it. Since all but ``reset`` and ``step`` are optional, it is not checked with
+    ``isinstance`` (``isinstance(obj, StreamingCompensator)`` checks the two required ones).
     """
 
     step_inputs: tuple[str, ...]

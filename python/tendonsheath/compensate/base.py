@@ -129,6 +129,10 @@ class EngineCompensator(PythonObject, SavedAsJson, _ControlBlock):
         """
         return persistence.compensator_dict(type(self).__name__, self._settings)
 
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._pyobject): the constructor settings
+        return dict(self._settings)
+
     def _recipe(self):
         # pickled as its saved file: an equal compensator at rest (tendonsheath._pyobject)
         # (with its design, where a tuning chose its gains: not part of the file)

@@ -76,6 +76,15 @@ class CoupledFeedforward(PythonObject, SavedAsJson, core.CoupledFeedforward):  #
         self._coupling = model.coupling
         core.CoupledFeedforward.__init__(self, self.joints, self._coupling.ravel().tolist())
 
+    @property
+    def params(self) -> dict[str, Any]:
+        """The constructor's arguments: the Coupled model and the settings given (a copy)."""
+        return {"model": self.model, **self.settings}
+
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._pyobject)
+        return self.params
+
     def _recipe(self):
         # pickled as its model and settings: an equal compensator at rest (tendonsheath._pyobject)
         return functools.partial(CoupledFeedforward, self.model, **self.settings), ()

@@ -93,6 +93,16 @@ class LoadCompensated(PythonObject, SavedAsJson):
         self._play = core.LoadPlayInverse(terms)  # the real-time core (C++)
         self.reset()
 
+    @property
+    def params(self) -> dict[str, Any]:
+        """The constructor's arguments: the model, the switch (resolved) and the options
+        given to the base's inverse (a copy)."""
+        return {"model": self.model, "switch": self.switch, **self._inverse_options}
+
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._pyobject)
+        return self.params
+
     def _recipe(self):
         # pickled as its settings: an equal compensator at rest (tendonsheath._pyobject)
         options = self._inverse_options

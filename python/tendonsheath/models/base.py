@@ -396,6 +396,11 @@ class HysteresisModel(PythonObject, _ControlBlock):
             write_text(path, text + "\n")
         return text
 
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._pyobject): the parameters and options; a composite
+        # model's parts are its attributes
+        return {**self.params, **self.options}
+
     def _recipe(self):
         # pickled as its saved file: an equal model at rest (tendonsheath._pyobject)
         return load_model, (self.to_dict(),)

@@ -133,6 +133,10 @@ class _Plant(PythonObject):
         """The constructor's arguments, defaults filled in (a copy)."""
         return dict(self._arguments)
 
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._pyobject): the constructor's arguments
+        return dict(self._arguments)
+
     def _recipe(self):
         # pickled as its constructor's arguments: an equal plant at rest (tendonsheath._pyobject)
         return _rebuilt_plant, (type(self), self._arguments, self._interpolation)
