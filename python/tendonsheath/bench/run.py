@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, TypeAlias
+from typing import TYPE_CHECKING, Any, TypeAlias, cast
 
 import numpy as np
 
@@ -22,6 +21,7 @@ from ..protocols import (
     missing_members,
     step_signals,
 )
+from ..simulation_result import FIELDS, SimulationResult
 from ..status import status_counts
 from . import _bound as core
 from .limit_cycle import limit_cycle
@@ -43,13 +43,13 @@ Controller: TypeAlias = (
 )
 
 
-@dataclass
-class Result:
-    """Every signal of a bench run and its metrics (computed after ``warmup`` seconds).
+class Result(SimulationResult):
+    """A bench run: a :class:`~tendonsheath.SimulationResult` of the plant's output (an
+    array), with every signal of the loop and its metrics (computed after ``warmup`` seconds).
 
-    ``status`` holds each cycle's :class:`~tendonsheath.Status` flags of controller, motor,
-    plant and sensor (uint8); ``metrics["status"]`` counts the cycles with each flag (the
-    whole run, warm-up included).
+    ``input`` and ``reference`` are the desired output; ``status`` holds each cycle's
+    :class:`~tendonsheath.Status` flags of controller, motor, plant and sensor (uint8);
+    ``metrics["status"]`` counts the cycles with each flag (the whole run, warm-up included).
 
     Parameters
     ----------
@@ -82,18 +82,40 @@ class Result:
         Each cycle's Status flags.
     """
 
-    controller: str
-    t: np.ndarray
-    reference: np.ndarray
-    output: np.ndarray
-    measured: np.ndarray
-    command: np.ndarray
-    q_motor: np.ndarray
-    slack: np.ndarray
-    fallback: np.ndarray
-    warmup: float
-    metrics: dict[str, Any] = field(default_factory=dict)  # floats, and "status": counts
-    status: np.ndarray | None = None
+    _fields = (*FIELDS, "controller", "fallback", "warmup")
+
+    def __new__(
+        cls,
+        controller: str,
+        t: np.ndarray,
+        reference: np.ndarray,
+        output: np.ndarray,
+        measured: np.ndarray,
+        command: np.ndarray,
+        q_motor: np.ndarray,
+        slack: np.ndarray,
+        fallback: np.ndarray,
+        warmup: float,
+        metrics: dict[str, Any] | None = None,
+        status: np.ndarray | None = None,
+    ) -> Result:
+        result = super().__new__(
+            cls,
+            output,
+            t=t,
+            input=reference,
+            reference=reference,
+            metrics={} if metrics is None else metrics,  # floats, and "status": counts
+            status=status,
+            controller=controller,
+            measured=measured,
+            command=command,
+            q_motor=q_motor,
+            slack=slack,
+            fallback=fallback,
+            warmup=warmup,
+        )
+        return cast(Result, result)
 
     @property
     def motor(self) -> np.ndarray:
@@ -109,7 +131,11 @@ class Result:
     @property
     def scored(self) -> np.ndarray:
         """Mask of the samples the metrics cover (after the warm-up)."""
-        return self.t >= self.t[0] + self.warmup
+        return _scored(self.t, self.warmup)
+
+
+def _scored(t: np.ndarray, warmup: float) -> np.ndarray:
+    return t >= t[0] + warmup
 
 
 def controller_name(controller) -> str:
@@ -401,7 +427,17 @@ def _route_shapes(loop: _Loop, friction: float, shape_sensing):
 
 def _result(controller, ts, ys, outputs, warmup: float) -> Result:
     output, measured, command, motor_pos, slack, fallback, status = outputs
-    result = Result(
+    slack = slack.astype(bool)
+    keep = _scored(ts, float(warmup))
+    metrics: dict[str, Any] = {
+        **tracking_metrics(ys[keep], output[keep]),
+        "slack_samples": int(slack.sum()),
+        "status": status_counts(status),
+        "limit_cycle": limit_cycle(ts[keep], ys[keep], output[keep]),
+    }
+    if not math.isfinite(metrics["mse"]):
+        raise RuntimeError("bench.run: the closed loop produced a non-finite output")
+    return Result(
         controller=controller_name(controller),
         t=ts,
         reference=ys,
@@ -409,21 +445,12 @@ def _result(controller, ts, ys, outputs, warmup: float) -> Result:
         measured=measured,
         command=command,
         q_motor=motor_pos,
-        slack=slack.astype(bool),
+        slack=slack,
         fallback=fallback.astype(bool),
         warmup=float(warmup),
+        metrics=metrics,
         status=status,
     )
-    keep = result.scored
-    result.metrics = {
-        **tracking_metrics(ys[keep], output[keep]),
-        "slack_samples": int(result.slack.sum()),
-        "status": status_counts(status),
-        "limit_cycle": limit_cycle(ts[keep], ys[keep], output[keep]),
-    }
-    if not math.isfinite(result.metrics["mse"]):
-        raise RuntimeError("bench.run: the closed loop produced a non-finite output")
-    return result
 
 
 def _sensed(plant, ts, routes, shape_sensing, friction, idx):
