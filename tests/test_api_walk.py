@@ -474,7 +474,7 @@ MINIMAL_CALLS = {
             ts.models.Coupled([_model(), _model()], np.zeros((2, 2))), **kw
         )
     ),
-    "tendonsheath.identify.core.identify": (
+    "tendonsheath.identify.estimator.identify": (
         lambda kw: ts.identify(ts.models.Backlash, *_log(), **kw)
     ),
     "tendonsheath.identify.estimator.Identifier": lambda kw: ts.Identifier(
