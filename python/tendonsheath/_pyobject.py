@@ -13,39 +13,32 @@ streaming state copies exactly but does not serialise. So:
   pickled. Outputs of ``simulate``/``command`` (which start at rest) and any ``step`` sequence
   from rest are identical to the original's.
 * Setting an attribute the class does not declare (``model.B_r = 0.5``) raises
-  AttributeError naming the parameters, instead of adding an attribute nothing reads.
+  AttributeError naming the parameters, instead of adding an attribute nothing reads. A class
+  declares the public attributes its ``__init__`` sets with class-level annotations
+  (``limits: CommandLimits``); private ones (``_name``) need no declaration.
 """
 
 from __future__ import annotations
 
 import copy
-import functools
+import inspect
 import sys
 from collections.abc import Callable
-from typing import Any, ClassVar
-
-_OPEN = "_initialising"  # set on an instance while its outermost __init__ runs
-
-
-def _opening(init: Callable) -> Callable:
-    """``init`` during which the instance takes new public attributes (its own settings)."""
-
-    @functools.wraps(init)
-    def wrapper(self, *args, **kwargs):
-        if _OPEN in vars(self):  # a subclass's __init__ calling its parent's
-            return init(self, *args, **kwargs)
-        object.__setattr__(self, _OPEN, True)
-        try:
-            return init(self, *args, **kwargs)
-        finally:
-            object.__delattr__(self, _OPEN)
-
-    return wrapper
+from typing import Any, ClassVar, Self
 
 
 def bound_base(cls: type) -> type | None:
     """The C++ class bound by nanobind that ``cls`` is built on (the first one in its method
     resolution order defined in a compiled extension), or None for a pure Python class."""
+    if cls not in _BOUND_BASES:
+        _BOUND_BASES[cls] = _first_bound(cls)
+    return _BOUND_BASES[cls]
+
+
+_BOUND_BASES: dict[type, type | None] = {}  # bound_base of each class asked about
+
+
+def _first_bound(cls: type) -> type | None:
     for base in cls.__mro__:
         module = sys.modules.get(base.__module__)
         if type(base).__name__ == "nb_type" and getattr(module, "__file__", "").endswith(
@@ -62,6 +55,48 @@ def bound_attribute(obj: Any, name: str) -> Any:
     if base is None:
         raise TypeError(f"{type(obj).__name__} is not built on a bound C++ class")
     return getattr(base, name).__get__(obj, type(obj))
+
+
+def constructor_arguments(cls: type, values: dict[str, Any]) -> dict[str, Any]:
+    """The arguments of ``cls``'s constructor, in its signature's order, from ``values`` (the
+    constructor's ``locals()`` before it assigns anything); a ``**kwargs`` catch-all is
+    spread into its keys.
+
+    Parameters
+    ----------
+    cls : type
+        The class whose ``__init__`` signature names the arguments.
+    values : dict
+        The constructor's local variables.
+
+    Returns
+    -------
+    dict
+        Each argument's value, by name.
+    """
+    out: dict[str, Any] = {}
+    init = cls.__init__  # type: ignore[misc]  # the class's own constructor
+    for name, p in list(inspect.signature(init).parameters.items())[1:]:
+        if p.kind is p.VAR_KEYWORD:
+            out.update(values[name])
+        elif p.kind is not p.VAR_POSITIONAL:
+            out[name] = values[name]
+    return out
+
+
+def _constructor_parameters(cls: type) -> list[tuple[str, inspect.Parameter]]:
+    """The parameters of ``cls``'s constructor after ``self``, but a ``*args``."""
+    init = cls.__init__  # type: ignore[misc]  # the class's own constructor
+    items = list(inspect.signature(init).parameters.items())[1:]
+    return [(name, p) for name, p in items if p.kind is not p.VAR_POSITIONAL]
+
+
+def _plain_attribute(cls: type, name: str) -> bool:
+    """Whether ``name`` is declared on ``cls`` as data (an annotation or a property), not a
+    method."""
+    if _declared(cls, name):
+        return True
+    return isinstance(getattr(cls, name, None), property)
 
 
 def from_state(cls: type[Any], state: dict[str, Any]) -> Any:
@@ -84,6 +119,19 @@ def from_state(cls: type[Any], state: dict[str, Any]) -> Any:
     return obj
 
 
+class _BoundClass:
+    """``cls._bound_class``: :func:`bound_base` of the class it is read on."""
+
+    def __get__(self, obj: Any, owner: type) -> type | None:
+        return bound_base(owner)
+
+
+def _declared(cls: type, name: str) -> bool:
+    """Whether ``cls`` or a base annotates ``name`` at class level (an attribute its
+    ``__init__`` sets)."""
+    return any(name in vars(base).get("__annotations__", {}) for base in cls.__mro__)
+
+
 class PythonObject:
     """Copies that do not share the C++ engine, pickling through the configuration, and no
     silent attribute for a misspelt or unknown name (see :mod:`tendonsheath._pyobject`).
@@ -94,18 +142,84 @@ class PythonObject:
 
     ``_bound_class`` is the bound C++ class a subclass is built on (None: pure Python), for the
     calls that must reach it past a Python method of the same name
-    (``self._bound_class.step(self, ...)``)."""
+    (``self._bound_class.step(self, ...)``).
 
-    _bound_class: ClassVar[Any] = None
+    A public attribute can be set only where the class declares it: a class attribute, a
+    class-level annotation (for those its ``__init__`` sets), or one the instance already
+    has."""
 
-    def __init_subclass__(cls, **kwargs):
-        super().__init_subclass__(**kwargs)
-        cls._bound_class = bound_base(cls)
-        if "__init__" in vars(cls):
-            cls.__init__ = _opening(cls.__init__)
+    _bound_class: ClassVar[Any] = _BoundClass()
 
     def _recipe(self) -> tuple[Callable, tuple]:
         return from_state, (type(self), dict(vars(self)))
+
+    # -- configuration (scikit-learn's idiom) ----------------------------------------------
+    def _configuration(self) -> dict[str, Any]:
+        """The values the object was configured with, by constructor argument name (the hook
+        :meth:`get_params` reads; a model gives its parameters and options, a plant its
+        constructor's arguments, a compensator its settings). An argument missing here is
+        read as the attribute of its name, where the object has one."""
+        return {}
+
+    def get_params(self, deep: bool = False) -> dict[str, Any]:
+        """The constructor's arguments, by the names of its signature (scikit-learn's
+        ``get_params``): ``type(obj)(**obj.get_params())`` builds an equal object.
+
+        Parameters
+        ----------
+        deep : bool, default False
+            Accepted for scikit-learn's ``clone``; a nested model or compensator is returned
+            as the object it is.
+
+        Returns
+        -------
+        dict
+            Each argument's value (a copy of the dict; the values are not copied).
+        """
+        values = self._configuration()
+        out: dict[str, Any] = {}
+        takes_more = False
+        for name, p in _constructor_parameters(type(self)):
+            if p.kind is p.VAR_KEYWORD:
+                takes_more = True
+            elif name in values:
+                out[name] = values[name]
+            elif name in vars(self) or _plain_attribute(type(self), name):
+                out[name] = getattr(self, name)
+        if takes_more:  # the rest of the configuration goes through **kwargs
+            out.update({k: v for k, v in values.items() if k not in out})
+        return out
+
+    def set_params(self, **changes: Any) -> Self:
+        """A new object with some constructor arguments changed (scikit-learn's
+        ``set_params``, except that this object is left unchanged: its C++ core is fixed at
+        construction, so the change makes a new one; use the returned object, as
+        ``clone(est).set_params(...)`` does).
+
+        Parameters
+        ----------
+        **changes
+            Constructor arguments by name, with their new values.
+
+        Returns
+        -------
+        object
+            A new object of the same class.
+
+        Raises
+        ------
+        TypeError
+            A name the constructor does not take.
+        """
+        parameters = dict(_constructor_parameters(type(self)))
+        if not any(p.kind is p.VAR_KEYWORD for p in parameters.values()):
+            unknown = sorted(set(changes) - set(parameters))
+            if unknown:
+                raise TypeError(
+                    f"{type(self).__name__}.set_params: unknown argument(s) {unknown}; "
+                    f"expected {list(parameters)}"
+                )
+        return type(self)(**{**self.get_params(), **changes})
 
     def __reduce__(self):
         return self._recipe()
@@ -123,7 +237,7 @@ class PythonObject:
 
     def __setattr__(self, name: str, value: Any) -> None:
         known = name.startswith("_") or name in vars(self) or hasattr(type(self), name)
-        if not (known or _OPEN in vars(self)):
+        if not (known or _declared(type(self), name)):
             names = self._parameter_names()
             if name in names:  # a parameter, read through params: not an attribute to set
                 how = (

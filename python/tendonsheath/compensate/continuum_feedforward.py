@@ -87,6 +87,9 @@ class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ign
         An unknown mode, or a value out of range (the message names the argument and the value).
     """
 
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    mode: str
+
     _renamed_settings = SAVED_AS  # files written before the vocabulary still load
     _saved_settings = (
         "friction",

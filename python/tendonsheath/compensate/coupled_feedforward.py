@@ -54,6 +54,10 @@ class CoupledFeedforward(PythonObject, SavedAsJson, core.CoupledFeedforward):  #
         A bad setting (as InverseFeedforward says).
     """
 
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    model: Coupled
+    settings: dict[str, Any]
+
     # the keys of a saved file (to_json): the Coupled model whole and the joints' settings,
     # defaults resolved; tendonsheath/io/json_multi_input.hpp reads it
     # the joints' inverses (the C++ class's joints() counts them)
@@ -71,6 +75,15 @@ class CoupledFeedforward(PythonObject, SavedAsJson, core.CoupledFeedforward):  #
         self.joints = [InverseFeedforward(m, **settings) for m in model.models]
         self._coupling = model.coupling
         core.CoupledFeedforward.__init__(self, self.joints, self._coupling.ravel().tolist())
+
+    @property
+    def params(self) -> dict[str, Any]:
+        """The constructor's arguments: the Coupled model and the settings given (a copy)."""
+        return {"model": self.model, **self.settings}
+
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._pyobject)
+        return self.params
 
     def _recipe(self):
         # pickled as its model and settings: an equal compensator at rest (tendonsheath._pyobject)

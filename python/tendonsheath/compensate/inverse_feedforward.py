@@ -20,7 +20,7 @@ from . import _bound as core
 from ._kinds import require_model
 from .base import Feedforward, command_result
 from .inverse_model import describe, follows_route, route_friction
-from .limits import LimitsLike, as_limits
+from .limits import CommandLimits, LimitsLike, as_limits
 
 if TYPE_CHECKING:
     from ..plant.route import Route
@@ -93,6 +93,14 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
         A bad smoothing, limit, range, margin or filter corner, or model parameters the C++
         core rejects.
     """
+
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    model: HysteresisModel
+    smoothing: float
+    limits: CommandLimits
+    input_range: tuple[float, float] | None
+    range_margin: float
+    filter_hz: float | None
 
     # whether the model's law depends on the route: a bool here, where the C++ class has a
     # method of that name

@@ -191,6 +191,22 @@ class IterativeLearning(PythonObject):
     stopped, :meth:`compensator` gives the best table measured (:meth:`best_compensator`).
     """
 
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    feedforward: Any
+    t: FloatArray
+    reference: FloatArray
+    dt: float
+    gain: float
+    lead: int
+    order: int
+    cutoff_hz: float | None
+    max_trials: int
+    tolerance: float | None
+    table: FloatArray
+    tables: list[FloatArray]
+    history: list[TrialRecord]
+    design: LearningDesign | None
+
     def __init__(
         self,
         feedforward: Any,
@@ -257,9 +273,9 @@ class IterativeLearning(PythonObject):
         self.feedforward = feedforward
         self._hold_last, self._limits = hold_last, limits
         self.table = table
-        self.tables: list[FloatArray] = []  # the table each measured trial ran
-        self.history: list[TrialRecord] = []
-        self.design: LearningDesign | None = None
+        self.tables = []  # the table each measured trial ran
+        self.history = []
+        self.design = None
         self._stopped = self._converged = self._diverged = False
         self.compensator()  # the settings are checked now, not at the first trial
 

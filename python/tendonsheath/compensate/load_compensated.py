@@ -56,6 +56,11 @@ class LoadCompensated(PythonObject, SavedAsJson):
         switch not > 0.
     """
 
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    model: Loaded
+    switch: float
+    inverse: InverseFeedforward
+
     # the keys of a saved file (to_json), in order: the model whole, the switch and the base
     # inverse's settings (defaults resolved); tendonsheath/io/json_multi_input.hpp reads it
     _saved_settings = (
@@ -87,6 +92,16 @@ class LoadCompensated(PythonObject, SavedAsJson):
         terms.switch_travel = self.switch
         self._play = core.LoadPlayInverse(terms)  # the real-time core (C++)
         self.reset()
+
+    @property
+    def params(self) -> dict[str, Any]:
+        """The constructor's arguments: the model, the switch (resolved) and the options
+        given to the base's inverse (a copy)."""
+        return {"model": self.model, "switch": self.switch, **self._inverse_options}
+
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._pyobject)
+        return self.params
 
     def _recipe(self):
         # pickled as its settings: an equal compensator at rest (tendonsheath._pyobject)

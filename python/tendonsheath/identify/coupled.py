@@ -27,8 +27,8 @@ import numpy as np
 
 from .._typing import ArrayLike, FloatArray
 from ..models import Coupled, HysteresisModel
-from .core import identify
 from .coupled_data import CoupledRecording, coupled_recordings
+from .estimator import identify
 from .fit import Fit
 from .newey_west import newey_west as _newey_west
 

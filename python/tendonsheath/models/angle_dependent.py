@@ -254,7 +254,7 @@ class AngleDependent(HysteresisModel):
         return self._base_cls(**self.params_at(curve_angle), **self._base_options)
 
     # -- simulation ------------------------------------------------------------------
-    def simulate(  # curve_angle is its input
+    def _simulate(  # curve_angle is its input
         self,
         t: ArrayLike | None,
         x: ArrayLike,

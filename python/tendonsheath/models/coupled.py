@@ -46,6 +46,9 @@ class Coupled(PythonObject):
         with I - C singular.
     """
 
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    models: list[HysteresisModel]
+
     def __init__(self, models: Sequence[HysteresisModel], coupling: ArrayLike):
         self.models = list(models)
         if not self.models:

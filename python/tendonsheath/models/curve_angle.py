@@ -64,7 +64,7 @@ class CurveAngleModel(HysteresisModel, core.CurveAngleModel):  # type: ignore[mi
     control_inputs = ("x", "curve_angle")
     renamed_params = _SAVED_AS
 
-    def simulate(  # type: ignore[override]  # curve_angle is its input
+    def _simulate(  # curve_angle is its input
         self,
         t: ArrayLike | None,
         x: ArrayLike,

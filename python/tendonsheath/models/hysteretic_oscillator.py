@@ -107,7 +107,7 @@ class HystereticOscillator(HysteresisModel, core.HystereticOscillator):  # type:
         """
         return float(core.HystereticOscillator.z_bound(self, float(displacement_range)))
 
-    def simulate(  # periodic is its own
+    def _simulate(  # periodic is its own
         self, t: ArrayLike | None, x: ArrayLike, periodic: bool | None = None
     ) -> SimulationResult:
         """Output for the input samples x at times t, from rest.

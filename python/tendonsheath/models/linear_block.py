@@ -154,7 +154,7 @@ class LinearBlock(HysteresisModel):
 
     reports_status = False  # a linear filter in Python: no real-time core, no status
 
-    def simulate(  # type: ignore[override]  # a Python filter: no status to report
+    def _simulate(  # a Python filter: no status to report
         self, t: ArrayLike | None, x: ArrayLike
     ) -> FloatArray:
         """Output for the input samples x at uniform times t, from rest at x[0].

@@ -108,7 +108,7 @@ class PlantModel(_GreyBox):
         """The sheath's element count, as a dict."""
         return {name: self._elements for name in self.option_names}
 
-    def simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
+    def _simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
         """Output for the input samples x at times t (needed), from rest at x[0].
 
         Parameters

@@ -121,6 +121,7 @@ class ContinuumPlant(_PairPlant, core.ContinuumPlant):  # type: ignore[misc]
         stiffness2: float | None = None,
         encoder: Sensor | None = None,
     ):
+        self._keep_arguments(locals())
         cls = type(self).__name__
         effects = {k: v for k, v in locals().items() if k in _PAIR_EFFECTS}
         route = Route.uniform(1.0, math.pi) if route is None else route

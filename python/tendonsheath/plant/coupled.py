@@ -121,6 +121,11 @@ class CoupledPlant(PythonObject):
         A sensor that is not a :class:`~tendonsheath.Sensor`.
     """
 
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    plants: list
+    coupling: FloatArray
+    sensors: list[Sensor | None]
+
     def __init__(
         self,
         plants: Sequence,

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -104,6 +105,10 @@ class Motor(PythonObject, core.Motor):  # type: ignore[misc]
         with core_errors_as(f"Motor.{kind}"):
             core.Motor.__init__(self, params)  # validates, naming the parameter
         warn_unit_slips(f"Motor.{kind}", params)
+
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._pyobject): the constructor's argument, the C++ struct
+        return {"params": self._struct()}
 
     def _recipe(self):
         # pickled as its parameters: an equal motor at rest (tendonsheath._pyobject)

@@ -303,6 +303,7 @@ class PullPullPlant(_PairPlant, core.PullPullPlant):  # type: ignore[misc]
         stiffness2: float | None = None,
         encoder: Sensor | None = None,
     ):
+        self._keep_arguments(locals())
         cls = type(self).__name__
         effects = {k: v for k, v in locals().items() if k in _PAIR_EFFECTS}
         self.route = _check_route(route, "route", cls)

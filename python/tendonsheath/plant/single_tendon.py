@@ -76,6 +76,10 @@ class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
         An effect that is not a number.
     """
 
+    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    route: Route
+    load: ConstantForce | LinearSpring | SpringPreload
+
     _rows = 1
 
     def __init__(
@@ -94,6 +98,7 @@ class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
         relaxation_time: float | None = None,
         encoder: Sensor | None = None,
     ):
+        self._keep_arguments(locals())
         cls = type(self).__name__
         effects = {
             "sheath_viscosity": sheath_viscosity,
