@@ -54,11 +54,11 @@ PUBLIC_MODULES = [
     "tendonsheath.report.build",
     "tendonsheath.report.summary",
     "tendonsheath.identify",
-    "tendonsheath.compare",
-    "tendonsheath.session",
-    "tendonsheath.inverse_error",
+    "tendonsheath.apps.compare",
+    "tendonsheath.apps.session",
+    "tendonsheath.apps.inverse_error",
     "tendonsheath.control_interop",
-    "tendonsheath.export_cpp",
+    "tendonsheath.apps.export_cpp",
     "tendonsheath.protocols",
     "tendonsheath.ros2",
     "tendonsheath",
@@ -67,10 +67,11 @@ PUBLIC_MODULES = [
 # The package's other modules, and why the walk leaves them out (they are not a Python API:
 # none is exported by tendonsheath.__all__ or a subpackage's __all__).
 NOT_WALKED = {
-    "tendonsheath.cli": "the `tendonsheath` command (typer): documented by its --help",
-    "tendonsheath.export_cpp_multi": "the multi-input compensators of export_cpp (walked)",
-    "tendonsheath.demo": "the `tendonsheath demo` job, run by the command",
-    "tendonsheath.outputs": "output-path checks of the commands",
+    "tendonsheath.apps": "the applications' folder (its modules walked or listed here)",
+    "tendonsheath.apps.cli": "the `tendonsheath` command (typer): documented by its --help",
+    "tendonsheath.apps.export_cpp_multi": "the multi-input compensators of export_cpp (walked)",
+    "tendonsheath.apps.demo": "the `tendonsheath demo` job, run by the command",
+    "tendonsheath._util.outputs": "output-path checks of the commands",
     "tendonsheath.plots": "the figure behind the plants' plot_tensions() (walked there)",
     "tendonsheath.report": "the report's folder (report.build and report.summary walked)",
     "tendonsheath.report.figures": "figures of report.build (walked)",
@@ -594,7 +595,7 @@ def _configured(qual: str):
     return built.get(qual.split(".")[-2], ts.models.Backlash())
 
 
-# set_params (tendonsheath._pyobject.PythonObject's, inherited by every model, plant and
+# set_params (tendonsheath._util.pyobject.PythonObject's, inherited by every model, plant and
 # compensator): called on an object of its class
 MINIMAL_CALLS.update(
     {

@@ -8,8 +8,8 @@ from typing import TYPE_CHECKING, Any, TypeAlias, cast
 
 import numpy as np
 
-from .._arrays import as_timed_signal
-from .._pyobject import bound_base
+from .._util.arrays import as_timed_signal
+from .._util.pyobject import bound_base
 from ..plant.physics import route_shape as shape_of
 from ..plant.sensor import Sensor
 from ..protocols import (
@@ -28,7 +28,7 @@ from .metrics import dominant_period, tracking_metrics
 from .plant_loop import BenchPlant
 
 if TYPE_CHECKING:
-    from .._typing import ArrayLike
+    from .._util.typing import ArrayLike
     from ..compensate import AdaptiveController
     from ..compensate.base import Feedforward
     from ..compensate.learned_feedforward import LearnedFeedforward

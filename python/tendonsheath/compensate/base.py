@@ -5,9 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Self
 
-from .._arrays import as_timed_signal, checked_dt
-from .._pyobject import PythonObject
-from .._typing import ArrayLike
+from .._util.arrays import as_timed_signal, checked_dt
+from .._util.pyobject import PythonObject
+from .._util.typing import ArrayLike
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
 from ..status import Status
@@ -121,11 +121,11 @@ class EngineCompensator(PythonObject, SavedAsJson, _ControlBlock):
         return persistence.compensator_dict(type(self).__name__, self._settings)
 
     def _configuration(self) -> dict[str, Any]:
-        # get_params (tendonsheath._pyobject): the constructor settings
+        # get_params (tendonsheath._util.pyobject): the constructor settings
         return dict(self._settings)
 
     def _recipe(self):
-        # pickled as its saved file: an equal compensator at rest (tendonsheath._pyobject)
+        # pickled as its saved file: an equal compensator at rest (tendonsheath._util.pyobject)
         # (with its design, where a tuning chose its gains: not part of the file)
         extra = {k: v for k, v in vars(self).items() if k == "design"}
         return persistence.load_compensator, (self.to_dict(),), extra

@@ -9,9 +9,9 @@ from typing import Any
 
 import numpy as np
 
-from .._arrays import as_vector, checked_dt
-from .._pyobject import PythonObject
-from .._typing import ArrayLike, FloatArray
+from .._util.arrays import as_vector, checked_dt
+from .._util.pyobject import PythonObject
+from .._util.typing import ArrayLike, FloatArray
 from ..models import Coupled
 from ..plant.coupled import _joint_matrix
 from ..simulation_result import SimulationResult
@@ -54,7 +54,7 @@ class CoupledFeedforward(PythonObject, SavedAsJson, core.CoupledFeedforward):  #
         A bad setting (as InverseFeedforward says).
     """
 
-    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
     model: Coupled
     settings: dict[str, Any]
 
@@ -82,11 +82,11 @@ class CoupledFeedforward(PythonObject, SavedAsJson, core.CoupledFeedforward):  #
         return {"model": self.model, **self.settings}
 
     def _configuration(self) -> dict[str, Any]:
-        # get_params (tendonsheath._pyobject)
+        # get_params (tendonsheath._util.pyobject)
         return self.params
 
     def _recipe(self):
-        # pickled as its model and settings: an equal compensator at rest (tendonsheath._pyobject)
+        # pickled as its model and settings: an equal compensator at rest (_util.pyobject)
         return functools.partial(CoupledFeedforward, self.model, **self.settings), ()
 
     def own_targets(self, y_desired: ArrayLike) -> FloatArray:

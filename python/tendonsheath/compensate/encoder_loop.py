@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
-from .._args import core_errors_as, number
-from .._arrays import checked_dt
-from .._pyobject import bound_attribute
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as, number
+from .._util.arrays import checked_dt
+from .._util.pyobject import bound_attribute
+from .._util.units import warn_unit_slips
 from ..protocols import step_signals
 from . import _bound as core
 from ._kinds import require_feedforward, require_servo
@@ -65,7 +65,7 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         A gain or limit the C++ core rejects (the message names it).
     """
 
-    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
     limits: CommandLimits
     design: EncoderLoopDesign | None
 

@@ -9,10 +9,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._args import core_errors_as, number
-from .._arrays import as_signal, as_timed_signal, checked_dt
-from .._typing import ArrayLike
-from .._units import checked_curve_angle
+from .._util.args import core_errors_as, number
+from .._util.arrays import as_signal, as_timed_signal, checked_dt
+from .._util.typing import ArrayLike
+from .._util.units import checked_curve_angle
 from ..models import HysteresisModel
 from ..plant.physics import route_shape as shape_of
 from ..simulation_result import SimulationResult
@@ -94,7 +94,7 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
         core rejects.
     """
 
-    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
     model: HysteresisModel
     smoothing: float
     limits: CommandLimits

@@ -28,9 +28,9 @@ from typing import Any
 
 import numpy as np
 
-from .._args import integer, number
-from .._pyobject import PythonObject
-from .._typing import ArrayLike, FloatArray
+from .._util.args import integer, number
+from .._util.pyobject import PythonObject
+from .._util.typing import ArrayLike, FloatArray
 from ._kinds import require_feedforward
 from .learned_feedforward import LearnedFeedforward
 from .limits import LimitsLike
@@ -191,7 +191,7 @@ class IterativeLearning(PythonObject):
     stopped, :meth:`compensator` gives the best table measured (:meth:`best_compensator`).
     """
 
-    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
     feedforward: Any
     t: FloatArray
     reference: FloatArray

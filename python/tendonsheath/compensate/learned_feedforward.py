@@ -6,11 +6,11 @@ from typing import Any
 
 import numpy as np
 
-from .._args import core_errors_as, number, number_array
-from .._arrays import as_timed_signal, checked_dt
-from .._pyobject import bound_attribute
-from .._typing import ArrayLike, FloatArray
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as, number, number_array
+from .._util.arrays import as_timed_signal, checked_dt
+from .._util.pyobject import bound_attribute
+from .._util.typing import ArrayLike, FloatArray
+from .._util.units import warn_unit_slips
 from ..simulation_result import SimulationResult
 from . import _bound as core
 from ._kinds import require_feedforward
@@ -61,7 +61,7 @@ class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ig
         An empty table, a non-finite entry (its index named), table_dt <= 0, or bad limits.
     """
 
-    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
     limits: CommandLimits
 
     control_inputs = ("y_d",)

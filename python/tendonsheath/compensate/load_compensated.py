@@ -21,10 +21,10 @@ from typing import Any
 
 import numpy as np
 
-from .._args import number
-from .._arrays import as_timed_signal, checked_dt
-from .._pyobject import PythonObject
-from .._typing import ArrayLike
+from .._util.args import number
+from .._util.arrays import as_timed_signal, checked_dt
+from .._util.pyobject import PythonObject
+from .._util.typing import ArrayLike
 from ..models.loaded import Loaded
 from ..simulation_result import SimulationResult
 from . import _bound as core
@@ -56,7 +56,7 @@ class LoadCompensated(PythonObject, SavedAsJson):
         switch not > 0.
     """
 
-    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
     model: Loaded
     switch: float
     inverse: InverseFeedforward
@@ -100,11 +100,11 @@ class LoadCompensated(PythonObject, SavedAsJson):
         return {"model": self.model, "switch": self.switch, **self._inverse_options}
 
     def _configuration(self) -> dict[str, Any]:
-        # get_params (tendonsheath._pyobject)
+        # get_params (tendonsheath._util.pyobject)
         return self.params
 
     def _recipe(self):
-        # pickled as its settings: an equal compensator at rest (tendonsheath._pyobject)
+        # pickled as its settings: an equal compensator at rest (tendonsheath._util.pyobject)
         options = self._inverse_options
         return functools.partial(LoadCompensated, self.model, self.switch, **options), ()
 

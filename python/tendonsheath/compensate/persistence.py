@@ -15,9 +15,9 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeAlias, TypeVar
 
-from .._args import is_format_version, renamed
-from .._atomic import write_text
-from .._json_source import naming_the_file, read_json_source
+from .._util.args import is_format_version, renamed
+from .._util.atomic import write_text
+from .._util.json_source import naming_the_file, read_json_source
 from ..models import Coupled, HysteresisModel
 
 if TYPE_CHECKING:

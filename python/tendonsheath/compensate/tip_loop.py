@@ -7,10 +7,10 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
-from .._args import core_errors_as, number
-from .._arrays import checked_dt
-from .._pyobject import bound_attribute
-from .._units import CURVE_ANGLE, warn_if_unit_slip, warn_unit_slips
+from .._util.args import core_errors_as, number
+from .._util.arrays import checked_dt
+from .._util.pyobject import bound_attribute
+from .._util.units import CURVE_ANGLE, warn_if_unit_slip, warn_unit_slips
 from ..protocols import step_signals
 from . import _bound as core
 from ._kinds import require_dynamics, require_feedforward, require_model
@@ -110,7 +110,7 @@ class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
         A gain, schedule point or limit out of range (the message names it).
     """
 
-    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
     limits: CommandLimits
     design: Any
 

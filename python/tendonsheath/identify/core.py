@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._typing import ArrayLike
+from .._util.typing import ArrayLike
 from ..models import Chain, Loaded, PlantModel
 from ..models.base import _REGISTRY
 from . import normalize as _norm

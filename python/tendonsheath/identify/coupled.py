@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from .._typing import ArrayLike, FloatArray
+from .._util.typing import ArrayLike, FloatArray
 from ..models import Coupled, HysteresisModel
 from .coupled_data import CoupledRecording, coupled_recordings
 from .estimator import identify

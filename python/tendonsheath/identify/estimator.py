@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from .._typing import ArrayLike, RecordingLike, Recordings
+from .._util.typing import ArrayLike, RecordingLike, Recordings
 from ..models import HysteresisModel
 from .core import fit_recordings, identify_with
 from .data import make_recordings

@@ -9,7 +9,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from .._typing import ArrayLike
+from .._util.typing import ArrayLike
 from ..models import HysteresisModel
 from ..models.loaded import Loaded
 from ..plant.route import Route

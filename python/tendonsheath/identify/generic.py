@@ -20,10 +20,11 @@ from ..models import (
     PrandtlIshlinskii,
 )
 from ..models.base import _REGISTRY
+from ._bound import POPULATION
 from .data import check_for_fit, make_recordings, search_windows, thin_for_search
 from .fit import Fit, fit_quality, simulate_model
 from .oscillator import identify_oscillator
-from .problem import POPULATION, DirectProblem, SeparableProblem, law_check
+from .problem import DirectProblem, SeparableProblem, law_check
 from .refine import refine
 from .search import PENALTY, global_search
 from .settings import Search

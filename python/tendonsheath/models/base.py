@@ -12,13 +12,13 @@ from typing import Any, ClassVar, Self
 
 import numpy as np
 
-from .._args import core_errors_as, is_format_version, renamed
-from .._arrays import as_time_and_signal, checked_dt
-from .._atomic import write_text
-from .._json_source import naming_the_file, read_json_source
-from .._pyobject import PythonObject, bound_attribute
-from .._typing import ArrayLike
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as, is_format_version, renamed
+from .._util.arrays import as_time_and_signal, checked_dt
+from .._util.atomic import write_text
+from .._util.json_source import naming_the_file, read_json_source
+from .._util.pyobject import PythonObject, bound_attribute
+from .._util.typing import ArrayLike
+from .._util.units import warn_unit_slips
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
 from ..status import Status
@@ -387,12 +387,12 @@ class HysteresisModel(PythonObject, _ControlBlock):
         return text
 
     def _configuration(self) -> dict[str, Any]:
-        # get_params (tendonsheath._pyobject): the parameters and options; a composite
+        # get_params (tendonsheath._util.pyobject): the parameters and options; a composite
         # model's parts are its attributes
         return {**self.params, **self.options}
 
     def _recipe(self):
-        # pickled as its saved file: an equal model at rest (tendonsheath._pyobject)
+        # pickled as its saved file: an equal model at rest (tendonsheath._util.pyobject)
         return load_model, (self.to_dict(),)
 
     def __eq__(self, other) -> bool:

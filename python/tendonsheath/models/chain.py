@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from .._typing import ArrayLike
+from .._util.typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel
@@ -30,7 +30,7 @@ class Chain(HysteresisModel):
         A part that is not a tendonsheath model, or is itself a chain.
     """
 
-    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
     first: HysteresisModel
     second: HysteresisModel
 

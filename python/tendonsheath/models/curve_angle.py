@@ -6,8 +6,8 @@ from typing import Any
 
 import numpy as np
 
-from .._arrays import as_signal, as_time_and_signal, checked_dt
-from .._typing import ArrayLike, FloatOrArray
+from .._util.arrays import as_signal, as_time_and_signal, checked_dt
+from .._util.typing import ArrayLike, FloatOrArray
 from ..plant import physics
 from ..plant.route import Route
 from ..simulation_result import SimulationResult

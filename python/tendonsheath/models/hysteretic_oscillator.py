@@ -8,9 +8,9 @@ from typing import Any
 
 import numpy as np
 
-from .._arrays import as_time_and_signal
-from .._sampling import fft_upsample, is_periodic, uniform_step
-from .._typing import ArrayLike
+from .._util.arrays import as_time_and_signal
+from .._util.sampling import fft_upsample, is_periodic, uniform_step
+from .._util.typing import ArrayLike
 from ..simulation_result import SimulationResult
 from . import _bound as core
 from ._param_table import from_table

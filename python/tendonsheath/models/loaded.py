@@ -29,8 +29,8 @@ from typing import Any
 
 import numpy as np
 
-from .._args import number
-from .._typing import ArrayLike, FloatArray
+from .._util.args import number
+from .._util.typing import ArrayLike, FloatArray
 from ..simulation_result import SimulationResult
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel, split_wrapped_changes
@@ -116,7 +116,7 @@ class Loaded(HysteresisModel):
         A value not finite, slack or friction < 0, slack_load not > 0, or a Loaded base.
     """
 
-    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
     base: HysteresisModel
     terms: dict[str, float]
 

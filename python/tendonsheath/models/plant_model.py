@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._typing import ArrayLike
+from .._util.typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
 from . import _bound as core

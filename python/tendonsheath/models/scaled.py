@@ -7,8 +7,8 @@ from typing import Any
 
 import numpy as np
 
-from .._args import number
-from .._typing import ArrayLike, FloatArray
+from .._util.args import number
+from .._util.typing import ArrayLike, FloatArray
 from ..simulation_result import SimulationResult
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel, split_wrapped_changes
@@ -45,7 +45,7 @@ class Scaled(HysteresisModel):
         output_gain 0.
     """
 
-    # attributes set by __init__ (tendonsheath._pyobject: declared, else refused)
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
     inner: HysteresisModel
     map: dict[str, float]
     uses_curve_angle: bool

@@ -13,10 +13,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._args import integer, number
-from .._arrays import as_time_and_signal, checked_dt
-from .._pyobject import PythonObject, bound_attribute, constructor_arguments
-from .._typing import ArrayLike
+from .._util.args import integer, number
+from .._util.arrays import as_time_and_signal, checked_dt
+from .._util.pyobject import PythonObject, bound_attribute, constructor_arguments
+from .._util.typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
 from . import _bound as core
@@ -134,11 +134,11 @@ class _Plant(PythonObject):
         return dict(self._arguments)
 
     def _configuration(self) -> dict[str, Any]:
-        # get_params (tendonsheath._pyobject): the constructor's arguments
+        # get_params (tendonsheath._util.pyobject): the constructor's arguments
         return dict(self._arguments)
 
     def _recipe(self):
-        # pickled as its constructor's arguments: an equal plant at rest (tendonsheath._pyobject)
+        # pickled as its constructor's arguments: an equal plant at rest (_util.pyobject)
         return _rebuilt_plant, (type(self), self._arguments, self._interpolation)
 
     def set_input_interpolation(

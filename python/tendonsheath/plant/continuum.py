@@ -6,8 +6,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from .._args import core_errors_as
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as
+from .._util.units import warn_unit_slips
 from . import _bound as core
 from .loads import (
     TorsionalSpring,

@@ -14,9 +14,9 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from .._args import core_errors_as
-from .._pyobject import bound_attribute
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as
+from .._util.pyobject import bound_attribute
+from .._util.units import warn_unit_slips
 from . import _bound as core
 from . import physics
 from .loads import (

@@ -134,7 +134,7 @@ def _declared(cls: type, name: str) -> bool:
 
 class PythonObject:
     """Copies that do not share the C++ engine, pickling through the configuration, and no
-    silent attribute for a misspelt or unknown name (see :mod:`tendonsheath._pyobject`).
+    silent attribute for a misspelt or unknown name (see :mod:`tendonsheath._util.pyobject`).
 
     A subclass whose state holds C++ engines defines ``_recipe()``: a picklable
     ``(callable, args)`` that builds an equal object at rest. Without one, the instance's
