@@ -254,7 +254,7 @@ class AngleDependent(HysteresisModel):
         return self._base_cls(**self.params_at(curve_angle), **self._base_options)
 
     # -- simulation ------------------------------------------------------------------
-    def _simulate(  # curve_angle is its input
+    def simulate(
         self,
         t: ArrayLike | None,
         x: ArrayLike,
@@ -282,6 +282,15 @@ class AngleDependent(HysteresisModel):
         ValueError
             No curve angle, or one that varies during the run.
         """
+        return super().simulate(t, x, curve_angle=curve_angle)
+
+    def _simulate(  # curve_angle is its input
+        self,
+        t: ArrayLike | None,
+        x: ArrayLike,
+        curve_angle: ArrayLike | None = None,
+    ) -> SimulationResult:
+        """The output of :meth:`simulate` (its docstring says what it takes)."""
         if isinstance(curve_angle, Route):
             return self.at(curve_angle).simulate(t, x)
         theta = curve_angle_samples(curve_angle, np.size(x), "AngleDependent")

@@ -64,7 +64,7 @@ class CurveAngleModel(HysteresisModel, core.CurveAngleModel):  # type: ignore[mi
     control_inputs = ("x", "curve_angle")
     renamed_params = _SAVED_AS
 
-    def _simulate(  # curve_angle is its input
+    def simulate(  # type: ignore[override]  # curve_angle is its input
         self,
         t: ArrayLike | None,
         x: ArrayLike,
@@ -93,6 +93,15 @@ class CurveAngleModel(HysteresisModel, core.CurveAngleModel):  # type: ignore[mi
         ValueError
             No curve angle, a non-finite one, or one of another length than x.
         """
+        return super().simulate(t, x, curve_angle=curve_angle)
+
+    def _simulate(  # curve_angle is its input
+        self,
+        t: ArrayLike | None,
+        x: ArrayLike,
+        curve_angle: ArrayLike | None = None,
+    ) -> SimulationResult:
+        """The output of :meth:`simulate` (its docstring says what it takes)."""
         ts, xs = as_time_and_signal(t, x)
         if isinstance(curve_angle, Route):
             engine = core.CurveAngleModel(self)  # a copy: this model's shape stays

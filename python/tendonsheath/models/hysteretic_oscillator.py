@@ -107,7 +107,7 @@ class HystereticOscillator(HysteresisModel, core.HystereticOscillator):  # type:
         """
         return float(core.HystereticOscillator.z_bound(self, float(displacement_range)))
 
-    def _simulate(  # periodic is its own
+    def simulate(
         self, t: ArrayLike | None, x: ArrayLike, periodic: bool | None = None
     ) -> SimulationResult:
         """Output for the input samples x at times t, from rest.
@@ -141,6 +141,12 @@ class HystereticOscillator(HysteresisModel, core.HystereticOscillator):  # type:
         ValueError
             t missing, bad samples, non-uniform sampling with "bandlimited", or z diverging.
         """
+        return super().simulate(t, x, periodic=periodic)
+
+    def _simulate(  # periodic is its own
+        self, t: ArrayLike | None, x: ArrayLike, periodic: bool | None = None
+    ) -> SimulationResult:
+        """The output of :meth:`simulate` (its docstring says what it takes)."""
         if t is None:
             raise ValueError("HystereticOscillator is rate-dependent: t is required")
         ts, xs = as_time_and_signal(t, x)

@@ -219,7 +219,7 @@ class Loaded(HysteresisModel):
             raise ValueError("Loaded: the load must be finite")
         return arr
 
-    def _simulate(  # the measured load besides the input
+    def simulate(
         self,
         t: ArrayLike | None,
         x: ArrayLike,
@@ -250,6 +250,16 @@ class Loaded(HysteresisModel):
         ValueError
             No load, a load of another length than x, or not finite; the base's own errors.
         """
+        return super().simulate(t, x, load=load, **kwargs)
+
+    def _simulate(  # the measured load besides the input
+        self,
+        t: ArrayLike | None,
+        x: ArrayLike,
+        load: ArrayLike | None = None,
+        **kwargs: Any,
+    ) -> SimulationResult:
+        """The output of :meth:`simulate` (its docstring says what it takes)."""
         xs = np.asarray(x, dtype=float)
         loads = self._loads(xs, load)
         z = play(xs, self.radius(loads))
