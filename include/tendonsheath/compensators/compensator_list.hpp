@@ -18,6 +18,7 @@
 #include "adaptive_controller.hpp"
 #include "continuum_feedforward.hpp"
 #include "curve_angle_feedforward.hpp"
+#include "dead_band_inverse.hpp"
 #include "inverse_feedforward.hpp"
 #include "model_inverse.hpp"
 
@@ -29,7 +30,7 @@ namespace tendonsheath {
 /// one entry here (see the file's comment).
 using Compensators = TypeList<ModelInverse, CurveAngleFeedforward, AdaptiveController,
                               ContinuumFeedforward, BacklashInverseFeedforward,
-                              PrandtlIshlinskiiFeedforward>;
+                              PrandtlIshlinskiiFeedforward, DeadBandInverse>;
 
 /// Whether compensator C has a parameter table (C::Params with a ParamTable): what its binding,
 /// its name and its C++ JSON reader follow from when it has none of its own.
