@@ -7,7 +7,7 @@ import sys
 import time
 from pathlib import Path
 
-from tendonsheath._atomic import write_json
+from tendonsheath._util.atomic import write_json
 
 RESULTS = Path(__file__).resolve().parent / "results"
 # the independent references (tests/reference/) that some benchmarks time or fit against

@@ -21,9 +21,9 @@ from pathlib import Path
 import numpy as np
 
 import tendonsheath as ts
-from tendonsheath.compare import _settle
-from tendonsheath.inverse_error import offline_inverse
-from tendonsheath.session import session_shift
+from tendonsheath.apps.compare import _settle
+from tendonsheath.apps.inverse_error import offline_inverse
+from tendonsheath.apps.session import session_shift
 
 DEFAULT = Path(__file__).resolve().parents[2] / "shared" / "data" / "davinci_tool5"
 FREQS = (0.1, 0.2, 0.3, 0.4, 0.5)

@@ -26,9 +26,15 @@ from tendonsheath.bench.scenarios import SCENARIOS
 FIELDS = ("output", "measured", "command", ("q_motor", "motor"), "status")
 
 
+def _has(res, name) -> bool:
+    """Whether the result has the field (a dataclass's, or a SimulationResult's)."""
+    fields = getattr(type(res), "__dataclass_fields__", None)
+    return name in fields if fields is not None else name in res._info
+
+
 def _field(res, name):
     if isinstance(name, tuple):  # the first name this build has
-        return getattr(res, next(n for n in name if n in type(res).__dataclass_fields__))
+        return getattr(res, next(n for n in name if _has(res, n)))
     return getattr(res, name)
 
 

@@ -40,7 +40,7 @@ from _tool5 import read_all, sessions
 
 import tendonsheath as ts
 from _common import write_results
-from tendonsheath.compare import AFFINE
+from tendonsheath.apps.compare import AFFINE
 
 NHOYH = TOOL5.parent / "nhoyh_vio_com"
 CONFIGS = tuple(range(0, 271, 30))

@@ -24,7 +24,7 @@ import time
 from pathlib import Path
 
 import tendonsheath as ts
-from tendonsheath import compare
+from tendonsheath.apps import compare
 from tendonsheath.identify import data as identify_data
 
 RUNS = ("f0.10Hz_load010.csv", "f0.30Hz_load050.csv", "f0.50Hz_load100.csv")

@@ -29,7 +29,7 @@ from _tool5 import DEFAULT, run_name
 
 import tendonsheath as ts
 from _common import write_results
-from tendonsheath import compare
+from tendonsheath.apps import compare
 
 RUNS = tuple(run_name(0.1, p) for p in (10, 30, 50, 70, 90))
 RATE = 500.0  # Hz: 20 s runs of 10 000 samples

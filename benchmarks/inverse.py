@@ -8,7 +8,7 @@ time, never copied) is that of issue 23: the runs at 0.1 Hz / 10 % load, 0.3 Hz 
 
 1. ``ts.identify(PrandtlIshlinskii, recordings=...)`` on the three runs returns a Scaled PI whose
    weights nearly cancel. Its ``InverseFeedforward`` is asked for each run's recorded jaw angle
-   (``tendonsheath.inverse_error.offline_inverse``): without a range (``input_range=None``) and
+   (``tendonsheath.apps.inverse_error.offline_inverse``): without a range (``input_range=None``) and
    with the identified one (the default), the largest |command| and the share of cycles flagged
    out_of_range.
 2. ``ts.compare_models`` on the three runs (leave one run out), its forward and inverse columns.
@@ -28,8 +28,8 @@ import numpy as np
 
 import tendonsheath as ts
 from _common import write_results
+from tendonsheath.apps.inverse_error import desired_from_record
 from tendonsheath.compensate import InverseFeedforward
-from tendonsheath.inverse_error import desired_from_record
 
 RUNS = ("f0.10Hz_load010.csv", "f0.30Hz_load050.csv", "f0.50Hz_load100.csv")
 DEFAULT = Path(__file__).resolve().parents[2] / "shared" / "data" / "davinci_tool5"

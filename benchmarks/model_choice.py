@@ -43,7 +43,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import tendonsheath as ts  # noqa: E402
 from _common import write_results  # noqa: E402
-from tendonsheath import _eligibility as eligibility  # noqa: E402
+from tendonsheath._util import eligibility as eligibility  # noqa: E402
 
 HERE = Path(__file__).resolve().parents[2] / "shared" / "data"
 RATE = 50.0  # Hz, resampling of the confX_ampY files (realdata.py's)

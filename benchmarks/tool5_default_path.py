@@ -19,7 +19,7 @@ on the unknown initial state). Per run:
 
 - forward: the rmse of the predicted jaw angle (rad);
 - inverse: the rmse between the commands the model's inverse sends for the recorded jaw angle
-  (``tendonsheath.inverse_error.offline_inverse``, the figure compare_models ranks by for
+  (``tendonsheath.apps.inverse_error.offline_inverse``, the figure compare_models ranks by for
   ``objective="compensation"``: InverseFeedforward, or LoadCompensated with the run's load for
   a Loaded model; the affine map's the same) and the motor angle that produced it (rad).
 
@@ -54,7 +54,7 @@ from _tool5 import DEFAULT, NAMES, first_cycle, read_all, scores, sessions
 
 import tendonsheath as ts
 from _common import write_results
-from tendonsheath.session import recalibrate
+from tendonsheath.apps.session import recalibrate
 
 TRAIN = ("f0.10Hz_load010", "f0.30Hz_load050", "f0.50Hz_load100")
 FIGURES = ("forward_abs", "forward_zero_free", "inverse_abs", "inverse_zero_free",

@@ -82,8 +82,8 @@ import numpy as np
 
 import tendonsheath as ts
 from _common import write_results
+from tendonsheath.apps.inverse_error import SMOOTHING_SHARE, desired_from_record
 from tendonsheath.compensate import InverseFeedforward, LoadCompensated
-from tendonsheath.inverse_error import SMOOTHING_SHARE, desired_from_record
 
 DEFAULT = Path(__file__).resolve().parents[2] / "shared" / "data" / "davinci_tool5"
 FREQS = (0.1, 0.2, 0.3, 0.4, 0.5)

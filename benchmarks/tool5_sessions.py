@@ -44,7 +44,7 @@ from _tool5 import DEFAULT, first_cycle, read_all, scores, sessions
 
 import tendonsheath as ts
 from _common import write_results
-from tendonsheath.session import recalibrate, session_shift
+from tendonsheath.apps.session import recalibrate, session_shift
 
 
 def frequency(name: str) -> float:

@@ -6,7 +6,8 @@ import os
 import numpy as np
 import pytest
 
-from tendonsheath import _atomic, io
+from tendonsheath import io
+from tendonsheath._util import atomic as _atomic
 
 
 class Interrupted(KeyboardInterrupt):

@@ -17,7 +17,7 @@ import pytest
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath.cli import app
+from tendonsheath.apps.cli import app
 
 ROOT = Path(__file__).resolve().parent.parent
 T = np.arange(0.0, 2.0, 1e-3)

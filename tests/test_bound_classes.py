@@ -12,7 +12,7 @@ import pytest
 
 import tendonsheath as ts
 from tendonsheath import _core as core
-from tendonsheath._pyobject import bound_attribute, bound_base
+from tendonsheath._util.pyobject import bound_attribute, bound_base
 from tendonsheath.compensate import (
     AdaptiveController,
     ContinuumFeedforward,

@@ -10,7 +10,7 @@ import pytest
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath.cli import app
+from tendonsheath.apps.cli import app
 
 runner = CliRunner()
 COLS = ["--input", "x", "--output", "y", "--time", "t"]
@@ -191,7 +191,7 @@ def test_an_unexpected_exception_is_one_line_said_to_be_a_bug(files, monkeypatch
     def broken(*args, **kwargs):
         raise KeyError("limits")
 
-    monkeypatch.setattr("tendonsheath.export_cpp.cpp_header", broken)
+    monkeypatch.setattr("tendonsheath.apps.export_cpp.cpp_header", broken)
     result = runner.invoke(
         app, ["export", str(files / "model.json"), "--cpp", str(files / "b.hpp")]
     )

@@ -4,7 +4,7 @@ import json
 
 from typer.testing import CliRunner
 
-from tendonsheath.cli import app
+from tendonsheath.apps.cli import app
 
 runner = CliRunner()
 

@@ -13,7 +13,7 @@ import pytest
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath.cli import app
+from tendonsheath.apps.cli import app
 
 runner = CliRunner()
 COLS = ["--input", "x", "--output", "y", "--time", "t"]
@@ -88,7 +88,7 @@ def _interrupt(args, cwd, ready: str, timeout=120.0):
     """Run the CLI in its own process group, wait for ``ready`` on stdout, then Ctrl-C the
     group (as a terminal does: every process of the command gets SIGINT)."""
     env = {**os.environ, "PYTHONUNBUFFERED": "1", "COLUMNS": "200"}
-    cmd = [sys.executable, "-c", "from tendonsheath.cli import main; main()", *args]
+    cmd = [sys.executable, "-c", "from tendonsheath.apps.cli import main; main()", *args]
     proc = subprocess.Popen(
         cmd,
         cwd=cwd,
@@ -144,7 +144,7 @@ def test_ctrl_c_stops_identify_cleanly_and_writes_nothing(tmp_path):
 def test_ctrl_c_stops_demo_cleanly(tmp_path):
     out = tmp_path / "demo"
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
-    cmd = [sys.executable, "-c", "from tendonsheath.cli import main; main()", "demo",
+    cmd = [sys.executable, "-c", "from tendonsheath.apps.cli import main; main()", "demo",
            "--out", str(out), "--scale", "0.2"]  # fmt: skip
     proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, start_new_session=True)  # fmt: skip

@@ -7,7 +7,7 @@ import pytest
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath.cli import app
+from tendonsheath.apps.cli import app
 
 runner = CliRunner()
 

@@ -10,7 +10,7 @@ from _rosbag_helpers import EPOCH_NS, KINDS, joint_state, point_stamped, write_b
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath.cli import app
+from tendonsheath.apps.cli import app
 
 runner = CliRunner()
 B_R = 0.05

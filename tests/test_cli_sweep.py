@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 from typer.testing import CliRunner
 
-from tendonsheath.cli import app
+from tendonsheath.apps.cli import app
 from tendonsheath.sweep import Integers, LatinHypercube, Normal, Relative, Seed
 from tendonsheath.sweep.toml import read_sweep_file
 

@@ -8,9 +8,10 @@ from _realdata_helpers import plant_log
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath import compare, io
-from tendonsheath.cli import app
-from tendonsheath.compare import model_name, parse_model
+from tendonsheath import io
+from tendonsheath.apps import compare
+from tendonsheath.apps.cli import app
+from tendonsheath.apps.compare import model_name, parse_model
 from tendonsheath.models import BoucWenBacklash, Chain, Polynomial
 
 FAST = {"maxiter": 15, "popsize": 10}

@@ -11,8 +11,9 @@ from scipy.optimize import nnls
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath import compare, io
-from tendonsheath.cli import app
+from tendonsheath import io
+from tendonsheath.apps import compare
+from tendonsheath.apps.cli import app
 from tendonsheath.identify.core import SEARCH_DEADLINE
 from tendonsheath.identify.data import make_recordings, thin_for_search
 from tendonsheath.identify.problem import bounded_lsq

@@ -9,7 +9,7 @@ import scipy.optimize
 from _realdata_helpers import plant_log
 
 import tendonsheath as ts
-from tendonsheath import compare
+from tendonsheath.apps import compare
 from tendonsheath.identify import data
 from tendonsheath.identify import refine as refine_module
 from tendonsheath.identify.data import make_recordings

@@ -8,8 +8,8 @@ import pytest
 from _realdata_helpers import plant_log
 
 import tendonsheath as ts
+from tendonsheath.apps.inverse_error import desired_from_record, offline_inverse
 from tendonsheath.compensate import InverseFeedforward
-from tendonsheath.inverse_error import desired_from_record, offline_inverse
 from tendonsheath.models import Backlash
 
 FAST = {"maxiter": 15, "popsize": 10}

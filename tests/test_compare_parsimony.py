@@ -11,8 +11,10 @@ from _realdata_helpers import plant_log
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath import _parsimony, compare, io
-from tendonsheath.cli import app
+from tendonsheath import io
+from tendonsheath._util import parsimony as _parsimony
+from tendonsheath.apps import compare
+from tendonsheath.apps.cli import app
 
 FAST = {"maxiter": 10, "popsize": 8}
 
@@ -181,7 +183,7 @@ def test_a_ratio_that_rounds_to_one_shows_which_side_of_one_it_is_on():
 
 
 def test_cli_parts_past_twelve_show_each_candidates_best_and_worst(capsys):
-    from tendonsheath import cli
+    from tendonsheath.apps import cli
 
     k = cli.MAX_PART_COLUMNS + 1
     ratios = np.array([np.ones(k), np.linspace(0.5, 1.1, k)])

@@ -7,8 +7,9 @@ from _realdata_helpers import plant_log
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath import compare, io
-from tendonsheath.cli import app
+from tendonsheath import io
+from tendonsheath.apps import compare
+from tendonsheath.apps.cli import app
 from tendonsheath.identify import Identifier
 from tendonsheath.identify.data import make_recordings
 

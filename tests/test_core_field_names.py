@@ -12,8 +12,8 @@ from pathlib import Path
 import pytest
 
 import tendonsheath as ts
-from tendonsheath import _args
 from tendonsheath import _core as core
+from tendonsheath._util import args as _args
 from tendonsheath.compensate import (
     AdaptiveController,
     ContinuumFeedforward,

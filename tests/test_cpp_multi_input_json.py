@@ -17,9 +17,9 @@ from typer.testing import CliRunner
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from test_cpp_example_12 import example  # noqa: E402,F401  (the fixture: the built example)
 
-from tendonsheath.cli import app  # noqa: E402
+from tendonsheath.apps.cli import app  # noqa: E402
+from tendonsheath.apps.export_cpp import cpp_header  # noqa: E402
 from tendonsheath.compensate import CoupledFeedforward, LoadCompensated, load_compensator  # noqa: E402
-from tendonsheath.export_cpp import cpp_header  # noqa: E402
 from tendonsheath.models import (  # noqa: E402
     Backlash,
     BoucWenBacklash,

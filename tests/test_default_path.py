@@ -12,9 +12,9 @@ import pytest
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath.cli import app
-from tendonsheath.compare import LOADED_BASES, default_models, model_name
-from tendonsheath.inverse_error import offline_inverse
+from tendonsheath.apps.cli import app
+from tendonsheath.apps.compare import LOADED_BASES, default_models, model_name
+from tendonsheath.apps.inverse_error import offline_inverse
 
 LOADED = [f"Loaded({b.__name__})" for b in LOADED_BASES]
 QUICK = {"maxiter": 15, "popsize": 10}
@@ -183,7 +183,7 @@ def test_a_load_aware_winner_predicts_inverts_saves_and_exports_with_its_load(
     the columns (load included), `predict` reads it without naming them and gives the
     Loaded model's own prediction under the run's load; the model saves and loads; its
     inverse (LoadCompensated) saves, loads and exports to C++."""
-    from tendonsheath.export_cpp import cpp_header
+    from tendonsheath.apps.export_cpp import cpp_header
 
     train, held, _ = loaded_runs
     paths = []

@@ -105,7 +105,7 @@ def run_commands(code: str, folder: Path, source: str) -> str:
 
     from typer.testing import CliRunner
 
-    from tendonsheath.cli import app
+    from tendonsheath.apps.cli import app
 
     env, out = dict(os.environ), []
     for line in _command_lines(code):

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from tendonsheath.cli import app
+from tendonsheath.apps.cli import app
 from tendonsheath.compensate import (
     ContinuumFeedforward,
     CurveAngleFeedforward,

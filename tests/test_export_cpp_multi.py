@@ -18,8 +18,8 @@ from test_cpp_multi_input_json import DTS, T, _coupled, _desired, _load_compensa
 from test_export_cpp import _export, compiler  # noqa: E402,F401  (compiler: the fixture)
 from test_inverse_every_model import EXACT, _angle_backlash  # noqa: E402
 
+from tendonsheath.apps.export_cpp import cpp_header  # noqa: E402
 from tendonsheath.compensate import CoupledFeedforward, InverseFeedforward  # noqa: E402
-from tendonsheath.export_cpp import cpp_header  # noqa: E402
 from tendonsheath.models import Backlash, Chain, Coupled, FirstOrderLag, Polynomial  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]

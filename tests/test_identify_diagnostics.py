@@ -291,7 +291,7 @@ def test_self_class_bootstrap_coverage_short():
 def test_cli_identify_prints_diagnostics_and_warns(tmp_path):
     """Self-class CurveAngleModel at one angle through the command: groups, the condition
     number and a warning line naming friction."""
-    from tendonsheath.cli import app
+    from tendonsheath.apps.cli import app
 
     truth = CurveAngleModel(friction=0.3, stiffness=2.0e4, load_force=1.5)
     t = np.arange(0.0, 4.0, 5e-3)

@@ -16,7 +16,8 @@ from tendonsheath.identify import (
     cross_validate,
     metrics,
 )
-from tendonsheath.identify.settings import DEFAULTS, IDENTIFIER_NAMES, OSCILLATOR_NAMES
+from tendonsheath.identify.estimator import DEFAULTS, IDENTIFIER_NAMES, Options
+from tendonsheath.identify.settings import OSCILLATOR_DEFAULTS, OSCILLATOR_NAMES
 from tendonsheath.models import (
     Backlash,
     BoucWen,
@@ -55,33 +56,35 @@ def test_get_params_set_params_round_trip():
 
 
 def test_init_takes_every_setting_as_a_keyword_with_identifys_default():
-    # an explicit signature (no **settings): each setting of Options, keyword-only, same
-    # default, but for a HystereticOscillator's own ones, grouped in ``oscillator``
+    # an explicit signature (no **settings), the one place the settings and their defaults
+    # are written: Options reads it, a HystereticOscillator's own ones grouped in oscillator
     params = list(inspect.signature(Identifier).parameters.values())
     assert [p.name for p in params] == ["model", *IDENTIFIER_NAMES]
     assert set(IDENTIFIER_NAMES) == (set(DEFAULTS) - set(OSCILLATOR_NAMES)) | {"oscillator"}
     assert params[0].default is None and params[-1].default is None
+    assert len(IDENTIFIER_NAMES) == 21 and len(DEFAULTS) == 23
     for p in params[1:-1]:
         assert p.kind is p.KEYWORD_ONLY and p.default == DEFAULTS[p.name], p.name
     est = Identifier(Backlash, maxiter=7)
-    assert est.maxiter == 7 and est.popsize == DEFAULTS["popsize"]
-    assert {n: getattr(est.options(), n) for n in OSCILLATOR_NAMES} == {
-        n: DEFAULTS[n] for n in OSCILLATOR_NAMES
-    }
+    assert est.maxiter == 7 and est.popsize == 15
+    assert est.options() == Options(maxiter=7)
+    assert {n: getattr(est.options(), n) for n in OSCILLATOR_NAMES} == OSCILLATOR_DEFAULTS
 
 
-def test_identify_takes_every_setting_as_a_keyword_with_its_default():
-    # identify's own signature (not one forged at import): the data, then each setting of
-    # Options, keyword-only, in its order and with its default; a misspelt one is Python's
-    # TypeError naming it
+def test_identify_takes_the_identifiers_settings_by_keyword():
+    # identify's signature: the data, then **settings, read as Identifier's (its defaults) and
+    # a HystereticOscillator's own ones flat; a misspelt one is a TypeError naming it and the
+    # closest known one
     params = list(inspect.signature(ts.identify).parameters.values())
     assert [p.name for p in params] == [
-        "model_class", "t", "x", "y", "recordings", "curve_angle", "load", *DEFAULTS
+        "model_class", "t", "x", "y", "recordings", "curve_angle", "load", "settings"
     ]  # fmt: skip
-    for p in params[7:]:
-        assert p.kind is p.KEYWORD_ONLY and p.default == DEFAULTS[p.name], p.name
-    with pytest.raises(TypeError, match=r"unexpected keyword argument 'maxiters'"):
+    assert params[-1].kind is params[-1].VAR_KEYWORD
+    with pytest.raises(TypeError, match=r"'maxiters' \(did you mean maxiter\?\)"):
         ts.identify(Backlash, [0.0, 1.0], [0.0, 1.0], [0.0, 1.0], maxiters=5)
+    options = Options(strategy="search", maxiter=3)
+    assert options.replace(maxiter=4) == Options(strategy="search", maxiter=4)
+    assert options.maxiter == 3 and options.popsize == 15  # unchanged; the default read
 
 
 def test_oscillator_settings_are_grouped_and_the_old_keywords_are_refused(log):

@@ -11,7 +11,7 @@ import pytest
 import tendonsheath as ts
 from reference.oscillator import BENCHMARK, Multisine, simulate_reference
 from tendonsheath import _core as core
-from tendonsheath._sampling import fft_upsample, is_periodic
+from tendonsheath._util.sampling import fft_upsample, is_periodic
 
 
 def _sines(rng, band, count=30):

@@ -226,7 +226,7 @@ def test_export_cpp_refuses_the_new_inverses_in_one_line(tmp_path):
     any other inverse is refused with a one-line reason pointing at the JSON loader."""
     from typer.testing import CliRunner
 
-    from tendonsheath.cli import app
+    from tendonsheath.apps.cli import app
 
     gpi = ts.models.GeneralizedPrandtlIshlinskii()
     InverseFeedforward(gpi).to_json(tmp_path / "gpi.json")

@@ -1,4 +1,4 @@
-"""tendonsheath._jobs: the demo's jobs on worker processes give what a serial run gives (the
+"""tendonsheath._util.jobs: the demo's jobs on worker processes give what a serial run gives (the
 values, the progress lines, the warnings), and a failing job is named."""
 
 import os
@@ -6,7 +6,7 @@ import warnings
 
 import pytest
 
-from tendonsheath._jobs import Job, run_jobs, travels
+from tendonsheath._util.jobs import Job, run_jobs, travels
 
 
 class JobWarning(UserWarning):
@@ -102,7 +102,7 @@ def _numbers(path):
 def test_the_demo_on_two_workers_writes_what_it_writes_on_one(tmp_path):
     """do2015 in its parts (each servo on a worker, put together here) and the other jobs side
     by side: every figure of metrics.json equal, to the last bit, to the serial run's."""
-    from tendonsheath.demo import run_demo
+    from tendonsheath.apps.demo import run_demo
 
     written = {}
     for workers in (1, 2):

@@ -20,7 +20,7 @@ import openpyxl
 import pytest
 from typer.testing import CliRunner
 
-from tendonsheath.cli import app
+from tendonsheath.apps.cli import app
 
 OPTIONAL = ("plotly", "h5py", "openpyxl")
 REPORT = "the HTML report needs plotly: pip install 'tendonsheath[report]'"
@@ -36,7 +36,8 @@ from pathlib import Path
 import numpy as np
 
 import tendonsheath as ts
-import tendonsheath.cli, tendonsheath.demo, tendonsheath.report.build, tendonsheath.report.html
+import tendonsheath.apps.cli, tendonsheath.apps.demo
+import tendonsheath.report.build, tendonsheath.report.html
 
 OPTIONAL = {optional!r}
 loaded = sorted(m for m in sys.modules if m.split(".")[0] in OPTIONAL)

@@ -187,7 +187,7 @@ def test_cli_identify_and_predict_with_a_load_column(tmp_path):
     back and its rmse is the Loaded model's own (a wrong load column would change it)."""
     from typer.testing import CliRunner
 
-    from tendonsheath.cli import app
+    from tendonsheath.apps.cli import app
 
     truth, logs = _truth_logs(1)
     paths = []

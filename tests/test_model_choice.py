@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import tendonsheath as ts
-from tendonsheath import _eligibility as eligibility
+from tendonsheath._util import eligibility as eligibility
 
 
 def _run(width: float, seed: int, n: int = 400) -> ts.io.Log:

@@ -7,7 +7,7 @@ import pytest
 
 from tendonsheath import _core as core
 from tendonsheath import models
-from tendonsheath._sampling import fft_upsample
+from tendonsheath._util.sampling import fft_upsample
 
 NAMES = ("m", "c", "k", "alpha", "beta", "gamma", "delta", "nu")
 

@@ -210,7 +210,7 @@ def test_the_report_reads_the_population_study_from_its_committed_json(tmp_path)
     import json
     from pathlib import Path
 
-    import tendonsheath.demo as demo
+    import tendonsheath.apps.demo as demo
 
     assert demo.population_section(tmp_path / "none.json") is None  # outside the repository
     path = Path(__file__).resolve().parents[1] / "benchmarks" / "results" / "population.json"

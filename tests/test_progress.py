@@ -7,9 +7,9 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from tendonsheath import _progress
-from tendonsheath._progress import StepProgress, wanted
-from tendonsheath.cli import app
+from tendonsheath._util import progress as _progress
+from tendonsheath._util.progress import StepProgress, wanted
+from tendonsheath.apps.cli import app
 
 LONG_COMMANDS = ("identify", "compare", "sweep", "bench", "demo")
 

@@ -142,7 +142,7 @@ def test_every_plant_meets_the_protocol_and_its_params_rebuild_it():
 
 class _Delegate:
     """A shipped compensator seen only through the protocol: bench.run must step it from
-    Python (no _bench_engine), inside the same C++ loop."""
+    Python (no bench_engine), inside the same C++ loop."""
 
     def __init__(self, inner):
         self.inner = inner

@@ -1,7 +1,7 @@
 """Every public module of the package declares ``__all__``, and lists only its own API in it.
 
 A public module is one whose dotted name has no part starting with ``_`` (``tendonsheath.io``,
-``tendonsheath.identify.fit``, ``tendonsheath.report.build``; not ``tendonsheath._args``).
+``tendonsheath.identify.fit``, ``tendonsheath.report.build``; not ``tendonsheath._util.args``).
 Its ``__all__`` names what ``from module import *`` brings and what the API reference
 documents, so it must not carry the helpers the module imports: ``np``, ``re``, ``Path``, a
 typing name, another library's function, or a private helper of the package
@@ -146,7 +146,7 @@ def test_the_all_check_can_fail(tmp_path, monkeypatch):
         "import re\n"
         "import numpy as np\n"
         "from pathlib import Path\n"
-        "from tendonsheath._atomic import atomic_path\n"
+        "from tendonsheath._util.atomic import atomic_path\n"
         "from tendonsheath import models\n"
         "def own():\n"
         "    return 1\n"
@@ -163,7 +163,7 @@ def test_the_all_check_can_fail(tmp_path, monkeypatch):
         "re: the module re",
         "np: the module numpy",
         "Path: imported from pathlib",
-        "atomic_path: a helper of tendonsheath._atomic",
+        "atomic_path: a helper of tendonsheath._util.atomic",
         "models: the module tendonsheath.models",
         "gone: listed but not defined",
     ]

@@ -170,10 +170,10 @@ def test_without_the_extra_the_commands_say_so_in_one_line(monkeypatch, tmp_path
 
     from typer.testing import CliRunner
 
-    from tendonsheath.cli import app
+    from tendonsheath.apps.cli import app
 
     # importing the package (and tendonsheath.ros2) loads no rclpy
-    code = "import sys, tendonsheath.ros2, tendonsheath.cli; print('rclpy' in sys.modules)"
+    code = "import sys, tendonsheath.ros2, tendonsheath.apps.cli; print('rclpy' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
     monkeypatch.setitem(sys.modules, "rclpy", None)  # import rclpy: ImportError

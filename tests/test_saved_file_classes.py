@@ -18,8 +18,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import _saved_file_table as table  # noqa: E402
 
 from tendonsheath import compensate, models  # noqa: E402
-from tendonsheath.cli import app  # noqa: E402
-from tendonsheath.export_cpp import cpp_header  # noqa: E402
+from tendonsheath.apps.cli import app  # noqa: E402
+from tendonsheath.apps.export_cpp import cpp_header  # noqa: E402
 
 # keys whose absence has a documented meaning: an option, a limit (unbounded, as null), a law
 # (constant), Scaled's map (identity) and settings added after version 1 was first written

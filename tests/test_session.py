@@ -1,4 +1,4 @@
-"""Sessions: the shift check and the short re-calibration (tendonsheath.session), on drives
+"""Sessions: the shift check and the short re-calibration (tendonsheath.apps.session), on drives
 whose shift is known: a model's own output, moved by an offset, a gain and a dead band."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import tendonsheath as ts
-from tendonsheath.session import REFITTABLE, _branch, recalibrate, session_shift
+from tendonsheath.apps.session import REFITTABLE, _branch, recalibrate, session_shift
 
 T = np.arange(0.0, 20.0, 0.01)
 
@@ -56,7 +56,7 @@ def test_the_shifts_are_measured_within_their_errors_over_random_drives():
 
 
 def found_start(x):
-    from tendonsheath.compare import _settle
+    from tendonsheath.apps.compare import _settle
 
     return _settle(x)
 

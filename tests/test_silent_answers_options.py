@@ -18,8 +18,8 @@ import pytest
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath.cli import app
-from tendonsheath.compare import parse_model
+from tendonsheath.apps.cli import app
+from tendonsheath.apps.compare import parse_model
 
 m = ts.models
 T = np.linspace(0, 4, 400)

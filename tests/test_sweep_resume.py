@@ -14,7 +14,7 @@ import pytest
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath.cli import app
+from tendonsheath.apps.cli import app
 from tendonsheath.sweep import Relative, Uniform
 
 DESIGN = {"a": Uniform(0.0, 1.0), "b": Relative(2.0, 0.3)}
@@ -119,8 +119,8 @@ def test_ctrl_c_on_a_local_sweep_keeps_the_finished_runs_and_resumes(tmp_path):
     runs = out / "runs.jsonl"
     # PYTHONPATH: the stand-in study (tests/reference/)
     env = {**os.environ, "PYTHONUNBUFFERED": "1", "PYTHONPATH": str(Path(__file__).parent)}
-    cmd = [sys.executable, "-c", "from tendonsheath.cli import main; main()", "sweep", str(cfg),
-           "--out", str(out), "--no-figures"]  # fmt: skip
+    main = "from tendonsheath.apps.cli import main; main()"
+    cmd = [sys.executable, "-c", main, "sweep", str(cfg), "--out", str(out), "--no-figures"]
     proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, start_new_session=True)  # fmt: skip
     deadline = time.monotonic() + 120

@@ -13,7 +13,7 @@ from typer.testing import CliRunner
 
 import tendonsheath as ts
 from tendonsheath import io
-from tendonsheath.cli import app
+from tendonsheath.apps.cli import app
 from tendonsheath.models import FirstOrderLag
 
 EPOCH_S = 1_700_000_000  # 2023-11-14T22:13:20 UTC

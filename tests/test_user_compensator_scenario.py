@@ -7,8 +7,8 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+from tendonsheath.apps.cli import app
 from tendonsheath.bench.user_scenario import ScenarioError, parse
-from tendonsheath.cli import app
 
 EXAMPLE_09 = Path(__file__).resolve().parent.parent / "examples" / "09_user_compensator.py"
 

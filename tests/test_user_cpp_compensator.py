@@ -15,7 +15,7 @@ from _bench_helpers import Y_D, T, bench_plant
 from typer.testing import CliRunner
 
 import tendonsheath as ts
-from tendonsheath.cli import app
+from tendonsheath.apps.cli import app
 from tendonsheath.protocols import StreamingCompensator
 
 ROOT = Path(__file__).resolve().parent.parent

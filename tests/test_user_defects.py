@@ -15,8 +15,8 @@ import pytest
 from typer.testing import CliRunner
 
 import tendonsheath as ts
+from tendonsheath.apps.cli import app
 from tendonsheath.bench.frequency import frequency_response
-from tendonsheath.cli import app
 from tendonsheath.compensate import (
     ContinuumFeedforward,
     CurveAngleFeedforward,
@@ -363,7 +363,7 @@ def test_read_log_refuses_an_upsampling_typo(data):
 
 
 def test_demo_no_robustness_skips_the_study(tmp_path, monkeypatch, scenario_results):
-    import tendonsheath.demo as demo
+    import tendonsheath.apps.demo as demo
 
     def forbidden(*args, **kwargs):
         raise AssertionError("the robustness study ran")
@@ -450,7 +450,7 @@ def test_streamed_plant_takes_its_first_command_as_rest_state(rng):
 def test_the_rate_table_follows_the_report_angle_unit(tmp_path):
     import math
 
-    import tendonsheath.demo as demo
+    import tendonsheath.apps.demo as demo
 
     body_rad, numbers, _ = demo.rate_section(tmp_path, frequencies=(1.0,), angle_unit="rad")
     body_deg, _, _ = demo.rate_section(tmp_path, frequencies=(1.0,), angle_unit="deg")

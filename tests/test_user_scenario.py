@@ -6,8 +6,8 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+from tendonsheath.apps.cli import app
 from tendonsheath.bench.user_scenario import ScenarioError, parse
-from tendonsheath.cli import app
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "scenarios" / "changing_route.toml"
 

@@ -3,9 +3,11 @@
 from typing import Any
 
 # identify is the package, callable as identify.identify (identify/__init__.py says why)
-from . import bench, compensate, identify, io, models, protocols, session
-from ._extras import MissingExtraError
-from .compare import Comparison, compare_models
+from . import bench, compensate, identify, io, models, protocols
+from ._util.extras import MissingExtraError
+from .apps import session
+from .apps.compare import Comparison, compare_models
+from .apps.session import recalibrate, session_shift
 from .identify import Fit, IdentifiabilityWarning, Identifier, identify_coupled
 from .models import load_model
 from .plant import (
@@ -24,7 +26,6 @@ from .plant import (
     presets,
 )
 from .protocols import Compensator, Plant
-from .session import recalibrate, session_shift
 from .simulation_result import SimulationResult
 from .status import Status, status_counts
 from .sweep import sweep

@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._extras import require
+from ._util.extras import require
 
 if TYPE_CHECKING:
     import control  # python-control ships no types: its systems are Any to mypy

@@ -10,6 +10,10 @@ are there (not their signatures).
   NaN in a sensor dropout; ``"q"``: the motor encoder angle), then ``dt`` (s), and returns the
   command: a motor angle, or a torque when the optional attribute ``control_output`` is
   ``"torque"`` (the bench then needs a torque motor on the plant).
+* :class:`BenchCompensator`: exactly what :func:`bench.run <tendonsheath.bench.run>` asks of
+  a compensator: ``reset()`` and ``step(...)``, and the optional declarations it reads
+  (``step_inputs``, ``control_output``, ``bench_engine()``, ``bench_stage()``) with their
+  defaults; :func:`bench_declarations` reads them.
 * :class:`Compensator`: a streaming compensator that can also be saved: ``params``,
   ``to_json`` and a classmethod ``load`` (the shipped ones: ``tendonsheath.compensate.load``).
 * :class:`FeedforwardCompensator`: a compensator with ``command(t, y_desired)``, a whole
@@ -24,14 +28,18 @@ are there (not their signatures).
 from __future__ import annotations
 
 import inspect
+from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
 
 __all__ = [
+    "BenchCompensator",
+    "BenchDeclarations",
     "Compensator",
     "FeedforwardCompensator",
     "Plant",
     "SteppedPlant",
     "StreamingCompensator",
+    "bench_declarations",
     "missing_members",
     "step_signals",
 ]
@@ -73,6 +81,110 @@ class StreamingCompensator(Protocol):
             The command: a motor angle (rad), or a torque (N m) when the compensator's
             ``control_output`` is ``"torque"``.
         """
+
+
+class BenchCompensator(StreamingCompensator, Protocol):
+    """Everything :func:`bench.run <tendonsheath.bench.run>` asks of a compensator.
+
+    Required: ``reset()`` and ``step(<step_inputs>, dt)`` (:class:`StreamingCompensator`).
+    Optional, each read with its default where the compensator lacks it
+    (:func:`bench_declarations`):
+
+    * ``step_inputs`` (default ``("y_d",)``): the signals ``step`` takes before dt, among
+      ``"y_d"`` (desired output), ``"y"`` (measured output, NaN in a sensor dropout) and
+      ``"q"`` (motor encoder angle).
+    * ``control_output`` (default ``"x"``, a motor angle): ``"torque"`` for a torque command
+      (the bench then needs a torque motor on the plant).
+    * :meth:`bench_engine` (default None): the real-time object the C++ loop steps at C++
+      speed instead of calling ``step`` from Python.
+    * :meth:`bench_stage` (default None): a C++ stage the loop runs around an inner
+      compensator (a feedback loop around a feedforward, a learned table added to it).
+
+    A compensator compiled with ``tendonsheath_bind/compensator.hpp`` gives its engine as its
+    binding's ``_tendonsheath_compensator()`` capsule instead of :meth:`bench_engine`.
+
+    A structural protocol for type checkers, never instantiated: it types each member as the
+    loop reads it. Since all but ``reset`` and ``step`` are optional, it is not checked with
+    ``isinstance`` (``isinstance(obj, StreamingCompensator)`` checks the two required ones).
+    """
+
+    step_inputs: tuple[str, ...]
+    control_output: str
+
+    def bench_engine(self) -> Any:
+        """The bound C++ object the closed loop steps in C++ (a shipped compensator gives
+        itself); None: the loop calls :meth:`step` from Python.
+
+        Returns
+        -------
+        object or None
+            The engine.
+        """
+
+    def bench_stage(self) -> tuple[Any, Any] | None:
+        """A C++ stage the closed loop runs around an inner compensator, and that inner
+        compensator (read in turn with :func:`bench_declarations`); None: no stage.
+
+        Returns
+        -------
+        (stage, inner) or None
+            ``stage`` is a bound ``EncoderLoop`` or ``TipLoop`` (a feedback loop around the
+            inner compensator's command) or ``LearnedCorrection`` (a table added to it).
+        """
+
+
+@dataclass(frozen=True)
+class BenchDeclarations:
+    """What a compensator declares to the closed loop: each optional member of
+    :class:`BenchCompensator`, or its default.
+
+    Parameters
+    ----------
+    step_inputs : tuple of str
+        The signals its ``step`` takes before dt, as declared (:func:`step_signals` checks
+        them against ``step``).
+    control_output : str
+        ``"x"`` (a motor angle) or ``"torque"``.
+    engine : object or None
+        What the C++ loop steps (a bound C++ compensator, or a compiled one's capsule); None:
+        ``step`` is called from Python.
+    compiled : bool
+        Whether ``engine`` is a compiled compensator's capsule.
+    stage : (object, object) or None
+        A C++ stage around an inner compensator, and that compensator.
+    """
+
+    step_inputs: tuple[str, ...]
+    control_output: str
+    engine: Any
+    compiled: bool
+    stage: tuple[Any, Any] | None
+
+
+def bench_declarations(compensator: object) -> BenchDeclarations:
+    """The optional members of :class:`BenchCompensator` that ``compensator`` declares, each
+    defaulted where it lacks them.
+
+    Parameters
+    ----------
+    compensator : object
+        A streaming compensator.
+
+    Returns
+    -------
+    BenchDeclarations
+        Its step inputs, control output, engine and stage.
+    """
+    compiled = getattr(compensator, "_tendonsheath_compensator", None)
+    engine_of = compiled if callable(compiled) else getattr(compensator, "bench_engine", None)
+    stage_of = getattr(compensator, "bench_stage", None)
+    return BenchDeclarations(
+        step_inputs=tuple(getattr(compensator, "step_inputs", ("y_d",))),
+        control_output=str(getattr(compensator, "control_output", "x")),
+        engine=engine_of() if callable(engine_of) else None,
+        compiled=callable(compiled),
+        stage=stage_of() if callable(stage_of) else None,
+    )
 
 
 @runtime_checkable

@@ -1,5 +1,6 @@
-"""One result type for every ``simulate`` (plants and models): the output as an array, plus
-its time, input, success, message and ``.plot()``.
+"""One result type for every run (a plant's or a model's ``simulate``, a compensator's
+``command``, a closed loop of ``bench.run``): the output as an array, plus its time, input,
+success, message and ``.plot()``; a closed loop's also its reference and metrics.
 
 It is a NumPy array subclass holding the output samples, so code that used the array a
 ``simulate`` returned (``np.asarray(res)``, ``res[k]``, ``res - y``, ``np.mean(res)``) runs
@@ -18,7 +19,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure, SubFigure
 
-# the fields a result may carry besides t and input (the last ones are a plant's)
+# the fields a result may carry besides t and input (then a plant's, then a closed loop's)
 FIELDS = (
     "success",
     "message",
@@ -31,6 +32,8 @@ FIELDS = (
     "tensions",
     "nonconverged",
     "input_interpolation",
+    "reference",
+    "metrics",
 )
 
 
@@ -47,7 +50,9 @@ class SimulationResult(np.ndarray):
     encoder reads: ``q_in`` plus the gear play), ``q_out`` (= output), ``measured`` (the
     sensor reading of q_out), ``slack`` (a per-sample flag), ``tensions`` (the final tensions;
     rows: tendons, proximal to distal), ``nonconverged`` (accepted but unconverged active-set
-    increments, 0 in normal use) and ``input_interpolation``.
+    increments, 0 in normal use) and ``input_interpolation``. A closed loop's
+    (:class:`tendonsheath.bench.Result`) has ``reference`` (the desired output) and
+    ``metrics``.
 
     Parameters
     ----------
@@ -69,13 +74,14 @@ class SimulationResult(np.ndarray):
     """
 
     _info: dict[str, Any]
+    _fields: tuple[str, ...] = FIELDS  # the fields this kind of result takes
 
     def __new__(cls, output, t=None, input=None, **fields: Any) -> SimulationResult:
-        unknown = [name for name in fields if name not in FIELDS]
+        unknown = [name for name in fields if name not in cls._fields]
         if unknown:
             raise TypeError(
-                f"SimulationResult() got an unexpected keyword argument {unknown[0]!r} "
-                f"(fields: {', '.join(FIELDS)})"
+                f"{cls.__name__}() got an unexpected keyword argument {unknown[0]!r} "
+                f"(fields: {', '.join(cls._fields)})"
             )
         obj = np.asarray(output, dtype=float).view(cls)
         out = obj.view(np.ndarray)
@@ -106,7 +112,7 @@ class SimulationResult(np.ndarray):
         info = self.__dict__.get("_info", {})
         if name in info:
             return info[name]
-        raise AttributeError(f"'SimulationResult' has no attribute '{name}'")
+        raise AttributeError(f"{type(self).__name__!r} has no attribute {name!r}")
 
     def __reduce__(self):
         base = super().__reduce__()
@@ -118,7 +124,7 @@ class SimulationResult(np.ndarray):
 
     def __repr__(self) -> str:
         ok = "success" if self.success else f"failed: {self.message}"
-        return f"SimulationResult({self.size} samples, {ok})"
+        return f"{type(self).__name__}({self.size} samples, {ok})"
 
     @property
     def output(self) -> np.ndarray:

@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .. import models
-from .._units import DURATION, JOINT_ANGLE, warn_if_unit_slip
+from .._util.units import DURATION, JOINT_ANGLE, warn_if_unit_slip
 from ..plant.route import Route
 from ..plant.sensor import Sensor
 from .loop_calibration import LoopCalibration, calibrate_loop
@@ -38,7 +38,7 @@ from .motor_calibration import MotorCalibration, calibrate_servo, run_experiment
 from .shape_sensing import ShapeSensing
 
 if TYPE_CHECKING:
-    from .._typing import ArrayLike
+    from .._util.typing import ArrayLike
     from ..compensate import (
         ContinuumFeedforward,
         CurveAngleFeedforward,

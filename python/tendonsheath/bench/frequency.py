@@ -13,7 +13,7 @@ from .run import run
 if TYPE_CHECKING:
     import control  # python-control ships no types: its systems are Any to mypy
 
-    from .._typing import ArrayLike
+    from .._util.typing import ArrayLike
     from ..plant import ContinuumPlant, PullPullPlant
     from ..plant.sensor import Sensor
     from .run import Controller

@@ -566,7 +566,7 @@ def population_run(params: dict) -> dict[str, dict[str, float]]:
     import threadpoolctl
 
     # the BLAS on one thread: the figures then do not depend on the machine's core count (the
-    # fits' small least-squares problems gain nothing from BLAS threads; see tendonsheath._jobs)
+    # fits' small least-squares problems gain nothing from BLAS threads; see _util.jobs)
     with threadpoolctl.threadpool_limits(1, user_api="blas"):
         return _population_run(params)
 

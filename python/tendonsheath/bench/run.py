@@ -4,22 +4,23 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, TypeAlias
+from typing import TYPE_CHECKING, Any, TypeAlias, cast
 
 import numpy as np
 
-from .._arrays import as_timed_signal
-from .._pyobject import bound_base
+from .._util.arrays import as_timed_signal
+from .._util.pyobject import bound_base
 from ..plant.physics import route_shape as shape_of
 from ..plant.sensor import Sensor
 from ..protocols import (
     STEP_SIGNALS,
     SteppedPlant,
     StreamingCompensator,
+    bench_declarations,
     missing_members,
     step_signals,
 )
+from ..simulation_result import FIELDS, SimulationResult
 from ..status import status_counts
 from . import _bound as core
 from .limit_cycle import limit_cycle
@@ -27,7 +28,7 @@ from .metrics import dominant_period, tracking_metrics
 from .plant_loop import BenchPlant
 
 if TYPE_CHECKING:
-    from .._typing import ArrayLike
+    from .._util.typing import ArrayLike
     from ..compensate import AdaptiveController
     from ..compensate.base import Feedforward
     from ..compensate.learned_feedforward import LearnedFeedforward
@@ -41,13 +42,13 @@ Controller: TypeAlias = (
 )
 
 
-@dataclass
-class Result:
-    """Every signal of a bench run and its metrics (computed after ``warmup`` seconds).
+class Result(SimulationResult):
+    """A bench run: a :class:`~tendonsheath.SimulationResult` of the plant's output (an
+    array), with every signal of the loop and its metrics (computed after ``warmup`` seconds).
 
-    ``status`` holds each cycle's :class:`~tendonsheath.Status` flags of controller, motor,
-    plant and sensor (uint8); ``metrics["status"]`` counts the cycles with each flag (the
-    whole run, warm-up included).
+    ``input`` and ``reference`` are the desired output; ``status`` holds each cycle's
+    :class:`~tendonsheath.Status` flags of controller, motor, plant and sensor (uint8);
+    ``metrics["status"]`` counts the cycles with each flag (the whole run, warm-up included).
 
     Parameters
     ----------
@@ -79,18 +80,40 @@ class Result:
         Each cycle's Status flags.
     """
 
-    controller: str
-    t: np.ndarray
-    reference: np.ndarray
-    output: np.ndarray
-    measured: np.ndarray
-    command: np.ndarray
-    q_motor: np.ndarray
-    slack: np.ndarray
-    fallback: np.ndarray
-    warmup: float
-    metrics: dict[str, Any] = field(default_factory=dict)  # floats, and "status": counts
-    status: np.ndarray | None = None
+    _fields = (*FIELDS, "controller", "fallback", "warmup")
+
+    def __new__(
+        cls,
+        controller: str,
+        t: np.ndarray,
+        reference: np.ndarray,
+        output: np.ndarray,
+        measured: np.ndarray,
+        command: np.ndarray,
+        q_motor: np.ndarray,
+        slack: np.ndarray,
+        fallback: np.ndarray,
+        warmup: float,
+        metrics: dict[str, Any] | None = None,
+        status: np.ndarray | None = None,
+    ) -> Result:
+        result = super().__new__(
+            cls,
+            output,
+            t=t,
+            input=reference,
+            reference=reference,
+            metrics={} if metrics is None else metrics,  # floats, and "status": counts
+            status=status,
+            controller=controller,
+            measured=measured,
+            command=command,
+            q_motor=q_motor,
+            slack=slack,
+            fallback=fallback,
+            warmup=warmup,
+        )
+        return cast(Result, result)
 
     @property
     def error(self) -> np.ndarray:
@@ -100,7 +123,11 @@ class Result:
     @property
     def scored(self) -> np.ndarray:
         """Mask of the samples the metrics cover (after the warm-up)."""
-        return self.t >= self.t[0] + self.warmup
+        return _scored(self.t, self.warmup)
+
+
+def _scored(t: np.ndarray, warmup: float) -> np.ndarray:
+    return t >= t[0] + warmup
 
 
 def controller_name(controller) -> str:
@@ -256,8 +283,8 @@ class _Loop:
         self.encoder = plant.encoder.engine() if plant.encoder is not None else None
         self.mask = _dropout_mask(dropout, ts)
         # a core.EncoderLoop or core.TipLoop around the controller's command
-        self.outer_loop = None
-        self.learned = None  # a core.LearnedCorrection added to the command (inside the loop)
+        self.outer_loop: Any = None
+        self.learned: Any = None  # a core.LearnedCorrection added to the command (in the loop)
 
     @property
     def scheduled(self) -> bool:
@@ -296,43 +323,45 @@ class _Loop:
 
 
 def _run_controller(loop: _Loop, controller, shape_sensing):
-    """Run the loop on the fastest path the controller offers (by its capabilities); an
-    EncoderLoop or TipLoop runs its feedforward's path with the loop around it, a
-    LearnedFeedforward its feedforward's path with the correction table added, in C++ (a
-    TipLoop with a gain schedule is given the route's shapes on every path)."""
+    """Run the loop on the fastest path the controller declares
+    (:class:`~tendonsheath.protocols.BenchCompensator`): its stages (an EncoderLoop's or
+    TipLoop's loop around its feedforward, a LearnedFeedforward's table added to its
+    feedforward) run in C++ around the inner compensator's path, and that compensator is
+    stepped in C++ where it gives an engine, else from Python (a TipLoop with a gain schedule
+    is given the route's shapes on every path)."""
     if controller is None:
         return loop.call(None, gain=loop.plant.kinematic_gain)
     _check_compensator(controller)
     _check_motor_kind(loop.plant, controller)
-    taken_apart = getattr(controller, "_outer_loop", None)
-    if callable(taken_apart):
-        loop.outer_loop, controller = taken_apart()
+    declared = bench_declarations(controller)
+    while declared.stage is not None:  # each stage's slot in the C++ loop is taken once
+        stage, inner = declared.stage
+        slot = "learned" if isinstance(stage, core.LearnedCorrection) else "outer_loop"
+        if getattr(loop, slot) is not None:
+            raise ValueError(
+                f"bench.run: {type(controller).__name__} declares a second {slot} stage "
+                "(one feedback loop and one learned table at most)"
+            )
+        setattr(loop, slot, stage)
+        controller = inner
         _check_compensator(controller)
-    learned = getattr(controller, "_learned_correction", None)
-    if callable(learned):
-        loop.learned, controller = learned()
-        _check_compensator(controller)
+        declared = bench_declarations(controller)
     how: dict[str, Any] = {}
-    compiled = getattr(controller, "_tendonsheath_compensator", None)
-    if callable(compiled):  # a user's C++ compensator (tendonsheath_bind/compensator.hpp)
-        runner = compiled()
-    else:
-        engine_of = getattr(controller, "_bench_engine", None)
-        engine = engine_of() if callable(engine_of) else None
+    engine = declared.engine
+    if not declared.compiled:  # a user's C++ compensator (tendonsheath_bind/compensator.hpp)
         if engine is not None and bound_base(type(engine)) is None:
             engine = None  # a Python class without a C++ core: stepped from Python
         if isinstance(engine, core.CurveAngleFeedforward) or (
             isinstance(engine, core.ModelInverse) and core.ModelInverse.follows_route(engine)
         ):
             return _run_curve_angle(loop, controller, engine, shape_sensing)
-        runner = engine  # a shipped compensator: stepped in C++
         if engine is None:  # a Python one: its step called with these signals
-            runner = controller
+            engine = controller
             how["inputs"] = [STEP_SIGNALS.index(s) for s in step_signals(controller)]
     if loop.scheduled:
         friction = _friction(controller)
-        return loop.call_with_shapes(runner, friction=friction, shape_sensing=shape_sensing, **how)
-    return loop.call(runner, **how)
+        return loop.call_with_shapes(engine, friction=friction, shape_sensing=shape_sensing, **how)
+    return loop.call(engine, **how)
 
 
 def _friction(controller) -> float:
@@ -391,7 +420,17 @@ def _route_shapes(loop: _Loop, friction: float, shape_sensing):
 
 def _result(controller, ts, ys, outputs, warmup: float) -> Result:
     output, measured, command, motor_pos, slack, fallback, status = outputs
-    result = Result(
+    slack = slack.astype(bool)
+    keep = _scored(ts, float(warmup))
+    metrics: dict[str, Any] = {
+        **tracking_metrics(ys[keep], output[keep]),
+        "slack_samples": int(slack.sum()),
+        "status": status_counts(status),
+        "limit_cycle": limit_cycle(ts[keep], ys[keep], output[keep]),
+    }
+    if not math.isfinite(metrics["mse"]):
+        raise RuntimeError("bench.run: the closed loop produced a non-finite output")
+    return Result(
         controller=controller_name(controller),
         t=ts,
         reference=ys,
@@ -399,21 +438,12 @@ def _result(controller, ts, ys, outputs, warmup: float) -> Result:
         measured=measured,
         command=command,
         q_motor=motor_pos,
-        slack=slack.astype(bool),
+        slack=slack,
         fallback=fallback.astype(bool),
         warmup=float(warmup),
+        metrics=metrics,
         status=status,
     )
-    keep = result.scored
-    result.metrics = {
-        **tracking_metrics(ys[keep], output[keep]),
-        "slack_samples": int(result.slack.sum()),
-        "status": status_counts(status),
-        "limit_cycle": limit_cycle(ts[keep], ys[keep], output[keep]),
-    }
-    if not math.isfinite(result.metrics["mse"]):
-        raise RuntimeError("bench.run: the closed loop produced a non-finite output")
-    return result
 
 
 def _sensed(plant, ts, routes, shape_sensing, friction, idx):

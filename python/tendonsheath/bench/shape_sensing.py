@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from .._units import ANGLE_NOISE, DELAY, warn_if_unit_slip
+from .._util.units import ANGLE_NOISE, DELAY, warn_if_unit_slip
 from ..plant.physics import route_shape
 from ..plant.route import Route
 

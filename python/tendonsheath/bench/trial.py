@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from .._units import DELAY, warn_if_unit_slip
+from .._util.units import DELAY, warn_if_unit_slip
 from ..plant.route import Route
 from ..plant.sensor import Sensor
 from .calibration import calibration_input

@@ -81,7 +81,7 @@ from typing import Any
 
 import numpy as np
 
-from .._units import JOINT_ANGLE, warn_if_unit_slip
+from .._util.units import JOINT_ANGLE, warn_if_unit_slip
 from ..compensate import AdaptiveController
 from ..io._textread import read_config_text
 from ..plant import ContinuumPlant, PullPullPlant, loads, presets

@@ -11,7 +11,7 @@ from .iterative_learning import IterativeLearning, LearningDesign, TrialRecord
 from .learned_feedforward import LearnedFeedforward
 from .limits import CommandLimits
 from .load_compensated import LoadCompensated
-from .persistence import load_compensator
+from .persistence import load_compensator, register
 from .tip_loop import TipLoop
 from .tuning import EncoderLoopDesign, tune_encoder_loop
 
@@ -38,3 +38,6 @@ __all__ = [
     "shape_of",
     "tune_encoder_loop",
 ]
+
+# the files compensate.load reads: those of the compensators exported above
+register(*(globals()[name] for name in __all__))

@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from .._args import core_errors_as, number
-from .._arrays import checked_dt
-from .._pyobject import bound_attribute
-from .._units import ANGLE_NOISE, warn_if_unit_slip, warn_unit_slips
+from .._util.args import core_errors_as, number
+from .._util.arrays import checked_dt
+from .._util.pyobject import bound_attribute
+from .._util.units import ANGLE_NOISE, warn_if_unit_slip, warn_unit_slips
 from ..models import Backlash, BoucWenBacklash, HysteresisModel
 from . import _bound as core
 from ._kinds import require_dynamics, require_model
@@ -71,6 +71,11 @@ class AdaptiveController(EngineCompensator, core.AdaptiveController):  # type: i
         rejects.
     """
 
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    feedforward_model: HysteresisModel | None
+    smoothing: float
+    design: Any  # set by from_calibration: what the gains were chosen from
+
     # signal names of to_control()'s system: desired and measured output, motor angle in
     control_inputs = ("y_d", "y", "q")
     control_output = "torque"
@@ -105,7 +110,7 @@ class AdaptiveController(EngineCompensator, core.AdaptiveController):  # type: i
         with core_errors_as(who):
             core.AdaptiveController.__init__(self, p)
         warn_unit_slips(who, p)
-        self.design: Any = None  # set by from_calibration: what the gains were chosen from
+        self.design = None
         resolved = bound_attribute(self, "params")
         self._settings = {
             "feedforward_model": feedforward_model,

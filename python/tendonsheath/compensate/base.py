@@ -5,9 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Self
 
-from .._arrays import as_timed_signal, checked_dt
-from .._pyobject import PythonObject
-from .._typing import ArrayLike
+from .._util.arrays import as_timed_signal, checked_dt
+from .._util.pyobject import PythonObject
+from .._util.typing import ArrayLike
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
 from ..status import Status
@@ -25,12 +25,9 @@ def command_result(t: Any, y_desired: Any, out: Any) -> SimulationResult:
 class SavedAsJson:
     """Saving a compensator as its JSON file (``to_json``) and reading one back (``load``);
     the class gives ``to_dict``. A class that declares its file's keys (``_saved_settings``)
-    is a kind of file ``load`` reads (registered under its name)."""
-
-    def __init_subclass__(cls, **kwargs):
-        super().__init_subclass__(**kwargs)
-        if vars(cls).get("_saved_settings"):  # a kind of file (not a base declaring none)
-            persistence.register(cls)
+    is a kind of file ``load`` reads once registered under its name
+    (:func:`~tendonsheath.compensate.persistence.register`, which
+    :mod:`tendonsheath.compensate` calls with the compensators it exports)."""
 
     def to_dict(self) -> dict:
         """The compensator as a dict (format ``tendonsheath.compensator``): each class its own.
@@ -123,8 +120,12 @@ class EngineCompensator(PythonObject, SavedAsJson, _ControlBlock):
         """
         return persistence.compensator_dict(type(self).__name__, self._settings)
 
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._util.pyobject): the constructor settings
+        return dict(self._settings)
+
     def _recipe(self):
-        # pickled as its saved file: an equal compensator at rest (tendonsheath._pyobject)
+        # pickled as its saved file: an equal compensator at rest (tendonsheath._util.pyobject)
         # (with its design, where a tuning chose its gains: not part of the file)
         extra = {k: v for k, v in vars(self).items() if k == "design"}
         return persistence.load_compensator, (self.to_dict(),), extra
@@ -133,8 +134,15 @@ class EngineCompensator(PythonObject, SavedAsJson, _ControlBlock):
     def _from_saved(cls, values: dict):
         return cls(**values)
 
-    def _bench_engine(self):
-        """The C++ object ``bench.run`` runs in its C++ loop (None: step it from Python)."""
+    def bench_engine(self) -> Any:
+        """The real-time object ``bench.run`` steps in its C++ loop: the compensator itself
+        (:class:`~tendonsheath.protocols.BenchCompensator`).
+
+        Returns
+        -------
+        object
+            This compensator (its bound C++ class).
+        """
         return self
 
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
-from .._args import core_errors_as, number
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as, number
+from .._util.units import warn_unit_slips
 from . import _bound as core
 from .base import Feedforward
 from .limits import LimitsLike, as_limits
@@ -86,6 +86,9 @@ class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ign
     ValueError
         An unknown mode, or a value out of range (the message names the argument and the value).
     """
+
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    mode: str
 
     _renamed_settings = SAVED_AS  # files written before the vocabulary still load
     _saved_settings = (

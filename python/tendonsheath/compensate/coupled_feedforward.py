@@ -9,9 +9,9 @@ from typing import Any
 
 import numpy as np
 
-from .._arrays import as_vector, checked_dt
-from .._pyobject import PythonObject
-from .._typing import ArrayLike, FloatArray
+from .._util.arrays import as_vector, checked_dt
+from .._util.pyobject import PythonObject
+from .._util.typing import ArrayLike, FloatArray
 from ..models import Coupled
 from ..plant.coupled import _joint_matrix
 from ..simulation_result import SimulationResult
@@ -54,6 +54,10 @@ class CoupledFeedforward(PythonObject, SavedAsJson, core.CoupledFeedforward):  #
         A bad setting (as InverseFeedforward says).
     """
 
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    model: Coupled
+    settings: dict[str, Any]
+
     # the keys of a saved file (to_json): the Coupled model whole and the joints' settings,
     # defaults resolved; tendonsheath/io/json_multi_input.hpp reads it
     # the joints' inverses (the C++ class's joints() counts them)
@@ -72,8 +76,17 @@ class CoupledFeedforward(PythonObject, SavedAsJson, core.CoupledFeedforward):  #
         self._coupling = model.coupling
         core.CoupledFeedforward.__init__(self, self.joints, self._coupling.ravel().tolist())
 
+    @property
+    def params(self) -> dict[str, Any]:
+        """The constructor's arguments: the Coupled model and the settings given (a copy)."""
+        return {"model": self.model, **self.settings}
+
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._util.pyobject)
+        return self.params
+
     def _recipe(self):
-        # pickled as its model and settings: an equal compensator at rest (tendonsheath._pyobject)
+        # pickled as its model and settings: an equal compensator at rest (_util.pyobject)
         return functools.partial(CoupledFeedforward, self.model, **self.settings), ()
 
     def own_targets(self, y_desired: ArrayLike) -> FloatArray:

@@ -8,11 +8,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._args import core_errors_as, number
-from .._arrays import as_signal, as_timed_signal, checked_dt
-from .._pyobject import bound_attribute
-from .._typing import ArrayLike
-from .._units import checked_curve_angle, warn_unit_slips
+from .._util.args import core_errors_as, number
+from .._util.arrays import as_signal, as_timed_signal, checked_dt
+from .._util.pyobject import bound_attribute
+from .._util.typing import ArrayLike
+from .._util.units import checked_curve_angle, warn_unit_slips
 from ..plant.physics import route_shape as shape_of
 from ..simulation_result import SimulationResult
 from . import _bound as core

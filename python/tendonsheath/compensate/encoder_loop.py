@@ -5,15 +5,15 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
-from .._args import core_errors_as, number
-from .._arrays import checked_dt
-from .._pyobject import bound_attribute
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as, number
+from .._util.arrays import checked_dt
+from .._util.pyobject import bound_attribute
+from .._util.units import warn_unit_slips
 from ..protocols import step_signals
 from . import _bound as core
 from ._kinds import require_feedforward, require_servo
 from .around import AroundFeedforward
-from .limits import LimitsLike, as_limits
+from .limits import CommandLimits, LimitsLike, as_limits
 
 if TYPE_CHECKING:
     from ..identify.servo import ServoFit
@@ -65,6 +65,10 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         A gain or limit the C++ core rejects (the message names it).
     """
 
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    limits: CommandLimits
+    design: EncoderLoopDesign | None
+
     control_inputs = ("y_d", "q")
     control_output = "x"
     step_inputs = ("y_d", "q")
@@ -103,7 +107,7 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
             core.EncoderLoop.__init__(self, p)
         warn_unit_slips(who, p)
         self.feedforward = feedforward
-        self.design: EncoderLoopDesign | None = None
+        self.design = None
         self._settings = {**{k: getattr(p, k) for k in _GAINS}, "limits": self.limits}
 
     @classmethod
@@ -205,12 +209,26 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         return self.step(u[0], u[1], dt)
 
     # -- the bench and persistence ------------------------------------------------------
-    def _outer_loop(self):
-        """(the C++ loop, the feedforward) for bench.run's C++ loops."""
+    def bench_stage(self) -> tuple[Any, Any]:
+        """The C++ loop and the feedforward it is around, for bench.run's C++ loop
+        (:class:`~tendonsheath.protocols.BenchCompensator`).
+
+        Returns
+        -------
+        (object, compensator)
+            A copy of this loop's real-time core, and the feedforward.
+        """
         return core.EncoderLoop(bound_attribute(self, "params")), self.feedforward
 
-    def _bench_engine(self):
-        return None  # bench.run takes the loop apart (_outer_loop)
+    def bench_engine(self) -> None:
+        """None: bench.run runs this loop as a stage around its feedforward
+        (:meth:`bench_stage`).
+
+        Returns
+        -------
+        None
+        """
+        return None
 
     def __repr__(self) -> str:
         gains = ", ".join(f"{k}={self._settings[k]:g}" for k in ("kp", "ki", "kd"))

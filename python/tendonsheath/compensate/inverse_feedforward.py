@@ -9,10 +9,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._args import core_errors_as, number
-from .._arrays import as_signal, as_timed_signal, checked_dt
-from .._typing import ArrayLike
-from .._units import checked_curve_angle
+from .._util.args import core_errors_as, number
+from .._util.arrays import as_signal, as_timed_signal, checked_dt
+from .._util.typing import ArrayLike
+from .._util.units import checked_curve_angle
 from ..models import HysteresisModel
 from ..plant.physics import route_shape as shape_of
 from ..simulation_result import SimulationResult
@@ -20,7 +20,7 @@ from . import _bound as core
 from ._kinds import require_model
 from .base import Feedforward, command_result
 from .inverse_model import describe, follows_route, route_friction
-from .limits import LimitsLike, as_limits
+from .limits import CommandLimits, LimitsLike, as_limits
 
 if TYPE_CHECKING:
     from ..plant.route import Route
@@ -93,6 +93,14 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
         A bad smoothing, limit, range, margin or filter corner, or model parameters the C++
         core rejects.
     """
+
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    model: HysteresisModel
+    smoothing: float
+    limits: CommandLimits
+    input_range: tuple[float, float] | None
+    range_margin: float
+    filter_hz: float | None
 
     # whether the model's law depends on the route: a bool here, where the C++ class has a
     # method of that name

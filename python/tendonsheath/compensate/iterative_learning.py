@@ -28,9 +28,9 @@ from typing import Any
 
 import numpy as np
 
-from .._args import integer, number
-from .._pyobject import PythonObject
-from .._typing import ArrayLike, FloatArray
+from .._util.args import integer, number
+from .._util.pyobject import PythonObject
+from .._util.typing import ArrayLike, FloatArray
 from ._kinds import require_feedforward
 from .learned_feedforward import LearnedFeedforward
 from .limits import LimitsLike
@@ -191,6 +191,22 @@ class IterativeLearning(PythonObject):
     stopped, :meth:`compensator` gives the best table measured (:meth:`best_compensator`).
     """
 
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    feedforward: Any
+    t: FloatArray
+    reference: FloatArray
+    dt: float
+    gain: float
+    lead: int
+    order: int
+    cutoff_hz: float | None
+    max_trials: int
+    tolerance: float | None
+    table: FloatArray
+    tables: list[FloatArray]
+    history: list[TrialRecord]
+    design: LearningDesign | None
+
     def __init__(
         self,
         feedforward: Any,
@@ -257,9 +273,9 @@ class IterativeLearning(PythonObject):
         self.feedforward = feedforward
         self._hold_last, self._limits = hold_last, limits
         self.table = table
-        self.tables: list[FloatArray] = []  # the table each measured trial ran
-        self.history: list[TrialRecord] = []
-        self.design: LearningDesign | None = None
+        self.tables = []  # the table each measured trial ran
+        self.history = []
+        self.design = None
         self._stopped = self._converged = self._diverged = False
         self.compensator()  # the settings are checked now, not at the first trial
 

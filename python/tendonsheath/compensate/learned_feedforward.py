@@ -6,17 +6,17 @@ from typing import Any
 
 import numpy as np
 
-from .._args import core_errors_as, number, number_array
-from .._arrays import as_timed_signal, checked_dt
-from .._pyobject import bound_attribute
-from .._typing import ArrayLike, FloatArray
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as, number, number_array
+from .._util.arrays import as_timed_signal, checked_dt
+from .._util.pyobject import bound_attribute
+from .._util.typing import ArrayLike, FloatArray
+from .._util.units import warn_unit_slips
 from ..simulation_result import SimulationResult
 from . import _bound as core
 from ._kinds import require_feedforward
 from .around import AroundFeedforward
 from .base import command_result
-from .limits import LimitsLike, as_limits
+from .limits import CommandLimits, LimitsLike, as_limits
 
 
 class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ignore[misc]
@@ -60,6 +60,9 @@ class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ig
     ValueError
         An empty table, a non-finite entry (its index named), table_dt <= 0, or bad limits.
     """
+
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    limits: CommandLimits
 
     control_inputs = ("y_d",)
     control_output = "x"
@@ -235,14 +238,28 @@ class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ig
         except TypeError as err:  # a file whose feedforward cannot be inside: a bad file
             raise ValueError(f"LearnedFeedforward file: {err}") from None
 
-    def _learned_correction(self):
-        """(the C++ table player, the feedforward) for bench.run's C++ loops."""
+    def bench_stage(self) -> tuple[Any, Any]:
+        """The C++ table player and the feedforward it adds to, for bench.run's C++ loop
+        (:class:`~tendonsheath.protocols.BenchCompensator`).
+
+        Returns
+        -------
+        (object, compensator)
+            The correction table's real-time player, and the feedforward.
+        """
         return core.LearnedCorrection(
             self._settings["table"], bound_attribute(self, "params")
         ), self.feedforward
 
-    def _bench_engine(self):
-        return None  # bench.run takes it apart (_learned_correction)
+    def bench_engine(self) -> None:
+        """None: bench.run runs the table as a stage added to its feedforward
+        (:meth:`bench_stage`).
+
+        Returns
+        -------
+        None
+        """
+        return None
 
     def __repr__(self) -> str:
         n = len(self._settings["table"])

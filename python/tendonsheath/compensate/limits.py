@@ -7,7 +7,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TypeAlias
 
-from .._args import number
+from .._util.args import number
 from . import _bound as core
 
 

@@ -21,10 +21,10 @@ from typing import Any
 
 import numpy as np
 
-from .._args import number
-from .._arrays import as_timed_signal, checked_dt
-from .._pyobject import PythonObject
-from .._typing import ArrayLike
+from .._util.args import number
+from .._util.arrays import as_timed_signal, checked_dt
+from .._util.pyobject import PythonObject
+from .._util.typing import ArrayLike
 from ..models.loaded import Loaded
 from ..simulation_result import SimulationResult
 from . import _bound as core
@@ -55,6 +55,11 @@ class LoadCompensated(PythonObject, SavedAsJson):
     ValueError
         switch not > 0.
     """
+
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    model: Loaded
+    switch: float
+    inverse: InverseFeedforward
 
     # the keys of a saved file (to_json), in order: the model whole, the switch and the base
     # inverse's settings (defaults resolved); tendonsheath/io/json_multi_input.hpp reads it
@@ -88,8 +93,18 @@ class LoadCompensated(PythonObject, SavedAsJson):
         self._play = core.LoadPlayInverse(terms)  # the real-time core (C++)
         self.reset()
 
+    @property
+    def params(self) -> dict[str, Any]:
+        """The constructor's arguments: the model, the switch (resolved) and the options
+        given to the base's inverse (a copy)."""
+        return {"model": self.model, "switch": self.switch, **self._inverse_options}
+
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._util.pyobject)
+        return self.params
+
     def _recipe(self):
-        # pickled as its settings: an equal compensator at rest (tendonsheath._pyobject)
+        # pickled as its settings: an equal compensator at rest (tendonsheath._util.pyobject)
         options = self._inverse_options
         return functools.partial(LoadCompensated, self.model, self.switch, **options), ()
 

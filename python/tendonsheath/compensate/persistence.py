@@ -15,9 +15,9 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeAlias, TypeVar
 
-from .._args import is_format_version, renamed
-from .._atomic import write_text
-from .._json_source import naming_the_file, read_json_source
+from .._util.args import is_format_version, renamed
+from .._util.atomic import write_text
+from .._util.json_source import naming_the_file, read_json_source
 from ..models import Coupled, HysteresisModel
 
 if TYPE_CHECKING:
@@ -87,10 +87,23 @@ def _finite_or_none(value):
 _KINDS: dict[str, type[Compensator]] = {}
 
 
-def register(cls: type[Compensator]) -> None:
-    """Read files naming ``cls.__name__`` with ``cls`` (its ``_saved_settings`` and
-    ``_from_saved``)."""
-    _KINDS[cls.__name__] = cls
+def register(*classes: Any) -> None:
+    """Read files naming a class's ``__name__`` with that class (its ``_saved_settings`` and
+    ``_from_saved``); a class that declares no file keys (a base, a helper) is skipped.
+
+    Parameters
+    ----------
+    *classes : type
+        Compensator classes.
+
+    Returns
+    -------
+    None
+    """
+    for cls in classes:
+        saved: tuple[str, ...] = getattr(cls, "_saved_settings", ())
+        if isinstance(cls, type) and saved:
+            _KINDS[cls.__name__] = cls
 
 
 def compensator_from_dict(data: dict[str, Any]) -> Compensator:

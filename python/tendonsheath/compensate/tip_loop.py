@@ -7,15 +7,15 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
-from .._args import core_errors_as, number
-from .._arrays import checked_dt
-from .._pyobject import bound_attribute
-from .._units import CURVE_ANGLE, warn_if_unit_slip, warn_unit_slips
+from .._util.args import core_errors_as, number
+from .._util.arrays import checked_dt
+from .._util.pyobject import bound_attribute
+from .._util.units import CURVE_ANGLE, warn_if_unit_slip, warn_unit_slips
 from ..protocols import step_signals
 from . import _bound as core
 from ._kinds import require_dynamics, require_feedforward, require_model
 from .around import AroundFeedforward, follows_route
-from .limits import LimitsLike, as_limits
+from .limits import CommandLimits, LimitsLike, as_limits
 
 if TYPE_CHECKING:
     from ..plant.route import Route
@@ -110,6 +110,10 @@ class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
         A gain, schedule point or limit out of range (the message names it).
     """
 
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    limits: CommandLimits
+    design: Any
+
     control_inputs = ("y_d", "y")
     control_output = "x"
     step_inputs = ("y_d", "y")
@@ -153,7 +157,7 @@ class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
         for i, (angle, _) in enumerate(pairs):
             warn_if_unit_slip(angle, who, f"schedule[{i}] curve angle", CURVE_ANGLE)
         self.feedforward = feedforward
-        self.design: Any = None
+        self.design = None
         self._settings = {
             **{k: getattr(p, k) for k in _GAINS},
             "schedule": pairs,
@@ -405,14 +409,28 @@ class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
         core.TipLoop.set_curve_angle(self, angle)
 
     # -- the bench and persistence ------------------------------------------------------
-    def _outer_loop(self):
-        """(the C++ loop, the feedforward) for bench.run's C++ loops."""
+    def bench_stage(self) -> tuple[Any, Any]:
+        """The C++ loop and the feedforward it is around, for bench.run's C++ loop
+        (:class:`~tendonsheath.protocols.BenchCompensator`).
+
+        Returns
+        -------
+        (object, compensator)
+            A copy of this loop's real-time core, and the feedforward.
+        """
         loop = core.TipLoop(bound_attribute(self, "params"))
         loop.set_curve_angle(self.curve_angle())
         return loop, self.feedforward
 
-    def _bench_engine(self):
-        return None  # bench.run takes the loop apart (_outer_loop)
+    def bench_engine(self) -> None:
+        """None: bench.run runs this loop as a stage around its feedforward
+        (:meth:`bench_stage`).
+
+        Returns
+        -------
+        None
+        """
+        return None
 
     @classmethod
     def _from_saved(cls, values: dict):

@@ -39,7 +39,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._units import CURVE_ANGLE, warn_if_unit_slip
+from .._util.units import CURVE_ANGLE, warn_if_unit_slip
 from .tuning import (
     MS_TOLERANCE,
     RobustLoop,

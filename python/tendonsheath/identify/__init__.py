@@ -17,11 +17,10 @@ import inspect
 import sys
 import types
 
-from .core import identify
 from .coupled import CoupledFit, identify_coupled
 from .cross_validation import CrossValidation, cross_validate
 from .diagnostics import Diagnostics, IdentifiabilityWarning
-from .estimator import Identifier, NotFittedError
+from .estimator import Identifier, NotFittedError, identify
 from .fit import Fit, metrics
 from .interpolation import detect_input_interpolation
 from .loop_dynamics import (

@@ -1,21 +1,23 @@
-"""identify(): one identification from data, and :func:`run`, the dispatch on the kind of model
+"""One identification from data (:func:`identify_with`, behind
+:func:`~tendonsheath.identify.identify`), and :func:`run`, the dispatch on the kind of model
 (normalised data, a Loaded model, a chain, the grey-box plant, one model class) that
-:func:`identify` and :class:`~tendonsheath.identify.estimator.Identifier` share
-(:func:`fit_recordings`). The global search every path runs is in
-:mod:`tendonsheath.identify.search`; the fitters that call back into the whole identification
-(per-recording starts of angle laws, a Loaded model's base) are handed :func:`run` or
-:func:`identify`, so that the modules form a layered graph with core.py on top."""
+:func:`~tendonsheath.identify.identify` and
+:class:`~tendonsheath.identify.estimator.Identifier` share (:func:`fit_recordings`). The
+global search every path runs is in :mod:`tendonsheath.identify.search`; the fitters that
+call back into the whole identification (per-recording starts of angle laws, a Loaded
+model's base) are handed :func:`run` or :func:`identify_with`, so that the modules form a
+layered graph with core.py on top."""
 
 from __future__ import annotations
 
-import dataclasses
+import functools
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._typing import ArrayLike
-from ..models import Chain, HysteresisModel, Loaded, PlantModel
+from .._util.typing import ArrayLike
+from ..models import Chain, Loaded, PlantModel
 from ..models.base import _REGISTRY
 from . import normalize as _norm
 from .chain import identify_chain
@@ -28,17 +30,19 @@ from .plant_model import identify_plant
 from .refine import TimeBudget
 from .search import SEARCH_DEADLINE
 from .settings import (
-    OPTION_NAMES,
-    Options,
     Search,
     check_search_options,
 )
 
-__all__ = ["SEARCH_DEADLINE", "check_search_options", "fit_recordings", "identify", "run"]
+if TYPE_CHECKING:
+    from .estimator import Options
+
+__all__ = ["SEARCH_DEADLINE", "check_search_options", "fit_recordings", "identify_with", "run"]
 
 
-def identify(
-    model_class: type[HysteresisModel] | HysteresisModel | str,
+def identify_with(
+    model_class: Any,
+    options: Options,
     t: ArrayLike | None = None,
     x: ArrayLike | None = None,
     y: ArrayLike | None = None,
@@ -46,212 +50,11 @@ def identify(
     recordings: Sequence | None = None,
     curve_angle: ArrayLike | None = None,
     load: Any = None,
-    warmup: int = 0,
-    bounds: dict | None = None,
-    fixed: dict | None = None,
-    free: Any = None,
-    initial: Any = None,
-    depends_on_angle: dict | None = None,
-    seed: int | None = 0,
-    maxiter: int = 100,
-    popsize: int = 15,
-    tol: float = 0.01,
-    workers: int | None = None,
-    polish: bool = True,
-    separable: bool = True,
-    progress: bool = True,
-    search_samples: int | None = 200_000,
-    time_budget: Any = None,
-    input_interpolation: str | None = None,
-    periodic: bool | None = None,
-    strategy: str = "auto",
-    normalize: bool = True,
-    standard_errors: str = "linearised",
-    bootstrap: int | None = None,
-    bootstrap_block: int | None = None,
 ) -> Fit:
-    """Identify a model from input/output recordings by simulation-error minimisation.
-
-    Data: ``identify(cls, t, x, y)`` (``curve_angle=`` a number or per-sample array for models
-    that use it) or ``identify(cls, recordings=[(t, x, y), (t, x, y, curve_angle), ...])``; the
-    recordings share the parameters. ``t`` may be None for rate-independent models. A
-    recording's curve angle may also be a :class:`~tendonsheath.Route` (e.g. the sensed
-    shape, held over that recording): CurveAngleModel and ``depends_on_angle`` models then use
-    its distribution of curvature (the shape integrals g, G, recomputed for every candidate
-    friction), not its curve angle alone.
-
-    The cost is the sum of squared simulation errors (the model runs free from its initial
-    state; the first ``warmup`` samples of every recording are not counted). A global search
-    by SciPy's differential evolution (``popsize``, ``maxiter``, ``tol``, ``seed``: seeded and
-    reproducible) evaluates each generation in one batched C++ call spread over ``workers``
-    threads (default: all cores), then ``scipy.optimize.least_squares`` refines the best
-    candidate (``polish=False`` skips it). Bounds are derived from the data's scale unless
-    given in ``bounds`` ({name: (low, high)}); some are searched on a log scale.
-
-    Long records: the global search only has to find the basin, so when the recordings hold
-    more than ``search_samples`` samples (default 200 000; None: no limit) it runs on 8 evenly
-    spaced windows per recording counting that many samples (each window starts from the
-    model's rest state, with a warm-up of a fifth of its length); the refinement and
-    everything after it use every sample. A rate-independent model's search runs on the
-    records thinned to about 2 000 samples (every m-th sample, m <= 20, and every turning
-    point of the input; see :func:`~tendonsheath.identify.data.thin_for_search`).
-    The cost per evaluation is linear in the samples and
-    memory grows linearly with them (no candidate's output is kept during the search).
-
-    Linear-in-parameter parts are solved by least squares instead of searched (``separable``):
-    BoucWenBacklash (c_r, c_l, c_r B_r, c_l B_l given rho, sigma, n), BoucWen (a, (1-a) k
-    given the state z) and PrandtlIshlinskii (the weights, given the threshold scale).
-
-    ``fixed`` holds parameters at given values; some are held by default because they are
-    not identifiable from input/output data (BoucWen: A; HystereticOscillator: beta;
-    CurveAngleModel: pretension, length, radii and load_stiffness); ``free`` releases those.
-    ``initial`` supplies the values of held parameters and the numerical options (for
-    PrandtlIshlinskii: the threshold pattern, whose scale is identified).
-
-    ``depends_on_angle`` ({name: "constant" | "linear" | "tanh"}) makes parameters functions
-    of the curve angle (one constant angle per recording); the result is then an
-    :class:`~tendonsheath.models.AngleDependent` model that predicts at any angle.
-
-    ``model_class`` may also be a :class:`~tendonsheath.models.Chain` instance, e.g.
-    ``Chain(BoucWenBacklash(), Polynomial(3))``: the first model's nonlinear parameters are
-    searched (its output scale held, the polynomial carries it) and the polynomial
-    coefficients are solved by least squares for every candidate (see
-    :func:`~tendonsheath.identify.chain.identify_chain`).
-
-    HystereticOscillator (``strategy="auto"``): best linear approximation, then an
-    equation-error stage, then simulation-error least squares (see
-    :mod:`tendonsheath.identify.oscillator`); ``strategy="search"`` runs the plain
-    differential evolution instead. ``input_interpolation`` ("hold", "linear",
-    "bandlimited"; default: detected from the input when no ``initial`` is given, see
-    :mod:`tendonsheath.identify.interpolation`, else ``initial``'s) is the input
-    reconstruction between samples,
-    recorded in the fitted model's options and the Fit's method; ``periodic`` says whether
-    the records are whole periods (None: detected) for the band-limited reconstruction;
-    ``time_budget`` (seconds of wall clock, every model and chain): the global search stops
-    after the generation in which it runs out and the least-squares stage at its next
-    evaluation, keeping the best point so far; ``fit.stopped_on_budget`` records it and
-    ``fit.message`` says so. Standard errors and diagnostics are computed after it, outside
-    the budget.
-
-    PlantModel (the grey-box pull-pull plant): friction angle, backlash and viscous time are
-    searched by a short differential evolution (at most 25 generations of 6 per parameter:
-    each candidate is a plant simulation) and refined by least squares; the output gain and
-    offset are solved by least squares for every candidate (see
-    :mod:`tendonsheath.identify.plant_model`). ``bounds``, ``fixed`` and ``depends_on_angle``
-    are not supported for it; ``initial`` sets its element count.
-
-    GeneralizedPrandtlIshlinskii: the envelopes and the threshold scale are searched, the
-    weights (>= 0) and an output offset are solved by bounded least squares; ``initial``
-    gives the number of plays and the threshold pattern (default 10 evenly spaced plays).
-
-    Any sign, offset and units (``normalize``, default on): Backlash, BoucWenBacklash,
-    PrandtlIshlinskii, GeneralizedPrandtlIshlinskii and Chains of a (Bouc-Wen)
-    backlash and a polynomial are fitted on centred, scaled data with a positive gain and
-    mapped back (see :mod:`tendonsheath.identify.normalize`): into the class's own parameters
-    where exact, otherwise as a :class:`~tendonsheath.models.Scaled` model (e.g. a negative
-    gain). Not applied with ``bounds``, ``fixed`` or ``depends_on_angle`` (raw units).
-
-    A measured load (``load=``: per-sample array of t, x, y, or one array per recording;
-    recordings that are :class:`~tendonsheath.io.Log` objects bring their own ``Log.load``)
-    is taken by a :class:`~tendonsheath.models.Loaded` model, e.g.
-    ``identify(Loaded(BoucWenBacklash), recordings=logs)``, staged: the tendon's stretch by a
-    linear regression, the base alone on the data without it, the load's play terms with the
-    base held, then everything jointly; a (generalized) Prandtl-Ishlinskii base's weights are
-    kept >= 0 (see :mod:`tendonsheath.identify.loaded`; ``fixed`` may hold load terms; the
-    other settings go to the base's identification).
-
-    Uncertainty and identifiability (:mod:`tendonsheath.identify.diagnostics`): every Fit
-    carries ``standard_errors`` (``standard_errors="linearised"``: from the Jacobian at the
-    optimum; ``"bootstrap"``: the spread of ``bootstrap`` (default 200) moving-block
-    bootstrap resamples of the residuals, each re-fitted by least squares from the estimate,
-    seeded by ``seed``, blocks of ``bootstrap_block`` samples (default from the residual's
-    autocorrelation); ``"bootstrap-recordings"``: resamples of the recordings, drawn with
-    replacement (for many recordings); ``"none"``) and ``diagnostics`` (parameters near
-    their bounds, correlations, condition number); an :class:`IdentifiabilityWarning` names
-    the parameters involved. CurveAngleModel recordings that cover a single curve angle
-    cannot separate friction from EA: the friction is then held (at ``initial``'s value, 0.1
-    by default, unless given in ``fixed``), with a warning, and the identifiable groups
-    (dead-zone half-width, load offset, gain at that angle) are reported in ``fit.groups``.
-
-    Parameters
-    ----------
-    model_class : type or Chain
-        The model class (e.g. ``BoucWenBacklash``), or a Chain instance.
-    t : array_like of float, shape (n,), optional
-        Sample times (s); None for a rate-independent model.
-    x : array_like of float, shape (n,), optional
-        Input samples (or give ``recordings``).
-    y : array_like of float, shape (n,), optional
-        Output samples.
-    recordings : sequence of tuple, optional
-        (t, x, y) or (t, x, y, curve_angle) per recording, instead of t, x, y.
-    curve_angle : float, array_like of float, or Route, optional
-        The curve angle (rad) of t, x, y, or its route, for models that take one.
-    load : array_like of float, or sequence of them, optional
-        The measured load of t, x, y (or one per recording), for a Loaded model.
-    warmup : int, default 0
-        Samples at the start of every recording left out of the cost.
-    bounds : dict of str to (float, float), optional
-        Search bounds by parameter (default from the data's scale).
-    fixed : dict of str to float, optional
-        Parameters held at given values.
-    free : iterable of str, optional
-        Parameters held by default that are to be identified.
-    initial : HysteresisModel, optional
-        Values of held parameters and numerical options.
-    depends_on_angle : dict of str to str, optional
-        Parameter -> "constant", "linear" or "tanh" law of the curve angle.
-    seed : int or None, default 0
-        Seed of the search (and of the bootstrap).
-    maxiter : int, default 100
-        Generations of differential evolution.
-    popsize : int, default 15
-        Population per parameter.
-    tol : float, default 0.01
-        Relative tolerance of the search.
-    workers : int, optional
-        Threads of the batched simulations (default all cores).
-    polish : bool, default True
-        Refine the search's best candidate by least squares.
-    separable : bool, default True
-        Solve linear-in-parameter parts by least squares.
-    progress : bool, default True
-        Show a progress bar.
-    search_samples : int or None, default 200000
-        Samples the global search runs on at most (None: no limit).
-    time_budget : float, optional
-        Seconds of wall clock for the search and the refinement.
-    input_interpolation : {"hold", "linear", "bandlimited"}, optional
-        The input reconstruction between samples (None: detected from the input, or
-        ``initial``'s when given).
-    periodic : bool, optional
-        Whether the records are whole periods (None: detected).
-    strategy : {"auto", "search"}, default "auto"
-        HystereticOscillator's path.
-    normalize : bool, default True
-        Fit on centred, scaled data and map back.
-    standard_errors : {"linearised", "bootstrap", "bootstrap-recordings", "none"}
-        How the standard errors are obtained (default "linearised").
-    bootstrap : int, optional
-        Bootstrap resamples (default 200).
-    bootstrap_block : int, optional
-        Block length of the residual bootstrap (default from the autocorrelation).
-
-    Returns
-    -------
-    Fit
-        The identified model, its errors, standard errors and diagnostics.
-
-    Raises
-    ------
-    ValueError
-        Bad data or arguments (the message names them), or an option the model does not
-        support.
-    """
-    # the settings, by the names of Options (a test holds these keywords and defaults equal
-    # to its fields)
-    given = locals()
-    options = {name: given[name] for name in OPTION_NAMES}
+    """:func:`~tendonsheath.identify.identify` with its settings as one
+    :class:`~tendonsheath.identify.estimator.Options`: a Loaded model's staged identification,
+    or :func:`fit_recordings`."""
+    depends_on_angle = options.depends_on_angle
     if isinstance(model_class, Loaded):
         return _identify_loaded(model_class, t, x, y, recordings, load, options)
     if load is not None:
@@ -265,7 +68,7 @@ def identify(
             "leave curve_angle out, or say which parameters depend on it"
         )
     return fit_recordings(
-        model_class, Options(**options), t, x, y, recordings=recordings, curve_angle=curve_angle
+        model_class, options, t, x, y, recordings=recordings, curve_angle=curve_angle
     )
 
 
@@ -330,8 +133,9 @@ def _record_input_range(fit: Fit, recs: list[Recording]) -> None:
     fit.model.input_range = (lo, hi)
 
 
-def _identify_loaded(template, t, x, y, recordings, load, options: dict) -> Fit:
+def _identify_loaded(template, t, x, y, recordings, load, opt: Options) -> Fit:
     """identify() of a Loaded model: the recordings and their loads, then identify_loaded."""
+    options = opt.as_dict()
     if recordings is None:
         if x is None or y is None or load is None:
             raise ValueError("a Loaded model needs t, x, y and load=, or recordings with loads")
@@ -358,7 +162,7 @@ def _identify_loaded(template, t, x, y, recordings, load, options: dict) -> Fit:
         warmup=warmup,
         fixed=fixed,
         base_options=options,
-        identify_base=identify,
+        identify_base=functools.partial(_identify_base, type(opt)),
     )
 
 
@@ -376,8 +180,16 @@ def _run_loaded(template, recs: list[Recording], opt: Options, search: Search) -
         warmup=int(opt.warmup),
         fixed=opt.fixed,
         base_options={**base, "workers": search.workers},
-        identify_base=identify,
+        identify_base=functools.partial(_identify_base, type(opt)),
     )
+
+
+def _identify_base(options_type: type[Options], model_class: Any, **arguments: Any) -> Fit:
+    """identify() of a Loaded model's base: its data and settings by keyword (``options_type``
+    is :class:`~tendonsheath.identify.estimator.Options`, which reads the defaults)."""
+    data = {k: arguments.pop(k) for k in ("t", "x", "y", "recordings", "curve_angle", "load")
+            if k in arguments}  # fmt: skip
+    return identify_with(model_class, options_type(**arguments), **data)
 
 
 def run(model_class, recs: list[Recording], options: Options, search: Search) -> Fit:
@@ -399,7 +211,7 @@ def _dispatch(model_class, recs, opt: Options, search: Search) -> Fit:
         fixed=opt.fixed,
         initial=opt.initial,
     ):
-        inner = dataclasses.replace(opt, normalize=False)
+        inner = opt.replace(normalize=False)
 
         def fit_normalised(cls, normalised_recs):
             return run(cls, make_recordings(recordings=normalised_recs), inner, search)

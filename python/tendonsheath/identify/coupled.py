@@ -25,10 +25,10 @@ from typing import Any
 
 import numpy as np
 
-from .._typing import ArrayLike, FloatArray
+from .._util.typing import ArrayLike, FloatArray
 from ..models import Coupled, HysteresisModel
-from .core import identify
 from .coupled_data import CoupledRecording, coupled_recordings
+from .estimator import identify
 from .fit import Fit
 from .newey_west import newey_west as _newey_west
 

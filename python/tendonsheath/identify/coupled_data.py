@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._typing import FloatArray
+from .._util.typing import FloatArray
 
 _OWNER = "identify_coupled"
 

@@ -1,7 +1,7 @@
 """Cross-validation over recordings: each recording (or group of recordings) is held out in
 turn, an unfitted clone of the estimator is fitted on the others and simulated over the
 held-out ones from their start. :func:`evaluate_splits` is the loop that
-:func:`~tendonsheath.compare.compare_models` shares."""
+:func:`~tendonsheath.apps.compare.compare_models` shares."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from .._typing import ArrayLike, RecordingLike, Recordings
+from .._util.typing import ArrayLike, RecordingLike, Recordings
 from ..models import HysteresisModel
 from .data import make_recordings
 from .fit import metrics, simulate_model

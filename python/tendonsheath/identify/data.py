@@ -7,8 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._arrays import as_vector
-from .._units import CURVE_ANGLE, warn_if_unit_slip
+from .._util.arrays import as_vector
+from .._util.units import CURVE_ANGLE, warn_if_unit_slip
 from ..plant.route import Route, check_curve_angle
 from ._bound import RecordingSet
 

@@ -7,20 +7,19 @@ cross-validation make one unfitted copy per fold."""
 from __future__ import annotations
 
 import copy
+import inspect
 from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
-from .._typing import ArrayLike, RecordingLike, Recordings
+from .._util.typing import ArrayLike, RecordingLike, Recordings
 from ..models import HysteresisModel
-from .core import fit_recordings
+from .core import fit_recordings, identify_with
 from .data import make_recordings
 from .fit import Fit, metrics, simulate_model
 from .settings import (
-    DEFAULTS,
-    IDENTIFIER_NAMES,
-    Options,
+    OSCILLATOR_DEFAULTS,
     check_names,
     oscillator_settings,
 )
@@ -42,8 +41,9 @@ class Identifier:
     ``identify(model, t, x, y, **settings)`` is ``Identifier(model, **settings).fit_data(t, x,
     y)``, which returns the Fit. An unknown setting raises TypeError naming it; the values are
     checked by ``fit``. The settings are those of :func:`~tendonsheath.identify.identify`,
-    whose docstring describes the search in full; their defaults are the fields of
-    :class:`~tendonsheath.identify.settings.Options`. The settings that only a
+    whose docstring describes the search in full; this signature is the one place they and
+    their defaults are written (:func:`~tendonsheath.identify.identify` and :class:`Options`
+    read it). The settings that only a
     HystereticOscillator's identification reads (``input_interpolation``, ``periodic``,
     ``strategy``) are grouped in the ``oscillator`` dict: ``identify(HystereticOscillator, t, x,
     y, strategy="search")`` is ``Identifier(HystereticOscillator, oscillator={"strategy":
@@ -172,9 +172,10 @@ class Identifier:
         bootstrap_block: int | None = None,
         oscillator: dict[str, Any] | None = None,
     ) -> None:
-        # every setting stored as given, under its own name (scikit-learn's convention);
-        # the defaults are Options' (a test holds the two lists equal); a HystereticOscillator's
-        # own settings are grouped in ``oscillator``
+        # every setting stored as given, under its own name (scikit-learn's convention); this
+        # signature is the one place the settings and their defaults are written (Options and
+        # identify() read it); a HystereticOscillator's own settings are grouped in
+        # ``oscillator``
         self.model = model
         self.warmup = warmup
         self.bounds = bounds
@@ -269,7 +270,7 @@ class Identifier:
         Returns
         -------
         Options
-            A frozen :class:`~tendonsheath.identify.settings.Options` of the current settings,
+            A frozen :class:`Options` of the current settings,
             ``oscillator``'s among them (their values unchecked: ``fit`` checks them).
 
         Raises
@@ -464,6 +465,249 @@ def _inputs(recordings):
     return out
 
 
+#: the settings of an Identifier besides ``model``, in its signature's order (``oscillator``
+#: last): its signature is the one place they are written
+IDENTIFIER_NAMES: tuple[str, ...] = tuple(inspect.signature(Identifier).parameters)[1:]
+#: every setting of one identification with its default: the Identifier's (its signature's),
+#: a HystereticOscillator's own ones flat in place of ``oscillator``
+DEFAULTS: dict[str, Any] = {
+    **{
+        name: p.default
+        for name, p in inspect.signature(Identifier).parameters.items()
+        if name in IDENTIFIER_NAMES and name != "oscillator"
+    },
+    **OSCILLATOR_DEFAULTS,
+}
+OPTION_NAMES: tuple[str, ...] = tuple(DEFAULTS)
+
+
+class Options:
+    """Every setting of one identification, by name (``options.maxiter``), as the
+    identification paths take them: the Identifier's settings with its signature's defaults,
+    a HystereticOscillator's own ones (``input_interpolation``, ``periodic``, ``strategy``)
+    flat. Immutable: :meth:`replace` makes a changed copy.
+
+    Parameters
+    ----------
+    **settings
+        Settings by name (:data:`OPTION_NAMES`); the others take their defaults.
+
+    Raises
+    ------
+    TypeError
+        An unknown setting (named, with the closest known ones).
+    """
+
+    __slots__ = ("_values",)
+    _values: dict[str, Any]
+
+    def __init__(self, **settings: Any) -> None:
+        check_names(settings, "identify", OPTION_NAMES)
+        object.__setattr__(self, "_values", {**DEFAULTS, **settings})
+
+    def __getattr__(self, name: str) -> Any:
+        if not name.startswith("_") and name in self._values:
+            return self._values[name]
+        raise AttributeError(f"Options has no setting {name!r}")
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError(f"Options are frozen: use replace({name}=...)")
+
+    def __eq__(self, other: object) -> bool:
+        return type(other) is type(self) and self._values == other._values
+
+    __hash__ = None  # type: ignore[assignment]  # settings hold dicts
+
+    def __reduce__(self):
+        return _options, (self._values,)
+
+    def __repr__(self) -> str:
+        return f"Options({', '.join(f'{k}={v!r}' for k, v in self._values.items())})"
+
+    def replace(self, **changes: Any) -> Options:
+        """A copy with some settings changed.
+
+        Parameters
+        ----------
+        **changes
+            Settings by name, with their new values.
+
+        Returns
+        -------
+        Options
+            The changed copy; this one is unchanged.
+        """
+        return Options(**{**self._values, **changes})
+
+    def as_dict(self) -> dict[str, Any]:
+        """Every setting by name (a copy of the dict).
+
+        Returns
+        -------
+        dict
+            The settings.
+        """
+        return dict(self._values)
+
+
+def _options(values: dict[str, Any]) -> Options:
+    return Options(**values)
+
+
+def identify(
+    model_class: type[HysteresisModel] | HysteresisModel | str,
+    t: ArrayLike | None = None,
+    x: ArrayLike | None = None,
+    y: ArrayLike | None = None,
+    *,
+    recordings: Sequence | None = None,
+    curve_angle: ArrayLike | None = None,
+    load: Any = None,
+    **settings: Any,
+) -> Fit:
+    """Identify a model from input/output recordings by simulation-error minimisation.
+
+    Data: ``identify(cls, t, x, y)`` (``curve_angle=`` a number or per-sample array for models
+    that use it) or ``identify(cls, recordings=[(t, x, y), (t, x, y, curve_angle), ...])``; the
+    recordings share the parameters. ``t`` may be None for rate-independent models. A
+    recording's curve angle may also be a :class:`~tendonsheath.Route` (e.g. the sensed
+    shape, held over that recording): CurveAngleModel and ``depends_on_angle`` models then use
+    its distribution of curvature (the shape integrals g, G, recomputed for every candidate
+    friction), not its curve angle alone.
+
+    The cost is the sum of squared simulation errors (the model runs free from its initial
+    state; the first ``warmup`` samples of every recording are not counted). A global search
+    by SciPy's differential evolution (``popsize``, ``maxiter``, ``tol``, ``seed``: seeded and
+    reproducible) evaluates each generation in one batched C++ call spread over ``workers``
+    threads (default: all cores), then ``scipy.optimize.least_squares`` refines the best
+    candidate (``polish=False`` skips it). Bounds are derived from the data's scale unless
+    given in ``bounds`` ({name: (low, high)}); some are searched on a log scale.
+
+    Long records: the global search only has to find the basin, so when the recordings hold
+    more than ``search_samples`` samples (default 200 000; None: no limit) it runs on 8 evenly
+    spaced windows per recording counting that many samples (each window starts from the
+    model's rest state, with a warm-up of a fifth of its length); the refinement and
+    everything after it use every sample. A rate-independent model's search runs on the
+    records thinned to about 2 000 samples (every m-th sample, m <= 20, and every turning
+    point of the input; see :func:`~tendonsheath.identify.data.thin_for_search`).
+    The cost per evaluation is linear in the samples and
+    memory grows linearly with them (no candidate's output is kept during the search).
+
+    Linear-in-parameter parts are solved by least squares instead of searched (``separable``):
+    BoucWenBacklash (c_r, c_l, c_r B_r, c_l B_l given rho, sigma, n), BoucWen (a, (1-a) k
+    given the state z) and PrandtlIshlinskii (the weights, given the threshold scale).
+
+    ``fixed`` holds parameters at given values; some are held by default because they are
+    not identifiable from input/output data (BoucWen: A; HystereticOscillator: beta;
+    CurveAngleModel: pretension, length, radii and load_stiffness); ``free`` releases those.
+    ``initial`` supplies the values of held parameters and the numerical options (for
+    PrandtlIshlinskii: the threshold pattern, whose scale is identified).
+
+    ``depends_on_angle`` ({name: "constant" | "linear" | "tanh"}) makes parameters functions
+    of the curve angle (one constant angle per recording); the result is then an
+    :class:`~tendonsheath.models.AngleDependent` model that predicts at any angle.
+
+    ``model_class`` may also be a :class:`~tendonsheath.models.Chain` instance, e.g.
+    ``Chain(BoucWenBacklash(), Polynomial(3))``: the first model's nonlinear parameters are
+    searched (its output scale held, the polynomial carries it) and the polynomial
+    coefficients are solved by least squares for every candidate (see
+    :func:`~tendonsheath.identify.chain.identify_chain`).
+
+    HystereticOscillator (``strategy="auto"``): best linear approximation, then an
+    equation-error stage, then simulation-error least squares (see
+    :mod:`tendonsheath.identify.oscillator`); ``strategy="search"`` runs the plain
+    differential evolution instead. ``input_interpolation`` ("hold", "linear",
+    "bandlimited"; default: detected from the input when no ``initial`` is given, see
+    :mod:`tendonsheath.identify.interpolation`, else ``initial``'s) is the input
+    reconstruction between samples,
+    recorded in the fitted model's options and the Fit's method; ``periodic`` says whether
+    the records are whole periods (None: detected) for the band-limited reconstruction;
+    ``time_budget`` (seconds of wall clock, every model and chain): the global search stops
+    after the generation in which it runs out and the least-squares stage at its next
+    evaluation, keeping the best point so far; ``fit.stopped_on_budget`` records it and
+    ``fit.message`` says so. Standard errors and diagnostics are computed after it, outside
+    the budget.
+
+    PlantModel (the grey-box pull-pull plant): friction angle, backlash and viscous time are
+    searched by a short differential evolution (at most 25 generations of 6 per parameter:
+    each candidate is a plant simulation) and refined by least squares; the output gain and
+    offset are solved by least squares for every candidate (see
+    :mod:`tendonsheath.identify.plant_model`). ``bounds``, ``fixed`` and ``depends_on_angle``
+    are not supported for it; ``initial`` sets its element count.
+
+    GeneralizedPrandtlIshlinskii: the envelopes and the threshold scale are searched, the
+    weights (>= 0) and an output offset are solved by bounded least squares; ``initial``
+    gives the number of plays and the threshold pattern (default 10 evenly spaced plays).
+
+    Any sign, offset and units (``normalize``, default on): Backlash, BoucWenBacklash,
+    PrandtlIshlinskii, GeneralizedPrandtlIshlinskii and Chains of a (Bouc-Wen)
+    backlash and a polynomial are fitted on centred, scaled data with a positive gain and
+    mapped back (see :mod:`tendonsheath.identify.normalize`): into the class's own parameters
+    where exact, otherwise as a :class:`~tendonsheath.models.Scaled` model (e.g. a negative
+    gain). Not applied with ``bounds``, ``fixed`` or ``depends_on_angle`` (raw units).
+
+    A measured load (``load=``: per-sample array of t, x, y, or one array per recording;
+    recordings that are :class:`~tendonsheath.io.Log` objects bring their own ``Log.load``)
+    is taken by a :class:`~tendonsheath.models.Loaded` model, e.g.
+    ``identify(Loaded(BoucWenBacklash), recordings=logs)``, staged: the tendon's stretch by a
+    linear regression, the base alone on the data without it, the load's play terms with the
+    base held, then everything jointly; a (generalized) Prandtl-Ishlinskii base's weights are
+    kept >= 0 (see :mod:`tendonsheath.identify.loaded`; ``fixed`` may hold load terms; the
+    other settings go to the base's identification).
+
+    Uncertainty and identifiability (:mod:`tendonsheath.identify.diagnostics`): every Fit
+    carries ``standard_errors`` (``standard_errors="linearised"``: from the Jacobian at the
+    optimum; ``"bootstrap"``: the spread of ``bootstrap`` (default 200) moving-block
+    bootstrap resamples of the residuals, each re-fitted by least squares from the estimate,
+    seeded by ``seed``, blocks of ``bootstrap_block`` samples (default from the residual's
+    autocorrelation); ``"bootstrap-recordings"``: resamples of the recordings, drawn with
+    replacement (for many recordings); ``"none"``) and ``diagnostics`` (parameters near
+    their bounds, correlations, condition number); an :class:`IdentifiabilityWarning` names
+    the parameters involved. CurveAngleModel recordings that cover a single curve angle
+    cannot separate friction from EA: the friction is then held (at ``initial``'s value, 0.1
+    by default, unless given in ``fixed``), with a warning, and the identifiable groups
+    (dead-zone half-width, load offset, gain at that angle) are reported in ``fit.groups``.
+
+    Parameters
+    ----------
+    model_class : type or Chain
+        The model class (e.g. ``BoucWenBacklash``), or a Chain instance.
+    t : array_like of float, shape (n,), optional
+        Sample times (s); None for a rate-independent model.
+    x : array_like of float, shape (n,), optional
+        Input samples (or give ``recordings``).
+    y : array_like of float, shape (n,), optional
+        Output samples.
+    recordings : sequence of tuple, optional
+        (t, x, y) or (t, x, y, curve_angle) per recording, instead of t, x, y.
+    curve_angle : float, array_like of float, or Route, optional
+        The curve angle (rad) of t, x, y, or its route, for models that take one.
+    load : array_like of float, or sequence of them, optional
+        The measured load of t, x, y (or one per recording), for a Loaded model.
+    **settings
+        The settings of :class:`~tendonsheath.identify.Identifier` (each described there,
+        with its default), a HystereticOscillator's own (the keys of Identifier's
+        ``oscillator``) as keywords of their own.
+
+    Returns
+    -------
+    Fit
+        The identified model, its errors, standard errors and diagnostics.
+
+    Raises
+    ------
+    TypeError
+        An unknown setting (named, with the closest known ones).
+    ValueError
+        Bad data or arguments (the message names them), or an option the model does not
+        support.
+    """
+    options = Options(**settings)  # the settings, by Identifier's names and defaults
+    return identify_with(
+        model_class, options, t, x, y, recordings=recordings, curve_angle=curve_angle, load=load
+    )
+
+
 def _copied(value):
     if isinstance(value, dict | list | set | tuple):
         return copy.deepcopy(value)
@@ -478,4 +722,4 @@ def _differs(value, name: str) -> bool:
         return True
 
 
-__all__ = ["Identifier", "NotFittedError"]
+__all__ = ["Identifier", "NotFittedError", "Options", "identify"]

@@ -9,7 +9,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from .._typing import ArrayLike
+from .._util.typing import ArrayLike
 from ..models import HysteresisModel
 from ..models.loaded import Loaded
 from ..plant.route import Route
@@ -87,8 +87,8 @@ def simulate_model(model: HysteresisModel, t, x, curve_angle=None, load=None) ->
         return cast(np.ndarray, model.simulate(t, x, load=load))
     # status not asked: the outputs alone
     if getattr(model, "uses_curve_angle", False):
-        # a model that uses_curve_angle takes it (HysteresisModel.simulate does not)
-        y = model.simulate(t, x, curve_angle=curve_angle)  # type: ignore[call-arg]
+        # a model that uses_curve_angle takes it (its _simulate's further input)
+        y = model.simulate(t, x, curve_angle=curve_angle)
         return cast(np.ndarray, y)
     return cast(np.ndarray, model.simulate(t, x))
 

@@ -9,7 +9,7 @@ import dataclasses
 import math
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -20,13 +20,14 @@ from ..models import (
     PrandtlIshlinskii,
 )
 from ..models.base import _REGISTRY
+from ._bound import POPULATION
 from .data import check_for_fit, make_recordings, search_windows, thin_for_search
 from .fit import Fit, fit_quality, simulate_model
 from .oscillator import identify_oscillator
-from .problem import POPULATION, DirectProblem, SeparableProblem, law_check
+from .problem import DirectProblem, SeparableProblem, law_check
 from .refine import refine
 from .search import PENALTY, global_search
-from .settings import Options, Search
+from .settings import Search
 from .specs import (
     SPECS,
     GeneralizedPrandtlIshlinskiiSpec,
@@ -36,9 +37,12 @@ from .specs import (
 )
 from .uncertainty import assess, setup_single_angle
 
+if TYPE_CHECKING:
+    from .estimator import Options
+
 #: the whole identification of one model class on checked recordings (core.run), handed down
 #: for the per-recording fits that start a search of angle laws
-FitOne = Callable[[Any, list, Options, Search], Fit]
+FitOne = Callable[[Any, list, "Options", Search], Fit]
 
 GPI_PLAYS = 10  # default number of plays of an identified GeneralizedPrandtlIshlinskii
 SPECS_BY_NAME = {cls.__name__: cls for cls in SPECS}
@@ -344,7 +348,7 @@ def _start_from_recordings(
 ):
     """A starting candidate for angle laws: per-recording fits by ``fit_one`` (fast, separable
     where possible) and the laws fitted to them; the joint search has it in its population."""
-    per_options = Options(
+    per_options = type(opt)(  # Options, its other settings at their defaults
         warmup=s.warmup,
         fixed=opt.fixed,
         free=opt.free,

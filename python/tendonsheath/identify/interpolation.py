@@ -27,8 +27,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._sampling import is_periodic
-from .._typing import ArrayLike
+from .._util.sampling import is_periodic
+from .._util.typing import ArrayLike
 
 TOP_BAND = 0.4  # fraction of the sampling rate above which a band-limited input is empty
 MARGIN = 0.1  # the tail must be below this fraction of linear interpolation's error

@@ -47,8 +47,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._arrays import as_timed_signal
-from .._typing import ArrayLike
+from .._util.arrays import as_timed_signal
+from .._util.typing import ArrayLike
 from ..control_interop import require_control
 from .servo import (
     ServoFit,

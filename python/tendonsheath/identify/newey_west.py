@@ -15,7 +15,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .._typing import FloatArray
+from .._util.typing import FloatArray
 from .diagnostics import RCOND, inverse_gram
 
 

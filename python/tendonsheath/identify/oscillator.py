@@ -44,7 +44,7 @@ import warnings
 
 import numpy as np
 
-from .._sampling import fft_upsample, is_periodic, uniform_step
+from .._util.sampling import fft_upsample, is_periodic, uniform_step
 from ..models import HystereticOscillator
 from ._bound import (
     RecordingSet,

@@ -467,7 +467,6 @@ def over_recordings(problem, recs: list[Recording], warmup: int):
 
 __all__ = [
     "FEATURES",
-    "POPULATION",
     "SEPARABLE_COST",
     "DirectProblem",
     "SeparableProblem",

@@ -10,7 +10,7 @@ from contextvars import ContextVar
 
 import numpy as np
 
-from .._progress import StepProgress
+from .._util.progress import StepProgress
 from .refine import refine
 from .settings import Search
 

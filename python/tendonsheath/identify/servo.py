@@ -37,8 +37,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import threadpoolctl
 
-from .._arrays import as_timed_signal
-from .._typing import ArrayLike
+from .._util.arrays import as_timed_signal
+from .._util.typing import ArrayLike
 from ..control_interop import require_control
 
 if TYPE_CHECKING:

@@ -1,6 +1,9 @@
-"""The settings of an identification: the options a user gives (:class:`Options`, stored by
-:class:`~tendonsheath.identify.estimator.Identifier`) and the checked search settings every
-identification path takes (:class:`Search`: one object passed down instead of a dozen keywords).
+"""The settings of an identification: a HystereticOscillator's own ones
+(:data:`OSCILLATOR_DEFAULTS`; the others and their defaults are written once, in
+:class:`~tendonsheath.identify.estimator.Identifier`'s signature, which
+:class:`~tendonsheath.identify.estimator.Options` reads), their checks, and the checked search
+settings every identification path takes (:class:`Search`: one object passed down instead of
+a dozen keywords).
 """
 
 from __future__ import annotations
@@ -8,58 +11,28 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import os
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .refine import TimeBudget
 
-
-@dataclasses.dataclass(frozen=True)
-class Options:
-    """Every option of :func:`~tendonsheath.identify.identify` with its default (documented
-    on :class:`~tendonsheath.identify.estimator.Identifier`)."""
-
-    warmup: int = 0
-    bounds: dict | None = None
-    fixed: dict | None = None
-    free: Any = None
-    initial: Any = None
-    depends_on_angle: dict | None = None
-    seed: int | None = 0
-    maxiter: int = 100
-    popsize: int = 15
-    tol: float = 0.01
-    workers: int | None = None
-    polish: bool = True
-    separable: bool = True
-    progress: bool = True
-    search_samples: int | None = 200_000
-    time_budget: Any = None
-    input_interpolation: str | None = None
-    periodic: bool | None = None
-    strategy: str = "auto"
-    normalize: bool = True
-    standard_errors: str = "linearised"
-    bootstrap: int | None = None
-    bootstrap_block: int | None = None
+if TYPE_CHECKING:
+    from .estimator import Options
 
 
-OPTION_NAMES: tuple[str, ...] = tuple(f.name for f in dataclasses.fields(Options))
-DEFAULTS: dict[str, Any] = {f.name: f.default for f in dataclasses.fields(Options)}
-TYPES: dict[str, Any] = {f.name: f.type for f in dataclasses.fields(Options)}  # annotations
-
-#: the settings only a HystereticOscillator's identification reads: an Identifier takes them
-#: grouped in its ``oscillator`` dict (identify() as keywords among the others)
-OSCILLATOR_NAMES: tuple[str, ...] = ("input_interpolation", "periodic", "strategy")
-#: the parameters of an Identifier besides ``model``: the other settings, then ``oscillator``
-IDENTIFIER_NAMES: tuple[str, ...] = (
-    *(n for n in OPTION_NAMES if n not in OSCILLATOR_NAMES),
-    "oscillator",
-)
+#: the settings only a HystereticOscillator's identification reads, with their defaults: an
+#: Identifier takes them grouped in its ``oscillator`` dict, identify() as keywords among the
+#: others (every other setting and its default is written once, in Identifier's signature)
+OSCILLATOR_DEFAULTS: dict[str, Any] = {
+    "input_interpolation": None,
+    "periodic": None,
+    "strategy": "auto",
+}
+OSCILLATOR_NAMES: tuple[str, ...] = tuple(OSCILLATOR_DEFAULTS)
 
 
-def check_names(names, owner: str, known: tuple[str, ...] = OPTION_NAMES) -> None:
+def check_names(names, owner: str, known: tuple[str, ...]) -> None:
     """TypeError naming the settings not among ``known`` (with the closest known ones)."""
     unknown = [n for n in names if n not in known]
     if unknown:
@@ -83,7 +56,7 @@ def oscillator_settings(group: Any, owner: str) -> dict[str, Any]:
             f"(got {type(group).__name__})"
         )
     check_names(group, f"{owner}: oscillator", OSCILLATOR_NAMES)
-    return {n: group.get(n, DEFAULTS[n]) for n in OSCILLATOR_NAMES}
+    return {n: group.get(n, default) for n, default in OSCILLATOR_DEFAULTS.items()}
 
 
 def check_search_options(*, maxiter, popsize, tol, workers, warmup) -> None:
@@ -195,14 +168,10 @@ class Search:
 
 __all__ = [
     "BOOTSTRAP_DEFAULT",
-    "DEFAULTS",
-    "IDENTIFIER_NAMES",
-    "OPTION_NAMES",
+    "OSCILLATOR_DEFAULTS",
     "OSCILLATOR_NAMES",
-    "Options",
     "SE_METHODS",
     "Search",
-    "TYPES",
     "check_method",
     "check_names",
     "check_search_options",

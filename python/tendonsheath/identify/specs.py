@@ -9,6 +9,7 @@ linear ones follow from (bounded) linear least squares for every candidate.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -397,7 +398,7 @@ class TableSpec(ModelSpec):
     batched C++ kernels are missing, needs a spec of its own.
     """
 
-    def __init__(self, model_class: type) -> None:
+    def __init__(self, model_class: Any) -> None:
         self.model_class = model_class
         self.kind = model_class.__name__
         rows = {f["name"]: f for f in model_class._core_params.fields()}

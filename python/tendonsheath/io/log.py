@@ -40,10 +40,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .._atomic import atomic_path
-from .._extras import require
-from .._typing import ArrayLike, FloatArray
-from .._units import CURVE_ANGLE, warn_if_unit_slip
+from .._util.atomic import atomic_path
+from .._util.extras import require
+from .._util.typing import ArrayLike, FloatArray
+from .._util.units import CURVE_ANGLE, warn_if_unit_slip
 from ._rosbag import TIME_KEY, bag_columns, bag_path, read_bag
 from ._textread import (
     Column,

@@ -2,7 +2,7 @@
 
 from .angle_dependent import AngleDependent
 from .backlash import Backlash
-from .base import HysteresisModel, load_model
+from .base import HysteresisModel, load_model, register_models
 from .bouc_wen import BoucWen
 from .bouc_wen_backlash import BoucWenBacklash
 from .chain import Chain
@@ -43,3 +43,6 @@ __all__ = [
     "Scaled",
     "load_model",
 ]
+
+# saved files, identify and compare name these classes (the models exported above)
+register_models(*(globals()[name] for name in __all__))

@@ -21,7 +21,7 @@ import math
 from collections.abc import Callable, Sequence
 from typing import Any, TypeVar
 
-from .._args import integer, number
+from .._util.args import integer, number
 from .base import HysteresisModel
 
 _T = TypeVar("_T", bound=type)

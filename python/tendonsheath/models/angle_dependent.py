@@ -8,9 +8,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._args import number
-from .._arrays import checked_dt
-from .._typing import ArrayLike, FloatArray
+from .._util.args import number
+from .._util.arrays import checked_dt
+from .._util.typing import ArrayLike, FloatArray
 from ..plant.physics import route_dead_zone_factor
 from ..plant.route import Route
 from ..simulation_result import SimulationResult
@@ -254,7 +254,7 @@ class AngleDependent(HysteresisModel):
         return self._base_cls(**self.params_at(curve_angle), **self._base_options)
 
     # -- simulation ------------------------------------------------------------------
-    def simulate(  # curve_angle is its input
+    def _simulate(  # curve_angle is its input
         self,
         t: ArrayLike | None,
         x: ArrayLike,

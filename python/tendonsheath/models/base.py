@@ -2,25 +2,23 @@
 
 from __future__ import annotations
 
-import functools
 import inspect
 import json
 import math
 import numbers
-from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any, ClassVar, Self, TypeVar, cast
+from typing import Any, ClassVar, Self
 
 import numpy as np
 
-from .._args import core_errors_as, is_format_version, renamed
-from .._arrays import as_time_and_signal, checked_dt
-from .._atomic import write_text
-from .._json_source import naming_the_file, read_json_source
-from .._pyobject import PythonObject, bound_attribute
-from .._typing import ArrayLike
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as, is_format_version, renamed
+from .._util.arrays import as_time_and_signal, checked_dt
+from .._util.atomic import write_text
+from .._util.json_source import naming_the_file, read_json_source
+from .._util.pyobject import PythonObject, bound_attribute
+from .._util.typing import ArrayLike
+from .._util.units import warn_unit_slips
 from ..control_interop import _ControlBlock
 from ..simulation_result import SimulationResult
 from ..status import Status
@@ -28,38 +26,40 @@ from ..status import Status
 FORMAT_NAME = "tendonsheath.model"
 FORMAT_VERSION = 1
 
+# the model classes a saved file may name, by class name: tendonsheath.models registers the
+# ones it exports (register_models), a user's own model class is registered the same way
 _REGISTRY: dict[str, type[HysteresisModel]] = {}
 
 
-_F = TypeVar("_F", bound=Callable[..., Any])
+def register_models(*classes: Any) -> None:
+    """Let saved files (:func:`load_model`), ``identify`` and ``compare`` name these model
+    classes by their class names; anything that is not a model class is skipped.
 
+    Parameters
+    ----------
+    *classes : type
+        Model classes (subclasses of :class:`HysteresisModel`).
 
-def _returning_result(simulate: _F) -> _F:
-    """``simulate`` that returns a :class:`SimulationResult` (the output with its time, input
-    and each sample's Status flags in ``status``).
-
-    The implementation returns the output, ``(output, flags)`` or a result with its flags.
+    Returns
+    -------
+    None
     """
+    for cls in classes:
+        if isinstance(cls, type) and issubclass(cls, HysteresisModel):
+            _REGISTRY[cls.__name__] = cls
 
-    signature = inspect.signature(simulate)
 
-    # (self, *args, **kwargs), not (self, t, x, ...): the call below binds the arguments, so
-    # an unknown keyword is simulate's own TypeError naming it, even with t or x missing
-    @functools.wraps(simulate)
-    def wrapper(self, *args, **kwargs):
-        out = simulate(self, *args, **kwargs)
-        bound = signature.bind(self, *args, **kwargs).arguments
-        t, x = bound["t"], bound["x"]
-        y, flags = out if isinstance(out, tuple) else (out, None)
-        if flags is None and isinstance(y, SimulationResult):
-            flags = y.status
-        if flags is None and self.reports_status:  # a model with a status but no flags: all OK
-            flags = np.zeros(np.size(y), dtype=np.uint8)
-        # this model's own t and x (a wrapper's inner model saw transformed ones)
-        ts = None if t is None else np.asarray(t, dtype=float)
-        return SimulationResult(y, t=ts, input=np.asarray(x, dtype=float), status=flags)
-
-    return cast(_F, wrapper)  # the same call; a SimulationResult is an array of the output
+def _as_result(model: HysteresisModel, t: Any, x: Any, out: Any) -> SimulationResult:
+    """A model's ``_simulate`` output as a :class:`SimulationResult`: the output with this
+    model's own t and x (a wrapper's inner model saw transformed ones) and each sample's
+    Status flags. ``out`` is the output, ``(output, flags)`` or a result with its flags."""
+    y, flags = out if isinstance(out, tuple) else (out, None)
+    if flags is None and isinstance(y, SimulationResult):
+        flags = y.status
+    if flags is None and model.reports_status:  # a model with a status but no flags: all OK
+        flags = np.zeros(np.size(y), dtype=np.uint8)
+    ts = None if t is None else np.asarray(t, dtype=float)
+    return SimulationResult(y, t=ts, input=np.asarray(x, dtype=float), status=flags)
 
 
 class HysteresisModel(PythonObject, _ControlBlock):
@@ -69,8 +69,9 @@ class HysteresisModel(PythonObject, _ControlBlock):
     core.Backlash)``): the model *is* the C++ object, so it goes to the core's functions as it
     is. Subclasses declare ``_core_params`` (the C++ parameter struct) and ``param_names`` (the
     identifiable parameters, in order), and may list ``option_names`` (numerical settings that
-    are not identified). A model without one (a chain, a linear block) overrides ``simulate``,
-    ``step`` and ``reset``.
+    are not identified). A model without one (a chain, a linear block) overrides ``_simulate``
+    (the hook :meth:`simulate` calls), ``step`` and ``reset``; a model whose file holds other
+    fields overrides ``_dict_fields`` (the hook :meth:`to_dict` calls).
 
     Parameters
     ----------
@@ -113,14 +114,6 @@ class HysteresisModel(PythonObject, _ControlBlock):
     # the range (lo, hi) of the inputs the model was identified on (all recordings, data units),
     # set by identify; None when unknown. Saved by to_dict as "input_range": [lo, hi].
     input_range: tuple[float, float] | None = None
-
-    def __init_subclass__(cls, **kwargs):
-        super().__init_subclass__(**kwargs)
-        _REGISTRY[cls.__name__] = cls
-        if "simulate" in vars(cls):  # every model's simulate returns a SimulationResult
-            cls.simulate = _returning_result(cls.simulate)
-        if "to_dict" in vars(cls):  # every model's file holds its input range
-            cls.to_dict = _with_input_range(cls.to_dict)
 
     def __init__(self, *args: Any, **values: Any) -> None:
         if args:  # a model built from its table maps them to names first (_param_table.py)
@@ -203,11 +196,15 @@ class HysteresisModel(PythonObject, _ControlBlock):
         return type(self)(**values)
 
     # -- simulation ------------------------------------------------------------------
-    @_returning_result
-    def simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
+    def simulate(
+        self, t: ArrayLike | None, x: ArrayLike, *args: Any, **kwargs: Any
+    ) -> SimulationResult:
         """Output for the input samples x at times t (t may be None when rate-independent).
 
-        Starts from the model's initial state; does not disturb the streaming state.
+        Starts from the model's initial state; does not disturb the streaming state. The
+        model computes the output in :meth:`_simulate` (its own further inputs, such as a
+        CurveAngleModel's ``curve_angle``, are documented there); this method returns it as a
+        :class:`SimulationResult`.
 
         Parameters
         ----------
@@ -215,6 +212,10 @@ class HysteresisModel(PythonObject, _ControlBlock):
             Sample times (s), increasing; None for a rate-independent model.
         x : array_like of float, shape (n,)
             Input samples (the model's input unit, e.g. rad or m).
+        *args
+            The model's further inputs by position (see its ``_simulate``).
+        **kwargs
+            The model's further inputs by name (see its ``_simulate``).
 
         Returns
         -------
@@ -228,6 +229,25 @@ class HysteresisModel(PythonObject, _ControlBlock):
         ValueError
             t missing for a rate-dependent model, or t and x of different lengths, not finite
             or t not increasing.
+        """
+        return _as_result(self, t, x, self._simulate(t, x, *args, **kwargs))
+
+    def _simulate(self, t: ArrayLike | None, x: ArrayLike) -> Any:
+        """The output for :meth:`simulate` (the hook a model class overrides, with its own
+        further inputs after ``t`` and ``x``): the output samples, ``(output, flags)`` or a
+        :class:`SimulationResult` with its ``status``; :meth:`simulate` adds t and x.
+
+        Parameters
+        ----------
+        t : array_like of float, shape (n,), or None
+            Sample times (s), increasing; None for a rate-independent model.
+        x : array_like of float, shape (n,)
+            Input samples.
+
+        Returns
+        -------
+        numpy.ndarray, tuple or SimulationResult
+            The output samples (and each sample's Status flags).
         """
         if t is None and not self.rate_independent:
             raise ValueError(f"{type(self).__name__} is rate-dependent: t is required")
@@ -280,12 +300,28 @@ class HysteresisModel(PythonObject, _ControlBlock):
 
     # -- persistence -----------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
-        """The model as a JSON-ready dict (format, version, model, params, options).
+        """The model as a JSON-ready dict (format, version, model, params, options; its
+        ``input_range`` when it has one).
 
         Returns
         -------
         dict
             What :meth:`from_dict` and :func:`load_model` read back.
+        """
+        data = self._dict_fields()
+        if self.input_range is not None and "input_range" not in data:
+            data = {**data, "input_range": [float(v) for v in self.input_range]}
+        return data
+
+    def _dict_fields(self) -> dict[str, Any]:
+        """The model's own fields of :meth:`to_dict` (the hook a model class whose file holds
+        other fields overrides, e.g. a chain's parts): format, version, model, params and
+        options; :meth:`to_dict` adds the input range.
+
+        Returns
+        -------
+        dict
+            The fields, JSON-ready.
         """
         return {
             "format": FORMAT_NAME,
@@ -350,8 +386,13 @@ class HysteresisModel(PythonObject, _ControlBlock):
             write_text(path, text + "\n")
         return text
 
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._util.pyobject): the parameters and options; a composite
+        # model's parts are its attributes
+        return {**self.params, **self.options}
+
     def _recipe(self):
-        # pickled as its saved file: an equal model at rest (tendonsheath._pyobject)
+        # pickled as its saved file: an equal model at rest (tendonsheath._util.pyobject)
         return load_model, (self.to_dict(),)
 
     def __eq__(self, other) -> bool:
@@ -382,22 +423,6 @@ def split_wrapped_changes(
         else:
             raise TypeError(f"{owner}: unknown parameter {key!r}; {prefix}.<name> or {tuple(own)}")
     return inner, mine
-
-
-def _with_input_range(to_dict: _F) -> _F:
-    """``to_dict`` that adds the model's ``input_range`` (when it has one) as [lo, hi]."""
-
-    @functools.wraps(to_dict)
-    def wrapper(self):
-        data = to_dict(self)
-        if self.input_range is not None and "input_range" not in data:
-            data = {**data, "input_range": [float(v) for v in self.input_range]}
-        return data
-
-    return cast(_F, wrapper)
-
-
-HysteresisModel.to_dict = _with_input_range(HysteresisModel.to_dict)  # type: ignore[method-assign]
 
 
 def saved_input_range(name: str, data: dict[str, Any]) -> tuple[float, float] | None:
@@ -607,6 +632,7 @@ __all__ = [
     "HysteresisModel",
     "load_model",
     "model_class_from_dict",
+    "register_models",
     "saved_input_range",
     "split_wrapped_changes",
 ]

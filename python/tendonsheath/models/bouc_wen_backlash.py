@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from .._args import number
+from .._util.args import number
 from . import _bound as core
 from ._param_table import from_table, table_default
 from .base import HysteresisModel

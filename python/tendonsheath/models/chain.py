@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from .._typing import ArrayLike
+from .._util.typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel
@@ -29,6 +29,10 @@ class Chain(HysteresisModel):
     ValueError
         A part that is not a tendonsheath model, or is itself a chain.
     """
+
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    first: HysteresisModel
+    second: HysteresisModel
 
     param_names = ()
     option_names = ()
@@ -84,7 +88,7 @@ class Chain(HysteresisModel):
             self.first.with_params(**parts["first"]), self.second.with_params(**parts["second"])
         )
 
-    def simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
+    def _simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
         """y = second(first(x)); its ``status`` holds each sample's Status flags, those of both
         parts together (a part without a status, a linear block, adds none).
 
@@ -146,7 +150,7 @@ class Chain(HysteresisModel):
                 s |= part.status()
         return s
 
-    def to_dict(self) -> dict[str, Any]:
+    def _dict_fields(self) -> dict[str, Any]:
         """The chain as a JSON-ready dict, each part saved whole.
 
         Returns

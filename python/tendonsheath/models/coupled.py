@@ -10,11 +10,11 @@ from typing import Any
 
 import numpy as np
 
-from .._args import is_format_version
-from .._atomic import write_text
-from .._json_source import naming_the_file, read_json_source
-from .._pyobject import PythonObject
-from .._typing import ArrayLike, FloatArray
+from .._util.args import is_format_version
+from .._util.atomic import write_text
+from .._util.json_source import naming_the_file, read_json_source
+from .._util.pyobject import PythonObject
+from .._util.typing import ArrayLike, FloatArray
 from ..plant.coupled import _coupling_matrix, _joint_matrix
 from ..simulation_result import SimulationResult
 from .base import HysteresisModel, load_model
@@ -45,6 +45,9 @@ class Coupled(PythonObject):
         No models, or a coupling of the wrong shape, not finite, with a non-zero diagonal or
         with I - C singular.
     """
+
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    models: list[HysteresisModel]
 
     def __init__(self, models: Sequence[HysteresisModel], coupling: ArrayLike):
         self.models = list(models)

@@ -6,8 +6,8 @@ from typing import Any
 
 import numpy as np
 
-from .._arrays import as_signal, as_time_and_signal, checked_dt
-from .._typing import ArrayLike, FloatOrArray
+from .._util.arrays import as_signal, as_time_and_signal, checked_dt
+from .._util.typing import ArrayLike, FloatOrArray
 from ..plant import physics
 from ..plant.route import Route
 from ..simulation_result import SimulationResult
@@ -64,7 +64,7 @@ class CurveAngleModel(HysteresisModel, core.CurveAngleModel):  # type: ignore[mi
     control_inputs = ("x", "curve_angle")
     renamed_params = _SAVED_AS
 
-    def simulate(  # type: ignore[override]  # curve_angle is its input
+    def _simulate(  # curve_angle is its input
         self,
         t: ArrayLike | None,
         x: ArrayLike,

@@ -8,9 +8,9 @@ from typing import Any
 
 import numpy as np
 
-from .._arrays import as_time_and_signal
-from .._sampling import fft_upsample, is_periodic, uniform_step
-from .._typing import ArrayLike
+from .._util.arrays import as_time_and_signal
+from .._util.sampling import fft_upsample, is_periodic, uniform_step
+from .._util.typing import ArrayLike
 from ..simulation_result import SimulationResult
 from . import _bound as core
 from ._param_table import from_table
@@ -107,7 +107,7 @@ class HystereticOscillator(HysteresisModel, core.HystereticOscillator):  # type:
         """
         return float(core.HystereticOscillator.z_bound(self, float(displacement_range)))
 
-    def simulate(  # periodic is its own
+    def _simulate(  # periodic is its own
         self, t: ArrayLike | None, x: ArrayLike, periodic: bool | None = None
     ) -> SimulationResult:
         """Output for the input samples x at times t, from rest.

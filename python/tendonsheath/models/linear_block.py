@@ -18,10 +18,10 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from .._args import number
-from .._arrays import checked_dt
-from .._typing import ArrayLike, FloatArray
-from .._units import quantity_of, warn_if_unit_slip
+from .._util.args import number
+from .._util.arrays import checked_dt
+from .._util.typing import ArrayLike, FloatArray
+from .._util.units import quantity_of, warn_if_unit_slip
 from ._bound import LagInverseParams
 from .base import HysteresisModel
 
@@ -154,7 +154,7 @@ class LinearBlock(HysteresisModel):
 
     reports_status = False  # a linear filter in Python: no real-time core, no status
 
-    def simulate(  # type: ignore[override]  # a Python filter: no status to report
+    def _simulate(  # a Python filter: no status to report
         self, t: ArrayLike | None, x: ArrayLike
     ) -> FloatArray:
         """Output for the input samples x at uniform times t, from rest at x[0].

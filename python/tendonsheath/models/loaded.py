@@ -29,8 +29,8 @@ from typing import Any
 
 import numpy as np
 
-from .._args import number
-from .._typing import ArrayLike, FloatArray
+from .._util.args import number
+from .._util.typing import ArrayLike, FloatArray
 from ..simulation_result import SimulationResult
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel, split_wrapped_changes
@@ -115,6 +115,10 @@ class Loaded(HysteresisModel):
     ValueError
         A value not finite, slack or friction < 0, slack_load not > 0, or a Loaded base.
     """
+
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    base: HysteresisModel
+    terms: dict[str, float]
 
     param_names = ()
     option_names = ()
@@ -215,7 +219,7 @@ class Loaded(HysteresisModel):
             raise ValueError("Loaded: the load must be finite")
         return arr
 
-    def simulate(  # the measured load besides the input
+    def _simulate(  # the measured load besides the input
         self,
         t: ArrayLike | None,
         x: ArrayLike,
@@ -318,7 +322,7 @@ class Loaded(HysteresisModel):
         return self.step(float(u[0]), dt, float(u[1]))
 
     # -- persistence -----------------------------------------------------------------
-    def to_dict(self) -> dict[str, Any]:
+    def _dict_fields(self) -> dict[str, Any]:
         """The model as a JSON-ready dict: the base whole and the load terms.
 
         Returns

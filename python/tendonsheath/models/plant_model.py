@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._typing import ArrayLike
+from .._util.typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
 from . import _bound as core
@@ -108,7 +108,7 @@ class PlantModel(_GreyBox):
         """The sheath's element count, as a dict."""
         return {name: self._elements for name in self.option_names}
 
-    def simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
+    def _simulate(self, t: ArrayLike | None, x: ArrayLike) -> SimulationResult:
         """Output for the input samples x at times t (needed), from rest at x[0].
 
         Parameters

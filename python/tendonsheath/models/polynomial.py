@@ -6,8 +6,8 @@ from typing import Any
 
 import numpy as np
 
-from .._args import integer
-from .._typing import ArrayLike, FloatArray
+from .._util.args import integer
+from .._util.typing import ArrayLike, FloatArray
 from . import _bound as core
 from ._param_table import from_table, table_default
 from .base import HysteresisModel

@@ -6,8 +6,8 @@ from typing import Any
 
 import numpy as np
 
-from .._args import number_array
-from .._typing import ArrayLike
+from .._util.args import number_array
+from .._util.typing import ArrayLike
 from . import _bound as core
 from ._param_table import from_table
 from .base import HysteresisModel

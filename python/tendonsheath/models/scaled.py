@@ -7,8 +7,8 @@ from typing import Any
 
 import numpy as np
 
-from .._args import number
-from .._typing import ArrayLike, FloatArray
+from .._util.args import number
+from .._util.typing import ArrayLike, FloatArray
 from ..simulation_result import SimulationResult
 from ..status import Status
 from .base import FORMAT_NAME, FORMAT_VERSION, HysteresisModel, split_wrapped_changes
@@ -44,6 +44,11 @@ class Scaled(HysteresisModel):
         inner not a model (or a Scaled one), a map value not finite, input_scale not > 0 or
         output_gain 0.
     """
+
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    inner: HysteresisModel
+    map: dict[str, float]
+    uses_curve_angle: bool
 
     param_names = ()
     option_names = ()
@@ -152,7 +157,7 @@ class Scaled(HysteresisModel):
         """
         return self.inner.status()
 
-    def simulate(  # the rest pass through to the inner model
+    def _simulate(  # the rest pass through to the inner model
         self, t: ArrayLike | None, x: ArrayLike, **kwargs: Any
     ) -> SimulationResult:
         """The inner model's simulation, in the data's units.
@@ -201,7 +206,7 @@ class Scaled(HysteresisModel):
         inner = self.inner._control_step([x, *u[1:]], dt)
         return self.map["output_offset"] + self.map["output_gain"] * inner
 
-    def to_dict(self) -> dict[str, Any]:
+    def _dict_fields(self) -> dict[str, Any]:
         """The model as a JSON-ready dict: the inner model whole and the map.
 
         Returns

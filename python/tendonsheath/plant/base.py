@@ -7,18 +7,16 @@ The plants themselves: :mod:`~tendonsheath.plant.pull_pull`,
 
 from __future__ import annotations
 
-import functools
-import inspect
 import warnings
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._args import integer, number
-from .._arrays import as_time_and_signal, checked_dt
-from .._pyobject import PythonObject, bound_attribute
-from .._typing import ArrayLike
+from .._util.args import integer, number
+from .._util.arrays import as_time_and_signal, checked_dt
+from .._util.pyobject import PythonObject, bound_attribute, constructor_arguments
+from .._util.typing import ArrayLike
 from ..simulation_result import SimulationResult
 from ..status import Status
 from . import _bound as core
@@ -89,36 +87,6 @@ def _check_route(route, name, cls):
     return route
 
 
-def _recording_arguments(init):
-    """``init`` that first keeps its bound arguments as ``self._arguments`` (the outermost
-    constructor's, when a subclass's calls its parent's)."""
-    signature = inspect.signature(init)
-
-    @functools.wraps(init)
-    def wrapper(self, *args, **kwargs):
-        if not hasattr(self, "_arguments"):
-            try:
-                bound = signature.bind(self, *args, **kwargs)
-            except TypeError:  # the constructor itself names the bad argument
-                return init(self, *args, **kwargs)
-            bound.apply_defaults()
-            self._arguments = _flat_arguments(signature, bound.arguments)
-        init(self, *args, **kwargs)
-
-    return wrapper
-
-
-def _flat_arguments(signature, arguments: dict) -> dict:
-    """Bound arguments without ``self``, a ``**kwargs`` catch-all spread into its keys."""
-    out = {}
-    for name, value in list(arguments.items())[1:]:
-        if signature.parameters[name].kind is inspect.Parameter.VAR_KEYWORD:
-            out.update(value)
-        else:
-            out[name] = value
-    return out
-
-
 def _rebuilt_plant(cls, arguments: dict, interpolation: tuple) -> _Plant:
     """A plant of class ``cls`` built with ``arguments``, its input interpolation set."""
     plant = cls(**arguments)
@@ -151,20 +119,26 @@ class _Plant(PythonObject):
         reconstruction.DEFAULT_LOOKAHEAD,
     )
 
-    _arguments: dict  # the constructor's arguments, kept by _recording_arguments
+    _arguments: dict  # the constructor's arguments, kept by _keep_arguments
 
-    def __init_subclass__(cls, **kwargs):
-        super().__init_subclass__(**kwargs)
-        if "__init__" in vars(cls):
-            cls.__init__ = _recording_arguments(cls.__init__)
+    def _keep_arguments(self, values: dict[str, Any]) -> None:
+        """Keep the constructor's arguments, read by :attr:`params` and pickling: each plant's
+        ``__init__`` calls it first, with its ``locals()`` (a subclass's ``__init__`` that
+        calls its parent's keeps its own: the outermost call's are kept)."""
+        if "_arguments" not in vars(self):
+            self._arguments = constructor_arguments(type(self), values)
 
     @property
     def params(self) -> dict:
         """The constructor's arguments, defaults filled in (a copy)."""
         return dict(self._arguments)
 
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._util.pyobject): the constructor's arguments
+        return dict(self._arguments)
+
     def _recipe(self):
-        # pickled as its constructor's arguments: an equal plant at rest (tendonsheath._pyobject)
+        # pickled as its constructor's arguments: an equal plant at rest (_util.pyobject)
         return _rebuilt_plant, (type(self), self._arguments, self._interpolation)
 
     def set_input_interpolation(

@@ -6,8 +6,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from .._args import core_errors_as
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as
+from .._util.units import warn_unit_slips
 from . import _bound as core
 from .loads import (
     TorsionalSpring,
@@ -121,6 +121,7 @@ class ContinuumPlant(_PairPlant, core.ContinuumPlant):  # type: ignore[misc]
         stiffness2: float | None = None,
         encoder: Sensor | None = None,
     ):
+        self._keep_arguments(locals())
         cls = type(self).__name__
         effects = {k: v for k, v in locals().items() if k in _PAIR_EFFECTS}
         route = Route.uniform(1.0, math.pi) if route is None else route

@@ -20,9 +20,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._arrays import checked_dt
-from .._pyobject import PythonObject
-from .._typing import ArrayLike, FloatArray
+from .._util.arrays import checked_dt
+from .._util.pyobject import PythonObject
+from .._util.typing import ArrayLike, FloatArray
 from .sensor import Sensor
 
 
@@ -120,6 +120,11 @@ class CoupledPlant(PythonObject):
     TypeError
         A sensor that is not a :class:`~tendonsheath.Sensor`.
     """
+
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    plants: list
+    coupling: FloatArray
+    sensors: list[Sensor | None]
 
     def __init__(
         self,

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._sampling import fft_upsample, is_periodic, uniform_step
+from .._util.sampling import fft_upsample, is_periodic, uniform_step
 from . import _bound as core
 
 INTERPOLATIONS = ("hold", "linear", "bandlimited")

@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .._args import number
+from .._util.args import number
 
 
 def _finite(value, name, cls, minimum=None, strict=False):

@@ -3,14 +3,15 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
-from .._args import core_errors_as, number
-from .._arrays import as_timed_signal, checked_dt
-from .._pyobject import PythonObject, bound_attribute
-from .._typing import ArrayLike
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as, number
+from .._util.arrays import as_timed_signal, checked_dt
+from .._util.pyobject import PythonObject, bound_attribute
+from .._util.typing import ArrayLike
+from .._util.units import warn_unit_slips
 from ..simulation_result import SimulationResult
 from ..status import Status
 from . import _bound as core
@@ -105,8 +106,12 @@ class Motor(PythonObject, core.Motor):  # type: ignore[misc]
             core.Motor.__init__(self, params)  # validates, naming the parameter
         warn_unit_slips(f"Motor.{kind}", params)
 
+    def _configuration(self) -> dict[str, Any]:
+        # get_params (tendonsheath._util.pyobject): the constructor's argument, the C++ struct
+        return {"params": self._struct()}
+
     def _recipe(self):
-        # pickled as its parameters: an equal motor at rest (tendonsheath._pyobject)
+        # pickled as its parameters: an equal motor at rest (tendonsheath._util.pyobject)
         p = self._struct()
         fields = {k: getattr(p, k) for k in _FIELDS if hasattr(p, k)}
         return _motor_from_fields, (fields,)

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from .._typing import ArrayLike, FloatArray, FloatOrArray
+from .._util.typing import ArrayLike, FloatArray, FloatOrArray
 from . import _bound as core
 from .route import Route
 

@@ -14,9 +14,9 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from .._args import core_errors_as
-from .._pyobject import bound_attribute
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as
+from .._util.pyobject import bound_attribute
+from .._util.units import warn_unit_slips
 from . import _bound as core
 from . import physics
 from .loads import (
@@ -303,6 +303,7 @@ class PullPullPlant(_PairPlant, core.PullPullPlant):  # type: ignore[misc]
         stiffness2: float | None = None,
         encoder: Sensor | None = None,
     ):
+        self._keep_arguments(locals())
         cls = type(self).__name__
         effects = {k: v for k, v in locals().items() if k in _PAIR_EFFECTS}
         self.route = _check_route(route, "route", cls)

@@ -6,12 +6,12 @@ from collections.abc import Iterable, Sequence
 
 import numpy as np
 
-from .._args import core_errors_as, number, number_array
-from .._arrays import as_signal
-from .._pyobject import bound_attribute
-from .._typing import ArrayLike, FloatArray
-from .._units import LENGTH, warn_if_curve_angle_in_degrees, warn_if_unit_slip
-from .._units import UnitWarning as UnitWarning
+from .._util.args import core_errors_as, number, number_array
+from .._util.arrays import as_signal
+from .._util.pyobject import bound_attribute
+from .._util.typing import ArrayLike, FloatArray
+from .._util.units import LENGTH, warn_if_curve_angle_in_degrees, warn_if_unit_slip
+from .._util.units import UnitWarning as UnitWarning
 from . import _bound as core
 
 # 100 full turns: the largest curve angle accepted in measured data (no sheath route comes near

@@ -7,11 +7,11 @@ import functools
 
 import numpy as np
 
-from .._args import core_errors_as, integer, number
-from .._arrays import as_vector, checked_dt
-from .._pyobject import PythonObject, bound_attribute
-from .._typing import ArrayLike, FloatArray
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as, integer, number
+from .._util.arrays import as_vector, checked_dt
+from .._util.pyobject import PythonObject, bound_attribute
+from .._util.typing import ArrayLike, FloatArray
+from .._util.units import warn_unit_slips
 from ..status import Status
 from . import _bound as core
 
@@ -72,7 +72,7 @@ class Sensor(PythonObject, core.Sensor):  # type: ignore[misc]
         warn_unit_slips("Sensor", p)
 
     def _recipe(self):
-        # pickled as its settings: an equal sensor at rest (tendonsheath._pyobject)
+        # pickled as its settings: an equal sensor at rest (tendonsheath._util.pyobject)
         return functools.partial(Sensor, **self.params), ()
 
     @property

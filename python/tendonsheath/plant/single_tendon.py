@@ -5,8 +5,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from .._args import core_errors_as, number
-from .._units import warn_unit_slips
+from .._util.args import core_errors_as, number
+from .._util.units import warn_unit_slips
 from . import _bound as core
 from . import physics
 from .loads import (
@@ -76,6 +76,10 @@ class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
         An effect that is not a number.
     """
 
+    # attributes set by __init__ (tendonsheath._util.pyobject: declared, else refused)
+    route: Route
+    load: ConstantForce | LinearSpring | SpringPreload
+
     _rows = 1
 
     def __init__(
@@ -94,6 +98,7 @@ class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
         relaxation_time: float | None = None,
         encoder: Sensor | None = None,
     ):
+        self._keep_arguments(locals())
         cls = type(self).__name__
         effects = {
             "sheath_viscosity": sheath_viscosity,

@@ -26,8 +26,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._atomic import write_bytes, write_json, write_text
-from .._extras import require_plotly
+from .._util.atomic import write_bytes, write_json, write_text
+from .._util.extras import require_plotly
 from ..bench.limit_cycle import describe as describe_limit_cycle
 from . import figures, html, interactive
 from .summary import executive_summary

@@ -12,7 +12,7 @@ import html as _html
 
 import numpy as np
 
-from .._extras import require_plotly
+from .._util.extras import require_plotly
 from .figures import _angle, _color
 
 POINTS = 2000  # per trace: a few pixels' worth across a report-wide figure

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from types import ModuleType
 
-from .._extras import require
+from .._util.extras import require
 
 FEATURE = "tendonsheath ros2 (its nodes)"
 # what a node imports: rclpy and the message packages of its topics

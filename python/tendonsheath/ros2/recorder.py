@@ -13,7 +13,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from .._extras import require
+from .._util.extras import require
 from . import _env
 
 #: The topics of the live loop and their types, recorded by default.

@@ -25,8 +25,8 @@ from typing import Any
 
 import threadpoolctl
 
-from .._progress import StepProgress
-from .main_guard import ADVICE, in_bootstrapping_worker, unguarded_script
+from .._util.main_guard import ADVICE, in_bootstrapping_worker, unguarded_script
+from .._util.progress import StepProgress
 
 Item = tuple[int, dict[str, Any]]
 Outcome = tuple[int, Any, str | None, float]  # index, output, error text, seconds

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._atomic import save_figure
+from .._util.atomic import save_figure
 
 
 def _log_scale(x: np.ndarray) -> bool:

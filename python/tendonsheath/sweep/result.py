@@ -12,8 +12,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._atomic import atomic_path, write_json
-from .._extras import require
+from .._util.atomic import atomic_path, write_json
+from .._util.extras import require
 
 if TYPE_CHECKING:  # pandas is imported when a table is built (an optional dependency)
     import pandas as pd

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._atomic import save_figure
+from .._util.atomic import save_figure
 from ..report.units import check_angle_unit, convert, header, unit_after, unit_of_key
 from .distributions import Integers, MonteCarlo, Relative, Seed
 from .driver import sweep

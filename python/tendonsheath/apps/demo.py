@@ -14,11 +14,11 @@ from typing import Any, cast
 
 import numpy as np
 
-from . import models
-from ._atomic import write_bytes
-from ._extras import require_plotly
-from .bench.metrics import loop_width
-from .report.units import check_angle_unit, rows_in_unit
+from .. import models
+from .._util.atomic import write_bytes
+from .._util.extras import require_plotly
+from ..bench.metrics import loop_width
+from ..report.units import check_angle_unit, rows_in_unit
 
 DEMO_SCHEMA_VERSION = 1
 
@@ -55,7 +55,7 @@ def model_section(out: Path) -> tuple[str, dict, list[Path]]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .report import figures, html
+    from ..report import figures, html
 
     t, x = standard_input()
     metrics, parts, written = {}, [], []
@@ -111,8 +111,8 @@ def run_demo(
     either way. ``timings``: each one's seconds of work (do2015's: its parts' together)."""
     import threadpoolctl
 
-    from ._jobs import cores, run_jobs
-    from .bench.scenarios import SCENARIOS
+    from .._util.jobs import cores, run_jobs
+    from ..bench.scenarios import SCENARIOS
 
     check_angle_unit(angle_unit)
     require_plotly()
@@ -127,18 +127,18 @@ def run_demo(
     workers = cores() if workers is None else int(workers)
     jobs = _jobs(names, SCENARIOS, out, scale, seed, robustness, angle_unit, split=workers > 1)
     with threadpoolctl.threadpool_limits(1, user_api="blas"):  # as in the jobs (run_jobs)
-        done = run_jobs(jobs, workers, progress, preload=["tendonsheath.demo"])
+        done = run_jobs(jobs, workers, progress, preload=["tendonsheath.apps.demo"])
         return _write(out, names, done, scale, seed, robustness, angle_unit)
 
 
 def _write(out, names, done, scale, seed, robustness, angle_unit) -> dict:
     """The report from the jobs' outcomes (``done``: key -> (value, seconds))."""
-    from .report.build import write
+    from ..report.build import write
 
     results, timings = [], {}
     for name in names:
         if name == "do2015" and "do2015 (PD servo)" in done:
-            from .bench.scenarios import do
+            from ..bench.scenarios import do
 
             start = time.perf_counter()
             lead, pd = done["do2015"][0], done["do2015 (PD servo)"][0]
@@ -175,8 +175,8 @@ def _jobs(names, scenarios, out, scale, seed, robustness, angle_unit, split: boo
     """The demo's independent jobs, in the order a serial run takes them. ``split``: the
     built-in do2015 as two jobs (the PID servo with what is designed on it, and the PD
     servo), which ``do.assemble`` puts together."""
-    from ._jobs import Job
-    from .bench.scenarios import do
+    from .._util.jobs import Job
+    from ..bench.scenarios import do
 
     common = {"scale": scale, "seed": seed}
     jobs = []
@@ -236,7 +236,7 @@ def population_section(path: Path | None = None) -> tuple[str, dict] | None:
     demo run outside the repository: ``python benchmarks/population.py`` writes it)."""
     import json
 
-    from .report import html
+    from ..report import html
 
     path = POPULATION_JSON if path is None else path
     if not path.is_file():
@@ -271,11 +271,11 @@ def rate_section(out: Path, frequencies=(0.1, 1.0, 5.0), angle_unit: str = "deg"
     """Loops of the do2015 drive at 0.1, 1 and 5 Hz: the realistic plant (every effect of
     presets) beside the capstan-only pair, which draws the same loop at any rate; the widths
     in the report's ``angle_unit``."""
-    from .bench.rate_dependence import hysteresis_loops, loops_figure
-    from .bench.scenarios.do import _COMMON, NOMINAL, physics, servo_motor
-    from .plant import PullPullPlant
-    from .plant.motor import Motor
-    from .report import figures, html
+    from ..bench.rate_dependence import hysteresis_loops, loops_figure
+    from ..bench.scenarios.do import _COMMON, NOMINAL, physics, servo_motor
+    from ..plant import PullPullPlant
+    from ..plant.motor import Motor
+    from ..report import figures, html
 
     plants = {
         "realistic": PullPullPlant(route=NOMINAL, motor=servo_motor(), **physics()),
@@ -313,11 +313,11 @@ def robustness_section(
     (+/-30 %) and route (random arcs, total angle within +/-50 % of pi), all calibrated on
     the nominal plant: robustness, not one lucky run. ``engine``: the sweep's ("local": a
     process per core; "serial": this process)."""
-    from .bench.scenarios.do import _COMMON, NOMINAL, robustness_run
-    from .report import html
-    from .report.units import convert, rows_in_unit, unit_after
-    from .sweep.studies import robustness_design, robustness_study
-    from .sweep.studies import robustness_section as study_figure
+    from ..bench.scenarios.do import _COMMON, NOMINAL, robustness_run
+    from ..report import html
+    from ..report.units import convert, rows_in_unit, unit_after
+    from ..sweep.studies import robustness_design, robustness_study
+    from ..sweep.studies import robustness_section as study_figure
 
     design = robustness_design(
         friction=_COMMON["friction"],

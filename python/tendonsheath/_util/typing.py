@@ -9,8 +9,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 if TYPE_CHECKING:
-    from .identify.data import Recording
-    from .io.log import Log
+    from ..identify.data import Recording
+    from ..io.log import Log
 
 # an array of samples the package returns
 FloatArray: TypeAlias = NDArray[np.float64]

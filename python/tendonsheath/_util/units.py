@@ -16,7 +16,7 @@ import warnings
 from dataclasses import dataclass
 from typing import Any
 
-from ._args import caller_outside_package
+from .args import caller_outside_package
 
 
 class UnitWarning(UserWarning):

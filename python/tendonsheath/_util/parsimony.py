@@ -1,7 +1,7 @@
-"""The parsimony rule of :func:`~tendonsheath.compare.compare_models`: a candidate with more
+"""The parsimony rule of :func:`~tendonsheath.apps.compare.compare_models`: a candidate with more
 parameters wins only by a stated margin.
 
-Among the eligible candidates (``tendonsheath._eligibility``; the affine map y = a x + b is one,
+Among the eligible candidates (``_util.eligibility``; the affine map y = a x + b is one,
 with 2 parameters), let ``best`` be the one with the lowest error of the objective (val_nrmse,
 or inv_nrmse for "compensation"). With ``parsimony`` p, the winner is the candidate with the
 fewest parameters whose error is at most (1 + p) times the best's; among those with that
@@ -58,7 +58,7 @@ def choose(rows: list[dict], objective: str, parsimony: float) -> tuple[int, str
     """The winner's index in ``rows`` under the parsimony rule (see the module docstring) and
     the choice in words ("" where the best candidate wins outright and none smaller is within
     :data:`HINT` of it). Falls back to row 0 where no row may win (rows sorted by
-    :func:`tendonsheath._eligibility.sort_key`)."""
+    :func:`tendonsheath._util.eligibility.sort_key`)."""
     key, what = _metric(objective)
     ok = _eligible(rows, key)
     if not ok:

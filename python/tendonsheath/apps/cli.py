@@ -14,11 +14,11 @@ from rich.console import Console
 from rich.table import Table
 from typer.core import TyperCommand, TyperOption
 
-from ._extras import MissingExtraError, require_plotly
-from .identify.core import takes_curve_angle
-from .identify.diagnostics import IdentifiabilityWarning
-from .identify.fit import GIVEN_CLASS
-from .outputs import check_image_file, check_output_file, check_output_folder
+from .._util.extras import MissingExtraError, require_plotly
+from .._util.outputs import check_image_file, check_output_file, check_output_folder
+from ..identify.core import takes_curve_angle
+from ..identify.diagnostics import IdentifiabilityWarning
+from ..identify.fit import GIVEN_CLASS
 
 _display_type = TyperOption.display_type_rich
 
@@ -193,8 +193,8 @@ def demo(
 ) -> None:
     """Run the virtual bench (the three seed experiments) and write report.html,
     metrics.json and the figures to OUT."""
-    from ._progress import StepProgress, wanted
-    from .bench.scenarios import SCENARIOS
+    from .._util.progress import StepProgress, wanted
+    from ..bench.scenarios import SCENARIOS
     from .demo import run_demo
 
     if not scale > 0 or not np.isfinite(scale):
@@ -332,9 +332,9 @@ def bench(
 ) -> None:
     """Run a user scenario on the virtual bench: calibrate, compare the compensators, and
     write report.html, metrics.json and the figures to OUT."""
-    from ._progress import StepProgress, wanted
-    from .bench.user_scenario import ScenarioError, load, run_user_scenario
-    from .report.build import write
+    from .._util.progress import StepProgress, wanted
+    from ..bench.user_scenario import ScenarioError, load, run_user_scenario
+    from ..report.build import write
 
     unit = _angle_unit(angle_unit)
     require_plotly()  # the report is written last: say so before the runs, not after
@@ -507,7 +507,7 @@ def identify(
     quiet: bool = _quiet_option(),
 ) -> None:
     """Fit MODEL to DATA and save it as JSON; print the fit table and the validation error."""
-    from ._progress import wanted
+    from .._util.progress import wanted
 
     _check_identify_options(out, report, maxiter, warmup, seed)
     candidate = _checked(_model_spec, model)
@@ -550,7 +550,7 @@ def _print_validation(val: dict | None, validate: Path | None, output_col: str) 
 def _read_logs(paths, columns: dict, **options) -> list:
     """``io.read_log`` of each file, with the named ``columns`` (time, input, output and
     curve_angle) and the other ``options``."""
-    from . import io
+    from .. import io
 
     return [io.read_log(path, **columns, **options) for path in paths]
 
@@ -559,8 +559,8 @@ def _fit_logs(candidate, data: list[Path], validate: Path | None, columns: dict,
     """Fit ``candidate`` to the recordings in ``data`` (``search``: identify's options) and
     validate it on ``validate``: (fit, validation metrics or None, number of recordings).
     A fit or a validation error that is not finite is an error (exit 2)."""
-    from .identify import identify as run_identify
-    from .models import Loaded
+    from ..identify import identify as run_identify
+    from ..models import Loaded
 
     _note_suspicious(data, [validate] if validate else [])
     logs = _read_logs(data, columns)
@@ -572,7 +572,7 @@ def _fit_logs(candidate, data: list[Path], validate: Path | None, columns: dict,
         fit = run_identify(candidate, recordings=logs, **search)
     val = None
     if vlog is not None and vlog.load is not None and isinstance(fit.model, Loaded):
-        from .identify.fit import metrics
+        from ..identify.fit import metrics
 
         val = metrics(vlog.y, fit.model.simulate(vlog.t, vlog.x, load=vlog.load))
     elif vlog is not None:
@@ -587,7 +587,7 @@ def _check_identify_options(
     out: Path, report: Path | None, maxiter: int, warmup: int, seed: int
 ) -> None:
     """One-line errors for identify's output files and search options, before any work."""
-    from .identify.core import check_search_options
+    from ..identify.core import check_search_options
 
     _check_seed(seed)
     _checked(check_output_file, out)
@@ -617,8 +617,8 @@ def _check_flags_apply(model: str, candidate, curve_angle, resamples, standard_e
 
 def _loaded_spec(candidate):
     """Loaded(candidate): a class name, a class or a Chain as the base."""
-    from .models import Loaded
-    from .models.base import _REGISTRY
+    from ..models import Loaded
+    from ..models.base import _REGISTRY
 
     if isinstance(candidate, str):
         candidate = _REGISTRY[candidate]
@@ -630,14 +630,14 @@ def _loaded_spec(candidate):
 def _model_spec(name: str):
     """A registered class name as it is (any identifiable model), else compare's names
     (bwb, pi, gpi, bw, curve, bwb+poly3, lag1+bwb, ...)."""
+    from ..models.base import _REGISTRY
     from .compare import parse_model
-    from .models.base import _REGISTRY
 
     return name if name in _REGISTRY else parse_model(name)
 
 
 def _save_fit(out: Path, fit, val, data_columns: dict) -> None:
-    from ._atomic import write_json
+    from .._util.atomic import write_json
 
     record = fit.model.to_dict()
     record["data"] = data_columns
@@ -693,9 +693,9 @@ def predict(
     warmup: int = typer.Option(0, "--warmup", help="Samples left out of the rmse."),
 ) -> None:
     """Predict the output of a saved model for DATA; print the rmse if the output is there."""
-    from . import io
-    from .identify.fit import metrics, simulate_model
-    from .models import Loaded, load_model
+    from .. import io
+    from ..identify.fit import metrics, simulate_model
+    from ..models import Loaded, load_model
 
     _check_predict_options(out, data, model_file, warmup)
     try:
@@ -759,7 +759,7 @@ def predict(
 def _check_predict_flags(model, curve_angle: str | None, load_col: str | None) -> None:
     """--curve-angle and --load given to a saved model that takes neither: a ValueError, not
     a flag ignored."""
-    from .models import Loaded
+    from ..models import Loaded
 
     name = type(model).__name__
     if curve_angle is not None and not takes_curve_angle(getattr(model, "base", model)):
@@ -863,8 +863,8 @@ def _run_sweep_file(config: Path, out: Path, scheduler, overrides: dict, figures
 
     from rich.markup import escape
 
-    from .sweep import SweepError, sweep
-    from .sweep.toml import read_sweep_file
+    from ..sweep import SweepError, sweep
+    from ..sweep.toml import read_sweep_file
 
     err = Console(stderr=True)
     runs_file = out / "runs.jsonl"
@@ -1112,7 +1112,7 @@ def _write_comparison(result, report: Path, columns: dict) -> None:
     """compare --report DIR: the report, and where the winner's model file is. The winner's
     file names the columns it was compared on (as `identify` saves them), so that `predict`
     reads the same input, time, curve angle and load (a Loaded winner needs its load)."""
-    from ._atomic import write_json
+    from .._util.atomic import write_json
 
     page = result.report(report)
     record = result.winner.to_dict()
@@ -1304,7 +1304,7 @@ def export_command(
 ) -> None:
     """Write a saved model or compensator as a C++ header of constexpr parameters, for targets
     with no file system."""
-    from ._atomic import write_text
+    from .._util.atomic import write_text
     from .export_cpp import cpp_header
 
     try:
@@ -1333,7 +1333,7 @@ _DOMAIN_HELP = "The ROS_DOMAIN_ID (default: the environment's, else 0)."
 def _ros2_spin(nodes: list, context, duration: float | None, what: str, finish=None) -> None:
     """Spin until the duration, Ctrl-C or SIGTERM; then ``finish()`` (a recorder's close,
     which destroys its node), the other nodes destroyed and the context shut down."""
-    from .ros2._run import spin
+    from ..ros2._run import spin
 
     console.print(f"{what}: running (Ctrl-C stops it)", highlight=False)
     try:
@@ -1369,10 +1369,10 @@ def ros2_compensate(
 ) -> None:
     """Run a saved compensator as a ROS 2 lifecycle node: desired positions in, commands out,
     each cycle's status on /diagnostics."""
-    from .compensate import load
-    from .ros2 import _env
-    from .ros2._run import parsed_parameters
-    from .ros2.compensator_node import PARAMETERS, compensator_node
+    from ..compensate import load
+    from ..ros2 import _env
+    from ..ros2._run import parsed_parameters
+    from ..ros2.compensator_node import PARAMETERS, compensator_node
 
     _env.ros()
     if not file.is_file():
@@ -1414,10 +1414,10 @@ def ros2_plant(
     """Run the simulated drive as a ROS 2 node in real time: commands in; the motor encoder,
     the tip sensor (noise, latency) and the load out; route changes from a topic. Default
     plant: --preset realistic."""
-    from .ros2 import _env
-    from .ros2._run import parsed_parameters
-    from .ros2.live_plant import plant_source
-    from .ros2.plant_node import PARAMETERS, plant_node
+    from ..ros2 import _env
+    from ..ros2._run import parsed_parameters
+    from ..ros2.live_plant import plant_source
+    from ..ros2.plant_node import PARAMETERS, plant_node
 
     _env.ros()
     _check_seed(seed)
@@ -1453,8 +1453,8 @@ def ros2_reference(
 ) -> None:
     """Publish a sine as the desired position (sensor_msgs/JointState), to try a compensator
     node without a robot's planner."""
-    from .ros2 import _env
-    from .ros2.reference_node import reference_node, sine
+    from ..ros2 import _env
+    from ..ros2.reference_node import reference_node, sine
 
     _env.ros()
     signal = sine(amplitude, frequency, offset)
@@ -1479,8 +1479,8 @@ def ros2_record(
 ) -> None:
     """Record topics into a ROS 2 bag (rosbags' writer: no rosbag2 needed) that read_log
     reads back."""
-    from .ros2 import _env
-    from .ros2.recorder import BagRecorder
+    from ..ros2 import _env
+    from ..ros2.recorder import BagRecorder
 
     _env.ros()
     topics = None

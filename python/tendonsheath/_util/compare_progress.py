@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ._progress import StepProgress
+from .progress import StepProgress
 
 
 class CompareProgress(StepProgress):

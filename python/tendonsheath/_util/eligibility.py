@@ -1,4 +1,4 @@
-"""Which candidates of :func:`~tendonsheath.compare.compare_models` may win: a model choice that
+"""Which candidates of :func:`~tendonsheath.compare_models` may win: a model choice that
 never misleads, judged on errors where they are known.
 
 A candidate can win on the pooled held-out error and still be worse than the affine map

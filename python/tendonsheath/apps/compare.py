@@ -23,12 +23,12 @@ include CurveAngleModel when the logs carry a curve angle.
 
 The winner is never worse than the affine map on any held-out part: a candidate that is (by
 the forward error; with ``objective="compensation"``, by the offline inverse error too)
-cannot win and is shown with the reason (``tendonsheath._eligibility``). Every held-out part
+cannot win and is shown with the reason (``tendonsheath._util.eligibility``). Every held-out part
 has its output recorded, so its error decides there: a prediction that leaves the outputs'
 range by more than ``range_margin`` of its span is flagged (``row["range_flag"]``), not
 excluded. With ``parsimony`` p > 0, a
 candidate with more parameters wins only if its error is more than p below that of every
-eligible candidate with fewer (``tendonsheath._parsimony``).
+eligible candidate with fewer (``tendonsheath._util.parsimony``).
 
 The result is a :class:`Comparison`: ``.table`` (the eligible rows first, sorted by the
 objective's nrmse, the affine baseline included, with each candidate's seconds), ``.winner``
@@ -48,18 +48,18 @@ from typing import Any
 
 import numpy as np
 
-from . import _eligibility as eligibility
-from . import _parsimony as parsimony_rule
-from ._atomic import save_figure, write_json, write_text
-from ._compare_progress import CompareProgress
-from ._typing import RecordingLike
-from .identify.core import SEARCH_DEADLINE
-from .identify.cross_validation import estimator_split, evaluate_splits, recording_splits
-from .identify.data import make_recordings
-from .identify.dynamic import is_dynamic_chain
-from .identify.estimator import Identifier
-from .identify.refine import REFINE_LIMIT
-from .models import (
+from .._util import eligibility
+from .._util import parsimony as parsimony_rule
+from .._util.atomic import save_figure, write_json, write_text
+from .._util.compare_progress import CompareProgress
+from .._util.typing import RecordingLike
+from ..identify.core import SEARCH_DEADLINE
+from ..identify.cross_validation import estimator_split, evaluate_splits, recording_splits
+from ..identify.data import make_recordings
+from ..identify.dynamic import is_dynamic_chain
+from ..identify.estimator import Identifier
+from ..identify.refine import REFINE_LIMIT
+from ..models import (
     Backlash,
     BoucWenBacklash,
     Chain,
@@ -73,8 +73,8 @@ from .models import (
     PrandtlIshlinskii,
     SecondOrderLag,
 )
-from .models.base import _REGISTRY
-from .models.linear_block import sample_time
+from ..models.base import _REGISTRY
+from ..models.linear_block import sample_time
 
 AFFINE = "affine"
 #: the least-squares polish's evaluations in each cross-validation fold (the fits that rank
@@ -274,7 +274,7 @@ def model_name(candidate: type[HysteresisModel] | Chain) -> str:
 
 INVERSE_NOTE = (
     "inv: the held-out input the model's InverseFeedforward would have commanded for the "
-    "recorded output (low-passed; tendonsheath.inverse_error), against the input that produced it"
+    "recorded output (low-passed; apps.inverse_error), against the input that produced it"
 )
 
 
@@ -354,11 +354,11 @@ class Comparison:
     train_nrmse, val_rmse, val_nrmse, val_fit_percent, val_max_abs, ratio_to_affine, the
     offline inverse error inv_rmse, inv_nrmse (over the held-out inputs' range),
     inv_ratio_to_affine and inv_out_of_range (the share of held-out cycles whose command the
-    identified input range held; :mod:`tendonsheath.inverse_error`), seconds
+    identified input range held; :mod:`tendonsheath.apps.inverse_error`), seconds
     and cpu_seconds (fitting and scoring over all folds), error (if the fit failed) and
     status ("out of time" past the time budget); per held-out part (a held-out recording or
     block) val_rmse_parts and inv_rmse_parts; eligible, excluded (why a candidate cannot win,
-    or None), worst_part_ratio, range_excess and range_flag (``tendonsheath._eligibility``). Sorted
+    or None), worst_part_ratio, range_excess and range_flag (``_util.eligibility``). Sorted
     with the eligible rows first, each group by the objective's error (val_nrmse, or
     inv_nrmse for "compensation"); failures last.
     ``fits``: each candidate's Fit (a list of one per fold under cross-validation);
@@ -386,7 +386,7 @@ class Comparison:
     rule : str, default ""
         The ranking and who could not win, in words.
     parsimony : float, default 0.0
-        The parsimony rule's margin (``tendonsheath._parsimony``): a candidate with more
+        The parsimony rule's margin (``tendonsheath._util.parsimony``): a candidate with more
         parameters won only if its error was more than this share below every smaller
         eligible candidate's.
     choice : str, default ""
@@ -571,7 +571,7 @@ class Comparison:
         Returns
         -------
         dict of str to str
-            Model name -> why it was excluded (see ``tendonsheath._eligibility``).
+            Model name -> why it was excluded (see ``tendonsheath._util.eligibility``).
         """
         return {r["model"]: r["excluded"] for r in self.table if r.get("excluded")}
 
@@ -861,7 +861,7 @@ def compare_models(
     measured load (all of them, the held-out ones too), the default candidates include the
     load-aware ones (:func:`default_models`).
     ``objective="compensation"`` ranks by the offline inverse error instead of the forward
-    one (:mod:`tendonsheath.inverse_error`).
+    one (:mod:`tendonsheath.apps.inverse_error`).
 
     ``time_budget`` (seconds of wall clock for the candidates' cross-validation): a global
     search running at the deadline stops after its generation; a candidate whose folds end
@@ -910,7 +910,7 @@ def compare_models(
     parsimony : float, default 0.0
         A candidate with more parameters wins only by this margin: the winner is the eligible
         candidate with the fewest parameters whose error is within (1 + parsimony) of the
-        best one's (``tendonsheath._parsimony``; 0: the lowest error wins).
+        best one's (``tendonsheath._util.parsimony``; 0: the lowest error wins).
 
     Returns
     -------
@@ -969,7 +969,7 @@ def compare_models(
 
 
 def _judge(rows, validation, objective: str, margin: float) -> str:
-    """Each row's held-out error per part and its eligibility (see tendonsheath._eligibility);
+    """Each row's held-out error per part and its eligibility (see tendonsheath._util.eligibility);
     the rule in words."""
     for r in rows:
         if not r.get("error"):
@@ -1120,7 +1120,7 @@ def _part_labels(splits, recs, logs, validate, whole_runs: bool) -> list[str]:
 
 def _winner(rows, fits, candidates, run, objective: str, parsimony: float):
     """Rank the rows (eligible ones first, by the objective's error) and choose the winner
-    (``tendonsheath._parsimony``); the winner's model, Fit (refitted on all the data where
+    (``tendonsheath._util.parsimony``); the winner's model, Fit (refitted on all the data where
     needed), name and the choice in words. ``candidates``: (estimators, names, recordings)."""
     estimators, names, recs = candidates
     base, inv_base = rows[0]["val_rmse"], rows[0].get("inv_rmse", float("nan"))
@@ -1245,8 +1245,8 @@ class _Run:
         """The offline inverse error of each split's model over its held-out segments (the
         inverse run over the whole recording, as the forward model is): inv_rmse, inv_nrmse
         and inv_out_of_range; an inverse that fails gives NaN and inv_error."""
+        from ..status import Status
         from .inverse_error import offline_inverse
-        from .status import Status
 
         errors, inputs, flagged = [], [], []
         try:
@@ -1275,7 +1275,7 @@ def _on_fewer_samples(fit_split, candidate):
     """``fit_split`` on the training records thinned (a rate-independent candidate) or
     decimated (a dynamic chain) to about :data:`FOLD_SAMPLES` where they hold more than
     :data:`FOLD_THIN_ABOVE` samples: a fold's fit only ranks."""
-    from .identify.data import decimate_for_search, thin_for_search
+    from ..identify.data import decimate_for_search, thin_for_search
 
     if getattr(candidate, "rate_independent", False):
         fewer = thin_for_search

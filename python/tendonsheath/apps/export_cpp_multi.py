@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from ._cpp_literal import cpp_number as _number
+from .._util.cpp_literal import cpp_number as _number
 
 _MULTI_INPUT = "tendonsheath/io/json_multi_input.hpp"
 
@@ -62,7 +62,7 @@ def _refusal(kind: str, what: str) -> Callable[[str], ValueError]:
 def _inverse_function(name: str, inverse, kind: str) -> str:
     """An inline function ``name()`` building the ModelInverse of the InverseFeedforward
     ``inverse`` (its model's description and settings) with make_model_inverse."""
-    from .compensate.inverse_model import PART_MEMBERS, describe
+    from ..compensate.inverse_model import PART_MEMBERS, describe
 
     desc = describe(inverse.model)
     body = f"  m.parts.resize({len(desc.parts)});\n"

@@ -29,7 +29,8 @@ def renamed(who: str, values: dict[str, Any], renames: Mapping[str, str]) -> dic
     return out
 
 
-_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
+# the package's folder (this file is in its _util/)
+_PACKAGE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__))) + os.sep
 
 
 def caller_outside_package() -> int:

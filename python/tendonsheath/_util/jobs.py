@@ -79,7 +79,7 @@ def run_jobs(
     lose much on a loaded machine (see identify.servo)."""
     import threadpoolctl
 
-    from .sweep.main_guard import unguarded_script
+    from .main_guard import unguarded_script
 
     remote = [job for job in jobs if travels(job.run)]
     with threadpoolctl.threadpool_limits(1, user_api="blas"):

@@ -20,10 +20,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .bench.metrics import dominant_period
+from ..bench.metrics import dominant_period
 
 if TYPE_CHECKING:
-    from .models import HysteresisModel
+    from ..models import HysteresisModel
 
 #: the desired trajectory's low-pass corner, in multiples of its dominant frequency
 CUTOFF_HARMONICS = 10.0
@@ -86,7 +86,7 @@ def offline_inverse(
     flags : numpy.ndarray of uint8
         Each cycle's :class:`~tendonsheath.Status`.
     """
-    from .compensate import InverseFeedforward
+    from ..compensate import InverseFeedforward
 
     y = np.asarray(y, dtype=float)
     ts = np.arange(y.size, dtype=float) if t is None else np.asarray(t, dtype=float)
@@ -94,10 +94,10 @@ def offline_inverse(
     rate = np.abs(np.diff(desired)) / np.diff(ts) if y.size > 1 else np.zeros(1)
     peak = float(np.max(rate)) if rate.size else 0.0
     smoothing = SMOOTHING_SHARE * peak if peak > 0 else 1.0
-    from .models import Loaded
+    from ..models import Loaded
 
     if isinstance(model, Loaded):
-        from .compensate import LoadCompensated
+        from ..compensate import LoadCompensated
 
         if load is None:
             raise ValueError("a Loaded model's inverse needs the recording's measured load")

@@ -20,7 +20,7 @@ import json
 import re
 from pathlib import Path
 
-from ._cpp_literal import cpp_number as _number
+from .._util.cpp_literal import cpp_number as _number
 
 # C++ keywords and alternative tokens (C++20's too: a header outlives its standard), and the
 # namespaces a header must not open
@@ -157,7 +157,7 @@ def _inner_limits(ff, map_values):
 
 
 def _direct_inverse(ff, model, map_values) -> tuple[str, str]:
-    from .models import Backlash  # its rows begin BacklashInverseParams' table (rows_of)
+    from ..models import Backlash  # its rows begin BacklashInverseParams' table (rows_of)
 
     fields = {k: model.params[k] for k in Backlash.param_names}
     smoothing = ff.smoothing if map_values is None else ff.smoothing / abs(map_values[3])
@@ -283,8 +283,8 @@ def cpp_header(source: str | Path, namespace: str | None = None) -> str:
     ValueError
         An invalid namespace name, or a file that is not a model or compensator.
     """
-    from .compensate import load_compensator
-    from .models import load_model
+    from ..compensate import load_compensator
+    from ..models import load_model
 
     path = Path(source)
     _check_namespace(namespace, path)

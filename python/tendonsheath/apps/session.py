@@ -36,10 +36,10 @@ from typing import Any
 
 import numpy as np
 
+from ..identify.fit import simulate_model
+from ..identify.newey_west import newey_west
+from ..models import HysteresisModel, Loaded, Scaled
 from .compare import SETTLE_FRACTION, _as_recs, _settle
-from .identify.fit import simulate_model
-from .identify.newey_west import newey_west
-from .models import HysteresisModel, Loaded, Scaled
 
 #: the share of the rmse the significant shifts must remove to call the log another state
 MATERIAL = 0.1
