@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .._args import core_errors_as, number
+from .._util.args import core_errors_as, number
 from . import _bound as core
 from .base import Feedforward
 
