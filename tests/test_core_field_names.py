@@ -54,6 +54,15 @@ PYTHON_OF = {
     "MotorParams": (ts.Motor.position, ts.Motor.torque),
     "SensorParams": (ts.Sensor,),
 }
+# the compensators of the core's list bound from their tables (compensator_list.hpp): the
+# struct "<kind>Params" set by the Python class of the same name (docs/contributing.md)
+PYTHON_OF.update(
+    {
+        kind + "Params": (getattr(ts.compensate, kind),)
+        for kind in core.compensator_kinds()
+        if hasattr(core, kind + "Params") and hasattr(ts.compensate, kind)
+    }
+)
 
 # struct -> {field: why no Python argument of that name sets it}
 INTERNAL = {

@@ -90,6 +90,20 @@ SAVED = {
 }
 
 
+# the compensators of the core's list bound from their tables: saved as built from defaults
+def _built_from_defaults(kind: str):
+    return lambda: [getattr(ts.compensate, kind)()]
+
+
+SAVED.update(
+    {
+        kind + "Params": _built_from_defaults(kind)
+        for kind in core.compensator_kinds()
+        if kind + "Params" not in SAVED and kind + "Params" in PYTHON_OF
+    }
+)
+
+
 def _rows(struct: str) -> list[dict[str, Any]]:
     return getattr(core, struct).fields()
 

@@ -99,7 +99,7 @@ PythonLoop python_loop(nb::handle compensator, const std::vector<int>& inputs) {
 }
 
 // The variant of AnyController: the uncompensated gain, the loop of each compensator of the list
-// (closed_loop.hpp: Compensators), a compiled one's and a Python one's.
+// (compensators/compensator_list.hpp: Compensators), a compiled one's and a Python one's.
 template <class L>
 struct LoopVariant;
 template <class... Cs>
@@ -134,8 +134,8 @@ class AnyController {
   Loop loop_;
 };
 
-// The first compensator class C of the list (closed_loop.hpp: Compensators) that `c` is an instance
-// of (a shipped Python compensator is one: it subclasses it), in C's loop.
+// The first compensator class C of the list (compensators/compensator_list.hpp: Compensators)
+// that `c` is an instance of (a shipped Python compensator is one: it subclasses it), in C's loop.
 std::optional<AnyController> shipped_loop(nb::handle c) {
   std::optional<AnyController> out;
   ts::any_type(ts::Compensators{}, [&](auto tag) {

@@ -5,7 +5,9 @@
 #include <nanobind/stl/vector.h>
 
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <tendonsheath/tendonsheath.hpp>
 
 #include "bindings.hpp"
@@ -310,7 +312,81 @@ void bind_load_play_inverse(nb::module_& m) {
           "z"_a, "load"_a);
 }
 
+// Whether C has params() (the parameters it was built with).
+template <class C, class = void>
+struct has_params : std::false_type {};
+template <class C>
+struct has_params<C, std::void_t<decltype(std::declval<const C&>().params())>> : std::true_type {};
+
+// Compensator C of the list bound from its table and its step's signature: C(params), params,
+// reset(), step(<signals>, dt), status(), step_inputs, and command(t, y_d) for a feedforward; its
+// Params as "<owner>Params" (bind_params) unless bound already.
+template <class C>
+void bind_from_table(nb::module_& m) {
+  using P = typename C::Params;
+  static const std::string params_name = std::string(ts::compensator_kind<C>()) + "Params";
+  if (!nb::type<P>().is_valid()) bind_params<P>(m, params_name.c_str());
+  auto cls = bind_copy(nb::class_<C>(m, ts::compensator_kind<C>()));
+  cls.def(nb::init<const P&>(), "params"_a).def("reset", &C::reset).def("status", &status_of<C>);
+  if constexpr (has_params<C>::value) cls.def_prop_ro("params", &C::params);
+  constexpr int n = ts::compensator_step_inputs<C>();
+  static_assert(n >= 1, "a compensator of the list needs step(y_d, [measured, [motor,]] dt)");
+  if constexpr (n == 1) {
+    cls.def("step", [](C& c, double r, double dt) { return c.step(r, dt); }, "y_d"_a, "dt"_a);
+    cls.def(
+        "command",
+        [](const C& self, InArray t, InArray y, bool status) {
+          return command_copy(self, t, y, ts::compensator_kind<C>(), [](C&, std::size_t) {},
+                              status);
+        },
+        "t"_a, "y_d"_a, "status"_a = false);
+  } else if constexpr (n == 2) {
+    cls.def("step", [](C& c, double r, double y, double dt) { return c.step(r, y, dt); },
+            "y_d"_a, "y"_a, "dt"_a);
+    cls.attr("step_inputs") = nb::make_tuple("y_d", "y");
+  } else {
+    cls.def("step",
+            [](C& c, double r, double y, double q, double dt) { return c.step(r, y, q, dt); },
+            "y_d"_a, "y"_a, "q"_a, "dt"_a);
+    cls.attr("step_inputs") = nb::make_tuple("y_d", "y", "q");
+  }
+}
+
 }  // namespace
+
+// Every compensator of the list (compensator_list.hpp: Compensators) that has no binding of its
+// own above (or in bind_model_inverse.cpp) bound from its table (bind_from_table), after those;
+// and compensator_kinds(): the Python class names of the list, in its order.
+void bind_compensator_list(nb::module_& m) {
+  std::vector<std::string> kinds;
+  ts::for_each_type(ts::Compensators{}, [&](auto tag) {
+    using C = typename decltype(tag)::type;
+    if (!nb::type<C>().is_valid()) {
+      if constexpr (ts::has_params_table<C>::value) bind_from_table<C>(m);
+      else throw std::logic_error("a compensator of the list has neither a binding nor a table");
+    }
+    kinds.push_back(nb::cast<std::string>(nb::type<C>().attr("__name__")));
+  });
+  m.def("compensator_kinds", [kinds]() { return kinds; },
+        "The Python class names of the core's compensator list (compensator_list.hpp), in its "
+        "order: the compensators bench.run steps in its C++ loop.");
+  m.def(
+      "compensator_classes",
+      []() {
+        nb::dict out;
+        ts::for_each_type(ts::Compensators{}, [&](auto tag) {
+          using C = typename decltype(tag)::type;
+          nb::handle cls = nb::type<C>();
+          out[cls.attr("__name__")] = cls;
+          if constexpr (ts::has_params_table<C>::value) {
+            nb::handle params = nb::type<typename C::Params>();
+            out[params.attr("__name__")] = params;
+          }
+        });
+        return out;
+      },
+      "The classes of the core's compensator list and their parameter structs, by name.");
+}
 
 void bind_compensators(nb::module_& m) {
   bind_limits(m);

@@ -112,5 +112,7 @@ void bind_curve_angle(nb::module_& m);
 void bind_batch(nb::module_& m);
 void bind_model_inverse(nb::module_& m);
 void bind_coupled(nb::module_& m);
+// after every hand binding: the compensators of the list that have none (bind_compensators.cpp)
+void bind_compensator_list(nb::module_& m);
 
 }  // namespace tsbind

@@ -20,5 +20,6 @@ NB_MODULE(_core, m) {
   tsbind::bind_batch(m);
   tsbind::bind_model_inverse(m);
   tsbind::bind_coupled(m);
+  tsbind::bind_compensator_list(m);
   tsbind::finish_copy_constructors();
 }

@@ -1,6 +1,6 @@
-// The model list (models/model_list.hpp) and the compensator list (bench/closed_loop.hpp): what
-// follows from them (ModelPart's members, ForwardModel's variant, the inverse's and the loader's
-// dispatch, the closed loop of each compensator).
+// The model list (models/model_list.hpp) and the compensator list
+// (compensators/compensator_list.hpp): what follows from them (ModelPart's members, ForwardModel's
+// variant, the inverse's and the loader's dispatch, the closed loop of each compensator).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -12,6 +12,7 @@
 #include <cstddef>
 
 #include "../compensators/adaptive_controller.hpp"
+#include "../compensators/compensator_list.hpp"
 #include "../compensators/continuum_feedforward.hpp"
 #include "../compensators/inverse_feedforward.hpp"
 #include "../compensators/curve_angle_feedforward.hpp"
@@ -206,13 +207,6 @@ struct LoopOf<PrandtlIshlinskiiFeedforward> {
 /// The loop of compensator C.
 template <class C>
 using loop_of_t = typename LoopOf<C>::type;
-
-/// The one list of the core's compensators that the closed loop runs at C++ speed: Python's
-/// bench.run hands a bound one (or a Python compensator built on one) to the loop of its class
-/// (LoopOf), tried in this order. Adding a compensator: its header, its binding, one entry here.
-using Compensators = TypeList<ModelInverse, CurveAngleFeedforward, AdaptiveController,
-                              ContinuumFeedforward, BacklashInverseFeedforward,
-                              PrandtlIshlinskiiFeedforward>;
 
 /// @brief Any of the controllers above with an EncoderLoop around its command: the loop makes the
 /// motor encoder follow the controller's command (a motor angle), no tip sensor involved.

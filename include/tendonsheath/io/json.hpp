@@ -27,6 +27,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../bench/erased_compensator.hpp"
+#include "../compensators/compensator_list.hpp"
 #include "../compensators/continuum_feedforward.hpp"
 #include "../compensators/curve_angle_feedforward.hpp"
 #include "../compensators/encoder_loop.hpp"
@@ -204,6 +206,21 @@ inline ContinuumFeedforwardParams continuum_feedforward_params(const json& f,
   return p;
 }
 
+/// The feedforwards a compensator file can hold that have a reader of their own here.
+using FeedforwardsWithReader = TypeList<BacklashInverseFeedforward, PrandtlIshlinskiiFeedforward,
+                                        CurveAngleFeedforward, ContinuumFeedforward, ModelInverse>;
+
+/// Whether compensator C of the list (compensator_list.hpp) is read from its table: a feedforward
+/// (step(y_d, dt)) with a parameter table and no reader of its own, whose file holds one key per
+/// row (its Python class's settings).
+template <class C>
+struct read_from_table
+    : std::bool_constant<has_params_table<C>::value && compensator_step_inputs<C>() == 1 &&
+                         !list_contains_v<FeedforwardsWithReader, C>> {};
+
+/// The compensators of the list read from their tables (read_from_table).
+using FeedforwardsFromTable = filter_list_t<Compensators, read_from_table>;
+
 /// A loaded compensator: one of the core's feedforwards (validated by its constructor), with the
 /// affine map of a Scaled model applied around a BacklashInverseFeedforward or
 /// PrandtlIshlinskiiFeedforward built by hand (a ModelInverse holds its own map: an
@@ -212,8 +229,8 @@ inline ContinuumFeedforwardParams continuum_feedforward_params(const json& f,
 class LoadedCompensator {
  public:
   /// The feedforwards a compensator file can hold.
-  using Engine = std::variant<BacklashInverseFeedforward, PrandtlIshlinskiiFeedforward,
-                              CurveAngleFeedforward, ContinuumFeedforward, ModelInverse>;
+  using Engine = apply_list_t<decltype(FeedforwardsWithReader{} + FeedforwardsFromTable{}),
+                              std::variant>;
 
   /// @param kind the Python class name of the compensator
   /// @param engine the feedforward, built (and validated) from the file
@@ -528,6 +545,72 @@ inline std::optional<LoadedCompensator> tip_loop_from_json(const json& f, const 
   return out;
 }
 
+// row `row` of a compensator's table from key row.name of its file: a number (an int one an
+// integer), true or false, or a CommandLimits object
+template <class P, class T>
+void table_row(const json& f, P& p, const ParamField<P, T>& row, const std::string& where) {
+  if constexpr (std::is_same_v<T, bool>) {
+    const json& v = member(f, row.name, where);
+    if (failed()) return;
+    if (!v.is_boolean())
+      return fail(where, std::string("key '") + row.name + "' must be true or false (got " +
+                             shown(v) + ")");
+    p.*row.member = v.get<bool>();
+  } else if constexpr (std::is_integral_v<T>) {
+    p.*row.member = static_cast<T>(integer(f, row.name, where));
+  } else if constexpr (std::is_floating_point_v<T>) {
+    p.*row.member = number(f, row.name, where);
+  } else {
+    static_assert(std::is_same_v<T, CommandLimits>,
+                  "a compensator read from its table has number, bool and CommandLimits rows");
+    p.*row.member = limits(f, where);
+  }
+}
+
+// compensator C (read_from_table) from its file: one key per row of its table, all required
+template <class C>
+std::optional<LoadedCompensator> from_table(const json& f, const std::string& where) {
+  using P = typename C::Params;
+  std::set<std::string> rows;
+  for_each_field<P>([&](const auto& row) { rows.insert(row.name); });
+  std::set<std::string> allowed = rows;
+  allowed.insert({"format", "version", "compensator"});
+  check_keys(f, allowed, rows, where);
+  if (failed()) return std::nullopt;
+  P p{};
+  for_each_field<P>([&](const auto& row) {
+    if (!failed()) table_row(f, p, row, where);
+  });
+  if (failed()) return std::nullopt;
+  auto engine = built<C>(where, p);
+  if (!engine) return std::nullopt;
+  return LoadedCompensator(compensator_kind<C>(), std::move(*engine));
+}
+
+// a compensator read from its table whose kind is `kind` (std::nullopt when none is)
+inline std::optional<LoadedCompensator> from_a_table(const json& kind, const json& f,
+                                                     const std::string& where, bool& found) {
+  std::optional<LoadedCompensator> out;
+  found = any_type(FeedforwardsFromTable{}, [&](auto tag) {
+    using C = typename decltype(tag)::type;
+    if (kind != compensator_kind<C>()) return false;
+    out = from_table<C>(f, where);
+    return true;
+  });
+  return out;
+}
+
+// the kinds of file compensator() reads, for its message
+inline std::string known_compensators() {
+  std::set<std::string> known{"ContinuumFeedforward", "CurveAngleFeedforward", "EncoderLoop",
+                              "InverseFeedforward",   "LearnedFeedforward",    "TipLoop"};
+  for_each_type(FeedforwardsFromTable{},
+                [&](auto tag) { known.insert(compensator_kind<typename decltype(tag)::type>()); });
+  std::string out;
+  for (const auto& k : known) out += (out.empty() ? "" : ", ") + k;
+  return out;
+}
+
 // a compensator file (what compensator_from_json loads); std::nullopt once a check has failed
 inline std::optional<LoadedCompensator> compensator(const json& f, const std::string& where) {
   check_format(f, "tendonsheath.compensator", where);
@@ -564,9 +647,11 @@ inline std::optional<LoadedCompensator> compensator(const json& f, const std::st
                     " (tendonsheath/io/json_multi_input.hpp)");
     return std::nullopt;
   }
-  fail(where, "key 'compensator': unknown compensator " + shown(kind) +
-                  " (known: ContinuumFeedforward, CurveAngleFeedforward, EncoderLoop, "
-                  "InverseFeedforward, LearnedFeedforward, TipLoop)");
+  bool found = false;
+  std::optional<LoadedCompensator> from_its_table = from_a_table(kind, f, where, found);
+  if (found) return from_its_table;
+  fail(where, "key 'compensator': unknown compensator " + shown(kind) + " (known: " +
+                  known_compensators() + ")");
   return std::nullopt;
 }
 

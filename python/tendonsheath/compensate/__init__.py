@@ -4,6 +4,7 @@ from .adaptive_controller import AdaptiveController
 from .continuum_feedforward import ContinuumFeedforward
 from .coupled_feedforward import CoupledFeedforward
 from .curve_angle_feedforward import CurveAngleFeedforward, shape_of
+from .dead_band_inverse import DeadBandInverse
 from .encoder_loop import EncoderLoop
 from .inverse_feedforward import InverseFeedforward
 from .iterative_learning import IterativeLearning, LearningDesign, TrialRecord
@@ -22,6 +23,7 @@ __all__ = [
     "ContinuumFeedforward",
     "CoupledFeedforward",
     "CurveAngleFeedforward",
+    "DeadBandInverse",
     "EncoderLoop",
     "EncoderLoopDesign",
     "InverseFeedforward",
