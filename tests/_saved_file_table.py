@@ -7,6 +7,7 @@ import math
 
 from tendonsheath import compensate as C
 from tendonsheath import models as M
+from tendonsheath.models._bound import model_kinds
 
 
 def saved_kinds():
@@ -29,6 +30,9 @@ def saved_kinds():
         "Scaled": M.Scaled(bl, input_offset=0.1, input_scale=1.5, output_gain=-1.2),
         "Loaded": M.Loaded(bl, gain=0.3, slack=0.02, slack_load=0.1, friction=0.05),
     }
+    # every other model of the core's list (model_list.hpp), with its defaults
+    shown = {type(v).__name__ for v in ms.values()}
+    ms |= {k["kind"]: getattr(M, k["kind"])() for k in model_kinds() if k["kind"] not in shown}
     ms["AngleDependent"] = M.AngleDependent(
         "BoucWenBacklash",
         {

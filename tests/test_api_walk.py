@@ -555,20 +555,13 @@ MINIMAL_CALLS = {
         lambda kw: ts.SimulationResult(np.zeros(3), **kw)
     ),
 }
-# the models built from their parameter tables take the rows by **values (models/_param_table.py)
+# the models whose constructor @from_table writes from their parameter tables take the rows
+# by **values (models/_param_table.py): every such class of ts.models
 MINIMAL_CALLS.update(
     {
         f"{cls.__module__}.{cls.__name__}": (lambda kw, cls=cls: cls(**kw))
-        for cls in (
-            ts.models.Backlash,
-            ts.models.BoucWen,
-            ts.models.BoucWenBacklash,
-            ts.models.HystereticOscillator,
-            ts.models.PrandtlIshlinskii,
-            ts.models.PrandtlIshlinskiiInverse,
-            ts.models.CurveAngleModel,
-            ts.models.PlantModel,
-        )
+        for cls in (getattr(ts.models, name) for name in ts.models.__all__)
+        if inspect.isclass(cls) and getattr(cls.__init__, "from_table", False)
     }
 )
 MINIMAL_CALLS["tendonsheath.models.polynomial.Polynomial"] = lambda kw: ts.models.Polynomial(

@@ -24,32 +24,19 @@ from tendonsheath.compensate import (
     TipLoop,
 )
 from tendonsheath.models import (
-    Backlash,
-    BoucWen,
     BoucWenBacklash,
-    CurveAngleModel,
-    GeneralizedPrandtlIshlinskii,
     GeneralizedPrandtlIshlinskiiInverse,
-    HystereticOscillator,
-    Polynomial,
-    PrandtlIshlinskii,
     PrandtlIshlinskiiInverse,
 )
 
 PACKAGE = Path(ts.__file__).resolve().parent
 
-# each Python class and the C++ class it is built on
+# each Python class and the C++ class it is built on: every model of the core's list
+# (model_list.hpp) that the core binds as a class, then the others
 BUILT_ON = {
-    Backlash: core.Backlash,
-    BoucWen: core.BoucWen,
-    BoucWenBacklash: core.BoucWenBacklash,
-    Polynomial: core.Polynomial,
-    PrandtlIshlinskii: core.PrandtlIshlinskii,
+    **{getattr(ts.models, k["kind"]): k["model"] for k in core.model_kinds() if k["model"]},
     PrandtlIshlinskiiInverse: core.PrandtlIshlinskiiInverse,
-    GeneralizedPrandtlIshlinskii: core.GeneralizedPrandtlIshlinskii,
     GeneralizedPrandtlIshlinskiiInverse: core.GeneralizedPrandtlIshlinskiiInverse,
-    HystereticOscillator: core.HystereticOscillator,
-    CurveAngleModel: core.CurveAngleModel,
     InverseFeedforward: core.ModelInverse,
     CurveAngleFeedforward: core.CurveAngleFeedforward,
     ContinuumFeedforward: core.ContinuumFeedforward,

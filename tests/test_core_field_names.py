@@ -28,17 +28,10 @@ from tendonsheath.compensate.adaptive_controller import _GAINS
 m = ts.models
 ROOT = Path(__file__).resolve().parents[1]
 
-# struct -> the Python callables whose arguments (a model's parameters and options) set its fields
+# struct -> the Python callables whose arguments (a model's parameters and options) set its
+# fields: every model of the core's list (model_list.hpp) by its kind, then the others
 PYTHON_OF = {
-    "BacklashParams": (m.Backlash,),
-    "BoucWenBacklashParams": (m.BoucWenBacklash,),
-    "BoucWenParams": (m.BoucWen,),
-    "HystereticOscillatorParams": (m.HystereticOscillator,),
-    "PrandtlIshlinskiiParams": (m.PrandtlIshlinskii,),
-    "GeneralizedPrandtlIshlinskiiParams": (m.GeneralizedPrandtlIshlinskii,),
-    "PolynomialParams": (m.Polynomial,),
-    "CurveAngleParams": (m.CurveAngleModel,),
-    "PlantModelParams": (m.PlantModel,),
+    **{k["params"].__name__: (getattr(m, k["kind"]),) for k in core.model_kinds()},
     "LagInverseParams": (m.FirstOrderLag, m.SecondOrderLag, InverseFeedforward),
     # the inverse of a Backlash model: its parameters and the feedforward's settings
     "BacklashInverseParams": (m.Backlash, InverseFeedforward),

@@ -7,6 +7,7 @@ import pytest
 
 import tendonsheath as ts
 from tendonsheath import models
+from tendonsheath.models._bound import model_kinds
 
 ALL_MODELS = [
     models.Backlash(c_r=1.1, c_l=0.9, B_r=0.12, B_l=0.08),
@@ -22,6 +23,10 @@ ALL_MODELS = [
     ),
     models.GeneralizedPrandtlIshlinskiiInverse(rising=(1.2, 1.5, 0.0, 0.0)),
 ]
+# every other model of the core's list (model_list.hpp), with its defaults, but those that
+# take a second input (their own tests: test_curve_angle_model.py)
+_SHOWN = {type(m).__name__ for m in ALL_MODELS} | {"CurveAngleModel"}
+ALL_MODELS += [getattr(models, k["kind"])() for k in model_kinds() if k["kind"] not in _SHOWN]
 RATE_INDEPENDENT = [m for m in ALL_MODELS if m.rate_independent]
 
 

@@ -63,17 +63,15 @@ def _curve_ff() -> CurveAngleFeedforward:
     return CurveAngleFeedforward(friction=0.1, stiffness=2e4, length=1.0, pretension=10.0)
 
 
-# struct -> the saved objects whose to_dict() together hold its fields
+def _default_of(kind: str) -> Any:
+    return lambda: [getattr(m, kind)()]
+
+
+# struct -> the saved objects whose to_dict() together hold its fields: a model of the core's
+# list (model_list.hpp) with its defaults, unless given below; then the others
 SAVED = {
-    "BacklashParams": lambda: [m.Backlash()],
-    "BoucWenBacklashParams": lambda: [m.BoucWenBacklash()],
-    "BoucWenParams": lambda: [m.BoucWen()],
-    "HystereticOscillatorParams": lambda: [m.HystereticOscillator()],
-    "PrandtlIshlinskiiParams": lambda: [m.PrandtlIshlinskii()],
-    "GeneralizedPrandtlIshlinskiiParams": lambda: [m.GeneralizedPrandtlIshlinskii()],
+    **{k["params"].__name__: _default_of(k["kind"]) for k in core.model_kinds()},
     "PolynomialParams": lambda: [m.Polynomial(coefficients=[0.0, 1.0])],
-    "CurveAngleParams": lambda: [m.CurveAngleModel()],
-    "PlantModelParams": lambda: [m.PlantModel()],
     "LagInverseParams": lambda: [
         InverseFeedforward(m.FirstOrderLag()),
         InverseFeedforward(m.SecondOrderLag()),

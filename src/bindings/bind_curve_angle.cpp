@@ -12,10 +12,8 @@ namespace tsbind {
 namespace ts = tendonsheath;
 using namespace nb::literals;
 
-void bind_curve_angle(nb::module_& m) {
-  using P = ts::CurveAngleParams;
-  bind_params<P>(m, "CurveAngleParams");
-
+void bind_curve_angle_model(nb::module_& m) {
+  using P = ts::CurveAngleParams;  // bound before, with the model list (bind_models.cpp)
   using M = ts::CurveAngleModel;
   bind_copy(nb::class_<M>(m, "CurveAngleModel"))
       .def(nb::init<const P&>(), "params"_a)

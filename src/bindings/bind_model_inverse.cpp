@@ -18,8 +18,6 @@ using namespace nb::literals;
 namespace {
 
 void bind_parts(nb::module_& m) {
-  using PM = ts::PlantModelParams;
-  bind_params<PM>(m, "PlantModelParams");
   using L = ts::LagInverseParams;
   bind_params<L>(m, "LagInverseParams");
   using A = ts::AngleLaws;
@@ -74,6 +72,8 @@ nb::list model_kinds(const nb::module_& m) {
     d["kind"] = ts::model_kind<M>();
     d["member"] = ts::PartMember<M>::name;  // the ModelPart property holding its parameters
     d["params"] = nb::borrow(nb::type<typename M::Params>());  // the bound parameter struct
+    nb::handle model = nb::type<M>();  // the bound model class (PlantModel's: none, Python runs it)
+    d["model"] = model.is_valid() ? nb::borrow(model) : nb::none();
     d["root_invertible"] = ts::root_invertible<M>::value;
     d["angle_dependent_base"] = ts::angle_dependent_base<M>;
     constexpr bool vector = ts::has_param_vector<M>::value;
@@ -182,7 +182,8 @@ void bind_model_inverse(nb::module_& m) {
   m.def(
       "model_kinds", [m]() { return model_kinds(m); },
       "The core's model list: per model class a dict of its kind (class name), member (the\n"
-      "ModelPart property holding its parameters), params (the parameter struct),\n"
+      "ModelPart property holding its parameters), params (the parameter struct), model (the\n"
+      "bound model class, or None where Python runs the model: PlantModel),\n"
       "root_invertible, angle_dependent_base, param_vector, and population_cost / population_simulate (its batch\n"
       "kernels when it has a parameter vector, else None).");
 }

@@ -1,9 +1,11 @@
-// Hysteresis models: parameter structs, streaming step() and batch simulate().
+// Hysteresis models: parameter structs, streaming step() and batch simulate(), for every model
+// of the list (models/model_list.hpp).
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
 #include <optional>
+#include <string>
 #include <tendonsheath/tendonsheath.hpp>
 
 #include "bindings.hpp"
@@ -16,32 +18,32 @@ using namespace nb::literals;
 
 namespace {
 
-void bind_backlash(nb::module_& m) {
-  bind_params<ts::BacklashParams>(m, "BacklashParams");
-  bind_model<ts::Backlash>(m, "Backlash").def("set_state", &ts::Backlash::set_state, "x"_a, "y"_a);
+// Every model of the list (models/model_list.hpp) is bound here, generically: its parameter
+// struct from its table (param_binding.hpp) as <kind>Params, and the model class as <kind> with
+// bind_model's constructor, reset/step/simulate (model_binding.hpp). A model with methods of its
+// own adds them in a bind_extras() overload below; one whose class is not a one-input streaming
+// model says so with a bind_list_model() specialisation.
+
+void bind_extras(nb::class_<ts::Backlash>& c) {
+  c.def("set_state", &ts::Backlash::set_state, "x"_a, "y"_a);
 }
 
-// Bouc-Wen backlash and the classic Bouc-Wen model.
-void bind_bouc_wen(nb::module_& m) {
-  using BWB = ts::BoucWenBacklashParams;
-  bind_params<BWB>(m, "BoucWenBacklashParams");
-  bind_model<ts::BoucWenBacklash>(m, "BoucWenBacklash")
-      .def("state", &ts::BoucWenBacklash::state)
+void bind_extras(nb::class_<ts::BoucWenBacklash>& c) {
+  c.def("state", &ts::BoucWenBacklash::state)
       .def("set_state", &ts::BoucWenBacklash::set_state, "x"_a, "w"_a);
-
-  using BW = ts::BoucWenParams;
-  bind_params<BW>(m, "BoucWenParams");
-  bind_model<ts::BoucWen>(m, "BoucWen")
-      .def("state", &ts::BoucWen::state)
-      .def("z_ultimate", &ts::BoucWen::z_ultimate);
 }
 
-void bind_oscillator(nb::module_& m) {
-  using HO = ts::HystereticOscillatorParams;
-  bind_params<HO>(m, "HystereticOscillatorParams");
+void bind_extras(nb::class_<ts::BoucWen>& c) {
+  c.def("state", &ts::BoucWen::state).def("z_ultimate", &ts::BoucWen::z_ultimate);
+}
+
+void bind_extras(nb::class_<ts::PrandtlIshlinskii>& c) {
+  c.def("play_states", &ts::PrandtlIshlinskii::play_states);
+}
+
+void bind_extras(nb::class_<ts::HystereticOscillator>& c) {
   using Osc = ts::HystereticOscillator;
-  bind_model<Osc>(m, "HystereticOscillator")
-      .def("velocity", &Osc::velocity)
+  c.def("velocity", &Osc::velocity)
       .def("hysteretic_force", &Osc::hysteretic_force)
       .def("delay", &Osc::delay)
       .def("diverged", &Osc::diverged)
@@ -117,23 +119,70 @@ void bind_oscillator_dense(nb::module_& m) {
       "ends): the values HystereticOscillator's band-limited step() uses.");
 }
 
-void bind_prandtl_ishlinskii(nb::module_& m) {
-  using PI = ts::PrandtlIshlinskiiParams;
-  bind_params<PI>(m, "PrandtlIshlinskiiParams");
-  bind_model<ts::PrandtlIshlinskii>(m, "PrandtlIshlinskii")
-      .def("play_states", &ts::PrandtlIshlinskii::play_states);
+// A model of the list with no methods of its own beyond bind_model's.
+template <class M>
+void bind_extras(nb::class_<M>&) {}
+
+// The Python name of model M's parameter struct: <kind>Params.
+template <class M>
+const char* params_name() {
+  static const std::string name = std::string(ts::model_kind<M>()) + "Params";
+  return name.c_str();
+}
+template <>
+const char* params_name<ts::CurveAngleModel>() {
+  return "CurveAngleParams";
+}
+
+// The model class M of the list, bound as a one-input streaming model (and its extras).
+template <class M>
+void bind_list_model(nb::module_& m) {
+  auto cls = bind_model<M>(m, ts::model_kind<M>());
+  bind_extras(cls);
+}
+// Python runs the PlantModel's plant (models/plant_model.py): the core holds its parameters only.
+template <>
+void bind_list_model<ts::PlantModel>(nb::module_&) {}
+// Two inputs, motor angle and curve angle: its own binding (bind_curve_angle.cpp).
+template <>
+void bind_list_model<ts::CurveAngleModel>(nb::module_& m) {
+  bind_curve_angle_model(m);
+}
+
+// Model-specific classes beside the list: the GPI's envelopes (before its parameters, whose
+// rising/falling fields are Envelopes) and the exact inverses of the two PI models.
+void bind_envelope(nb::module_& m) {
+  nb::class_<ts::Envelope>(m, "Envelope")
+      .def(nb::init<>())
+      .def_rw("a", &ts::Envelope::a)
+      .def_rw("b", &ts::Envelope::b)
+      .def_rw("c", &ts::Envelope::c)
+      .def_rw("d", &ts::Envelope::d)
+      .def_rw("lo", &ts::Envelope::lo)
+      .def_rw("hi", &ts::Envelope::hi)
+      .def("__call__", &ts::Envelope::operator(), nb::arg("x"))
+      .def("slope_at", &ts::Envelope::slope_at, nb::arg("x"))
+      .def("inverse", &ts::Envelope::inverse, nb::arg("g"));
+}
+
+void bind_play_inverses(nb::module_& m) {
   bind_model<ts::PrandtlIshlinskiiInverse>(m, "PrandtlIshlinskiiInverse")
       .def("input_clamped", &ts::PrandtlIshlinskiiInverse::input_clamped);
+  bind_model<ts::GeneralizedPrandtlIshlinskiiInverse>(m, "GeneralizedPrandtlIshlinskiiInverse")
+      .def("input_clamped", &ts::GeneralizedPrandtlIshlinskiiInverse::input_clamped);
 }
 
 }  // namespace
 
 void bind_models(nb::module_& m) {
-  bind_backlash(m);
-  bind_bouc_wen(m);
-  bind_oscillator(m);
+  bind_envelope(m);
+  ts::for_each_type(ts::Models{}, [&](auto tag) {
+    using M = typename decltype(tag)::type;
+    bind_params<typename M::Params>(m, params_name<M>());
+    bind_list_model<M>(m);
+  });
+  bind_play_inverses(m);
   bind_oscillator_dense(m);
-  bind_prandtl_ishlinskii(m);
 }
 
 }  // namespace tsbind

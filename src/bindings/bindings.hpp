@@ -104,11 +104,11 @@ std::decay_t<Cls> bind_copy(Cls&& cls) {
 void bind_statics(nb::module_& m);
 void bind_models(nb::module_& m);
 void bind_compensators(nb::module_& m);
-void bind_models_extended(nb::module_& m);
 void bind_plant(nb::module_& m);
 void bind_profile(nb::module_& m);
 void bind_bench(nb::module_& m);
-void bind_curve_angle(nb::module_& m);
+// CurveAngleModel (two inputs), bound where bind_models binds the model list
+void bind_curve_angle_model(nb::module_& m);
 void bind_batch(nb::module_& m);
 void bind_model_inverse(nb::module_& m);
 void bind_coupled(nb::module_& m);

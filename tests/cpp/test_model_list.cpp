@@ -13,11 +13,38 @@
 
 namespace ts = tendonsheath;
 
-static_assert(std::is_same_v<ts::ForwardModel::First,
-                             std::variant<ts::Backlash, ts::BoucWenBacklash, ts::BoucWen,
-                                          ts::PrandtlIshlinskii, ts::GeneralizedPrandtlIshlinskii,
-                                          ts::Polynomial, ts::PlantModel>>,
-              "ForwardModel runs the root-invertible models of the list, in the list's order");
+namespace {
+
+// whether T is one of variant V's alternatives
+template <class T, class V>
+struct is_alternative;
+template <class T, class... Ts>
+struct is_alternative<T, std::variant<Ts...>> : std::disjunction<std::is_same<T, Ts>...> {};
+template <class T>
+constexpr bool runs_first = is_alternative<T, ts::ForwardModel::First>::value;
+
+// the index of T among variant V's alternatives (its size when T is none)
+template <class T, class V>
+struct index_in;
+template <class T, class... Ts>
+struct index_in<T, std::variant<Ts...>> {
+  static constexpr std::size_t value = [] {
+    std::size_t i = 0;
+    (void)((std::is_same_v<T, Ts> ? false : (++i, true)) && ...);
+    return i;
+  }();
+};
+
+}  // namespace
+
+// (a model added to the list is covered by the TEST below, with no edit here)
+static_assert(runs_first<ts::Backlash> && runs_first<ts::BoucWenBacklash> &&
+                  runs_first<ts::BoucWen> && runs_first<ts::PrandtlIshlinskii> &&
+                  runs_first<ts::GeneralizedPrandtlIshlinskii> && runs_first<ts::Polynomial> &&
+                  runs_first<ts::PlantModel>,
+              "ForwardModel runs the root-invertible models of the list");
+static_assert(!runs_first<ts::HystereticOscillator> && !runs_first<ts::CurveAngleModel>,
+              "the models with an inverse of their own are not root-searched");
 
 static_assert(ts::angle_dependent_base<ts::Backlash> && ts::angle_dependent_base<ts::BoucWen> &&
                   ts::angle_dependent_base<ts::BoucWenBacklash> &&
@@ -50,6 +77,20 @@ TEST(ModelList, EachModelHasItsOwnPartMemberAndKind) {
   EXPECT_EQ(members.count("bouc_wen_backlash"), 1u);
   EXPECT_FALSE(ts::visit_model_kind("FirstOrderLag", [](auto) {}));
   EXPECT_FALSE(ts::visit_model_kind("AngleDependent", [](auto) {}));
+}
+
+TEST(ModelList, ForwardModelRunsExactlyTheRootInvertibleModelsInTheListsOrder) {
+  std::size_t alternatives = 0;
+  ts::for_each_type(ts::Models{}, [&](auto tag) {
+    using M = typename decltype(tag)::type;
+    static_assert(runs_first<M> == ts::root_invertible<M>::value);
+    if constexpr (ts::root_invertible<M>::value) {
+      EXPECT_EQ((index_in<M, ts::ForwardModel::First>::value), alternatives)  // the list's order
+          << ts::model_kind<M>();
+      ++alternatives;
+    }
+  });
+  EXPECT_EQ(alternatives, std::variant_size_v<ts::ForwardModel::First>);
 }
 
 TEST(ModelList, EveryRootInvertibleModelGetsARootInverseFromItsPart) {

@@ -20,6 +20,7 @@
 #include "bouc_wen.hpp"
 #include "bouc_wen_backlash.hpp"
 #include "curve_angle.hpp"
+#include "dead_zone.hpp"
 #include "generalized_prandtl_ishlinskii.hpp"
 #include "hysteretic_oscillator.hpp"
 #include "plant_model.hpp"
@@ -38,7 +39,8 @@
   X(Polynomial, polynomial)                                         \
   X(PlantModel, plant_model)                                        \
   X(HystereticOscillator, hysteretic_oscillator)                    \
-  X(CurveAngleModel, curve_angle_model)
+  X(CurveAngleModel, curve_angle_model)                             \
+  X(DeadZone, dead_zone)
 
 namespace tendonsheath {
 

@@ -43,6 +43,8 @@ _MULTI_INPUT_COMPENSATORS = ("LoadCompensated", "CoupledFeedforward")
 def _literal(value) -> str:
     if isinstance(value, str):  # an enum value, already C++
         return value
+    if isinstance(value, bool):
+        return "true" if value else "false"
     if isinstance(value, int) and not isinstance(value, bool):
         return str(value)
     return _number(value)
@@ -99,6 +101,21 @@ def _pi_arrays(model) -> str:
     )
 
 
+def _scalar_model_body(model) -> tuple[str, str] | None:
+    """A model of the core's list whose every table row is a number: its params
+    struct filled row by row from Python's values; None for any other model."""
+    struct = getattr(type(model), "_core_params", None)
+    if struct is None or not hasattr(model, "params_struct"):
+        return None
+    values = model.params_struct()
+    fields = {r["name"]: getattr(values, r["name"]) for r in struct.fields()}
+    if not all(isinstance(v, int | float) for v in fields.values()):
+        return None
+    kind = type(model).__name__
+    body = _struct(struct.__name__, fields) + _builder("Model", kind, "params")
+    return "models/model_list.hpp", body
+
+
 def _model_body(model) -> tuple[str, str]:
     """(header to include, declarations) for a model."""
     kind = type(model).__name__
@@ -113,8 +130,12 @@ def _model_body(model) -> tuple[str, str]:
     if kind == "PrandtlIshlinskii":
         body = _pi_arrays(model) + _builder("Model", "PrandtlIshlinskii", "p", _PI_PARAMS)
         return "models/prandtl_ishlinskii.hpp", body
+    scalar = _scalar_model_body(model)
+    if scalar is not None:
+        return scalar
     raise ValueError(
-        "export --cpp writes Backlash, BoucWenBacklash and PrandtlIshlinskii models and the "
+        "export --cpp writes Backlash, BoucWenBacklash and PrandtlIshlinskii models, any model "
+        "of the core's list whose parameters are numbers, and the "
         "InverseFeedforward, CurveAngleFeedforward, ContinuumFeedforward, LoadCompensated and "
         f"CoupledFeedforward compensators (got {kind})" + _MODEL_NOTE.get(kind, "")
     )

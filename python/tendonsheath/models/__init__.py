@@ -8,6 +8,7 @@ from .bouc_wen_backlash import BoucWenBacklash
 from .chain import Chain
 from .coupled import Coupled
 from .curve_angle import CurveAngleModel
+from .dead_zone import DeadZone
 from .generalized_prandtl_ishlinskii import (
     GeneralizedPrandtlIshlinskii,
     GeneralizedPrandtlIshlinskiiInverse,
@@ -30,6 +31,7 @@ __all__ = [
     "GeneralizedPrandtlIshlinskii",
     "GeneralizedPrandtlIshlinskiiInverse",
     "CurveAngleModel",
+    "DeadZone",
     "FirstOrderLag",
     "LinearBlock",
     "Loaded",
