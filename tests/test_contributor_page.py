@@ -174,7 +174,8 @@ def test_compare_models_takes_it_and_it_wins_on_its_own_data():
     rng = np.random.default_rng(24)
     x = _input(rng)
     y = DeadZone(c_r=1.2, c_l=0.8, d_r=0.2, d_l=0.1).simulate(T, x)
-    cmp = ts.compare_models([(T, x, y)], models=[DeadZone, Backlash], validate=0.3, maxiter=30)
+    # by name too, as the command line gives it
+    cmp = ts.compare_models([(T, x, y)], models=["DeadZone", Backlash], validate=0.3, maxiter=30)
     assert cmp.winner_name == "DeadZone"
     # measured held-out rmse about 1e-13 (the data are the model's); a backlash holds its
     # output inside the band, where the dead zone's is 0

@@ -58,6 +58,7 @@ from ..identify.cross_validation import estimator_split, evaluate_splits, record
 from ..identify.data import make_recordings
 from ..identify.dynamic import is_dynamic_chain
 from ..identify.estimator import Identifier
+from ..identify.generic import identifiable
 from ..identify.refine import REFINE_LIMIT
 from ..models import (
     Backlash,
@@ -217,11 +218,12 @@ def parse_model(spec: type[HysteresisModel] | HysteresisModel | str) -> Any:
     def cls_of(name):
         name = _ALIASES.get(name.lower(), name)
         lookup = {k.lower(): v for k, v in _REGISTRY.items()}
-        if name.lower() not in lookup or lookup[name.lower()].__name__ not in CANDIDATES:
+        found = lookup.get(name.lower())
+        if found is None or (found.__name__ not in CANDIDATES and not identifiable(found)):
             raise ValueError(
                 f"unknown model {name!r}; candidates: {', '.join(CANDIDATES)} (aliases "
-                f"{', '.join(sorted(_ALIASES))}), with +polyN / +oddN for a polynomial "
-                "output map"
+                f"{', '.join(sorted(_ALIASES))}) or any other model identify takes, with "
+                "+polyN / +oddN for a polynomial output map"
             )
         return lookup[name.lower()]
 

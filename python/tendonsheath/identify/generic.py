@@ -198,6 +198,12 @@ def _spec_of(cls, values: dict):
     return spec_for(cls)
 
 
+def identifiable(cls) -> bool:
+    """Whether ``identify`` takes model class ``cls``: a spec of its own, or a parameter table
+    of numbers and the core's batched kernels (TableSpec)."""
+    return cls in SPECS or _table_identifiable(cls)
+
+
 def _table_identifiable(cls) -> bool:
     """A model with no spec of its own that its parameter table and the core's batched kernels
     identify (:class:`~tendonsheath.identify.specs.TableSpec`)."""
@@ -497,6 +503,7 @@ __all__ = [
     "GPI_PLAYS",
     "Posed",
     "SPECS_BY_NAME",
+    "identifiable",
     "identify_class",
     "laws_from_points",
 ]
