@@ -1,15 +1,21 @@
-"""A model's parameters are written once, in its C++ parameter table (issue 37, item 2).
+"""A parameter is written once, in its C++ parameter table (issue 37, item 2).
 
 The Python model classes take their names (``param_names``, ``option_names``, the saved file's
 keys), signatures, defaults and the numpydoc entries of their parameters from ``fields()``
-(``tendonsheath/models/_param_table.py``). This test reads the source of every module of
-``tendonsheath/models`` and fails where one writes again what a table already says:
+(``tendonsheath/models/_param_table.py``); the plants, the motor and the sensor, whose
+constructors interleave the rows with Python-only arguments, take the rows' defaults and
+entries from it (``TABLE`` in the ``def``, ``tendonsheath/_util/param_table.py``). This test
+reads the source of every module of ``tendonsheath/models`` and of those plant modules and
+fails where one writes again what a table already says:
 
 - a default: an argument or a dict key named as a row with a literal value;
 - the names: ``param_names``/``option_names`` assigned a literal naming a row, or a literal
   list of two or more rows' names;
 - a forward by hand: a call keyword ``name=name`` for a row;
-- a docstring entry: a class docstring's Parameters section documenting a row.
+- a docstring entry: a class's docstring Parameters section documenting a row (outside
+  models/, a function's too: Motor.position is built from the table).
+
+A Python default that differs from the table's on purpose is listed in ``DIFFERS``, with why.
 
 A self-check feeds it the Backlash module as it was written before (every one of these).
 """
@@ -23,10 +29,30 @@ from pathlib import Path
 import pytest
 
 import tendonsheath as ts
+from tendonsheath import _core as core
 from tendonsheath.models._param_table import from_table
 
 ROOT = Path(__file__).resolve().parents[1]
-MODELS = ROOT / "python" / "tendonsheath" / "models"
+PACKAGE = ROOT / "python" / "tendonsheath"
+MODELS = PACKAGE / "models"
+
+# the modules outside models/ whose classes take a table's rows: file -> (its structs, the
+# Python callables built from them by table_constructor / table_defaults)
+TABLE_BUILT = {
+    "plant/single_tendon.py": (("SingleTendonParams",), (ts.SingleTendonPlant,)),
+    "plant/pull_pull.py": (("PullPullParams",), (ts.PullPullPlant,)),
+    "plant/continuum.py": (("ContinuumParams",), (ts.ContinuumPlant,)),
+    "plant/motor.py": (("MotorParams",), (ts.Motor.position, ts.Motor.torque)),
+    "plant/sensor.py": (("SensorParams",), (ts.Sensor,)),
+    "plant/base.py": (("SingleTendonParams", "PullPullParams", "ContinuumParams"), ()),
+}
+
+# (file, function, row) -> why its Python default is not the table's (written, documented by hand)
+DIFFERS = {
+    ("plant/motor.py", "torque", "inertia"): (
+        "a torque motor needs inertia > 0: 1e-2; the table's 0 is the position motor's ideal lag"
+    ),
+}
 
 
 def _module_rows() -> dict[str, set[str]]:
@@ -68,8 +94,10 @@ def _documented_rows(doc: str, rows: set[str]) -> list[str]:
     return found
 
 
-def copies(source: str, rows: set[str]) -> list[str]:
-    """What the module's source writes again of the rows: one line per finding."""
+def copies(source: str, rows: set[str], function_docs: bool = False) -> list[str]:
+    """What the module's source writes again of the rows: one line per finding (a function's
+    docstring too with ``function_docs``, where functions are built from a table: a model
+    module's factory may document an argument of a row's name that is not the row)."""
     found = []
     for node in ast.walk(ast.parse(source)):
         where = f"line {getattr(node, 'lineno', '?')}"
@@ -113,7 +141,7 @@ def copies(source: str, rows: set[str]) -> list[str]:
                 for k in node.keywords
                 if k.arg in rows and isinstance(k.value, ast.Name) and k.value.id == k.arg
             ]
-        elif isinstance(node, ast.ClassDef):
+        if isinstance(node, ast.ClassDef) or (function_docs and isinstance(node, ast.FunctionDef)):
             doc = ast.get_docstring(node, clean=False) or ""
             found += [
                 f"{where}: {name} documented by hand in {node.name}"
@@ -144,6 +172,42 @@ def test_every_table_model_module_is_scanned():
 def test_no_model_module_writes_a_row_twice(module):
     source = (MODELS / module).read_text(encoding="utf-8")
     assert not copies(source, MODULE_ROWS[module])
+
+
+def _differs(module: str, finding: str) -> bool:
+    """A finding that DIFFERS lists (its default, and its entry documented by hand)."""
+    return any(
+        m == module and (f"of {row} in {func}()" in finding or f"{row} documented by hand in "
+                         f"{func}" in finding)
+        for m, func, row in DIFFERS
+    )  # fmt: skip
+
+
+@pytest.mark.parametrize("module", sorted(TABLE_BUILT))
+def test_no_table_built_module_writes_a_row_twice(module):
+    structs, _ = TABLE_BUILT[module]
+    rows = {r["name"] for s in structs for r in getattr(core, s).fields()}
+    source = (PACKAGE / module).read_text(encoding="utf-8")
+    found = copies(source, rows, function_docs=True)
+    assert [f for f in found if not _differs(module, f)] == []
+
+
+@pytest.mark.parametrize("module", sorted(TABLE_BUILT))
+def test_every_table_built_callable_shows_the_tables_defaults(module):
+    """The signature's default of each row is the table's (None: the C++ default, or an effect
+    left off), but where DIFFERS says why not; its docstring documents each row it takes."""
+    structs, built = TABLE_BUILT[module]
+    for target in built:
+        assert getattr(target, "_table_struct", None) is getattr(core, structs[0]), target
+        name = target.__name__
+        doc = "\n" + inspect.getdoc(target)
+        for row in getattr(core, structs[0]).fields():
+            param = inspect.signature(target).parameters.get(row["name"])
+            if param is None:
+                continue
+            if (module, name, row["name"]) not in DIFFERS:
+                assert param.default in (None, row["default"]), (name, row["name"])
+            assert f"\n{row['name']} : " in doc, (name, row["name"])
 
 
 def test_every_table_model_is_built_from_its_table():

@@ -76,7 +76,8 @@ def table_defaults(
     struct: Any, shown: Callable[[str, Any], Any] | None = None
 ) -> Callable[[_F], _F]:
     """Decorator: the function's :data:`TABLE` defaults become ``struct``'s table defaults and
-    its docstring's Parameters section documents each row it takes from the table.
+    its docstring's Parameters section documents each row it takes from the table; the struct
+    is kept as ``func._table_struct``.
 
     Parameters
     ----------
@@ -95,6 +96,7 @@ def table_defaults(
     def complete(func: _F) -> _F:
         rows = rows_of(struct)
         _fill_defaults(func, rows, shown)
+        func._table_struct = struct  # type: ignore[attr-defined]
         func.__doc__ = with_parameters(
             func.__qualname__, func.__doc__ or "", inspect.signature(func), rows, shown
         )
@@ -107,7 +109,8 @@ def table_constructor(
     struct: Any, shown: Callable[[str, Any], Any] | None = None
 ) -> Callable[[_T], _T]:
     """Class decorator: :func:`table_defaults` for the class's own ``__init__``, its Parameters
-    entries written into the class docstring (where numpydoc reads a class's).
+    entries written into the class docstring (where numpydoc reads a class's); the struct is
+    kept as ``cls._table_struct``.
 
     Parameters
     ----------
@@ -126,6 +129,7 @@ def table_constructor(
         rows = rows_of(struct)
         init = vars(cls)["__init__"]
         _fill_defaults(init, rows, shown)
+        cls._table_struct = struct  # type: ignore[attr-defined]
         cls.__doc__ = with_parameters(
             cls.__name__, cls.__doc__ or "", inspect.signature(init), rows, shown
         )
