@@ -47,6 +47,31 @@ TABLE_BUILT = {
     "plant/base.py": (("SingleTendonParams", "PullPullParams", "ContinuumParams"), ()),
 }
 
+# the compensator modules built from their tables: file -> (struct, the callables built from it).
+# Scanned for a row's literal default and a class docstring's entry for a row that holds a value
+# (a nested struct such as ``limits`` takes Python forms of its own, documented by hand); their
+# names lists (``_saved_settings``) and ``name=name`` forwards are not derived yet.
+COMPENSATORS = {
+    "compensate/encoder_loop.py": ("EncoderLoopParams", (ts.compensate.EncoderLoop,)),
+    "compensate/tip_loop.py": ("TipLoopParams", (ts.compensate.TipLoop,)),
+    "compensate/learned_feedforward.py": (
+        "LearnedFeedforwardParams",
+        (ts.compensate.LearnedFeedforward,),
+    ),
+    "compensate/inverse_feedforward.py": (
+        "BacklashInverseParams",
+        (ts.compensate.InverseFeedforward,),
+    ),
+    "compensate/curve_angle_feedforward.py": (
+        "CurveAngleFeedforwardParams",
+        (ts.compensate.CurveAngleFeedforward,),
+    ),
+    "compensate/continuum_feedforward.py": (
+        "ContinuumFeedforwardParams",
+        (ts.compensate.ContinuumFeedforward, ts.compensate.ContinuumFeedforward.from_model),
+    ),
+}
+
 # (file, function, row) -> why its Python default is not the table's (written, documented by hand)
 DIFFERS = {
     ("plant/motor.py", "torque", "inertia"): (
@@ -190,6 +215,40 @@ def test_no_table_built_module_writes_a_row_twice(module):
     source = (PACKAGE / module).read_text(encoding="utf-8")
     found = copies(source, rows, function_docs=True)
     assert [f for f in found if not _differs(module, f)] == []
+
+
+def _value_rows(struct: str) -> set[str]:
+    """The rows holding a number, a flag, a string, a list or an enum (not a nested struct)."""
+    return {
+        r["name"]
+        for r in getattr(core, struct).fields()
+        if isinstance(r["default"], float | int | bool | str | list)
+        or hasattr(type(r["default"]), "__members__")
+    }
+
+
+@pytest.mark.parametrize("module", sorted(COMPENSATORS))
+def test_no_compensator_module_writes_a_rows_default_or_entry(module):
+    struct, _ = COMPENSATORS[module]
+    source = (PACKAGE / module).read_text(encoding="utf-8")
+    found = copies(source, _value_rows(struct))
+    assert [f for f in found if "default of" in f or "documented by hand" in f] == []
+
+
+@pytest.mark.parametrize("module", sorted(COMPENSATORS))
+def test_every_table_built_compensator_shows_the_tables_defaults(module):
+    struct, built = COMPENSATORS[module]
+    for target in built:
+        assert getattr(target, "_table_struct", None) is getattr(core, struct), target
+        doc = "\n" + inspect.getdoc(target)
+        for row in getattr(core, struct).fields():
+            param = inspect.signature(target).parameters.get(row["name"])
+            if param is None or row["name"] not in _value_rows(struct):
+                continue
+            shown = row["default"]
+            shown = shown.name if hasattr(type(shown), "__members__") else shown
+            assert param.default in (None, param.empty, shown), (target, row["name"])
+            assert f"\n{row['name']} : " in doc, (target, row["name"])
 
 
 @pytest.mark.parametrize("module", sorted(TABLE_BUILT))

@@ -180,7 +180,7 @@ def python_problems(struct: str, rows: list[dict[str, Any]]) -> list[str]:
         defaults = [  # a callable built from its table (TABLE in its def) has no copy to compare
             p.default  # (test_param_single_copy: its defaults are the table's)
             for t in takers
-            if getattr(t, "_table_struct", None) is None
+            if getattr(t, "_table_struct", None) is not getattr(core, struct)
             and (p := inspect.signature(t).parameters.get(name)) is not None
             and p.default not in (None, inspect.Parameter.empty)
         ]

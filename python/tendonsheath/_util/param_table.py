@@ -72,6 +72,28 @@ def rows_of(struct: Any) -> list[dict[str, Any]]:
     return list(struct.fields())
 
 
+def number_rows(struct: Any) -> tuple[str, ...]:
+    """The names of the rows that hold a number (float or int, not bool), in table order:
+    those a constructor checks with ``number`` and sets on the struct one by one (a nested
+    struct, a flag or a code is set on its own).
+
+    Parameters
+    ----------
+    struct : type
+        A bound ``...Params`` struct.
+
+    Returns
+    -------
+    tuple of str
+        The names.
+    """
+    return tuple(
+        r["name"]
+        for r in rows_of(struct)
+        if isinstance(r["default"], float | int) and not isinstance(r["default"], bool)
+    )
+
+
 def table_defaults(
     struct: Any, shown: Callable[[str, Any], Any] | None = None
 ) -> Callable[[_F], _F]:
@@ -164,7 +186,8 @@ def _fill_defaults(
 
 
 def python_default(row: dict[str, Any], shown: Callable[[str, Any], Any] | None = None) -> Any:
-    """A row's default as Python shows it (``shown``; a list as a tuple).
+    """A row's default as Python shows it (``shown``, else an enum by its name; a list as a
+    tuple).
 
     Parameters
     ----------
@@ -179,7 +202,27 @@ def python_default(row: dict[str, Any], shown: Callable[[str, Any], Any] | None 
         The default.
     """
     value = row["default"] if shown is None else shown(row["name"], row["default"])
+    if shown is None and hasattr(type(value), "__members__"):
+        value = value.name  # a C++ enum (ContinuumMode.exact) by its name, as Python takes it
     return tuple(value) if isinstance(value, list) else value
+
+
+def row_default(struct: Any, name: str) -> Any:
+    """Row ``name``'s default as Python shows it (an enum by its name).
+
+    Parameters
+    ----------
+    struct : type
+        A bound ``...Params`` struct.
+    name : str
+        A row's name.
+
+    Returns
+    -------
+    object
+        The default.
+    """
+    return python_default(next(r for r in rows_of(struct) if r["name"] == name))
 
 
 # -- the docstring's Parameters section --------------------------------------------------------
@@ -257,7 +300,9 @@ def row_entry(
         The entry's lines.
     """
     kind = _type_text(shown)
-    if param.default is None:
+    if param.default is param.empty:  # a required argument
+        head = f"{row['name']} : {kind}"
+    elif param.default is None:
         head = f"{row['name']} : {kind}, optional"
     else:
         head = f"{row['name']} : {kind}, default {shown!r}"
@@ -388,8 +433,10 @@ def with_parameters(
 
 __all__ = [
     "TABLE",
+    "number_rows",
     "python_default",
     "range_text",
+    "row_default",
     "row_entry",
     "rows_of",
     "table_constructor",
