@@ -335,3 +335,27 @@ def test_from_table_needs_a_documented_python_only_argument():
 
     with pytest.raises(TypeError, match=r"_Toy: argument 'gain' is in no table row"):
         from_table(_Toy)
+
+
+def test_table_fills_only_a_rows_default():
+    """TABLE is replaced by the row's default (positional and keyword-only arguments alike);
+    TABLE for an argument in no row is refused when the function is made."""
+    from tendonsheath._util.param_table import TABLE, table_defaults
+
+    @table_defaults(core.SensorParams)
+    def f(self, resolution=TABLE, *, history=TABLE, gain=2.0):  # a method: self aside
+        """A toy.
+
+        Parameters
+        ----------
+        gain : float, default 2.0
+            A gain.
+        """
+
+    assert f.__defaults__ == (0.0,) and f.__kwdefaults__ == {"history": 1024, "gain": 2.0}
+    assert "\nhistory : int, default 1024\n" in f.__doc__
+    with pytest.raises(TypeError, match=r"argument 'gain' defaults to TABLE but is in no row"):
+
+        @table_defaults(core.SensorParams)
+        def g(self, gain=TABLE):
+            """A toy."""
