@@ -1,15 +1,21 @@
-"""A model's parameters are written once, in its C++ parameter table (issue 37, item 2).
+"""A parameter is written once, in its C++ parameter table (issue 37, item 2).
 
 The Python model classes take their names (``param_names``, ``option_names``, the saved file's
 keys), signatures, defaults and the numpydoc entries of their parameters from ``fields()``
-(``tendonsheath/models/_param_table.py``). This test reads the source of every module of
-``tendonsheath/models`` and fails where one writes again what a table already says:
+(``tendonsheath/models/_param_table.py``); the plants, the motor and the sensor, whose
+constructors interleave the rows with Python-only arguments, take the rows' defaults and
+entries from it (``TABLE`` in the ``def``, ``tendonsheath/_util/param_table.py``). This test
+reads the source of every module of ``tendonsheath/models`` and of those plant modules and
+fails where one writes again what a table already says:
 
 - a default: an argument or a dict key named as a row with a literal value;
 - the names: ``param_names``/``option_names`` assigned a literal naming a row, or a literal
   list of two or more rows' names;
 - a forward by hand: a call keyword ``name=name`` for a row;
-- a docstring entry: a class docstring's Parameters section documenting a row.
+- a docstring entry: a class's docstring Parameters section documenting a row (outside
+  models/, a function's too: Motor.position is built from the table).
+
+A Python default that differs from the table's on purpose is listed in ``DIFFERS``, with why.
 
 A self-check feeds it the Backlash module as it was written before (every one of these).
 """
@@ -23,10 +29,55 @@ from pathlib import Path
 import pytest
 
 import tendonsheath as ts
+from tendonsheath import _core as core
 from tendonsheath.models._param_table import from_table
 
 ROOT = Path(__file__).resolve().parents[1]
-MODELS = ROOT / "python" / "tendonsheath" / "models"
+PACKAGE = ROOT / "python" / "tendonsheath"
+MODELS = PACKAGE / "models"
+
+# the modules outside models/ whose classes take a table's rows: file -> (its structs, the
+# Python callables built from them by table_constructor / table_defaults)
+TABLE_BUILT = {
+    "plant/single_tendon.py": (("SingleTendonParams",), (ts.SingleTendonPlant,)),
+    "plant/pull_pull.py": (("PullPullParams",), (ts.PullPullPlant,)),
+    "plant/continuum.py": (("ContinuumParams",), (ts.ContinuumPlant,)),
+    "plant/motor.py": (("MotorParams",), (ts.Motor.position, ts.Motor.torque)),
+    "plant/sensor.py": (("SensorParams",), (ts.Sensor,)),
+    "plant/base.py": (("SingleTendonParams", "PullPullParams", "ContinuumParams"), ()),
+}
+
+# the compensator modules built from their tables: file -> (struct, the callables built from it).
+# Scanned for a row's literal default and a class docstring's entry for a row that holds a value
+# (a nested struct such as ``limits`` takes Python forms of its own, documented by hand); their
+# names lists (``_saved_settings``) and ``name=name`` forwards are not derived yet.
+COMPENSATORS = {
+    "compensate/encoder_loop.py": ("EncoderLoopParams", (ts.compensate.EncoderLoop,)),
+    "compensate/tip_loop.py": ("TipLoopParams", (ts.compensate.TipLoop,)),
+    "compensate/learned_feedforward.py": (
+        "LearnedFeedforwardParams",
+        (ts.compensate.LearnedFeedforward,),
+    ),
+    "compensate/inverse_feedforward.py": (
+        "BacklashInverseParams",
+        (ts.compensate.InverseFeedforward,),
+    ),
+    "compensate/curve_angle_feedforward.py": (
+        "CurveAngleFeedforwardParams",
+        (ts.compensate.CurveAngleFeedforward,),
+    ),
+    "compensate/continuum_feedforward.py": (
+        "ContinuumFeedforwardParams",
+        (ts.compensate.ContinuumFeedforward, ts.compensate.ContinuumFeedforward.from_model),
+    ),
+}
+
+# (file, function, row) -> why its Python default is not the table's (written, documented by hand)
+DIFFERS = {
+    ("plant/motor.py", "torque", "inertia"): (
+        "a torque motor needs inertia > 0: 1e-2; the table's 0 is the position motor's ideal lag"
+    ),
+}
 
 
 def _module_rows() -> dict[str, set[str]]:
@@ -68,8 +119,10 @@ def _documented_rows(doc: str, rows: set[str]) -> list[str]:
     return found
 
 
-def copies(source: str, rows: set[str]) -> list[str]:
-    """What the module's source writes again of the rows: one line per finding."""
+def copies(source: str, rows: set[str], function_docs: bool = False) -> list[str]:
+    """What the module's source writes again of the rows: one line per finding (a function's
+    docstring too with ``function_docs``, where functions are built from a table: a model
+    module's factory may document an argument of a row's name that is not the row)."""
     found = []
     for node in ast.walk(ast.parse(source)):
         where = f"line {getattr(node, 'lineno', '?')}"
@@ -113,7 +166,7 @@ def copies(source: str, rows: set[str]) -> list[str]:
                 for k in node.keywords
                 if k.arg in rows and isinstance(k.value, ast.Name) and k.value.id == k.arg
             ]
-        elif isinstance(node, ast.ClassDef):
+        if isinstance(node, ast.ClassDef) or (function_docs and isinstance(node, ast.FunctionDef)):
             doc = ast.get_docstring(node, clean=False) or ""
             found += [
                 f"{where}: {name} documented by hand in {node.name}"
@@ -144,6 +197,76 @@ def test_every_table_model_module_is_scanned():
 def test_no_model_module_writes_a_row_twice(module):
     source = (MODELS / module).read_text(encoding="utf-8")
     assert not copies(source, MODULE_ROWS[module])
+
+
+def _differs(module: str, finding: str) -> bool:
+    """A finding that DIFFERS lists (its default, and its entry documented by hand)."""
+    return any(
+        m == module and (f"of {row} in {func}()" in finding or f"{row} documented by hand in "
+                         f"{func}" in finding)
+        for m, func, row in DIFFERS
+    )  # fmt: skip
+
+
+@pytest.mark.parametrize("module", sorted(TABLE_BUILT))
+def test_no_table_built_module_writes_a_row_twice(module):
+    structs, _ = TABLE_BUILT[module]
+    rows = {r["name"] for s in structs for r in getattr(core, s).fields()}
+    source = (PACKAGE / module).read_text(encoding="utf-8")
+    found = copies(source, rows, function_docs=True)
+    assert [f for f in found if not _differs(module, f)] == []
+
+
+def _value_rows(struct: str) -> set[str]:
+    """The rows holding a number, a flag, a string, a list or an enum (not a nested struct)."""
+    return {
+        r["name"]
+        for r in getattr(core, struct).fields()
+        if isinstance(r["default"], float | int | bool | str | list)
+        or hasattr(type(r["default"]), "__members__")
+    }
+
+
+@pytest.mark.parametrize("module", sorted(COMPENSATORS))
+def test_no_compensator_module_writes_a_rows_default_or_entry(module):
+    struct, _ = COMPENSATORS[module]
+    source = (PACKAGE / module).read_text(encoding="utf-8")
+    found = copies(source, _value_rows(struct))
+    assert [f for f in found if "default of" in f or "documented by hand" in f] == []
+
+
+@pytest.mark.parametrize("module", sorted(COMPENSATORS))
+def test_every_table_built_compensator_shows_the_tables_defaults(module):
+    struct, built = COMPENSATORS[module]
+    for target in built:
+        assert getattr(target, "_table_struct", None) is getattr(core, struct), target
+        doc = "\n" + inspect.getdoc(target)
+        for row in getattr(core, struct).fields():
+            param = inspect.signature(target).parameters.get(row["name"])
+            if param is None or row["name"] not in _value_rows(struct):
+                continue
+            shown = row["default"]
+            shown = shown.name if hasattr(type(shown), "__members__") else shown
+            assert param.default in (None, param.empty, shown), (target, row["name"])
+            assert f"\n{row['name']} : " in doc, (target, row["name"])
+
+
+@pytest.mark.parametrize("module", sorted(TABLE_BUILT))
+def test_every_table_built_callable_shows_the_tables_defaults(module):
+    """The signature's default of each row is the table's (None: the C++ default, or an effect
+    left off), but where DIFFERS says why not; its docstring documents each row it takes."""
+    structs, built = TABLE_BUILT[module]
+    for target in built:
+        assert getattr(target, "_table_struct", None) is getattr(core, structs[0]), target
+        name = target.__name__
+        doc = "\n" + inspect.getdoc(target)
+        for row in getattr(core, structs[0]).fields():
+            param = inspect.signature(target).parameters.get(row["name"])
+            if param is None:
+                continue
+            if (module, name, row["name"]) not in DIFFERS:
+                assert param.default in (None, row["default"]), (name, row["name"])
+            assert f"\n{row['name']} : " in doc, (name, row["name"])
 
 
 def test_every_table_model_is_built_from_its_table():
@@ -212,3 +335,27 @@ def test_from_table_needs_a_documented_python_only_argument():
 
     with pytest.raises(TypeError, match=r"_Toy: argument 'gain' is in no table row"):
         from_table(_Toy)
+
+
+def test_table_fills_only_a_rows_default():
+    """TABLE is replaced by the row's default (positional and keyword-only arguments alike);
+    TABLE for an argument in no row is refused when the function is made."""
+    from tendonsheath._util.param_table import TABLE, table_defaults
+
+    @table_defaults(core.SensorParams)
+    def f(self, resolution=TABLE, *, history=TABLE, gain=2.0):  # a method: self aside
+        """A toy.
+
+        Parameters
+        ----------
+        gain : float, default 2.0
+            A gain.
+        """
+
+    assert f.__defaults__ == (0.0,) and f.__kwdefaults__ == {"history": 1024, "gain": 2.0}
+    assert "\nhistory : int, default 1024\n" in f.__doc__
+    with pytest.raises(TypeError, match=r"argument 'gain' defaults to TABLE but is in no row"):
+
+        @table_defaults(core.SensorParams)
+        def g(self, gain=TABLE):
+            """A toy."""

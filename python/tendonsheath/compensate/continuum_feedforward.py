@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-import math
 from typing import TYPE_CHECKING, Any
 
 from .._util.args import core_errors_as, number
+from .._util.param_table import TABLE, number_rows, row_default, table_constructor, table_defaults
 from .._util.units import warn_unit_slips
 from . import _bound as core
 from .base import Feedforward
@@ -14,24 +14,10 @@ from .limits import LimitsLike, as_limits
 if TYPE_CHECKING:
     from ..models import CurveAngleModel
 
+_PARAMS = core.ContinuumFeedforwardParams
 _MODES = {"exact": core.ContinuumMode.exact, "published": core.ContinuumMode.published}
 # saved files' old keys -> vocabulary names (docs/vocabulary.md): such files still load
 SAVED_AS = {"sheath_length": "length", "total_angle": "curve_angle"}
-# the settings that are fields of ContinuumFeedforwardParams (the same names in Python and C++)
-_SAME_NAMES = (
-    "friction",
-    "length",
-    "curve_angle",
-    "smoothing",
-    "stiffness",
-    "pretension",
-    "bending_stiffness",
-    "tendon_offset",
-    "backbone_length",
-    "proximal_radius",
-    "gap_factor",
-    "play",
-)
 
 
 def _numbers(arguments: dict) -> dict:
@@ -39,43 +25,18 @@ def _numbers(arguments: dict) -> dict:
     return {k: v for k, v in arguments.items() if k not in ("self", "mode", "limits", "who")}
 
 
+@table_constructor(core.ContinuumFeedforwardParams)
 class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ignore[misc]
     """Desired bending angle (rad) in, motor angle (rad) out: X_in = X_d + delta_ts + delta_F.
 
     ``mode="published"`` implements Lau et al.'s equations as printed (effective backlash
     delta_0 = 2 T0 L (1 - e^{-xi Theta})/EA and a separate delta_F, which partly double
     count); ``mode="exact"`` uses the capstan-consistent full-slip elongations (spec A5/A6)
-    under the bending force F = kappa EI / r_t, without double counting.
+    under the bending force F = kappa EI / r_t, without double counting. ``play``, the
+    motor-side play, adds S play / 2 to the motor command at the direction S.
 
     Parameters
     ----------
-    friction : float, default 0.1
-        Friction coefficient mu.
-    length : float, default 1.0
-        Sheath length L (m).
-    stiffness : float, default 2.4e4
-        Tendon axial stiffness EA (N).
-    pretension : float, default 10.0
-        Pretension T0 (N).
-    curve_angle : float, default pi
-        Curve angle Theta of the sheath (rad).
-    bending_stiffness : float, default 4e-4
-        Backbone bending stiffness EI (N m^2).
-    tendon_offset : float, default 2e-3
-        Distance r_t of the tendon from the backbone (m).
-    backbone_length : float, default 0.03
-        Length l of the bending segment (m).
-    proximal_radius : float, default 5e-3
-        Motor pulley radius (m).
-    gap_factor : float, default 1.0
-        Kesner and Howe's gamma delta_r: xi = gap_factor mu (1: plain capstan), > 0.
-    play : float, default 0.0
-        Motor-side play (a gearhead's backlash), total width in rad at the motor, >= 0:
-        S play / 2 added to the motor command at the direction S.
-    smoothing : float, default 0.1
-        Direction-switch speed (rad/s of the bending angle), > 0.
-    mode : {"exact", "published"}, default "exact"
-        Capstan-consistent equations, or Lau et al.'s as printed.
     limits : CommandLimits, tuple, dict or None, optional
         Saturation of the command and its rate (see :class:`CommandLimits`).
 
@@ -110,19 +71,19 @@ class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ign
 
     def __init__(
         self,
-        friction: float = 0.1,
-        length: float = 1.0,
-        stiffness: float = 2.4e4,
-        pretension: float = 10.0,
-        curve_angle: float = math.pi,
-        bending_stiffness: float = 4e-4,
-        tendon_offset: float = 2e-3,
-        backbone_length: float = 0.03,
-        proximal_radius: float = 5e-3,
-        gap_factor: float = 1.0,
-        play: float = 0.0,
-        smoothing: float = 0.1,
-        mode: str = "exact",
+        friction: float = TABLE,
+        length: float = TABLE,
+        stiffness: float = TABLE,
+        pretension: float = TABLE,
+        curve_angle: float = TABLE,
+        bending_stiffness: float = TABLE,
+        tendon_offset: float = TABLE,
+        backbone_length: float = TABLE,
+        proximal_radius: float = TABLE,
+        gap_factor: float = TABLE,
+        play: float = TABLE,
+        smoothing: float = TABLE,
+        mode: str = TABLE,
         limits: LimitsLike = None,
     ):
         who = type(self).__name__
@@ -134,7 +95,7 @@ class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ign
         self._settings = {k: number(who, k, v) for k, v in values.items()}
         self._settings.update(mode=mode, limits=as_limits(limits))
         p = core.ContinuumFeedforwardParams()
-        for name in _SAME_NAMES:
+        for name in number_rows(core.ContinuumFeedforwardParams):
             setattr(p, name, self._settings[name])
         p.mode = _MODES[mode]
         p.limits = self._settings["limits"].to_core()
@@ -144,13 +105,14 @@ class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ign
         warn_unit_slips(who, p)
 
     @classmethod
+    @table_defaults(core.ContinuumFeedforwardParams)
     def from_model(
         cls,
         model: CurveAngleModel,
         tendon_offset: float,
         backbone_length: float,
         curve_angle: float,
-        mode: str = "exact",
+        mode: str = TABLE,
         **options: Any,
     ) -> ContinuumFeedforward:
         """Built from a ``CurveAngleModel`` identified on the continuum drive (motor angle in,
@@ -204,8 +166,8 @@ class ContinuumFeedforward(Feedforward, core.ContinuumFeedforward):  # type: ign
             bending_stiffness=k_e * tendon_offset**2 * backbone_length,
             tendon_offset=tendon_offset,
             backbone_length=backbone_length,
-            proximal_radius=p.get("proximal_radius", 5e-3),
-            play=p.get("play", 0.0),
+            proximal_radius=p.get("proximal_radius", row_default(_PARAMS, "proximal_radius")),
+            play=p.get("play", row_default(_PARAMS, "play")),
             mode=mode,
             **options,
         )

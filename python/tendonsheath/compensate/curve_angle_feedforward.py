@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
@@ -10,6 +9,7 @@ import numpy as np
 
 from .._util.args import core_errors_as, number
 from .._util.arrays import as_signal, as_timed_signal, checked_dt
+from .._util.param_table import TABLE, number_rows, table_constructor
 from .._util.pyobject import bound_attribute
 from .._util.typing import ArrayLike
 from .._util.units import checked_curve_angle, warn_unit_slips
@@ -24,6 +24,7 @@ if TYPE_CHECKING:
     from ..plant.route import Route
 
 
+@table_constructor(core.CurveAngleFeedforwardParams)
 class CurveAngleFeedforward(Feedforward, core.CurveAngleFeedforward):  # type: ignore[misc]
     """x_in = r_d y_d + phi Delta_fwd + (1 - phi) Delta_bwd, re-evaluated every cycle.
 
@@ -33,37 +34,13 @@ class CurveAngleFeedforward(Feedforward, core.CurveAngleFeedforward):  # type: i
     sensor is needed: the route (or its curve angle) is the only extra input, from shape
     sensing or bending-knob readings. ``smoothing`` is the direction-switch speed (rad/s of
     the distal angle); ``max_correction_rate`` (m/s at the tendon) limits how fast the
-    correction may change, e.g. after a sudden change of the route. Angles in rad.
+    correction may change, e.g. after a sudden change of the route. Angles in rad. Only L/EA
+    (``length`` / ``stiffness``) enters the feedforward (a file saved with the old
+    ``compliance`` L/EA loads as stiffness 1/compliance and length 1 m; docs/vocabulary.md);
+    ``play``, crossed at each reversal, adds r_p play / 2 in the direction of motion.
 
     Parameters
     ----------
-    friction : float
-        Friction coefficient mu.
-    stiffness : float
-        Tendon axial stiffness EA (N), > 0; only L/EA enters the feedforward (a file saved
-        with the old ``compliance`` L/EA loads as stiffness 1/compliance and length 1 m;
-        docs/vocabulary.md).
-    length : float
-        Sheath length L (m), > 0.
-    pretension : float
-        Pretension T0 (N).
-    load_force : float, default 0.0
-        Constant distal load at the tendon (N).
-    load_stiffness : float, default 0.0
-        Environment stiffness at the tendon (N/m).
-    proximal_radius : float, default 5e-3
-        Motor pulley radius r_p (m).
-    distal_radius : float, default 5e-3
-        Joint pulley radius r_d (m).
-    curve_angle : float, default pi
-        Curve angle Theta (rad) until a route or another angle is given.
-    play : float, default 0.0
-        Motor-side play (a gearhead's backlash), total width in rad at the motor, >= 0:
-        crossed at each reversal, r_p play / 2 added in the direction of motion.
-    smoothing : float, default 0.05
-        Direction-switch speed (rad/s of the distal angle), > 0.
-    max_correction_rate : float, default inf
-        Largest rate of change of the correction (m/s at the tendon).
     limits : CommandLimits, tuple, dict or None, optional
         Saturation of the command and its rate (see :class:`CommandLimits`).
 
@@ -76,21 +53,7 @@ class CurveAngleFeedforward(Feedforward, core.CurveAngleFeedforward):  # type: i
     """
 
     control_inputs = ("y_d", "curve_angle")
-    _saved_settings = (
-        "friction",
-        "stiffness",
-        "length",
-        "pretension",
-        "load_force",
-        "load_stiffness",
-        "proximal_radius",
-        "distal_radius",
-        "curve_angle",
-        "play",
-        "smoothing",
-        "max_correction_rate",
-        "limits",
-    )
+    _saved_settings = (*number_rows(core.CurveAngleFeedforwardParams), "limits")
 
     def __init__(
         self,
@@ -98,31 +61,19 @@ class CurveAngleFeedforward(Feedforward, core.CurveAngleFeedforward):  # type: i
         stiffness: float,
         length: float,
         pretension: float,
-        load_force: float = 0.0,
-        load_stiffness: float = 0.0,
-        proximal_radius: float = 5e-3,
-        distal_radius: float = 5e-3,
-        curve_angle: float = math.pi,
-        play: float = 0.0,
-        smoothing: float = 0.05,
-        max_correction_rate: float = math.inf,
+        load_force: float = TABLE,
+        load_stiffness: float = TABLE,
+        proximal_radius: float = TABLE,
+        distal_radius: float = TABLE,
+        curve_angle: float = TABLE,
+        play: float = TABLE,
+        smoothing: float = TABLE,
+        max_correction_rate: float = TABLE,
         limits: LimitsLike = None,
     ):
         who = type(self).__name__
-        values = {
-            "friction": friction,
-            "stiffness": stiffness,
-            "length": length,
-            "pretension": pretension,
-            "load_force": load_force,
-            "load_stiffness": load_stiffness,
-            "proximal_radius": proximal_radius,
-            "distal_radius": distal_radius,
-            "curve_angle": curve_angle,
-            "play": play,
-            "smoothing": smoothing,
-            "max_correction_rate": max_correction_rate,
-        }
+        arguments = locals()
+        values = {k: arguments[k] for k in number_rows(core.CurveAngleFeedforwardParams)}
         self._settings = {k: number(who, k, v) for k, v in values.items()}
         self._settings["limits"] = as_limits(limits)
         with core_errors_as(who):

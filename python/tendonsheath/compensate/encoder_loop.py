@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import math
 from typing import TYPE_CHECKING, Any
 
 from .._util.args import core_errors_as, number
 from .._util.arrays import checked_dt
+from .._util.param_table import TABLE, number_rows, table_constructor
 from .._util.pyobject import bound_attribute
 from .._util.units import warn_unit_slips
 from ..protocols import step_signals
@@ -19,9 +19,10 @@ if TYPE_CHECKING:
     from ..identify.servo import ServoFit
     from .tuning import EncoderLoopDesign
 
-_GAINS = ("kp", "ki", "kd", "derivative_cutoff_hz", "max_correction")
+_GAINS = number_rows(core.EncoderLoopParams)  # kp, ki, kd, derivative_cutoff_hz, max_correction
 
 
+@table_constructor(core.EncoderLoopParams)
 class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
     """A feedforward's command made real by a PI(D) loop on the motor encoder.
 
@@ -44,16 +45,6 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
     feedforward : compensator
         Any feedforward with ``reset()``, ``step(y_d, dt)`` and ``status()`` (a shipped
         InverseFeedforward, CurveAngleFeedforward or ContinuumFeedforward, or your own).
-    kp : float, default 0.0
-        Proportional gain on the encoder error (rad per rad), >= 0.
-    ki : float, default 20.0
-        Integral gain (1/s), >= 0.
-    kd : float, default 0.0
-        Derivative gain (s), >= 0.
-    derivative_cutoff_hz : float, default 50.0
-        Corner of the derivative's first-order low-pass (Hz), > 0.
-    max_correction : float, default inf
-        Largest |correction| (rad), > 0.
     limits : CommandLimits, tuple, dict or None, optional
         Saturation of the servo command and its rate (after the correction).
 
@@ -77,11 +68,11 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
     def __init__(
         self,
         feedforward: Any,
-        kp: float = 0.0,
-        ki: float = 20.0,
-        kd: float = 0.0,
-        derivative_cutoff_hz: float = 50.0,
-        max_correction: float = math.inf,
+        kp: float = TABLE,
+        ki: float = TABLE,
+        kd: float = TABLE,
+        derivative_cutoff_hz: float = TABLE,
+        max_correction: float = TABLE,
         limits: LimitsLike = None,
     ):
         who = "EncoderLoop"
@@ -91,16 +82,10 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
                 f"{who}: feedforward must be a feedforward compensator with reset() and "
                 f"step(y_d, dt) (got {type(feedforward).__name__})"
             )
-        values = dict(
-            kp=kp,
-            ki=ki,
-            kd=kd,
-            derivative_cutoff_hz=derivative_cutoff_hz,
-            max_correction=max_correction,
-        )
+        values = locals()
         p = core.EncoderLoopParams()
-        for key, value in values.items():
-            setattr(p, key, number(who, key, value))
+        for key in _GAINS:
+            setattr(p, key, number(who, key, values[key]))
         self.limits = as_limits(limits)
         p.limits = self.limits.to_core()
         with core_errors_as(who):
@@ -231,7 +216,7 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         return None
 
     def __repr__(self) -> str:
-        gains = ", ".join(f"{k}={self._settings[k]:g}" for k in ("kp", "ki", "kd"))
+        gains = ", ".join(f"{k}={self._settings[k]:g}" for k in _GAINS[:3])  # kp, ki, kd
         return f"EncoderLoop({self.feedforward!r}, {gains})"
 
 

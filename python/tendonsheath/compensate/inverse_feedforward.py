@@ -11,6 +11,7 @@ import numpy as np
 
 from .._util.args import core_errors_as, number
 from .._util.arrays import as_signal, as_timed_signal, checked_dt
+from .._util.param_table import TABLE, table_constructor
 from .._util.typing import ArrayLike
 from .._util.units import checked_curve_angle
 from ..models import HysteresisModel
@@ -28,6 +29,7 @@ if TYPE_CHECKING:
 RangeLike = str | tuple[float, float] | list[float] | None
 
 
+@table_constructor(core.BacklashInverseParams)  # smoothing, limits
 class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
     """Motor command that makes `model` produce the desired output, with no distal sensor.
 
@@ -71,9 +73,6 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
     ----------
     model : HysteresisModel
         The identified model (any class above).
-    smoothing : float, default 0.05
-        Desired-output speed of the branch switch (output units per s), > 0 (D.2 and
-        curve-angle inverses).
     limits : CommandLimits, tuple, dict or None, optional
         Saturation of the command and its rate (see :class:`CommandLimits`).
     input_range : "identified", (float, float) or None, default "identified"
@@ -119,7 +118,7 @@ class InverseFeedforward(Feedforward, core.ModelInverse):  # type: ignore[misc]
     def __init__(
         self,
         model: HysteresisModel,
-        smoothing: float = 0.05,
+        smoothing: float = TABLE,
         limits: LimitsLike = None,
         input_range: RangeLike = "identified",
         range_margin: float = 0.1,

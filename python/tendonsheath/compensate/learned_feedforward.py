@@ -8,6 +8,7 @@ import numpy as np
 
 from .._util.args import core_errors_as, number, number_array
 from .._util.arrays import as_timed_signal, checked_dt
+from .._util.param_table import TABLE, table_constructor
 from .._util.pyobject import bound_attribute
 from .._util.typing import ArrayLike, FloatArray
 from .._util.units import warn_unit_slips
@@ -19,6 +20,7 @@ from .base import command_result
 from .limits import CommandLimits, LimitsLike, as_limits
 
 
+@table_constructor(core.LearnedFeedforwardParams)
 class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ignore[misc]
     """A feedforward's command plus a correction learned over repeated trials, played in time.
 
@@ -46,10 +48,6 @@ class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ig
     table : array_like of float, shape (n,)
         The correction (the command's unit, rad) at ``t = 0, table_dt, 2 table_dt, ...``;
         n >= 1, finite.
-    table_dt : float
-        Time between the table's samples (s), > 0.
-    hold_last : bool, default True
-        Past the table's end: add its last sample (True) or nothing (False).
     limits : CommandLimits, tuple, dict or None, optional
         Saturation of the corrected command and its rate.
 
@@ -73,7 +71,7 @@ class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ig
         feedforward: Any,
         table: ArrayLike,
         table_dt: float,
-        hold_last: bool = True,
+        hold_last: bool = TABLE,
         limits: LimitsLike = None,
     ):
         who = "LearnedFeedforward"

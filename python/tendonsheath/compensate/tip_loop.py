@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from .._util.args import core_errors_as, number
 from .._util.arrays import checked_dt
+from .._util.param_table import TABLE, number_rows, table_constructor
 from .._util.pyobject import bound_attribute
 from .._util.units import CURVE_ANGLE, warn_if_unit_slip, warn_unit_slips
 from ..protocols import step_signals
@@ -20,7 +21,7 @@ from .limits import CommandLimits, LimitsLike, as_limits
 if TYPE_CHECKING:
     from ..plant.route import Route
 
-_GAINS = ("kp", "ki", "kd", "derivative_cutoff_hz", "max_correction")
+_GAINS = number_rows(core.TipLoopParams)  # kp, ki, kd, derivative_cutoff_hz, max_correction
 MAX_SCHEDULE = 8  # TipLoopParams::kMaxSchedule
 
 Schedule = tuple[tuple[float, float], ...]
@@ -64,6 +65,7 @@ def _schedule(who: str, schedule: Any) -> Schedule:
     return pairs
 
 
+@table_constructor(core.TipLoopParams)
 class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
     """A feedforward's command corrected by a PI(D) loop on the measured tip angle.
 
@@ -86,16 +88,6 @@ class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
     feedforward : compensator
         Any feedforward with ``reset()``, ``step(y_d, dt)`` and ``status()`` (a shipped
         InverseFeedforward, CurveAngleFeedforward or ContinuumFeedforward, or your own).
-    kp : float, default 0.0
-        Proportional gain (rad of command per rad of tip error), >= 0.
-    ki : float, default 0.0
-        Integral gain (1/s), >= 0.
-    kd : float, default 0.0
-        Derivative gain (s), >= 0.
-    derivative_cutoff_hz : float, default 50.0
-        Corner of the derivative's first-order low-pass (Hz), > 0.
-    max_correction : float, default inf
-        Largest |correction| (rad), > 0.
     schedule : sequence of (float, float), dict or None, optional
         Up to 8 (curve_angle, gain) points: curve angles (rad) strictly increasing and
         finite, gains > 0. A dict {curve_angle: gain} is taken in order of its angles.
@@ -122,11 +114,11 @@ class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
     def __init__(
         self,
         feedforward: Any,
-        kp: float = 0.0,
-        ki: float = 0.0,
-        kd: float = 0.0,
-        derivative_cutoff_hz: float = 50.0,
-        max_correction: float = math.inf,
+        kp: float = TABLE,
+        ki: float = TABLE,
+        kd: float = TABLE,
+        derivative_cutoff_hz: float = TABLE,
+        max_correction: float = TABLE,
         schedule: Any = None,
         limits: LimitsLike = None,
     ):
@@ -137,16 +129,10 @@ class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
                 f"{who}: feedforward must be a feedforward compensator with reset() and "
                 f"step(y_d, dt) (got {type(feedforward).__name__})"
             )
-        values = dict(
-            kp=kp,
-            ki=ki,
-            kd=kd,
-            derivative_cutoff_hz=derivative_cutoff_hz,
-            max_correction=max_correction,
-        )
+        values = locals()
         p = core.TipLoopParams()
-        for key, value in values.items():
-            setattr(p, key, number(who, key, value))
+        for key in _GAINS:
+            setattr(p, key, number(who, key, values[key]))
         pairs = _schedule(who, schedule)
         self.limits = as_limits(limits)
         p.limits = self.limits.to_core()
@@ -449,7 +435,7 @@ class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
         return out
 
     def __repr__(self) -> str:
-        gains = ", ".join(f"{k}={self._settings[k]:g}" for k in ("kp", "ki", "kd"))
+        gains = ", ".join(f"{k}={self._settings[k]:g}" for k in _GAINS[:3])  # kp, ki, kd
         sched = f", schedule={list(self.schedule)}" if self.schedule else ""
         return f"TipLoop({self.feedforward!r}, {gains}{sched})"
 

@@ -22,24 +22,10 @@ from collections.abc import Callable, Sequence
 from typing import Any, TypeVar
 
 from .._util.args import integer, number
+from .._util.param_table import range_text, with_parameters
 from .base import HysteresisModel
 
 _T = TypeVar("_T", bound=type)
-
-# numpydoc's section headers that follow Parameters, in order
-_LATER_SECTIONS = (
-    "Returns",
-    "Yields",
-    "Receives",
-    "Other Parameters",
-    "Raises",
-    "Warns",
-    "Warnings",
-    "See Also",
-    "Notes",
-    "References",
-    "Examples",
-)
 
 
 def table_rows(cls: type) -> list[dict[str, Any]]:
@@ -110,7 +96,14 @@ def from_table(cls: _T) -> _T:
         own = _init_taking(cls, signature)
         setattr(cls, "__init__", own)  # noqa: B010 - mypy refuses an assignment to __init__
     own.__signature__ = signature
-    cls.__doc__ = _with_parameters(cls, cls.__doc__ or "", signature, rows)
+    cls.__doc__ = with_parameters(
+        cls.__name__,
+        cls.__doc__ or "",
+        signature,
+        rows,
+        cls._python_value,  # type: ignore[attr-defined]
+        tuple(getattr(cls, "derived_params", ())),
+    )
     return cls
 
 
@@ -168,7 +161,7 @@ def checked_values(
         else:
             out[name] = number(owner, name, values[name])
         v = float(out[name])
-        bound = _range_text(row)
+        bound = range_text(row)
         lo_ok = v >= row["lo"] if row["lo_closed"] else v > row["lo"]
         hi_ok = v <= row["hi"] if row["hi_closed"] else v < row["hi"]
         finite = math.isfinite(v) or (row["check"] == "positive_or_inf" and v == math.inf)
@@ -241,151 +234,6 @@ def _init_taking(cls: type, signature: inspect.Signature) -> Callable[..., None]
     __init__.__module__ = cls.__module__
     __init__.__doc__ = f"Build a {cls.__name__} (see the class docstring)."
     return __init__
-
-
-# -- the docstring's Parameters section --------------------------------------------------------
-
-
-def _number(value: float) -> str:
-    return f"{value:g}"
-
-
-def _range_text(row: dict[str, Any]) -> str:
-    """The row's valid range in words ("> 0", "in [0, 1]"), "" when it has none."""
-    lo, hi = row["lo"], row["hi"]
-    check = row["check"]
-    if check in ("unchecked",) or (math.isinf(lo) and math.isinf(hi) and check != "finite"):
-        return ""
-    if check == "finite":
-        return "finite"
-    if check == "positive_or_inf":
-        return "> 0 (inf: no limit)"
-    low = f"{'>=' if row['lo_closed'] else '>'} {_number(lo)}" if not math.isinf(lo) else ""
-    high = f"{'<=' if row['hi_closed'] else '<'} {_number(hi)}" if not math.isinf(hi) else ""
-    if low and high:
-        return (
-            f"in {'[' if row['lo_closed'] else '('}{_number(lo)}, {_number(hi)}"
-            f"{']' if row['hi_closed'] else ')'}"
-        )
-    return low or high
-
-
-def _type_text(value: Any) -> str:
-    if isinstance(value, bool):
-        return "bool"
-    if isinstance(value, int):
-        return "int"
-    if isinstance(value, float):
-        return "float"
-    if isinstance(value, str):
-        return "str"
-    if isinstance(value, tuple):
-        return "sequence of float"
-    return type(value).__name__
-
-
-def _row_entry(cls: type, row: dict[str, Any], param: inspect.Parameter) -> list[str]:
-    """``name : type, default value`` and the row's doc, unit and range."""
-    derived = getattr(cls, "derived_params", ())
-    shown = _python_default(cls, row)
-    kind = _type_text(shown)
-    if param.default is None:
-        head = f"{row['name']} : {kind}, optional"
-    else:
-        head = f"{row['name']} : {kind}, default {shown!r}"
-    doc = row["doc"]  # as written (a symbol such as mu or c_v keeps its case)
-    unit = row["unit"] + (" unit" if row["unit"] in ("input", "output", "command") else "")
-    unit = f" ({unit})" if unit else ""
-    bound = _range_text(row) if type(shown) is type(row["default"]) else ""  # not of a code
-    text = f"{doc}{unit}" + (f"; {bound}" if bound else "") + "."
-    if param.default is None and shown is not None and row["name"] not in derived:
-        text += f" None gives the default, {shown!r}."
-    return [head, *_wrapped(text)]
-
-
-def _wrapped(text: str, width: int = 88) -> list[str]:
-    lines, line = [], "   "
-    for word in text.split():
-        if len(line) + 1 + len(word) > width:
-            lines.append(line)
-            line = "   "
-        line += " " + word
-    return [*lines, line]
-
-
-def _sections(doc: str) -> tuple[list[str], dict[str, list[str]], list[str]]:
-    """The docstring's lines before its first section, its sections by header, and their
-    order."""
-    lines = inspect.cleandoc(doc).splitlines()
-    head: list[str] = []
-    sections: dict[str, list[str]] = {}
-    order: list[str] = []
-    current = None
-    i = 0
-    while i < len(lines):
-        nxt = lines[i + 1] if i + 1 < len(lines) else ""
-        if lines[i].strip() and nxt.strip() and set(nxt.strip()) == {"-"}:
-            current = lines[i].strip()
-            sections[current] = []
-            order.append(current)
-            i += 2
-            continue
-        (head if current is None else sections[current]).append(lines[i])
-        i += 1
-    return head, sections, order
-
-
-def _own_entries(lines: list[str]) -> dict[str, list[str]]:
-    """A hand-written Parameters section's entries, under each name they document."""
-    entries: dict[str, list[str]] = {}
-    current: list[str] | None = None
-    for line in lines:
-        if line and not line[0].isspace():
-            current = [line]
-            for name in line.split(" : ")[0].split(","):
-                entries[name.strip()] = current
-        elif current is not None:
-            current.append(line)
-    return entries
-
-
-def _with_parameters(
-    cls: type, doc: str, signature: inspect.Signature, rows: list[dict[str, Any]]
-) -> str:
-    """The docstring with a Parameters section in the signature's order: the rows' entries
-    from the table, the Python-only arguments' from its own Parameters section."""
-    head, sections, order = _sections(doc)
-    own = _own_entries(sections.pop("Parameters", []))
-    by_name = {r["name"]: r for r in rows}
-    entries: list[str] = []
-    done: set[int] = set()
-    for param in list(signature.parameters.values())[1:]:  # self aside
-        star = {"VAR_KEYWORD": "**", "VAR_POSITIONAL": "*"}.get(param.kind.name, "")
-        key = star + param.name
-        if key in own:
-            if id(own[key]) not in done:  # "a, b : float" documents both
-                entries += [line.rstrip() for line in own[key] if line.strip()]
-                done.add(id(own[key]))
-        elif param.name in by_name:
-            entries += _row_entry(cls, by_name[param.name], param)
-        else:
-            raise TypeError(
-                f"{cls.__name__}: argument {key!r} is in no table row and not documented"
-            )
-    order = [s for s in order if s != "Parameters"]
-    later = [i for i, s in enumerate(order) if s in _LATER_SECTIONS]
-    at = later[0] if later else len(order)
-    order.insert(at, "Parameters")
-    sections["Parameters"] = entries
-    while head and not head[-1].strip():
-        head.pop()
-    out = [*head]
-    for name in order:
-        body = sections[name]
-        while body and not body[-1].strip():
-            body = body[:-1]
-        out += ["", name, "-" * len(name), *body]
-    return "\n".join(out) + "\n"
 
 
 __all__ = ["checked_values", "from_table", "table_default", "table_rows"]

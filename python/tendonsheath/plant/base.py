@@ -7,9 +7,11 @@ The plants themselves: :mod:`~tendonsheath.plant.pull_pull`,
 
 from __future__ import annotations
 
+import functools
+import inspect
 import warnings
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -41,11 +43,6 @@ def _options(cls, max_increment, fast_path):
     return o
 
 
-# Effects beyond the quasi-static capstan chain (C++ parameter names); None leaves the default.
-_RATE_EFFECTS = ("sheath_viscosity", "relaxation_fraction", "relaxation_time")
-_PAIR_EFFECTS = ("distal_inertia", "distal_damping", *_RATE_EFFECTS, "friction2", "stiffness2")
-
-
 def _set_effects(p, cls, names, values):
     """Copy the effect keywords onto the C++ parameters (which validate them at construction)."""
     for name in names:
@@ -55,19 +52,27 @@ def _set_effects(p, cls, names, values):
         setattr(p, name, number(cls, name, value))
 
 
-# The plants' scalar parameters (same names in Python and C++).
-_PAIR_NUMBERS = ("friction", "stiffness", "pretension", "proximal_radius", "distal_radius")
-_CONTINUUM_NUMBERS = (
-    *_PAIR_NUMBERS[:4],
-    "bending_stiffness",
-    "tendon_offset",
-    "backbone_length",
-)
-
-
 def _set_numbers(p, cls, names, values):
     for name in names:
         setattr(p, name, number(cls, name, values[name]))
+
+
+def _row_arguments(plant: type) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The arguments of a plant's constructor that set a row of its table (``elements`` aside,
+    checked on its own), in the signature's order: those with a default (numbers, always
+    set) and those whose default is None (effects beyond the quasi-static chain, left at the
+    C++ default, off, when None)."""
+    owner = next(k for k in plant.__mro__ if "_table_struct" in vars(k))
+    return _arguments_of_rows(owner, vars(owner)["_table_struct"])
+
+
+@functools.cache
+def _arguments_of_rows(owner: Any, struct: Any) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    rows = {r["name"] for r in struct.fields()} - {"elements"}
+    params = inspect.signature(vars(owner)["__init__"]).parameters.values()
+    numbers = tuple(p.name for p in params if p.name in rows and p.default is not None)
+    effects = tuple(p.name for p in params if p.name in rows and p.default is None)
+    return numbers, effects
 
 
 def _effects_of(p, names) -> dict:
@@ -108,6 +113,8 @@ class _Plant(PythonObject):
     and describes its routes."""
 
     _rows = 1
+    # the C++ parameter struct whose table the constructor's rows come from (table_constructor)
+    _table_struct: ClassVar[Any] = None
     # the C++ motor the plant steps between command and pulley (a copy of ``motor``, at rest)
     _drive: Any = None
     motor: Motor | None = None

@@ -7,6 +7,7 @@ import math
 from typing import TYPE_CHECKING
 
 from .._util.args import core_errors_as
+from .._util.param_table import TABLE, table_constructor
 from .._util.units import warn_unit_slips
 from . import _bound as core
 from .loads import (
@@ -19,17 +20,17 @@ from .sensor import Sensor
 if TYPE_CHECKING:
     pass
 from .base import (
-    _CONTINUUM_NUMBERS,
-    _PAIR_EFFECTS,
     _check_elements,
     _check_route,
     _options,
+    _row_arguments,
     _set_effects,
     _set_numbers,
 )
 from .pull_pull import _PairPlant
 
 
+@table_constructor(core.ContinuumParams)
 class ContinuumPlant(_PairPlant, core.ContinuumPlant):  # type: ignore[misc]
     """A pull-pull pair bending a continuum segment (Lau et al. 2015, spec C.5); output theta_b.
 
@@ -42,22 +43,6 @@ class ContinuumPlant(_PairPlant, core.ContinuumPlant):  # type: ignore[misc]
     ----------
     route : Route, optional
         Route of sheath 1 (default: 1 m, Theta = pi, uniform).
-    friction : float, default 0.1
-        Friction coefficient mu (of sheath 1 for a pair).
-    stiffness : float, default 2.4e4
-        Tendon axial stiffness EA (N) (of tendon 1 for a pair).
-    pretension : float, default 10.0
-        Pretension T0 of both tendons (N).
-    proximal_radius : float, default 5e-3
-        Proximal (motor) pulley radius r_p (m).
-    bending_stiffness : float, default 4e-4
-        Backbone bending stiffness EI (N m^2).
-    tendon_offset : float, default 2e-3
-        Distance r_t of the tendons from the backbone (m).
-    backbone_length : float, default 0.03
-        Length l of the segment (m).
-    elements : int, default 100
-        Elements N per sheath, >= 2.
     motor : Motor, optional
         A drive between the command and the proximal pulley.
     route2 : Route, optional
@@ -68,20 +53,6 @@ class ContinuumPlant(_PairPlant, core.ContinuumPlant):  # type: ignore[misc]
         Largest input sub-increment of the solver (m); None: the plant chooses.
     fast_path : bool, default True
         Use the solver's exact shortcuts (lazy update while the slip map stays valid).
-    distal_inertia : float, optional
-        J_d (kg m^2) of a dynamic distal joint (None: off).
-    distal_damping : float, optional
-        c_d (N m s/rad) of the distal joint (None: off).
-    sheath_viscosity : float, optional
-        Viscous drag on the sliding tendon (N s/m per metre of sheath; None: off).
-    relaxation_fraction : float, optional
-        Share r in [0, 1) of EA that relaxes (standard linear solid; None: off).
-    relaxation_time : float, optional
-        Time constant tau of the relaxation (s).
-    friction2 : float, optional
-        Friction of sheath 2 (None: as sheath 1).
-    stiffness2 : float, optional
-        EA of tendon 2 (N) (None: as tendon 1).
     encoder : Sensor, optional
         The motor encoder's reading of the motor shaft (resolution, noise): what
         ``SimulationResult.q_motor`` logs and what ``bench.run``'s controllers read (None:
@@ -99,14 +70,14 @@ class ContinuumPlant(_PairPlant, core.ContinuumPlant):  # type: ignore[misc]
     def __init__(
         self,
         route: Route | None = None,
-        friction: float = 0.1,
-        stiffness: float = 2.4e4,
-        pretension: float = 10.0,
-        proximal_radius: float = 5e-3,
-        bending_stiffness: float = 4e-4,
-        tendon_offset: float = 2e-3,
-        backbone_length: float = 0.03,
-        elements: int = 100,
+        friction: float = TABLE,
+        stiffness: float = TABLE,
+        pretension: float = TABLE,
+        proximal_radius: float = TABLE,
+        bending_stiffness: float = TABLE,
+        tendon_offset: float = TABLE,
+        backbone_length: float = TABLE,
+        elements: int = TABLE,
         motor: Motor | None = None,
         route2: Route | None = None,
         sensor: Sensor | None = None,
@@ -123,15 +94,16 @@ class ContinuumPlant(_PairPlant, core.ContinuumPlant):  # type: ignore[misc]
     ):
         self._keep_arguments(locals())
         cls = type(self).__name__
-        effects = {k: v for k, v in locals().items() if k in _PAIR_EFFECTS}
+        numbers, effect_names = _row_arguments(ContinuumPlant)
+        effects = {k: v for k, v in locals().items() if k in effect_names}
         route = Route.uniform(1.0, math.pi) if route is None else route
         self.route = _check_route(route, "route", cls)
         self.route2 = _check_route(route if route2 is None else route2, "route2", cls)
         c = core.ContinuumParams()
-        _set_numbers(c, cls, _CONTINUUM_NUMBERS, locals())
+        _set_numbers(c, cls, numbers, locals())
         c.elements = _check_elements(elements, cls)
         c.options = _options(cls, max_increment, fast_path)
-        _set_effects(c, cls, _PAIR_EFFECTS, effects)
+        _set_effects(c, cls, effect_names, effects)
         if c.backbone_length > 0 and not math.isfinite(c.bending_stiffness / c.backbone_length):
             raise ValueError(  # else the core names the derived load_stiffness = inf
                 f"{cls}: backbone_length {c.backbone_length:g} m is too small: the backbone's "

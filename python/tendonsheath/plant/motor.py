@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-import math
+import inspect
 from typing import Any
 
 import numpy as np
 
 from .._util.args import core_errors_as, number
 from .._util.arrays import as_timed_signal, checked_dt
+from .._util.param_table import TABLE, table_defaults
 from .._util.pyobject import PythonObject, bound_attribute
 from .._util.typing import ArrayLike
 from .._util.units import warn_unit_slips
@@ -16,37 +17,15 @@ from ..simulation_result import SimulationResult
 from ..status import Status
 from . import _bound as core
 
-# a constructor's arguments, by kind: each sets the MotorParams field of its name (a position
-# motor's ``inertia`` is the reflected inertia; a torque motor's is the rotor's own)
-_MOTOR_FIELDS = {
-    core.MotorKind.Position: (
-        "bandwidth_hz",
-        "damping",
-        "max_speed",
-        "max_accel",
-        "inertia",
-        "coulomb_friction",
-        "viscous_friction",
-        "gear_backlash",
-        "integral_time",
-    ),
-    core.MotorKind.Torque: (
-        "inertia",
-        "viscous",
-        "max_torque",
-        "max_speed",
-        "coulomb_friction",
-        "gear_backlash",
-    ),
-}
-
 
 def _motor_params(kind, who: str, arguments: dict):
-    """MotorParams of ``kind`` from a constructor's arguments, each checked to be a number."""
+    """MotorParams of ``kind`` from a constructor's ``locals()`` (each argument names a field),
+    each checked to be a number."""
     p = core.MotorParams()
     p.kind = kind
-    for name in _MOTOR_FIELDS[kind]:
-        setattr(p, name, number(who, name, arguments[name]))
+    for name, value in arguments.items():
+        if name != "cls":
+            setattr(p, name, number(who, name, value))
     return p
 
 
@@ -117,17 +96,18 @@ class Motor(PythonObject, core.Motor):  # type: ignore[misc]
         return _motor_from_fields, (fields,)
 
     @classmethod
+    @table_defaults(core.MotorParams)
     def position(  # type: ignore[override]
         cls,
-        bandwidth_hz: float = 1.5,
-        damping: float = 0.7,
-        max_speed: float = math.inf,
-        max_accel: float = math.inf,
-        inertia: float = 0.0,
-        coulomb_friction: float = 0.0,
-        viscous_friction: float = 0.0,
-        gear_backlash: float = 0.0,
-        integral_time: float = 0.0,
+        bandwidth_hz: float = TABLE,
+        damping: float = TABLE,
+        max_speed: float = TABLE,
+        max_accel: float = TABLE,
+        inertia: float = TABLE,
+        coulomb_friction: float = TABLE,
+        viscous_friction: float = TABLE,
+        gear_backlash: float = TABLE,
+        integral_time: float = TABLE,
     ) -> Motor:
         """A position-controlled motor (a second-order lag on the commanded angle).
 
@@ -138,25 +118,6 @@ class Motor(PythonObject, core.Motor):  # type: ignore[misc]
 
         Parameters
         ----------
-        bandwidth_hz : float, default 1.5
-            Natural frequency of the position loop (Hz), > 0.
-        damping : float, default 0.7
-            Damping ratio zeta of the loop, > 0.
-        max_speed : float, default inf
-            Speed limit (rad/s), > 0.
-        max_accel : float, default inf
-            Acceleration limit (rad/s^2), > 0.
-        inertia : float, default 0.0
-            Reflected inertia J (kg m^2), >= 0; 0 is the ideal lag that feels no torque.
-        coulomb_friction : float, default 0.0
-            Coulomb friction on the shaft (N m), >= 0.
-        viscous_friction : float, default 0.0
-            Viscous friction on the shaft (N m s/rad), >= 0.
-        gear_backlash : float, default 0.0
-            Total play between shaft and pulley (rad), >= 0.
-        integral_time : float, default 0.0
-            Integral time T_i of the position loop (s): 0 (no integral action, the PD servo
-            that yields to a load) or > 1 / (2 damping w), w = 2 pi bandwidth_hz.
 
         Returns
         -------
@@ -171,14 +132,15 @@ class Motor(PythonObject, core.Motor):  # type: ignore[misc]
         return cls(_motor_params(core.MotorKind.Position, "Motor.position", locals()))
 
     @classmethod
+    @table_defaults(core.MotorParams)
     def torque(
         cls,
         inertia: float = 1e-2,
-        viscous: float = 0.2,
-        max_torque: float = math.inf,
-        max_speed: float = math.inf,
-        coulomb_friction: float = 0.0,
-        gear_backlash: float = 0.0,
+        viscous: float = TABLE,
+        max_torque: float = TABLE,
+        max_speed: float = TABLE,
+        coulomb_friction: float = TABLE,
+        gear_backlash: float = TABLE,
     ) -> Motor:
         """A torque-commanded motor: J q'' + b q' = sat(tau_cmd, max_torque) + tau_tendons.
 
@@ -186,16 +148,6 @@ class Motor(PythonObject, core.Motor):  # type: ignore[misc]
         ----------
         inertia : float, default 1e-2
             Rotor inertia J (kg m^2), > 0.
-        viscous : float, default 0.2
-            Viscous damping b (N m s/rad), >= 0.
-        max_torque : float, default inf
-            Saturation of the commanded torque (N m), > 0.
-        max_speed : float, default inf
-            Speed limit (rad/s), > 0.
-        coulomb_friction : float, default 0.0
-            Coulomb friction on the shaft (N m), >= 0.
-        gear_backlash : float, default 0.0
-            Total play between shaft and pulley (rad), >= 0.
 
         Returns
         -------
@@ -222,16 +174,7 @@ class Motor(PythonObject, core.Motor):  # type: ignore[misc]
     def params(self) -> dict:  # type: ignore[override]
         """The motor's parameters by the names of :meth:`position` or :meth:`torque`."""
         p = self._struct()
-        if self.kind == "position":
-            keys = ("bandwidth_hz", "damping", "max_speed", "max_accel")
-            extra = {"inertia": p.inertia, "viscous_friction": p.viscous_friction}
-        else:
-            keys = ("inertia", "viscous", "max_torque", "max_speed")
-            extra = {}
-        extra.update(coulomb_friction=p.coulomb_friction, gear_backlash=p.gear_backlash)
-        if self.kind == "position":
-            extra["integral_time"] = p.integral_time
-        return {**{k: getattr(p, k) for k in keys}, **extra}
+        return {k: getattr(p, k) for k in inspect.signature(getattr(Motor, self.kind)).parameters}
 
     @property
     def integral(self) -> float:  # type: ignore[override]

@@ -15,6 +15,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from .._util.args import core_errors_as
+from .._util.param_table import TABLE, table_constructor
 from .._util.pyobject import bound_attribute
 from .._util.units import warn_unit_slips
 from . import _bound as core
@@ -31,13 +32,12 @@ from .sensor import Sensor
 if TYPE_CHECKING:
     pass
 from .base import (
-    _PAIR_EFFECTS,
-    _PAIR_NUMBERS,
     _check_elements,
     _check_route,
     _effects_of,
     _options,
     _Plant,
+    _row_arguments,
     _set_effects,
     _set_numbers,
 )
@@ -56,7 +56,7 @@ class _PairPlant(_Plant):
     @property
     def effects(self) -> dict:
         """The effects beyond the quasi-static pair (C++ names; 0 or -1 = off / as tendon 1)."""
-        return _effects_of(bound_attribute(self, "params"), _PAIR_EFFECTS)
+        return _effects_of(bound_attribute(self, "params"), _row_arguments(type(self))[1])
 
     # parameters
     @property
@@ -199,6 +199,7 @@ class _PairPlant(_Plant):
         }
 
 
+@table_constructor(core.PullPullParams)
 class PullPullPlant(_PairPlant, core.PullPullPlant):  # type: ignore[misc]
     """The bidirectional pull-pull pair (Sun, Wang & Phee 2015; Do et al. 2015): angle in and out.
 
@@ -227,18 +228,6 @@ class PullPullPlant(_PairPlant, core.PullPullPlant):  # type: ignore[misc]
     ----------
     route : Route
         Route of the sheath (of tendon 1 for a pair).
-    friction : float, default 0.1
-        Friction coefficient mu (of sheath 1 for a pair).
-    stiffness : float, default 2.4e4
-        Tendon axial stiffness EA (N) (of tendon 1 for a pair).
-    pretension : float, default 10.0
-        Pretension T0 of both tendons (N).
-    proximal_radius : float, default 5e-3
-        Proximal (motor) pulley radius r_p (m).
-    distal_radius : float, default 5e-3
-        Distal pulley radius r_d (m).
-    elements : int, default 100
-        Elements N per sheath, >= 2.
     load : ConstantTorque, TorsionalSpring or SpringDamper, optional
         The load on the distal pulley (None: none).
     motor : Motor, optional
@@ -251,20 +240,6 @@ class PullPullPlant(_PairPlant, core.PullPullPlant):  # type: ignore[misc]
         Largest input sub-increment of the solver (m); None: the plant chooses.
     fast_path : bool, default True
         Use the solver's exact shortcuts (lazy update while the slip map stays valid).
-    distal_inertia : float, optional
-        J_d (kg m^2) of a dynamic distal joint (None: off).
-    distal_damping : float, optional
-        c_d (N m s/rad) of the distal joint (None: off).
-    sheath_viscosity : float, optional
-        Viscous drag on the sliding tendon (N s/m per metre of sheath; None: off).
-    relaxation_fraction : float, optional
-        Share r in [0, 1) of EA that relaxes (standard linear solid; None: off).
-    relaxation_time : float, optional
-        Time constant tau of the relaxation (s).
-    friction2 : float, optional
-        Friction of sheath 2 (None: as sheath 1).
-    stiffness2 : float, optional
-        EA of tendon 2 (N) (None: as tendon 1).
     encoder : Sensor, optional
         The motor encoder's reading of the motor shaft (resolution, noise): what
         ``SimulationResult.q_motor`` logs and what ``bench.run``'s controllers read (None:
@@ -282,12 +257,12 @@ class PullPullPlant(_PairPlant, core.PullPullPlant):  # type: ignore[misc]
     def __init__(
         self,
         route: Route,
-        friction: float = 0.1,
-        stiffness: float = 2.4e4,
-        pretension: float = 10.0,
-        proximal_radius: float = 5e-3,
-        distal_radius: float = 5e-3,
-        elements: int = 100,
+        friction: float = TABLE,
+        stiffness: float = TABLE,
+        pretension: float = TABLE,
+        proximal_radius: float = TABLE,
+        distal_radius: float = TABLE,
+        elements: int = TABLE,
         load: ConstantTorque | TorsionalSpring | SpringDamper | None = None,
         motor: Motor | None = None,
         route2: Route | None = None,
@@ -305,7 +280,8 @@ class PullPullPlant(_PairPlant, core.PullPullPlant):  # type: ignore[misc]
     ):
         self._keep_arguments(locals())
         cls = type(self).__name__
-        effects = {k: v for k, v in locals().items() if k in _PAIR_EFFECTS}
+        numbers, effect_names = _row_arguments(PullPullPlant)
+        effects = {k: v for k, v in locals().items() if k in effect_names}
         self.route = _check_route(route, "route", cls)
         self.route2 = _check_route(route if route2 is None else route2, "route2", cls)
         if load is not None and not isinstance(
@@ -317,12 +293,12 @@ class PullPullPlant(_PairPlant, core.PullPullPlant):  # type: ignore[misc]
             )
         self.load = load
         p = core.PullPullParams()
-        _set_numbers(p, cls, _PAIR_NUMBERS, locals())
+        _set_numbers(p, cls, numbers, locals())
         p.elements = _check_elements(elements, cls)
         if load is not None:
             p.load_torque, p.load_stiffness, p.load_damping = load.rotary()
         p.options = _options(cls, max_increment, fast_path)
-        _set_effects(p, cls, _PAIR_EFFECTS, effects)
+        _set_effects(p, cls, effect_names, effects)
         with core_errors_as(cls):
             core.PullPullPlant.__init__(self, p, self.route, self.route2)
         warn_unit_slips(cls, p)

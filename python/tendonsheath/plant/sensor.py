@@ -4,11 +4,13 @@ plant/sensor.hpp)."""
 from __future__ import annotations
 
 import functools
+import inspect
 
 import numpy as np
 
 from .._util.args import core_errors_as, integer, number
 from .._util.arrays import as_vector, checked_dt
+from .._util.param_table import TABLE, table_constructor
 from .._util.pyobject import PythonObject, bound_attribute
 from .._util.typing import ArrayLike, FloatArray
 from .._util.units import warn_unit_slips
@@ -16,6 +18,7 @@ from ..status import Status
 from . import _bound as core
 
 
+@table_constructor(core.SensorParams)
 class Sensor(PythonObject, core.Sensor):  # type: ignore[misc]
     """Reading y = quantise(x(t - delay) + noise): noise ~ N(0, noise_std^2), steps of
     ``resolution``, ``delay`` seconds of latency.
@@ -29,17 +32,6 @@ class Sensor(PythonObject, core.Sensor):  # type: ignore[misc]
 
     Parameters
     ----------
-    resolution : float, default 0.0
-        Quantisation step (unit of x), >= 0; 0 means none.
-    noise_std : float, default 0.0
-        Standard deviation of the Gaussian noise (unit of x), >= 0.
-    seed : int, default 0
-        Seed of the noise sequence, >= 0.
-    delay : float, default 0.0
-        Latency (s), >= 0; 0 means none.
-    history : int, default 1024
-        Samples kept for the delay, in [1, 2^24]; they must span ``delay`` (at 1 kHz the
-        default covers 1.023 s).
 
     Raises
     ------
@@ -49,11 +41,11 @@ class Sensor(PythonObject, core.Sensor):  # type: ignore[misc]
 
     def __init__(
         self,
-        resolution: float = 0.0,
-        noise_std: float = 0.0,
-        seed: int = 0,
-        delay: float = 0.0,
-        history: int = 1024,
+        resolution: float = TABLE,
+        noise_std: float = TABLE,
+        seed: int = TABLE,
+        delay: float = TABLE,
+        history: int = TABLE,
     ):
         p = core.SensorParams()
         p.resolution = number("Sensor", "resolution", resolution)
@@ -79,7 +71,7 @@ class Sensor(PythonObject, core.Sensor):  # type: ignore[misc]
     def params(self) -> dict:  # type: ignore[override]
         """The sensor's settings by the names of its constructor (a copy)."""
         p = self._struct()
-        return {k: getattr(p, k) for k in ("resolution", "noise_std", "seed", "delay", "history")}
+        return {k: getattr(p, k) for k in inspect.signature(Sensor).parameters}
 
     @property
     def resolution(self) -> float:

@@ -5,7 +5,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from .._util.args import core_errors_as, number
+from .._util.args import core_errors_as
+from .._util.param_table import TABLE, table_constructor
 from .._util.units import warn_unit_slips
 from . import _bound as core
 from . import physics
@@ -21,15 +22,17 @@ from .sensor import Sensor
 if TYPE_CHECKING:
     pass
 from .base import (
-    _RATE_EFFECTS,
     _check_elements,
     _check_route,
     _options,
     _Plant,
+    _row_arguments,
     _set_effects,
+    _set_numbers,
 )
 
 
+@table_constructor(core.SingleTendonParams)
 class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
     """One tendon in one sheath: proximal displacement in (m), distal displacement out (m).
 
@@ -40,12 +43,6 @@ class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
     ----------
     route : Route
         Route of the sheath.
-    friction : float, default 0.1
-        Friction coefficient mu.
-    stiffness : float, default 2.4e4
-        Tendon axial stiffness EA (N).
-    elements : int, default 100
-        Elements N per sheath, >= 2.
     load : ConstantForce, LinearSpring or SpringPreload, optional
         The distal load (default ConstantForce(10.0)).
     motor : Motor, optional
@@ -56,12 +53,6 @@ class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
         Largest input sub-increment of the solver (m); None: the plant chooses.
     fast_path : bool, default True
         Use the solver's exact shortcuts (lazy update while the slip map stays valid).
-    sheath_viscosity : float, optional
-        Viscous drag on the sliding tendon (N s/m per metre of sheath; None: off).
-    relaxation_fraction : float, optional
-        Share r in [0, 1) of EA that relaxes (standard linear solid; None: off).
-    relaxation_time : float, optional
-        Time constant tau of the relaxation (s).
     encoder : Sensor, optional
         The motor encoder's reading of the motor shaft (resolution, noise): what
         ``SimulationResult.q_motor`` logs and what ``bench.run``'s controllers read (None:
@@ -85,9 +76,9 @@ class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
     def __init__(
         self,
         route: Route,
-        friction: float = 0.1,
-        stiffness: float = 2.4e4,
-        elements: int = 100,
+        friction: float = TABLE,
+        stiffness: float = TABLE,
+        elements: int = TABLE,
         load: ConstantForce | LinearSpring | SpringPreload | None = None,
         motor: Motor | None = None,
         sensor: Sensor | None = None,
@@ -100,11 +91,8 @@ class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
     ):
         self._keep_arguments(locals())
         cls = type(self).__name__
-        effects = {
-            "sheath_viscosity": sheath_viscosity,
-            "relaxation_fraction": relaxation_fraction,
-            "relaxation_time": relaxation_time,
-        }
+        numbers, effect_names = _row_arguments(SingleTendonPlant)
+        effects = {k: v for k, v in locals().items() if k in effect_names}
         self.route = _check_route(route, "route", cls)
         load = ConstantForce(10.0) if load is None else load
         if not isinstance(load, ConstantForce | LinearSpring | SpringPreload):
@@ -114,12 +102,11 @@ class SingleTendonPlant(_Plant, core.SingleTendonPlant):  # type: ignore[misc]
             )
         self.load = load
         p = core.SingleTendonParams()
-        p.friction = number(cls, "friction", friction)
-        p.stiffness = number(cls, "stiffness", stiffness)
+        _set_numbers(p, cls, numbers, locals())
         p.elements = _check_elements(elements, cls)
         p.load_force, p.load_stiffness = load.linear()
         p.options = _options(cls, max_increment, fast_path)
-        _set_effects(p, cls, _RATE_EFFECTS, effects)
+        _set_effects(p, cls, effect_names, effects)
         with core_errors_as(cls):
             core.SingleTendonPlant.__init__(self, p, route)
         warn_unit_slips(cls, p)
