@@ -564,6 +564,15 @@ MINIMAL_CALLS.update(
         if inspect.isclass(cls) and getattr(cls.__init__, "from_table", False)
     }
 )
+# likewise the compensators whose constructor @feedforward_from_table writes
+# (compensate/from_table.py): every such class of ts.compensate
+MINIMAL_CALLS.update(
+    {
+        f"{cls.__module__}.{cls.__name__}": (lambda kw, cls=cls: cls(**kw))
+        for cls in (getattr(ts.compensate, name) for name in ts.compensate.__all__)
+        if inspect.isclass(cls) and getattr(cls.__init__, "from_table", False)
+    }
+)
 MINIMAL_CALLS["tendonsheath.models.polynomial.Polynomial"] = lambda kw: ts.models.Polynomial(
     1, **kw
 )

@@ -45,6 +45,11 @@ TABLE_BUILT = {
     "plant/motor.py": (("MotorParams",), (ts.Motor.position, ts.Motor.torque)),
     "plant/sensor.py": (("SensorParams",), (ts.Sensor,)),
     "plant/base.py": (("SingleTendonParams", "PullPullParams", "ContinuumParams"), ()),
+    # a feedforward whose constructor is its table's rows (compensate/from_table.py)
+    "compensate/dead_band_inverse.py": (
+        ("DeadBandInverseParams",),
+        (ts.compensate.DeadBandInverse,),
+    ),
 }
 
 # the compensator modules built from their tables: file -> (struct, the callables built from it).
