@@ -77,12 +77,11 @@ def run_jobs(
     lau2015); on one thread the results are the same on any machine and for any
     ``workers``. The small matrices of the fits gain nothing from BLAS threads anyway, and
     lose much on a loaded machine (see identify.servo)."""
-    import threadpoolctl
-
+    from .blas import one_blas_thread
     from .main_guard import unguarded_script
 
     remote = [job for job in jobs if travels(job.run)]
-    with threadpoolctl.threadpool_limits(1, user_api="blas"):
+    with one_blas_thread():
         if workers <= 1 or len(remote) <= 1 or unguarded_script() is not None:
             return {job.key: _timed(job, progress) for job in jobs}
         return _on_workers(jobs, remote, min(workers, len(remote)), progress, preload)
@@ -106,9 +105,9 @@ def _start_worker(lines, threads: int) -> None:
     _LINES = lines
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     os.environ["TENDONSHEATH_NUM_THREADS"] = str(threads)
-    import threadpoolctl
+    from .blas import limit_blas_threads
 
-    threadpoolctl.threadpool_limits(1, user_api="blas")
+    limit_blas_threads(1, user_api="blas")
 
 
 def _say(line: str) -> None:

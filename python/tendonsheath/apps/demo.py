@@ -109,8 +109,7 @@ def run_demo(
     The scenarios and studies are independent: they run on ``workers`` processes (default:
     one per core; 1: all in this process, one after the other), with the same results
     either way. ``timings``: each one's seconds of work (do2015's: its parts' together)."""
-    import threadpoolctl
-
+    from .._util.blas import one_blas_thread
     from .._util.jobs import cores, run_jobs
     from ..bench.scenarios import SCENARIOS
 
@@ -126,7 +125,7 @@ def run_demo(
     out.mkdir(parents=True, exist_ok=True)
     workers = cores() if workers is None else int(workers)
     jobs = _jobs(names, SCENARIOS, out, scale, seed, robustness, angle_unit, split=workers > 1)
-    with threadpoolctl.threadpool_limits(1, user_api="blas"):  # as in the jobs (run_jobs)
+    with one_blas_thread():  # as in the jobs (run_jobs)
         done = run_jobs(jobs, workers, progress, preload=["tendonsheath.apps.demo"])
         return _write(out, names, done, scale, seed, robustness, angle_unit)
 

@@ -563,11 +563,11 @@ def population_run(params: dict) -> dict[str, dict[str, float]]:
     (``fixed``, ``median`` and ``min`` MSE reductions; ILC: ``min`` and ``median`` over its
     noise seeds and ``shifted_ok``). ``params``: ``seed`` (the member), ``kind``
     ("pull-pull" or "continuum")."""
-    import threadpoolctl
+    from .._util.blas import one_blas_thread
 
     # the BLAS on one thread: the figures then do not depend on the machine's core count (the
     # fits' small least-squares problems gain nothing from BLAS threads; see _util.jobs)
-    with threadpoolctl.threadpool_limits(1, user_api="blas"):
+    with one_blas_thread():
         return _population_run(params)
 
 

@@ -35,9 +35,9 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import threadpoolctl
 
 from .._util.arrays import as_timed_signal
+from .._util.blas import one_blas_thread
 from .._util.typing import ArrayLike
 from ..control_interop import require_control
 
@@ -277,7 +277,7 @@ def _standard_errors(result, residual: np.ndarray, f: float, z: float) -> dict[s
 
 #: The fits multiply 3x3 and 4x4 matrices thousands of times (cont2discrete's expm): BLAS
 #: threads only contend there (5x slower on a loaded two-core machine), so they run on one.
-_one_blas_thread = threadpoolctl.threadpool_limits.wrap(limits=1, user_api="blas")
+_one_blas_thread = one_blas_thread()
 
 
 @_one_blas_thread

@@ -23,8 +23,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
-import threadpoolctl
-
+from .._util.blas import limit_blas_threads
 from .._util.main_guard import ADVICE, in_bootstrapping_worker, unguarded_script
 from .._util.progress import StepProgress
 
@@ -206,7 +205,7 @@ def _start_worker(threads: int) -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     os.environ.setdefault("TENDONSHEATH_NUM_THREADS", str(threads))
     # the BLAS was loaded by the fork server before any environment variable could cap it
-    threadpoolctl.threadpool_limits(threads)
+    limit_blas_threads(threads)
 
 
 def _stop_pool(key) -> None:
