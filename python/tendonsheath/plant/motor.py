@@ -116,9 +116,6 @@ class Motor(PythonObject, core.Motor):  # type: ignore[misc]
         held while the speed or acceleration limit cuts the motion (anti-windup). The loop
         s^3 + 2 zeta w s^2 + w^2 s + w^2 / T_i is stable for T_i > 1 / (2 zeta w).
 
-        Parameters
-        ----------
-
         Returns
         -------
         Motor

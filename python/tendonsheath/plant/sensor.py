@@ -30,9 +30,6 @@ class Sensor(PythonObject, core.Sensor):  # type: ignore[misc]
     covers reads the oldest sample kept and flags ``Status.INPUT_CLAMPED``. ``bench.run`` feeds
     the controller this delayed reading.
 
-    Parameters
-    ----------
-
     Raises
     ------
     ValueError
