@@ -148,6 +148,12 @@ def _compensators():
         ),
         (ts.compensate.LoadCompensated, {"model": loaded, "filter_hz": 30.0}),
         (ts.compensate.CoupledFeedforward, {"model": coupled, "filter_hz": 30.0}),
+        # a feedforward whose constructor is its table (compensate/from_table.py) needs nothing
+        *(
+            (cls, {})
+            for cls in (getattr(ts.compensate, n) for n in ts.compensate.__all__)
+            if getattr(getattr(cls, "__init__", None), "from_table", False)
+        ),
     ]
 
 

@@ -276,7 +276,8 @@ def model_name(candidate: type[HysteresisModel] | Chain) -> str:
 
 INVERSE_NOTE = (
     "inv: the held-out input the model's InverseFeedforward would have commanded for the "
-    "recorded output (low-passed; apps.inverse_error), against the input that produced it"
+    "recorded output (low-passed; tendonsheath.apps.inverse_error), against the input that "
+    "produced it"
 )
 
 

@@ -9,6 +9,7 @@ from typing import Any, TypeVar
 
 from .._util.args import core_errors_as, number
 from .._util.param_table import python_default, rows_of, with_parameters
+from .._util.units import warn_unit_slips
 
 _T = TypeVar("_T", bound=type)
 
@@ -50,8 +51,10 @@ def feedforward_from_table(cls: _T) -> _T:
         bound.apply_defaults()
         settings = dict(list(bound.arguments.items())[1:])
         self._settings = {k: number(who, k, v) for k, v in settings.items()}
+        params = struct(**self._settings)
         with core_errors_as(who):
-            self._bound_class.__init__(self, struct(**self._settings))
+            self._bound_class.__init__(self, params)
+        warn_unit_slips(who, params)
 
     __init__.__signature__ = signature  # type: ignore[attr-defined]
     __init__.from_table = True  # type: ignore[attr-defined]
