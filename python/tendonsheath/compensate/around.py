@@ -40,6 +40,16 @@ class AroundFeedforward(EngineCompensator):
         inner = getattr(self.feedforward, "status", None)
         return own | Status(int(inner())) if callable(inner) else own
 
+    def bench_engine(self) -> None:
+        """None: bench.run runs this compensator as a stage around its feedforward (the
+        subclass's ``bench_stage``), not as an engine of its own.
+
+        Returns
+        -------
+        None
+        """
+        return None
+
     # -- a feedforward that follows the route ------------------------------------------
     @property
     def follows_route(self) -> bool:

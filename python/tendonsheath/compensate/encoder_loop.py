@@ -205,16 +205,6 @@ class EncoderLoop(AroundFeedforward, core.EncoderLoop):  # type: ignore[misc]
         """
         return core.EncoderLoop(bound_attribute(self, "params")), self.feedforward
 
-    def bench_engine(self) -> None:
-        """None: bench.run runs this loop as a stage around its feedforward
-        (:meth:`bench_stage`).
-
-        Returns
-        -------
-        None
-        """
-        return None
-
     def __repr__(self) -> str:
         gains = ", ".join(f"{k}={self._settings[k]:g}" for k in _GAINS[:3])  # kp, ki, kd
         return f"EncoderLoop({self.feedforward!r}, {gains})"

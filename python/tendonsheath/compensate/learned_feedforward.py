@@ -249,16 +249,6 @@ class LearnedFeedforward(AroundFeedforward, core.LearnedCorrection):  # type: ig
             self._settings["table"], bound_attribute(self, "params")
         ), self.feedforward
 
-    def bench_engine(self) -> None:
-        """None: bench.run runs the table as a stage added to its feedforward
-        (:meth:`bench_stage`).
-
-        Returns
-        -------
-        None
-        """
-        return None
-
     def __repr__(self) -> str:
         n = len(self._settings["table"])
         span = (n - 1) * self.table_dt

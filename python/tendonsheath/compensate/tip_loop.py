@@ -408,16 +408,6 @@ class TipLoop(AroundFeedforward, core.TipLoop):  # type: ignore[misc]
         loop.set_curve_angle(self.curve_angle())
         return loop, self.feedforward
 
-    def bench_engine(self) -> None:
-        """None: bench.run runs this loop as a stage around its feedforward
-        (:meth:`bench_stage`).
-
-        Returns
-        -------
-        None
-        """
-        return None
-
     @classmethod
     def _from_saved(cls, values: dict):
         return cls(**values)
