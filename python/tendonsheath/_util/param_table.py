@@ -116,12 +116,7 @@ def table_defaults(
     """
 
     def complete(func: _F) -> _F:
-        rows = rows_of(struct)
-        _fill_defaults(func, rows, shown)
-        func._table_struct = struct  # type: ignore[attr-defined]
-        func.__doc__ = with_parameters(
-            func.__qualname__, func.__doc__ or "", inspect.signature(func), rows, shown
-        )
+        _take_rows(func, func, func.__qualname__, struct, shown)
         return func
 
     return complete
@@ -148,16 +143,28 @@ def table_constructor(
     """
 
     def complete(cls: _T) -> _T:
-        rows = rows_of(struct)
-        init = vars(cls)["__init__"]
-        _fill_defaults(init, rows, shown)
-        cls._table_struct = struct  # type: ignore[attr-defined]
-        cls.__doc__ = with_parameters(
-            cls.__name__, cls.__doc__ or "", inspect.signature(init), rows, shown
-        )
+        _take_rows(cls, vars(cls)["__init__"], cls.__name__, struct, shown)
         return cls
 
     return complete
+
+
+def _take_rows(
+    documented: Any,
+    func: Callable[..., Any],
+    owner: str,
+    struct: Any,
+    shown: Callable[[str, Any], Any] | None,
+) -> None:
+    """``func``'s :data:`TABLE` defaults filled from ``struct``'s rows, the struct kept as
+    ``documented._table_struct`` and the rows' Parameters entries written into
+    ``documented``'s docstring (the function itself, or the class of a constructor)."""
+    rows = rows_of(struct)
+    _fill_defaults(func, rows, shown)
+    documented._table_struct = struct
+    documented.__doc__ = with_parameters(
+        owner, documented.__doc__ or "", inspect.signature(func), rows, shown
+    )
 
 
 def _fill_defaults(
