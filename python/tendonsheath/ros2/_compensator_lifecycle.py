@@ -16,7 +16,15 @@ from std_msgs.msg import Float64MultiArray
 from trajectory_msgs.msg import JointTrajectory
 
 from ..status import Status
-from ._messages import COMMAND_TYPES, DESIRED_TYPES, Trajectory, by_name, declared, joint_state
+from ._messages import (
+    COMMAND_TYPES,
+    DESIRED_TYPES,
+    Trajectory,
+    by_name,
+    declared,
+    joint_state,
+    stream_qos,
+)
 from .live_compensator import Limits, LiveCompensator
 
 # the samples of period and compute time kept for timing() (about 3 min at 500 Hz)
@@ -113,8 +121,8 @@ class CompensatorNode(LifecycleNode):
     def _subscribe(self):
         assert self.live is not None
         needs = self.live.inputs
-        if self.param("desired_type") == "joint_trajectory":
-            self._sub(JointTrajectory, "desired_topic", self._on_trajectory)
+        if self.param("desired_type") == "joint_trajectory":  # a plan, sent once: reliable
+            self._sub(JointTrajectory, "desired_topic", self._on_trajectory, 10)
         else:
             self._sub(JointState, "desired_topic", self._on_desired)
         if "tip" in needs:
@@ -124,8 +132,9 @@ class CompensatorNode(LifecycleNode):
         if "curve_angle" in needs:
             self._sub(Float64MultiArray, "curve_angle_topic", self._on_curve_angle)
 
-    def _sub(self, kind, topic_key, callback):
-        sub = self.create_subscription(kind, self.param(topic_key), callback, 10)
+    def _sub(self, kind, topic_key, callback, qos=None):
+        qos = stream_qos() if qos is None else qos
+        sub = self.create_subscription(kind, self.param(topic_key), callback, qos)
         self._subs.append(sub)
 
     # -- inputs ----------------------------------------------------------------------

@@ -24,6 +24,19 @@ def declared(values: dict[str, Any]) -> dict[str, Any]:
     }
 
 
+def stream_qos() -> Any:
+    """The QoS a node subscribes to a stream with (a sample each cycle: desired positions,
+    sensor states, commands): best effort, keep last 5, rclpy's sensor-data profile.
+
+    A best-effort reader hears reliable and best-effort publishers alike (many robot drivers
+    publish their states best effort; a reliable reader does not match them), and each
+    cycle wants the newest sample: one lost in transport is superseded by the next, never
+    repaired late."""
+    from rclpy.qos import qos_profile_sensor_data
+
+    return qos_profile_sensor_data
+
+
 def stamp_seconds(stamp: Any) -> float:
     """A builtin_interfaces/Time in seconds."""
     return float(stamp.sec) + 1e-9 * float(stamp.nanosec)

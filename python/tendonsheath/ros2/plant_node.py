@@ -2,7 +2,8 @@
 
 Each timer tick steps the plant with the last command received (held between commands) over
 the real time since the previous tick, then publishes what the robot's sensors would
-(topic names and the joint are ROS parameters; QoS reliable, keep last 10):
+(topic names and the joint are ROS parameters; ``command`` is subscribed best effort, keep
+last 5, as a stream; ``route`` and what the node publishes reliable, keep last 10):
 
 * in: ``command`` (``sensor_msgs/JointState``: position, or effort for a torque motor; or
   ``std_msgs/Float64MultiArray``), ``route`` (``std_msgs/Float64MultiArray``: a curve angle,
@@ -20,7 +21,7 @@ import time
 from typing import Any
 
 from . import _env
-from ._messages import COMMAND_TYPES, by_name, declared, joint_state
+from ._messages import COMMAND_TYPES, by_name, declared, joint_state, stream_qos
 from .live_plant import LivePlant
 
 #: The node's parameters and their defaults.
@@ -101,7 +102,7 @@ def _node_class() -> type:
             self.torque = motor is not None and motor.kind == "torque"
             self.command = 0.0
             kind = JointState if values["command_type"] == "joint_state" else Float64MultiArray
-            self.create_subscription(kind, values["command_topic"], self._on_command, 10)
+            self.create_subscription(kind, values["command_topic"], self._on_command, stream_qos())
             self.create_subscription(Float64MultiArray, values["route_topic"], self._on_route, 10)
             self._tip = self.create_publisher(JointState, values["tip_topic"], 10)
             self._motor = self.create_publisher(JointState, values["motor_topic"], 10)
@@ -126,11 +127,12 @@ def _node_class() -> type:
                     self.get_logger().warning(f"route ignored: {exc}")
 
         def _tick(self):
-            now = time.monotonic()
+            # the readings are of the plant stepped to this instant: stamped with it, not
+            # with the end of the step (which a loaded machine delays by a varying time)
+            now, stamp = time.monotonic(), self.get_clock().now().to_msg()
             dt, self._previous = now - self._previous, now
             applied = self.command  # the command held over this tick
             reading = self.plant.step(applied, dt)
-            stamp = self.get_clock().now().to_msg()
             names = [self.joint]
             self._tip.publish(joint_state(JointState, names, stamp, position=[reading.tip]))
             self._motor.publish(
