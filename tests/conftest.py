@@ -1,5 +1,13 @@
+import signal
+
 import numpy as np
 import pytest
+
+# A run started in the background of a shell without job control (or under nohup) has SIGINT
+# ignored, and every command a test starts inherits that: the Ctrl-C tests' commands (the
+# CLI, the ROS 2 nodes) would never see their Ctrl-C. A handled SIGINT is reset at exec.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 @pytest.fixture
