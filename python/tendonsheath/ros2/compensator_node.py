@@ -2,8 +2,8 @@
 lifecycle node (configure, activate, deactivate, cleanup).
 
 Topics (names and the joints are ROS parameters). The streams in are subscribed best effort,
-keep last 5 (rclpy's sensor-data profile: any publisher is heard, a lost sample never
-stalls the next), a trajectory reliable; what the node publishes is reliable, keep last 10:
+keep last 5 (rclpy's sensor-data profile: any publisher is heard, a lost sample is
+superseded by the next), a trajectory reliable; what the node publishes is reliable, keep last 10:
 
 * in: ``desired`` (``sensor_msgs/JointState`` positions, or ``trajectory_msgs/JointTrajectory``
   with ``desired_type: joint_trajectory``), and what the compensator takes: ``tip_state``
