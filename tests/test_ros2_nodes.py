@@ -164,24 +164,36 @@ def _check_tracking(obs, begin, end):
     scored = (ticks[:, 0] >= begin) & (ticks[:, 0] <= end - 0.1)
     reference = _heard_sine(obs.desired)(ticks[scored, 0])
     live = float(np.sqrt(np.mean((ticks[scored, 1] - reference) ** 2)))
-    replay = _replay(ticks[:, 0], ticks[:, 2])[scored]
-    gap = float(np.sqrt(np.mean((ticks[scored, 1] - replay) ** 2)))
+    judged = scored & _settled(ticks[:, 0])
+    assert judged.sum() > 0.5 * scored.sum(), "the observer missed most of the ticks"
+    replay = _replay(ticks[:, 0], ticks[:, 2])
+    gap = float(np.sqrt(np.mean((ticks[judged, 1] - replay[judged]) ** 2)))
     draw = ts.presets.random_realistic_plant(MEMBER)
     t = np.arange(0.0, 5.0, 1.0 / RATE)  # as the live run: 1 s of warm-up, 4 s scored
     y_d = AMPLITUDE * np.sin(2 * np.pi * FREQUENCY * t)
     bench = ts.bench.run(draw.plant(), _feedforward(), t, y_d, noise=draw.tip_sensor(), warmup=1.0)
     # the plant node publishes each tick's command, stamped with the tick's instant, so the
     # replay is the node's own loop but for a tick the observer missed (the replay then
-    # steps two ticks as one: a longer dt): measured gap 0 to 0.03 mrad (quiet, and beside
-    # a pytest run on 2 cores; it was up to 0.8 mrad when the stamp was read after the
-    # step) against a live error of 2 to 10 mrad (bench's: 1.0 mrad: the timing of three
-    # processes at 200 Hz adds the rest)
+    # steps two ticks as one: a longer dt; past a longer hole it is judged once settled):
+    # measured gap 0 to 0.03 mrad (quiet, and beside a pytest run on 2 cores; it was up to
+    # 0.8 mrad when the stamp was read after the step) against a live error of 2 to 10 mrad
+    # (bench's: 1.0 mrad: the timing of three processes at 200 Hz adds the rest)
     assert gap <= 0.05 * live + 0.2e-3, (gap, live, bench.metrics["rmse"])
     # the loop tracks: a hold errs by 0.7 x the amplitude (rms), a wrong sign by 1.4 x, a
     # command 95 ms late by 0.3 x. Measured: 2 to 11 mrad; but twice in about 70 runs the
     # plant heard no command for 0.33 s (best-effort and reliable subscriptions alike, the
     # plant ticking on), which inside the scored window adds about 50 mrad
     assert live < 0.3 * AMPLITUDE, (live, bench.metrics["rmse"])
+
+
+def _settled(stamps):
+    """The ticks 0.2 s or more past any hole of two ticks or more in what the observer heard
+    (a lost sample, or the stream frozen for 0.33 s as seen on CI). The replay steps a hole
+    as one tick with one command, so its state differs from the plant's for a while after
+    it: measured, back to 2e-5 rad within 0.2 s of a 0.33 s hole."""
+    holes = stamps[1:][np.diff(stamps) > 2.5 / RATE]
+    after = stamps[:, None] - holes[None, :]
+    return ~np.any((after >= 0.0) & (after < 0.2), axis=1)
 
 
 def _heard_sine(desired):
