@@ -134,6 +134,9 @@ def test_the_live_loop_tracks_as_bench_run_and_holds_when_the_reference_dies(tmp
         # does (measured: up to 2.7 s after the first command)
         _spin(executor, 40.0, until=lambda: obs.command and obs.desired)
         assert obs.command and obs.desired, "no command within 40 s: " + _outputs(procs)
+        # a node left running on this domain by an earlier run would mix its ticks in
+        for topic in ("output_truth", "command", "desired"):
+            assert obs.node.count_publishers(topic) == 1, f"another node publishes {topic}"
         start = time.time()
         _spin(executor, 4.0)
         killed = time.time()
@@ -143,14 +146,28 @@ def test_the_live_loop_tracks_as_bench_run_and_holds_when_the_reference_dies(tmp
         _spin(executor, 0.5)
         alive = procs["compensate"].poll() is None
     finally:
-        for p in procs.values():
-            p.send_signal(signal.SIGINT)
-        for p in procs.values():
-            p.wait(timeout=20)
+        stuck = _stop(procs)
         ctx.shutdown()
+    assert not stuck, f"{stuck} did not stop within 20 s of Ctrl-C"
     assert alive, _outputs(procs)
     _check_tracking(obs, start + 1.0, killed)
     _check_hold(obs, killed)
+
+
+def _stop(procs):
+    """Ctrl-C every node; kill one that does not stop within 20 s (none is left running to
+    talk on the next run's domain). The names of those killed."""
+    for p in procs.values():
+        p.send_signal(signal.SIGINT)
+    stuck = []
+    for name, p in procs.items():
+        try:
+            p.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            p.kill()
+            p.wait()
+            stuck.append(name)
+    return stuck
 
 
 def _check_tracking(obs, begin, end):
