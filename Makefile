@@ -66,7 +66,7 @@ chromium:
 FUZZ_RUNS ?= 10000000
 FUZZ_JOBS ?= $(shell nproc)
 FUZZ_SANITIZE ?= fuzzer,undefined
-FUZZ_TARGETS := plants motor sensor models inverses compensators
+FUZZ_TARGETS := plants motor sensor models inverses compensators listed
 FUZZ_BUILD := build/fuzz
 
 clang:

@@ -17,6 +17,8 @@
 #include <limits>
 #include <memory>
 #include <tendonsheath/tendonsheath.hpp>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "../cpp/model_inverse_cases.hpp"
@@ -399,6 +401,54 @@ inline Failure compensators(const std::uint8_t* data, std::size_t size) {
   return {};
 }
 
+namespace detail_fuzz {
+// A compensator that steps as a feedforward (step(y_d, dt)) and is built from its Params.
+template <class C, class = void>
+struct feedforward_from_params : std::false_type {};
+template <class C>
+struct feedforward_from_params<
+    C, std::void_t<decltype(C(std::declval<const typename C::Params&>())),
+                   decltype(std::declval<C&>().step(0.0, 0.0))>> : std::true_type {};
+
+// One class built from its default parameters, stepped and reset as the bytes say.
+template <class C>
+Failure listed_one(const std::uint8_t* data, std::size_t size, const char* rule) {
+  Bytes b(data, size);
+  C stepped{typename C::Params{}};
+  for (long op = 0; op < kMaxOps && !b.done(); ++op) {
+    if (b.byte() % 32 == 0) {
+      stepped.reset();
+      continue;
+    }
+    const double x = b.value(2.0), dt = b.dt();
+    if (bad(x, stepped.step(x, dt))) return {rule, op};
+  }
+  return {};
+}
+}  // namespace detail_fuzz
+
+// Every forward model and every feedforward of the core's lists (models/model_list.hpp,
+// compensators/compensator_list.hpp), each built from its default parameters and fed the same
+// bytes: a class added to a list is fuzzed without a line of its own. The one rule checked is a
+// finite output for a finite input, so a failure's rule names the class that broke it.
+inline Failure listed(const std::uint8_t* data, std::size_t size) {
+  using namespace detail_fuzz;
+  Failure failure{};
+  for_each_type(Models{}, [&](auto tag) {
+    using M = typename decltype(tag)::type;
+    if constexpr (root_invertible<M>::value) {
+      if (!failure.rule) failure = listed_one<M>(data, size, model_kind<M>());
+    }
+  });
+  for_each_type(Compensators{}, [&](auto tag) {
+    using C = typename decltype(tag)::type;
+    if constexpr (feedforward_from_params<C>::value) {
+      if (!failure.rule) failure = listed_one<C>(data, size, compensator_kind<C>());
+    }
+  });
+  return failure;
+}
+
 using Driver = Failure (*)(const std::uint8_t*, std::size_t);
 
 struct Target {
@@ -410,7 +460,7 @@ inline const Target* targets() {
   static const Target kTargets[] = {{"plants", plants},         {"motor", motor},
                                     {"sensor", sensor},         {"models", models},
                                     {"inverses", inverses},     {"compensators", compensators},
-                                    {nullptr, nullptr}};
+                                    {"listed", listed},         {nullptr, nullptr}};
   return kTargets;
 }
 

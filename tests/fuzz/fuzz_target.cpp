@@ -1,5 +1,6 @@
 // libFuzzer entry point of one driver of fuzz_drivers.hpp, chosen at compile time with
-// -DTENDONSHEATH_FUZZ_TARGET=<family> (plants, motor, sensor, models, inverses, compensators).
+// -DTENDONSHEATH_FUZZ_TARGET=<family> (plants, motor, sensor, models, inverses, compensators,
+// listed).
 // Built and run by `make fuzz`; a broken rule aborts with the rule and the operation index,
 // and libFuzzer writes the reproducing input (crash-*).
 #include <cstdio>

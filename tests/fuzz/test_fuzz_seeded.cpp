@@ -45,7 +45,7 @@ TEST_P(SeededFuzz, KeepsTheRealTimeContract) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Drivers, SeededFuzz, ::testing::Range(0, 6),
+INSTANTIATE_TEST_SUITE_P(Drivers, SeededFuzz, ::testing::Range(0, 7),
                          [](const ::testing::TestParamInfo<int>& info) {
                            return std::string(fz::targets()[info.param].name);
                          });
