@@ -8,11 +8,10 @@
 #include <cstdlib>
 #include <new>
 #include <tendonsheath/tendonsheath.hpp>
-#include <type_traits>
-#include <utility>
 #include <vector>
 
 #include "counting_new.hpp"  // counts allocations while armed
+#include "listed_steppers.hpp"
 #include "model_inverse_cases.hpp"
 
 namespace ts = tendonsheath;
@@ -293,35 +292,16 @@ TEST(NoAllocation, TheCounterCounts) {
 
 // Every model and feedforward of the lists, built from its default parameters: one added to a
 // list is checked here without a line of its own (the tests above also cover special cases).
-template <class C, class = void>
-struct feedforward_from_params : std::false_type {};
-template <class C>
-struct feedforward_from_params<
-    C, std::void_t<decltype(C(std::declval<const typename C::Params&>())),
-                   decltype(std::declval<C&>().step(0.0, 0.0))>> : std::true_type {};
-
 TEST(NoAllocation, EveryModelAndFeedforwardOfTheListsSteps) {
   std::size_t checked = 0;
-  const auto steps_without_allocating = [&](auto& stepped, const char* kind) {
+  ts::cases::for_each_listed_stepper([&](auto tag, const char* kind) {
+    using C = typename decltype(tag)::type;
+    C stepped{typename C::Params{}};  // the constructor may allocate (PlantModel's plant)
     const long n = allocations_in([&] {
       for (int k = 0; k < 1000; ++k) (void)stepped.step(input(k), 1e-3);
     });
     EXPECT_EQ(n, 0) << kind;
     ++checked;
-  };
-  ts::for_each_type(ts::Models{}, [&](auto tag) {
-    using M = typename decltype(tag)::type;
-    if constexpr (ts::root_invertible<M>::value) {  // step(x, dt): the forward models
-      M model{typename M::Params{}};  // the constructor may allocate (PlantModel's plant)
-      steps_without_allocating(model, ts::model_kind<M>());
-    }
-  });
-  ts::for_each_type(ts::Compensators{}, [&](auto tag) {
-    using C = typename decltype(tag)::type;
-    if constexpr (feedforward_from_params<C>::value) {
-      C compensator{typename C::Params{}};
-      steps_without_allocating(compensator, "a compensator of the list");
-    }
   });
   EXPECT_GE(checked, 7u);  // the 7 root-invertible models at least (DeadZone among them)
 }

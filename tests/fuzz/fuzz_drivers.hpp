@@ -17,10 +17,9 @@
 #include <limits>
 #include <memory>
 #include <tendonsheath/tendonsheath.hpp>
-#include <type_traits>
-#include <utility>
 #include <vector>
 
+#include "../cpp/listed_steppers.hpp"
 #include "../cpp/model_inverse_cases.hpp"
 
 namespace tendonsheath::fuzz {
@@ -402,14 +401,6 @@ inline Failure compensators(const std::uint8_t* data, std::size_t size) {
 }
 
 namespace detail_fuzz {
-// A compensator that steps as a feedforward (step(y_d, dt)) and is built from its Params.
-template <class C, class = void>
-struct feedforward_from_params : std::false_type {};
-template <class C>
-struct feedforward_from_params<
-    C, std::void_t<decltype(C(std::declval<const typename C::Params&>())),
-                   decltype(std::declval<C&>().step(0.0, 0.0))>> : std::true_type {};
-
 // One class built from its default parameters, stepped and reset as the bytes say.
 template <class C>
 Failure listed_one(const std::uint8_t* data, std::size_t size, const char* rule) {
@@ -432,19 +423,10 @@ Failure listed_one(const std::uint8_t* data, std::size_t size, const char* rule)
 // bytes: a class added to a list is fuzzed without a line of its own. The one rule checked is a
 // finite output for a finite input, so a failure's rule names the class that broke it.
 inline Failure listed(const std::uint8_t* data, std::size_t size) {
-  using namespace detail_fuzz;
   Failure failure{};
-  for_each_type(Models{}, [&](auto tag) {
-    using M = typename decltype(tag)::type;
-    if constexpr (root_invertible<M>::value) {
-      if (!failure.rule) failure = listed_one<M>(data, size, model_kind<M>());
-    }
-  });
-  for_each_type(Compensators{}, [&](auto tag) {
+  cases::for_each_listed_stepper([&](auto tag, const char* kind) {
     using C = typename decltype(tag)::type;
-    if constexpr (feedforward_from_params<C>::value) {
-      if (!failure.rule) failure = listed_one<C>(data, size, compensator_kind<C>());
-    }
+    if (!failure.rule) failure = detail_fuzz::listed_one<C>(data, size, kind);
   });
   return failure;
 }
